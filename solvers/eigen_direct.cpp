@@ -1,0 +1,127 @@
+#include "eigen_direct.h"
+
+#include <cmath>
+#include <string>
+
+#include <Eigen/OrderingMethods>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+
+namespace coons::solvers {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+using Ldlt = Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>;
+using Llt = Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>;
+using Lu = Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>>;
+
+// Pivots below this fraction of the largest one count as zero (the operator is singular).
+constexpr double kSingularPivot = 1e-13;
+
+// LDLᵀ without pivoting is only stable on definite matrices: a negative entry of D is reported
+// as "not positive definite", a zero one as "singular".
+SolveStatus judge(const Ldlt& f, SolveSummary& summary) {
+  if (f.info() != Eigen::Success) {
+    summary.message = "LDLT met a zero pivot";
+    return SolveStatus::kSingular;
+  }
+  summary.factor_nnz = static_cast<long long>(f.matrixL().nestedExpression().nonZeros());
+  const Eigen::VectorXd d = f.vectorD();
+  const double scale = d.cwiseAbs().maxCoeff();
+  const Eigen::Index zero = (d.array().abs() <= kSingularPivot * scale).count();
+  const Eigen::Index negative = (d.array() < -kSingularPivot * scale).count();
+  if (zero > 0) {
+    summary.message = std::to_string(zero) + " zero pivot(s) in D";
+    return SolveStatus::kSingular;
+  }
+  if (negative > 0) {
+    summary.message = std::to_string(negative) + " negative pivot(s) in D";
+    return SolveStatus::kNotPositiveDefinite;
+  }
+  return SolveStatus::kSuccess;
+}
+
+SolveStatus judge(const Llt& f, SolveSummary& summary) {
+  if (f.info() != Eigen::Success) {
+    summary.message = "Cholesky met a non-positive pivot";
+    return SolveStatus::kNotPositiveDefinite;
+  }
+  const auto& L = f.matrixL().nestedExpression();
+  summary.factor_nnz = static_cast<long long>(L.nonZeros());
+  const Eigen::VectorXd d = L.diagonal();
+  if ((d.array() <= std::sqrt(kSingularPivot) * d.maxCoeff()).any()) {
+    summary.message = "a pivot of L is (numerically) zero";
+    return SolveStatus::kSingular;
+  }
+  return SolveStatus::kSuccess;
+}
+
+SolveStatus judge(const Lu& f, SolveSummary& summary) {
+  if (f.info() != Eigen::Success) {
+    summary.message = "SparseLU: " + f.lastErrorMessage();
+    return SolveStatus::kSingular;
+  }
+  summary.factor_nnz = static_cast<long long>(f.nnzL() + f.nnzU());
+  return SolveStatus::kSuccess;
+}
+
+// Shared by the three Eigen backends: each one only says how to factor and how to judge it.
+template <class Factor>
+class EigenDirect : public LinearSolver {
+ public:
+  EigenDirect(std::string name, std::string ordering, const SolverOptions& options)
+      : LinearSolver(options), name_(std::move(name)), ordering_(std::move(ordering)) {}
+  [[nodiscard]] std::string name() const override { return name_; }
+
+ protected:
+  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.matrix) {
+      summary.message = "needs the assembled matrix";
+      return SolveStatus::kNotApplicable;
+    }
+    factor_.analyzePattern(*op.matrix);
+    summary.ordering = ordering_;
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.matrix) {
+      summary.message = "needs the assembled matrix";
+      return SolveStatus::kNotApplicable;
+    }
+    factor_.factorize(*op.matrix);
+    return judge(factor_, summary);
+  }
+
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
+                       SolveSummary& summary) override {
+    X = factor_.solve(B);
+    summary.iterations = 1;
+    if (factor_.info() != Eigen::Success) {
+      summary.message = "Eigen solve failed";
+      return SolveStatus::kFailure;
+    }
+    return SolveStatus::kSuccess;
+  }
+
+ private:
+  std::string name_, ordering_;
+  Factor factor_;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_eigen_ldlt(const SolverOptions& options) {
+  return std::make_unique<EigenDirect<Ldlt>>("eigen-ldlt", "amd", options);
+}
+
+std::unique_ptr<LinearSolver> make_eigen_llt(const SolverOptions& options) {
+  return std::make_unique<EigenDirect<Llt>>("eigen-llt", "amd", options);
+}
+
+std::unique_ptr<LinearSolver> make_eigen_lu(const SolverOptions& options) {
+  return std::make_unique<EigenDirect<Lu>>("eigen-lu", "colamd", options);
+}
+
+}  // namespace coons::solvers

@@ -1,0 +1,120 @@
+// The one life cycle of every linear-solver backend of coons, modelled on Eigen's sparse solvers
+// (analyzePattern / factorize / solve) and Ceres's options and summary objects:
+//
+//   analyze(op)    depends only on the sparsity pattern or the grid size (orderings, plans);
+//   factorize(op)  depends on the values (for mask systems: on α);
+//   solve(B, X)    any number of times, B and X #unknowns by 3 (x, y and z at once).
+//
+// Backends never throw for numerical trouble: a failure is a status in the summary.
+#pragma once
+
+#include <memory>
+#include <optional>
+#include <string>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "grid_stencil.h"
+
+namespace coons::solvers {
+
+enum class SolveStatus {
+  kSuccess,
+  kNotConverged,        //!< iteration limit reached before the tolerance
+  kDiverged,            //!< an iteration grew without bound (e.g. Jacobi for α < 0)
+  kNotPositiveDefinite, //!< a Cholesky-type method met a non-positive pivot
+  kSingular,            //!< the operator is singular (to working precision)
+  kNotApplicable,       //!< the backend cannot handle this operator (e.g. needs a grid stencil)
+  kFailure,             //!< anything else, explained by the message
+};
+
+//! "success", "not_converged", "diverged", "not_positive_definite", "singular", ...
+const char* to_string(SolveStatus status);
+
+enum class Ordering { kAuto, kNatural, kAmd, kColamd, kMetis, kNestedDissection };
+const char* to_string(Ordering ordering);
+
+struct SolverOptions {
+  double tolerance = 1e-12;     //!< iterative: stop at ‖Ax − b‖/‖b‖ ≤ tolerance
+  int max_iterations = 0;       //!< iterative: 0 picks a size-dependent default
+  double sor_omega = 1.0;       //!< gauss-seidel: over-relaxation factor in (0, 2)
+  Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
+  bool compute_residual = true; //!< compute the true residual after solve (costs one apply)
+  double singular_residual = 1e-6; //!< exact solvers: a larger true residual means "singular"
+
+  //! True when the options are usable; otherwise explains why in *why.
+  bool is_valid(std::string* why) const;
+};
+
+struct SolveSummary {
+  std::string solver;  //!< registry name of the backend
+  SolveStatus status = SolveStatus::kSuccess;
+  std::string message; //!< empty on success, otherwise why
+  int iterations = 0;  //!< 1 for direct and transform solvers
+  double relative_residual = 0;  //!< max over columns of ‖A x − b‖ / ‖b‖ (‖b‖ = 0: ‖A x‖)
+  double analyze_seconds = 0, factorize_seconds = 0, solve_seconds = 0;
+  std::string ordering;  //!< fill-reducing ordering used, if any
+  long long factor_nnz = 0;  //!< non-zeros of the factor(s), 0 when there is none
+
+  [[nodiscard]] bool ok() const { return status == SolveStatus::kSuccess; }
+  [[nodiscard]] std::string brief_report() const;
+};
+
+//! The operator handed to a backend: the assembled matrix and/or its grid stencil.
+//! Either may be absent; a backend that needs the missing one reports kNotApplicable.
+//! The matrix is borrowed: it must outlive the factorize/solve calls that use it.
+struct LinearOperator {
+  const Eigen::SparseMatrix<double>* matrix = nullptr;
+  std::optional<GridStencil> stencil;
+
+  [[nodiscard]] Eigen::Index size() const;
+};
+
+class LinearSolver {
+ public:
+  explicit LinearSolver(SolverOptions options) : options_(options) {}
+  virtual ~LinearSolver() = default;
+  LinearSolver(const LinearSolver&) = delete;
+  LinearSolver& operator=(const LinearSolver&) = delete;
+
+  [[nodiscard]] virtual std::string name() const = 0;
+  //! Direct and transform solvers are exact: a large true residual after them means the
+  //! operator is numerically singular. Iterative solvers judge convergence themselves.
+  [[nodiscard]] virtual bool exact() const { return true; }
+
+  //! Pattern / grid dependent set-up. Returns the status (also kept for summary()).
+  SolveStatus analyze(const LinearOperator& op);
+  //! Value dependent set-up; analyze() is called first if it was not called for this size.
+  SolveStatus factorize(const LinearOperator& op);
+  //! X = A⁻¹ B for the last factorized operator. B is left unchanged.
+  SolveSummary solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X);
+  //! analyze + factorize + solve.
+  SolveSummary compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
+                                 Eigen::MatrixX3d& X);
+
+  [[nodiscard]] const SolverOptions& options() const { return options_; }
+  //! The summary of the last call (statuses of analyze/factorize are kept here too).
+  [[nodiscard]] const SolveSummary& summary() const { return summary_; }
+
+ protected:
+  virtual SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) = 0;
+  virtual SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) = 0;
+  //! Fills X; sets iterations (and may set the status, e.g. not converged).
+  virtual SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
+                               SolveSummary& summary) = 0;
+
+  SolverOptions options_;
+
+ private:
+  SolveSummary summary_;
+  LinearOperator op_;  // the operator of the last factorize (for the residual)
+  Eigen::Index analyzed_size_ = -1;
+  bool factorized_ = false;
+};
+
+//! max over columns of ‖A x − b‖/‖b‖, with A from the matrix or, when absent, the stencil.
+double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,
+                         const Eigen::MatrixX3d& X);
+
+}  // namespace coons::solvers

@@ -1,0 +1,64 @@
+#include "registry.h"
+
+#include "coons/config.h"
+#include "eigen_direct.h"
+
+namespace coons::solvers {
+
+const char* to_string(SolverFamily family) {
+  switch (family) {
+    case SolverFamily::kDirect: return "direct";
+    case SolverFamily::kIterative: return "iterative";
+    case SolverFamily::kStructured: return "structured";
+  }
+  return "direct";
+}
+
+namespace {
+
+using Factory = std::unique_ptr<LinearSolver> (*)(const SolverOptions&);
+
+struct Entry {
+  SolverInfo info;
+  Factory make;
+};
+
+const std::vector<Entry>& entries() {
+  static const std::vector<Entry> list = {
+      {{"eigen-ldlt", SolverFamily::kDirect, true, true, "Eigen SimplicialLDLT, AMD ordering"}, make_eigen_ldlt},
+      {{"eigen-llt", SolverFamily::kDirect, true, true, "Eigen SimplicialLLT, AMD ordering"}, make_eigen_llt},
+      {{"eigen-lu", SolverFamily::kDirect, true, false, "Eigen SparseLU, COLAMD ordering (indefinite systems too)"}, make_eigen_lu},
+  };
+  return list;
+}
+
+}  // namespace
+
+const std::vector<SolverInfo>& available_solvers() {
+  static const std::vector<SolverInfo> infos = [] {
+    std::vector<SolverInfo> out;
+    for (const auto& e : entries()) out.push_back(e.info);
+    return out;
+  }();
+  return infos;
+}
+
+const SolverInfo* find_solver(std::string_view name) {
+  for (const auto& info : available_solvers())
+    if (info.name == name) return &info;
+  return nullptr;
+}
+
+std::string choose_auto_solver(const GridStencil& stencil) {
+  const auto [lo, hi] = stencil_eigenvalue_range(stencil);
+  const bool definite = lo > 0 && hi > 0;
+  return definite ? "eigen-ldlt" : "eigen-lu";
+}
+
+std::unique_ptr<LinearSolver> make_solver(std::string_view name, const SolverOptions& options) {
+  for (const auto& e : entries())
+    if (e.info.name == name) return e.make(options);
+  return nullptr;
+}
+
+}  // namespace coons::solvers

@@ -1,0 +1,37 @@
+// The one place where backend names become solver objects (cf. Ceres's SparseCholesky::Create).
+// The CLI, the tests and the benchmarks all iterate over available_solvers().
+#pragma once
+
+#include <memory>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "linear_solver.h"
+
+namespace coons::solvers {
+
+enum class SolverFamily { kDirect, kIterative, kStructured };
+const char* to_string(SolverFamily family);
+
+struct SolverInfo {
+  std::string name;
+  SolverFamily family;
+  bool needs_matrix;        //!< works from the assembled matrix (else from the grid stencil)
+  bool definite_only;       //!< only for positive definite operators (Cholesky-type)
+  std::string description;  //!< one line for `coons solvers`
+};
+
+//! Every backend built into this binary, in a fixed order.
+const std::vector<SolverInfo>& available_solvers();
+
+//! Info of a backend, or nullptr when no backend of that name was built.
+const SolverInfo* find_solver(std::string_view name);
+
+//! The backend that `auto` stands for on this operator: the fastest applicable one built in.
+std::string choose_auto_solver(const GridStencil& stencil);
+
+//! A new backend of that name, or nullptr when there is none.
+std::unique_ptr<LinearSolver> make_solver(std::string_view name, const SolverOptions& options = {});
+
+}  // namespace coons::solvers

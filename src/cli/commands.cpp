@@ -1,0 +1,431 @@
+#include "commands.h"
+
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+#include <nlohmann/json.hpp>
+
+#include "coons/config.h"
+#include "coons/io/boundary_io.h"
+#include "coons/io/input_error.h"
+#include "coons/io/matrix_market.h"
+#include "coons/io/net_json.h"
+#include "coons/io/obj_export.h"
+#include "coons/io/write_files.h"
+#include "coons/mask/assemble_mask_system.h"
+#include "coons/mask/solve_mask_net.h"
+#include "coons/metrics/energies.h"
+#include "coons/net/coons_net.h"
+#include "solvers/registry.h"
+
+namespace coons::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+constexpr int kExitOk = 0;
+constexpr int kExitBadInput = 2;
+constexpr int kExitSolverFailed = 3;
+
+enum class Method { kAlpha, kCoons, kHermiteCoons };
+
+const char* to_string(Method m) {
+  switch (m) {
+    case Method::kAlpha: return "alpha";
+    case Method::kCoons: return "coons";
+    case Method::kHermiteCoons: return "hermite-coons";
+  }
+  return "alpha";
+}
+
+// What `solve`, `export` and `batch` share: how to make a net from a boundary.
+struct NetRequest {
+  std::string method = "alpha";
+  double alpha = -0.25;
+  std::optional<double> mu;
+  std::string solver = "auto";
+  bool allow_indefinite = false;
+  double corner_tolerance = 1e-9;
+  double tolerance = 1e-12;
+  int max_iterations = 0;
+};
+
+void add_net_options(CLI::App& cmd, NetRequest& r) {
+  cmd.add_option("--method", r.method, "alpha (solve the mask system), coons (closed form), "
+                 "hermite-coons (closed-form partially bicubic net, degree >= 3)")
+      ->capture_default_str();
+  cmd.add_option("--alpha", r.alpha, "weight of the diagonal neighbours; beta = 1/4 - alpha")
+      ->capture_default_str();
+  cmd.add_option("--mu", r.mu, "membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖²: the anisotropic mask of "
+                 "math.md §3 (overrides --alpha)");
+  cmd.add_option("--solver", r.solver, "a name from `coons solvers`, or auto")->capture_default_str();
+  cmd.add_flag("--allow-indefinite", r.allow_indefinite,
+                "let Cholesky-type solvers run outside alpha in [-1/4, 1/4] (they will report it)");
+  cmd.add_option("--corner-tolerance", r.corner_tolerance,
+                 "corners must agree to this fraction of the bounding-box diagonal")
+      ->capture_default_str();
+  cmd.add_option("--tolerance", r.tolerance, "iterative solvers: relative residual to reach")
+      ->capture_default_str();
+  cmd.add_option("--max-iterations", r.max_iterations, "iterative solvers: limit (0: automatic)")
+      ->capture_default_str();
+}
+
+// A validated request: strings turned into enums, backend names checked.
+struct ResolvedRequest {
+  Method method = Method::kAlpha;
+  Mask9 mask;
+  std::string solver;  // concrete backend (alpha method only)
+  solvers::SolverOptions options;
+};
+
+ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source) {
+  ResolvedRequest out;
+  if (r.method == "alpha") out.method = Method::kAlpha;
+  else if (r.method == "coons") out.method = Method::kCoons;
+  else if (r.method == "hermite-coons") out.method = Method::kHermiteCoons;
+  else throw InputError("command line", "--method", "unknown method '" + r.method + "' (alpha, coons, hermite-coons)");
+
+  if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");
+  if (r.mu && !(std::isfinite(*r.mu) && *r.mu >= 0))
+    throw InputError("command line", "--mu", "must be a finite number >= 0");
+  out.mask = r.mu ? anisotropic_mask(boundary.m, boundary.n, *r.mu) : alpha_mask(r.alpha);
+
+  out.options.tolerance = r.tolerance;
+  out.options.max_iterations = r.max_iterations;
+  std::string why;
+  if (!out.options.is_valid(&why)) throw InputError("command line", "solver options", why);
+
+  if (out.method == Method::kHermiteCoons && (boundary.m < 3 || boundary.n < 3))
+    throw InputError(source, "degree",
+                     fmt::format("hermite-coons needs degree >= 3 in both directions, the boundary has ({}, {})",
+                                 boundary.m, boundary.n));
+  if (out.method != Method::kAlpha) return out;
+
+  const auto stencil = mask_stencil(out.mask, std::max(boundary.m - 1, 0), std::max(boundary.n - 1, 0));
+  out.solver = r.solver;
+  if (r.solver == "auto") {
+    out.solver = stencil.size() > 0 ? solvers::choose_auto_solver(stencil) : "eigen-ldlt";
+    return out;
+  }
+  const solvers::SolverInfo* info = solvers::find_solver(r.solver);
+  if (!info) {
+    std::string names;
+    for (const auto& s : solvers::available_solvers()) names += (names.empty() ? "" : ", ") + s.name;
+    throw InputError("command line", "--solver", "unknown solver '" + r.solver + "' (built in: auto, " + names + ")");
+  }
+  const double alpha_equiv = out.mask.diag;
+  const bool in_definite_range = alpha_equiv >= -0.25 && alpha_equiv <= 0.25;
+  if (info->definite_only && !in_definite_range && !r.allow_indefinite)
+    throw InputError("command line", "--alpha",
+                     fmt::format("{} is outside [-0.25, 0.25], where the system is positive definite; "
+                                 "{} needs that (use eigen-lu, or --allow-indefinite to try anyway)",
+                                 alpha_equiv, r.solver));
+  return out;
+}
+
+struct NetOutcome {
+  ControlNet net;
+  std::optional<solvers::SolveSummary> summary;  // alpha method only
+};
+
+NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r) {
+  switch (r.method) {
+    case Method::kCoons: return {discrete_coons_net(boundary), std::nullopt};
+    case Method::kHermiteCoons: return {hermite_coons_net(boundary), std::nullopt};
+    case Method::kAlpha: break;
+  }
+  MaskSolveResult result = solve_mask_net(boundary, r.mask, r.solver, r.options);
+  return {std::move(result.net), std::move(result.summary)};
+}
+
+json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
+                  const std::optional<double>& mu) {
+  json report;
+  report["boundary"] = boundary.name;
+  report["degree"] = {boundary.m, boundary.n};
+  report["method"] = to_string(r.method);
+  report["alpha"] = r.mask.diag;
+  report["beta"] = number_or_null(r.mask.edge_i == r.mask.edge_j ? r.mask.edge_i : NAN);
+  if (r.mask.edge_i != r.mask.edge_j) report["beta_ij"] = {r.mask.edge_i, r.mask.edge_j};
+  if (mu) report["mu"] = *mu;
+  if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
+  else report["solver"] = {{"name", "closed-form"}, {"status", "not_applicable"},
+                           {"message", "closed-form net: no linear system is solved"}};
+  const bool ok = !outcome.summary || outcome.summary->ok();
+  report["net"] = ok ? net_to_json(outcome.net) : json(nullptr);
+  report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, r.mask)) : json(nullptr);
+  return report;
+}
+
+BoundaryFile read_input(const std::string& path, const NetRequest& r) {
+  BoundaryReadOptions options;
+  if (!(r.corner_tolerance >= 0 && std::isfinite(r.corner_tolerance)))
+    throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
+  options.corner_tolerance = r.corner_tolerance;
+  return read_boundary_file(path, options);
+}
+
+// ---- solve -----------------------------------------------------------------------------------
+
+int cmd_solve(const std::string& path, const NetRequest& request) {
+  const BoundaryFile input = read_input(path, request);
+  const ResolvedRequest r = resolve(request, input.boundary, path);
+  const NetOutcome outcome = make_net(input.boundary, r);
+  std::cout << solve_report(input.boundary, r, outcome, request.mu).dump(2) << '\n';
+  return outcome.summary && !outcome.summary->ok() ? kExitSolverFailed : kExitOk;
+}
+
+// ---- solvers ---------------------------------------------------------------------------------
+
+int cmd_solvers(bool as_json, bool verbose) {
+  if (as_json) {
+    json names = json::array();
+    for (const auto& s : solvers::available_solvers()) names.push_back(s.name);
+    std::cout << names.dump() << '\n';
+    return kExitOk;
+  }
+  for (const auto& s : solvers::available_solvers()) {
+    if (verbose) fmt::print("{:<20} {:<11} {}\n", s.name, solvers::to_string(s.family), s.description);
+    else fmt::print("{}\n", s.name);
+  }
+  return kExitOk;
+}
+
+// ---- export ----------------------------------------------------------------------------------
+
+struct ExportRequest {
+  std::string out_dir = ".";
+  std::string prefix;
+  int samples = 33;
+  bool obj = false, mtx = false;
+};
+
+int cmd_export(const std::string& path, const NetRequest& request, ExportRequest e) {
+  const BoundaryFile input = read_input(path, request);
+  const ResolvedRequest r = resolve(request, input.boundary, path);
+  if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  if (!e.obj && !e.mtx) e.obj = e.mtx = true;
+  if (e.mtx && r.method != Method::kAlpha)
+    throw InputError("command line", "--mtx", "Matrix Market export needs --method alpha (closed forms solve no system)");
+  if (e.mtx && input.boundary.m < 2 && input.boundary.n < 2) {}
+  const std::string prefix = e.prefix.empty() ? input.boundary.name : e.prefix;
+  std::error_code ec;
+  fs::create_directories(e.out_dir, ec);
+  if (ec) throw InputError(e.out_dir, "--out", "cannot create the folder: " + ec.message());
+  const fs::path base = fs::path(e.out_dir) / prefix;
+
+  std::vector<std::string> written;
+  NetOutcome outcome;
+  if (e.obj) {
+    outcome = make_net(input.boundary, r);
+    if (outcome.summary && !outcome.summary->ok()) {
+      std::cout << solve_report(input.boundary, r, outcome, request.mu).dump(2) << '\n';
+      return kExitSolverFailed;
+    }
+  }
+  if (e.obj) {
+    const std::string surface = base.string() + ".surface.obj", net = base.string() + ".net.obj";
+    write_file_atomically(surface, [&](std::ostream& out) { write_surface_obj(out, outcome.net, e.samples); });
+    write_file_atomically(net, [&](std::ostream& out) { write_net_obj(out, outcome.net); });
+    written.push_back(surface);
+    written.push_back(net);
+  }
+  if (e.mtx) {
+    const MaskSystem system = assemble_mask_system(frame_net(input.boundary), r.mask, true);
+    const std::string a = base.string() + ".A.mtx", b = base.string() + ".B.mtx";
+    write_matrix_market(a, system.A);
+    write_dense_matrix_market(b, system.B);
+    written.push_back(a);
+    written.push_back(b);
+  }
+  json report = {{"boundary", input.boundary.name}, {"written", written}};
+  if (e.mtx) report["matrix_market"] = {{"matrix", "coordinate real general (both triangles stored)"},
+                                        {"rhs", "array real general, #interior by 3 (x, y, z)"}};
+  std::cout << report.dump(2) << '\n';
+  return kExitOk;
+}
+
+// ---- batch (the main job until the alpha study) ----------------------------------------------
+
+struct BatchRequest {
+  std::vector<std::string> inputs;
+  std::string out_dir = "out";
+  std::vector<double> alphas = {-0.25, -0.1, 0.0};
+  int samples = 33;
+};
+
+std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
+  std::vector<std::string> files;
+  for (const auto& in : inputs) {
+    if (fs::is_directory(in)) {
+      std::vector<std::string> found;
+      for (const auto& entry : fs::directory_iterator(in))
+        if (entry.path().extension() == ".json") found.push_back(entry.path().string());
+      std::sort(found.begin(), found.end());
+      files.insert(files.end(), found.begin(), found.end());
+    } else {
+      files.push_back(in);
+    }
+  }
+  return files;
+}
+
+int cmd_batch(const BatchRequest& b, const NetRequest& base) {
+  const std::vector<std::string> files = expand_inputs(b.inputs);
+  if (files.empty()) throw InputError("command line", "BOUNDARY", "no boundary files given or found");
+  if (b.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  for (double a : b.alphas)
+    if (!(a >= -0.25 && a <= 0.25)) throw InputError("command line", "--alphas", fmt::format("{} is outside [-0.25, 0.25]", a));
+  // Read and validate every input before anything is written.
+  std::vector<BoundaryFile> boundaries;
+  for (const auto& f : files) boundaries.push_back(read_input(f, base));
+
+  struct Row {
+    std::string boundary;
+    int m, n;
+    std::string method;
+    double alpha;
+    std::string status;
+    NetMetrics metrics;
+  };
+  std::vector<Row> rows;
+  std::vector<std::pair<std::string, json>> results;  // file stem → solve report
+  std::vector<std::pair<std::string, ControlNet>> nets;
+  for (const auto& input : boundaries) {
+    const Boundary& boundary = input.boundary;
+    std::vector<std::pair<std::string, NetRequest>> runs;
+    NetRequest coons = base;
+    coons.method = "coons";
+    runs.emplace_back("coons", coons);
+    for (double a : b.alphas) {
+      NetRequest r = base;
+      r.method = "alpha";
+      r.alpha = a;
+      runs.emplace_back(fmt::format("alpha{:+.3f}", a), r);
+    }
+    for (const auto& [tag, request] : runs) {
+      const ResolvedRequest r = resolve(request, boundary, boundary.name);
+      const NetOutcome outcome = make_net(boundary, r);
+      const bool ok = !outcome.summary || outcome.summary->ok();
+      Row row{boundary.name, boundary.m, boundary.n, to_string(r.method), r.mask.diag,
+              outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form", {}};
+      if (ok) row.metrics = net_metrics(outcome.net, r.mask);
+      rows.push_back(row);
+      const std::string stem = boundary.name + "/" + tag;
+      results.emplace_back(stem, solve_report(boundary, r, outcome, request.mu));
+      if (ok) nets.emplace_back(stem, outcome.net);
+    }
+  }
+
+  // Write: one folder per boundary, then the table.
+  for (const auto& [stem, report] : results) {
+    const fs::path p = fs::path(b.out_dir) / stem;
+    fs::create_directories(p.parent_path());
+    write_file_atomically(p.string() + ".json", [&](std::ostream& out) { out << report.dump(2) << '\n'; });
+  }
+  for (const auto& [stem, net] : nets) {
+    const std::string p = (fs::path(b.out_dir) / stem).string();
+    write_file_atomically(p + ".surface.obj", [&](std::ostream& out) { write_surface_obj(out, net, b.samples); });
+    write_file_atomically(p + ".net.obj", [&](std::ostream& out) { write_net_obj(out, net); });
+  }
+  std::string table = fmt::format("| {:<22} | {:>7} | {:<6} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n",
+                                  "boundary", "degree", "method", "alpha", "twist", "thin plate", "Dirichlet",
+                                  "E3", "disc. twist", "mask res.", "status");
+  table += "|" + std::string(24, '-') + "|" + std::string(9, '-') + "|" + std::string(8, '-') + "|" +
+           std::string(8, '-') + "|" + std::string(13, '-') + "|" + std::string(14, '-') + "|" +
+           std::string(14, '-') + "|" + std::string(14, '-') + "|" + std::string(14, '-') + "|" +
+           std::string(11, '-') + "|" + std::string(13, '-') + "|\n";
+  for (const auto& r : rows)
+    table += fmt::format("| {:<22} | {:>7} | {:<6} | {:>6.3f} | {:>11.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>9.2e} | {:<11} |\n",
+                         r.boundary, fmt::format("{}x{}", r.m, r.n), r.method, r.alpha, r.metrics.twist_energy,
+                         r.metrics.thin_plate_energy, r.metrics.dirichlet_energy, r.metrics.e3_energy,
+                         r.metrics.discrete_twist_energy, r.metrics.mask_residual, r.status);
+  write_file_atomically((fs::path(b.out_dir) / "metrics.md").string(), [&](std::ostream& out) {
+    out << "# coons batch: metrics of every bundled boundary\n\n"
+        << "Coons = closed-form discrete Coons net; alpha = mask solve. Energies are exact integrals "
+           "of the Bézier surface (math.md §5); mask res. is the residual of the row's own mask.\n\n"
+        << table;
+  });
+  std::cout << table << '\n'
+            << fmt::format("{} boundaries, {} nets; results in {}/ (per boundary: <method>.json, "
+                           ".surface.obj, .net.obj; the table in metrics.md)\n",
+                           boundaries.size(), rows.size(), b.out_dir);
+  for (const auto& r : rows)
+    if (r.status != "success" && r.status != "closed-form") return kExitSolverFailed;
+  return kExitOk;
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  CLI::App app{"coons — discrete Coons patches: fill a Bézier control net from its boundary "
+               "(Farin & Hansford, CAGD 16, 1999)", "coons"};
+  app.set_version_flag("--version", COONS_VERSION);
+  app.require_subcommand(1);
+
+  NetRequest net_request;
+  std::string boundary_path;
+
+  auto* solve = app.add_subcommand("solve", "solve one boundary; prints one JSON report (formats.md)");
+  solve->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  add_net_options(*solve, net_request);
+
+  bool solvers_json = false, solvers_verbose = false;
+  auto* list = app.add_subcommand("solvers", "list the linear-solver backends built in");
+  list->add_flag("--json", solvers_json, "print a JSON array");
+  list->add_flag("-v,--verbose", solvers_verbose, "print family and description too");
+
+  ExportRequest export_request;
+  auto* exp = app.add_subcommand("export", "write the net as OBJ files and/or the mask system as Matrix Market");
+  exp->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  add_net_options(*exp, net_request);
+  exp->add_option("--out", export_request.out_dir, "output folder")->capture_default_str();
+  exp->add_option("--prefix", export_request.prefix, "file name prefix (default: the boundary's name)");
+  exp->add_option("--samples", export_request.samples, "surface samples per direction")->capture_default_str();
+  exp->add_flag("--obj", export_request.obj, "write <prefix>.surface.obj and <prefix>.net.obj");
+  exp->add_flag("--mtx", export_request.mtx, "write <prefix>.A.mtx and <prefix>.B.mtx (Matrix Market)");
+
+  BatchRequest batch_request;
+  auto* batch = app.add_subcommand("batch", "solve many boundaries as Coons net and at several alpha; "
+                                   "write nets and OBJ files and a metrics table");
+  batch->add_option("BOUNDARY", batch_request.inputs, "boundary files or folders of them")->required();
+  batch->add_option("--out", batch_request.out_dir, "output folder")->capture_default_str();
+  batch->add_option("--alphas", batch_request.alphas, "alpha values to solve at")->capture_default_str();
+  batch->add_option("--samples", batch_request.samples, "surface samples per direction")->capture_default_str();
+  batch->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::Success& e) {  // --version
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    std::cerr << "error: command line: " << e.what() << " (see coons --help)\n";
+    return kExitBadInput;
+  }
+
+  try {
+    if (*solve) return cmd_solve(boundary_path, net_request);
+    if (*list) return cmd_solvers(solvers_json, solvers_verbose);
+    if (*exp) return cmd_export(boundary_path, net_request, export_request);
+    if (*batch) return cmd_batch(batch_request, net_request);
+  } catch (const InputError& e) {
+    std::cerr << "error: " << e.what() << '\n';
+    return kExitBadInput;
+  }
+  return kExitBadInput;
+}
+
+}  // namespace coons::cli

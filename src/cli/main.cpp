@@ -1,0 +1,4 @@
+// coons — discrete Coons patches from the command line. See README.md and formats.md.
+#include "commands.h"
+
+int main(int argc, char** argv) { return coons::cli::run(argc, argv); }

@@ -1,0 +1,64 @@
+#include "net_json.h"
+
+#include <cmath>
+
+namespace coons {
+
+using nlohmann::json;
+
+json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+namespace {
+json point_json(const Eigen::RowVector3d& p) { return json::array({p(0), p(1), p(2)}); }
+json points_json(const Eigen::MatrixX3d& P) {
+  json out = json::array();
+  for (Eigen::Index k = 0; k < P.rows(); ++k) out.push_back(point_json(P.row(k)));
+  return out;
+}
+}  // namespace
+
+json net_to_json(const ControlNet& net) {
+  json rows = json::array();
+  for (int i = 0; i <= net.m; ++i) {
+    json row = json::array();
+    for (int j = 0; j <= net.n; ++j) row.push_back(point_json(net.at(i, j)));
+    rows.push_back(std::move(row));
+  }
+  return rows;
+}
+
+json boundary_to_json(const Boundary& b) {
+  json out;
+  if (!b.name.empty()) out["name"] = b.name;
+  out["degree"] = {b.m, b.n};
+  out["bottom"] = points_json(b.bottom);
+  out["top"] = points_json(b.top);
+  out["left"] = points_json(b.left);
+  out["right"] = points_json(b.right);
+  return out;
+}
+
+json metrics_to_json(const NetMetrics& m) {
+  return {{"twist_energy", number_or_null(m.twist_energy)},
+          {"thin_plate_energy", number_or_null(m.thin_plate_energy)},
+          {"dirichlet_energy", number_or_null(m.dirichlet_energy)},
+          {"e3_energy", number_or_null(m.e3_energy)},
+          {"discrete_twist_energy", number_or_null(m.discrete_twist_energy)},
+          {"discrete_dirichlet_energy", number_or_null(m.discrete_dirichlet_energy)},
+          {"mask_residual", number_or_null(m.mask_residual)}};
+}
+
+json summary_to_json(const solvers::SolveSummary& s) {
+  json out = {{"name", s.solver},
+              {"status", solvers::to_string(s.status)},
+              {"iterations", s.iterations},
+              {"relative_residual", number_or_null(s.relative_residual)},
+              {"seconds",
+               {{"analyze", s.analyze_seconds}, {"factorize", s.factorize_seconds}, {"solve", s.solve_seconds}}}};
+  if (!s.message.empty()) out["message"] = s.message;
+  if (!s.ordering.empty()) out["ordering"] = s.ordering;
+  if (s.factor_nnz > 0) out["factor_nnz"] = s.factor_nnz;
+  return out;
+}
+
+}  // namespace coons

@@ -1,0 +1,39 @@
+// Symmetric 3×3 masks: b_ij = e_i·(b_{i−1,j} + b_{i+1,j}) + e_j·(b_{i,j−1} + b_{i,j+1}) + d·K_ij,
+// K_ij the sum of the four diagonal neighbours. Affine invariance: 2e_i + 2e_j + 4d = 1.
+//
+// alpha_mask(α):           d = α, e_i = e_j = β = 1/4 − α (α = −1/4 Coons, α = 0 Laplace).
+// anisotropic_mask(m,n,μ): the discretisation of ∫‖p_uv‖² + μ∫(‖p_u‖² + ‖p_v‖²) (math.md §3):
+//                          D = 4mn + 2μ(m/n + n/m), d = −mn/D, e_i = (2mn + μm/n)/D,
+//                          e_j = (2mn + μn/m)/D; for m = n, α(n) = −n²/(4(n² + μ)) (math.md §4).
+// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
+#pragma once
+
+#include "solvers/grid_stencil.h"
+
+namespace coons {
+
+struct Mask9 {
+  double edge_i = 0.25;  //!< weight of the two neighbours along i (u)
+  double edge_j = 0.25;  //!< weight of the two neighbours along j (v)
+  double diag = 0;       //!< weight of the four diagonal neighbours
+
+  //! 2e_i + 2e_j + 4d − 1: zero for an affine-invariant mask.
+  [[nodiscard]] double affine_defect() const { return 2 * edge_i + 2 * edge_j + 4 * diag - 1; }
+};
+
+//! The Farin–Hansford one-parameter family.
+Mask9 alpha_mask(double alpha);
+
+//! The anisotropic mask of the energy ∫‖p_uv‖² + μ∫‖∇p‖² at degree (m, n); μ ≥ 0.
+Mask9 anisotropic_mask(int m, int n, double mu);
+
+//! α of the isotropic family that belongs to μ at degree n: −n²/(4(n² + μ)).
+double alpha_from_mu(int n, double mu);
+
+//! μ that gives α at degree n (inverse of alpha_from_mu; α ∈ [−1/4, 0)): μ = −n²(1 + 4α)/(4α).
+double mu_from_alpha(int n, double alpha);
+
+//! The mask as the operator I − mask on an interior grid of rows × cols points.
+solvers::GridStencil mask_stencil(const Mask9& mask, int rows, int cols);
+
+}  // namespace coons

@@ -1,0 +1,36 @@
+#include "solve_mask_net.h"
+
+#include "coons/mask/assemble_mask_system.h"
+#include "solvers/registry.h"
+
+namespace coons {
+
+MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask,
+                               const std::string& solver, const solvers::SolverOptions& options) {
+  MaskSolveResult result;
+  const ControlNet frame = frame_net(boundary);
+  const solvers::SolverInfo* info = solvers::find_solver(solver);
+  auto backend = solvers::make_solver(solver, options);
+  if (!info || !backend) {
+    result.net = frame;
+    result.summary.solver = solver;
+    result.summary.status = solvers::SolveStatus::kNotApplicable;
+    result.summary.message = "no solver named '" + solver + "' is built in";
+    return result;
+  }
+  const MaskSystem system = assemble_mask_system(frame, mask, info->needs_matrix);
+  if (system.B.rows() == 0) {  // m or n = 1: nothing to solve
+    result.net = frame;
+    result.summary.solver = solver;
+    return result;
+  }
+  solvers::LinearOperator op;
+  if (info->needs_matrix) op.matrix = &system.A;
+  op.stencil = system.stencil;
+  Eigen::MatrixX3d X;
+  result.summary = backend->compute_and_solve(op, system.B, X);
+  result.net = result.summary.ok() ? fill_interior(frame, X) : frame;
+  return result;
+}
+
+}  // namespace coons

@@ -1,0 +1,104 @@
+#include "bernstein.h"
+
+#include <cmath>
+
+namespace coons {
+
+Eigen::VectorXd bernstein_basis(int k, double t) {
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(k + 1);
+  b(0) = 1;
+  const double s = 1 - t;
+  for (int d = 1; d <= k; ++d) {
+    for (int i = d; i >= 1; --i) b(i) = s * b(i) + t * b(i - 1);
+    b(0) *= s;
+  }
+  return b;
+}
+
+namespace {
+
+// log C(k, i) for all i, exact enough for Gram matrices of any degree: Pascal's rule in double
+// (exact up to 2^53) while the numbers fit, lgamma beyond.
+Eigen::VectorXd log_binomial_row(int k) {
+  Eigen::VectorXd out(k + 1);
+  if (k <= 1000) {
+    std::vector<double> row(k + 1, 0.0);
+    row[0] = 1;
+    for (int r = 1; r <= k; ++r)
+      for (int i = r; i >= 1; --i) row[i] += row[i - 1];
+    for (int i = 0; i <= k; ++i) out(i) = std::log(row[i]);
+  } else {
+    for (int i = 0; i <= k; ++i)
+      out(i) = std::lgamma(k + 1.0) - std::lgamma(i + 1.0) - std::lgamma(k - i + 1.0);
+  }
+  return out;
+}
+
+}  // namespace
+
+Eigen::MatrixXd bernstein_gram(int k) {
+  Eigen::MatrixXd G(k + 1, k + 1);
+  if (k <= 30) {  // exact integers: C(60, 30) < 2^53
+    std::vector<double> ck(k + 1, 0.0), c2k(2 * k + 1, 0.0);
+    ck[0] = c2k[0] = 1;
+    for (int r = 1; r <= 2 * k; ++r)
+      for (int i = r; i >= 1; --i) c2k[i] += c2k[i - 1];
+    for (int r = 1; r <= k; ++r)
+      for (int i = r; i >= 1; --i) ck[i] += ck[i - 1];
+    for (int i = 0; i <= k; ++i)
+      for (int l = 0; l <= k; ++l) G(i, l) = ck[i] * ck[l] / ((2 * k + 1) * c2k[i + l]);
+    return G;
+  }
+  const Eigen::VectorXd lk = log_binomial_row(k), l2k = log_binomial_row(2 * k);
+  for (int i = 0; i <= k; ++i)
+    for (int l = 0; l <= k; ++l) G(i, l) = std::exp(lk(i) + lk(l) - l2k(i + l)) / (2 * k + 1);
+  return G;
+}
+
+Eigen::MatrixXd coordinate_grid(const ControlNet& net, int c) {
+  using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+  return Eigen::Map<const RowMajor>(net.points.col(c).data(), net.m + 1, net.n + 1);
+}
+
+ControlNet derivative_net(const ControlNet& net, int a, int b) {
+  if (a > net.m || b > net.n) return ControlNet(0, 0);
+  double factor = 1;
+  for (int r = 0; r < a; ++r) factor *= net.m - r;
+  for (int r = 0; r < b; ++r) factor *= net.n - r;
+  ControlNet out(net.m - a, net.n - b);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::MatrixXd P = coordinate_grid(net, c);
+    for (int r = 0; r < a; ++r) P = (P.bottomRows(P.rows() - 1) - P.topRows(P.rows() - 1)).eval();
+    for (int r = 0; r < b; ++r) P = (P.rightCols(P.cols() - 1) - P.leftCols(P.cols() - 1)).eval();
+    for (int i = 0; i <= out.m; ++i)
+      for (int j = 0; j <= out.n; ++j) out.at(i, j)(c) = factor * P(i, j);
+  }
+  return out;
+}
+
+Eigen::RowVector3d evaluate(const ControlNet& net, double u, double v) {
+  const Eigen::VectorXd bu = bernstein_basis(net.m, u), bv = bernstein_basis(net.n, v);
+  Eigen::RowVector3d p = Eigen::RowVector3d::Zero();
+  for (int i = 0; i <= net.m; ++i)
+    for (int j = 0; j <= net.n; ++j) p += bu(i) * bv(j) * net.at(i, j);
+  return p;
+}
+
+Eigen::RowVector3d evaluate_derivative(const ControlNet& net, int a, int b, double u, double v) {
+  return evaluate(derivative_net(net, a, b), u, v);
+}
+
+Eigen::MatrixX3d sample_surface(const ControlNet& net, int ku, int kv) {
+  Eigen::MatrixXd Bu(ku, net.m + 1), Bv(kv, net.n + 1);
+  for (int s = 0; s < ku; ++s) Bu.row(s) = bernstein_basis(net.m, double(s) / (ku - 1)).transpose();
+  for (int t = 0; t < kv; ++t) Bv.row(t) = bernstein_basis(net.n, double(t) / (kv - 1)).transpose();
+  Eigen::MatrixX3d out(Eigen::Index(ku) * kv, 3);
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd S = Bu * coordinate_grid(net, c) * Bv.transpose();  // ku by kv
+    for (int s = 0; s < ku; ++s)
+      for (int t = 0; t < kv; ++t) out(Eigen::Index(s) * kv + t, c) = S(s, t);
+  }
+  return out;
+}
+
+}  // namespace coons

@@ -1,0 +1,34 @@
+// Bernstein polynomials and tensor-product Bézier surfaces: basis values, Gram matrices,
+// derivative nets, evaluation and sampling (conventions: math.md §1, §5).
+// Based on: G. Farin, Curves and Surfaces for CAGD, 5th ed., Morgan Kaufmann (2002), ch. 5, 14.
+#pragma once
+
+#include <Eigen/Core>
+
+#include "coons/net/control_net.h"
+
+namespace coons {
+
+//! B_i^k(t), i = 0..k (#k+1), by the stable de Casteljau triangle.
+Eigen::VectorXd bernstein_basis(int k, double t);
+
+//! G[i][l] = ∫₀¹ B_i^k B_l^k = C(k,i)·C(k,l) / ((2k+1)·C(2k,i+l)), (#k+1 by #k+1).
+Eigen::MatrixXd bernstein_gram(int k);
+
+//! Coordinate c (0, 1, 2) of the net as an (m+1) by (n+1) matrix.
+Eigen::MatrixXd coordinate_grid(const ControlNet& net, int c);
+
+//! The net of ∂^a_u ∂^b_v p: degree (m−a, n−b), coefficients [m!/(m−a)!][n!/(n−b)!]·Δ^{a,b} b.
+//! When a > m or b > n the derivative vanishes: a single zero point, degree (0, 0).
+ControlNet derivative_net(const ControlNet& net, int a, int b);
+
+//! p(u, v).
+Eigen::RowVector3d evaluate(const ControlNet& net, double u, double v);
+
+//! ∂^a_u ∂^b_v p(u, v).
+Eigen::RowVector3d evaluate_derivative(const ControlNet& net, int a, int b, double u, double v);
+
+//! p on the ku × kv grid u = s/(ku−1), v = t/(kv−1): #ku·kv by 3, row s·kv + t. ku, kv ≥ 2.
+Eigen::MatrixX3d sample_surface(const ControlNet& net, int ku, int kv);
+
+}  // namespace coons

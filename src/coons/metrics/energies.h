@@ -1,0 +1,36 @@
+// Exact energies of the Bézier surface of a net, by Bernstein Gram matrices (math.md §5):
+//   E(a,b) = ∫∫ ‖∂^a_u ∂^b_v p‖² = Σ_xyz tr(Cᵀ G^{m−a} C G^{n−b}),  C the derivative net.
+// twist = E(1,1); Dirichlet = E(1,0) + E(0,1); thin plate = E(2,0) + 2E(1,1) + E(0,2);
+// E3 = E(3,0) + 3E(2,1) + 3E(1,2) + E(0,3) (linearised curvature variation).
+// Based on: H. P. Moreton, C. H. Séquin, Functional optimization for fair surface design,
+// SIGGRAPH 1992; G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999).
+#pragma once
+
+#include "coons/mask/mask9.h"
+#include "coons/net/control_net.h"
+
+namespace coons {
+
+//! E(a, b); 0 when a > m or b > n.
+double surface_energy(const ControlNet& net, int a, int b);
+
+double twist_energy(const ControlNet& net);
+double dirichlet_energy(const ControlNet& net);
+double thin_plate_energy(const ControlNet& net);
+double e3_energy(const ControlNet& net);
+
+//! Σ_{i<m, j<n} ‖b_{i+1,j+1} − b_{i+1,j} − b_{i,j+1} + b_ij‖².
+double discrete_twist_energy(const ControlNet& net);
+//! Σ‖b_{i+1,j} − b_ij‖² + Σ‖b_{i,j+1} − b_ij‖².
+double discrete_dirichlet_energy(const ControlNet& net);
+//! max over interior points and x, y, z of |b_ij − mask(b)_ij|; 0 when there is no interior.
+double mask_residual(const ControlNet& net, const Mask9& mask);
+
+//! Every metric of the `solve` report (formats.md), computed once.
+struct NetMetrics {
+  double twist_energy = 0, thin_plate_energy = 0, dirichlet_energy = 0, e3_energy = 0;
+  double discrete_twist_energy = 0, discrete_dirichlet_energy = 0, mask_residual = 0;
+};
+NetMetrics net_metrics(const ControlNet& net, const Mask9& mask);
+
+}  // namespace coons

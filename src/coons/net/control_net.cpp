@@ -1,0 +1,60 @@
+#include "control_net.h"
+
+namespace coons {
+
+Boundary boundary_of(const ControlNet& net, std::string name) {
+  Boundary b;
+  b.name = std::move(name);
+  b.m = net.m;
+  b.n = net.n;
+  b.bottom.resize(net.m + 1, 3);
+  b.top.resize(net.m + 1, 3);
+  b.left.resize(net.n + 1, 3);
+  b.right.resize(net.n + 1, 3);
+  for (int i = 0; i <= net.m; ++i) {
+    b.bottom.row(i) = net.at(i, 0);
+    b.top.row(i) = net.at(i, net.n);
+  }
+  for (int j = 0; j <= net.n; ++j) {
+    b.left.row(j) = net.at(0, j);
+    b.right.row(j) = net.at(net.m, j);
+  }
+  return b;
+}
+
+ControlNet frame_net(const Boundary& b) {
+  ControlNet net(b.m, b.n);
+  for (int j = 0; j <= b.n; ++j) {
+    net.at(0, j) = b.left.row(j);
+    net.at(b.m, j) = b.right.row(j);
+  }
+  for (int i = 0; i <= b.m; ++i) {
+    net.at(i, 0) = b.bottom.row(i);
+    net.at(i, b.n) = b.top.row(i);
+  }
+  return net;
+}
+
+CornerGap largest_corner_gap(const Boundary& b) {
+  const CornerGap gaps[] = {
+      {"bottom-left", (b.bottom.row(0) - b.left.row(0)).norm()},
+      {"bottom-right", (b.bottom.row(b.m) - b.right.row(0)).norm()},
+      {"top-left", (b.top.row(0) - b.left.row(b.n)).norm()},
+      {"top-right", (b.top.row(b.m) - b.right.row(b.n)).norm()},
+  };
+  CornerGap worst = gaps[0];
+  for (const auto& g : gaps)
+    if (g.gap > worst.gap) worst = g;
+  return worst;
+}
+
+double bounding_box_diagonal(const Boundary& b) {
+  Eigen::RowVector3d lo = b.bottom.colwise().minCoeff(), hi = b.bottom.colwise().maxCoeff();
+  for (const Eigen::MatrixX3d* side : {&b.top, &b.left, &b.right}) {
+    lo = lo.cwiseMin(side->colwise().minCoeff());
+    hi = hi.cwiseMax(side->colwise().maxCoeff());
+  }
+  return (hi - lo).norm();
+}
+
+}  // namespace coons
