@@ -34,18 +34,22 @@ void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& B
 }
 
 namespace {
+// The banner's words, e.g. "%%MatrixMarket matrix coordinate real general" (any spacing).
 std::string header_of(const std::string& path) {
   std::ifstream in(path);
   if (!in) throw InputError(path, "", "cannot open the file");
   std::string line;
   std::getline(in, line);
-  return line;
+  std::istringstream words(line);
+  std::string word, normalised;
+  while (words >> word) normalised += (normalised.empty() ? "" : " ") + word;
+  return normalised;
 }
 }  // namespace
 
 Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
   const std::string header = header_of(path);
-  if (header.rfind("%%MatrixMarket matrix coordinate real general", 0) != 0)
+  if (header != "%%MatrixMarket matrix coordinate real general")
     throw InputError(path, "header", "expected '%%MatrixMarket matrix coordinate real general'");
   Eigen::SparseMatrix<double> A;
   if (!Eigen::loadMarket(A, path)) throw InputError(path, "", "cannot read the matrix");
@@ -54,7 +58,7 @@ Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
 
 Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
   const std::string header = header_of(path);
-  if (header.rfind("%%MatrixMarket matrix array real general", 0) != 0)
+  if (header != "%%MatrixMarket matrix array real general")
     throw InputError(path, "header", "expected '%%MatrixMarket matrix array real general'");
   std::ifstream in(path);
   std::string line;

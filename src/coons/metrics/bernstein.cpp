@@ -15,30 +15,11 @@ Eigen::VectorXd bernstein_basis(int k, double t) {
   return b;
 }
 
-namespace {
-
-// log C(k, i) for all i, exact enough for Gram matrices of any degree: Pascal's rule in double
-// (exact up to 2^53) while the numbers fit, lgamma beyond.
-Eigen::VectorXd log_binomial_row(int k) {
-  Eigen::VectorXd out(k + 1);
-  if (k <= 1000) {
-    std::vector<double> row(k + 1, 0.0);
-    row[0] = 1;
-    for (int r = 1; r <= k; ++r)
-      for (int i = r; i >= 1; --i) row[i] += row[i - 1];
-    for (int i = 0; i <= k; ++i) out(i) = std::log(row[i]);
-  } else {
-    for (int i = 0; i <= k; ++i)
-      out(i) = std::lgamma(k + 1.0) - std::lgamma(i + 1.0) - std::lgamma(k - i + 1.0);
-  }
-  return out;
-}
-
-}  // namespace
-
 Eigen::MatrixXd bernstein_gram(int k) {
   Eigen::MatrixXd G(k + 1, k + 1);
-  if (k <= 30) {  // exact integers: C(60, 30) < 2^53
+  if (k <= 510) {
+    // Pascal's rule in double: exact up to 2^53 (k ≤ 26), relative error ~k·ε beyond; C(1020, 510)
+    // still fits in a double.
     std::vector<double> ck(k + 1, 0.0), c2k(2 * k + 1, 0.0);
     ck[0] = c2k[0] = 1;
     for (int r = 1; r <= 2 * k; ++r)
@@ -46,12 +27,16 @@ Eigen::MatrixXd bernstein_gram(int k) {
     for (int r = 1; r <= k; ++r)
       for (int i = r; i >= 1; --i) ck[i] += ck[i - 1];
     for (int i = 0; i <= k; ++i)
-      for (int l = 0; l <= k; ++l) G(i, l) = ck[i] * ck[l] / ((2 * k + 1) * c2k[i + l]);
+      for (int l = i; l <= k; ++l) G(i, l) = G(l, i) = ck[i] * (ck[l] / c2k[i + l]) / (2 * k + 1);
     return G;
   }
-  const Eigen::VectorXd lk = log_binomial_row(k), l2k = log_binomial_row(2 * k);
+  // Beyond, log-binomials (relative error ~1e-12 at k ≈ 1000).
+  auto log_binomial = [](int n, int i) {
+    return std::lgamma(n + 1.0) - std::lgamma(i + 1.0) - std::lgamma(n - i + 1.0);
+  };
   for (int i = 0; i <= k; ++i)
-    for (int l = 0; l <= k; ++l) G(i, l) = std::exp(lk(i) + lk(l) - l2k(i + l)) / (2 * k + 1);
+    for (int l = i; l <= k; ++l)
+      G(i, l) = G(l, i) = std::exp(log_binomial(k, i) + log_binomial(k, l) - log_binomial(2 * k, i + l)) / (2 * k + 1);
   return G;
 }
 

@@ -1,0 +1,172 @@
+// The command-line contract of formats.md, driven through the real binary.
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <functional>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "coons/io/boundary_io.h"
+#include "coons/io/net_json.h"
+#include "coons/net/coons_net.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+const std::string kData = COONS_DATA_DIR;
+
+struct TempDir {
+  fs::path path;
+  TempDir() {
+    path = fs::temp_directory_path() / ("coons_cli_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter()++));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~TempDir() { fs::remove_all(path); }
+  static int& counter() {
+    static int c = 0;
+    return c;
+  }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path / name) << text;
+    return (path / name).string();
+  }
+};
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+}  // namespace
+
+TEST_CASE("coons solve: the report of formats.md, numbers that read back exactly", "[cli]") {
+  const std::string file = kData + "/boundaries/dome.json";
+  const CommandResult r = run_command(kCoons + " solve " + quoted(file) + " --alpha -0.2 --solver eigen-ldlt");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["boundary"] == "dome");
+  CHECK(report["degree"] == json::array({3, 3}));
+  CHECK(report["method"] == "alpha");
+  CHECK(report["alpha"] == -0.2);
+  CHECK(report["beta"].get<double>() == 0.25 - (-0.2));
+  CHECK(report["solver"]["name"] == "eigen-ldlt");
+  CHECK(report["solver"]["status"] == "success");
+  for (const char* key : {"analyze", "factorize", "solve"}) CHECK(report["solver"]["seconds"].contains(key));
+  for (const char* key : {"twist_energy", "thin_plate_energy", "dirichlet_energy", "e3_energy",
+                          "discrete_twist_energy", "discrete_dirichlet_energy", "mask_residual"})
+    CHECK(report["metrics"][key].is_number());
+  CHECK(report["metrics"]["thin_plate_energy"].get<double>() == Approx(18.320).margin(5e-4));
+  CHECK(report["net"].size() == 4);
+  CHECK(report["net"][0].size() == 4);
+}
+
+TEST_CASE("coons solve: the closed-form Coons net is printed bit-exactly", "[cli]") {
+  const std::string file = kData + "/boundaries/helicoid.json";
+  const CommandResult r = run_command(kCoons + " solve " + quoted(file) + " --method coons");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  const ControlNet expected = discrete_coons_net(read_boundary_file(file).boundary);
+  const BoundaryFile printed = parse_boundary(json{{"net", report["net"]}}, "report");
+  CHECK(printed.net->points == expected.points);
+  CHECK(report["solver"]["status"] == "not_applicable");
+}
+
+TEST_CASE("coons solvers: lists eigen-ldlt, as lines and as JSON", "[cli]") {
+  const CommandResult lines = run_command(kCoons + " solvers");
+  REQUIRE(lines.status == 0);
+  CHECK_THAT(lines.out, Catch::Contains("eigen-ldlt\n"));
+  const CommandResult js = run_command(kCoons + " solvers --json");
+  REQUIRE(js.status == 0);
+  const json names = json::parse(js.out);
+  CHECK(std::find(names.begin(), names.end(), "eigen-ldlt") != names.end());
+}
+
+TEST_CASE("coons: --help works on every command", "[cli]") {
+  for (const char* cmd : {"", " solve", " solvers", " export", " batch"}) {
+    const CommandResult r = run_command(kCoons + cmd + " --help");
+    INFO(cmd);
+    CHECK(r.status == 0);
+    CHECK_THAT(r.out, Catch::Contains("Usage"));
+  }
+}
+
+TEST_CASE("coons solve: each bad input gives exit 2, one error line and no output", "[cli]") {
+  TempDir dir;
+  const json good = json::parse(std::ifstream(kData + "/boundaries/dome.json"));
+  auto variant = [&](const std::string& name, const std::function<void(json&)>& edit) {
+    json doc = good;
+    edit(doc);
+    return dir.write(name, doc.dump());
+  };
+  struct Case {
+    std::string what, args, must_mention;
+  };
+  const std::string dome = kData + "/boundaries/dome.json";
+  const std::vector<Case> cases = {
+      {"unreadable file", quoted((dir.path / "missing.json").string()), "missing.json"},
+      {"malformed JSON", quoted(dir.write("broken.json", "{\"bottom\": [[0,0,0],")), "malformed JSON"},
+      {"missing field", quoted(variant("nofield.json", [](json& d) { d.erase("top"); })), "top"},
+      {"extra-length field", quoted(variant("long.json", [](json& d) { d["left"].push_back({-1, 1, 0}); })), "right"},
+      {"point with 4 numbers", quoted(variant("four.json", [](json& d) { d["bottom"][1] = {1, 2, 3, 4}; })), "bottom[1]"},
+      {"non-finite number", quoted(dir.write("inf.json", "{\"bottom\":[[0,0,0],[1e999,0,0]],\"top\":[[0,1,0],[1,1,0]],\"left\":[[0,0,0],[0,1,0]],\"right\":[[1,0,0],[1,1,0]]}")), "inf.json"},
+      {"corners disagree", quoted(variant("corner.json", [](json& d) { d["right"][0][2] = 0.5; })), "bottom-right corner"},
+      {"degree disagrees", quoted(variant("degree.json", [](json& d) { d["degree"] = {4, 3}; })), "degree"},
+      {"degree too small for hermite-coons", quoted(kData + "/boundaries/seed_example1.json") + " --method hermite-coons", "degree"},
+      {"alpha outside the definite range", quoted(dome) + " --alpha -0.4 --solver eigen-ldlt", "--alpha"},
+      {"unknown solver", quoted(dome) + " --solver nonesuch", "--solver"},
+      {"unknown method", quoted(dome) + " --method nonesuch", "--method"},
+      {"unknown option", quoted(dome) + " --frobnicate", "frobnicate"},
+  };
+  for (const Case& c : cases) {
+    INFO(c.what);
+    const CommandResult r = run_command(kCoons + " solve " + c.args);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_THAT(r.err, Catch::Contains(c.must_mention));
+  }
+  // export writes nothing when the input is bad
+  const std::string out = (dir.path / "out").string();
+  const CommandResult r = run_command(kCoons + " export " + quoted(variant("corner2.json", [](json& d) { d["top"][0][0] = 7; })) +
+                                      " --out " + quoted(out));
+  CHECK(r.status == 2);
+  CHECK(!fs::exists(out));
+}
+
+TEST_CASE("coons export: OBJ files and a Matrix Market system", "[cli]") {
+  TempDir dir;
+  const std::string out = (dir.path / "out").string();
+  const CommandResult r = run_command(kCoons + " export " + quoted(kData + "/boundaries/pillow.json") +
+                                      " --alpha -0.1 --samples 9 --out " + quoted(out));
+  REQUIRE(r.status == 0);
+  for (const char* f : {"pillow.surface.obj", "pillow.net.obj", "pillow.A.mtx", "pillow.B.mtx"}) CHECK(fs::exists(fs::path(out) / f));
+  std::ifstream obj(fs::path(out) / "pillow.surface.obj");
+  int vertices = 0, faces = 0;
+  for (std::string line; std::getline(obj, line);) {
+    vertices += line.rfind("v ", 0) == 0;
+    faces += line.rfind("f ", 0) == 0;
+  }
+  CHECK(vertices == 81);
+  CHECK(faces == 2 * 8 * 8);
+}
+
+TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary", "[cli]") {
+  TempDir dir;
+  const std::string out = (dir.path / "out").string();
+  const CommandResult r = run_command(kCoons + " batch " + quoted(kData + "/boundaries/dome.json") + " " +
+                                      quoted(kData + "/boundaries/saddle.json") + " --samples 5 --out " + quoted(out));
+  REQUIRE(r.status == 0);
+  CHECK_THAT(r.out, Catch::Contains("dome"));
+  CHECK(fs::exists(fs::path(out) / "metrics.md"));
+  for (const char* f : {"dome/coons.json", "dome/alpha-0.250.json", "dome/alpha-0.100.json", "dome/alpha+0.000.json",
+                        "saddle/coons.surface.obj", "saddle/alpha-0.100.net.obj"})
+    CHECK(fs::exists(fs::path(out) / f));
+}

@@ -1,0 +1,90 @@
+#include <catch2/catch.hpp>
+
+#include <Eigen/Dense>
+
+#include "coons/mask/assemble_mask_system.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+
+namespace {
+
+// The reference: the mask equations written out densely, entry by entry.
+void dense_reference(const ControlNet& net, const Mask9& mask, Eigen::MatrixXd& A, Eigen::MatrixX3d& B) {
+  const int m = net.m, n = net.n, cols = n - 1;
+  const int N = (m - 1) * (n - 1);
+  A = Eigen::MatrixXd::Zero(N, N);
+  B = Eigen::MatrixX3d::Zero(N, 3);
+  for (int i = 1; i < m; ++i)
+    for (int j = 1; j < n; ++j) {
+      const int row = (i - 1) * cols + (j - 1);
+      A(row, row) = 1;
+      for (int di = -1; di <= 1; ++di)
+        for (int dj = -1; dj <= 1; ++dj) {
+          if (!di && !dj) continue;
+          const double w = di == 0 ? mask.edge_j : (dj == 0 ? mask.edge_i : mask.diag);
+          const int ii = i + di, jj = j + dj;
+          if (ii == 0 || ii == m || jj == 0 || jj == n) B.row(row) += w * net.at(ii, jj);
+          else A(row, (ii - 1) * cols + (jj - 1)) -= w;
+        }
+    }
+}
+
+}  // namespace
+
+TEST_CASE("assemble_mask_system: matrix and right-hand side equal the dense reference", "[mask]") {
+  std::uint32_t seed = 1;
+  for (auto [m, n] : {std::pair{2, 2}, {3, 3}, {2, 6}, {7, 2}, {5, 8}, {9, 4}}) {
+    const ControlNet net = make_random_net(m, n, seed++);
+    for (const Mask9& mask : {alpha_mask(-0.25), alpha_mask(0.0), alpha_mask(0.2), anisotropic_mask(m, n, 3.0)}) {
+      const MaskSystem s = assemble_mask_system(net, mask);
+      Eigen::MatrixXd A;
+      Eigen::MatrixX3d B;
+      dense_reference(net, mask, A, B);
+      INFO("m = " << m << ", n = " << n);
+      CHECK((Eigen::MatrixXd(s.A) - A).cwiseAbs().maxCoeff() == 0);
+      CHECK((s.B - B).cwiseAbs().maxCoeff() < 1e-15);
+      CHECK(s.A.isCompressed());
+    }
+  }
+}
+
+TEST_CASE("assemble_mask_system: the matrix is symmetric and its pattern independent of alpha", "[mask]") {
+  const ControlNet net = make_random_net(6, 9, 4);
+  const MaskSystem a = assemble_mask_system(net, alpha_mask(-0.25));
+  const MaskSystem b = assemble_mask_system(net, alpha_mask(0.0));
+  CHECK((Eigen::MatrixXd(a.A) - Eigen::MatrixXd(a.A).transpose()).norm() == 0);
+  REQUIRE(a.A.nonZeros() == b.A.nonZeros());
+  for (Eigen::Index k = 0; k < a.A.nonZeros(); ++k) CHECK(a.A.innerIndexPtr()[k] == b.A.innerIndexPtr()[k]);
+  Eigen::SparseMatrix<double> refilled = a.A;
+  solvers::refill_stencil_matrix(b.stencil, refilled);
+  CHECK((Eigen::MatrixXd(refilled) - Eigen::MatrixXd(b.A)).norm() == 0);
+}
+
+TEST_CASE("assemble_mask_system: degenerate sizes have no unknowns", "[mask]") {
+  for (auto [m, n] : {std::pair{1, 1}, {1, 5}, {4, 1}}) {
+    const MaskSystem s = assemble_mask_system(make_random_net(m, n, 9), alpha_mask(-0.1));
+    CHECK(s.A.rows() == 0);
+    CHECK(s.B.rows() == 0);
+  }
+}
+
+TEST_CASE("fill_interior: inverse of interior_of", "[mask]") {
+  const ControlNet net = make_random_net(5, 7, 2);
+  CHECK(max_difference(fill_interior(net, interior_of(net)), net) == 0);
+}
+
+TEST_CASE("anisotropic_mask: affine invariant, and isotropic alpha(mu) when m = n", "[mask]") {
+  for (auto [m, n] : {std::pair{4, 4}, {3, 9}, {12, 5}})
+    for (double mu : {0.0, 1.0, 10.0, 1e3}) {
+      const Mask9 mask = anisotropic_mask(m, n, mu);
+      CHECK(std::abs(mask.affine_defect()) < 1e-15);
+      if (m == n) {
+        CHECK(mask.diag == Approx(alpha_from_mu(n, mu)).epsilon(1e-14));
+        CHECK(mask.edge_i == Approx(0.25 - mask.diag).epsilon(1e-14));
+      }
+    }
+  for (int n : {3, 8, 16})
+    for (double alpha : {-0.24, -0.2, -0.1, -0.01}) CHECK(alpha_from_mu(n, mu_from_alpha(n, alpha)) == Approx(alpha).epsilon(1e-13));
+}

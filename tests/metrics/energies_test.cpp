@@ -1,0 +1,150 @@
+#include <catch2/catch.hpp>
+
+#include <random>
+
+#include "coons/io/boundary_io.h"
+#include "coons/mask/assemble_mask_system.h"
+#include "coons/mask/solve_mask_net.h"
+#include "coons/metrics/bernstein.h"
+#include "coons/metrics/energies.h"
+#include "coons/metrics/quadrature.h"
+#include "coons/net/coons_net.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+
+namespace {
+
+// ∫∫ ‖∂^a_u ∂^b_v p‖² by Gauss–Legendre with enough nodes to be exact, derivatives from the
+// textbook Bernstein derivative formula (independent of derivative_net and the Gram matrices).
+double quadrature_energy(const ControlNet& net, int a, int b) {
+  const QuadratureRule q = gauss_legendre(std::max(net.m, net.n) + 2);
+  double e = 0;
+  for (int s = 0; s < q.nodes.size(); ++s)
+    for (int t = 0; t < q.nodes.size(); ++t) {
+      const Eigen::VectorXd bu = bernstein_basis_derivative(net.m, a, q.nodes(s));
+      const Eigen::VectorXd bv = bernstein_basis_derivative(net.n, b, q.nodes(t));
+      Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
+      for (int i = 0; i <= net.m; ++i)
+        for (int j = 0; j <= net.n; ++j) d += bu(i) * bv(j) * net.at(i, j);
+      e += q.weights(s) * q.weights(t) * d.squaredNorm();
+    }
+  return e;
+}
+
+}  // namespace
+
+TEST_CASE("gauss_legendre: integrates polynomials of degree 2k-1 exactly", "[metrics]") {
+  for (int k = 1; k <= 12; ++k) {
+    const QuadratureRule q = gauss_legendre(k);
+    CHECK(q.weights.sum() == Approx(1).epsilon(1e-14));
+    for (int d = 0; d <= 2 * k - 1; ++d) {
+      double sum = 0;
+      for (int r = 0; r < k; ++r) sum += q.weights(r) * std::pow(q.nodes(r), d);
+      CHECK(sum == Approx(1.0 / (d + 1)).epsilon(1e-13));
+    }
+  }
+}
+
+TEST_CASE("surface_energy: equals Gauss-Legendre quadrature for every (a, b)", "[metrics]") {
+  std::uint32_t seed = 3;
+  for (auto [m, n] : {std::pair{1, 1}, {2, 2}, {3, 5}, {6, 4}, {7, 7}}) {
+    const ControlNet net = make_random_net(m, n, seed++);
+    for (int a = 0; a <= 3; ++a)
+      for (int b = 0; a + b <= 3; ++b) {
+        INFO("m = " << m << ", n = " << n << ", a = " << a << ", b = " << b);
+        const double exact = surface_energy(net, a, b), quad = quadrature_energy(net, a, b);
+        CHECK(exact == Approx(quad).epsilon(1e-11).margin(1e-12));
+      }
+    const NetMetrics metrics = net_metrics(net, alpha_mask(-0.25));
+    CHECK(metrics.twist_energy == Approx(quadrature_energy(net, 1, 1)).epsilon(1e-11).margin(1e-12));
+    CHECK(metrics.dirichlet_energy == Approx(quadrature_energy(net, 1, 0) + quadrature_energy(net, 0, 1)).epsilon(1e-11));
+    CHECK(metrics.thin_plate_energy ==
+          Approx(quadrature_energy(net, 2, 0) + 2 * quadrature_energy(net, 1, 1) + quadrature_energy(net, 0, 2))
+              .epsilon(1e-11).margin(1e-12));
+    CHECK(metrics.e3_energy == Approx(quadrature_energy(net, 3, 0) + 3 * quadrature_energy(net, 2, 1) +
+                                      3 * quadrature_energy(net, 1, 2) + quadrature_energy(net, 0, 3))
+                                   .epsilon(1e-11).margin(1e-12));
+    CHECK(metrics.twist_energy == twist_energy(net));
+    CHECK(metrics.thin_plate_energy == Approx(thin_plate_energy(net)).epsilon(1e-15));
+    CHECK(metrics.e3_energy == Approx(e3_energy(net)).epsilon(1e-15));
+    CHECK(metrics.dirichlet_energy == Approx(dirichlet_energy(net)).epsilon(1e-15));
+  }
+}
+
+TEST_CASE("bernstein_gram: exact at low degree, consistent at high degree", "[metrics]") {
+  // G^1 = [[1/3, 1/6], [1/6, 1/3]]; rows of G^k sum to 1/(k+1).
+  const Eigen::MatrixXd G1 = bernstein_gram(1);
+  CHECK(G1(0, 0) == 1.0 / 3);
+  CHECK(G1(0, 1) == 1.0 / 6);
+  for (int k : {5, 30, 31, 200, 510, 511, 1200}) {
+    const Eigen::MatrixXd G = bernstein_gram(k);
+    INFO("k = " << k);
+    const double tolerance = k <= 510 ? 1e-13 : 1e-11;  // Pascal's rule, then log-binomials
+    CHECK((G.rowwise().sum().array() - 1.0 / (k + 1)).abs().maxCoeff() < tolerance / (k + 1));
+    CHECK((G - G.transpose()).cwiseAbs().maxCoeff() == 0);
+  }
+}
+
+TEST_CASE("net_metrics: seed example 1 reference values (twist 0, Dirichlet 20/3, thin plate 8)", "[metrics][seed]") {
+  const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/seed_example1.json").boundary;
+  const NetMetrics metrics = net_metrics(discrete_coons_net(b), alpha_mask(-0.25));
+  CHECK(metrics.twist_energy == Approx(0).margin(1e-14));
+  CHECK(metrics.dirichlet_energy == Approx(20.0 / 3).epsilon(1e-14));
+  CHECK(metrics.thin_plate_energy == Approx(8).epsilon(1e-14));
+  CHECK(metrics.mask_residual < 1e-15);
+}
+
+TEST_CASE("net_metrics: the dome table of math.md §7", "[metrics][seed]") {
+  const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  struct Row { double alpha, thin_plate, dirichlet; };
+  for (const Row& row : {Row{-0.25, 24.787, 9.877}, Row{-0.20, 18.320, 9.320}, Row{-0.10, 13.990, 8.794}, Row{0.0, 13.444, 8.571}}) {
+    const MaskSolveResult r = solve_mask_net(b, alpha_mask(row.alpha), "eigen-ldlt");
+    INFO("alpha = " << row.alpha);
+    CHECK(thin_plate_energy(r.net) == Approx(row.thin_plate).margin(5e-4));
+    CHECK(dirichlet_energy(r.net) == Approx(row.dirichlet).margin(5e-4));
+  }
+}
+
+TEST_CASE("discrete_coons_net: smallest discrete and continuous twist among perturbations", "[metrics]") {
+  std::mt19937 rng(17);
+  std::normal_distribution<double> noise(0, 1);
+  for (auto [m, n] : {std::pair{3, 3}, {4, 6}, {8, 5}}) {
+    const ControlNet coons = discrete_coons_net(make_random_boundary(m, n, 23));
+    const double td = discrete_twist_energy(coons), tc = twist_energy(coons);
+    for (int trial = 0; trial < 50; ++trial) {
+      Eigen::MatrixX3d X = interior_of(coons);
+      const double scale = std::pow(10.0, -trial % 6);
+      for (Eigen::Index r = 0; r < X.rows(); ++r)
+        for (int c = 0; c < 3; ++c) X(r, c) += scale * noise(rng);
+      const ControlNet perturbed = fill_interior(coons, X);
+      INFO("m = " << m << ", n = " << n << ", trial " << trial);
+      CHECK(discrete_twist_energy(perturbed) > td);
+      CHECK(twist_energy(perturbed) > tc);
+    }
+  }
+}
+
+TEST_CASE("mask_residual: zero for the solved mask, non-zero for another", "[metrics]") {
+  const Boundary b = make_random_boundary(6, 6, 8);
+  const ControlNet net = solve_mask_net(b, alpha_mask(-0.1), "eigen-ldlt").net;
+  CHECK(mask_residual(net, alpha_mask(-0.1)) < 1e-14);
+  CHECK(mask_residual(net, alpha_mask(0.1)) > 1e-3);
+}
+
+TEST_CASE("discrete energies: a blend w*T_d + (1-w)*D_d is minimised by alpha = -w/4", "[metrics]") {
+  const Boundary b = make_random_boundary(5, 7, 31);
+  for (double w : {0.0, 0.4, 1.0}) {
+    const ControlNet best = solve_mask_net(b, alpha_mask(-w / 4), "eigen-ldlt").net;
+    auto energy = [&](const ControlNet& net) { return w * discrete_twist_energy(net) + (1 - w) * discrete_dirichlet_energy(net); };
+    std::mt19937 rng(5);
+    std::normal_distribution<double> noise(0, 1e-3);
+    for (int trial = 0; trial < 20; ++trial) {
+      Eigen::MatrixX3d X = interior_of(best);
+      for (Eigen::Index r = 0; r < X.rows(); ++r)
+        for (int c = 0; c < 3; ++c) X(r, c) += noise(rng);
+      CHECK(energy(fill_interior(best, X)) > energy(best));
+    }
+  }
+}

@@ -1,0 +1,125 @@
+// One harness for every registered backend (cf. AMGCL's tests, Eigen's sparse_solver.h): agreement
+// with a dense reference, right-hand side untouched, analyze-once = fresh solves, failure statuses.
+#include <catch2/catch.hpp>
+
+#include <set>
+
+#include <Eigen/Dense>
+
+#include "coons/mask/assemble_mask_system.h"
+#include "solvers/registry.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::solvers;
+using namespace coons::test;
+
+namespace {
+
+struct Problem {
+  MaskSystem system;
+  Eigen::MatrixX3d reference;  // dense LU solution
+};
+
+Problem make_problem(int m, int n, double alpha, std::uint32_t seed) {
+  Problem p;
+  p.system = assemble_mask_system(make_random_net(m, n, seed), alpha_mask(alpha));
+  p.reference = Eigen::MatrixXd(p.system.A).fullPivLu().solve(Eigen::MatrixXd(p.system.B));
+  return p;
+}
+
+LinearOperator operator_of(const MaskSystem& s) {
+  LinearOperator op;
+  op.matrix = &s.A;
+  op.stencil = s.stencil;
+  return op;
+}
+
+}  // namespace
+
+TEST_CASE("every solver: agrees with a dense reference on small nets", "[solvers]") {
+  for (const SolverInfo& info : available_solvers()) {
+    std::uint32_t seed = 1;
+    for (auto [m, n] : {std::pair{3, 3}, {5, 9}, {10, 4}, {12, 12}})
+      for (double alpha : {-0.25, -0.1, 0.0, 0.2, 0.25}) {
+        const Problem p = make_problem(m, n, alpha, seed++);
+        const Eigen::MatrixX3d B_copy = p.system.B;
+        auto solver = make_solver(info.name);
+        Eigen::MatrixX3d X;
+        const SolveSummary s = solver->compute_and_solve(operator_of(p.system), p.system.B, X);
+        INFO(info.name << ": m = " << m << ", n = " << n << ", alpha = " << alpha << ": " << s.brief_report());
+        REQUIRE(s.ok());
+        CHECK((X - p.reference).cwiseAbs().maxCoeff() < 1e-9 * std::max(1.0, p.reference.cwiseAbs().maxCoeff()));
+        CHECK(s.relative_residual < 1e-10);
+        CHECK(p.system.B == B_copy);
+      }
+  }
+}
+
+TEST_CASE("every solver: analyze once, factorize many equals fresh solves", "[solvers]") {
+  for (const SolverInfo& info : available_solvers()) {
+    const ControlNet net = make_random_net(8, 11, 77);
+    auto reused = make_solver(info.name);
+    const MaskSystem first = assemble_mask_system(net, alpha_mask(-0.25));
+    REQUIRE(reused->analyze(operator_of(first)) == SolveStatus::kSuccess);
+    for (double alpha : {-0.25, -0.2, -0.1, 0.0, 0.1}) {
+      const MaskSystem s = assemble_mask_system(net, alpha_mask(alpha));
+      REQUIRE(reused->factorize(operator_of(s)) == SolveStatus::kSuccess);
+      Eigen::MatrixX3d X_reused, X_fresh;
+      reused->solve(s.B, X_reused);
+      make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X_fresh);
+      INFO(info.name << ", alpha = " << alpha);
+      CHECK((X_reused - X_fresh).cwiseAbs().maxCoeff() < 1e-12);
+    }
+  }
+}
+
+TEST_CASE("every solver: reports indefinite and singular systems", "[solvers]") {
+  for (const SolverInfo& info : available_solvers()) {
+    INFO(info.name);
+    {  // α = −1/2 at m = n = 3 is singular
+      const MaskSystem s = assemble_mask_system(make_random_net(3, 3, 5), alpha_mask(-0.5));
+      Eigen::MatrixX3d X;
+      const SolveSummary summary = make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X);
+      INFO(summary.brief_report());
+      CHECK(summary.status != SolveStatus::kSuccess);
+      CHECK((summary.status == SolveStatus::kSingular || summary.status == SolveStatus::kNotPositiveDefinite));
+    }
+    {  // α = −0.4 on a 20×20 net is indefinite
+      const MaskSystem s = assemble_mask_system(make_random_net(20, 20, 6), alpha_mask(-0.4));
+      Eigen::MatrixX3d X;
+      const SolveSummary summary = make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X);
+      INFO(summary.brief_report());
+      if (info.definite_only) CHECK(summary.status == SolveStatus::kNotPositiveDefinite);
+      else if (summary.ok()) CHECK(summary.relative_residual < 1e-8);
+      CHECK(std::isfinite(summary.relative_residual));
+    }
+  }
+}
+
+TEST_CASE("registry: names are unique and make_solver knows every listed name", "[solvers]") {
+  std::set<std::string> names;
+  for (const SolverInfo& info : available_solvers()) {
+    CHECK(names.insert(info.name).second);
+    auto solver = make_solver(info.name);
+    REQUIRE(solver);
+    CHECK(solver->name() == info.name);
+    CHECK(find_solver(info.name) == &info);
+  }
+  CHECK(!make_solver("no-such-solver"));
+  CHECK(find_solver("eigen-ldlt"));
+}
+
+TEST_CASE("stencil_matrix: apply_stencil equals the matrix product", "[solvers]") {
+  GridStencil s{7, 5, 1.0, -0.3, -0.2, 0.05};
+  const Eigen::SparseMatrix<double> A = stencil_matrix(s);
+  const Eigen::MatrixXd X = Eigen::MatrixXd::Random(s.size(), 3);
+  Eigen::MatrixXd Y;
+  apply_stencil(s, X, Y);
+  CHECK((Y - A * X).cwiseAbs().maxCoeff() < 1e-15);
+  // eigenvalues in closed form
+  const Eigen::VectorXd ev = Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd>(Eigen::MatrixXd(A)).eigenvalues();
+  const auto [lo, hi] = stencil_eigenvalue_range(s);
+  CHECK(lo == Approx(ev.minCoeff()).epsilon(1e-12));
+  CHECK(hi == Approx(ev.maxCoeff()).epsilon(1e-12));
+}
