@@ -27,6 +27,7 @@ const char* to_string(Ordering ordering) {
     case Ordering::kColamd: return "colamd";
     case Ordering::kMetis: return "metis";
     case Ordering::kNestedDissection: return "nested-dissection";
+    case Ordering::kCholmodDefault: return "cholmod-default";
   }
   return "auto";
 }
@@ -137,6 +138,23 @@ SolveSummary LinearSolver::compute_and_solve(const LinearOperator& op, const Eig
     return summary_;
   }
   return solve(B, X);
+}
+
+void LinearSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
+                         const std::vector<SweepMember>& members, const SweepSink& sink) {
+  Eigen::MatrixX3d B, X;
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    const SweepMember& member = members[k];
+    B.setZero(member.op.size(), 3);
+    for (std::size_t r = 0; r < rhs_basis.size() && r < member.rhs_weights.size(); ++r)
+      B += member.rhs_weights[r] * rhs_basis[r];
+    if (factorize(member.op) != SolveStatus::kSuccess) {
+      X.setZero(B.rows(), 3);
+      sink(k, X, summary_);
+      continue;
+    }
+    sink(k, X, solve(B, X));
+  }
 }
 
 double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,

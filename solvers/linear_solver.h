@@ -8,9 +8,11 @@
 // Backends never throw for numerical trouble: a failure is a status in the summary.
 #pragma once
 
+#include <functional>
 #include <memory>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
@@ -32,7 +34,9 @@ enum class SolveStatus {
 //! "success", "not_converged", "diverged", "not_positive_definite", "singular", ...
 const char* to_string(SolveStatus status);
 
-enum class Ordering { kAuto, kNatural, kAmd, kColamd, kMetis, kNestedDissection };
+//! Fill-reducing orderings of the direct backends. kAuto is each backend's best choice here;
+//! kCholmodDefault lets CHOLMOD try METIS and AMD itself and keep the better (its default).
+enum class Ordering { kAuto, kNatural, kAmd, kColamd, kMetis, kNestedDissection, kCholmodDefault };
 const char* to_string(Ordering ordering);
 
 struct SolverOptions {
@@ -92,6 +96,23 @@ class LinearSolver {
   //! analyze + factorize + solve.
   SolveSummary compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
                                  Eigen::MatrixX3d& X);
+
+  //! One member of a sweep: an operator (same grid and pattern for every member) and the
+  //! weights of its right-hand side in the sweep's basis: B = Σ_r rhs_weights[r] · basis[r].
+  struct SweepMember {
+    LinearOperator op;
+    std::vector<double> rhs_weights;
+  };
+  using SweepSink = std::function<void(std::size_t member, const Eigen::MatrixX3d& X,
+                                       const SolveSummary& summary)>;
+
+  //! Solve a family of systems that share everything but the values (e.g. an α sweep, whose
+  //! right-hand side is affine in α), reusing what does not depend on the values: the analysis
+  //! for direct solvers, the transforms of the basis right-hand sides for structured ones.
+  //! sink(k, X_k, summary_k) is called for each member in order. The default analyzes once and
+  //! factorizes and solves per member.
+  virtual void sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
+                     const std::vector<SweepMember>& members, const SweepSink& sink);
 
   [[nodiscard]] const SolverOptions& options() const { return options_; }
   //! The summary of the last call (statuses of analyze/factorize are kept here too).

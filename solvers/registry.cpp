@@ -2,6 +2,11 @@
 
 #include "coons/config.h"
 #include "eigen_direct.h"
+#include "eigen_iterative.h"
+#include "mask_iterations.h"
+#if COONS_HAVE_SUITESPARSE
+#include "suitesparse_direct.h"
+#endif
 
 namespace coons::solvers {
 
@@ -28,6 +33,17 @@ const std::vector<Entry>& entries() {
       {{"eigen-ldlt", SolverFamily::kDirect, true, true, "Eigen SimplicialLDLT, AMD ordering"}, make_eigen_ldlt},
       {{"eigen-llt", SolverFamily::kDirect, true, true, "Eigen SimplicialLLT, AMD ordering"}, make_eigen_llt},
       {{"eigen-lu", SolverFamily::kDirect, true, false, "Eigen SparseLU, COLAMD ordering (indefinite systems too)"}, make_eigen_lu},
+#if COONS_HAVE_SUITESPARSE
+      {{"cholmod", SolverFamily::kDirect, true, true, "CHOLMOD supernodal LL^T, AMD ordering (--ordering to change)"}, make_cholmod_supernodal},
+      {{"cholmod-simplicial", SolverFamily::kDirect, true, true, "CHOLMOD simplicial LDL^T, AMD ordering"}, make_cholmod_simplicial},
+      {{"umfpack", SolverFamily::kDirect, true, false, "UMFPACK multifrontal LU (indefinite systems too)"}, make_umfpack},
+#endif
+      {{"cg", SolverFamily::kIterative, true, true, "conjugate gradients, no preconditioner"}, make_cg},
+      {{"cg-jacobi", SolverFamily::kIterative, true, true, "conjugate gradients, diagonal preconditioner"}, make_cg_jacobi},
+      {{"cg-ic", SolverFamily::kIterative, true, true, "conjugate gradients, incomplete Cholesky"}, make_cg_ic},
+      {{"bicgstab", SolverFamily::kIterative, true, false, "BiCGSTAB with incomplete LU (ILUT)"}, make_bicgstab},
+      {{"jacobi", SolverFamily::kIterative, false, false, "the Jacobi mask iteration (diverges for alpha < 0)"}, make_jacobi},
+      {{"gauss-seidel", SolverFamily::kIterative, false, false, "the Gauss-Seidel / SOR mask iteration (--omega)"}, make_gauss_seidel},
   };
   return list;
 }

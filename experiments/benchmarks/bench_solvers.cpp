@@ -1,0 +1,273 @@
+// Solver benchmarks on the mask systems of math.md §3: interior grids N×N, 3 right-hand sides.
+// Every figure is meant to be read as a multiple of BM_MemoryPass at the same N, measured in the
+// same run (scripts/bench.sh turns the JSON output into a table, a plot and scaling exponents).
+//
+//   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick]
+//                 [google benchmark flags, e.g. --benchmark_format=json]
+//
+// Default sizes per family keep the full run within minutes: direct backends up to 1023,
+// Krylov backends up to 255 (127 at α = −1/4, where CG needs O(N²) iterations), the classical
+// mask iterations up to 63, structured backends up to 2047.
+#include <benchmark/benchmark.h>
+
+#include <algorithm>
+#include <cstring>
+#include <map>
+#include <random>
+#include <sstream>
+#include <string>
+#include <vector>
+
+#include "coons/mask/assemble_mask_system.h"
+#include "coons/net/coons_net.h"
+#include "solvers/registry.h"
+
+using namespace coons;
+using namespace coons::solvers;
+
+namespace {
+
+struct Config {
+  std::vector<int> sizes = {63, 127, 255, 511, 1023, 2047};
+  std::vector<double> alphas = {-0.25, -0.1, 0.0};
+  std::vector<std::string> backends;  // empty: all
+  bool quick = false;
+};
+
+std::vector<std::string> split(const std::string& s) {
+  std::vector<std::string> out;
+  std::stringstream in(s);
+  for (std::string item; std::getline(in, item, ',');)
+    if (!item.empty()) out.push_back(item);
+  return out;
+}
+
+// A boundary whose net has an N×N interior: a smooth closed-form shape plus noise-free
+// oscillation, so that all three coordinates carry data.
+Boundary bench_boundary(int N) {
+  const int m = N + 1, n = N + 1;
+  ControlNet net(m, n);
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double u = double(i) / m, v = double(j) / n;
+      net.at(i, j) << u, v, std::sin(3 * u) * std::cos(2 * v) + 0.1 * std::sin(17 * u * v);
+    }
+  return boundary_of(net, "bench");
+}
+
+// The data of one (N, α) problem, built once and shared by every benchmark that needs it.
+struct Problem {
+  ControlNet frame;
+  MaskSystem system;
+};
+
+const Problem& problem(int N, double alpha, bool with_matrix) {
+  static std::map<std::tuple<int, double, bool>, Problem> cache;
+  auto key = std::make_tuple(N, alpha, with_matrix);
+  auto it = cache.find(key);
+  if (it == cache.end()) {
+    Problem p;
+    p.frame = frame_net(bench_boundary(N));
+    p.system = assemble_mask_system(p.frame, alpha_mask(alpha), with_matrix);
+    it = cache.emplace(key, std::move(p)).first;
+  }
+  return it->second;
+}
+
+LinearOperator operator_of(const MaskSystem& s, bool with_matrix) {
+  LinearOperator op;
+  if (with_matrix) op.matrix = &s.A;
+  op.stencil = s.stencil;
+  return op;
+}
+
+void set_common_counters(benchmark::State& state, int N) {
+  state.counters["unknowns"] = double(N) * N;
+  state.counters["N"] = N;
+}
+
+// The physical floor: read the 3 right-hand-side columns, write the 3 solution columns.
+void BM_MemoryPass(benchmark::State& state, int N) {
+  const Problem& p = problem(N, -0.25, false);
+  Eigen::MatrixX3d X(p.system.B.rows(), 3);
+  for (auto _ : state) {
+    X = p.system.B;
+    benchmark::DoNotOptimize(X.data());
+    benchmark::ClobberMemory();
+  }
+  set_common_counters(state, N);
+}
+
+void BM_Assemble(benchmark::State& state, int N) {
+  const ControlNet& frame = problem(N, -0.25, false).frame;
+  for (auto _ : state) {
+    MaskSystem s = assemble_mask_system(frame, alpha_mask(-0.1), true);
+    benchmark::DoNotOptimize(s.A.valuePtr());
+  }
+  set_common_counters(state, N);
+}
+
+void BM_RefillValues(benchmark::State& state, int N) {
+  MaskSystem s = problem(N, -0.25, true).system;
+  const GridStencil other = mask_stencil(alpha_mask(-0.1), N, N);
+  for (auto _ : state) {
+    refill_stencil_matrix(other, s.A);
+    benchmark::DoNotOptimize(s.A.valuePtr());
+  }
+  set_common_counters(state, N);
+}
+
+void BM_ClosedFormCoons(benchmark::State& state, int N) {
+  const Boundary b = bench_boundary(N);
+  for (auto _ : state) {
+    ControlNet net = discrete_coons_net(b);
+    benchmark::DoNotOptimize(net.points.data());
+  }
+  set_common_counters(state, N);
+}
+
+// One fresh solve: analyze + factorize + solve (the residual is computed once, untimed).
+void BM_Solve(benchmark::State& state, std::string name, int N, double alpha) {
+  const SolverInfo* info = find_solver(name);
+  std::string backend = name;
+  if (name == "auto") backend = choose_auto_solver(mask_stencil(alpha_mask(alpha), N, N));
+  if (!info) info = find_solver(backend);
+  const Problem& p = problem(N, alpha, info->needs_matrix);
+  const LinearOperator op = operator_of(p.system, info->needs_matrix);
+  SolverOptions timed;
+  timed.compute_residual = false;
+  Eigen::MatrixX3d X;
+  for (auto _ : state) {
+    auto solver = make_solver(backend, timed);
+    solver->compute_and_solve(op, p.system.B, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  auto checked = make_solver(backend);
+  const SolveSummary s = checked->compute_and_solve(op, p.system.B, X);
+  set_common_counters(state, N);
+  state.counters["alpha"] = alpha;
+  state.counters["iterations"] = s.iterations;
+  state.counters["residual"] = s.relative_residual;
+  state.counters["factor_nnz"] = double(s.factor_nnz);
+  state.counters["ok"] = s.ok();
+  state.SetLabel(backend + (s.ordering.empty() ? "" : " ordering=" + s.ordering) +
+                 (s.ok() ? "" : std::string(" status=") + to_string(s.status)));
+}
+
+// Analysis reused: only factorize + solve per α (what an α search pays per evaluation).
+void BM_Refactorize(benchmark::State& state, std::string name, int N, double alpha) {
+  const SolverInfo* info = find_solver(name);
+  const Problem& p = problem(N, alpha, info->needs_matrix);
+  const LinearOperator op = operator_of(p.system, info->needs_matrix);
+  SolverOptions timed;
+  timed.compute_residual = false;
+  auto solver = make_solver(name, timed);
+  solver->analyze(op);
+  Eigen::MatrixX3d X;
+  for (auto _ : state) {
+    solver->factorize(op);
+    solver->solve(p.system.B, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  set_common_counters(state, N);
+  state.counters["alpha"] = alpha;
+}
+
+// 101 values of α in [−1/4, 1/4] through the sweep API (right-hand side affine in α).
+void BM_AlphaSweep(benchmark::State& state, std::string name, int N) {
+  const SolverInfo* info = find_solver(name);
+  const Problem& p = problem(N, -0.25, info->needs_matrix);
+  // B(α) = α·B_diag + β·B_edge: the two basis right-hand sides
+  const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(p.frame, Mask9{0, 0, 1}), mask_rhs(p.frame, Mask9{0.5, 0.5, 0})};
+  std::vector<GridStencil> stencils;
+  std::vector<Eigen::SparseMatrix<double>> matrices;
+  std::vector<LinearSolver::SweepMember> members;
+  for (int k = 0; k <= 100; ++k) stencils.push_back(mask_stencil(alpha_mask(-0.25 + 0.005 * k), N, N));
+  if (info->needs_matrix)
+    for (const auto& s : stencils) matrices.push_back(stencil_matrix(s));
+  for (int k = 0; k <= 100; ++k) {
+    LinearOperator op;
+    op.stencil = stencils[k];
+    if (info->needs_matrix) op.matrix = &matrices[k];
+    const double alpha = -0.25 + 0.005 * k;
+    members.push_back({op, {alpha, (0.25 - alpha) * 2}});  // basis[1] holds edge sums × 1/2
+  }
+  SolverOptions timed;
+  timed.compute_residual = false;
+  double checksum = 0;
+  for (auto _ : state) {
+    auto solver = make_solver(name, timed);
+    solver->sweep(basis, members, [&](std::size_t, const Eigen::MatrixX3d& X, const SolveSummary&) {
+      checksum += X(0, 0);
+    });
+  }
+  benchmark::DoNotOptimize(checksum);
+  set_common_counters(state, N);
+  state.counters["alphas"] = 101;
+}
+
+int size_cap(const SolverInfo& info, double alpha) {
+  if (info.family == SolverFamily::kStructured) return 2047;
+  if (info.family == SolverFamily::kDirect) return 1023;
+  if (info.name == "jacobi" || info.name == "gauss-seidel") return 63;
+  return alpha <= -0.25 ? 127 : 255;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  Config config;
+  std::vector<char*> rest = {argv[0]};
+  for (int a = 1; a < argc; ++a) {
+    const std::string arg = argv[a];
+    auto value = [&](const char* flag) { return arg.substr(std::strlen(flag)); };
+    if (arg.rfind("--sizes=", 0) == 0) {
+      config.sizes.clear();
+      for (const auto& s : split(value("--sizes="))) config.sizes.push_back(std::stoi(s));
+    } else if (arg.rfind("--alphas=", 0) == 0) {
+      config.alphas.clear();
+      for (const auto& s : split(value("--alphas="))) config.alphas.push_back(std::stod(s));
+    } else if (arg.rfind("--backends=", 0) == 0) {
+      config.backends = split(value("--backends="));
+    } else if (arg == "--quick") {
+      config.quick = true;
+      config.sizes = {15, 31};
+    } else {
+      rest.push_back(argv[a]);
+    }
+  }
+  const double min_time = config.quick ? 0.01 : 0.2;
+  auto wanted = [&](const std::string& name) {
+    return config.backends.empty() || std::find(config.backends.begin(), config.backends.end(), name) != config.backends.end();
+  };
+
+  for (int N : config.sizes) {
+    benchmark::RegisterBenchmark(("BM_MemoryPass/N:" + std::to_string(N)).c_str(), BM_MemoryPass, N)->UseRealTime();
+    benchmark::RegisterBenchmark(("BM_ClosedFormCoons/N:" + std::to_string(N)).c_str(), BM_ClosedFormCoons, N)->UseRealTime();
+    if (N <= 1023) {
+      benchmark::RegisterBenchmark(("BM_Assemble/N:" + std::to_string(N)).c_str(), BM_Assemble, N)->UseRealTime();
+      benchmark::RegisterBenchmark(("BM_RefillValues/N:" + std::to_string(N)).c_str(), BM_RefillValues, N)->UseRealTime();
+    }
+    for (const SolverInfo& info : available_solvers()) {
+      if (!wanted(info.name)) continue;
+      for (double alpha : config.alphas) {
+        if (!config.quick && N > size_cap(info, alpha)) continue;
+        const std::string tag = "/" + info.name + "/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6);
+        benchmark::RegisterBenchmark(("BM_Solve" + tag).c_str(), BM_Solve, info.name, N, alpha)->UseRealTime()->MinTime(min_time);
+        if (info.family != SolverFamily::kIterative)
+          benchmark::RegisterBenchmark(("BM_Refactorize" + tag).c_str(), BM_Refactorize, info.name, N, alpha)->UseRealTime()->MinTime(min_time);
+      }
+      if (info.family == SolverFamily::kStructured && (config.quick || N >= 1023 || N == config.sizes.back()))
+        benchmark::RegisterBenchmark(("BM_AlphaSweep/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_AlphaSweep, info.name, N)->UseRealTime();
+    }
+    if (wanted("auto"))
+      for (double alpha : config.alphas)
+        benchmark::RegisterBenchmark(("BM_Solve/auto/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6)).c_str(),
+                                     BM_Solve, std::string("auto"), N, alpha)->UseRealTime()->MinTime(min_time);
+  }
+  int rest_argc = int(rest.size());
+  benchmark::Initialize(&rest_argc, rest.data());
+  benchmark::RunSpecifiedBenchmarks();
+  benchmark::Shutdown();
+  return 0;
+}

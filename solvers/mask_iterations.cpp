@@ -1,0 +1,132 @@
+#include "mask_iterations.h"
+
+#include <cmath>
+#include <string>
+
+#include "eigen_iterative.h"
+
+namespace coons::solvers {
+namespace {
+
+enum class Scheme { kJacobi, kGaussSeidel };
+
+// Σ of the off-centre stencil terms at (i, j) of one column x (zero outside the grid).
+inline double neighbour_sum(const GridStencil& s, const double* x, int i, int j) {
+  const int R = s.rows, C = s.cols;
+  const double* mid = x + Eigen::Index(i) * C;
+  double ei = 0, ej = 0, dg = 0;
+  if (j > 0) ej += mid[j - 1];
+  if (j + 1 < C) ej += mid[j + 1];
+  if (i > 0) {
+    const double* up = mid - C;
+    ei += up[j];
+    if (j > 0) dg += up[j - 1];
+    if (j + 1 < C) dg += up[j + 1];
+  }
+  if (i + 1 < R) {
+    const double* down = mid + C;
+    ei += down[j];
+    if (j > 0) dg += down[j - 1];
+    if (j + 1 < C) dg += down[j + 1];
+  }
+  return s.edge_i * ei + s.edge_j * ej + s.diag * dg;
+}
+
+class MaskIteration : public LinearSolver {
+ public:
+  MaskIteration(Scheme scheme, const SolverOptions& options) : LinearSolver(options), scheme_(scheme) {}
+  [[nodiscard]] std::string name() const override {
+    return scheme_ == Scheme::kJacobi ? "jacobi" : "gauss-seidel";
+  }
+  [[nodiscard]] bool exact() const override { return false; }
+
+ protected:
+  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.stencil) {
+      summary.message = "needs the grid stencil (matrix-free)";
+      return SolveStatus::kNotApplicable;
+    }
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.stencil) return do_analyze(op, summary);
+    if (op.stencil->center == 0) {
+      summary.message = "the stencil's centre weight is zero";
+      return SolveStatus::kSingular;
+    }
+    stencil_ = *op.stencil;
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
+    const GridStencil& s = stencil_;
+    const int limit = iteration_limit(options_, s.size(), 1000);
+    constexpr int kCheckEvery = 10;
+    LinearOperator op;
+    op.stencil = s;
+    X.setZero(B.rows(), 3);
+    Eigen::MatrixX3d next = X;
+    const double initial = relative_residual(op, B, X);
+    double residual = initial;
+    int it = 0;
+    while (it < limit && residual > options_.tolerance) {
+      for (int k = 0; k < kCheckEvery && it < limit; ++k, ++it) sweep_once(B, X, next);
+      residual = relative_residual(op, B, X);
+      if (!std::isfinite(residual) || residual > 1e8 * std::max(initial, 1e-300)) {
+        summary.iterations = it;
+        summary.message = "residual grew from " + std::to_string(initial) + " to " +
+                          (std::isfinite(residual) ? std::to_string(residual) : std::string("overflow")) +
+                          " in " + std::to_string(it) + " iterations";
+        X.setZero();
+        return SolveStatus::kDiverged;
+      }
+    }
+    summary.iterations = it;
+    if (residual <= options_.tolerance) return SolveStatus::kSuccess;
+    summary.message = "residual " + std::to_string(residual) + " after " + std::to_string(it) +
+                      " iterations (tolerance " + std::to_string(options_.tolerance) + ")";
+    if (residual > initial) {
+      X.setZero();
+      return SolveStatus::kDiverged;
+    }
+    return SolveStatus::kNotConverged;
+  }
+
+ private:
+  void sweep_once(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, Eigen::MatrixX3d& next) const {
+    const GridStencil& s = stencil_;
+    const double inv_c = 1.0 / s.center, omega = options_.sor_omega;
+    for (int c = 0; c < 3; ++c) {
+      const double* b = B.col(c).data();
+      if (scheme_ == Scheme::kJacobi) {
+        const double* x = X.col(c).data();
+        double* y = next.col(c).data();
+        for (int i = 0; i < s.rows; ++i)
+          for (int j = 0; j < s.cols; ++j) {
+            const Eigen::Index k = Eigen::Index(i) * s.cols + j;
+            y[k] = (b[k] - neighbour_sum(s, x, i, j)) * inv_c;
+          }
+      } else {
+        double* x = X.col(c).data();
+        for (int i = 0; i < s.rows; ++i)
+          for (int j = 0; j < s.cols; ++j) {
+            const Eigen::Index k = Eigen::Index(i) * s.cols + j;
+            const double gs = (b[k] - neighbour_sum(s, x, i, j)) * inv_c;
+            x[k] += omega * (gs - x[k]);
+          }
+      }
+    }
+    if (scheme_ == Scheme::kJacobi) X.swap(next);
+  }
+
+  Scheme scheme_;
+  GridStencil stencil_;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_jacobi(const SolverOptions& o) { return std::make_unique<MaskIteration>(Scheme::kJacobi, o); }
+std::unique_ptr<LinearSolver> make_gauss_seidel(const SolverOptions& o) { return std::make_unique<MaskIteration>(Scheme::kGaussSeidel, o); }
+
+}  // namespace coons::solvers

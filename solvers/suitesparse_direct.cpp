@@ -1,0 +1,261 @@
+#include "suitesparse_direct.h"
+
+#include <cmath>
+#include <string>
+#include <vector>
+
+#include <cholmod.h>
+#include <umfpack.h>
+
+namespace coons::solvers {
+namespace {
+
+using SpMat = Eigen::SparseMatrix<double>;
+
+// A cholmod_sparse that borrows the lower triangle of a symmetric Eigen matrix (stype −1).
+cholmod_sparse view_lower(const SpMat& A) {
+  cholmod_sparse s{};
+  s.nrow = size_t(A.rows());
+  s.ncol = size_t(A.cols());
+  s.nzmax = size_t(A.nonZeros());
+  s.p = const_cast<int*>(A.outerIndexPtr());
+  s.i = const_cast<int*>(A.innerIndexPtr());
+  s.x = const_cast<double*>(A.valuePtr());
+  s.stype = -1;
+  s.itype = CHOLMOD_INT;
+  s.xtype = CHOLMOD_REAL;
+  s.dtype = CHOLMOD_DOUBLE;
+  s.sorted = 1;
+  s.packed = 1;
+  return s;
+}
+
+cholmod_dense view_dense(const Eigen::MatrixX3d& B) {
+  cholmod_dense d{};
+  d.nrow = size_t(B.rows());
+  d.ncol = 3;
+  d.nzmax = size_t(B.size());
+  d.d = size_t(B.rows());
+  d.x = const_cast<double*>(B.data());
+  d.xtype = CHOLMOD_REAL;
+  d.dtype = CHOLMOD_DOUBLE;
+  return d;
+}
+
+const char* cholmod_ordering_name(int ordering) {
+  switch (ordering) {
+    case CHOLMOD_NATURAL: return "natural";
+    case CHOLMOD_GIVEN: return "given";
+    case CHOLMOD_AMD: return "amd";
+    case CHOLMOD_METIS: return "metis";
+    case CHOLMOD_NESDIS: return "nested-dissection";
+    case CHOLMOD_COLAMD: return "colamd";
+    case CHOLMOD_POSTORDERED: return "natural-postordered";
+    default: return "unknown";
+  }
+}
+
+class Cholmod : public LinearSolver {
+ public:
+  Cholmod(bool supernodal, const SolverOptions& options) : LinearSolver(options), supernodal_(supernodal) {
+    cholmod_start(&common_);
+    common_.supernodal = supernodal ? CHOLMOD_SUPERNODAL : CHOLMOD_SIMPLICIAL;
+    common_.final_ll = supernodal ? 1 : 0;
+    common_.print = 0;
+    common_.error_handler = nullptr;
+    common_.nmethods = 1;
+    switch (options.ordering) {
+      case Ordering::kAuto:
+      case Ordering::kAmd: common_.method[0].ordering = CHOLMOD_AMD; break;
+      case Ordering::kColamd: common_.method[0].ordering = CHOLMOD_AMD; break;
+      case Ordering::kMetis: common_.method[0].ordering = CHOLMOD_METIS; break;
+      case Ordering::kNestedDissection: common_.method[0].ordering = CHOLMOD_NESDIS; break;
+      case Ordering::kNatural: common_.method[0].ordering = CHOLMOD_NATURAL; break;
+      case Ordering::kCholmodDefault: common_.nmethods = 0; break;  // CHOLMOD tries METIS and AMD
+    }
+    common_.postorder = 1;
+  }
+  ~Cholmod() override {
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_finish(&common_);
+  }
+  [[nodiscard]] std::string name() const override { return supernodal_ ? "cholmod" : "cholmod-simplicial"; }
+
+ protected:
+  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.matrix) {
+      summary.message = "needs the assembled matrix";
+      return SolveStatus::kNotApplicable;
+    }
+    if (factor_) cholmod_free_factor(&factor_, &common_);
+    cholmod_sparse A = view_lower(*op.matrix);
+    factor_ = cholmod_analyze(&A, &common_);
+    if (!factor_ || common_.status < CHOLMOD_OK) {
+      summary.message = "cholmod_analyze failed, status " + std::to_string(common_.status);
+      return SolveStatus::kFailure;
+    }
+    summary.ordering = cholmod_ordering_name(factor_->ordering);
+    summary.factor_nnz = static_cast<long long>(common_.lnz);
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.matrix || !factor_) {
+      summary.message = "needs the assembled matrix";
+      return SolveStatus::kNotApplicable;
+    }
+    cholmod_sparse A = view_lower(*op.matrix);
+    cholmod_factorize(&A, factor_, &common_);
+    summary.factor_nnz = static_cast<long long>(common_.lnz);
+    if (common_.status == CHOLMOD_NOT_POSDEF) {
+      summary.message = "not positive definite at column " + std::to_string(factor_->minor);
+      return SolveStatus::kNotPositiveDefinite;
+    }
+    if (common_.status < CHOLMOD_OK) {
+      summary.message = "cholmod_factorize failed, status " + std::to_string(common_.status);
+      return SolveStatus::kFailure;
+    }
+    if (!supernodal_) return judge_ldlt_diagonal(summary);
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
+    cholmod_dense b = view_dense(B);
+    cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor_, &b, &common_);
+    summary.iterations = 1;
+    if (!x) {
+      summary.message = "cholmod_solve failed, status " + std::to_string(common_.status);
+      return SolveStatus::kFailure;
+    }
+    X = Eigen::Map<const Eigen::MatrixX3d>(static_cast<const double*>(x->x), B.rows(), 3);
+    cholmod_free_dense(&x, &common_);
+    return SolveStatus::kSuccess;
+  }
+
+ private:
+  // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does.
+  SolveStatus judge_ldlt_diagonal(SolveSummary& summary) const {
+    const auto* p = static_cast<const int*>(factor_->p);
+    const auto* x = static_cast<const double*>(factor_->x);
+    double scale = 0;
+    for (size_t j = 0; j < factor_->n; ++j) scale = std::max(scale, std::abs(x[p[j]]));
+    long zero = 0, negative = 0;
+    for (size_t j = 0; j < factor_->n; ++j) {
+      const double d = x[p[j]];
+      if (std::abs(d) <= 1e-13 * scale) ++zero;
+      else if (d < 0) ++negative;
+    }
+    if (zero) {
+      summary.message = std::to_string(zero) + " zero pivot(s) in D";
+      return SolveStatus::kSingular;
+    }
+    if (negative) {
+      summary.message = std::to_string(negative) + " negative pivot(s) in D";
+      return SolveStatus::kNotPositiveDefinite;
+    }
+    return SolveStatus::kSuccess;
+  }
+
+  bool supernodal_;
+  cholmod_common common_{};
+  cholmod_factor* factor_ = nullptr;
+};
+
+const char* umfpack_ordering_name(double used) {
+  switch (int(used)) {
+    case UMFPACK_ORDERING_CHOLMOD: return "cholmod";
+    case UMFPACK_ORDERING_AMD: return "amd";
+    case UMFPACK_ORDERING_GIVEN: return "given";
+    case UMFPACK_ORDERING_METIS: return "metis";
+    case UMFPACK_ORDERING_NONE: return "natural";
+    default: return "umfpack-default";
+  }
+}
+
+class Umfpack : public LinearSolver {
+ public:
+  explicit Umfpack(const SolverOptions& options) : LinearSolver(options) {
+    umfpack_di_defaults(control_);
+    if (options.ordering == Ordering::kMetis) control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_METIS;
+    else if (options.ordering == Ordering::kNatural) control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_NONE;
+    else if (options.ordering == Ordering::kAmd || options.ordering == Ordering::kColamd)
+      control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_AMD;
+  }
+  ~Umfpack() override { release(); }
+  [[nodiscard]] std::string name() const override { return "umfpack"; }
+
+ protected:
+  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.matrix) {
+      summary.message = "needs the assembled matrix";
+      return SolveStatus::kNotApplicable;
+    }
+    release();
+    const SpMat& A = *op.matrix;
+    const int status = umfpack_di_symbolic(int(A.rows()), int(A.cols()), A.outerIndexPtr(), A.innerIndexPtr(),
+                                           A.valuePtr(), &symbolic_, control_, info_);
+    if (status != UMFPACK_OK) {
+      summary.message = "umfpack_di_symbolic failed, status " + std::to_string(status);
+      return SolveStatus::kFailure;
+    }
+    summary.ordering = umfpack_ordering_name(info_[UMFPACK_ORDERING_USED]);
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
+    if (!op.matrix || !symbolic_) {
+      summary.message = "needs the assembled matrix";
+      return SolveStatus::kNotApplicable;
+    }
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    matrix_ = op.matrix;
+    const SpMat& A = *op.matrix;
+    const int status = umfpack_di_numeric(A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), symbolic_,
+                                          &numeric_, control_, info_);
+    summary.factor_nnz = static_cast<long long>(info_[UMFPACK_LNZ] + info_[UMFPACK_UNZ]);
+    if (status == UMFPACK_WARNING_singular_matrix) {
+      summary.message = "UMFPACK: the matrix is singular (rcond " + std::to_string(info_[UMFPACK_RCOND]) + ")";
+      return SolveStatus::kSingular;
+    }
+    if (status != UMFPACK_OK) {
+      summary.message = "umfpack_di_numeric failed, status " + std::to_string(status);
+      return SolveStatus::kFailure;
+    }
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
+    const SpMat& A = *matrix_;
+    X.resize(B.rows(), 3);
+    summary.iterations = 1;
+    for (int c = 0; c < 3; ++c) {
+      const int status = umfpack_di_solve(UMFPACK_A, A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(),
+                                          X.col(c).data(), B.col(c).data(), numeric_, control_, info_);
+      if (status != UMFPACK_OK) {
+        summary.message = "umfpack_di_solve failed, status " + std::to_string(status);
+        return status == UMFPACK_WARNING_singular_matrix ? SolveStatus::kSingular : SolveStatus::kFailure;
+      }
+    }
+    return SolveStatus::kSuccess;
+  }
+
+ private:
+  void release() {
+    if (numeric_) umfpack_di_free_numeric(&numeric_);
+    if (symbolic_) umfpack_di_free_symbolic(&symbolic_);
+  }
+
+  double control_[UMFPACK_CONTROL]{};
+  double info_[UMFPACK_INFO]{};
+  void* symbolic_ = nullptr;
+  void* numeric_ = nullptr;
+  const SpMat* matrix_ = nullptr;
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_cholmod_supernodal(const SolverOptions& o) { return std::make_unique<Cholmod>(true, o); }
+std::unique_ptr<LinearSolver> make_cholmod_simplicial(const SolverOptions& o) { return std::make_unique<Cholmod>(false, o); }
+std::unique_ptr<LinearSolver> make_umfpack(const SolverOptions& o) { return std::make_unique<Umfpack>(o); }
+
+}  // namespace coons::solvers
