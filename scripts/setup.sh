@@ -19,6 +19,7 @@ packages=(
   libmuparser-dev               # analytic curves written as expressions
   libboost-dev                  # Brent's minimiser, the independent check of the alpha search
   gnuplot-nox                   # PNG plots of reports and benchmarks
+  python3                       # benchmark tables (scripts/bench_report.py, standard library only)
 )
 
 missing=()
