@@ -206,6 +206,26 @@ void BM_AlphaSweep(benchmark::State& state, std::string name, int N) {
   state.counters["alphas"] = 101;
 }
 
+// CHOLMOD supernodal with each ordering it offers (α = −1/4, fresh solve), so the `cholmod`
+// backend's choice can be checked against the best one in the same run.
+void BM_CholmodOrdering(benchmark::State& state, Ordering ordering, int N) {
+  const Problem& p = problem(N, -0.25, true);
+  const LinearOperator op = operator_of(p.system, true);
+  SolverOptions options;
+  options.compute_residual = false;
+  options.ordering = ordering;
+  Eigen::MatrixX3d X;
+  SolveSummary s;
+  for (auto _ : state) {
+    auto solver = make_solver("cholmod", options);
+    s = solver->compute_and_solve(op, p.system.B, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  set_common_counters(state, N);
+  state.counters["factor_nnz"] = double(s.factor_nnz);
+  state.SetLabel("ordering=" + s.ordering);
+}
+
 int size_cap(const SolverInfo& info, double alpha) {
   if (info.family == SolverFamily::kStructured) return 2047;
   if (info.family == SolverFamily::kDirect) return 1023;
@@ -260,6 +280,10 @@ int main(int argc, char** argv) {
       if (info.family == SolverFamily::kStructured && (config.quick || N >= 1023 || N == config.sizes.back()))
         benchmark::RegisterBenchmark(("BM_AlphaSweep/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_AlphaSweep, info.name, N)->UseRealTime();
     }
+    if (find_solver("cholmod") && wanted("cholmod") && N <= 1023)
+      for (Ordering o : {Ordering::kAmd, Ordering::kMetis, Ordering::kNestedDissection, Ordering::kCholmodDefault})
+        benchmark::RegisterBenchmark(("BM_CholmodOrdering/" + std::string(to_string(o)) + "/N:" + std::to_string(N)).c_str(),
+                                     BM_CholmodOrdering, o, N)->UseRealTime()->MinTime(min_time);
     if (wanted("auto"))
       for (double alpha : config.alphas)
         benchmark::RegisterBenchmark(("BM_Solve/auto/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6)).c_str(),

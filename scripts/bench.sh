@@ -1,0 +1,26 @@
+#!/usr/bin/env bash
+# Runs the solver benchmark suite and writes a Markdown table, log-log plots and scaling exponents.
+#   bash scripts/bench.sh [--quick] [--no-build] [--out DIR] [bench_solvers flags...]
+# --quick: tiny sizes (CI runs this so the benchmarks never rot). Default output folder:
+# experiments/E03_solver_scaling/results (or build/bench-quick with --quick).
+set -euo pipefail
+cd "$(dirname "$0")/.."
+quick=0; build=1; out=""; extra=()
+while [ $# -gt 0 ]; do
+  case "$1" in
+    --quick) quick=1 ;;
+    --no-build) build=0 ;;
+    --out) out="$2"; shift ;;
+    *) extra+=("$1") ;;
+  esac
+  shift
+done
+if [ $build -eq 1 ]; then bash scripts/setup.sh; bash scripts/build.sh >/dev/null; fi
+if [ -z "$out" ]; then
+  if [ $quick -eq 1 ]; then out=build/bench-quick; else out=experiments/E03_solver_scaling/results; fi
+fi
+mkdir -p "$out"
+args=(--benchmark_format=console --benchmark_out="$out/bench.json" --benchmark_out_format=json)
+[ $quick -eq 1 ] && args+=(--quick)
+"${COONS_BUILD_DIR:-build}/bench_solvers" "${args[@]}" ${extra[@]+"${extra[@]}"} > "$out/bench.log"
+python3 scripts/bench_report.py "$out/bench.json" "$out"

@@ -1,0 +1,177 @@
+#!/usr/bin/env python3
+"""Turns bench_solvers' JSON into a Markdown table, log-log plots and scaling exponents.
+
+Every time is divided by the memory pass (BM_MemoryPass) at the same N from the same run.
+Usage: bench_report.py BENCH.json OUT_DIR    (standard library only; gnuplot draws the PNGs)
+"""
+import json
+import math
+import os
+import re
+import shutil
+import subprocess
+import sys
+from collections import defaultdict
+
+
+def seconds(b):
+    unit = {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+    return b["real_time"] * unit
+
+
+def fit_exponent(points):
+    """Least-squares slope of log(time) against log(unknowns)."""
+    if len(points) < 2:
+        return None
+    xs = [math.log(u) for u, _ in points]
+    ys = [math.log(t) for _, t in points]
+    mx, my = sum(xs) / len(xs), sum(ys) / len(ys)
+    sxx = sum((x - mx) ** 2 for x in xs)
+    return sum((x - mx) * (y - my) for x, y in zip(xs, ys)) / sxx if sxx > 0 else None
+
+
+def main():
+    path, out = sys.argv[1], sys.argv[2]
+    doc = json.load(open(path))
+    runs = [b for b in doc["benchmarks"] if b.get("run_type", "iteration") == "iteration"]
+    memory = {}            # N -> seconds
+    simple = defaultdict(dict)   # name -> N -> seconds (closed form, assembly, refill)
+    solve = defaultdict(dict)    # (backend, alpha) -> N -> (seconds, bench)
+    refactor = defaultdict(dict)
+    sweep = defaultdict(dict)    # backend -> N -> seconds
+    ordering = defaultdict(dict)  # (ordering) -> N -> seconds
+    for b in runs:
+        name = b["name"]
+        n = int(b.get("N", 0))
+        t = seconds(b)
+        if name.startswith("BM_MemoryPass/"):
+            memory[n] = t
+        elif m := re.match(r"BM_(ClosedFormCoons|Assemble|RefillValues)/", name):
+            simple[m.group(1)][n] = t
+        elif m := re.match(r"BM_(Solve|Refactorize)/([^/]+)/N:\d+/alpha:([-0-9.]+)", name):
+            key = (m.group(2), float(m.group(3)))
+            (solve if m.group(1) == "Solve" else refactor)[key][n] = (t, b)
+        elif m := re.match(r"BM_AlphaSweep/([^/]+)/", name):
+            sweep[m.group(1)][n] = t
+        elif m := re.match(r"BM_CholmodOrdering/([^/]+)/", name):
+            ordering[m.group(1)][n] = t
+
+    lines = [f"# Solver scaling: {doc['context'].get('date', '')}, {doc['context'].get('num_cpus', '?')} CPUs",
+             "",
+             "Times are real (wall-clock) seconds of one fresh solve (analyze + factorize + solve, 3 right-hand",
+             "sides); `× mem` divides by the memory pass (read 3 RHS columns, write 3 solution columns) at the",
+             "same N, measured in the same run.",
+             ""]
+    sizes = sorted(memory)
+    lines.append("| N | unknowns | memory pass [ms] | closed-form Coons [× mem] | assembly [× mem] | value refill [× mem] |")
+    lines.append("|---|---|---|---|---|---|")
+    for n in sizes:
+        def ratio(name):
+            return f"{simple[name][n] / memory[n]:.2f}" if n in simple[name] else "–"
+        lines.append(f"| {n} | {n * n} | {memory[n] * 1e3:.3f} | {ratio('ClosedFormCoons')} | {ratio('Assemble')} | {ratio('RefillValues')} |")
+    lines.append("")
+
+    alphas = sorted({a for _, a in solve})
+    exponents = {}
+    for alpha in alphas:
+        lines.append(f"## α = {alpha}")
+        lines.append("")
+        header = "| backend | " + " | ".join(f"N={n}" for n in sizes) + " | exponent | notes |"
+        lines.append(header)
+        lines.append("|" + "---|" * (len(sizes) + 3))
+        for (backend, a), per_n in sorted(solve.items()):
+            if a != alpha:
+                continue
+            cells, notes = [], set()
+            points = []
+            for n in sizes:
+                if n in per_n:
+                    t, b = per_n[n]
+                    cell = f"{t:.3g} s ({t / memory[n]:.1f}×)"
+                    if not b.get("ok", 1):
+                        cell += " ✗"
+                        notes.add(b.get("label", "").split("status=")[-1])
+                    else:
+                        points.append((n * n, t))
+                    if b.get("iterations", 1) > 1:
+                        cell += f" {int(b['iterations'])} it"
+                    cells.append(cell)
+                else:
+                    cells.append("–")
+                label = per_n.get(n, (0, {}))[1].get("label", "")
+                if "ordering=" in label:
+                    notes.add(label.split("ordering=")[1].split()[0])
+            big = [p for p in points if p[0] >= 127 * 127] or points
+            e = fit_exponent(big)
+            exponents[(backend, alpha)] = e
+            lines.append(f"| {backend} | " + " | ".join(cells) + f" | {e:.2f} |" if e is not None else f"| {backend} | " + " | ".join(cells) + " | – |")
+            lines[-1] += " " + ", ".join(sorted(x for x in notes if x)) + " |"
+        lines.append("")
+
+    if refactor:
+        lines.append("## Analysis reused (factorize + solve per α) vs a fresh solve, largest N measured")
+        lines.append("")
+        lines.append("| backend | α | N | fresh [s] | refactorize [s] | ratio |")
+        lines.append("|---|---|---|---|---|---|")
+        for (backend, alpha), per_n in sorted(refactor.items()):
+            n = max(per_n)
+            if n in solve.get((backend, alpha), {}):
+                fresh = solve[(backend, alpha)][n][0]
+                lines.append(f"| {backend} | {alpha} | {n} | {fresh:.3g} | {per_n[n][0]:.3g} | {per_n[n][0] / fresh:.2f} |")
+        lines.append("")
+
+    if sweep:
+        lines.append("## α sweep: 101 values of α through the sweep API, as a multiple of one solve at α = −0.1")
+        lines.append("")
+        lines.append("| backend | N | sweep [s] | one solve [s] | sweep / one solve |")
+        lines.append("|---|---|---|---|---|")
+        for backend, per_n in sorted(sweep.items()):
+            for n, t in sorted(per_n.items()):
+                one = solve.get((backend, -0.1), {}).get(n)
+                if one:
+                    lines.append(f"| {backend} | {n} | {t:.3g} | {one[0]:.3g} | {t / one[0]:.1f} |")
+        lines.append("")
+
+    if ordering:
+        lines.append("## CHOLMOD supernodal by ordering (α = −0.25)")
+        lines.append("")
+        lines.append("| ordering | " + " | ".join(f"N={n}" for n in sizes) + " |")
+        lines.append("|" + "---|" * (len(sizes) + 1))
+        for name, per_n in sorted(ordering.items()):
+            lines.append(f"| {name} | " + " | ".join(f"{per_n[n]:.3g} s" if n in per_n else "–" for n in sizes) + " |")
+        lines.append("")
+
+    table = "\n".join(lines) + "\n"
+    open(os.path.join(out, "table.md"), "w").write(table)
+    print(table)
+
+    if shutil.which("gnuplot"):
+        for alpha in alphas:
+            series = [(backend, per_n) for (backend, a), per_n in sorted(solve.items()) if a == alpha]
+            data_files = []
+            for backend, per_n in series:
+                f = os.path.join(out, f"data_{backend}_{alpha}.dat")
+                with open(f, "w") as fh:
+                    for n in sorted(per_n):
+                        t, b = per_n[n]
+                        if b.get("ok", 1):
+                            fh.write(f"{n * n} {t}\n")
+                data_files.append((backend, f))
+            mem = os.path.join(out, "data_memory.dat")
+            with open(mem, "w") as fh:
+                for n in sizes:
+                    fh.write(f"{n * n} {memory[n]}\n")
+            png = os.path.join(out, f"scaling_alpha{alpha}.png")
+            plots = [f"'{mem}' using 1:2 with lines lw 3 lc rgb 'black' title 'memory pass (floor)'"]
+            plots += [f"'{f}' using 1:2 with linespoints title '{backend}'" for backend, f in data_files]
+            script = (f"set terminal pngcairo size 1000,700; set output '{png}'; set logscale xy; "
+                      f"set xlabel 'unknowns'; set ylabel 'seconds (one solve, 3 RHS)'; set key outside right; "
+                      f"set grid; set title 'Mask systems, alpha = {alpha}'; plot " + ", ".join(plots))
+            subprocess.run(["gnuplot", "-e", script], check=True)
+            for _, f in data_files:
+                os.remove(f)
+            os.remove(mem)
+
+
+if __name__ == "__main__":
+    main()
