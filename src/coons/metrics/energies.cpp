@@ -22,24 +22,52 @@ class GramCache {
   std::map<int, Eigen::MatrixXd> cache_;
 };
 
-double energy(const ControlNet& net, int a, int b, GramCache& gram) {
-  if (a > net.m || b > net.n) return 0;
-  const ControlNet d = derivative_net(net, a, b);
-  const Eigen::MatrixXd& Gu = gram(d.m);
-  const Eigen::MatrixXd& Gv = gram(d.n);
+double form(const ControlNet& X, const ControlNet& Y, int a, int b, GramCache& gram) {
+  if (a > X.m || b > X.n) return 0;
+  const ControlNet dx = derivative_net(X, a, b);
+  const ControlNet dy = &X == &Y ? dx : derivative_net(Y, a, b);
+  const Eigen::MatrixXd& Gu = gram(dx.m);
+  const Eigen::MatrixXd& Gv = gram(dx.n);
   double e = 0;
   for (int c = 0; c < 3; ++c) {
-    const Eigen::MatrixXd C = coordinate_grid(d, c);
-    e += ((Gu * C) * Gv).cwiseProduct(C).sum();
+    const Eigen::MatrixXd CX = coordinate_grid(dx, c);
+    const Eigen::MatrixXd CY = &X == &Y ? CX : coordinate_grid(dy, c);
+    e += ((Gu * CX) * Gv).cwiseProduct(CY).sum();
   }
   return e;
 }
+
+double energy(const ControlNet& net, int a, int b, GramCache& gram) { return form(net, net, a, b, gram); }
 
 }  // namespace
 
 double surface_energy(const ControlNet& net, int a, int b) {
   GramCache gram;
   return energy(net, a, b, gram);
+}
+
+double surface_energy_form(const ControlNet& X, const ControlNet& Y, int a, int b) {
+  GramCache gram;
+  return form(X, Y, a, b, gram);
+}
+
+std::vector<EnergyTerm> twist_terms() { return {{1, 1, 1}}; }
+std::vector<EnergyTerm> dirichlet_terms() { return {{1, 0, 1}, {0, 1, 1}}; }
+std::vector<EnergyTerm> thin_plate_terms() { return {{2, 0, 1}, {1, 1, 2}, {0, 2, 1}}; }
+std::vector<EnergyTerm> e3_terms() { return {{3, 0, 1}, {2, 1, 3}, {1, 2, 3}, {0, 3, 1}}; }
+
+double combined_energy(const ControlNet& net, const std::vector<EnergyTerm>& terms) {
+  GramCache gram;
+  double e = 0;
+  for (const EnergyTerm& t : terms) e += t.weight * energy(net, t.a, t.b, gram);
+  return e;
+}
+
+double combined_energy_form(const ControlNet& X, const ControlNet& Y, const std::vector<EnergyTerm>& terms) {
+  GramCache gram;
+  double e = 0;
+  for (const EnergyTerm& t : terms) e += t.weight * form(X, Y, t.a, t.b, gram);
+  return e;
 }
 
 double twist_energy(const ControlNet& net) { return surface_energy(net, 1, 1); }

@@ -6,6 +6,8 @@
 // SIGGRAPH 1992; G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999).
 #pragma once
 
+#include <vector>
+
 #include "coons/mask/mask9.h"
 #include "coons/net/control_net.h"
 
@@ -13,6 +15,24 @@ namespace coons {
 
 //! E(a, b); 0 when a > m or b > n.
 double surface_energy(const ControlNet& net, int a, int b);
+
+//! The symmetric bilinear form of E(a, b): Σ_xyz tr(C_Xᵀ G C_Y G), so that
+//! E(X + hY) = E(X) + 2h·form(X, Y) + h²E(Y). X and Y must have the same degree.
+double surface_energy_form(const ControlNet& X, const ControlNet& Y, int a, int b);
+
+//! The named energies of this header as weights of E(a, b): thin plate = {(2,0):1, (1,1):2, (0,2):1}.
+struct EnergyTerm {
+  int a, b;
+  double weight;
+};
+std::vector<EnergyTerm> twist_terms();
+std::vector<EnergyTerm> dirichlet_terms();
+std::vector<EnergyTerm> thin_plate_terms();
+std::vector<EnergyTerm> e3_terms();
+
+//! Σ weight·E(a, b), and Σ weight·form(X, Y; a, b).
+double combined_energy(const ControlNet& net, const std::vector<EnergyTerm>& terms);
+double combined_energy_form(const ControlNet& X, const ControlNet& Y, const std::vector<EnergyTerm>& terms);
 
 double twist_energy(const ControlNet& net);
 double dirichlet_energy(const ControlNet& net);

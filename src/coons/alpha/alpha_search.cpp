@@ -1,0 +1,228 @@
+#include "alpha_search.h"
+
+#include <chrono>
+#include <cmath>
+#include <sstream>
+
+#include <ceres/ceres.h>
+
+#include "coons/mask/assemble_mask_system.h"
+#include "solvers/registry.h"
+
+namespace coons {
+
+MaskObjective::MaskObjective(const Boundary& boundary, Objective objective, MaskFamily family,
+                             const std::string& solver, const solvers::SolverOptions& options)
+    : boundary_(boundary), frame_(frame_net(boundary)), objective_(std::move(objective)), family_(std::move(family)) {
+  const solvers::SolverInfo* info = solvers::find_solver(solver);
+  needs_matrix_ = !info || info->needs_matrix;
+  solver_ = solvers::make_solver(solver, options);
+}
+
+MaskObjective::~MaskObjective() = default;
+
+MaskObjective::Evaluation MaskObjective::evaluate(double p) {
+  ++evaluations_;
+  Evaluation e;
+  e.parameter = p;
+  e.net = frame_;
+  if (!solver_) {
+    e.summary.status = solvers::SolveStatus::kNotApplicable;
+    e.summary.message = "no such solver";
+    return e;
+  }
+  const MaskPoint mp = family_(p);
+  const int rows = std::max(frame_.m - 1, 0), cols = std::max(frame_.n - 1, 0);
+  ControlNet dnet(frame_.m, frame_.n);  // zero boundary
+  if (rows * cols == 0) {
+    e.value = evaluate_objective(objective_, e.net, dnet).value;
+    return e;
+  }
+  solvers::LinearOperator op;
+  op.stencil = mask_stencil(mp.mask, rows, cols);
+  if (needs_matrix_) {
+    if (A_.rows() == 0) A_ = solvers::stencil_matrix(*op.stencil);
+    else solvers::refill_stencil_matrix(*op.stencil, A_);
+    op.matrix = &A_;
+  }
+  if (solver_->factorize(op) != solvers::SolveStatus::kSuccess) {
+    e.summary = solver_->summary();
+    return e;
+  }
+  Eigen::MatrixX3d X, dX;
+  e.summary = solver_->solve(mask_rhs(frame_, mp.mask), X);
+  ++solves_;
+  if (!e.summary.ok()) return e;
+  e.net = fill_interior(frame_, X);
+  const solvers::SolveSummary ds = solver_->solve(mask_sensitivity_rhs(e.net, mp.derivative), dX);
+  ++solves_;
+  if (!ds.ok()) {
+    e.summary = ds;
+    return e;
+  }
+  dnet = fill_interior(dnet, dX);
+  const ObjectiveValue v = evaluate_objective(objective_, e.net, dnet);
+  e.value = v.value;
+  e.derivative = v.derivative;
+  return e;
+}
+
+bool AlphaSearchOptions::is_valid(std::string* why) const {
+  auto fail = [&](const char* reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper)) return fail("bounds must be finite with lower < upper");
+  if (scan_points < 3) return fail("scan_points must be at least 3");
+  if (!(flat_tolerance > 0)) return fail("flat_tolerance must be positive");
+  if (!(parameter_tolerance > 0)) return fail("parameter_tolerance must be positive");
+  if (max_iterations < 1) return fail("max_iterations must be at least 1");
+  return true;
+}
+
+const char* to_string(SearchStatus s) {
+  switch (s) {
+    case SearchStatus::kSuccess: return "success";
+    case SearchStatus::kFlat: return "flat";
+    case SearchStatus::kSolverFailed: return "solver_failed";
+    case SearchStatus::kNotConverged: return "not_converged";
+  }
+  return "solver_failed";
+}
+
+std::string AlphaSearchSummary::brief_report() const {
+  std::ostringstream out;
+  out << to_string(status);
+  if (parameter) out << ": optimum " << *parameter << ", value " << value;
+  if (flat) out << " (flat objective)";
+  if (at_bound) out << " (at a bound)";
+  out << ", " << evaluations << " evaluations, " << solves << " solves, " << seconds << " s";
+  if (!message.empty()) out << "; " << message;
+  return out.str();
+}
+
+namespace {
+
+// f(p(θ)) with p = centre + half·tanh θ keeps Ceres's unconstrained line search inside the bracket.
+class BracketedObjective : public ceres::FirstOrderFunction {
+ public:
+  BracketedObjective(MaskObjective& objective, double centre, double half, bool& failed)
+      : objective_(objective), centre_(centre), half_(half), failed_(failed) {}
+  bool Evaluate(const double* theta, double* cost, double* gradient) const override {
+    const double t = std::tanh(theta[0]);
+    const MaskObjective::Evaluation e = objective_.evaluate(centre_ + half_ * t);
+    if (!e.ok()) {
+      failed_ = true;
+      return false;
+    }
+    *cost = e.value;
+    if (gradient) gradient[0] = e.derivative * half_ * (1 - t * t);
+    return true;
+  }
+  int NumParameters() const override { return 1; }
+
+ private:
+  MaskObjective& objective_;
+  double centre_, half_;
+  bool& failed_;
+};
+
+}  // namespace
+
+AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options) {
+  const auto start = std::chrono::steady_clock::now();
+  AlphaSearchSummary s;
+  auto finish = [&]() -> AlphaSearchSummary& {
+    s.evaluations = objective.evaluations();
+    s.solves = objective.solves();
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    return s;
+  };
+
+  // 1. Coarse scan.
+  const int k = options.scan_points;
+  const double step = (options.upper - options.lower) / (k - 1);
+  std::vector<MaskObjective::Evaluation> grid;
+  for (int i = 0; i < k; ++i) {
+    const double p = i + 1 == k ? options.upper : options.lower + i * step;
+    grid.push_back(objective.evaluate(p));
+    if (!grid.back().ok()) {
+      s.status = SearchStatus::kSolverFailed;
+      s.message = "at " + std::to_string(p) + ": " + grid.back().summary.brief_report();
+      return finish();
+    }
+    s.scan.emplace_back(p, grid.back().value);
+  }
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  int best = 0;
+  for (int i = 0; i < k; ++i) {
+    lo = std::min(lo, grid[i].value);
+    hi = std::max(hi, grid[i].value);
+    if (grid[i].value < grid[best].value) best = i;
+  }
+  for (int i = 1; i + 1 < k; ++i)
+    if (grid[i].value < grid[i - 1].value && grid[i].value <= grid[i + 1].value) ++s.local_minima;
+
+  // 2. Flat: the range is at rounding level of the objective's natural scale.
+  const double diag = bounding_box_diagonal(objective.boundary());
+  const bool has_energy = !objective.objective().energy.empty();
+  const double floor = has_energy ? 1e-16 * diag * diag : 1e-8 * diag;
+  if (hi - lo <= options.flat_tolerance * std::max({std::abs(hi), std::abs(lo), floor})) {
+    s.status = SearchStatus::kFlat;
+    s.flat = true;
+    s.value = grid[best].value;
+    s.message = "the objective does not depend on the parameter over the bounds";
+    return finish();
+  }
+  if (s.local_minima > 1)
+    s.message = "the scan saw " + std::to_string(s.local_minima) + " local minima; the lowest was refined";
+
+  // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards.
+  if ((best == 0 && grid[0].derivative >= 0) || (best == k - 1 && grid[k - 1].derivative <= 0)) {
+    s.parameter = grid[best].parameter;
+    s.value = grid[best].value;
+    s.at_bound = true;
+    return finish();
+  }
+
+  // 4. Refine in the bracket of the best point's neighbours with Ceres.
+  const double a = std::max(options.lower, grid[best].parameter - step);
+  const double b = std::min(options.upper, grid[best].parameter + step);
+  const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
+  double theta = std::atanh(std::clamp((grid[best].parameter - centre) / half, -0.9, 0.9));
+  bool failed = false;
+  ceres::GradientProblem problem(new BracketedObjective(objective, centre, half, failed));
+  ceres::GradientProblemSolver::Options ceres_options;
+  ceres_options.line_search_direction_type = ceres::BFGS;
+  ceres_options.max_num_iterations = options.max_iterations;
+  ceres_options.parameter_tolerance = options.parameter_tolerance;
+  ceres_options.function_tolerance = 1e-15;
+  ceres_options.gradient_tolerance = 1e-14;
+  ceres_options.logging_type = ceres::SILENT;
+  ceres::GradientProblemSolver::Summary summary;
+  ceres::Solve(ceres_options, problem, &theta, &summary);
+  s.ceres_report = summary.BriefReport();
+  const double p = centre + half * std::tanh(theta);
+  const MaskObjective::Evaluation e = objective.evaluate(p);
+  if (failed || !e.ok()) {
+    s.status = SearchStatus::kSolverFailed;
+    s.message = "solver failed during refinement: " + e.summary.brief_report();
+    return finish();
+  }
+  s.parameter = p;
+  s.value = e.value;
+  // A grid point may still be lower if the line search stalled (never report a worse point).
+  if (grid[best].value < e.value) {
+    s.parameter = grid[best].parameter;
+    s.value = grid[best].value;
+  }
+  const double edge_tolerance = 1e-7 * (options.upper - options.lower);
+  s.at_bound = std::abs(*s.parameter - options.lower) <= edge_tolerance || std::abs(*s.parameter - options.upper) <= edge_tolerance;
+  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    s.status = SearchStatus::kNotConverged;
+    s.message = "Ceres: " + summary.message;
+  }
+  return finish();
+}
+
+}  // namespace coons

@@ -1,0 +1,89 @@
+// The search for the best mask parameter (α, μ, ...) of a boundary, by Ceres with the analytic
+// derivative: for each parameter value one factorisation, two solves (the net N and its
+// sensitivity dN/dp = A⁻¹·[dmask-weighted neighbour sums of N], math.md §3), and the objective's
+// exact value and derivative. The search scans a coarse grid first (so that several minima are
+// seen), then refines the best grid point with Ceres's line-search minimiser inside the bracket
+// of its neighbours. It reports a flat objective and an optimum on a bound as such.
+// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700; Ceres Solver's
+// GradientProblemSolver (S. Agarwal, K. Mierle et al.).
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coons/alpha/objective.h"
+#include "coons/mask/mask_families.h"
+#include "coons/net/control_net.h"
+#include "solvers/linear_solver.h"
+
+namespace coons {
+
+using MaskFamily = std::function<MaskPoint(double)>;
+
+//! Evaluates objective(net(p)) and its derivative, reusing the solver's analysis across p.
+class MaskObjective {
+ public:
+  struct Evaluation {
+    double parameter = 0;
+    double value = 0, derivative = 0;
+    ControlNet net;
+    solvers::SolveSummary summary;
+    [[nodiscard]] bool ok() const { return summary.ok(); }
+  };
+
+  //! `solver` must name a registered backend ("auto" is resolved by the caller).
+  MaskObjective(const Boundary& boundary, Objective objective, MaskFamily family, const std::string& solver,
+                const solvers::SolverOptions& options = {});
+  ~MaskObjective();
+
+  Evaluation evaluate(double parameter);
+  [[nodiscard]] int evaluations() const { return evaluations_; }
+  [[nodiscard]] int solves() const { return solves_; }
+  [[nodiscard]] const Boundary& boundary() const { return boundary_; }
+  [[nodiscard]] const Objective& objective() const { return objective_; }
+
+ private:
+  Boundary boundary_;
+  ControlNet frame_;
+  Objective objective_;
+  MaskFamily family_;
+  bool needs_matrix_ = true;
+  std::unique_ptr<solvers::LinearSolver> solver_;
+  Eigen::SparseMatrix<double> A_;
+  int evaluations_ = 0, solves_ = 0;
+};
+
+struct AlphaSearchOptions {
+  double lower = -0.25, upper = 0.25;  //!< bounds of the parameter
+  int scan_points = 9;                 //!< coarse grid, bounds included
+  double flat_tolerance = 1e-12;       //!< relative range below which the objective is flat
+  double parameter_tolerance = 1e-10;  //!< Ceres: stop when the step is below this (in the bracket)
+  int max_iterations = 100;            //!< Ceres iterations
+
+  bool is_valid(std::string* why) const;
+};
+
+enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged };
+const char* to_string(SearchStatus status);
+
+struct AlphaSearchSummary {
+  SearchStatus status = SearchStatus::kSuccess;
+  std::string message;
+  std::optional<double> parameter;  //!< the optimum (absent when flat or failed)
+  double value = 0;                 //!< the objective there (at any scan point when flat)
+  bool flat = false, at_bound = false;
+  int local_minima = 0;             //!< interior local minima seen by the scan
+  int evaluations = 0, solves = 0;
+  std::vector<std::pair<double, double>> scan;  //!< (parameter, value) of the coarse grid
+  double seconds = 0;
+  std::string ceres_report;         //!< Ceres's BriefReport of the refinement, if any
+
+  [[nodiscard]] std::string brief_report() const;
+};
+
+AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options = {});
+
+}  // namespace coons

@@ -1,0 +1,127 @@
+#include <catch2/catch.hpp>
+
+#include <boost/math/tools/minima.hpp>
+
+#include "coons/alpha/alpha_search.h"
+#include "coons/io/boundary_io.h"
+#include "coons/mask/solve_mask_net.h"
+#include "coons/net/coons_net.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+
+namespace {
+
+Objective objective_named(const std::string& name) {
+  std::string why;
+  auto o = parse_objective(name, &why);
+  REQUIRE(o);
+  return *o;
+}
+
+MaskFamily alpha_only() { return [](double a) { return alpha_family(a); }; }
+
+}  // namespace
+
+TEST_CASE("MaskObjective: the analytic derivative equals finite differences", "[alpha]") {
+  const Boundary b = make_smooth_boundary(6, 5, 3);
+  for (const char* name : {"thin_plate", "twist", "dirichlet", "e3", "thin_plate+0.3*e3"}) {
+    MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+    for (double alpha : {-0.2, -0.05, 0.1}) {
+      const double h = 1e-6;
+      const double fd = (f.evaluate(alpha + h).value - f.evaluate(alpha - h).value) / (2 * h);
+      const auto e = f.evaluate(alpha);
+      INFO(name << " at alpha = " << alpha);
+      CHECK(e.derivative == Approx(fd).epsilon(1e-6).margin(1e-9));
+    }
+  }
+  // the mu and gamma families, and a target objective
+  Objective target = objective_named("target");
+  target.target = Target{};
+  target.target->net = hermite_coons_net(make_smooth_boundary(6, 5, 3));
+  target.target->samples = 15;
+  MaskObjective by_mu(b, objective_named("thin_plate"), [](double mu) { return mu_family(6, 5, mu); }, "eigen-ldlt");
+  MaskObjective by_gamma(b, objective_named("e3"), [](double g) { return gamma_family(-0.15, g); }, "eigen-ldlt");
+  MaskObjective to_target(b, target, alpha_only(), "eigen-ldlt");
+  for (auto [f, p, h] : {std::tuple{&by_mu, 7.0, 1e-4}, {&by_gamma, 0.03, 1e-6}, {&to_target, -0.1, 1e-6}}) {
+    const double fd = (f->evaluate(p + h).value - f->evaluate(p - h).value) / (2 * h);
+    CHECK(f->evaluate(p).derivative == Approx(fd).epsilon(1e-5).margin(1e-9));
+  }
+}
+
+TEST_CASE("search_mask_parameter: equals Brent's minimiser on random smooth boundaries", "[alpha]") {
+  int compared = 0;
+  for (std::uint32_t seed = 1; seed <= 12; ++seed) {
+    const int m = 3 + int(seed % 4), n = 3 + int((seed * 7) % 5);
+    const Boundary b = make_smooth_boundary(m, n, seed);
+    for (const char* name : {"thin_plate", "e3"}) {
+      MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+      const AlphaSearchSummary s = search_mask_parameter(f);
+      INFO("seed " << seed << " (" << m << "x" << n << "), " << name << ": " << s.brief_report());
+      REQUIRE((s.status == SearchStatus::kSuccess || s.status == SearchStatus::kFlat));
+      if (s.flat || s.local_minima > 1) continue;
+      MaskObjective g(b, objective_named(name), alpha_only(), "eigen-ldlt");
+      const auto brent = boost::math::tools::brent_find_minima(
+          [&](double a) { return g.evaluate(a).value; }, -0.25, 0.25, std::numeric_limits<double>::digits / 2);
+      REQUIRE(s.parameter);
+      CHECK(*s.parameter == Approx(brent.first).margin(1e-6));
+      CHECK(s.value <= brent.second * (1 + 1e-12) + 1e-15);
+      CHECK(s.evaluations < 40);
+      ++compared;
+    }
+  }
+  CHECK(compared >= 16);
+}
+
+TEST_CASE("search_mask_parameter: a planar boundary is flat, no optimum claimed", "[alpha]") {
+  const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/sixteen_vector_twist.json").boundary;
+  for (const char* name : {"thin_plate", "twist", "e3", "dirichlet"}) {
+    MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+    const AlphaSearchSummary s = search_mask_parameter(f);
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.flat);
+    CHECK(s.status == SearchStatus::kFlat);
+    CHECK(!s.parameter);
+  }
+  MaskObjective bilinear(boundary_of(make_bilinear_net(5, 4, 2)), objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  CHECK(search_mask_parameter(bilinear).flat);
+}
+
+TEST_CASE("search_mask_parameter: the Dirichlet energy has its optimum on the upper bound", "[alpha]") {
+  const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective f(b, objective_named("dirichlet"), alpha_only(), "eigen-ldlt");
+  const AlphaSearchSummary s = search_mask_parameter(f);
+  INFO(s.brief_report());
+  CHECK(s.at_bound);
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter == 0.25);
+}
+
+TEST_CASE("search_mask_parameter: the dome fits its sphere best near alpha = -0.20", "[alpha][seed]") {
+  const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  Objective sphere = objective_named("target");
+  sphere.target = Target{Target::Kind::kSphere, {}, {0, 0, -1}, {0, 0, 1}, std::sqrt(3.0), 41};
+  MaskObjective f(b, sphere, alpha_only(), "eigen-ldlt");
+  const AlphaSearchSummary s = search_mask_parameter(f);
+  INFO(s.brief_report());
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter == Approx(-0.20).margin(0.01));
+  const double coons_rms = rms_distance(discrete_coons_net(b), *sphere.target);
+  CHECK(coons_rms == Approx(0.051).margin(0.0005));
+  const double rms_at_020 = f.evaluate(-0.20).value;  // math.md §7: ≈ 0.0024
+  CHECK(rms_at_020 == Approx(0.0024).margin(0.0002));
+  CHECK(s.value <= rms_at_020);
+  CHECK(coons_rms / rms_at_020 > 15);  // "about 20× better than Coons"
+}
+
+TEST_CASE("parse_objective: names, weighted sums and errors", "[alpha]") {
+  std::string why;
+  auto sum = parse_objective("thin_plate+0.5*e3", &why);
+  REQUIRE(sum);
+  CHECK(sum->energy.size() == 7);
+  CHECK(!parse_objective("curvature", &why));
+  CHECK_THAT(why, Catch::Contains("curvature"));
+  CHECK(!parse_objective("-1*twist", &why));
+  CHECK(!parse_objective("x*twist", &why));
+}
