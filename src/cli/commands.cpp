@@ -9,6 +9,7 @@
 
 #include <CLI/CLI.hpp>
 
+#include "alpha_commands.h"
 #include "common.h"
 #include <fmt/format.h>
 #include <fmt/ostream.h>
@@ -247,6 +248,26 @@ int run(int argc, char** argv) {
   batch->add_option("--samples", batch_request.samples, "surface samples per direction")->capture_default_str();
   batch->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
 
+  SearchRequest search_request;
+  auto* search = app.add_subcommand("search-alpha", "the best mask parameter of one boundary for an objective "
+                                    "(Ceres, analytic derivative); prints one JSON report");
+  search->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  add_search_options(*search, search_request);
+  search->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
+
+  SweepRequest sweep_request;
+  auto* sweep = app.add_subcommand("sweep", "every metric on a grid of alpha (or mu): NAME.sweep.jsonl and a PNG plot");
+  sweep->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  add_sweep_options(*sweep, sweep_request);
+  sweep->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
+
+  StudyRequest study_request;
+  auto* study = app.add_subcommand("study", "the alpha study: optima per shape and degree, the c/n^2 law, the dome "
+                                   "table; a self-contained report with PNG figures");
+  add_study_options(*study, study_request);
+  study->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
+  for (int a = 0; a < argc; ++a) study_request.command_line += (a ? " " : "") + std::string(a ? argv[a] : "coons");
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -265,6 +286,9 @@ int run(int argc, char** argv) {
     if (*list) return cmd_solvers(solvers_json, solvers_verbose);
     if (*exp) return cmd_export(boundary_path, net_request, export_request);
     if (*batch) return cmd_batch(batch_request, net_request);
+    if (*search) return cmd_search_alpha(boundary_path, net_request, search_request);
+    if (*sweep) return cmd_sweep(boundary_path, net_request, sweep_request);
+    if (*study) return cmd_study(study_request, net_request);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

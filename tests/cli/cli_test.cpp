@@ -3,6 +3,7 @@
 
 #include <filesystem>
 #include <fstream>
+#include <sstream>
 #include <functional>
 
 #include <unistd.h>
@@ -168,5 +169,83 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
   CHECK(fs::exists(fs::path(out) / "metrics.md"));
   for (const char* f : {"dome/coons.json", "dome/alpha-0.250.json", "dome/alpha-0.100.json", "dome/alpha+0.000.json",
                         "saddle/coons.surface.obj", "saddle/alpha-0.100.net.obj"})
+    CHECK(fs::exists(fs::path(out) / f));
+}
+
+TEST_CASE("coons search-alpha: the report of formats.md", "[cli][alpha]") {
+  const CommandResult r = run_command(kCoons + " search-alpha " + quoted(kData + "/boundaries/dome.json") + " --objective thin_plate");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  for (const char* key : {"boundary", "degree", "objective", "alpha", "mu", "value", "bounds", "flat", "at_bound", "evaluations", "status"})
+    CHECK(report.contains(key));
+  CHECK(report["status"] == "success");
+  CHECK(report["bounds"] == json::array({-0.25, 0.25}));
+  CHECK(report["alpha"].get<double>() > -0.25);
+  CHECK(report["alpha"].get<double>() < 0);
+  // μ of α at degree n: α = −n²/(4(n² + μ))
+  const double alpha = report["alpha"], mu = report["mu"];
+  CHECK(alpha == Approx(-9.0 / (4 * (9 + mu))).epsilon(1e-12));
+  const CommandResult flat = run_command(kCoons + " search-alpha " + quoted(kData + "/boundaries/sixteen_vector_twist.json") + " --objective e3");
+  REQUIRE(flat.status == 0);
+  CHECK(json::parse(flat.out)["flat"] == true);
+  CHECK(json::parse(flat.out)["alpha"].is_null());
+}
+
+TEST_CASE("coons search-alpha: bad input gives exit 2 and one error line", "[cli][alpha]") {
+  const std::string dome = quoted(kData + "/boundaries/dome.json");
+  const std::pair<std::string, std::string> cases[] = {
+      {dome + " --objective curvature", "--objective"},
+      {dome + " --objective thin_plate --lower -0.4", "--lower"},
+      {dome + " --objective thin_plate --upper 0.3", "--upper"},
+      {quoted(kData + "/boundaries/pillow.json") + " --objective target", "--target"},
+      {dome + " --objective target --target /nonexistent/net.json", "net.json"},
+      {dome + " --objective target --target sphere:0,0,x,1", "--target"},
+      {dome + " --objective thin_plate --parameter beta", "--parameter"},
+  };
+  for (const auto& [args, mention] : cases) {
+    INFO(args);
+    const CommandResult r = run_command(kCoons + " search-alpha " + args);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK_THAT(r.err, Catch::Contains(mention));
+  }
+  // an explicit flag accepts indefinite bounds
+  const CommandResult wide = run_command(kCoons + " search-alpha " + dome + " --objective thin_plate --lower -0.3 --allow-indefinite --solver eigen-lu");
+  CHECK(wide.status == 0);
+}
+
+TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", "[cli][alpha]") {
+  TempDir dir;
+  const std::string out = (dir.path / "sweep").string();
+  const CommandResult r = run_command(kCoons + " sweep " + quoted(kData + "/boundaries/dome.json") + " --count 11 --out " + quoted(out));
+  REQUIRE(r.status == 0);
+  std::ifstream in(fs::path(out) / "dome.sweep.jsonl");
+  int lines = 0;
+  for (std::string line; std::getline(in, line); ++lines) {
+    const json j = json::parse(line);
+    for (const char* key : {"alpha", "beta", "mu", "twist_energy", "thin_plate_energy", "dirichlet_energy", "e3_energy",
+                            "discrete_twist_energy", "discrete_dirichlet_energy", "mask_residual", "rms_target"})
+      CHECK(j.contains(key));
+    CHECK(j["mask_residual"].get<double>() < 1e-12);
+  }
+  CHECK(lines == 11);
+  CHECK(fs::exists(fs::path(out) / "dome.sweep.png"));
+  CHECK(r.err.empty());  // no progress indicator when stderr is not a terminal
+}
+
+TEST_CASE("coons study: a report with computed tables and figures", "[cli][alpha]") {
+  TempDir dir;
+  const std::string out = (dir.path / "study").string();
+  const CommandResult r = run_command(kCoons + " study " + quoted(kData + "/boundaries/dome.json") + " " +
+                                      quoted(kData + "/boundaries/pillow.json") + " --degrees 3 4 6 --out " + quoted(out));
+  REQUIRE(r.status == 0);
+  std::ifstream in(fs::path(out) / "report.md");
+  std::stringstream text;
+  text << in.rdbuf();
+  CHECK_THAT(text.str(), Catch::Contains("| -0.25 | 0.828427 | 24.787 | 9.877 |"));
+  CHECK_THAT(text.str(), Catch::Contains("| -0.2 | 0.724874 | 18.320 | 9.320 |"));
+  CHECK_THAT(text.str(), Catch::Contains("coons study"));
+  for (const char* f : {"figures/dome_energies.png", "figures/dome_nets.png", "figures/alpha_vs_degree.png", "results.json"})
     CHECK(fs::exists(fs::path(out) / f));
 }

@@ -163,10 +163,17 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   for (int i = 1; i + 1 < k; ++i)
     if (grid[i].value < grid[i - 1].value && grid[i].value <= grid[i + 1].value) ++s.local_minima;
 
-  // 2. Flat: the range is at rounding level of the objective's natural scale.
-  const double diag = bounding_box_diagonal(objective.boundary());
-  const bool has_energy = !objective.objective().energy.empty();
-  const double floor = has_energy ? 1e-16 * diag * diag : 1e-8 * diag;
+  // 2. Flat: the range is at rounding level of the objective's natural scale. Rounding errors of
+  //    size ε·diag in the net reach an energy of derivative order k amplified by degree^k, so the
+  //    floor is diag²·degree^(2k)·1e-16 (far above (ε·diag·degree^k)², far below real signals).
+  const Boundary& boundary = objective.boundary();
+  const double diag = bounding_box_diagonal(boundary);
+  int order = 0;
+  for (const EnergyTerm& t : objective.objective().energy) order = std::max(order, t.a + t.b);
+  const double degree = std::max({boundary.m, boundary.n, 1});
+  const double floor = objective.objective().energy.empty()
+                           ? 1e-8 * diag
+                           : 1e-16 * diag * diag * std::pow(degree, 2.0 * order);
   if (hi - lo <= options.flat_tolerance * std::max({std::abs(hi), std::abs(lo), floor})) {
     s.status = SearchStatus::kFlat;
     s.flat = true;
