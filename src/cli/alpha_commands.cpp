@@ -192,8 +192,14 @@ SearchSetup setup_search(const std::string& path, const Boundary& b, const NetRe
     s.options.lower = r.lower.value_or(0.0);
     s.options.upper = r.upper.value_or(100.0 * m * n);
     if (s.options.lower < 0) throw InputError("command line", "--lower", "mu must be >= 0");
+  } else if (r.parameter == "alpha-gamma") {
+    s.family = [](double a) { return alpha_family(a); };
+    s.options.lower = r.lower.value_or(-0.25);
+    s.options.upper = r.upper.value_or(0.25);
+    if (s.options.lower < -0.25 || s.options.upper > 0.25)
+      throw InputError("command line", "--lower/--upper", "the (alpha, gamma) search stays in [-0.25, 0.25]");
   } else {
-    throw InputError("command line", "--parameter", "unknown parameter '" + r.parameter + "' (alpha, mu)");
+    throw InputError("command line", "--parameter", "unknown parameter '" + r.parameter + "' (alpha, mu, alpha-gamma)");
   }
   s.options.scan_points = r.scan_points;
   if (!s.options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
@@ -366,7 +372,7 @@ std::vector<double> linspace(double from, double to, int count) {
 void add_search_options(CLI::App& cmd, SearchRequest& r) {
   cmd.add_option("--objective", r.objective, "thin_plate, twist, dirichlet, e3, target, or a weighted sum "
                  "such as thin_plate+0.1*e3")->required();
-  cmd.add_option("--parameter", r.parameter, "alpha (the Farin-Hansford family) or mu (the anisotropic mask)")
+  cmd.add_option("--parameter", r.parameter, "alpha (the Farin-Hansford family), mu (the anisotropic mask) or alpha-gamma (every symmetric 3x3 mask)")
       ->capture_default_str();
   cmd.add_option("--lower", r.lower, "lower bound (alpha: -0.25, mu: 0)");
   cmd.add_option("--upper", r.upper, "upper bound (alpha: 0.25, mu: 100·m·n)");
@@ -398,6 +404,18 @@ int cmd_search_alpha(const std::string& path, const NetRequest& net, const Searc
   const Boundary& b = input.boundary;
   const SearchSetup setup = setup_search(path, b, net, r);
   MaskObjective objective(b, setup.objective, setup.family, setup.solver);
+  if (r.parameter == "alpha-gamma") {
+    const AlphaGammaSummary g = search_alpha_gamma(objective, setup.options);
+    json out = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"objective", r.objective}, {"parameter", r.parameter},
+                {"alpha", g.flat ? json(nullptr) : json(g.alpha)}, {"gamma", g.flat ? json(nullptr) : json(g.gamma)},
+                {"beta_ij", g.flat ? json(nullptr) : json({0.25 - g.alpha + g.gamma, 0.25 - g.alpha - g.gamma})},
+                {"mu", nullptr}, {"value", number_or_null(g.value)}, {"value_at_gamma0", number_or_null(g.value_at_gamma0)},
+                {"bounds", {setup.options.lower, setup.options.upper}}, {"flat", g.flat}, {"at_bound", false},
+                {"evaluations", g.evaluations}, {"solves", g.solves}, {"status", to_string(g.status)}, {"solver", setup.solver}};
+    if (!g.message.empty()) out["message"] = g.message;
+    std::cout << out.dump(2) << '\n';
+    return g.status == SearchStatus::kSolverFailed ? kExitSolverFailed : kExitOk;
+  }
   const AlphaSearchSummary s = search_mask_parameter(objective, setup.options);
   std::cout << search_report(b, r, setup, s, setup.solver).dump(2) << '\n';
   return s.status == SearchStatus::kSolverFailed ? kExitSolverFailed : kExitOk;

@@ -118,7 +118,11 @@ json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetO
   report["alpha"] = r.mask.diag;
   report["beta"] = number_or_null(r.mask.edge_i == r.mask.edge_j ? r.mask.edge_i : NAN);
   if (r.mask.edge_i != r.mask.edge_j) report["beta_ij"] = {r.mask.edge_i, r.mask.edge_j};
+  // μ next to α: given, or the μ of α at degree n (math.md §4) when m = n and α ∈ [−1/4, 0).
   if (mu) report["mu"] = *mu;
+  else if (boundary.m == boundary.n && r.mask.diag >= -0.25 && r.mask.diag < 0 && r.mask.edge_i == r.mask.edge_j)
+    report["mu"] = mu_from_alpha(boundary.n, r.mask.diag);
+  else report["mu"] = nullptr;
   if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
   else report["solver"] = {{"name", "closed-form"}, {"status", "not_applicable"},
                            {"message", "closed-form net: no linear system is solved"}};

@@ -125,3 +125,34 @@ TEST_CASE("parse_objective: names, weighted sums and errors", "[alpha]") {
   CHECK(!parse_objective("-1*twist", &why));
   CHECK(!parse_objective("x*twist", &why));
 }
+
+TEST_CASE("MaskObjective::evaluate_mask: the gradient in (alpha, gamma) equals finite differences", "[alpha]") {
+  const Boundary b = make_smooth_boundary(3, 7, 4);
+  MaskObjective f(b, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  const double alpha = -0.12, gamma = 0.04, h = 1e-6;
+  auto mask = [](double a, double g) { return Mask9{0.25 - a + g, 0.25 - a - g, a}; };
+  std::vector<double> grad, unused;
+  f.evaluate_mask(mask(alpha, gamma), {Mask9{-1, -1, 1}, Mask9{1, -1, 0}}, grad);
+  const double fa = (f.evaluate_mask(mask(alpha + h, gamma), {}, unused).value - f.evaluate_mask(mask(alpha - h, gamma), {}, unused).value) / (2 * h);
+  const double fg = (f.evaluate_mask(mask(alpha, gamma + h), {}, unused).value - f.evaluate_mask(mask(alpha, gamma - h), {}, unused).value) / (2 * h);
+  CHECK(grad[0] == Approx(fa).epsilon(1e-6));
+  CHECK(grad[1] == Approx(fg).epsilon(1e-6));
+}
+
+TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on a symmetric boundary", "[alpha]") {
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  const AlphaGammaSummary s = search_alpha_gamma(f);
+  INFO(s.ceres_report);
+  CHECK(s.status == SearchStatus::kSuccess);
+  CHECK(s.gamma == Approx(0).margin(1e-5));
+  CHECK(s.value <= s.value_at_gamma0 + 1e-12);
+
+  const Boundary wide = make_smooth_boundary(3, 8, 6);
+  MaskObjective g(wide, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  const AlphaGammaSummary t = search_alpha_gamma(g);
+  INFO(t.ceres_report);
+  REQUIRE(t.status == SearchStatus::kSuccess);
+  CHECK(t.value < t.value_at_gamma0);  // an anisotropic net gains from e_i != e_j
+  CHECK(std::abs(t.gamma) < 0.25 + t.alpha);
+}

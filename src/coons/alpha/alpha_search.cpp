@@ -22,24 +22,33 @@ MaskObjective::MaskObjective(const Boundary& boundary, Objective objective, Mask
 MaskObjective::~MaskObjective() = default;
 
 MaskObjective::Evaluation MaskObjective::evaluate(double p) {
+  const MaskPoint mp = family_(p);
+  std::vector<double> gradient;
+  Evaluation e = evaluate_mask(mp.mask, {mp.derivative}, gradient);
+  e.parameter = p;
+  e.derivative = gradient.empty() ? 0.0 : gradient[0];
+  return e;
+}
+
+MaskObjective::Evaluation MaskObjective::evaluate_mask(const Mask9& mask, const std::vector<Mask9>& directions,
+                                                       std::vector<double>& gradient) {
   ++evaluations_;
   Evaluation e;
-  e.parameter = p;
   e.net = frame_;
+  gradient.assign(directions.size(), 0.0);
   if (!solver_) {
     e.summary.status = solvers::SolveStatus::kNotApplicable;
     e.summary.message = "no such solver";
     return e;
   }
-  const MaskPoint mp = family_(p);
   const int rows = std::max(frame_.m - 1, 0), cols = std::max(frame_.n - 1, 0);
-  ControlNet dnet(frame_.m, frame_.n);  // zero boundary
+  const ControlNet zero(frame_.m, frame_.n);  // the variation of a net with a fixed boundary
   if (rows * cols == 0) {
-    e.value = evaluate_objective(objective_, e.net, dnet).value;
+    e.value = evaluate_objective(objective_, e.net, zero).value;
     return e;
   }
   solvers::LinearOperator op;
-  op.stencil = mask_stencil(mp.mask, rows, cols);
+  op.stencil = mask_stencil(mask, rows, cols);
   if (needs_matrix_) {
     if (A_.rows() == 0) A_ = solvers::stencil_matrix(*op.stencil);
     else solvers::refill_stencil_matrix(*op.stencil, A_);
@@ -50,20 +59,20 @@ MaskObjective::Evaluation MaskObjective::evaluate(double p) {
     return e;
   }
   Eigen::MatrixX3d X, dX;
-  e.summary = solver_->solve(mask_rhs(frame_, mp.mask), X);
+  e.summary = solver_->solve(mask_rhs(frame_, mask), X);
   ++solves_;
   if (!e.summary.ok()) return e;
   e.net = fill_interior(frame_, X);
-  const solvers::SolveSummary ds = solver_->solve(mask_sensitivity_rhs(e.net, mp.derivative), dX);
-  ++solves_;
-  if (!ds.ok()) {
-    e.summary = ds;
-    return e;
+  e.value = evaluate_objective(objective_, e.net, zero).value;
+  for (size_t k = 0; k < directions.size(); ++k) {
+    const solvers::SolveSummary ds = solver_->solve(mask_sensitivity_rhs(e.net, directions[k]), dX);
+    ++solves_;
+    if (!ds.ok()) {
+      e.summary = ds;
+      return e;
+    }
+    gradient[k] = evaluate_objective(objective_, e.net, fill_interior(zero, dX)).derivative;
   }
-  dnet = fill_interior(dnet, dX);
-  const ObjectiveValue v = evaluate_objective(objective_, e.net, dnet);
-  e.value = v.value;
-  e.derivative = v.derivative;
   return e;
 }
 
@@ -230,6 +239,111 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
     s.message = "Ceres: " + summary.message;
   }
   return finish();
+}
+
+}  // namespace coons
+
+namespace coons {
+namespace {
+
+// (α, γ) = (c + h·tanh θ₀, (1/4 + α)·0.999·tanh θ₁): inside the definite triangle.
+class AlphaGammaFunction : public ceres::FirstOrderFunction {
+ public:
+  AlphaGammaFunction(MaskObjective& objective, double centre, double half, bool& failed)
+      : objective_(objective), centre_(centre), half_(half), failed_(failed) {}
+  static constexpr double kShrink = 0.999;
+  std::pair<double, double> map(const double* t) const {
+    const double alpha = centre_ + half_ * std::tanh(t[0]);
+    return {alpha, (0.25 + alpha) * kShrink * std::tanh(t[1])};
+  }
+  bool Evaluate(const double* t, double* cost, double* gradient) const override {
+    const auto [alpha, gamma] = map(t);
+    std::vector<double> g;
+    const Mask9 mask{0.25 - alpha + gamma, 0.25 - alpha - gamma, alpha};
+    const auto e = objective_.evaluate_mask(mask, {Mask9{-1, -1, 1}, Mask9{1, -1, 0}}, g);
+    if (!e.ok()) {
+      failed_ = true;
+      return false;
+    }
+    *cost = e.value;
+    if (gradient) {
+      const double t0 = std::tanh(t[0]), t1 = std::tanh(t[1]);
+      const double dalpha = half_ * (1 - t0 * t0);
+      // γ depends on α too: dγ/dθ₀ = kShrink·tanh θ₁·dα/dθ₀
+      gradient[0] = (g[0] + g[1] * kShrink * t1) * dalpha;
+      gradient[1] = g[1] * (0.25 + alpha) * kShrink * (1 - t1 * t1);
+    }
+    return true;
+  }
+  int NumParameters() const override { return 2; }
+
+ private:
+  MaskObjective& objective_;
+  double centre_, half_;
+  bool& failed_;
+};
+
+}  // namespace
+
+AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearchOptions& options) {
+  AlphaGammaSummary out;
+  const AlphaSearchSummary one = search_mask_parameter(objective, options);
+  out.evaluations = one.evaluations;
+  out.solves = one.solves;
+  if (one.status == SearchStatus::kSolverFailed) {
+    out.status = one.status;
+    out.message = one.message;
+    return out;
+  }
+  if (one.flat) {
+    // Flat in α at γ = 0 does not prove flat in γ, but the families that make α flat (planar and
+    // bilinear boundaries) reproduce the same net for every affine-invariant mask.
+    out.status = SearchStatus::kFlat;
+    out.flat = true;
+    out.value = out.value_at_gamma0 = one.value;
+    out.message = "flat in alpha; gamma not searched";
+    return out;
+  }
+  out.value_at_gamma0 = one.value;
+  const double lower = std::max(options.lower, -0.25), upper = std::min(options.upper, 0.25);
+  const double centre = 0.5 * (lower + upper), half = 0.5 * (upper - lower);
+  double t[2] = {std::atanh(std::clamp((*one.parameter - centre) / half, -0.999, 0.999)), 0.0};
+  bool failed = false;
+  auto* function = new AlphaGammaFunction(objective, centre, half, failed);
+  ceres::GradientProblem problem(function);
+  ceres::GradientProblemSolver::Options o;
+  o.line_search_direction_type = ceres::BFGS;
+  o.max_num_iterations = options.max_iterations;
+  o.parameter_tolerance = options.parameter_tolerance;
+  o.function_tolerance = 1e-15;
+  o.gradient_tolerance = 1e-14;
+  o.logging_type = ceres::SILENT;
+  ceres::GradientProblemSolver::Summary summary;
+  ceres::Solve(o, problem, t, &summary);
+  out.ceres_report = summary.BriefReport();
+  const auto [alpha, gamma] = function->map(t);
+  std::vector<double> g;
+  const auto e = objective.evaluate_mask(Mask9{0.25 - alpha + gamma, 0.25 - alpha - gamma, alpha}, {}, g);
+  out.evaluations = objective.evaluations();
+  out.solves = objective.solves();
+  if (failed || !e.ok()) {
+    out.status = SearchStatus::kSolverFailed;
+    out.message = "solver failed during the (alpha, gamma) refinement";
+    return out;
+  }
+  out.alpha = alpha;
+  out.gamma = gamma;
+  out.value = e.value;
+  if (one.value < e.value) {  // never report a worse point than the symmetric optimum
+    out.alpha = *one.parameter;
+    out.gamma = 0;
+    out.value = one.value;
+  }
+  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+    out.status = SearchStatus::kNotConverged;
+    out.message = "Ceres: " + summary.message;
+  }
+  return out;
 }
 
 }  // namespace coons

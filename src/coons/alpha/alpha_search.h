@@ -40,6 +40,10 @@ class MaskObjective {
   ~MaskObjective();
 
   Evaluation evaluate(double parameter);
+
+  //! The objective at an explicit mask and its gradient along several weight directions
+  //! (one factorisation, 1 + #directions solves). Used by multi-parameter searches.
+  Evaluation evaluate_mask(const Mask9& mask, const std::vector<Mask9>& directions, std::vector<double>& gradient);
   [[nodiscard]] int evaluations() const { return evaluations_; }
   [[nodiscard]] int solves() const { return solves_; }
   [[nodiscard]] const Boundary& boundary() const { return boundary_; }
@@ -85,5 +89,20 @@ struct AlphaSearchSummary {
 };
 
 AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options = {});
+
+//! The two-parameter symmetric family (α, γ): e_i = 1/4 − α + γ, e_j = 1/4 − α − γ, d = α, i.e.
+//! every affine-invariant symmetric 3×3 mask (4α + 2β_i + 2β_j = 1). The operator is positive
+//! definite for α ∈ [−1/4, 1/4], |γ| < 1/4 + α; the search stays inside. It starts from the best
+//! α at γ = 0 (a 1-D search) and refines both with Ceres.
+struct AlphaGammaSummary {
+  SearchStatus status = SearchStatus::kSuccess;
+  std::string message;
+  double alpha = 0, gamma = 0, value = 0;
+  double value_at_gamma0 = 0;  //!< the best of the symmetric family, for comparison
+  bool flat = false;
+  int evaluations = 0, solves = 0;
+  std::string ceres_report;
+};
+AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearchOptions& options = {});
 
 }  // namespace coons
