@@ -40,6 +40,7 @@ def main():
     refactor = defaultdict(dict)
     sweep = defaultdict(dict)    # backend -> N -> seconds
     ordering = defaultdict(dict)  # (ordering) -> N -> seconds
+    search = defaultdict(dict)    # backend -> N -> (seconds, bench)
     for b in runs:
         name = b["name"]
         n = int(b.get("N", 0))
@@ -53,6 +54,8 @@ def main():
             (solve if m.group(1) == "Solve" else refactor)[key][n] = (t, b)
         elif m := re.match(r"BM_AlphaSweep/([^/]+)/", name):
             sweep[m.group(1)][n] = t
+        elif m := re.match(r"BM_SearchAlpha/([^/]+)/", name):
+            search[m.group(1)][n] = (t, b)
         elif m := re.match(r"BM_CholmodOrdering/([^/]+)/", name):
             ordering[m.group(1)][n] = t
 
@@ -130,6 +133,19 @@ def main():
                 one = solve.get((backend, -0.1), {}).get(n)
                 if one:
                     lines.append(f"| {backend} | {n} | {t:.3g} | {one[0]:.3g} | {t / one[0]:.1f} |")
+        lines.append("")
+
+    if search:
+        lines.append("## α search (scan + Ceres, discrete thin-plate objective) as a multiple of one solve at α = −0.1")
+        lines.append("")
+        lines.append("| backend | N | search [s] | evaluations | solves | one solve [s] | search / one solve |")
+        lines.append("|---|---|---|---|---|---|---|")
+        for backend, per_n in sorted(search.items()):
+            for n, (t, b) in sorted(per_n.items()):
+                one = solve.get((backend, -0.1), {}).get(n)
+                ratio = f"{t / one[0]:.1f}" if one else "–"
+                lines.append(f"| {backend} | {n} | {t:.3g} | {int(b.get('evaluations', 0))} | {int(b.get('solves', 0))} | "
+                             f"{one[0]:.3g} | {ratio} |" if one else f"| {backend} | {n} | {t:.3g} | – | – | – | – |")
         lines.append("")
 
     if ordering:

@@ -18,6 +18,7 @@
 #include <string>
 #include <vector>
 
+#include "coons/alpha/alpha_search.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
@@ -226,6 +227,27 @@ void BM_CholmodOrdering(benchmark::State& state, Ordering ordering, int N) {
   state.SetLabel("ordering=" + s.ordering);
 }
 
+// A whole α search (coarse scan + Ceres, discrete thin-plate objective, O(mn) per evaluation),
+// to be read as a multiple of one solve of the same backend at the same N.
+void BM_SearchAlpha(benchmark::State& state, std::string name, int N) {
+  const Boundary b = bench_boundary(N);
+  std::string why;
+  const Objective objective = *parse_objective("discrete_thin_plate", &why);
+  AlphaSearchSummary s;
+  for (auto _ : state) {
+    SolverOptions options;
+    options.compute_residual = false;
+    MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, name, options);
+    s = search_mask_parameter(f);
+    benchmark::DoNotOptimize(s.value);
+  }
+  set_common_counters(state, N);
+  state.counters["evaluations"] = s.evaluations;
+  state.counters["solves"] = s.solves;
+  state.counters["alpha_opt"] = s.parameter.value_or(NAN);
+  state.SetLabel(name + " " + to_string(s.status));
+}
+
 int size_cap(const SolverInfo& info, double alpha) {
   if (info.family == SolverFamily::kStructured) return 2047;
   if (info.family == SolverFamily::kDirect) return 1023;
@@ -279,6 +301,8 @@ int main(int argc, char** argv) {
       }
       if (info.family == SolverFamily::kStructured && (config.quick || N >= 1023 || N == config.sizes.back()))
         benchmark::RegisterBenchmark(("BM_AlphaSweep/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_AlphaSweep, info.name, N)->UseRealTime();
+      if (info.name == "fast" && N <= 1023)
+        benchmark::RegisterBenchmark(("BM_SearchAlpha/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_SearchAlpha, info.name, N)->UseRealTime();
     }
     if (find_solver("cholmod") && wanted("cholmod") && N <= 1023)
       for (Ordering o : {Ordering::kAmd, Ordering::kMetis, Ordering::kNestedDissection, Ordering::kCholmodDefault})

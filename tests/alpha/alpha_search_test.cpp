@@ -156,3 +156,21 @@ TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on 
   CHECK(t.value < t.value_at_gamma0);  // an anisotropic net gains from e_i != e_j
   CHECK(std::abs(t.gamma) < 0.25 + t.alpha);
 }
+
+TEST_CASE("discrete objectives: derivative equals finite differences; discrete twist is minimal at alpha = -1/4", "[alpha]") {
+  const Boundary b = make_smooth_boundary(7, 6, 12);
+  for (const char* name : {"discrete_twist", "discrete_dirichlet", "discrete_thin_plate"}) {
+    MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+    const double h = 1e-6;
+    const double fd = (f.evaluate(-0.1 + h).value - f.evaluate(-0.1 - h).value) / (2 * h);
+    INFO(name);
+    CHECK(f.evaluate(-0.1).derivative == Approx(fd).epsilon(1e-6).margin(1e-10));
+  }
+  MaskObjective twist(b, objective_named("discrete_twist"), alpha_only(), "eigen-ldlt");
+  const AlphaSearchSummary s = search_mask_parameter(twist);
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter == -0.25);  // math.md §3: the Coons net minimises the discrete twist energy
+  CHECK(s.at_bound);
+  CHECK(discrete_thin_plate_energy(discrete_coons_net(b)) ==
+        Approx(discrete_energy_form(discrete_coons_net(b), discrete_coons_net(b), DiscreteEnergy::kThinPlate)));
+}

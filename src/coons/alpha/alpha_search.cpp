@@ -177,12 +177,12 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   //    floor is diag²·degree^(2k)·1e-16 (far above (ε·diag·degree^k)², far below real signals).
   const Boundary& boundary = objective.boundary();
   const double diag = bounding_box_diagonal(boundary);
+  //    Discrete energies of the net carry no degree factors (order 0).
   int order = 0;
   for (const EnergyTerm& t : objective.objective().energy) order = std::max(order, t.a + t.b);
   const double degree = std::max({boundary.m, boundary.n, 1});
-  const double floor = objective.objective().energy.empty()
-                           ? 1e-8 * diag
-                           : 1e-16 * diag * diag * std::pow(degree, 2.0 * order);
+  const bool energies = !objective.objective().energy.empty() || !objective.objective().discrete.empty();
+  const double floor = energies ? 1e-16 * diag * diag * std::pow(degree, 2.0 * order) : 1e-8 * diag;
   if (hi - lo <= options.flat_tolerance * std::max({std::abs(hi), std::abs(lo), floor})) {
     s.status = SearchStatus::kFlat;
     s.flat = true;

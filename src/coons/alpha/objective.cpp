@@ -96,8 +96,11 @@ std::optional<Objective> parse_objective(const std::string& text, std::string* w
     else if (name == "dirichlet") terms = dirichlet_terms();
     else if (name == "e3") terms = e3_terms();
     else if (name == "target") out.target_weight += weight;
+    else if (name == "discrete_twist") out.discrete.emplace_back(DiscreteEnergy::kTwist, weight);
+    else if (name == "discrete_dirichlet") out.discrete.emplace_back(DiscreteEnergy::kDirichlet, weight);
+    else if (name == "discrete_thin_plate") out.discrete.emplace_back(DiscreteEnergy::kThinPlate, weight);
     else {
-      if (why) *why = "unknown objective '" + name + "' (thin_plate, twist, dirichlet, e3, target, or weighted sums)";
+      if (why) *why = "unknown objective '" + name + "' (thin_plate, twist, dirichlet, e3, target, discrete_twist, discrete_dirichlet, discrete_thin_plate, or weighted sums)";
       return std::nullopt;
     }
     for (EnergyTerm t : terms) {
@@ -118,6 +121,10 @@ ObjectiveValue evaluate_objective(const Objective& objective, const ControlNet& 
   if (!objective.energy.empty()) {
     v.value = combined_energy(N, objective.energy);
     v.derivative = 2 * combined_energy_form(N, dN, objective.energy);
+  }
+  for (const auto& [kind, weight] : objective.discrete) {
+    v.value += weight * discrete_energy_form(N, N, kind);
+    v.derivative += 2 * weight * discrete_energy_form(N, dN, kind);
   }
   if (objective.target_weight > 0 && objective.target) {
     const auto [msd, dmsd] = mean_square_distance(N, &dN, *objective.target);

@@ -37,11 +37,13 @@ double rms_distance(const ControlNet& net, const Target& target);
 struct Objective {
   std::string name;                 //!< as given, e.g. "thin_plate" or "thin_plate+0.1*e3"
   std::vector<EnergyTerm> energy;   //!< Σ weight·E(a, b)
+  std::vector<std::pair<DiscreteEnergy, double>> discrete;  //!< Σ weight·(discrete energy), O(mn)
   double target_weight = 0;         //!< weight of the rms distance to `target`
   std::optional<Target> target;
 };
 
-//! The named objectives (thin_plate, twist, dirichlet, e3, target) and weighted sums of them:
+//! The named objectives (thin_plate, twist, dirichlet, e3, target; and discrete_twist,
+//! discrete_dirichlet, discrete_thin_plate, which cost O(mn) for very large nets) and weighted sums:
 //! "thin_plate", "e3+0.5*twist", "2*target+thin_plate". Returns nullopt for an unknown name
 //! (`why` says which part); `target` still has to be set for objectives that use it.
 std::optional<Objective> parse_objective(const std::string& text, std::string* why);

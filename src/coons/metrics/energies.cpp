@@ -106,6 +106,38 @@ double discrete_dirichlet_energy(const ControlNet& net) {
   return e;
 }
 
+double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEnergy kind) {
+  double e = 0;
+  auto d11 = [](const ControlNet& n, int i, int j) {
+    return (n.at(i + 1, j + 1) - n.at(i + 1, j) - n.at(i, j + 1) + n.at(i, j)).eval();
+  };
+  const int m = X.m, n = X.n;
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= n; ++j) {
+      switch (kind) {
+        case DiscreteEnergy::kTwist:
+          if (i < m && j < n) e += d11(X, i, j).dot(d11(Y, i, j));
+          break;
+        case DiscreteEnergy::kDirichlet:
+          if (i < m) e += (X.at(i + 1, j) - X.at(i, j)).dot(Y.at(i + 1, j) - Y.at(i, j));
+          if (j < n) e += (X.at(i, j + 1) - X.at(i, j)).dot(Y.at(i, j + 1) - Y.at(i, j));
+          break;
+        case DiscreteEnergy::kThinPlate:
+          if (i + 1 < m)
+            e += (X.at(i + 2, j) - 2 * X.at(i + 1, j) + X.at(i, j)).dot(Y.at(i + 2, j) - 2 * Y.at(i + 1, j) + Y.at(i, j));
+          if (j + 1 < n)
+            e += (X.at(i, j + 2) - 2 * X.at(i, j + 1) + X.at(i, j)).dot(Y.at(i, j + 2) - 2 * Y.at(i, j + 1) + Y.at(i, j));
+          if (i < m && j < n) e += 2 * d11(X, i, j).dot(d11(Y, i, j));
+          break;
+      }
+    }
+  return e;
+}
+
+double discrete_thin_plate_energy(const ControlNet& net) {
+  return discrete_energy_form(net, net, DiscreteEnergy::kThinPlate);
+}
+
 double mask_residual(const ControlNet& net, const Mask9& mask) {
   double worst = 0;
   for (int i = 1; i < net.m; ++i)

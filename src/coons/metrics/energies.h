@@ -43,6 +43,14 @@ double e3_energy(const ControlNet& net);
 double discrete_twist_energy(const ControlNet& net);
 //! Σ‖b_{i+1,j} − b_ij‖² + Σ‖b_{i,j+1} − b_ij‖².
 double discrete_dirichlet_energy(const ControlNet& net);
+//! Σ‖Δ²_i b‖² + 2Σ‖Δ_iΔ_j b‖² + Σ‖Δ²_j b‖²: the thin-plate energy of the net itself (O(mn), for
+//! nets too large for the exact energies).
+double discrete_thin_plate_energy(const ControlNet& net);
+
+//! The discrete energies as symmetric bilinear forms (E(X + hY) = E(X) + 2h·form(X, Y) + h²E(Y)).
+enum class DiscreteEnergy { kTwist, kDirichlet, kThinPlate };
+double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEnergy kind);
+
 //! max over interior points and x, y, z of |b_ij − mask(b)_ij|; 0 when there is no interior.
 double mask_residual(const ControlNet& net, const Mask9& mask);
 
