@@ -187,11 +187,14 @@ SearchSetup setup_search(const std::string& path, const Boundary& b, const NetRe
       throw InputError("command line", r.lower && *r.lower < -0.25 ? "--lower" : "--upper",
                        "bounds outside [-0.25, 0.25] make the system indefinite; add --allow-indefinite to search there");
   } else if (r.parameter == "mu") {
+    // searched on the compressed scale s = μ/(μ + mn), so the scan spans μ's orders of magnitude
     const int m = b.m, n = b.n;
-    s.family = [m, n](double mu) { return mu_family(m, n, mu); };
-    s.options.lower = r.lower.value_or(0.0);
-    s.options.upper = r.upper.value_or(100.0 * m * n);
-    if (s.options.lower < 0) throw InputError("command line", "--lower", "mu must be >= 0");
+    s.family = [m, n](double t) { return mu_family_compressed(m, n, t); };
+    const double lower = r.lower.value_or(0.0), upper = r.upper.value_or(1000.0 * m * n);
+    if (!(lower >= 0 && std::isfinite(upper) && upper > lower))
+      throw InputError("command line", "--lower/--upper", "mu bounds need 0 <= lower < upper < infinity");
+    s.options.lower = compressed_of_mu(m, n, lower);
+    s.options.upper = compressed_of_mu(m, n, upper);
   } else if (r.parameter == "alpha-gamma") {
     s.family = [](double a) { return alpha_family(a); };
     s.options.lower = r.lower.value_or(-0.25);
@@ -218,7 +221,7 @@ json search_report(const Boundary& b, const SearchRequest& r, const SearchSetup&
   if (s.parameter) {
     const MaskPoint p = setup.family(*s.parameter);
     alpha = p.mask.diag;
-    if (r.parameter == "mu") mu = *s.parameter;
+    if (r.parameter == "mu") mu = mu_of_compressed(b.m, b.n, *s.parameter);
     else mu = mu_of_alpha(b, alpha);
     out["beta"] = p.mask.edge_i == p.mask.edge_j ? json(p.mask.edge_i) : json(nullptr);
     if (p.mask.edge_i != p.mask.edge_j) out["beta_ij"] = {p.mask.edge_i, p.mask.edge_j};
@@ -226,7 +229,10 @@ json search_report(const Boundary& b, const SearchRequest& r, const SearchSetup&
   out["alpha"] = alpha ? json(*alpha) : json(nullptr);
   out["mu"] = mu ? json(*mu) : json(nullptr);
   out["value"] = number_or_null(s.value);
-  out["bounds"] = {setup.options.lower, setup.options.upper};
+  if (r.parameter == "mu")
+    out["bounds"] = {mu_of_compressed(b.m, b.n, setup.options.lower), mu_of_compressed(b.m, b.n, setup.options.upper)};
+  else
+    out["bounds"] = {setup.options.lower, setup.options.upper};
   out["flat"] = s.flat;
   out["at_bound"] = s.at_bound;
   out["evaluations"] = s.evaluations;
@@ -235,7 +241,7 @@ json search_report(const Boundary& b, const SearchRequest& r, const SearchSetup&
   if (!s.message.empty()) out["message"] = s.message;
   out["local_minima"] = s.local_minima;
   json scan = json::array();
-  for (auto [p, f] : s.scan) scan.push_back({p, number_or_null(f)});
+  for (auto [p, f] : s.scan) scan.push_back({r.parameter == "mu" ? mu_of_compressed(b.m, b.n, p) : p, number_or_null(f)});
   out["scan"] = scan;
   out["solver"] = solver;
   out["seconds"] = s.seconds;
@@ -375,7 +381,7 @@ void add_search_options(CLI::App& cmd, SearchRequest& r) {
   cmd.add_option("--parameter", r.parameter, "alpha (the Farin-Hansford family), mu (the anisotropic mask) or alpha-gamma (every symmetric 3x3 mask)")
       ->capture_default_str();
   cmd.add_option("--lower", r.lower, "lower bound (alpha: -0.25, mu: 0)");
-  cmd.add_option("--upper", r.upper, "upper bound (alpha: 0.25, mu: 100·m·n)");
+  cmd.add_option("--upper", r.upper, "upper bound (alpha: 0.25, mu: 1000·m·n)");
   cmd.add_flag("--allow-indefinite", r.allow_indefinite, "accept alpha bounds outside [-0.25, 0.25]");
   cmd.add_option("--target", r.target, "hermite-coons | coons | NET.json | sphere:cx,cy,cz,r | "
                  "cylinder:px,py,pz,dx,dy,dz,r | plane:px,py,pz,nx,ny,nz (default: the boundary file's \"target\")");
@@ -481,6 +487,17 @@ std::string format_optimum(const AlphaSearchSummary& s, int digits = 4) {
   return out;
 }
 
+// The μ optimum on [0, 1000·mn] (compressed scale), reported in μ units.
+AlphaSearchSummary search_mu(const Boundary& b, const Objective& objective, const std::string& solver) {
+  AlphaSearchOptions options;
+  options.lower = 0;
+  options.upper = compressed_of_mu(b.m, b.n, 1000.0 * b.m * b.n);
+  MaskObjective g(b, objective, [m = b.m, n = b.n](double s) { return mu_family_compressed(m, n, s); }, solver);
+  AlphaSearchSummary s = search_mask_parameter(g, options);
+  if (s.parameter) s.parameter = mu_of_compressed(b.m, b.n, *s.parameter);
+  return s;
+}
+
 std::string shell_output(const std::string& command) {
   std::string out;
   if (FILE* p = popen(command.c_str(), "r")) {
@@ -546,11 +563,7 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
       const double coons_value = f.evaluate(-0.25).value, laplace_value = f.evaluate(0.0).value;
       AlphaSearchSummary mu_s;
       if (b.m > 1 && b.n > 1) {
-        AlphaSearchOptions mu_options;
-        mu_options.lower = 0;
-        mu_options.upper = 100.0 * b.m * b.n;
-        MaskObjective g(b, objective, [m = b.m, n = b.n](double mu) { return mu_family(m, n, mu); }, solver);
-        mu_s = search_mask_parameter(g, mu_options);
+        mu_s = search_mu(b, objective, solver);
       }
       if (name == "thin_plate" && s.parameter && !s.flat) alpha_tp = s.parameter;
       line(fmt::format("| {} | {}×{} | {} | {} | {} | {:.6g} | {:.6g} | {} |", b.name, b.m, b.n, name, format_optimum(s),
@@ -617,11 +630,7 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
         const std::string solver = search_solver(net, b, false);
         MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, solver);
         const AlphaSearchSummary s = search_mask_parameter(f);
-        AlphaSearchOptions mu_options;
-        mu_options.lower = 0;
-        mu_options.upper = 100.0 * d * d;
-        MaskObjective g(b, objective, [d](double mu) { return mu_family(d, d, mu); }, solver);
-        const AlphaSearchSummary mu_s = search_mask_parameter(g, mu_options);
+        const AlphaSearchSummary mu_s = search_mu(b, objective, solver);
         row += " " + format_optimum(s) + " |";
         if (s.parameter && !s.flat && !s.at_bound) interior.emplace_back(d, *s.parameter);
         if (mu_s.parameter && !mu_s.flat && !mu_s.at_bound) {

@@ -6,6 +6,7 @@
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
 #include "coons/net/coons_net.h"
+#include "coons/net/degree_elevation.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -173,4 +174,27 @@ TEST_CASE("discrete objectives: derivative equals finite differences; discrete t
   CHECK(s.at_bound);
   CHECK(discrete_thin_plate_energy(discrete_coons_net(b)) ==
         Approx(discrete_energy_form(discrete_coons_net(b), discrete_coons_net(b), DiscreteEnergy::kThinPlate)));
+}
+
+TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/(4(n^2 + mu)) when m = n", "[alpha]") {
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  for (int degree : {3, 6, 10}) {
+    const Boundary b = elevate_boundary(dome, degree, degree);
+    MaskObjective by_alpha(b, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+    const AlphaSearchSummary a = search_mask_parameter(by_alpha);
+    AlphaSearchOptions options;
+    options.lower = 0;
+    options.upper = compressed_of_mu(degree, degree, 1000.0 * degree * degree);
+    MaskObjective by_mu(b, objective_named("thin_plate"), [degree](double s) { return mu_family_compressed(degree, degree, s); }, "eigen-ldlt");
+    const AlphaSearchSummary m = search_mask_parameter(by_mu, options);
+    REQUIRE(a.parameter);
+    REQUIRE(m.parameter);
+    INFO("degree " << degree << ": " << a.brief_report() << " / " << m.brief_report());
+    CHECK(mu_of_compressed(degree, degree, *m.parameter) == Approx(mu_from_alpha(degree, *a.parameter)).epsilon(1e-4));
+    CHECK(m.value == Approx(a.value).epsilon(1e-10));
+  }
+  // and the compressed family's derivative is right
+  MaskObjective f(make_smooth_boundary(5, 7, 2), objective_named("e3"), [](double s) { return mu_family_compressed(5, 7, s); }, "eigen-ldlt");
+  const double h = 1e-7, s = 0.3;
+  CHECK(f.evaluate(s).derivative == Approx((f.evaluate(s + h).value - f.evaluate(s - h).value) / (2 * h)).epsilon(1e-5));
 }

@@ -15,6 +15,18 @@ MaskPoint mu_family(int m, int n, double mu) {
   return p;
 }
 
+double mu_of_compressed(int m, int n, double s) { return double(m) * n * s / (1 - s); }
+double compressed_of_mu(int m, int n, double mu) { return mu / (mu + double(m) * n); }
+
+MaskPoint mu_family_compressed(int m, int n, double s) {
+  MaskPoint p = mu_family(m, n, mu_of_compressed(m, n, s));
+  const double dmu = double(m) * n / ((1 - s) * (1 - s));
+  p.derivative.edge_i *= dmu;
+  p.derivative.edge_j *= dmu;
+  p.derivative.diag *= dmu;
+  return p;
+}
+
 MaskPoint gamma_family(double alpha, double gamma) {
   return {Mask9{0.25 - alpha + gamma, 0.25 - alpha - gamma, alpha}, Mask9{1, -1, 0}};
 }

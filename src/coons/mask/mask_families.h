@@ -24,6 +24,12 @@ struct MaskPoint {
 
 MaskPoint alpha_family(double alpha);
 MaskPoint mu_family(int m, int n, double mu);
+//! μ on a compressed scale s ∈ [0, 1): μ = mn·s/(1 − s), so that a uniform scan in s covers
+//! μ from 0 to many times mn (searches over μ use this; the derivative is with respect to s).
+MaskPoint mu_family_compressed(int m, int n, double s);
+double mu_of_compressed(int m, int n, double s);
+double compressed_of_mu(int m, int n, double mu);
+
 //! Derivative with respect to γ at fixed α.
 MaskPoint gamma_family(double alpha, double gamma);
 
