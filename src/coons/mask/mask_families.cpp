@@ -32,15 +32,19 @@ MaskPoint gamma_family(double alpha, double gamma) {
 }
 
 Eigen::MatrixX3d mask_sensitivity_rhs(const ControlNet& net, const Mask9& d) {
-  const int m = net.m, n = net.n, cols = n - 1;
-  Eigen::MatrixX3d R(Eigen::Index(std::max(m - 1, 0)) * std::max(cols, 0), 3);
-  for (int i = 1; i < m; ++i)
-    for (int j = 1; j < n; ++j) {
-      const Eigen::RowVector3d ei = net.at(i - 1, j) + net.at(i + 1, j);
-      const Eigen::RowVector3d ej = net.at(i, j - 1) + net.at(i, j + 1);
-      const Eigen::RowVector3d k = net.at(i - 1, j - 1) + net.at(i + 1, j - 1) + net.at(i - 1, j + 1) + net.at(i + 1, j + 1);
-      R.row(Eigen::Index(i - 1) * cols + (j - 1)) = d.edge_i * ei + d.edge_j * ej + d.diag * k;
-    }
+  using Grid = Eigen::Map<const Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+  using Out = Eigen::Map<Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+  const Eigen::Index m = net.m, n = net.n, rows = std::max<Eigen::Index>(m - 1, 0), cols = std::max<Eigen::Index>(n - 1, 0);
+  Eigen::MatrixX3d R(rows * cols, 3);
+  if (rows * cols == 0) return R;
+  for (int c = 0; c < 3; ++c) {
+    const Grid g(net.points.col(c).data(), m + 1, n + 1);
+    Out r(R.col(c).data(), rows, cols);
+    // neighbours of the interior block g(1..m−1, 1..n−1), vectorised row by row
+    r = d.edge_i * (g.block(0, 1, rows, cols) + g.block(2, 1, rows, cols)) +
+        d.edge_j * (g.block(1, 0, rows, cols) + g.block(1, 2, rows, cols)) +
+        d.diag * (g.block(0, 0, rows, cols) + g.block(0, 2, rows, cols) + g.block(2, 0, rows, cols) + g.block(2, 2, rows, cols));
+  }
   return R;
 }
 
