@@ -7,6 +7,9 @@
 #if COONS_HAVE_SUITESPARSE
 #include "suitesparse_direct.h"
 #endif
+#if COONS_HAVE_FFTW
+#include "structured_solvers.h"
+#endif
 
 namespace coons::solvers {
 
@@ -44,6 +47,10 @@ const std::vector<Entry>& entries() {
       {{"bicgstab", SolverFamily::kIterative, true, false, "BiCGSTAB with incomplete LU (ILUT)"}, make_bicgstab},
       {{"jacobi", SolverFamily::kIterative, false, false, "the Jacobi mask iteration (diverges for alpha < 0)"}, make_jacobi},
       {{"gauss-seidel", SolverFamily::kIterative, false, false, "the Gauss-Seidel / SOR mask iteration (--omega)"}, make_gauss_seidel},
+#if COONS_HAVE_FFTW
+      {{"dst", SolverFamily::kStructured, false, false, "2-D discrete sine transform (FFTW RODFT00), exact for any alpha on rectangular grids"}, make_dst_solver},
+      {{"fast", SolverFamily::kStructured, false, false, "sine transform along j + tridiagonal solves along i; Kronecker path for alpha = -1/4; exact for any alpha"}, make_fast_solver},
+#endif
   };
   return list;
 }
@@ -66,9 +73,14 @@ const SolverInfo* find_solver(std::string_view name) {
 }
 
 std::string choose_auto_solver(const GridStencil& stencil) {
+#if COONS_HAVE_FFTW
+  (void)stencil;
+  return "fast";  // exact for every non-singular stencil, and the fastest
+#else
   const auto [lo, hi] = stencil_eigenvalue_range(stencil);
   const bool definite = lo > 0 && hi > 0;
   return definite ? "eigen-ldlt" : "eigen-lu";
+#endif
 }
 
 std::unique_ptr<LinearSolver> make_solver(std::string_view name, const SolverOptions& options) {
