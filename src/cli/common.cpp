@@ -49,6 +49,7 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
       ->capture_default_str();
   cmd.add_option("--max-iterations", r.max_iterations, "iterative solvers: limit (0: automatic)")
       ->capture_default_str();
+  cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
 }
 
 // A validated request: strings turned into enums, backend names checked.
@@ -67,6 +68,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
 
   out.options.tolerance = r.tolerance;
   out.options.max_iterations = r.max_iterations;
+  out.options.sor_omega = r.omega;
   std::string why;
   if (!out.options.is_valid(&why)) throw InputError("command line", "solver options", why);
 
@@ -80,6 +82,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   out.solver = r.solver;
   if (r.solver == "auto") {
     out.solver = stencil.size() > 0 ? solvers::choose_auto_solver(stencil) : "eigen-ldlt";
+    out.picked_automatically = true;
     return out;
   }
   const solvers::SolverInfo* info = solvers::find_solver(r.solver);
@@ -123,7 +126,10 @@ json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetO
   else if (boundary.m == boundary.n && r.mask.diag >= -0.25 && r.mask.diag < 0 && r.mask.edge_i == r.mask.edge_j)
     report["mu"] = mu_from_alpha(boundary.n, r.mask.diag);
   else report["mu"] = nullptr;
-  if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
+  if (outcome.summary) {
+    report["solver"] = summary_to_json(*outcome.summary);
+    if (r.picked_automatically) report["solver"]["picked_by"] = "auto";
+  }
   else report["solver"] = {{"name", "closed-form"}, {"status", "not_applicable"},
                            {"message", "closed-form net: no linear system is solved"}};
   const bool ok = !outcome.summary || outcome.summary->ok();

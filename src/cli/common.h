@@ -31,12 +31,14 @@ struct NetRequest {
   double corner_tolerance = 1e-9;
   double tolerance = 1e-12;
   int max_iterations = 0;
+  double omega = 1.0;
 };
 
 struct ResolvedRequest {
   Method method = Method::kAlpha;
   Mask9 mask;
   std::string solver;  // concrete backend (alpha method only)
+  bool picked_automatically = false;  // --solver auto chose it
   solvers::SolverOptions options;
 };
 

@@ -58,6 +58,7 @@ TEST_CASE("coons solve: the report of formats.md, numbers that read back exactly
   CHECK(report["alpha"] == -0.2);
   CHECK(report["beta"].get<double>() == 0.25 - (-0.2));
   CHECK(report["solver"]["name"] == "eigen-ldlt");
+  CHECK(!report["solver"].contains("picked_by"));
   CHECK(report["solver"]["status"] == "success");
   for (const char* key : {"analyze", "factorize", "solve"}) CHECK(report["solver"]["seconds"].contains(key));
   for (const char* key : {"twist_energy", "thin_plate_energy", "dirichlet_energy", "e3_energy",
@@ -124,6 +125,7 @@ TEST_CASE("coons solve: each bad input gives exit 2, one error line and no outpu
       {"unknown solver", quoted(dome) + " --solver nonesuch", "--solver"},
       {"unknown method", quoted(dome) + " --method nonesuch", "--method"},
       {"unknown option", quoted(dome) + " --frobnicate", "frobnicate"},
+      {"SOR factor out of range", quoted(dome) + " --solver gauss-seidel --omega 2.5", "omega"},
   };
   for (const Case& c : cases) {
     INFO(c.what);
