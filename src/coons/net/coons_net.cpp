@@ -26,18 +26,22 @@ ControlNet boolean_sum_net(const Boundary& b, const std::vector<double>& w_u,
                            const std::vector<double>& w_v) {
   const int m = b.m, n = b.n;
   assert(int(w_u.size()) == m + 1 && int(w_v.size()) == n + 1);
-  ControlNet net(m, n);
-  const Eigen::RowVector3d c00 = b.bottom.row(0), c10 = b.bottom.row(m);
-  const Eigen::RowVector3d c01 = b.top.row(0), c11 = b.top.row(m);
-  for (int i = 0; i <= m; ++i) {
-    const double a = w_u[i], abar = 1.0 - a;
-    const Eigen::RowVector3d bot = b.bottom.row(i), top = b.top.row(i);
-    // The part that depends on i only: corners blended along u.
-    const Eigen::RowVector3d corner0 = a * c00 + abar * c10, corner1 = a * c01 + abar * c11;
-    for (int j = 0; j <= n; ++j) {
-      const double c = w_v[j], cbar = 1.0 - c;
-      net.at(i, j) = c * (bot - corner0) + cbar * (top - corner1) + a * b.left.row(j) +
-                     abar * b.right.row(j);
+  ControlNet net;
+  net.m = m;
+  net.n = n;
+  net.points.resize(Eigen::Index(m + 1) * (n + 1), 3);  // every entry is written below, once
+  const Eigen::Map<const Eigen::ArrayXd> cv(w_v.data(), n + 1);
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::ArrayXd left = b.left.col(c).array(), right = b.right.col(c).array();
+    const double c00 = b.bottom(0, c), c10 = b.bottom(m, c), c01 = b.top(0, c), c11 = b.top(m, c);
+    double* out = net.points.col(c).data();
+    for (int i = 0; i <= m; ++i) {
+      const double a = w_u[i], abar = 1.0 - a;
+      // b[i][j] = c_j (bottom_i − corner0_i) + (1 − c_j)(top_i − corner1_i) + a left_j + ā right_j
+      const double lo = b.bottom(i, c) - (a * c00 + abar * c10);
+      const double hi = b.top(i, c) - (a * c01 + abar * c11);
+      Eigen::Map<Eigen::ArrayXd> row(out + Eigen::Index(i) * (n + 1), n + 1);
+      row = hi + cv * (lo - hi) + a * left + abar * right;
     }
   }
   // The formula reproduces the frame up to rounding; store the frame exactly.
