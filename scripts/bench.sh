@@ -24,3 +24,16 @@ args=(--benchmark_format=console --benchmark_out="$out/bench.json" --benchmark_o
 [ $quick -eq 1 ] && args+=(--quick)
 "${COONS_BUILD_DIR:-build}/bench_solvers" "${args[@]}" ${extra[@]+"${extra[@]}"} > "$out/bench.log"
 python3 scripts/bench_report.py "$out/bench.json" "$out"
+# The default (full) run rewrites E03's README: its question, then this run's computed tables.
+if [ "$out" = experiments/E03_solver_scaling/results ]; then
+  readme=experiments/E03_solver_scaling/README.md
+  {
+    cat experiments/E03_solver_scaling/question.md
+    echo "**Result** ($(date -u +%Y-%m-%d), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')):"
+    echo
+    sed 's/^# /### /; s/^## /### /' "$out/table.md"
+    echo
+    for png in "$out"/scaling_alpha*.png; do echo "![$(basename "$png")](results/$(basename "$png"))"; echo; done
+  } > "$readme"
+  echo "wrote $readme"
+fi
