@@ -112,6 +112,19 @@ std::string AlphaSearchSummary::brief_report() const {
 
 namespace {
 
+// BFGS line search, silent, stopping on the parameter step (the objective is smooth and cheap
+// to differentiate, so the curvature model pays off).
+ceres::GradientProblemSolver::Options ceres_options(const AlphaSearchOptions& options) {
+  ceres::GradientProblemSolver::Options o;
+  o.line_search_direction_type = ceres::BFGS;
+  o.max_num_iterations = options.max_iterations;
+  o.parameter_tolerance = options.parameter_tolerance;
+  o.function_tolerance = 1e-15;
+  o.gradient_tolerance = 1e-14;
+  o.logging_type = ceres::SILENT;
+  return o;
+}
+
 // f(p(θ)) with p = centre + half·tanh θ keeps Ceres's unconstrained line search inside the bracket.
 class BracketedObjective : public ceres::FirstOrderFunction {
  public:
@@ -208,15 +221,8 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   double theta = std::atanh(std::clamp((grid[best].parameter - centre) / half, -0.9, 0.9));
   bool failed = false;
   ceres::GradientProblem problem(new BracketedObjective(objective, centre, half, failed));
-  ceres::GradientProblemSolver::Options ceres_options;
-  ceres_options.line_search_direction_type = ceres::BFGS;
-  ceres_options.max_num_iterations = options.max_iterations;
-  ceres_options.parameter_tolerance = options.parameter_tolerance;
-  ceres_options.function_tolerance = 1e-15;
-  ceres_options.gradient_tolerance = 1e-14;
-  ceres_options.logging_type = ceres::SILENT;
   ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(ceres_options, problem, &theta, &summary);
+  ceres::Solve(ceres_options(options), problem, &theta, &summary);
   s.ceres_report = summary.BriefReport();
   const double p = centre + half * std::tanh(theta);
   const MaskObjective::Evaluation e = objective.evaluate(p);
@@ -311,15 +317,8 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
   bool failed = false;
   auto* function = new AlphaGammaFunction(objective, centre, half, failed);
   ceres::GradientProblem problem(function);
-  ceres::GradientProblemSolver::Options o;
-  o.line_search_direction_type = ceres::BFGS;
-  o.max_num_iterations = options.max_iterations;
-  o.parameter_tolerance = options.parameter_tolerance;
-  o.function_tolerance = 1e-15;
-  o.gradient_tolerance = 1e-14;
-  o.logging_type = ceres::SILENT;
   ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(o, problem, t, &summary);
+  ceres::Solve(ceres_options(options), problem, t, &summary);
   out.ceres_report = summary.BriefReport();
   const auto [alpha, gamma] = function->map(t);
   std::vector<double> g;
