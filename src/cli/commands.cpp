@@ -11,6 +11,7 @@
 
 #include "alpha_commands.h"
 #include "common.h"
+#include "surface_command.h"
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 #include <nlohmann/json.hpp>
@@ -268,6 +269,9 @@ int run(int argc, char** argv) {
   study->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
   for (int a = 0; a < argc; ++a) study_request.command_line += (a ? " " : "") + std::string(a ? argv[a] : "coons");
 
+  SurfaceRequest surface_request;
+  auto* surface = add_surface_command(app, surface_request);
+
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -289,6 +293,7 @@ int run(int argc, char** argv) {
     if (*search) return cmd_search_alpha(boundary_path, net_request, search_request);
     if (*sweep) return cmd_sweep(boundary_path, net_request, sweep_request);
     if (*study) return cmd_study(study_request, net_request);
+    if (*surface) return cmd_surface(surface_request);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

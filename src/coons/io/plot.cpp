@@ -108,4 +108,33 @@ std::string plot_nets(const std::string& png, const std::vector<std::pair<std::s
   return run_gnuplot(scratch, script, png);
 }
 
+std::string plot_surface(const std::string& png, const Eigen::MatrixX3d& grid, int k, const ControlNet* net,
+                         const std::string& title) {
+  Scratch scratch;
+  if (scratch.dir.empty()) return "cannot create a temporary folder";
+  const fs::path surface = scratch.dir / "surface.dat", control = scratch.dir / "net.dat";
+  {
+    std::ofstream out(surface);
+    for (int a = 0; a < k; ++a) {
+      for (int b = 0; b < k; ++b) fmt::print(out, "{} {} {}\n", grid(a * k + b, 0), grid(a * k + b, 1), grid(a * k + b, 2));
+      out << '\n';
+    }
+  }
+  std::string plots = fmt::format("{} with lines lc rgb '#3060c0' title 'surface'", quote(surface.string()));
+  if (net) {
+    std::ofstream out(control);
+    for (int i = 0; i <= net->m; ++i) {
+      for (int j = 0; j <= net->n; ++j) fmt::print(out, "{} {} {}\n", net->at(i, j)(0), net->at(i, j)(1), net->at(i, j)(2));
+      out << '\n';
+    }
+    plots += fmt::format(", {} with linespoints lc rgb '#d04020' pt 7 ps 0.6 title 'control net'", quote(control.string()));
+  }
+  std::string script = fmt::format("set terminal pngcairo size 800,640 enhanced font ',10'\nset output {}\n",
+                                   quote(png + ".part.png"));
+  script += fmt::format("set title {} noenhanced\nset view 60,30\nset ticslevel 0\nset view equal xy\nset key top left\n",
+                        quote(title));
+  script += "splot " + plots + "\n";
+  return run_gnuplot(scratch, script, png);
+}
+
 }  // namespace coons

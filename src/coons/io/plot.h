@@ -29,4 +29,9 @@ std::string plot_curves(const std::string& png, const std::vector<PlotSeries>& s
 std::string plot_nets(const std::string& png, const std::vector<std::pair<std::string, ControlNet>>& nets, int k,
                       const std::string& title);
 
+//! A 3-D view of a surface sampled on a k × k grid (#k² by 3, row a·k + b = r(a/(k−1), b/(k−1)))
+//! with, when given, a control net drawn over it. Used by `coons surface --png`.
+std::string plot_surface(const std::string& png, const Eigen::MatrixX3d& grid, int k, const ControlNet* net,
+                         const std::string& title);
+
 }  // namespace coons

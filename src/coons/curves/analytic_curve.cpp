@@ -1,0 +1,74 @@
+#include "analytic_curve.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include <fmt/format.h>
+#include <muParser.h>
+
+#include "coons/curves/numerical_derivative.h"
+
+namespace coons {
+
+struct AnalyticCurve::Compiled {
+  double t = 0;
+  mu::Parser parser[3];
+
+  explicit Compiled(const std::array<std::string, 3>& expressions) {
+    for (int c = 0; c < 3; ++c) {
+      mu::Parser& p = parser[c];
+      try {
+        for (const char* name : {"t", "u", "v", "s"}) p.DefineVar(name, &t);
+        p.DefineConst("pi", 3.14159265358979323846);
+        p.DefineConst("e", 2.71828182845904523536);
+        p.SetExpr(expressions[c]);
+        int results = 0;
+        p.Eval(results);  // compiles; reports syntax errors and unknown names
+        if (results != 1)
+          throw ExpressionError(c, fmt::format("'{}' gives {} values (a ',' in the expression?), need one",
+                                               expressions[c], results));
+      } catch (const mu::Parser::exception_type& e) {
+        std::string message = e.GetMsg();
+        if (!message.empty() && message.back() == '.') message.pop_back();
+        throw ExpressionError(c, fmt::format("'{}' does not parse: {}", expressions[c], message));
+      }
+    }
+  }
+
+  Eigen::RowVector3d at(double value) {
+    t = value;
+    return {parser[0].Eval(), parser[1].Eval(), parser[2].Eval()};
+  }
+};
+
+AnalyticCurve::AnalyticCurve(std::array<std::string, 3> expressions, double t1, double t2)
+    : expressions_(std::move(expressions)), t1_(t1), t2_(t2),
+      compiled_(std::make_unique<Compiled>(expressions_)) {}
+
+AnalyticCurve::AnalyticCurve(const AnalyticCurve& other)
+    : expressions_(other.expressions_), t1_(other.t1_), t2_(other.t2_),
+      compiled_(std::make_unique<Compiled>(expressions_)) {}
+
+AnalyticCurve& AnalyticCurve::operator=(const AnalyticCurve& other) {
+  if (this != &other) *this = AnalyticCurve(other);
+  return *this;
+}
+
+AnalyticCurve::AnalyticCurve(AnalyticCurve&&) noexcept = default;
+AnalyticCurve& AnalyticCurve::operator=(AnalyticCurve&&) noexcept = default;
+AnalyticCurve::~AnalyticCurve() = default;
+
+Eigen::RowVector3d AnalyticCurve::at(double s) const { return compiled_->at(t1_ + s * (t2_ - t1_)); }
+
+Eigen::RowVector3d AnalyticCurve::derivative(int r, double s) const {
+  if (r == 0) return at(s);
+  if (r > 3) return Eigen::RowVector3d::Constant(std::nan(""));
+  const NumericalDerivative d = numerical_derivative([this](double x) { return at(x); }, r, s);
+  // An estimate that does not settle (a singular derivative, e.g. sqrt at the end of its domain)
+  // is no derivative: say so rather than return a number.
+  if (!(d.error_estimate <= 1e-5 * std::max(1.0, d.value.cwiseAbs().maxCoeff())))
+    return Eigen::RowVector3d::Constant(std::nan(""));
+  return d.value;
+}
+
+}  // namespace coons

@@ -1,0 +1,99 @@
+#include "mesh_export.h"
+
+#include <cmath>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
+namespace coons {
+
+namespace {
+
+// The scalar fields of a sample set, in a fixed order; "singular" is 1 where the normal (and so
+// the curvatures) is undefined, 0 elsewhere.
+struct Fields {
+  Eigen::VectorXd singular;
+  std::vector<std::pair<const char*, const Eigen::VectorXd*>> list;
+  explicit Fields(const SurfaceSamples& s) : singular(s.normals.rows()) {
+    for (Eigen::Index r = 0; r < singular.size(); ++r) singular(r) = s.normals.row(r).allFinite() ? 0.0 : 1.0;
+    list = {{"mean_curvature", &s.mean_curvature}, {"gaussian_curvature", &s.gaussian_curvature}, {"twist", &s.twist}};
+    if (s.distance) list.emplace_back("distance", &*s.distance);
+    if (s.parametric_distance) list.emplace_back("parametric_distance", &*s.parametric_distance);
+    list.emplace_back("singular", &singular);
+  }
+};
+
+double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
+
+std::string vtk_number(double x) { return fmt::format("{}", finite_or_zero(x)); }
+
+}  // namespace
+
+void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::string& comment) {
+  const int k = s.k;
+  fmt::print(out, "# coons: surface sampled {}x{}{}\n", k, k, comment.empty() ? "" : " — " + comment);
+  for (Eigen::Index r = 0; r < s.points.rows(); ++r) fmt::print(out, "v {} {} {}\n", s.points(r, 0), s.points(r, 1), s.points(r, 2));
+  for (Eigen::Index r = 0; r < s.normals.rows(); ++r) {
+    const bool ok = s.normals.row(r).allFinite();
+    fmt::print(out, "vn {} {} {}\n", ok ? s.normals(r, 0) : 0.0, ok ? s.normals(r, 1) : 0.0, ok ? s.normals(r, 2) : 1.0);
+  }
+  auto id = [k](int a, int b) { return a * k + b + 1; };
+  for (int a = 0; a + 1 < k; ++a)
+    for (int b = 0; b + 1 < k; ++b) {
+      const int p = id(a, b), q = id(a + 1, b), r = id(a + 1, b + 1), t = id(a, b + 1);
+      fmt::print(out, "f {0}//{0} {1}//{1} {2}//{2}\nf {0}//{0} {2}//{2} {3}//{3}\n", p, q, r, t);
+    }
+}
+
+void write_grid_ply(std::ostream& out, const SurfaceSamples& s, const std::string& comment) {
+  const int k = s.k;
+  const Fields fields_(s);
+  const auto& fields = fields_.list;
+  out << "ply\nformat ascii 1.0\ncomment coons: surface sampled on a " << k << "x" << k << " grid\n";
+  if (!comment.empty()) out << "comment " << comment << '\n';
+  out << "element vertex " << k * k << "\nproperty double x\nproperty double y\nproperty double z\n"
+      << "property double nx\nproperty double ny\nproperty double nz\n";
+  for (const auto& [name, values] : fields) out << "property double " << name << '\n';
+  out << "element face " << (k - 1) * (k - 1) << "\nproperty list uchar int vertex_indices\nend_header\n";
+  for (int r = 0; r < k * k; ++r) {
+    fmt::print(out, "{} {} {}", s.points(r, 0), s.points(r, 1), s.points(r, 2));
+    for (int c = 0; c < 3; ++c) fmt::print(out, " {}", finite_or_zero(s.normals(r, c)));
+    for (const auto& [name, values] : fields) fmt::print(out, " {}", finite_or_zero((*values)(r)));
+    out << '\n';
+  }
+  for (int a = 0; a + 1 < k; ++a)
+    for (int b = 0; b + 1 < k; ++b)
+      fmt::print(out, "4 {} {} {} {}\n", a * k + b, (a + 1) * k + b, (a + 1) * k + b + 1, a * k + b + 1);
+}
+
+void write_grid_vts(std::ostream& out, const SurfaceSamples& s) {
+  const int k = s.k;
+  // VTK's structured grids run x (i) fastest: point index i + k·j with i ↔ v-index b, j ↔ u-index a,
+  // which is exactly our row a·k + b.
+  const std::string extent = fmt::format("0 {} 0 {} 0 0", k - 1, k - 1);
+  out << "<?xml version=\"1.0\"?>\n"
+      << "<VTKFile type=\"StructuredGrid\" version=\"0.1\" byte_order=\"LittleEndian\">\n"
+      << "  <StructuredGrid WholeExtent=\"" << extent << "\">\n"
+      << "    <Piece Extent=\"" << extent << "\">\n"
+      << "      <PointData Scalars=\"mean_curvature\" Normals=\"Normals\">\n";
+  const Fields fields(s);
+  for (const auto& [name, values] : fields.list) {
+    out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
+    for (int r = 0; r < k * k; ++r) out << (r % 8 ? " " : "          ") << vtk_number((*values)(r)) << (r % 8 == 7 ? "\n" : "");
+    out << (k * k % 8 ? "\n" : "") << "        </DataArray>\n";
+  }
+  out << "        <DataArray type=\"Float64\" Name=\"Normals\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int r = 0; r < k * k; ++r)
+    out << "          " << vtk_number(s.normals(r, 0)) << ' ' << vtk_number(s.normals(r, 1)) << ' '
+        << vtk_number(s.normals(r, 2)) << '\n';
+  out << "        </DataArray>\n      </PointData>\n      <Points>\n"
+      << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (int r = 0; r < k * k; ++r)
+    out << "          " << vtk_number(s.points(r, 0)) << ' ' << vtk_number(s.points(r, 1)) << ' '
+        << vtk_number(s.points(r, 2)) << '\n';
+  out << "        </DataArray>\n      </Points>\n    </Piece>\n  </StructuredGrid>\n</VTKFile>\n";
+}
+
+}  // namespace coons

@@ -1,0 +1,26 @@
+// Meshes of a sampled surface (surfaces/sampling.h) for outside viewers:
+//   OBJ  — vertices, normals, two triangles per grid cell (Blender, MeshLab, ParaView);
+//   PLY  — ASCII, per-vertex normals and scalars (mean_curvature, gaussian_curvature, twist,
+//          distance and parametric_distance when a reference was given, singular), quads
+//          (MeshLab, ParaView, CloudCompare);
+//   VTS  — ParaView's XML StructuredGrid (ASCII), the same fields as point data, "Normals" as a
+//          vector; the grid keeps its (u, v) structure.
+// Where the surface is singular (r_u ∥ r_v: a sectorial apex, a degenerate corner) normal and
+// curvatures are undefined: they are written as 0 and the field "singular" is 1 there.
+// Write them through write_file_atomically so that nothing half-written is left behind.
+// Based on: the PLY format of G. Turk (Stanford, 1994); VTK File Formats (Kitware), "XML File
+// Formats: StructuredGrid".
+#pragma once
+
+#include <ostream>
+#include <string>
+
+#include "coons/surfaces/sampling.h"
+
+namespace coons {
+
+void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::string& comment = {});
+void write_grid_ply(std::ostream& out, const SurfaceSamples& s, const std::string& comment = {});
+void write_grid_vts(std::ostream& out, const SurfaceSamples& s);
+
+}  // namespace coons

@@ -1,0 +1,30 @@
+// Two patches along a common boundary: the C⁰ gap (largest distance between corresponding seam
+// points) and the G¹ defect (largest angle between the tangent planes along the seam, i.e. between
+// the unoriented normals). Bilinear Coons patches meet C⁰ only; partially bicubic Coons patches over
+// transversal boundary curves that join C¹ — or G¹ with the same ratio of tangent lengths at both
+// ends of the seam — meet with a common tangent plane (seeds 001, 002). With different ratios at the
+// two ends the cross-boundary derivatives are not parallel in between, and the join is only C⁰.
+// Based on: seed 001 (Czech lecture notes), napojení plátů (C⁰, G¹); seed 002 (Czech), plátování
+// bikubických Coonsových plátů.
+#pragma once
+
+#include "coons/surfaces/surface.h"
+
+namespace coons {
+
+//! bottom: v = 0, top: v = 1 (seam parameter u); left: u = 0, right: u = 1 (seam parameter v).
+enum class Side { kBottom, kTop, kLeft, kRight };
+
+struct SeamReport {
+  double c0_gap = 0;            //!< max ‖a(t) − b(t)‖
+  double max_normal_angle = 0;  //!< radians, angle between tangent planes, in [0, π/2]
+  double at = 0;                //!< seam parameter of the largest angle
+  int samples = 0;
+};
+
+//! Compares side_a of a with side_b of b at `samples` ≥ 2 seam parameters t (b at 1 − t when
+//! reversed). Singular normals (NaN) are skipped.
+SeamReport compare_seam(const Surface& a, Side side_a, const Surface& b, Side side_b, bool reversed = false,
+                        int samples = 101);
+
+}  // namespace coons

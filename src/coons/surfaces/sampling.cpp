@@ -1,0 +1,94 @@
+#include "sampling.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cmath>
+#include <limits>
+
+#include <Eigen/Dense>
+
+namespace coons {
+
+SurfaceSamples sample_grid(const Surface& s, int k) {
+  assert(k >= 2);
+  SurfaceSamples out;
+  out.k = k;
+  const int count = k * k;
+  out.points.resize(count, 3);
+  out.normals.resize(count, 3);
+  out.mean_curvature.resize(count);
+  out.gaussian_curvature.resize(count);
+  out.twist.resize(count);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      const int row = a * k + b;
+      const SurfacePoint p = s.evaluate(double(a) / (k - 1), double(b) / (k - 1));
+      const Curvatures c = curvatures(p);
+      out.points.row(row) = p.p;
+      out.normals.row(row) = unit_normal(p);
+      out.mean_curvature(row) = c.mean;
+      out.gaussian_curvature(row) = c.gaussian;
+      out.twist(row) = p.duv.norm();
+    }
+  return out;
+}
+
+namespace {
+
+// Grid of the reference for starting points, computed once per call of add_reference_distance.
+struct StartGrid {
+  int k = 33;
+  Eigen::MatrixX3d points;
+  explicit StartGrid(const Surface& s) : points(k * k, 3) {
+    for (int a = 0; a < k; ++a)
+      for (int b = 0; b < k; ++b) points.row(a * k + b) = s.at(double(a) / (k - 1), double(b) / (k - 1));
+  }
+};
+
+ClosestPoint closest_from(const Surface& s, const StartGrid& grid, const Eigen::RowVector3d& p) {
+  Eigen::Index best = 0;
+  (grid.points.rowwise() - p).rowwise().squaredNorm().minCoeff(&best);
+  double u = double(best / grid.k) / (grid.k - 1), v = double(best % grid.k) / (grid.k - 1);
+  for (int it = 0; it < 30; ++it) {
+    const SurfacePoint x = s.evaluate(u, v);
+    const Eigen::RowVector3d d = x.p - p;
+    const Eigen::Vector2d g(x.du.dot(d), x.dv.dot(d));
+    Eigen::Matrix2d H;
+    H << x.du.dot(x.du) + x.duu.dot(d), x.du.dot(x.dv) + x.duv.dot(d), x.du.dot(x.dv) + x.duv.dot(d),
+        x.dv.dot(x.dv) + x.dvv.dot(d);
+    if (!(H.determinant() > 0 && H(0, 0) > 0)) {  // not convex here: Gauss–Newton
+      H << x.du.dot(x.du), x.du.dot(x.dv), x.du.dot(x.dv), x.dv.dot(x.dv);
+    }
+    Eigen::Vector2d step = -H.ldlt().solve(g);
+    if (!step.allFinite()) break;
+    const double nu = std::clamp(u + step(0), 0.0, 1.0), nv = std::clamp(v + step(1), 0.0, 1.0);
+    const bool small = std::abs(nu - u) < 1e-13 && std::abs(nv - v) < 1e-13;
+    // Accept only steps that do not increase the distance.
+    if ((s.at(nu, nv) - p).squaredNorm() > d.squaredNorm()) break;
+    u = nu;
+    v = nv;
+    if (small) break;
+  }
+  return {u, v, (s.at(u, v) - p).norm()};
+}
+
+}  // namespace
+
+ClosestPoint closest_point(const Surface& s, const Eigen::RowVector3d& p) { return closest_from(s, StartGrid(s), p); }
+
+void add_reference_distance(SurfaceSamples& samples, const Surface& reference) {
+  const StartGrid grid(reference);
+  const int k = samples.k;
+  Eigen::VectorXd distance(k * k), parametric(k * k);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      const int row = a * k + b;
+      const Eigen::RowVector3d p = samples.points.row(row);
+      distance(row) = closest_from(reference, grid, p).distance;
+      parametric(row) = (reference.at(double(a) / (k - 1), double(b) / (k - 1)) - p).norm();
+    }
+  samples.distance = std::move(distance);
+  samples.parametric_distance = std::move(parametric);
+}
+
+}  // namespace coons

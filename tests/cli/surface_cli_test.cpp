@@ -1,0 +1,211 @@
+// `coons surface` through the real binary: the formats.md report, the files it writes, and the
+// error contract for bad descriptions (exit 2, one `error:` line naming the field, nothing written).
+#include <catch2/catch.hpp>
+
+#include <filesystem>
+#include <fstream>
+#include <sstream>
+
+#include <unistd.h>
+
+#include <nlohmann/json.hpp>
+
+#include "coons/io/boundary_io.h"
+#include "coons/net/coons_net.h"
+#include "support/fixtures.h"
+#include "support/surface_fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+
+struct Scratch {
+  fs::path path;
+  Scratch() {
+    static int counter = 0;
+    path = fs::temp_directory_path() / ("coons_surface_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+    fs::remove_all(path);
+    fs::create_directories(path);
+  }
+  ~Scratch() { fs::remove_all(path); }
+  std::string file(const std::string& name) const { return (path / name).string(); }
+  std::string write(const std::string& name, const std::string& text) const {
+    std::ofstream(path / name) << text;
+    return file(name);
+  }
+};
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+std::string slurp(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+// Runs `coons surface SPEC` with every output option; checks the error contract.
+void check_rejected(const std::string& spec_text, const std::string& field, const std::string& reason_part) {
+  Scratch dir;
+  const std::string spec = dir.write("bad.json", spec_text);
+  const std::string outputs[] = {dir.file("s.obj"), dir.file("s.ply"), dir.file("s.vts"), dir.file("s.png"), dir.file("net.json")};
+  const CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 5 --obj " + q(outputs[0]) + " --ply " +
+                                      q(outputs[1]) + " --vts " + q(outputs[2]) + " --png " + q(outputs[3]) + " --net-out " +
+                                      q(outputs[4]));
+  INFO(spec_text << "\nstderr: " << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(r.err.rfind("error: " + spec + ": " + field + ": ", 0) == 0);
+  CHECK(r.err.find(reason_part) != std::string::npos);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  for (const auto& o : outputs) CHECK_FALSE(fs::exists(o));
+  // Nothing else either (no temporary files left behind).
+  CHECK(std::distance(fs::directory_iterator(dir.path), fs::directory_iterator()) == 1);
+}
+
+}  // namespace
+
+TEST_CASE("coons surface: points[a][b] = r(a/(K-1), b/(K-1)), type, and the exact net of seed example 1", "[cli][surfaces]") {
+  const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_bilinear_coons_1.json")) +
+                                      " --sample 5 --fit-degree 2");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["type"] == "bilinear-coons");
+  REQUIRE(report["points"].size() == 5);
+  for (int a = 0; a < 5; ++a) {
+    REQUIRE(report["points"][a].size() == 5);
+    for (int b = 0; b < 5; ++b) {
+      const double u = a / 4.0, v = b / 4.0;
+      const auto p = report["points"][a][b];
+      CHECK(p[0].get<double>() == Approx(u + v).margin(1e-15));
+      CHECK(p[1].get<double>() == Approx(u * u - v * v).margin(1e-15));
+      CHECK(p[2].get<double>() == Approx(1 - u + v).margin(1e-15));
+    }
+  }
+  // Expressions are not known to be polynomial: the net is over fits, which are exact here.
+  CHECK(report["polynomial"] == false);
+  CHECK(report["net"]["exact"] == false);
+  CHECK(report["net"]["degree"] == json::array({2, 2}));
+  CHECK(report["net"]["max_surface_deviation"].get<double>() < 1e-14);
+  const auto interior = report["net"]["net"][1][1];
+  CHECK(interior[0].get<double>() == Approx(1).margin(1e-14));
+  CHECK(interior[1].get<double>() == Approx(0).margin(1e-14));
+  CHECK(interior[2].get<double>() == Approx(1).margin(1e-14));
+  // math.md §5: the Coons net of example 1 has twist 0, Dirichlet 20/3, thin plate 8.
+  CHECK(report["metrics"]["twist_energy"].get<double>() == Approx(0).margin(1e-12));
+  CHECK(report["metrics"]["dirichlet_energy"].get<double>() == Approx(20.0 / 3).epsilon(1e-12));
+  CHECK(report["metrics"]["thin_plate_energy"].get<double>() == Approx(8).epsilon(1e-12));
+  CHECK(report["discrete_nets"]["coons"]["max_difference"].get<double>() < 1e-14);
+  CHECK(report["compatibility"]["max_corner_gap"].get<double>() == 0);
+}
+
+TEST_CASE("coons surface: a polynomial surface prints its exact net, twists and energies", "[cli][surfaces]") {
+  const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_hermite16_T10.json")) + " --sample 3");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["type"] == "hermite16");
+  CHECK(report["polynomial"] == true);
+  CHECK(report["net"]["exact"] == true);
+  CHECK(report["net"]["degree"] == json::array({3, 3}));
+  CHECK(report["net"]["net"][1][1][2].get<double>() == Approx(10.0 / 9));
+  CHECK(report["corner_twists"][0][2].get<double>() == Approx(10));
+  CHECK(report["corner_twists"][3][2].get<double>() == Approx(0).margin(1e-13));
+  // The boundary is planar: the discrete nets are flat, the surface is not.
+  CHECK(report["discrete_nets"]["coons"]["max_difference"].get<double>() == Approx(10.0 / 9));
+  CHECK(report["metrics"]["thin_plate_energy"].get<double>() > 0);
+  CHECK(report["points"][1][1][2].get<double>() == Approx(10 * 0.125 * 0.125));  // T H13(½)²
+}
+
+TEST_CASE("coons surface: meshes, PNG and a net file that coons solve reads", "[cli][surfaces]") {
+  Scratch dir;
+  const std::string obj = dir.file("s.obj"), ply = dir.file("s.ply"), vts = dir.file("s.vts"), png = dir.file("s.png"),
+                    net = dir.file("net.json");
+  const std::string plane = dir.write("plane.json", R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]})");
+  const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_hermite_coons_1.json")) +
+                                      " --sample 9 --obj " + q(obj) + " --ply " + q(ply) + " --vts " + q(vts) + " --png " +
+                                      q(png) + " --net-out " + q(net) + " --reference " + q(plane));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["written"].size() == 5);
+  CHECK(slurp(obj).find("\nf ") != std::string::npos);
+  CHECK(slurp(ply).find("property double distance") != std::string::npos);
+  CHECK(slurp(vts).find("Name=\"twist\"") != std::string::npos);
+  CHECK(slurp(png).substr(1, 3) == "PNG");
+  CHECK(report["reference"]["max_distance"].get<double>() == Approx(2).margin(1e-9));  // z at (1, 1)
+  // The net file is a boundary file: its hermite-coons closed form is this net.
+  const CommandResult solved = run_command(kCoons + " solve " + q(net) + " --method hermite-coons");
+  REQUIRE(solved.status == 0);
+  const json s = json::parse(solved.out);
+  const BoundaryFile written = read_boundary_file(net);
+  CHECK(max_difference(*written.net, *parse_boundary(json{{"net", s["net"]}}, "solve").net) < 1e-14);
+  // A file with "net" (here the solve report) is a reference too: the surface is its own net's.
+  const std::string report_file = dir.write("solve.json", solved.out);
+  const CommandResult again = run_command(kCoons + " surface " + q(surface_data("seed000_hermite_coons_1.json")) +
+                                          " --sample 7 --reference " + q(report_file));
+  REQUIRE(again.status == 0);
+  const json compared = json::parse(again.out);
+  CHECK(compared["reference"]["type"] == "bezier");
+  CHECK(compared["reference"]["max_distance"].get<double>() < 1e-12);
+  CHECK(compared["reference"]["max_parametric_distance"].get<double>() < 1e-14);
+}
+
+TEST_CASE("coons surface: every data/surfaces file runs", "[cli][surfaces]") {
+  for (const auto& entry : fs::directory_iterator(std::string(COONS_DATA_DIR) + "/surfaces")) {
+    if (entry.path().extension() != ".json") continue;
+    INFO(entry.path());
+    const CommandResult r = run_command(kCoons + " surface " + q(entry.path().string()) + " --sample 4");
+    CHECK(r.status == 0);
+    CHECK(r.err.empty());
+  }
+}
+
+TEST_CASE("coons surface: bad descriptions exit 2 with one error line naming the field, nothing written", "[cli][surfaces]") {
+  // Wrong counts.
+  check_rejected(R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0]]})", "corners", "exactly 4");
+  check_rejected(R"({"type": "ruled", "curves": [{"bezier": [[0,0,0],[1,0,0]]}]})", "curves", "exactly 2");
+  check_rejected(R"({"type": "ferguson", "corners": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]],
+                     "du": [[1,0,0],[1,0,0],[1,0,0],[1,0,0]], "dv": [[0,1,0],[0,1,0],[0,1,0],[0,1,0],[0,1,0]]})",
+                 "dv", "exactly 4");
+  // Unknown type.
+  check_rejected(R"({"type": "nurbs"})", "type", "unknown type 'nurbs'");
+  // An expression that does not parse.
+  check_rejected(R"({"type": "ruled", "curves": [{"expr": ["t", "sin(pi*t", "0"]}, {"bezier": [[0,1,0],[1,1,0]]}]})",
+                 "curves[0].expr[1]", "does not parse");
+  // Incompatible data: corners, then a general-Coons twist.
+  check_rejected(R"({"type": "bilinear-coons", "bottom": {"bezier": [[0,0,0],[1,0,0]]}, "top": {"bezier": [[0,1,0],[1,1,0]]},
+                     "left": {"bezier": [[0,0,0],[0,1,0]]}, "right": {"bezier": [[1,0,0.5],[1,1,0]]}})",
+                 "right", "bottom-right (u = 1, v = 0)");
+  check_rejected(R"({"type": "general-coons",
+                     "bottom": {"bezier": [[0,0,0],[1,0,0]]}, "top": {"bezier": [[0,1,0],[1,1,0]]},
+                     "left": {"bezier": [[0,0,0],[0,1,0]]}, "right": {"bezier": [[1,0,0],[1,1,0]]},
+                     "du_left": {"point": [1,0,0]}, "du_right": {"point": [1,0,0]},
+                     "dv_bottom": {"point": [0,1,0]}, "dv_top": {"point": [0,1,0]},
+                     "twist": [[0,0,0],[0,0,0],[0,0,0],[0,0,3]]})",
+                 "twist[3]", "top-right (u = 1, v = 1): twist[3] = du_right'(1) fails by 3");
+  // Missing and misspelt fields, malformed JSON.
+  check_rejected(R"({"type": "hermite-coons", "bottom": {"bezier": [[0,0,0],[1,0,0]]}})", "top", "missing");
+  check_rejected(R"({"type": "bilinear", "corner": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]})", "corner", "unknown field");
+}
+
+TEST_CASE("coons surface: bad options and unreadable files exit 2", "[cli][surfaces]") {
+  Scratch dir;
+  const std::string spec = surface_data("seed000_ferguson_1.json");
+  CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 1");
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error: command line: --sample: ", 0) == 0);
+  r = run_command(kCoons + " surface " + q(spec) + " --obj " + q(dir.file("missing/s.obj")));
+  CHECK(r.status == 2);
+  CHECK(r.err.rfind("error: command line: --obj: ", 0) == 0);
+  r = run_command(kCoons + " surface " + q(dir.write("broken.json", "{\"type\": ")));
+  CHECK(r.status == 2);
+  CHECK(r.err.find("malformed JSON") != std::string::npos);
+  r = run_command(kCoons + " surface " + q(dir.file("absent.json")));
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+}

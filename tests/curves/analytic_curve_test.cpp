@@ -1,0 +1,134 @@
+#include <catch2/catch.hpp>
+
+#include <cmath>
+
+#include "coons/curves/analytic_curve.h"
+#include "coons/curves/bezier_fit.h"
+#include "coons/curves/numerical_derivative.h"
+#include "support/surface_fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+}
+
+TEST_CASE("numerical_derivative: documented accuracy on smooth functions of unit scale", "[curves]") {
+  // f(s) = (sin 3s, exp(s), s^5 - s^2): derivatives known in closed form.
+  auto f = [](double s) { return Eigen::RowVector3d(std::sin(3 * s), std::exp(s), std::pow(s, 5) - s * s); };
+  auto exact = [](int r, double s) -> Eigen::RowVector3d {
+    switch (r) {
+      case 1: return {3 * std::cos(3 * s), std::exp(s), 5 * std::pow(s, 4) - 2 * s};
+      case 2: return {-9 * std::sin(3 * s), std::exp(s), 20 * std::pow(s, 3) - 2};
+      default: return {-27 * std::cos(3 * s), std::exp(s), 60 * s * s};
+    }
+  };
+  const double tolerance[4] = {0, 1e-11, 1e-10, 1e-9};
+  double worst[4] = {0, 0, 0, 0};
+  for (int r = 1; r <= 3; ++r)
+    for (double s : {0.0, 0.1, 0.5, 0.9, 1.0}) {
+      const NumericalDerivative d = numerical_derivative(f, r, s);
+      const double err = (d.value - exact(r, s)).cwiseAbs().maxCoeff() / std::max(1.0, exact(r, s).cwiseAbs().maxCoeff());
+      worst[r] = std::max(worst[r], err);
+      CHECK_FALSE(d.one_sided);
+    }
+  INFO("relative errors: order 1 " << worst[1] << ", order 2 " << worst[2] << ", order 3 " << worst[3]);
+  for (int r = 1; r <= 3; ++r) CHECK(worst[r] < tolerance[r]);
+}
+
+TEST_CASE("numerical_derivative: a first step too large for the function is not trusted", "[curves]") {
+  // sin(ωs) for ω up to 50 (8 periods on [0, 1]): the first tableau, from h = 0.1, is wrong for the
+  // fast ones; the smaller starts agree and win.
+  for (double w : {1.0, 2 * kPi, 6 * kPi, 50.0})
+    for (int r = 1; r <= 3; ++r)
+      for (double s : {0.0, 0.3, 0.55, 1.0}) {
+        auto f = [w](double x) { return Eigen::RowVector3d(std::sin(w * x), std::cos(w * x), 0); };
+        const double scale = std::pow(w, r);
+        const Eigen::RowVector3d exact(scale * std::sin(w * s + r * kPi / 2), scale * std::cos(w * s + r * kPi / 2), 0);
+        const NumericalDerivative d = numerical_derivative(f, r, s);
+        INFO("w = " << w << ", order " << r << ", s = " << s);
+        CHECK((d.value - exact).cwiseAbs().maxCoeff() / scale < (r == 3 ? 1e-9 : 1e-10));
+      }
+}
+
+TEST_CASE("numerical_derivative: one-sided near a domain end where the function stops", "[curves]") {
+  // sqrt(s + 1e-3)·(1,1,1) is NaN for s < −1e-3: central differences at s = 0 are impossible.
+  auto f = [](double s) { return Eigen::RowVector3d::Constant(std::sqrt(s + 1)); };
+  auto g = [&](double s) { return s < 0 ? Eigen::RowVector3d::Constant(std::nan("")) : f(s); };
+  const NumericalDerivative d = numerical_derivative(g, 1, 0);
+  CHECK(d.one_sided);
+  CHECK(std::abs(d.value(0) - 0.5) < 1e-7);
+  // Inside, close to the end: central differences with a smaller first step.
+  const NumericalDerivative e = numerical_derivative(g, 1, 0.05);
+  CHECK_FALSE(e.one_sided);
+  CHECK(std::abs(e.value(0) - 0.5 / std::sqrt(1.05)) < 1e-10);
+}
+
+TEST_CASE("AnalyticCurve: expressions in t on [t1, t2], reparametrised to [0, 1] (seed 001)", "[curves]") {
+  const AnalyticCurve c({"cos(t)", "sin(t)", "t^2 + 1e-3"}, 0.5, 2.0);
+  for (double s : {0.0, 0.25, 1.0}) {
+    const double t = 0.5 + 1.5 * s;
+    CHECK((c.at(s) - Eigen::RowVector3d(std::cos(t), std::sin(t), t * t + 1e-3)).norm() < 1e-15);
+    // d/ds = 1.5 d/dt, d²/ds² = 2.25 d²/dt².
+    CHECK((c.derivative(1, s) - 1.5 * Eigen::RowVector3d(-std::sin(t), std::cos(t), 2 * t)).norm() < 1e-9);
+    CHECK((c.derivative(2, s) - 2.25 * Eigen::RowVector3d(-std::cos(t), -std::sin(t), 2)).norm() < 1e-7);
+  }
+  // The parameter may be called u, v or s too; pi and e are constants.
+  const AnalyticCurve d({"u", "sin(pi/2*v)", "e^s"});
+  CHECK((d.at(0.5) - Eigen::RowVector3d(0.5, std::sin(kPi / 4), std::exp(0.5))).norm() < 1e-15);
+  // Copies are independent.
+  const AnalyticCurve copy = c;
+  CHECK(copy.at(0.3) == c.at(0.3));
+}
+
+TEST_CASE("AnalyticCurve: an expression that does not parse names its component", "[curves]") {
+  try {
+    AnalyticCurve c({"t", "2*t-", "0"});
+    FAIL("no exception");
+  } catch (const ExpressionError& e) {
+    CHECK(e.component() == 1);
+    CHECK(std::string(e.what()).find("2*t-") != std::string::npos);
+  }
+  CHECK_THROWS_AS(AnalyticCurve({"t", "0", "foo(t)"}), ExpressionError);
+  CHECK_THROWS_AS(AnalyticCurve({"x", "0", "0"}), ExpressionError);   // unknown variable
+  CHECK_THROWS_AS(AnalyticCurve({"t, 2", "0", "0"}), ExpressionError);  // two values
+  CHECK_THROWS_AS(AnalyticCurve({"", "0", "0"}), ExpressionError);
+}
+
+TEST_CASE("AnalyticCurve: an infinite derivative is NaN, not a number", "[curves]") {
+  const AnalyticCurve c({"t", "sqrt(t)", "0"});
+  CHECK(std::isnan(c.derivative(1, 0)(1)));
+  CHECK(std::abs(c.derivative(1, 0.25)(1) - 1.0) < 1e-9);
+}
+
+TEST_CASE("fit_bezier: interpolates the ends; exact for polynomials; deviation falls with the degree", "[curves]") {
+  // A polynomial of degree 3 written as expressions: fitted exactly at degree ≥ 3.
+  const Curve cubic = AnalyticCurve({"t", "t^3 - t", "2*t^2"});
+  const BezierFit exact = fit_bezier(cubic, 4);
+  CHECK(exact.max_deviation < 1e-13);
+  CHECK((exact.curve.points.row(0) - cubic.at(0)).norm() == 0);
+  CHECK((exact.curve.points.row(4) - cubic.at(1)).norm() == 0);
+
+  // Seed 000's quarter circle (u, sin(πu/2), cos(πu/2)): the error falls fast with the degree.
+  const Curve arc = AnalyticCurve({"u", "sin(pi/2*u)", "cos(pi/2*u)"});
+  double previous = 1;
+  for (int degree : {2, 3, 4, 6, 8}) {
+    const BezierFit fit = fit_bezier(arc, degree);
+    INFO("degree " << degree << ": " << fit.max_deviation);
+    CHECK(fit.max_deviation < previous);
+    CHECK((fit.curve.points.row(0) - arc.at(0)).norm() == 0);
+    CHECK((fit.curve.points.row(degree) - arc.at(1)).norm() == 0);
+    // The reported deviation is the true maximum on a fine grid, to within the grid's resolution.
+    double check = 0;
+    for (int k = 0; k <= 997; ++k) check = std::max(check, (evaluate(fit.curve, k / 997.0) - arc.at(k / 997.0)).norm());
+    CHECK(check <= fit.max_deviation * (1 + 1e-3) + 1e-15);
+    previous = fit.max_deviation;
+  }
+  CHECK(previous < 1e-7);
+
+  // A Bézier curve of lower degree is elevated, not fitted.
+  const BezierFit elevated_fit = fit_bezier(Curve(make_random_bezier(2, 5)), 5);
+  CHECK(elevated_fit.max_deviation == 0);
+  CHECK(elevated_fit.curve.degree() == 5);
+}

@@ -1,0 +1,126 @@
+// Sampled fields (curvatures, twist, distance to a reference) and the mesh files built from them.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <sstream>
+
+#include "coons/io/mesh_export.h"
+#include "coons/surfaces/sampling.h"
+#include "support/surface_fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using V = Eigen::RowVector3d;
+
+namespace {
+constexpr double kPi = 3.14159265358979323846;
+
+// A cylinder of radius R as the ruled surface of two circles (exact derivatives).
+Surface cylinder(double R) {
+  auto circle = [R](double z) {
+    return closed_form_curve([=](double s) { return V(R * std::cos(kPi * s), R * std::sin(kPi * s), z); },
+                             [=](double s) { return V(-kPi * R * std::sin(kPi * s), kPi * R * std::cos(kPi * s), 0); },
+                             [=](double s) { return V(-kPi * kPi * R * std::cos(kPi * s), -kPi * kPi * R * std::sin(kPi * s), 0); });
+  };
+  return make_ruled(circle(0), circle(1));
+}
+
+size_t count(const std::string& text, const std::string& what) {
+  size_t n = 0;
+  for (size_t p = text.find(what); p != std::string::npos; p = text.find(what, p + 1)) ++n;
+  return n;
+}
+}  // namespace
+
+TEST_CASE("sample_grid: curvatures of a cylinder, a saddle and a plane", "[surfaces]") {
+  const SurfaceSamples c = sample_grid(cylinder(2), 9);
+  for (int r = 0; r < 81; ++r) {
+    CHECK(std::abs(std::abs(c.mean_curvature(r)) - 0.25) < 1e-12);  // H = ±1/(2R)
+    CHECK(std::abs(c.gaussian_curvature(r)) < 1e-12);
+  }
+  // z = 2uv: K = −4/(1 + 4u² + 4v²)² at (u, v).
+  const Surface saddle = make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 2)});
+  const SurfaceSamples s = sample_grid(saddle, 5);
+  for (int a = 0; a < 5; ++a)
+    for (int b = 0; b < 5; ++b) {
+      const double u = a / 4.0, v = b / 4.0;
+      CHECK(s.gaussian_curvature(a * 5 + b) == Approx(-4 / std::pow(1 + 4 * u * u + 4 * v * v, 2)).epsilon(1e-12));
+      CHECK(s.twist(a * 5 + b) == Approx(2));
+      CHECK((s.points.row(a * 5 + b) - V(u, v, 2 * u * v)).norm() < 1e-15);
+    }
+}
+
+TEST_CASE("add_reference_distance: the distance of the 16-vector bump to its plane is |z|", "[surfaces]") {
+  const std::array<V, 4> corners = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)};
+  const std::array<V, 4> du = {V(1, 0, 0), V(1, 0, 0), V(1, 0, 0), V(1, 0, 0)};
+  const std::array<V, 4> dv = {V(0, 1, 0), V(0, 1, 0), V(0, 1, 0), V(0, 1, 0)};
+  const Surface bump = make_hermite16(HermitePatch{corners, du, dv, {V(0, 0, 10), V(0, 0, 0), V(0, 0, 0), V(0, 0, 0)}});
+  const Surface plane = make_bilinear({V(-1, -1, 0), V(2, -1, 0), V(-1, 2, 0), V(2, 2, 0)});
+  SurfaceSamples s = sample_grid(bump, 7);
+  add_reference_distance(s, plane);
+  REQUIRE(s.distance);
+  for (int r = 0; r < 49; ++r) CHECK(std::abs((*s.distance)(r) - std::abs(s.points(r, 2))) < 1e-12);
+  // The closest point of a point above the saddle z = 2uv.
+  const Surface saddle = make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 2)});
+  const SurfacePoint q = saddle.evaluate(0.4, 0.7);
+  const ClosestPoint cp = closest_point(saddle, q.p + 0.05 * unit_normal(q));
+  CHECK(cp.u == Approx(0.4).epsilon(1e-9));
+  CHECK(cp.v == Approx(0.7).epsilon(1e-9));
+  CHECK(cp.distance == Approx(0.05).epsilon(1e-9));
+}
+
+TEST_CASE("write_grid_obj, write_grid_ply, write_grid_vts: sizes, fields and structure", "[surfaces]") {
+  SurfaceSamples s = sample_grid(make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 2)}), 4);
+  add_reference_distance(s, make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)}));
+  std::stringstream obj, ply, vts;
+  write_grid_obj(obj, s, "saddle");
+  write_grid_ply(ply, s);
+  write_grid_vts(vts, s);
+  CHECK(count(obj.str(), "\nv ") == 16);
+  CHECK(count(obj.str(), "\nvn ") == 16);
+  CHECK(count(obj.str(), "\nf ") == 2 * 9);
+  CHECK(ply.str().rfind("ply\nformat ascii 1.0\n", 0) == 0);
+  CHECK(ply.str().find("element vertex 16\n") != std::string::npos);
+  CHECK(ply.str().find("element face 9\n") != std::string::npos);
+  for (const char* field : {"mean_curvature", "gaussian_curvature", "twist", "distance", "parametric_distance", "singular"}) {
+    CHECK(ply.str().find(std::string("property double ") + field + "\n") != std::string::npos);
+    CHECK(vts.str().find(std::string("Name=\"") + field + "\"") != std::string::npos);
+  }
+  CHECK(vts.str().find("WholeExtent=\"0 3 0 3 0 0\"") != std::string::npos);
+  CHECK(count(vts.str(), "<DataArray") == count(vts.str(), "</DataArray>"));
+  CHECK(vts.str().find("</VTKFile>") != std::string::npos);
+  // PLY body: 16 vertex lines of 3 + 3 + 6 numbers, then 9 quads.
+  std::string line;
+  std::stringstream body(ply.str().substr(ply.str().find("end_header\n") + 11));
+  int vertices = 0, faces = 0;
+  while (std::getline(body, line)) {
+    std::stringstream words(line);
+    int n = 0;
+    for (std::string w; words >> w;) ++n;
+    if (n == 12) ++vertices;
+    if (n == 5) ++faces;
+  }
+  CHECK(vertices == 16);
+  CHECK(faces == 9);
+}
+
+TEST_CASE("sample_grid: the apex of a sectorial surface is singular, and marked so in the meshes", "[surfaces]") {
+  const Surface cone = make_sectorial(Curve::segment(V(1, 0, 0), V(0, 1, 0)), V(0, 0, 1));
+  const SurfaceSamples s = sample_grid(cone, 3);
+  for (int a = 0; a < 3; ++a) {
+    CHECK(s.normals.row(a * 3 + 2).hasNaN());   // v = 1: the apex
+    CHECK(s.normals.row(a * 3 + 0).allFinite());
+  }
+  std::stringstream vts;
+  write_grid_vts(vts, s);
+  const std::string text = vts.str();
+  const size_t start = text.find("Name=\"singular\"");
+  REQUIRE(start != std::string::npos);
+  const std::string values = text.substr(text.find('>', start) + 1, text.find("</DataArray>", start) - text.find('>', start) - 1);
+  std::stringstream in(values);
+  std::vector<double> flags;
+  for (double x; in >> x;) flags.push_back(x);
+  CHECK(flags == std::vector<double>{0, 0, 1, 0, 0, 1, 0, 0, 1});
+  CHECK(text.find("nan") == std::string::npos);
+  CHECK(text.find("NaN") == std::string::npos);
+}

@@ -1,0 +1,218 @@
+// Surface descriptions (formats.md): every type parses; every kind of bad input is an InputError
+// that names the field.
+#include <catch2/catch.hpp>
+
+#include <nlohmann/json.hpp>
+
+#include "coons/io/input_error.h"
+#include "coons/io/surface_io.h"
+#include "support/surface_fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using nlohmann::json;
+using V = Eigen::RowVector3d;
+
+namespace {
+
+const json kSquare = json::array({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}, {1, 1, 0}});
+const json kDu = json::array({{1, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}});
+const json kDv = json::array({{0, 1, 0}, {0, 1, 0}, {0, 1, 0}, {0, 1, 0}});
+const json kZero4 = json::array({{0, 0, 0}, {0, 0, 0}, {0, 0, 0}, {0, 0, 0}});
+
+json segment(std::vector<double> a, std::vector<double> b) { return {{"bezier", {a, b}}}; }
+
+json coons_doc(const std::string& type) {
+  return {{"type", type},
+          {"bottom", segment({0, 0, 0}, {1, 0, 0})},
+          {"top", {{"expr", {"t", "1", "2*t"}}}},
+          {"left", segment({0, 0, 0}, {0, 1, 0})},
+          {"right", {{"expr", {"1", "v", "2*v"}}}}};
+}
+
+// The flat square with the cross derivatives of z = 2uv: compatible.
+json general_doc() {
+  json d = coons_doc("general-coons");
+  d["du_left"] = {{"expr", {"1", "0", "2*t"}}};
+  d["du_right"] = {{"expr", {"1", "0", "2*t"}}};
+  d["dv_bottom"] = {{"expr", {"0", "1", "2*t"}}};
+  d["dv_top"] = {{"expr", {"0", "1", "2*t"}}};
+  d["twist"] = json::array({{0, 0, 2}, {0, 0, 2}, {0, 0, 2}, {0, 0, 2}});
+  return d;
+}
+
+// The InputError of parsing doc: its field and reason.
+std::pair<std::string, std::string> error_of(const json& doc) {
+  try {
+    parse_surface(doc, "spec.json");
+  } catch (const InputError& e) {
+    CHECK(e.file() == "spec.json");
+    return {e.field(), e.reason()};
+  }
+  FAIL("no InputError for " << doc.dump());
+  return {};
+}
+
+}  // namespace
+
+TEST_CASE("parse_surface: every type of formats.md (and the extensions) builds its surface", "[surfaces]") {
+  const std::vector<json> docs = {
+      {{"type", "ruled"}, {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t^2"}}, {"interval", {0, 1}}}}}},
+      {{"type", "sectorial"}, {"curve", segment({0, 0, 0}, {1, 0, 0})}, {"point", {0, 1, 1}}},
+      {{"type", "bilinear"}, {"corners", kSquare}},
+      {{"type", "conoid"}, {"directrix", {{"expr", {"t", "0", "1-t^2"}}, {"interval", {-1, 1}}}}, {"line", {{0, 2, 0}, {1, 0, 0}}},
+       {"plane_normal", {1, 0, 0}}},
+      coons_doc("bilinear-coons"),
+      coons_doc("hermite-coons"),
+      {{"type", "ferguson"}, {"corners", kSquare}, {"du", kDu}, {"dv", kDv}},
+      {{"type", "hermite16"}, {"corners", kSquare}, {"du", kDu}, {"dv", kDv}, {"twist", kZero4}},
+      general_doc(),
+      {{"type", "bezier"}, {"net", {{{0, 0, 0}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 1}}}}},
+      {{"type", "ruled"}, {"name", "extensions"}, {"comment", "point and hermite curves"},
+       {"curves", {{{"point", {0, 0, 1}}}, {{"hermite", {{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}}}}}}},
+  };
+  for (const json& d : docs) {
+    INFO(d.dump());
+    const SurfaceFile f = parse_surface(d, "spec.json");
+    CHECK(to_string(f.surface.type()) == d["type"].get<std::string>());
+    CHECK(f.surface.at(0.5, 0.5).allFinite());
+  }
+  // The name defaults to the file's stem.
+  CHECK(parse_surface(docs[0], "dir/my_surface.json").name == "my_surface");
+  // z = 2uv through the general Coons patch.
+  const SurfaceFile g = parse_surface(general_doc(), "g.json");
+  CHECK((g.surface.at(0.3, 0.6) - V(0.3, 0.6, 0.36)).norm() < 1e-12);
+  CHECK(g.conditions.size() == 20);
+}
+
+TEST_CASE("parse_surface: wrong counts name the field", "[surfaces]") {
+  json d = {{"type", "bilinear"}, {"corners", json::array({{0, 0, 0}, {1, 0, 0}, {0, 1, 0}})}};
+  auto [field, reason] = error_of(d);
+  CHECK(field == "corners");
+  CHECK(reason.find("exactly 4") != std::string::npos);
+
+  d = {{"type", "ruled"}, {"curves", {segment({0, 0, 0}, {1, 0, 0})}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "curves");
+
+  d = {{"type", "ferguson"}, {"corners", kSquare}, {"du", kDu}, {"dv", json::array({{0, 1, 0}, {0, 1}, {0, 1, 0}, {0, 1, 0}})}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "dv[1]");
+  CHECK(reason.find("3 coordinates") != std::string::npos);
+
+  d = coons_doc("bilinear-coons");
+  d["top"] = {{"expr", {"t", "1"}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "top.expr");
+
+  d = {{"type", "bezier"}, {"net", {{{0, 0, 0}, {0, 1, 0}}, {{1, 0, 0}}}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "net[1]");
+}
+
+TEST_CASE("parse_surface: unknown type, missing and unknown fields", "[surfaces]") {
+  auto [field, reason] = error_of({{"type", "nurbs"}, {"corners", kSquare}});
+  CHECK(field == "type");
+  CHECK(reason.find("unknown type 'nurbs'") != std::string::npos);
+  CHECK(reason.find("general-coons") != std::string::npos);
+
+  std::tie(field, reason) = error_of({{"corners", kSquare}});
+  CHECK(field == "type");
+  CHECK(reason.find("missing") != std::string::npos);
+
+  json d = coons_doc("hermite-coons");
+  d.erase("left");
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "left");
+  CHECK(reason == "missing");
+
+  d = coons_doc("hermite-coons");
+  d["twist"] = kZero4;  // not a field of hermite-coons
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "twist");
+
+  d = coons_doc("hermite-coons");
+  d["bottom"]["degree"] = 3;
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "bottom.degree");
+
+  d = coons_doc("hermite-coons");
+  d["bottom"] = {{"bezier", {{0, 0, 0}, {1, 0, 0}}}, {"expr", {"t", "0", "0"}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "bottom");
+
+  d = {{"type", "bilinear"}, {"corners", json::array({{0, 0, 0}, {1, 0, "x"}, {0, 1, 0}, {1, 1, 0}})}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "corners[1]");
+}
+
+TEST_CASE("parse_surface: an expression that does not parse, or is not finite, names its component", "[surfaces]") {
+  json d = coons_doc("bilinear-coons");
+  d["top"] = {{"expr", {"t", "1", "2*t +"}}};
+  auto [field, reason] = error_of(d);
+  CHECK(field == "top.expr[2]");
+  CHECK(reason.find("does not parse") != std::string::npos);
+
+  d["top"] = {{"expr", {"t", "sinh(", "2*t"}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "top.expr[1]");
+
+  d["top"] = {{"expr", {"w", "1", "2*t"}}};  // unknown variable
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "top.expr[0]");
+
+  d = {{"type", "ruled"}, {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "sqrt(t - 0.5)"}}}}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "curves[1].expr[2]");
+  CHECK(reason.find("not finite at t = 0") != std::string::npos);
+
+  d = {{"type", "ruled"}, {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t"}}, {"interval", {2, 2}}}}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "curves[1].interval");
+}
+
+TEST_CASE("parse_surface: corners that disagree name the corner, the condition and the gap", "[surfaces]") {
+  json d = coons_doc("bilinear-coons");
+  d["right"] = {{"expr", {"1", "v", "2*v + 0.01"}}};  // right(0) = (1,0,0.01) ≠ bottom(1)
+  auto [field, reason] = error_of(d);
+  CHECK(field == "right");
+  CHECK(reason.find("bottom-right") != std::string::npos);
+  CHECK(reason.find("right(0) = bottom(1)") != std::string::npos);
+  CHECK(reason.find("0.01") != std::string::npos);
+}
+
+TEST_CASE("parse_surface: incompatible general-Coons data name the corner and the condition", "[surfaces]") {
+  json d = general_doc();
+  d["twist"][2] = {0, 0, 2.5};  // r_uv(0, 1) must be 2
+  auto [field, reason] = error_of(d);
+  CHECK(field == "twist[2]");
+  CHECK(reason.find("top-left") != std::string::npos);
+  CHECK(reason.find("twist[2] = du_left'(1)") != std::string::npos);
+  CHECK(reason.find("0.5") != std::string::npos);
+
+  d = general_doc();
+  d["dv_top"] = {{"expr", {"0", "1", "2*t + 0.1"}}};  // dv_top(0) = (0,1,0.1) but left'(1) = (0,1,0)
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "dv_top");
+  CHECK(reason.find("top-left") != std::string::npos);
+  CHECK(reason.find("dv_top(0) = left'(1)") != std::string::npos);
+
+  // A looser tolerance accepts it.
+  SurfaceReadOptions loose;
+  loose.derivative_tolerance = 0.2;
+  CHECK_NOTHROW(parse_surface(d, "spec.json", loose));
+}
+
+TEST_CASE("parse_surface: a conoid whose line is parallel to its plane is rejected", "[surfaces]") {
+  json d = {{"type", "conoid"}, {"directrix", segment({0, 0, 1}, {1, 0, 1})}, {"line", {{0, 1, 0}, {0, 1, 0}}}, {"plane_normal", {1, 0, 0}}};
+  auto [field, reason] = error_of(d);
+  CHECK(field == "plane_normal");
+  CHECK(reason.find("parallel") != std::string::npos);
+  d["line"] = {{0, 1, 0}, {0, 0, 0}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "line[1]");
+}
+
+TEST_CASE("read_surface_file: unreadable files and malformed JSON", "[surfaces]") {
+  CHECK_THROWS_AS(read_surface_file("/nonexistent/spec.json"), InputError);
+}
