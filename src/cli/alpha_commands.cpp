@@ -1,6 +1,7 @@
 #include "alpha_commands.h"
 
 #include <algorithm>
+#include <map>
 #include <cmath>
 #include <cstdio>
 #include <filesystem>
@@ -15,6 +16,7 @@
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/config.h"
+#include "coons/curves/boundary_fit.h"
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
@@ -427,6 +429,40 @@ int cmd_search_alpha(const std::string& path, const NetRequest& net, const Searc
   return s.status == SearchStatus::kSolverFailed ? kExitSolverFailed : kExitOk;
 }
 
+int cmd_refit(const std::string& path, const NetRequest& net, const RefitRequest& r) {
+  const BoundaryFile input = read_input(path, net);
+  const Boundary& b = input.boundary;
+  if (r.degree.size() != 2 || r.degree[0] < 1 || r.degree[1] < 1 || r.degree[0] > 1000 || r.degree[1] > 1000)
+    throw InputError("command line", "--degree", "needs two degrees M N in [1, 1000]");
+  const int m = r.degree[0], n = r.degree[1];
+  json out;
+  if (const auto curves = read_boundary_curves(path)) {
+    const FittedBoundary f = fit_boundary(*curves, m, n, b.name, path);
+    out = boundary_to_json(f.boundary);
+    out["method"] = "refit";
+    out["max_deviation"] = f.max_deviation;
+  } else if (m >= b.m && n >= b.n) {
+    out = boundary_to_json(elevate_boundary(b, m, n));
+    out["method"] = "elevated";
+    out["max_deviation"] = 0.0;
+  } else {
+    throw InputError(path, "curves", fmt::format("degree ({}, {}) is below the boundary's ({}, {}); lowering it needs "
+                                                 "the analytic sides (a \"curves\" object)", m, n, b.m, b.n));
+  }
+  if (r.out.empty()) {
+    std::cout << out.dump(2) << '\n';
+  } else {
+    write_file_atomically(r.out, [&](std::ostream& o) { o << out.dump(2) << '\n'; });
+    std::cout << json{{"boundary", b.name}, {"degree", {m, n}}, {"method", out["method"]}, {"max_deviation", out["max_deviation"]}, {"written", r.out}}.dump(2) << '\n';
+  }
+  return kExitOk;
+}
+
+void add_refit_options(CLI::App& cmd, RefitRequest& r) {
+  cmd.add_option("--degree", r.degree, "the new degree M N")->required()->expected(2);
+  cmd.add_option("--out", r.out, "write the boundary file here (default: standard output)");
+}
+
 int cmd_sweep(const std::string& path, const NetRequest& net, const SweepRequest& r) {
   const BoundaryFile input = read_input(path, net);
   const Boundary& b = input.boundary;
@@ -595,8 +631,8 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
   // 2. Degree dependence.
   line("## 2. How the optimum moves with the degree");
   line("");
-  line("Each boundary is degree-elevated exactly (the boundary curves do not change) to degree (d, d) for d ≥ its own");
-  line("degree; lower degrees would need the analytic curve and are left out (–). The law α* + 1/4 ≈ c/n² is fitted");
+  line("A boundary given by curves (analytic sides) is refitted at each degree (d, d); any other boundary is");
+  line("degree-elevated exactly (its curves do not change) for d ≥ its own degree, and left out (–) below it. The law α* + 1/4 ≈ c/n² is fitted");
   line("per shape by least squares over the degrees with an interior optimum; `c` and the largest relative misfit are");
   line("given. If the law holds, μ* is nearly constant across degrees.");
   line("");
@@ -611,8 +647,23 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
   line(header);
   line(rule);
   std::vector<PlotSeries> law_series, mu_series;
+  std::vector<std::string> fit_rows;  // shapes given by curves: deviation of the fit per degree
   for (const auto& [path, input] : inputs) {
     const Boundary& native = input.boundary;
+    const std::optional<std::vector<Curve>> curves = read_boundary_curves(path);
+    // A shape at degree d: refitted from its curves when it has them, else elevated exactly.
+    std::map<int, Boundary> at_degree;
+    std::string fit_row = fmt::format("| {} |", native.name);
+    for (int d : r.degrees) {
+      if (curves) {
+        const FittedBoundary f = fit_boundary(*curves, d, d, native.name, path);
+        at_degree.emplace(d, f.boundary);
+        fit_row += fmt::format(" {:.2e} |", f.max_deviation);
+      } else if (d >= native.m && d >= native.n) {
+        at_degree.emplace(d, elevate_boundary(native, d, d));
+      }
+    }
+    if (curves) fit_rows.push_back(fit_row);
     for (const auto& name : objectives) {
       std::string why;
       const Objective objective = *parse_objective(name, &why);
@@ -622,11 +673,11 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
       PlotSeries mu_line{native.name + " " + name, {}, {}, false};
       json by_degree = json::array();
       for (int d : r.degrees) {
-        if (d < native.m || d < native.n) {
+        if (!at_degree.count(d)) {
           row += " – |";
           continue;
         }
-        const Boundary b = elevate_boundary(native, d, d);
+        const Boundary& b = at_degree.at(d);
         const std::string solver = search_solver(net, b, false);
         MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, solver);
         const AlphaSearchSummary s = search_mask_parameter(f);
@@ -683,6 +734,20 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
   }
   if (progress) fmt::print(stderr, "\n");
   line("");
+  if (!fit_rows.empty()) {
+    line("Shapes given by curves (the boundary file's `curves`) are refitted at each degree; the largest");
+    line("deviation of a fitted side from its curve:");
+    line("");
+    std::string h = "| shape |", rl = "|---|";
+    for (int d : r.degrees) {
+      h += fmt::format(" n = {} |", d);
+      rl += "---|";
+    }
+    line(h);
+    line(rl);
+    for (const auto& fr : fit_rows) line(fr);
+    line("");
+  }
   PlotOptions law_options{"thin-plate optimum: α* + 1/4 against degree, with the fitted c/n²", "degree n", "α* + 1/4", true, true, 1100, 700};
   const std::string law_error = law_series.empty() ? "no shape has two interior optima" : plot_curves((figures / "alpha_vs_degree.png").string(), law_series, law_options);
   line(law_error.empty() ? "![α* against degree](figures/alpha_vs_degree.png)" : "(α* plot: " + law_error + ")");

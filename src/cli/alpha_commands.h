@@ -36,6 +36,15 @@ struct StudyRequest {
   std::string command_line;
 };
 
+struct RefitRequest {
+  std::vector<int> degree;  //!< M N
+  std::string out;
+};
+
+void add_refit_options(CLI::App& cmd, RefitRequest& r);
+//! The boundary at another degree: refitted from its "curves" when it has them, else elevated.
+int cmd_refit(const std::string& path, const NetRequest& net, const RefitRequest& request);
+
 void add_search_options(CLI::App& cmd, SearchRequest& r);
 void add_sweep_options(CLI::App& cmd, SweepRequest& r);
 void add_study_options(CLI::App& cmd, StudyRequest& r);

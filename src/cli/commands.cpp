@@ -262,6 +262,12 @@ int run(int argc, char** argv) {
   add_sweep_options(*sweep, sweep_request);
   sweep->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
 
+  RefitRequest refit_request;
+  auto* refit = app.add_subcommand("refit", "the boundary at another degree: refitted from its analytic \"curves\", "
+                                   "or elevated exactly; prints (or writes) a boundary file");
+  refit->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  add_refit_options(*refit, refit_request);
+
   StudyRequest study_request;
   auto* study = app.add_subcommand("study", "the alpha study: optima per shape and degree, the c/n^2 law, the dome "
                                    "table; a self-contained report with PNG figures");
@@ -293,6 +299,7 @@ int run(int argc, char** argv) {
     if (*search) return cmd_search_alpha(boundary_path, net_request, search_request);
     if (*sweep) return cmd_sweep(boundary_path, net_request, sweep_request);
     if (*study) return cmd_study(study_request, net_request);
+    if (*refit) return cmd_refit(boundary_path, net_request, refit_request);
     if (*surface) return cmd_surface(surface_request);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << '\n';

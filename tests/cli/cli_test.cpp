@@ -251,3 +251,22 @@ TEST_CASE("coons study: a report with computed tables and figures", "[cli][alpha
   for (const char* f : {"figures/dome_energies.png", "figures/dome_nets.png", "figures/alpha_vs_degree.png", "results.json"})
     CHECK(fs::exists(fs::path(out) / f));
 }
+
+TEST_CASE("coons refit: analytic sides at any degree, elevation otherwise, exit 2 below a Bezier degree", "[cli][alpha]") {
+  TempDir dir;
+  const std::string out = (dir.path / "dome6.json").string();
+  const CommandResult r = run_command(kCoons + " refit " + quoted(kData + "/boundaries/dome.json") + " --degree 6 6 --out " + quoted(out));
+  REQUIRE(r.status == 0);
+  const BoundaryFile f = read_boundary_file(out);
+  CHECK(f.boundary.m == 6);
+  CHECK(json::parse(r.out)["method"] == "refit");
+  CHECK(json::parse(r.out)["max_deviation"].get<double>() < 1e-5);
+  CHECK(run_command(kCoons + " solve " + quoted(out)).status == 0);
+  const CommandResult up = run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 5 4");
+  REQUIRE(up.status == 0);
+  CHECK(json::parse(up.out)["method"] == "elevated");
+  const CommandResult down = run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 2 2");
+  CHECK(down.status == 2);
+  CHECK(down.out.empty());
+  CHECK_THAT(down.err, Catch::Contains("curves"));
+}
