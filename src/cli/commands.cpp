@@ -277,6 +277,8 @@ int run(int argc, char** argv) {
 
   SurfaceRequest surface_request;
   auto* surface = add_surface_command(app, surface_request);
+  JoinRequest join_request;
+  auto* join = add_join_command(app, join_request);
 
   try {
     app.parse(argc, argv);
@@ -301,6 +303,7 @@ int run(int argc, char** argv) {
     if (*study) return cmd_study(study_request, net_request);
     if (*refit) return cmd_refit(boundary_path, net_request, refit_request);
     if (*surface) return cmd_surface(surface_request);
+    if (*join) return cmd_join(join_request);
   } catch (const InputError& e) {
     std::cerr << "error: " << e.what() << '\n';
     return kExitBadInput;

@@ -20,6 +20,7 @@
 #include "coons/metrics/bernstein.h"
 #include "coons/metrics/energies.h"
 #include "coons/net/coons_net.h"
+#include "coons/surfaces/joining.h"
 #include "coons/surfaces/sampling.h"
 
 namespace coons::cli {
@@ -231,6 +232,38 @@ int cmd_surface(const SurfaceRequest& r) {
   report["net"] = std::move(net_block);
   report["points"] = std::move(points);
   std::cout << report.dump(2) << '\n';
+  return kExitOk;
+}
+
+CLI::App* add_join_command(CLI::App& app, JoinRequest& r) {
+  auto* cmd = app.add_subcommand("join", "C0 gap and G1 angle along the seam of two surfaces (surface JSON files)");
+  cmd->add_option("FIRST", r.first, "first surface description")->required();
+  cmd->add_option("FIRST_SIDE", r.first_side, "bottom | top | left | right")->required();
+  cmd->add_option("SECOND", r.second, "second surface description")->required();
+  cmd->add_option("SECOND_SIDE", r.second_side, "bottom | top | left | right")->required();
+  cmd->add_flag("--reversed", r.reversed, "the second side runs the other way along the seam");
+  cmd->add_option("--samples", r.samples, "seam samples")->capture_default_str();
+  return cmd;
+}
+
+int cmd_join(const JoinRequest& r) {
+  auto side = [](const std::string& name, const char* field) {
+    if (name == "bottom") return Side::kBottom;
+    if (name == "top") return Side::kTop;
+    if (name == "left") return Side::kLeft;
+    if (name == "right") return Side::kRight;
+    throw InputError("command line", field, "'" + name + "' is not bottom, top, left or right");
+  };
+  const Side a_side = side(r.first_side, "FIRST_SIDE"), b_side = side(r.second_side, "SECOND_SIDE");
+  if (r.samples < 2 || r.samples > 1000000) throw InputError("command line", "--samples", "must be between 2 and 1000000");
+  const SurfaceFile a = read_surface_file(r.first), b = read_surface_file(r.second);
+  const SeamReport seam = compare_seam(a.surface, a_side, b.surface, b_side, r.reversed, r.samples);
+  const double size = std::max({a.size, b.size, 1e-300});
+  nlohmann::json out = {{"first", a.name}, {"second", b.name}, {"samples", seam.samples},
+                        {"c0_gap", seam.c0_gap}, {"max_normal_angle_rad", seam.max_normal_angle},
+                        {"max_normal_angle_deg", seam.max_normal_angle * 180 / M_PI}, {"at", seam.at},
+                        {"c0", seam.c0_gap <= 1e-9 * size}, {"g1", seam.c0_gap <= 1e-9 * size && seam.max_normal_angle <= 1e-6}};
+  std::cout << out.dump(2) << '\n';
   return kExitOk;
 }
 

@@ -28,4 +28,14 @@ CLI::App* add_surface_command(CLI::App& app, SurfaceRequest& r);
 
 int cmd_surface(const SurfaceRequest& r);
 
+//! `coons join A.json SIDE B.json SIDE`: the C⁰ gap and the largest angle between the tangent
+//! planes along the seam where side A of one surface meets side B of another (seeds 001, 002).
+struct JoinRequest {
+  std::string first, first_side, second, second_side;
+  bool reversed = false;
+  int samples = 101;
+};
+CLI::App* add_join_command(CLI::App& app, JoinRequest& r);
+int cmd_join(const JoinRequest& r);
+
 }  // namespace coons::cli

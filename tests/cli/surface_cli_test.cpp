@@ -209,3 +209,23 @@ TEST_CASE("coons surface: bad options and unreadable files exit 2", "[cli][surfa
   CHECK(r.status == 2);
   CHECK(r.out.empty());
 }
+
+TEST_CASE("coons join: bicubic Coons patches over C1 transversal curves join G1, bilinear ones do not", "[cli][surfaces]") {
+  const std::string dir = std::string(COONS_DATA_DIR) + "/surfaces/";
+  auto join = [&](const std::string& kind) {
+    const CommandResult r = run_command(std::string(COONS_BINARY) + " join '" + dir + "join_" + kind + "_a.json' right '" + dir +
+                                        "join_" + kind + "_b.json' left");
+    REQUIRE(r.status == 0);
+    return nlohmann::json::parse(r.out);
+  };
+  const nlohmann::json hermite = join("hermite"), bilinear = join("bilinear");
+  CHECK(hermite["c0_gap"].get<double>() < 1e-12);
+  CHECK(hermite["g1"] == true);
+  CHECK(hermite["max_normal_angle_rad"].get<double>() < 1e-8);
+  CHECK(bilinear["c0"] == true);
+  CHECK(bilinear["g1"] == false);
+  CHECK(bilinear["max_normal_angle_deg"].get<double>() > 1);
+  const CommandResult bad = run_command(std::string(COONS_BINARY) + " join '" + dir + "join_hermite_a.json' middle '" + dir + "join_hermite_b.json' left");
+  CHECK(bad.status == 2);
+  CHECK_THAT(bad.err, Catch::Contains("FIRST_SIDE"));
+}
