@@ -24,21 +24,6 @@ namespace {
 
 const std::string kCoons = COONS_BINARY;
 
-struct Scratch {
-  fs::path path;
-  Scratch() {
-    static int counter = 0;
-    path = fs::temp_directory_path() / ("coons_surface_cli_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
-    fs::remove_all(path);
-    fs::create_directories(path);
-  }
-  ~Scratch() { fs::remove_all(path); }
-  std::string file(const std::string& name) const { return (path / name).string(); }
-  std::string write(const std::string& name, const std::string& text) const {
-    std::ofstream(path / name) << text;
-    return file(name);
-  }
-};
 
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
@@ -51,7 +36,7 @@ std::string slurp(const std::string& path) {
 
 // Runs `coons surface SPEC` with every output option; checks the error contract.
 void check_rejected(const std::string& spec_text, const std::string& field, const std::string& reason_part) {
-  Scratch dir;
+  TempDir dir;
   const std::string spec = dir.write("bad.json", spec_text);
   const std::string outputs[] = {dir.file("s.obj"), dir.file("s.ply"), dir.file("s.vts"), dir.file("s.png"), dir.file("net.json")};
   const CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 5 --obj " + q(outputs[0]) + " --ply " +
@@ -122,7 +107,7 @@ TEST_CASE("coons surface: a polynomial surface prints its exact net, twists and 
 }
 
 TEST_CASE("coons surface: meshes, PNG and a net file that coons solve reads", "[cli][surfaces]") {
-  Scratch dir;
+  TempDir dir;
   const std::string obj = dir.file("s.obj"), ply = dir.file("s.ply"), vts = dir.file("s.vts"), png = dir.file("s.png"),
                     net = dir.file("net.json");
   const std::string plane = dir.write("plane.json", R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]})");
@@ -194,7 +179,7 @@ TEST_CASE("coons surface: bad descriptions exit 2 with one error line naming the
 }
 
 TEST_CASE("coons surface: bad options and unreadable files exit 2", "[cli][surfaces]") {
-  Scratch dir;
+  TempDir dir;
   const std::string spec = surface_data("seed000_ferguson_1.json");
   CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 1");
   CHECK(r.status == 2);

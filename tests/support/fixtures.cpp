@@ -122,6 +122,24 @@ Eigen::VectorXd bernstein_basis_derivative(int k, int r, double t) {
   return low;
 }
 
+TempDir::TempDir() {
+  static int counter = 0;
+  path = std::filesystem::temp_directory_path() /
+         ("coons_test_" + std::to_string(::getpid()) + "_" + std::to_string(counter++));
+  std::filesystem::remove_all(path);
+  std::filesystem::create_directories(path);
+}
+
+TempDir::~TempDir() {
+  std::error_code ec;
+  std::filesystem::remove_all(path, ec);
+}
+
+std::string TempDir::write(const std::string& name, const std::string& text) const {
+  std::ofstream(path / name) << text;
+  return file(name);
+}
+
 CommandResult run_command(const std::string& command) {
   char out_name[] = "/tmp/coons_test_out_XXXXXX", err_name[] = "/tmp/coons_test_err_XXXXXX";
   const int out_fd = mkstemp(out_name), err_fd = mkstemp(err_name);

@@ -2,6 +2,7 @@
 #pragma once
 
 #include <cstdint>
+#include <filesystem>
 #include <string>
 
 #include <Eigen/Core>
@@ -40,6 +41,18 @@ Eigen::RowVector3d bezier_curve(const Eigen::MatrixX3d& P, double t);
 //! d^r/dt^r of the Bernstein basis of degree k at t (#k+1), from the textbook formula
 //! (independent of coons' derivative nets).
 Eigen::VectorXd bernstein_basis_derivative(int k, int r, double t);
+
+//! A fresh folder under the system's temporary directory, removed with everything in it.
+struct TempDir {
+  std::filesystem::path path;
+  TempDir();
+  ~TempDir();
+  TempDir(const TempDir&) = delete;
+  TempDir& operator=(const TempDir&) = delete;
+  [[nodiscard]] std::string file(const std::string& name) const { return (path / name).string(); }
+  //! Writes `text` to the file `name` in the folder and returns its path.
+  std::string write(const std::string& name, const std::string& text) const;
+};
 
 //! Run a shell command; returns the exit status and fills stdout/stderr.
 struct CommandResult {

@@ -1,12 +1,12 @@
 #include "boundary_fit.h"
 
-#include <fstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "coons/curves/bezier_fit.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/surface_io.h"
 
 namespace coons {
@@ -37,14 +37,7 @@ FittedBoundary fit_boundary(const std::vector<Curve>& sides, int m, int n, const
 }
 
 std::optional<std::vector<Curve>> read_boundary_curves(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the file");
-  nlohmann::json doc;
-  try {
-    doc = nlohmann::json::parse(in);
-  } catch (const nlohmann::json::exception&) {
-    throw InputError(path, "", "malformed JSON");
-  }
+  const nlohmann::json doc = read_json_file(path);
   if (!doc.is_object() || !doc.contains("curves")) return std::nullopt;
   const nlohmann::json& c = doc["curves"];
   if (!c.is_object()) throw InputError(path, "curves", "must be an object with bottom, top, left and right");

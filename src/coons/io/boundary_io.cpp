@@ -2,13 +2,12 @@
 
 #include <cmath>
 #include <filesystem>
-#include <fstream>
-#include <sstream>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 
 namespace coons {
 
@@ -119,19 +118,7 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source,
 }
 
 BoundaryFile read_boundary_file(const std::string& path, const BoundaryReadOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(buffer.str());
-  } catch (const json::parse_error& e) {
-    throw InputError(path, "", fmt::format("malformed JSON at byte {}", e.byte));
-  } catch (const json::exception& e) {
-    throw InputError(path, "", fmt::format("unreadable JSON ({})", e.what()));
-  }
-  return parse_boundary(doc, path, options);
+  return parse_boundary(read_json_file(path), path, options);
 }
 
 }  // namespace coons

@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
-#include <fstream>
 #include <set>
 #include <sstream>
 
@@ -11,6 +10,7 @@
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/surfaces/coons_patch.h"
 
 namespace coons {
@@ -280,19 +280,7 @@ SurfaceFile parse_surface(const json& doc, const std::string& source, const Surf
 }
 
 SurfaceFile read_surface_file(const std::string& path, const SurfaceReadOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
-  json doc;
-  try {
-    doc = json::parse(buffer.str());
-  } catch (const json::parse_error& e) {
-    throw InputError(path, "", fmt::format("malformed JSON at byte {}", e.byte));
-  } catch (const json::exception& e) {
-    throw InputError(path, "", fmt::format("unreadable JSON ({})", e.what()));
-  }
-  return parse_surface(doc, path, options);
+  return parse_surface(read_json_file(path), path, options);
 }
 
 }  // namespace coons
