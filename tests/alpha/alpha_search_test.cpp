@@ -198,3 +198,19 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
   const double h = 1e-7, s = 0.3;
   CHECK(f.evaluate(s).derivative == Approx((f.evaluate(s + h).value - f.evaluate(s - h).value) / (2 * h)).epsilon(1e-5));
 }
+
+TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal", "[alpha]") {
+  // α = −1/2 is singular at degree (3, 3); a wide, indefinite range passes through it.
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), "eigen-lu");
+  AlphaSearchOptions options;
+  options.lower = -1;
+  options.upper = 1;
+  const AlphaSearchSummary s = search_mask_parameter(f, options);
+  INFO(s.brief_report());
+  CHECK(s.status == SearchStatus::kSuccess);
+  CHECK_THAT(s.message, Catch::Contains("skipped"));
+  REQUIRE(s.parameter);
+  MaskObjective g(dome, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  CHECK(*s.parameter == Approx(*search_mask_parameter(g).parameter).margin(1e-6));
+}

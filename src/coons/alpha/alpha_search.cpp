@@ -165,25 +165,39 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   const int k = options.scan_points;
   const double step = (options.upper - options.lower) / (k - 1);
   std::vector<MaskObjective::Evaluation> grid;
+  // A point where the solver fails (a singular α outside [−1/4, 1/4]) is a penalty, not an abort:
+  // it counts as +∞ and is reported; only a scan where every point fails is a failure.
+  int failed_points = 0;
+  std::string first_failure;
   for (int i = 0; i < k; ++i) {
     const double p = i + 1 == k ? options.upper : options.lower + i * step;
     grid.push_back(objective.evaluate(p));
     if (!grid.back().ok()) {
-      s.status = SearchStatus::kSolverFailed;
-      s.message = "at " + std::to_string(p) + ": " + grid.back().summary.brief_report();
-      return finish();
+      if (failed_points++ == 0) first_failure = "at " + std::to_string(p) + ": " + grid.back().summary.brief_report();
+      grid.back().value = HUGE_VAL;
     }
     s.scan.emplace_back(p, grid.back().value);
   }
+  if (failed_points == k) {
+    s.status = SearchStatus::kSolverFailed;
+    s.message = "every scan point failed; " + first_failure;
+    return finish();
+  }
   double lo = HUGE_VAL, hi = -HUGE_VAL;
-  int best = 0;
+  int best = -1;
   for (int i = 0; i < k; ++i) {
+    if (!grid[i].ok()) continue;
     lo = std::min(lo, grid[i].value);
     hi = std::max(hi, grid[i].value);
-    if (grid[i].value < grid[best].value) best = i;
+    if (best < 0 || grid[i].value < grid[best].value) best = i;
   }
   for (int i = 1; i + 1 < k; ++i)
-    if (grid[i].value < grid[i - 1].value && grid[i].value <= grid[i + 1].value) ++s.local_minima;
+    if (grid[i].ok() && grid[i - 1].ok() && grid[i + 1].ok() && grid[i].value < grid[i - 1].value &&
+        grid[i].value <= grid[i + 1].value)
+      ++s.local_minima;
+  if (failed_points > 0)
+    s.message = std::to_string(failed_points) + " scan point(s) could not be solved and were skipped (first " +
+                first_failure + ")";
 
   // 2. Flat: the range is at rounding level of the objective's natural scale. Rounding errors of
   //    size ε·diag in the net reach an energy of derivative order k amplified by degree^k, so the
@@ -204,7 +218,8 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
     return finish();
   }
   if (s.local_minima > 1)
-    s.message = "the scan saw " + std::to_string(s.local_minima) + " local minima; the lowest was refined";
+    s.message += std::string(s.message.empty() ? "" : "; ") + "the scan saw " + std::to_string(s.local_minima) +
+                 " local minima; the lowest was refined";
 
   // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards.
   if ((best == 0 && grid[0].derivative >= 0) || (best == k - 1 && grid[k - 1].derivative <= 0)) {
@@ -226,11 +241,12 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   s.ceres_report = summary.BriefReport();
   const double p = centre + half * std::tanh(theta);
   const MaskObjective::Evaluation e = objective.evaluate(p);
-  if (failed || !e.ok()) {
+  if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
     s.status = SearchStatus::kSolverFailed;
     s.message = "solver failed during refinement: " + e.summary.brief_report();
     return finish();
   }
+  if (failed) s.message += std::string(s.message.empty() ? "" : "; ") + "Ceres stepped back from unsolvable trial points";
   s.parameter = p;
   s.value = e.value;
   // A grid point may still be lower if the line search stalled (never report a worse point).
