@@ -21,10 +21,10 @@ MaskObjective::MaskObjective(const Boundary& boundary, Objective objective, Mask
 
 MaskObjective::~MaskObjective() = default;
 
-MaskObjective::Evaluation MaskObjective::evaluate(double p) {
+MaskObjective::Evaluation MaskObjective::evaluate(double p, bool with_derivative) {
   const MaskPoint mp = family_(p);
   std::vector<double> gradient;
-  Evaluation e = evaluate_mask(mp.mask, {mp.derivative}, gradient);
+  Evaluation e = evaluate_mask(mp.mask, with_derivative ? std::vector<Mask9>{mp.derivative} : std::vector<Mask9>{}, gradient);
   e.parameter = p;
   e.derivative = gradient.empty() ? 0.0 : gradient[0];
   return e;
@@ -171,7 +171,7 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   std::string first_failure;
   for (int i = 0; i < k; ++i) {
     const double p = i + 1 == k ? options.upper : options.lower + i * step;
-    grid.push_back(objective.evaluate(p));
+    grid.push_back(objective.evaluate(p, /*with_derivative=*/false));  // values suffice to scan
     if (!grid.back().ok()) {
       if (failed_points++ == 0) first_failure = "at " + std::to_string(p) + ": " + grid.back().summary.brief_report();
       grid.back().value = HUGE_VAL;
@@ -222,6 +222,7 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
                  " local minima; the lowest was refined";
 
   // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards.
+  if (best == 0 || best == k - 1) grid[best] = objective.evaluate(grid[best].parameter);  // its slope decides
   if ((best == 0 && grid[0].derivative >= 0) || (best == k - 1 && grid[k - 1].derivative <= 0)) {
     s.parameter = grid[best].parameter;
     s.value = grid[best].value;

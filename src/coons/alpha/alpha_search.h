@@ -39,7 +39,9 @@ class MaskObjective {
                 const solvers::SolverOptions& options = {});
   ~MaskObjective();
 
-  Evaluation evaluate(double parameter);
+  //! One factorisation; one solve for the value, and one more for the derivative when asked
+  //! (otherwise `derivative` is left 0).
+  Evaluation evaluate(double parameter, bool with_derivative = true);
 
   //! The objective at an explicit mask and its gradient along several weight directions
   //! (one factorisation, 1 + #directions solves). Used by multi-parameter searches.
