@@ -55,7 +55,9 @@ def main():
         elif m := re.match(r"BM_AlphaSweep/([^/]+)/", name):
             sweep[m.group(1)][n] = t
         elif m := re.match(r"BM_SearchAlpha/([^/]+)/", name):
-            search[m.group(1)][n] = (t, b)
+            search[m.group(1) + " (solve per evaluation)"][n] = (t, b)
+        elif m := re.match(r"BM_SearchAlphaSpectral/([^/]+)/", name):
+            search[m.group(1) + " (sine basis)"][n] = (t, b)
         elif m := re.match(r"BM_CholmodOrdering/([^/]+)/", name):
             ordering[m.group(1)][n] = t
 
@@ -142,7 +144,7 @@ def main():
         lines.append("|---|---|---|---|---|---|---|")
         for backend, per_n in sorted(search.items()):
             for n, (t, b) in sorted(per_n.items()):
-                one = solve.get((backend, -0.1), {}).get(n)
+                one = solve.get((backend.split()[0], -0.1), {}).get(n)
                 ratio = f"{t / one[0]:.1f}" if one else "–"
                 lines.append(f"| {backend} | {n} | {t:.3g} | {int(b.get('evaluations', 0))} | {int(b.get('solves', 0))} | "
                              f"{one[0]:.3g} | {ratio} |" if one else f"| {backend} | {n} | {t:.3g} | – | – | – | – |")
@@ -197,8 +199,9 @@ def main():
         row("`auto` / fastest backend", auto_worst, 1.1, "×")
         one = solve.get(("fast", -0.1), {}).get(n)
         row("α sweep of 101 values / one `fast` solve", sweep["fast"][n] / one[0] if one and n in sweep.get("fast", {}) else None, 60, "×")
-        sr = search.get("fast", {}).get(n)
-        row("α search / one `fast` solve", sr[0] / one[0] if sr and one else None, 10, "×")
+        for label in sorted(search):
+            sr = search[label].get(n)
+            row(f"α search, {label.split(' ', 1)[1][1:-1]}, / one `fast` solve", sr[0] / one[0] if sr and one else None, 10, "×")
         chol = ordering and {name: per_n[n] for name, per_n in ordering.items() if n in per_n}
         if chol and ("cholmod", -0.25) in solve and n in solve[("cholmod", -0.25)]:
             best = min(chol.values())

@@ -19,6 +19,11 @@
 #include <vector>
 
 #include "coons/alpha/alpha_search.h"
+#include "coons/config.h"
+#if COONS_HAVE_FFTW
+#include "coons/alpha/spectral_objective.h"
+#endif
+#include "coons/mask/solve_mask_net.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
@@ -231,9 +236,10 @@ void BM_CholmodOrdering(benchmark::State& state, Ordering ordering, int N) {
   state.SetLabel("ordering=" + s.ordering);
 }
 
-// A whole α search (coarse scan + Ceres, discrete thin-plate objective, O(mn) per evaluation),
-// to be read as a multiple of one solve of the same backend at the same N.
-void BM_SearchAlpha(benchmark::State& state, std::string name, int N) {
+// A whole α search (coarse scan + Ceres, discrete thin-plate objective) to be read as a multiple of
+// one solve of the same backend at the same N: `solve` evaluates each α by factorize + solves,
+// `spectral` in the sine basis (then one solve for the optimal net, timed too).
+void BM_SearchAlpha(benchmark::State& state, std::string name, int N, bool spectral) {
   const Boundary b = bench_boundary(N);
   std::string why;
   const Objective objective = *parse_objective("discrete_thin_plate", &why);
@@ -243,18 +249,27 @@ void BM_SearchAlpha(benchmark::State& state, std::string name, int N) {
     const Problem& p = problem(N, -0.1, false);
     make_solver(name)->compute_and_solve(operator_of(p.system, false), p.system.B, X);
   }
+  SolverOptions options;
+  options.compute_residual = false;
   for (auto _ : state) {
-    SolverOptions options;
-    options.compute_residual = false;
-    MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, name, options);
-    s = search_mask_parameter(f);
+    if (spectral) {
+#if COONS_HAVE_FFTW
+      SpectralAlphaSearchObjective f(b, objective);
+      s = search_mask_parameter(f);
+      const MaskSolveResult net = solve_mask_net(b, alpha_mask(s.parameter.value_or(-0.25)), name, options);
+      benchmark::DoNotOptimize(net.net.points.data());
+#endif
+    } else {
+      MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, name, options);
+      s = search_mask_parameter(f);
+    }
     benchmark::DoNotOptimize(s.value);
   }
   set_common_counters(state, N);
   state.counters["evaluations"] = s.evaluations;
-  state.counters["solves"] = s.solves;
+  state.counters["solves"] = s.solves + (spectral ? 1 : 0);
   state.counters["alpha_opt"] = s.parameter.value_or(NAN);
-  state.SetLabel(name + " " + to_string(s.status));
+  state.SetLabel(name + (spectral ? " spectral " : " solve ") + to_string(s.status));
 }
 
 int size_cap(const SolverInfo& info, double alpha) {
@@ -310,8 +325,10 @@ int main(int argc, char** argv) {
       }
       if (info.family == SolverFamily::kStructured && (config.quick || N >= 1023 || N == config.sizes.back()))
         benchmark::RegisterBenchmark(("BM_AlphaSweep/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_AlphaSweep, info.name, N)->UseRealTime();
-      if (info.name == "fast" && N <= 1023)
-        benchmark::RegisterBenchmark(("BM_SearchAlpha/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_SearchAlpha, info.name, N)->UseRealTime();
+      if (info.name == "fast" && N <= 1023) {
+        benchmark::RegisterBenchmark(("BM_SearchAlpha/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_SearchAlpha, info.name, N, false)->UseRealTime();
+        benchmark::RegisterBenchmark(("BM_SearchAlphaSpectral/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_SearchAlpha, info.name, N, true)->UseRealTime();
+      }
     }
     if (find_solver("cholmod") && wanted("cholmod") && N <= 1023)
       for (Ordering o : {Ordering::kAmd, Ordering::kMetis, Ordering::kNestedDissection, Ordering::kCholmodDefault})

@@ -15,6 +15,9 @@
 #include <unistd.h>
 
 #include "coons/alpha/alpha_search.h"
+#if COONS_HAVE_FFTW
+#include "coons/alpha/spectral_objective.h"
+#endif
 #include "coons/config.h"
 #include "coons/curves/boundary_fit.h"
 #include "coons/io/input_error.h"
@@ -424,8 +427,23 @@ int cmd_search_alpha(const std::string& path, const NetRequest& net, const Searc
     std::cout << out.dump(2) << '\n';
     return g.status == SearchStatus::kSolverFailed ? kExitSolverFailed : kExitOk;
   }
-  const AlphaSearchSummary s = search_mask_parameter(objective, setup.options);
-  std::cout << search_report(b, r, setup, s, setup.solver).dump(2) << '\n';
+  // A discrete objective over the α family is evaluated in the sine basis when the grid's structured
+  // solvers are built and chosen: no solve per evaluation (spectral_objective.h).
+  const solvers::SolverInfo* info = solvers::find_solver(setup.solver);
+  const bool spectral = COONS_HAVE_FFTW && r.parameter == "alpha" && setup.objective.energy.empty() &&
+                        setup.objective.target_weight == 0 && !setup.objective.discrete.empty() && b.m >= 2 &&
+                        b.n >= 2 && info && info->family == solvers::SolverFamily::kStructured;
+  AlphaSearchSummary s;
+#if COONS_HAVE_FFTW
+  if (spectral) {
+    SpectralAlphaSearchObjective sine_basis(b, setup.objective);
+    s = search_mask_parameter(sine_basis, setup.options);
+  }
+#endif
+  if (!spectral) s = search_mask_parameter(objective, setup.options);
+  json report = search_report(b, r, setup, s, setup.solver);
+  report["evaluator"] = spectral ? "sine basis (no solves)" : "factorize and solve";
+  std::cout << report.dump(2) << '\n';
   return s.status == SearchStatus::kSolverFailed ? kExitSolverFailed : kExitOk;
 }
 

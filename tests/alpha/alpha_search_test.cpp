@@ -2,6 +2,8 @@
 
 #include <boost/math/tools/minima.hpp>
 
+#include "coons/config.h"
+
 #include "coons/alpha/alpha_search.h"
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
@@ -214,3 +216,47 @@ TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal"
   MaskObjective g(dome, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
   CHECK(*s.parameter == Approx(*search_mask_parameter(g).parameter).margin(1e-6));
 }
+
+#if COONS_HAVE_FFTW
+#include "coons/alpha/spectral_objective.h"
+
+TEST_CASE("SpectralAlphaObjective: equals the discrete energy of the solved net, with exact derivatives", "[alpha]") {
+  for (auto [m, n] : {std::pair{4, 4}, {6, 9}, {11, 5}}) {
+    const Boundary b = make_smooth_boundary(m, n, 21);
+    for (const char* name : {"discrete_thin_plate", "discrete_twist", "discrete_dirichlet", "discrete_thin_plate+0.3*discrete_dirichlet"}) {
+      const Objective o = objective_named(name);
+      const SpectralAlphaObjective spectral(b, o.discrete);
+      MaskObjective direct(b, o, alpha_only(), "eigen-ldlt");
+      for (double alpha : {-0.25, -0.13, 0.0, 0.2}) {
+        const auto s = spectral.evaluate(alpha);
+        const auto d = direct.evaluate(alpha);
+        INFO(name << " at " << m << "x" << n << ", alpha = " << alpha);
+        REQUIRE(s.ok);
+        CHECK(s.value == Approx(d.value).epsilon(1e-9));  // cancellation between E₀ and the modes near α = −1/4
+        CHECK(s.derivative == Approx(d.derivative).epsilon(1e-7).margin(1e-8));
+        const double h = 1e-5;
+        const double fd2 = (spectral.evaluate(alpha + h).derivative - spectral.evaluate(alpha - h).derivative) / (2 * h);
+        CHECK(s.second_derivative == Approx(fd2).epsilon(1e-5).margin(1e-8));
+      }
+    }
+  }
+}
+
+TEST_CASE("search_mask_parameter: the spectral search finds the optimum of the solve-based search", "[alpha]") {
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const Boundary b = make_smooth_boundary(5 + int(seed), 4 + int(2 * seed % 7), seed);
+    for (const char* name : {"discrete_thin_plate", "discrete_thin_plate+0.5*discrete_dirichlet"}) {
+      MaskObjective direct(b, objective_named(name), alpha_only(), "eigen-ldlt");
+      SpectralAlphaSearchObjective spectral(b, objective_named(name));
+      const AlphaSearchSummary d = search_mask_parameter(direct), s = search_mask_parameter(spectral);
+      INFO("seed " << seed << ", " << name << ": " << d.brief_report() << " / " << s.brief_report());
+      CHECK(s.status == d.status);
+      CHECK(s.at_bound == d.at_bound);
+      REQUIRE(s.parameter);
+      REQUIRE(d.parameter);
+      CHECK(*s.parameter == Approx(*d.parameter).margin(1e-6));
+      CHECK(s.solves == 0);
+    }
+  }
+}
+#endif

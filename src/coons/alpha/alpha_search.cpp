@@ -6,7 +6,11 @@
 
 #include <ceres/ceres.h>
 
+#include "coons/config.h"
 #include "coons/mask/assemble_mask_system.h"
+#if COONS_HAVE_FFTW
+#include "coons/alpha/spectral_objective.h"
+#endif
 #include "solvers/registry.h"
 
 namespace coons {
@@ -126,13 +130,14 @@ ceres::GradientProblemSolver::Options ceres_options(const AlphaSearchOptions& op
 }
 
 // f(p(θ)) with p = centre + half·tanh θ keeps Ceres's unconstrained line search inside the bracket.
+template <class Obj>
 class BracketedObjective : public ceres::FirstOrderFunction {
  public:
-  BracketedObjective(MaskObjective& objective, double centre, double half, bool& failed)
+  BracketedObjective(Obj& objective, double centre, double half, bool& failed)
       : objective_(objective), centre_(centre), half_(half), failed_(failed) {}
   bool Evaluate(const double* theta, double* cost, double* gradient) const override {
     const double t = std::tanh(theta[0]);
-    const MaskObjective::Evaluation e = objective_.evaluate(centre_ + half_ * t);
+    const auto e = objective_.evaluate(centre_ + half_ * t);
     if (!e.ok()) {
       failed_ = true;
       return false;
@@ -144,14 +149,18 @@ class BracketedObjective : public ceres::FirstOrderFunction {
   int NumParameters() const override { return 1; }
 
  private:
-  MaskObjective& objective_;
+  Obj& objective_;
   double centre_, half_;
   bool& failed_;
 };
 
 }  // namespace
 
-AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options) {
+// The search itself, for any objective with evaluate(p, with_derivative), boundary(), objective(),
+// evaluations() and solves() (MaskObjective, SpectralAlphaSearchObjective).
+namespace {
+template <class Obj>
+AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   AlphaSearchSummary s;
   auto finish = [&]() -> AlphaSearchSummary& {
@@ -164,7 +173,7 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   // 1. Coarse scan.
   const int k = options.scan_points;
   const double step = (options.upper - options.lower) / (k - 1);
-  std::vector<MaskObjective::Evaluation> grid;
+  std::vector<typename Obj::Evaluation> grid;
   // A point where the solver fails (a singular α outside [−1/4, 1/4]) is a penalty, not an abort:
   // it counts as +∞ and is reported; only a scan where every point fails is a failure.
   int failed_points = 0;
@@ -236,12 +245,12 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
   double theta = std::atanh(std::clamp((grid[best].parameter - centre) / half, -0.9, 0.9));
   bool failed = false;
-  ceres::GradientProblem problem(new BracketedObjective(objective, centre, half, failed));
+  ceres::GradientProblem problem(new BracketedObjective<Obj>(objective, centre, half, failed));
   ceres::GradientProblemSolver::Summary summary;
   ceres::Solve(ceres_options(options), problem, &theta, &summary);
   s.ceres_report = summary.BriefReport();
   const double p = centre + half * std::tanh(theta);
-  const MaskObjective::Evaluation e = objective.evaluate(p);
+  const auto e = objective.evaluate(p);
   if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
     s.status = SearchStatus::kSolverFailed;
     s.message = "solver failed during refinement: " + e.summary.brief_report();
@@ -263,6 +272,17 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   }
   return finish();
 }
+}  // namespace
+
+AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options) {
+  return search_impl(objective, options);
+}
+
+#if COONS_HAVE_FFTW
+AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective, const AlphaSearchOptions& options) {
+  return search_impl(objective, options);
+}
+#endif
 
 }  // namespace coons
 

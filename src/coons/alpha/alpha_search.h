@@ -15,6 +15,7 @@
 #include <vector>
 
 #include "coons/alpha/objective.h"
+#include "coons/config.h"
 #include "coons/mask/mask_families.h"
 #include "coons/net/control_net.h"
 #include "solvers/linear_solver.h"
@@ -91,6 +92,13 @@ struct AlphaSearchSummary {
 };
 
 AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options = {});
+
+#if COONS_HAVE_FFTW
+class SpectralAlphaSearchObjective;
+//! The same search on the α family with a discrete objective, evaluated in the sine basis (no
+//! solves; see spectral_objective.h).
+AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective, const AlphaSearchOptions& options = {});
+#endif
 
 //! The two-parameter symmetric family (α, γ): e_i = 1/4 − α + γ, e_j = 1/4 − α − γ, d = α, i.e.
 //! every affine-invariant symmetric 3×3 mask (4α + 2β_i + 2β_j = 1). The operator is positive

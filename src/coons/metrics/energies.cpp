@@ -145,6 +145,55 @@ double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEn
   return e;
 }
 
+ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind) {
+  // E = Σ (D b)² over linear differences D, so ∂E/∂b = 2 Dᵀ(D b): scatter each difference back.
+  using Grid = Eigen::Map<Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+  const Eigen::Index m = net.m, n = net.n;
+  ControlNet g(net.m, net.n);
+  for (int c = 0; c < 3; ++c) {
+    const GridMap b = grid(net, c);
+    Grid out(g.points.col(c).data(), m + 1, n + 1);
+    auto add_twist = [&](double weight) {
+      const Eigen::ArrayXXd r = 2 * weight * (b.bottomRightCorner(m, n) - b.bottomLeftCorner(m, n) - b.topRightCorner(m, n) + b.topLeftCorner(m, n));
+      out.bottomRightCorner(m, n) += r;
+      out.bottomLeftCorner(m, n) -= r;
+      out.topRightCorner(m, n) -= r;
+      out.topLeftCorner(m, n) += r;
+    };
+    switch (kind) {
+      case DiscreteEnergy::kTwist:
+        add_twist(1);
+        break;
+      case DiscreteEnergy::kDirichlet: {
+        const Eigen::ArrayXXd di = 2 * (b.bottomRows(m) - b.topRows(m));
+        out.bottomRows(m) += di;
+        out.topRows(m) -= di;
+        const Eigen::ArrayXXd dj = 2 * (b.rightCols(n) - b.leftCols(n));
+        out.rightCols(n) += dj;
+        out.leftCols(n) -= dj;
+        break;
+      }
+      case DiscreteEnergy::kThinPlate: {
+        if (m >= 2) {
+          const Eigen::ArrayXXd dii = 2 * (b.bottomRows(m - 1) - 2 * b.middleRows(1, m - 1) + b.topRows(m - 1));
+          out.bottomRows(m - 1) += dii;
+          out.middleRows(1, m - 1) -= 2 * dii;
+          out.topRows(m - 1) += dii;
+        }
+        if (n >= 2) {
+          const Eigen::ArrayXXd djj = 2 * (b.rightCols(n - 1) - 2 * b.middleCols(1, n - 1) + b.leftCols(n - 1));
+          out.rightCols(n - 1) += djj;
+          out.middleCols(1, n - 1) -= 2 * djj;
+          out.leftCols(n - 1) += djj;
+        }
+        add_twist(2);
+        break;
+      }
+    }
+  }
+  return g;
+}
+
 double discrete_thin_plate_energy(const ControlNet& net) {
   return discrete_energy_form(net, net, DiscreteEnergy::kThinPlate);
 }

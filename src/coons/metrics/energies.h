@@ -51,6 +51,9 @@ double discrete_thin_plate_energy(const ControlNet& net);
 enum class DiscreteEnergy { kTwist, kDirichlet, kThinPlate };
 double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEnergy kind);
 
+//! ∂E/∂b of a discrete energy at `net`: a net of the same degree (boundary entries included).
+ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind);
+
 //! max over interior points and x, y, z of |b_ij − mask(b)_ij|; 0 when there is no interior.
 double mask_residual(const ControlNet& net, const Mask9& mask);
 
