@@ -1,6 +1,8 @@
 #include "alpha_search.h"
 
 #include <chrono>
+#include <type_traits>
+#include <utility>
 #include <cmath>
 #include <sstream>
 
@@ -159,6 +161,36 @@ class BracketedObjective : public ceres::FirstOrderFunction {
 // The search itself, for any objective with evaluate(p, with_derivative), boundary(), objective(),
 // evaluations() and solves() (MaskObjective, SpectralAlphaSearchObjective).
 namespace {
+
+// Objectives that know f'' (the sine-basis one) are refined by Ceres's bounded trust region on the
+// stationarity condition f'(α) = 0 with Jacobian f''(α): Newton steps, a handful of evaluations.
+template <class T, class = void>
+struct HasSecondDerivative : std::false_type {};
+template <class T>
+struct HasSecondDerivative<T, std::void_t<decltype(std::declval<typename T::Evaluation>().second_derivative)>>
+    : std::true_type {};
+
+template <class Obj>
+class Stationarity : public ceres::SizedCostFunction<1, 1> {
+ public:
+  Stationarity(Obj& objective, double scale, bool& failed) : objective_(objective), scale_(scale), failed_(failed) {}
+  bool Evaluate(double const* const* p, double* residual, double** jacobian) const override {
+    const auto e = objective_.evaluate(p[0][0]);
+    if (!e.ok()) {
+      failed_ = true;
+      return false;
+    }
+    residual[0] = e.derivative / scale_;
+    if (jacobian && jacobian[0]) jacobian[0][0] = e.second_derivative / scale_;
+    return true;
+  }
+
+ private:
+  Obj& objective_;
+  double scale_;
+  bool& failed_;
+};
+
 template <class Obj>
 AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
@@ -245,11 +277,56 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
   double theta = std::atanh(std::clamp((grid[best].parameter - centre) / half, -0.9, 0.9));
   bool failed = false;
-  ceres::GradientProblem problem(new BracketedObjective<Obj>(objective, centre, half, failed));
-  ceres::GradientProblemSolver::Summary summary;
-  ceres::Solve(ceres_options(options), problem, &theta, &summary);
-  s.ceres_report = summary.BriefReport();
-  const double p = centre + half * std::tanh(theta);
+  double p = grid[best].parameter;
+  bool no_convergence = false;
+  std::string ceres_message;
+  bool refined = false;
+  if constexpr (HasSecondDerivative<Obj>::value) {
+    // Newton on f' = 0 needs a start where f is convex and a bracket where f' changes sign:
+    // bisect on the sign of f' until the midpoint is convex, then let Ceres take Newton steps.
+    double lo = a, hi = b;
+    const auto ea = objective.evaluate(lo), eb = objective.evaluate(hi);
+    if (ea.ok() && eb.ok() && ea.derivative < 0 && eb.derivative > 0) {
+      auto em = objective.evaluate(0.5 * (lo + hi));
+      for (int it = 0; it < 40 && em.ok() && !(em.second_derivative > 0); ++it) {
+        (em.derivative > 0 ? hi : lo) = em.parameter;
+        em = objective.evaluate(0.5 * (lo + hi));
+      }
+      if (em.ok() && em.second_derivative > 0) {
+        p = em.parameter;
+        const double scale = std::max(em.second_derivative * (hi - lo), 1e-300);
+        ceres::Problem problem;
+        problem.AddResidualBlock(new Stationarity<Obj>(objective, scale, failed), nullptr, &p);
+        problem.SetParameterLowerBound(&p, 0, lo);
+        problem.SetParameterUpperBound(&p, 0, hi);
+        ceres::Solver::Options o;
+        o.linear_solver_type = ceres::DENSE_QR;
+        o.max_num_iterations = options.max_iterations;
+        o.parameter_tolerance = options.parameter_tolerance;
+        o.function_tolerance = 1e-16;
+        o.gradient_tolerance = 1e-16;
+        o.logging_type = ceres::SILENT;
+        ceres::Solver::Summary summary;
+        ceres::Solve(o, &problem, &summary);
+        s.ceres_report = summary.BriefReport();
+        no_convergence = summary.termination_type == ceres::NO_CONVERGENCE;
+        ceres_message = summary.message;
+        const auto ep = objective.evaluate(p);  // a minimum: f' ≈ 0 and f'' > 0
+        refined = ep.ok() && ep.second_derivative > 0 &&
+                  std::abs(ep.derivative) <= 1e-8 * std::max(std::abs(ea.derivative), std::abs(eb.derivative));
+      }
+    }
+  }
+  if (!refined) {
+    p = grid[best].parameter;
+    ceres::GradientProblem problem(new BracketedObjective<Obj>(objective, centre, half, failed));
+    ceres::GradientProblemSolver::Summary summary;
+    ceres::Solve(ceres_options(options), problem, &theta, &summary);
+    s.ceres_report = summary.BriefReport();
+    no_convergence = summary.termination_type == ceres::NO_CONVERGENCE;
+    ceres_message = summary.message;
+    p = centre + half * std::tanh(theta);
+  }
   const auto e = objective.evaluate(p);
   if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
     s.status = SearchStatus::kSolverFailed;
@@ -266,9 +343,9 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   }
   const double edge_tolerance = 1e-7 * (options.upper - options.lower);
   s.at_bound = std::abs(*s.parameter - options.lower) <= edge_tolerance || std::abs(*s.parameter - options.upper) <= edge_tolerance;
-  if (summary.termination_type == ceres::NO_CONVERGENCE) {
+  if (no_convergence) {
     s.status = SearchStatus::kNotConverged;
-    s.message = "Ceres: " + summary.message;
+    s.message = "Ceres: " + ceres_message;
   }
   return finish();
 }

@@ -1,10 +1,11 @@
 // The α family with a discrete objective (Σ weight · discrete twist / Dirichlet / thin-plate
 // energy), evaluated in the sine basis that diagonalises every mask of the family: after one
 // 2-D transform of the boundary data, f(α), f'(α) and f''(α) cost one pass over the modes and no
-// solve at all. With N̂ = (α K̂ + β Ê)/λ(α) per mode (K, E: the diagonal and edge sums of the frame,
-// λ = 1 − 2β(x+y) − 4αxy), and the energy E(N) = NᵀQN + 2cᵀN + E₀ with Q diagonal in that basis
-// (symbols (2−2x)(2−2y), (2−2x)+(2−2y), (2−2x)² + 2(2−2x)(2−2y) + (2−2y)²):
-//   f(α) = E₀ + Σ_pq [ q_pq ‖N̂_pq‖² + 2 ĉ_pq·N̂_pq ].
+// solve at all. Measured from the discrete Coons net N_C, N(α) = N_C + δ with δ̂ = (α + 1/4)·R̂/λ(α)
+// per mode (R: the 5-point Laplacian of N_C, λ = 1 − 2β(x+y) − 4αxy), and the energy
+// E(N_C + δ) = E(N_C) + 2cᵀδ + δᵀQδ with Q diagonal in that basis (symbols (2−2x)(2−2y),
+// (2−2x)+(2−2y), (2−2x)² + 2(2−2x)(2−2y) + (2−2y)²):
+//   f(α) = E(N_C) + Σ_pq [ q_pq ‖δ̂_pq‖² + 2 ĉ_pq·δ̂_pq ].
 // This is what makes an α search on a 1023×1023 net cost a few solves instead of dozens.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the eigenvectors of the
 // mask family); R. W. Hockney, J. ACM 12 (1965) (sine-transform solvers).
@@ -42,14 +43,15 @@ class SpectralAlphaObjective {
   double e0_ = 0;
   std::vector<std::pair<DiscreteEnergy, double>> terms_;
   Eigen::VectorXd x_, y_;                  // cos(pπ/(rows+1)), cos(qπ/(cols+1))
-  Eigen::ArrayXd kk_, ke_, ee_, ck_, ce_;  // per mode, summed over x, y, z
+  Eigen::ArrayXd rr_, cr_;                 // per mode, summed over x, y, z: ‖R̂‖², ĉ·R̂
+  double sym_a2_ = 0, sym_ab_ = 0, sym_a1_ = 0;  // the energy's symbol (see the constructor)
 };
 
 //! SpectralAlphaObjective with the interface search_mask_parameter expects (and no net).
 class SpectralAlphaSearchObjective {
  public:
   struct Evaluation {
-    double parameter = 0, value = 0, derivative = 0;
+    double parameter = 0, value = 0, derivative = 0, second_derivative = 0;
     solvers::SolveSummary summary;  //!< status singular when λ vanishes at this α
     [[nodiscard]] bool ok() const { return summary.ok(); }
   };

@@ -147,14 +147,15 @@ double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEn
 
 ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind) {
   // E = Σ (D b)² over linear differences D, so ∂E/∂b = 2 Dᵀ(D b): scatter each difference back.
-  using Grid = Eigen::Map<Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
+  using RowArray = Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;  // as the grids
+  using Grid = Eigen::Map<RowArray>;
   const Eigen::Index m = net.m, n = net.n;
   ControlNet g(net.m, net.n);
   for (int c = 0; c < 3; ++c) {
     const GridMap b = grid(net, c);
     Grid out(g.points.col(c).data(), m + 1, n + 1);
     auto add_twist = [&](double weight) {
-      const Eigen::ArrayXXd r = 2 * weight * (b.bottomRightCorner(m, n) - b.bottomLeftCorner(m, n) - b.topRightCorner(m, n) + b.topLeftCorner(m, n));
+      const RowArray r = 2 * weight * (b.bottomRightCorner(m, n) - b.bottomLeftCorner(m, n) - b.topRightCorner(m, n) + b.topLeftCorner(m, n));
       out.bottomRightCorner(m, n) += r;
       out.bottomLeftCorner(m, n) -= r;
       out.topRightCorner(m, n) -= r;
@@ -165,23 +166,23 @@ ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind) 
         add_twist(1);
         break;
       case DiscreteEnergy::kDirichlet: {
-        const Eigen::ArrayXXd di = 2 * (b.bottomRows(m) - b.topRows(m));
+        const RowArray di = 2 * (b.bottomRows(m) - b.topRows(m));
         out.bottomRows(m) += di;
         out.topRows(m) -= di;
-        const Eigen::ArrayXXd dj = 2 * (b.rightCols(n) - b.leftCols(n));
+        const RowArray dj = 2 * (b.rightCols(n) - b.leftCols(n));
         out.rightCols(n) += dj;
         out.leftCols(n) -= dj;
         break;
       }
       case DiscreteEnergy::kThinPlate: {
         if (m >= 2) {
-          const Eigen::ArrayXXd dii = 2 * (b.bottomRows(m - 1) - 2 * b.middleRows(1, m - 1) + b.topRows(m - 1));
+          const RowArray dii = 2 * (b.bottomRows(m - 1) - 2 * b.middleRows(1, m - 1) + b.topRows(m - 1));
           out.bottomRows(m - 1) += dii;
           out.middleRows(1, m - 1) -= 2 * dii;
           out.topRows(m - 1) += dii;
         }
         if (n >= 2) {
-          const Eigen::ArrayXXd djj = 2 * (b.rightCols(n - 1) - 2 * b.middleCols(1, n - 1) + b.leftCols(n - 1));
+          const RowArray djj = 2 * (b.rightCols(n - 1) - 2 * b.middleCols(1, n - 1) + b.leftCols(n - 1));
           out.rightCols(n - 1) += djj;
           out.middleCols(1, n - 1) -= 2 * djj;
           out.leftCols(n - 1) += djj;
