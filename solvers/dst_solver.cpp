@@ -15,6 +15,7 @@ namespace coons::solvers {
 namespace {
 
 using detail::AlignedBuffer;
+using detail::structured_grid;
 
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
@@ -67,16 +68,10 @@ class DstSolver : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.stencil) {
-      summary.message = "needs the grid stencil";
-      return SolveStatus::kNotApplicable;
-    }
-    R_ = op.stencil->rows;
-    C_ = op.stencil->cols;
-    if (R_ < 1 || C_ < 1) {
-      summary.message = "empty grid";
-      return SolveStatus::kNotApplicable;
-    }
+    const GridStencil* grid = structured_grid(op, summary);
+    if (!grid) return SolveStatus::kNotApplicable;
+    R_ = grid->rows;
+    C_ = grid->cols;
     const std::size_t n = std::size_t(R_) * std::size_t(C_);
     grid_ = AlignedBuffer(n);
     row_ = AlignedBuffer(std::size_t(C_));
@@ -99,11 +94,9 @@ class DstSolver : public LinearSolver {
   }
 
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.stencil) {
-      summary.message = "needs the grid stencil";
-      return SolveStatus::kNotApplicable;
-    }
-    const GridStencil& s = *op.stencil;
+    const GridStencil* grid = structured_grid(op, summary);
+    if (!grid) return SolveStatus::kNotApplicable;
+    const GridStencil& s = *grid;
     std::vector<double> x(static_cast<std::size_t>(R_)), y(static_cast<std::size_t>(C_));
     for (int p = 0; p < R_; ++p) x[std::size_t(p)] = std::cos(M_PI * (p + 1) / (R_ + 1));
     for (int q = 0; q < C_; ++q) y[std::size_t(q)] = std::cos(M_PI * (q + 1) / (C_ + 1));

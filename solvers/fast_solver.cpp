@@ -32,6 +32,7 @@ namespace coons::solvers {
 namespace {
 
 using detail::AlignedBuffer;
+using detail::structured_grid;
 using detail::SineTransform;
 using detail::Tridiagonal;
 
@@ -241,16 +242,10 @@ class FastSolver : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.stencil) {
-      summary.message = "needs the grid stencil";
-      return SolveStatus::kNotApplicable;
-    }
-    R_ = op.stencil->rows;
-    C_ = op.stencil->cols;
-    if (R_ < 1 || C_ < 1) {
-      summary.message = "empty grid";
-      return SolveStatus::kNotApplicable;
-    }
+    const GridStencil* grid = structured_grid(op, summary);
+    if (!grid) return SolveStatus::kNotApplicable;
+    R_ = grid->rows;
+    C_ = grid->cols;
     extra_ = extra_columns(C_);
     L_ = C_ + extra_;
     const std::size_t L = std::size_t(L_);
@@ -285,11 +280,9 @@ class FastSolver : public LinearSolver {
   }
 
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.stencil) {
-      summary.message = "needs the grid stencil";
-      return SolveStatus::kNotApplicable;
-    }
-    const GridStencil& s = *op.stencil;
+    const GridStencil* grid = structured_grid(op, summary);
+    if (!grid) return SolveStatus::kNotApplicable;
+    const GridStencil& s = *grid;
     if (is_kronecker(s) && factor_kronecker(s)) {
       path_ = Path::kKronecker;
       return SolveStatus::kSuccess;

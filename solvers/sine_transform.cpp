@@ -233,4 +233,16 @@ void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
   }
 }
 
+const GridStencil* structured_grid(const LinearOperator& op, SolveSummary& summary) {
+  if (!op.stencil) {
+    summary.message = "needs the grid stencil";
+    return nullptr;
+  }
+  if (op.stencil->rows < 1 || op.stencil->cols < 1) {
+    summary.message = "empty grid";
+    return nullptr;
+  }
+  return &*op.stencil;
+}
+
 }  // namespace coons::solvers::detail

@@ -94,6 +94,10 @@ struct Tridiagonal {
   [[nodiscard]] int size() const { return int(inv_pivot.size()); }
 };
 
+//! The grid stencil a structured solver works from, or nullptr with the reason in the summary
+//! (the operator has no stencil, or the grid is empty): the check both structured solvers need.
+const GridStencil* structured_grid(const LinearOperator& op, SolveSummary& summary);
+
 //! Relative threshold below which a pivot of an indefinite tridiagonal matrix counts as unsafe.
 constexpr double kUnsafePivot = 1e-4;
 //! Relative threshold below which any pivot counts as zero.
