@@ -23,4 +23,23 @@ Eigen::MatrixXd sine_transform_2d(const Eigen::MatrixXd& X, int rows, int cols) 
   return Y;
 }
 
+Eigen::MatrixXd sine_transform_1d(const Eigen::MatrixXd& X) {
+  Eigen::MatrixXd Y(X.rows(), X.cols());
+  const int n = int(X.rows());
+  if (n == 0 || X.cols() == 0) return Y;
+  // FFTW's RODFT00 computes 2·Σ x sin; the orthonormal scale is 1/√(2(n+1)). One plan for all
+  // columns (they are contiguous in Eigen's column-major storage).
+  const double scale = 1.0 / std::sqrt(2.0 * (n + 1));
+  double* buffer = fftw_alloc_real(size_t(n) * size_t(X.cols()));
+  const fftw_r2r_kind kind = FFTW_RODFT00;
+  fftw_plan plan = fftw_plan_many_r2r(1, &n, int(X.cols()), buffer, nullptr, 1, n, buffer, nullptr, 1, n, &kind,
+                                      FFTW_ESTIMATE);
+  Eigen::Map<Eigen::MatrixXd>(buffer, n, X.cols()) = X;
+  fftw_execute(plan);
+  Y = scale * Eigen::Map<const Eigen::MatrixXd>(buffer, n, X.cols());
+  fftw_destroy_plan(plan);
+  fftw_free(buffer);
+  return Y;
+}
+
 }  // namespace coons::solvers

@@ -13,4 +13,8 @@ namespace coons::solvers {
 //! Y = Ŝ X column by column, X and Y #rows·cols by k (row-major grids), Ŝ orthonormal DST-I.
 Eigen::MatrixXd sine_transform_2d(const Eigen::MatrixXd& X, int rows, int cols);
 
+//! Y = S X, each column of X (length n) by the orthonormal 1-D DST-I; the 2-D transform of a
+//! separable grid u ⊗ v is (S u) ⊗ (S v), which is what makes rank-structured data cheap.
+Eigen::MatrixXd sine_transform_1d(const Eigen::MatrixXd& X);
+
 }  // namespace coons::solvers

@@ -14,6 +14,7 @@
 #include <Eigen/Dense>
 #include <fftw3.h>
 
+#include "solvers/sine_basis.h"
 #include "solvers/sine_transform.h"
 #include "solvers/structured_solvers.h"
 
@@ -117,6 +118,24 @@ TEST_CASE("SineTransform: equals half of FFTW's RODFT00 and inverts itself", "[s
     for (int k = 0; k < n; ++k) CHECK(back[std::size_t(k)] == Approx(f[std::size_t(k)]).margin(1e-14 * n));
     S.apply(f.data(), f.data());  // in place
     for (int k = 0; k < n; ++k) CHECK(f[std::size_t(k)] == F[std::size_t(k)]);
+  }
+}
+
+TEST_CASE("sine_transform_1d: orthonormal, and the 2-D transform of u ⊗ v is û ⊗ v̂", "[solvers]") {
+  std::mt19937 rng(5);
+  std::uniform_real_distribution<double> r(-1, 1);
+  for (auto [rows, cols] : {std::pair{1, 1}, {3, 7}, {16, 9}, {31, 40}}) {
+    INFO(rows << "x" << cols);
+    const Eigen::VectorXd u = Eigen::VectorXd::NullaryExpr(rows, [&] { return r(rng); });
+    const Eigen::VectorXd v = Eigen::VectorXd::NullaryExpr(cols, [&] { return r(rng); });
+    const Eigen::VectorXd uh = sine_transform_1d(u), vh = sine_transform_1d(v);
+    CHECK(uh.norm() == Approx(u.norm()).epsilon(1e-13));               // orthonormal
+    CHECK((sine_transform_1d(uh) - u).norm() <= 1e-13 * u.norm());     // its own inverse
+    Eigen::MatrixXd grid(Eigen::Index(rows) * cols, 1);                // u ⊗ v, row-major
+    for (int i = 0; i < rows; ++i) grid.block(Eigen::Index(i) * cols, 0, cols, 1) = u(i) * v;
+    const Eigen::MatrixXd g = sine_transform_2d(grid, rows, cols);
+    for (int p = 0; p < rows; ++p)
+      for (int q = 0; q < cols; ++q) CHECK(g(Eigen::Index(p) * cols + q, 0) == Approx(uh(p) * vh(q)).margin(1e-13));
   }
 }
 
