@@ -148,3 +148,26 @@ TEST_CASE("discrete energies: a blend w*T_d + (1-w)*D_d is minimised by alpha = 
     }
   }
 }
+
+TEST_CASE("difference_terms: sum to discrete_energy_form", "[metrics]") {
+  for (auto [m, n] : {std::pair{1, 1}, {2, 5}, {6, 4}, {9, 9}}) {
+    const ControlNet X = make_random_net(m, n, 3), Y = make_random_net(m, n, 4);
+    for (DiscreteEnergy kind : {DiscreteEnergy::kTwist, DiscreteEnergy::kDirichlet, DiscreteEnergy::kThinPlate}) {
+      double e = 0;  // Σ w Σ (Δ_i^a Δ_j^b X)·(Δ_i^a Δ_j^b Y), by loops over the whole grid
+      for (const DifferenceTerm& t : difference_terms(kind))
+        for (int i = 0; i + t.i_order <= m; ++i)
+          for (int j = 0; j + t.j_order <= n; ++j) {
+            auto difference = [&](const ControlNet& N) {
+              static const double c[3][3] = {{1, 0, 0}, {-1, 1, 0}, {1, -2, 1}};  // Δ^0, Δ^1, Δ^2
+              Eigen::RowVector3d d = Eigen::RowVector3d::Zero();
+              for (int a = 0; a <= t.i_order; ++a)
+                for (int b = 0; b <= t.j_order; ++b) d += c[t.i_order][a] * c[t.j_order][b] * N.at(i + a, j + b);
+              return d;
+            };
+            e += t.weight * difference(X).dot(difference(Y));
+          }
+      INFO(m << "x" << n << " kind " << int(kind));
+      CHECK(e == Approx(discrete_energy_form(X, Y, kind)).epsilon(1e-12).margin(1e-12));
+    }
+  }
+}

@@ -145,6 +145,15 @@ double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEn
   return e;
 }
 
+std::vector<DifferenceTerm> difference_terms(DiscreteEnergy kind) {
+  switch (kind) {
+    case DiscreteEnergy::kTwist: return {{1, 1, 1}};
+    case DiscreteEnergy::kDirichlet: return {{1, 0, 1}, {0, 1, 1}};
+    case DiscreteEnergy::kThinPlate: return {{2, 0, 1}, {1, 1, 2}, {0, 2, 1}};
+  }
+  return {};
+}
+
 ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind) {
   // E = Σ (D b)² over linear differences D, so ∂E/∂b = 2 Dᵀ(D b): scatter each difference back.
   using RowArray = Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;  // as the grids

@@ -51,6 +51,15 @@ double discrete_thin_plate_energy(const ControlNet& net);
 enum class DiscreteEnergy { kTwist, kDirichlet, kThinPlate };
 double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEnergy kind);
 
+//! The same energies as Σ weight·‖Δ_i^a Δ_j^b b‖² over every whole-grid difference of orders
+//! (a, b) ≤ 2 (thin plate: (2,0) + 2·(1,1) + (0,2)). Their Hessians are Kronecker products, which
+//! the sine-basis and low-rank evaluations of the α search build on.
+struct DifferenceTerm {
+  int i_order = 0, j_order = 0;
+  double weight = 1;
+};
+std::vector<DifferenceTerm> difference_terms(DiscreteEnergy kind);
+
 //! ∂E/∂b of a discrete energy at `net`: a net of the same degree (boundary entries included).
 ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind);
 
