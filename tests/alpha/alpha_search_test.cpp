@@ -221,7 +221,7 @@ TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal"
 #include "coons/alpha/spectral_objective.h"
 
 TEST_CASE("SpectralAlphaObjective: equals the discrete energy of the solved net, with exact derivatives", "[alpha]") {
-  for (auto [m, n] : {std::pair{4, 4}, {6, 9}, {11, 5}}) {
+  for (auto [m, n] : {std::pair{4, 4}, {6, 9}, {11, 5}, {2, 7}, {5, 2}}) {
     const Boundary b = make_smooth_boundary(m, n, 21);
     for (const char* name : {"discrete_thin_plate", "discrete_twist", "discrete_dirichlet", "discrete_thin_plate+0.3*discrete_dirichlet"}) {
       const Objective o = objective_named(name);
@@ -240,6 +240,33 @@ TEST_CASE("SpectralAlphaObjective: equals the discrete energy of the solved net,
       }
     }
   }
+}
+
+TEST_CASE("search_mask_parameter: the spectral search is exact and needs few evaluations on a large net", "[alpha]") {
+  // The Laplace net (α = 0) minimises the discrete Dirichlet energy and the Coons net (α = −1/4)
+  // the discrete twist, for every boundary; thin plate sits near −1/4 (α* + 1/4 ≈ c/n²), where
+  // the search works on the log scale of α + 1/4.
+  const Boundary b = make_smooth_boundary(256, 256, 7);
+  SpectralAlphaSearchObjective dirichlet(b, objective_named("discrete_dirichlet"));
+  const AlphaSearchSummary d = search_mask_parameter(dirichlet);
+  REQUIRE(d.parameter);
+  CHECK(std::abs(*d.parameter) < 1e-12);
+  CHECK(d.evaluations <= 20);
+  SpectralAlphaSearchObjective twist(b, objective_named("discrete_twist"));
+  const AlphaSearchSummary t = search_mask_parameter(twist);
+  CHECK(t.at_bound);
+  CHECK(t.parameter.value_or(0) == -0.25);
+  SpectralAlphaSearchObjective thin(b, objective_named("discrete_thin_plate"));
+  const AlphaSearchSummary s = search_mask_parameter(thin);
+  INFO(s.brief_report());
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter > -0.25);
+  CHECK(*s.parameter < -0.24);
+  CHECK_FALSE(s.at_bound);
+  CHECK(s.evaluations <= 25);
+  const auto e = thin.evaluate(*s.parameter);  // a minimum: f' ≈ 0 relative to f''·(α + 1/4), f'' > 0
+  CHECK(e.second_derivative > 0);
+  CHECK(std::abs(e.derivative) <= 1e-8 * e.second_derivative * (*s.parameter + 0.25));
 }
 
 TEST_CASE("search_mask_parameter: the spectral search finds the optimum of the solve-based search", "[alpha]") {

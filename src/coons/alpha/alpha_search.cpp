@@ -1,9 +1,11 @@
 #include "alpha_search.h"
 
+#include <algorithm>
 #include <chrono>
 #include <type_traits>
 #include <utility>
 #include <cmath>
+#include <optional>
 #include <sstream>
 
 #include <ceres/ceres.h>
@@ -33,6 +35,7 @@ MaskObjective::Evaluation MaskObjective::evaluate(double p, bool with_derivative
   Evaluation e = evaluate_mask(mp.mask, with_derivative ? std::vector<Mask9>{mp.derivative} : std::vector<Mask9>{}, gradient);
   e.parameter = p;
   e.derivative = gradient.empty() ? 0.0 : gradient[0];
+  e.has_derivative = with_derivative && e.ok();
   return e;
 }
 
@@ -170,17 +173,45 @@ template <class T>
 struct HasSecondDerivative<T, std::void_t<decltype(std::declval<typename T::Evaluation>().second_derivative)>>
     : std::true_type {};
 
+// Stops Ceres after an accepted step shorter than an absolute tolerance (Ceres's own
+// parameter_tolerance is relative to |p|, which never triggers at an optimum α = 0).
+class ShortStep : public ceres::IterationCallback {
+ public:
+  explicit ShortStep(double tolerance) : tolerance_(tolerance) {}
+  ceres::CallbackReturnType operator()(const ceres::IterationSummary& summary) override {
+    return summary.iteration > 0 && summary.step_is_successful && summary.step_norm <= tolerance_
+               ? ceres::SOLVER_TERMINATE_SUCCESSFULLY
+               : ceres::SOLVER_CONTINUE;
+  }
+
+ private:
+  double tolerance_;
+};
+
+// The evaluation at p from `seen`, or a new one appended to it.
+template <class Obj>
+const typename Obj::Evaluation& evaluate_once(Obj& objective, double p, std::vector<typename Obj::Evaluation>& seen) {
+  for (const auto& e : seen)
+    if (e.parameter == p) return e;
+  seen.push_back(objective.evaluate(p));
+  return seen.back();
+}
+
 template <class Obj>
 class Stationarity : public ceres::SizedCostFunction<1, 1> {
  public:
-  Stationarity(Obj& objective, double scale, bool& failed) : objective_(objective), scale_(scale), failed_(failed) {}
+  using Evaluation = typename Obj::Evaluation;
+  Stationarity(Obj& objective, double scale, bool& failed, std::vector<Evaluation>& seen)
+      : objective_(objective), scale_(scale), failed_(failed), seen_(seen) {}
   bool Evaluate(double const* const* p, double* residual, double** jacobian) const override {
-    const auto e = objective_.evaluate(p[0][0]);
+    // Ceres asks for the same point more than once (the trial step, then its Jacobian): reuse it.
+    const Evaluation& e = evaluate_once(objective_, p[0][0], seen_);
     if (!e.ok()) {
       failed_ = true;
       return false;
     }
-    residual[0] = e.derivative / scale_;
+    // f' at rounding level is zero: Ceres then stops on a zero cost instead of chasing noise
+    residual[0] = std::abs(e.derivative) <= e.derivative_noise ? 0.0 : e.derivative / scale_;
     if (jacobian && jacobian[0]) jacobian[0][0] = e.second_derivative / scale_;
     return true;
   }
@@ -189,6 +220,7 @@ class Stationarity : public ceres::SizedCostFunction<1, 1> {
   Obj& objective_;
   double scale_;
   bool& failed_;
+  std::vector<Evaluation>& seen_;  // the evaluations of the refinement, shared with the caller
 };
 
 template <class Obj>
@@ -263,7 +295,8 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
                  " local minima; the lowest was refined";
 
   // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards.
-  if (best == 0 || best == k - 1) grid[best] = objective.evaluate(grid[best].parameter);  // its slope decides
+  auto with_derivative = [&](const typename Obj::Evaluation& e) { return e.has_derivative ? e : objective.evaluate(e.parameter); };
+  if (best == 0 || best == k - 1) grid[best] = with_derivative(grid[best]);  // its slope decides
   if ((best == 0 && grid[0].derivative >= 0) || (best == k - 1 && grid[k - 1].derivative <= 0)) {
     s.parameter = grid[best].parameter;
     s.value = grid[best].value;
@@ -272,8 +305,8 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   }
 
   // 4. Refine in the bracket of the best point's neighbours with Ceres.
-  const double a = std::max(options.lower, grid[best].parameter - step);
-  const double b = std::min(options.upper, grid[best].parameter + step);
+  const int ia = std::max(best - 1, 0), ib = std::min(best + 1, k - 1);
+  const double a = grid[ia].parameter, b = grid[ib].parameter;
   const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
   double theta = std::atanh(std::clamp((grid[best].parameter - centre) / half, -0.9, 0.9));
   bool failed = false;
@@ -281,24 +314,43 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   bool no_convergence = false;
   std::string ceres_message;
   bool refined = false;
+  std::optional<typename Obj::Evaluation> last;  // the evaluation at the refined p, if made there
   if constexpr (HasSecondDerivative<Obj>::value) {
     // Newton on f' = 0 needs a start where f is convex and a bracket where f' changes sign:
-    // bisect on the sign of f' until the midpoint is convex, then let Ceres take Newton steps.
-    double lo = a, hi = b;
-    const auto ea = objective.evaluate(lo), eb = objective.evaluate(hi);
-    if (ea.ok() && eb.ok() && ea.derivative < 0 && eb.derivative > 0) {
-      auto em = objective.evaluate(0.5 * (lo + hi));
-      for (int it = 0; it < 40 && em.ok() && !(em.second_derivative > 0); ++it) {
-        (em.derivative > 0 ? hi : lo) = em.parameter;
-        em = objective.evaluate(0.5 * (lo + hi));
+    // shrink the bracket on the sign of f' until it is resolved and its new end is convex, then
+    // let Ceres take Newton steps. The family's scale collapses at objective.scale_origin()
+    // (α = −1/4, where α* + 1/4 ≈ c/n², math.md §4), so a bracket spanning many scales of the
+    // distance d to it is split at the geometric mean of its ends' distances (√(h·d_hi) from the
+    // origin itself, h the Newton step there), which halves log(d_hi/d_lo) per evaluation;
+    // a resolved bracket (d_hi ≤ 1.5·d_lo) is split at its midpoint.
+    auto elo = grid[ia].ok() ? with_derivative(grid[ia]) : objective.evaluate(a);
+    auto ehi = grid[ib].ok() ? with_derivative(grid[ib]) : objective.evaluate(b);
+    if (elo.ok() && ehi.ok() && elo.derivative < 0 && ehi.derivative > 0) {
+      const double origin = objective.scale_origin();
+      auto split = [&]() -> std::pair<double, bool> {  // (the point, geometric)
+        const double dl = elo.parameter - origin, dh = ehi.parameter - origin;
+        if (dl > 0 && dh > 1.5 * dl) return {origin + std::sqrt(dl * dh), true};
+        if (dl == 0 && elo.second_derivative > 0) {
+          const double h = -elo.derivative / elo.second_derivative;
+          if (h > 0 && 4 * h < dh) return {origin + std::sqrt(h * dh), true};
+        }
+        return {0.5 * (elo.parameter + ehi.parameter), false};
+      };
+      auto em = elo;
+      for (int it = 0; it < 60; ++it) {
+        em = objective.evaluate(split().first);
+        if (!em.ok()) break;
+        (em.derivative > 0 ? ehi : elo) = em;
+        if (em.second_derivative > 0 && !split().second) break;
       }
       if (em.ok() && em.second_derivative > 0) {
         p = em.parameter;
-        const double scale = std::max(em.second_derivative * (hi - lo), 1e-300);
+        const double scale = std::max(em.second_derivative * (ehi.parameter - elo.parameter), 1e-300);
         ceres::Problem problem;
-        problem.AddResidualBlock(new Stationarity<Obj>(objective, scale, failed), nullptr, &p);
-        problem.SetParameterLowerBound(&p, 0, lo);
-        problem.SetParameterUpperBound(&p, 0, hi);
+        std::vector<typename Obj::Evaluation> seen = {em};
+        problem.AddResidualBlock(new Stationarity<Obj>(objective, scale, failed, seen), nullptr, &p);
+        problem.SetParameterLowerBound(&p, 0, elo.parameter);
+        problem.SetParameterUpperBound(&p, 0, ehi.parameter);
         ceres::Solver::Options o;
         o.linear_solver_type = ceres::DENSE_QR;
         o.max_num_iterations = options.max_iterations;
@@ -306,14 +358,17 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
         o.function_tolerance = 1e-16;
         o.gradient_tolerance = 1e-16;
         o.logging_type = ceres::SILENT;
+        ShortStep stop(options.parameter_tolerance * (options.upper - options.lower));
+        o.callbacks.push_back(&stop);
         ceres::Solver::Summary summary;
         ceres::Solve(o, &problem, &summary);
         s.ceres_report = summary.BriefReport();
         no_convergence = summary.termination_type == ceres::NO_CONVERGENCE;
         ceres_message = summary.message;
-        const auto ep = objective.evaluate(p);  // a minimum: f' ≈ 0 and f'' > 0
-        refined = ep.ok() && ep.second_derivative > 0 &&
-                  std::abs(ep.derivative) <= 1e-8 * std::max(std::abs(ea.derivative), std::abs(eb.derivative));
+        last = evaluate_once(objective, p, seen);
+        // a minimum: f'' > 0 and the Newton step to f' = 0 is negligible
+        refined = last->ok() && last->second_derivative > 0 &&
+                  std::abs(last->derivative) <= 1e-6 * (b - a) * last->second_derivative;
       }
     }
   }
@@ -326,8 +381,9 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
     no_convergence = summary.termination_type == ceres::NO_CONVERGENCE;
     ceres_message = summary.message;
     p = centre + half * std::tanh(theta);
+    last.reset();
   }
-  const auto e = objective.evaluate(p);
+  const auto e = last ? *last : objective.evaluate(p);
   if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
     s.status = SearchStatus::kSolverFailed;
     s.message = "solver failed during refinement: " + e.summary.brief_report();

@@ -30,6 +30,7 @@ class MaskObjective {
   struct Evaluation {
     double parameter = 0;
     double value = 0, derivative = 0;
+    bool has_derivative = false;  //!< the derivative was asked for and computed
     ControlNet net;
     solvers::SolveSummary summary;
     [[nodiscard]] bool ok() const { return summary.ok(); }

@@ -1,11 +1,13 @@
 // The α family with a discrete objective (Σ weight · discrete twist / Dirichlet / thin-plate
-// energy), evaluated in the sine basis that diagonalises every mask of the family: after one
-// 2-D transform of the boundary data, f(α), f'(α) and f''(α) cost one pass over the modes and no
+// energy), evaluated in the sine basis that diagonalises every mask of the family: after 1-D
+// transforms of the boundary data, f(α), f'(α) and f''(α) cost one pass over the modes and no
 // solve at all. Measured from the discrete Coons net N_C, N(α) = N_C + δ with δ̂ = (α + 1/4)·R̂/λ(α)
 // per mode (R: the 5-point Laplacian of N_C, λ = 1 − 2β(x+y) − 4αxy), and the energy
 // E(N_C + δ) = E(N_C) + 2cᵀδ + δᵀQδ with Q diagonal in that basis (symbols (2−2x)(2−2y),
 // (2−2x)+(2−2y), (2−2x)² + 2(2−2x)(2−2y) + (2−2y)²):
 //   f(α) = E(N_C) + Σ_pq [ q_pq ‖δ̂_pq‖² + 2 ĉ_pq·δ̂_pq ].
+// R and c are sums of four separable grids (N_C is a boolean sum of linear blends), so R̂ and ĉ are
+// outer products of 1-D transforms of the sides: the set-up needs no 2-D transform.
 // This is what makes an α search on a 1023×1023 net cost a few solves instead of dozens.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the eigenvectors of the
 // mask family); R. W. Hockney, J. ACM 12 (1965) (sine-transform solvers).
@@ -28,6 +30,7 @@ class SpectralAlphaObjective {
  public:
   struct Value {
     double value = 0, derivative = 0, second_derivative = 0;
+    double derivative_noise = 0;  //!< the rounding error of `derivative` (an estimate)
     bool ok = false;  //!< false when λ(α) vanishes for a mode (a singular α)
   };
 
@@ -42,9 +45,8 @@ class SpectralAlphaObjective {
   int rows_, cols_;
   double e0_ = 0;
   std::vector<std::pair<DiscreteEnergy, double>> terms_;
-  Eigen::VectorXd x_, y_;                  // cos(pπ/(rows+1)), cos(qπ/(cols+1))
-  Eigen::ArrayXd rr_, cr_;                 // per mode, summed over x, y, z: ‖R̂‖², ĉ·R̂
-  double sym_a2_ = 0, sym_ab_ = 0, sym_a1_ = 0;  // the energy's symbol (see the constructor)
+  Eigen::VectorXd xi_, eta_;               // 1 − cos(pπ/(rows+1)), 1 − cos(qπ/(cols+1))
+  Eigen::ArrayXd quad_, lin_;              // per mode: symbol·Σ_xyz R̂², 2·Σ_xyz ĉ·R̂
 };
 
 //! SpectralAlphaObjective with the interface search_mask_parameter expects (and no net).
@@ -52,6 +54,8 @@ class SpectralAlphaSearchObjective {
  public:
   struct Evaluation {
     double parameter = 0, value = 0, derivative = 0, second_derivative = 0;
+    double derivative_noise = 0;  //!< |derivative| below this is zero within rounding
+    bool has_derivative = true;  //!< always: the derivatives cost nothing extra
     solvers::SolveSummary summary;  //!< status singular when λ vanishes at this α
     [[nodiscard]] bool ok() const { return summary.ok(); }
   };
@@ -62,6 +66,9 @@ class SpectralAlphaSearchObjective {
   [[nodiscard]] const Objective& objective() const { return objective_; }
   [[nodiscard]] int evaluations() const { return evaluations_; }
   [[nodiscard]] int solves() const { return 0; }
+  //! Where the family's scale collapses: the search measures distances from α = −1/4 on a log
+  //! scale (α* + 1/4 ≈ c/n², math.md §4).
+  [[nodiscard]] static double scale_origin() { return -0.25; }
 
  private:
   Boundary boundary_;

@@ -39,12 +39,11 @@ MaskSystem assemble_mask_system(const ControlNet& net, const Mask9& mask, bool w
   return system;
 }
 
-ControlNet fill_interior(const ControlNet& net, const Eigen::MatrixX3d& X) {
-  ControlNet out = net;
+ControlNet fill_interior(ControlNet net, const Eigen::MatrixX3d& X) {
   const int cols = net.n - 1;
   for (int i = 1; i < net.m; ++i)
-    out.points.middleRows(out.index(i, 1), cols) = X.middleRows(Eigen::Index(i - 1) * cols, cols);
-  return out;
+    net.points.middleRows(net.index(i, 1), cols) = X.middleRows(Eigen::Index(i - 1) * cols, cols);
+  return net;
 }
 
 Eigen::MatrixX3d interior_of(const ControlNet& net) {

@@ -26,8 +26,8 @@ MaskSystem assemble_mask_system(const ControlNet& net, const Mask9& mask, bool w
 //! Only the right-hand side: #interior by 3, non-zero only next to the frame (O(m + n) work).
 Eigen::MatrixX3d mask_rhs(const ControlNet& net, const Mask9& mask);
 
-//! A copy of `net` with its interior replaced by X (#interior by 3).
-ControlNet fill_interior(const ControlNet& net, const Eigen::MatrixX3d& X);
+//! `net` with its interior replaced by X (#interior by 3); pass an rvalue to fill it in place.
+ControlNet fill_interior(ControlNet net, const Eigen::MatrixX3d& X);
 
 //! The interior of `net` as #interior by 3 (the inverse of fill_interior).
 Eigen::MatrixX3d interior_of(const ControlNet& net);

@@ -1,5 +1,7 @@
 #include "solve_mask_net.h"
 
+#include <utility>
+
 #include "coons/mask/assemble_mask_system.h"
 #include "solvers/registry.h"
 
@@ -8,7 +10,7 @@ namespace coons {
 MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask,
                                const std::string& solver, const solvers::SolverOptions& options) {
   MaskSolveResult result;
-  const ControlNet frame = frame_net(boundary);
+  ControlNet frame = frame_net(boundary);
   const solvers::SolverInfo* info = solvers::find_solver(solver);
   auto backend = solvers::make_solver(solver, options);
   if (!info || !backend) {
@@ -29,7 +31,7 @@ MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask,
   op.stencil = system.stencil;
   Eigen::MatrixX3d X;
   result.summary = backend->compute_and_solve(op, system.B, X);
-  result.net = result.summary.ok() ? fill_interior(frame, X) : frame;
+  result.net = result.summary.ok() ? fill_interior(std::move(frame), X) : std::move(frame);
   return result;
 }
 
