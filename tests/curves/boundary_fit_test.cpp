@@ -43,6 +43,23 @@ TEST_CASE("fit_boundary: the dome's circle arcs converge with the degree, corner
   CHECK(previous < 1e-10);
 }
 
+TEST_CASE("fit_boundary: at degree 1000 the control polygon stays on the dome's arcs", "[curves]") {
+  // Fitted by least squares at degree 1000 directly, the inner control points of these arcs
+  // (radius √2, every point within 2 of the origin) reached 140.
+  const auto curves = read_boundary_curves(COONS_DATA_DIR "/boundaries/dome.json");
+  REQUIRE(curves);
+  const FittedBoundary f = fit_boundary(*curves, 1000, 1000, "dome");
+  CHECK(f.max_deviation < 1e-12);
+  for (const Eigen::MatrixX3d* side : {&f.boundary.bottom, &f.boundary.top, &f.boundary.left, &f.boundary.right}) {
+    CHECK(side->rows() == 1001);
+    CHECK(side->rowwise().norm().maxCoeff() < 2.1);
+    // a polygon converging to the arc: its second differences are O(1/n²)
+    const Eigen::Index k = side->rows() - 2;
+    const Eigen::MatrixX3d d2 = side->topRows(k) - 2 * side->middleRows(1, k) + side->bottomRows(k);
+    CHECK(d2.rowwise().norm().maxCoeff() < 10.0 / (1000.0 * 1000.0));
+  }
+}
+
 TEST_CASE("read_boundary_curves: a file without curves has none; bad curves name the field", "[curves]") {
   CHECK(!read_boundary_curves(COONS_DATA_DIR "/boundaries/pillow.json"));
   const std::string bad = (std::filesystem::temp_directory_path() / "coons_bad_curves.json").string();

@@ -9,15 +9,12 @@
 
 namespace coons {
 
-BezierFit fit_bezier(const Curve& c, int degree, int samples) {
-  assert(degree >= 1);
+namespace {
+
+BezierFit least_squares_fit(const Curve& c, int degree, int samples) {
   if (samples <= 0) samples = std::max(10 * (degree + 1), 101);
   BezierFit fit;
   fit.samples = samples;
-  if (c.bezier() && c.bezier()->degree() <= degree) {
-    fit.curve = elevated(*c.bezier(), degree);  // exact: nothing to fit
-    return fit;
-  }
   const Eigen::RowVector3d first = c.at(0), last = c.at(1);
   Eigen::MatrixX3d P(degree + 1, 3);
   P.row(0) = first;
@@ -43,6 +40,32 @@ BezierFit fit_bezier(const Curve& c, int degree, int samples) {
       fit.at = s;
     }
   }
+  return fit;
+}
+
+}  // namespace
+
+BezierFit fit_bezier(const Curve& c, int degree, int samples) {
+  assert(degree >= 1);
+  if (c.bezier() && c.bezier()->degree() <= degree) {
+    BezierFit fit;
+    fit.samples = std::max(samples, 0);
+    fit.curve = elevated(*c.bezier(), degree);  // exact: nothing to fit
+    return fit;
+  }
+  if (degree <= kLargestFitDegree) return least_squares_fit(c, degree, samples);
+  // The Bernstein least-squares system is too ill-conditioned at high degree: at degree 1000 the
+  // inner control points of a circle arc of size 2 oscillated up to 140 while the samples still
+  // fitted. Fit at the lowest of 8, 12, …, 24 whose deviation is at rounding level (else at 24)
+  // and elevate exactly: the same curve, with a control polygon that converges to it.
+  double size = 0;
+  for (int k = 0; k <= 100; ++k) size = std::max(size, (c.at(k / 100.0) - c.at(0)).norm());
+  BezierFit fit;
+  for (int d = 8; d <= kLargestFitDegree; d += 4) {
+    fit = least_squares_fit(c, d, samples);
+    if (fit.max_deviation <= 1e-14 * std::max(size, 1.0)) break;
+  }
+  fit.curve = elevated(fit.curve, degree);
   return fit;
 }
 

@@ -18,8 +18,12 @@ struct BezierFit {
   int samples = 0;           //!< least-squares samples used
 };
 
-//! degree ≥ 1 (degree 1: the chord). samples ≤ 0 picks max(10·(degree + 1), 101); the deviation is
-//! checked on 10·samples + 1 points. A Bézier input of degree ≤ `degree` is elevated exactly.
+//! Above this degree the fit is made at a lower degree (≤ this) and elevated exactly.
+constexpr int kLargestFitDegree = 24;
+
+//! degree ≥ 1 (degree 1: the chord). samples ≤ 0 picks max(10·(degree + 1), 101) at the degree
+//! fitted; the deviation is checked on 10·samples + 1 points. A Bézier input of degree ≤ `degree`
+//! is elevated exactly, and so is the fit when `degree` exceeds kLargestFitDegree.
 BezierFit fit_bezier(const Curve& c, int degree, int samples = 0);
 
 }  // namespace coons
