@@ -15,9 +15,6 @@
 #include <unistd.h>
 
 #include "coons/alpha/alpha_search.h"
-#if COONS_HAVE_FFTW
-#include "coons/alpha/spectral_objective.h"
-#endif
 #include "coons/config.h"
 #include "coons/curves/boundary_fit.h"
 #include "coons/io/input_error.h"
@@ -414,8 +411,8 @@ int cmd_search_alpha(const std::string& path, const NetRequest& net, const Searc
   const BoundaryFile input = read_input(path, net);
   const Boundary& b = input.boundary;
   const SearchSetup setup = setup_search(path, b, net, r);
-  MaskObjective objective(b, setup.objective, setup.family, setup.solver);
   if (r.parameter == "alpha-gamma") {
+    MaskObjective objective(b, setup.objective, setup.family, setup.solver);
     const AlphaGammaSummary g = search_alpha_gamma(objective, setup.options);
     json out = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"objective", r.objective}, {"parameter", r.parameter},
                 {"alpha", g.flat ? json(nullptr) : json(g.alpha)}, {"gamma", g.flat ? json(nullptr) : json(g.gamma)},
@@ -427,22 +424,16 @@ int cmd_search_alpha(const std::string& path, const NetRequest& net, const Searc
     std::cout << out.dump(2) << '\n';
     return g.status == SearchStatus::kSolverFailed ? kExitSolverFailed : kExitOk;
   }
-  // A discrete objective over the α family is evaluated in the sine basis when the grid's structured
-  // solvers are built and chosen: no solve per evaluation (spectral_objective.h).
-  const solvers::SolverInfo* info = solvers::find_solver(setup.solver);
-  const bool spectral = COONS_HAVE_FFTW && r.parameter == "alpha" && setup.objective.energy.empty() &&
-                        setup.objective.target_weight == 0 && !setup.objective.discrete.empty() && b.m >= 2 &&
-                        b.n >= 2 && info && info->family == solvers::SolverFamily::kStructured;
+  // The α family is searched in the sine basis when it can be (search_alpha): no solve per evaluation.
   AlphaSearchSummary s;
-#if COONS_HAVE_FFTW
-  if (spectral) {
-    SpectralAlphaSearchObjective sine_basis(b, setup.objective);
-    s = search_mask_parameter(sine_basis, setup.options);
+  if (r.parameter == "alpha") {
+    s = search_alpha(b, setup.objective, setup.solver, setup.options);
+  } else {
+    MaskObjective objective(b, setup.objective, setup.family, setup.solver);
+    s = search_mask_parameter(objective, setup.options);
   }
-#endif
-  if (!spectral) s = search_mask_parameter(objective, setup.options);
   json report = search_report(b, r, setup, s, setup.solver);
-  report["evaluator"] = spectral ? "sine basis (no solves)" : "factorize and solve";
+  report["evaluator"] = s.evaluator.empty() ? "factorize and solve" : s.evaluator;
   std::cout << report.dump(2) << '\n';
   return s.status == SearchStatus::kSolverFailed ? kExitSolverFailed : kExitOk;
 }
@@ -593,8 +584,9 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
   line("");
   line("α is the weight of the four diagonal neighbours in b_ij = α·K + β·E (Farin & Hansford 1999); α = −1/4 is the");
   line("Coons net, α = 0 the Laplace net. μ is the degree-independent membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖², with");
-  line("α(n) = −n²/(4(n² + μ)) (math.md §4). Optima come from `search_mask_parameter` (coarse scan, then Ceres with the");
-  line("analytic derivative); `flat` means the objective does not depend on α, `bound` that the optimum is on a bound,");
+  line("α(n) = −n²/(4(n² + μ)) (math.md §4). Optima come from `search_alpha` (coarse scan, then Ceres with the");
+  line("analytic derivative; energies over α are evaluated in the sine basis of the mask family, with no solve per");
+  line("evaluation); `flat` means the objective does not depend on α, `bound` that the optimum is on a bound,");
   line("`multi` that the scan saw several local minima.");
   line("");
 
@@ -613,7 +605,7 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
       std::string why;
       const Objective objective = *parse_objective(name, &why);
       MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, solver);
-      const AlphaSearchSummary s = search_mask_parameter(f);
+      const AlphaSearchSummary s = search_alpha(b, objective, solver);
       const double coons_value = f.evaluate(-0.25).value, laplace_value = f.evaluate(0.0).value;
       AlphaSearchSummary mu_s;
       if (b.m > 1 && b.n > 1) {
@@ -697,8 +689,7 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
         }
         const Boundary& b = at_degree.at(d);
         const std::string solver = search_solver(net, b, false);
-        MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, solver);
-        const AlphaSearchSummary s = search_mask_parameter(f);
+        const AlphaSearchSummary s = search_alpha(b, objective, solver);
         const AlphaSearchSummary mu_s = search_mu(b, objective, solver);
         row += " " + format_optimum(s) + " |";
         if (s.parameter && !s.flat && !s.at_bound) interior.emplace_back(d, *s.parameter);
@@ -795,8 +786,7 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
       o.name = "target";
       o.target_weight = 1;
       o.target = sphere;
-      MaskObjective f(b, o, [](double a) { return alpha_family(a); }, solver);
-      const AlphaSearchSummary s = search_mask_parameter(f);
+      const AlphaSearchSummary s = search_alpha(b, o, solver);
       line("");
       line(fmt::format("The α that fits the sphere best: {} (rms {:.4g}, against {:.4g} for the Coons net: {:.0f}× closer).",
                        format_optimum(s), s.value, rms_distance(discrete_coons_net(b), *sphere),

@@ -220,12 +220,13 @@ TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 
-TEST_CASE("SpectralAlphaObjective: equals the discrete energy of the solved net, with exact derivatives", "[alpha]") {
+TEST_CASE("SpectralAlphaObjective: equals the energy of the solved net, with exact derivatives", "[alpha]") {
   for (auto [m, n] : {std::pair{4, 4}, {6, 9}, {11, 5}, {2, 7}, {5, 2}}) {
     const Boundary b = make_smooth_boundary(m, n, 21);
-    for (const char* name : {"discrete_thin_plate", "discrete_twist", "discrete_dirichlet", "discrete_thin_plate+0.3*discrete_dirichlet"}) {
+    for (const char* name : {"discrete_thin_plate", "discrete_twist", "discrete_dirichlet", "discrete_thin_plate+0.3*discrete_dirichlet",
+                             "thin_plate", "twist", "dirichlet", "e3", "e3+0.2*dirichlet+discrete_twist"}) {
       const Objective o = objective_named(name);
-      const SpectralAlphaObjective spectral(b, o.discrete);
+      const SpectralAlphaObjective spectral(b, o.discrete, o.energy);
       MaskObjective direct(b, o, alpha_only(), "eigen-ldlt");
       for (double alpha : {-0.25, -0.13, 0.0, 0.2}) {
         const auto s = spectral.evaluate(alpha);
@@ -240,6 +241,24 @@ TEST_CASE("SpectralAlphaObjective: equals the discrete energy of the solved net,
       }
     }
   }
+}
+
+TEST_CASE("search_alpha: the sine basis for energies on structured solvers, solves otherwise", "[alpha]") {
+  const Boundary b = make_smooth_boundary(7, 6, 3);
+  Objective target = objective_named("target");
+  target.target = Target{};
+  target.target->kind = Target::Kind::kSphere;
+  target.target->radius = 3;
+  const AlphaSearchSummary sine = search_alpha(b, objective_named("thin_plate"), "fast");
+  const AlphaSearchSummary direct = search_alpha(b, objective_named("thin_plate"), "eigen-ldlt");
+  CHECK(sine.evaluator == "sine basis");
+  CHECK(sine.solves == 0);
+  CHECK(direct.evaluator == "factorize and solve");
+  CHECK(direct.solves > 0);
+  REQUIRE(sine.parameter);
+  REQUIRE(direct.parameter);
+  CHECK(*sine.parameter == Approx(*direct.parameter).margin(1e-6));
+  CHECK(search_alpha(b, target, "fast").evaluator == "factorize and solve");
 }
 
 TEST_CASE("search_mask_parameter: the spectral search is exact and needs few evaluations on a large net", "[alpha]") {
@@ -272,7 +291,7 @@ TEST_CASE("search_mask_parameter: the spectral search is exact and needs few eva
 TEST_CASE("search_mask_parameter: the spectral search finds the optimum of the solve-based search", "[alpha]") {
   for (std::uint32_t seed = 1; seed <= 6; ++seed) {
     const Boundary b = make_smooth_boundary(5 + int(seed), 4 + int(2 * seed % 7), seed);
-    for (const char* name : {"discrete_thin_plate", "discrete_thin_plate+0.5*discrete_dirichlet"}) {
+    for (const char* name : {"discrete_thin_plate", "discrete_thin_plate+0.5*discrete_dirichlet", "thin_plate", "e3+0.5*dirichlet"}) {
       MaskObjective direct(b, objective_named(name), alpha_only(), "eigen-ldlt");
       SpectralAlphaSearchObjective spectral(b, objective_named(name));
       const AlphaSearchSummary d = search_mask_parameter(direct), s = search_mask_parameter(spectral);

@@ -297,7 +297,9 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards.
   auto with_derivative = [&](const typename Obj::Evaluation& e) { return e.has_derivative ? e : objective.evaluate(e.parameter); };
   if (best == 0 || best == k - 1) grid[best] = with_derivative(grid[best]);  // its slope decides
-  if ((best == 0 && grid[0].derivative >= 0) || (best == k - 1 && grid[k - 1].derivative <= 0)) {
+  // (a slope at rounding level, as at a minimum on the bound itself, counts as outwards)
+  if ((best == 0 && grid[0].derivative >= -grid[0].derivative_noise) ||
+      (best == k - 1 && grid[k - 1].derivative <= grid[k - 1].derivative_noise)) {
     s.parameter = grid[best].parameter;
     s.value = grid[best].value;
     s.at_bound = true;
@@ -409,6 +411,24 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
 
 AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options) {
   return search_impl(objective, options);
+}
+
+AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const std::string& solver,
+                                const AlphaSearchOptions& options, const solvers::SolverOptions& solver_options) {
+#if COONS_HAVE_FFTW
+  const solvers::SolverInfo* info = solvers::find_solver(solver);
+  if (info && info->family == solvers::SolverFamily::kStructured && boundary.m >= 2 && boundary.n >= 2 &&
+      objective.target_weight == 0 && !(objective.energy.empty() && objective.discrete.empty())) {
+    SpectralAlphaSearchObjective f(boundary, objective);
+    AlphaSearchSummary s = search_impl(f, options);
+    s.evaluator = "sine basis";
+    return s;
+  }
+#endif
+  MaskObjective f(boundary, objective, [](double a) { return alpha_family(a); }, solver, solver_options);
+  AlphaSearchSummary s = search_impl(f, options);
+  s.evaluator = "factorize and solve";
+  return s;
 }
 
 #if COONS_HAVE_FFTW

@@ -30,6 +30,7 @@ class MaskObjective {
   struct Evaluation {
     double parameter = 0;
     double value = 0, derivative = 0;
+    double derivative_noise = 0;  //!< not estimated here
     bool has_derivative = false;  //!< the derivative was asked for and computed
     ControlNet net;
     solvers::SolveSummary summary;
@@ -88,6 +89,7 @@ struct AlphaSearchSummary {
   std::vector<std::pair<double, double>> scan;  //!< (parameter, value) of the coarse grid
   double seconds = 0;
   std::string ceres_report;         //!< Ceres's BriefReport of the refinement, if any
+  std::string evaluator;            //!< "sine basis" or "factorize and solve" (search_alpha)
 
   [[nodiscard]] std::string brief_report() const;
 };
@@ -100,6 +102,14 @@ class SpectralAlphaSearchObjective;
 //! solves; see spectral_objective.h).
 AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective, const AlphaSearchOptions& options = {});
 #endif
+
+//! The search over the α family with the cheapest exact evaluator: the sine basis (no solve per
+//! evaluation; spectral_objective.h) when FFTW is built, `solver` names a structured backend,
+//! m, n ≥ 2 and the objective is a sum of energies (no target); otherwise a factorisation and
+//! solves per evaluation (MaskObjective). `solver` must name a registered backend.
+AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const std::string& solver,
+                                const AlphaSearchOptions& options = {},
+                                const solvers::SolverOptions& solver_options = {});
 
 //! The two-parameter symmetric family (α, γ): e_i = 1/4 − α + γ, e_j = 1/4 − α − γ, d = α, i.e.
 //! every affine-invariant symmetric 3×3 mask (4α + 2β_i + 2β_j = 1). The operator is positive

@@ -5,6 +5,8 @@
 #include <cstddef>
 #include <limits>
 
+#include "coons/metrics/bernstein.h"
+#include "coons/net/coons_net.h"
 #include "solvers/sine_basis.h"
 #include "solvers/vector_clones.h"
 
@@ -110,9 +112,10 @@ COONS_VECTOR_CLONES ModeSums mode_sums(double alpha, const double* __restrict xi
 
 }  // namespace
 
-SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<std::pair<DiscreteEnergy, double>> terms)
+SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<std::pair<DiscreteEnergy, double>> terms,
+                                               std::vector<EnergyTerm> exact)
     : rows_(b.m - 1), cols_(b.n - 1), terms_(std::move(terms)) {
-  assert(rows_ >= 1 && cols_ >= 1 && !terms_.empty());
+  assert(rows_ >= 1 && cols_ >= 1 && !(terms_.empty() && exact.empty()));
   // Measured from the discrete Coons net N_C (the α = −1/4 solution): N(α) = N_C + δ(α) with
   // A(α) δ = (α + 1/4)·R, R the 5-point Laplacian of N_C. Then f = E(N_C) + 2 c·δ + E(δ), c the
   // halved gradient of E at N_C: only small terms, no cancellation against the energy of the frame.
@@ -136,22 +139,18 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<st
   const Sides sides = frame_sides(b);
   const int m = b.m, n = b.n;
   const Eigen::VectorXd si = Eigen::VectorXd::LinSpaced(m + 1, 0, 1), sj = Eigen::VectorXd::LinSpaced(n + 1, 0, 1);
-  Eigen::MatrixXd A(m + 1, 4), B(n + 1, 4);
-  A.col(0) = 1 - si.array();
-  A.col(1) = si;
-  B.col(2) = 1 - sj.array();
-  B.col(3) = sj;
+  Eigen::MatrixXd A[3], B[3];  // N_C = A[c]·B[c]ᵀ per coordinate
   Eigen::MatrixXd Ui(m + 1, 6), Vj(n + 1, 6);  // the sides: [bottom | top], [left′ | right′]
   Ui << sides.bottom, sides.top;
-  Vj.leftCols(3) = sides.left - B.col(2) * sides.left.row(0) - B.col(3) * sides.left.row(n);
-  Vj.middleCols(3, 3) = sides.right - B.col(2) * sides.right.row(0) - B.col(3) * sides.right.row(n);
+  Vj.leftCols(3) = sides.left - (1 - sj.array()).matrix() * sides.left.row(0) - sj * sides.left.row(n);
+  Vj.middleCols(3, 3) = sides.right - (1 - sj.array()).matrix() * sides.right.row(0) - sj * sides.right.row(n);
   for (int c = 0; c < 3; ++c) {
-    A.col(2) = Ui.col(c);
-    A.col(3) = Ui.col(3 + c);
-    B.col(0) = Vj.col(c);
-    B.col(1) = Vj.col(3 + c);
+    A[c].resize(m + 1, 4);
+    B[c].resize(n + 1, 4);
+    A[c] << 1 - si.array(), si, Ui.col(c), Ui.col(3 + c);
+    B[c] << Vj.col(c), Vj.col(3 + c), 1 - sj.array(), sj;
     for (const DifferenceTerm& t : energy)
-      e0_ += t.weight * separable_square_sum(differences(A, t.i_order), differences(B, t.j_order));
+      e0_ += t.weight * separable_square_sum(differences(A[c], t.i_order), differences(B[c], t.j_order));
   }
   // Factors at the interior points, sine-transformed: [R side (6) | c side (6) | linear blends (2)].
   auto factors = [&](const Eigen::MatrixXd& sides6, const Eigen::MatrixXd& blends, bool i_direction) {
@@ -165,8 +164,8 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<st
     F.rightCols(2) = blends.middleRows(1, k);
     return solvers::sine_transform_1d(F);
   };
-  const Eigen::MatrixXd U = factors(Ui, A.leftCols(2), true);   // rows_ × 14
-  const Eigen::MatrixXd V = factors(Vj, B.rightCols(2), false); // cols_ × 14
+  const Eigen::MatrixXd U = factors(Ui, A[0].leftCols(2), true);   // rows_ × 14
+  const Eigen::MatrixXd V = factors(Vj, B[0].rightCols(2), false); // cols_ × 14
 
   // ξ = 1 − cos θ = 2 sin²(θ/2) without the cancellation of 1 − cos for the low modes, whose
   // eigenvalues (ξη at α = −1/4, ~1e-11 at N = 1023) carry the whole answer near −1/4.
@@ -177,6 +176,9 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<st
   };
   xi_ = one_minus_cos(rows_);
   eta_ = one_minus_cos(cols_);
+
+  if (!exact.empty()) add_exact_energies(b, exact, A, B, U, V);
+  if (energy.empty()) return;  // no discrete terms
 
   // Per mode: quad = symbol·Σ_xyz R̂², lin = 2·Σ_xyz ĉ·R̂, with the energy's symbol
   // Σ w (2 − 2x)^a (2 − 2y)^b (the eigenvalues of K_a ⊗ K_b on grids vanishing at the frame).
@@ -195,19 +197,108 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<st
   }
 }
 
+namespace {
+
+// K_a = D_aᵀ G D_a ((k+1) × (k+1)): ∫(∂^a f)² = fᵀ K_a f for f in the Bernstein basis of degree k,
+// D_a the derivative's coefficients k!/(k−a)!·Δ^a and G the Gram matrix of degree k − a.
+Eigen::MatrixXd derivative_gram(int k, int a) {
+  if (a > k) return Eigen::MatrixXd::Zero(k + 1, k + 1);
+  Eigen::MatrixXd D = Eigen::MatrixXd::Identity(k + 1, k + 1);
+  for (int r = 0; r < a; ++r) D = ((k - r) * (D.bottomRows(D.rows() - 1) - D.topRows(D.rows() - 1))).eval();
+  return D.transpose() * bernstein_gram(k - a) * D;
+}
+
+// S·K·S of the interior block of K (S the orthonormal DST-I, its own transpose).
+Eigen::MatrixXd sine_both_sides(const Eigen::MatrixXd& K) {
+  const Eigen::Index k = K.rows() - 2;
+  const Eigen::MatrixXd SK = solvers::sine_transform_1d(K.block(1, 1, k, k));
+  return solvers::sine_transform_1d(SK.transpose()).transpose();
+}
+
+}  // namespace
+
+void SpectralAlphaObjective::add_exact_energies(const Boundary& boundary, const std::vector<EnergyTerm>& exact,
+                                                const Eigen::MatrixXd (&A)[3],
+                                                const Eigen::MatrixXd (&B)[3], const Eigen::MatrixXd& U,
+                                                const Eigen::MatrixXd& V) {
+  // Energy w·tr(Nᵀ K_a N K_b) per coordinate: ĉ as the outer product of the transformed K_a A and
+  // K_b B at the interior, R̂ made dense from its four separable parts (columns of U and V as laid
+  // out by the constructor), and E(N_C) from the Coons net itself: the factors' 4×4 Gram matrices
+  // would lose ε·‖K_a A‖‖K_b B‖ to cancellation (1e-14 where E(N_C) = 0, as for the twist of a
+  // bilinear boundary), and this costs no more than one evaluation.
+  const int m = rows_ + 1, n = cols_ + 1;
+  e0_ += combined_energy(discrete_coons_net(boundary), exact);
+  for (int c = 0; c < 3; ++c) {
+    Eigen::MatrixXd Ur(rows_, 4), Vr(cols_, 4);
+    Ur << U.col(c), U.col(3 + c), U.col(12), U.col(13);
+    Vr << V.col(12), V.col(13), V.col(c), V.col(3 + c);
+    r_hat_[c] = Ur * Vr.transpose();
+    c_hat_[c] = Eigen::MatrixXd::Zero(rows_, cols_);
+  }
+  for (const EnergyTerm& t : exact) {
+    const Eigen::MatrixXd Ka = derivative_gram(m, t.a), Kb = derivative_gram(n, t.b);
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::MatrixXd KA = Ka * A[c], KB = Kb * B[c];
+      c_hat_[c] += t.weight * solvers::sine_transform_1d(KA.middleRows(1, rows_)) *
+                   solvers::sine_transform_1d(KB.middleRows(1, cols_)).transpose();
+      c_hat_scale_[c] += std::abs(t.weight) * KA.norm() * KB.norm();
+    }
+    kronecker_.push_back({sine_both_sides(Ka), sine_both_sides(Kb), t.weight});
+  }
+}
+
+void SpectralAlphaObjective::add_exact_energy_sums(double alpha, Value& v) const {
+  // U = u∘R̂ per coordinate (u, u', u'' per mode as in mode_sums), then with Q(U) = Σ w⟨U, K̂_a U K̂_b⟩:
+  //   f += 2⟨ĉ, U⟩ + Q(U),  f' += 2⟨ĉ, U'⟩ + 2Σ w⟨U', K̂_a U K̂_b⟩,
+  //   f'' += 2⟨ĉ, U''⟩ + 2Σ w(⟨U'', K̂_a U K̂_b⟩ + ⟨U', K̂_a U' K̂_b⟩).
+  const double gamma = alpha + 0.25;
+  const Eigen::ArrayXXd lc = (xi_ * eta_.transpose()).array();
+  const Eigen::ArrayXXd d = 2 * (xi_.replicate(1, cols_).array() + eta_.transpose().replicate(rows_, 1).array() - 2 * lc);
+  const Eigen::ArrayXXd lambda = lc + gamma * d, il = lambda.inverse();
+  const Eigen::ArrayXXd u = gamma * il, du = lc * il.square(), d2u = -2 * du * d * il;
+  double noise = 0;
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd U0 = (u * r_hat_[c].array()).matrix(), U1 = (du * r_hat_[c].array()).matrix(),
+                          U2 = (d2u * r_hat_[c].array()).matrix();
+    v.value += 2 * c_hat_[c].cwiseProduct(U0).sum();
+    v.derivative += 2 * c_hat_[c].cwiseProduct(U1).sum();
+    v.second_derivative += 2 * c_hat_[c].cwiseProduct(U2).sum();
+    noise += 2 * (c_hat_[c].norm() + c_hat_scale_[c]) * U1.norm();
+    for (const KroneckerTerm& t : kronecker_) {
+      const Eigen::MatrixXd KU0 = t.a * U0 * t.b, KU1 = t.a * U1 * t.b;
+      v.value += t.weight * U0.cwiseProduct(KU0).sum();
+      v.derivative += 2 * t.weight * U1.cwiseProduct(KU0).sum();
+      v.second_derivative += 2 * t.weight * (U2.cwiseProduct(KU0).sum() + U1.cwiseProduct(KU1).sum());
+      noise += 2 * std::abs(t.weight) * U1.norm() * KU0.norm();
+    }
+  }
+  v.derivative_noise += 16 * std::numeric_limits<double>::epsilon() * noise;
+  v.ok = v.ok && lambda.abs().minCoeff() >= 1e-14;
+}
+
 SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) const {
   // per mode: δ̂ = u·R̂, u = γ/λ, γ = α + 1/4, λ = 1 − 2β(x + y) − 4αxy = λ_C + γd, and
   //   f = E(N_C) + Σ [ quad·u² + lin·u ],  f' = Σ (2·quad·u + lin)·u',
   //   f'' = Σ [ 2·quad·u'² + (2·quad·u + lin)·u'' ],  u' = λ_C/λ², u'' = −2u'd/λ.
-  const ModeSums s = mode_sums(alpha, xi_.data(), rows_, eta_.data(), cols_, quad_.data(), lin_.data());
-  const double f = e0_ + s.f;
-  // f' sums terms of both signs: its rounding error is a few ε of the sum of their sizes
-  const double noise = 16 * std::numeric_limits<double>::epsilon() * s.df_abs;
-  return {f, s.df, s.d2f, noise, s.smallest >= 1e-14 && std::isfinite(f) && std::isfinite(s.df) && std::isfinite(s.d2f)};
+  Value v;
+  v.value = e0_;
+  v.ok = true;
+  if (quad_.size() > 0) {
+    const ModeSums s = mode_sums(alpha, xi_.data(), rows_, eta_.data(), cols_, quad_.data(), lin_.data());
+    v.value += s.f;
+    v.derivative += s.df;
+    v.second_derivative += s.d2f;
+    // f' sums terms of both signs: its rounding error is a few ε of the sum of their sizes
+    v.derivative_noise = 16 * std::numeric_limits<double>::epsilon() * s.df_abs;
+    v.ok = s.smallest >= 1e-14;
+  }
+  if (!kronecker_.empty()) add_exact_energy_sums(alpha, v);
+  v.ok = v.ok && std::isfinite(v.value) && std::isfinite(v.derivative) && std::isfinite(v.second_derivative);
+  return v;
 }
 
 SpectralAlphaSearchObjective::SpectralAlphaSearchObjective(const Boundary& boundary, Objective objective)
-    : boundary_(boundary), objective_(std::move(objective)), spectral_(boundary, objective_.discrete) {}
+    : boundary_(boundary), objective_(std::move(objective)), spectral_(boundary, objective_.discrete, objective_.energy) {}
 
 SpectralAlphaSearchObjective::Evaluation SpectralAlphaSearchObjective::evaluate(double alpha, bool) {
   ++evaluations_;

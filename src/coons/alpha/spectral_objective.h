@@ -34,8 +34,13 @@ class SpectralAlphaObjective {
     bool ok = false;  //!< false when λ(α) vanishes for a mode (a singular α)
   };
 
+  //! Discrete terms, and exact energies of the surface (Σ weight·∫‖∂^a_u ∂^b_v p‖²), whose
+  //! Hessians K_a ⊗ K_b (K_a = D_aᵀ G D_a, Bernstein Gram G) are dense in the sine basis: those cost
+  //! four (rows×rows)(rows×cols)(cols×cols) products per term and coordinate per evaluation, as
+  //! evaluating the energy of a net does, but still no solve.
   //! Precondition: m, n ≥ 2 and at least one term.
-  SpectralAlphaObjective(const Boundary& boundary, std::vector<std::pair<DiscreteEnergy, double>> terms);
+  SpectralAlphaObjective(const Boundary& boundary, std::vector<std::pair<DiscreteEnergy, double>> terms,
+                         std::vector<EnergyTerm> energy = {});
 
   [[nodiscard]] Value evaluate(double alpha) const;
   [[nodiscard]] int rows() const { return rows_; }
@@ -46,7 +51,17 @@ class SpectralAlphaObjective {
   double e0_ = 0;
   std::vector<std::pair<DiscreteEnergy, double>> terms_;
   Eigen::VectorXd xi_, eta_;               // 1 − cos(pπ/(rows+1)), 1 − cos(qπ/(cols+1))
-  Eigen::ArrayXd quad_, lin_;              // per mode: symbol·Σ_xyz R̂², 2·Σ_xyz ĉ·R̂
+  Eigen::ArrayXd quad_, lin_;              // per mode: symbol·Σ_xyz R̂², 2·Σ_xyz ĉ·R̂ (discrete terms)
+  struct KroneckerTerm {
+    Eigen::MatrixXd a, b;  // S K_a S (rows × rows) and S K_b S (cols × cols) at the interior
+    double weight = 0;
+  };
+  std::vector<KroneckerTerm> kronecker_;   // the exact energies
+  Eigen::MatrixXd r_hat_[3], c_hat_[3];    // their R̂ and ĉ per coordinate (rows × cols)
+  double c_hat_scale_[3] = {0, 0, 0};      // Σ |w|·‖K_a A‖‖K_b B‖: ĉ's rounding error is ε times this
+  void add_exact_energies(const Boundary& boundary, const std::vector<EnergyTerm>& energy, const Eigen::MatrixXd (&A)[3],
+                          const Eigen::MatrixXd (&B)[3], const Eigen::MatrixXd& U, const Eigen::MatrixXd& V);
+  void add_exact_energy_sums(double alpha, Value& v) const;
 };
 
 //! SpectralAlphaObjective with the interface search_mask_parameter expects (and no net).
