@@ -1,11 +1,16 @@
 // The search for the best mask parameter (α, μ, ...) of a boundary, by Ceres with the analytic
-// derivative: for each parameter value one factorisation, two solves (the net N and its
-// sensitivity dN/dp = A⁻¹·[dmask-weighted neighbour sums of N], math.md §3), and the objective's
-// exact value and derivative. The search scans a coarse grid first (so that several minima are
-// seen), then refines the best grid point with Ceres's line-search minimiser inside the bracket
-// of its neighbours. It reports a flat objective and an optimum on a bound as such.
+// derivative. The search scans a coarse grid first (so that several minima are seen), then
+// refines the best grid point inside the bracket of its neighbours, and reports a flat objective
+// and an optimum on a bound as such. Two evaluators:
+// - MaskObjective, any family and objective: for each parameter value one factorisation, two
+//   solves (the net N and its sensitivity dN/dp = A⁻¹·[dmask-weighted neighbour sums of N],
+//   math.md §3) and the objective's exact value and derivative; refined by Ceres's line-search
+//   minimiser.
+// - SpectralAlphaSearchObjective (spectral_objective.h), the α family with energy objectives: no
+//   solve at all, f, f' and f'' in the sine basis; refined by Ceres's trust region on f' = 0.
+// search_alpha picks the second whenever it applies.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700; Ceres Solver's
-// GradientProblemSolver (S. Agarwal, K. Mierle et al.).
+// GradientProblemSolver and Problem (S. Agarwal, K. Mierle et al.).
 #pragma once
 
 #include <functional>
