@@ -135,14 +135,17 @@ ceres::GradientProblemSolver::Options ceres_options(const AlphaSearchOptions& op
 }
 
 // f(p(θ)) with p = centre + half·tanh θ keeps Ceres's unconstrained line search inside the bracket.
+// The latest evaluation is kept: Ceres usually ends on it, and the caller needs it again.
 template <class Obj>
 class BracketedObjective : public ceres::FirstOrderFunction {
  public:
-  BracketedObjective(Obj& objective, double centre, double half, bool& failed)
-      : objective_(objective), centre_(centre), half_(half), failed_(failed) {}
+  using Evaluation = typename Obj::Evaluation;
+  BracketedObjective(Obj& objective, double centre, double half, bool& failed, std::optional<Evaluation>& last)
+      : objective_(objective), centre_(centre), half_(half), failed_(failed), last_(last) {}
   bool Evaluate(const double* theta, double* cost, double* gradient) const override {
     const double t = std::tanh(theta[0]);
-    const auto e = objective_.evaluate(centre_ + half_ * t);
+    last_ = objective_.evaluate(centre_ + half_ * t);
+    const Evaluation& e = *last_;
     if (!e.ok()) {
       failed_ = true;
       return false;
@@ -157,6 +160,7 @@ class BracketedObjective : public ceres::FirstOrderFunction {
   Obj& objective_;
   double centre_, half_;
   bool& failed_;
+  std::optional<Evaluation>& last_;
 };
 
 }  // namespace
@@ -310,7 +314,15 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   const int ia = std::max(best - 1, 0), ib = std::min(best + 1, k - 1);
   const double a = grid[ia].parameter, b = grid[ib].parameter;
   const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
-  double theta = std::atanh(std::clamp((grid[best].parameter - centre) / half, -0.9, 0.9));
+  // Ceres starts at the vertex of the parabola through the best grid point and its neighbours
+  // (when they bracket a minimum), which saves it the first few line searches.
+  double initial = grid[best].parameter;
+  if (best > 0 && best + 1 < k && grid[best - 1].ok() && grid[best + 1].ok()) {
+    const double fa = grid[best - 1].value, fb = grid[best].value, fc = grid[best + 1].value;
+    const double curvature = fa - 2 * fb + fc;  // equal spacing
+    if (curvature > 0) initial = grid[best].parameter + 0.5 * step * (fa - fc) / curvature;
+  }
+  double theta = std::atanh(std::clamp((initial - centre) / half, -0.9, 0.9));
   bool failed = false;
   double p = grid[best].parameter;
   bool no_convergence = false;
@@ -375,15 +387,15 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
     }
   }
   if (!refined) {
-    p = grid[best].parameter;
-    ceres::GradientProblem problem(new BracketedObjective<Obj>(objective, centre, half, failed));
+    last.reset();
+    ceres::GradientProblem problem(new BracketedObjective<Obj>(objective, centre, half, failed, last));
     ceres::GradientProblemSolver::Summary summary;
     ceres::Solve(ceres_options(options), problem, &theta, &summary);
     s.ceres_report = summary.BriefReport();
     no_convergence = summary.termination_type == ceres::NO_CONVERGENCE;
     ceres_message = summary.message;
     p = centre + half * std::tanh(theta);
-    last.reset();
+    if (last && last->parameter != p) last.reset();
   }
   const auto e = last ? *last : objective.evaluate(p);
   if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
@@ -418,7 +430,7 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
 #if COONS_HAVE_FFTW
   const solvers::SolverInfo* info = solvers::find_solver(solver);
   if (info && info->family == solvers::SolverFamily::kStructured && boundary.m >= 2 && boundary.n >= 2 &&
-      objective.target_weight == 0 && !(objective.energy.empty() && objective.discrete.empty())) {
+      SpectralAlphaObjective::supports(objective)) {
     SpectralAlphaSearchObjective f(boundary, objective);
     AlphaSearchSummary s = search_impl(f, options);
     s.evaluator = "sine basis";

@@ -1,5 +1,6 @@
 #include "spectral_objective.h"
 
+#include <array>
 #include <cassert>
 #include <cmath>
 #include <cstddef>
@@ -112,10 +113,15 @@ COONS_VECTOR_CLONES ModeSums mode_sums(double alpha, const double* __restrict xi
 
 }  // namespace
 
-SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<std::pair<DiscreteEnergy, double>> terms,
-                                               std::vector<EnergyTerm> exact)
-    : rows_(b.m - 1), cols_(b.n - 1), terms_(std::move(terms)) {
-  assert(rows_ >= 1 && cols_ >= 1 && !(terms_.empty() && exact.empty()));
+bool SpectralAlphaObjective::supports(const Objective& o) {
+  const bool target = o.target_weight > 0;
+  return (!o.discrete.empty() || !o.energy.empty() || target) &&
+         (!target || (o.target && o.target->kind == Target::Kind::kNet));
+}
+
+SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objective& objective)
+    : rows_(b.m - 1), cols_(b.n - 1) {
+  assert(rows_ >= 1 && cols_ >= 1 && supports(objective));
   // Measured from the discrete Coons net N_C (the α = −1/4 solution): N(α) = N_C + δ(α) with
   // A(α) δ = (α + 1/4)·R, R the 5-point Laplacian of N_C. Then f = E(N_C) + 2 c·δ + E(δ), c the
   // halved gradient of E at N_C: only small terms, no cancellation against the energy of the frame.
@@ -131,7 +137,7 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<st
   // (terms with a, b ≥ 1 leave nothing inside: the Coons net minimises the discrete twist). The 2-D
   // sine transform of u ⊗ v is û ⊗ v̂: the set-up is O(N log N) plus one pass to fill the modes.
   std::vector<DifferenceTerm> energy;
-  for (const auto& [kind, weight] : terms_)
+  for (const auto& [kind, weight] : objective.discrete)
     for (DifferenceTerm t : difference_terms(kind)) {
       t.weight *= weight;
       energy.push_back(t);
@@ -177,7 +183,24 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, std::vector<st
   xi_ = one_minus_cos(rows_);
   eta_ = one_minus_cos(cols_);
 
-  if (!exact.empty()) add_exact_energies(b, exact, A, B, U, V);
+  if (!objective.energy.empty() || objective.target_weight > 0) {
+    // R̂ made dense from its four separable parts (columns of U and V as laid out above)
+    for (int c = 0; c < 3; ++c) {
+      Eigen::MatrixXd Ur(rows_, 4), Vr(cols_, 4);
+      Ur << U.col(c), U.col(3 + c), U.col(12), U.col(13);
+      Vr << V.col(12), V.col(13), V.col(c), V.col(3 + c);
+      r_hat_[c] = Ur * Vr.transpose();
+    }
+    const ControlNet coons = discrete_coons_net(b);
+    if (!objective.energy.empty()) {
+      exact_ = exact_energies(coons, objective.energy, A, B);
+      has_exact_ = true;
+    }
+    if (objective.target_weight > 0) {
+      target_ = mean_square_distance(coons, objective.target->net, objective.target->samples);
+      target_weight_ = objective.target_weight;
+    }
+  }
   if (energy.empty()) return;  // no discrete terms
 
   // Per mode: quad = symbol·Σ_xyz R̂², lin = 2·Σ_xyz ĉ·R̂, with the energy's symbol
@@ -208,73 +231,96 @@ Eigen::MatrixXd derivative_gram(int k, int a) {
   return D.transpose() * bernstein_gram(k - a) * D;
 }
 
+// S_r·G·S_c: the 2-D sine transform of a rows × cols grid held as a matrix.
+Eigen::MatrixXd sine_2d(const Eigen::MatrixXd& G) {
+  return solvers::sine_transform_1d(solvers::sine_transform_1d(G).transpose()).transpose();
+}
+
 // S·K·S of the interior block of K (S the orthonormal DST-I, its own transpose).
 Eigen::MatrixXd sine_both_sides(const Eigen::MatrixXd& K) {
   const Eigen::Index k = K.rows() - 2;
-  const Eigen::MatrixXd SK = solvers::sine_transform_1d(K.block(1, 1, k, k));
-  return solvers::sine_transform_1d(SK.transpose()).transpose();
+  return sine_2d(K.block(1, 1, k, k));
 }
 
 }  // namespace
 
-void SpectralAlphaObjective::add_exact_energies(const Boundary& boundary, const std::vector<EnergyTerm>& exact,
-                                                const Eigen::MatrixXd (&A)[3],
-                                                const Eigen::MatrixXd (&B)[3], const Eigen::MatrixXd& U,
-                                                const Eigen::MatrixXd& V) {
-  // Energy w·tr(Nᵀ K_a N K_b) per coordinate: ĉ as the outer product of the transformed K_a A and
-  // K_b B at the interior, R̂ made dense from its four separable parts (columns of U and V as laid
-  // out by the constructor), and E(N_C) from the Coons net itself: the factors' 4×4 Gram matrices
-  // would lose ε·‖K_a A‖‖K_b B‖ to cancellation (1e-14 where E(N_C) = 0, as for the twist of a
-  // bilinear boundary), and this costs no more than one evaluation.
+SpectralAlphaObjective::Quadratic SpectralAlphaObjective::exact_energies(const ControlNet& coons,
+                                                                        const std::vector<EnergyTerm>& exact,
+                                                                        const Eigen::MatrixXd (&A)[3],
+                                                                        const Eigen::MatrixXd (&B)[3]) const {
+  // Σ w·tr(Nᵀ K_a N K_b) per coordinate: ĉ as the outer product of the transformed K_a A and K_b B
+  // at the interior, and E(N_C) from the Coons net itself: the factors' 4×4 Gram matrices would
+  // lose ε·‖K_a A‖‖K_b B‖ to cancellation (1e-14 where E(N_C) = 0, as for the twist of a bilinear
+  // boundary), and this costs no more than one evaluation.
   const int m = rows_ + 1, n = cols_ + 1;
-  e0_ += combined_energy(discrete_coons_net(boundary), exact);
-  for (int c = 0; c < 3; ++c) {
-    Eigen::MatrixXd Ur(rows_, 4), Vr(cols_, 4);
-    Ur << U.col(c), U.col(3 + c), U.col(12), U.col(13);
-    Vr << V.col(12), V.col(13), V.col(c), V.col(3 + c);
-    r_hat_[c] = Ur * Vr.transpose();
-    c_hat_[c] = Eigen::MatrixXd::Zero(rows_, cols_);
-  }
+  Quadratic q;
+  q.constant = combined_energy(coons, exact);
+  for (auto& c_hat : q.c_hat) c_hat = Eigen::MatrixXd::Zero(rows_, cols_);
   for (const EnergyTerm& t : exact) {
     const Eigen::MatrixXd Ka = derivative_gram(m, t.a), Kb = derivative_gram(n, t.b);
     for (int c = 0; c < 3; ++c) {
       const Eigen::MatrixXd KA = Ka * A[c], KB = Kb * B[c];
-      c_hat_[c] += t.weight * solvers::sine_transform_1d(KA.middleRows(1, rows_)) *
-                   solvers::sine_transform_1d(KB.middleRows(1, cols_)).transpose();
-      c_hat_scale_[c] += std::abs(t.weight) * KA.norm() * KB.norm();
+      q.c_hat[c] += t.weight * solvers::sine_transform_1d(KA.middleRows(1, rows_)) *
+                    solvers::sine_transform_1d(KB.middleRows(1, cols_)).transpose();
+      q.c_scale += std::abs(t.weight) * KA.norm() * KB.norm();
     }
-    kronecker_.push_back({sine_both_sides(Ka), sine_both_sides(Kb), t.weight});
+    q.terms.push_back({sine_both_sides(Ka), sine_both_sides(Kb), t.weight});
   }
+  return q;
 }
 
-void SpectralAlphaObjective::add_exact_energy_sums(double alpha, Value& v) const {
-  // U = u∘R̂ per coordinate (u, u', u'' per mode as in mode_sums), then with Q(U) = Σ w⟨U, K̂_a U K̂_b⟩:
-  //   f += 2⟨ĉ, U⟩ + Q(U),  f' += 2⟨ĉ, U'⟩ + 2Σ w⟨U', K̂_a U K̂_b⟩,
-  //   f'' += 2⟨ĉ, U''⟩ + 2Σ w(⟨U'', K̂_a U K̂_b⟩ + ⟨U', K̂_a U' K̂_b⟩).
-  const double gamma = alpha + 0.25;
-  const Eigen::ArrayXXd lc = (xi_ * eta_.transpose()).array();
-  const Eigen::ArrayXXd d = 2 * (xi_.replicate(1, cols_).array() + eta_.transpose().replicate(rows_, 1).array() - 2 * lc);
-  const Eigen::ArrayXXd lambda = lc + gamma * d, il = lambda.inverse();
-  const Eigen::ArrayXXd u = gamma * il, du = lc * il.square(), d2u = -2 * du * d * il;
-  double noise = 0;
+SpectralAlphaObjective::Quadratic SpectralAlphaObjective::mean_square_distance(const ControlNet& coons,
+                                                                              const ControlNet& target,
+                                                                              int samples) const {
+  // (1/k²) Σ_xyz ‖B_u N B_vᵀ − T‖², T the target sampled at the same (u, v) (objective.cpp).
+  const int m = rows_ + 1, n = cols_ + 1, k = samples;
+  auto basis_at_samples = [k](int degree) {
+    Eigen::MatrixXd Bs(k, degree + 1);
+    for (int s = 0; s < k; ++s) Bs.row(s) = bernstein_basis(degree, double(s) / (k - 1)).transpose();
+    return Bs;
+  };
+  const Eigen::MatrixXd Bu = basis_at_samples(m), Bv = basis_at_samples(n);
+  const Eigen::MatrixX3d T = sample_surface(target, k, k);
+  Quadratic q;
   for (int c = 0; c < 3; ++c) {
-    const Eigen::MatrixXd U0 = (u * r_hat_[c].array()).matrix(), U1 = (du * r_hat_[c].array()).matrix(),
-                          U2 = (d2u * r_hat_[c].array()).matrix();
-    v.value += 2 * c_hat_[c].cwiseProduct(U0).sum();
-    v.derivative += 2 * c_hat_[c].cwiseProduct(U1).sum();
-    v.second_derivative += 2 * c_hat_[c].cwiseProduct(U2).sum();
-    noise += 2 * (c_hat_[c].norm() + c_hat_scale_[c]) * U1.norm();
-    for (const KroneckerTerm& t : kronecker_) {
-      const Eigen::MatrixXd KU0 = t.a * U0 * t.b, KU1 = t.a * U1 * t.b;
-      v.value += t.weight * U0.cwiseProduct(KU0).sum();
-      v.derivative += 2 * t.weight * U1.cwiseProduct(KU0).sum();
-      v.second_derivative += 2 * t.weight * (U2.cwiseProduct(KU0).sum() + U1.cwiseProduct(KU1).sum());
-      noise += 2 * std::abs(t.weight) * U1.norm() * KU0.norm();
+    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+    const Eigen::MatrixXd Tc = Eigen::Map<const RowMajor>(T.col(c).data(), k, k);
+    const Eigen::MatrixXd D = (Bu * coordinate_grid(coons, c) * Bv.transpose() - Tc) / k;  // q = ‖D‖²
+    q.constant += D.squaredNorm();
+    const Eigen::MatrixXd G = Bu.transpose() * D * Bv / k;  // half the gradient
+    q.c_hat[c] = sine_2d(G.block(1, 1, rows_, cols_));
+    q.c_scale += Bu.norm() * Bv.norm() / k * (D.norm() + Tc.norm() / k);
+  }
+  q.terms.push_back({sine_both_sides(Bu.transpose() * Bu), sine_both_sides(Bv.transpose() * Bv / (double(k) * k)), 1.0});
+  return q;
+}
+
+namespace {
+
+// q, q', q'' and the rounding error of q' of a quadratic at U[c][r] = u^(r)∘R̂_c (r = 0, 1, 2):
+//   q = constant + 2⟨ĉ, U⟩ + Σ w⟨U, K̂_a U K̂_b⟩,  q' = 2⟨ĉ, U'⟩ + 2Σ w⟨U', K̂_a U K̂_b⟩,
+//   q'' = 2⟨ĉ, U''⟩ + 2Σ w(⟨U'', K̂_a U K̂_b⟩ + ⟨U', K̂_a U' K̂_b⟩).
+template <class Quadratic>
+std::array<double, 4> quadratic_sums(const Quadratic& q, const Eigen::MatrixXd (&U)[3][3]) {
+  std::array<double, 4> r = {q.constant, 0, 0, 0};
+  for (int c = 0; c < 3; ++c) {
+    r[0] += 2 * q.c_hat[c].cwiseProduct(U[c][0]).sum();
+    r[1] += 2 * q.c_hat[c].cwiseProduct(U[c][1]).sum();
+    r[2] += 2 * q.c_hat[c].cwiseProduct(U[c][2]).sum();
+    r[3] += 2 * (q.c_hat[c].norm() + q.c_scale) * U[c][1].norm();
+    for (const auto& t : q.terms) {
+      const Eigen::MatrixXd KU0 = t.a * U[c][0] * t.b, KU1 = t.a * U[c][1] * t.b;
+      r[0] += t.weight * U[c][0].cwiseProduct(KU0).sum();
+      r[1] += 2 * t.weight * U[c][1].cwiseProduct(KU0).sum();
+      r[2] += 2 * t.weight * (U[c][2].cwiseProduct(KU0).sum() + U[c][1].cwiseProduct(KU1).sum());
+      r[3] += 2 * std::abs(t.weight) * U[c][1].norm() * KU0.norm();
     }
   }
-  v.derivative_noise += 16 * std::numeric_limits<double>::epsilon() * noise;
-  v.ok = v.ok && lambda.abs().minCoeff() >= 1e-14;
+  r[3] *= 16 * std::numeric_limits<double>::epsilon();
+  return r;
 }
+
+}  // namespace
 
 SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) const {
   // per mode: δ̂ = u·R̂, u = γ/λ, γ = α + 1/4, λ = 1 − 2β(x + y) − 4αxy = λ_C + γd, and
@@ -292,13 +338,42 @@ SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) con
     v.derivative_noise = 16 * std::numeric_limits<double>::epsilon() * s.df_abs;
     v.ok = s.smallest >= 1e-14;
   }
-  if (!kronecker_.empty()) add_exact_energy_sums(alpha, v);
+  if (has_exact_ || target_weight_ > 0) {
+    // U = u∘R̂ per coordinate, with u, u', u'' per mode as in mode_sums
+    const double gamma = alpha + 0.25;
+    const Eigen::ArrayXXd lc = (xi_ * eta_.transpose()).array();
+    const Eigen::ArrayXXd d =
+        2 * (xi_.replicate(1, cols_).array() + eta_.transpose().replicate(rows_, 1).array() - 2 * lc);
+    const Eigen::ArrayXXd lambda = lc + gamma * d, il = lambda.inverse();
+    const Eigen::ArrayXXd u[3] = {gamma * il, lc * il.square(), -2 * lc * il.square() * d * il};
+    Eigen::MatrixXd U[3][3];
+    for (int c = 0; c < 3; ++c)
+      for (int r = 0; r < 3; ++r) U[c][r] = (u[r] * r_hat_[c].array()).matrix();
+    if (has_exact_) {
+      const auto q = quadratic_sums(exact_, U);
+      v.value += q[0];
+      v.derivative += q[1];
+      v.second_derivative += q[2];
+      v.derivative_noise += q[3];
+    }
+    if (target_weight_ > 0) {  // w·√q: the rms distance
+      const auto q = quadratic_sums(target_, U);
+      const double rms = std::sqrt(std::max(q[0], 0.0)), w = target_weight_;
+      v.value += w * rms;
+      if (rms > 0) {
+        v.derivative += w * q[1] / (2 * rms);
+        v.second_derivative += w * (q[2] / (2 * rms) - q[1] * q[1] / (4 * rms * rms * rms));
+        v.derivative_noise += w * q[3] / (2 * rms);
+      }
+    }
+    v.ok = v.ok && lambda.abs().minCoeff() >= 1e-14;
+  }
   v.ok = v.ok && std::isfinite(v.value) && std::isfinite(v.derivative) && std::isfinite(v.second_derivative);
   return v;
 }
 
 SpectralAlphaSearchObjective::SpectralAlphaSearchObjective(const Boundary& boundary, Objective objective)
-    : boundary_(boundary), objective_(std::move(objective)), spectral_(boundary, objective_.discrete, objective_.energy) {}
+    : boundary_(boundary), objective_(std::move(objective)), spectral_(boundary, objective_) {}
 
 SpectralAlphaSearchObjective::Evaluation SpectralAlphaSearchObjective::evaluate(double alpha, bool) {
   ++evaluations_;

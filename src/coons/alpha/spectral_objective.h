@@ -1,14 +1,16 @@
-// The α family with a discrete objective (Σ weight · discrete twist / Dirichlet / thin-plate
-// energy), evaluated in the sine basis that diagonalises every mask of the family: after 1-D
-// transforms of the boundary data, f(α), f'(α) and f''(α) cost one pass over the modes and no
-// solve at all. Measured from the discrete Coons net N_C, N(α) = N_C + δ with δ̂ = (α + 1/4)·R̂/λ(α)
+// The α family with an objective of energies (discrete or exact) and target nets, evaluated in the
+// sine basis that diagonalises every mask of the family: f(α), f'(α) and f''(α) cost no solve at
+// all. For the discrete energies, after 1-D transforms of the boundary data, one pass over the
+// modes. Measured from the discrete Coons net N_C, N(α) = N_C + δ with δ̂ = (α + 1/4)·R̂/λ(α)
 // per mode (R: the 5-point Laplacian of N_C, λ = 1 − 2β(x+y) − 4αxy), and the energy
 // E(N_C + δ) = E(N_C) + 2cᵀδ + δᵀQδ with Q diagonal in that basis (symbols (2−2x)(2−2y),
 // (2−2x)+(2−2y), (2−2x)² + 2(2−2x)(2−2y) + (2−2y)²):
 //   f(α) = E(N_C) + Σ_pq [ q_pq ‖δ̂_pq‖² + 2 ĉ_pq·δ̂_pq ].
 // R and c are sums of four separable grids (N_C is a boolean sum of linear blends), so R̂ and ĉ are
 // outer products of 1-D transforms of the sides: the set-up needs no 2-D transform.
-// This is what makes an α search on a 1023×1023 net cost a few solves instead of dozens.
+// The exact energies and a target net are quadratic too, with Kronecker Hessians that are dense in
+// the sine basis (see the constructor). This is what makes an α search cost a few solves instead
+// of dozens (on a 1023×1023 net with a discrete objective, 7× one solve including the optimal net).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the eigenvectors of the
 // mask family); R. W. Hockney, J. ACM 12 (1965) (sine-transform solvers).
 #pragma once
@@ -34,13 +36,19 @@ class SpectralAlphaObjective {
     bool ok = false;  //!< false when λ(α) vanishes for a mode (a singular α)
   };
 
-  //! Discrete terms, and exact energies of the surface (Σ weight·∫‖∂^a_u ∂^b_v p‖²), whose
-  //! Hessians K_a ⊗ K_b (K_a = D_aᵀ G D_a, Bernstein Gram G) are dense in the sine basis: those cost
-  //! four (rows×rows)(rows×cols)(cols×cols) products per term and coordinate per evaluation, as
-  //! evaluating the energy of a net does, but still no solve.
-  //! Precondition: m, n ≥ 2 and at least one term.
-  SpectralAlphaObjective(const Boundary& boundary, std::vector<std::pair<DiscreteEnergy, double>> terms,
-                         std::vector<EnergyTerm> energy = {});
+  //! The objective's terms:
+  //! - discrete energies: diagonal in the sine basis, one pass over the modes;
+  //! - exact energies of the surface (Σ weight·∫‖∂^a_u ∂^b_v p‖²), whose Hessians K_a ⊗ K_b
+  //!   (K_a = D_aᵀ G D_a, Bernstein Gram G) are dense in the sine basis: four
+  //!   (rows×rows)(rows×cols)(cols×cols) products per term and coordinate per evaluation, as
+  //!   evaluating the energy of a net costs, but still no solve;
+  //! - the rms distance to a target net: its mean square is quadratic in the net with Hessian
+  //!   (B_uᵀB_u ⊗ B_vᵀB_v)/k², B_u the Bernstein values at the k samples, so it is handled as the
+  //!   exact energies are, then square-rooted.
+  //! Precondition: m, n ≥ 2 and supports(objective).
+  SpectralAlphaObjective(const Boundary& boundary, const Objective& objective);
+  //! At least one term, and a target (if any) that is a net, not an analytic surface.
+  static bool supports(const Objective& objective);
 
   [[nodiscard]] Value evaluate(double alpha) const;
   [[nodiscard]] int rows() const { return rows_; }
@@ -49,19 +57,26 @@ class SpectralAlphaObjective {
  private:
   int rows_, cols_;
   double e0_ = 0;
-  std::vector<std::pair<DiscreteEnergy, double>> terms_;
   Eigen::VectorXd xi_, eta_;               // 1 − cos(pπ/(rows+1)), 1 − cos(qπ/(cols+1))
   Eigen::ArrayXd quad_, lin_;              // per mode: symbol·Σ_xyz R̂², 2·Σ_xyz ĉ·R̂ (discrete terms)
   struct KroneckerTerm {
     Eigen::MatrixXd a, b;  // S K_a S (rows × rows) and S K_b S (cols × cols) at the interior
     double weight = 0;
   };
-  std::vector<KroneckerTerm> kronecker_;   // the exact energies
-  Eigen::MatrixXd r_hat_[3], c_hat_[3];    // their R̂ and ĉ per coordinate (rows × cols)
-  double c_hat_scale_[3] = {0, 0, 0};      // Σ |w|·‖K_a A‖‖K_b B‖: ĉ's rounding error is ε times this
-  void add_exact_energies(const Boundary& boundary, const std::vector<EnergyTerm>& energy, const Eigen::MatrixXd (&A)[3],
-                          const Eigen::MatrixXd (&B)[3], const Eigen::MatrixXd& U, const Eigen::MatrixXd& V);
-  void add_exact_energy_sums(double alpha, Value& v) const;
+  //! q(N_C + δ) = constant + 2⟨ĉ, δ̂⟩ + Σ w⟨δ̂, K̂_a δ̂ K̂_b⟩, summed over x, y, z.
+  struct Quadratic {
+    double constant = 0;
+    Eigen::MatrixXd c_hat[3];  // rows × cols
+    double c_scale = 0;        // ĉ's rounding error is about ε times this
+    std::vector<KroneckerTerm> terms;
+  };
+  Quadratic exact_, target_;               // the exact energies; the mean square distance to a target net
+  bool has_exact_ = false;
+  double target_weight_ = 0;
+  Eigen::MatrixXd r_hat_[3];               // R̂ per coordinate (rows × cols), for the two above
+  Quadratic exact_energies(const ControlNet& coons, const std::vector<EnergyTerm>& exact, const Eigen::MatrixXd (&A)[3],
+                           const Eigen::MatrixXd (&B)[3]) const;
+  Quadratic mean_square_distance(const ControlNet& coons, const ControlNet& target, int samples) const;
 };
 
 //! SpectralAlphaObjective with the interface search_mask_parameter expects (and no net).
@@ -74,7 +89,7 @@ class SpectralAlphaSearchObjective {
     solvers::SolveSummary summary;  //!< status singular when λ vanishes at this α
     [[nodiscard]] bool ok() const { return summary.ok(); }
   };
-  //! Precondition: the objective holds discrete terms only; m, n ≥ 2.
+  //! Precondition: SpectralAlphaObjective::supports(objective); m, n ≥ 2.
   SpectralAlphaSearchObjective(const Boundary& boundary, Objective objective);
   Evaluation evaluate(double alpha, bool with_derivative = true);
   [[nodiscard]] const Boundary& boundary() const { return boundary_; }
