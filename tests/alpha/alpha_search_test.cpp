@@ -71,6 +71,14 @@ TEST_CASE("search_mask_parameter: equals Brent's minimiser on random smooth boun
       CHECK(*s.parameter == Approx(brent.first).margin(1e-6));
       CHECK(s.value <= brent.second * (1 + 1e-12) + 1e-15);
       CHECK(s.evaluations < 40);
+      // the search the CLI runs on the structured solvers: in the sine basis, no solves
+      const AlphaSearchSummary sine = search_alpha(b, objective_named(name), "fast");
+      INFO("sine basis: " << sine.brief_report());
+      CHECK(sine.evaluator == "sine basis");
+      REQUIRE(sine.parameter);
+      CHECK(*sine.parameter == Approx(brent.first).margin(1e-6));
+      CHECK(sine.value <= brent.second * (1 + 1e-12) + 1e-14);
+      CHECK(sine.solves == 0);
       ++compared;
     }
   }

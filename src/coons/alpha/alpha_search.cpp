@@ -314,15 +314,7 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   const int ia = std::max(best - 1, 0), ib = std::min(best + 1, k - 1);
   const double a = grid[ia].parameter, b = grid[ib].parameter;
   const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
-  // Ceres starts at the vertex of the parabola through the best grid point and its neighbours
-  // (when they bracket a minimum), which saves it the first few line searches.
-  double initial = grid[best].parameter;
-  if (best > 0 && best + 1 < k && grid[best - 1].ok() && grid[best + 1].ok()) {
-    const double fa = grid[best - 1].value, fb = grid[best].value, fc = grid[best + 1].value;
-    const double curvature = fa - 2 * fb + fc;  // equal spacing
-    if (curvature > 0) initial = grid[best].parameter + 0.5 * step * (fa - fc) / curvature;
-  }
-  double theta = std::atanh(std::clamp((initial - centre) / half, -0.9, 0.9));
+  double theta = std::atanh(std::clamp((grid[best].parameter - centre) / half, -0.9, 0.9));
   bool failed = false;
   double p = grid[best].parameter;
   bool no_convergence = false;
@@ -407,15 +399,26 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   s.parameter = p;
   s.value = e.value;
   // A grid point may still be lower if the line search stalled (never report a worse point).
+  bool stalled = false;
   if (grid[best].value < e.value) {
     s.parameter = grid[best].parameter;
     s.value = grid[best].value;
+    stalled = true;
   }
   const double edge_tolerance = 1e-7 * (options.upper - options.lower);
   s.at_bound = std::abs(*s.parameter - options.lower) <= edge_tolerance || std::abs(*s.parameter - options.upper) <= edge_tolerance;
   if (no_convergence) {
     s.status = SearchStatus::kNotConverged;
     s.message = "Ceres: " + ceres_message;
+  } else if (stalled && !s.at_bound) {
+    // Never claim an optimum that is not one: a scan point that Ceres could not improve on is one
+    // only if its slope vanishes (on the scale of the objective's variation over the scan).
+    const auto at = with_derivative(grid[best]);
+    if (at.ok() && std::abs(at.derivative) * (b - a) > 1e-6 * std::max(hi - lo, floor)) {
+      s.status = SearchStatus::kNotConverged;
+      s.message += std::string(s.message.empty() ? "" : "; ") + "the refinement stalled where the slope is " +
+                   std::to_string(at.derivative) + ", not zero";
+    }
   }
   return finish();
 }
