@@ -18,6 +18,7 @@
 #include "coons/config.h"
 #include "coons/curves/boundary_fit.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
 #include "coons/io/write_files.h"
@@ -458,6 +459,11 @@ int cmd_refit(const std::string& path, const NetRequest& net, const RefitRequest
     throw InputError(path, "curves", fmt::format("degree ({}, {}) is below the boundary's ({}, {}); lowering it needs "
                                                  "the analytic sides (a \"curves\" object)", m, n, b.m, b.n));
   }
+  // The new file keeps what belongs to the shape rather than to its degree: the analytic sides
+  // (refit again) and the target (search-alpha --objective target).
+  const json source = read_json_file(path);
+  for (const char* key : {"curves", "target"})
+    if (source.contains(key)) out[key] = source[key];
   if (r.out.empty()) {
     std::cout << out.dump(2) << '\n';
   } else {

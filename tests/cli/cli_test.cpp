@@ -245,6 +245,13 @@ TEST_CASE("coons refit: analytic sides at any degree, elevation otherwise, exit 
   CHECK(json::parse(r.out)["method"] == "refit");
   CHECK(json::parse(r.out)["max_deviation"].get<double>() < 1e-5);
   CHECK(run_command(kCoons + " solve " + quoted(out)).status == 0);
+  // the refitted file keeps the analytic sides and the target: refit again, fit the sphere
+  const json written = json::parse(std::ifstream(out));
+  CHECK(written.contains("curves"));
+  CHECK(written.contains("target"));
+  const CommandResult fit = run_command(kCoons + " search-alpha " + quoted(out) + " --objective target");
+  REQUIRE(fit.status == 0);
+  CHECK(json::parse(fit.out)["alpha"].get<double>() > -0.25);
   const CommandResult up = run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 5 4");
   REQUIRE(up.status == 0);
   CHECK(json::parse(up.out)["method"] == "elevated");
