@@ -233,12 +233,18 @@ TEST_CASE("SpectralAlphaObjective: equals the energy of the solved net, with exa
     const Boundary b = make_smooth_boundary(m, n, 21);
     for (const char* name : {"discrete_thin_plate", "discrete_twist", "discrete_dirichlet", "discrete_thin_plate+0.3*discrete_dirichlet",
                              "thin_plate", "twist", "dirichlet", "e3", "e3+0.2*dirichlet+discrete_twist", "target",
-                             "thin_plate+30*target"}) {
-      Objective o = objective_named(name);
-      if (o.target_weight > 0) {  // a net of another degree, compared at the samples
+                             "thin_plate+30*target", "sphere", "thin_plate+5*cylinder", "plane"}) {
+      const std::string shape = name;
+      Objective o = objective_named(shape == "sphere" || shape == "plane" ? "target"
+                                    : shape == "thin_plate+5*cylinder" ? "thin_plate+5*target" : shape);
+      if (o.target_weight > 0) {  // a net of another degree compared at the samples, or a surface
         o.target = Target{};
         o.target->net = make_random_net(m + 1, n, 9);
         o.target->samples = 17;
+        if (shape == "sphere") *o.target = Target{Target::Kind::kSphere, {}, {0.5, 0.5, -2}, {0, 0, 1}, 2.0, 13};
+        if (shape == "plane") *o.target = Target{Target::Kind::kPlane, {}, {0, 0, 0.1}, {0.2, 0.3, 1}, 1.0, 13};
+        if (shape.find("cylinder") != std::string::npos)
+          *o.target = Target{Target::Kind::kCylinder, {}, {0, 0.5, -2}, {1, 0, 0}, 2.0, 13};
       }
       const SpectralAlphaObjective spectral(b, o);
       MaskObjective direct(b, o, alpha_only(), "eigen-ldlt");
@@ -257,22 +263,24 @@ TEST_CASE("SpectralAlphaObjective: equals the energy of the solved net, with exa
   }
 }
 
-TEST_CASE("search_alpha: the sine basis for energies on structured solvers, solves otherwise", "[alpha]") {
-  const Boundary b = make_smooth_boundary(7, 6, 3);
-  Objective target = objective_named("target");
-  target.target = Target{};
-  target.target->kind = Target::Kind::kSphere;
-  target.target->radius = 3;
-  const AlphaSearchSummary sine = search_alpha(b, objective_named("thin_plate"), "fast");
-  const AlphaSearchSummary direct = search_alpha(b, objective_named("thin_plate"), "eigen-ldlt");
-  CHECK(sine.evaluator == "sine basis");
-  CHECK(sine.solves == 0);
-  CHECK(direct.evaluator == "factorize and solve");
-  CHECK(direct.solves > 0);
-  REQUIRE(sine.parameter);
-  REQUIRE(direct.parameter);
-  CHECK(*sine.parameter == Approx(*direct.parameter).margin(1e-6));
-  CHECK(search_alpha(b, target, "fast").evaluator == "factorize and solve");
+TEST_CASE("search_alpha: the sine basis on structured solvers, solves otherwise, same optimum", "[alpha]") {
+  Objective sphere = objective_named("target");
+  sphere.target = Target{Target::Kind::kSphere, {}, {0, 0, -1}, {0, 0, 1}, std::sqrt(3.0), 41};
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  const Boundary smooth = make_smooth_boundary(7, 6, 3);
+  for (const auto& [b, o] : {std::pair{smooth, objective_named("thin_plate")}, {dome, sphere}}) {
+    const AlphaSearchSummary sine = search_alpha(b, o, "fast");
+    const AlphaSearchSummary direct = search_alpha(b, o, "eigen-ldlt");
+    INFO(sine.brief_report() << " / " << direct.brief_report());
+    CHECK(sine.evaluator == "sine basis");
+    CHECK(sine.solves == 0);
+    CHECK(direct.evaluator == "factorize and solve");
+    CHECK(direct.solves > 0);
+    REQUIRE(sine.parameter);
+    REQUIRE(direct.parameter);
+    CHECK(*sine.parameter == Approx(*direct.parameter).margin(1e-6));
+    CHECK(sine.value == Approx(direct.value).epsilon(1e-9));
+  }
 }
 
 TEST_CASE("search_mask_parameter: the spectral search is exact and needs few evaluations on a large net", "[alpha]") {

@@ -6,8 +6,8 @@
 //   solves (the net N and its sensitivity dN/dp = A⁻¹·[dmask-weighted neighbour sums of N],
 //   math.md §3) and the objective's exact value and derivative; refined by Ceres's line-search
 //   minimiser.
-// - SpectralAlphaSearchObjective (spectral_objective.h), the α family with energies and target
-//   nets: no solve at all, f, f' and f'' in the sine basis; refined by Ceres's trust region on f' = 0.
+// - SpectralAlphaSearchObjective (spectral_objective.h), the α family with any objective: no solve
+//   at all, f, f' and f'' in the sine basis; refined by Ceres's trust region on f' = 0.
 // search_alpha picks the second whenever it applies.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700; Ceres Solver's
 // GradientProblemSolver and Problem (S. Agarwal, K. Mierle et al.).
@@ -103,16 +103,15 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
 
 #if COONS_HAVE_FFTW
 class SpectralAlphaSearchObjective;
-//! The same search on the α family with a discrete objective, evaluated in the sine basis (no
+//! The same search on the α family, evaluated in the sine basis (no
 //! solves; see spectral_objective.h).
 AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective, const AlphaSearchOptions& options = {});
 #endif
 
 //! The search over the α family with the cheapest exact evaluator: the sine basis (no solve per
 //! evaluation; spectral_objective.h) when FFTW is built, `solver` names a structured backend,
-//! m, n ≥ 2 and the objective is made of energies and at most a target net; otherwise (analytic
-//! targets, other backends) a factorisation and solves per evaluation (MaskObjective). `solver`
-//! must name a registered backend.
+//! m, n ≥ 2 (any objective); otherwise a factorisation and solves per evaluation (MaskObjective).
+//! `solver` must name a registered backend.
 AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const std::string& solver,
                                 const AlphaSearchOptions& options = {},
                                 const solvers::SolverOptions& solver_options = {});

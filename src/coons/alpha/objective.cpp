@@ -7,12 +7,16 @@
 
 namespace coons {
 
-double target_distance(const Target& t, const Eigen::RowVector3d& p, Eigen::RowVector3d* gradient) {
+double target_distance(const Target& t, const Eigen::RowVector3d& p, Eigen::RowVector3d* gradient,
+                       Eigen::Matrix3d* hessian) {
+  if (hessian) hessian->setZero();
   switch (t.kind) {
     case Target::Kind::kSphere: {
       const Eigen::RowVector3d d = p - t.point;
       const double r = d.norm();
-      if (gradient) *gradient = r > 0 ? Eigen::RowVector3d(d / r) : Eigen::RowVector3d::Zero();
+      const Eigen::RowVector3d n = r > 0 ? Eigen::RowVector3d(d / r) : Eigen::RowVector3d::Zero();
+      if (gradient) *gradient = n;
+      if (hessian && r > 0) *hessian = (Eigen::Matrix3d::Identity() - n.transpose() * n) / r;
       return r - t.radius;
     }
     case Target::Kind::kCylinder: {
@@ -20,7 +24,10 @@ double target_distance(const Target& t, const Eigen::RowVector3d& p, Eigen::RowV
       Eigen::RowVector3d q = p - t.point;
       q -= q.dot(axis) * axis;
       const double r = q.norm();
-      if (gradient) *gradient = r > 0 ? Eigen::RowVector3d(q / r) : Eigen::RowVector3d::Zero();
+      const Eigen::RowVector3d n = r > 0 ? Eigen::RowVector3d(q / r) : Eigen::RowVector3d::Zero();
+      if (gradient) *gradient = n;
+      if (hessian && r > 0)
+        *hessian = (Eigen::Matrix3d::Identity() - axis.transpose() * axis - n.transpose() * n) / r;
       return r - t.radius;
     }
     case Target::Kind::kPlane: {

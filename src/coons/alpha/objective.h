@@ -29,7 +29,10 @@ struct Target {
 };
 
 //! Signed distance of p to an analytic target (sphere, cylinder, plane) and its gradient.
-double target_distance(const Target& target, const Eigen::RowVector3d& p, Eigen::RowVector3d* gradient = nullptr);
+//! With `hessian`, also its Hessian in p (sphere: (I − nnᵀ)/r; cylinder: (I − aaᵀ − nnᵀ)/r, a the
+//! axis; plane: 0), for searches that use second derivatives.
+double target_distance(const Target& target, const Eigen::RowVector3d& p, Eigen::RowVector3d* gradient = nullptr,
+                       Eigen::Matrix3d* hessian = nullptr);
 
 //! rms distance of the sampled surface of `net` to the target.
 double rms_distance(const ControlNet& net, const Target& target);

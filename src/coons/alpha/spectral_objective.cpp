@@ -115,8 +115,7 @@ COONS_VECTOR_CLONES ModeSums mode_sums(double alpha, const double* __restrict xi
 
 bool SpectralAlphaObjective::supports(const Objective& o) {
   const bool target = o.target_weight > 0;
-  return (!o.discrete.empty() || !o.energy.empty() || target) &&
-         (!target || (o.target && o.target->kind == Target::Kind::kNet));
+  return (!o.discrete.empty() || !o.energy.empty() || target) && (!target || o.target);
 }
 
 SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objective& objective)
@@ -197,8 +196,22 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objectiv
       has_exact_ = true;
     }
     if (objective.target_weight > 0) {
-      target_ = mean_square_distance(coons, objective.target->net, objective.target->samples);
       target_weight_ = objective.target_weight;
+      if (objective.target->kind == Target::Kind::kNet) {
+        target_ = mean_square_distance(coons, objective.target->net, objective.target->samples);
+      } else {
+        analytic_ = objective.target;
+        const int k = analytic_->samples;
+        auto basis_at_samples = [k](int degree) {
+          Eigen::MatrixXd Bs(k, degree + 1);
+          for (int s = 0; s < k; ++s) Bs.row(s) = bernstein_basis(degree, double(s) / (k - 1)).transpose();
+          return Bs;
+        };
+        const Eigen::MatrixXd Bu = basis_at_samples(b.m), Bv = basis_at_samples(b.n);
+        p_ = solvers::sine_transform_1d(Bu.middleCols(1, rows_).transpose()).transpose();
+        q_ = solvers::sine_transform_1d(Bv.middleCols(1, cols_).transpose()).transpose();
+        for (int c = 0; c < 3; ++c) coons_samples_[c] = Bu * coordinate_grid(coons, c) * Bv.transpose();
+      }
     }
   }
   if (energy.empty()) return;  // no discrete terms
@@ -322,6 +335,33 @@ std::array<double, 4> quadratic_sums(const Quadratic& q, const Eigen::MatrixXd (
 
 }  // namespace
 
+std::array<double, 4> SpectralAlphaObjective::analytic_sums(const Eigen::MatrixXd (&U)[3][3]) const {
+  // The samples S = S_C + P·U·Qᵀ and their derivatives S', S'' in α; per sample p with signed
+  // distance d, gradient g and Hessian H: (d²)' = 2d·g·p', (d²)'' = 2(g·p')² + 2d(g·p'' + p'ᵀHp').
+  const int k = analytic_->samples;
+  Eigen::MatrixXd S[3][3];
+  for (int c = 0; c < 3; ++c)
+    for (int r = 0; r < 3; ++r) {
+      S[c][r] = p_ * U[c][r] * q_.transpose();
+      if (r == 0) S[c][r] += coons_samples_[c];
+    }
+  std::array<double, 4> m = {0, 0, 0, 0};
+  for (int s = 0; s < k; ++s)
+    for (int t = 0; t < k; ++t) {
+      const Eigen::RowVector3d p0(S[0][0](s, t), S[1][0](s, t), S[2][0](s, t)),
+          p1(S[0][1](s, t), S[1][1](s, t), S[2][1](s, t)), p2(S[0][2](s, t), S[1][2](s, t), S[2][2](s, t));
+      Eigen::RowVector3d g;
+      Eigen::Matrix3d H;
+      const double d = target_distance(*analytic_, p0, &g, &H), gp1 = g.dot(p1);
+      m[0] += d * d;
+      m[1] += 2 * d * gp1;
+      m[2] += 2 * (gp1 * gp1 + d * (g.dot(p2) + p1 * H * p1.transpose()));
+      m[3] += std::abs(2 * d * gp1);
+    }
+  const double samples = double(k) * k;
+  return {m[0] / samples, m[1] / samples, m[2] / samples, 16 * std::numeric_limits<double>::epsilon() * m[3] / samples};
+}
+
 SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) const {
   // per mode: δ̂ = u·R̂, u = γ/λ, γ = α + 1/4, λ = 1 − 2β(x + y) − 4αxy = λ_C + γd, and
   //   f = E(N_C) + Σ [ quad·u² + lin·u ],  f' = Σ (2·quad·u + lin)·u',
@@ -356,8 +396,8 @@ SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) con
       v.second_derivative += q[2];
       v.derivative_noise += q[3];
     }
-    if (target_weight_ > 0) {  // w·√q: the rms distance
-      const auto q = quadratic_sums(target_, U);
+    if (target_weight_ > 0) {  // w·√q, q the mean square distance and its derivatives
+      const auto q = analytic_ ? analytic_sums(U) : quadratic_sums(target_, U);
       const double rms = std::sqrt(std::max(q[0], 0.0)), w = target_weight_;
       v.value += w * rms;
       if (rms > 0) {

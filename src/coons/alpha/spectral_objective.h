@@ -1,6 +1,5 @@
-// The α family with an objective of energies (discrete or exact) and target nets, evaluated in the
-// sine basis that diagonalises every mask of the family: f(α), f'(α) and f''(α) cost no solve at
-// all. For the discrete energies, after 1-D transforms of the boundary data, one pass over the
+// The α family with any objective (discrete or exact energies, targets), evaluated in the sine
+// basis that diagonalises every mask of the family: f(α), f'(α) and f''(α) cost no solve at all. For the discrete energies, after 1-D transforms of the boundary data, one pass over the
 // modes. Measured from the discrete Coons net N_C, N(α) = N_C + δ with δ̂ = (α + 1/4)·R̂/λ(α)
 // per mode (R: the 5-point Laplacian of N_C, λ = 1 − 2β(x+y) − 4αxy), and the energy
 // E(N_C + δ) = E(N_C) + 2cᵀδ + δᵀQδ with Q diagonal in that basis (symbols (2−2x)(2−2y),
@@ -9,12 +8,14 @@
 // R and c are sums of four separable grids (N_C is a boolean sum of linear blends), so R̂ and ĉ are
 // outer products of 1-D transforms of the sides: the set-up needs no 2-D transform.
 // The exact energies and a target net are quadratic too, with Kronecker Hessians that are dense in
-// the sine basis (see the constructor). This is what makes an α search cost a few solves instead
+// the sine basis; an analytic target is measured on the surface sampled from the modes (see the
+// constructor). This is what makes an α search cost a few solves instead
 // of dozens (on a 1023×1023 net with a discrete objective, 7× one solve including the optimal net).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the eigenvectors of the
 // mask family); R. W. Hockney, J. ACM 12 (1965) (sine-transform solvers).
 #pragma once
 
+#include <array>
 #include <optional>
 #include <utility>
 #include <vector>
@@ -44,10 +45,13 @@ class SpectralAlphaObjective {
   //!   evaluating the energy of a net costs, but still no solve;
   //! - the rms distance to a target net: its mean square is quadratic in the net with Hessian
   //!   (B_uᵀB_u ⊗ B_vᵀB_v)/k², B_u the Bernstein values at the k samples, so it is handled as the
-  //!   exact energies are, then square-rooted.
+  //!   exact energies are, then square-rooted;
+  //! - the rms distance to an analytic target (sphere, cylinder, plane): the sampled surface is
+  //!   S_C + P·Û·Qᵀ per coordinate (P = B_u S, Q = B_v S, Û = u∘R̂), two small products per
+  //!   evaluation, then the distance, its gradient and Hessian at each sample.
   //! Precondition: m, n ≥ 2 and supports(objective).
   SpectralAlphaObjective(const Boundary& boundary, const Objective& objective);
-  //! At least one term, and a target (if any) that is a net, not an analytic surface.
+  //! At least one term, and the target set when the objective uses one.
   static bool supports(const Objective& objective);
 
   [[nodiscard]] Value evaluate(double alpha) const;
@@ -74,9 +78,15 @@ class SpectralAlphaObjective {
   bool has_exact_ = false;
   double target_weight_ = 0;
   Eigen::MatrixXd r_hat_[3];               // R̂ per coordinate (rows × cols), for the two above
+  std::optional<Target> analytic_;         // an analytic target, measured at its samples:
+  Eigen::MatrixXd p_, q_;                  //   B_u S (k × rows) and B_v S (k × cols)
+  Eigen::MatrixXd coons_samples_[3];       //   the Coons net's surface at the samples (k × k)
   Quadratic exact_energies(const ControlNet& coons, const std::vector<EnergyTerm>& exact, const Eigen::MatrixXd (&A)[3],
                            const Eigen::MatrixXd (&B)[3]) const;
   Quadratic mean_square_distance(const ControlNet& coons, const ControlNet& target, int samples) const;
+  //! The mean square distance to analytic_ and its first two derivatives, and the rounding error
+  //! of the first, at U[c][r] = u^(r)∘R̂_c.
+  std::array<double, 4> analytic_sums(const Eigen::MatrixXd (&U)[3][3]) const;
 };
 
 //! SpectralAlphaObjective with the interface search_mask_parameter expects (and no net).
