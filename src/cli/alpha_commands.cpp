@@ -429,6 +429,8 @@ int cmd_search_alpha(const std::string& path, const NetRequest& net, const Searc
   AlphaSearchSummary s;
   if (r.parameter == "alpha") {
     s = search_alpha(b, setup.objective, setup.solver, setup.options);
+  } else if (r.parameter == "mu") {
+    s = coons::search_mu(b, setup.objective, setup.solver, setup.options);
   } else {
     MaskObjective objective(b, setup.objective, setup.family, setup.solver);
     s = search_mask_parameter(objective, setup.options);
@@ -543,8 +545,7 @@ AlphaSearchSummary search_mu(const Boundary& b, const Objective& objective, cons
   AlphaSearchOptions options;
   options.lower = 0;
   options.upper = compressed_of_mu(b.m, b.n, 1000.0 * b.m * b.n);
-  MaskObjective g(b, objective, [m = b.m, n = b.n](double s) { return mu_family_compressed(m, n, s); }, solver);
-  AlphaSearchSummary s = search_mask_parameter(g, options);
+  AlphaSearchSummary s = coons::search_mu(b, objective, solver, options);
   if (s.parameter) s.parameter = mu_of_compressed(b.m, b.n, *s.parameter);
   return s;
 }

@@ -202,7 +202,19 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
     INFO("degree " << degree << ": " << a.brief_report() << " / " << m.brief_report());
     CHECK(mu_of_compressed(degree, degree, *m.parameter) == Approx(mu_from_alpha(degree, *a.parameter)).epsilon(1e-4));
     CHECK(m.value == Approx(a.value).epsilon(1e-10));
+    // search_mu runs a square net's μ search on α, in the sine basis on a structured solver
+    const AlphaSearchSummary sine = search_mu(b, objective_named("thin_plate"), "fast", options);
+    CHECK(sine.evaluator == "sine basis");
+    CHECK(sine.solves == 0);
+    REQUIRE(sine.parameter);
+    CHECK(mu_of_compressed(degree, degree, *sine.parameter) == Approx(mu_of_compressed(degree, degree, *m.parameter)).epsilon(1e-4));
+    CHECK(sine.value == Approx(m.value).epsilon(1e-10));
   }
+  // a non-square net keeps the anisotropic family and its solves
+  AlphaSearchOptions options;
+  options.lower = 0;
+  options.upper = compressed_of_mu(5, 7, 1000.0 * 35);
+  CHECK(search_mu(make_smooth_boundary(5, 7, 2), objective_named("thin_plate"), "fast", options).evaluator == "factorize and solve");
   // and the compressed family's derivative is right
   MaskObjective f(make_smooth_boundary(5, 7, 2), objective_named("e3"), [](double s) { return mu_family_compressed(5, 7, s); }, "eigen-ldlt");
   const double h = 1e-7, s = 0.3;

@@ -446,6 +446,24 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
   return s;
 }
 
+AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const std::string& solver,
+                             const AlphaSearchOptions& options, const solvers::SolverOptions& solver_options) {
+  if (boundary.m == boundary.n) {
+    AlphaSearchOptions on_alpha = options;
+    on_alpha.lower = (options.lower - 1) / 4;
+    on_alpha.upper = (options.upper - 1) / 4;
+    AlphaSearchSummary s = search_alpha(boundary, objective, solver, on_alpha, solver_options);
+    if (s.parameter) s.parameter = 1 + 4 * *s.parameter;
+    for (auto& point : s.scan) point.first = 1 + 4 * point.first;
+    return s;
+  }
+  MaskObjective f(boundary, objective, [m = boundary.m, n = boundary.n](double t) { return mu_family_compressed(m, n, t); },
+                  solver, solver_options);
+  AlphaSearchSummary s = search_impl(f, options);
+  s.evaluator = "factorize and solve";
+  return s;
+}
+
 #if COONS_HAVE_FFTW
 AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective, const AlphaSearchOptions& options) {
   return search_impl(objective, options);

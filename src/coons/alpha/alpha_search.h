@@ -116,6 +116,13 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
                                 const AlphaSearchOptions& options = {},
                                 const solvers::SolverOptions& solver_options = {});
 
+//! The search over μ on the compressed scale s = μ/(μ + mn) (mu_family_compressed; bounds and
+//! the result in s). For m = n that scale is α itself, s = 1 + 4α (math.md §4), so the search runs
+//! as search_alpha does, in the sine basis where it applies, and maps back; for m ≠ n (the
+//! anisotropic masks) it factorizes and solves per evaluation.
+AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const std::string& solver,
+                             const AlphaSearchOptions& options, const solvers::SolverOptions& solver_options = {});
+
 //! The two-parameter symmetric family (α, γ): e_i = 1/4 − α + γ, e_j = 1/4 − α − γ, d = α, i.e.
 //! every affine-invariant symmetric 3×3 mask (4α + 2β_i + 2β_j = 1). The operator is positive
 //! definite for α ∈ [−1/4, 1/4], |γ| < 1/4 + α; the search stays inside. It starts from the best
