@@ -1,16 +1,15 @@
 // The α family with any objective (discrete or exact energies, targets), evaluated in the sine
-// basis that diagonalises every mask of the family: f(α), f'(α) and f''(α) cost no solve at all. For the discrete energies, after 1-D transforms of the boundary data, one pass over the
-// modes. Measured from the discrete Coons net N_C, N(α) = N_C + δ with δ̂ = (α + 1/4)·R̂/λ(α)
-// per mode (R: the 5-point Laplacian of N_C, λ = 1 − 2β(x+y) − 4αxy), and the energy
-// E(N_C + δ) = E(N_C) + 2cᵀδ + δᵀQδ with Q diagonal in that basis (symbols (2−2x)(2−2y),
-// (2−2x)+(2−2y), (2−2x)² + 2(2−2x)(2−2y) + (2−2y)²):
-//   f(α) = E(N_C) + Σ_pq [ q_pq ‖δ̂_pq‖² + 2 ĉ_pq·δ̂_pq ].
-// R and c are sums of four separable grids (N_C is a boolean sum of linear blends), so R̂ and ĉ are
-// outer products of 1-D transforms of the sides: the set-up needs no 2-D transform.
-// The exact energies and a target net are quadratic too, with Kronecker Hessians that are dense in
-// the sine basis; an analytic target is measured on the surface sampled from the modes (see the
-// constructor). This is what makes an α search cost a few solves instead
-// of dozens (on a 1023×1023 net with a discrete objective, 7× one solve including the optimal net).
+// basis that diagonalises every mask of the family: f(α), f'(α) and f''(α) cost no solve at all.
+// Measured from the discrete Coons net N_C: N(α) = N_C + δ with δ̂ = (α + 1/4)·R̂/λ(α) per mode
+// (R: the 5-point Laplacian of N_C, λ = 1 − 2β(x+y) − 4αxy), and a quadratic objective is
+//   f(N_C + δ) = f(N_C) + 2ĉ·δ̂ + δ̂ᵀQ̂δ̂,   c = ∇f(N_C)/2.
+// - Discrete energies: Q̂ is diagonal (symbols (2−2x)(2−2y), (2−2x)+(2−2y), …), so after 1-D
+//   transforms of the sides an evaluation is one pass over the modes. R and c are sums of four
+//   separable grids (N_C is a boolean sum of linear blends): the set-up needs no 2-D transform.
+// - Exact energies and a target net: Q̂ is a sum of dense Kronecker products.
+// - An analytic target: measured on the surface sampled from the modes (see the constructor).
+// On a 1023×1023 net a discrete-objective search costs about 4 solves, its optimal net included
+// (experiments/E03_solver_scaling).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the eigenvectors of the
 // mask family); R. W. Hockney, J. ACM 12 (1965) (sine-transform solvers).
 #pragma once
