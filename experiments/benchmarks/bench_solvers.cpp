@@ -23,7 +23,6 @@
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
-#include "coons/mask/solve_mask_net.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
@@ -245,6 +244,11 @@ void BM_SearchAlpha(benchmark::State& state, std::string name, int N, bool spect
   std::string why;
   const Objective objective = *parse_objective("discrete_thin_plate", &why);
   AlphaSearchSummary s;
+  {  // plan the FFTs once (as BM_Solve does)
+    Eigen::MatrixX3d X;
+    const Problem& p = problem(N, -0.1, false);
+    make_solver(name)->compute_and_solve(operator_of(p.system, false), p.system.B, X);
+  }
   SolverOptions options;
   options.compute_residual = false;
   for (auto _ : state) {
