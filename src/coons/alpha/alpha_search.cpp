@@ -428,6 +428,18 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
   return search_impl(objective, options);
 }
 
+namespace {
+// The fallback of search_alpha and search_mu: a factorisation and solves per evaluation.
+AlphaSearchSummary search_by_solving(const Boundary& boundary, const Objective& objective, MaskFamily family,
+                                     const std::string& solver, const AlphaSearchOptions& options,
+                                     const solvers::SolverOptions& solver_options) {
+  MaskObjective f(boundary, objective, std::move(family), solver, solver_options);
+  AlphaSearchSummary s = search_impl(f, options);
+  s.evaluator = "factorize and solve";
+  return s;
+}
+}  // namespace
+
 AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const std::string& solver,
                                 const AlphaSearchOptions& options, const solvers::SolverOptions& solver_options) {
 #if COONS_HAVE_FFTW
@@ -440,10 +452,8 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
     return s;
   }
 #endif
-  MaskObjective f(boundary, objective, [](double a) { return alpha_family(a); }, solver, solver_options);
-  AlphaSearchSummary s = search_impl(f, options);
-  s.evaluator = "factorize and solve";
-  return s;
+  return search_by_solving(boundary, objective, [](double a) { return alpha_family(a); }, solver, options,
+                           solver_options);
 }
 
 AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const std::string& solver,
@@ -457,11 +467,9 @@ AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objectiv
     for (auto& point : s.scan) point.first = 1 + 4 * point.first;
     return s;
   }
-  MaskObjective f(boundary, objective, [m = boundary.m, n = boundary.n](double t) { return mu_family_compressed(m, n, t); },
-                  solver, solver_options);
-  AlphaSearchSummary s = search_impl(f, options);
-  s.evaluator = "factorize and solve";
-  return s;
+  return search_by_solving(boundary, objective,
+                           [m = boundary.m, n = boundary.n](double t) { return mu_family_compressed(m, n, t); }, solver,
+                           options, solver_options);
 }
 
 #if COONS_HAVE_FFTW

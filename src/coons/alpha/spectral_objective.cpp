@@ -48,6 +48,13 @@ Eigen::MatrixXd normal_interior(const Eigen::MatrixXd& F, int order) {
   return d.middleRows(1, F.rows() - 2);
 }
 
+// The Bernstein basis of a degree at the k samples s/(k − 1) of sample_surface (#k by degree+1).
+Eigen::MatrixXd basis_at_samples(int degree, int k) {
+  Eigen::MatrixXd B(k, degree + 1);
+  for (int s = 0; s < k; ++s) B.row(s) = bernstein_basis(degree, double(s) / (k - 1)).transpose();
+  return B;
+}
+
 // Σ over a grid of (Σ_t A(i, t)·B(j, t))² = Σ_{t,s} (AᵀA)_ts (BᵀB)_ts.
 double separable_square_sum(const Eigen::MatrixXd& A, const Eigen::MatrixXd& B) {
   return ((A.transpose() * A).array() * (B.transpose() * B).array()).sum();
@@ -193,7 +200,6 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objectiv
     const ControlNet coons = discrete_coons_net(b);
     if (!objective.energy.empty()) {
       exact_ = exact_energies(coons, objective.energy, A, B);
-      has_exact_ = true;
     }
     if (objective.target_weight > 0) {
       target_weight_ = objective.target_weight;
@@ -202,12 +208,7 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objectiv
       } else {
         analytic_ = objective.target;
         const int k = analytic_->samples;
-        auto basis_at_samples = [k](int degree) {
-          Eigen::MatrixXd Bs(k, degree + 1);
-          for (int s = 0; s < k; ++s) Bs.row(s) = bernstein_basis(degree, double(s) / (k - 1)).transpose();
-          return Bs;
-        };
-        const Eigen::MatrixXd Bu = basis_at_samples(b.m), Bv = basis_at_samples(b.n);
+        const Eigen::MatrixXd Bu = basis_at_samples(b.m, k), Bv = basis_at_samples(b.n, k);
         p_ = solvers::sine_transform_1d(Bu.middleCols(1, rows_).transpose()).transpose();
         q_ = solvers::sine_transform_1d(Bv.middleCols(1, cols_).transpose()).transpose();
         for (int c = 0; c < 3; ++c) coons_samples_[c] = Bu * coordinate_grid(coons, c) * Bv.transpose();
@@ -287,12 +288,7 @@ SpectralAlphaObjective::Quadratic SpectralAlphaObjective::mean_square_distance(c
                                                                               int samples) const {
   // (1/k²) Σ_xyz ‖B_u N B_vᵀ − T‖², T the target sampled at the same (u, v) (objective.cpp).
   const int m = rows_ + 1, n = cols_ + 1, k = samples;
-  auto basis_at_samples = [k](int degree) {
-    Eigen::MatrixXd Bs(k, degree + 1);
-    for (int s = 0; s < k; ++s) Bs.row(s) = bernstein_basis(degree, double(s) / (k - 1)).transpose();
-    return Bs;
-  };
-  const Eigen::MatrixXd Bu = basis_at_samples(m), Bv = basis_at_samples(n);
+  const Eigen::MatrixXd Bu = basis_at_samples(m, k), Bv = basis_at_samples(n, k);
   const Eigen::MatrixX3d T = sample_surface(target, k, k);
   Quadratic q;
   for (int c = 0; c < 3; ++c) {
@@ -378,7 +374,7 @@ SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) con
     v.derivative_noise = 16 * std::numeric_limits<double>::epsilon() * s.df_abs;
     v.ok = s.smallest >= 1e-14;
   }
-  if (has_exact_ || target_weight_ > 0) {
+  if (!exact_.terms.empty() || target_weight_ > 0) {
     // U = u∘R̂ per coordinate, with u, u', u'' per mode as in mode_sums
     const double gamma = alpha + 0.25;
     const Eigen::ArrayXXd lc = (xi_ * eta_.transpose()).array();
@@ -389,7 +385,7 @@ SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) con
     Eigen::MatrixXd U[3][3];
     for (int c = 0; c < 3; ++c)
       for (int r = 0; r < 3; ++r) U[c][r] = (u[r] * r_hat_[c].array()).matrix();
-    if (has_exact_) {
+    if (!exact_.terms.empty()) {
       const auto q = quadratic_sums(exact_, U);
       v.value += q[0];
       v.derivative += q[1];

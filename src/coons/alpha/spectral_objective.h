@@ -74,7 +74,6 @@ class SpectralAlphaObjective {
     std::vector<KroneckerTerm> terms;
   };
   Quadratic exact_, target_;               // the exact energies; the mean square distance to a target net
-  bool has_exact_ = false;
   double target_weight_ = 0;
   Eigen::MatrixXd r_hat_[3];               // R̂ per coordinate (rows × cols), for the two above
   std::optional<Target> analytic_;         // an analytic target, measured at its samples:
