@@ -2,7 +2,7 @@
 //   jacobi        replace every point by its mask average at once;
 //   gauss-seidel  sweep the grid in order, using new values at once, with over-relaxation
 //                 factor ω = SolverOptions::sor_omega (ω = 1: Gauss–Seidel, 1 < ω < 2: SOR).
-// Jacobi diverges for every α < 0 on large enough grids (math.md §3): the iteration watches its
+// Jacobi diverges for every α < 0 on large enough grids (docs/math.md §3): the iteration watches its
 // residual and stops with status `diverged` once it has grown 10⁸-fold (or ends above where it
 // started), so it never loops on or prints NaN. Gauss–Seidel converges on every positive definite
 // system, slowly (O(N²) sweeps at α = −1/4).

@@ -4,7 +4,7 @@
 //   cholmod-simplicial  simplicial LDLᵀ (up-looking, no BLAS)
 //   umfpack             unsymmetric-pattern multifrontal LU (also indefinite, non-singular systems)
 // Ordering (SolverOptions::ordering): auto = AMD for CHOLMOD, which is faster here than CHOLMOD's
-// default METIS-or-AMD search at every size measured (solver-notes.md; the benchmark shows both);
+// default METIS-or-AMD search at every size measured (docs/solvers.md; the benchmark shows both);
 // metis, nested-dissection (CHOLMOD's NESDIS), natural and amd can be asked for.
 // Based on: T. A. Davis et al., Algorithm 887: CHOLMOD, ACM TOMS 35 (2008); T. A. Davis,
 // Algorithm 832: UMFPACK V4.3, ACM TOMS 30 (2004).

@@ -1,4 +1,4 @@
-// Solver benchmarks on the mask systems of math.md §3: interior grids N×N, 3 right-hand sides.
+// Solver benchmarks on the mask systems of docs/math.md §3: interior grids N×N, 3 right-hand sides.
 // Every figure is meant to be read as a multiple of BM_MemoryPass at the same N, measured in the
 // same run (scripts/bench.sh turns the JSON output into a table, a plot and scaling exponents).
 //

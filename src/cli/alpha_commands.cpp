@@ -591,7 +591,7 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
   line("");
   line("α is the weight of the four diagonal neighbours in b_ij = α·K + β·E (Farin & Hansford 1999); α = −1/4 is the");
   line("Coons net, α = 0 the Laplace net. μ is the degree-independent membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖², with");
-  line("α(n) = −n²/(4(n² + μ)) (math.md §4). Optima come from `search_alpha` (coarse scan, then Ceres with the");
+  line("α(n) = −n²/(4(n² + μ)) (docs/math.md §4). Optima come from `search_alpha` (coarse scan, then Ceres with the");
   line("analytic derivative; objectives over α are evaluated in the sine basis of the mask family, with no solve per");
   line("evaluation); `flat` means the objective does not depend on α, `bound` that the optimum is on a bound,");
   line("`multi` that the scan saw several local minima.");
@@ -773,12 +773,12 @@ int cmd_study(const StudyRequest& r, const NetRequest& net) {
   line(mu_error.empty() ? "![μ* against degree](figures/mu_vs_degree.png)" : "(μ* plot: " + mu_error + ")");
   line("");
 
-  // 3. The dome table of math.md §7.
+  // 3. The dome table of docs/math.md §7.
   for (const auto& [path, input] : inputs) {
     if (input.boundary.name != "dome") continue;
     const Boundary& b = input.boundary;
     const std::string solver = search_solver(net, b, false);
-    line("## 3. The dome (math.md §7): a Farin–Hansford table");
+    line("## 3. The dome (docs/math.md §7): a Farin–Hansford table");
     line("");
     const std::optional<Target> sphere = target_from_boundary_file(path);
     line(std::string("| α | S(½,½).z | thin plate | Dirichlet |") + (sphere ? " rms distance to the sphere |" : ""));

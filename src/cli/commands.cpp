@@ -198,7 +198,7 @@ int cmd_batch(const BatchRequest& b, const NetRequest& base) {
   write_file_atomically((fs::path(b.out_dir) / "metrics.md").string(), [&](std::ostream& out) {
     out << "# coons batch: metrics of every bundled boundary\n\n"
         << "Coons = closed-form discrete Coons net; alpha = mask solve. Energies are exact integrals "
-           "of the Bézier surface (math.md §5); mask res. is the residual of the row's own mask.\n\n"
+           "of the Bézier surface (docs/math.md §5); mask res. is the residual of the row's own mask.\n\n"
         << table;
   });
   std::cout << table << '\n'
@@ -221,8 +221,8 @@ int run(int argc, char** argv) {
   NetRequest net_request;
   std::string boundary_path;
 
-  auto* solve = app.add_subcommand("solve", "solve one boundary; prints one JSON report (formats.md)");
-  solve->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  auto* solve = app.add_subcommand("solve", "solve one boundary; prints one JSON report (docs/formats.md)");
+  solve->add_option("BOUNDARY", boundary_path, "boundary JSON file (docs/formats.md)")->required();
   add_net_options(*solve, net_request);
 
   bool solvers_json = false, solvers_verbose = false;
@@ -232,7 +232,7 @@ int run(int argc, char** argv) {
 
   ExportRequest export_request;
   auto* exp = app.add_subcommand("export", "write the net as OBJ files and/or the mask system as Matrix Market");
-  exp->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  exp->add_option("BOUNDARY", boundary_path, "boundary JSON file (docs/formats.md)")->required();
   add_net_options(*exp, net_request);
   exp->add_option("--out", export_request.out_dir, "output folder")->capture_default_str();
   exp->add_option("--prefix", export_request.prefix, "file name prefix (default: the boundary's name)");
@@ -252,20 +252,20 @@ int run(int argc, char** argv) {
   SearchRequest search_request;
   auto* search = app.add_subcommand("search-alpha", "the best mask parameter of one boundary for an objective "
                                     "(Ceres, analytic derivative); prints one JSON report");
-  search->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  search->add_option("BOUNDARY", boundary_path, "boundary JSON file (docs/formats.md)")->required();
   add_search_options(*search, search_request);
   search->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
 
   SweepRequest sweep_request;
   auto* sweep = app.add_subcommand("sweep", "every metric on a grid of alpha (or mu): NAME.sweep.jsonl and a PNG plot");
-  sweep->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  sweep->add_option("BOUNDARY", boundary_path, "boundary JSON file (docs/formats.md)")->required();
   add_sweep_options(*sweep, sweep_request);
   sweep->add_option("--solver", net_request.solver, "a name from `coons solvers`, or auto")->capture_default_str();
 
   RefitRequest refit_request;
   auto* refit = app.add_subcommand("refit", "the boundary at another degree: refitted from its analytic \"curves\", "
                                    "or elevated exactly; prints (or writes) a boundary file");
-  refit->add_option("BOUNDARY", boundary_path, "boundary JSON file (formats.md)")->required();
+  refit->add_option("BOUNDARY", boundary_path, "boundary JSON file (docs/formats.md)")->required();
   add_refit_options(*refit, refit_request);
 
   StudyRequest study_request;

@@ -1,4 +1,4 @@
-// The `coons` command line (formats.md is its contract). Exit status: 0 success, 2 bad input
+// The `coons` command line (docs/formats.md is its contract). Exit status: 0 success, 2 bad input
 // (one `error:` line on stderr, nothing written), 3 a solver failed (the report says why).
 #pragma once
 

@@ -38,7 +38,7 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
   cmd.add_option("--alpha", r.alpha, "weight of the diagonal neighbours; beta = 1/4 - alpha")
       ->capture_default_str();
   cmd.add_option("--mu", r.mu, "membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖²: the anisotropic mask of "
-                 "math.md §3 (overrides --alpha)");
+                 "docs/math.md §3 (overrides --alpha)");
   cmd.add_option("--solver", r.solver, "a name from `coons solvers`, or auto")->capture_default_str();
   cmd.add_flag("--allow-indefinite", r.allow_indefinite,
                 "let Cholesky-type solvers run outside alpha in [-1/4, 1/4] (they will report it)");
@@ -121,7 +121,7 @@ json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetO
   report["alpha"] = r.mask.diag;
   report["beta"] = number_or_null(r.mask.edge_i == r.mask.edge_j ? r.mask.edge_i : NAN);
   if (r.mask.edge_i != r.mask.edge_j) report["beta_ij"] = {r.mask.edge_i, r.mask.edge_j};
-  // μ next to α: given, or the μ of α at degree n (math.md §4) when m = n and α ∈ [−1/4, 0).
+  // μ next to α: given, or the μ of α at degree n (docs/math.md §4) when m = n and α ∈ [−1/4, 0).
   if (mu) report["mu"] = *mu;
   else if (boundary.m == boundary.n && r.mask.diag >= -0.25 && r.mask.diag < 0 && r.mask.edge_i == r.mask.edge_j)
     report["mu"] = mu_from_alpha(boundary.n, r.mask.diag);

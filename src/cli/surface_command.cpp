@@ -76,7 +76,7 @@ double max_difference(const ControlNet& a, const ControlNet& b) { return (a.poin
 
 CLI::App* add_surface_command(CLI::App& app, SurfaceRequest& r) {
   auto* cmd = app.add_subcommand("surface", "build a surface of the continuous Coons family from its JSON description "
-                                 "(formats.md); prints points, Bezier net, metrics; writes meshes and a PNG");
+                                 "(docs/formats.md); prints points, Bezier net, metrics; writes meshes and a PNG");
   cmd->add_option("SPEC", r.spec, "surface description JSON (types: ruled, sectorial, bilinear, conoid, "
                   "bilinear-coons, hermite-coons, ferguson, hermite16, general-coons, bezier)")->required();
   cmd->add_option("--sample", r.samples, "K: print r(a/(K-1), b/(K-1)) on a K x K grid; meshes use it too")

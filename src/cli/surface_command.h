@@ -1,5 +1,5 @@
 // `coons surface SPEC.json --sample K`: build any surface of the continuous Coons family from its
-// JSON description (formats.md "Curves and surfaces"), print {"type", "points": K×K} with the
+// JSON description (docs/formats.md "Curves and surfaces"), print {"type", "points": K×K} with the
 // Bézier net (exact when the surface is polynomial, else over Bézier fits of its curves, with the
 // deviations), exact energies of that net, its distance to the closed-form discrete nets of its
 // boundary, the corner twists and the compatibility diagnostics; optionally write meshes (OBJ,
@@ -29,7 +29,7 @@ CLI::App* add_surface_command(CLI::App& app, SurfaceRequest& r);
 int cmd_surface(const SurfaceRequest& r);
 
 //! `coons join A.json SIDE B.json SIDE`: the C⁰ gap and the largest angle between the tangent
-//! planes along the seam where side A of one surface meets side B of another (seeds 001, 002).
+//! planes along the seam where side A of one surface meets side B of another (LN1, LN2).
 struct JoinRequest {
   std::string first, first_side, second, second_side;
   bool reversed = false;

@@ -120,7 +120,7 @@ TEST_CASE("search_mask_parameter: the dome fits its sphere best near alpha = -0.
   CHECK(*s.parameter == Approx(-0.20).margin(0.01));
   const double coons_rms = rms_distance(discrete_coons_net(b), *sphere.target);
   CHECK(coons_rms == Approx(0.051).margin(0.0005));
-  const double rms_at_020 = f.evaluate(-0.20).value;  // math.md §7: ≈ 0.0024
+  const double rms_at_020 = f.evaluate(-0.20).value;  // docs/math.md §7: ≈ 0.0024
   CHECK(rms_at_020 == Approx(0.0024).margin(0.0002));
   CHECK(s.value <= rms_at_020);
   CHECK(coons_rms / rms_at_020 > 15);  // "about 20× better than Coons"
@@ -180,7 +180,7 @@ TEST_CASE("discrete objectives: derivative equals finite differences; discrete t
   MaskObjective twist(b, objective_named("discrete_twist"), alpha_only(), "eigen-ldlt");
   const AlphaSearchSummary s = search_mask_parameter(twist);
   REQUIRE(s.parameter);
-  CHECK(*s.parameter == -0.25);  // math.md §3: the Coons net minimises the discrete twist energy
+  CHECK(*s.parameter == -0.25);  // docs/math.md §3: the Coons net minimises the discrete twist energy
   CHECK(s.at_bound);
   CHECK(discrete_thin_plate_energy(discrete_coons_net(b)) ==
         Approx(discrete_energy_form(discrete_coons_net(b), discrete_coons_net(b), DiscreteEnergy::kThinPlate)));

@@ -1,4 +1,4 @@
-// The command-line contract of formats.md, driven through the real binary.
+// The command-line contract of docs/formats.md, driven through the real binary.
 #include <catch2/catch.hpp>
 
 #include <filesystem>
@@ -30,7 +30,7 @@ std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
 }  // namespace
 
-TEST_CASE("coons solve: the report of formats.md, numbers that read back exactly", "[cli]") {
+TEST_CASE("coons solve: the report of docs/formats.md, numbers that read back exactly", "[cli]") {
   const std::string file = kData + "/boundaries/dome.json";
   const CommandResult r = run_command(kCoons + " solve " + quoted(file) + " --alpha -0.2 --solver eigen-ldlt");
   REQUIRE(r.status == 0);
@@ -157,7 +157,7 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
     CHECK(fs::exists(fs::path(out) / f));
 }
 
-TEST_CASE("coons search-alpha: the report of formats.md", "[cli][alpha]") {
+TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   const CommandResult r = run_command(kCoons + " search-alpha " + quoted(kData + "/boundaries/dome.json") + " --objective thin_plate");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);

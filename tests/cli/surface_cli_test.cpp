@@ -1,4 +1,4 @@
-// `coons surface` through the real binary: the formats.md report, the files it writes, and the
+// `coons surface` through the real binary: the docs/formats.md report, the files it writes, and the
 // error contract for bad descriptions (exit 2, one `error:` line naming the field, nothing written).
 #include <catch2/catch.hpp>
 
@@ -81,7 +81,7 @@ TEST_CASE("coons surface: points[a][b] = r(a/(K-1), b/(K-1)), type, and the exac
   CHECK(interior[0].get<double>() == Approx(1).margin(1e-14));
   CHECK(interior[1].get<double>() == Approx(0).margin(1e-14));
   CHECK(interior[2].get<double>() == Approx(1).margin(1e-14));
-  // math.md §5: the Coons net of example 1 has twist 0, Dirichlet 20/3, thin plate 8.
+  // docs/math.md §5: the Coons net of example 1 has twist 0, Dirichlet 20/3, thin plate 8.
   CHECK(report["metrics"]["twist_energy"].get<double>() == Approx(0).margin(1e-12));
   CHECK(report["metrics"]["dirichlet_energy"].get<double>() == Approx(20.0 / 3).epsilon(1e-12));
   CHECK(report["metrics"]["thin_plate_energy"].get<double>() == Approx(8).epsilon(1e-12));

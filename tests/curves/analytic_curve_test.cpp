@@ -65,7 +65,7 @@ TEST_CASE("numerical_derivative: one-sided near a domain end where the function 
   CHECK(std::abs(e.value(0) - 0.5 / std::sqrt(1.05)) < 1e-10);
 }
 
-TEST_CASE("AnalyticCurve: expressions in t on [t1, t2], reparametrised to [0, 1] (seed 001)", "[curves]") {
+TEST_CASE("AnalyticCurve: expressions in t on [t1, t2], reparametrised to [0, 1] (LN1)", "[curves]") {
   const AnalyticCurve c({"cos(t)", "sin(t)", "t^2 + 1e-3"}, 0.5, 2.0);
   for (double s : {0.0, 0.25, 1.0}) {
     const double t = 0.5 + 1.5 * s;
@@ -110,7 +110,7 @@ TEST_CASE("fit_bezier: interpolates the ends; exact for polynomials; deviation f
   CHECK((exact.curve.points.row(0) - cubic.at(0)).norm() == 0);
   CHECK((exact.curve.points.row(4) - cubic.at(1)).norm() == 0);
 
-  // Seed 000's quarter circle (u, sin(πu/2), cos(πu/2)): the error falls fast with the degree.
+  // LN0's quarter circle (u, sin(πu/2), cos(πu/2)): the error falls fast with the degree.
   const Curve arc = AnalyticCurve({"u", "sin(pi/2*u)", "cos(pi/2*u)"});
   double previous = 1;
   for (int degree : {2, 3, 4, 6, 8}) {

@@ -69,7 +69,7 @@ TEST_CASE("subdivide: the halves are the curve on [0, t] and [t, 1]", "[curves]"
   }
 }
 
-TEST_CASE("reparametrised: seed 001's t = t1 + s(t2 - t1), exactly, also reversed and outside [0, 1]", "[curves]") {
+TEST_CASE("reparametrised: LN1's t = t1 + s(t2 - t1), exactly, also reversed and outside [0, 1]", "[curves]") {
   const BezierCurve c = make_random_bezier(5, 3);
   for (auto [t1, t2] : {std::pair{0.2, 0.7}, {0.9, 0.1}, {-0.5, 1.5}, {0.0, 1.0}}) {
     const BezierCurve r = reparametrised(c, t1, t2);

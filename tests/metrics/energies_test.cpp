@@ -96,7 +96,7 @@ TEST_CASE("net_metrics: seed example 1 reference values (twist 0, Dirichlet 20/3
   CHECK(metrics.mask_residual < 1e-15);
 }
 
-TEST_CASE("net_metrics: the dome table of math.md §7", "[metrics][seed]") {
+TEST_CASE("net_metrics: the dome table of docs/math.md §7", "[metrics][seed]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   struct Row { double alpha, thin_plate, dirichlet; };
   for (const Row& row : {Row{-0.25, 24.787, 9.877}, Row{-0.20, 18.320, 9.320}, Row{-0.10, 13.990, 8.794}, Row{0.0, 13.444, 8.571}}) {

@@ -139,7 +139,7 @@ TEST_CASE("seed example 2: every alpha reproduces the hyperbolic paraboloid z = 
   }
 }
 
-TEST_CASE("dome: the centre heights of math.md §7", "[net][seed]") {
+TEST_CASE("dome: the centre heights of docs/math.md §7", "[net][seed]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   const std::pair<double, double> table[] = {{-0.25, 0.828427}, {-0.20, 0.724874}, {-0.10, 0.595432}, {0.0, 0.517767}};
   for (auto [alpha, z] : table) {
@@ -154,7 +154,7 @@ TEST_CASE("discrete_coons_net: a 1000 x 1000 net is computed", "[net]") {
   const ControlNet net = discrete_coons_net(b);
   CHECK(net.points.rows() == 1001 * 1001);
   CHECK(net.points.allFinite());
-  // Spot-check one interior point against the formula of math.md §2.
+  // Spot-check one interior point against the formula of docs/math.md §2.
   const int i = 317, j = 845;
   const double u = i / 1000.0, v = j / 1000.0;
   const Eigen::RowVector3d expected = (1 - v) * b.bottom.row(i) + v * b.top.row(i) + (1 - u) * b.left.row(j) +

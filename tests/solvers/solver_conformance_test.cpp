@@ -60,7 +60,7 @@ TEST_CASE("every solver: agrees with a dense reference on small nets", "[solvers
         const SolveSummary s = solver->compute_and_solve(operator_of(p.system), p.system.B, X);
         INFO(info.name << ": m = " << m << ", n = " << n << ", alpha = " << alpha << ": " << s.brief_report());
         CHECK(p.system.B == B_copy);
-        if (info.name == "jacobi" && jacobi_diverges(p.system.stencil)) {  // math.md §3
+        if (info.name == "jacobi" && jacobi_diverges(p.system.stencil)) {  // docs/math.md §3
           CHECK(s.status == SolveStatus::kDiverged);
           continue;
         }

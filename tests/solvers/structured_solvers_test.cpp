@@ -35,7 +35,7 @@ GridStencil alpha_stencil(int rows, int cols, double alpha) {
   return {rows, cols, 1.0, -(0.25 - alpha), -(0.25 - alpha), -alpha};
 }
 
-// Anisotropic variant (math.md §3): α = −mn/D, β_i = (2mn + μ m/n)/D, β_j = (2mn + μ n/m)/D.
+// Anisotropic variant (docs/math.md §3): α = −mn/D, β_i = (2mn + μ m/n)/D, β_j = (2mn + μ n/m)/D.
 GridStencil anisotropic_stencil(int rows, int cols, double mu) {
   const double m = rows + 1, n = cols + 1, D = 4 * m * n + 2 * mu * (m / n + n / m);
   return {rows, cols, 1.0, -(2 * m * n + mu * m / n) / D, -(2 * m * n + mu * n / m) / D, m * n / D};

@@ -23,7 +23,7 @@ BoundaryCurves make_random_boundary_curves(int m, int n, std::uint32_t seed);
 Curve closed_form_curve(std::function<Eigen::RowVector3d(double)> f, std::function<Eigen::RowVector3d(double)> df,
                         std::function<Eigen::RowVector3d(double)> d2f);
 
-//! The Hermite cubics of seed 000: H₀₃, H₃₃, H₁₃, H₂₃ (i = 0..3) and their derivatives.
+//! The Hermite cubics of LN0: H₀₃, H₃₃, H₁₃, H₂₃ (i = 0..3) and their derivatives.
 double hermite(int i, double t, int r = 0);
 
 //! max over an n × n grid of ‖a(u,v) − b(u,v)‖.

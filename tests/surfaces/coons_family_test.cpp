@@ -1,5 +1,5 @@
 // Properties of the Coons family: interpolation of the boundary data, exact Bézier nets, corner
-// twists (seed 001), and the compatibility conditions of the general Coons patch.
+// twists (LN1), and the compatibility conditions of the general Coons patch.
 #include <catch2/catch.hpp>
 
 #include <cmath>
@@ -102,7 +102,7 @@ TEST_CASE("Coons patches: every one reproduces its four boundary curves", "[surf
     CHECK(boundary_error(make_coons(b, CoonsBlending::kLinear), b) < 1e-14);
     CHECK(boundary_error(make_coons(b, CoonsBlending::kHermite), b) < 1e-14);
   }
-  // Analytic curves (seed 004's ellipse arcs are in seed_examples_test).
+  // Analytic curves (LN4's ellipse arcs are in seed_examples_test).
   const GeneralCoonsData g = analytic_data();
   CHECK(boundary_error(make_coons(g.boundary, CoonsBlending::kLinear), g.boundary) < 1e-15);
   CHECK(boundary_error(make_coons(g.boundary, CoonsBlending::kHermite), g.boundary) < 1e-15);
@@ -172,7 +172,7 @@ TEST_CASE("bezier_net: the net of every polynomial surface evaluates to the surf
   CHECK_FALSE(make_conoid(right_helicoidal_conoid(1, 0, 6)).bezier_net());
 }
 
-TEST_CASE("bezier_net: the Coons patches of Bezier curves are the closed-form discrete nets (math.md §2, §6)", "[surfaces]") {
+TEST_CASE("bezier_net: the Coons patches of Bezier curves are the closed-form discrete nets (docs/math.md §2, §6)", "[surfaces]") {
   for (auto [m, n] : {std::pair{3, 3}, {5, 4}, {2, 6}}) {
     const BoundaryCurves b = make_random_boundary_curves(m, n, 50 + m * n);
     const ControlNet linear = *make_coons(b, CoonsBlending::kLinear).bezier_net();
@@ -184,7 +184,7 @@ TEST_CASE("bezier_net: the Coons patches of Bezier curves are the closed-form di
   }
 }
 
-TEST_CASE("bilinear Coons patch: the matrix form (1-u, -1, u) M (1-v, -1, v)^T = 0 (seeds 000, 001)", "[surfaces]") {
+TEST_CASE("bilinear Coons patch: the matrix form (1-u, -1, u) M (1-v, -1, v)^T = 0 (LN0, LN1)", "[surfaces]") {
   const BoundaryCurves b = make_random_boundary_curves(3, 4, 60);
   const Surface s = make_coons(b, CoonsBlending::kLinear);
   for (double u : kT)
@@ -217,7 +217,7 @@ TEST_CASE("bilinear Coons patch: the twist at a corner is the difference of the 
   }
 }
 
-TEST_CASE("bicubic Coons and Ferguson patches: zero twists at the four corners (seed 001)", "[surfaces]") {
+TEST_CASE("bicubic Coons and Ferguson patches: zero twists at the four corners (LN1)", "[surfaces]") {
   const BoundaryCurves b = make_random_boundary_curves(4, 5, 80);
   const Surface coons = make_coons(b, CoonsBlending::kHermite);
   const HermitePatch h{random_vectors(81), random_vectors(82), random_vectors(83), random_vectors(84)};
@@ -236,7 +236,7 @@ TEST_CASE("bicubic Coons and Ferguson patches: zero twists at the four corners (
   CHECK(coons.evaluate(0.5, 0.5).duv.norm() > 1e-3);
 }
 
-TEST_CASE("Ferguson patch: equals the bicubic Coons patch of its Ferguson-cubic boundaries (seed 001)", "[surfaces]") {
+TEST_CASE("Ferguson patch: equals the bicubic Coons patch of its Ferguson-cubic boundaries (LN1)", "[surfaces]") {
   const HermitePatch h = ferguson_patch(random_vectors(90), random_vectors(91), random_vectors(92));
   const BoundaryCurves cubics{Curve::hermite_cubic(h.corners[0], h.corners[1], h.du[0], h.du[1]),
                               Curve::hermite_cubic(h.corners[2], h.corners[3], h.du[2], h.du[3]),
@@ -246,7 +246,7 @@ TEST_CASE("Ferguson patch: equals the bicubic Coons patch of its Ferguson-cubic 
   CHECK(max_difference(*ferguson.bezier_net(), *coons.bezier_net()) < 1e-14);
 }
 
-TEST_CASE("Hermite-blended Coons patch: cross derivatives blend the corner tangents (seeds 001, 002)", "[surfaces]") {
+TEST_CASE("Hermite-blended Coons patch: cross derivatives blend the corner tangents (LN1, LN2)", "[surfaces]") {
   const BoundaryCurves b = make_random_boundary_curves(3, 4, 95);
   const Surface s = make_coons(b, CoonsBlending::kHermite);
   for (double v : kT) {

@@ -1,4 +1,4 @@
-// Joining patches along a shared boundary (seeds 001, 002): C⁰ always; a common tangent plane for
+// Joining patches along a shared boundary (LN1, LN2): C⁰ always; a common tangent plane for
 // partially bicubic Coons patches over C¹ (or equally scaled G¹) transversal boundaries.
 #include <catch2/catch.hpp>
 

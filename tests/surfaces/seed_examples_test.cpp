@@ -42,7 +42,7 @@ double derivative_gap(const Surface& s, int a, int b, const std::function<V(doub
 
 }  // namespace
 
-TEST_CASE("seed 000, bilinear Coons example 1: the patch is (u+v, u^2-v^2, 1-u+v)", "[surfaces][seeds]") {
+TEST_CASE("LN0, bilinear Coons example 1: the patch is (u+v, u^2-v^2, 1-u+v)", "[surfaces][seeds]") {
   const Surface s = load("seed000_bilinear_coons_1.json");
   CHECK(s.type() == SurfaceType::kBilinearCoons);
   CHECK(gap(s, [](double u, double v) { return V(u + v, u * u - v * v, 1 - u + v); }) < 1e-14);
@@ -54,7 +54,7 @@ TEST_CASE("seed 000, bilinear Coons example 1: the patch is (u+v, u^2-v^2, 1-u+v
   CHECK(derivative_gap(s, 1, 1, [](double, double) { return V(0, 0, 0); }) < 1e-6);
   // As a net: the expressions are quadratics, found as such (fits of degree 2 reproduce them to
   // rounding, so no higher degree is used), and the degree (2, 2) net's interior point is
-  // (1, 0, 1) (math.md §7.1), the discrete Coons net of its boundary.
+  // (1, 0, 1) (docs/math.md §7.1), the discrete Coons net of its boundary.
   const FittedNet net = fitted_net(s, 6);
   CHECK_FALSE(net.exact);
   for (const auto& f : net.fits) CHECK(f.degree == 2);
@@ -65,7 +65,7 @@ TEST_CASE("seed 000, bilinear Coons example 1: the patch is (u+v, u^2-v^2, 1-u+v
   CHECK((net.net.points - discrete_coons_net(boundary_of(net.net)).points).cwiseAbs().maxCoeff() < 1e-14);
 }
 
-TEST_CASE("seed 000, bilinear Coons example 2 and the hyperbolic paraboloid: z = 2uv", "[surfaces][seeds]") {
+TEST_CASE("LN0, bilinear Coons example 2 and the hyperbolic paraboloid: z = 2uv", "[surfaces][seeds]") {
   auto paraboloid = [](double u, double v) { return V(u, v, 2 * u * v); };
   const Surface coons = load("seed000_bilinear_coons_2.json");
   CHECK(gap(coons, paraboloid) < 1e-15);
@@ -80,7 +80,7 @@ TEST_CASE("seed 000, bilinear Coons example 2 and the hyperbolic paraboloid: z =
   CHECK((net.at(1, 1) - V(1, 1, 2)).norm() == 0);
 }
 
-TEST_CASE("seed 000, partially bicubic Coons example 1: (u, v, 2u F1(v) + 2v F1(u) - 2 F1(u) F1(v))", "[surfaces][seeds]") {
+TEST_CASE("LN0, partially bicubic Coons example 1: (u, v, 2u F1(v) + 2v F1(u) - 2 F1(u) F1(v))", "[surfaces][seeds]") {
   const Surface s = load("seed000_hermite_coons_1.json");
   CHECK(s.type() == SurfaceType::kHermiteCoons);
   auto F1 = [](double t) { return 3 * t * t - 2 * t * t * t; };
@@ -89,14 +89,14 @@ TEST_CASE("seed 000, partially bicubic Coons example 1: (u, v, 2u F1(v) + 2v F1(
   CHECK(gap(s, [](double u, double v) { return V(u, v, 2 * u * v); }) > 0.01);
 }
 
-TEST_CASE("seed 000, the Ferguson examples: (u, v, H03(v) - H03(u) H13(v)) and the flat square", "[surfaces][seeds]") {
+TEST_CASE("LN0, the Ferguson examples: (u, v, H03(v) - H03(u) H13(v)) and the flat square", "[surfaces][seeds]") {
   const Surface s = load("seed000_ferguson_1.json");
   CHECK(gap(s, [](double u, double v) { return V(u, v, hermite(0, v) - hermite(0, u) * hermite(2, v)); }) < 1e-15);
   const Surface square = load("seed000_ferguson_square.json");
   CHECK(gap(square, [](double u, double v) { return V(u, v, 0); }) < 1e-15);
 }
 
-TEST_CASE("seed 000, the 16-vector example: z = T H13(u) H13(v) for several T", "[surfaces][seeds]") {
+TEST_CASE("LN0, the 16-vector example: z = T H13(u) H13(v) for several T", "[surfaces][seeds]") {
   const std::array<V, 4> corners = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)};
   const std::array<V, 4> du = {V(1, 0, 0), V(1, 0, 0), V(1, 0, 0), V(1, 0, 0)};
   const std::array<V, 4> dv = {V(0, 1, 0), V(0, 1, 0), V(0, 1, 0), V(0, 1, 0)};
@@ -107,7 +107,7 @@ TEST_CASE("seed 000, the 16-vector example: z = T H13(u) H13(v) for several T", 
     CHECK(gap(s, closed) < 1e-13 * std::max(1.0, T));
     CHECK(derivative_gap(s, 1, 1, [T](double u, double v) { return V(0, 0, T * hermite(2, u, 1) * hermite(2, v, 1)); }) <
           1e-13 * std::max(1.0, T));
-    // Bézier form at the (0,0) corner: b11 = p + r_u/3 + r_v/3 + r_uv/9 (math.md §6).
+    // Bézier form at the (0,0) corner: b11 = p + r_u/3 + r_v/3 + r_uv/9 (docs/math.md §6).
     const ControlNet net = *s.bezier_net();
     CHECK((net.at(1, 1) - V(1.0 / 3, 1.0 / 3, T / 9)).norm() < 1e-15 * std::max(1.0, T));
     for (int i = 0; i <= 3; ++i)
@@ -120,7 +120,7 @@ TEST_CASE("seed 000, the 16-vector example: z = T H13(u) H13(v) for several T", 
   }
 }
 
-TEST_CASE("seed 000, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's curves", "[surfaces][seeds]") {
+TEST_CASE("LN0, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's curves", "[surfaces][seeds]") {
   const Surface s1 = load("seed000_ruled_1.json");
   auto c0 = [](double u) { return V(u, std::sin(kPi / 2 * u), std::cos(kPi / 2 * u)); };
   auto c1 = [](double u) { return V(u, u * u, -u / 2); };
@@ -137,7 +137,7 @@ TEST_CASE("seed 000, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's
         }) < 1e-15);
 }
 
-TEST_CASE("seed 000, the right parabolic conoid x = u, y = y_P(1-v), z = z_P + v(z(u) - z_P)", "[surfaces][seeds]") {
+TEST_CASE("LN0, the right parabolic conoid x = u, y = y_P(1-v), z = z_P + v(z(u) - z_P)", "[surfaces][seeds]") {
   // The data file: z(u) = 4u(1 - u) as a quadratic Bézier, y_P = 1, z_P = 0.5: an exact net of degree (2, 1).
   const Surface s = load("seed000_parabolic_conoid.json");
   auto closed = [](double yp, double zp, double u, double v) { return V(u, yp * (1 - v), zp + v * (4 * u * (1 - u) - zp)); };
@@ -145,7 +145,7 @@ TEST_CASE("seed 000, the right parabolic conoid x = u, y = y_P(1-v), z = z_P + v
   const ControlNet net = *s.bezier_net();
   CHECK(net.m == 2);
   CHECK(net.n == 1);
-  // The same with an analytic parabola and other lines, through seed 000's right-conoid form.
+  // The same with an analytic parabola and other lines, through LN0's right-conoid form.
   for (auto [yp, zp] : {std::pair{2.0, 0.0}, {-1.0, 3.0}, {0.5, 1.0}}) {
     const Surface e = make_conoid(right_conoid(AnalyticCurve({"t", "0", "4*t*(1-t)"}), yp, zp));
     CHECK(gap(e, [&](double u, double v) { return closed(yp, zp, u, v); }) < 1e-14);
@@ -153,7 +153,7 @@ TEST_CASE("seed 000, the right parabolic conoid x = u, y = y_P(1-v), z = z_P + v
   }
 }
 
-TEST_CASE("seed 000, right circular and elliptic conoids, and an oblique (Kuepper-type) circular conoid", "[surfaces][seeds]") {
+TEST_CASE("LN0, right circular and elliptic conoids, and an oblique (Kuepper-type) circular conoid", "[surfaces][seeds]") {
   // Right conoids over a half ellipse (a cos θ, 0, b sin θ), θ = π(1 − u): x = x(u), y = y_P(1 − v),
   // z = z_P + v(z(u) − z_P); a = b is the circular conoid.
   for (auto [a, b] : {std::pair{1.0, 1.0}, {2.0, 0.7}}) {
@@ -188,7 +188,7 @@ TEST_CASE("seed 000, right circular and elliptic conoids, and an oblique (Kueppe
   CHECK(net.n == 1);
 }
 
-TEST_CASE("seed 002, the right helicoidal conoid (u cos v, u sin v, v)", "[surfaces][seeds]") {
+TEST_CASE("LN2, the right helicoidal conoid (u cos v, u sin v, v)", "[surfaces][seeds]") {
   // r(s, w) = P(w, 2πs): the directrix is parameterised by s, the rulings by w.
   auto P = [](double u, double v) { return V(u * std::cos(v), u * std::sin(v), v); };
   const Surface s = load("seed002_helicoidal_conoid.json");
@@ -210,7 +210,7 @@ TEST_CASE("seed 002, the right helicoidal conoid (u cos v, u sin v, v)", "[surfa
     }
 }
 
-TEST_CASE("seed 002, the right circular conoid (v, u, u sqrt(2v - v^2))", "[surfaces][seeds]") {
+TEST_CASE("LN2, the right circular conoid (v, u, u sqrt(2v - v^2))", "[surfaces][seeds]") {
   const Surface s = load("seed002_circular_conoid.json");
   CHECK(gap(s, [](double a, double w) {
           const double x = 2 * a;
@@ -218,7 +218,7 @@ TEST_CASE("seed 002, the right circular conoid (v, u, u sqrt(2v - v^2))", "[surf
         }) < 1e-14);
 }
 
-TEST_CASE("seed 004, the linear Coons surface of the domain bounded by ellipse arcs", "[surfaces][seeds]") {
+TEST_CASE("LN4, the linear Coons surface of the domain bounded by ellipse arcs", "[surfaces][seeds]") {
   // r(u,v) = a(cos u + cos v − 1 + 2u(1 − cos v − sin v)/π + 2v(1 − cos u − sin u)/π) e1
   //        + b(sin u − sin v − 2u(1 − cos v − sin v)/π + 2v(1 − cos u − sin u)/π) e2,  u, v ∈ [0, π/2].
   auto closed = [](double a, double b, double u, double v) {
@@ -257,7 +257,7 @@ TEST_CASE("seed 004, the linear Coons surface of the domain bounded by ellipse a
   }
 }
 
-TEST_CASE("seed 004, the sectorial surface: (1-v) rho(u) + v p", "[surfaces][seeds]") {
+TEST_CASE("LN4, the sectorial surface: (1-v) rho(u) + v p", "[surfaces][seeds]") {
   const Surface s = load("seed004_sectorial_cone.json");
   CHECK(s.type() == SurfaceType::kSectorial);
   CHECK(gap(s, [](double u, double v) {

@@ -1,4 +1,4 @@
-// Surface descriptions (formats.md): every type parses; every kind of bad input is an InputError
+// Surface descriptions (docs/formats.md): every type parses; every kind of bad input is an InputError
 // that names the field.
 #include <catch2/catch.hpp>
 
@@ -55,7 +55,7 @@ std::pair<std::string, std::string> error_of(const json& doc) {
 
 }  // namespace
 
-TEST_CASE("parse_surface: every type of formats.md (and the extensions) builds its surface", "[surfaces]") {
+TEST_CASE("parse_surface: every type of docs/formats.md (and the extensions) builds its surface", "[surfaces]") {
   const std::vector<json> docs = {
       {{"type", "ruled"}, {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t^2"}}, {"interval", {0, 1}}}}}},
       {{"type", "sectorial"}, {"curve", segment({0, 0, 0}, {1, 0, 0})}, {"point", {0, 1, 1}}},

@@ -325,7 +325,7 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
     // Newton on f' = 0 needs a start where f is convex and a bracket where f' changes sign:
     // shrink the bracket on the sign of f' until it is resolved and its new end is convex, then
     // let Ceres take Newton steps. The family's scale collapses at objective.scale_origin()
-    // (α = −1/4, where α* + 1/4 ≈ c/n², math.md §4), so a bracket spanning many scales of the
+    // (α = −1/4, where α* + 1/4 ≈ c/n², docs/math.md §4), so a bracket spanning many scales of the
     // distance d to it is split at the geometric mean of its ends' distances (√(h·d_hi) from the
     // origin itself, h the Newton step there), which halves log(d_hi/d_lo) per evaluation;
     // a resolved bracket (d_hi ≤ 1.5·d_lo) is split at its midpoint.

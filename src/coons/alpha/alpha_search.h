@@ -4,7 +4,7 @@
 // and an optimum on a bound as such. Two evaluators:
 // - MaskObjective, any family and objective: for each parameter value one factorisation, two
 //   solves (the net N and its sensitivity dN/dp = A⁻¹·[dmask-weighted neighbour sums of N],
-//   math.md §3) and the objective's exact value and derivative; refined by Ceres's line-search
+//   docs/math.md §3) and the objective's exact value and derivative; refined by Ceres's line-search
 //   minimiser.
 // - SpectralAlphaSearchObjective (spectral_objective.h), the α family with any objective: no solve
 //   at all, f, f' and f'' in the sine basis; refined by Ceres's trust region on f' = 0.
@@ -117,7 +117,7 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
                                 const solvers::SolverOptions& solver_options = {});
 
 //! The search over μ on the compressed scale s = μ/(μ + mn) (mu_family_compressed; bounds and
-//! the result in s). For m = n that scale is α itself, s = 1 + 4α (math.md §4), so the search runs
+//! the result in s). For m = n that scale is α itself, s = 1 + 4α (docs/math.md §4), so the search runs
 //! as search_alpha does, in the sine basis where it applies, and maps back; for m ≠ n (the
 //! anisotropic masks) it factorizes and solves per evaluation.
 AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const std::string& solver,

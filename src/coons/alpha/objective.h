@@ -1,4 +1,4 @@
-// Objectives for choosing a mask: exact energies of the Bézier surface (math.md §5), the rms
+// Objectives for choosing a mask: exact energies of the Bézier surface (docs/math.md §5), the rms
 // distance of the sampled surface to a target, and weighted sums of them. Each objective gives
 // its value at a net N and its derivative along an interior variation dN (energies are quadratic,
 // so the derivative is 2·form(N, dN)).

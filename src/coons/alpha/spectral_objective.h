@@ -105,7 +105,7 @@ class SpectralAlphaSearchObjective {
   [[nodiscard]] int evaluations() const { return evaluations_; }
   [[nodiscard]] int solves() const { return 0; }
   //! Where the family's scale collapses: the search measures distances from α = −1/4 on a log
-  //! scale (α* + 1/4 ≈ c/n², math.md §4).
+  //! scale (α* + 1/4 ≈ c/n², docs/math.md §4).
   [[nodiscard]] static double scale_origin() { return -0.25; }
 
  private:

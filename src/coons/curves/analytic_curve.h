@@ -1,12 +1,12 @@
 // Curves written as three expressions in the parameter t on an interval [t₁, t₂], reparametrised
-// linearly to s ∈ [0, 1]: c(s) = f(t₁ + s(t₂ − t₁)) (seed 001). Expressions are compiled by
+// linearly to s ∈ [0, 1]: c(s) = f(t₁ + s(t₂ − t₁)) (LN1). Expressions are compiled by
 // muparser: `pi`, `e`, + − * / ^, sin cos tan asin acos atan sinh cosh tanh exp ln log sqrt abs
 // sign rint min max sum avg, and the ternary `?:`. The parameter may be written t, or u, v, s
 // (all four name the curve's own parameter, so a curve in u can be written in u).
 // Derivatives (with respect to s) come from numerical_derivative.h: Richardson-extrapolated
 // central differences, relative accuracy ≈ 1e-13 (order 1), 1e-12 (order 2), 1e-10 (order 3).
-// Based on: seed 000 (Slovak lecture notes), the analytic boundary curves of its examples;
-// seed 001, linear reparametrisation; muparser (I. Berg, https://beltoforion.de/en/muparser).
+// Based on: LN0 (Slovak lecture notes), the analytic boundary curves of its examples;
+// LN1, linear reparametrisation; muparser (I. Berg, https://beltoforion.de/en/muparser).
 #pragma once
 
 #include <array>

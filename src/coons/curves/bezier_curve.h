@@ -1,6 +1,6 @@
 // Bézier curves of any degree on [0, 1]: evaluation, derivatives of any order, degree elevation,
 // subdivision, and the linear reparametrisation of a piece [t₁, t₂] to [0, 1].
-// Based on: seed 001 (Czech lecture notes), reparametrisation t = t₁ + (s − s₁)(t₂ − t₁)/(s₂ − s₁);
+// Based on: LN1 (Czech lecture notes), reparametrisation t = t₁ + (s − s₁)(t₂ − t₁)/(s₂ − s₁);
 // G. Farin, Curves and Surfaces for CAGD, 5th ed. (2002), ch. 4 (de Casteljau, blossoms), 5, 6.
 #pragma once
 
@@ -41,7 +41,7 @@ Eigen::RowVector3d blossom(const BezierCurve& c, const std::vector<double>& args
 //! second(s) = c(t + s(1 − t)).
 std::pair<BezierCurve, BezierCurve> subdivide(const BezierCurve& c, double t);
 
-//! The piece of c over [t₁, t₂] as a curve on [0, 1]: result(s) = c(t₁ + s(t₂ − t₁)) (seed 001),
+//! The piece of c over [t₁, t₂] as a curve on [0, 1]: result(s) = c(t₁ + s(t₂ − t₁)) (LN1),
 //! exactly, by blossoming; t₁ > t₂ reverses, values outside [0, 1] extrapolate.
 BezierCurve reparametrised(const BezierCurve& c, double t1, double t2);
 

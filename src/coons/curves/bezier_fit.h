@@ -4,7 +4,7 @@
 // max_s ‖b(s) − c(s)‖ on a finer grid (an upper bound of the geometric distance), so that every
 // analytic example of the seeds can be studied as a net with a known error.
 // Based on: G. Farin, Curves and Surfaces for CAGD, 5th ed. (2002), §9 (least-squares
-// approximation with fixed end points); seed 000's analytic boundaries.
+// approximation with fixed end points); LN0's analytic boundaries.
 #pragma once
 
 #include "coons/curves/curve.h"

@@ -2,7 +2,7 @@
 // at any degree (m, n) by Bézier curves through the end points (fit_bezier), with the shared
 // corners made bit-identical. This is how a shape given analytically is studied at degrees 3 … 16
 // and more; Bézier sides of lower degree are elevated exactly.
-// Based on: G. Farin, Curves and Surfaces for CAGD, 5th ed. (2002), §6.1, §9; math.md §4.
+// Based on: G. Farin, Curves and Surfaces for CAGD, 5th ed. (2002), §6.1, §9; docs/math.md §4.
 #pragma once
 
 #include <optional>
@@ -26,7 +26,7 @@ FittedBoundary fit_boundary(const std::vector<Curve>& sides, int m, int n, const
                             const std::string& source = "curves");
 
 //! The "curves" object of a boundary file ({"bottom": curve, "top": …, "left": …, "right": …},
-//! curves as in formats.md), or nullopt when the file has none. Bad curves throw InputError.
+//! curves as in docs/formats.md), or nullopt when the file has none. Bad curves throw InputError.
 std::optional<std::vector<Curve>> read_boundary_curves(const std::string& path);
 
 }  // namespace coons

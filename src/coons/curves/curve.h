@@ -1,7 +1,7 @@
 // The curve value type of the surfaces: a Bézier curve, an analytic curve (expressions, derivatives
 // numerically) or a function with exact derivatives (closed forms in tests and in code), all on
 // s ∈ [0, 1]. A point is a Bézier curve of degree 0.
-// Based on: seeds 000, 001, 004 — every surface of the Coons family is built from such curves.
+// Based on: LN0, LN1, LN4 — every surface of the Coons family is built from such curves.
 #pragma once
 
 #include <functional>

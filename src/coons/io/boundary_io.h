@@ -1,4 +1,4 @@
-// Reading the boundary JSON of formats.md: four sides (bottom/top: m+1 points, left/right: n+1)
+// Reading the boundary JSON of docs/formats.md: four sides (bottom/top: m+1 points, left/right: n+1)
 // or a full "net" (m+1 rows of n+1 points). Every violation throws InputError naming the file,
 // the field and the reason.
 #pragma once
@@ -13,7 +13,7 @@
 namespace coons {
 
 struct BoundaryReadOptions {
-  //! Corners must agree to this fraction of the bounding-box diagonal (formats.md: 1e-9).
+  //! Corners must agree to this fraction of the bounding-box diagonal (docs/formats.md: 1e-9).
   double corner_tolerance = 1e-9;
 };
 

@@ -1,4 +1,4 @@
-// JSON forms of nets, boundaries and metrics (formats.md). Numbers are written so that they read
+// JSON forms of nets, boundaries and metrics (docs/formats.md). Numbers are written so that they read
 // back exactly (nlohmann's shortest round-trip doubles).
 #pragma once
 
@@ -13,7 +13,7 @@ namespace coons {
 //! m+1 rows of n+1 [x, y, z] points: net[i][j] = b[i][j].
 nlohmann::json net_to_json(const ControlNet& net);
 
-//! A boundary file (formats.md) holding the four sides.
+//! A boundary file (docs/formats.md) holding the four sides.
 nlohmann::json boundary_to_json(const Boundary& boundary);
 
 nlohmann::json metrics_to_json(const NetMetrics& metrics);

@@ -1,14 +1,14 @@
-// Reading the curve and surface descriptions of formats.md ("Curves and surfaces (JSON)").
+// Reading the curve and surface descriptions of docs/formats.md ("Curves and surfaces (JSON)").
 // Curves: {"bezier": [[x,y,z], …]} | {"expr": ["x(t)", "y(t)", "z(t)"], "interval": [t1, t2]}
 // (extensions: {"point": [x,y,z]}, {"hermite": [p0, p1, d0, d1]} — a Ferguson cubic).
 // Surfaces: {"type": T, …data…, "name"?, "comment"?, "source"?} with T one of ruled, sectorial,
 // bilinear, conoid, bilinear-coons, hermite-coons, ferguson, hermite16, general-coons, bezier
-// (fields in surface_fields() and formats.md). Every violation — missing or unknown field, wrong
+// (fields in surface_fields() and docs/formats.md). Every violation — missing or unknown field, wrong
 // count, non-finite number, an expression that does not parse or is not finite on its interval,
 // corners that disagree, incompatible general-Coons data, a conoid line parallel to its plane —
 // throws InputError naming the file, the field (e.g. "bottom.expr[1]", "corners[2]",
 // "du_left") and the reason (with the corner, the condition and the gap where one applies).
-// Based on: formats.md ("Curves and surfaces", "Errors"); the compatibility conditions of seed 001.
+// Based on: docs/formats.md ("Curves and surfaces", "Errors"); the compatibility conditions of LN1.
 #pragma once
 
 #include <string>
@@ -23,7 +23,7 @@
 namespace coons {
 
 struct SurfaceReadOptions {
-  //! Corners must agree to this fraction of the boundary's size (formats.md: 1e-9).
+  //! Corners must agree to this fraction of the boundary's size (docs/formats.md: 1e-9).
   double corner_tolerance = 1e-9;
   //! Tangent and twist conditions of general-coons: this fraction of max(size, ‖vectors‖)
   //! (analytic curves have numerical derivatives, accurate to ≈ 1e-10).

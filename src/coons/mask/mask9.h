@@ -2,9 +2,9 @@
 // K_ij the sum of the four diagonal neighbours. Affine invariance: 2e_i + 2e_j + 4d = 1.
 //
 // alpha_mask(α):           d = α, e_i = e_j = β = 1/4 − α (α = −1/4 Coons, α = 0 Laplace).
-// anisotropic_mask(m,n,μ): the discretisation of ∫‖p_uv‖² + μ∫(‖p_u‖² + ‖p_v‖²) (math.md §3):
+// anisotropic_mask(m,n,μ): the discretisation of ∫‖p_uv‖² + μ∫(‖p_u‖² + ‖p_v‖²) (docs/math.md §3):
 //                          D = 4mn + 2μ(m/n + n/m), d = −mn/D, e_i = (2mn + μm/n)/D,
-//                          e_j = (2mn + μn/m)/D; for m = n, α(n) = −n²/(4(n² + μ)) (math.md §4).
+//                          e_j = (2mn + μn/m)/D; for m = n, α(n) = −n²/(4(n² + μ)) (docs/math.md §4).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 

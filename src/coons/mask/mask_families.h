@@ -1,11 +1,11 @@
 // Parametrised mask families and their derivatives, for searching the best mask.
 //   alpha:  the Farin–Hansford family, d = α, e_i = e_j = 1/4 − α      (d/dα = (−1, −1, 1))
-//   mu:     the anisotropic mask of ∫‖p_uv‖² + μ∫‖∇p‖² at degree (m, n) (math.md §3, §4)
+//   mu:     the anisotropic mask of ∫‖p_uv‖² + μ∫‖∇p‖² at degree (m, n) (docs/math.md §3, §4)
 //   gamma:  the symmetric 3×3 family at fixed α: e_i = 1/4 − α + γ, e_j = 1/4 − α − γ, so that
 //           (α, γ) spans every affine-invariant symmetric mask 4α + 2e_i + 2e_j = 1.
 // Sensitivity: with the boundary fixed, A(p) N(p) = B(p) gives A · dN/dp = (dA/dp-free form)
 //   dN/dp = A⁻¹ [ e_i'·E_i(N) + e_j'·E_j(N) + d'·K(N) ]   (neighbour sums over the full net),
-// which for the α family is math.md's A · dN/dα = K(N) − E(N).
+// which for the α family is docs/math.md's A · dN/dα = K(N) − E(N).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 

@@ -1,5 +1,5 @@
 // Bernstein polynomials and tensor-product Bézier surfaces: basis values, Gram matrices,
-// derivative nets, evaluation and sampling (conventions: math.md §1, §5).
+// derivative nets, evaluation and sampling (conventions: docs/math.md §1, §5).
 // Based on: G. Farin, Curves and Surfaces for CAGD, 5th ed., Morgan Kaufmann (2002), ch. 5, 14.
 #pragma once
 

@@ -1,4 +1,4 @@
-// Exact energies of the Bézier surface of a net, by Bernstein Gram matrices (math.md §5):
+// Exact energies of the Bézier surface of a net, by Bernstein Gram matrices (docs/math.md §5):
 //   E(a,b) = ∫∫ ‖∂^a_u ∂^b_v p‖² = Σ_xyz tr(Cᵀ G^{m−a} C G^{n−b}),  C the derivative net.
 // twist = E(1,1); Dirichlet = E(1,0) + E(0,1); thin plate = E(2,0) + 2E(1,1) + E(0,2);
 // E3 = E(3,0) + 3E(2,1) + 3E(1,2) + E(0,3) (linearised curvature variation).
@@ -66,7 +66,7 @@ ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind);
 //! max over interior points and x, y, z of |b_ij − mask(b)_ij|; 0 when there is no interior.
 double mask_residual(const ControlNet& net, const Mask9& mask);
 
-//! Every metric of the `solve` report (formats.md), computed once.
+//! Every metric of the `solve` report (docs/formats.md), computed once.
 struct NetMetrics {
   double twist_energy = 0, thin_plate_energy = 0, dirichlet_energy = 0, e3_energy = 0;
   double discrete_twist_energy = 0, discrete_dirichlet_energy = 0, mask_residual = 0;

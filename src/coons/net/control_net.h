@@ -1,4 +1,4 @@
-// Control nets and boundaries of tensor-product Bézier surfaces (conventions: math.md §1).
+// Control nets and boundaries of tensor-product Bézier surfaces (conventions: docs/math.md §1).
 #pragma once
 
 #include <string>

@@ -3,11 +3,11 @@
 //   b[i][j] = w_v[j] b[i][0] + (1−w_v[j]) b[i][n] + w_u[i] b[0][j] + (1−w_u[i]) b[m][j]
 //             − Σ corners (products of the weights)
 //
-// discrete_coons_net:  w_u[i] = 1 − i/m (math.md §2). Its Bézier surface is the bilinearly
+// discrete_coons_net:  w_u[i] = 1 − i/m (docs/math.md §2). Its Bézier surface is the bilinearly
 //                      blended Coons patch of the four boundary curves; it solves the α = −1/4 mask.
-//   Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700; seed 003.
+//   Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700; LN3.
 // hermite_coons_net:   w_u[i] = η_i, the degree-m Bernstein coefficients of F₀(t) = 1 − 3t² + 2t³
-//                      (math.md §6); its surface is the partially bicubic (Hermite-blended) Coons
+//                      (docs/math.md §6); its surface is the partially bicubic (Hermite-blended) Coons
 //                      patch. Needs m, n ≥ 3.
 //   Based on: S. A. Coons, Surfaces for computer-aided design of space forms, MIT MAC-TR-41 (1967).
 // Both cost O(mn) and touch each output point once.

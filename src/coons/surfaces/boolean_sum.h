@@ -1,4 +1,4 @@
-// The common form of every surface of the Coons family (seeds 000, 001, 004): a Boolean sum of
+// The common form of every surface of the Coons family (LN0, LN1, LN4): a Boolean sum of
 // blended curves and a tensor-product correction,
 //
 //   r(u, v) = Σ_k a_k(u)·X_k(v)  +  Σ_l Y_l(u)·b_l(v)  +  Σ_k Σ_l s_k(u)·t_l(v)·T_kl
@@ -11,7 +11,7 @@
 // polynomials, so the sum is a tensor-product polynomial: degree (max deg a/s/Y, max deg b/t/X)).
 // Based on: S. A. Coons, Surfaces for computer-aided design of space forms, MIT MAC-TR-41 (1967);
 // W. J. Gordon, Blending-function methods of bivariate and multivariate interpolation, SIAM J.
-// Numer. Anal. 8 (1971); seed 001 (the matrix forms of the six Coons patches).
+// Numer. Anal. 8 (1971); LN1 (the matrix forms of the six Coons patches).
 #pragma once
 
 #include <optional>
@@ -40,8 +40,8 @@ struct Blend {
 
 //! 1 − t and t (bilinear blending).
 Blend linear_blend(int i);
-//! Hermite cubics (seed 000): H₀₃ = 1 − 3t² + 2t³ (i = 0), H₃₃ = 3t² − 2t³ (1),
-//! H₁₃ = t − 2t² + t³ (2), H₂₃ = −t² + t³ (3). F₀ = H₀₃ and F₁ = H₃₃ in seed 001's notation.
+//! Hermite cubics (LN0): H₀₃ = 1 − 3t² + 2t³ (i = 0), H₃₃ = 3t² − 2t³ (1),
+//! H₁₃ = t − 2t² + t³ (2), H₂₃ = −t² + t³ (3). F₀ = H₀₃ and F₁ = H₃₃ in LN1's notation.
 Blend hermite_blend(int i);
 
 struct BlendedCurve {

@@ -2,16 +2,16 @@
 // boundary curves: with F₀ = 1 − t, F₁ = t (bilinear) or F₀ = H₀₃, F₁ = H₃₃ (Hermite),
 //   r(u, v) = F₀(v) r(u,0) + F₁(v) r(u,1) + F₀(u) r(0,v) + F₁(u) r(1,v)
 //             − Σ_ij F_i(u) F_j(v) r(i, j)
-// i.e. (F₀(u), −1, F₁(u))·M·(F₀(v), −1, F₁(v))ᵀ = 0 with seed 001's mapping matrix M. Both
+// i.e. (F₀(u), −1, F₁(u))·M·(F₀(v), −1, F₁(v))ᵀ = 0 with LN1's mapping matrix M. Both
 // interpolate the four curves; the bilinear patch has the twist
 //   r_uv(0,0) = r_u(0,1) − r_u(0,0) + r_v(1,0) − r_v(0,0) − (p₀₀ − p₁₀ − p₀₁ + p₁₁)
 // at the corner (0, 0) (similarly elsewhere), the Hermite patch zero twists at all four corners and
 // cross-boundary derivatives r_u(1, v) = F₀(v) r_u(1,0) + F₁(v) r_u(1,1) (blends of the corner
 // tangents), which is why two such patches over C¹ (or equally scaled G¹) transversal boundaries
 // join with a common tangent plane. On Bézier curves the nets are exact: the closed form of
-// math.md §2 (bilinear) and its η-weighted variant (Hermite).
-// Based on: seed 000 (Slovak lecture notes), bilineárne a čiastkovo bikubické Coonsove záplaty;
-// seed 001 (Czech), bilinear and bicubic Coons patches; seed 004 (Russian), linear Coons surfaces;
+// docs/math.md §2 (bilinear) and its η-weighted variant (Hermite).
+// Based on: LN0 (Slovak lecture notes), bilineárne a čiastkovo bikubické Coonsove záplaty;
+// LN1 (Czech), bilinear and bicubic Coons patches; LN4 (Russian), linear Coons surfaces;
 // S. A. Coons, MIT MAC-TR-41 (1967).
 #pragma once
 

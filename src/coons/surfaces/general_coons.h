@@ -3,8 +3,8 @@
 //   r = Σ_i α_i(u) r(i,v) + Σ_i β_i(u) r_u(i,v) + Σ_j α_j(v) r(u,j) + Σ_j β_j(v) r_v(u,j)
 //       − [α₀ α₁ β₀ β₁](u) · M · [α₀ α₁ β₀ β₁](v)ᵀ,
 // α₀ = H₀₃, α₁ = H₃₃, β₀ = H₁₃, β₁ = H₂₃, and M the 4×4 corner matrix (points, v-tangents,
-// u-tangents, twists) of seed 001 / seed 004 (6.19). It reproduces the curves and the cross
-// derivatives exactly when the data are compatible (seed 001):
+// u-tangents, twists) of LN1 / LN4 (6.19). It reproduces the curves and the cross
+// derivatives exactly when the data are compatible (LN1):
 //   • the curves meet at the corners (4 conditions);
 //   • the cross derivatives agree with the curves' tangents at the corners, e.g.
 //     du_left(0) = bottom'(0), dv_bottom(0) = left'(0) (8 conditions);
@@ -15,8 +15,8 @@
 // (points, tangents) and the given twists. With Bézier curves and cross derivatives the patch is a
 // polynomial and its Bézier net is exact, degree (max(3, deg bottom, top, dv_*), max(3, deg left,
 // right, du_*)).
-// Based on: seed 001 (Czech lecture notes), obecný Coonsův plát and its compatibility conditions;
-// seed 004 (Russian), generalised Coons surfaces (6.16)–(6.19); S. A. Coons, MIT MAC-TR-41 (1967).
+// Based on: LN1 (Czech lecture notes), obecný Coonsův plát and its compatibility conditions;
+// LN4 (Russian), generalised Coons surfaces (6.16)–(6.19); S. A. Coons, MIT MAC-TR-41 (1967).
 #pragma once
 
 #include <array>

@@ -2,9 +2,9 @@
 // points) and the G¹ defect (largest angle between the tangent planes along the seam, i.e. between
 // the unoriented normals). Bilinear Coons patches meet C⁰ only; partially bicubic Coons patches over
 // transversal boundary curves that join C¹ — or G¹ with the same ratio of tangent lengths at both
-// ends of the seam — meet with a common tangent plane (seeds 001, 002). With different ratios at the
+// ends of the seam — meet with a common tangent plane (LN1, LN2). With different ratios at the
 // two ends the cross-boundary derivatives are not parallel in between, and the join is only C⁰.
-// Based on: seed 001 (Czech lecture notes), napojení plátů (C⁰, G¹); seed 002 (Czech), plátování
+// Based on: LN1 (Czech lecture notes), napojení plátů (C⁰, G¹); LN2 (Czech), plátování
 // bikubických Coonsových plátů.
 #pragma once
 

@@ -4,8 +4,8 @@
 //   sectorial:  r(u, v) = (1 − v)·c(u) + v·p
 //   bilinear:   r(u, v) = (1−u)(1−v) p₀₀ + u(1−v) p₁₀ + (1−u)v p₀₁ + uv p₁₁
 // Exact Bézier nets: degree (max deg c₀, c₁; 1) when both curves are Bézier; (1, 1) for bilinear.
-// Based on: seed 000 (Slovak lecture notes), ruled surfaces; seed 001, the transition surface
-// (přechodová plocha); seed 004 (Russian lecture notes), ruled, sectorial and bilinear surfaces.
+// Based on: LN0 (Slovak lecture notes), ruled surfaces; LN1, the transition surface
+// (přechodová plocha); LN4 (Russian lecture notes), ruled, sectorial and bilinear surfaces.
 #pragma once
 
 #include <array>
@@ -25,7 +25,7 @@ struct RuledSurface {
 //! The sectorial surface of curve c and apex p: a ruled surface whose c₁ is the constant p.
 RuledSurface sectorial_surface(Curve c, const Eigen::RowVector3d& apex);
 
-//! Corners in the order p₀₀ = r(0,0), p₁₀ = r(1,0), p₀₁ = r(0,1), p₁₁ = r(1,1) (formats.md).
+//! Corners in the order p₀₀ = r(0,0), p₁₀ = r(1,0), p₀₁ = r(0,1), p₁₁ = r(1,1) (docs/formats.md).
 struct BilinearSurface {
   std::array<Eigen::RowVector3d, 4> corners;
 };

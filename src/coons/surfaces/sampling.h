@@ -1,7 +1,7 @@
 // A surface sampled on a k × k grid with the fields one looks at: unit normals, mean and Gaussian
 // curvature, twist magnitude ‖r_uv‖ and, when a reference surface is given, the distance to it
 // (closest point on the reference, by a grid search and Newton's method in its (u, v)).
-// Grid convention (formats.md): sample a·k + b is r(a/(k−1), b/(k−1)).
+// Grid convention (docs/formats.md): sample a·k + b is r(a/(k−1), b/(k−1)).
 // Based on: M. P. do Carmo, Differential Geometry of Curves and Surfaces (1976), §3-3 (curvatures);
 // closest points by Newton's method on ½‖r(u,v) − p‖² with clamping to [0, 1]².
 #pragma once

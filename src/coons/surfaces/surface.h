@@ -1,9 +1,9 @@
-// One value type for every surface of the Coons family: its type (the `type` of formats.md's
+// One value type for every surface of the Coons family: its type (the `type` of docs/formats.md's
 // surface descriptions), its data, and the Boolean sum it evaluates through. Evaluation gives the
 // point and the partial derivatives up to order 2; bezier_net() the exact net when the surface is
 // polynomial; fitted_net() an approximating net (every non-Bézier curve replaced by its Bézier
 // fit) with the fits' deviations, so that analytic examples can be compared with discrete nets.
-// Based on: seeds 000–004 (the family), summarised in math.md §6.
+// Based on: LN0–004 (the family), summarised in docs/math.md §6.
 #pragma once
 
 #include <array>

@@ -1,7 +1,7 @@
 // A point of a parametric surface r(u, v) with its first and second partial derivatives, and the
 // differential geometry read from them: unit normal, mean and Gaussian curvature, twist ‖r_uv‖.
 // Based on: M. P. do Carmo, Differential Geometry of Curves and Surfaces (1976), §3-3
-// (K = (LN − M²)/(EG − F²), H = (EN − 2FM + GL)/(2(EG − F²))); seed 000, the twist vector.
+// (K = (LN − M²)/(EG − F²), H = (EN − 2FM + GL)/(2(EG − F²))); LN0, the twist vector.
 #pragma once
 
 #include <Eigen/Core>
