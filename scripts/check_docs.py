@@ -5,6 +5,7 @@
     python3 scripts/check_docs.py links        # every relative link in every tracked Markdown file resolves
     python3 scripts/check_docs.py selfcontained  # no tracked file points outside the repository
     python3 scripts/check_docs.py reference    # data/reference/*.json recomputed from first principles
+    python3 scripts/check_docs.py tests        # every test that docs/math.md and docs/solvers.md cite exists
     python3 scripts/check_docs.py all
 
 Each check prints one line per finding and a summary; the exit status is 1 when anything fails.
@@ -158,10 +159,13 @@ def check_schemas():
 LINK = re.compile(r"!?\[(?:[^\]\[]|\[[^\]]*\])*\]\(\s*<?([^)\s>]+)>?(?:\s+\"[^\"]*\")?\s*\)")
 
 
+def strip_fences(text):
+    return re.sub(r"^(```|~~~).*?^\1", "", text, flags=re.S | re.M)
+
+
 def strip_code(text):
     """Markdown without fenced code blocks and inline code spans (links there are not links)."""
-    text = re.sub(r"^(```|~~~).*?^\1", "", text, flags=re.S | re.M)
-    return re.sub(r"`[^`\n]*`", "", text)
+    return re.sub(r"`[^`\n]*`", "", strip_fences(text))
 
 
 def anchors_of(path, cache={}):
@@ -169,11 +173,11 @@ def anchors_of(path, cache={}):
     if path not in cache:
         found = set()
         counts = {}
-        for line in strip_code(path.read_text(encoding="utf-8")).splitlines():
+        for line in strip_fences(path.read_text(encoding="utf-8")).splitlines():
             m = re.match(r"^#{1,6}\s+(.*?)\s*#*\s*$", line)
             if not m:
                 continue
-            slug = m.group(1).strip().lower()
+            slug = re.sub(r"\[([^\]]*)\]\([^)]*\)", r"\1", m.group(1)).strip().lower()
             slug = re.sub(r"[^\w\- ]", "", slug, flags=re.U).replace(" ", "-")
             n = counts.get(slug, 0)
             counts[slug] = n + 1
@@ -391,8 +395,32 @@ def check_reference():
     return 1 if failures or not tables else 0
 
 
+# ---- tests --------------------------------------------------------------------------------------
+
+CITING = ["docs/math.md", "docs/solvers.md"]
+
+
+def check_tests():
+    """A backticked "function: property" in the documents that cite tests names a TEST_CASE."""
+    names = set()
+    for f in (ROOT / "tests").rglob("*.cpp"):
+        names.update(re.findall(r'TEST_CASE\(\s*"((?:[^"\\]|\\.)*)"', f.read_text(encoding="utf-8")))
+    failures = cited = 0
+    for doc in CITING:
+        text = (ROOT / doc).read_text(encoding="utf-8")
+        for span in re.findall(r"`([^`\n]+)`", text):
+            if ": " not in span or span.startswith("error:"):
+                continue
+            cited += 1
+            if span not in names:
+                print(f"FAIL {doc}: cites `{span}`, which is no TEST_CASE in tests/")
+                failures += 1
+    print(f"tests: {cited} test names cited in {len(CITING)} documents, {len(names)} TEST_CASEs, {failures} missing")
+    return 1 if failures or not cited else 0
+
+
 CHECKS = {"schemas": check_schemas, "links": check_links, "selfcontained": check_selfcontained,
-          "reference": check_reference}
+          "reference": check_reference, "tests": check_tests}
 
 
 def main(argv):
