@@ -216,7 +216,7 @@ def check_links():
 OUTSIDE = [
     (re.compile(r"\.\./shared"), "a path outside the repository"),
     (re.compile(r"seeds/0\d\d_"), "a lecture-note file outside the repository (cite LN0..LN4, docs/references.md)"),
-    (re.compile(r"(?<![\w/.])(?:math|formats)\.md\s*(?:§|section)"), "a bare document name (write docs/math.md §N)"),
+    (re.compile(r"(?<![\w/.\[])(?:math|formats)\.md\s*(?:§|section)"), "a bare document name (write docs/math.md §N)"),
     (re.compile(r"solver-notes\.md"), "a document outside the repository (docs/solvers.md)"),
 ]
 
