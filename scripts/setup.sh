@@ -20,6 +20,7 @@ packages=(
   libboost-dev                  # Brent's minimiser, the independent check of the alpha search
   gnuplot-nox                   # PNG plots of reports and benchmarks
   python3                       # benchmark tables (scripts/bench_report.py, standard library only)
+  python3-jsonschema            # the documentation checks: data files against docs/schema/ (scripts/check_docs.py)
 )
 
 missing=()
