@@ -5,7 +5,7 @@
     python3 scripts/check_docs.py links        # every relative link in every tracked Markdown file resolves
     python3 scripts/check_docs.py selfcontained  # no tracked file points outside the repository
     python3 scripts/check_docs.py reference    # data/reference/*.json recomputed from first principles
-    python3 scripts/check_docs.py tests        # every test that docs/math.md and docs/solvers.md cite exists
+    python3 scripts/check_docs.py tests        # every test that docs/math.md, docs/solvers.md and data/README.md cite exists
     python3 scripts/check_docs.py all
 
 Each check prints one line per finding and a summary; the exit status is 1 when anything fails.
@@ -72,6 +72,11 @@ ACCEPTED = [
      "a ruled surface of a Bezier and an expression curve"),
     ("surface.schema.json", {"type": "sectorial", "curve": {"hermite": [P, [1, 0, 0], [1, 0, 0], [1, 0, 0]]},
                              "point": [0, 0, 1], "comment": "x"}, "a sectorial surface of a Hermite cubic"),
+    ("boundary.schema.json", {"net": [[P, P], [P, P]], "bottom": [[0, 0]]}, "the net form with a broken side (sides are not read)"),
+    ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"sphere": {"center": P, "radius": 1}, "plane": {}}),
+     "a sphere target with a broken plane (only the first of sphere, cylinder, plane is read)"),
+    ("boundary.schema.json", with_(GOOD_BOUNDARY, description=["not", "read"]), "a description that is not a string"),
+    ("surface.schema.json", {"type": "bilinear", "corners": [P, P, P, P], "comment": 3}, "a comment that is not a string"),
 ]
 
 # ... and documents that must be rejected (so the check can fail).
@@ -102,7 +107,15 @@ REJECTED = [
     ("surface.schema.json", {"type": "ruled", "curves": [{"bezier": [P]}, {"bezier": [P], "interval": [0, 1]}]},
      "an interval on a Bezier curve"),
     ("surface.schema.json", {"type": "ferguson", "corners": [P, P, P, P], "du": [P, P, P, P]}, "ferguson without dv"),
+    ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"plane": {"point": P, "normal": [0, 0, 0]}}), "a zero plane normal"),
+    ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"sphere": 5}), "a sphere that is not an object"),
+    ("surface.schema.json", {"type": "conoid", "directrix": {"point": P}, "line": [P, [0, 0, 0]], "plane_normal": [0, 0, 1]},
+     "a conoid whose line has no direction"),
 ]
+
+# The bundled files document themselves: what each one is and where it comes from (coons does not
+# read these fields, so the schemas accept any value; here the data files are held to strings).
+DOCUMENTED_BY = {"data/boundaries": ["description", "source"], "data/surfaces": ["source"]}
 
 
 def check_schemas():
@@ -135,6 +148,10 @@ def check_schemas():
                 for e in found[:3]:
                     print(f"FAIL {path.relative_to(ROOT)}: {name}: {'/'.join(map(str, e.path)) or '(top)'}: {e.message[:200]}")
                 failures += bool(found)
+            for field in DOCUMENTED_BY.get(folder, []):
+                if not isinstance(doc, dict) or not isinstance(doc.get(field), str) or not doc[field].strip():
+                    print(f"FAIL {path.relative_to(ROOT)}: needs a non-empty string '{field}' (data/README.md)")
+                    failures += 1
             validated += 1
     covered = {str(ROOT / f) for f in SCHEMA_OF_FOLDER}
     for path in sorted((ROOT / "data").rglob("*.json")):
@@ -397,7 +414,7 @@ def check_reference():
 
 # ---- tests --------------------------------------------------------------------------------------
 
-CITING = ["docs/math.md", "docs/solvers.md"]
+CITING = ["docs/math.md", "docs/solvers.md", "data/README.md"]
 
 
 def check_tests():
@@ -409,7 +426,7 @@ def check_tests():
     for doc in CITING:
         text = (ROOT / doc).read_text(encoding="utf-8")
         for span in re.findall(r"`([^`\n]+)`", text):
-            if ": " not in span or span.startswith("error:"):
+            if ": " not in span or span.startswith(("error:", "{", "\"")):  # error lines, JSON
                 continue
             cited += 1
             if span not in names:
