@@ -326,6 +326,27 @@ TEST_CASE("solve_stencil_net: L-shaped, holed and cut free sets equal the dense 
   }
 }
 
+TEST_CASE("stencil_sensitivity_rhs: dN/dw of the C1 family matches central differences", "[mask]") {
+  const StencilProblem p = make_problem(make_random_net(11, 9, 900), 2, random_free(11, 9, 2, 0.9, 901));
+  for (double w : {0.0, 0.4, 0.9}) {
+    const ControlNet N = solve_with(p, c1_family_stencil(w), "eigen-ldlt");
+    const StencilSystem sys = assemble_stencil_system(p, c1_family_stencil(w));
+    const Eigen::MatrixX3d rhs = stencil_sensitivity_rhs(N, sys.numbering, c1_family_stencil_derivative(w));
+    const Eigen::MatrixX3d dN = Eigen::MatrixXd(sys.A).ldlt().solve(rhs);
+    const double h = 1e-5;
+    const ControlNet plus = solve_with(p, c1_family_stencil(w + h), "eigen-ldlt");
+    const ControlNet minus = solve_with(p, c1_family_stencil(w - h), "eigen-ldlt");
+    Eigen::MatrixX3d fd(sys.numbering.size(), 3);
+    for (int k = 0; k < sys.numbering.size(); ++k) {
+      const auto [i, j] = sys.numbering.points[std::size_t(k)];
+      fd.row(k) = (plus.at(i, j) - minus.at(i, j)) / (2 * h);
+    }
+    INFO("w = " << w << ", |dN| = " << dN.norm());
+    CHECK(dN.norm() > 1e-3);  // the solution does move with w
+    CHECK((dN - fd).norm() < 1e-6 * dN.norm());
+  }
+}
+
 TEST_CASE("solve_stencil_sweep: one analysis for the C1 family gives the single solves", "[mask]") {
   const StencilProblem p = make_problem(make_random_net(10, 8, 700), 2, random_free(10, 8, 2, 0.85, 701));
   std::vector<Stencil> members;

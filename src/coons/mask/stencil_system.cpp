@@ -171,6 +171,14 @@ Eigen::MatrixX3d stencil_residual(const ControlNet& net, const FreeNumbering& f,
   return Y;
 }
 
+Eigen::MatrixX3d stencil_sensitivity_rhs(const ControlNet& solved, const FreeNumbering& f,
+                                         const Eigen::MatrixXd& dweights) {
+  Stencil d;
+  d.radius = int(dweights.rows() / 2);
+  d.weights = dweights;
+  return -stencil_residual(solved, f, d);
+}
+
 ControlNet fill_free_points(ControlNet net, const FreeNumbering& f, const Eigen::MatrixX3d& X) {
   assert(X.rows() == f.size());
   for (int p = 0; p < f.size(); ++p) net.at(f.points[std::size_t(p)][0], f.points[std::size_t(p)][1]) = X.row(p);

@@ -83,6 +83,13 @@ Eigen::MatrixX3d stencil_rhs(const ControlNet& net, const FreeNumbering& numberi
 //! (#free by 3; zero at a solution).
 Eigen::MatrixX3d stencil_residual(const ControlNet& net, const FreeNumbering& numbering, const Stencil& stencil);
 
+//! Sensitivity of a solution to a parameter p of the stencil family W(p) (e.g. w of the C1 family,
+//! dweights = c1_family_stencil_derivative(w)): differentiating Σ W(p) N = 0 at the free points
+//! gives A · dN/dp = −(dW/dp ⋆ N), the derivative weights applied to the solved full net N
+//! (data included). Returns that right-hand side, #free by 3; dweights is (2r+1) square.
+Eigen::MatrixX3d stencil_sensitivity_rhs(const ControlNet& solved, const FreeNumbering& numbering,
+                                         const Eigen::MatrixXd& dweights);
+
 //! `net` with its free points replaced by X (#free by 3); pass an rvalue to fill it in place.
 ControlNet fill_free_points(ControlNet net, const FreeNumbering& numbering, const Eigen::MatrixX3d& X);
 
