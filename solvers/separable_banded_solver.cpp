@@ -10,57 +10,51 @@ namespace {
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
-// Y ← P⁻¹ Y along i: rows of Y are whole grid rows (contiguous, vectorised across j).
-void solve_along_rows(const BandedLdlt& f, Eigen::Ref<RowMajor> Y) {
-  const Eigen::Index k = Y.rows();
-  for (Eigen::Index r = 1; r < k; ++r) {
-    Y.row(r) -= f.l1[r - 1] * Y.row(r - 1);
-    if (r >= 2) Y.row(r) -= f.l2[r - 2] * Y.row(r - 2);
-  }
-  for (Eigen::Index r = 0; r < k; ++r) Y.row(r) /= f.d[r];
-  for (Eigen::Index r = k - 2; r >= 0; --r) {
-    Y.row(r) -= f.l1[r] * Y.row(r + 1);
-    if (r + 2 < k) Y.row(r) -= f.l2[r] * Y.row(r + 2);
-  }
-}
-
-// Y ← Y Q⁻¹ (Q symmetric), i.e. a banded solve along j in every row, kBlock rows at a time so
-// that the inner loop runs across rows.
-void solve_along_cols(const BandedLdlt& f, Eigen::Ref<RowMajor> Y) {
-  constexpr Eigen::Index kBlock = 16;
-  const Eigen::Index rows = Y.rows(), k = Y.cols();
-  const double* l1 = f.l1.data();
-  const double* l2 = f.l2.data();
-  const double* d = f.d.data();
-  for (Eigen::Index r0 = 0; r0 < rows; r0 += kBlock) {
-    const Eigen::Index r1 = std::min(rows, r0 + kBlock);
-    for (Eigen::Index c = 1; c < k; ++c)
-      for (Eigen::Index r = r0; r < r1; ++r) {
-        double v = Y(r, c) - l1[c - 1] * Y(r, c - 1);
-        if (c >= 2) v -= l2[c - 2] * Y(r, c - 2);
-        Y(r, c) = v;
-      }
-    for (Eigen::Index c = 0; c < k; ++c)
-      for (Eigen::Index r = r0; r < r1; ++r) Y(r, c) /= d[c];
-    for (Eigen::Index c = k - 2; c >= 0; --c)
-      for (Eigen::Index r = r0; r < r1; ++r) {
-        double v = Y(r, c) - l1[c] * Y(r, c + 1);
-        if (c + 2 < k) v -= l2[c] * Y(r, c + 2);
-        Y(r, c) = v;
-      }
-  }
-}
-
-// Each column of B is a rows × cols grid R (row-major): X = P⁻¹ R Q⁻¹.
+// X = P⁻¹ R Q⁻¹ for each column of B viewed as a rows × cols grid R (row-major), in two passes
+// over the grid (P⁻¹ and Q⁻¹ act on different sides, so their parts may be interleaved):
+//   pass 1, kBlock rows at a time: copy the rows of B, solve along j in every row of the block
+//           (the inner loop runs across the block's rows, which stay in cache), then the forward
+//           elimination along i of those rows (the two rows above are still in cache);
+//   pass 2, bottom to top: the scaling by 1/d and the back substitution along i, whole rows.
 void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols,
                      const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
+  constexpr Eigen::Index kBlock = 16;
   X.resize(B.rows(), 3);
-  RowMajor Y(rows, cols);
+  if (rows == 0 || cols == 0) return;
+  const Eigen::VectorXd inv_di = fi.d.cwiseInverse(), inv_dj = fj.d.cwiseInverse();
+  const double* l1 = fj.l1.data();
+  const double* l2 = fj.l2.data();
+  const double* idj = inv_dj.data();
+  const Eigen::Index k = cols;
   for (int c = 0; c < 3; ++c) {
-    Y = Eigen::Map<const RowMajor>(B.col(c).data(), rows, cols);
-    solve_along_rows(fi, Y);
-    solve_along_cols(fj, Y);
-    Eigen::Map<RowMajor>(X.col(c).data(), rows, cols) = Y;
+    Eigen::Map<const RowMajor> R(B.col(c).data(), rows, cols);
+    Eigen::Map<RowMajor> Y(X.col(c).data(), rows, cols);
+    for (Eigen::Index r0 = 0; r0 < rows; r0 += kBlock) {
+      const Eigen::Index r1 = std::min<Eigen::Index>(rows, r0 + kBlock);
+      Y.middleRows(r0, r1 - r0) = R.middleRows(r0, r1 - r0);
+      for (Eigen::Index j = 1; j < k; ++j)  // along j: forward
+        for (Eigen::Index r = r0; r < r1; ++r) {
+          double v = Y(r, j) - l1[j - 1] * Y(r, j - 1);
+          if (j >= 2) v -= l2[j - 2] * Y(r, j - 2);
+          Y(r, j) = v;
+        }
+      for (Eigen::Index r = r0; r < r1; ++r) Y(r, k - 1) *= idj[k - 1];
+      for (Eigen::Index j = k - 2; j >= 0; --j)  // along j: scale and back substitution
+        for (Eigen::Index r = r0; r < r1; ++r) {
+          double v = Y(r, j) * idj[j] - l1[j] * Y(r, j + 1);
+          if (j + 2 < k) v -= l2[j] * Y(r, j + 2);
+          Y(r, j) = v;
+        }
+      for (Eigen::Index r = std::max<Eigen::Index>(r0, 1); r < r1; ++r) {  // along i: forward
+        Y.row(r) -= fi.l1[r - 1] * Y.row(r - 1);
+        if (r >= 2) Y.row(r) -= fi.l2[r - 2] * Y.row(r - 2);
+      }
+    }
+    Y.row(rows - 1) *= inv_di[rows - 1];
+    for (Eigen::Index r = rows - 2; r >= 0; --r) {  // along i: scale and back substitution
+      Y.row(r) = Y.row(r) * inv_di[r] - fi.l1[r] * Y.row(r + 1);
+      if (r + 2 < rows) Y.row(r) -= fi.l2[r] * Y.row(r + 2);
+    }
   }
 }
 
