@@ -6,10 +6,12 @@
 //
 // symmetric banded Toeplitz factors with half-bandwidth 2 (pentadiagonal; p2 = 0 gives the
 // tridiagonal case). Since A⁻¹ = P⁻¹ ⊗ Q⁻¹, each column of B, viewed as a rows × cols matrix R,
-// is solved as X = P⁻¹ R Q⁻¹: one batch of banded solves along i (all columns j at once, whole
-// rows at a time) and one along j (blocks of rows). factorize = banded LDLᵀ of P and Q without
-// pivoting (O(rows + cols)); solve = 2 forward and 2 backward sweeps over the grid per column of
-// B, O(rows·cols), no fill, memory rows·cols. Exact up to rounding; LDLᵀ without pivoting is
+// is solved as X = P⁻¹ R Q⁻¹: a batch of banded solves along j (one per grid row, blocks of rows
+// at a time, vectorised across the block) and a batch along i (whole rows at a time), interleaved
+// so that the grid is swept twice. factorize = banded LDLᵀ of P and Q without pivoting
+// (O(rows + cols)); solve = O(rows·cols) per column of B, no fill, no memory beyond X. Exact up
+// to rounding, and on c1-coons data more accurate than a sparse LDLᵀ of A (whose κ grows like
+// k⁸, against k⁴ per factor here); LDLᵀ without pivoting is
 // backward stable for definite factors (e.g. the fourth difference 1, −4, 6, −4, 1), and a zero
 // pivot (|d_k| ≤ 1e-14·max|diagonal|) is reported as kSingular. The solver never reads the
 // assembled matrix: it is constructed with the operator, and uses op.matrix (when given) only for

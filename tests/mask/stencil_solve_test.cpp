@@ -413,3 +413,30 @@ TEST_CASE("solve_stencil_net: a problem that does not fit the mask is a status, 
   const StencilSolveResult s = solve_stencil_net(make_problem(make_random_net(3, 3, 2), 1), alpha_stencil(alpha_mask(-0.5)), *solver);
   CHECK_FALSE(s.summary.ok());
 }
+
+TEST_CASE("solve_stencil_net: every backend solves 5x5 masks on free sets or says why not", "[mask]") {
+  const int m = 9, n = 8;
+  FreeGrid L = random_free(m, n, 2, 1.0, 1);
+  L.block(5, 5, 3, 2).setConstant(false);
+  for (const StencilProblem& p : {make_problem(make_random_net(m, n, 950), 2), make_problem(make_random_net(m, n, 951), 2, L)}) {
+    for (const Stencil& s : {c1_coons_stencil(), biharmonic_stencil(), c1_family_stencil(0.5)}) {
+      const ControlNet ref = dense_stencil_solve(p, s);
+      for (const auto& info : solvers::available_solvers()) {
+        auto solver = solvers::make_solver(info.name);
+        const StencilSolveResult r = solve_stencil_net(p, s, *solver);
+        INFO(info.name << ": " << r.summary.brief_report());
+        if (info.family == solvers::SolverFamily::kDirect) {
+          REQUIRE(r.summary.ok());  // the direct backends apply to every symmetric definite system
+        }
+        if (r.summary.ok()) {
+          CHECK(relative_difference(r.net, ref) < 1e-8);
+        } else {
+          // a 5×5 system has no 9-point grid stencil: the matrix-free backends do not apply
+          CHECK(!info.needs_matrix);
+          CHECK(r.summary.status == solvers::SolveStatus::kNotApplicable);
+          CHECK(max_difference(r.net, p.net) == 0);
+        }
+      }
+    }
+  }
+}
