@@ -20,6 +20,7 @@ packages=(
   libboost-dev                  # Brent's minimiser, the independent check of the alpha search
   gnuplot-nox                   # PNG plots of reports and benchmarks
   python3                       # benchmark tables (scripts/bench_report.py, standard library only)
+  clang libclang-rt-14-dev      # libFuzzer and clang's sanitizer runtimes: scripts/fuzz.sh (run by .ci/run)
 )
 
 missing=()
