@@ -21,6 +21,7 @@ packages=(
   gnuplot-nox                   # PNG plots of reports and benchmarks
   python3                       # benchmark tables (scripts/bench_report.py, standard library only)
   python3-jsonschema            # the documentation checks: data files against docs/schema/ (scripts/check_docs.py)
+  clang libclang-rt-14-dev      # libFuzzer and clang's sanitizer runtimes: scripts/fuzz.sh (run by .ci/run)
 )
 
 missing=()
