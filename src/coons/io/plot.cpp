@@ -354,8 +354,8 @@ std::string plot_surface(const std::string& png, const Eigen::MatrixX3d& grid, i
   if (k < 2 || grid.rows() != Eigen::Index(k) * k) return "the surface grid is not k × k";
   std::string script = terminal(800, 640, 10, partial_of(png));
   const Eigen::MatrixX3d control = net != nullptr ? net_points(*net) : Eigen::MatrixX3d(0, 3);
-  script +=
-      fmt::format("set title {} font ',12'\nset view 60,30\nset tics font ',8'\nset key top left\n", quote(title));
+  script += fmt::format("set title {} font ',12'\nset view 60,30\nset tics font ',8'\nset key top left Left reverse\n",
+                        quote(title));
   script += box_commands({&grid, &control});
   script += grid_block("surface", grid, k, k);
   std::string plots = fmt::format("$surface {} title 'surface'", kSurfaceStyle);
