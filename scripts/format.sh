@@ -21,8 +21,10 @@ fi
 if (($#)); then
   files=("$@")
 else
-  mapfile -t files < <(git ls-files --cached --others --exclude-standard -- 'src/*' 'solvers/*' 'tests/*' 'experiments/benchmarks/*' |
-                       grep -E '\.(cpp|cc|h|hpp)$')
+  # tracked and new (untracked, not ignored) files
+  mapfile -t files < <(git ls-files --cached --others --exclude-standard -- \
+                         'src/*' 'solvers/*' 'tests/*' 'experiments/benchmarks/*' | grep -E '\.(cpp|cc|h|hpp)$' |
+                       while read -r f; do [[ -f "$f" ]] && echo "$f"; done)
 fi
 
 if ((check == 0)); then
