@@ -101,6 +101,8 @@ TEST_CASE("plot_curves: labels are literal text, not gnuplot markup", "[io][plot
   CHECK(script.find("set encoding utf8") != std::string::npos);
   CHECK(script.find("set title 'thin_plate optimum μ* (it''s α*)'") != std::string::npos);
   CHECK(script.find("title 'dome thin_plate'") != std::string::npos);
+  CHECK(curves_script("out.png", {line("two\nlines", {3, 4}, {1, 2})}, o).find("title 'two lines'") !=
+        std::string::npos);
   CHECK(script.find("enhanced") == script.find("noenhanced") + 2);  // no other mention of enhanced text
 }
 

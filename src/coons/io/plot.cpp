@@ -55,7 +55,9 @@ struct Scratch {
 
 std::string quote(const std::string& s) {
   std::string out = "'";
-  for (char c : s) out += c == '\'' ? std::string("''") : std::string(1, c);
+  for (char c : s) {  // a line break would end the gnuplot command: labels stay on one line
+    out += c == '\'' ? std::string("''") : c == '\n' || c == '\r' ? std::string(" ") : std::string(1, c);
+  }
   return out + "'";
 }
 
