@@ -128,6 +128,22 @@ TEST_CASE("solve_tri_net: permanence on index sub-triangles", "[tri]") {
     }
 }
 
+TEST_CASE("solve_tri_net: for c = -1/6 every cubic sub-net has the cubic's quadratic-precision centre", "[tri]") {
+  // The mask's ten points are the cubic sub-net around b[i][j][k]: its six edge points are the
+  // neighbours and its corners the far points, so the solution is the net whose every cubic sub-net
+  // is the discrete Coons patch of its own boundary.
+  for (const int n : {4, 8, 13}) {
+    const TriNet solved = solve_with(random_tri_net(n, 1250 + n), -1.0 / 6);
+    for (int k0 = 0; k0 <= n - 3; ++k0)
+      for (int j0 = 0; j0 <= n - 3 - k0; ++j0) {
+        const TriNet s = sub_net(solved, n - 3 - k0 - j0, j0, k0);
+        const Eigen::RowVector3d edges = s.at(2, 1, 0) + s.at(1, 2, 0) + s.at(0, 2, 1) + s.at(0, 1, 2) + s.at(1, 0, 2) + s.at(2, 0, 1);
+        const Eigen::RowVector3d corners = s.at(3, 0, 0) + s.at(0, 3, 0) + s.at(0, 0, 3);
+        REQUIRE((s.at(1, 1, 1) - (edges / 4 - corners / 6)).norm() < 1e-11);
+      }
+  }
+}
+
 TEST_CASE("solve_tri_net: permanence does not hold for de Casteljau subdivision", "[tri]") {
   // The other reading of "permanence" (the patch of a subdivided part's boundary is that part) is
   // false for the mask family: shown at c = -1/6 on a random cubic.

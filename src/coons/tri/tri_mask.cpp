@@ -105,4 +105,24 @@ double tri_mask_residual(const TriNet& net, const TriMask& mask) {
   return worst;
 }
 
+TriMaskFit fit_tri_mask(const TriNet& net) {
+  double rs = 0, ss = 0, scale = 0;  // r(c) = r0 + c·s with r0 = b − ΣN/6 and s = ΣN/2 − ΣC
+  for_each_interior(net.n, [&](int i, int j, int k) {
+    const Eigen::RowVector3d r0 = net.at(i, j, k) - apply_at(net, i, j, k, 1.0 / 6, 0.0);
+    const Eigen::RowVector3d half_neighbours = apply_at(net, i, j, k, 0.5, 0.0), far = apply_at(net, i, j, k, 0.0, 1.0);
+    const Eigen::RowVector3d s = half_neighbours - far;
+    rs += r0.dot(s);
+    ss += s.squaredNorm();
+    scale += half_neighbours.squaredNorm() + far.squaredNorm();
+  });
+  TriMaskFit fit;
+  if (ss <= 1e-24 * scale) {  // s vanishes (to rounding) on affine nets
+    fit.determined = false;
+  } else {
+    fit.c = -rs / ss;
+  }
+  fit.residual = tri_mask_residual(net, TriMask{fit.c});
+  return fit;
+}
+
 }  // namespace coons::tri

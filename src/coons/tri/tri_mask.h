@@ -58,4 +58,14 @@ TriNet fill_interior(TriNet net, const Eigen::MatrixX3d& X);
 //! max over interior points and x, y, z of |b − mask(b)|; 0 when there is no interior.
 double tri_mask_residual(const TriNet& net, const TriMask& mask);
 
+//! The member of the family that `net` satisfies best: the residual r(c) = b − a(c)ΣN − cΣC is affine
+//! in c, so c minimising Σ‖r(c)‖² over the interior is closed-form. The net solves the system of c
+//! exactly when residual = 0. determined = false when r does not depend on c (then c = 0).
+struct TriMaskFit {
+  double c = 0;
+  double residual = 0;  //!< tri_mask_residual(net, {c}): max |r(c)| over interior points and x, y, z
+  bool determined = true;
+};
+TriMaskFit fit_tri_mask(const TriNet& net);
+
 }  // namespace coons::tri
