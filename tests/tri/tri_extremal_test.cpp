@@ -10,7 +10,7 @@ using namespace coons::tri::test;
 
 namespace {
 
-const TriEnergy kKinds[] = {TriEnergy::kDirichlet, TriEnergy::kThinPlate, TriEnergy::kTwist};
+constexpr TriEnergy kKinds[] = {TriEnergy::kDirichlet, TriEnergy::kThinPlate, TriEnergy::kTwist};
 
 double energy(const TriNet& net, const Eigen::MatrixXd& K) { return (net.points.transpose() * K * net.points).trace(); }
 
@@ -31,11 +31,11 @@ TEST_CASE("TriDomain: the equilateral domain makes Dirichlet and thin plate symm
   REQUIRE(eq.area() == Approx(std::sqrt(3.0) / 4));
   const TriNet net = random_tri_net(5, 1950);
   for (const TriEnergy kind : {TriEnergy::kDirichlet, TriEnergy::kThinPlate}) {
-    const Eigen::MatrixXd K = tri_energy_hessian(5, kind, eq), K_right = tri_energy_hessian(5, kind);
+    const Eigen::MatrixXd K = tri_energy_hessian(5, kind, eq), Kr = tri_energy_hessian(5, kind);
     bool right_changes = false;
     for (const auto& perm : all_permutations()) {
       REQUIRE(energy(permuted(net, perm), K) == Approx(energy(net, K)).epsilon(1e-12));
-      if (std::abs(energy(permuted(net, perm), K_right) - energy(net, K_right)) > 1e-6 * energy(net, K_right))
+      if (std::abs(energy(permuted(net, perm), Kr) - energy(net, Kr)) > 1e-6 * energy(net, Kr))
         right_changes = true;
     }
     REQUIRE(right_changes);

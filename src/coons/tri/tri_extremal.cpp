@@ -83,9 +83,9 @@ TriNet minimize_tri_energy(const TriNet& frame, TriEnergy kind, const TriDomain&
   Eigen::MatrixX3d rhs = Eigen::MatrixX3d::Zero(m, 3);
   TriNet boundary_only = frame;
   for (const Eigen::Index r : interior_rows) boundary_only.points.row(r).setZero();
-  const Eigen::MatrixX3d K_times_boundary = K * boundary_only.points;
+  const Eigen::MatrixX3d k_boundary = K * boundary_only.points;
   for (Eigen::Index a = 0; a < m; ++a) {
-    rhs.row(a) = -K_times_boundary.row(interior_rows[a]);
+    rhs.row(a) = -k_boundary.row(interior_rows[a]);
     for (Eigen::Index b = 0; b < m; ++b) KII(a, b) = K(interior_rows[a], interior_rows[b]);
   }
   const Eigen::MatrixX3d X = KII.ldlt().solve(rhs);

@@ -40,6 +40,11 @@ struct TriNet {
   [[nodiscard]] auto at(int i, int j, int k) const { return points.row(index(i, j, k)); }
 };
 
+//! Row k of the contract's `net` report: b[n−k−j][j][k] for j = 0 … n−k (#n−k+1 by 3).
+inline Eigen::MatrixX3d net_row(const TriNet& net, int k) {
+  return net.points.middleRows(net_index(net.n, 0, k), net.n - k + 1);
+}
+
 //! The three sides, each #n+1 by 3 and running as in the contract: sides[0] = k = 0 from b[n][0][0]
 //! to b[0][n][0]; sides[1] = i = 0 from b[0][n][0] to b[0][0][n]; sides[2] = j = 0 from b[0][0][n]
 //! to b[n][0][0]. The last point of each side is the first of the next.
