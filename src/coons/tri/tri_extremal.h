@@ -4,9 +4,10 @@
 // K = Σ Dᵀ G D (#(n+1)(n+2)/2 square, D derivative operators, G the Bernstein Gram matrix), the
 // minimiser solves K_II X = −K_IB P_B (#interior by 3), a small dense symmetric positive definite
 // system (n ≤ 30 or so; n = 20 has 171 unknowns).
-// Based on: J. Monterde, Bézier surfaces of minimal area: the Dirichlet approach, CAGD 21 (2004);
-// A. Arnal, A. Lluch, J. Monterde, Triangular Bézier surfaces of minimal area, ICCSA 2003
-// (the Dirichlet functional on triangles; cited by Arnal & Lluch 2010, not read here).
+// Based on: J. Monterde, Bézier surfaces of minimal area: the Dirichlet approach, CAGD 21 (2004)
+// (extremals of the Dirichlet functional as a linear system in the control points); the triangular
+// case is "Arnal et al., 2003" as cited by A. Arnal, A. Lluch, Coons triangular Bézier surfaces
+// (SciTePress, 2010), of which only the abstract and introduction were read.
 #pragma once
 
 #include <Eigen/Core>
