@@ -77,10 +77,11 @@ class DstSolver : public LinearSolver {
     row_ = AlignedBuffer(std::size_t(C_));
     col_ = AlignedBuffer(std::size_t(R_));
     inverse_eigenvalues_.assign(n, 0.0);
+    const unsigned planning = detail::fft_planning(options_);
     plan_2d_ = FftwPlan(fftw_plan_r2r_2d(R_, C_, grid_.data(), grid_.data(), FFTW_RODFT00,
-                                         FFTW_RODFT00, FFTW_MEASURE));
-    plan_row_ = FftwPlan(fftw_plan_r2r_1d(C_, row_.data(), row_.data(), FFTW_RODFT00, FFTW_MEASURE));
-    plan_col_ = FftwPlan(fftw_plan_r2r_1d(R_, col_.data(), col_.data(), FFTW_RODFT00, FFTW_MEASURE));
+                                         FFTW_RODFT00, planning));
+    plan_row_ = FftwPlan(fftw_plan_r2r_1d(C_, row_.data(), row_.data(), FFTW_RODFT00, planning));
+    plan_col_ = FftwPlan(fftw_plan_r2r_1d(R_, col_.data(), col_.data(), FFTW_RODFT00, planning));
     if (!plan_2d_ || !plan_row_ || !plan_col_) {
       summary.message = "FFTW could not make a plan";
       return SolveStatus::kFailure;
@@ -254,7 +255,7 @@ void DstSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
     if (options_.compute_residual) {
       B.setZero(n, 3);
       for (std::size_t r = 0; r < used; ++r) B += member.rhs_weights[r] * rhs_basis[r];
-      detail::judge_exact_solve(member.op, B, X, options_, summary_k);
+      judge_exact_solve(member.op, B, X, summary_k);
     }
     sink(k, X, summary_k);
   }

@@ -249,8 +249,8 @@ class FastSolver : public LinearSolver {
     extra_ = extra_columns(C_);
     L_ = C_ + extra_;
     const std::size_t L = std::size_t(L_);
-    sine_ = SineTransform(L_);
-    sine_rows_ = extra_ > 0 ? SineTransform(R_) : SineTransform();
+    sine_ = SineTransform(L_, detail::fft_planning(options_));
+    sine_rows_ = extra_ > 0 ? SineTransform(R_, detail::fft_planning(options_)) : SineTransform();
     auto sine_column = [&](int j, std::vector<double>& v) {  // S·e_j, length L
       v.resize(L);
       for (int q = 0; q < L_; ++q) v[std::size_t(q)] = std::sin(M_PI * double(j + 1) * (q + 1) / (L_ + 1));
@@ -773,7 +773,7 @@ void FastSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
     result.solve_seconds = seconds_since(start);
     if (options_.compute_residual) {
       if (!have_B) materialize();
-      detail::judge_exact_solve(member.op, B, X, options_, result);
+      judge_exact_solve(member.op, B, X, result);
     }
     sink(k, X, result);
   }

@@ -36,12 +36,16 @@ AlignedBuffer& AlignedBuffer::operator=(AlignedBuffer&& other) noexcept {
   return *this;
 }
 
-SineTransform::SineTransform(int n) : n_(n) {
+unsigned fft_planning(const SolverOptions& options) {
+  return options.measure_fft_plans ? FFTW_MEASURE : FFTW_ESTIMATE;
+}
+
+SineTransform::SineTransform(int n, unsigned planning) : n_(n) {
   const int N = n + 1;
   y_ = AlignedBuffer(std::size_t(N));
   z_ = AlignedBuffer(2 * std::size_t(N / 2 + 1));
   plan_ = fftw_plan_dft_r2c_1d(N, y_.data(), reinterpret_cast<fftw_complex*>(z_.data()),
-                               FFTW_MEASURE);
+                               planning);
   if (!plan_) throw std::bad_alloc();
   weight_.resize(std::size_t(N));
   for (int j = 0; j < N; ++j) weight_[std::size_t(j)] = std::sin(M_PI * j / N);
@@ -213,24 +217,6 @@ void stream_fence() {
 #if defined(__SSE2__)
   _mm_sfence();
 #endif
-}
-
-void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                       const Eigen::MatrixX3d& X, const SolverOptions& options,
-                       SolveSummary& summary) {
-  if (!options.compute_residual) return;
-  summary.relative_residual = relative_residual(op, B, X);
-  if (!std::isfinite(summary.relative_residual)) {
-    summary.relative_residual = HUGE_VAL;
-    if (summary.ok()) {
-      summary.status = SolveStatus::kFailure;
-      summary.message = "the solution is not finite";
-    }
-  } else if (summary.ok() && summary.relative_residual > options.singular_residual) {
-    summary.status = SolveStatus::kSingular;
-    summary.message = "true residual " + std::to_string(summary.relative_residual) +
-                      " after an exact solve: the operator is numerically singular";
-  }
 }
 
 const GridStencil* structured_grid(const LinearOperator& op, SolveSummary& summary) {

@@ -41,12 +41,17 @@ class AlignedBuffer {
   std::size_t size_ = 0;
 };
 
-//! The DST-I of length n (see above) of one row at a time. Plans are made once (FFTW_MEASURE) on
-//! internal buffers; apply() works on arrays of any alignment. Not thread-safe (shared scratch).
+//! The FFTW planner flag for SolverOptions::measure_fft_plans: FFTW_MEASURE when asked,
+//! otherwise FFTW_ESTIMATE (no timing, so the same plan, and the same rounding, in every run).
+unsigned fft_planning(const SolverOptions& options);
+
+//! The DST-I of length n (see above) of one row at a time. Plans are made once (with the
+//! planner flag `planning`, see fft_planning) on internal buffers; apply() works on arrays of any
+//! alignment. Not thread-safe (shared scratch).
 class SineTransform {
  public:
   SineTransform() = default;
-  explicit SineTransform(int n);
+  SineTransform(int n, unsigned planning);
   ~SineTransform();
   SineTransform(SineTransform&& other) noexcept;
   SineTransform& operator=(SineTransform&& other) noexcept;
@@ -101,12 +106,5 @@ constexpr double kZeroPivot = 1e-13;
 //! the last one.
 void stream_copy(const double* src, double* dst, std::size_t n);
 void stream_fence();
-
-//! After an exact solve outside LinearSolver::solve (in a sweep): the true residual when
-//! options.compute_residual, and the same verdict solve() gives (not finite → kFailure; larger
-//! than options.singular_residual → kSingular).
-void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                       const Eigen::MatrixX3d& X, const SolverOptions& options,
-                       SolveSummary& summary);
 
 }  // namespace coons::solvers::detail
