@@ -21,7 +21,11 @@ namespace coons {
 
 MaskObjective::MaskObjective(const Boundary& boundary, Objective objective, MaskFamily family,
                              const std::string& solver, const solvers::SolverOptions& options)
-    : boundary_(boundary), frame_(frame_net(boundary)), objective_(std::move(objective)), family_(std::move(family)) {
+    : boundary_(boundary),
+      unit_(normalised_frame(boundary, objective)),
+      frame_(frame_net(unit_.boundary)),
+      objective_(std::move(objective)),
+      family_(std::move(family)) {
   const solvers::SolverInfo* info = solvers::find_solver(solver);
   needs_matrix_ = !info || info->needs_matrix;
   solver_ = solvers::make_solver(solver, options);
@@ -52,8 +56,11 @@ MaskObjective::Evaluation MaskObjective::evaluate_mask(const Mask9& mask, const 
   }
   const int rows = std::max(frame_.m - 1, 0), cols = std::max(frame_.n - 1, 0);
   const ControlNet zero(frame_.m, frame_.n);  // the variation of a net with a fixed boundary
+  const Objective& objective = unit_.objective;
+  const double k = unit_.value_factor;  // a power of two: exact
   if (rows * cols == 0) {
-    e.value = evaluate_objective(objective_, e.net, zero).value;
+    e.value = k * evaluate_objective(objective, e.net, zero).value;
+    e.net = unit_.to_original(std::move(e.net));
     return e;
   }
   solvers::LinearOperator op;
@@ -65,23 +72,28 @@ MaskObjective::Evaluation MaskObjective::evaluate_mask(const Mask9& mask, const 
   }
   if (solver_->factorize(op) != solvers::SolveStatus::kSuccess) {
     e.summary = solver_->summary();
+    e.net = unit_.to_original(std::move(e.net));
     return e;
   }
   Eigen::MatrixX3d X, dX;
   e.summary = solver_->solve(mask_rhs(frame_, mask), X);
   ++solves_;
-  if (!e.summary.ok()) return e;
-  e.net = fill_interior(frame_, X);
-  e.value = evaluate_objective(objective_, e.net, zero).value;
-  for (size_t k = 0; k < directions.size(); ++k) {
-    const solvers::SolveSummary ds = solver_->solve(mask_sensitivity_rhs(e.net, directions[k]), dX);
+  if (!e.summary.ok()) {
+    e.net = unit_.to_original(std::move(e.net));
+    return e;
+  }
+  ControlNet net = fill_interior(frame_, X);
+  e.value = k * evaluate_objective(objective, net, zero).value;
+  for (size_t d = 0; d < directions.size(); ++d) {
+    const solvers::SolveSummary ds = solver_->solve(mask_sensitivity_rhs(net, directions[d]), dX);
     ++solves_;
     if (!ds.ok()) {
       e.summary = ds;
-      return e;
+      break;
     }
-    gradient[k] = evaluate_objective(objective_, e.net, fill_interior(zero, dX)).derivative;
+    gradient[d] = k * evaluate_objective(objective, net, fill_interior(zero, dX)).derivative;
   }
+  e.net = unit_.to_original(std::move(net));
   return e;
 }
 
@@ -128,7 +140,10 @@ ceres::GradientProblemSolver::Options ceres_options(const AlphaSearchOptions& op
   o.line_search_direction_type = ceres::BFGS;
   o.max_num_iterations = options.max_iterations;
   o.parameter_tolerance = options.parameter_tolerance;
-  o.function_tolerance = 1e-15;
+  // (in the normalised frame, so the gradient tolerance is relative to a unit boundary; the
+  // function tolerance stays out of the way: a relative change of 1e−15 in f leaves α* only
+  // √(1e−15·f/f'') ≈ 1e−8 accurate)
+  o.function_tolerance = 1e-20;
   o.gradient_tolerance = 1e-14;
   o.logging_type = ceres::SILENT;
   return o;
@@ -227,8 +242,70 @@ class Stationarity : public ceres::SizedCostFunction<1, 1> {
   std::vector<Evaluation>& seen_;  // the evaluations of the refinement, shared with the caller
 };
 
+// An evaluator seen in its normalised frame: values divided by the frame's value factor (a power
+// of two, so exactly), the frame's boundary and objective. Every tolerance of the search is then
+// met by values of the size a unit boundary gives, whatever the caller's coordinates.
+template <class Obj>
+class InUnitFrame {
+ public:
+  using Evaluation = typename Obj::Evaluation;
+  explicit InUnitFrame(Obj& objective) : objective_(objective), k_(objective.unit_frame().value_factor) {}
+  Evaluation evaluate(double p, bool with_derivative = true) {
+    Evaluation e = objective_.evaluate(p, with_derivative);
+    e.value /= k_;
+    e.derivative /= k_;
+    e.derivative_noise /= k_;
+    if constexpr (HasSecondDerivative<Obj>::value) e.second_derivative /= k_;
+    return e;
+  }
+  [[nodiscard]] const Boundary& boundary() const { return objective_.unit_frame().boundary; }
+  [[nodiscard]] const Objective& objective() const { return objective_.unit_frame().objective; }
+  [[nodiscard]] int evaluations() const { return objective_.evaluations(); }
+  [[nodiscard]] int solves() const { return objective_.solves(); }
+  [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
+  [[nodiscard]] double value_factor() const { return k_; }
+
+ private:
+  Obj& objective_;
+  double k_;
+};
+
+template <class Obj>
+AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& options);
+
+// A line search on values cannot place α* closer than √(ε·f/f'') (f is flat at rounding level
+// there: about 1e−9 relative for the discrete thin plate of the dome); secant steps on the exact
+// derivative, f' = 0, can. Steps stay in [a, b] and are kept only while |f'| decreases.
+template <class Obj>
+typename Obj::Evaluation polish_stationary(Obj& objective, typename Obj::Evaluation at, double a, double b) {
+  if (!at.ok() || !at.has_derivative || at.derivative == 0) return at;
+  const double width = b - a, h = 1e-6 * width;
+  auto other = objective.evaluate(std::clamp(at.parameter + (at.derivative > 0 ? -h : h), a, b));
+  for (int it = 0; it < 8 && other.ok() && other.parameter != at.parameter; ++it) {
+    const double slope = (other.derivative - at.derivative) / (other.parameter - at.parameter);
+    if (!(slope > 0)) break;  // not convex here: leave it to the line search's point
+    const double next = at.parameter - at.derivative / slope;
+    if (!(next >= a && next <= b) || std::abs(next - at.parameter) <= 1e-15 * width) break;
+    auto e = objective.evaluate(next);
+    if (!e.ok() || !(std::abs(e.derivative) < std::abs(at.derivative))) break;
+    other = std::move(at);
+    at = std::move(e);
+  }
+  return at;
+}
+
+// The search in the evaluator's normalised frame, its values reported in the caller's units.
 template <class Obj>
 AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options) {
+  InUnitFrame<Obj> unit(objective);
+  AlphaSearchSummary s = search_in_frame(unit, options);
+  s.value *= unit.value_factor();
+  for (auto& point : s.scan) point.second *= unit.value_factor();
+  return s;
+}
+
+template <class Obj>
+AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& options) {
   const auto start = std::chrono::steady_clock::now();
   AlphaSearchSummary s;
   auto finish = [&]() -> AlphaSearchSummary& {
@@ -389,7 +466,11 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
     p = centre + half * std::tanh(theta);
     if (last && last->parameter != p) last.reset();
   }
-  const auto e = last ? *last : objective.evaluate(p);
+  auto e = last ? *last : objective.evaluate(p);
+  if (!refined && !no_convergence) {
+    e = polish_stationary(objective, std::move(e), a, b);
+    p = e.parameter;
+  }
   if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
     s.status = SearchStatus::kSolverFailed;
     s.message = "solver failed during refinement: " + e.summary.brief_report();

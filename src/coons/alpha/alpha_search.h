@@ -19,6 +19,7 @@
 #include <string>
 #include <vector>
 
+#include "coons/alpha/normalised_frame.h"
 #include "coons/alpha/objective.h"
 #include "coons/config.h"
 #include "coons/mask/mask_families.h"
@@ -58,10 +59,14 @@ class MaskObjective {
   [[nodiscard]] int solves() const { return solves_; }
   [[nodiscard]] const Boundary& boundary() const { return boundary_; }
   [[nodiscard]] const Objective& objective() const { return objective_; }
+  //! The frame the evaluations are made in (normalised_frame.h); values, derivatives and nets
+  //! are reported in the caller's units (value = value_factor · value in the frame).
+  [[nodiscard]] const NormalisedFrame& unit_frame() const { return unit_; }
 
  private:
   Boundary boundary_;
-  ControlNet frame_;
+  NormalisedFrame unit_;
+  ControlNet frame_;  // the frame net of unit_.boundary
   Objective objective_;
   MaskFamily family_;
   bool needs_matrix_ = true;

@@ -409,17 +409,21 @@ SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) con
 }
 
 SpectralAlphaSearchObjective::SpectralAlphaSearchObjective(const Boundary& boundary, Objective objective)
-    : boundary_(boundary), objective_(std::move(objective)), spectral_(boundary, objective_) {}
+    : boundary_(boundary),
+      objective_(std::move(objective)),
+      unit_(normalised_frame(boundary_, objective_)),
+      spectral_(unit_.boundary, unit_.objective) {}
 
 SpectralAlphaSearchObjective::Evaluation SpectralAlphaSearchObjective::evaluate(double alpha, bool) {
   ++evaluations_;
   const SpectralAlphaObjective::Value v = spectral_.evaluate(alpha);
   Evaluation e;
   e.parameter = alpha;
-  e.value = v.value;
-  e.derivative = v.derivative;
-  e.second_derivative = v.second_derivative;
-  e.derivative_noise = v.derivative_noise;
+  const double k = unit_.value_factor;  // a power of two: exact
+  e.value = k * v.value;
+  e.derivative = k * v.derivative;
+  e.second_derivative = k * v.second_derivative;
+  e.derivative_noise = k * v.derivative_noise;
   e.summary.solver = "spectral";
   e.summary.iterations = 0;
   if (!v.ok) {
