@@ -116,6 +116,7 @@ const char* to_string(SearchStatus s) {
     case SearchStatus::kFlat: return "flat";
     case SearchStatus::kSolverFailed: return "solver_failed";
     case SearchStatus::kNotConverged: return "not_converged";
+    case SearchStatus::kFailedRegion: return "failed_region";
   }
   return "solver_failed";
 }
@@ -126,6 +127,7 @@ std::string AlphaSearchSummary::brief_report() const {
   if (parameter) out << ": optimum " << *parameter << ", value " << value;
   if (flat) out << " (flat objective)";
   if (at_bound) out << " (at a bound)";
+  if (failed_evaluations > 0) out << ", " << failed_evaluations << " failed evaluation(s)";
   out << ", " << evaluations << " evaluations, " << solves << " solves, " << seconds << " s";
   if (!message.empty()) out << "; " << message;
   return out.str();
@@ -252,6 +254,8 @@ class InUnitFrame {
   explicit InUnitFrame(Obj& objective) : objective_(objective), k_(objective.unit_frame().value_factor) {}
   Evaluation evaluate(double p, bool with_derivative = true) {
     Evaluation e = objective_.evaluate(p, with_derivative);
+    log_.push_back({p, e.ok()});
+    if (!e.ok() && first_failure_ == solvers::SolveStatus::kSuccess) first_failure_ = e.summary.status;
     e.value /= k_;
     e.derivative /= k_;
     e.derivative_noise /= k_;
@@ -264,11 +268,83 @@ class InUnitFrame {
   [[nodiscard]] int solves() const { return objective_.solves(); }
   [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
   [[nodiscard]] double value_factor() const { return k_; }
+  //! Every evaluation made through this view: (parameter, succeeded), in order.
+  [[nodiscard]] const std::vector<std::pair<double, bool>>& log() const { return log_; }
+  [[nodiscard]] solvers::SolveStatus first_failure() const { return first_failure_; }
 
  private:
   Obj& objective_;
   double k_;
+  std::vector<std::pair<double, bool>> log_;
+  solvers::SolveStatus first_failure_ = solvers::SolveStatus::kSuccess;
 };
+
+// Runs of failed evaluations, as [lowest, highest] parameter with no success between them.
+std::vector<std::pair<double, double>> failed_runs(std::vector<std::pair<double, bool>> log) {
+  std::sort(log.begin(), log.end());
+  std::vector<std::pair<double, double>> runs;
+  bool open = false;
+  for (const auto& [p, ok] : log) {
+    if (ok) {
+      open = false;
+    } else if (open) {
+      runs.back().second = p;
+    } else {
+      runs.emplace_back(p, p);
+      open = true;
+    }
+  }
+  return runs;
+}
+
+std::string describe(const std::vector<std::pair<double, double>>& runs) {
+  constexpr std::size_t kShown = 4;
+  std::string text;
+  for (std::size_t r = 0; r < runs.size() && r < kShown; ++r) {
+    const auto [lo, hi] = runs[r];
+    if (!text.empty()) text += ", ";
+    text += lo == hi ? solvers::format_g(lo) : "[" + solvers::format_g(lo) + ", " + solvers::format_g(hi) + "]";
+  }
+  if (runs.size() > kShown) text += " and " + std::to_string(runs.size() - kShown) + " more places";
+  return text;
+}
+
+// No optimum without its evidence: the optimum rests on the best successful scan point and its two
+// scan neighbours (the refinement stays between them); a flat verdict rests on every scan point.
+// Where a failed evaluation lies among them, nothing is claimed (kFailedRegion).
+void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, bool>>& log) {
+  const std::vector<std::pair<double, double>> runs = failed_runs(log);
+  s.failed_intervals = runs;
+  s.failed_evaluations = int(std::count_if(log.begin(), log.end(), [](const auto& e) { return !e.second; }));
+  if (s.failed_evaluations == 0 || s.status == SearchStatus::kSolverFailed) return;
+  const std::string where = std::to_string(s.failed_evaluations) + " evaluation(s) failed at " + describe(runs);
+  auto append = [&](const std::string& text) { s.message += (s.message.empty() ? "" : "; ") + text; };
+  if (s.flat) {
+    s.status = SearchStatus::kFailedRegion;
+    s.flat = false;
+    append(where + ": the successful ones are flat, but that does not make the objective flat over the bounds");
+    return;
+  }
+  if (!s.parameter) return;
+  int best = -1;
+  for (int i = 0; i < int(s.scan.size()); ++i)
+    if (std::isfinite(s.scan[i].second) && (best < 0 || s.scan[i].second < s.scan[best].second)) best = i;
+  if (best < 0) return;
+  const double lo = s.scan[std::max(best - 1, 0)].first;
+  const double hi = s.scan[std::min(best + 1, int(s.scan.size()) - 1)].first;
+  const bool touches = std::any_of(log.begin(), log.end(), [&](const auto& e) {
+    return !e.second && e.first >= std::min(lo, *s.parameter) && e.first <= std::max(hi, *s.parameter);
+  });
+  if (!touches) {
+    append(where + ", away from the optimum");
+    return;
+  }
+  append(where + ": the lowest successful value, " + solvers::format_g(s.value) + " at " +
+         solvers::format_g(*s.parameter) + ", lies next to them, so no optimum is claimed");
+  s.status = SearchStatus::kFailedRegion;
+  s.parameter.reset();
+  s.at_bound = false;
+}
 
 template <class Obj>
 AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& options);
@@ -301,6 +377,8 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   AlphaSearchSummary s = search_in_frame(unit, options);
   s.value *= unit.value_factor();
   for (auto& point : s.scan) point.second *= unit.value_factor();
+  s.first_failure = unit.first_failure();
+  judge_failures(s, unit.log());
   return s;
 }
 
@@ -327,7 +405,7 @@ AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& opt
     const double p = i + 1 == k ? options.upper : options.lower + i * step;
     grid.push_back(objective.evaluate(p, /*with_derivative=*/false));  // values suffice to scan
     if (!grid.back().ok()) {
-      if (failed_points++ == 0) first_failure = "at " + std::to_string(p) + ": " + grid.back().summary.brief_report();
+      if (failed_points++ == 0) first_failure = "at " + solvers::format_g(p) + ": " + grid.back().summary.brief_report();
       grid.back().value = HUGE_VAL;
     }
     s.scan.emplace_back(p, grid.back().value);
@@ -498,7 +576,7 @@ AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& opt
     if (at.ok() && std::abs(at.derivative) * (b - a) > 1e-6 * std::max(hi - lo, floor)) {
       s.status = SearchStatus::kNotConverged;
       s.message += std::string(s.message.empty() ? "" : "; ") + "the refinement stalled where the slope is " +
-                   std::to_string(at.derivative) + ", not zero";
+                   solvers::format_g(at.derivative) + ", not zero";
     }
   }
   return finish();
@@ -546,6 +624,8 @@ AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objectiv
     AlphaSearchSummary s = search_alpha(boundary, objective, solver, on_alpha, solver_options);
     if (s.parameter) s.parameter = 1 + 4 * *s.parameter;
     for (auto& point : s.scan) point.first = 1 + 4 * point.first;
+    for (auto& run : s.failed_intervals) run = {1 + 4 * run.first, 1 + 4 * run.second};
+    if (!s.message.empty()) s.message += " (parameters in this message are alpha = (s - 1)/4)";
     return s;
   }
   return search_by_solving(boundary, objective,
@@ -608,7 +688,7 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
   const AlphaSearchSummary one = search_mask_parameter(objective, options);
   out.evaluations = one.evaluations;
   out.solves = one.solves;
-  if (one.status == SearchStatus::kSolverFailed) {
+  if (one.status == SearchStatus::kSolverFailed || one.status == SearchStatus::kFailedRegion) {
     out.status = one.status;
     out.message = one.message;
     return out;

@@ -85,18 +85,33 @@ struct AlphaSearchOptions {
   bool is_valid(std::string* why) const;
 };
 
-enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged };
+//! kSuccess: an optimum (parameter) resting only on successful evaluations; kFlat: no optimum,
+//! the objective does not depend on the parameter; kSolverFailed: no evaluation succeeded, or the
+//! one at the refined optimum failed; kNotConverged: Ceres or the refinement did not converge;
+//! kFailedRegion: some evaluations failed where the optimum (or the flatness) would rest on them
+//! — next to the lowest successful point, or anywhere when the rest is flat — so none is claimed.
+enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged, kFailedRegion };
+//! "success", "flat", "solver_failed", "not_converged", "failed_region".
 const char* to_string(SearchStatus status);
 
 struct AlphaSearchSummary {
   SearchStatus status = SearchStatus::kSuccess;
   std::string message;
   std::optional<double> parameter;  //!< the optimum (absent when flat or failed)
-  double value = 0;                 //!< the objective there (at any scan point when flat)
+  //! The objective at the optimum; when flat, at the best scan point; with kFailedRegion, the
+  //! lowest successful evaluation (not an optimum); 0 when no evaluation succeeded.
+  double value = 0;
   bool flat = false, at_bound = false;
   int local_minima = 0;             //!< interior local minima seen by the scan
   int evaluations = 0, solves = 0;
-  std::vector<std::pair<double, double>> scan;  //!< (parameter, value) of the coarse grid
+  //! (parameter, value) of the coarse grid; a failed point's value is +∞ (HUGE_VAL)
+  std::vector<std::pair<double, double>> scan;
+  //! Evaluations (scan and refinement) whose solve failed; the status of the first of them.
+  int failed_evaluations = 0;
+  solvers::SolveStatus first_failure = solvers::SolveStatus::kSuccess;
+  //! [lowest, highest] parameter of each run of failed evaluations with no successful one
+  //! between them, in increasing order (a single failed point is [p, p]).
+  std::vector<std::pair<double, double>> failed_intervals;
   double seconds = 0;
   std::string ceres_report;         //!< Ceres's BriefReport of the refinement, if any
   std::string evaluator;            //!< "sine basis" or "factorize and solve" (search_alpha)
