@@ -132,7 +132,12 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
   solve_start_ = std::chrono::steady_clock::now();
   summary_.status = do_solve(B, X, summary_);
   summary_.solve_seconds = seconds_since(solve_start_);
-  if (!options_.compute_residual || X.rows() != B.rows()) return summary_;
+  judge_solution(B, X);
+  return summary_;
+}
+
+void LinearSolver::judge_solution(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X) {
+  if (!options_.compute_residual || X.rows() != B.rows()) return;
   if (exact()) {
     judge_exact_solve(op_, B, X, summary_);
   } else if (summary_.ok()) {
@@ -147,7 +152,6 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
       summary_.message = "the solution is not finite (overflow)";
     }
   }
-  return summary_;
 }
 
 void LinearSolver::judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
@@ -205,20 +209,39 @@ SolveSummary LinearSolver::compute_and_solve(const LinearOperator& op, const Eig
   return solve(B, X);
 }
 
+Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                             Eigen::Index rows) {
+  Eigen::MatrixX3d B = Eigen::MatrixX3d::Zero(rows, 3);
+  for (std::size_t r = 0; r < basis.size() && r < weights.size(); ++r) B += weights[r] * basis[r];
+  return B;
+}
+
+SolveStatus LinearSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis,
+                                         const std::vector<double>& weights, Eigen::MatrixX3d& X,
+                                         SolveSummary& summary) {
+  return do_solve(combine_rhs(basis, weights, op_.size()), X, summary);
+}
+
 void LinearSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
                          const std::vector<SweepMember>& members, const SweepSink& sink) {
-  Eigen::MatrixX3d B, X;
+  do_begin_sweep();
+  Eigen::MatrixX3d X;
   for (std::size_t k = 0; k < members.size(); ++k) {
     const SweepMember& member = members[k];
-    B.setZero(member.op.size(), 3);
-    for (std::size_t r = 0; r < rhs_basis.size() && r < member.rhs_weights.size(); ++r)
-      B += member.rhs_weights[r] * rhs_basis[r];
     if (factorize(member.op) != SolveStatus::kSuccess) {
-      X.setZero(B.rows(), 3);
+      X.setZero(member.op.size(), 3);
       sink(k, X, summary_);
       continue;
     }
-    sink(k, X, solve(B, X));
+    const std::size_t used = std::min(rhs_basis.size(), member.rhs_weights.size());
+    const std::vector<double> weights(member.rhs_weights.begin(), member.rhs_weights.begin() + long(used));
+    summary_.message.clear();
+    summary_.relative_residual = 0;
+    solve_start_ = std::chrono::steady_clock::now();
+    summary_.status = do_sweep_solve(rhs_basis, weights, X, summary_);
+    summary_.solve_seconds = seconds_since(solve_start_);
+    if (options_.compute_residual) judge_solution(combine_rhs(rhs_basis, weights, member.op.size()), X);
+    sink(k, X, summary_);
   }
 }
 

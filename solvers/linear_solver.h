@@ -120,10 +120,11 @@ class LinearSolver {
   //! Solve a family of systems that share everything but the values (e.g. an α sweep, whose
   //! right-hand side is affine in α), reusing what does not depend on the values: the analysis
   //! for direct solvers, the transforms of the basis right-hand sides for structured ones.
-  //! sink(k, X_k, summary_k) is called for each member in order. The default analyzes once and
-  //! factorizes and solves per member.
-  virtual void sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
-                     const std::vector<SweepMember>& members, const SweepSink& sink);
+  //! sink(k, X_k, summary_k) is called for each member in order. The one loop of every backend:
+  //! per member factorize (a failure is passed on with X = 0), do_sweep_solve, and the same
+  //! verdict on the true residual as solve().
+  void sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis, const std::vector<SweepMember>& members,
+             const SweepSink& sink);
 
   [[nodiscard]] const SolverOptions& options() const { return options_; }
   //! The summary of the last call (statuses of analyze/factorize are kept here too).
@@ -136,6 +137,14 @@ class LinearSolver {
   //! finish_iteration(), which gives every one the same verdict and message.
   virtual SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
                                SolveSummary& summary) = 0;
+
+  //! X for a factorized sweep member whose right-hand side is Σ_r weights[r]·basis[r] (weights
+  //! cut to the basis size). The default forms it and calls do_solve(); structured backends
+  //! override it to reuse transforms of the basis across members.
+  virtual SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                                     Eigen::MatrixX3d& X, SolveSummary& summary);
+  //! Called at the start of every sweep (to forget what a previous sweep cached).
+  virtual void do_begin_sweep() {}
 
   //! How an iteration ended, for finish_iteration().
   struct IterationEnd {
@@ -164,6 +173,9 @@ class LinearSolver {
   SolverOptions options_;
 
  private:
+  // The verdict on X after do_solve or do_sweep_solve (see solve()).
+  void judge_solution(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
+
   SolveSummary summary_;
   std::chrono::steady_clock::time_point solve_start_;
   LinearOperator op_;  // the operator of the last factorize (for the residual)
@@ -180,6 +192,10 @@ int iteration_limit(const SolverOptions& options, Eigen::Index unknowns, int per
 
 //! A number as printf's %g prints it (1e-12, not 0.000000).
 std::string format_g(double value);
+
+//! Σ_r weights[r]·basis[r] (#rows of the first member; zero without terms).
+Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                             Eigen::Index rows);
 
 //! max over columns of ‖A x − b‖/‖b‖, with A from the matrix or, when absent, the stencil.
 double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,
