@@ -14,7 +14,6 @@ namespace coons::solvers {
 namespace {
 
 using detail::AlignedBuffer;
-using detail::structured_grid;
 
 // o = σ·tb + l·τ + r·τ' (then ∘ inv when given): one row of the ring right-hand side's transform.
 COONS_VECTOR_CLONES void ring_row(double sigma, const double* __restrict tb, double l,
@@ -53,9 +52,9 @@ class FftwPlan {
   fftw_plan plan_ = nullptr;
 };
 
-class DstSolver : public LinearSolver {
+class DstSolver : public detail::StructuredSolver {
  public:
-  explicit DstSolver(const SolverOptions& options) : LinearSolver(options) {}
+  explicit DstSolver(const SolverOptions& options) : StructuredSolver(options) {}
   [[nodiscard]] std::string name() const override { return "dst"; }
 
  protected:
@@ -65,11 +64,7 @@ class DstSolver : public LinearSolver {
   SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                              Eigen::MatrixX3d& X, SolveSummary& summary) override;
 
-  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    const GridStencil* grid = structured_grid(op, summary);
-    if (!grid) return SolveStatus::kNotApplicable;
-    R_ = grid->rows;
-    C_ = grid->cols;
+  SolveStatus analyze_grid(SolveSummary& summary) override {
     const std::size_t n = std::size_t(R_) * std::size_t(C_);
     grid_ = AlignedBuffer(n);
     row_ = AlignedBuffer(std::size_t(C_));
@@ -92,10 +87,7 @@ class DstSolver : public LinearSolver {
     return SolveStatus::kSuccess;
   }
 
-  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    const GridStencil* grid = structured_grid(op, summary);
-    if (!grid) return SolveStatus::kNotApplicable;
-    const GridStencil& s = *grid;
+  SolveStatus factorize_grid(const LinearOperator& /*op*/, const GridStencil& s, SolveSummary& summary) override {
     std::vector<double> x(static_cast<std::size_t>(R_)), y(static_cast<std::size_t>(C_));
     for (int p = 0; p < R_; ++p) x[std::size_t(p)] = std::cos(M_PI * (p + 1) / (R_ + 1));
     for (int q = 0; q < C_; ++q) y[std::size_t(q)] = std::cos(M_PI * (q + 1) / (C_ + 1));
@@ -203,7 +195,6 @@ class DstSolver : public LinearSolver {
     detail::stream_fence();
   }
 
-  int R_ = 0, C_ = 0;
   AlignedBuffer grid_, row_, col_;
   FftwPlan plan_2d_, plan_row_, plan_col_;
   std::vector<double> inverse_eigenvalues_, edge_i_, edge_j_;

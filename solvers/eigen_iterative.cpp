@@ -33,10 +33,7 @@ class EigenIterative : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     // (Eigen 3.4's IterativeSolverBase::analyzePattern reads the preconditioner's info() before
     // IncompleteLUT has set it, an uninitialised load that UBSan reports. Preconditioners whose
     // analysis is worth keeping (IncompleteCholesky's AMD ordering) analyse here; the others are
@@ -46,10 +43,7 @@ class EigenIterative : public LinearSolver {
   }
 
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     if (definite_only_ && stencil_not_definite(op, summary)) return SolveStatus::kNotPositiveDefinite;
     krylov_.setTolerance(options_.tolerance);
     limit_ = iteration_limit(options_, op.matrix->rows(), 20, 2e10);

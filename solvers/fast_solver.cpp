@@ -32,7 +32,6 @@ using detail::KroneckerSolve;
 using detail::ModePivots;
 using detail::RowForm;
 using detail::SineTransform;
-using detail::structured_grid;
 
 // Largest prime factor of n ≥ 1.
 int largest_prime_factor(int n) {
@@ -57,9 +56,9 @@ int extra_columns(int cols) {
 
 // ------------------------------------------------------------------------------------------------
 
-class FastSolver : public LinearSolver {
+class FastSolver : public detail::StructuredSolver {
  public:
-  explicit FastSolver(const SolverOptions& options) : LinearSolver(options) {}
+  explicit FastSolver(const SolverOptions& options) : StructuredSolver(options) {}
   [[nodiscard]] std::string name() const override { return "fast"; }
 
  protected:
@@ -72,11 +71,7 @@ class FastSolver : public LinearSolver {
   SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                              Eigen::MatrixX3d& X, SolveSummary& summary) override;
 
-  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    const GridStencil* grid = structured_grid(op, summary);
-    if (!grid) return SolveStatus::kNotApplicable;
-    R_ = grid->rows;
-    C_ = grid->cols;
+  SolveStatus analyze_grid(SolveSummary& /*summary*/) override {
     extra_ = extra_columns(C_);
     L_ = C_ + extra_;
     const std::size_t L = std::size_t(L_);
@@ -107,10 +102,7 @@ class FastSolver : public LinearSolver {
     return SolveStatus::kSuccess;
   }
 
-  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    const GridStencil* grid = structured_grid(op, summary);
-    if (!grid) return SolveStatus::kNotApplicable;
-    const GridStencil& s = *grid;
+  SolveStatus factorize_grid(const LinearOperator& op, const GridStencil& s, SolveSummary& summary) override {
     if (KroneckerSolve::applies(s) && kronecker_.factor(s)) {
       path_ = Path::kKronecker;
       return SolveStatus::kSuccess;
@@ -280,7 +272,7 @@ class FastSolver : public LinearSolver {
     detail::stream_fence();
   }
 
-  int R_ = 0, C_ = 0, L_ = 0, extra_ = 0, block_rows_ = 16;
+  int L_ = 0, extra_ = 0, block_rows_ = 16;
   Path path_ = Path::kTransform;
   SineTransform sine_;
   std::vector<double> y_, sine_e0_, sine_e1_, unit_e0_, unit_e1_;

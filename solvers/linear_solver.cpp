@@ -174,6 +174,18 @@ void LinearSolver::judge_exact_solve(const LinearOperator& op, const Eigen::Matr
   }
 }
 
+bool LinearSolver::lacks_matrix(const LinearOperator& op, SolveSummary& summary) {
+  if (op.matrix) return false;
+  summary.message = "needs the assembled matrix";
+  return true;
+}
+
+bool LinearSolver::lacks_stencil(const LinearOperator& op, SolveSummary& summary) {
+  if (op.stencil) return false;
+  summary.message = "needs the grid stencil (matrix-free)";
+  return true;
+}
+
 bool LinearSolver::out_of_time() const {
   return options_.time_limit_seconds > 0 && seconds_since(solve_start_) >= options_.time_limit_seconds;
 }

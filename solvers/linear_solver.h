@@ -146,6 +146,11 @@ class LinearSolver {
   //! Called at the start of every sweep (to forget what a previous sweep cached).
   virtual void do_begin_sweep() {}
 
+  //! True, with "needs the assembled matrix" in the summary, when op has no matrix (the caller
+  //! returns kNotApplicable); lacks_stencil the same for the grid stencil.
+  static bool lacks_matrix(const LinearOperator& op, SolveSummary& summary);
+  static bool lacks_stencil(const LinearOperator& op, SolveSummary& summary);
+
   //! How an iteration ended, for finish_iteration().
   struct IterationEnd {
     int iterations = 0;

@@ -41,10 +41,7 @@ class MaskIteration : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.stencil) {
-      summary.message = "needs the grid stencil (matrix-free)";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_stencil(op, summary)) return SolveStatus::kNotApplicable;
     return SolveStatus::kSuccess;
   }
 

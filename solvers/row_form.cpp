@@ -20,14 +20,20 @@ COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
   return bits != 0;
 }
 
-}  // namespace
-
-RowForm split_rows(const double* b, int R, int C) {
+// R rows of width C, every one sparse with zero ends.
+RowForm zero_form(int R, int C) {
   RowForm f;
   f.width = C;
   f.first.assign(std::size_t(R), 0.0);
   f.last.assign(std::size_t(R), 0.0);
   f.slot.assign(std::size_t(R), -1);
+  return f;
+}
+
+}  // namespace
+
+RowForm split_rows(const double* b, int R, int C) {
+  RowForm f = zero_form(R, C);
   for (int i = 0; i < R; ++i) {
     const double* row = b + std::size_t(i) * std::size_t(C);
     if (!has_interior(row, C)) {
@@ -45,11 +51,7 @@ RowForm split_rows(const double* b, int R, int C) {
 RowForm combine(const std::vector<const RowForm*>& forms, const std::vector<double>& w, int R,
                 const std::vector<double>& e0, const std::vector<double>& e1) {
   const int C = forms.empty() ? int(e0.size()) : forms[0]->width;
-  RowForm out;
-  out.width = C;
-  out.first.assign(std::size_t(R), 0.0);
-  out.last.assign(std::size_t(R), 0.0);
-  out.slot.assign(std::size_t(R), -1);
+  RowForm out = zero_form(R, C);
   for (int i = 0; i < R; ++i) {
     bool dense = false;
     for (std::size_t r = 0; r < forms.size(); ++r) dense |= w[r] != 0 && forms[r]->slot[std::size_t(i)] >= 0;

@@ -219,16 +219,27 @@ void stream_fence() {
 #endif
 }
 
-const GridStencil* structured_grid(const LinearOperator& op, SolveSummary& summary) {
-  if (!op.stencil) {
-    summary.message = "needs the grid stencil";
-    return nullptr;
-  }
+const GridStencil* StructuredSolver::grid_of(const LinearOperator& op, SolveSummary& summary) {
+  if (lacks_stencil(op, summary)) return nullptr;
   if (op.stencil->rows < 1 || op.stencil->cols < 1) {
     summary.message = "empty grid";
     return nullptr;
   }
   return &*op.stencil;
+}
+
+SolveStatus StructuredSolver::do_analyze(const LinearOperator& op, SolveSummary& summary) {
+  const GridStencil* grid = grid_of(op, summary);
+  if (!grid) return SolveStatus::kNotApplicable;
+  R_ = grid->rows;
+  C_ = grid->cols;
+  return analyze_grid(summary);
+}
+
+SolveStatus StructuredSolver::do_factorize(const LinearOperator& op, SolveSummary& summary) {
+  const GridStencil* grid = grid_of(op, summary);
+  if (!grid) return SolveStatus::kNotApplicable;
+  return factorize_grid(op, *grid, summary);
 }
 
 }  // namespace coons::solvers::detail

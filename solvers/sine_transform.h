@@ -92,9 +92,27 @@ struct Tridiagonal {
   [[nodiscard]] int size() const { return int(inv_pivot.size()); }
 };
 
-//! The grid stencil a structured solver works from, or nullptr with the reason in the summary
-//! (the operator has no stencil, or the grid is empty): the check both structured solvers need.
-const GridStencil* structured_grid(const LinearOperator& op, SolveSummary& summary);
+//! The common frame of the structured solvers (dst, fast): the check both need (kNotApplicable
+//! without a stencil or with an empty grid), the grid size R_ × C_, and the value-dependent set-up
+//! on the stencil itself.
+class StructuredSolver : public LinearSolver {
+ public:
+  using LinearSolver::LinearSolver;
+
+ protected:
+  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) final;
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) final;
+  //! Plans and buffers for an R_ × C_ grid (set before the call).
+  virtual SolveStatus analyze_grid(SolveSummary& summary) = 0;
+  //! The factorisation for the stencil s of op (op is passed on for fallbacks).
+  virtual SolveStatus factorize_grid(const LinearOperator& op, const GridStencil& s, SolveSummary& summary) = 0;
+
+  int R_ = 0, C_ = 0;
+
+ private:
+  // The stencil of op, or nullptr with the reason in the summary.
+  static const GridStencil* grid_of(const LinearOperator& op, SolveSummary& summary);
+};
 
 //! Relative threshold below which a pivot of an indefinite tridiagonal matrix counts as unsafe.
 constexpr double kUnsafePivot = 1e-4;
