@@ -176,11 +176,20 @@ TEST_CASE("iteration_limit: automatic limits are finite and bounded by the work"
   CHECK(iteration_limit(fixed, 3844, 1000, 1e8) == 7);
 }
 
+namespace {
+// The α = −1/4 system of a random degree-n net solved by `name`.
+SolveSummary solve_coons_system(const char* name, int n, std::uint32_t seed, const SolverOptions& options,
+                                MaskSystem& s, Eigen::MatrixX3d& X) {
+  s = assemble_mask_system(make_random_net(n, n, seed), alpha_mask(-0.25));
+  return make_solver(name, options)->compute_and_solve(operator_of(s), s.B, X);
+}
+}  // namespace
+
 TEST_CASE("gauss-seidel: a 64x64 net stops at the automatic limit with the residual reached", "[solvers]") {
   // At α = −1/4 Gauss–Seidel needs O(N⁴) sweeps here: the finite automatic limit stops it.
-  const MaskSystem s = assemble_mask_system(make_random_net(63, 63, 12), alpha_mask(-0.25));
+  MaskSystem s;
   Eigen::MatrixX3d X;
-  const SolveSummary summary = make_solver("gauss-seidel")->compute_and_solve(operator_of(s), s.B, X);
+  const SolveSummary summary = solve_coons_system("gauss-seidel", 63, 12, {}, s, X);
   INFO(summary.brief_report());
   REQUIRE(summary.status == SolveStatus::kNotConverged);
   CHECK(summary.iterations == iteration_limit(SolverOptions{}, s.B.rows(), 1000, 1e8));
@@ -193,13 +202,13 @@ TEST_CASE("gauss-seidel: a 64x64 net stops at the automatic limit with the resid
 }
 
 TEST_CASE("iterative solvers: the time limit stops them with not_converged", "[solvers]") {
-  const MaskSystem s = assemble_mask_system(make_random_net(63, 63, 13), alpha_mask(-0.25));
   SolverOptions options;
   options.time_limit_seconds = 1e-3;
   options.max_iterations = 1'000'000;
   for (const char* name : {"gauss-seidel", "cg"}) {
+    MaskSystem s;
     Eigen::MatrixX3d X;
-    const SolveSummary summary = make_solver(name, options)->compute_and_solve(operator_of(s), s.B, X);
+    const SolveSummary summary = solve_coons_system(name, 63, 13, options, s, X);
     INFO(name << ": " << summary.brief_report());
     CHECK(summary.status == SolveStatus::kNotConverged);
     CHECK(summary.iterations < options.max_iterations);
@@ -210,9 +219,9 @@ TEST_CASE("iterative solvers: the time limit stops them with not_converged", "[s
 }
 
 TEST_CASE("jacobi: a diverged solve reports the residual it reached, not that of the zero net", "[solvers]") {
-  const MaskSystem s = assemble_mask_system(make_random_net(30, 30, 8), alpha_mask(-0.25));
+  MaskSystem s;
   Eigen::MatrixX3d X;
-  const SolveSummary summary = make_solver("jacobi")->compute_and_solve(operator_of(s), s.B, X);
+  const SolveSummary summary = solve_coons_system("jacobi", 30, 8, {}, s, X);
   INFO(summary.brief_report());
   REQUIRE(summary.status == SolveStatus::kDiverged);
   CHECK(summary.relative_residual > 1e8);  // grew 1e8-fold from 1
