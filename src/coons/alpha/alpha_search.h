@@ -8,7 +8,12 @@
 //   minimiser.
 // - SpectralAlphaSearchObjective (spectral_objective.h), the α family with any objective: no solve
 //   at all, f, f' and f'' in the sine basis; refined by Ceres's trust region on f' = 0.
-// search_alpha picks the second whenever it applies.
+// search_alpha picks the second whenever it applies. Both evaluate in the normalised frame of the
+// boundary (normalised_frame.h), so that the optimum does not depend on where the boundary lies or
+// how large it is. No optimum without its evidence: an optimum (or a flat verdict) that rests on a
+// failed evaluation is not claimed (SearchStatus::kFailedRegion, search_failures.h).
+// Units: mask_objective.* (the solve-based evaluator), alpha_search.cpp (the search's steps),
+// ceres_refinement.h, search_failures.*, alpha_gamma_search.cpp.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700; Ceres Solver's
 // GradientProblemSolver and Problem (S. Agarwal, K. Mierle et al.).
 #pragma once

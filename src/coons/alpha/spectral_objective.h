@@ -8,6 +8,9 @@
 //   separable grids (N_C is a boolean sum of linear blends): the set-up needs no 2-D transform.
 // - Exact energies and a target net: Q̂ is a sum of dense Kronecker products.
 // - An analytic target: measured on the surface sampled from the modes (see the constructor).
+// Units: spectral_objective.cpp (the set-up), spectral_evaluation.cpp (f, f', f'' at one α),
+// spectral_quadratic.cpp (the Kronecker quadratics), spectral_modes.* (the per-mode loops and the
+// named column blocks of the factors).
 // On a 1023×1023 net a discrete-objective search costs about 4 solves, its optimal net included
 // (experiments/E03_solver_scaling).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the eigenvectors of the
