@@ -148,3 +148,23 @@ TEST_CASE("solve_mask_net: the net follows translation and scaling of the bounda
     }
   }
 }
+
+TEST_CASE("search_alpha_gamma: the optimum is invariant under scaling of the boundary", "[alpha]") {
+  // An unsymmetric boundary, whose optimum has γ ≠ 0 (the dome's is at γ = 0 by symmetry).
+  const Boundary b = make_smooth_boundary(4, 6, 3);
+  const auto family = [](double a) { return alpha_family(a); };
+  MaskObjective at_one(b, objective_named("thin_plate", {}), family, "eigen-ldlt");
+  const AlphaGammaSummary one = search_alpha_gamma(at_one);
+  INFO("scale 1: alpha " << one.alpha << ", gamma " << one.gamma << " " << one.message);
+  REQUIRE(one.status == SearchStatus::kSuccess);
+  REQUIRE(std::abs(one.gamma) > 1e-4);
+  for (const double scale : {1e-12, 1e12}) {
+    MaskObjective f(placed(b, {scale, 0}), objective_named("thin_plate", {}), family, "eigen-ldlt");
+    const AlphaGammaSummary moved = search_alpha_gamma(f);
+    INFO("scale " << scale << ": alpha " << moved.alpha << ", gamma " << moved.gamma << " " << moved.message);
+    CHECK(moved.status == one.status);
+    CHECK(moved.alpha == Approx(one.alpha).epsilon(1e-6).margin(1e-9));
+    CHECK(moved.gamma == Approx(one.gamma).epsilon(1e-6).margin(1e-9));
+    CHECK(moved.value == Approx(one.value * scale * scale).epsilon(1e-6));
+  }
+}

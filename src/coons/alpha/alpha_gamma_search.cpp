@@ -33,13 +33,15 @@ class AlphaGammaFunction : public ceres::FirstOrderFunction {
       failed_ = true;
       return false;
     }
-    *cost = e.value;
+    // (values in the normalised frame, as the 1-D search sees them: Ceres's tolerances are absolute)
+    const double k = objective_.unit_frame().value_factor;
+    *cost = e.value / k;
     if (gradient) {
       const double t0 = std::tanh(t[0]), t1 = std::tanh(t[1]);
       const double dalpha = half_ * (1 - t0 * t0);
       // γ depends on α too: dγ/dθ₀ = kShrink·tanh θ₁·dα/dθ₀
-      gradient[0] = (g[0] + g[1] * kShrink * t1) * dalpha;
-      gradient[1] = g[1] * (0.25 + alpha) * kShrink * (1 - t1 * t1);
+      gradient[0] = (g[0] + g[1] * kShrink * t1) * dalpha / k;
+      gradient[1] = g[1] * (0.25 + alpha) * kShrink * (1 - t1 * t1) / k;
     }
     return true;
   }
