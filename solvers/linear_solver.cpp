@@ -4,6 +4,8 @@
 #include <cmath>
 #include <sstream>
 
+#include "stencil_operator.h"
+
 namespace coons::solvers {
 
 const char* to_string(SolveStatus status) {
@@ -56,6 +58,7 @@ std::string SolveSummary::brief_report() const {
 Eigen::Index LinearOperator::size() const {
   if (matrix) return matrix->rows();
   if (stencil) return stencil->size();
+  if (grid) return grid->size();
   return 0;
 }
 
@@ -165,6 +168,8 @@ double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,
     AX = (*op.matrix) * X;
   } else if (op.stencil) {
     apply_stencil(*op.stencil, X, AX);
+  } else if (op.grid) {
+    apply_stencil_operator(*op.grid, X, AX);
   } else {
     return NAN;
   }
