@@ -3,7 +3,9 @@
 // history (index 0 is the start), and the mean convergence factor per iteration.
 #pragma once
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
 #include <string>
 #include <vector>
 
@@ -44,5 +46,16 @@ struct IterationSummary {
   }
   [[nodiscard]] bool ok() const { return status == SolveStatus::kSuccess; }
 };
+
+//! True when the last `window` entries of a residual history improved on the best before them by
+//! less than 10 %: the iteration has stalled (e.g. at the rounding floor of an ill-conditioned
+//! system) and further iterations are wasted.
+inline bool stagnated(const std::vector<double>& history, std::size_t window) {
+  if (history.size() < 2 * window + 1) return false;
+  const auto split = history.end() - std::ptrdiff_t(window);
+  const double before = *std::min_element(history.begin(), split);
+  const double recent = *std::min_element(split, history.end());
+  return recent > 0.9 * before;
+}
 
 }  // namespace coons::solvers

@@ -182,6 +182,12 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
       break;
     }
     last_good = xg;
+    if (rel > options.tolerance && stagnated(out.history, 10)) {
+      out.status = SolveStatus::kNotConverged;
+      out.message = "the multigrid iteration stalled at relative residual " + std::to_string(rel) +
+                    " after " + std::to_string(out.iterations) + " cycles";
+      break;
+    }
   }
   out.relative_residual = rel;
   if (out.status == SolveStatus::kSuccess && rel > options.tolerance) {
@@ -250,6 +256,12 @@ IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x,
     }
     out.history.push_back(rel);
     if (rel <= options.tolerance) break;
+    if (stagnated(out.history, 25)) {
+      out.status = SolveStatus::kNotConverged;
+      out.message = "conjugate gradients stalled at relative residual " + std::to_string(rel) +
+                    " after " + std::to_string(out.iterations) + " iterations";
+      break;
+    }
     precondition(r, z);
     const double rz_new = r.dot(z);
     p = z + (rz_new / rz) * p;

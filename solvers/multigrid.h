@@ -1,8 +1,10 @@
 // Geometric multigrid for a StencilOperator (3×3 or 5×5 constant stencil on a rows × cols grid with
 // a free mask), matrix-free on the finest level; #free unknowns, vectors #free by 1.
 //
-// Coarsening: by 2 in each direction, coarse point (I, J) sits on fine point (2I+1, 2J+1)
-// (rows_c = rows/2, cols_c = cols/2) and is free exactly when that fine point is free. Prolongation
+// Coarsening: by 2 in each direction, coarse point (I, J) sits on fine point (2I+o_i, 2J+o_j),
+// the offsets chosen so that coarse points start one point inside the bounding box of the free
+// points (o = 1 when the first row or column is free: rows_c = rows/2), and it is free exactly when
+// that fine point is free. Prolongation
 // is interpolation restricted to free points (fixed points keep their zero correction);
 // (bicubic for 5×5 stencils, see Interpolation); every coarse column has weight 1 on its own fine
 // point, which no other column touches, so P has full rank and the Galerkin coarse operator

@@ -148,11 +148,11 @@ static double interp_weight(int reach, int a) {
 }
 
 // The coarse points whose interpolation reaches fine index f along one axis, with their weights.
-static int coarse_parents(int f, int coarse_len, int reach, int* parent, double* weight) {
+static int coarse_parents(int f, int coarse_len, int offset, int reach, int* parent, double* weight) {
   int n = 0;
-  for (int K = (f - 1 - reach) / 2 - 1; K <= (f - 1 + reach) / 2 + 1; ++K) {
+  for (int K = (f - offset - reach) / 2 - 1; K <= (f - offset + reach) / 2 + 1; ++K) {
     if (K < 0 || K >= coarse_len) continue;
-    const int a = f - (2 * K + 1);
+    const int a = f - (2 * K + offset);
     if (a < -reach || a > reach) continue;
     const double w = interp_weight(reach, a);
     if (w == 0) continue;
@@ -172,11 +172,11 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
       if (!Cl.free[q]) continue;
       double sum = 0;
       for (int a = -h; a <= h; ++a) {
-        const int i = 2 * I + 1 + a;
+        const int i = 2 * I + Cl.offset_i + a;
         const double wa = interp_weight(h, a);
         if (i < 0 || i >= F.rows || wa == 0) continue;
         for (int c = -h; c <= h; ++c) {
-          const int j = 2 * J + 1 + c;
+          const int j = 2 * J + Cl.offset_j + c;
           if (j < 0 || j >= F.cols) continue;
           sum += wa * interp_weight(h, c) * r[Eigen::Index(i) * F.cols + j];  // r = 0 at fixed
         }
@@ -193,11 +193,11 @@ void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x) {
       const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
       if (!Cl.free[q] || xc[q] == 0) continue;
       for (int a = -h; a <= h; ++a) {
-        const int i = 2 * I + 1 + a;
+        const int i = 2 * I + Cl.offset_i + a;
         const double wa = interp_weight(h, a);
         if (i < 0 || i >= F.rows || wa == 0) continue;
         for (int c = -h; c <= h; ++c) {
-          const int j = 2 * J + 1 + c;
+          const int j = 2 * J + Cl.offset_j + c;
           if (j < 0 || j >= F.cols) continue;
           const Eigen::Index p = Eigen::Index(i) * F.cols + j;
           if (F.free[p]) x[p] += wa * interp_weight(h, c) * xc[q];
@@ -209,15 +209,27 @@ void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x) {
 // The Galerkin operator Pᵀ A P of the fine level, as one stencil per coarse point.
 Level galerkin_coarse(const Level& F, int reach) {
   Level Cl;
-  Cl.rows = F.rows / 2;
-  Cl.cols = F.cols / 2;
+  // Coarse points start one point inside the free region (its bounding box), as in the standard
+  // vertex-centred coarsening, whatever fixed margin the grid carries.
+  int first_i = F.rows, first_j = F.cols;
+  for (int i = 0; i < F.rows; ++i)
+    for (int j = 0; j < F.cols; ++j)
+      if (F.free[std::size_t(i) * F.cols + j]) {
+        first_i = std::min(first_i, i);
+        first_j = std::min(first_j, j);
+      }
+  Cl.offset_i = (first_i + 1) % 2;
+  Cl.offset_j = (first_j + 1) % 2;
+  Cl.rows = (F.rows + 1 - Cl.offset_i) / 2;
+  Cl.cols = (F.cols + 1 - Cl.offset_j) / 2;
   Cl.reach = reach;
   Cl.radius = (F.radius + 2 * reach) / 2;
   const int rc = Cl.radius, wc = Cl.width(), rf = F.radius, wf = F.width();
   Cl.free.assign(std::size_t(Cl.points()), 0);
   for (int I = 0; I < Cl.rows; ++I)
     for (int J = 0; J < Cl.cols; ++J)
-      Cl.free[std::size_t(I) * Cl.cols + J] = F.free[std::size_t(2 * I + 1) * F.cols + 2 * J + 1];
+      Cl.free[std::size_t(I) * Cl.cols + J] =
+          F.free[std::size_t(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j];
   Cl.unknowns = std::count(Cl.free.begin(), Cl.free.end(), 1);
   Cl.coef.assign(std::size_t(Cl.points()) * wc * wc, 0.0);
   int pi[4], pj[4];
@@ -229,7 +241,7 @@ Level galerkin_coarse(const Level& F, int reach) {
       double* out = &Cl.coef[std::size_t(q) * wc * wc];
       for (int a = -reach; a <= reach; ++a)
         for (int c = -reach; c <= reach; ++c) {
-          const int i = 2 * I + 1 + a, j = 2 * J + 1 + c;
+          const int i = 2 * I + Cl.offset_i + a, j = 2 * J + Cl.offset_j + c;
           const double pw = interp_weight(reach, a) * interp_weight(reach, c);
           if (i < 0 || i >= F.rows || j < 0 || j >= F.cols || pw == 0) continue;
           const Eigen::Index p = Eigen::Index(i) * F.cols + j;
@@ -238,13 +250,13 @@ Level galerkin_coarse(const Level& F, int reach) {
           for (int di = -rf; di <= rf; ++di) {
             const int k = i + di;
             if (k < 0 || k >= F.rows) continue;
-            const int ni = coarse_parents(k, Cl.rows, reach, pi, wi);
+            const int ni = coarse_parents(k, Cl.rows, Cl.offset_i, reach, pi, wi);
             for (int dj = -rf; dj <= rf; ++dj) {
               const int l = j + dj;
               if (l < 0 || l >= F.cols) continue;
               const double aw = A[(di + rf) * wf + dj + rf];
               if (aw == 0 || !F.free[Eigen::Index(k) * F.cols + l]) continue;
-              const int nj = coarse_parents(l, Cl.cols, reach, pj, wj);
+              const int nj = coarse_parents(l, Cl.cols, Cl.offset_j, reach, pj, wj);
               for (int s = 0; s < ni; ++s)
                 for (int t = 0; t < nj; ++t) {
                   if (!Cl.free[std::size_t(pi[s]) * Cl.cols + pj[t]]) continue;

@@ -15,6 +15,7 @@ namespace coons::solvers {
 
 struct Multigrid::Level {
   int rows = 0, cols = 0, radius = 1;
+  int offset_i = 1, offset_j = 1;  // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
   int reach = 1;                    // interpolation from this level to the next finer: 1 linear, 3 cubic
   bool constant = false;            // one stencil for every point (the finest level)
   std::vector<double> coef;         // width² weights per point (or once when constant)

@@ -227,7 +227,9 @@ TEST_CASE("multigrid_cg: iteration counts stay bounded from 31x31 to 511x511", "
     for (int N : {31, 63, 127, 255, 511}) {
       const StencilOperator op = make_stencil_operator(N, N, stencil.weights);
       Multigrid mg;
-      REQUIRE(mg.setup(op) == SolveStatus::kSuccess);
+      MultigridOptions options;  // as the backends: one sweep per side at radius 1, two at radius 2
+      options.pre_smoothing = options.post_smoothing = op.radius;
+      REQUIRE(mg.setup(op, options) == SolveStatus::kSuccess);
       const Eigen::VectorXd b = boundary_rhs(op).col(0);
       Eigen::VectorXd x_mg, x_cg;
       const IterationSummary v = mg.solve(b, x_mg, iteration), c = multigrid_cg(mg, b, x_cg, iteration);
@@ -238,6 +240,53 @@ TEST_CASE("multigrid_cg: iteration counts stay bounded from 31x31 to 511x511", "
       CHECK(c.iterations <= 40);
       if (stencil.name == "laplace" || stencil.name == "alpha -0.1") CHECK(v.iterations <= 10);
     }
+}
+
+TEST_CASE("Multigrid: a fixed margin around the free points changes neither the iterations nor the solution", "[solvers][mg]") {
+  for (const NamedStencil& stencil : symmetric_stencils()) {
+    const int N = 45, rings = stencil.weights.size() == 25 ? 2 : 1, R = N + 2 * rings;
+    const StencilOperator bare = make_stencil_operator(N, N, stencil.weights);
+    StencilOperator padded = make_stencil_operator(R, R, stencil.weights);
+    padded.free.assign(std::size_t(R) * R, 0);
+    for (int i = rings; i < R - rings; ++i)
+      for (int j = rings; j < R - rings; ++j) padded.free[std::size_t(i) * R + j] = 1;
+    REQUIRE(padded.size() == bare.size());
+    const Eigen::VectorXd b = boundary_rhs(bare).col(0);
+    Multigrid mg_bare, mg_padded;
+    REQUIRE(mg_bare.setup(bare) == SolveStatus::kSuccess);
+    REQUIRE(mg_padded.setup(padded) == SolveStatus::kSuccess);
+    Eigen::VectorXd x_bare, x_padded;
+    const IterationSummary s_bare = multigrid_cg(mg_bare, b, x_bare), s_padded = multigrid_cg(mg_padded, b, x_padded);
+    INFO(stencil.name << ": " << s_bare.iterations << " / " << s_padded.iterations);
+    REQUIRE(s_bare.ok());
+    REQUIRE(s_padded.ok());
+    CHECK(s_padded.iterations == s_bare.iterations);
+    // Equal up to rounding (sums run in another order), amplified by the condition number.
+    CHECK(relative_error(x_padded, x_bare) < (stencil.name == "c1-coons" ? 1e-6 : 1e-9));
+  }
+}
+
+TEST_CASE("Multigrid::solve: stops with not_converged when the residual stalls", "[solvers][mg]") {
+  // c1-coons with rough data on the outer ring: the rounding floor of the residual lies near 1e-9
+  // at this size (a sparse Cholesky solve ends there too), far above the tolerance asked for.
+  const StencilOperator op = make_stencil_operator(63, 63, c1_coons());
+  Eigen::VectorXd b = Eigen::VectorXd::Zero(op.size());
+  for (int i = 0; i < 63; ++i)
+    for (int j = 0; j < 63; ++j)
+      if (i == 0 || j == 0 || i == 62 || j == 62) b[i * 63 + j] = std::cos(0.1 * i + 0.2 * j);
+  Multigrid mg;
+  REQUIRE(mg.setup(op) == SolveStatus::kSuccess);
+  IterationOptions options;
+  options.tolerance = 1e-14;
+  options.max_iterations = 400;
+  Eigen::VectorXd x;
+  const IterationSummary s = mg.solve(b, x, options);
+  INFO(s.message);
+  CHECK(s.status == SolveStatus::kNotConverged);
+  CHECK_THAT(s.message, Catch::Contains("stalled"));
+  CHECK(s.iterations < 400);
+  CHECK(x.allFinite());
+  CHECK(s.relative_residual < 1e-6);
 }
 
 TEST_CASE("gmres: solves a nonsymmetric convection-diffusion stencil like a dense LU", "[solvers][mg]") {
