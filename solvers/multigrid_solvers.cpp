@@ -53,6 +53,11 @@ class MultigridBackend : public LinearSolver {
       summary.message = "conjugate gradients need a symmetric stencil (w(d) = w(-d)); use gmres";
       return SolveStatus::kNotApplicable;
     }
+    if (method_ == Method::kStationary && !grid->symmetric()) {
+      // Galerkin coarsening with R = Pᵀ diverged on upwinded convection from 127x127 on.
+      summary.message = "multigrid here is built for symmetric stencils (w(d) = w(-d)); use gmres";
+      return SolveStatus::kNotApplicable;
+    }
     return SolveStatus::kSuccess;
   }
 
@@ -72,17 +77,22 @@ class MultigridBackend : public LinearSolver {
       }
     }
     std::string message;
-    if (grid) {
+    if (grid && grid->symmetric()) {
       MultigridOptions mg_options;  // fourth-order (5×5) stencils: two sweeps per side pay off
       mg_options.pre_smoothing = mg_options.post_smoothing = grid->radius;
       const SolveStatus status = mg_.setup(*grid, mg_options, &message);
       if (status == SolveStatus::kSuccess) return status;
-      if (method_ != Method::kGmres || !op.matrix) {
+      if (method_ != Method::kGmres) {
         summary.message = message;
         return status;
       }
     }
-    ilu_ = ilut_preconditioner(*op.matrix, &message);  // gmres without (a working) hierarchy
+    // gmres on a nonsymmetric stencil, or without (a working) hierarchy: ILUT of the matrix.
+    if (!matrix_) {
+      own_matrix_ = stencil_operator_matrix(*grid);
+      matrix_ = &own_matrix_;
+    }
+    ilu_ = ilut_preconditioner(*matrix_, &message);
     if (!ilu_) {
       summary.message = message;
       return SolveStatus::kSingular;
@@ -149,6 +159,7 @@ class MultigridBackend : public LinearSolver {
   Multigrid mg_;
   VectorMap ilu_;
   const Eigen::SparseMatrix<double>* matrix_ = nullptr;
+  Eigen::SparseMatrix<double> own_matrix_;  // assembled from the grid when no matrix was given
 };
 
 }  // namespace
