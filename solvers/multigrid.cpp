@@ -58,6 +58,10 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
     if (message) *message = why;
     return SolveStatus::kFailure;
   }
+  if (op.size() == 0) {
+    if (message) *message = "the grid has no free points";
+    return SolveStatus::kFailure;
+  }
   Level fine;
   fine.rows = op.rows;
   fine.cols = op.cols;

@@ -44,6 +44,10 @@ class MultigridBackend : public LinearSolver {
       summary.message = "invalid grid operator: " + why;
       return SolveStatus::kNotApplicable;
     }
+    if (grid->size() == 0) {
+      summary.message = "the grid operator has no free points";
+      return SolveStatus::kNotApplicable;
+    }
     if (op.matrix && op.matrix->rows() != grid->size()) {
       summary.message = "the matrix has " + std::to_string(op.matrix->rows()) +
                         " rows but the grid operator " + std::to_string(grid->size()) + " free points";

@@ -387,3 +387,35 @@ TEST_CASE("multigrid backends: report not_applicable instead of a wrong answer",
   if (img.ok()) CHECK(img.relative_residual < 1e-10);
   CHECK(std::isfinite(img.relative_residual));
 }
+
+TEST_CASE("multigrid backends: solve tiny and thin grids and a grid without free points", "[solvers][mg]") {
+  SolverOptions options;
+  options.tolerance = 1e-12;
+  for (const NamedStencil& stencil : symmetric_stencils())
+    for (auto [rows, cols] : {std::pair{1, 1}, {1, 9}, {2, 2}, {3, 200}, {150, 4}}) {
+      const StencilOperator op = make_stencil_operator(rows, cols, stencil.weights);
+      const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
+      const Eigen::MatrixX3d B = boundary_rhs(op);
+      const Eigen::MatrixX3d reference = Eigen::SparseLU<Eigen::SparseMatrix<double>>(A).solve(B);
+      LinearOperator lop;
+      lop.grid = &op;
+      for (const char* name : {"mg", "mg-cg", "gmres"}) {
+        Eigen::MatrixX3d X;
+        const SolveSummary s = make_solver(name, options)->compute_and_solve(lop, B, X);
+        INFO(name << " on " << stencil.name << ", " << rows << "x" << cols << ": " << s.brief_report());
+        REQUIRE(s.ok());
+        CHECK(relative_error(X, reference) < 1e-6);
+      }
+    }
+  StencilOperator none = make_stencil_operator(4, 5, nine_point(1, -0.25, 0));
+  none.free.assign(20, 0);
+  LinearOperator lop;
+  lop.grid = &none;
+  for (const char* name : {"mg", "mg-cg", "gmres"}) {
+    Eigen::MatrixX3d X;
+    const SolveSummary s = make_solver(name)->compute_and_solve(lop, Eigen::MatrixX3d(0, 3), X);
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status != SolveStatus::kSuccess);  // nothing to solve: reported, not crashed
+    CHECK(X.rows() == 0);
+  }
+}
