@@ -232,40 +232,88 @@ Level galerkin_coarse(const Level& F, int reach) {
           F.free[std::size_t(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j];
   Cl.unknowns = std::count(Cl.free.begin(), Cl.free.end(), 1);
   Cl.coef.assign(std::size_t(Cl.points()) * wc * wc, 0.0);
-  int pi[4], pj[4];
-  double wi[4], wj[4];
-  for (int I = 0; I < Cl.rows; ++I)
+  // Two passes, row by row: B = A P for the fine rows a coarse row needs (kept in a ring of
+  // 2·reach + 1 rows), then A_c = Pᵀ B. B(p, ·) lives in a bw × bw window of coarse points.
+  struct Parents {
+    int count = 0, index[4] = {0, 0, 0, 0};
+    double weight[4] = {0, 0, 0, 0};
+  };
+  auto parents_along = [&](int len, int coarse_len, int offset) {
+    std::vector<Parents> out(static_cast<std::size_t>(len));
+    for (int f = 0; f < len; ++f)
+      out[std::size_t(f)].count = coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index,
+                                                 out[std::size_t(f)].weight);
+    return out;
+  };
+  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i);
+  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j);
+  const int bw = rf + reach + 1;
+  auto window_start = [&](int f, int offset) {  // ceil((f − rf − reach − offset) / 2)
+    const int t = f - rf - reach - offset;
+    return t >= 0 ? (t + 1) / 2 : -((-t) / 2);
+  };
+  const int ring = 2 * reach + 1;
+  std::vector<std::vector<double>> B(std::size_t(ring),
+                                     std::vector<double>(std::size_t(F.cols) * bw * bw, 0.0));
+  auto compute_row = [&](int i) {
+    std::vector<double>& row = B[std::size_t(i % ring)];
+    std::fill(row.begin(), row.end(), 0.0);
+    const int lo_i = window_start(i, Cl.offset_i);
+    for (int j = 0; j < F.cols; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * F.cols + j;
+      if (!F.free[p]) continue;
+      double* b = &row[std::size_t(j) * bw * bw];
+      const int lo_j = window_start(j, Cl.offset_j);
+      const double* A = F.at(p);
+      for (int di = -rf; di <= rf; ++di) {
+        const int k = i + di;
+        if (k < 0 || k >= F.rows) continue;
+        const Parents& pk = parents_i[std::size_t(k)];
+        for (int dj = -rf; dj <= rf; ++dj) {
+          const int l = j + dj;
+          if (l < 0 || l >= F.cols) continue;
+          const double aw = A[(di + rf) * wf + dj + rf];
+          if (aw == 0 || !F.free[Eigen::Index(k) * F.cols + l]) continue;
+          const Parents& pl = parents_j[std::size_t(l)];
+          for (int s = 0; s < pk.count; ++s)
+            for (int t = 0; t < pl.count; ++t)
+              b[(pk.index[s] - lo_i) * bw + pl.index[t] - lo_j] += aw * pk.weight[s] * pl.weight[t];
+        }
+      }
+    }
+  };
+  int next_row = 0;
+  for (int I = 0; I < Cl.rows; ++I) {
+    const int last = std::min(F.rows - 1, 2 * I + Cl.offset_i + reach);
+    for (; next_row <= last; ++next_row) compute_row(next_row);
     for (int J = 0; J < Cl.cols; ++J) {
       const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
       if (!Cl.free[q]) continue;
       double* out = &Cl.coef[std::size_t(q) * wc * wc];
-      for (int a = -reach; a <= reach; ++a)
+      for (int a = -reach; a <= reach; ++a) {
+        const int i = 2 * I + Cl.offset_i + a;
+        const double wa = interp_weight(reach, a);
+        if (i < 0 || i >= F.rows || wa == 0) continue;
+        const std::vector<double>& row = B[std::size_t(i % ring)];
+        const int lo_i = window_start(i, Cl.offset_i);
         for (int c = -reach; c <= reach; ++c) {
-          const int i = 2 * I + Cl.offset_i + a, j = 2 * J + Cl.offset_j + c;
-          const double pw = interp_weight(reach, a) * interp_weight(reach, c);
-          if (i < 0 || i >= F.rows || j < 0 || j >= F.cols || pw == 0) continue;
-          const Eigen::Index p = Eigen::Index(i) * F.cols + j;
-          if (!F.free[p]) continue;
-          const double* A = F.at(p);
-          for (int di = -rf; di <= rf; ++di) {
-            const int k = i + di;
-            if (k < 0 || k >= F.rows) continue;
-            const int ni = coarse_parents(k, Cl.rows, Cl.offset_i, reach, pi, wi);
-            for (int dj = -rf; dj <= rf; ++dj) {
-              const int l = j + dj;
-              if (l < 0 || l >= F.cols) continue;
-              const double aw = A[(di + rf) * wf + dj + rf];
-              if (aw == 0 || !F.free[Eigen::Index(k) * F.cols + l]) continue;
-              const int nj = coarse_parents(l, Cl.cols, Cl.offset_j, reach, pj, wj);
-              for (int s = 0; s < ni; ++s)
-                for (int t = 0; t < nj; ++t) {
-                  if (!Cl.free[std::size_t(pi[s]) * Cl.cols + pj[t]]) continue;
-                  out[(pi[s] - I + rc) * wc + pj[t] - J + rc] += pw * aw * wi[s] * wj[t];
-                }
+          const int j = 2 * J + Cl.offset_j + c;
+          const double pw = wa * interp_weight(reach, c);
+          if (j < 0 || j >= F.cols || pw == 0 || !F.free[Eigen::Index(i) * F.cols + j]) continue;
+          const double* b = &row[std::size_t(j) * bw * bw];
+          const int lo_j = window_start(j, Cl.offset_j);
+          for (int u = 0; u < bw; ++u)
+            for (int v = 0; v < bw; ++v) {
+              const double value = b[u * bw + v];
+              if (value == 0) continue;
+              const int K1 = lo_i + u, K2 = lo_j + v;  // within the coarse radius of (I, J)
+              if (!Cl.free[std::size_t(K1) * Cl.cols + K2]) continue;
+              out[(K1 - I + rc) * wc + K2 - J + rc] += pw * value;
             }
-          }
         }
+      }
     }
+  }
   return Cl;
 }
 
