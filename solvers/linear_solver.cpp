@@ -7,6 +7,8 @@
 #include <limits>
 #include <sstream>
 
+#include "stencil_operator.h"
+
 namespace coons::solvers {
 
 const char* to_string(SolveStatus status) {
@@ -74,6 +76,7 @@ int iteration_limit(const SolverOptions& options, Eigen::Index unknowns, int per
 Eigen::Index LinearOperator::size() const {
   if (matrix) return matrix->rows();
   if (stencil) return stencil->size();
+  if (grid) return grid->size();
   return 0;
 }
 
@@ -265,6 +268,8 @@ double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,
     AX = (*op.matrix) * X;
   } else if (op.stencil) {
     apply_stencil(*op.stencil, X, AX);
+  } else if (op.grid) {
+    apply_stencil_operator(*op.grid, X, AX);
   } else {
     return NAN;
   }

@@ -22,6 +22,8 @@
 
 namespace coons::solvers {
 
+struct StencilOperator;  // stencil_operator.h: 3×3 or 5×5 stencils with a free mask
+
 enum class SolveStatus {
   kSuccess,
   kNotConverged,        //!< iteration limit reached before the tolerance
@@ -82,6 +84,8 @@ struct SolveSummary {
 struct LinearOperator {
   const Eigen::SparseMatrix<double>* matrix = nullptr;
   std::optional<GridStencil> stencil;
+  //! Borrowed like the matrix: a 3×3 or 5×5 stencil with a free mask (the multigrid backends).
+  const StencilOperator* grid = nullptr;
 
   [[nodiscard]] Eigen::Index size() const;
 };
