@@ -133,7 +133,7 @@ class MultigridBackend : public LinearSolver {
             apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.apply(in, out); };
             precondition = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.precondition(in, out); };
           } else {
-            g.iteration.max_iterations = iteration_limit(options_, n);
+            g.iteration.max_iterations = iteration_limit(options_, n, 20, 2e10);
             apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = (*matrix_) * in; };
             precondition = ilu_;
           }
