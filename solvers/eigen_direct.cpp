@@ -62,7 +62,7 @@ SolveStatus judge(const Lu& f, SolveSummary& summary) {
     summary.message = "SparseLU: " + f.lastErrorMessage();
     return SolveStatus::kSingular;
   }
-  summary.factor_nnz = static_cast<long long>(f.nnzL() + f.nnzU());
+  summary.factor_nnz = static_cast<long long>(f.nnzL()) + static_cast<long long>(f.nnzU());
   return SolveStatus::kSuccess;
 }
 

@@ -66,8 +66,8 @@ class Cholmod : public LinearSolver {
     common_.nmethods = 1;
     switch (options.ordering) {
       case Ordering::kAuto:
-      case Ordering::kAmd: common_.method[0].ordering = CHOLMOD_AMD; break;
-      case Ordering::kColamd: common_.method[0].ordering = CHOLMOD_AMD; break;
+      case Ordering::kAmd:
+      case Ordering::kColamd: common_.method[0].ordering = CHOLMOD_AMD; break;  // COLAMD is for A·Aᵀ, AMD for A
       case Ordering::kMetis: common_.method[0].ordering = CHOLMOD_METIS; break;
       case Ordering::kNestedDissection: common_.method[0].ordering = CHOLMOD_NESDIS; break;
       case Ordering::kNatural: common_.method[0].ordering = CHOLMOD_NATURAL; break;

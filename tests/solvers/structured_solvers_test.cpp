@@ -71,6 +71,7 @@ LinearOperator stencil_operator(const GridStencil& s) {
 
 void check_against_reference(const char* name, const Factory& make, const GridStencil& s,
                              const Eigen::MatrixX3d& B) {
+  // NOLINTNEXTLINE(performance-unnecessary-copy-initialization): a snapshot of B, to see the solver leave it alone
   const Eigen::MatrixX3d B_copy = B;
   const Eigen::MatrixX3d reference = dense_reference(s, B);
   Eigen::MatrixX3d X;

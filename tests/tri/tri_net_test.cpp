@@ -26,7 +26,8 @@ Eigen::RowVector3d bernstein_sum(const TriNet& net, const Eigen::Vector3d& uvw) 
   return p;
 }
 
-const Eigen::Vector3d sample_points[] = {{0.2, 0.3, 0.5}, {1, 0, 0}, {0, 0.4, 0.6}, {0.7, 0.2, 0.1}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+const Eigen::Vector3d kSamplePoints[] = {{0.2, 0.3, 0.5}, {1, 0, 0}, {0, 0.4, 0.6}, {0.7, 0.2, 0.1},
+                                        {1.0 / 3, 1.0 / 3, 1.0 / 3}};
 
 }  // namespace
 
@@ -81,7 +82,7 @@ TEST_CASE("boundary_of: sides run as in the contract and frame_net puts them bac
 TEST_CASE("evaluate: de Casteljau equals the Bernstein sum and interpolates the sides", "[tri]") {
   for (int n = 1; n <= 12; ++n) {
     const TriNet net = random_tri_net(n, 100 + n);
-    for (const auto& uvw : sample_points) REQUIRE((evaluate(net, uvw) - bernstein_sum(net, uvw)).norm() < 1e-12);
+    for (const auto& uvw : kSamplePoints) REQUIRE((evaluate(net, uvw) - bernstein_sum(net, uvw)).norm() < 1e-12);
     REQUIRE((evaluate(net, {0, 0, 1}) - net.at(0, 0, n)).norm() < 1e-14);
     const TriBoundary b = boundary_of(net);
     for (const double t : {0.1, 0.5, 0.8}) {  // side 0 is the curve w = 0 from (1,0,0) to (0,1,0)
@@ -113,7 +114,7 @@ TEST_CASE("elevate_degree: the surface does not change", "[tri]") {
     const TriNet up = elevate_degree(net, 3);
     REQUIRE(up.n == n + 3);
     REQUIRE((up.at(n + 3, 0, 0) - net.at(n, 0, 0)).norm() < 1e-15);
-    for (const auto& uvw : sample_points) REQUIRE((evaluate(up, uvw) - evaluate(net, uvw)).norm() < 1e-12);
+    for (const auto& uvw : kSamplePoints) REQUIRE((evaluate(up, uvw) - evaluate(net, uvw)).norm() < 1e-12);
   }
 }
 
@@ -123,7 +124,7 @@ TEST_CASE("subdivide_at: each of the three parts is the surface over its sub-tri
     const TriNet net = random_tri_net(n, 400 + n);
     const Eigen::Vector3d P(0.3, 0.45, 0.25);
     const auto parts = subdivide_at(net, P);
-    for (const auto& s : sample_points)
+    for (const auto& s : kSamplePoints)
       for (int m = 0; m < 3; ++m) {
         Eigen::Matrix3d corners = e;  // columns: the sub-triangle's vertices in barycentrics
         corners.col(m) = P;
@@ -138,7 +139,7 @@ TEST_CASE("permuted: the net of the surface with permuted barycentrics", "[tri]"
   const TriNet net = random_tri_net(6, 17);
   for (const auto& perm : coons::tri::test::all_permutations()) {
     const TriNet q = permuted(net, perm);
-    for (const auto& uvw : sample_points) {
+    for (const auto& uvw : kSamplePoints) {
       Eigen::Vector3d moved;
       for (int m = 0; m < 3; ++m) moved(perm[m]) = uvw(m);
       REQUIRE((evaluate(q, moved) - evaluate(net, uvw)).norm() < 1e-12);

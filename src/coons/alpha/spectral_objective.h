@@ -73,7 +73,7 @@ class SpectralAlphaObjective {
   //! q(N_C + δ) = constant + 2⟨ĉ, δ̂⟩ + Σ w⟨δ̂, K̂_a δ̂ K̂_b⟩, summed over x, y, z.
   struct Quadratic {
     double constant = 0;
-    Eigen::MatrixXd c_hat[3];  // rows × cols
+    std::array<Eigen::MatrixXd, 3> c_hat;  // rows × cols (std::array: clang-tidy 14 misreads a C array member)
     double c_scale = 0;        // ĉ's rounding error is about ε times this
     std::vector<KroneckerTerm> terms;
   };

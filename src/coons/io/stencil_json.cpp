@@ -73,14 +73,14 @@ Stencil stencil_from_json(const nlohmann::json& doc, const std::string& file) {
 }
 
 FreeGrid free_grid_from_json(const nlohmann::json& free, int m, int n, const std::string& file) {
-  if (!free.is_array() || free.size() != std::size_t(m + 1))
+  if (!free.is_array() || free.size() != static_cast<std::size_t>(m) + 1)
     throw InputError(file, "free",
                      "must be an array of " + std::to_string(m + 1) + " rows (the shape of net)" +
                          (free.is_array() ? ", got " + std::to_string(free.size()) : std::string()));
   FreeGrid grid(m + 1, n + 1);
   for (std::size_t i = 0; i < free.size(); ++i) {
     const nlohmann::json& row = free[i];
-    if (!row.is_array() || row.size() != std::size_t(n + 1))
+    if (!row.is_array() || row.size() != static_cast<std::size_t>(n) + 1)
       throw InputError(file, index_field("free", i), "must be an array of " + std::to_string(n + 1) + " values 0 or 1");
     for (std::size_t j = 0; j < row.size(); ++j) {
       const nlohmann::json& x = row[j];

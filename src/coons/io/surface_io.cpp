@@ -98,7 +98,7 @@ class Reader {
     for (const auto& [key, value] : j.items()) {
       (void)value;
       if (key != form && !(form == "expr" && key == "interval"))
-        fail(field + "." + key, fmt::format("unknown field in a \"{}\" curve", form));
+        fail(fmt::format("{}.{}", field, key), fmt::format("unknown field in a \"{}\" curve", form));
     }
     const std::string sub = field + "." + form;
     if (form == "bezier") {

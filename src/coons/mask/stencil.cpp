@@ -110,7 +110,7 @@ bool symbol_nonnegative(const Stencil& s, double tolerance) {
 
 std::optional<std::pair<Eigen::VectorXd, Eigen::VectorXd>> separable_factors(const Stencil& s) {
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(s.weights, Eigen::ComputeFullU | Eigen::ComputeFullV);
-  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::VectorXd& sv = svd.singularValues();
   if (!(sv(0) > 0) || sv(1) > 1e-13 * sv(0)) return std::nullopt;
   Eigen::VectorXd u = svd.matrixU().col(0) * std::sqrt(sv(0));
   Eigen::VectorXd v = svd.matrixV().col(0) * std::sqrt(sv(0));

@@ -74,14 +74,14 @@ Eigen::SparseMatrix<double> component_matrix(const std::vector<Point>& comp, con
 std::pair<double, Eigen::VectorXd> near_null_dense(const Eigen::MatrixXd& A, bool symmetric) {
   if (symmetric) {
     Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(A);
-    const Eigen::VectorXd lambda = eig.eigenvalues();
+    const Eigen::VectorXd& lambda = eig.eigenvalues();
     Eigen::Index k = 0;
     lambda.cwiseAbs().minCoeff(&k);
     const double top = lambda.cwiseAbs().maxCoeff();
     return {top > 0 ? std::abs(lambda(k)) / top : 0.0, eig.eigenvectors().col(k)};
   }
   Eigen::JacobiSVD<Eigen::MatrixXd> svd(A, Eigen::ComputeFullV);
-  const Eigen::VectorXd sv = svd.singularValues();
+  const Eigen::VectorXd& sv = svd.singularValues();
   const Eigen::Index last = sv.size() - 1;
   return {sv(0) > 0 ? sv(last) / sv(0) : 0.0, svd.matrixV().col(last)};
 }
