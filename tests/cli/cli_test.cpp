@@ -152,8 +152,8 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("dome"));
   CHECK(fs::exists(fs::path(out) / "metrics.md"));
-  for (const char* f : {"dome/coons.json", "dome/alpha-0.250.json", "dome/alpha-0.100.json", "dome/alpha+0.000.json",
-                        "saddle/coons.surface.obj", "saddle/alpha-0.100.net.obj"})
+  for (const char* f : {"dome-3x3/coons.json", "dome-3x3/alpha-0.25.json", "dome-3x3/alpha-0.1.json", "dome-3x3/alpha+0.json",
+                        "saddle-3x3/coons.surface.obj", "saddle-3x3/alpha-0.1.net.obj"})
     CHECK(fs::exists(fs::path(out) / f));
 }
 
@@ -205,7 +205,7 @@ TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", 
   const std::string out = (dir.path / "sweep").string();
   const CommandResult r = run_command(kCoons + " sweep " + quoted(kData + "/boundaries/dome.json") + " --count 11 --out " + quoted(out));
   REQUIRE(r.status == 0);
-  std::ifstream in(fs::path(out) / "dome.sweep.jsonl");
+  std::ifstream in(fs::path(out) / "dome.sweep-alpha.jsonl");
   int lines = 0;
   for (std::string line; std::getline(in, line); ++lines) {
     const json j = json::parse(line);
@@ -215,7 +215,7 @@ TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", 
     CHECK(j["mask_residual"].get<double>() < 1e-12);
   }
   CHECK(lines == 11);
-  CHECK(fs::exists(fs::path(out) / "dome.sweep.png"));
+  CHECK(fs::exists(fs::path(out) / "dome.sweep-alpha.png"));
   CHECK(r.err.empty());  // no progress indicator when stderr is not a terminal
 }
 

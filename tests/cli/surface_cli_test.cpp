@@ -183,7 +183,7 @@ TEST_CASE("coons surface: bad options and unreadable files exit 2", "[cli][surfa
   const std::string spec = surface_data("seed000_ferguson_1.json");
   CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 1");
   CHECK(r.status == 2);
-  CHECK(r.err.rfind("error: command line: --sample: ", 0) == 0);
+  CHECK(r.err.rfind("error: command line: --samples: ", 0) == 0);
   r = run_command(kCoons + " surface " + q(spec) + " --obj " + q(dir.file("missing/s.obj")));
   CHECK(r.status == 2);
   CHECK(r.err.rfind("error: command line: --obj: ", 0) == 0);

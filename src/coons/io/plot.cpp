@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 #include <fmt/ostream.h>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 
 namespace coons {
 
