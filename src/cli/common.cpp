@@ -239,9 +239,9 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
 std::string dump(const json& doc, int indent) { return doc.dump(indent, ' ', false, json::error_handler_t::replace); }
 
 void print_text(const std::string& text) {
+  errno = 0;
   std::cout << text;
   std::cout.flush();
-  errno = 0;
   const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout;
   if (failed) {
     const int error = errno;

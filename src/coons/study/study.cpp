@@ -102,7 +102,7 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
   for (const StudyInput& in : inputs) {
     const Boundary& b = in.boundary;
     const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
-    ShapeEntry shape{in.file, b, {}, {}, {}};
+    ShapeEntry shape{in.file, b, solver.name, options.solver == nullptr, {}, {}, {}};
     std::optional<double> alpha_tp;
     for (const Objective& objective : objectives) {
       MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, solver);
@@ -174,6 +174,16 @@ json study_results_json(const StudyResult& r) {
   for (const ShapeEntry& shape : r.shapes) {
     const Boundary& b = shape.boundary;
     json entry = {{"kind", "shape"}, {"boundary", b.name}, {"degree", {b.m, b.n}}, {"file", shape.file}};
+    // the solver block of every report; its seconds are left out so that reruns compare equal
+    bool failed = false;
+    int solves = 0;
+    for (const ShapeOptimum& o : shape.optima) {
+      failed = failed || o.alpha.status == SearchStatus::kSolverFailed || o.mu.status == SearchStatus::kSolverFailed;
+      solves += o.alpha.solves + o.mu.solves;
+    }
+    entry["solver"] = {{"name", shape.solver}, {"status", failed ? "failed" : "success"}, {"iterations", solves},
+                       {"relative_residual", nullptr}};
+    if (shape.solver_picked_automatically) entry["solver"]["picked_by"] = "auto";
     for (const ShapeOptimum& o : shape.optima) {
       const AlphaSearchSummary& s = o.alpha;
       const AlphaSearchSummary& mu = o.mu;

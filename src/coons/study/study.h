@@ -60,6 +60,8 @@ struct ShapeOptimum {  //!< one objective at the shape's own degree
 struct ShapeEntry {
   std::string file;
   Boundary boundary;
+  std::string solver;            //!< the backend of its searches
+  bool solver_picked_automatically = false;
   std::vector<ShapeOptimum> optima;
   std::vector<SweepRow> curves;                              //!< energies on the α grid
   std::vector<std::pair<std::string, ControlNet>> pictures;  //!< Coons, Laplace, thin-plate optimum
