@@ -12,25 +12,13 @@
 #include <fmt/format.h>
 
 #include "coons/io/input_error.h"
-#include "coons/io/net_json.h"
-#include "coons/mask/solve_mask_net.h"
-#include "coons/metrics/energies.h"
-#include "coons/net/coons_net.h"
 #include "coons/study/memory_estimate.h"
+#include "coons/study/net_report.h"
 
 namespace coons::cli {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-const char* to_string(Method m) {
-  switch (m) {
-    case Method::kAlpha: return "alpha";
-    case Method::kCoons: return "coons";
-    case Method::kHermiteCoons: return "hermite-coons";
-  }
-  return "alpha";
-}
 
 // ---- memory ----------------------------------------------------------------------------------
 
@@ -163,46 +151,12 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
 }
 
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r) {
-  switch (r.method) {
-    case Method::kCoons: return {discrete_coons_net(boundary), std::nullopt};
-    case Method::kHermiteCoons: return {hermite_coons_net(boundary), std::nullopt};
-    case Method::kAlpha: break;
-  }
-  MaskSolveResult result = solve_mask_net(boundary, r.mask, *r.solver, r.options);
-  return {std::move(result.net), std::move(result.summary)};
+  return coons::make_net(boundary, r.method, r.mask, r.solver, r.options);
 }
 
 json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                   const std::optional<double>& mu) {
-  json report;
-  report["boundary"] = boundary.name;
-  report["degree"] = {boundary.m, boundary.n};
-  report["method"] = to_string(r.method);
-  if (r.method == Method::kHermiteCoons) {  // the partially bicubic net belongs to no mask
-    report["alpha"] = nullptr;
-    report["beta"] = nullptr;
-    report["mu"] = mu ? json(*mu) : json(nullptr);
-  } else {  // the alpha method, or the Coons net: its mask is α = −1/4
-    report["alpha"] = r.mask.diag;
-    report["beta"] = number_or_null(r.mask.edge_i == r.mask.edge_j ? r.mask.edge_i : NAN);
-    if (r.mask.edge_i != r.mask.edge_j) report["beta_ij"] = {r.mask.edge_i, r.mask.edge_j};
-    // μ next to α: given, or the μ of α at degree n (docs/math.md §4) when m = n and α ∈ [−1/4, 0).
-    if (mu) report["mu"] = *mu;
-    else if (boundary.m == boundary.n && r.mask.diag >= -0.25 && r.mask.diag < 0 && r.mask.edge_i == r.mask.edge_j)
-      report["mu"] = mu_from_alpha(boundary.n, r.mask.diag);
-    else report["mu"] = nullptr;
-  }
-  if (outcome.summary) {
-    report["solver"] = summary_to_json(*outcome.summary);
-    if (r.picked_automatically) report["solver"]["picked_by"] = "auto";
-  } else {
-    report["solver"] = {{"name", "closed-form"}, {"status", "not_applicable"},
-                        {"message", "closed-form net: no linear system is solved"}};
-  }
-  const bool ok = !outcome.summary || outcome.summary->ok();
-  report["net"] = ok ? net_to_json(outcome.net) : json(nullptr);
-  report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, r.mask)) : json(nullptr);
-  return report;
+  return net_report(boundary, r.method, r.mask, outcome, mu, r.picked_automatically);
 }
 
 BoundaryFile read_input(const std::string& path, double corner_tolerance) {
@@ -252,6 +206,10 @@ void print_text(const std::string& text) {
 }
 
 void print_json(const json& doc, int indent) { print_text(dump(doc, indent) + '\n'); }
+
+void print_json(const nlohmann::ordered_json& doc, int indent) {
+  print_text(doc.dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + '\n');
+}
 
 void print_solver_failure(const std::string& file, const solvers::SolveSummary& s) {
   std::string line = fmt::format("error: {}: solver: {} {}", file, s.solver, solvers::to_string(s.status));

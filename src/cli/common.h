@@ -13,6 +13,7 @@
 #include "coons/io/boundary_io.h"
 #include "coons/mask/mask9.h"
 #include "coons/net/control_net.h"
+#include "coons/study/net_report.h"
 #include "solvers/linear_solver.h"
 #include "solvers/registry.h"
 
@@ -23,8 +24,7 @@ constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitSolverFailed = 3;
 
-enum class Method { kAlpha, kCoons, kHermiteCoons };
-const char* to_string(Method m);
+using Method = NetMethod;
 
 //! The options of every command (registered on each subcommand).
 struct GlobalOptions {
@@ -66,11 +66,6 @@ struct ResolvedRequest {
   solvers::SolverOptions options;
 };
 
-struct NetOutcome {
-  ControlNet net;
-  std::optional<solvers::SolveSummary> summary;  //!< alpha method only
-};
-
 void add_net_options(CLI::App& cmd, NetRequest& r);
 //! --solver alone (search, sweep, batch, study).
 void add_solver_option(CLI::App& cmd, std::string& solver);
@@ -92,6 +87,7 @@ void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::
 //! Prints a JSON document on standard output and flushes it; a failed write is an InputError
 //! ("<stdout>: write failed: REASON"). Invalid UTF-8 in names is replaced, never an exception.
 void print_json(const nlohmann::json& doc, int indent = 2);
+void print_json(const nlohmann::ordered_json& doc, int indent = 2);  //!< keeps the keys' order
 void print_text(const std::string& text);
 std::string dump(const nlohmann::json& doc, int indent = -1);
 

@@ -62,7 +62,7 @@ int run_refit(const RefitRequest& r) {
     return kExitOk;
   }
   write_file_atomically(r.out, [&](std::ostream& o) { o << dump(out, 2) << '\n'; });
-  print_json({{"boundary", b.name}, {"degree", {m, n}}, {"method", out["method"]}, {"max_deviation", out["max_deviation"]},
+  print_json(nlohmann::json{{"boundary", b.name}, {"degree", {m, n}}, {"method", out["method"]}, {"max_deviation", out["max_deviation"]},
               {"written", r.out}});
   return kExitOk;
 }

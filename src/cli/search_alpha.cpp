@@ -9,11 +9,9 @@
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/io/input_error.h"
-#include "coons/io/net_json.h"
-#include "coons/mask/mask_families.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
-#include "coons/study/sweep.h"
+#include "coons/study/search_report.h"
 #include "coons/study/target.h"
 #include "registry.h"
 
@@ -21,15 +19,7 @@ namespace coons::cli {
 
 namespace {
 
-enum class Parameter { kAlpha, kMu, kAlphaGamma };
-const char* to_string(Parameter p) {
-  switch (p) {
-    case Parameter::kMu: return "mu";
-    case Parameter::kAlphaGamma: return "alpha-gamma";
-    case Parameter::kAlpha: break;
-  }
-  return "alpha";
-}
+using Parameter = SearchParameter;
 
 struct SearchRequest {
   std::string boundary;
@@ -122,19 +112,6 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   return s;
 }
 
-// The solver block of a search: the backend, the search's verdict, solves as iterations.
-nlohmann::json search_solver_block(const SearchSetup& setup, SearchStatus status, int solves, double seconds,
-                                   const std::string& message) {
-  nlohmann::json block = {{"name", setup.solver->name},
-                          {"status", status == SearchStatus::kSolverFailed ? "failed" : "success"},
-                          {"iterations", solves},
-                          {"relative_residual", nullptr},
-                          {"seconds", {{"search", seconds}}}};
-  if (status == SearchStatus::kSolverFailed && !message.empty()) block["message"] = message;
-  if (setup.picked_automatically) block["picked_by"] = "auto";
-  return block;
-}
-
 int finish(nlohmann::json report, Phases& phases, SearchStatus status, const SearchRequest& r, const std::string& message) {
   report["timing"] = phases.timing();
   print_json(report);
@@ -151,58 +128,20 @@ int run_search_alpha(const SearchRequest& r) {
   const SearchSetup setup = setup_search(r, b);
   check_net_memory(r.global, b, setup.solver, r.boundary);
   phases.start("solve");
+  const std::string objective = objective_text(r.objective);
   if (r.parameter == Parameter::kAlphaGamma) {
-    MaskObjective objective(b, setup.objective, setup.family, *setup.solver);
-    const AlphaGammaSummary g = search_alpha_gamma(objective, setup.options);
-    nlohmann::json out = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"objective", objective_text(r.objective)}, {"parameter", to_string(r.parameter)},
-                          {"alpha", g.flat ? nlohmann::json(nullptr) : nlohmann::json(g.alpha)},
-                          {"gamma", g.flat ? nlohmann::json(nullptr) : nlohmann::json(g.gamma)},
-                          {"beta_ij", g.flat ? nlohmann::json(nullptr) : nlohmann::json({0.25 - g.alpha + g.gamma, 0.25 - g.alpha - g.gamma})},
-                          {"mu", nullptr}, {"value", number_or_null(g.value)}, {"value_at_gamma0", number_or_null(g.value_at_gamma0)},
-                          {"bounds", {setup.options.lower, setup.options.upper}}, {"flat", g.flat}, {"at_bound", false},
-                          {"evaluations", g.evaluations}, {"solves", g.solves}, {"status", coons::to_string(g.status)}};
-    if (!g.message.empty()) out["message"] = g.message;
-    out["solver"] = search_solver_block(setup, g.status, g.solves, 0, g.message);
+    MaskObjective f(b, setup.objective, setup.family, *setup.solver);
+    const AlphaGammaSummary g = search_alpha_gamma(f, setup.options);
+    nlohmann::json out = alpha_gamma_report(b, objective, setup.options, g);
+    out["solver"] = search_solver_block(*setup.solver, setup.picked_automatically, g.status, g.solves, 0, g.message);
     return finish(out, phases, g.status, r, g.message);
   }
   // The α family is searched in the sine basis when it can be (search_alpha): no solve per evaluation.
-  AlphaSearchSummary s;
-  if (r.parameter == Parameter::kAlpha) s = search_alpha(b, setup.objective, *setup.solver, setup.options);
-  else s = search_mu(b, setup.objective, *setup.solver, setup.options);
-
-  nlohmann::json out;
-  out["boundary"] = b.name;
-  out["degree"] = {b.m, b.n};
-  out["objective"] = objective_text(r.objective);
-  out["parameter"] = to_string(r.parameter);
-  std::optional<double> alpha, mu;
-  if (s.parameter) {
-    const MaskPoint p = setup.family(*s.parameter);
-    alpha = p.mask.diag;
-    mu = r.parameter == Parameter::kMu ? std::optional<double>(mu_of_compressed(b.m, b.n, *s.parameter)) : mu_of_alpha(b, alpha);
-    out["beta"] = p.mask.edge_i == p.mask.edge_j ? nlohmann::json(p.mask.edge_i) : nlohmann::json(nullptr);
-    if (p.mask.edge_i != p.mask.edge_j) out["beta_ij"] = {p.mask.edge_i, p.mask.edge_j};
-  }
-  out["alpha"] = alpha ? nlohmann::json(*alpha) : nlohmann::json(nullptr);
-  out["mu"] = mu ? nlohmann::json(*mu) : nlohmann::json(nullptr);
-  out["value"] = number_or_null(s.value);
-  if (r.parameter == Parameter::kMu)
-    out["bounds"] = {mu_of_compressed(b.m, b.n, setup.options.lower), mu_of_compressed(b.m, b.n, setup.options.upper)};
-  else
-    out["bounds"] = {setup.options.lower, setup.options.upper};
-  out["flat"] = s.flat;
-  out["at_bound"] = s.at_bound;
-  out["evaluations"] = s.evaluations;
-  out["solves"] = s.solves;
-  out["status"] = coons::to_string(s.status);
-  if (!s.message.empty()) out["message"] = s.message;
-  out["local_minima"] = s.local_minima;
-  nlohmann::json scan = nlohmann::json::array();
-  for (auto [p, f] : s.scan)
-    scan.push_back({r.parameter == Parameter::kMu ? mu_of_compressed(b.m, b.n, p) : p, number_or_null(f)});
-  out["scan"] = scan;
-  out["evaluator"] = s.evaluator.empty() ? "factorize and solve" : s.evaluator;
-  out["solver"] = search_solver_block(setup, s.status, s.solves, s.seconds, s.message);
+  const AlphaSearchSummary s = r.parameter == Parameter::kAlpha
+                                   ? search_alpha(b, setup.objective, *setup.solver, setup.options)
+                                   : search_mu(b, setup.objective, *setup.solver, setup.options);
+  nlohmann::json out = search_report(b, objective, r.parameter, setup.family, setup.options, s);
+  out["solver"] = search_solver_block(*setup.solver, setup.picked_automatically, s.status, s.solves, s.seconds, s.message);
   return finish(out, phases, s.status, r, s.message);
 }
 

@@ -26,6 +26,7 @@
 #include "coons/io/write_files.h"
 #include "coons/net/bernstein.h"
 #include "coons/study/memory_estimate.h"
+#include "coons/study/surface_report.h"
 #include "coons/metrics/energies.h"
 #include "coons/net/coons_net.h"
 #include "coons/surfaces/sampling.h"
@@ -48,30 +49,6 @@ struct SurfaceRequest {
   GlobalOptions global;
 };
 
-json point_json(const Eigen::RowVector3d& p) { return json::array({number_or_null(p(0)), number_or_null(p(1)), number_or_null(p(2))}); }
-
-double finite_max(const Eigen::VectorXd& x, bool absolute) {
-  double m = 0;
-  for (Eigen::Index k = 0; k < x.size(); ++k)
-    if (std::isfinite(x(k))) m = std::max(m, absolute ? std::abs(x(k)) : x(k));
-  return m;
-}
-
-// A reference: a surface description, or any file holding "net" (boundary file, solve report).
-SurfaceFile read_reference(const std::string& path, const SurfaceReadOptions& options) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the file (--reference)");
-  json doc;
-  try {
-    doc = json::parse(in);
-  } catch (const json::exception&) {
-    throw InputError(path, "", "malformed JSON (--reference)");
-  }
-  if (doc.is_object() && !doc.contains("type") && doc.contains("net"))
-    return parse_surface(json{{"type", "bezier"}, {"net", doc["net"]}}, path, options);
-  return parse_surface(doc, path, options);
-}
-
 void check_output(const std::string& path, const char* option, bool force) {
   if (path.empty()) return;
   const fs::path parent = fs::path(path).parent_path();
@@ -79,17 +56,6 @@ void check_output(const std::string& path, const char* option, bool force) {
     throw InputError("command line", option, fmt::format("the folder '{}' does not exist", parent.string()));
   if (!force && fs::exists(path)) throw InputError(path, "--force", "exists; give --force to overwrite it");
 }
-
-json energies_json(const ControlNet& net) {
-  return {{"twist_energy", twist_energy(net)},
-          {"thin_plate_energy", thin_plate_energy(net)},
-          {"dirichlet_energy", dirichlet_energy(net)},
-          {"e3_energy", e3_energy(net)},
-          {"discrete_twist_energy", discrete_twist_energy(net)},
-          {"discrete_dirichlet_energy", discrete_dirichlet_energy(net)}};
-}
-
-double max_difference(const ControlNet& a, const ControlNet& b) { return (a.points - b.points).cwiseAbs().maxCoeff(); }
 
 int run_surface(const SurfaceRequest& r) {
   // Everything is read and checked before anything is written.
@@ -110,92 +76,16 @@ int run_surface(const SurfaceRequest& r) {
   options.derivative_tolerance = r.derivative_tolerance;
   const SurfaceFile input = read_surface_file(r.spec, options);
   std::optional<SurfaceFile> reference;
-  if (!r.reference.empty()) reference = read_reference(r.reference, options);
+  if (!r.reference.empty()) reference = read_surface_reference(r.reference, options);
 
+  SurfaceReportOptions report_options{r.samples, r.fit_degree, r.corner_tolerance, r.derivative_tolerance, r.reference};
+  SurfaceReport made = surface_report(input, reference, report_options);
+  nlohmann::ordered_json& report = made.report;
+  const SurfaceSamples& samples = made.samples;
+  const FittedNet& fitted = made.fitted;
+  const ControlNet& net = fitted.net;
   const Surface& surface = input.surface;
   const int k = r.samples;
-  SurfaceSamples samples = sample_grid(surface, k);
-  if (reference) add_reference_distance(samples, reference->surface);
-  const FittedNet fitted = fitted_net(surface, r.fit_degree);
-
-  nlohmann::ordered_json report;  // read top-down: what it is, diagnostics, metrics, then the big arrays
-  report["surface"] = input.name;
-  report["type"] = to_string(surface.type());
-  report["sample"] = k;
-  report["polynomial"] = fitted.exact;
-  json curves = json::object();
-  for (const auto& [field, curve] : surface.curves()) curves[field] = curve->kind();
-  if (!curves.empty()) report["curves"] = std::move(curves);
-  json points = json::array();
-  for (int a = 0; a < k; ++a) {
-    json row = json::array();
-    for (int b = 0; b < k; ++b) row.push_back(point_json(samples.points.row(a * k + b)));
-    points.push_back(std::move(row));
-  }
-
-  // The net: exact, or over fitted curves with the deviations.
-  const ControlNet& net = fitted.net;
-  json net_block = {{"degree", {net.m, net.n}}, {"exact", fitted.exact}};
-  if (!fitted.exact) {
-    net_block["fit_degree"] = fitted.fit_degree;
-    json fits = json::array();
-    for (const auto& f : fitted.fits)
-      fits.push_back({{"curve", f.curve}, {"degree", f.degree}, {"max_deviation", number_or_null(f.max_deviation)}});
-    net_block["max_curve_deviation"] = number_or_null(fitted.max_curve_deviation);
-    net_block["curve_fits"] = std::move(fits);
-    double worst = 0;
-    const Eigen::MatrixX3d S = sample_surface(net, k, k);
-    for (int row = 0; row < k * k; ++row) worst = std::max(worst, (S.row(row) - samples.points.row(row)).norm());
-    net_block["max_surface_deviation"] = number_or_null(worst);
-  }
-  net_block["net"] = net_to_json(net);
-
-  json metrics = energies_json(net);
-  metrics["of"] = fitted.exact ? "the exact Bezier net" : "the net over the Bezier fits";
-  report["metrics"] = std::move(metrics);
-
-  // The closed-form discrete nets of the same boundary, in the same space.
-  json discrete;
-  const Boundary boundary = boundary_of(net, input.name);
-  const ControlNet coons = discrete_coons_net(boundary);
-  discrete["coons"] = {{"max_difference", max_difference(net, coons)}, {"energies", energies_json(coons)}};
-  if (net.m >= 3 && net.n >= 3) {
-    const ControlNet hermite = hermite_coons_net(boundary);
-    discrete["hermite_coons"] = {{"max_difference", max_difference(net, hermite)}, {"energies", energies_json(hermite)}};
-  }
-  report["discrete_nets"] = std::move(discrete);
-
-  json twists = json::array();
-  for (auto [u, v] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}})
-    twists.push_back(point_json(surface.evaluate(u, v).duv));
-  report["corner_twists"] = std::move(twists);
-  report["sampled"] = {{"max_abs_mean_curvature", finite_max(samples.mean_curvature, true)},
-                       {"max_abs_gaussian_curvature", finite_max(samples.gaussian_curvature, true)},
-                       {"max_twist", finite_max(samples.twist, false)}};
-
-  if (!input.conditions.empty()) {
-    json conditions = json::array();
-    double worst_position = 0, worst_derivative = 0;
-    for (const auto& c : input.conditions) {
-      conditions.push_back({{"field", c.field}, {"corner", c.corner}, {"condition", c.condition}, {"gap", number_or_null(c.gap)}});
-      double& worst = c.order == 0 ? worst_position : worst_derivative;
-      worst = std::max(worst, c.gap);
-    }
-    report["compatibility"] = {{"size", input.size},
-                               {"corner_tolerance", r.corner_tolerance},
-                               {"derivative_tolerance", r.derivative_tolerance},
-                               {"max_corner_gap", worst_position},
-                               {"max_derivative_gap", worst_derivative},
-                               {"conditions", std::move(conditions)}};
-  }
-  if (reference) {
-    const Eigen::VectorXd& d = *samples.distance;
-    report["reference"] = {{"file", r.reference},
-                           {"type", to_string(reference->surface.type())},
-                           {"max_distance", finite_max(d, false)},
-                           {"rms_distance", std::sqrt(d.squaredNorm() / double(d.size()))},
-                           {"max_parametric_distance", finite_max(*samples.parametric_distance, false)}};
-  }
 
   // Writing: everything staged, published together after the report is out.
   OutputSet out(".", "output");
@@ -226,8 +116,8 @@ int run_surface(const SurfaceRequest& r) {
     written.push_back(r.net_out);
   }
   if (!written.empty()) report["written"] = std::move(written);
-  report["net"] = std::move(net_block);
-  report["points"] = std::move(points);
+  report["net"] = std::move(made.net_block);
+  report["points"] = std::move(made.points);
   print_json(report);
   out.commit();
   return kExitOk;

@@ -319,3 +319,21 @@ TEST_CASE("coons search-alpha: discrete objectives and weighted sums with spaces
     CHECK(report["solver"].contains("status"));
   }
 }
+
+TEST_CASE("coons study: results.json is the same on a rerun and names each entry's kind", "[cli][alpha]") {
+  TempDir dir;
+  const std::string args = " study " + q(dome()) + " " + q(kData + "/boundaries/pillow.json") + " --degrees 3 4 --out ";
+  REQUIRE(run_command(kCoons + args + q(dir.file("a"))).status == 0);
+  REQUIRE(run_command(kCoons + args + q(dir.file("b"))).status == 0);
+  std::ifstream a(fs::path(dir.file("a")) / "results.json"), b(fs::path(dir.file("b")) / "results.json");
+  std::stringstream ta, tb;
+  ta << a.rdbuf();
+  tb << b.rdbuf();
+  CHECK(ta.str() == tb.str());
+  std::map<std::string, int> kinds;
+  for (const auto& e : json::parse(ta.str())) ++kinds[e["kind"].get<std::string>()];
+  CHECK(kinds["shape"] == 2);
+  CHECK(kinds["degree_law"] == 4);
+  CHECK(kinds["fit_deviation"] == 1);    // the dome has curves
+  CHECK(kinds["reference_table"] == 1);  // and a target
+}
