@@ -120,6 +120,13 @@ TEST_CASE("coons: a file without name whose file name is not UTF-8 is solved, ex
   REQUIRE(exp.status == 0);
   for (const auto& f : files_under(out)) CHECK(f.find('\xff') == std::string::npos);  // the name was made safe
   CHECK(files_under(out).size() == 4);
+  json spec = json::parse(std::ifstream(kData + "/surfaces/join_bilinear_a.json"));
+  spec.erase("name");
+  const std::string surface = dir.write("surface\xff.json", spec.dump());
+  const CommandResult r = run_command(kCoons + " surface " + q(surface) + " --samples 3 --obj " + q(dir.file("s.obj")));
+  REQUIRE(r.status == 0);
+  CHECK(json::parse(r.out)["points"].size() == 3);
+  CHECK(fs::exists(dir.file("s.obj")));
 }
 
 TEST_CASE("coons batch: an output folder that cannot be created is an input error, nothing left", "[cli][loud]") {
@@ -336,4 +343,22 @@ TEST_CASE("coons study: results.json is the same on a rerun and names each entry
   CHECK(kinds["degree_law"] == 4);
   CHECK(kinds["fit_deviation"] == 1);    // the dome has curves
   CHECK(kinds["reference_table"] == 1);  // and a target
+}
+
+TEST_CASE("coons: progress with named phases on a terminal, nothing on standard error otherwise", "[cli][loud]") {
+  TempDir dir;
+  const std::string sweep = kCoons + " sweep " + q(dome()) + " --count 5 --out " + q(dir.file("s"));
+  const CommandResult quiet = run_command(sweep);
+  REQUIRE(quiet.status == 0);
+  CHECK(quiet.err.empty());
+  CHECK(json::parse(quiet.out)["timing"].contains("solve"));
+  if (!fs::exists("/usr/bin/script")) {
+    WARN("no /usr/bin/script (util-linux): the terminal half of this test is skipped");
+    return;
+  }
+  // under a pseudo-terminal (script) standard error is a terminal: the phases are shown
+  const CommandResult tty = run_command("script -qec " + q(kCoons + " solve " + dome() + " --solver eigen-ldlt") + " /dev/null");
+  CHECK(tty.status == 0);
+  CHECK_THAT(tty.out, Catch::Contains("coons solve: read") && Catch::Contains("coons solve: solve") &&
+                          Catch::Contains("coons solve: metrics"));
 }
