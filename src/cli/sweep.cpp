@@ -74,15 +74,21 @@ int run_sweep_command(const SweepRequest& r) {
   // the solver block: the backend, and the first failure if any row failed
   const SweepRow* failed = nullptr;
   int failures = 0;
-  for (const auto& row : rows)
-    if (!row.summary.ok() && b.m > 1 && b.n > 1) {
-      failed = failed ? failed : &row;
-      ++failures;
-    }
+  nlohmann::json intervals = nlohmann::json::array();  // runs of failed values: [first, last]
+  for (size_t k = 0; k < rows.size(); ++k) {
+    if (rows[k].summary.ok() || b.m < 2 || b.n < 2) continue;
+    failed = failed ? failed : &rows[k];
+    ++failures;
+    if (k > 0 && !rows[k - 1].summary.ok()) intervals.back()[1] = rows[k].parameter;
+    else intervals.push_back({rows[k].parameter, rows[k].parameter});
+  }
   nlohmann::json block = summary_to_json(failed ? failed->summary : rows.front().summary);
   if (!requested) block["picked_by"] = "auto";
   summary["solver"] = block;
-  if (failed) summary["failed_values"] = failures;
+  if (failed) {
+    summary["failed_values"] = failures;
+    summary["failed_intervals"] = intervals;
+  }
   summary["timing"] = phases.timing();
   if (!plot_error.empty()) out.discard(stem + ".png");
   print_json(summary);

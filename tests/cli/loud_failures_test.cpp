@@ -258,6 +258,16 @@ TEST_CASE("coons solve: a failing solver prints its report and one error line (e
   CHECK(lines(r.err) == 1);
   CHECK_THAT(r.err, Catch::StartsWith("error: ") && Catch::Contains("jacobi") && Catch::Contains("relative residual") &&
                         Catch::Contains(report["solver"]["status"].get<std::string>()));
+  // a sweep whose values fail in part of the range says which part
+  TempDir dir;
+  const CommandResult sweep = run_command(kCoons + " sweep " + q(kData + "/boundaries/helicoid.json") +
+                                          " --solver jacobi --count 5 --out " + q(dir.file("s")));
+  CHECK(sweep.status == 3);
+  CHECK(lines(sweep.err) == 1);
+  const json summary = json::parse(sweep.out);
+  REQUIRE(summary.contains("failed_intervals"));
+  CHECK(summary["failed_values"].get<int>() >= 1);
+  CHECK(summary["failed_intervals"][0][0] == -0.25);
 }
 
 TEST_CASE("coons: sizes are checked before memory is taken", "[cli][loud]") {
