@@ -1,10 +1,10 @@
 // `coons batch BOUNDARY...`: every boundary as the Coons net and at several α; a folder per
 // boundary and degree (<name>-<m>x<n>/) with a solve report and OBJ files per net, named by the
 // method and α to full precision, and a metrics table. All written at the end, together.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "coons/io/input_error.h"
 #include "coons/io/obj_export.h"
@@ -39,18 +39,20 @@ struct Row {
 };
 
 std::string metrics_table(const std::vector<Row>& rows) {
-  std::string table = fmt::format("| {:<22} | {:>7} | {:<6} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n",
-                                  "boundary", "degree", "method", "alpha", "twist", "thin plate", "Dirichlet",
-                                  "E3", "disc. twist", "mask res.", "status");
+  std::string table = fmt::format(
+      "| {:<22} | {:>7} | {:<6} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n", "boundary",
+      "degree", "method", "alpha", "twist", "thin plate", "Dirichlet", "E3", "disc. twist", "mask res.", "status");
   table += "|" + std::string(24, '-') + "|" + std::string(9, '-') + "|" + std::string(8, '-') + "|" +
-           std::string(8, '-') + "|" + std::string(13, '-') + "|" + std::string(14, '-') + "|" +
-           std::string(14, '-') + "|" + std::string(14, '-') + "|" + std::string(14, '-') + "|" +
-           std::string(11, '-') + "|" + std::string(13, '-') + "|\n";
+           std::string(8, '-') + "|" + std::string(13, '-') + "|" + std::string(14, '-') + "|" + std::string(14, '-') +
+           "|" + std::string(14, '-') + "|" + std::string(14, '-') + "|" + std::string(11, '-') + "|" +
+           std::string(13, '-') + "|\n";
   for (const auto& r : rows)
-    table += fmt::format("| {:<22} | {:>7} | {:<6} | {:>6} | {:>11.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>9.2e} | {:<11} |\n",
-                         r.boundary, fmt::format("{}x{}", r.m, r.n), r.method, fmt::format("{}", r.alpha),
-                         r.metrics.twist_energy, r.metrics.thin_plate_energy, r.metrics.dirichlet_energy,
-                         r.metrics.e3_energy, r.metrics.discrete_twist_energy, r.metrics.mask_residual, r.status);
+    table += fmt::format(
+        "| {:<22} | {:>7} | {:<6} | {:>6} | {:>11.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>9.2e} | "
+        "{:<11} |\n",
+        r.boundary, fmt::format("{}x{}", r.m, r.n), r.method, fmt::format("{}", r.alpha), r.metrics.twist_energy,
+        r.metrics.thin_plate_energy, r.metrics.dirichlet_energy, r.metrics.e3_energy, r.metrics.discrete_twist_energy,
+        r.metrics.mask_residual, r.status);
   return table;
 }
 
@@ -62,7 +64,8 @@ int run_batch(const BatchRequest& b) {
   if (b.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   for (size_t k = 0; k < b.alphas.size(); ++k) {
     const double a = b.alphas[k];
-    if (!(a >= -0.25 && a <= 0.25)) throw InputError("command line", "--alphas", fmt::format("{} is outside [-0.25, 0.25]", a));
+    if (!(a >= -0.25 && a <= 0.25))
+      throw InputError("command line", "--alphas", fmt::format("{} is outside [-0.25, 0.25]", a));
     if (std::find(b.alphas.begin(), b.alphas.begin() + k, a) != b.alphas.begin() + k)
       throw InputError("command line", "--alphas", fmt::format("{} is given twice", a));
   }
@@ -101,8 +104,13 @@ int run_batch(const BatchRequest& b) {
       const ResolvedRequest r = resolve(request, boundary, files[k]);
       const NetOutcome outcome = make_net(boundary, r);
       const bool ok = !outcome.summary || outcome.summary->ok();
-      Row row{boundary.name, boundary.m, boundary.n, to_string(r.method), r.mask.diag,
-              outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form", {}};
+      Row row{boundary.name,
+              boundary.m,
+              boundary.n,
+              to_string(r.method),
+              r.mask.diag,
+              outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form",
+              {}};
       phases.start("metrics");
       if (ok) row.metrics = net_metrics(outcome.net, r.mask);
       rows.push_back(row);
@@ -125,10 +133,11 @@ int run_batch(const BatchRequest& b) {
          "of the Bézier surface (docs/math.md §5); mask res. is the residual of the row's own mask.\n\n"
       << table;
   });
-  print_text(table + '\n' +
-             fmt::format("{} boundaries, {} nets; results in {}/ (per boundary and degree a folder NAME-MxN/ with "
-                         "coons.json and alpha±A.json reports and their .surface.obj, .net.obj; the table in metrics.md)\n",
-                         boundaries.size(), rows.size(), b.out_dir));
+  print_text(
+      table + '\n' +
+      fmt::format("{} boundaries, {} nets; results in {}/ (per boundary and degree a folder NAME-MxN/ with "
+                  "coons.json and alpha±A.json reports and their .surface.obj, .net.obj; the table in metrics.md)\n",
+                  boundaries.size(), rows.size(), b.out_dir));
   out.commit();
   for (const auto& r : rows)
     if (r.status != "success" && r.status != "closed-form") return kExitSolverFailed;
@@ -139,7 +148,8 @@ int run_batch(const BatchRequest& b) {
 
 void register_batch(CLI::App& app, Registry& registry) {
   auto request = std::make_shared<BatchRequest>();
-  auto* cmd = app.add_subcommand("batch", "solve many boundaries as Coons net and at several alpha; "
+  auto* cmd = app.add_subcommand("batch",
+                                 "solve many boundaries as Coons net and at several alpha; "
                                  "write nets and OBJ files and a metrics table");
   cmd->add_option("BOUNDARY", request->inputs, "boundary files or folders of them")->required();
   cmd->add_option("--out", request->out_dir, "output folder")->capture_default_str();

@@ -1,5 +1,7 @@
 #include "common.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cerrno>
 #include <cmath>
@@ -8,8 +10,6 @@
 #include <filesystem>
 #include <iostream>
 #include <map>
-
-#include <fmt/format.h>
 
 #include "coons/io/input_error.h"
 #include "coons/study/memory_estimate.h"
@@ -26,7 +26,8 @@ double GlobalOptions::memory_limit() const {
   if (max_memory.empty()) return default_memory_limit();
   const auto bytes = parse_memory_size(max_memory);
   if (!bytes)
-    throw InputError("command line", "--max-memory", "'" + max_memory + "' is not a size such as 2000000000, 512MB or 4GB");
+    throw InputError("command line", "--max-memory",
+                     "'" + max_memory + "' is not a size such as 2000000000, 512MB or 4GB");
   return *bytes;
 }
 
@@ -70,25 +71,30 @@ void add_solver_option(CLI::App& cmd, std::string& solver) {
 void add_net_options(CLI::App& cmd, NetRequest& r) {
   const std::map<std::string, Method> methods = {
       {"alpha", Method::kAlpha}, {"coons", Method::kCoons}, {"hermite-coons", Method::kHermiteCoons}};
-  r.method_option = cmd.add_option("--method", r.method, "alpha (solve the mask system), coons (closed form), "
+  r.method_option = cmd.add_option("--method", r.method,
+                                   "alpha (solve the mask system), coons (closed form), "
                                    "hermite-coons (closed-form partially bicubic net, degree >= 3)")
                         ->transform(CLI::CheckedTransformer(methods))
                         ->default_str("alpha");
   r.alpha_option = cmd.add_option("--alpha", r.alpha, "weight of the diagonal neighbours; beta = 1/4 - alpha")
                        ->capture_default_str();
-  r.mu_option = cmd.add_option("--mu", r.mu, "membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖²: the anisotropic mask of "
+  r.mu_option = cmd.add_option("--mu", r.mu,
+                               "membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖²: the anisotropic mask of "
                                "docs/math.md §3 (instead of --alpha)");
   r.solver_option = cmd.add_option("--solver", r.solver, "a name from `coons solvers`, or auto")->capture_default_str();
-  r.indefinite_option = cmd.add_flag("--allow-indefinite", r.allow_indefinite,
-                                     "let Cholesky-type solvers run outside alpha in [-1/4, 1/4] (they will report it)");
+  r.indefinite_option =
+      cmd.add_flag("--allow-indefinite", r.allow_indefinite,
+                   "let Cholesky-type solvers run outside alpha in [-1/4, 1/4] (they will report it)");
   cmd.add_option("--corner-tolerance", r.corner_tolerance,
                  "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
   r.tolerance_option = cmd.add_option("--tolerance", r.tolerance, "iterative solvers: relative residual to reach")
                            ->capture_default_str();
   r.max_iterations_option =
-      cmd.add_option("--max-iterations", r.max_iterations, "iterative solvers: limit (0: automatic)")->capture_default_str();
-  r.omega_option = cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
+      cmd.add_option("--max-iterations", r.max_iterations, "iterative solvers: limit (0: automatic)")
+          ->capture_default_str();
+  r.omega_option =
+      cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
 }
 
 namespace {
@@ -100,11 +106,13 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   out.method = r.method;
   // Contradictions: options that would be ignored are errors naming both.
   if (out.method != Method::kAlpha) {
-    const std::pair<const CLI::Option*, const char*> alpha_only[] = {
-        {r.alpha_option, "--alpha"},           {r.mu_option, "--mu"},
-        {r.solver_option, "--solver"},         {r.tolerance_option, "--tolerance"},
-        {r.max_iterations_option, "--max-iterations"}, {r.omega_option, "--omega"},
-        {r.indefinite_option, "--allow-indefinite"}};
+    const std::pair<const CLI::Option*, const char*> alpha_only[] = {{r.alpha_option, "--alpha"},
+                                                                     {r.mu_option, "--mu"},
+                                                                     {r.solver_option, "--solver"},
+                                                                     {r.tolerance_option, "--tolerance"},
+                                                                     {r.max_iterations_option, "--max-iterations"},
+                                                                     {r.omega_option, "--omega"},
+                                                                     {r.indefinite_option, "--allow-indefinite"}};
     for (const auto& [option, name] : alpha_only)
       if (given(option))
         throw InputError("command line", "--method",
@@ -114,7 +122,8 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   if (given(r.alpha_option) && given(r.mu_option))
     throw InputError("command line", "--alpha", "--alpha and --mu both choose the mask; give one of them");
   if (given(r.omega_option) && r.solver != "gauss-seidel")
-    throw InputError("command line", "--omega", "--omega is the over-relaxation of --solver gauss-seidel, not of " + r.solver);
+    throw InputError("command line", "--omega",
+                     "--omega is the over-relaxation of --solver gauss-seidel, not of " + r.solver);
 
   if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");
   if (r.mu && !(std::isfinite(*r.mu) && *r.mu >= 0))

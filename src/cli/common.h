@@ -3,12 +3,11 @@
 // phases, and the checked printing of a report.
 #pragma once
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
 
 #include "coons/io/boundary_io.h"
 #include "coons/mask/mask9.h"

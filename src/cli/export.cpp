@@ -1,9 +1,9 @@
 // `coons export BOUNDARY`: the net as OBJ files and/or the mask system as Matrix Market, written
 // whole or not at all (an OutputSet), inside --out only.
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "coons/io/input_error.h"
 #include "coons/io/matrix_market.h"
@@ -37,9 +37,11 @@ int run_export(ExportRequest e) {
   if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   if (!e.obj && !e.mtx) e.obj = e.mtx = true;
   if (e.mtx && r.method != Method::kAlpha)
-    throw InputError("command line", "--mtx", "Matrix Market export needs --method alpha (closed forms solve no system)");
+    throw InputError("command line", "--mtx",
+                     "Matrix Market export needs --method alpha (closed forms solve no system)");
   if (!e.prefix.empty() && safe_file_stem(e.prefix) != e.prefix)
-    throw InputError("command line", "--prefix", "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
+    throw InputError("command line", "--prefix",
+                     "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
   check_net_memory(e.global, b, r.solver, e.boundary);
   if (e.obj)
     check_memory(e.global, samples_bytes(e.samples), fmt::format("{} x {} surface samples", e.samples, e.samples),

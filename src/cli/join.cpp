@@ -3,7 +3,6 @@
 #include <algorithm>
 #include <cmath>
 #include <memory>
-
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
@@ -30,14 +29,20 @@ int run_join(const JoinRequest& r) {
     throw InputError("command line", field, "'" + name + "' is not bottom, top, left or right");
   };
   const Side a_side = side(r.first_side, "FIRST_SIDE"), b_side = side(r.second_side, "SECOND_SIDE");
-  if (r.samples < 2 || r.samples > 1000000) throw InputError("command line", "--samples", "must be between 2 and 1000000");
+  if (r.samples < 2 || r.samples > 1000000)
+    throw InputError("command line", "--samples", "must be between 2 and 1000000");
   const SurfaceFile a = read_surface_file(r.first), b = read_surface_file(r.second);
   const SeamReport seam = compare_seam(a.surface, a_side, b.surface, b_side, r.reversed, r.samples);
   const double size = std::max({a.size, b.size, 1e-300});
-  nlohmann::json out = {{"first", a.name}, {"second", b.name}, {"samples", seam.samples},
-                        {"c0_gap", seam.c0_gap}, {"max_normal_angle_rad", seam.max_normal_angle},
-                        {"max_normal_angle_deg", seam.max_normal_angle * 180 / M_PI}, {"at", seam.at},
-                        {"c0", seam.c0_gap <= 1e-9 * size}, {"g1", seam.c0_gap <= 1e-9 * size && seam.max_normal_angle <= 1e-6}};
+  nlohmann::json out = {{"first", a.name},
+                        {"second", b.name},
+                        {"samples", seam.samples},
+                        {"c0_gap", seam.c0_gap},
+                        {"max_normal_angle_rad", seam.max_normal_angle},
+                        {"max_normal_angle_deg", seam.max_normal_angle * 180 / M_PI},
+                        {"at", seam.at},
+                        {"c0", seam.c0_gap <= 1e-9 * size},
+                        {"g1", seam.c0_gap <= 1e-9 * size && seam.max_normal_angle <= 1e-6}};
   print_json(out);
   return kExitOk;
 }

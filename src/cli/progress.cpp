@@ -1,9 +1,9 @@
 // Phases of a command: progress on a terminal, seconds for the report's "timing" block.
-#include <chrono>
-#include <cstdio>
-
 #include <fmt/format.h>
 #include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
 
 #include "common.h"
 

@@ -1,9 +1,9 @@
 // `coons refit BOUNDARY --degree M N`: the boundary at another degree, refitted from its analytic
 // "curves" or elevated exactly; printed, or written to --out.
+#include <fmt/format.h>
+
 #include <filesystem>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "coons/io/boundary_curves.h"
 #include "coons/io/input_error.h"
@@ -52,8 +52,10 @@ int run_refit(const RefitRequest& r) {
     out["method"] = "elevated";
     out["max_deviation"] = 0.0;
   } else {
-    throw InputError(r.boundary, "curves", fmt::format("degree ({}, {}) is below the boundary's ({}, {}); lowering it needs "
-                                                       "the analytic sides (a \"curves\" object)", m, n, b.m, b.n));
+    throw InputError(r.boundary, "curves",
+                     fmt::format("degree ({}, {}) is below the boundary's ({}, {}); lowering it needs "
+                                 "the analytic sides (a \"curves\" object)",
+                                 m, n, b.m, b.n));
   }
   for (const char* key : {"curves", "target"})
     if (source.contains(key)) out[key] = source[key];
@@ -62,8 +64,11 @@ int run_refit(const RefitRequest& r) {
     return kExitOk;
   }
   write_file_atomically(r.out, [&](std::ostream& o) { o << dump(out, 2) << '\n'; });
-  print_json(nlohmann::json{{"boundary", b.name}, {"degree", {m, n}}, {"method", out["method"]}, {"max_deviation", out["max_deviation"]},
-              {"written", r.out}});
+  print_json(nlohmann::json{{"boundary", b.name},
+                            {"degree", {m, n}},
+                            {"method", out["method"]},
+                            {"max_deviation", out["max_deviation"]},
+                            {"written", r.out}});
   return kExitOk;
 }
 
@@ -71,13 +76,15 @@ int run_refit(const RefitRequest& r) {
 
 void register_refit(CLI::App& app, Registry& registry) {
   auto r = std::make_shared<RefitRequest>();
-  auto* cmd = app.add_subcommand("refit", "the boundary at another degree: refitted from its analytic \"curves\", "
+  auto* cmd = app.add_subcommand("refit",
+                                 "the boundary at another degree: refitted from its analytic \"curves\", "
                                  "or elevated exactly; prints (or writes) a boundary file");
   cmd->add_option("BOUNDARY", r->boundary, "boundary JSON file (docs/formats.md)")->required();
   cmd->add_option("--degree", r->degree, "the new degree M N")->required()->expected(2);
   cmd->add_option("--out", r->out, "write the boundary file here (default: standard output)");
   cmd->add_flag("--force", r->global.force, "overwrite --out if it exists");
-  cmd->add_option("--corner-tolerance", r->corner_tolerance, "corners must agree to this fraction of the bounding-box diagonal")
+  cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                  "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
   add_memory_option(*cmd, r->global);
   set_example(*cmd, "coons refit data/boundaries/dome.json --degree 8 8 --out dome8.json");

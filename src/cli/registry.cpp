@@ -3,9 +3,8 @@
 #include <filesystem>
 #include <iostream>
 #include <new>
-#include <string_view>
-
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "coons/config.h"
 #include "coons/io/input_error.h"
@@ -28,12 +27,15 @@ int fail(int status, const std::string& message) {
 }  // namespace
 
 int run(int argc, char** argv) {
-  CLI::App app{"coons — discrete Coons patches: fill a Bézier control net from its boundary "
-               "(Farin & Hansford, CAGD 16, 1999)", "coons"};
+  CLI::App app{
+      "coons — discrete Coons patches: fill a Bézier control net from its boundary "
+      "(Farin & Hansford, CAGD 16, 1999)",
+      "coons"};
   app.set_version_flag("--version", COONS_VERSION);
   app.require_subcommand(1);
-  app.footer("\nExample:\n  coons solve data/boundaries/dome.json --alpha -0.2\n"
-             "Every command has --help with an example; docs/formats.md is the contract.");
+  app.footer(
+      "\nExample:\n  coons solve data/boundaries/dome.json --alpha -0.2\n"
+      "Every command has --help with an example; docs/formats.md is the contract.");
 
   Registry registry;
   for (int a = 0; a < argc; ++a) registry.command_line += (a ? " " : "") + std::string(a ? argv[a] : "coons");

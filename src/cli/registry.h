@@ -5,11 +5,10 @@
 // 2 for bad input (InputError, a JSON error of an input), 1 for anything internal.
 #pragma once
 
+#include <CLI/CLI.hpp>
 #include <functional>
 #include <string>
 #include <vector>
-
-#include <CLI/CLI.hpp>
 
 #include "common.h"
 

@@ -1,11 +1,11 @@
 // `coons search-alpha BOUNDARY --objective NAME`: the best mask parameter of one boundary for an
 // objective (Ceres, analytic derivative); one JSON report (docs/formats.md).
+#include <fmt/format.h>
+
 #include <cctype>
 #include <cmath>
 #include <iostream>
 #include <memory>
-
-#include <fmt/format.h>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/io/input_error.h"
@@ -79,8 +79,9 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
       s.options.upper = r.upper.value_or(0.25);
       indefinite = s.options.lower < -0.25 || s.options.upper > 0.25;
       if (indefinite && !r.allow_indefinite)
-        throw InputError("command line", r.lower && *r.lower < -0.25 ? "--lower" : "--upper",
-                         "bounds outside [-0.25, 0.25] make the system indefinite; add --allow-indefinite to search there");
+        throw InputError(
+            "command line", r.lower && *r.lower < -0.25 ? "--lower" : "--upper",
+            "bounds outside [-0.25, 0.25] make the system indefinite; add --allow-indefinite to search there");
       break;
     case Parameter::kMu: {
       // searched on the compressed scale s = μ/(μ + mn), so the scan spans μ's orders of magnitude
@@ -102,8 +103,8 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
       break;
   }
   if (r.allow_indefinite && r.parameter != Parameter::kAlpha)
-    throw InputError("command line", "--allow-indefinite", std::string("--allow-indefinite applies to --parameter alpha, not ") +
-                                                               to_string(r.parameter));
+    throw InputError("command line", "--allow-indefinite",
+                     std::string("--allow-indefinite applies to --parameter alpha, not ") + to_string(r.parameter));
   s.options.scan_points = r.scan_points;
   if (!s.options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
@@ -112,12 +113,14 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   return s;
 }
 
-int finish(nlohmann::json report, Phases& phases, SearchStatus status, const SearchRequest& r, const std::string& message) {
+int finish(nlohmann::json report, Phases& phases, SearchStatus status, const SearchRequest& r,
+           const std::string& message) {
   report["timing"] = phases.timing();
   print_json(report);
   if (status != SearchStatus::kSolverFailed) return kExitOk;
   std::cerr << fmt::format("error: {}: solver: {} search failed ({})\n", r.boundary,
-                           report["solver"]["name"].get<std::string>(), message.empty() ? "no successful evaluation" : message);
+                           report["solver"]["name"].get<std::string>(),
+                           message.empty() ? "no successful evaluation" : message);
   return kExitSolverFailed;
 }
 
@@ -141,7 +144,8 @@ int run_search_alpha(const SearchRequest& r) {
                                    ? search_alpha(b, setup.objective, *setup.solver, setup.options)
                                    : search_mu(b, setup.objective, *setup.solver, setup.options);
   nlohmann::json out = search_report(b, objective, r.parameter, setup.family, setup.options, s);
-  out["solver"] = search_solver_block(*setup.solver, setup.picked_automatically, s.status, s.solves, s.seconds, s.message);
+  out["solver"] =
+      search_solver_block(*setup.solver, setup.picked_automatically, s.status, s.solves, s.seconds, s.message);
   return finish(out, phases, s.status, r, s.message);
 }
 
@@ -149,7 +153,8 @@ int run_search_alpha(const SearchRequest& r) {
 
 void register_search_alpha(CLI::App& app, Registry& registry) {
   auto r = std::make_shared<SearchRequest>();
-  auto* cmd = app.add_subcommand("search-alpha", "the best mask parameter of one boundary for an objective "
+  auto* cmd = app.add_subcommand("search-alpha",
+                                 "the best mask parameter of one boundary for an objective "
                                  "(Ceres, analytic derivative); prints one JSON report");
   cmd->add_option("BOUNDARY", r->boundary, "boundary JSON file (docs/formats.md)")->required();
   cmd->add_option("--objective", r->objective,
@@ -158,19 +163,23 @@ void register_search_alpha(CLI::App& app, Registry& registry) {
       ->required();
   const std::map<std::string, Parameter> parameters = {
       {"alpha", Parameter::kAlpha}, {"mu", Parameter::kMu}, {"alpha-gamma", Parameter::kAlphaGamma}};
-  cmd->add_option("--parameter", r->parameter, "alpha (the Farin-Hansford family), mu (the anisotropic mask) or "
+  cmd->add_option("--parameter", r->parameter,
+                  "alpha (the Farin-Hansford family), mu (the anisotropic mask) or "
                   "alpha-gamma (every symmetric 3x3 mask)")
       ->transform(CLI::CheckedTransformer(parameters))
       ->default_str("alpha");
   cmd->add_option("--lower", r->lower, "lower bound (alpha: -0.25, mu: 0)");
   cmd->add_option("--upper", r->upper, "upper bound (alpha: 0.25, mu: 1000·m·n)");
   cmd->add_flag("--allow-indefinite", r->allow_indefinite, "accept alpha bounds outside [-0.25, 0.25]");
-  r->target_option = cmd->add_option("--target", r->target, "hermite-coons | coons | NET.json | sphere:cx,cy,cz,r | "
+  r->target_option = cmd->add_option("--target", r->target,
+                                     "hermite-coons | coons | NET.json | sphere:cx,cy,cz,r | "
                                      "cylinder:px,py,pz,dx,dy,dz,r | plane:px,py,pz,nx,ny,nz (default: the boundary "
                                      "file's \"target\")");
   cmd->add_option("--scan", r->scan_points, "points of the coarse scan")->capture_default_str();
-  r->samples_option = cmd->add_option("--samples", r->samples, "target objective: samples per direction")->capture_default_str();
-  cmd->add_option("--corner-tolerance", r->corner_tolerance, "corners must agree to this fraction of the bounding-box diagonal")
+  r->samples_option =
+      cmd->add_option("--samples", r->samples, "target objective: samples per direction")->capture_default_str();
+  cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                  "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
   add_solver_option(*cmd, r->solver);
   add_memory_option(*cmd, r->global);

@@ -1,7 +1,7 @@
 // `coons solvers`: the linear-solver backends built in.
-#include <memory>
-
 #include <fmt/format.h>
+
+#include <memory>
 
 #include "registry.h"
 

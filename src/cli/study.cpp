@@ -1,14 +1,15 @@
 // `coons study BOUNDARY...`: the α study (coons/study/study.h) with its report: report.md,
 // results.json and figures/, written together (nothing is left on any failure).
-#include <memory>
+#include "coons/study/study.h"
 
 #include <fmt/format.h>
+
+#include <memory>
 
 #include "coons/io/input_error.h"
 #include "coons/io/write_files.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
-#include "coons/study/study.h"
 #include "registry.h"
 
 namespace coons::cli {
@@ -69,12 +70,14 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
 
 void register_study(CLI::App& app, Registry& registry) {
   auto r = std::make_shared<StudyRequest>();
-  auto* cmd = app.add_subcommand("study", "the alpha study: optima per shape and degree, the c/n^2 law, a reference "
+  auto* cmd = app.add_subcommand("study",
+                                 "the alpha study: optima per shape and degree, the c/n^2 law, a reference "
                                  "table for every boundary with a target; a self-contained report with PNG figures");
   cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them")->required();
   cmd->add_option("--degrees", r->degrees, "degrees to study each shape at (increasing)")->capture_default_str();
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
-  cmd->add_option("--corner-tolerance", r->corner_tolerance, "corners must agree to this fraction of the bounding-box diagonal")
+  cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                  "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
   add_solver_option(*cmd, r->solver);
   add_memory_option(*cmd, r->global);

@@ -5,31 +5,30 @@
 // boundary, the corner twists and the compatibility diagnostics; optionally write meshes (OBJ,
 // PLY with per-vertex scalars, ParaView .vts), a PNG of surface and net, and the net as a boundary
 // file that `coons solve` reads. Every file is published together, only when all are complete.
-#include <memory>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iostream>
+#include <memory>
+#include <nlohmann/json.hpp>
 #include <sstream>
 
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
-
-#include "registry.h"
 #include "coons/io/input_error.h"
 #include "coons/io/mesh_export.h"
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
 #include "coons/io/surface_io.h"
 #include "coons/io/write_files.h"
+#include "coons/metrics/energies.h"
 #include "coons/net/bernstein.h"
+#include "coons/net/coons_net.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/surface_report.h"
-#include "coons/metrics/energies.h"
-#include "coons/net/coons_net.h"
 #include "coons/surfaces/sampling.h"
+#include "registry.h"
 
 namespace coons::cli {
 
@@ -92,8 +91,9 @@ int run_surface(const SurfaceRequest& r) {
   json written = json::array();
   const std::string comment = fmt::format("{} ({})", input.name, to_string(surface.type()));
   if (!r.png.empty()) {
-    const std::string title = fmt::format("{} ({}){}", input.name, to_string(surface.type()),
-                                          fitted.exact ? ", exact Bezier net" : fmt::format(", net over Bezier fits of degree <= {}", fitted.fit_degree));
+    const std::string title = fmt::format(
+        "{} ({}){}", input.name, to_string(surface.type()),
+        fitted.exact ? ", exact Bezier net" : fmt::format(", net over Bezier fits of degree <= {}", fitted.fit_degree));
     if (const std::string why = plot_surface(out.stage_path(r.png), samples.points, k, &net, title); !why.empty())
       throw InputError(r.png, "--png", why);
     written.push_back(r.png);
@@ -111,7 +111,8 @@ int run_surface(const SurfaceRequest& r) {
     written.push_back(r.vts);
   }
   if (!r.net_out.empty()) {
-    const json doc = {{"name", input.name}, {"degree", {net.m, net.n}}, {"exact", fitted.exact}, {"net", net_to_json(net)}};
+    const json doc = {
+        {"name", input.name}, {"degree", {net.m, net.n}}, {"exact", fitted.exact}, {"net", net_to_json(net)}};
     out.write_path(r.net_out, [&](std::ostream& o) { o << dump(doc, 2) << '\n'; });
     written.push_back(r.net_out);
   }
@@ -125,34 +126,39 @@ int run_surface(const SurfaceRequest& r) {
 
 }  // namespace
 
-
 void register_surface(CLI::App& app, Registry& registry) {
   auto request = std::make_shared<SurfaceRequest>();
   SurfaceRequest& r = *request;
-  auto* cmd = app.add_subcommand("surface", "build a surface of the continuous Coons family from its JSON description "
+  auto* cmd = app.add_subcommand("surface",
+                                 "build a surface of the continuous Coons family from its JSON description "
                                  "(docs/formats.md); prints points, Bezier net, metrics; writes meshes and a PNG");
-  cmd->add_option("SPEC", r.spec, "surface description JSON (types: ruled, sectorial, bilinear, conoid, "
-                  "bilinear-coons, hermite-coons, ferguson, hermite16, general-coons, bezier)")->required();
+  cmd->add_option("SPEC", r.spec,
+                  "surface description JSON (types: ruled, sectorial, bilinear, conoid, "
+                  "bilinear-coons, hermite-coons, ferguson, hermite16, general-coons, bezier)")
+      ->required();
   cmd->add_option("--samples,--sample", r.samples, "K: print r(a/(K-1), b/(K-1)) on a K x K grid; meshes use it too")
       ->capture_default_str();
   cmd->add_option("--obj", r.obj, "write the sampled surface as Wavefront OBJ");
   cmd->add_option("--ply", r.ply, "write PLY with per-vertex normals and scalars (curvatures, twist, distance)");
   cmd->add_option("--vts", r.vts, "write a ParaView structured grid (.vts) with the same point fields");
   cmd->add_option("--png", r.png, "render the surface and its control net (gnuplot)");
-  cmd->add_option("--net-out", r.net_out, "write the Bezier net as a boundary file {\"net\": ...} (coons solve reads it)");
+  cmd->add_option("--net-out", r.net_out,
+                  "write the Bezier net as a boundary file {\"net\": ...} (coons solve reads it)");
   cmd->add_option("--reference", r.reference, "a surface description or a file with \"net\": adds the distance field");
-  cmd->add_option("--fit-degree", r.fit_degree, "largest degree of the Bezier fits of non-Bezier curves for the net "
+  cmd->add_option("--fit-degree", r.fit_degree,
+                  "largest degree of the Bezier fits of non-Bezier curves for the net "
                   "(a lower one when it reproduces the curve to rounding)")
       ->capture_default_str();
-  cmd->add_option("--corner-tolerance", r.corner_tolerance, "corners must agree to this fraction of the boundary's size")
+  cmd->add_option("--corner-tolerance", r.corner_tolerance,
+                  "corners must agree to this fraction of the boundary's size")
       ->capture_default_str();
   cmd->add_option("--derivative-tolerance", r.derivative_tolerance,
-                  "general-coons tangent and twist conditions: this fraction of the data's size")->capture_default_str();
+                  "general-coons tangent and twist conditions: this fraction of the data's size")
+      ->capture_default_str();
   cmd->add_flag("--force", r.global.force, "overwrite existing output files");
   add_memory_option(*cmd, r.global);
   set_example(*cmd, "coons surface data/surfaces/seed000_ferguson_1.json --samples 21 --obj ferguson.obj");
   registry.add(cmd, [request] { return run_surface(*request); });
 }
-
 
 }  // namespace coons::cli

@@ -1,16 +1,17 @@
 // `coons sweep BOUNDARY`: every metric on a grid of α (or μ): NAME.sweep-alpha.jsonl (or
 // .sweep-mu.jsonl) and a PNG of the normalised energy curves, written together.
-#include <cmath>
-#include <memory>
+#include "coons/study/sweep.h"
 
 #include <fmt/format.h>
+
+#include <cmath>
+#include <memory>
 
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
 #include "coons/io/write_files.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
-#include "coons/study/sweep.h"
 #include "coons/study/target.h"
 #include "registry.h"
 
@@ -67,10 +68,15 @@ int run_sweep_command(const SweepRequest& r) {
     for (const auto& row : rows) o << dump(sweep_line(b, r.parameter, row)) << '\n';
   });
   const std::string plot_error = plot_sweep(out.stage(stem + ".png"), b, r.parameter, rows);
-  nlohmann::json summary = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"parameter", to_string(r.parameter)},
-                            {"values", rows.size()}, {"jsonl", jsonl}};
-  if (plot_error.empty()) summary["png"] = png;
-  else summary["png_error"] = plot_error;
+  nlohmann::json summary = {{"boundary", b.name},
+                            {"degree", {b.m, b.n}},
+                            {"parameter", to_string(r.parameter)},
+                            {"values", rows.size()},
+                            {"jsonl", jsonl}};
+  if (plot_error.empty())
+    summary["png"] = png;
+  else
+    summary["png_error"] = plot_error;
   // the solver block: the backend, and the first failure if any row failed
   const SweepRow* failed = nullptr;
   int failures = 0;
@@ -79,8 +85,10 @@ int run_sweep_command(const SweepRequest& r) {
     if (rows[k].summary.ok() || b.m < 2 || b.n < 2) continue;
     failed = failed ? failed : &rows[k];
     ++failures;
-    if (k > 0 && !rows[k - 1].summary.ok()) intervals.back()[1] = rows[k].parameter;
-    else intervals.push_back({rows[k].parameter, rows[k].parameter});
+    if (k > 0 && !rows[k - 1].summary.ok())
+      intervals.back()[1] = rows[k].parameter;
+    else
+      intervals.push_back({rows[k].parameter, rows[k].parameter});
   }
   nlohmann::json block = summary_to_json(failed ? failed->summary : rows.front().summary);
   if (!requested) block["picked_by"] = "auto";
@@ -104,10 +112,12 @@ int run_sweep_command(const SweepRequest& r) {
 
 void register_sweep(CLI::App& app, Registry& registry) {
   auto r = std::make_shared<SweepRequest>();
-  auto* cmd = app.add_subcommand("sweep", "every metric on a grid of alpha (or mu): NAME.sweep-alpha.jsonl "
+  auto* cmd = app.add_subcommand("sweep",
+                                 "every metric on a grid of alpha (or mu): NAME.sweep-alpha.jsonl "
                                  "(NAME.sweep-mu.jsonl) and a PNG plot");
   cmd->add_option("BOUNDARY", r->boundary, "boundary JSON file (docs/formats.md)")->required();
-  const std::map<std::string, SweepParameter> parameters = {{"alpha", SweepParameter::kAlpha}, {"mu", SweepParameter::kMu}};
+  const std::map<std::string, SweepParameter> parameters = {{"alpha", SweepParameter::kAlpha},
+                                                            {"mu", SweepParameter::kMu}};
   cmd->add_option("--parameter", r->parameter, "alpha or mu")
       ->transform(CLI::CheckedTransformer(parameters))
       ->default_str("alpha");
@@ -115,10 +125,12 @@ void register_sweep(CLI::App& app, Registry& registry) {
   r->to_option = cmd->add_option("--to", r->to, "last value (mu: default 100)")->capture_default_str();
   cmd->add_option("--count", r->count, "number of values")->capture_default_str();
   cmd->add_option("--out", r->out_dir, "output folder: NAME.sweep-PARAMETER.jsonl and .png")->capture_default_str();
-  cmd->add_option("--target", r->target, "also report the rms distance to a target (as in search-alpha; default: "
+  cmd->add_option("--target", r->target,
+                  "also report the rms distance to a target (as in search-alpha; default: "
                   "the boundary file's \"target\")");
   cmd->add_option("--samples", r->samples, "target: samples per direction")->capture_default_str();
-  cmd->add_option("--corner-tolerance", r->corner_tolerance, "corners must agree to this fraction of the bounding-box diagonal")
+  cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                  "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
   add_solver_option(*cmd, r->solver);
   add_memory_option(*cmd, r->global);

@@ -3,11 +3,9 @@
 // line"), the field and the reason, print nothing on standard output and leave no file in the
 // output folder.
 #include <catch2/catch.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <functional>
-
 #include <nlohmann/json.hpp>
 
 #include "support/fixtures.h"
@@ -29,7 +27,8 @@ struct Case {
 };
 
 std::string replace_all(std::string s, const std::string& what, const std::string& with) {
-  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size())) s.replace(at, what.size(), with);
+  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size()))
+    s.replace(at, what.size(), with);
   return s;
 }
 
@@ -54,7 +53,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   inputs.write("empty.json", "");
   inputs.write("array.json", "[1, 2, 3]");
   inputs.write("inf.json",
-               "{\"bottom\":[[0,0,0],[1e999,0,0]],\"top\":[[0,1,0],[1,1,0]],\"left\":[[0,0,0],[0,1,0]],\"right\":[[1,0,0],[1,1,0]]}");
+               "{\"bottom\":[[0,0,0],[1e999,0,0]],\"top\":[[0,1,0],[1,1,0]],\"left\":[[0,0,0],[0,1,0]],\"right\":[[1,0,"
+               "0],[1,1,0]]}");
   fs::create_directories(inputs.path / "emptyfolder");
   inputs.write("notafolder", "x");
   const std::string notop = write_variant("notop.json", [](json& d) { d.erase("top"); });
@@ -216,6 +216,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
     CHECK(std::distance(fs::directory_iterator(out_dir.path), fs::directory_iterator()) == 1);
     ++per_command[c.args.substr(0, c.args.find(' '))];
   }
-  for (const char* command : {"solve", "solvers", "export", "batch", "search-alpha", "sweep", "study", "refit", "surface", "join"})
+  for (const char* command :
+       {"solve", "solvers", "export", "batch", "search-alpha", "sweep", "study", "refit", "surface", "join"})
     CHECK(per_command[command] >= 1);
 }

@@ -2,16 +2,14 @@
 // exception mapped to an exit status and one `error:` line, every write checked, nothing
 // overwritten or half-written, names that are data, sizes checked before memory is taken,
 // contradictory options refused, reruns byte-identical apart from the timing block.
-#include <catch2/catch.hpp>
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <thread>
-
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
+#include <thread>
 
 #include "support/fixtures.h"
 
@@ -182,18 +180,22 @@ TEST_CASE("coons: output names carry what distinguishes them", "[cli][loud]") {
   TempDir dir;
   // two α that agree to three digits give two files
   const std::string out = dir.file("batch");
-  REQUIRE(run_command(kCoons + " batch " + q(dome()) + " --alphas -0.1 -0.1004 --samples 3 --out " + q(out)).status == 0);
+  REQUIRE(run_command(kCoons + " batch " + q(dome()) + " --alphas -0.1 -0.1004 --samples 3 --out " + q(out)).status ==
+          0);
   CHECK(fs::exists(fs::path(out) / "dome-3x3" / "alpha-0.1.json"));
   CHECK(fs::exists(fs::path(out) / "dome-3x3" / "alpha-0.1004.json"));
-  check_refused(run_command(kCoons + " batch " + q(dome()) + " --alphas -0.1 -0.1 --out " + q(dir.file("twice"))), "twice");
+  check_refused(run_command(kCoons + " batch " + q(dome()) + " --alphas -0.1 -0.1 --out " + q(dir.file("twice"))),
+                "twice");
   // three boundaries named dome at different degrees, and two at the same degree
   const std::string at4 = dir.file("dome4.json"), at6 = dir.file("dome6.json");
   REQUIRE(run_command(kCoons + " refit " + q(dome()) + " --degree 4 4 --out " + q(at4)).status == 0);
   REQUIRE(run_command(kCoons + " refit " + q(dome()) + " --degree 6 6 --out " + q(at6)).status == 0);
   const std::string three = dir.file("three");
   REQUIRE(run_command(kCoons + " batch " + q(dome()) + " " + q(at4) + " " + q(at6) + " " + q(dome()) +
-                      " --alphas 0 --samples 3 --out " + q(three)).status == 0);
-  for (const char* folder : {"dome-3x3", "dome-4x4", "dome-6x6", "dome-3x3-2"}) CHECK(fs::is_directory(fs::path(three) / folder));
+                      " --alphas 0 --samples 3 --out " + q(three))
+              .status == 0);
+  for (const char* folder : {"dome-3x3", "dome-4x4", "dome-6x6", "dome-3x3-2"})
+    CHECK(fs::is_directory(fs::path(three) / folder));
   // an α sweep and a μ sweep
   const std::string sweeps = dir.file("sweeps");
   REQUIRE(run_command(kCoons + " sweep " + q(dome()) + " --count 3 --out " + q(sweeps)).status == 0);
@@ -204,8 +206,15 @@ TEST_CASE("coons: output names carry what distinguishes them", "[cli][loud]") {
 
 TEST_CASE("coons: names from input files never place a file outside the output folder", "[cli][loud]") {
   TempDir dir;
-  const std::vector<std::string> names = {"../escaped", "../../escaped2", "/tmp/coons-absolute-" + std::to_string(getpid()),
-                                          "a/b/c", "ctl\x01\x1b[31m\nname", std::string(1000, 'n'), "", ".", ".."};
+  const std::vector<std::string> names = {"../escaped",
+                                          "../../escaped2",
+                                          "/tmp/coons-absolute-" + std::to_string(getpid()),
+                                          "a/b/c",
+                                          "ctl\x01\x1b[31m\nname",
+                                          std::string(1000, 'n'),
+                                          "",
+                                          ".",
+                                          ".."};
   int k = 0;
   for (const std::string& name : names) {
     INFO(name);
@@ -216,7 +225,8 @@ TEST_CASE("coons: names from input files never place a file outside the output f
     CHECK(run_command(kCoons + " export " + q(file) + " --samples 3 --out " + q(out.string())).status == 0);
     CHECK(run_command(kCoons + " sweep " + q(file) + " --count 3 --out " + q(out.string())).status == 0);
     CHECK(run_command(kCoons + " batch " + q(file) + " --alphas 0 --samples 3 --out " + q(out.string())).status == 0);
-    CHECK(run_command(kCoons + " study " + q(file) + " --degrees 3 4 --out " + q((out / "study").string())).status == 0);
+    CHECK(run_command(kCoons + " study " + q(file) + " --degrees 3 4 --out " + q((out / "study").string())).status ==
+          0);
     for (const auto& f : files_under(out)) CHECK(fs::path(f).begin()->string() != "..");
   }
   // nothing beside the output folders and the inputs
@@ -239,7 +249,8 @@ TEST_CASE("coons: contradictory options are errors naming both", "[cli][loud]") 
       {" export " + d + " --method coons --tolerance 1e-6", {"--method", "--tolerance"}},
       {" search-alpha " + d + " --objective thin_plate --target coons", {"--target", "thin_plate"}},
       {" search-alpha " + d + " --objective thin_plate --samples 9", {"--samples", "thin_plate"}},
-      {" search-alpha " + d + " --objective thin_plate --parameter mu --allow-indefinite", {"--allow-indefinite", "mu"}},
+      {" search-alpha " + d + " --objective thin_plate --parameter mu --allow-indefinite",
+       {"--allow-indefinite", "mu"}},
   };
   for (const auto& [args, mentions] : cases) {
     INFO(args);
@@ -250,8 +261,8 @@ TEST_CASE("coons: contradictory options are errors naming both", "[cli][loud]") 
 }
 
 TEST_CASE("coons solve: a failing solver prints its report and one error line (exit 3)", "[cli][loud]") {
-  const CommandResult r = run_command(kCoons + " solve " + q(kData + "/boundaries/helicoid.json") +
-                                      " --solver jacobi --max-iterations 3");
+  const CommandResult r =
+      run_command(kCoons + " solve " + q(kData + "/boundaries/helicoid.json") + " --solver jacobi --max-iterations 3");
   CHECK(r.status == 3);
   const json report = json::parse(r.out);
   CHECK(report["solver"]["status"] != "success");
@@ -297,7 +308,8 @@ TEST_CASE("coons: sizes are checked before memory is taken", "[cli][loud]") {
 TEST_CASE("coons solve: reruns are byte-identical apart from the timing block and solver seconds", "[cli][loud]") {
   for (const char* solver : {"eigen-ldlt", "fast", "auto"}) {
     INFO(solver);
-    const std::string cmd = kCoons + " solve " + q(kData + "/boundaries/helicoid.json") + " --alpha -0.1 --solver " + solver;
+    const std::string cmd =
+        kCoons + " solve " + q(kData + "/boundaries/helicoid.json") + " --alpha -0.1 --solver " + solver;
     const CommandResult a = run_command(cmd), b = run_command(cmd);
     if (a.status == 2) continue;  // a backend left out of this build
     REQUIRE(a.status == 0);
@@ -367,7 +379,8 @@ TEST_CASE("coons: progress with named phases on a terminal, nothing on standard 
     return;
   }
   // under a pseudo-terminal (script) standard error is a terminal: the phases are shown
-  const CommandResult tty = run_command("script -qec " + q(kCoons + " solve " + dome() + " --solver eigen-ldlt") + " /dev/null");
+  const CommandResult tty =
+      run_command("script -qec " + q(kCoons + " solve " + dome() + " --solver eigen-ldlt") + " /dev/null");
   CHECK(tty.status == 0);
   CHECK_THAT(tty.out, Catch::Contains("coons solve: read") && Catch::Contains("coons solve: solve") &&
                           Catch::Contains("coons solve: metrics"));

@@ -1,12 +1,12 @@
 // Output files: staged, checked, published together or not at all, only inside their folder
 // (coons/io/write_files.h).
-#include <catch2/catch.hpp>
+#include "coons/io/write_files.h"
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 
 #include "coons/io/input_error.h"
-#include "coons/io/write_files.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -35,7 +35,8 @@ TEST_CASE("safe_file_stem: names are data, never paths", "[io]") {
   CHECK(safe_file_stem("Kegel \xC3\xBC") == "Kegel_\xC3\xBC");  // UTF-8 letters stay
   CHECK(safe_file_stem("bad \xFF\xFE") == "bad___");            // invalid UTF-8 does not
   CHECK(safe_file_stem(std::string(1000, 'x')).size() == 80);
-  for (const std::string& name : std::vector<std::string>{"../escaped", "/tmp/x", "a/b", std::string(1, '\0') + "x", std::string(1000, '/')}) {
+  for (const std::string& name :
+       std::vector<std::string>{"../escaped", "/tmp/x", "a/b", std::string(1, '\0') + "x", std::string(1000, '/')}) {
     const std::string stem = safe_file_stem(name);
     CHECK(stem.find('/') == std::string::npos);
     CHECK(stem != "..");

@@ -2,7 +2,6 @@
 // only itself and the layers below it (the same as its CMake target links), solvers/ includes no
 // coons header but the generated config, and nothing in the library includes the command line.
 #include <catch2/catch.hpp>
-
 #include <filesystem>
 #include <fstream>
 #include <map>

@@ -1,9 +1,8 @@
 // The degree law α* + 1/4 ≈ c/n² (coons/study/degree_law.h).
-#include <catch2/catch.hpp>
-
-#include <cmath>
-
 #include "coons/study/degree_law.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
 
 using namespace coons;
 

@@ -1,13 +1,13 @@
 // The α study as a library (coons/study/study.h): entries, kinds and reference tables without the CLI.
-#include <catch2/catch.hpp>
+#include "coons/study/study.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "coons/study/provenance.h"
 #include "coons/study/report_markdown.h"
-#include "coons/study/study.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -43,7 +43,8 @@ TEST_CASE("run_study: two boundaries made in code give their shape, degree-law a
   CHECK(r.shapes[0].optima[0].objective == "thin_plate");
   CHECK(r.shapes[0].curves.size() == 41);
   // the Coons value is the objective at α = −1/4: thin plate of the discrete Coons net
-  CHECK(r.shapes[0].optima[0].coons == Approx(thin_plate_energy(discrete_coons_net(inputs[0].boundary))).epsilon(1e-10));
+  CHECK(r.shapes[0].optima[0].coons ==
+        Approx(thin_plate_energy(discrete_coons_net(inputs[0].boundary))).epsilon(1e-10));
   // the degree law: "smooth" (3×3) is elevated to 4 and 6; "wide" (4×3) to 4 and 6 as well
   REQUIRE(r.laws.size() == 4);
   CHECK(r.laws[0].boundary == "smooth");

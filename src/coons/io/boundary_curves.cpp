@@ -1,6 +1,7 @@
 #include "boundary_curves.h"
 
 #include <fmt/format.h>
+
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"

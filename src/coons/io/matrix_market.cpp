@@ -1,12 +1,12 @@
 #include "matrix_market.h"
 
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
 #include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
-#include <fmt/ostream.h>
 #include <unsupported/Eigen/SparseExtra>
 
 #include "coons/io/input_error.h"
@@ -65,7 +65,8 @@ Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
     throw InputError(path, "header", "expected '%%MatrixMarket matrix array real general'");
   std::ifstream in(path);
   std::string line;
-  while (std::getline(in, line) && (line.empty() || line[0] == '%')) {}
+  while (std::getline(in, line) && (line.empty() || line[0] == '%')) {
+  }
   std::istringstream size_line(line);
   Eigen::Index rows = -1, cols = -1;
   if (!(size_line >> rows >> cols) || rows < 0 || cols < 0)

@@ -6,11 +6,10 @@
 // published only when complete (write_files.h).
 #pragma once
 
-#include <ostream>
-#include <string>
-
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <ostream>
+#include <string>
 
 namespace coons {
 

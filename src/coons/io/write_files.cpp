@@ -1,5 +1,8 @@
 #include "write_files.h"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
 #include <atomic>
 #include <cctype>
 #include <cerrno>
@@ -7,9 +10,6 @@
 #include <cstring>
 #include <filesystem>
 #include <fstream>
-
-#include <fmt/format.h>
-#include <unistd.h>
 
 #include "coons/io/input_error.h"
 
@@ -29,10 +29,10 @@ size_t utf8_letter(std::string_view s, size_t i) {
   if (len == 0 || i + len > s.size()) return 0;
   for (size_t k = 1; k < len; ++k)
     if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
-  if (len == 2 && c == 0xC2 && static_cast<unsigned char>(s[i + 1]) < 0xA0) return 0;  // C1 controls
-  if (len == 3 && c == 0xE0 && static_cast<unsigned char>(s[i + 1]) < 0xA0) return 0;  // overlong
+  if (len == 2 && c == 0xC2 && static_cast<unsigned char>(s[i + 1]) < 0xA0) return 0;   // C1 controls
+  if (len == 3 && c == 0xE0 && static_cast<unsigned char>(s[i + 1]) < 0xA0) return 0;   // overlong
   if (len == 3 && c == 0xED && static_cast<unsigned char>(s[i + 1]) >= 0xA0) return 0;  // surrogates
-  if (len == 4 && c == 0xF0 && static_cast<unsigned char>(s[i + 1]) < 0x90) return 0;  // overlong
+  if (len == 4 && c == 0xF0 && static_cast<unsigned char>(s[i + 1]) < 0x90) return 0;   // overlong
   if (len == 4 && c == 0xF4 && static_cast<unsigned char>(s[i + 1]) >= 0x90) return 0;  // > U+10FFFF
   return len;
 }

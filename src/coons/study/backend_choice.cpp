@@ -16,9 +16,9 @@ const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, 
     return *solvers::find_solver("eigen-lu");
   }
   if (indefinite && requested->definite_only)
-    throw InputError("command line", "--solver",
-                     requested->name +
-                         " needs a positive definite system; bounds outside [-0.25, 0.25] need another solver");
+    throw InputError(
+        "command line", "--solver",
+        requested->name + " needs a positive definite system; bounds outside [-0.25, 0.25] need another solver");
   return *requested;
 }
 

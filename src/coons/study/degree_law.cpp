@@ -15,8 +15,8 @@ std::optional<DegreeLawFit> fit_degree_law(const std::vector<std::pair<int, doub
   DegreeLawFit fit;
   fit.c = num / den;
   for (auto [d, a] : optima)
-    fit.misfit = std::max(fit.misfit,
-                          std::abs((a + 0.25) - fit.c / (double(d) * d)) / std::max(std::abs(a + 0.25), 1e-300));
+    fit.misfit =
+        std::max(fit.misfit, std::abs((a + 0.25) - fit.c / (double(d) * d)) / std::max(std::abs(a + 0.25), 1e-300));
   return fit;
 }
 

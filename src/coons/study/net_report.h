@@ -3,9 +3,8 @@
 // batch.
 #pragma once
 
-#include <optional>
-
 #include <nlohmann/json.hpp>
+#include <optional>
 
 #include "coons/mask/mask9.h"
 #include "coons/net/control_net.h"

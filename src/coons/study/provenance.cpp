@@ -1,10 +1,10 @@
 #include "provenance.h"
 
-#include <ctime>
-
-#include <Eigen/Core>
 #include <ceres/version.h>
 #include <fmt/format.h>
+
+#include <Eigen/Core>
+#include <ctime>
 
 #include "coons/config.h"
 #include "coons/study/build_info.h"

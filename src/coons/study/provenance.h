@@ -10,9 +10,9 @@ namespace coons {
 
 struct Provenance {
   std::string command_line;
-  std::string date;         //!< e.g. 2026-11-22T16:17:09Z
-  std::string version;      //!< coons's version
-  std::string git_revision; //!< empty when the build was configured outside a git checkout
+  std::string date;          //!< e.g. 2026-11-22T16:17:09Z
+  std::string version;       //!< coons's version
+  std::string git_revision;  //!< empty when the build was configured outside a git checkout
   std::string eigen_version, ceres_version;
 };
 

@@ -10,9 +10,12 @@ using nlohmann::json;
 
 const char* to_string(SearchParameter p) {
   switch (p) {
-    case SearchParameter::kMu: return "mu";
-    case SearchParameter::kAlphaGamma: return "alpha-gamma";
-    case SearchParameter::kAlpha: break;
+    case SearchParameter::kMu:
+      return "mu";
+    case SearchParameter::kAlphaGamma:
+      return "alpha-gamma";
+    case SearchParameter::kAlpha:
+      break;
   }
   return "alpha";
 }
@@ -48,8 +51,10 @@ json search_report(const Boundary& b, const std::string& objective, SearchParame
   out["alpha"] = alpha ? json(*alpha) : json(nullptr);
   out["mu"] = mu ? json(*mu) : json(nullptr);
   out["value"] = number_or_null(s.value);
-  if (by_mu) out["bounds"] = {mu_of_compressed(b.m, b.n, options.lower), mu_of_compressed(b.m, b.n, options.upper)};
-  else out["bounds"] = {options.lower, options.upper};
+  if (by_mu)
+    out["bounds"] = {mu_of_compressed(b.m, b.n, options.lower), mu_of_compressed(b.m, b.n, options.upper)};
+  else
+    out["bounds"] = {options.lower, options.upper};
   out["flat"] = s.flat;
   out["at_bound"] = s.at_bound;
   out["evaluations"] = s.evaluations;
@@ -66,12 +71,22 @@ json search_report(const Boundary& b, const std::string& objective, SearchParame
 
 json alpha_gamma_report(const Boundary& b, const std::string& objective, const AlphaSearchOptions& options,
                         const AlphaGammaSummary& g) {
-  json out = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"objective", objective}, {"parameter", "alpha-gamma"},
-              {"alpha", g.flat ? json(nullptr) : json(g.alpha)}, {"gamma", g.flat ? json(nullptr) : json(g.gamma)},
+  json out = {{"boundary", b.name},
+              {"degree", {b.m, b.n}},
+              {"objective", objective},
+              {"parameter", "alpha-gamma"},
+              {"alpha", g.flat ? json(nullptr) : json(g.alpha)},
+              {"gamma", g.flat ? json(nullptr) : json(g.gamma)},
               {"beta_ij", g.flat ? json(nullptr) : json({0.25 - g.alpha + g.gamma, 0.25 - g.alpha - g.gamma})},
-              {"mu", nullptr}, {"value", number_or_null(g.value)}, {"value_at_gamma0", number_or_null(g.value_at_gamma0)},
-              {"bounds", {options.lower, options.upper}}, {"flat", g.flat}, {"at_bound", false},
-              {"evaluations", g.evaluations}, {"solves", g.solves}, {"status", to_string(g.status)}};
+              {"mu", nullptr},
+              {"value", number_or_null(g.value)},
+              {"value_at_gamma0", number_or_null(g.value_at_gamma0)},
+              {"bounds", {options.lower, options.upper}},
+              {"flat", g.flat},
+              {"at_bound", false},
+              {"evaluations", g.evaluations},
+              {"solves", g.solves},
+              {"status", to_string(g.status)}};
   if (!g.message.empty()) out["message"] = g.message;
   return out;
 }

@@ -2,9 +2,8 @@
 // α, β and μ, the value, bounds, flat / at_bound, the scan and the solver block.
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/net/control_net.h"

@@ -1,8 +1,8 @@
 #include "study.h"
 
-#include <map>
-
 #include <fmt/format.h>
+
+#include <map>
 
 #include "coons/io/boundary_curves.h"
 #include "coons/io/input_error.h"
@@ -105,7 +105,8 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
     ShapeEntry shape{in.file, b, solver.name, options.solver == nullptr, {}, {}, {}};
     std::optional<double> alpha_tp;
     for (const Objective& objective : objectives) {
-      MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, solver);
+      MaskObjective f(
+          b, objective, [](double a) { return alpha_family(a); }, solver);
       ShapeOptimum o;
       o.objective = objective.name;
       o.alpha = search_alpha(b, objective, solver);
@@ -115,8 +116,8 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
       if (objective.name == "thin_plate" && o.alpha.parameter && !o.alpha.flat) alpha_tp = o.alpha.parameter;
       shape.optima.push_back(std::move(o));
     }
-    shape.curves = run_sweep(b, linspace(-0.25, 0.25, options.curve_points), [](double a) { return alpha_family(a); },
-                             solver, in.target);
+    shape.curves = run_sweep(
+        b, linspace(-0.25, 0.25, options.curve_points), [](double a) { return alpha_family(a); }, solver, in.target);
     shape.pictures = {{"Coons (α = −1/4)", discrete_coons_net(b)},
                       {"Laplace (α = 0)", solve_mask_net(b, alpha_mask(0), solver).net}};
     if (alpha_tp)
@@ -181,17 +182,25 @@ json study_results_json(const StudyResult& r) {
       failed = failed || o.alpha.status == SearchStatus::kSolverFailed || o.mu.status == SearchStatus::kSolverFailed;
       solves += o.alpha.solves + o.mu.solves;
     }
-    entry["solver"] = {{"name", shape.solver}, {"status", failed ? "failed" : "success"}, {"iterations", solves},
+    entry["solver"] = {{"name", shape.solver},
+                       {"status", failed ? "failed" : "success"},
+                       {"iterations", solves},
                        {"relative_residual", nullptr}};
     if (shape.solver_picked_automatically) entry["solver"]["picked_by"] = "auto";
     for (const ShapeOptimum& o : shape.optima) {
       const AlphaSearchSummary& s = o.alpha;
       const AlphaSearchSummary& mu = o.mu;
-      entry[o.objective] = {{"alpha", optional_number(s.parameter)}, {"value", number_or_null(s.value)},
-                            {"flat", s.flat}, {"at_bound", s.at_bound}, {"local_minima", s.local_minima},
-                            {"coons", number_or_null(o.coons)}, {"laplace", number_or_null(o.laplace)},
-                            {"mu", optional_number(mu.parameter)}, {"mu_flat", mu.flat},
-                            {"mu_at_bound", mu.at_bound}, {"mu_local_minima", mu.local_minima},
+      entry[o.objective] = {{"alpha", optional_number(s.parameter)},
+                            {"value", number_or_null(s.value)},
+                            {"flat", s.flat},
+                            {"at_bound", s.at_bound},
+                            {"local_minima", s.local_minima},
+                            {"coons", number_or_null(o.coons)},
+                            {"laplace", number_or_null(o.laplace)},
+                            {"mu", optional_number(mu.parameter)},
+                            {"mu_flat", mu.flat},
+                            {"mu_at_bound", mu.at_bound},
+                            {"mu_local_minima", mu.local_minima},
                             {"status", to_string(s.status)}};
     }
     results.push_back(std::move(entry));
@@ -199,13 +208,18 @@ json study_results_json(const StudyResult& r) {
   for (const DegreeLawEntry& law : r.laws) {
     json by_degree = json::array();
     for (const DegreeCell& c : law.cells)
-      by_degree.push_back({{"degree", c.degree}, {"alpha", optional_number(c.alpha.parameter)},
-                           {"flat", c.alpha.flat}, {"at_bound", c.alpha.at_bound},
-                           {"local_minima", c.alpha.local_minima}, {"status", to_string(c.alpha.status)},
-                           {"mu", optional_number(c.mu.parameter)}, {"mu_flat", c.mu.flat},
-                           {"mu_at_bound", c.mu.at_bound}, {"mu_status", to_string(c.mu.status)}});
-    json entry = {{"kind", "degree_law"}, {"boundary", law.boundary}, {"objective", law.objective},
-                  {"by_degree", by_degree}};
+      by_degree.push_back({{"degree", c.degree},
+                           {"alpha", optional_number(c.alpha.parameter)},
+                           {"flat", c.alpha.flat},
+                           {"at_bound", c.alpha.at_bound},
+                           {"local_minima", c.alpha.local_minima},
+                           {"status", to_string(c.alpha.status)},
+                           {"mu", optional_number(c.mu.parameter)},
+                           {"mu_flat", c.mu.flat},
+                           {"mu_at_bound", c.mu.at_bound},
+                           {"mu_status", to_string(c.mu.status)}});
+    json entry = {
+        {"kind", "degree_law"}, {"boundary", law.boundary}, {"objective", law.objective}, {"by_degree", by_degree}};
     if (law.fit) {
       entry["c"] = number_or_null(law.fit->c);
       entry["misfit"] = number_or_null(law.fit->misfit);
@@ -220,8 +234,10 @@ json study_results_json(const StudyResult& r) {
   for (const ReferenceTable& t : r.references) {
     json rows = json::array();
     for (const ReferenceRow& row : t.rows)
-      rows.push_back({{"alpha", row.alpha}, {"center_z", number_or_null(row.center_z)},
-                      {"thin_plate", number_or_null(row.thin_plate)}, {"dirichlet", number_or_null(row.dirichlet)},
+      rows.push_back({{"alpha", row.alpha},
+                      {"center_z", number_or_null(row.center_z)},
+                      {"thin_plate", number_or_null(row.thin_plate)},
+                      {"dirichlet", number_or_null(row.dirichlet)},
                       {"rms_target", number_or_null(row.rms_target)}});
     const AlphaSearchSummary& s = t.best;
     results.push_back({{"kind", "reference_table"},
@@ -229,8 +245,11 @@ json study_results_json(const StudyResult& r) {
                        {"degree", {t.m, t.n}},
                        {"rows", rows},
                        {"best_fit",
-                        {{"alpha", optional_number(s.parameter)}, {"rms_target", number_or_null(s.value)},
-                         {"flat", s.flat}, {"at_bound", s.at_bound}, {"local_minima", s.local_minima},
+                        {{"alpha", optional_number(s.parameter)},
+                         {"rms_target", number_or_null(s.value)},
+                         {"flat", s.flat},
+                         {"at_bound", s.at_bound},
+                         {"local_minima", s.local_minima},
                          {"status", to_string(s.status)}}},
                        {"coons_rms_target", number_or_null(t.coons_rms)},
                        {"coons_over_best", s.value > 0 ? number_or_null(t.coons_rms / s.value) : json(nullptr)}});

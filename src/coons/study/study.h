@@ -9,12 +9,11 @@
 #pragma once
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/objective.h"
@@ -28,7 +27,7 @@ namespace coons {
 
 //! One boundary of the study, read and checked before anything is computed.
 struct StudyInput {
-  std::string file;                          //!< as given (recorded in results.json)
+  std::string file;  //!< as given (recorded in results.json)
   Boundary boundary;
   std::optional<std::vector<Curve>> curves;  //!< analytic sides: refitted at each degree
   std::optional<Target> target;              //!< reference table and best-fit α
@@ -38,10 +37,10 @@ struct StudyInput {
 StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& options = {});
 
 struct StudyOptions {
-  std::vector<int> degrees = {3, 4, 6, 8, 12, 16};        //!< each in [2, 200], increasing
-  std::vector<Objective> objectives;                       //!< empty: thin_plate and e3
-  const solvers::SolverInfo* solver = nullptr;             //!< nullptr: auto, per boundary and degree
-  int curve_points = 41;                                   //!< α values of the energy curves
+  std::vector<int> degrees = {3, 4, 6, 8, 12, 16};  //!< each in [2, 200], increasing
+  std::vector<Objective> objectives;                //!< empty: thin_plate and e3
+  const solvers::SolverInfo* solver = nullptr;      //!< nullptr: auto, per boundary and degree
+  int curve_points = 41;                            //!< α values of the energy curves
   std::vector<double> reference_alphas = {-0.25, -0.2, -0.1, 0.0};
 
   bool is_valid(std::string* why) const;
@@ -52,15 +51,15 @@ std::vector<Objective> default_study_objectives();
 
 struct ShapeOptimum {  //!< one objective at the shape's own degree
   std::string objective;
-  AlphaSearchSummary alpha;  //!< α*
-  AlphaSearchSummary mu;     //!< μ* (parameter in μ units); not searched when m or n is 1
+  AlphaSearchSummary alpha;       //!< α*
+  AlphaSearchSummary mu;          //!< μ* (parameter in μ units); not searched when m or n is 1
   double coons = 0, laplace = 0;  //!< the objective at α = −1/4 and α = 0
 };
 
 struct ShapeEntry {
   std::string file;
   Boundary boundary;
-  std::string solver;            //!< the backend of its searches
+  std::string solver;  //!< the backend of its searches
   bool solver_picked_automatically = false;
   std::vector<ShapeOptimum> optima;
   std::vector<SweepRow> curves;                              //!< energies on the α grid

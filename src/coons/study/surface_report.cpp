@@ -26,7 +26,9 @@ json energies_json(const ControlNet& net) {
 
 double max_difference(const ControlNet& a, const ControlNet& b) { return (a.points - b.points).cwiseAbs().maxCoeff(); }
 
-json point_json(const Eigen::RowVector3d& p) { return json::array({number_or_null(p(0)), number_or_null(p(1)), number_or_null(p(2))}); }
+json point_json(const Eigen::RowVector3d& p) {
+  return json::array({number_or_null(p(0)), number_or_null(p(1)), number_or_null(p(2))});
+}
 
 double finite_max(const Eigen::VectorXd& x, bool absolute) {
   double m = 0;
@@ -100,7 +102,8 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
   discrete["coons"] = {{"max_difference", max_difference(net, coons)}, {"energies", energies_json(coons)}};
   if (net.m >= 3 && net.n >= 3) {
     const ControlNet hermite = hermite_coons_net(boundary);
-    discrete["hermite_coons"] = {{"max_difference", max_difference(net, hermite)}, {"energies", energies_json(hermite)}};
+    discrete["hermite_coons"] = {{"max_difference", max_difference(net, hermite)},
+                                 {"energies", energies_json(hermite)}};
   }
   report["discrete_nets"] = std::move(discrete);
 
@@ -116,7 +119,8 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
     json conditions = json::array();
     double worst_position = 0, worst_derivative = 0;
     for (const auto& c : input.conditions) {
-      conditions.push_back({{"field", c.field}, {"corner", c.corner}, {"condition", c.condition}, {"gap", number_or_null(c.gap)}});
+      conditions.push_back(
+          {{"field", c.field}, {"corner", c.corner}, {"condition", c.condition}, {"gap", number_or_null(c.gap)}});
       double& worst = c.order == 0 ? worst_position : worst_derivative;
       worst = std::max(worst, c.gap);
     }

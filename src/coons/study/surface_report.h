@@ -5,10 +5,9 @@
 // the distance field (docs/formats.md "Curves and surfaces").
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "coons/io/surface_io.h"
 #include "coons/surfaces/sampling.h"
@@ -17,11 +16,11 @@
 namespace coons {
 
 struct SurfaceReportOptions {
-  int samples = 21;                   //!< K ≥ 2
-  int fit_degree = 5;                 //!< largest degree of the Bézier fits of non-Bézier curves
-  double corner_tolerance = 1e-9;     //!< as read (reported with the compatibility diagnostics)
+  int samples = 21;                //!< K ≥ 2
+  int fit_degree = 5;              //!< largest degree of the Bézier fits of non-Bézier curves
+  double corner_tolerance = 1e-9;  //!< as read (reported with the compatibility diagnostics)
   double derivative_tolerance = 1e-7;
-  std::string reference_file;         //!< named in the report when there is a reference
+  std::string reference_file;  //!< named in the report when there is a reference
 };
 
 struct SurfaceReport {

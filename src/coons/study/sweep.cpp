@@ -1,9 +1,9 @@
 #include "sweep.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
-
-#include <fmt/format.h>
 
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
@@ -80,15 +80,18 @@ json sweep_line(const Boundary& b, SweepParameter parameter, const SweepRow& row
   json line = metrics_to_json(row.metrics);
   line[name] = row.parameter;
   if (parameter != SweepParameter::kAlpha) line["alpha"] = row.mask.diag;
-  if (row.mask.edge_i == row.mask.edge_j) line["beta"] = row.mask.edge_i;
-  else line["beta_ij"] = {row.mask.edge_i, row.mask.edge_j};
+  if (row.mask.edge_i == row.mask.edge_j)
+    line["beta"] = row.mask.edge_i;
+  else
+    line["beta_ij"] = {row.mask.edge_i, row.mask.edge_j};
   if (parameter == SweepParameter::kAlpha) {
     const auto mu = mu_of_alpha(b, row.parameter);
     line["mu"] = mu ? json(*mu) : json(nullptr);
   }
   line["status"] = solvers::to_string(row.summary.status);
   if (!row.summary.ok())
-    line = json{{name, row.parameter}, {"status", solvers::to_string(row.summary.status)}, {"message", row.summary.message}};
+    line = json{
+        {name, row.parameter}, {"status", solvers::to_string(row.summary.status)}, {"message", row.summary.message}};
   if (row.rms_target && row.summary.ok()) line["rms_target"] = *row.rms_target;
   line["solver"] = summary_to_json(row.summary);
   return line;
@@ -100,8 +103,10 @@ std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter
     const char* name;
     double NetMetrics::*field;
   };
-  const Curve curves[] = {{"thin plate", &NetMetrics::thin_plate_energy}, {"E3", &NetMetrics::e3_energy},
-                          {"twist", &NetMetrics::twist_energy}, {"Dirichlet", &NetMetrics::dirichlet_energy}};
+  const Curve curves[] = {{"thin plate", &NetMetrics::thin_plate_energy},
+                          {"E3", &NetMetrics::e3_energy},
+                          {"twist", &NetMetrics::twist_energy},
+                          {"Dirichlet", &NetMetrics::dirichlet_energy}};
   std::vector<PlotSeries> series;
   PlotSeries minima{"minima", {}, {}, true};
   auto add = [&](const std::string& name, const std::vector<double>& values) {

@@ -5,11 +5,10 @@
 #pragma once
 
 #include <functional>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <nlohmann/json.hpp>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/objective.h"
@@ -38,8 +37,9 @@ MaskFamily sweep_family(SweepParameter parameter, const Boundary& boundary);
 
 //! Solves the family at every parameter value; `nets` (when given) receives each net;
 //! `progress(k, count)` is called after each value.
-std::vector<SweepRow> run_sweep(const Boundary& boundary, const std::vector<double>& parameters, const MaskFamily& family,
-                                const solvers::SolverInfo& solver, const std::optional<Target>& target,
+std::vector<SweepRow> run_sweep(const Boundary& boundary, const std::vector<double>& parameters,
+                                const MaskFamily& family, const solvers::SolverInfo& solver,
+                                const std::optional<Target>& target,
                                 const std::function<void(size_t, size_t)>& progress = {},
                                 std::vector<ControlNet>* nets = nullptr);
 

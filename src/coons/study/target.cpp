@@ -1,11 +1,11 @@
 #include "target.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <sstream>
 #include <stdexcept>
 #include <vector>
-
-#include <fmt/format.h>
 
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"

@@ -4,10 +4,9 @@
 // cylinder:px,py,pz,dx,dy,dz,r | plane:px,py,pz,nx,ny,nz), both checked field by field.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json.hpp>
 
 #include "coons/alpha/objective.h"
 #include "coons/net/control_net.h"
@@ -22,7 +21,7 @@ std::optional<Target> target_from_json(const nlohmann::json& doc, const std::str
 std::optional<Target> read_boundary_target(const std::string& path, int samples = 41);
 
 //! A --target specification; an empty one means the boundary file's own target (or none).
-std::optional<Target> resolve_target(const std::string& spec, const std::string& boundary_path, const Boundary& boundary,
-                                     int samples);
+std::optional<Target> resolve_target(const std::string& spec, const std::string& boundary_path,
+                                     const Boundary& boundary, int samples);
 
 }  // namespace coons
