@@ -116,7 +116,7 @@ int run_batch(const BatchRequest& b) {
       rows.push_back(row);
       const nlohmann::json report = solve_report(boundary, r, outcome, std::nullopt);
       phases.start("write");
-      const std::string stem = folder + "/" + tag;
+      const std::string stem = fmt::format("{}/{}", folder, tag);
       out.write(stem + ".json", [&](std::ostream& o) { o << dump(report, 2) << '\n'; });
       if (ok) {
         out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, outcome.net, b.samples); });

@@ -88,7 +88,7 @@ int run_surface(const SurfaceRequest& r) {
 
   // Writing: everything staged, published together after the report is out.
   OutputSet out(".", "output");
-  json written = json::array();
+  nlohmann::ordered_json written = nlohmann::ordered_json::array();
   const std::string comment = fmt::format("{} ({})", input.name, to_string(surface.type()));
   if (!r.png.empty()) {
     const std::string title = fmt::format(

@@ -46,10 +46,7 @@ std::string safe_file_stem(std::string_view name) {
   std::string out;
   for (size_t i = 0; i < name.size() && out.size() < kMaxBytes;) {
     const auto c = static_cast<unsigned char>(name[i]);
-    if (std::isalnum(c) && c < 0x80) {
-      out += char(c);
-      ++i;
-    } else if (c == '-' || c == '_' || c == '.') {
+    if ((std::isalnum(c) && c < 0x80) || c == '-' || c == '_' || c == '.') {
       out += char(c);
       ++i;
     } else if (const size_t len = utf8_letter(name, i); len > 0) {

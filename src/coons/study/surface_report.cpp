@@ -65,17 +65,17 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
   json curves = json::object();
   for (const auto& [field, curve] : surface.curves()) curves[field] = curve->kind();
   if (!curves.empty()) report["curves"] = std::move(curves);
-  json& points = out.points;
-  points = json::array();
+  nlohmann::ordered_json& points = out.points;
+  points = nlohmann::ordered_json::array();
   for (int a = 0; a < k; ++a) {
-    json row = json::array();
-    for (int b = 0; b < k; ++b) row.push_back(point_json(samples.points.row(a * k + b)));
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
+    for (int b = 0; b < k; ++b) row.push_back(nlohmann::ordered_json(point_json(samples.points.row(a * k + b))));
     points.push_back(std::move(row));
   }
 
   // The net: exact, or over fitted curves with the deviations.
   const ControlNet& net = fitted.net;
-  json& net_block = out.net_block;
+  nlohmann::ordered_json& net_block = out.net_block;
   net_block = {{"degree", {net.m, net.n}}, {"exact", fitted.exact}};
   if (!fitted.exact) {
     net_block["fit_degree"] = fitted.fit_degree;

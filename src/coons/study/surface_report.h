@@ -24,11 +24,11 @@ struct SurfaceReportOptions {
 };
 
 struct SurfaceReport {
-  nlohmann::ordered_json report;  //!< everything but the net and the points, in reading order
-  nlohmann::json net_block;       //!< "net": degree, exactness, fits, the net itself
-  nlohmann::json points;          //!< K×K points
-  SurfaceSamples samples;         //!< for meshes
-  FittedNet fitted;               //!< for the net file and the picture
+  nlohmann::ordered_json report;     //!< everything but the net and the points, in reading order
+  nlohmann::ordered_json net_block;  //!< "net": degree, exactness, fits, the net itself
+  nlohmann::ordered_json points;     //!< K×K points
+  SurfaceSamples samples;            //!< for meshes
+  FittedNet fitted;                  //!< for the net file and the picture
 };
 
 SurfaceReport surface_report(const SurfaceFile& input, const std::optional<SurfaceFile>& reference,
