@@ -64,7 +64,7 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
   report["polynomial"] = fitted.exact;
   json curves = json::object();
   for (const auto& [field, curve] : surface.curves()) curves[field] = curve->kind();
-  if (!curves.empty()) report["curves"] = std::move(curves);
+  if (!curves.empty()) report["curves"] = curves;
   nlohmann::ordered_json& points = out.points;
   points = nlohmann::ordered_json::array();
   for (int a = 0; a < k; ++a) {
@@ -83,7 +83,7 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
     for (const auto& f : fitted.fits)
       fits.push_back({{"curve", f.curve}, {"degree", f.degree}, {"max_deviation", number_or_null(f.max_deviation)}});
     net_block["max_curve_deviation"] = number_or_null(fitted.max_curve_deviation);
-    net_block["curve_fits"] = std::move(fits);
+    net_block["curve_fits"] = fits;
     double worst = 0;
     const Eigen::MatrixX3d S = sample_surface(net, k, k);
     for (int row = 0; row < k * k; ++row) worst = std::max(worst, (S.row(row) - samples.points.row(row)).norm());
@@ -93,7 +93,7 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
 
   json metrics = energies_json(net);
   metrics["of"] = fitted.exact ? "the exact Bezier net" : "the net over the Bezier fits";
-  report["metrics"] = std::move(metrics);
+  report["metrics"] = metrics;
 
   // The closed-form discrete nets of the same boundary, in the same space.
   json discrete;
@@ -105,12 +105,12 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
     discrete["hermite_coons"] = {{"max_difference", max_difference(net, hermite)},
                                  {"energies", energies_json(hermite)}};
   }
-  report["discrete_nets"] = std::move(discrete);
+  report["discrete_nets"] = discrete;
 
   json twists = json::array();
   for (auto [u, v] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}})
     twists.push_back(point_json(surface.evaluate(u, v).duv));
-  report["corner_twists"] = std::move(twists);
+  report["corner_twists"] = twists;
   report["sampled"] = {{"max_abs_mean_curvature", finite_max(samples.mean_curvature, true)},
                        {"max_abs_gaussian_curvature", finite_max(samples.gaussian_curvature, true)},
                        {"max_twist", finite_max(samples.twist, false)}};

@@ -127,11 +127,13 @@ std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter
   };
   for (const Curve& c : curves) {
     std::vector<double> v;
+    v.reserve(rows.size());
     for (const auto& r : rows) v.push_back(r.metrics.*(c.field));
     add(c.name, v);
   }
   if (!rows.empty() && rows[0].rms_target) {
     std::vector<double> v;
+    v.reserve(rows.size());
     for (const auto& r : rows) v.push_back(r.rms_target.value_or(0));
     add("rms to target", v);
   }
