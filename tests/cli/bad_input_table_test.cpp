@@ -203,7 +203,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
     fs::create_directories(out);  // an existing, empty output folder: nothing may appear in it
     const std::string args = replace_all(replace_all(c.args, "{OUT}", out), "{IN}", inputs.path.string());
     INFO("coons " << args);
-    const CommandResult r = run_command(kCoons + " " + args);
+    const CommandResult r = run_command(std::string(kCoons).append(" ").append(args));
     INFO(r.err);
     CHECK(r.status == 2);
     CHECK(r.out.empty());

@@ -212,7 +212,7 @@ TEST_CASE("coons search-alpha: bad input gives exit 2 and one error line", "[cli
   };
   for (const auto& [args, mention] : cases) {
     INFO(args);
-    const CommandResult r = run_command(kCoons + " search-alpha " + args);
+    const CommandResult r = run_command(std::string(kCoons).append(" search-alpha ").append(args));
     CHECK(r.status == 2);
     CHECK(r.out.empty());
     CHECK(r.err.rfind("error: ", 0) == 0);

@@ -140,7 +140,7 @@ TEST_CASE("coons: a failed write to standard output is an error with the OS reas
   for (const std::string& args : {" solve " + q(dome()), " search-alpha " + q(dome()) + " --objective thin_plate",
                                   " export " + q(dome()) + " --samples 3 --out " + q(out), std::string(" solvers")}) {
     INFO(args);
-    const CommandResult r = run_command("( " + kCoons + args + " >/dev/full )");
+    const CommandResult r = run_command(std::string("( ").append(kCoons).append(args).append(" >/dev/full )"));
     CHECK(r.status == 2);
     CHECK(r.err == "error: <stdout>: write failed: No space left on device\n");
   }
@@ -152,6 +152,7 @@ TEST_CASE("coons export: eight concurrent exports to one folder and prefix publi
   const std::string out = dir.file("out");
   const int k = 40;
   std::vector<std::thread> threads;
+  threads.reserve(8);
   std::vector<int> status(8, -1);
   for (int t = 0; t < 8; ++t)
     threads.emplace_back([&, t] {
