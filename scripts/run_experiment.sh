@@ -1,25 +1,65 @@
 #!/usr/bin/env bash
-# Re-runs an experiment and rewrites its README from the run's report:
-#   bash scripts/run_experiment.sh E01_farin_hansford | E02_degree_dependence
-# The README is question.md (question and command) followed by the sections of the fresh
-# results/report.md that answer it; every number there is computed by the run.
+# Re-runs an experiment and rewrites its results and its README:
+#   bash scripts/run_experiment.sh E01_farin_hansford | E02_degree_dependence [--dry-run]
+#
+# The exact command is experiments/NAME/command: one line, the program and its arguments separated
+# by spaces (no quoting, no shell syntax). It is run directly as an argument vector, never through
+# a shell or `eval`, and it must write into experiments/NAME/results/ and nowhere else. The README
+# is question.md (which shows the same command, checked here) followed by the sections of the fresh
+# results/report.md that answer the question, and a line with the revision the run was made from
+# (`git rev-parse HEAD`). The working tree must be clean outside experiments/NAME, so that this
+# revision is what produced the numbers; COONS_ALLOW_DIRTY=1 runs anyway and says so in the README.
+# --dry-run checks the experiment (command, question, output folder) and prints the command.
 set -euo pipefail
 cd "$(dirname "$0")/.."
-name="${1:?usage: run_experiment.sh E01_farin_hansford|E02_degree_dependence}"
+name="${1:?usage: run_experiment.sh E01_farin_hansford|E02_degree_dependence [--dry-run]}"
+dry_run="${2:-}"
 dir="experiments/$name"
-[ -f "$dir/question.md" ] || { echo "error: $dir/question.md: no such experiment" >&2; exit 2; }
-bash scripts/setup.sh
-bash scripts/build.sh >/dev/null
-command=$(grep -E '^    \./build/coons ' "$dir/question.md" | sed 's/^    //')
-eval "$command" >/dev/null
+fail() { echo "error: $1" >&2; exit 2; }
+[ -f "$dir/question.md" ] || fail "$dir/question.md: no such experiment"
+[ -f "$dir/command" ] || fail "$dir/command: missing (the experiment's exact command, one line)"
+
+# The command as an argument vector: words separated by spaces, nothing a shell would interpret.
+line=$(grep -v '^[[:space:]]*\(#\|$\)' "$dir/command")
+[ "$(printf '%s\n' "$line" | wc -l)" -eq 1 ] || fail "$dir/command: must hold exactly one command line"
+case "$line" in
+  *[\;\&\|\<\>\$\`\"\'\\\(\)\*\?\~]*) fail "$dir/command: only plain words are allowed (no quotes, globs or shell syntax)" ;;
+esac
+read -r -a argv <<< "$line"
+[ "${argv[0]}" = "./build/coons" ] || fail "$dir/command: must run ./build/coons, not ${argv[0]}"
+out=""
+for ((k = 1; k < ${#argv[@]}; ++k)); do
+  if [ "${argv[k]}" = "--out" ] && [ $((k + 1)) -lt ${#argv[@]} ]; then out="${argv[k + 1]}"; fi
+done
+[ "$out" = "$dir/results" ] || fail "$dir/command: must write to --out $dir/results (it writes to '${out:-nowhere}')"
+grep -qxF "    $line" "$dir/question.md" || fail "$dir/question.md: does not show the command of $dir/command"
+
 case "$name" in
   E01_*) sections='^## (1|3)\.' ;;
   E02_*) sections='^## 2\.' ;;
+  *) fail "$name: no sections chosen for its README (edit scripts/run_experiment.sh)" ;;
 esac
+
+if [ "$dry_run" = "--dry-run" ]; then
+  printf 'would run:'; printf ' %s' "${argv[@]}"; printf '\n'
+  exit 0
+fi
+
+revision=$(git rev-parse HEAD)
+note=""
+if [ -n "$(git status --porcelain --untracked-files=no -- . ":(exclude)$dir")" ]; then
+  [ "${COONS_ALLOW_DIRTY:-}" = "1" ] || fail "the working tree has changes outside $dir: commit them first (or COONS_ALLOW_DIRTY=1)"
+  note=" plus uncommitted changes"
+fi
+
+bash scripts/setup.sh
+bash scripts/build.sh >/dev/null
+"${argv[@]}" >/dev/null
+
 {
   cat "$dir/question.md"
-  echo "**Result** ($(date -u +%Y-%m-%d), $(nproc) cores; the full report is [results/report.md](results/report.md)):"
+  echo "**Result** ($(date -u +%Y-%m-%d), $(nproc) cores, made from revision \`$revision\`$note; the full report is [results/report.md](results/report.md)):"
   echo
   awk -v pat="$sections" '/^## /{keep = ($0 ~ pat)} keep' "$dir/results/report.md" | sed 's#(figures/#(results/figures/#g'
 } > "$dir/README.md"
-echo "wrote $dir/README.md"
+echo "wrote $dir/results/ and $dir/README.md (revision $revision$note)"

@@ -20,6 +20,9 @@ packages=(
   libboost-dev                  # Brent's minimiser, the independent check of the alpha search
   gnuplot-nox                   # PNG plots of reports and benchmarks
   python3                       # benchmark tables (scripts/bench_report.py, standard library only)
+  python3-jsonschema            # the documentation checks: data files against docs/schema/ (scripts/check_docs.py)
+  clang libclang-rt-14-dev      # libFuzzer and clang's sanitizer runtimes: scripts/fuzz.sh (run by .ci/run)
+  clang-format clang-tidy       # the style checks of .ci/run: scripts/format.sh --check, scripts/tidy.sh
 )
 
 missing=()

@@ -1,7 +1,6 @@
 // dst: X = S (S B ./ λ) / (2(rows+1)·2(cols+1)), S the 2-D DST-I (FFTW RODFT00 × RODFT00).
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
 // J. ACM 12 (1965); eigenvalues from G. Farin & D. Hansford, Discrete Coons patches, CAGD 16 (1999).
-#include <chrono>
 #include <cmath>
 #include <string>
 #include <vector>
@@ -15,11 +14,6 @@ namespace coons::solvers {
 namespace {
 
 using detail::AlignedBuffer;
-using detail::structured_grid;
-
-double seconds_since(std::chrono::steady_clock::time_point start) {
-  return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-}
 
 // o = σ·tb + l·τ + r·τ' (then ∘ inv when given): one row of the ring right-hand side's transform.
 COONS_VECTOR_CLONES void ring_row(double sigma, const double* __restrict tb, double l,
@@ -58,29 +52,29 @@ class FftwPlan {
   fftw_plan plan_ = nullptr;
 };
 
-class DstSolver : public LinearSolver {
+class DstSolver : public detail::StructuredSolver {
  public:
-  explicit DstSolver(const SolverOptions& options) : LinearSolver(options) {}
+  explicit DstSolver(const SolverOptions& options) : StructuredSolver(options) {}
   [[nodiscard]] std::string name() const override { return "dst"; }
 
-  void sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
-             const std::vector<SweepMember>& members, const SweepSink& sink) override;
-
  protected:
-  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    const GridStencil* grid = structured_grid(op, summary);
-    if (!grid) return SolveStatus::kNotApplicable;
-    R_ = grid->rows;
-    C_ = grid->cols;
+  // A sweep transforms each basis right-hand side once (hat_[r][c], R×C) and combines the
+  // transforms per member.
+  void do_begin_sweep() override { hat_.clear(); }
+  SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                             Eigen::MatrixX3d& X, SolveSummary& summary) override;
+
+  SolveStatus analyze_grid(SolveSummary& summary) override {
     const std::size_t n = std::size_t(R_) * std::size_t(C_);
     grid_ = AlignedBuffer(n);
     row_ = AlignedBuffer(std::size_t(C_));
     col_ = AlignedBuffer(std::size_t(R_));
     inverse_eigenvalues_.assign(n, 0.0);
+    const unsigned planning = detail::fft_planning(options_);
     plan_2d_ = FftwPlan(fftw_plan_r2r_2d(R_, C_, grid_.data(), grid_.data(), FFTW_RODFT00,
-                                         FFTW_RODFT00, FFTW_MEASURE));
-    plan_row_ = FftwPlan(fftw_plan_r2r_1d(C_, row_.data(), row_.data(), FFTW_RODFT00, FFTW_MEASURE));
-    plan_col_ = FftwPlan(fftw_plan_r2r_1d(R_, col_.data(), col_.data(), FFTW_RODFT00, FFTW_MEASURE));
+                                         FFTW_RODFT00, planning));
+    plan_row_ = FftwPlan(fftw_plan_r2r_1d(C_, row_.data(), row_.data(), FFTW_RODFT00, planning));
+    plan_col_ = FftwPlan(fftw_plan_r2r_1d(R_, col_.data(), col_.data(), FFTW_RODFT00, planning));
     if (!plan_2d_ || !plan_row_ || !plan_col_) {
       summary.message = "FFTW could not make a plan";
       return SolveStatus::kFailure;
@@ -93,10 +87,7 @@ class DstSolver : public LinearSolver {
     return SolveStatus::kSuccess;
   }
 
-  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    const GridStencil* grid = structured_grid(op, summary);
-    if (!grid) return SolveStatus::kNotApplicable;
-    const GridStencil& s = *grid;
+  SolveStatus factorize_grid(const LinearOperator& /*op*/, const GridStencil& s, SolveSummary& summary) override {
     std::vector<double> x(static_cast<std::size_t>(R_)), y(static_cast<std::size_t>(C_));
     for (int p = 0; p < R_; ++p) x[std::size_t(p)] = std::cos(M_PI * (p + 1) / (R_ + 1));
     for (int q = 0; q < C_; ++q) y[std::size_t(q)] = std::cos(M_PI * (q + 1) / (C_ + 1));
@@ -204,60 +195,42 @@ class DstSolver : public LinearSolver {
     detail::stream_fence();
   }
 
-  int R_ = 0, C_ = 0;
   AlignedBuffer grid_, row_, col_;
   FftwPlan plan_2d_, plan_row_, plan_col_;
   std::vector<double> inverse_eigenvalues_, edge_i_, edge_j_;
   std::vector<double> top_, bottom_, left_, right_;
+  std::vector<std::vector<std::vector<double>>> hat_;  // a sweep's transformed basis
 };
 
-void DstSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
-                      const std::vector<SweepMember>& members, const SweepSink& sink) {
-  // The transforms of the basis right-hand sides, made once: hat[r][c] is R×C.
-  std::vector<std::vector<std::vector<double>>> hat;
-  Eigen::MatrixX3d B, X;
-  for (std::size_t k = 0; k < members.size(); ++k) {
-    const SweepMember& member = members[k];
-    const Eigen::Index n = member.op.size();
-    if (factorize(member.op) != SolveStatus::kSuccess) {
-      X.setZero(n, 3);
-      sink(k, X, summary());
-      continue;
-    }
-    const auto start = std::chrono::steady_clock::now();
-    const std::size_t used = std::min(rhs_basis.size(), member.rhs_weights.size());
-    if (hat.size() < used || (!hat.empty() && hat[0][0].size() != std::size_t(n))) {
-      hat.assign(used, {});
-      for (std::size_t r = 0; r < used; ++r) {
-        hat[r].resize(3);
-        for (int c = 0; c < 3; ++c) {
-          forward(rhs_basis[r].col(c).data(), false);
-          hat[r][std::size_t(c)].assign(grid_.data(), grid_.data() + n);
-        }
+SolveStatus DstSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis,
+                                      const std::vector<double>& weights, Eigen::MatrixX3d& X,
+                                      SolveSummary& summary) {
+  const Eigen::Index n = Eigen::Index(R_) * C_;
+  const std::size_t used = weights.size();
+  if (hat_.size() < used || (!hat_.empty() && hat_[0][0].size() != std::size_t(n))) {
+    hat_.assign(used, {});
+    for (std::size_t r = 0; r < used; ++r) {
+      hat_[r].resize(3);
+      for (int c = 0; c < 3; ++c) {
+        forward(basis[r].col(c).data(), false);
+        hat_[r][std::size_t(c)].assign(grid_.data(), grid_.data() + n);
       }
     }
-    X.resize(n, 3);
-    for (int c = 0; c < 3; ++c) {
-      double* g = grid_.data();
-      std::fill(g, g + n, 0.0);
-      for (std::size_t r = 0; r < used; ++r) {
-        const double w = member.rhs_weights[r];
-        const double* h = hat[r][std::size_t(c)].data();
-        if (w != 0)
-          for (Eigen::Index m = 0; m < n; ++m) g[m] += w * h[m];
-      }
-      divide_and_invert(X.col(c).data(), false);
-    }
-    SolveSummary summary_k = summary();
-    summary_k.iterations = 1;
-    summary_k.solve_seconds = seconds_since(start);
-    if (options_.compute_residual) {
-      B.setZero(n, 3);
-      for (std::size_t r = 0; r < used; ++r) B += member.rhs_weights[r] * rhs_basis[r];
-      detail::judge_exact_solve(member.op, B, X, options_, summary_k);
-    }
-    sink(k, X, summary_k);
   }
+  X.resize(n, 3);
+  for (int c = 0; c < 3; ++c) {
+    double* g = grid_.data();
+    std::fill(g, g + n, 0.0);
+    for (std::size_t r = 0; r < used; ++r) {
+      const double w = weights[r];
+      const double* h = hat_[r][std::size_t(c)].data();
+      if (w != 0)
+        for (Eigen::Index m = 0; m < n; ++m) g[m] += w * h[m];
+    }
+    divide_and_invert(X.col(c).data(), false);
+  }
+  summary.iterations = 1;
+  return SolveStatus::kSuccess;
 }
 
 }  // namespace

@@ -62,7 +62,7 @@ SolveStatus judge(const Lu& f, SolveSummary& summary) {
     summary.message = "SparseLU: " + f.lastErrorMessage();
     return SolveStatus::kSingular;
   }
-  summary.factor_nnz = static_cast<long long>(f.nnzL() + f.nnzU());
+  summary.factor_nnz = static_cast<long long>(f.nnzL()) + static_cast<long long>(f.nnzU());
   return SolveStatus::kSuccess;
 }
 
@@ -76,20 +76,14 @@ class EigenDirect : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     factor_.analyzePattern(*op.matrix);
     summary.ordering = ordering_;
     return SolveStatus::kSuccess;
   }
 
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     factor_.factorize(*op.matrix);
     return judge(factor_, summary);
   }

@@ -3,15 +3,11 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <type_traits>
 
 #include <Eigen/IterativeLinearSolvers>
 
 namespace coons::solvers {
-
-int iteration_limit(const SolverOptions& options, Eigen::Index unknowns, int per_unknown) {
-  if (options.max_iterations > 0) return options.max_iterations;
-  return int(std::min<Eigen::Index>(std::max<Eigen::Index>(2000, per_unknown * unknowns), 2'000'000));
-}
 
 namespace {
 
@@ -37,23 +33,22 @@ class EigenIterative : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
-    krylov_.analyzePattern(*op.matrix);
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
+    // (Eigen 3.4's IterativeSolverBase::analyzePattern reads the preconditioner's info() before
+    // IncompleteLUT has set it, an uninitialised load that UBSan reports. Preconditioners whose
+    // analysis is worth keeping (IncompleteCholesky's AMD ordering) analyse here; the others are
+    // computed whole in factorize.)
+    if constexpr (kAnalyzeApart) krylov_.analyzePattern(*op.matrix);
     return SolveStatus::kSuccess;
   }
 
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     if (definite_only_ && stencil_not_definite(op, summary)) return SolveStatus::kNotPositiveDefinite;
     krylov_.setTolerance(options_.tolerance);
-    krylov_.setMaxIterations(iteration_limit(options_, op.matrix->rows()));
-    krylov_.factorize(*op.matrix);  // the preconditioner's numeric phase
+    limit_ = iteration_limit(options_, op.matrix->rows(), 20, 2e10);
+    if constexpr (kAnalyzeApart) krylov_.factorize(*op.matrix);  // the preconditioner's numeric phase
+    else krylov_.compute(*op.matrix);
     if (krylov_.info() != Eigen::Success) {
       summary.message = "the preconditioner could not be computed";
       return definite_only_ ? SolveStatus::kNotPositiveDefinite : SolveStatus::kSingular;
@@ -62,33 +57,52 @@ class EigenIterative : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    X.resize(B.rows(), 3);
-    SolveStatus status = SolveStatus::kSuccess;
-    int iterations = 0;
-    double worst_error = 0;
+    // Without a time limit one Eigen solve per column; with one, the columns are solved in chunks
+    // of iterations (each restarting from the last iterate) with the clock read between them.
+    const int chunk = options_.time_limit_seconds > 0 ? std::min(limit_, 1000) : limit_;
+    X.setZero(B.rows(), 3);
+    IterationEnd end;
+    end.limit = limit_;
+    end.converged = true;
+    end.residual = 0;
     for (int c = 0; c < 3; ++c) {
-      X.col(c) = krylov_.solve(B.col(c));
-      iterations = std::max(iterations, int(krylov_.iterations()));
-      worst_error = std::max(worst_error, krylov_.error());
-      if (krylov_.info() == Eigen::NoConvergence) status = SolveStatus::kNotConverged;
-      else if (krylov_.info() != Eigen::Success && status == SolveStatus::kSuccess) status = SolveStatus::kFailure;
+      int used = 0;
+      double error = 0;
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(B.rows());
+      for (;;) {
+        krylov_.setMaxIterations(std::min(chunk, limit_ - used));
+        x = krylov_.solveWithGuess(B.col(c), x);
+        used += int(krylov_.iterations());
+        error = krylov_.error();
+        if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_) break;
+        if (out_of_time()) {
+          end.timed_out = true;
+          break;
+        }
+      }
+      X.col(c) = x;
+      end.iterations = std::max(end.iterations, used);
+      if (!x.allFinite()) {
+        end.diverged = true;
+        end.residual = HUGE_VAL;
+      } else {
+        end.residual = std::max(end.residual, error);
+      }
+      if (krylov_.info() != Eigen::Success) end.converged = false;
+      if (end.diverged || end.timed_out) {
+        end.converged = false;
+        break;
+      }
     }
-    summary.iterations = iterations;
-    if (!X.allFinite()) {
-      summary.message = "the iteration broke down (non-finite values)";
-      X.setZero();
-      return SolveStatus::kDiverged;
-    }
-    if (status == SolveStatus::kNotConverged)
-      summary.message = "estimated residual " + std::to_string(worst_error) + " after " +
-                        std::to_string(iterations) + " iterations (tolerance " +
-                        std::to_string(options_.tolerance) + ")";
-    return status;
+    return finish_iteration(end, X, summary);
   }
 
  private:
+  static constexpr bool kAnalyzeApart =
+      !std::is_same_v<typename Krylov::Preconditioner, Eigen::IncompleteLUT<double>>;
   std::string name_;
   bool definite_only_;
+  int limit_ = 0;
   Krylov krylov_;
 };
 

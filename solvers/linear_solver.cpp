@@ -1,8 +1,13 @@
 #include "linear_solver.h"
 
 #include <chrono>
+#include <algorithm>
 #include <cmath>
+#include <cstdio>
+#include <limits>
 #include <sstream>
+
+#include "stencil_operator.h"
 
 namespace coons::solvers {
 
@@ -39,6 +44,8 @@ bool SolverOptions::is_valid(std::string* why) const {
   };
   if (!(tolerance > 0 && tolerance < 1)) return fail("tolerance must lie in (0, 1)");
   if (max_iterations < 0) return fail("max_iterations must be >= 0");
+  if (!(time_limit_seconds >= 0) || !std::isfinite(time_limit_seconds))
+    return fail("time_limit_seconds must be finite and >= 0");
   if (!(sor_omega > 0 && sor_omega < 2)) return fail("sor_omega must lie in (0, 2)");
   if (!(singular_residual > 0)) return fail("singular_residual must be positive");
   return true;
@@ -47,15 +54,29 @@ bool SolverOptions::is_valid(std::string* why) const {
 std::string SolveSummary::brief_report() const {
   std::ostringstream out;
   out << solver << ": " << to_string(status) << ", " << iterations << " iteration"
-      << (iterations == 1 ? "" : "s") << ", residual " << relative_residual << ", "
+      << (iterations == 1 ? "" : "s") << ", residual " << format_g(relative_residual) << ", "
       << analyze_seconds + factorize_seconds + solve_seconds << " s";
   if (!message.empty()) out << " (" << message << ")";
   return out.str();
 }
 
+std::string format_g(double value) {
+  char text[32];
+  std::snprintf(text, sizeof text, "%g", value);
+  return text;
+}
+
+int iteration_limit(const SolverOptions& options, Eigen::Index unknowns, int per_unknown, double work) {
+  if (options.max_iterations > 0) return options.max_iterations;
+  const double n = double(std::max<Eigen::Index>(unknowns, 1));
+  const double limit = std::min({double(per_unknown) * n, work / n, 2e6});
+  return int(std::max(limit, 100.0));
+}
+
 Eigen::Index LinearOperator::size() const {
   if (matrix) return matrix->rows();
   if (stencil) return stencil->size();
+  if (grid) return grid->size();
   return 0;
 }
 
@@ -110,25 +131,88 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
     return bad;
   }
   summary_.message.clear();
-  const auto start = std::chrono::steady_clock::now();
+  summary_.relative_residual = 0;
+  solve_start_ = std::chrono::steady_clock::now();
   summary_.status = do_solve(B, X, summary_);
-  summary_.solve_seconds = seconds_since(start);
-  if (options_.compute_residual && X.rows() == B.rows()) {
-    summary_.relative_residual = relative_residual(op_, B, X);
-    if (!std::isfinite(summary_.relative_residual)) {
-      summary_.relative_residual = HUGE_VAL;
-      if (summary_.ok()) {
-        summary_.status = SolveStatus::kFailure;
-        summary_.message = "the solution is not finite";
-      }
-    } else if (summary_.ok() && exact() &&
-               summary_.relative_residual > options_.singular_residual) {
-      summary_.status = SolveStatus::kSingular;
-      summary_.message = "true residual " + std::to_string(summary_.relative_residual) +
-                         " after an exact solve: the operator is numerically singular";
+  summary_.solve_seconds = seconds_since(solve_start_);
+  judge_solution(B, X);
+  return summary_;
+}
+
+void LinearSolver::judge_solution(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X) {
+  if (!options_.compute_residual || X.rows() != B.rows()) return;
+  if (exact()) {
+    judge_exact_solve(op_, B, X, summary_);
+  } else if (summary_.ok()) {
+    // An iteration that stopped on its own test: report the true residual. (One that did not
+    // keeps the residual its message names; finish_iteration set it.)
+    const double r = relative_residual(op_, B, X);
+    if (std::isfinite(r)) {
+      summary_.relative_residual = r;
+    } else {
+      summary_.relative_residual = std::numeric_limits<double>::max();
+      summary_.status = SolveStatus::kFailure;
+      summary_.message = "the solution is not finite (overflow)";
     }
   }
-  return summary_;
+}
+
+void LinearSolver::judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
+                                     const Eigen::MatrixX3d& X, SolveSummary& summary) const {
+  if (!options_.compute_residual) return;
+  const double r = relative_residual(op, B, X);
+  if (!std::isfinite(r)) {
+    summary.relative_residual = std::numeric_limits<double>::max();
+    if (summary.ok()) {
+      summary.status = SolveStatus::kFailure;
+      summary.message = "the solution is not finite (overflow)";
+    }
+    return;
+  }
+  summary.relative_residual = r;
+  if (summary.ok() && r > options_.singular_residual) {
+    summary.status = SolveStatus::kSingular;
+    summary.message = "true residual " + format_g(r) +
+                      " after an exact solve: the operator is numerically singular";
+  }
+}
+
+bool LinearSolver::lacks_matrix(const LinearOperator& op, SolveSummary& summary) {
+  if (op.matrix) return false;
+  summary.message = "needs the assembled matrix";
+  return true;
+}
+
+bool LinearSolver::lacks_stencil(const LinearOperator& op, SolveSummary& summary) {
+  if (op.stencil) return false;
+  summary.message = "needs the grid stencil (matrix-free)";
+  return true;
+}
+
+bool LinearSolver::out_of_time() const {
+  return options_.time_limit_seconds > 0 && seconds_since(solve_start_) >= options_.time_limit_seconds;
+}
+
+SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::MatrixX3d& X,
+                                           SolveSummary& summary) const {
+  summary.iterations = end.iterations;
+  const bool overflow = !std::isfinite(end.residual);
+  summary.relative_residual = overflow ? std::numeric_limits<double>::max() : end.residual;
+  if (end.converged && !overflow) return SolveStatus::kSuccess;
+  const std::string after = " after " + std::to_string(end.iterations) + " iteration" +
+                            (end.iterations == 1 ? "" : "s");
+  if (end.diverged || overflow || end.residual > end.initial) {
+    X.setZero();
+    summary.message = "diverged: the residual grew from " + format_g(end.initial) + " to " +
+                      (overflow ? std::string("overflow (reported as the largest double)")
+                                : format_g(end.residual)) + after;
+    return SolveStatus::kDiverged;
+  }
+  summary.message = "not converged: residual " + format_g(end.residual) + after + " (" +
+                    (end.timed_out ? "time limit " + format_g(options_.time_limit_seconds) + " s"
+                                   : "iteration limit " + std::to_string(end.limit)) +
+                    " reached; tolerance " + format_g(options_.tolerance) + ")";
+  return SolveStatus::kNotConverged;
 }
 
 SolveSummary LinearSolver::compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
@@ -140,20 +224,39 @@ SolveSummary LinearSolver::compute_and_solve(const LinearOperator& op, const Eig
   return solve(B, X);
 }
 
+Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                             Eigen::Index rows) {
+  Eigen::MatrixX3d B = Eigen::MatrixX3d::Zero(rows, 3);
+  for (std::size_t r = 0; r < basis.size() && r < weights.size(); ++r) B += weights[r] * basis[r];
+  return B;
+}
+
+SolveStatus LinearSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis,
+                                         const std::vector<double>& weights, Eigen::MatrixX3d& X,
+                                         SolveSummary& summary) {
+  return do_solve(combine_rhs(basis, weights, op_.size()), X, summary);
+}
+
 void LinearSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
                          const std::vector<SweepMember>& members, const SweepSink& sink) {
-  Eigen::MatrixX3d B, X;
+  do_begin_sweep();
+  Eigen::MatrixX3d X;
   for (std::size_t k = 0; k < members.size(); ++k) {
     const SweepMember& member = members[k];
-    B.setZero(member.op.size(), 3);
-    for (std::size_t r = 0; r < rhs_basis.size() && r < member.rhs_weights.size(); ++r)
-      B += member.rhs_weights[r] * rhs_basis[r];
     if (factorize(member.op) != SolveStatus::kSuccess) {
-      X.setZero(B.rows(), 3);
+      X.setZero(member.op.size(), 3);
       sink(k, X, summary_);
       continue;
     }
-    sink(k, X, solve(B, X));
+    const std::size_t used = std::min(rhs_basis.size(), member.rhs_weights.size());
+    const std::vector<double> weights(member.rhs_weights.begin(), member.rhs_weights.begin() + long(used));
+    summary_.message.clear();
+    summary_.relative_residual = 0;
+    solve_start_ = std::chrono::steady_clock::now();
+    summary_.status = do_sweep_solve(rhs_basis, weights, X, summary_);
+    summary_.solve_seconds = seconds_since(solve_start_);
+    if (options_.compute_residual) judge_solution(combine_rhs(rhs_basis, weights, member.op.size()), X);
+    sink(k, X, summary_);
   }
 }
 
@@ -165,6 +268,8 @@ double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,
     AX = (*op.matrix) * X;
   } else if (op.stencil) {
     apply_stencil(*op.stencil, X, AX);
+  } else if (op.grid) {
+    apply_stencil_operator(*op.grid, X, AX);
   } else {
     return NAN;
   }

@@ -8,6 +8,7 @@
 // Backends never throw for numerical trouble: a failure is a status in the summary.
 #pragma once
 
+#include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -20,6 +21,8 @@
 #include "grid_stencil.h"
 
 namespace coons::solvers {
+
+struct StencilOperator;  // stencil_operator.h: 3×3 or 5×5 stencils with a free mask
 
 enum class SolveStatus {
   kSuccess,
@@ -41,7 +44,17 @@ const char* to_string(Ordering ordering);
 
 struct SolverOptions {
   double tolerance = 1e-12;     //!< iterative: stop at ‖Ax − b‖/‖b‖ ≤ tolerance
-  int max_iterations = 0;       //!< iterative: 0 picks a size-dependent default
+  //! iterative: the iteration limit; 0 is automatic and always finite (see iteration_limit()).
+  int max_iterations = 0;
+  //! iterative: stop after this many seconds of one solve (0: no time limit; the iteration
+  //! limit holds either way). Hitting either limit is kNotConverged with the residual reached.
+  double time_limit_seconds = 0;
+  //! transform solvers: choose FFTW plans by timing (FFTW_MEASURE). Faster transforms, but the
+  //! chosen algorithm, and so the last digits, may differ between runs. Off by default: plans
+  //! are FFTW_ESTIMATE, and reruns give byte-identical results. (FFTW keeps measured plans as
+  //! process-wide wisdom, which later estimated plans of the same size reuse: a program that
+  //! wants identical results should not mix the two modes.)
+  bool measure_fft_plans = false;
   double sor_omega = 1.0;       //!< gauss-seidel: over-relaxation factor in (0, 2)
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
   bool compute_residual = true; //!< compute the true residual after solve (costs one apply)
@@ -71,6 +84,8 @@ struct SolveSummary {
 struct LinearOperator {
   const Eigen::SparseMatrix<double>* matrix = nullptr;
   std::optional<GridStencil> stencil;
+  //! Borrowed like the matrix: a 3×3 or 5×5 stencil with a free mask (the multigrid backends).
+  const StencilOperator* grid = nullptr;
 
   [[nodiscard]] Eigen::Index size() const;
 };
@@ -109,10 +124,11 @@ class LinearSolver {
   //! Solve a family of systems that share everything but the values (e.g. an α sweep, whose
   //! right-hand side is affine in α), reusing what does not depend on the values: the analysis
   //! for direct solvers, the transforms of the basis right-hand sides for structured ones.
-  //! sink(k, X_k, summary_k) is called for each member in order. The default analyzes once and
-  //! factorizes and solves per member.
-  virtual void sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
-                     const std::vector<SweepMember>& members, const SweepSink& sink);
+  //! sink(k, X_k, summary_k) is called for each member in order. The one loop of every backend:
+  //! per member factorize (a failure is passed on with X = 0), do_sweep_solve, and the same
+  //! verdict on the true residual as solve().
+  void sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis, const std::vector<SweepMember>& members,
+             const SweepSink& sink);
 
   [[nodiscard]] const SolverOptions& options() const { return options_; }
   //! The summary of the last call (statuses of analyze/factorize are kept here too).
@@ -121,18 +137,74 @@ class LinearSolver {
  protected:
   virtual SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) = 0;
   virtual SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) = 0;
-  //! Fills X; sets iterations (and may set the status, e.g. not converged).
+  //! Fills X; sets iterations (and may set the status). Iterative backends end with
+  //! finish_iteration(), which gives every one the same verdict and message.
   virtual SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
                                SolveSummary& summary) = 0;
+
+  //! X for a factorized sweep member whose right-hand side is Σ_r weights[r]·basis[r] (weights
+  //! cut to the basis size). The default forms it and calls do_solve(); structured backends
+  //! override it to reuse transforms of the basis across members.
+  virtual SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                                     Eigen::MatrixX3d& X, SolveSummary& summary);
+  //! Called at the start of every sweep (to forget what a previous sweep cached).
+  virtual void do_begin_sweep() {}
+
+  //! True, with "needs the assembled matrix" in the summary, when op has no matrix (the caller
+  //! returns kNotApplicable); lacks_stencil the same for the grid stencil.
+  static bool lacks_matrix(const LinearOperator& op, SolveSummary& summary);
+  static bool lacks_stencil(const LinearOperator& op, SolveSummary& summary);
+
+  //! How an iteration ended, for finish_iteration().
+  struct IterationEnd {
+    int iterations = 0;
+    int limit = 0;               //!< the iteration limit in force
+    double initial = 1;          //!< relative residual at the start (x = 0: 1)
+    double residual = 1;         //!< relative residual reached (estimate or true)
+    bool converged = false;      //!< the backend's own test passed
+    bool timed_out = false;      //!< stopped by options.time_limit_seconds
+    bool diverged = false;       //!< stopped because the residual grew without bound
+  };
+  //! The one verdict of every iterative backend: success when converged; kDiverged when the
+  //! residual grew (1e8-fold, to overflow, or ends above its start) — X is then set to zero;
+  //! otherwise kNotConverged, naming the limit that stopped it. Sets iterations, the residual
+  //! reached (finite: an overflowed one is reported as the largest double and said so) and a
+  //! message that agrees with both.
+  SolveStatus finish_iteration(const IterationEnd& end, Eigen::MatrixX3d& X, SolveSummary& summary) const;
+  //! True once the current solve has run options.time_limit_seconds (never without a limit).
+  [[nodiscard]] bool out_of_time() const;
+  //! After an exact solve: the true residual (when options.compute_residual) and the verdict
+  //! solve() gives (not finite → kFailure; above options.singular_residual → kSingular). For
+  //! backends that solve outside solve() too (structured sweeps).
+  void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X,
+                         SolveSummary& summary) const;
 
   SolverOptions options_;
 
  private:
+  // The verdict on X after do_solve or do_sweep_solve (see solve()).
+  void judge_solution(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
+
   SolveSummary summary_;
+  std::chrono::steady_clock::time_point solve_start_;
   LinearOperator op_;  // the operator of the last factorize (for the residual)
   Eigen::Index analyzed_size_ = -1;
   bool factorized_ = false;
 };
+
+//! The iteration limit of an iterative backend: options.max_iterations when positive; otherwise
+//! automatic and finite: per_unknown · unknowns, but no more than work / unknowns (so that the
+//! whole iteration costs at most about `work` point updates), 2,000,000 at the most and 100 at
+//! the least. The Krylov backends use (20, 2e10), the mask iterations (1000, 1e8): a 64×64 net
+//! (3844 unknowns) stops Gauss–Seidel after 26,000 sweeps, about a second.
+int iteration_limit(const SolverOptions& options, Eigen::Index unknowns, int per_unknown, double work);
+
+//! A number as printf's %g prints it (1e-12, not 0.000000).
+std::string format_g(double value);
+
+//! Σ_r weights[r]·basis[r] (#rows of the first member; zero without terms).
+Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                             Eigen::Index rows);
 
 //! max over columns of ‖A x − b‖/‖b‖, with A from the matrix or, when absent, the stencil.
 double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <string>
 
-#include "eigen_iterative.h"
 
 namespace coons::solvers {
 namespace {
@@ -42,10 +41,7 @@ class MaskIteration : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.stencil) {
-      summary.message = "needs the grid stencil (matrix-free)";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_stencil(op, summary)) return SolveStatus::kNotApplicable;
     return SolveStatus::kSuccess;
   }
 
@@ -60,37 +56,28 @@ class MaskIteration : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    const GridStencil& s = stencil_;
-    const int limit = iteration_limit(options_, s.size(), 1000);
     constexpr int kCheckEvery = 10;
     LinearOperator op;
-    op.stencil = s;
+    op.stencil = stencil_;
     X.setZero(B.rows(), 3);
     Eigen::MatrixX3d next = X;
-    const double initial = relative_residual(op, B, X);
-    double residual = initial;
-    int it = 0;
-    while (it < limit && residual > options_.tolerance) {
-      for (int k = 0; k < kCheckEvery && it < limit; ++k, ++it) sweep_once(B, X, next);
-      residual = relative_residual(op, B, X);
-      if (!std::isfinite(residual) || residual > 1e8 * std::max(initial, 1e-300)) {
-        summary.iterations = it;
-        summary.message = "residual grew from " + std::to_string(initial) + " to " +
-                          (std::isfinite(residual) ? std::to_string(residual) : std::string("overflow")) +
-                          " in " + std::to_string(it) + " iterations";
-        X.setZero();
-        return SolveStatus::kDiverged;
+    IterationEnd end;
+    end.limit = iteration_limit(options_, stencil_.size(), 1000, 1e8);
+    end.initial = end.residual = relative_residual(op, B, X);
+    while (end.iterations < end.limit && end.residual > options_.tolerance) {
+      for (int k = 0; k < kCheckEvery && end.iterations < end.limit; ++k, ++end.iterations) sweep_once(B, X, next);
+      end.residual = relative_residual(op, B, X);
+      if (!std::isfinite(end.residual) || end.residual > 1e8 * std::max(end.initial, 1e-300)) {
+        end.diverged = true;
+        break;
+      }
+      if (end.residual > options_.tolerance && out_of_time()) {
+        end.timed_out = true;
+        break;
       }
     }
-    summary.iterations = it;
-    if (residual <= options_.tolerance) return SolveStatus::kSuccess;
-    summary.message = "residual " + std::to_string(residual) + " after " + std::to_string(it) +
-                      " iterations (tolerance " + std::to_string(options_.tolerance) + ")";
-    if (residual > initial) {
-      X.setZero();
-      return SolveStatus::kDiverged;
-    }
-    return SolveStatus::kNotConverged;
+    end.converged = !end.diverged && end.residual <= options_.tolerance;
+    return finish_iteration(end, X, summary);
   }
 
  private:

@@ -4,6 +4,7 @@
 #include "eigen_direct.h"
 #include "eigen_iterative.h"
 #include "mask_iterations.h"
+#include "multigrid_solvers.h"
 #if COONS_HAVE_SUITESPARSE
 #include "suitesparse_direct.h"
 #endif
@@ -51,6 +52,9 @@ const std::vector<Entry>& entries() {
       {{"dst", SolverFamily::kStructured, false, false, "2-D discrete sine transform (FFTW RODFT00), exact for any alpha on rectangular grids"}, make_dst_solver},
       {{"fast", SolverFamily::kStructured, false, false, "sine transform along j + tridiagonal solves along i; Kronecker path for alpha = -1/4; exact for any alpha"}, make_fast_solver},
 #endif
+      {{"mg", SolverFamily::kIterative, false, false, "geometric multigrid V-cycles, alternating line Gauss-Seidel, Galerkin coarse grids (3x3/5x5 stencils, free sets)"}, make_mg},
+      {{"mg-cg", SolverFamily::kIterative, false, true, "conjugate gradients preconditioned by one symmetric multigrid V-cycle"}, make_mg_cg},
+      {{"gmres", SolverFamily::kIterative, false, false, "restarted GMRES(50), multigrid-preconditioned on a grid stencil, else ILUT (nonsymmetric systems)"}, make_gmres},
   };
   return list;
 }

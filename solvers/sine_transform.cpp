@@ -36,12 +36,16 @@ AlignedBuffer& AlignedBuffer::operator=(AlignedBuffer&& other) noexcept {
   return *this;
 }
 
-SineTransform::SineTransform(int n) : n_(n) {
+unsigned fft_planning(const SolverOptions& options) {
+  return options.measure_fft_plans ? FFTW_MEASURE : FFTW_ESTIMATE;
+}
+
+SineTransform::SineTransform(int n, unsigned planning) : n_(n) {
   const int N = n + 1;
   y_ = AlignedBuffer(std::size_t(N));
   z_ = AlignedBuffer(2 * std::size_t(N / 2 + 1));
   plan_ = fftw_plan_dft_r2c_1d(N, y_.data(), reinterpret_cast<fftw_complex*>(z_.data()),
-                               FFTW_MEASURE);
+                               planning);
   if (!plan_) throw std::bad_alloc();
   weight_.resize(std::size_t(N));
   for (int j = 0; j < N; ++j) weight_[std::size_t(j)] = std::sin(M_PI * j / N);
@@ -215,34 +219,27 @@ void stream_fence() {
 #endif
 }
 
-void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                       const Eigen::MatrixX3d& X, const SolverOptions& options,
-                       SolveSummary& summary) {
-  if (!options.compute_residual) return;
-  summary.relative_residual = relative_residual(op, B, X);
-  if (!std::isfinite(summary.relative_residual)) {
-    summary.relative_residual = HUGE_VAL;
-    if (summary.ok()) {
-      summary.status = SolveStatus::kFailure;
-      summary.message = "the solution is not finite";
-    }
-  } else if (summary.ok() && summary.relative_residual > options.singular_residual) {
-    summary.status = SolveStatus::kSingular;
-    summary.message = "true residual " + std::to_string(summary.relative_residual) +
-                      " after an exact solve: the operator is numerically singular";
-  }
-}
-
-const GridStencil* structured_grid(const LinearOperator& op, SolveSummary& summary) {
-  if (!op.stencil) {
-    summary.message = "needs the grid stencil";
-    return nullptr;
-  }
+const GridStencil* StructuredSolver::grid_of(const LinearOperator& op, SolveSummary& summary) {
+  if (lacks_stencil(op, summary)) return nullptr;
   if (op.stencil->rows < 1 || op.stencil->cols < 1) {
     summary.message = "empty grid";
     return nullptr;
   }
   return &*op.stencil;
+}
+
+SolveStatus StructuredSolver::do_analyze(const LinearOperator& op, SolveSummary& summary) {
+  const GridStencil* grid = grid_of(op, summary);
+  if (!grid) return SolveStatus::kNotApplicable;
+  R_ = grid->rows;
+  C_ = grid->cols;
+  return analyze_grid(summary);
+}
+
+SolveStatus StructuredSolver::do_factorize(const LinearOperator& op, SolveSummary& summary) {
+  const GridStencil* grid = grid_of(op, summary);
+  if (!grid) return SolveStatus::kNotApplicable;
+  return factorize_grid(op, *grid, summary);
 }
 
 }  // namespace coons::solvers::detail

@@ -41,12 +41,17 @@ class AlignedBuffer {
   std::size_t size_ = 0;
 };
 
-//! The DST-I of length n (see above) of one row at a time. Plans are made once (FFTW_MEASURE) on
-//! internal buffers; apply() works on arrays of any alignment. Not thread-safe (shared scratch).
+//! The FFTW planner flag for SolverOptions::measure_fft_plans: FFTW_MEASURE when asked,
+//! otherwise FFTW_ESTIMATE (no timing, so the same plan, and the same rounding, in every run).
+unsigned fft_planning(const SolverOptions& options);
+
+//! The DST-I of length n (see above) of one row at a time. Plans are made once (with the
+//! planner flag `planning`, see fft_planning) on internal buffers; apply() works on arrays of any
+//! alignment. Not thread-safe (shared scratch).
 class SineTransform {
  public:
   SineTransform() = default;
-  explicit SineTransform(int n);
+  SineTransform(int n, unsigned planning);
   ~SineTransform();
   SineTransform(SineTransform&& other) noexcept;
   SineTransform& operator=(SineTransform&& other) noexcept;
@@ -87,9 +92,27 @@ struct Tridiagonal {
   [[nodiscard]] int size() const { return int(inv_pivot.size()); }
 };
 
-//! The grid stencil a structured solver works from, or nullptr with the reason in the summary
-//! (the operator has no stencil, or the grid is empty): the check both structured solvers need.
-const GridStencil* structured_grid(const LinearOperator& op, SolveSummary& summary);
+//! The common frame of the structured solvers (dst, fast): the check both need (kNotApplicable
+//! without a stencil or with an empty grid), the grid size R_ × C_, and the value-dependent set-up
+//! on the stencil itself.
+class StructuredSolver : public LinearSolver {
+ public:
+  using LinearSolver::LinearSolver;
+
+ protected:
+  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) final;
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) final;
+  //! Plans and buffers for an R_ × C_ grid (set before the call).
+  virtual SolveStatus analyze_grid(SolveSummary& summary) = 0;
+  //! The factorisation for the stencil s of op (op is passed on for fallbacks).
+  virtual SolveStatus factorize_grid(const LinearOperator& op, const GridStencil& s, SolveSummary& summary) = 0;
+
+  int R_ = 0, C_ = 0;
+
+ private:
+  // The stencil of op, or nullptr with the reason in the summary.
+  static const GridStencil* grid_of(const LinearOperator& op, SolveSummary& summary);
+};
 
 //! Relative threshold below which a pivot of an indefinite tridiagonal matrix counts as unsafe.
 constexpr double kUnsafePivot = 1e-4;
@@ -101,12 +124,5 @@ constexpr double kZeroPivot = 1e-13;
 //! the last one.
 void stream_copy(const double* src, double* dst, std::size_t n);
 void stream_fence();
-
-//! After an exact solve outside LinearSolver::solve (in a sweep): the true residual when
-//! options.compute_residual, and the same verdict solve() gives (not finite → kFailure; larger
-//! than options.singular_residual → kSingular).
-void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                       const Eigen::MatrixX3d& X, const SolverOptions& options,
-                       SolveSummary& summary);
 
 }  // namespace coons::solvers::detail

@@ -66,8 +66,8 @@ class Cholmod : public LinearSolver {
     common_.nmethods = 1;
     switch (options.ordering) {
       case Ordering::kAuto:
-      case Ordering::kAmd: common_.method[0].ordering = CHOLMOD_AMD; break;
-      case Ordering::kColamd: common_.method[0].ordering = CHOLMOD_AMD; break;
+      case Ordering::kAmd:
+      case Ordering::kColamd: common_.method[0].ordering = CHOLMOD_AMD; break;  // COLAMD is for A·Aᵀ, AMD for A
       case Ordering::kMetis: common_.method[0].ordering = CHOLMOD_METIS; break;
       case Ordering::kNestedDissection: common_.method[0].ordering = CHOLMOD_NESDIS; break;
       case Ordering::kNatural: common_.method[0].ordering = CHOLMOD_NATURAL; break;
@@ -83,10 +83,7 @@ class Cholmod : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     if (factor_) cholmod_free_factor(&factor_, &common_);
     cholmod_sparse A = view_lower(*op.matrix);
     factor_ = cholmod_analyze(&A, &common_);
@@ -186,10 +183,7 @@ class Umfpack : public LinearSolver {
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (!op.matrix) {
-      summary.message = "needs the assembled matrix";
-      return SolveStatus::kNotApplicable;
-    }
+    if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     release();
     const SpMat& A = *op.matrix;
     const int status = umfpack_di_symbolic(int(A.rows()), int(A.cols()), A.outerIndexPtr(), A.innerIndexPtr(),

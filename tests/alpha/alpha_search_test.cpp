@@ -340,3 +340,114 @@ TEST_CASE("search_mask_parameter: the spectral search finds the optimum of the s
   }
 }
 #endif
+
+namespace {
+
+// A right helicoid (r cos t, r sin t, t), r = 0.2 + 0.8u, t = (π/2)v, sampled on a degree (4, 4)
+// net: the shape of data/boundaries/helicoid.json, whose thin-plate optimum lies at α < 0.
+Boundary helicoid_boundary() {
+  ControlNet net(4, 4);
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; j <= 4; ++j) {
+      const double r = 0.2 + 0.8 * i / 4.0, t = M_PI / 2 * j / 4.0;
+      net.at(i, j) = Eigen::RowVector3d(r * std::cos(t), r * std::sin(t), t);
+    }
+  return boundary_of(net, "helicoid");
+}
+
+// The α family, but with NaN weights for parameters in [lo, hi], where every solve fails (SparseLU
+// finds the matrix singular): a failing evaluator through the public seam of MaskObjective.
+MaskFamily failing_between(double lo, double hi) {
+  return [lo, hi](double a) {
+    if (a < lo || a > hi) return alpha_family(a);
+    return MaskPoint{Mask9{NAN, NAN, NAN}, Mask9{NAN, NAN, NAN}};
+  };
+}
+
+}  // namespace
+
+TEST_CASE("search_alpha: jacobi diverging for alpha < 0 on a helicoid claims no optimum", "[alpha]") {
+  const Boundary helicoid = helicoid_boundary();
+  const AlphaSearchSummary exact = search_alpha(helicoid, objective_named("thin_plate"), backend("eigen-ldlt"));
+  INFO("eigen-ldlt: " << exact.brief_report());
+  REQUIRE(exact.status == SearchStatus::kSuccess);
+  REQUIRE(exact.parameter);
+  CHECK(*exact.parameter < -0.07);
+  CHECK(exact.failed_evaluations == 0);
+  CHECK(exact.failed_intervals.empty());
+
+  const AlphaSearchSummary s = search_alpha(helicoid, objective_named("thin_plate"), backend("jacobi"));
+  INFO("jacobi: " << s.brief_report());
+  CHECK(s.status == SearchStatus::kFailedRegion);
+  CHECK_FALSE(s.parameter);
+  CHECK_FALSE(s.at_bound);
+  CHECK_FALSE(s.flat);
+  CHECK(s.first_failure == solvers::SolveStatus::kDiverged);
+  REQUIRE(s.failed_evaluations >= 4);  // the scan points at α = −1/4, −3/16, −1/8, −1/16
+  REQUIRE_FALSE(s.failed_intervals.empty());
+  CHECK(s.failed_intervals.front().first == -0.25);
+  for (const auto& [lo, hi] : s.failed_intervals) CHECK((lo <= hi && hi < 0));
+  CHECK_THAT(s.message, Catch::Contains("no optimum is claimed"));
+  CHECK_THAT(s.message, Catch::Contains(std::to_string(s.failed_evaluations) + " evaluation(s) failed"));
+  CHECK(std::isfinite(s.value));
+  CHECK(s.value >= exact.value);
+}
+
+TEST_CASE("search_mask_parameter: failures away from the optimum are reported, the optimum kept", "[alpha]") {
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective reference(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-lu"));
+  const AlphaSearchSummary expected = search_mask_parameter(reference);
+  MaskObjective f(dome, objective_named("thin_plate"), failing_between(0.15, 0.2), backend("eigen-lu"));
+  const AlphaSearchSummary s = search_mask_parameter(f);
+  INFO(s.brief_report());
+  CHECK(s.status == SearchStatus::kSuccess);
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter == Approx(*expected.parameter).margin(1e-9));
+  CHECK(s.failed_evaluations == 1);  // the scan point α = 0.1875
+  CHECK(s.first_failure == solvers::SolveStatus::kSingular);
+  REQUIRE(s.failed_intervals.size() == 1);
+  CHECK(s.failed_intervals[0] == std::pair{0.1875, 0.1875});
+  CHECK_THAT(s.message, Catch::Contains("away from the optimum"));
+}
+
+TEST_CASE("search_mask_parameter: a failure next to the lowest point is a failed region", "[alpha]") {
+  // The dome's optimum, −0.0185, lies between the scan points −0.0625 and 0; −0.0625 fails.
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective f(dome, objective_named("thin_plate"), failing_between(-0.07, -0.05), backend("eigen-lu"));
+  const AlphaSearchSummary s = search_mask_parameter(f);
+  INFO(s.brief_report());
+  CHECK(s.status == SearchStatus::kFailedRegion);
+  CHECK_FALSE(s.parameter);
+  CHECK(s.failed_evaluations >= 1);
+  REQUIRE_FALSE(s.failed_intervals.empty());
+  for (const auto& [lo, hi] : s.failed_intervals) CHECK((lo >= -0.07 && hi <= -0.05));
+  CHECK_THAT(s.brief_report(), Catch::StartsWith("failed_region"));
+}
+
+TEST_CASE("search_mask_parameter: every evaluation failing is the solver's failure", "[alpha]") {
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective f(dome, objective_named("thin_plate"), failing_between(-1, 1), backend("eigen-lu"));
+  const AlphaSearchSummary s = search_mask_parameter(f);
+  INFO(s.brief_report());
+  CHECK(s.status == SearchStatus::kSolverFailed);
+  CHECK_FALSE(s.parameter);
+  CHECK(s.failed_evaluations == AlphaSearchOptions{}.scan_points);
+  CHECK(s.first_failure == solvers::SolveStatus::kSingular);
+  REQUIRE(s.failed_intervals.size() == 1);
+  CHECK(s.failed_intervals[0] == std::pair{-0.25, 0.25});
+  CHECK(s.value == 0);
+}
+
+TEST_CASE("search_mask_parameter: a flat objective with failed points claims no flatness", "[alpha]") {
+  const Boundary planar = boundary_of(make_bilinear_net(3, 3, 5));
+  MaskObjective f(planar, objective_named("thin_plate"), failing_between(0.1, 0.2), backend("eigen-lu"));
+  const AlphaSearchSummary s = search_mask_parameter(f);
+  INFO(s.brief_report());
+  CHECK(s.status == SearchStatus::kFailedRegion);
+  CHECK_FALSE(s.flat);
+  CHECK_FALSE(s.parameter);
+  CHECK(s.failed_evaluations == 2);  // the scan points α = 0.125 and 0.1875
+  REQUIRE(s.failed_intervals.size() == 1);
+  CHECK(s.failed_intervals[0] == std::pair{0.125, 0.1875});
+  CHECK_THAT(s.message, Catch::Contains("flat"));
+}

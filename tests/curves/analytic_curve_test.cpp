@@ -78,6 +78,7 @@ TEST_CASE("AnalyticCurve: expressions in t on [t1, t2], reparametrised to [0, 1]
   const AnalyticCurve d({"u", "sin(pi/2*v)", "e^s"});
   CHECK((d.at(0.5) - Eigen::RowVector3d(0.5, std::sin(kPi / 4), std::exp(0.5))).norm() < 1e-15);
   // Copies are independent.
+  // NOLINTNEXTLINE(performance-unnecessary-copy-initialization): the copy constructor is what is tested here
   const AnalyticCurve copy = c;
   CHECK(copy.at(0.3) == c.at(0.3));
 }

@@ -164,3 +164,86 @@ TEST_CASE("gauss-seidel: converges at alpha = -1/4, and SOR needs fewer sweeps",
   CHECK(fast.iterations < gs.iterations);
   CHECK((X_gs - X_sor).cwiseAbs().maxCoeff() < 1e-8);
 }
+
+TEST_CASE("iteration_limit: automatic limits are finite and bounded by the work", "[solvers]") {
+  const SolverOptions automatic;
+  CHECK(iteration_limit(automatic, 3844, 1000, 1e8) == 26014);  // 64×64 net: 1e8 / 3844 sweeps
+  CHECK(iteration_limit(automatic, 9, 1000, 1e8) == 9000);       // small nets: 1000 per unknown
+  CHECK(iteration_limit(automatic, 1, 20, 2e10) == 100);         // at least 100
+  CHECK(iteration_limit(automatic, 1'000'000'000, 1000, 1e8) == 100);
+  SolverOptions fixed;
+  fixed.max_iterations = 7;
+  CHECK(iteration_limit(fixed, 3844, 1000, 1e8) == 7);
+}
+
+namespace {
+// The α = −1/4 system of a random degree-n net solved by `name`.
+SolveSummary solve_coons_system(const char* name, int n, std::uint32_t seed, const SolverOptions& options,
+                                MaskSystem& s, Eigen::MatrixX3d& X) {
+  s = assemble_mask_system(make_random_net(n, n, seed), alpha_mask(-0.25));
+  return make_solver(name, options)->compute_and_solve(operator_of(s), s.B, X);
+}
+}  // namespace
+
+TEST_CASE("gauss-seidel: a 64x64 net stops at the automatic limit with the residual reached", "[solvers]") {
+  // At α = −1/4 Gauss–Seidel needs O(N⁴) sweeps here: the finite automatic limit stops it.
+  MaskSystem s;
+  Eigen::MatrixX3d X;
+  const SolveSummary summary = solve_coons_system("gauss-seidel", 63, 12, {}, s, X);
+  INFO(summary.brief_report());
+  REQUIRE(summary.status == SolveStatus::kNotConverged);
+  CHECK(summary.iterations == iteration_limit(SolverOptions{}, s.B.rows(), 1000, 1e8));
+  CHECK(summary.relative_residual > SolverOptions{}.tolerance);
+  CHECK(summary.relative_residual < 1);
+  CHECK(summary.relative_residual == Approx(relative_residual(operator_of(s), s.B, X)).epsilon(1e-12));
+  CHECK_THAT(summary.message, Catch::Contains("residual " + format_g(summary.relative_residual)));
+  CHECK_THAT(summary.message, Catch::Contains("iteration limit"));
+  CHECK_THAT(summary.message, Catch::Contains("tolerance 1e-12"));
+}
+
+TEST_CASE("iterative solvers: the time limit stops them with not_converged", "[solvers]") {
+  SolverOptions options;
+  options.time_limit_seconds = 1e-3;
+  options.max_iterations = 1'000'000;
+  for (const char* name : {"gauss-seidel", "cg"}) {
+    MaskSystem s;
+    Eigen::MatrixX3d X;
+    const SolveSummary summary = solve_coons_system(name, 63, 13, options, s, X);
+    INFO(name << ": " << summary.brief_report());
+    CHECK(summary.status == SolveStatus::kNotConverged);
+    CHECK(summary.iterations < options.max_iterations);
+    CHECK(std::isfinite(summary.relative_residual));
+    CHECK_THAT(summary.message, Catch::Contains("time limit 0.001 s"));
+    CHECK_THAT(summary.message, Catch::Contains("residual " + format_g(summary.relative_residual)));
+  }
+}
+
+TEST_CASE("jacobi: a diverged solve reports the residual it reached, not that of the zero net", "[solvers]") {
+  MaskSystem s;
+  Eigen::MatrixX3d X;
+  const SolveSummary summary = solve_coons_system("jacobi", 30, 8, {}, s, X);
+  INFO(summary.brief_report());
+  REQUIRE(summary.status == SolveStatus::kDiverged);
+  CHECK(summary.relative_residual > 1e8);  // grew 1e8-fold from 1
+  CHECK(std::isfinite(summary.relative_residual));
+  CHECK_THAT(summary.message, Catch::Contains("to " + format_g(summary.relative_residual)));
+  CHECK_THAT(summary.brief_report(), Catch::Contains("residual " + format_g(summary.relative_residual)));
+  CHECK(X.isZero(0));
+}
+
+TEST_CASE("SolverOptions: a negative or non-finite time limit is invalid", "[solvers]") {
+  std::string why;
+  SolverOptions options;
+  CHECK(options.is_valid(&why));
+  options.time_limit_seconds = -1;
+  CHECK_FALSE(options.is_valid(&why));
+  CHECK_THAT(why, Catch::Contains("time_limit_seconds"));
+  options.time_limit_seconds = HUGE_VAL;
+  CHECK_FALSE(options.is_valid(&why));
+}
+
+TEST_CASE("format_g: prints like %g, never 0.000000 for a small tolerance", "[solvers]") {
+  CHECK(format_g(1e-12) == "1e-12");
+  CHECK(format_g(0.25) == "0.25");
+  CHECK(format_g(1.4e8) == "1.4e+08");
+}

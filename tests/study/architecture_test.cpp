@@ -40,6 +40,7 @@ TEST_CASE("architecture: every layer of the library includes only itself and the
       {"surfaces", {"net", "curves", "surfaces"}},
       {"io", {"net", "mask", "metrics", "curves", "surfaces", "io"}},
       {"alpha", {"net", "mask", "metrics", "alpha"}},
+      {"tri", {"net", "mask", "metrics", "tri"}},
       {"study", {"net", "mask", "metrics", "curves", "surfaces", "io", "alpha", "study"}},
   };
   const std::regex coons_header(R"(^coons/([a-z_]+)/)");

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <random>
+#include <utility>
 
 namespace coons::test {
 
@@ -27,13 +28,13 @@ BoundaryCurves make_random_boundary_curves(int m, int n, std::uint32_t seed) {
 
 Curve closed_form_curve(std::function<Eigen::RowVector3d(double)> f, std::function<Eigen::RowVector3d(double)> df,
                         std::function<Eigen::RowVector3d(double)> d2f) {
-  return FunctionCurve{[f, df, d2f](int r, double s) -> Eigen::RowVector3d {
-                         if (r == 0) return f(s);
-                         if (r == 1) return df(s);
-                         if (r == 2) return d2f(s);
-                         return Eigen::RowVector3d::Constant(std::nan(""));
-                       },
-                       "closed form"};
+  auto value = [f = std::move(f), df = std::move(df), d2f = std::move(d2f)](int r, double s) -> Eigen::RowVector3d {
+    if (r == 0) return f(s);
+    if (r == 1) return df(s);
+    if (r == 2) return d2f(s);
+    return Eigen::RowVector3d::Constant(std::nan(""));
+  };
+  return FunctionCurve{std::move(value), "closed form"};
 }
 
 double hermite(int i, double t, int r) {

@@ -1,4 +1,4 @@
-// Every worked example of the seed documents (data/surfaces/) against its closed form.
+// Every worked example of the lecture notes LN0–LN4 (docs/references.md) (data/surfaces/) against its closed form.
 #include <catch2/catch.hpp>
 
 #include <cmath>

@@ -8,7 +8,12 @@
 //   minimiser.
 // - SpectralAlphaSearchObjective (spectral_objective.h), the α family with any objective: no solve
 //   at all, f, f' and f'' in the sine basis; refined by Ceres's trust region on f' = 0.
-// search_alpha picks the second whenever it applies.
+// search_alpha picks the second whenever it applies. Both evaluate in the normalised frame of the
+// boundary (normalised_frame.h), so that the optimum does not depend on where the boundary lies or
+// how large it is. No optimum without its evidence: an optimum (or a flat verdict) that rests on a
+// failed evaluation is not claimed (SearchStatus::kFailedRegion, search_failures.h).
+// Units: mask_objective.* (the solve-based evaluator), alpha_search.cpp (the search's steps),
+// ceres_refinement.h, search_failures.*, alpha_gamma_search.cpp.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700; Ceres Solver's
 // GradientProblemSolver and Problem (S. Agarwal, K. Mierle et al.).
 #pragma once
@@ -19,6 +24,8 @@
 #include <string>
 #include <vector>
 
+#include "coons/alpha/mask_objective.h"
+#include "coons/alpha/normalised_frame.h"
 #include "coons/alpha/objective.h"
 #include "coons/config.h"
 #include "coons/mask/mask_families.h"
@@ -27,49 +34,6 @@
 #include "solvers/registry.h"
 
 namespace coons {
-
-using MaskFamily = std::function<MaskPoint(double)>;
-
-//! Evaluates objective(net(p)) and its derivative, reusing the solver's analysis across p.
-class MaskObjective {
- public:
-  struct Evaluation {
-    double parameter = 0;
-    double value = 0, derivative = 0;
-    double derivative_noise = 0;  //!< not estimated here
-    bool has_derivative = false;  //!< the derivative was asked for and computed
-    ControlNet net;
-    solvers::SolveSummary summary;
-    [[nodiscard]] bool ok() const { return summary.ok(); }
-  };
-
-  //! `solver` is a backend of the registry ("auto" is resolved by the caller).
-  MaskObjective(const Boundary& boundary, Objective objective, MaskFamily family, const solvers::SolverInfo& solver,
-                const solvers::SolverOptions& options = {});
-  ~MaskObjective();
-
-  //! One factorisation; one solve for the value, and one more for the derivative when asked
-  //! (otherwise `derivative` is left 0).
-  Evaluation evaluate(double parameter, bool with_derivative = true);
-
-  //! The objective at an explicit mask and its gradient along several weight directions
-  //! (one factorisation, 1 + #directions solves). Used by multi-parameter searches.
-  Evaluation evaluate_mask(const Mask9& mask, const std::vector<Mask9>& directions, std::vector<double>& gradient);
-  [[nodiscard]] int evaluations() const { return evaluations_; }
-  [[nodiscard]] int solves() const { return solves_; }
-  [[nodiscard]] const Boundary& boundary() const { return boundary_; }
-  [[nodiscard]] const Objective& objective() const { return objective_; }
-
- private:
-  Boundary boundary_;
-  ControlNet frame_;
-  Objective objective_;
-  MaskFamily family_;
-  bool needs_matrix_ = true;
-  std::unique_ptr<solvers::LinearSolver> solver_;
-  Eigen::SparseMatrix<double> A_;
-  int evaluations_ = 0, solves_ = 0;
-};
 
 struct AlphaSearchOptions {
   double lower = -0.25, upper = 0.25;  //!< bounds of the parameter
@@ -81,18 +45,33 @@ struct AlphaSearchOptions {
   bool is_valid(std::string* why) const;
 };
 
-enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged };
+//! kSuccess: an optimum (parameter) resting only on successful evaluations; kFlat: no optimum,
+//! the objective does not depend on the parameter; kSolverFailed: no evaluation succeeded, or the
+//! one at the refined optimum failed; kNotConverged: Ceres or the refinement did not converge;
+//! kFailedRegion: some evaluations failed where the optimum (or the flatness) would rest on them
+//! — next to the lowest successful point, or anywhere when the rest is flat — so none is claimed.
+enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged, kFailedRegion };
+//! "success", "flat", "solver_failed", "not_converged", "failed_region".
 const char* to_string(SearchStatus status);
 
 struct AlphaSearchSummary {
   SearchStatus status = SearchStatus::kSuccess;
   std::string message;
   std::optional<double> parameter;  //!< the optimum (absent when flat or failed)
-  double value = 0;                 //!< the objective there (at any scan point when flat)
+  //! The objective at the optimum; when flat, at the best scan point; with kFailedRegion, the
+  //! lowest successful evaluation (not an optimum); 0 when no evaluation succeeded.
+  double value = 0;
   bool flat = false, at_bound = false;
   int local_minima = 0;             //!< interior local minima seen by the scan
   int evaluations = 0, solves = 0;
-  std::vector<std::pair<double, double>> scan;  //!< (parameter, value) of the coarse grid
+  //! (parameter, value) of the coarse grid; a failed point's value is +∞ (HUGE_VAL)
+  std::vector<std::pair<double, double>> scan;
+  //! Evaluations (scan and refinement) whose solve failed; the status of the first of them.
+  int failed_evaluations = 0;
+  solvers::SolveStatus first_failure = solvers::SolveStatus::kSuccess;
+  //! [lowest, highest] parameter of each run of failed evaluations with no successful one
+  //! between them, in increasing order (a single failed point is [p, p]).
+  std::vector<std::pair<double, double>> failed_intervals;
   double seconds = 0;
   std::string ceres_report;         //!< Ceres's BriefReport of the refinement, if any
   std::string evaluator;            //!< "sine basis" or "factorize and solve" (search_alpha)

@@ -8,6 +8,9 @@
 //   separable grids (N_C is a boolean sum of linear blends): the set-up needs no 2-D transform.
 // - Exact energies and a target net: Q̂ is a sum of dense Kronecker products.
 // - An analytic target: measured on the surface sampled from the modes (see the constructor).
+// Units: spectral_objective.cpp (the set-up), spectral_evaluation.cpp (f, f', f'' at one α),
+// spectral_quadratic.cpp (the Kronecker quadratics), spectral_modes.* (the per-mode loops and the
+// named column blocks of the factors).
 // On a 1023×1023 net a discrete-objective search costs about 4 solves, its optimal net included
 // (experiments/E03_solver_scaling).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the eigenvectors of the
@@ -21,6 +24,7 @@
 
 #include <Eigen/Core>
 
+#include "coons/alpha/normalised_frame.h"
 #include "coons/alpha/objective.h"
 #include "coons/metrics/energies.h"
 #include "solvers/linear_solver.h"
@@ -69,7 +73,7 @@ class SpectralAlphaObjective {
   //! q(N_C + δ) = constant + 2⟨ĉ, δ̂⟩ + Σ w⟨δ̂, K̂_a δ̂ K̂_b⟩, summed over x, y, z.
   struct Quadratic {
     double constant = 0;
-    Eigen::MatrixXd c_hat[3];  // rows × cols
+    std::array<Eigen::MatrixXd, 3> c_hat;  // rows × cols (std::array: clang-tidy 14 misreads a C array member)
     double c_scale = 0;        // ĉ's rounding error is about ε times this
     std::vector<KroneckerTerm> terms;
   };
@@ -97,11 +101,14 @@ class SpectralAlphaSearchObjective {
     solvers::SolveSummary summary;  //!< status singular when λ vanishes at this α
     [[nodiscard]] bool ok() const { return summary.ok(); }
   };
-  //! Precondition: SpectralAlphaObjective::supports(objective); m, n ≥ 2.
+  //! Precondition: SpectralAlphaObjective::supports(objective); m, n ≥ 2. Evaluates in the
+  //! normalised frame (normalised_frame.h); values are reported in the caller's units.
   SpectralAlphaSearchObjective(const Boundary& boundary, Objective objective);
   Evaluation evaluate(double alpha, bool with_derivative = true);
   [[nodiscard]] const Boundary& boundary() const { return boundary_; }
   [[nodiscard]] const Objective& objective() const { return objective_; }
+  //! The frame the evaluations are made in (value = value_factor · value in the frame).
+  [[nodiscard]] const NormalisedFrame& unit_frame() const { return unit_; }
   [[nodiscard]] int evaluations() const { return evaluations_; }
   [[nodiscard]] int solves() const { return 0; }
   //! Where the family's scale collapses: the search measures distances from α = −1/4 on a log
@@ -111,6 +118,7 @@ class SpectralAlphaSearchObjective {
  private:
   Boundary boundary_;
   Objective objective_;
+  NormalisedFrame unit_;
   SpectralAlphaObjective spectral_;
   int evaluations_ = 0;
 };

@@ -21,8 +21,8 @@ namespace coons {
 //! An expression that does not compile or has no single value.
 class ExpressionError : public std::invalid_argument {
  public:
-  ExpressionError(int component, std::string message)
-      : std::invalid_argument(std::move(message)), component_(component) {}
+  ExpressionError(int component, const std::string& message)
+      : std::invalid_argument(message), component_(component) {}
   //! 0, 1, 2 for x, y, z.
   [[nodiscard]] int component() const { return component_; }
 

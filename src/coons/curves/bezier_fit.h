@@ -2,7 +2,7 @@
 // points by least squares, at the same parameter: minimise Σ_k ‖b(s_k) − c(s_k)‖² over the inner
 // control points, s_k uniform in [0, 1]. The report gives the largest parametric deviation
 // max_s ‖b(s) − c(s)‖ on a finer grid (an upper bound of the geometric distance), so that every
-// analytic example of the seeds can be studied as a net with a known error.
+// analytic example of the lecture notes (LN0–LN4) can be studied as a net with a known error.
 // Based on: G. Farin, Curves and Surfaces for CAGD, 5th ed. (2002), §9 (least-squares
 // approximation with fixed end points); LN0's analytic boundaries.
 #pragma once

@@ -2,6 +2,7 @@
 
 #include <cmath>
 #include <filesystem>
+#include <limits>
 
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
@@ -27,11 +28,7 @@ class Parser {
     if (!p.is_array()) fail(field, "a point must be an array of 3 numbers");
     if (p.size() != 3) fail(field, fmt::format("a point must have 3 coordinates, not {}", p.size()));
     Eigen::RowVector3d out;
-    for (int c = 0; c < 3; ++c) {
-      if (!p[c].is_number()) fail(field, fmt::format("coordinate {} is not a number", c));
-      out(c) = p[c].get<double>();
-      if (!std::isfinite(out(c))) fail(field, fmt::format("coordinate {} is not finite", c));
-    }
+    for (int c = 0; c < 3; ++c) out(c) = json_coordinate(p[c], source_, field, fmt::format("coordinate {}", c));
     return out;
   }
 
@@ -53,9 +50,10 @@ class Parser {
 void check_degree(const Parser& p, const json& doc, int m, int n) {
   if (!doc.contains("degree")) return;
   const json& d = doc["degree"];
-  if (!d.is_array() || d.size() != 2 || !d[0].is_number_integer() || !d[1].is_number_integer())
-    p.fail("degree", "must be [m, n] with two integers");
-  const int dm = d[0].get<int>(), dn = d[1].get<int>();
+  if (!d.is_array() || d.size() != 2) p.fail("degree", "must be [m, n] with two integers");
+  // Range-checked before narrowing: 4294967299 must not read as 3.
+  const auto dm = json_integer(d[0], p.source(), "degree[0]", 1, std::numeric_limits<int>::max());
+  const auto dn = json_integer(d[1], p.source(), "degree[1]", 1, std::numeric_limits<int>::max());
   if (dm != m || dn != n)
     p.fail("degree", fmt::format("says [{}, {}] but the points give [{}, {}]", dm, dn, m, n));
 }

@@ -1,6 +1,9 @@
 #include "json_file.h"
 
+#include <cmath>
+#include <filesystem>
 #include <fstream>
+#include <limits>
 #include <sstream>
 
 #include <fmt/format.h>
@@ -9,18 +12,102 @@
 
 namespace coons {
 
-nlohmann::json read_json_file(const std::string& path) {
-  std::ifstream in(path);
-  if (!in) throw InputError(path, "", "cannot open the file");
-  std::stringstream buffer;
-  buffer << in.rdbuf();
+namespace {
+
+// Thrown by the parser callback to stop at the first container beyond the limit (the parser is
+// iterative, so the depth is counted before anything deeper is built).
+struct TooDeep {};
+
+std::string describe(const nlohmann::json& j) {
+  if (j.is_number_integer()) return j.dump();
+  if (j.is_number_float()) return fmt::format("{:.17g}", j.get<double>());
+  return fmt::format("a {}", j.type_name());
+}
+
+}  // namespace
+
+bool JsonReadOptions::is_valid(std::string* why) const {
+  auto fail = [&](const char* reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (max_depth < 1) return fail("max_depth must be at least 1");
+  if (max_bytes < 1) return fail("max_bytes must be at least 1");
+  return true;
+}
+
+nlohmann::json parse_json_text(const std::string& text, const std::string& source, const JsonReadOptions& options) {
+  if (std::string why; !options.is_valid(&why)) throw InputError(source, kDocumentField, why);
+  if (text.size() > options.max_bytes)
+    throw InputError(source, kDocumentField,
+                     fmt::format("{} bytes, more than the limit of {} bytes", text.size(), options.max_bytes));
+  // depth = the number of containers around the one being opened: the top level is depth 0.
+  const auto depth_guard = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
+    if ((event == nlohmann::json::parse_event_t::object_start || event == nlohmann::json::parse_event_t::array_start) &&
+        depth >= options.max_depth)
+      throw TooDeep{};
+    return true;
+  };
   try {
-    return nlohmann::json::parse(buffer.str());
+    return nlohmann::json::parse(text, depth_guard);
+  } catch (const TooDeep&) {
+    throw InputError(source, kDocumentField, fmt::format("nesting deeper than {} levels", options.max_depth));
   } catch (const nlohmann::json::parse_error& e) {
-    throw InputError(path, "", fmt::format("malformed JSON at byte {}", e.byte));
+    throw InputError(source, kDocumentField, fmt::format("malformed JSON at byte {}", e.byte));
   } catch (const nlohmann::json::exception& e) {
-    throw InputError(path, "", fmt::format("unreadable JSON ({})", e.what()));
+    throw InputError(source, kDocumentField, fmt::format("unreadable JSON ({})", e.what()));
   }
+}
+
+nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& options) {
+  std::error_code ec;
+  if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a file");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot open the file");
+  // The size is checked before the contents are read: a regular file by its length, anything else
+  // (a pipe, a device) by reading at most max_bytes + 1 bytes.
+  const std::uintmax_t size = std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
+  if (!ec && size > options.max_bytes)
+    throw InputError(path, kDocumentField,
+                     fmt::format("{} bytes, more than the limit of {} bytes", size, options.max_bytes));
+  std::string text;
+  char chunk[1 << 16];
+  while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
+    text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (text.size() > options.max_bytes)
+      throw InputError(path, kDocumentField, fmt::format("more than the limit of {} bytes", options.max_bytes));
+  }
+  if (in.bad()) throw InputError(path, "", "read error");
+  return parse_json_text(text, path, options);
+}
+
+std::int64_t json_integer(const nlohmann::json& j, const std::string& source, const std::string& field,
+                          std::int64_t lo, std::int64_t hi) {
+  const std::string range = fmt::format("an integer in [{}, {}]", lo, hi);
+  if (j.is_number_unsigned()) {
+    const auto u = j.get<std::uint64_t>();
+    if (hi >= 0 && u <= static_cast<std::uint64_t>(hi) && (lo <= 0 || u >= static_cast<std::uint64_t>(lo)))
+      return static_cast<std::int64_t>(u);
+    throw InputError(source, field, fmt::format("must be {}, not {}", range, j.dump()));
+  }
+  if (j.is_number_integer()) {
+    const auto v = j.get<std::int64_t>();
+    if (v >= lo && v <= hi) return v;
+    throw InputError(source, field, fmt::format("must be {}, not {}", range, j.dump()));
+  }
+  throw InputError(source, field, fmt::format("must be {}, not {}", range, describe(j)));
+}
+
+double json_coordinate(const nlohmann::json& j, const std::string& source, const std::string& field,
+                       const std::string& what) {
+  if (!j.is_number()) throw InputError(source, field, fmt::format("{} is not a number", what));
+  const double x = j.get<double>();
+  if (!std::isfinite(x)) throw InputError(source, field, fmt::format("{} is not finite", what));
+  if (std::abs(x) > kMaxCoordinate)
+    throw InputError(source, field,
+                     fmt::format("{} is {:.17g}, beyond the bound |x| <= {:g} (energies scale as x^2 and would "
+                                 "overflow; scale the model down)", what, x, kMaxCoordinate));
+  return x;
 }
 
 }  // namespace coons

@@ -1,13 +1,53 @@
-// Reading a JSON file at the input edge: an unreadable file or malformed JSON is an InputError
-// naming the file (and the byte where parsing stopped).
+// Reading a JSON document at the input edge, the one reader every input file goes through:
+// an unreadable file, malformed JSON, a file larger than `max_bytes` or nesting deeper than
+// `max_depth` is an InputError naming the file ("FILE: (document): reason"); nothing deeper than the
+// limit is ever built, so no later recursive walk (copy, dump, compare) can exhaust the stack.
+// Also the checked conversions of JSON values the readers share (integers in range, coordinates
+// whose squares stay representable).
 #pragma once
 
+#include <cstdint>
 #include <string>
 
 #include <nlohmann/json.hpp>
 
 namespace coons {
 
-nlohmann::json read_json_file(const std::string& path);
+struct JsonReadOptions {
+  //! Containers nested deeper than this are refused (the formats nest at most 4 levels).
+  int max_depth = 64;
+  //! Files larger than this are refused before they are read (256 MiB).
+  std::uint64_t max_bytes = std::uint64_t{256} << 20;
+
+  [[nodiscard]] bool is_valid(std::string* why = nullptr) const;
+};
+
+//! The field name of errors about the document as a whole.
+inline constexpr const char* kDocumentField = "(document)";
+
+//! Parse `text` read from `source` (the name errors carry), within the limits of `options`.
+nlohmann::json parse_json_text(const std::string& text, const std::string& source,
+                               const JsonReadOptions& options = {});
+
+//! Read and parse the file at `path` ("-" is not special: a path is a path).
+nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& options = {});
+
+//! An integer field within [lo, hi]; anything else (a fraction, a string, a value out of range,
+//! however large) is an InputError naming `field` and the bounds.
+std::int64_t json_integer(const nlohmann::json& j, const std::string& source, const std::string& field,
+                          std::int64_t lo, std::int64_t hi);
+
+//! The largest coordinate magnitude the readers accept. Energies and squared residuals scale as
+//! s² for coordinates of size s, times constants up to ~1e5 (high degrees: products of m², n² and
+//! binomial weights) and sums over up to ~1e7 terms: s²·1e12 < 1.8e308 needs s < ~1e148, and an
+//! intermediate that multiplies two such quantities (s⁴) would need s < ~1e74. 1e60 keeps both
+//! (s⁴·1e12 = 1e252) with margin and is far beyond any real model (measured: the dome scaled to
+//! 1e59 solves with every energy finite, thin-plate 2.5e119).
+inline constexpr double kMaxCoordinate = 1e60;
+
+//! A coordinate that is a finite number with |x| <= kMaxCoordinate; `what` says which one
+//! ("coordinate 2"), the InputError names `field`, the value and the bound.
+double json_coordinate(const nlohmann::json& j, const std::string& source, const std::string& field,
+                       const std::string& what);
 
 }  // namespace coons

@@ -1,6 +1,6 @@
 // Matrix Market output of an assembled mask system, for other solvers and tools.
 // The matrix is written as `coordinate real general` (every stored entry, both triangles, as
-// Eigen's saveMarket does, 17 significant digits: it reads back bit-exactly); the right-hand sides
+// Eigen's saveMarket does, scientific with 17 decimals: it reads back bit-exactly); the right-hand sides
 // as one dense `array real general` file of #rows by 3 (column-major, as the format prescribes).
 // Every write is checked: a failed write is an InputError with the OS reason, and the file is
 // published only when complete (write_files.h).

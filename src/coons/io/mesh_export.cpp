@@ -49,8 +49,8 @@ void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::strin
 
 void write_grid_ply(std::ostream& out, const SurfaceSamples& s, const std::string& comment) {
   const int k = s.k;
-  const Fields fields_(s);
-  const auto& fields = fields_.list;
+  const Fields field_set(s);
+  const auto& fields = field_set.list;
   out << "ply\nformat ascii 1.0\ncomment coons: surface sampled on a " << k << "x" << k << " grid\n";
   if (!comment.empty()) out << "comment " << comment << '\n';
   out << "element vertex " << k * k << "\nproperty double x\nproperty double y\nproperty double z\n"

@@ -62,11 +62,7 @@ class Reader {
     if (!p.is_array()) fail(field, "a point must be an array of 3 numbers");
     if (p.size() != 3) fail(field, fmt::format("a point must have 3 coordinates, not {}", p.size()));
     Vec out;
-    for (int c = 0; c < 3; ++c) {
-      if (!p[c].is_number()) fail(field, fmt::format("coordinate {} is not a number", c));
-      out(c) = p[c].get<double>();
-      if (!std::isfinite(out(c))) fail(field, fmt::format("coordinate {} is not finite", c));
-    }
+    for (int c = 0; c < 3; ++c) out(c) = json_coordinate(p[c], source_, field, fmt::format("coordinate {}", c));
     return out;
   }
 
@@ -102,7 +98,7 @@ class Reader {
     for (const auto& [key, value] : j.items()) {
       (void)value;
       if (key != form && !(form == "expr" && key == "interval"))
-        fail(field + "." + key, fmt::format("unknown field in a \"{}\" curve", form));
+        fail(fmt::format("{}.{}", field, key), fmt::format("unknown field in a \"{}\" curve", form));
     }
     const std::string sub = field + "." + form;
     if (form == "bezier") {
@@ -145,6 +141,10 @@ class Reader {
           if (!std::isfinite(p(comp)))
             fail(fmt::format("{}[{}]", sub, comp),
                  fmt::format("'{}' is not finite at t = {:.6g}", expressions[comp], t1 + s * (t2 - t1)));
+          else if (std::abs(p(comp)) > kMaxCoordinate)
+            fail(fmt::format("{}[{}]", sub, comp),
+                 fmt::format("'{}' is {:.6g} at t = {:.6g}, beyond the bound |x| <= {:g} (energies scale as x^2)",
+                             expressions[comp], p(comp), t1 + s * (t2 - t1), kMaxCoordinate));
       }
       return c;
     } catch (const ExpressionError& x) {

@@ -14,7 +14,8 @@ struct ControlNet {
   Eigen::MatrixX3d points;  //!< #(m+1)(n+1) by 3
 
   ControlNet() = default;
-  ControlNet(int m_, int n_) : m(m_), n(n_), points(Eigen::MatrixX3d::Zero((m_ + 1) * (n_ + 1), 3)) {}
+  ControlNet(int degree_u, int degree_v)
+      : m(degree_u), n(degree_v), points(Eigen::MatrixX3d::Zero((degree_u + 1) * (degree_v + 1), 3)) {}
 
   [[nodiscard]] Eigen::Index index(int i, int j) const { return Eigen::Index(i) * (n + 1) + j; }
   auto at(int i, int j) { return points.row(index(i, j)); }

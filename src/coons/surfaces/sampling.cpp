@@ -48,7 +48,8 @@ struct StartGrid {
 ClosestPoint closest_from(const Surface& s, const StartGrid& grid, const Eigen::RowVector3d& p) {
   Eigen::Index best = 0;
   (grid.points.rowwise() - p).rowwise().squaredNorm().minCoeff(&best);
-  double u = double(best / grid.k) / (grid.k - 1), v = double(best % grid.k) / (grid.k - 1);
+  const Eigen::Index row = best / grid.k, col = best % grid.k;  // the grid point's indices a, b
+  double u = double(row) / (grid.k - 1), v = double(col) / (grid.k - 1);
   for (int it = 0; it < 30; ++it) {
     const SurfacePoint x = s.evaluate(u, v);
     const Eigen::RowVector3d d = x.p - p;

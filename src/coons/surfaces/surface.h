@@ -3,7 +3,7 @@
 // point and the partial derivatives up to order 2; bezier_net() the exact net when the surface is
 // polynomial; fitted_net() an approximating net (every non-Bézier curve replaced by its Bézier
 // fit) with the fits' deviations, so that analytic examples can be compared with discrete nets.
-// Based on: LN0–004 (the family), summarised in docs/math.md §6.
+// Based on: LN0–LN4 (the family), summarised in docs/math.md §6.
 #pragma once
 
 #include <array>

@@ -1,0 +1,22 @@
+#!/usr/bin/env bash
+# The sanitizer build: the library, the CLI and the tests with AddressSanitizer and
+# UndefinedBehaviorSanitizer (-DCOONS_SANITIZE=ON) in ./build-asan, then the fast tests (the
+# default suite: no benchmarks, nothing tagged [slow]). Any finding fails its test, and the script.
+# Usage: scripts/sanitize.sh [extra ctest arguments, e.g. -R parse_boundary]
+set -euo pipefail
+cd "$(dirname "$0")/.."
+build=build-asan
+jobs=$(nproc)
+
+mkdir -p "$build"
+configure_log=$build/configure.log
+cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
+      -DCOONS_SANITIZE=ON -DCOONS_BUILD_BENCHMARKS=OFF >"$configure_log" 2>&1 || { cat "$configure_log" >&2; exit 1; }
+grep -E "^-- coons:" "$configure_log" || true
+cmake --build "$build" -j"$jobs"  # the library, the CLI, the tests and the fuzz-regression replays
+
+# halt_on_error: the first finding ends the process with a non-zero status, so its test fails.
+export ASAN_OPTIONS=${ASAN_OPTIONS:-halt_on_error=1:detect_leaks=1:strict_string_checks=1:detect_stack_use_after_return=1}
+export UBSAN_OPTIONS=${UBSAN_OPTIONS:-halt_on_error=1:print_stacktrace=1}
+unset COONS_SLOW
+ctest --test-dir "$build" -j"$jobs" --output-on-failure -E '^bench_' "$@"

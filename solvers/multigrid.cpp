@@ -1,0 +1,290 @@
+#include "multigrid.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "multigrid_levels.h"
+
+namespace coons::solvers {
+
+bool MultigridOptions::is_valid(std::string* why) const {
+  auto fail = [&](const char* reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (pre_smoothing < 0 || post_smoothing < 0) return fail("smoothing sweeps must be >= 0");
+  if (pre_smoothing + post_smoothing < 1) return fail("a cycle needs at least one smoothing sweep");
+  if (coarsest_unknowns < 1) return fail("coarsest_unknowns must be >= 1");
+  if (max_levels < 1) return fail("max_levels must be >= 1");
+  return true;
+}
+
+Multigrid::Multigrid() = default;
+Multigrid::~Multigrid() = default;
+Multigrid::Multigrid(Multigrid&&) noexcept = default;
+Multigrid& Multigrid::operator=(Multigrid&&) noexcept = default;
+
+namespace {
+
+using namespace mg_detail;
+
+void cycle_at(const std::vector<Level>& levels, std::size_t l, const MultigridOptions& o,
+              const Vector& b, Vector& x, CycleType type) {
+  const Level& L = levels[l];
+  if (l + 1 == levels.size()) {
+    solve_direct(L, b, x);
+    return;
+  }
+  for (int s = 0; s < o.pre_smoothing; ++s) smooth(L, b, x, true);
+  Vector r, bc, xc;
+  residual(L, b, x, r);
+  restrict_to(L, levels[l + 1], r, bc);
+  xc.setZero(levels[l + 1].points());
+  cycle_at(levels, l + 1, o, bc, xc, type);
+  if (type == CycleType::kF) cycle_at(levels, l + 1, o, bc, xc, CycleType::kV);
+  prolong_add(L, levels[l + 1], xc, x);
+  for (int s = 0; s < o.post_smoothing; ++s) smooth(L, b, x, false);
+}
+
+}  // namespace
+
+SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& options,
+                             std::string* message) {
+  levels_.clear();
+  fine_number_.clear();
+  options_ = options;
+  std::string why;
+  if (!op.is_valid(&why) || !options.is_valid(&why)) {
+    if (message) *message = why;
+    return SolveStatus::kFailure;
+  }
+  if (op.size() == 0) {
+    if (message) *message = "the grid has no free points";
+    return SolveStatus::kFailure;
+  }
+  Level fine;
+  fine.rows = op.rows;
+  fine.cols = op.cols;
+  fine.radius = op.radius;
+  fine.constant = true;
+  fine.coef = op.weights;
+  fine.free = op.free.empty() ? std::vector<unsigned char>(std::size_t(op.rows) * op.cols, 1)
+                              : op.free;
+  for (auto& f : fine.free) f = f ? 1 : 0;
+  fine.unknowns = std::count(fine.free.begin(), fine.free.end(), 1);
+  fine_number_ = free_numbering(op);
+  levels_.push_back(std::move(fine));
+  while (true) {
+    const Level& L = levels_.back();
+    if (L.unknowns <= options.coarsest_unknowns || std::min(L.rows, L.cols) < 3 ||
+        int(levels_.size()) >= options.max_levels)
+      break;
+    const bool cubic = options.interpolation == Interpolation::kCubic ||
+                       (options.interpolation == Interpolation::kAuto && op.radius == 2);
+    Level coarse = galerkin_coarse(L, cubic ? 3 : 1);
+    if (coarse.unknowns == 0) break;
+    levels_.push_back(std::move(coarse));
+  }
+  for (std::size_t l = 0; l + 1 < levels_.size(); ++l)
+    if (!factor_lines(levels_[l])) {
+      if (message) *message = "a line block of level " + std::to_string(l) + " has a zero pivot";
+      levels_.clear();
+      return SolveStatus::kSingular;
+    }
+  if (!setup_direct(levels_.back())) {
+    if (message) *message = "the coarsest system (" + std::to_string(levels_.back().unknowns) +
+                            " unknowns) is singular";
+    levels_.clear();
+    return SolveStatus::kSingular;
+  }
+  return SolveStatus::kSuccess;
+}
+
+bool Multigrid::ready() const { return !levels_.empty(); }
+
+Eigen::Index Multigrid::size() const { return levels_.empty() ? 0 : levels_.front().unknowns; }
+
+std::vector<MultigridLevelInfo> Multigrid::levels() const {
+  std::vector<MultigridLevelInfo> out;
+  for (const Level& L : levels_) out.push_back({L.rows, L.cols, L.radius, L.unknowns});
+  return out;
+}
+
+namespace {
+
+void to_grid(const std::vector<Eigen::Index>& number, const Vector& v, Vector& g) {
+  g.setZero(Eigen::Index(number.size()));
+  for (std::size_t p = 0; p < number.size(); ++p)
+    if (number[p] >= 0) g[Eigen::Index(p)] = v[number[p]];
+}
+
+void from_grid(const std::vector<Eigen::Index>& number, const Vector& g, Eigen::Index n, Vector& v) {
+  v.resize(n);
+  for (std::size_t p = 0; p < number.size(); ++p)
+    if (number[p] >= 0) v[number[p]] = g[Eigen::Index(p)];
+}
+
+}  // namespace
+
+void Multigrid::apply(const Vector& x, Vector& y) const {
+  if (!ready()) {
+    y.setZero(x.size());
+    return;
+  }
+  Vector g, h;
+  to_grid(fine_number_, x, g);
+  apply_level(levels_.front(), g, h);
+  from_grid(fine_number_, h, size(), y);
+}
+
+void Multigrid::precondition(const Vector& r, Vector& z) const {
+  if (!ready()) {  // no hierarchy: the identity
+    z = r;
+    return;
+  }
+  Vector g, h = Vector::Zero(levels_.front().points());
+  to_grid(fine_number_, r, g);
+  cycle_at(levels_, 0, options_, g, h, options_.cycle);
+  from_grid(fine_number_, h, size(), z);
+}
+
+IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOptions& options) const {
+  IterationSummary out;
+  if (!ready() || b.size() != size()) {
+    out.status = SolveStatus::kFailure;
+    out.message = ready() ? "right-hand side of the wrong size" : "setup() has not succeeded";
+    return out;
+  }
+  const Level& L = levels_.front();
+  if (x.size() != b.size()) x.setZero(b.size());
+  Vector bg, xg, r;
+  to_grid(fine_number_, b, bg);
+  to_grid(fine_number_, x, xg);
+  const double bnorm = bg.norm();
+  if (bnorm == 0) {
+    x.setZero(b.size());
+    out.history = {0};
+    return out;
+  }
+  residual(L, bg, xg, r);
+  double rel = r.norm() / bnorm;
+  out.history.push_back(rel);
+  Vector last_good = xg;
+  while (rel > options.tolerance && out.iterations < options.max_iterations) {
+    cycle_at(levels_, 0, options_, bg, xg, options_.cycle);
+    ++out.iterations;
+    residual(L, bg, xg, r);
+    rel = r.norm() / bnorm;
+    out.history.push_back(rel);
+    if (!std::isfinite(rel) || rel > options.divergence * out.history.front()) {
+      out.status = SolveStatus::kDiverged;
+      out.message = "the multigrid iteration diverged: residual grew from " +
+                    std::to_string(out.history.front()) + " to " + std::to_string(rel);
+      xg = last_good;
+      residual(L, bg, xg, r);
+      rel = r.norm() / bnorm;
+      break;
+    }
+    last_good = xg;
+    if (rel > options.tolerance && stagnated(out.history, 10)) {
+      out.status = SolveStatus::kNotConverged;
+      out.message = "the multigrid iteration stalled at relative residual " + std::to_string(rel) +
+                    " after " + std::to_string(out.iterations) + " cycles";
+      break;
+    }
+  }
+  out.relative_residual = rel;
+  if (out.status == SolveStatus::kSuccess && rel > options.tolerance) {
+    out.status = SolveStatus::kNotConverged;
+    out.message = "relative residual " + std::to_string(rel) + " after " +
+                  std::to_string(out.iterations) + " cycles";
+  }
+  from_grid(fine_number_, xg, size(), x);
+  return out;
+}
+
+IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x,
+                              const IterationOptions& options) {
+  IterationSummary out;
+  if (!mg.ready() || b.size() != mg.size()) {
+    out.status = SolveStatus::kFailure;
+    out.message = mg.ready() ? "right-hand side of the wrong size" : "setup() has not succeeded";
+    return out;
+  }
+  const auto& levels = mg.levels_;
+  const Level& L = levels.front();
+  const auto& number = mg.fine_number_;
+  MultigridOptions cycle_options = mg.options();
+  cycle_options.cycle = CycleType::kV;
+  if (x.size() != b.size()) x.setZero(b.size());
+  Vector bg, xg, r, z, p, q;
+  to_grid(number, b, bg);
+  to_grid(number, x, xg);
+  const double bnorm = bg.norm();
+  if (bnorm == 0) {
+    x.setZero(b.size());
+    out.history = {0};
+    return out;
+  }
+  residual(L, bg, xg, r);
+  double rel = r.norm() / bnorm;
+  out.history.push_back(rel);
+  auto precondition = [&](const Vector& res, Vector& zz) {
+    zz.setZero(L.points());
+    cycle_at(levels, 0, cycle_options, res, zz, CycleType::kV);
+  };
+  precondition(r, z);
+  p = z;
+  double rz = r.dot(z);
+  while (rel > options.tolerance && out.iterations < options.max_iterations) {
+    if (!(rz > 0)) {
+      out.status = SolveStatus::kNotPositiveDefinite;
+      out.message = "the V-cycle preconditioner is not positive definite on this operator";
+      break;
+    }
+    apply_level(L, p, q);
+    const double pq = p.dot(q);
+    if (!(pq > 0)) {
+      out.status = SolveStatus::kNotPositiveDefinite;
+      out.message = "a curvature p'Ap <= 0: the operator is not positive definite";
+      break;
+    }
+    const double step = rz / pq;
+    xg += step * p;
+    r -= step * q;
+    ++out.iterations;
+    rel = r.norm() / bnorm;
+    if (rel <= options.tolerance) {  // confirm with the true residual; go on if it disagrees
+      residual(L, bg, xg, r);
+      rel = r.norm() / bnorm;
+    }
+    out.history.push_back(rel);
+    if (rel <= options.tolerance) break;
+    if (stagnated(out.history, 25)) {
+      out.status = SolveStatus::kNotConverged;
+      out.message = "conjugate gradients stalled at relative residual " + std::to_string(rel) +
+                    " after " + std::to_string(out.iterations) + " iterations";
+      break;
+    }
+    precondition(r, z);
+    const double rz_new = r.dot(z);
+    p = z + (rz_new / rz) * p;
+    rz = rz_new;
+  }
+  residual(L, bg, xg, r);
+  out.relative_residual = r.norm() / bnorm;
+  if (!std::isfinite(out.relative_residual)) {
+    xg.setZero();
+    out.relative_residual = 1;
+    out.status = SolveStatus::kDiverged;
+    out.message = "conjugate gradients broke down (non-finite values)";
+  } else if (out.status == SolveStatus::kSuccess && out.relative_residual > options.tolerance) {
+    out.status = SolveStatus::kNotConverged;
+    out.message = "relative residual " + std::to_string(out.relative_residual) + " after " +
+                  std::to_string(out.iterations) + " iterations";
+  }
+  from_grid(number, xg, mg.size(), x);
+  return out;
+}
+
+}  // namespace coons::solvers

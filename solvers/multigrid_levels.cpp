@@ -1,0 +1,359 @@
+#include "multigrid_levels.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace coons::solvers::mg_detail {
+
+
+// (A x)(p) over the stencil of point p; x is zero at fixed points and outside the grid.
+static double apply_at(const Level& L, const double* x, int i, int j) {
+  const int r = L.radius, w = L.width(), C = L.cols;
+  const double* a = L.at(Eigen::Index(i) * C + j);
+  double sum = 0;
+  if (i >= r && i + r < L.rows && j >= r && j + r < C) {
+    for (int di = -r; di <= r; ++di) {
+      const double* xr = x + Eigen::Index(i + di) * C + j;
+      const double* ar = a + (di + r) * w + r;
+      for (int dj = -r; dj <= r; ++dj) sum += ar[dj] * xr[dj];
+    }
+    return sum;
+  }
+  for (int di = -r; di <= r; ++di) {
+    const int ii = i + di;
+    if (ii < 0 || ii >= L.rows) continue;
+    for (int dj = -r; dj <= r; ++dj) {
+      const int jj = j + dj;
+      if (jj < 0 || jj >= C) continue;
+      sum += a[(di + r) * w + dj + r] * x[Eigen::Index(ii) * C + jj];
+    }
+  }
+  return sum;
+}
+
+void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) {
+  r.resize(L.points());
+  for (int i = 0; i < L.rows; ++i)
+    for (int j = 0; j < L.cols; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * L.cols + j;
+      r[p] = L.free[p] ? b[p] - apply_at(L, x.data(), i, j) : 0.0;
+    }
+}
+
+void apply_level(const Level& L, const Vector& x, Vector& y) {
+  y.resize(L.points());
+  for (int i = 0; i < L.rows; ++i)
+    for (int j = 0; j < L.cols; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * L.cols + j;
+      y[p] = L.free[p] ? apply_at(L, x.data(), i, j) : 0.0;
+    }
+}
+
+// Banded LU without pivoting of an n × n matrix of half-bandwidth r, stored by rows:
+// band[t·(2r+1) + k + r] = M(t, t + k). False on a zero (or non-finite) pivot.
+static bool band_factor(double* band, int n, int r) {
+  const int w = 2 * r + 1;
+  double scale = 0;
+  for (int t = 0; t < n * w; ++t) scale = std::max(scale, std::abs(band[t]));
+  for (int t = 0; t < n; ++t) {
+    const double pivot = band[t * w + r];
+    if (!std::isfinite(pivot) || std::abs(pivot) <= 1e-14 * scale) return false;
+    for (int k = 1; k <= r && t + k < n; ++k) {
+      double& l = band[(t + k) * w + r - k];
+      l /= pivot;
+      for (int s = 1; s <= r && t + s < n; ++s) band[(t + k) * w + r + s - k] -= l * band[t * w + r + s];
+    }
+  }
+  return true;
+}
+
+static void band_solve(const double* band, int n, int r, double* y) {
+  const int w = 2 * r + 1;
+  for (int t = 0; t < n; ++t)
+    for (int k = 1; k <= r && t - k >= 0; ++k) y[t] -= band[t * w + r - k] * y[t - k];
+  for (int t = n - 1; t >= 0; --t) {
+    for (int k = 1; k <= r && t + k < n; ++k) y[t] -= band[t * w + r + k] * y[t + k];
+    y[t] /= band[t * w + r];
+  }
+}
+
+// The line blocks: along a row (i fixed) or a column (j fixed); fixed points become identity rows.
+bool factor_lines(Level& L) {
+  const int r = L.radius, w = L.width(), R = L.rows, C = L.cols;
+  L.row_lu.assign(std::size_t(L.points()) * w, 0.0);
+  L.col_lu.assign(std::size_t(L.points()) * w, 0.0);
+  for (int i = 0; i < R; ++i)
+    for (int j = 0; j < C; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * C + j;
+      double* row = &L.row_lu[std::size_t(i) * C * w + std::size_t(j) * w];  // line i, position j
+      double* col = &L.col_lu[std::size_t(j) * R * w + std::size_t(i) * w];  // line j, position i
+      if (!L.free[p]) {
+        row[r] = col[r] = 1;
+        continue;
+      }
+      const double* a = L.at(p);
+      for (int k = -r; k <= r; ++k) {
+        if (j + k >= 0 && j + k < C && L.free[p + k]) row[r + k] = a[r * w + r + k];
+        if (i + k >= 0 && i + k < R && L.free[p + Eigen::Index(k) * C]) col[r + k] = a[(r + k) * w + r];
+      }
+    }
+  for (int i = 0; i < R; ++i)
+    if (!band_factor(&L.row_lu[std::size_t(i) * C * w], C, r)) return false;
+  for (int j = 0; j < C; ++j)
+    if (!band_factor(&L.col_lu[std::size_t(j) * R * w], R, r)) return false;
+  return true;
+}
+
+static void smooth_row(const Level& L, const Vector& b, Vector& x, int i, std::vector<double>& line) {
+  const int C = L.cols;
+  line.resize(std::size_t(C));
+  for (int j = 0; j < C; ++j) {
+    const Eigen::Index p = Eigen::Index(i) * C + j;
+    line[j] = L.free[p] ? b[p] - apply_at(L, x.data(), i, j) : 0.0;
+  }
+  band_solve(&L.row_lu[std::size_t(i) * C * L.width()], C, L.radius, line.data());
+  for (int j = 0; j < C; ++j) x[Eigen::Index(i) * C + j] += line[j];
+}
+
+static void smooth_col(const Level& L, const Vector& b, Vector& x, int j, std::vector<double>& line) {
+  const int R = L.rows, C = L.cols;
+  line.resize(std::size_t(R));
+  for (int i = 0; i < R; ++i) {
+    const Eigen::Index p = Eigen::Index(i) * C + j;
+    line[i] = L.free[p] ? b[p] - apply_at(L, x.data(), i, j) : 0.0;
+  }
+  band_solve(&L.col_lu[std::size_t(j) * R * L.width()], R, L.radius, line.data());
+  for (int i = 0; i < R; ++i) x[Eigen::Index(i) * C + j] += line[i];
+}
+
+// Forward: rows 0..R−1, then columns 0..C−1. Backward (the adjoint): columns C−1..0, rows R−1..0.
+void smooth(const Level& L, const Vector& b, Vector& x, bool forward) {
+  std::vector<double> line;
+  if (forward) {
+    for (int i = 0; i < L.rows; ++i) smooth_row(L, b, x, i, line);
+    for (int j = 0; j < L.cols; ++j) smooth_col(L, b, x, j, line);
+  } else {
+    for (int j = L.cols - 1; j >= 0; --j) smooth_col(L, b, x, j, line);
+    for (int i = L.rows - 1; i >= 0; --i) smooth_row(L, b, x, i, line);
+  }
+}
+
+// Interpolation weight of a fine point at offset a from a coarse point's own fine point, along one
+// axis: linear (1/2, 1, 1/2) or cubic (−1/16, 0, 9/16, 1, 9/16, 0, −1/16). Values beyond the grid
+// and at fixed points are zero (they carry a zero correction).
+static double interp_weight(int reach, int a) {
+  if (a < 0) a = -a;
+  if (reach == 1) return a == 0 ? 1.0 : a == 1 ? 0.5 : 0.0;
+  return a == 0 ? 1.0 : a == 1 ? 9.0 / 16 : a == 3 ? -1.0 / 16 : 0.0;
+}
+
+// The coarse points whose interpolation reaches fine index f along one axis, with their weights.
+static int coarse_parents(int f, int coarse_len, int offset, int reach, int* parent, double* weight) {
+  int n = 0;
+  for (int K = (f - offset - reach) / 2 - 1; K <= (f - offset + reach) / 2 + 1; ++K) {
+    if (K < 0 || K >= coarse_len) continue;
+    const int a = f - (2 * K + offset);
+    if (a < -reach || a > reach) continue;
+    const double w = interp_weight(reach, a);
+    if (w == 0) continue;
+    parent[n] = K;
+    weight[n++] = w;
+  }
+  return n;
+}
+
+// r_c = Pᵀ r (P: interpolation restricted to free points).
+void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
+  const int h = Cl.reach;
+  rc.setZero(Cl.points());
+  for (int I = 0; I < Cl.rows; ++I)
+    for (int J = 0; J < Cl.cols; ++J) {
+      const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
+      if (!Cl.free[q]) continue;
+      double sum = 0;
+      for (int a = -h; a <= h; ++a) {
+        const int i = 2 * I + Cl.offset_i + a;
+        const double wa = interp_weight(h, a);
+        if (i < 0 || i >= F.rows || wa == 0) continue;
+        for (int c = -h; c <= h; ++c) {
+          const int j = 2 * J + Cl.offset_j + c;
+          if (j < 0 || j >= F.cols) continue;
+          sum += wa * interp_weight(h, c) * r[Eigen::Index(i) * F.cols + j];  // r = 0 at fixed
+        }
+      }
+      rc[q] = sum;
+    }
+}
+
+// x += P x_c.
+void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x) {
+  const int h = Cl.reach;
+  for (int I = 0; I < Cl.rows; ++I)
+    for (int J = 0; J < Cl.cols; ++J) {
+      const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
+      if (!Cl.free[q] || xc[q] == 0) continue;
+      for (int a = -h; a <= h; ++a) {
+        const int i = 2 * I + Cl.offset_i + a;
+        const double wa = interp_weight(h, a);
+        if (i < 0 || i >= F.rows || wa == 0) continue;
+        for (int c = -h; c <= h; ++c) {
+          const int j = 2 * J + Cl.offset_j + c;
+          if (j < 0 || j >= F.cols) continue;
+          const Eigen::Index p = Eigen::Index(i) * F.cols + j;
+          if (F.free[p]) x[p] += wa * interp_weight(h, c) * xc[q];
+        }
+      }
+    }
+}
+
+// The Galerkin operator Pᵀ A P of the fine level, as one stencil per coarse point.
+Level galerkin_coarse(const Level& F, int reach) {
+  Level Cl;
+  // Coarse points start one point inside the free region (its bounding box), as in the standard
+  // vertex-centred coarsening, whatever fixed margin the grid carries.
+  int first_i = F.rows, first_j = F.cols;
+  for (int i = 0; i < F.rows; ++i)
+    for (int j = 0; j < F.cols; ++j)
+      if (F.free[std::size_t(i) * F.cols + j]) {
+        first_i = std::min(first_i, i);
+        first_j = std::min(first_j, j);
+      }
+  Cl.offset_i = (first_i + 1) % 2;
+  Cl.offset_j = (first_j + 1) % 2;
+  Cl.rows = (F.rows + 1 - Cl.offset_i) / 2;
+  Cl.cols = (F.cols + 1 - Cl.offset_j) / 2;
+  Cl.reach = reach;
+  Cl.radius = (F.radius + 2 * reach) / 2;
+  const int rc = Cl.radius, wc = Cl.width(), rf = F.radius, wf = F.width();
+  Cl.free.assign(std::size_t(Cl.points()), 0);
+  for (int I = 0; I < Cl.rows; ++I)
+    for (int J = 0; J < Cl.cols; ++J)
+      Cl.free[std::size_t(I) * Cl.cols + J] =
+          F.free[std::size_t(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j];
+  Cl.unknowns = std::count(Cl.free.begin(), Cl.free.end(), 1);
+  Cl.coef.assign(std::size_t(Cl.points()) * wc * wc, 0.0);
+  // Two passes, row by row: B = A P for the fine rows a coarse row needs (kept in a ring of
+  // 2·reach + 1 rows), then A_c = Pᵀ B. B(p, ·) lives in a bw × bw window of coarse points.
+  struct Parents {
+    int count = 0, index[4] = {0, 0, 0, 0};
+    double weight[4] = {0, 0, 0, 0};
+  };
+  auto parents_along = [&](int len, int coarse_len, int offset) {
+    std::vector<Parents> out(static_cast<std::size_t>(len));
+    for (int f = 0; f < len; ++f)
+      out[std::size_t(f)].count = coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index,
+                                                 out[std::size_t(f)].weight);
+    return out;
+  };
+  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i);
+  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j);
+  const int bw = rf + reach + 1;
+  auto window_start = [&](int f, int offset) {  // ceil((f − rf − reach − offset) / 2)
+    const int t = f - rf - reach - offset;
+    return t >= 0 ? (t + 1) / 2 : -((-t) / 2);
+  };
+  const int ring = 2 * reach + 1;
+  std::vector<std::vector<double>> B(std::size_t(ring),
+                                     std::vector<double>(std::size_t(F.cols) * bw * bw, 0.0));
+  auto compute_row = [&](int i) {
+    std::vector<double>& row = B[std::size_t(i % ring)];
+    std::fill(row.begin(), row.end(), 0.0);
+    const int lo_i = window_start(i, Cl.offset_i);
+    for (int j = 0; j < F.cols; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * F.cols + j;
+      if (!F.free[p]) continue;
+      double* b = &row[std::size_t(j) * bw * bw];
+      const int lo_j = window_start(j, Cl.offset_j);
+      const double* A = F.at(p);
+      for (int di = -rf; di <= rf; ++di) {
+        const int k = i + di;
+        if (k < 0 || k >= F.rows) continue;
+        const Parents& pk = parents_i[std::size_t(k)];
+        for (int dj = -rf; dj <= rf; ++dj) {
+          const int l = j + dj;
+          if (l < 0 || l >= F.cols) continue;
+          const double aw = A[(di + rf) * wf + dj + rf];
+          if (aw == 0 || !F.free[Eigen::Index(k) * F.cols + l]) continue;
+          const Parents& pl = parents_j[std::size_t(l)];
+          for (int s = 0; s < pk.count; ++s)
+            for (int t = 0; t < pl.count; ++t)
+              b[(pk.index[s] - lo_i) * bw + pl.index[t] - lo_j] += aw * pk.weight[s] * pl.weight[t];
+        }
+      }
+    }
+  };
+  int next_row = 0;
+  for (int I = 0; I < Cl.rows; ++I) {
+    const int last = std::min(F.rows - 1, 2 * I + Cl.offset_i + reach);
+    for (; next_row <= last; ++next_row) compute_row(next_row);
+    for (int J = 0; J < Cl.cols; ++J) {
+      const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
+      if (!Cl.free[q]) continue;
+      double* out = &Cl.coef[std::size_t(q) * wc * wc];
+      for (int a = -reach; a <= reach; ++a) {
+        const int i = 2 * I + Cl.offset_i + a;
+        const double wa = interp_weight(reach, a);
+        if (i < 0 || i >= F.rows || wa == 0) continue;
+        const std::vector<double>& row = B[std::size_t(i % ring)];
+        const int lo_i = window_start(i, Cl.offset_i);
+        for (int c = -reach; c <= reach; ++c) {
+          const int j = 2 * J + Cl.offset_j + c;
+          const double pw = wa * interp_weight(reach, c);
+          if (j < 0 || j >= F.cols || pw == 0 || !F.free[Eigen::Index(i) * F.cols + j]) continue;
+          const double* b = &row[std::size_t(j) * bw * bw];
+          const int lo_j = window_start(j, Cl.offset_j);
+          for (int u = 0; u < bw; ++u)
+            for (int v = 0; v < bw; ++v) {
+              const double value = b[u * bw + v];
+              if (value == 0) continue;
+              const int K1 = lo_i + u, K2 = lo_j + v;  // within the coarse radius of (I, J)
+              if (!Cl.free[std::size_t(K1) * Cl.cols + K2]) continue;
+              out[(K1 - I + rc) * wc + K2 - J + rc] += pw * value;
+            }
+        }
+      }
+    }
+  }
+  return Cl;
+}
+
+bool setup_direct(Level& L) {
+  L.number.assign(std::size_t(L.points()), -1);
+  Eigen::Index n = 0;
+  for (Eigen::Index p = 0; p < L.points(); ++p)
+    if (L.free[p]) L.number[p] = n++;
+  std::vector<Eigen::Triplet<double>> entries;
+  const int r = L.radius, w = L.width();
+  for (int i = 0; i < L.rows; ++i)
+    for (int j = 0; j < L.cols; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * L.cols + j;
+      if (!L.free[p]) continue;
+      const double* a = L.at(p);
+      for (int di = -r; di <= r; ++di)
+        for (int dj = -r; dj <= r; ++dj) {
+          const int ii = i + di, jj = j + dj;
+          if (ii < 0 || ii >= L.rows || jj < 0 || jj >= L.cols) continue;
+          const Eigen::Index col = L.number[Eigen::Index(ii) * L.cols + jj];
+          if (col >= 0 && a[(di + r) * w + dj + r] != 0)
+            entries.emplace_back(int(L.number[p]), int(col), a[(di + r) * w + dj + r]);
+        }
+    }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(entries.begin(), entries.end());
+  L.direct = std::make_unique<Eigen::SparseLU<Eigen::SparseMatrix<double>>>();
+  L.direct->compute(A);
+  return L.direct->info() == Eigen::Success;
+}
+
+void solve_direct(const Level& L, const Vector& b, Vector& x) {
+  Vector bf(L.unknowns);
+  for (Eigen::Index p = 0; p < L.points(); ++p)
+    if (L.number[p] >= 0) bf[L.number[p]] = b[p];
+  const Vector xf = L.direct->solve(bf);
+  x.setZero(L.points());
+  for (Eigen::Index p = 0; p < L.points(); ++p)
+    if (L.number[p] >= 0) x[p] = xf[L.number[p]];
+}
+
+
+}  // namespace coons::solvers::mg_detail

@@ -1,0 +1,59 @@
+// The levels of Multigrid (multigrid.h) and the operations on one level: internal to the
+// solvers layer. Vectors are grid vectors (rows·cols, zero at fixed points) of one level.
+#pragma once
+
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
+
+#include "multigrid.h"
+
+namespace coons::solvers {
+
+struct Multigrid::Level {
+  int rows = 0, cols = 0, radius = 1;
+  int offset_i = 1, offset_j = 1;  // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
+  int reach = 1;                    // interpolation from this level to the next finer: 1 linear, 3 cubic
+  bool constant = false;            // one stencil for every point (the finest level)
+  std::vector<double> coef;         // width² weights per point (or once when constant)
+  std::vector<unsigned char> free;  // rows·cols
+  std::vector<double> row_lu, col_lu;  // banded LU of the row and column line blocks
+  Eigen::Index unknowns = 0;
+  // The coarsest level only: the direct solve over its free points.
+  std::vector<Eigen::Index> number;
+  std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> direct;
+
+  [[nodiscard]] int width() const { return 2 * radius + 1; }
+  [[nodiscard]] Eigen::Index points() const { return Eigen::Index(rows) * cols; }
+  [[nodiscard]] const double* at(Eigen::Index p) const {
+    return constant ? coef.data() : coef.data() + p * width() * width();
+  }
+};
+
+namespace mg_detail {
+
+using Level = Multigrid::Level;
+using Vector = Eigen::VectorXd;
+
+//! r = b − A x on the free points (0 at fixed points).
+void residual(const Level& L, const Vector& b, const Vector& x, Vector& r);
+//! y = A x on the free points.
+void apply_level(const Level& L, const Vector& x, Vector& y);
+//! Factorises the row and column line blocks; false on a zero pivot.
+bool factor_lines(Level& L);
+//! One alternating line Gauss–Seidel sweep: forward (rows, then columns) or its adjoint.
+void smooth(const Level& L, const Vector& b, Vector& x, bool forward);
+//! r_c = Pᵀ r and x += P x_c between a level and the next coarser one.
+void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc);
+void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x);
+//! The next coarser level with the Galerkin operator Pᵀ A P (reach 1: bilinear, 3: bicubic).
+Level galerkin_coarse(const Level& F, int reach);
+//! The sparse LU of the coarsest level; false when it is singular.
+bool setup_direct(Level& L);
+void solve_direct(const Level& L, const Vector& b, Vector& x);
+
+}  // namespace mg_detail
+}  // namespace coons::solvers

@@ -1,0 +1,181 @@
+#include "multigrid_solvers.h"
+
+#include <algorithm>
+#include <optional>
+#include <string>
+
+#include "eigen_iterative.h"
+#include "gmres.h"
+#include "multigrid.h"
+#include "stencil_operator.h"
+
+namespace coons::solvers {
+
+namespace {
+
+enum class Method { kStationary, kCg, kGmres };
+
+// The grid operator of op: op.grid, else the 3×3 stencil; none when op has only a matrix.
+std::optional<StencilOperator> grid_operator_of(const LinearOperator& op) {
+  if (op.grid) return *op.grid;
+  if (op.stencil) return stencil_operator(*op.stencil);
+  return std::nullopt;
+}
+
+class MultigridBackend : public LinearSolver {
+ public:
+  MultigridBackend(std::string name, Method method, const SolverOptions& options)
+      : LinearSolver(options), name_(std::move(name)), method_(method) {}
+  [[nodiscard]] std::string name() const override { return name_; }
+  [[nodiscard]] bool exact() const override { return false; }
+
+ protected:
+  SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
+    const std::optional<StencilOperator> grid = grid_operator_of(op);
+    if (!grid) {
+      if (method_ == Method::kGmres && op.matrix) return SolveStatus::kSuccess;
+      summary.message = method_ == Method::kGmres
+                            ? "needs the assembled matrix or a grid stencil"
+                            : "needs a grid stencil (3x3 or 5x5, with its free mask), not only a matrix";
+      return SolveStatus::kNotApplicable;
+    }
+    std::string why;
+    if (!grid->is_valid(&why)) {
+      summary.message = "invalid grid operator: " + why;
+      return SolveStatus::kNotApplicable;
+    }
+    if (grid->size() == 0) {
+      summary.message = "the grid operator has no free points";
+      return SolveStatus::kNotApplicable;
+    }
+    if (op.matrix && op.matrix->rows() != grid->size()) {
+      summary.message = "the matrix has " + std::to_string(op.matrix->rows()) +
+                        " rows but the grid operator " + std::to_string(grid->size()) + " free points";
+      return SolveStatus::kNotApplicable;
+    }
+    if (method_ == Method::kCg && !grid->symmetric()) {
+      summary.message = "conjugate gradients need a symmetric stencil (w(d) = w(-d)); use gmres";
+      return SolveStatus::kNotApplicable;
+    }
+    if (method_ == Method::kStationary && !grid->symmetric()) {
+      // Galerkin coarsening with R = Pᵀ diverged on upwinded convection from 127x127 on.
+      summary.message = "multigrid here is built for symmetric stencils (w(d) = w(-d)); use gmres";
+      return SolveStatus::kNotApplicable;
+    }
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
+    const SolveStatus checked = do_analyze(op, summary);
+    if (checked != SolveStatus::kSuccess) return checked;
+    ilu_ = {};
+    matrix_ = op.matrix;
+    mg_ = Multigrid{};
+    const std::optional<StencilOperator> grid = grid_operator_of(op);
+    if (method_ == Method::kCg && !op.grid && op.stencil) {  // the exact spectrum is known
+      const double lo = stencil_eigenvalue_range(*op.stencil).first;
+      if (!(lo > 0)) {
+        summary.message = "smallest eigenvalue of the operator is " + std::to_string(lo) +
+                          ": conjugate gradients need a positive definite system";
+        return SolveStatus::kNotPositiveDefinite;
+      }
+    }
+    std::string message;
+    if (grid && grid->symmetric()) {
+      MultigridOptions mg_options;  // fourth-order (5×5) stencils: two sweeps per side pay off
+      mg_options.pre_smoothing = mg_options.post_smoothing = grid->radius;
+      const SolveStatus status = mg_.setup(*grid, mg_options, &message);
+      if (status == SolveStatus::kSuccess) return status;
+      if (method_ != Method::kGmres) {
+        summary.message = message;
+        return status;
+      }
+    }
+    // gmres on a nonsymmetric stencil, or without (a working) hierarchy: ILUT of the matrix.
+    if (!matrix_) {
+      own_matrix_ = stencil_operator_matrix(*grid);
+      matrix_ = &own_matrix_;
+    }
+    ilu_ = ilut_preconditioner(*matrix_, &message);
+    if (!ilu_) {
+      summary.message = message;
+      return SolveStatus::kSingular;
+    }
+    return SolveStatus::kSuccess;
+  }
+
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
+    const Eigen::Index n = B.rows();
+    X.setZero(n, 3);
+    IterationOptions iteration;
+    iteration.tolerance = options_.tolerance;
+    SolveStatus status = SolveStatus::kSuccess;
+    int iterations = 0;
+    for (int c = 0; c < 3; ++c) {
+      const Eigen::VectorXd b = B.col(c);
+      Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
+      IterationSummary s;
+      switch (method_) {
+        case Method::kStationary:
+          iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
+          s = mg_.solve(b, x, iteration);
+          break;
+        case Method::kCg:
+          iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
+          s = multigrid_cg(mg_, b, x, iteration);
+          break;
+        case Method::kGmres: {
+          GmresOptions g;
+          g.iteration = iteration;
+          VectorMap apply, precondition;
+          if (mg_.ready()) {
+            g.iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
+            apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.apply(in, out); };
+            precondition = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.precondition(in, out); };
+          } else {
+            g.iteration.max_iterations = iteration_limit(options_, n, 20, 2e10);
+            apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = (*matrix_) * in; };
+            precondition = ilu_;
+          }
+          s = gmres(apply, precondition, b, x, g);
+          break;
+        }
+      }
+      iterations = std::max(iterations, s.iterations);
+      if (!x.allFinite()) {
+        x.setZero();
+        s.status = SolveStatus::kDiverged;
+        s.message = "the iteration broke down (non-finite values)";
+      }
+      X.col(c) = x;
+      if (!s.ok() && status == SolveStatus::kSuccess) {
+        status = s.status;
+        summary.message = s.message;
+      }
+    }
+    summary.iterations = iterations;
+    return status;
+  }
+
+ private:
+  std::string name_;
+  Method method_;
+  Multigrid mg_;
+  VectorMap ilu_;
+  const Eigen::SparseMatrix<double>* matrix_ = nullptr;
+  Eigen::SparseMatrix<double> own_matrix_;  // assembled from the grid when no matrix was given
+};
+
+}  // namespace
+
+std::unique_ptr<LinearSolver> make_mg(const SolverOptions& o) {
+  return std::make_unique<MultigridBackend>("mg", Method::kStationary, o);
+}
+std::unique_ptr<LinearSolver> make_mg_cg(const SolverOptions& o) {
+  return std::make_unique<MultigridBackend>("mg-cg", Method::kCg, o);
+}
+std::unique_ptr<LinearSolver> make_gmres(const SolverOptions& o) {
+  return std::make_unique<MultigridBackend>("gmres", Method::kGmres, o);
+}
+
+}  // namespace coons::solvers

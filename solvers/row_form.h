@@ -1,0 +1,28 @@
+// The right-hand sides of the fast structured solver kept row by row: a column of x, y or z
+// (rows × cols, row-major) whose row has a zero interior (columns 1..cols−2) is stored as its two
+// end values, any other row in full. The right-hand side of a mask system has two full rows (next
+// to the frame) and end values elsewhere, so only two rows need a sine transform.
+// Sizes: 2·rows end values + cols per full row.
+#pragma once
+
+#include <vector>
+
+namespace coons::solvers::detail {
+
+struct RowForm {
+  int width = 0;                    // length of the stored rows: cols, or the transform length
+  std::vector<double> first, last;  // end values of the sparse rows (zero at dense rows)
+  std::vector<int> dense_rows;      // the rows stored in full, ascending
+  std::vector<int> slot;            // per row: −1, or its index in dense_rows
+  std::vector<double> values;       // the full rows, width each (physical or sine-transformed)
+};
+
+//! The row form of b (rows × cols, row-major).
+RowForm split_rows(const double* b, int R, int C);
+
+//! Σ_r w_r · forms[r] (same rows and width). A sparse row expands as first·e0 + last·e1, where
+//! e0, e1 are the unit vectors (physical forms) or their sine transforms (transformed forms).
+RowForm combine(const std::vector<const RowForm*>& forms, const std::vector<double>& w, int R,
+                const std::vector<double>& e0, const std::vector<double>& e1);
+
+}  // namespace coons::solvers::detail

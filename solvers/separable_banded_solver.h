@@ -1,0 +1,65 @@
+// An exact solver for separable operators with five points per axis on a rows × cols grid
+// (unknowns row-major, k = i·cols + j, zero values outside the grid):
+//
+//   A = P ⊗ Q,   P = toeplitz(p0, p1, p2) (rows × rows),   Q = toeplitz(q0, q1, q2) (cols × cols),
+//   (A x)(i,j) = Σ_{|a|,|b| ≤ 2} p_|a| q_|b| x(i+a, j+b),
+//
+// symmetric banded Toeplitz factors with half-bandwidth 2 (pentadiagonal; p2 = 0 gives the
+// tridiagonal case). Since A⁻¹ = P⁻¹ ⊗ Q⁻¹, each column of B, viewed as a rows × cols matrix R,
+// is solved as X = P⁻¹ R Q⁻¹: a batch of banded solves along j (one per grid row, blocks of rows
+// at a time, vectorised across the block) and a batch along i (whole rows at a time), interleaved
+// so that the grid is swept twice. factorize = banded LDLᵀ of P and Q without pivoting
+// (O(rows + cols)); solve = O(rows·cols) per column of B, no fill, no memory beyond X. Exact up
+// to rounding, and on c1-coons data more accurate than a sparse LDLᵀ of A (whose κ grows like
+// k⁸, against k⁴ per factor here); LDLᵀ without pivoting is
+// backward stable for definite factors (e.g. the fourth difference 1, −4, 6, −4, 1), and a zero
+// pivot (|d_k| ≤ 1e-14·max|diagonal|) is reported as kSingular. The solver never reads the
+// assembled matrix: it is constructed with the operator, and uses op.matrix (when given) only for
+// the size check and the residual of the LinearSolver life cycle.
+// Based on: R. E. Lynch, J. R. Rice & D. H. Thomas, Direct solution of partial difference equations
+// by tensor product methods, Numer. Math. 6 (1964) 185–199; G. H. Golub & C. F. Van Loan,
+// Matrix Computations, §4.3 (banded LDLᵀ).
+#pragma once
+
+#include <array>
+#include <memory>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "linear_solver.h"
+
+namespace coons::solvers {
+
+struct SeparableBandedOperator {
+  int rows = 0;                               //!< grid points along i
+  int cols = 0;                               //!< grid points along j
+  std::array<double, 3> along_i{1, 0, 0};     //!< p0, p1, p2: diagonal and the two off-diagonals of P
+  std::array<double, 3> along_j{1, 0, 0};     //!< q0, q1, q2 of Q
+
+  [[nodiscard]] Eigen::Index size() const { return Eigen::Index(rows) * cols; }
+};
+
+//! The assembled operator (#size by #size, compressed, column-major): for tests and references.
+Eigen::SparseMatrix<double> separable_banded_matrix(const SeparableBandedOperator& op);
+
+//! LDLᵀ of a symmetric pentadiagonal Toeplitz matrix of size k: L unit lower with two
+//! sub-diagonals l1 (#k−1), l2 (#k−2), D = d (#k).
+struct BandedLdlt {
+  Eigen::VectorXd d, l1, l2;
+};
+
+//! kSuccess, or kSingular on a zero pivot.
+SolveStatus banded_ldlt(const std::array<double, 3>& diagonals, int k, BandedLdlt& f);
+
+//! X = A⁻¹ B (#size by 3) in one call (factorize and solve). B and X may not alias.
+SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B,
+                                   Eigen::MatrixX3d& X);
+
+//! The same as a LinearSolver (name "separable-banded"): factorize ignores the values of op and
+//! uses the operator given here; analyze reports kNotApplicable when op's size is not rows·cols.
+std::unique_ptr<LinearSolver> make_separable_banded_solver(const SeparableBandedOperator& op,
+                                                           const SolverOptions& options = {});
+
+}  // namespace coons::solvers

@@ -1,0 +1,62 @@
+// A constant stencil of radius 1 (3×3) or 2 (5×5) on a rectangular grid of rows × cols points, with
+// an optional free (active) mask: the operator of a grid system whose fixed points have been moved
+// to the right-hand side. It acts on the free points only (zero values everywhere else):
+//
+//   (A x)(i,j) = Σ_{|di|,|dj| ≤ r} w(di,dj) · x(i+di, j+dj)     for free (i,j),
+//
+// with x = 0 outside the grid and at fixed points. Unknowns are numbered row-major over the free
+// points (#free by k vectors); with no mask every point is free (#rows·cols unknowns, k = i·cols + j).
+// The matrix is symmetric exactly when w(di,dj) = w(−di,−dj); nonsymmetric weights (e.g. a
+// convection term) are allowed for the methods that do not need symmetry.
+#pragma once
+
+#include <string>
+#include <vector>
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+
+#include "grid_stencil.h"
+
+namespace coons::solvers {
+
+struct StencilOperator {
+  int rows = 0;    //!< grid points along i
+  int cols = 0;    //!< grid points along j
+  int radius = 1;  //!< 1: 3×3 weights, 2: 5×5 weights
+  //! (2r+1)² weights, row-major by (di, dj): weights[(di + r)·(2r+1) + (dj + r)] = w(di, dj).
+  std::vector<double> weights;
+  //! rows·cols entries, 1 = free (an unknown), 0 = fixed; empty means every point is free.
+  std::vector<unsigned char> free;
+
+  [[nodiscard]] int width() const { return 2 * radius + 1; }
+  [[nodiscard]] double weight(int di, int dj) const {
+    return weights[std::size_t((di + radius) * width() + dj + radius)];
+  }
+  [[nodiscard]] bool is_free(int i, int j) const {
+    return free.empty() || free[std::size_t(i) * std::size_t(cols) + std::size_t(j)] != 0;
+  }
+  //! w(d) = w(−d) for every offset (the matrix is then symmetric).
+  [[nodiscard]] bool symmetric() const;
+  //! Number of free points (= unknowns).
+  [[nodiscard]] Eigen::Index size() const;
+  //! True when sizes and weights are consistent; otherwise explains why in *why.
+  bool is_valid(std::string* why) const;
+};
+
+//! A radius-1 operator from (2·1+1)² or a radius-2 operator from 25 weights, no mask.
+StencilOperator make_stencil_operator(int rows, int cols, const std::vector<double>& weights);
+
+//! The 9-point GridStencil as an operator (radius 1, every point free).
+StencilOperator stencil_operator(const GridStencil& s);
+
+//! For each grid point (row-major) its unknown number, or −1 at fixed points.
+std::vector<Eigen::Index> free_numbering(const StencilOperator& op);
+
+//! Y = A·X matrix-free. X, Y: #free by k. Y must not alias X.
+void apply_stencil_operator(const StencilOperator& op, const Eigen::MatrixXd& X, Eigen::MatrixXd& Y);
+
+//! The operator as a compressed sparse matrix over the free points (#free by #free).
+Eigen::SparseMatrix<double> stencil_operator_matrix(const StencilOperator& op);
+
+}  // namespace coons::solvers

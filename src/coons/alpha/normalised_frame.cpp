@@ -1,0 +1,63 @@
+#include "normalised_frame.h"
+
+#include <cmath>
+
+namespace coons {
+namespace {
+
+// The bounding box of the four sides, computed without overflow (max − min may not fit, so the
+// centre is min/2 + max/2 and the diagonal is measured on the halves).
+void bounding_box(const Boundary& b, Eigen::RowVector3d& lo, Eigen::RowVector3d& hi) {
+  lo.setConstant(HUGE_VAL);
+  hi.setConstant(-HUGE_VAL);
+  for (const Eigen::MatrixX3d* side : {&b.bottom, &b.top, &b.left, &b.right}) {
+    if (side->rows() == 0) continue;
+    lo = lo.cwiseMin(side->colwise().minCoeff());
+    hi = hi.cwiseMax(side->colwise().maxCoeff());
+  }
+}
+
+Eigen::MatrixX3d moved(const Eigen::MatrixX3d& points, const Eigen::RowVector3d& centre, double inv_scale) {
+  return (points.rowwise() - centre) * inv_scale;
+}
+
+}  // namespace
+
+ControlNet NormalisedFrame::to_original(ControlNet net) const {
+  net.points = (net.points * scale).rowwise() + centre;
+  return net;
+}
+
+NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& objective) {
+  NormalisedFrame f;
+  f.boundary = boundary;
+  f.objective = objective;
+  Eigen::RowVector3d lo, hi;
+  bounding_box(boundary, lo, hi);
+  if (!lo.allFinite() || !hi.allFinite()) return f;
+  const Eigen::RowVector3d half = 0.5 * hi - 0.5 * lo;
+  const double half_diagonal = half.norm();
+  if (!(half_diagonal > 0) || !std::isfinite(half_diagonal)) return f;
+  f.centre = 0.5 * lo + 0.5 * hi;
+  // s = 2^k nearest to the diagonal 2·|half|: scaling by it is exact.
+  f.scale = std::ldexp(1.0, int(std::lround(std::log2(half_diagonal))) + 1);
+  const double inv = 1 / f.scale;
+  for (Eigen::MatrixX3d* side : {&f.boundary.bottom, &f.boundary.top, &f.boundary.left, &f.boundary.right})
+    *side = moved(*side, f.centre, inv);
+
+  const bool energies = !objective.energy.empty() || !objective.discrete.empty();
+  f.value_factor = energies ? f.scale * f.scale : f.scale;
+  if (energies) f.objective.target_weight = objective.target_weight * inv;
+  if (f.objective.target) {
+    Target& t = *f.objective.target;
+    if (t.kind == Target::Kind::kNet) {
+      t.net.points = moved(t.net.points, f.centre, inv);
+    } else {
+      t.point = (t.point - f.centre) * inv;
+      t.radius *= inv;
+    }
+  }
+  return f;
+}
+
+}  // namespace coons

@@ -1,0 +1,33 @@
+// The frame in which the α search works: the boundary moved so that its bounding-box centre is
+// the origin and scaled by a power of two to a diagonal in [1/√2, √2), the objective's target moved
+// with it. Every objective over α is invariant under translation and scales as s² (energies) or
+// s (the rms distance to a target), so the search's optimum, flatness and bound are the same in
+// this frame, and no tolerance of the search meets coordinates of size 1e−150 or 1e150 (issue 17).
+// Values map back exactly: f = value_factor · f_unit, where
+//   energies (and weighted sums with a target): value_factor = s², target weight w/s in the frame;
+//   the target alone:                             value_factor = s,  target weight unchanged.
+// Sizes: a copy of the boundary (and of a target net).
+#pragma once
+
+#include <Eigen/Core>
+
+#include "coons/alpha/objective.h"
+#include "coons/net/control_net.h"
+
+namespace coons {
+
+struct NormalisedFrame {
+  Eigen::RowVector3d centre{0, 0, 0};  //!< bounding-box centre of the boundary
+  double scale = 1;                    //!< s: x = centre + s · x_unit (a power of two)
+  double value_factor = 1;             //!< f(x) = value_factor · f_unit(x_unit)
+  Boundary boundary;                   //!< the boundary in the frame
+  Objective objective;                 //!< the objective in the frame (target moved, weight scaled)
+
+  //! A net of the frame back in the caller's coordinates.
+  [[nodiscard]] ControlNet to_original(ControlNet net) const;
+};
+
+//! The frame of `boundary` and `objective` (an empty or one-point boundary: scale 1, centre 0).
+NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& objective);
+
+}  // namespace coons

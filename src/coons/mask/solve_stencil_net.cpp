@@ -1,0 +1,103 @@
+#include "solve_stencil_net.h"
+
+#include <utility>
+
+#include "solvers/separable_banded_solver.h"
+
+namespace coons {
+
+namespace {
+
+// The first structural issue as a summary message, or empty.
+std::string structural_issue(const StencilProblem& problem, const Stencil& stencil) {
+  ProblemCheckOptions check;
+  check.check_singular = false;
+  const auto issues = check_stencil_problem(problem, stencil, check);
+  if (issues.empty()) return {};
+  return "the problem does not fit the mask: " + issues.front().field + ": " + issues.front().reason;
+}
+
+solvers::LinearOperator operator_of(const StencilSystem& system) {
+  solvers::LinearOperator op;
+  if (system.A.rows() > 0) op.matrix = &system.A;
+  op.stencil = system.grid;
+  return op;
+}
+
+StencilSolveResult not_applicable(const StencilProblem& problem, const solvers::LinearSolver& solver,
+                                  std::string message) {
+  StencilSolveResult result;
+  result.net = problem.net;
+  result.summary.solver = solver.name();
+  result.summary.status = solvers::SolveStatus::kNotApplicable;
+  result.summary.message = std::move(message);
+  return result;
+}
+
+StencilSolveResult solve_assembled(const StencilProblem& problem, const StencilSystem& system,
+                                   solvers::LinearSolver& solver, bool analyze) {
+  StencilSolveResult result;
+  result.unknowns = system.numbering.size();
+  if (result.unknowns == 0) {  // nothing free: the data are the answer
+    result.net = problem.net;
+    result.summary.solver = solver.name();
+    return result;
+  }
+  const solvers::LinearOperator op = operator_of(system);
+  Eigen::MatrixX3d X;
+  if (analyze) {
+    result.summary = solver.compute_and_solve(op, system.B, X);
+  } else if (solver.factorize(op) != solvers::SolveStatus::kSuccess) {
+    result.summary = solver.summary();
+  } else {
+    result.summary = solver.solve(system.B, X);
+  }
+  result.net = result.summary.ok() ? fill_free_points(problem.net, system.numbering, X) : problem.net;
+  return result;
+}
+
+}  // namespace
+
+StencilSolveResult solve_stencil_net(const StencilProblem& problem, const Stencil& stencil,
+                                     solvers::LinearSolver& solver, const StencilSolveOptions& options) {
+  if (options.check_structure) {
+    if (std::string why = structural_issue(problem, stencil); !why.empty())
+      return not_applicable(problem, solver, std::move(why));
+  }
+  const StencilSystem system = assemble_stencil_system(problem, stencil, options.assembly);
+  return solve_assembled(problem, system, solver, true);
+}
+
+void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stencil>& members,
+                         solvers::LinearSolver& solver, const StencilSweepSink& sink,
+                         const StencilSolveOptions& options) {
+  if (members.empty()) return;
+  if (options.check_structure) {
+    if (std::string why = structural_issue(problem, members.front()); !why.empty()) {
+      for (std::size_t k = 0; k < members.size(); ++k) sink(k, not_applicable(problem, solver, why));
+      return;
+    }
+  }
+  StencilAssemblyOptions assembly = options.assembly;
+  assembly.box_pattern = true;  // one pattern for every member
+  StencilSystem system = assemble_stencil_system(problem, members.front(), assembly);
+  for (std::size_t k = 0; k < members.size(); ++k) {
+    if (k > 0 && !refill_stencil_system(problem, members[k], system)) {
+      sink(k, not_applicable(problem, solver, "sweep members must share the radius of the first"));
+      continue;
+    }
+    // Only the first member analyzes; factorize re-analyzes by itself if that analysis failed.
+    sink(k, solve_assembled(problem, system, solver, k == 0));
+  }
+}
+
+std::unique_ptr<solvers::LinearSolver> make_separable_solver(const StencilProblem& problem, const Stencil& stencil,
+                                                             const solvers::SolverOptions& options) {
+  StencilAssemblyOptions assembly;
+  assembly.with_matrix = false;
+  const StencilSystem system = assemble_stencil_system(problem, stencil, assembly);
+  if (!system.separable) return nullptr;
+  return solvers::make_separable_banded_solver(*system.separable, options);
+}
+
+}  // namespace coons

@@ -1,0 +1,62 @@
+// Solve a stencil problem (any 3×3 or 5×5 mask, any free set, any number of data rings) with a
+// solver object of the registry or a structured one: assemble (stencil_system.h), analyze,
+// factorize, solve, and write the solution into the free points of the net.
+//
+//   solve_stencil_net      one stencil;
+//   solve_stencil_sweep    a family of stencils of one radius on one problem (the C1 family over w,
+//                          the α family): one assembly with the box pattern and one symbolic
+//                          analysis; per member only the values are refilled, then factorize and
+//                          solve (what LinearSolver::factorize reuses for a same-size operator);
+//   make_separable_solver  the exact structured solver when the free set is a full rectangle and
+//                          the stencil separable (c1-coons: Δ⁴_i Δ⁴_j, two batches of
+//                          pentadiagonal solves; the α = −1/4 mask: tridiagonal), else nullptr.
+// The backends get op.matrix when assembled and op.stencil (a GridStencil) when the stencil is
+// 3×3 on a full rectangle, so the transform backends ("dst", "fast") solve the α family with any
+// number of rings. Numerical trouble is a status in the summary, never an exception.
+// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
+#pragma once
+
+#include <functional>
+#include <memory>
+#include <string>
+#include <vector>
+
+#include "coons/mask/stencil.h"
+#include "coons/mask/stencil_problem.h"
+#include "coons/mask/stencil_system.h"
+#include "coons/net/control_net.h"
+#include "solvers/linear_solver.h"
+
+namespace coons {
+
+struct StencilSolveOptions {
+  //! with_matrix = false only for backends that need no matrix (structured ones, mask iterations).
+  StencilAssemblyOptions assembly;
+  //! Check the problem's structure first (shape, rings, points): cheap. The singularity check of
+  //! check_stencil_problem is left to the caller (the input edge): a singular system shows as a
+  //! solver status here.
+  bool check_structure = true;
+};
+
+struct StencilSolveResult {
+  ControlNet net;                 //!< the data with the solved free points (the input net on failure)
+  solvers::SolveSummary summary;  //!< status, iterations, residual, seconds
+  int unknowns = 0;               //!< the number of free points
+};
+
+StencilSolveResult solve_stencil_net(const StencilProblem& problem, const Stencil& stencil,
+                                     solvers::LinearSolver& solver, const StencilSolveOptions& options = {});
+
+using StencilSweepSink = std::function<void(std::size_t member, const StencilSolveResult& result)>;
+
+//! members: stencils of one radius; sink(k, result_k) in order.
+void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stencil>& members,
+                         solvers::LinearSolver& solver, const StencilSweepSink& sink,
+                         const StencilSolveOptions& options = {});
+
+//! The "separable-banded" solver for this problem and stencil, or nullptr when the free set is
+//! not a full rectangle or the stencil not separable.
+std::unique_ptr<solvers::LinearSolver> make_separable_solver(const StencilProblem& problem, const Stencil& stencil,
+                                                             const solvers::SolverOptions& options = {});
+
+}  // namespace coons

@@ -1,0 +1,66 @@
+#include "coons/tri/tri_solve.h"
+
+#include <utility>
+
+#include "solvers/registry.h"
+
+namespace coons::tri {
+
+TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask) {
+  const solvers::SolverInfo* info = solvers::find_solver(solver);
+  if (!info) return {false, "no backend named '" + std::string(solver) + "' in this build"};
+  if (!info->needs_matrix)
+    return {false, info->name + " works on the rectangular grid stencil, not on triangular systems"};
+  if (info->definite_only && mask.c != 0.0)
+    return {false, info->name + " is only for symmetric positive definite systems; the triangular "
+                                "mask system is not symmetric for c != 0"};
+  return {true, {}};
+}
+
+std::vector<std::string> tri_applicable_solvers(const TriMask& mask) {
+  std::vector<std::string> names;
+  for (const auto& info : solvers::available_solvers())
+    if (check_tri_backend(info.name, mask).applicable) names.push_back(info.name);
+  return names;
+}
+
+bool TriSolveOptions::is_valid(std::string* why) const {
+  if (!mask.is_valid(why) || !solver_options.is_valid(why)) return false;
+  if (!solvers::find_solver(solver)) {
+    if (why) *why = "no backend named '" + solver + "' in this build";
+    return false;
+  }
+  return true;
+}
+
+TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options) {
+  TriSolveResult result{frame, {}};
+  result.summary.solver = options.solver;
+  std::string why;
+  if (!options.is_valid(&why)) {
+    result.summary.status = solvers::SolveStatus::kFailure;
+    result.summary.message = why;
+    return result;
+  }
+  const TriBackendCheck check = check_tri_backend(options.solver, options.mask);
+  if (!check.applicable) {
+    result.summary.status = solvers::SolveStatus::kNotApplicable;
+    result.summary.message = check.reason;
+    return result;
+  }
+  if (interior_size(frame.n) == 0) return result;  // nothing to solve (n < 3)
+  const TriMaskSystem sys = assemble_tri_mask_system(frame, options.mask);
+  auto solver = solvers::make_solver(options.solver, options.solver_options);
+  solvers::LinearOperator op;
+  op.matrix = &sys.A;
+  Eigen::MatrixX3d X = Eigen::MatrixX3d::Zero(sys.B.rows(), 3);
+  result.summary = solver->compute_and_solve(op, sys.B, X);
+  if (result.summary.ok()) result.net = fill_interior(std::move(result.net), X);
+  return result;
+}
+
+TriSolveResult solve_tri_net(const TriBoundary& boundary, const TriSolveOptions& options) {
+  return solve_tri_net(frame_net(boundary), options);
+}
+
+}  // namespace coons::tri

@@ -1,0 +1,49 @@
+// Solving the triangular mask system (tri_mask.h) of a boundary with a backend of the solver
+// registry. The system is not symmetric unless c = 0, so only backends for general matrices apply
+// (eigen-lu, umfpack, bicgstab); Cholesky-type and CG backends (registry flag definite_only) apply
+// only to c = 0, where A = I − (1/6)·(interior adjacency) is symmetric positive definite; the grid-stencil
+// backends (jacobi, gauss-seidel, dst, fast: needs_matrix = false) know only rectangular grids.
+// A backend that does not apply reports not_applicable and leaves the interior untouched.
+// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
+#pragma once
+
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "coons/tri/tri_mask.h"
+#include "coons/tri/tri_net.h"
+#include "solvers/linear_solver.h"
+
+namespace coons::tri {
+
+//! Whether a registry backend may solve the triangular system of `mask`, and if not, why.
+struct TriBackendCheck {
+  bool applicable = false;
+  std::string reason;  //!< empty when applicable
+};
+TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask);
+
+//! The registry backends (in registry order) that apply to the system of `mask`.
+std::vector<std::string> tri_applicable_solvers(const TriMask& mask);
+
+struct TriSolveOptions {
+  TriMask mask;                             //!< the member of the family (its c)
+  std::string solver = "eigen-lu";          //!< a registry name
+  solvers::SolverOptions solver_options;    //!< tolerance, ordering, ...
+
+  //! True when the mask and the solver options are usable and the solver exists; else why.
+  bool is_valid(std::string* why) const;
+};
+
+struct TriSolveResult {
+  TriNet net;                     //!< the boundary with the solved interior (frame only on failure)
+  solvers::SolveSummary summary;  //!< status kNotApplicable for a backend that does not apply
+};
+
+//! Fill the interior of `frame` (its interior is ignored) by the mask system.
+TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options = {});
+//! The same from the three sides (frame_net(boundary)).
+TriSolveResult solve_tri_net(const TriBoundary& boundary, const TriSolveOptions& options = {});
+
+}  // namespace coons::tri

@@ -1,0 +1,140 @@
+// The input edge's limits: nesting depth, file size, integer ranges and coordinate magnitudes are
+// checked when a file is read, and each refusal is an InputError naming file, field and reason.
+#include <catch2/catch.hpp>
+
+#include <string>
+
+#include <nlohmann/json.hpp>
+
+#include "coons/io/boundary_io.h"
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+#include "coons/io/net_json.h"
+#include "coons/io/surface_io.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using nlohmann::json;
+
+namespace {
+
+std::string nested_arrays(int depth) { return std::string(depth, '[') + std::string(depth, ']'); }
+
+// The InputError thrown by `read`, or a failed test when nothing is thrown.
+template <typename Read>
+InputError error_of(Read read) {
+  try {
+    read();
+  } catch (const InputError& e) {
+    return e;
+  }
+  FAIL("no InputError");
+  return InputError("", "", "");
+}
+
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("read_json_file: a 100,000-level nested target is refused, not recursed into", "[io]") {
+  const TempDir dir;
+  json doc = boundary_to_json(make_random_boundary(3, 3, 1));
+  std::string text = doc.dump();
+  text.pop_back();  // the closing brace
+  text += ", \"target\": " + nested_arrays(100000) + "}";
+  const std::string path = dir.write("deep.json", text);
+  const InputError e = error_of([&] { read_boundary_file(path); });
+  CHECK(e.file() == path);
+  CHECK(e.field() == "(document)");
+  CHECK(e.reason() == "nesting deeper than 64 levels");
+  CHECK(std::string(e.what()) == path + ": (document): nesting deeper than 64 levels");
+}
+
+TEST_CASE("parse_json_text: the depth limit counts containers, the top level being the first", "[io]") {
+  CHECK_NOTHROW(parse_json_text(nested_arrays(64), "t.json"));
+  CHECK_THROWS_WITH(parse_json_text(nested_arrays(65), "t.json"), "t.json: (document): nesting deeper than 64 levels");
+  JsonReadOptions shallow;
+  shallow.max_depth = 3;
+  CHECK_NOTHROW(parse_json_text(R"({"a": {"b": [1]}})", "t.json", shallow));
+  CHECK_THROWS_WITH(parse_json_text(R"({"a": {"b": [[1]]}})", "t.json", shallow),
+                    "t.json: (document): nesting deeper than 3 levels");
+}
+
+TEST_CASE("read_json_file: a file above the size limit is refused before it is parsed", "[io]") {
+  const TempDir dir;
+  const std::string path = dir.write("b.json", boundary_to_json(make_random_boundary(3, 3, 1)).dump());
+  JsonReadOptions small;
+  small.max_bytes = 100;
+  const InputError e = error_of([&] { read_json_file(path, small); });
+  CHECK(e.file() == path);
+  CHECK(e.field() == "(document)");
+  CHECK(contains(e.reason(), "more than the limit of 100 bytes"));
+  small.max_bytes = 1 << 20;
+  CHECK(read_json_file(path, small).contains("bottom"));
+}
+
+TEST_CASE("JsonReadOptions: is_valid refuses zero limits", "[io]") {
+  JsonReadOptions o;
+  std::string why;
+  CHECK(o.is_valid(&why));
+  o.max_depth = 0;
+  CHECK_FALSE(o.is_valid(&why));
+  CHECK(contains(why, "max_depth"));
+}
+
+TEST_CASE("parse_boundary: a degree beyond int is refused, not truncated", "[io]") {
+  json doc = boundary_to_json(make_random_boundary(3, 3, 1));
+  doc["degree"] = json::parse("[4294967299, 4294967299]");
+  const InputError e = error_of([&] { parse_boundary(doc, "b.json"); });
+  CHECK(e.file() == "b.json");
+  CHECK(e.field() == "degree[0]");
+  CHECK(e.reason() == "must be an integer in [1, 2147483647], not 4294967299");
+  doc["degree"] = json::parse("[3, -18446744073709551615]");  // a float: out of any integer range
+  CHECK(error_of([&] { parse_boundary(doc, "b.json"); }).field() == "degree[1]");
+  doc["degree"] = json::parse("[3, 0]");
+  CHECK(error_of([&] { parse_boundary(doc, "b.json"); }).field() == "degree[1]");
+  doc["degree"] = json::parse("[3, 3]");
+  CHECK_NOTHROW(parse_boundary(doc, "b.json"));
+}
+
+TEST_CASE("json_integer: every integer JSON kind is checked against both bounds", "[io]") {
+  CHECK(json_integer(json(5), "f", "k", 1, 10) == 5);
+  CHECK(json_integer(json(-3), "f", "k", -5, 10) == -3);
+  CHECK_THROWS_WITH(json_integer(json(18446744073709551615ull), "f", "k", 1, 10),
+                    "f: k: must be an integer in [1, 10], not 18446744073709551615");
+  CHECK_THROWS_WITH(json_integer(json(-6), "f", "k", -5, 10), "f: k: must be an integer in [-5, 10], not -6");
+  CHECK_THROWS_WITH(json_integer(json(2.5), "f", "k", 1, 10), "f: k: must be an integer in [1, 10], not 2.5");
+  CHECK_THROWS_WITH(json_integer(json("3"), "f", "k", 1, 10), "f: k: must be an integer in [1, 10], not a string");
+}
+
+TEST_CASE("parse_boundary: coordinates of 1e308 are refused with the point and the bound", "[io]") {
+  json doc = boundary_to_json(make_random_boundary(3, 3, 1));
+  doc["bottom"][2][1] = 1e308;
+  const InputError e = error_of([&] { parse_boundary(doc, "b.json"); });
+  CHECK(e.file() == "b.json");
+  CHECK(e.field() == "bottom[2]");
+  CHECK(contains(e.reason(), "coordinate 1"));
+  CHECK(contains(e.reason(), "1e+60"));
+  doc["bottom"][2][1] = -kMaxCoordinate;  // the bound itself is accepted (corners are unaffected)
+  CHECK_NOTHROW(parse_boundary(doc, "b.json"));
+
+  const ControlNet net = make_random_net(2, 2, 3);
+  json with_net{{"net", net_to_json(net)}};
+  with_net["net"][1][2][0] = -1e200;
+  CHECK(error_of([&] { parse_boundary(with_net, "n.json"); }).field() == "net[1][2]");
+}
+
+TEST_CASE("parse_surface: coordinates and analytic curves beyond the bound are refused", "[io]") {
+  const json bilinear = json::parse(R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0],[1,1,1e308]]})");
+  const InputError e = error_of([&] { parse_surface(bilinear, "s.json"); });
+  CHECK(e.field() == "corners[3]");
+  CHECK(contains(e.reason(), "coordinate 2"));
+  CHECK(contains(e.reason(), "1e+60"));
+
+  const json ruled = json::parse(R"({"type": "ruled", "curves": [{"bezier": [[0,0,0],[1,0,0]]},
+      {"expr": ["t", "1", "1e200 * t"], "interval": [0, 1]}]})");
+  const InputError f = error_of([&] { parse_surface(ruled, "r.json"); });
+  CHECK(f.field() == "curves[1].expr[2]");
+  CHECK(contains(f.reason(), "beyond the bound"));
+}

@@ -1,0 +1,442 @@
+// Assembly and solution of stencil problems against dense references, and the properties of
+// issue 11: the bicubic (general) Coons equivalence of c1-coons, reproduction of index-cubic nets,
+// the thin-plate Euler–Lagrange property of the biharmonic mask, the C1 family, the α family on
+// any free set and any number of rings, and non-rectangular free sets.
+#include <catch2/catch.hpp>
+
+#include <cmath>
+#include <random>
+
+#include "coons/mask/solve_stencil_net.h"
+#include "coons/mask/stencil_system.h"
+#include "coons/surfaces/surface.h"
+#include "mask/stencil_reference.h"
+#include "solvers/registry.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+
+namespace {
+
+ControlNet solve_with(const StencilProblem& p, const Stencil& s, const std::string& backend = "eigen-lu") {
+  auto solver = solvers::make_solver(backend);
+  REQUIRE(solver);
+  const StencilSolveResult r = solve_stencil_net(p, s, *solver);
+  INFO(r.summary.brief_report());
+  REQUIRE(r.summary.ok());
+  return r.net;
+}
+
+StencilProblem make_problem(ControlNet net, int rings, FreeGrid free = {}) {
+  StencilProblem p;
+  p.net = std::move(net);
+  p.rings = rings;
+  p.free = std::move(free);
+  return p;
+}
+
+// max |a − b| relative to the size of b's points.
+double relative_difference(const ControlNet& a, const ControlNet& b) {
+  return max_difference(a, b) / std::max(1.0, b.points.cwiseAbs().maxCoeff());
+}
+
+// A symmetric 5×5 stencil with random weights (centre implied), for the assembly tests.
+Stencil random_stencil(int radius, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  const int k = 2 * radius + 1;
+  Eigen::MatrixXd W(k, k);
+  for (int r = 0; r < k; ++r)
+    for (int c = 0; c < k; ++c) W(r, c) = u(rng);
+  W = 0.5 * (W + W.reverse().eval());
+  W(radius, radius) = 0;
+  W(radius, radius) = -W.sum() + (W.sum() == 0 ? 1 : 0);
+  return make_stencil(W);
+}
+
+// The net of a polynomial Σ c_kl i^k j^l, k, l ≤ 3 (coefficients scaled to keep the values O(1)).
+ControlNet bicubic_index_net(int m, int n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  double c[3][4][4];
+  for (auto& cd : c)
+    for (auto& ck : cd)
+      for (double& x : ck) x = u(rng);
+  ControlNet net(m, n);
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= n; ++j)
+      for (int d = 0; d < 3; ++d) {
+        double v = 0;
+        for (int k = 0; k < 4; ++k)
+          for (int l = 0; l < 4; ++l) v += c[d][k][l] * std::pow(double(i) / m, k) * std::pow(double(j) / n, l);
+        net.at(i, j)(d) = v;
+      }
+  return net;
+}
+
+// The general Coons data of a Bézier net (degree ≥ 3): its boundary curves, the cross-boundary
+// derivatives along them (from the two outer rings) and the corner twists.
+GeneralCoonsData general_coons_data(const ControlNet& net) {
+  const int m = net.m, n = net.n;
+  auto curve_v = [&](auto point) {
+    Eigen::MatrixX3d P(n + 1, 3);
+    for (int j = 0; j <= n; ++j) P.row(j) = point(j);
+    return BezierCurve(P);
+  };
+  auto curve_u = [&](auto point) {
+    Eigen::MatrixX3d P(m + 1, 3);
+    for (int i = 0; i <= m; ++i) P.row(i) = point(i);
+    return BezierCurve(P);
+  };
+  using V = Eigen::RowVector3d;
+  BoundaryCurves b{curve_u([&](int i) -> V { return net.at(i, 0); }), curve_u([&](int i) -> V { return net.at(i, n); }),
+                   curve_v([&](int j) -> V { return net.at(0, j); }), curve_v([&](int j) -> V { return net.at(m, j); })};
+  GeneralCoonsData g{b,
+                     curve_v([&](int j) -> V { return m * (net.at(1, j) - net.at(0, j)); }),
+                     curve_v([&](int j) -> V { return m * (net.at(m, j) - net.at(m - 1, j)); }),
+                     curve_u([&](int i) -> V { return n * (net.at(i, 1) - net.at(i, 0)); }),
+                     curve_u([&](int i) -> V { return n * (net.at(i, n) - net.at(i, n - 1)); }),
+                     {}};
+  for (int c = 0; c < 4; ++c) {
+    const int i = c % 2 ? m - 1 : 0, j = c / 2 ? n - 1 : 0;
+    g.twist[std::size_t(c)] = double(m) * n * (net.at(i + 1, j + 1) - net.at(i + 1, j) - net.at(i, j + 1) + net.at(i, j));
+  }
+  return g;
+}
+
+}  // namespace
+
+TEST_CASE("assemble_stencil_system: matrix and right-hand side equal the dense reference", "[mask]") {
+  std::uint32_t seed = 100;
+  for (auto [m, n] : {std::pair{4, 4}, {5, 9}, {11, 6}, {8, 8}, {13, 7}}) {
+    const ControlNet net = make_random_net(m, n, seed++);
+    for (const Stencil& s : {alpha_stencil(alpha_mask(0.1)), alpha_stencil(anisotropic_mask(m, n, 2)), c1_coons_stencil(),
+                             biharmonic_stencil(), c1_family_stencil(0.35), random_stencil(2, seed), random_stencil(1, seed)}) {
+      for (double density : {1.0, 0.7, 0.3}) {
+        const StencilProblem p = make_problem(net, 2, random_free(m, n, s.radius, density, seed++));
+        INFO("m = " << m << ", n = " << n << ", radius " << s.radius << ", density " << density);
+        Eigen::MatrixXd A;
+        Eigen::MatrixX3d B;
+        dense_stencil_system(p, s, A, B);
+        for (bool box : {false, true}) {
+          StencilAssemblyOptions options;
+          options.box_pattern = box;
+          const StencilSystem sys = assemble_stencil_system(p, s, options);
+          REQUIRE(sys.A.rows() == A.rows());
+          REQUIRE(sys.B.rows() == A.rows());
+          if (A.rows() == 0) continue;  // nothing free
+          CHECK(sys.A.isCompressed());
+          CHECK((Eigen::MatrixXd(sys.A) - A).cwiseAbs().maxCoeff() == 0);
+          CHECK((sys.B - B).cwiseAbs().maxCoeff() < 1e-13);
+        }
+      }
+    }
+  }
+}
+
+TEST_CASE("refill_stencil_system: one pattern serves the C1 family, values and rhs follow w", "[mask]") {
+  const StencilProblem p = make_problem(make_random_net(9, 12, 5), 2, random_free(9, 12, 2, 0.8, 6));
+  StencilAssemblyOptions box;
+  box.box_pattern = true;
+  StencilSystem sys = assemble_stencil_system(p, c1_family_stencil(0.0), box);
+  const Eigen::SparseMatrix<double> first = sys.A;
+  for (double w : {0.25, 1.0}) {
+    REQUIRE(refill_stencil_system(p, c1_family_stencil(w), sys));
+    const StencilSystem fresh = assemble_stencil_system(p, c1_family_stencil(w), box);
+    REQUIRE(sys.A.nonZeros() == first.nonZeros());
+    for (Eigen::Index k = 0; k < first.nonZeros(); ++k) CHECK(sys.A.innerIndexPtr()[k] == first.innerIndexPtr()[k]);
+    CHECK((Eigen::MatrixXd(sys.A) - Eigen::MatrixXd(fresh.A)).cwiseAbs().maxCoeff() == 0);
+    CHECK((sys.B - fresh.B).cwiseAbs().maxCoeff() == 0);
+  }
+  // Without the box the biharmonic pattern (13 points) cannot hold c1-coons (25), nor a 3×3 stencil a 5×5.
+  StencilSystem narrow = assemble_stencil_system(p, biharmonic_stencil());
+  CHECK_FALSE(refill_stencil_system(p, c1_coons_stencil(), narrow));
+  CHECK_FALSE(refill_stencil_system(p, alpha_stencil(alpha_mask(0)), narrow));
+  CHECK(refill_stencil_system(p, biharmonic_stencil(), narrow));
+}
+
+TEST_CASE("solve_stencil_net: c1-coons on Bezier data is the net of the general (bicubically blended) Coons patch", "[mask]") {
+  std::uint32_t seed = 200;
+  for (auto [m, n] : {std::pair{4, 4}, {5, 7}, {9, 6}, {12, 12}, {6, 15}}) {
+    const ControlNet net = make_random_net(m, n, seed++);
+    const Surface patch = make_general_coons(general_coons_data(net));
+    const auto coons = patch.bezier_net();
+    REQUIRE(coons);
+    REQUIRE(coons->m == m);
+    REQUIRE(coons->n == n);
+    // The two outer rings of the patch's net are those of the random net (it interpolates them) ...
+    double ring_gap = 0;
+    for (int i = 0; i <= m; ++i)
+      for (int j = 0; j <= n; ++j)
+        if (std::min({i, j, m - i, n - j}) < 2) ring_gap = std::max(ring_gap, (coons->at(i, j) - net.at(i, j)).cwiseAbs().maxCoeff());
+    CHECK(ring_gap < 1e-12);
+    // ... and c1-coons with those two rings fills in exactly the patch's interior, which a
+    // random net's interior is not.
+    const ControlNet solved = solve_with(make_problem(net, 2), c1_coons_stencil());
+    INFO("m = " << m << ", n = " << n);
+    CHECK(relative_difference(solved, *coons) < 1e-10);
+    CHECK(max_difference(net, *coons) > 0.1);
+  }
+}
+
+TEST_CASE("solve_stencil_net: c1-coons reproduces every net that is cubic in each index", "[mask]") {
+  std::uint32_t seed = 300;
+  for (auto [m, n] : {std::pair{4, 5}, {7, 7}, {10, 6}, {16, 11}}) {
+    const ControlNet exact = bicubic_index_net(m, n, seed++);
+    // the free points' values are ignored: start from random ones
+    const ControlNet start = fill_free_points(exact, number_free_points(free_points(make_problem(exact, 2))),
+                             Eigen::MatrixX3d::Random((m - 3) * (n - 3), 3));
+    INFO("m = " << m << ", n = " << n);
+    CHECK(relative_difference(solve_with(make_problem(start, 2), c1_coons_stencil()), exact) < 1e-10);
+    // also cubic in i only (anything in j): Δ⁴_i kills it, so Δ⁴_i Δ⁴_j does too
+    ControlNet ruled(m, n);
+    const ControlNet noise = make_random_net(m, n, seed++);
+    for (int i = 0; i <= m; ++i)
+      for (int j = 0; j <= n; ++j) {
+        const double t = double(i) / m;
+        ruled.at(i, j) = noise.at(0, j) + t * noise.at(1, j) + t * t * noise.at(2, j) + t * t * t * noise.at(3, j);
+      }
+    CHECK(relative_difference(solve_with(make_problem(ruled, 2), c1_coons_stencil()), ruled) < 1e-10);
+    // the biharmonic mask reproduces only lower degree: a bicubic net is not one of its solutions
+    CHECK(relative_difference(solve_with(make_problem(start, 2), biharmonic_stencil()), exact) > 1e-6);
+  }
+}
+
+TEST_CASE("solve_stencil_net: biharmonic minimises the discrete thin-plate energy over the free points", "[mask]") {
+  std::uint32_t seed = 400;
+  for (auto [m, n] : {std::pair{6, 6}, {7, 10}, {12, 8}}) {
+    const FreeGrid free = random_free(m, n, 2, 0.75, seed++);
+    const ControlNet solved = solve_with(make_problem(make_random_net(m, n, seed++), 2, free), biharmonic_stencil());
+    // Central differences of the energy (exact for a quadratic up to rounding) at every free point.
+    const double h = 1e-3;
+    double gradient = 0, scale = 0;
+    for (int i = 0; i <= m; ++i)
+      for (int j = 0; j <= n; ++j) {
+        if (!free(i, j)) continue;
+        for (int d = 0; d < 3; ++d) {
+          ControlNet plus = solved, minus = solved;
+          plus.at(i, j)(d) += h;
+          minus.at(i, j)(d) -= h;
+          gradient = std::max(gradient, std::abs(thin_plate_energy(plus) - thin_plate_energy(minus)) / (2 * h));
+          scale = std::max(scale, 2 * 20 * std::abs(solved.at(i, j)(d)));  // |∂E/∂b| of one term
+        }
+      }
+    INFO("m = " << m << ", n = " << n << ", largest |dE/db| = " << gradient);
+    CHECK(gradient < 1e-8 * scale);
+    // the data points are no minimum: there the gradient is not zero
+    ControlNet plus = solved, minus = solved;
+    plus.at(1, 1)(0) += h;
+    minus.at(1, 1)(0) -= h;
+    CHECK(std::abs(thin_plate_energy(plus) - thin_plate_energy(minus)) / (2 * h) > 1e-3);
+  }
+}
+
+TEST_CASE("solve_stencil_net: the C1 family minimises its energy and meets c1-coons and biharmonic at the ends", "[mask]") {
+  const int m = 9, n = 7;
+  const FreeGrid free = random_free(m, n, 2, 0.8, 41);
+  const StencilProblem p = make_problem(make_random_net(m, n, 42), 2, free);
+  CHECK(max_difference(solve_with(p, c1_family_stencil(1)), solve_with(p, c1_coons_stencil())) < 1e-12);
+  CHECK(max_difference(solve_with(p, c1_family_stencil(0)), solve_with(p, biharmonic_stencil())) < 1e-12);
+  CHECK(max_difference(solve_with(p, c1_family_stencil(0.5)), solve_with(p, biharmonic_stencil())) > 1e-3);
+  for (double w : {0.3, 0.7}) {
+    const ControlNet solved = solve_with(p, c1_family_stencil(w));
+    const double base = c1_family_energy(solved, w);
+    // any change of the free points raises the energy (a minimum, not just a stationary point)
+    std::mt19937 rng(7);
+    std::normal_distribution<double> g;
+    for (int trial = 0; trial < 5; ++trial) {
+      ControlNet moved = solved;
+      for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j)
+          if (free(i, j)) moved.at(i, j) += 1e-3 * Eigen::RowVector3d(g(rng), g(rng), g(rng));
+      CHECK(c1_family_energy(moved, w) > base);
+    }
+  }
+}
+
+TEST_CASE("solve_stencil_net: the alpha family on any free set and with two rings equals a dense solve", "[mask]") {
+  std::uint32_t seed = 500;
+  for (auto [m, n] : {std::pair{5, 5}, {8, 13}, {14, 6}}) {
+    for (double alpha : {-0.25, -0.1, 0.0, 0.2}) {
+      const Stencil s = alpha_stencil(alpha_mask(alpha));
+      const ControlNet net = make_random_net(m, n, seed++);
+      for (int rings : {1, 2, 3}) {
+        if (2 * rings >= std::min(m, n)) continue;
+        const StencilProblem p = make_problem(net, rings);
+        INFO("m = " << m << ", n = " << n << ", alpha = " << alpha << ", rings = " << rings);
+        const ControlNet ref = dense_stencil_solve(p, s);
+        for (const char* backend : {"eigen-ldlt", "eigen-lu"})
+          CHECK(relative_difference(solve_with(p, s, backend), ref) < 1e-9);
+        // the transform backends get the grid stencil of the inner rectangle
+        for (const auto& info : solvers::available_solvers())
+          if (info.family == solvers::SolverFamily::kStructured)
+            CHECK(relative_difference(solve_with(p, s, info.name), ref) < 1e-9);
+      }
+      const StencilProblem holes = make_problem(net, 1, random_free(m, n, 1, 0.6, seed++));
+      CHECK(relative_difference(solve_with(holes, s), dense_stencil_solve(holes, s)) < 1e-10);
+    }
+  }
+}
+
+TEST_CASE("solve_stencil_net: L-shaped, holed and cut free sets equal the dense solve and keep the data", "[mask]") {
+  const int m = 14, n = 11;
+  const ControlNet net = make_random_net(m, n, 600);
+  FreeGrid L = random_free(m, n, 2, 1.0, 1);
+  L.block(8, 6, 5, 4).setConstant(false);  // an L: the inside minus its top-right corner block
+  FreeGrid hole = random_free(m, n, 2, 1.0, 1);
+  hole.block(5, 4, 3, 3).setConstant(false);  // a rectangle with a data hole
+  FreeGrid cut = random_free(m, n, 2, 1.0, 1);
+  cut.row(7).setConstant(false);  // a fixed interior curve: row i = 7 held
+  for (const FreeGrid* free : {&L, &hole, &cut}) {
+    const StencilProblem p = make_problem(net, 2, *free);
+    for (const Stencil& s : {c1_coons_stencil(), biharmonic_stencil(), c1_family_stencil(0.5), alpha_stencil(alpha_mask(-0.25))}) {
+      CHECK(check_stencil_problem(p, s).empty());
+      const ControlNet solved = solve_with(p, s, "eigen-ldlt");
+      CHECK(relative_difference(solved, dense_stencil_solve(p, s)) < 1e-10);
+      double data_gap = 0;
+      for (int i = 0; i <= m; ++i)
+        for (int j = 0; j <= n; ++j)
+          if (!(*free)(i, j)) data_gap = std::max(data_gap, (solved.at(i, j) - net.at(i, j)).cwiseAbs().maxCoeff());
+      CHECK(data_gap == 0);
+    }
+    // Precision on these shapes: c1-coons keeps bicubic nets, every 3×3 affine mask bilinear ones.
+    const ControlNet bicubic = bicubic_index_net(m, n, 601);
+    CHECK(relative_difference(solve_with(make_problem(bicubic, 2, *free), c1_coons_stencil()), bicubic) < 1e-10);
+    const ControlNet bilinear = make_bilinear_net(m, n, 602);
+    CHECK(relative_difference(solve_with(make_problem(bilinear, 2, *free), alpha_stencil(alpha_mask(0.1))), bilinear) < 1e-12);
+  }
+  // A held row decouples the two halves for a 3×3 mask; a 5×5 mask reaches across one row and
+  // needs two held rows (a curve and its cross-boundary ribbon): changing data below the cut
+  // does not move the free points above it.
+  FreeGrid cut2 = cut;
+  cut2.row(8).setConstant(false);
+  for (const auto& [free, stencil] : {std::pair{&cut, alpha_stencil(alpha_mask(-0.25))}, {&cut2, c1_coons_stencil()},
+                                      {&cut, c1_coons_stencil()}}) {
+    StencilProblem p = make_problem(net, 2, *free);
+    const ControlNet before = solve_with(p, stencil);
+    p.net.at(1, 5) += Eigen::RowVector3d(1, 1, 1);
+    const ControlNet after = solve_with(p, stencil);
+    CHECK(max_difference(before, after) > 1e-3);
+    double upper = 0;
+    for (int i = 8; i <= m; ++i)
+      for (int j = 0; j <= n; ++j) upper = std::max(upper, (before.at(i, j) - after.at(i, j)).cwiseAbs().maxCoeff());
+    if (free == &cut && stencil.radius == 2) CHECK(upper > 1e-6);  // one held row is not enough for 5×5
+    else CHECK(upper < 1e-12);
+  }
+}
+
+TEST_CASE("stencil_sensitivity_rhs: dN/dw of the C1 family matches central differences", "[mask]") {
+  const StencilProblem p = make_problem(make_random_net(11, 9, 900), 2, random_free(11, 9, 2, 0.9, 901));
+  for (double w : {0.0, 0.4, 0.9}) {
+    const ControlNet N = solve_with(p, c1_family_stencil(w), "eigen-ldlt");
+    const StencilSystem sys = assemble_stencil_system(p, c1_family_stencil(w));
+    const Eigen::MatrixX3d rhs = stencil_sensitivity_rhs(N, sys.numbering, c1_family_stencil_derivative(w));
+    const Eigen::MatrixX3d dN = Eigen::MatrixXd(sys.A).ldlt().solve(rhs);
+    const double h = 1e-5;
+    const ControlNet plus = solve_with(p, c1_family_stencil(w + h), "eigen-ldlt");
+    const ControlNet minus = solve_with(p, c1_family_stencil(w - h), "eigen-ldlt");
+    Eigen::MatrixX3d fd(sys.numbering.size(), 3);
+    for (int k = 0; k < sys.numbering.size(); ++k) {
+      const auto [i, j] = sys.numbering.points[std::size_t(k)];
+      fd.row(k) = (plus.at(i, j) - minus.at(i, j)) / (2 * h);
+    }
+    INFO("w = " << w << ", |dN| = " << dN.norm());
+    CHECK(dN.norm() > 1e-3);  // the solution does move with w
+    CHECK((dN - fd).norm() < 1e-6 * dN.norm());
+  }
+}
+
+TEST_CASE("solve_stencil_sweep: one analysis for the C1 family gives the single solves", "[mask]") {
+  const StencilProblem p = make_problem(make_random_net(10, 8, 700), 2, random_free(10, 8, 2, 0.85, 701));
+  std::vector<Stencil> members;
+  for (double w : {0.0, 0.25, 0.5, 1.0}) members.push_back(c1_family_stencil(w));
+  auto solver = solvers::make_solver("eigen-ldlt");
+  std::size_t count = 0;
+  solve_stencil_sweep(p, members, *solver, [&](std::size_t k, const StencilSolveResult& r) {
+    REQUIRE(r.summary.ok());
+    CHECK(relative_difference(r.net, solve_with(p, members[k])) < 1e-11);
+    ++count;
+  });
+  CHECK(count == members.size());
+  // a member of another radius is refused with a status
+  solve_stencil_sweep(p, {c1_coons_stencil(), alpha_stencil(alpha_mask(0))}, *solver,
+                      [&](std::size_t k, const StencilSolveResult& r) { CHECK(r.summary.ok() == (k == 0)); });
+}
+
+TEST_CASE("solve_stencil_net: c1-coons through the separable banded solver equals the sparse direct solve", "[mask]") {
+  // On Bézier data the exact answer is known (the general Coons net): both solves are compared
+  // with it and with each other (random rings excite every mode; κ grows like k⁸).
+  std::uint32_t seed = 800;
+  for (auto [m, n] : {std::pair{4, 4}, {6, 11}, {17, 9}, {40, 33}, {64, 48}}) {
+    for (int rings : {2, 3}) {
+      if (std::min(m, n) < 2 * rings) continue;  // nothing free
+      // the general Coons net solves c1-coons with any number of its rings as data
+      const ControlNet truth = *make_general_coons(general_coons_data(make_random_net(m, n, seed++))).bezier_net();
+      StencilProblem p = make_problem(truth, rings);
+      const FreeNumbering free = number_free_points(free_points(p));
+      p.net = fill_free_points(truth, free, Eigen::MatrixX3d::Zero(free.size(), 3));
+      auto fast = make_separable_solver(p, c1_coons_stencil());
+      REQUIRE(fast);
+      const StencilSolveResult r = solve_stencil_net(p, c1_coons_stencil(), *fast);
+      REQUIRE(r.summary.ok());
+      CHECK(r.summary.solver == "separable-banded");
+      const ControlNet direct = solve_with(p, c1_coons_stencil(), "eigen-ldlt");
+      INFO("m = " << m << ", n = " << n << ", rings = " << rings);
+      const double diff = relative_difference(r.net, direct);
+      const double err = relative_difference(r.net, truth), err_direct = relative_difference(direct, truth);
+      INFO("c1-coons " << m << " x " << n << ", rings " << rings << ": separable error " << err
+                       << ", eigen-ldlt error " << err_direct << ", difference " << diff);
+      CHECK(err <= 2 * err_direct + 1e-12);
+      CHECK(err < 1e-9);
+      CHECK(diff <= std::max(1e-10, 3 * (err + err_direct)));
+    }
+  }
+  // The α = −1/4 Coons mask is separable too (tridiagonal factors); biharmonic and free sets are not.
+  const StencilProblem p = make_problem(make_random_net(9, 7, 1), 1);
+  auto coons = make_separable_solver(p, alpha_stencil(alpha_mask(-0.25)));
+  REQUIRE(coons);
+  CHECK(relative_difference(solve_stencil_net(p, alpha_stencil(alpha_mask(-0.25)), *coons).net,
+                            dense_stencil_solve(p, alpha_stencil(alpha_mask(-0.25)))) < 1e-12);
+  CHECK_FALSE(make_separable_solver(make_problem(make_random_net(9, 7, 1), 2), biharmonic_stencil()));
+  CHECK_FALSE(make_separable_solver(make_problem(make_random_net(9, 7, 1), 2, random_free(9, 7, 2, 0.7, 3)), c1_coons_stencil()));
+}
+
+TEST_CASE("solve_stencil_net: a problem that does not fit the mask is a status, not a crash", "[mask]") {
+  auto solver = solvers::make_solver("eigen-lu");
+  const StencilProblem p = make_problem(make_random_net(6, 6, 1), 1);
+  const StencilSolveResult r = solve_stencil_net(p, c1_coons_stencil(), *solver);
+  CHECK(r.summary.status == solvers::SolveStatus::kNotApplicable);
+  CHECK(r.summary.message.find("rings") != std::string::npos);
+  CHECK(max_difference(r.net, p.net) == 0);
+  // a singular indefinite member (α = −1/2 at m = n = 3) is reported by the solver's status
+  const StencilSolveResult s = solve_stencil_net(make_problem(make_random_net(3, 3, 2), 1), alpha_stencil(alpha_mask(-0.5)), *solver);
+  CHECK_FALSE(s.summary.ok());
+}
+
+TEST_CASE("solve_stencil_net: every backend solves 5x5 masks on free sets or says why not", "[mask]") {
+  const int m = 9, n = 8;
+  FreeGrid L = random_free(m, n, 2, 1.0, 1);
+  L.block(5, 5, 3, 2).setConstant(false);
+  for (const StencilProblem& p : {make_problem(make_random_net(m, n, 950), 2), make_problem(make_random_net(m, n, 951), 2, L)}) {
+    for (const Stencil& s : {c1_coons_stencil(), biharmonic_stencil(), c1_family_stencil(0.5)}) {
+      const ControlNet ref = dense_stencil_solve(p, s);
+      for (const auto& info : solvers::available_solvers()) {
+        auto solver = solvers::make_solver(info.name);
+        const StencilSolveResult r = solve_stencil_net(p, s, *solver);
+        INFO(info.name << ": " << r.summary.brief_report());
+        if (info.family == solvers::SolverFamily::kDirect) {
+          REQUIRE(r.summary.ok());  // the direct backends apply to every symmetric definite system
+        }
+        if (r.summary.ok()) {
+          CHECK(relative_difference(r.net, ref) < 1e-8);
+        } else {
+          // a 5×5 system has no 9-point grid stencil: the matrix-free backends do not apply
+          CHECK(!info.needs_matrix);
+          CHECK(r.summary.status == solvers::SolveStatus::kNotApplicable);
+          CHECK(max_difference(r.net, p.net) == 0);
+        }
+      }
+    }
+  }
+}

@@ -1,0 +1,43 @@
+// Triangular nets made in code with fixed seeds (tests of coons::tri).
+#pragma once
+
+#include <cstdint>
+#include <random>
+
+#include "coons/tri/tri_net.h"
+
+namespace coons::tri::test {
+
+//! Uniformly random points in [−1, 1]³.
+inline TriNet random_tri_net(int n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> dist(-1, 1);
+  TriNet net(n);
+  for (Eigen::Index r = 0; r < net.points.rows(); ++r)
+    for (int c = 0; c < 3; ++c) net.points(r, c) = dist(rng);
+  return net;
+}
+
+//! A random quadratic (degree 2) patch elevated to degree n ≥ 2.
+inline TriNet elevated_quadratic(int n, std::uint32_t seed) {
+  return elevate_degree(random_tri_net(2, seed), n - 2);
+}
+
+//! A random random-affine patch (degree 1) elevated to degree n ≥ 1.
+inline TriNet elevated_linear(int n, std::uint32_t seed) {
+  return elevate_degree(random_tri_net(1, seed), n - 1);
+}
+
+//! max |a − b| over all coordinates.
+inline double max_abs_difference(const TriNet& a, const TriNet& b) {
+  return (a.points - b.points).cwiseAbs().maxCoeff();
+}
+
+//! The six permutations of (i, j, k) in the convention of permuted().
+inline const std::array<std::array<int, 3>, 6>& all_permutations() {
+  static const std::array<std::array<int, 3>, 6> p = {
+      {{0, 1, 2}, {1, 0, 2}, {0, 2, 1}, {2, 1, 0}, {1, 2, 0}, {2, 0, 1}}};
+  return p;
+}
+
+}  // namespace coons::tri::test
