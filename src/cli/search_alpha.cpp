@@ -117,7 +117,8 @@ int finish(nlohmann::json report, Phases& phases, SearchStatus status, const Sea
            const std::string& message) {
   report["timing"] = phases.timing();
   print_json(report);
-  if (status != SearchStatus::kSolverFailed) return kExitOk;
+  // no optimum without its evidence: every evaluation failed, or the verdict rests on failures
+  if (status != SearchStatus::kSolverFailed && status != SearchStatus::kFailedRegion) return kExitOk;
   std::cerr << fmt::format("error: {}: solver: {} search failed ({})\n", r.boundary,
                            report["solver"]["name"].get<std::string>(),
                            message.empty() ? "no successful evaluation" : message);

@@ -94,6 +94,28 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + degree, "degree"},
       {"solve " + string_point, "top"},
       {"solve " + name_number, "name"},
+      {"solve " + write_variant("deep.json",
+                                [](json& d) {
+                                  json t = 1;
+                                  for (int k = 0; k < 200; ++k) t = json::array({t});
+                                  d["target"] = t;
+                                }),
+       "deep.json"},
+      {"solve " + write_variant("bigdegree.json",
+                                [](json& d) {
+                                  d["degree"] = {4294967299LL, 4294967299LL};
+                                }),
+       "degree"},
+      {"solve " + write_variant("huge.json", [](json& d) { d["bottom"][1][2] = 1e308; }), "bottom"},
+      {"refit " +
+           write_variant("deeptarget.json",
+                         [](json& d) {
+                           json t = json::object();
+                           for (int k = 0; k < 200; ++k) t = json{{"sphere", t}};
+                           d["target"] = t;
+                         }) +
+           " --degree 4 4 --out {OUT}/r.json",
+       "deeptarget.json"},
       // solve: options
       {"solve " + q(kData + "/boundaries/seed_example1.json") + " --method hermite-coons", "degree"},
       {"solve " + good + " --alpha -0.4 --solver eigen-ldlt", "--alpha"},

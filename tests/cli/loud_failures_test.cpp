@@ -386,3 +386,22 @@ TEST_CASE("coons: progress with named phases on a terminal, nothing on standard 
   CHECK_THAT(tty.out, Catch::Contains("coons solve: read") && Catch::Contains("coons solve: solve") &&
                           Catch::Contains("coons solve: metrics"));
 }
+
+TEST_CASE("coons search-alpha: evaluations that fail are reported and no optimum is claimed on them", "[cli][loud]") {
+  // Jacobi diverges for α < 0 on the helicoid: the search says where, claims nothing, exits 3
+  const CommandResult r = run_command(kCoons + " search-alpha " + q(kData + "/boundaries/helicoid.json") +
+                                      " --objective thin_plate --solver jacobi");
+  CHECK(r.status == 3);
+  CHECK(lines(r.err) == 1);
+  const json report = json::parse(r.out);
+  CHECK(report["status"] != "success");
+  CHECK(report["alpha"].is_null());
+  CHECK(report["failed_evaluations"].get<int>() > 0);
+  REQUIRE(!report["failed_intervals"].empty());
+  CHECK(report["failed_intervals"][0][0] == -0.25);
+  CHECK(report["solver"]["status"] == "failed");
+  // a search whose every evaluation succeeded says so too
+  const json ok = json::parse(run_command(kCoons + " search-alpha " + q(dome()) + " --objective thin_plate").out);
+  CHECK(ok["failed_evaluations"] == 0);
+  CHECK(ok["failed_intervals"].empty());
+}

@@ -13,6 +13,7 @@ namespace {
 
 std::string format_optimum(const AlphaSearchSummary& s, int digits = 4) {
   if (s.status == SearchStatus::kSolverFailed) return "failed";
+  if (s.status == SearchStatus::kFailedRegion) return "failed region";
   if (s.flat) return "flat";
   if (!s.parameter) return "–";
   std::string out = fmt::format("{:.{}f}", *s.parameter, digits);

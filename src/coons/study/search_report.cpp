@@ -22,12 +22,14 @@ const char* to_string(SearchParameter p) {
 
 json search_solver_block(const solvers::SolverInfo& solver, bool picked_automatically, SearchStatus status, int solves,
                          double seconds, const std::string& message) {
-  json block = {{"name", solver.name},
-                {"status", status == SearchStatus::kSolverFailed ? "failed" : "success"},
-                {"iterations", solves},
-                {"relative_residual", nullptr},
-                {"seconds", {{"search", seconds}}}};
-  if (status == SearchStatus::kSolverFailed && !message.empty()) block["message"] = message;
+  json block = {
+      {"name", solver.name},
+      {"status", status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion ? "failed" : "success"},
+      {"iterations", solves},
+      {"relative_residual", nullptr},
+      {"seconds", {{"search", seconds}}}};
+  if ((status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion) && !message.empty())
+    block["message"] = message;
   if (picked_automatically) block["picked_by"] = "auto";
   return block;
 }
@@ -66,6 +68,13 @@ json search_report(const Boundary& b, const std::string& objective, SearchParame
   for (auto [p, f] : s.scan) scan.push_back({by_mu ? mu_of_compressed(b.m, b.n, p) : p, number_or_null(f)});
   out["scan"] = scan;
   out["evaluator"] = s.evaluator.empty() ? "factorize and solve" : s.evaluator;
+  // the evaluations that failed, and where: no optimum is claimed on them
+  out["failed_evaluations"] = s.failed_evaluations;
+  json intervals = json::array();
+  for (auto [lo, hi] : s.failed_intervals)
+    intervals.push_back(by_mu ? json{mu_of_compressed(b.m, b.n, lo), mu_of_compressed(b.m, b.n, hi)} : json{lo, hi});
+  out["failed_intervals"] = intervals;
+  if (s.failed_evaluations > 0) out["first_failure"] = solvers::to_string(s.first_failure);
   return out;
 }
 
