@@ -258,7 +258,7 @@ void BM_SearchAlpha(benchmark::State& state, std::string name, int N, bool spect
       s = search_mask_parameter(f);
 #endif
     } else {
-      MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, name, options);
+      MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, *find_solver(name), options);
       s = search_mask_parameter(f);
     }
     benchmark::DoNotOptimize(s.value);

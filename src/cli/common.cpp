@@ -1,65 +1,129 @@
 #include "common.h"
 
-#include <algorithm>
-#include <cmath>
-#include <filesystem>
-
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cerrno>
+#include <cmath>
+#include <cstdio>
+#include <cstring>
+#include <filesystem>
+#include <iostream>
+#include <map>
+
 #include "coons/io/input_error.h"
-#include "coons/io/net_json.h"
-#include "coons/mask/solve_mask_net.h"
-#include "coons/metrics/energies.h"
-#include "coons/net/coons_net.h"
-#include "solvers/registry.h"
+#include "coons/study/memory_estimate.h"
+#include "coons/study/net_report.h"
 
 namespace coons::cli {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
 
+// ---- memory ----------------------------------------------------------------------------------
 
-
-const char* to_string(Method m) {
-  switch (m) {
-    case Method::kAlpha: return "alpha";
-    case Method::kCoons: return "coons";
-    case Method::kHermiteCoons: return "hermite-coons";
-  }
-  return "alpha";
+double GlobalOptions::memory_limit() const {
+  if (max_memory.empty()) return default_memory_limit();
+  const auto bytes = parse_memory_size(max_memory);
+  if (!bytes)
+    throw InputError("command line", "--max-memory",
+                     "'" + max_memory + "' is not a size such as 2000000000, 512MB or 4GB");
+  return *bytes;
 }
 
-// What `solve`, `export` and `batch` share: how to make a net from a boundary.
+void add_memory_option(CLI::App& cmd, GlobalOptions& g) {
+  cmd.add_option("--max-memory", g.max_memory,
+                 "refuse work estimated to need more memory than this: BYTES, NNMB or NNGB "
+                 "(default: half of the available memory)");
+}
+
+void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
+                  const std::string& field) {
+  const double limit = g.memory_limit();
+  if (bytes > limit)
+    throw InputError(file, field,
+                     fmt::format("{} needs about {} of memory, more than the limit of {} (--max-memory to change it)",
+                                 what, format_bytes(bytes), format_bytes(limit)));
+}
+
+void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::SolverInfo* solver,
+                      const std::string& file) {
+  const double bytes = net_solve_bytes(b.m, b.n, solver) + net_metrics_bytes(b.m, b.n);
+  check_memory(g, bytes, fmt::format("a net of degree ({}, {})", b.m, b.n), file, "degree");
+}
+
+// ---- solvers ---------------------------------------------------------------------------------
+
+const solvers::SolverInfo* solver_from_name(const std::string& name) {
+  if (name == "auto") return nullptr;
+  if (const solvers::SolverInfo* info = solvers::find_solver(name)) return info;
+  std::string names;
+  for (const auto& s : solvers::available_solvers()) names += (names.empty() ? "" : ", ") + s.name;
+  throw InputError("command line", "--solver", "unknown solver '" + name + "' (built in: auto, " + names + ")");
+}
+
+// ---- net options -----------------------------------------------------------------------------
+
+void add_solver_option(CLI::App& cmd, std::string& solver) {
+  cmd.add_option("--solver", solver, "a name from `coons solvers`, or auto")->capture_default_str();
+}
 
 void add_net_options(CLI::App& cmd, NetRequest& r) {
-  cmd.add_option("--method", r.method, "alpha (solve the mask system), coons (closed form), "
-                 "hermite-coons (closed-form partially bicubic net, degree >= 3)")
-      ->capture_default_str();
-  cmd.add_option("--alpha", r.alpha, "weight of the diagonal neighbours; beta = 1/4 - alpha")
-      ->capture_default_str();
-  cmd.add_option("--mu", r.mu, "membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖²: the anisotropic mask of "
-                 "docs/math.md §3 (overrides --alpha)");
-  cmd.add_option("--solver", r.solver, "a name from `coons solvers`, or auto")->capture_default_str();
-  cmd.add_flag("--allow-indefinite", r.allow_indefinite,
-                "let Cholesky-type solvers run outside alpha in [-1/4, 1/4] (they will report it)");
+  const std::map<std::string, Method> methods = {
+      {"alpha", Method::kAlpha}, {"coons", Method::kCoons}, {"hermite-coons", Method::kHermiteCoons}};
+  r.method_option = cmd.add_option("--method", r.method,
+                                   "alpha (solve the mask system), coons (closed form), "
+                                   "hermite-coons (closed-form partially bicubic net, degree >= 3)")
+                        ->transform(CLI::CheckedTransformer(methods))
+                        ->default_str("alpha");
+  r.alpha_option = cmd.add_option("--alpha", r.alpha, "weight of the diagonal neighbours; beta = 1/4 - alpha")
+                       ->capture_default_str();
+  r.mu_option = cmd.add_option("--mu", r.mu,
+                               "membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖²: the anisotropic mask of "
+                               "docs/math.md §3 (instead of --alpha)");
+  r.solver_option = cmd.add_option("--solver", r.solver, "a name from `coons solvers`, or auto")->capture_default_str();
+  r.indefinite_option =
+      cmd.add_flag("--allow-indefinite", r.allow_indefinite,
+                   "let Cholesky-type solvers run outside alpha in [-1/4, 1/4] (they will report it)");
   cmd.add_option("--corner-tolerance", r.corner_tolerance,
                  "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
-  cmd.add_option("--tolerance", r.tolerance, "iterative solvers: relative residual to reach")
-      ->capture_default_str();
-  cmd.add_option("--max-iterations", r.max_iterations, "iterative solvers: limit (0: automatic)")
-      ->capture_default_str();
-  cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
+  r.tolerance_option = cmd.add_option("--tolerance", r.tolerance, "iterative solvers: relative residual to reach")
+                           ->capture_default_str();
+  r.max_iterations_option =
+      cmd.add_option("--max-iterations", r.max_iterations, "iterative solvers: limit (0: automatic)")
+          ->capture_default_str();
+  r.omega_option =
+      cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
 }
 
-// A validated request: strings turned into enums, backend names checked.
+namespace {
+bool given(const CLI::Option* o) { return o && o->count() > 0; }
+}  // namespace
 
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source) {
   ResolvedRequest out;
-  if (r.method == "alpha") out.method = Method::kAlpha;
-  else if (r.method == "coons") out.method = Method::kCoons;
-  else if (r.method == "hermite-coons") out.method = Method::kHermiteCoons;
-  else throw InputError("command line", "--method", "unknown method '" + r.method + "' (alpha, coons, hermite-coons)");
+  out.method = r.method;
+  // Contradictions: options that would be ignored are errors naming both.
+  if (out.method != Method::kAlpha) {
+    const std::pair<const CLI::Option*, const char*> alpha_only[] = {{r.alpha_option, "--alpha"},
+                                                                     {r.mu_option, "--mu"},
+                                                                     {r.solver_option, "--solver"},
+                                                                     {r.tolerance_option, "--tolerance"},
+                                                                     {r.max_iterations_option, "--max-iterations"},
+                                                                     {r.omega_option, "--omega"},
+                                                                     {r.indefinite_option, "--allow-indefinite"}};
+    for (const auto& [option, name] : alpha_only)
+      if (given(option))
+        throw InputError("command line", "--method",
+                         fmt::format("--method {} is a closed form: {} does not apply (it needs --method alpha)",
+                                     to_string(out.method), name));
+  }
+  if (given(r.alpha_option) && given(r.mu_option))
+    throw InputError("command line", "--alpha", "--alpha and --mu both choose the mask; give one of them");
+  if (given(r.omega_option) && r.solver != "gauss-seidel")
+    throw InputError("command line", "--omega",
+                     "--omega is the over-relaxation of --solver gauss-seidel, not of " + r.solver);
 
   if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");
   if (r.mu && !(std::isfinite(*r.mu) && *r.mu >= 0))
@@ -79,21 +143,15 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   if (out.method != Method::kAlpha) return out;
 
   const auto stencil = mask_stencil(out.mask, std::max(boundary.m - 1, 0), std::max(boundary.n - 1, 0));
-  out.solver = r.solver;
-  if (r.solver == "auto") {
-    out.solver = stencil.size() > 0 ? solvers::choose_auto_solver(stencil) : "eigen-ldlt";
+  out.solver = solver_from_name(r.solver);
+  if (!out.solver) {
+    out.solver = solvers::find_solver(stencil.size() > 0 ? solvers::choose_auto_solver(stencil) : "eigen-ldlt");
     out.picked_automatically = true;
     return out;
   }
-  const solvers::SolverInfo* info = solvers::find_solver(r.solver);
-  if (!info) {
-    std::string names;
-    for (const auto& s : solvers::available_solvers()) names += (names.empty() ? "" : ", ") + s.name;
-    throw InputError("command line", "--solver", "unknown solver '" + r.solver + "' (built in: auto, " + names + ")");
-  }
   const double alpha_equiv = out.mask.diag;
   const bool in_definite_range = alpha_equiv >= -0.25 && alpha_equiv <= 0.25;
-  if (info->definite_only && !in_definite_range && !r.allow_indefinite)
+  if (out.solver->definite_only && !in_definite_range && !r.allow_indefinite)
     throw InputError("command line", "--alpha",
                      fmt::format("{} is outside [-0.25, 0.25], where the system is positive definite; "
                                  "{} needs that (use eigen-lu, or --allow-indefinite to try anyway)",
@@ -101,58 +159,35 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   return out;
 }
 
-
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r) {
-  switch (r.method) {
-    case Method::kCoons: return {discrete_coons_net(boundary), std::nullopt};
-    case Method::kHermiteCoons: return {hermite_coons_net(boundary), std::nullopt};
-    case Method::kAlpha: break;
-  }
-  MaskSolveResult result = solve_mask_net(boundary, r.mask, r.solver, r.options);
-  return {std::move(result.net), std::move(result.summary)};
+  return coons::make_net(boundary, r.method, r.mask, r.solver, r.options);
 }
 
 json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                   const std::optional<double>& mu) {
-  json report;
-  report["boundary"] = boundary.name;
-  report["degree"] = {boundary.m, boundary.n};
-  report["method"] = to_string(r.method);
-  report["alpha"] = r.mask.diag;
-  report["beta"] = number_or_null(r.mask.edge_i == r.mask.edge_j ? r.mask.edge_i : NAN);
-  if (r.mask.edge_i != r.mask.edge_j) report["beta_ij"] = {r.mask.edge_i, r.mask.edge_j};
-  // μ next to α: given, or the μ of α at degree n (docs/math.md §4) when m = n and α ∈ [−1/4, 0).
-  if (mu) report["mu"] = *mu;
-  else if (boundary.m == boundary.n && r.mask.diag >= -0.25 && r.mask.diag < 0 && r.mask.edge_i == r.mask.edge_j)
-    report["mu"] = mu_from_alpha(boundary.n, r.mask.diag);
-  else report["mu"] = nullptr;
-  if (outcome.summary) {
-    report["solver"] = summary_to_json(*outcome.summary);
-    if (r.picked_automatically) report["solver"]["picked_by"] = "auto";
-  }
-  else report["solver"] = {{"name", "closed-form"}, {"status", "not_applicable"},
-                           {"message", "closed-form net: no linear system is solved"}};
-  const bool ok = !outcome.summary || outcome.summary->ok();
-  report["net"] = ok ? net_to_json(outcome.net) : json(nullptr);
-  report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, r.mask)) : json(nullptr);
-  return report;
+  return net_report(boundary, r.method, r.mask, outcome, mu, r.picked_automatically);
 }
 
-BoundaryFile read_input(const std::string& path, const NetRequest& r) {
+BoundaryFile read_input(const std::string& path, double corner_tolerance) {
   BoundaryReadOptions options;
-  if (!(r.corner_tolerance >= 0 && std::isfinite(r.corner_tolerance)))
+  if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
-  options.corner_tolerance = r.corner_tolerance;
+  options.corner_tolerance = corner_tolerance;
   return read_boundary_file(path, options);
 }
 
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
   std::vector<std::string> files;
   for (const auto& in : inputs) {
-    if (fs::is_directory(in)) {
+    std::error_code ec;
+    if (fs::is_directory(in, ec)) {
       std::vector<std::string> found;
-      for (const auto& entry : fs::directory_iterator(in))
-        if (entry.path().extension() == ".json") found.push_back(entry.path().string());
+      fs::directory_iterator it(in, ec);
+      if (ec) throw InputError(in, "", "cannot read the folder: " + ec.message());
+      for (; it != fs::directory_iterator(); it.increment(ec)) {
+        if (ec) throw InputError(in, "", "cannot read the folder: " + ec.message());
+        if (it->path().extension() == ".json") found.push_back(it->path().string());
+      }
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else {
@@ -162,5 +197,41 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
   return files;
 }
 
+// ---- output ----------------------------------------------------------------------------------
+
+std::string dump(const json& doc, int indent) { return doc.dump(indent, ' ', false, json::error_handler_t::replace); }
+
+void print_text(const std::string& text) {
+  errno = 0;
+  std::cout << text;
+  std::cout.flush();
+  const bool failed = std::fflush(stdout) != 0 || std::ferror(stdout) || !std::cout;
+  if (failed) {
+    const int error = errno;
+    std::cout.clear();
+    std::clearerr(stdout);
+    throw InputError("<stdout>", "", std::string("write failed: ") + (error ? std::strerror(error) : "unknown error"));
+  }
+}
+
+void print_json(const json& doc, int indent) { print_text(dump(doc, indent) + '\n'); }
+
+void print_json(const nlohmann::ordered_json& doc, int indent) {
+  print_text(doc.dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + '\n');
+}
+
+void print_solver_failure(const std::string& file, const solvers::SolveSummary& s) {
+  std::string line = fmt::format("error: {}: solver: {} {}", file, s.solver, solvers::to_string(s.status));
+  line += std::isfinite(s.relative_residual) ? fmt::format(", relative residual {:.3g}", s.relative_residual)
+                                             : std::string(", relative residual not finite");
+  if (!s.message.empty()) {
+    std::string message = s.message;
+    std::replace(message.begin(), message.end(), '\n', ' ');
+    line += " (" + message + ")";
+  }
+  std::cerr << line << '\n';
+}
+
+void set_example(CLI::App& cmd, const std::string& example) { cmd.footer("\nExample:\n  " + example); }
 
 }  // namespace coons::cli

@@ -1,29 +1,48 @@
-// What the commands of the `coons` CLI share: exit codes, how a net is requested on the command
-// line, and the translation of those strings into enums, masks and backend names.
+// What the commands of the `coons` CLI share: exit codes, the options that request a net (parsed
+// into enums and backend objects here, once), the memory limit, the progress and timing of the
+// phases, and the checked printing of a report.
 #pragma once
 
+#include <CLI/CLI.hpp>
+#include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
 #include <vector>
 
-#include <CLI/CLI.hpp>
-#include <nlohmann/json.hpp>
-
 #include "coons/io/boundary_io.h"
 #include "coons/mask/mask9.h"
 #include "coons/net/control_net.h"
+#include "coons/study/net_report.h"
 #include "solvers/linear_solver.h"
+#include "solvers/registry.h"
 
 namespace coons::cli {
 
 constexpr int kExitOk = 0;
+constexpr int kExitInternal = 1;
 constexpr int kExitBadInput = 2;
 constexpr int kExitSolverFailed = 3;
 
-enum class Method { kAlpha, kCoons, kHermiteCoons };
+using Method = NetMethod;
+
+//! The options of every command (registered on each subcommand).
+struct GlobalOptions {
+  std::string max_memory;  //!< --max-memory: BYTES, NNMB, NNGB (default: half of MemAvailable)
+  bool force = false;      //!< --force (commands whose file names are chosen by the user)
+  //! The limit in bytes (parsed once; throws InputError for a bad --max-memory).
+  [[nodiscard]] double memory_limit() const;
+};
+void add_memory_option(CLI::App& cmd, GlobalOptions& g);
+
+//! Refuses (InputError naming `file` and `field`) when `bytes` exceeds the limit.
+void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
+                  const std::string& field);
+
+//! `--solver NAME`: nullptr for auto; an unknown name is an InputError listing the built-in ones.
+const solvers::SolverInfo* solver_from_name(const std::string& name);
 
 struct NetRequest {
-  std::string method = "alpha";
+  Method method = Method::kAlpha;
   double alpha = -0.25;
   std::optional<double> mu;
   std::string solver = "auto";
@@ -32,30 +51,68 @@ struct NetRequest {
   double tolerance = 1e-12;
   int max_iterations = 0;
   double omega = 1.0;
+  // which options were given (for contradictions)
+  CLI::Option *method_option = nullptr, *alpha_option = nullptr, *mu_option = nullptr, *solver_option = nullptr,
+              *tolerance_option = nullptr, *max_iterations_option = nullptr, *omega_option = nullptr,
+              *indefinite_option = nullptr;
 };
 
 struct ResolvedRequest {
   Method method = Method::kAlpha;
   Mask9 mask;
-  std::string solver;  // concrete backend (alpha method only)
-  bool picked_automatically = false;  // --solver auto chose it
+  const solvers::SolverInfo* solver = nullptr;  //!< concrete backend (alpha method only)
+  bool picked_automatically = false;            //!< --solver auto chose it
   solvers::SolverOptions options;
 };
 
-struct NetOutcome {
-  ControlNet net;
-  std::optional<solvers::SolveSummary> summary;  // alpha method only
-};
-
-const char* to_string(Method m);
 void add_net_options(CLI::App& cmd, NetRequest& r);
-//! Checks the request against the boundary; throws InputError naming the bad option.
+//! --solver alone (search, sweep, batch, study).
+void add_solver_option(CLI::App& cmd, std::string& solver);
+//! Checks the request against the boundary; throws InputError naming the bad option (or both
+//! options of a contradiction).
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source);
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r);
+//! The solve report (docs/formats.md) without the timing block; metrics computed here.
 nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                             const std::optional<double>& mu);
-BoundaryFile read_input(const std::string& path, const NetRequest& r);
-//! Files as given, folders expanded to their *.json files (sorted).
+BoundaryFile read_input(const std::string& path, double corner_tolerance);
+//! Files as given, folders expanded to their *.json files (sorted); unreadable folders are InputErrors.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
+
+//! The memory of solving and measuring an (m+1)×(n+1) net, checked against the limit.
+void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::SolverInfo* solver,
+                      const std::string& file);
+
+//! Prints a JSON document on standard output and flushes it; a failed write is an InputError
+//! ("<stdout>: write failed: REASON"). Invalid UTF-8 in names is replaced, never an exception.
+void print_json(const nlohmann::json& doc, int indent = 2);
+void print_json(const nlohmann::ordered_json& doc, int indent = 2);  //!< keeps the keys' order
+void print_text(const std::string& text);
+std::string dump(const nlohmann::json& doc, int indent = -1);
+
+//! One `error:` line on standard error for a failed solve (exit 3 goes with it).
+void print_solver_failure(const std::string& file, const solvers::SolveSummary& summary);
+
+//! A command's phases (read, assemble, solve, metrics, write): a progress line on a terminal
+//! (standard error), nothing otherwise; their seconds for the report's "timing" block.
+class Phases {
+ public:
+  explicit Phases(std::string command);
+  ~Phases();
+  void start(const std::string& phase, const std::string& detail = "");
+  //! A progress note inside the current phase (e.g. "3/41").
+  void note(const std::string& detail);
+  [[nodiscard]] nlohmann::json timing();  //!< seconds per phase (the current one closed)
+
+ private:
+  void close();
+  std::string command_, current_;
+  double started_ = 0;
+  std::vector<std::pair<std::string, double>> seconds_;
+  bool tty_ = false, printed_ = false;
+};
+
+//! The worked example that ends a command's --help.
+void set_example(CLI::App& cmd, const std::string& example);
 
 }  // namespace coons::cli

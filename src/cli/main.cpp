@@ -1,4 +1,4 @@
 // coons — discrete Coons patches from the command line. See README.md and docs/formats.md.
-#include "commands.h"
+#include "registry.h"
 
 int main(int argc, char** argv) { return coons::cli::run(argc, argv); }

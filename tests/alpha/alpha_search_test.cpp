@@ -30,7 +30,7 @@ MaskFamily alpha_only() { return [](double a) { return alpha_family(a); }; }
 TEST_CASE("MaskObjective: the analytic derivative equals finite differences", "[alpha]") {
   const Boundary b = make_smooth_boundary(6, 5, 3);
   for (const char* name : {"thin_plate", "twist", "dirichlet", "e3", "thin_plate+0.3*e3"}) {
-    MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+    MaskObjective f(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
     for (double alpha : {-0.2, -0.05, 0.1}) {
       const double h = 1e-6;
       const double fd = (f.evaluate(alpha + h).value - f.evaluate(alpha - h).value) / (2 * h);
@@ -44,9 +44,9 @@ TEST_CASE("MaskObjective: the analytic derivative equals finite differences", "[
   target.target = Target{};
   target.target->net = hermite_coons_net(make_smooth_boundary(6, 5, 3));
   target.target->samples = 15;
-  MaskObjective by_mu(b, objective_named("thin_plate"), [](double mu) { return mu_family(6, 5, mu); }, "eigen-ldlt");
-  MaskObjective by_gamma(b, objective_named("e3"), [](double g) { return gamma_family(-0.15, g); }, "eigen-ldlt");
-  MaskObjective to_target(b, target, alpha_only(), "eigen-ldlt");
+  MaskObjective by_mu(b, objective_named("thin_plate"), [](double mu) { return mu_family(6, 5, mu); }, backend("eigen-ldlt"));
+  MaskObjective by_gamma(b, objective_named("e3"), [](double g) { return gamma_family(-0.15, g); }, backend("eigen-ldlt"));
+  MaskObjective to_target(b, target, alpha_only(), backend("eigen-ldlt"));
   for (auto [f, p, h] : {std::tuple{&by_mu, 7.0, 1e-4}, {&by_gamma, 0.03, 1e-6}, {&to_target, -0.1, 1e-6}}) {
     const double fd = (f->evaluate(p + h).value - f->evaluate(p - h).value) / (2 * h);
     CHECK(f->evaluate(p).derivative == Approx(fd).epsilon(1e-5).margin(1e-9));
@@ -59,12 +59,12 @@ TEST_CASE("search_mask_parameter: equals Brent's minimiser on random smooth boun
     const int m = 3 + int(seed % 4), n = 3 + int((seed * 7) % 5);
     const Boundary b = make_smooth_boundary(m, n, seed);
     for (const char* name : {"thin_plate", "e3"}) {
-      MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+      MaskObjective f(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
       const AlphaSearchSummary s = search_mask_parameter(f);
       INFO("seed " << seed << " (" << m << "x" << n << "), " << name << ": " << s.brief_report());
       REQUIRE((s.status == SearchStatus::kSuccess || s.status == SearchStatus::kFlat));
       if (s.flat || s.local_minima > 1) continue;
-      MaskObjective g(b, objective_named(name), alpha_only(), "eigen-ldlt");
+      MaskObjective g(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
       const auto brent = boost::math::tools::brent_find_minima(
           [&](double a) { return g.evaluate(a).value; }, -0.25, 0.25, std::numeric_limits<double>::digits / 2);
       REQUIRE(s.parameter);
@@ -72,7 +72,7 @@ TEST_CASE("search_mask_parameter: equals Brent's minimiser on random smooth boun
       CHECK(s.value <= brent.second * (1 + 1e-12) + 1e-15);
       CHECK(s.evaluations < 40);
       // the search the CLI runs on the structured solvers: in the sine basis, no solves
-      const AlphaSearchSummary sine = search_alpha(b, objective_named(name), "fast");
+      const AlphaSearchSummary sine = search_alpha(b, objective_named(name), backend("fast"));
       INFO("sine basis: " << sine.brief_report());
       CHECK(sine.evaluator == "sine basis");
       REQUIRE(sine.parameter);
@@ -88,20 +88,20 @@ TEST_CASE("search_mask_parameter: equals Brent's minimiser on random smooth boun
 TEST_CASE("search_mask_parameter: a planar boundary is flat, no optimum claimed", "[alpha]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/sixteen_vector_twist.json").boundary;
   for (const char* name : {"thin_plate", "twist", "e3", "dirichlet"}) {
-    MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+    MaskObjective f(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
     const AlphaSearchSummary s = search_mask_parameter(f);
     INFO(name << ": " << s.brief_report());
     CHECK(s.flat);
     CHECK(s.status == SearchStatus::kFlat);
     CHECK(!s.parameter);
   }
-  MaskObjective bilinear(boundary_of(make_bilinear_net(5, 4, 2)), objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  MaskObjective bilinear(boundary_of(make_bilinear_net(5, 4, 2)), objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
   CHECK(search_mask_parameter(bilinear).flat);
 }
 
 TEST_CASE("search_mask_parameter: the Dirichlet energy has its optimum on the upper bound", "[alpha]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
-  MaskObjective f(b, objective_named("dirichlet"), alpha_only(), "eigen-ldlt");
+  MaskObjective f(b, objective_named("dirichlet"), alpha_only(), backend("eigen-ldlt"));
   const AlphaSearchSummary s = search_mask_parameter(f);
   INFO(s.brief_report());
   CHECK(s.at_bound);
@@ -113,7 +113,7 @@ TEST_CASE("search_mask_parameter: the dome fits its sphere best near alpha = -0.
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   Objective sphere = objective_named("target");
   sphere.target = Target{Target::Kind::kSphere, {}, {0, 0, -1}, {0, 0, 1}, std::sqrt(3.0), 41};
-  MaskObjective f(b, sphere, alpha_only(), "eigen-ldlt");
+  MaskObjective f(b, sphere, alpha_only(), backend("eigen-ldlt"));
   const AlphaSearchSummary s = search_mask_parameter(f);
   INFO(s.brief_report());
   REQUIRE(s.parameter);
@@ -139,7 +139,7 @@ TEST_CASE("parse_objective: names, weighted sums and errors", "[alpha]") {
 
 TEST_CASE("MaskObjective::evaluate_mask: the gradient in (alpha, gamma) equals finite differences", "[alpha]") {
   const Boundary b = make_smooth_boundary(3, 7, 4);
-  MaskObjective f(b, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  MaskObjective f(b, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
   const double alpha = -0.12, gamma = 0.04, h = 1e-6;
   auto mask = [](double a, double g) { return Mask9{0.25 - a + g, 0.25 - a - g, a}; };
   std::vector<double> grad, unused;
@@ -152,7 +152,7 @@ TEST_CASE("MaskObjective::evaluate_mask: the gradient in (alpha, gamma) equals f
 
 TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on a symmetric boundary", "[alpha]") {
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
-  MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
   const AlphaGammaSummary s = search_alpha_gamma(f);
   INFO(s.ceres_report);
   CHECK(s.status == SearchStatus::kSuccess);
@@ -160,7 +160,7 @@ TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on 
   CHECK(s.value <= s.value_at_gamma0 + 1e-12);
 
   const Boundary wide = make_smooth_boundary(3, 8, 6);
-  MaskObjective g(wide, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  MaskObjective g(wide, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
   const AlphaGammaSummary t = search_alpha_gamma(g);
   INFO(t.ceres_report);
   REQUIRE(t.status == SearchStatus::kSuccess);
@@ -171,13 +171,13 @@ TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on 
 TEST_CASE("discrete objectives: derivative equals finite differences; discrete twist is minimal at alpha = -1/4", "[alpha]") {
   const Boundary b = make_smooth_boundary(7, 6, 12);
   for (const char* name : {"discrete_twist", "discrete_dirichlet", "discrete_thin_plate"}) {
-    MaskObjective f(b, objective_named(name), alpha_only(), "eigen-ldlt");
+    MaskObjective f(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
     const double h = 1e-6;
     const double fd = (f.evaluate(-0.1 + h).value - f.evaluate(-0.1 - h).value) / (2 * h);
     INFO(name);
     CHECK(f.evaluate(-0.1).derivative == Approx(fd).epsilon(1e-6).margin(1e-10));
   }
-  MaskObjective twist(b, objective_named("discrete_twist"), alpha_only(), "eigen-ldlt");
+  MaskObjective twist(b, objective_named("discrete_twist"), alpha_only(), backend("eigen-ldlt"));
   const AlphaSearchSummary s = search_mask_parameter(twist);
   REQUIRE(s.parameter);
   CHECK(*s.parameter == -0.25);  // docs/math.md §3: the Coons net minimises the discrete twist energy
@@ -190,12 +190,12 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   for (int degree : {3, 6, 10}) {
     const Boundary b = elevate_boundary(dome, degree, degree);
-    MaskObjective by_alpha(b, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+    MaskObjective by_alpha(b, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
     const AlphaSearchSummary a = search_mask_parameter(by_alpha);
     AlphaSearchOptions options;
     options.lower = 0;
     options.upper = compressed_of_mu(degree, degree, 1000.0 * degree * degree);
-    MaskObjective by_mu(b, objective_named("thin_plate"), [degree](double s) { return mu_family_compressed(degree, degree, s); }, "eigen-ldlt");
+    MaskObjective by_mu(b, objective_named("thin_plate"), [degree](double s) { return mu_family_compressed(degree, degree, s); }, backend("eigen-ldlt"));
     const AlphaSearchSummary m = search_mask_parameter(by_mu, options);
     REQUIRE(a.parameter);
     REQUIRE(m.parameter);
@@ -203,7 +203,7 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
     CHECK(mu_of_compressed(degree, degree, *m.parameter) == Approx(mu_from_alpha(degree, *a.parameter)).epsilon(1e-4));
     CHECK(m.value == Approx(a.value).epsilon(1e-10));
     // search_mu runs a square net's μ search on α, in the sine basis on a structured solver
-    const AlphaSearchSummary sine = search_mu(b, objective_named("thin_plate"), "fast", options);
+    const AlphaSearchSummary sine = search_mu(b, objective_named("thin_plate"), backend("fast"), options);
     CHECK(sine.evaluator == "sine basis");
     CHECK(sine.solves == 0);
     REQUIRE(sine.parameter);
@@ -214,9 +214,9 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
   AlphaSearchOptions options;
   options.lower = 0;
   options.upper = compressed_of_mu(5, 7, 1000.0 * 35);
-  CHECK(search_mu(make_smooth_boundary(5, 7, 2), objective_named("thin_plate"), "fast", options).evaluator == "factorize and solve");
+  CHECK(search_mu(make_smooth_boundary(5, 7, 2), objective_named("thin_plate"), backend("fast"), options).evaluator == "factorize and solve");
   // and the compressed family's derivative is right
-  MaskObjective f(make_smooth_boundary(5, 7, 2), objective_named("e3"), [](double s) { return mu_family_compressed(5, 7, s); }, "eigen-ldlt");
+  MaskObjective f(make_smooth_boundary(5, 7, 2), objective_named("e3"), [](double s) { return mu_family_compressed(5, 7, s); }, backend("eigen-ldlt"));
   const double h = 1e-7, s = 0.3;
   CHECK(f.evaluate(s).derivative == Approx((f.evaluate(s + h).value - f.evaluate(s - h).value) / (2 * h)).epsilon(1e-5));
 }
@@ -224,7 +224,7 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
 TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal", "[alpha]") {
   // α = −1/2 is singular at degree (3, 3); a wide, indefinite range passes through it.
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
-  MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), "eigen-lu");
+  MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-lu"));
   AlphaSearchOptions options;
   options.lower = -1;
   options.upper = 1;
@@ -233,7 +233,7 @@ TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal"
   CHECK(s.status == SearchStatus::kSuccess);
   CHECK_THAT(s.message, Catch::Contains("skipped"));
   REQUIRE(s.parameter);
-  MaskObjective g(dome, objective_named("thin_plate"), alpha_only(), "eigen-ldlt");
+  MaskObjective g(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
   CHECK(*s.parameter == Approx(*search_mask_parameter(g).parameter).margin(1e-6));
 }
 
@@ -259,7 +259,7 @@ TEST_CASE("SpectralAlphaObjective: equals the energy of the solved net, with exa
           *o.target = Target{Target::Kind::kCylinder, {}, {0, 0.5, -2}, {1, 0, 0}, 2.0, 13};
       }
       const SpectralAlphaObjective spectral(b, o);
-      MaskObjective direct(b, o, alpha_only(), "eigen-ldlt");
+      MaskObjective direct(b, o, alpha_only(), backend("eigen-ldlt"));
       for (double alpha : {-0.25, -0.13, 0.0, 0.2}) {
         const auto s = spectral.evaluate(alpha);
         const auto d = direct.evaluate(alpha);
@@ -281,8 +281,8 @@ TEST_CASE("search_alpha: the sine basis on structured solvers, solves otherwise,
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   const Boundary smooth = make_smooth_boundary(7, 6, 3);
   for (const auto& [b, o] : {std::pair{smooth, objective_named("thin_plate")}, {dome, sphere}}) {
-    const AlphaSearchSummary sine = search_alpha(b, o, "fast");
-    const AlphaSearchSummary direct = search_alpha(b, o, "eigen-ldlt");
+    const AlphaSearchSummary sine = search_alpha(b, o, backend("fast"));
+    const AlphaSearchSummary direct = search_alpha(b, o, backend("eigen-ldlt"));
     INFO(sine.brief_report() << " / " << direct.brief_report());
     CHECK(sine.evaluator == "sine basis");
     CHECK(sine.solves == 0);
@@ -326,7 +326,7 @@ TEST_CASE("search_mask_parameter: the spectral search finds the optimum of the s
   for (std::uint32_t seed = 1; seed <= 6; ++seed) {
     const Boundary b = make_smooth_boundary(5 + int(seed), 4 + int(2 * seed % 7), seed);
     for (const char* name : {"discrete_thin_plate", "discrete_thin_plate+0.5*discrete_dirichlet", "thin_plate", "e3+0.5*dirichlet"}) {
-      MaskObjective direct(b, objective_named(name), alpha_only(), "eigen-ldlt");
+      MaskObjective direct(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
       SpectralAlphaSearchObjective spectral(b, objective_named(name));
       const AlphaSearchSummary d = search_mask_parameter(direct), s = search_mask_parameter(spectral);
       INFO("seed " << seed << ", " << name << ": " << d.brief_report() << " / " << s.brief_report());
@@ -368,7 +368,7 @@ MaskFamily failing_between(double lo, double hi) {
 
 TEST_CASE("search_alpha: jacobi diverging for alpha < 0 on a helicoid claims no optimum", "[alpha]") {
   const Boundary helicoid = helicoid_boundary();
-  const AlphaSearchSummary exact = search_alpha(helicoid, objective_named("thin_plate"), "eigen-ldlt");
+  const AlphaSearchSummary exact = search_alpha(helicoid, objective_named("thin_plate"), backend("eigen-ldlt"));
   INFO("eigen-ldlt: " << exact.brief_report());
   REQUIRE(exact.status == SearchStatus::kSuccess);
   REQUIRE(exact.parameter);
@@ -376,7 +376,7 @@ TEST_CASE("search_alpha: jacobi diverging for alpha < 0 on a helicoid claims no 
   CHECK(exact.failed_evaluations == 0);
   CHECK(exact.failed_intervals.empty());
 
-  const AlphaSearchSummary s = search_alpha(helicoid, objective_named("thin_plate"), "jacobi");
+  const AlphaSearchSummary s = search_alpha(helicoid, objective_named("thin_plate"), backend("jacobi"));
   INFO("jacobi: " << s.brief_report());
   CHECK(s.status == SearchStatus::kFailedRegion);
   CHECK_FALSE(s.parameter);
@@ -395,9 +395,9 @@ TEST_CASE("search_alpha: jacobi diverging for alpha < 0 on a helicoid claims no 
 
 TEST_CASE("search_mask_parameter: failures away from the optimum are reported, the optimum kept", "[alpha]") {
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
-  MaskObjective reference(dome, objective_named("thin_plate"), alpha_only(), "eigen-lu");
+  MaskObjective reference(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-lu"));
   const AlphaSearchSummary expected = search_mask_parameter(reference);
-  MaskObjective f(dome, objective_named("thin_plate"), failing_between(0.15, 0.2), "eigen-lu");
+  MaskObjective f(dome, objective_named("thin_plate"), failing_between(0.15, 0.2), backend("eigen-lu"));
   const AlphaSearchSummary s = search_mask_parameter(f);
   INFO(s.brief_report());
   CHECK(s.status == SearchStatus::kSuccess);
@@ -413,7 +413,7 @@ TEST_CASE("search_mask_parameter: failures away from the optimum are reported, t
 TEST_CASE("search_mask_parameter: a failure next to the lowest point is a failed region", "[alpha]") {
   // The dome's optimum, −0.0185, lies between the scan points −0.0625 and 0; −0.0625 fails.
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
-  MaskObjective f(dome, objective_named("thin_plate"), failing_between(-0.07, -0.05), "eigen-lu");
+  MaskObjective f(dome, objective_named("thin_plate"), failing_between(-0.07, -0.05), backend("eigen-lu"));
   const AlphaSearchSummary s = search_mask_parameter(f);
   INFO(s.brief_report());
   CHECK(s.status == SearchStatus::kFailedRegion);
@@ -426,7 +426,7 @@ TEST_CASE("search_mask_parameter: a failure next to the lowest point is a failed
 
 TEST_CASE("search_mask_parameter: every evaluation failing is the solver's failure", "[alpha]") {
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
-  MaskObjective f(dome, objective_named("thin_plate"), failing_between(-1, 1), "eigen-lu");
+  MaskObjective f(dome, objective_named("thin_plate"), failing_between(-1, 1), backend("eigen-lu"));
   const AlphaSearchSummary s = search_mask_parameter(f);
   INFO(s.brief_report());
   CHECK(s.status == SearchStatus::kSolverFailed);
@@ -440,7 +440,7 @@ TEST_CASE("search_mask_parameter: every evaluation failing is the solver's failu
 
 TEST_CASE("search_mask_parameter: a flat objective with failed points claims no flatness", "[alpha]") {
   const Boundary planar = boundary_of(make_bilinear_net(3, 3, 5));
-  MaskObjective f(planar, objective_named("thin_plate"), failing_between(0.1, 0.2), "eigen-lu");
+  MaskObjective f(planar, objective_named("thin_plate"), failing_between(0.1, 0.2), backend("eigen-lu"));
   const AlphaSearchSummary s = search_mask_parameter(f);
   INFO(s.brief_report());
   CHECK(s.status == SearchStatus::kFailedRegion);

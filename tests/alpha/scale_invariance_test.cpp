@@ -100,11 +100,11 @@ TEST_CASE("search_alpha: the optimum is invariant under translation and scaling 
 #endif
   for (const std::string& solver : solvers)
     for (const std::string& name : objectives()) {
-      const AlphaSearchSummary at_one = search_alpha(dome(), objective_named(name, {}), solver);
+      const AlphaSearchSummary at_one = search_alpha(dome(), objective_named(name, {}), backend(solver));
       INFO(solver << ", " << name << " at scale 1: " << at_one.brief_report());
       REQUIRE(at_one.status == SearchStatus::kSuccess);
       for (const Placement& p : placements()) {
-        const AlphaSearchSummary moved = search_alpha(placed(dome(), p), objective_named(name, p), solver);
+        const AlphaSearchSummary moved = search_alpha(placed(dome(), p), objective_named(name, p), backend(solver));
         INFO("scale " << p.scale << ", shift " << p.shift << ": " << moved.brief_report());
         check_same_search(at_one, moved, value_scale(name, p.scale));
       }
@@ -116,11 +116,11 @@ TEST_CASE("search_mu: the optimum is invariant under translation and scaling of 
   options.lower = 0;
   options.upper = 1;
   for (const std::string& name : {std::string("thin_plate"), std::string("target")}) {
-    const AlphaSearchSummary at_one = search_mu(dome(), objective_named(name, {}), "eigen-ldlt", options);
+    const AlphaSearchSummary at_one = search_mu(dome(), objective_named(name, {}), backend("eigen-ldlt"), options);
     INFO(name << " at scale 1: " << at_one.brief_report());
     REQUIRE(at_one.status == SearchStatus::kSuccess);
     for (const Placement& p : placements()) {
-      const AlphaSearchSummary moved = search_mu(placed(dome(), p), objective_named(name, p), "eigen-ldlt", options);
+      const AlphaSearchSummary moved = search_mu(placed(dome(), p), objective_named(name, p), backend("eigen-ldlt"), options);
       INFO("scale " << p.scale << ", shift " << p.shift << ": " << moved.brief_report());
       check_same_search(at_one, moved, value_scale(name, p.scale));
     }
@@ -130,11 +130,11 @@ TEST_CASE("search_mu: the optimum is invariant under translation and scaling of 
 TEST_CASE("solve_mask_net: the net follows translation and scaling of the boundary, energies scale by s^2", "[alpha]") {
   for (const std::string solver : {"eigen-ldlt", "cg", "gauss-seidel", "fast"}) {
     if (!solvers::find_solver(solver)) continue;
-    const MaskSolveResult at_one = solve_mask_net(dome(), alpha_mask(-0.1), solver);
+    const MaskSolveResult at_one = solve_mask_net(dome(), alpha_mask(-0.1), backend(solver));
     REQUIRE(at_one.summary.ok());
     const double e1 = thin_plate_energy(at_one.net), t1 = twist_energy(at_one.net);
     for (const Placement& p : placements()) {
-      const MaskSolveResult moved = solve_mask_net(placed(dome(), p), alpha_mask(-0.1), solver);
+      const MaskSolveResult moved = solve_mask_net(placed(dome(), p), alpha_mask(-0.1), backend(solver));
       INFO(solver << ", scale " << p.scale << ", shift " << p.shift << ": " << moved.summary.brief_report());
       REQUIRE(moved.summary.ok());
       CHECK(moved.summary.relative_residual <= 10 * std::max(at_one.summary.relative_residual, 1e-15));
@@ -153,13 +153,13 @@ TEST_CASE("search_alpha_gamma: the optimum is invariant under scaling of the bou
   // An unsymmetric boundary, whose optimum has γ ≠ 0 (the dome's is at γ = 0 by symmetry).
   const Boundary b = make_smooth_boundary(4, 6, 3);
   const auto family = [](double a) { return alpha_family(a); };
-  MaskObjective at_one(b, objective_named("thin_plate", {}), family, "eigen-ldlt");
+  MaskObjective at_one(b, objective_named("thin_plate", {}), family, backend("eigen-ldlt"));
   const AlphaGammaSummary one = search_alpha_gamma(at_one);
   INFO("scale 1: alpha " << one.alpha << ", gamma " << one.gamma << " " << one.message);
   REQUIRE(one.status == SearchStatus::kSuccess);
   REQUIRE(std::abs(one.gamma) > 1e-4);
   for (const double scale : {1e-12, 1e12}) {
-    MaskObjective f(placed(b, {scale, 0}), objective_named("thin_plate", {}), family, "eigen-ldlt");
+    MaskObjective f(placed(b, {scale, 0}), objective_named("thin_plate", {}), family, backend("eigen-ldlt"));
     const AlphaGammaSummary moved = search_alpha_gamma(f);
     INFO("scale " << scale << ": alpha " << moved.alpha << ", gamma " << moved.gamma << " " << moved.message);
     CHECK(moved.status == one.status);

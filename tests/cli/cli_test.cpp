@@ -1,14 +1,12 @@
 // The command-line contract of docs/formats.md, driven through the real binary.
-#include <catch2/catch.hpp>
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-#include <functional>
-
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "coons/io/boundary_io.h"
 #include "coons/io/net_json.h"
@@ -24,7 +22,6 @@ namespace {
 
 const std::string kCoons = COONS_BINARY;
 const std::string kData = COONS_DATA_DIR;
-
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
 
@@ -44,8 +41,8 @@ TEST_CASE("coons solve: the report of docs/formats.md, numbers that read back ex
   CHECK(!report["solver"].contains("picked_by"));
   CHECK(report["solver"]["status"] == "success");
   for (const char* key : {"analyze", "factorize", "solve"}) CHECK(report["solver"]["seconds"].contains(key));
-  for (const char* key : {"twist_energy", "thin_plate_energy", "dirichlet_energy", "e3_energy",
-                          "discrete_twist_energy", "discrete_dirichlet_energy", "mask_residual"})
+  for (const char* key : {"twist_energy", "thin_plate_energy", "dirichlet_energy", "e3_energy", "discrete_twist_energy",
+                          "discrete_dirichlet_energy", "mask_residual"})
     CHECK(report["metrics"][key].is_number());
   CHECK(report["metrics"]["thin_plate_energy"].get<double>() == Approx(18.320).margin(5e-4));
   CHECK(report["net"].size() == 4);
@@ -98,12 +95,33 @@ TEST_CASE("coons solve: each bad input gives exit 2, one error line and no outpu
       {"unreadable file", quoted((dir.path / "missing.json").string()), "missing.json"},
       {"malformed JSON", quoted(dir.write("broken.json", "{\"bottom\": [[0,0,0],")), "malformed JSON"},
       {"missing field", quoted(variant("nofield.json", [](json& d) { d.erase("top"); })), "top"},
-      {"extra-length field", quoted(variant("long.json", [](json& d) { d["left"].push_back({-1, 1, 0}); })), "right"},
-      {"point with 4 numbers", quoted(variant("four.json", [](json& d) { d["bottom"][1] = {1, 2, 3, 4}; })), "bottom[1]"},
-      {"non-finite number", quoted(dir.write("inf.json", "{\"bottom\":[[0,0,0],[1e999,0,0]],\"top\":[[0,1,0],[1,1,0]],\"left\":[[0,0,0],[0,1,0]],\"right\":[[1,0,0],[1,1,0]]}")), "inf.json"},
-      {"corners disagree", quoted(variant("corner.json", [](json& d) { d["right"][0][2] = 0.5; })), "bottom-right corner"},
-      {"degree disagrees", quoted(variant("degree.json", [](json& d) { d["degree"] = {4, 3}; })), "degree"},
-      {"degree too small for hermite-coons", quoted(kData + "/boundaries/seed_example1.json") + " --method hermite-coons", "degree"},
+      {"extra-length field",
+       quoted(variant("long.json",
+                      [](json& d) {
+                        d["left"].push_back({-1, 1, 0});
+                      })),
+       "right"},
+      {"point with 4 numbers",
+       quoted(variant("four.json",
+                      [](json& d) {
+                        d["bottom"][1] = {1, 2, 3, 4};
+                      })),
+       "bottom[1]"},
+      {"non-finite number",
+       quoted(dir.write("inf.json",
+                        "{\"bottom\":[[0,0,0],[1e999,0,0]],\"top\":[[0,1,0],[1,1,0]],\"left\":[[0,0,0],[0,1,0]],"
+                        "\"right\":[[1,0,0],[1,1,0]]}")),
+       "inf.json"},
+      {"corners disagree", quoted(variant("corner.json", [](json& d) { d["right"][0][2] = 0.5; })),
+       "bottom-right corner"},
+      {"degree disagrees",
+       quoted(variant("degree.json",
+                      [](json& d) {
+                        d["degree"] = {4, 3};
+                      })),
+       "degree"},
+      {"degree too small for hermite-coons",
+       quoted(kData + "/boundaries/seed_example1.json") + " --method hermite-coons", "degree"},
       {"alpha outside the definite range", quoted(dome) + " --alpha -0.4 --solver eigen-ldlt", "--alpha"},
       {"unknown solver", quoted(dome) + " --solver nonesuch", "--solver"},
       {"unknown method", quoted(dome) + " --method nonesuch", "--method"},
@@ -121,8 +139,9 @@ TEST_CASE("coons solve: each bad input gives exit 2, one error line and no outpu
   }
   // export writes nothing when the input is bad
   const std::string out = (dir.path / "out").string();
-  const CommandResult r = run_command(kCoons + " export " + quoted(variant("corner2.json", [](json& d) { d["top"][0][0] = 7; })) +
-                                      " --out " + quoted(out));
+  const CommandResult r =
+      run_command(kCoons + " export " + quoted(variant("corner2.json", [](json& d) { d["top"][0][0] = 7; })) +
+                  " --out " + quoted(out));
   CHECK(r.status == 2);
   CHECK(!fs::exists(out));
 }
@@ -133,7 +152,8 @@ TEST_CASE("coons export: OBJ files and a Matrix Market system", "[cli]") {
   const CommandResult r = run_command(kCoons + " export " + quoted(kData + "/boundaries/pillow.json") +
                                       " --alpha -0.1 --samples 9 --out " + quoted(out));
   REQUIRE(r.status == 0);
-  for (const char* f : {"pillow.surface.obj", "pillow.net.obj", "pillow.A.mtx", "pillow.B.mtx"}) CHECK(fs::exists(fs::path(out) / f));
+  for (const char* f : {"pillow.surface.obj", "pillow.net.obj", "pillow.A.mtx", "pillow.B.mtx"})
+    CHECK(fs::exists(fs::path(out) / f));
   std::ifstream obj(fs::path(out) / "pillow.surface.obj");
   int vertices = 0, faces = 0;
   for (std::string line; std::getline(obj, line);) {
@@ -152,16 +172,18 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("dome"));
   CHECK(fs::exists(fs::path(out) / "metrics.md"));
-  for (const char* f : {"dome/coons.json", "dome/alpha-0.250.json", "dome/alpha-0.100.json", "dome/alpha+0.000.json",
-                        "saddle/coons.surface.obj", "saddle/alpha-0.100.net.obj"})
+  for (const char* f : {"dome-3x3/coons.json", "dome-3x3/alpha-0.25.json", "dome-3x3/alpha-0.1.json",
+                        "dome-3x3/alpha+0.json", "saddle-3x3/coons.surface.obj", "saddle-3x3/alpha-0.1.net.obj"})
     CHECK(fs::exists(fs::path(out) / f));
 }
 
 TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
-  const CommandResult r = run_command(kCoons + " search-alpha " + quoted(kData + "/boundaries/dome.json") + " --objective thin_plate");
+  const CommandResult r =
+      run_command(kCoons + " search-alpha " + quoted(kData + "/boundaries/dome.json") + " --objective thin_plate");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
-  for (const char* key : {"boundary", "degree", "objective", "alpha", "mu", "value", "bounds", "flat", "at_bound", "evaluations", "status"})
+  for (const char* key : {"boundary", "degree", "objective", "alpha", "mu", "value", "bounds", "flat", "at_bound",
+                          "evaluations", "status"})
     CHECK(report.contains(key));
   CHECK(report["status"] == "success");
   CHECK(report["bounds"] == json::array({-0.25, 0.25}));
@@ -170,7 +192,8 @@ TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   // μ of α at degree n: α = −n²/(4(n² + μ))
   const double alpha = report["alpha"], mu = report["mu"];
   CHECK(alpha == Approx(-9.0 / (4 * (9 + mu))).epsilon(1e-12));
-  const CommandResult flat = run_command(kCoons + " search-alpha " + quoted(kData + "/boundaries/sixteen_vector_twist.json") + " --objective e3");
+  const CommandResult flat = run_command(kCoons + " search-alpha " +
+                                         quoted(kData + "/boundaries/sixteen_vector_twist.json") + " --objective e3");
   REQUIRE(flat.status == 0);
   CHECK(json::parse(flat.out)["flat"] == true);
   CHECK(json::parse(flat.out)["alpha"].is_null());
@@ -189,23 +212,25 @@ TEST_CASE("coons search-alpha: bad input gives exit 2 and one error line", "[cli
   };
   for (const auto& [args, mention] : cases) {
     INFO(args);
-    const CommandResult r = run_command(kCoons + " search-alpha " + args);
+    const CommandResult r = run_command(std::string(kCoons).append(" search-alpha ").append(args));
     CHECK(r.status == 2);
     CHECK(r.out.empty());
     CHECK(r.err.rfind("error: ", 0) == 0);
     CHECK_THAT(r.err, Catch::Contains(mention));
   }
   // an explicit flag accepts indefinite bounds
-  const CommandResult wide = run_command(kCoons + " search-alpha " + dome + " --objective thin_plate --lower -0.3 --allow-indefinite --solver eigen-lu");
+  const CommandResult wide = run_command(kCoons + " search-alpha " + dome +
+                                         " --objective thin_plate --lower -0.3 --allow-indefinite --solver eigen-lu");
   CHECK(wide.status == 0);
 }
 
 TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", "[cli][alpha]") {
   TempDir dir;
   const std::string out = (dir.path / "sweep").string();
-  const CommandResult r = run_command(kCoons + " sweep " + quoted(kData + "/boundaries/dome.json") + " --count 11 --out " + quoted(out));
+  const CommandResult r =
+      run_command(kCoons + " sweep " + quoted(kData + "/boundaries/dome.json") + " --count 11 --out " + quoted(out));
   REQUIRE(r.status == 0);
-  std::ifstream in(fs::path(out) / "dome.sweep.jsonl");
+  std::ifstream in(fs::path(out) / "dome.sweep-alpha.jsonl");
   int lines = 0;
   for (std::string line; std::getline(in, line); ++lines) {
     const json j = json::parse(line);
@@ -215,15 +240,16 @@ TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", 
     CHECK(j["mask_residual"].get<double>() < 1e-12);
   }
   CHECK(lines == 11);
-  CHECK(fs::exists(fs::path(out) / "dome.sweep.png"));
+  CHECK(fs::exists(fs::path(out) / "dome.sweep-alpha.png"));
   CHECK(r.err.empty());  // no progress indicator when stderr is not a terminal
 }
 
 TEST_CASE("coons study: a report with computed tables and figures", "[cli][alpha]") {
   TempDir dir;
   const std::string out = (dir.path / "study").string();
-  const CommandResult r = run_command(kCoons + " study " + quoted(kData + "/boundaries/dome.json") + " " +
-                                      quoted(kData + "/boundaries/pillow.json") + " --degrees 3 4 6 --out " + quoted(out));
+  const CommandResult r =
+      run_command(kCoons + " study " + quoted(kData + "/boundaries/dome.json") + " " +
+                  quoted(kData + "/boundaries/pillow.json") + " --degrees 3 4 6 --out " + quoted(out));
   REQUIRE(r.status == 0);
   std::ifstream in(fs::path(out) / "report.md");
   std::stringstream text;
@@ -231,14 +257,17 @@ TEST_CASE("coons study: a report with computed tables and figures", "[cli][alpha
   CHECK_THAT(text.str(), Catch::Contains("| -0.25 | 0.828427 | 24.787 | 9.877 |"));
   CHECK_THAT(text.str(), Catch::Contains("| -0.2 | 0.724874 | 18.320 | 9.320 |"));
   CHECK_THAT(text.str(), Catch::Contains("coons study"));
-  for (const char* f : {"figures/dome_energies.png", "figures/dome_nets.png", "figures/alpha_vs_degree.png", "results.json"})
+  for (const char* f :
+       {"figures/dome_energies.png", "figures/dome_nets.png", "figures/alpha_vs_degree.png", "results.json"})
     CHECK(fs::exists(fs::path(out) / f));
 }
 
-TEST_CASE("coons refit: analytic sides at any degree, elevation otherwise, exit 2 below a Bezier degree", "[cli][alpha]") {
+TEST_CASE("coons refit: analytic sides at any degree, elevation otherwise, exit 2 below a Bezier degree",
+          "[cli][alpha]") {
   TempDir dir;
   const std::string out = (dir.path / "dome6.json").string();
-  const CommandResult r = run_command(kCoons + " refit " + quoted(kData + "/boundaries/dome.json") + " --degree 6 6 --out " + quoted(out));
+  const CommandResult r =
+      run_command(kCoons + " refit " + quoted(kData + "/boundaries/dome.json") + " --degree 6 6 --out " + quoted(out));
   REQUIRE(r.status == 0);
   const BoundaryFile f = read_boundary_file(out);
   CHECK(f.boundary.m == 6);
@@ -252,10 +281,12 @@ TEST_CASE("coons refit: analytic sides at any degree, elevation otherwise, exit 
   const CommandResult fit = run_command(kCoons + " search-alpha " + quoted(out) + " --objective target");
   REQUIRE(fit.status == 0);
   CHECK(json::parse(fit.out)["alpha"].get<double>() > -0.25);
-  const CommandResult up = run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 5 4");
+  const CommandResult up =
+      run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 5 4");
   REQUIRE(up.status == 0);
   CHECK(json::parse(up.out)["method"] == "elevated");
-  const CommandResult down = run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 2 2");
+  const CommandResult down =
+      run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 2 2");
   CHECK(down.status == 2);
   CHECK(down.out.empty());
   CHECK_THAT(down.err, Catch::Contains("curves"));

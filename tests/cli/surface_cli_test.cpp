@@ -1,14 +1,12 @@
 // `coons surface` through the real binary: the docs/formats.md report, the files it writes, and the
 // error contract for bad descriptions (exit 2, one `error:` line naming the field, nothing written).
-#include <catch2/catch.hpp>
-
-#include <filesystem>
-#include <fstream>
-#include <sstream>
-
 #include <unistd.h>
 
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "coons/io/boundary_io.h"
 #include "coons/net/coons_net.h"
@@ -24,7 +22,6 @@ namespace {
 
 const std::string kCoons = COONS_BINARY;
 
-
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
 std::string slurp(const std::string& path) {
@@ -38,10 +35,11 @@ std::string slurp(const std::string& path) {
 void check_rejected(const std::string& spec_text, const std::string& field, const std::string& reason_part) {
   TempDir dir;
   const std::string spec = dir.write("bad.json", spec_text);
-  const std::string outputs[] = {dir.file("s.obj"), dir.file("s.ply"), dir.file("s.vts"), dir.file("s.png"), dir.file("net.json")};
-  const CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 5 --obj " + q(outputs[0]) + " --ply " +
-                                      q(outputs[1]) + " --vts " + q(outputs[2]) + " --png " + q(outputs[3]) + " --net-out " +
-                                      q(outputs[4]));
+  const std::string outputs[] = {dir.file("s.obj"), dir.file("s.ply"), dir.file("s.vts"), dir.file("s.png"),
+                                 dir.file("net.json")};
+  const CommandResult r =
+      run_command(kCoons + " surface " + q(spec) + " --sample 5 --obj " + q(outputs[0]) + " --ply " + q(outputs[1]) +
+                  " --vts " + q(outputs[2]) + " --png " + q(outputs[3]) + " --net-out " + q(outputs[4]));
   INFO(spec_text << "\nstderr: " << r.err);
   CHECK(r.status == 2);
   CHECK(r.out.empty());
@@ -55,7 +53,8 @@ void check_rejected(const std::string& spec_text, const std::string& field, cons
 
 }  // namespace
 
-TEST_CASE("coons surface: points[a][b] = r(a/(K-1), b/(K-1)), type, and the exact net of seed example 1", "[cli][surfaces]") {
+TEST_CASE("coons surface: points[a][b] = r(a/(K-1), b/(K-1)), type, and the exact net of seed example 1",
+          "[cli][surfaces]") {
   const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_bilinear_coons_1.json")) +
                                       " --sample 5 --fit-degree 2");
   REQUIRE(r.status == 0);
@@ -90,7 +89,8 @@ TEST_CASE("coons surface: points[a][b] = r(a/(K-1), b/(K-1)), type, and the exac
 }
 
 TEST_CASE("coons surface: a polynomial surface prints its exact net, twists and energies", "[cli][surfaces]") {
-  const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_hermite16_T10.json")) + " --sample 3");
+  const CommandResult r =
+      run_command(kCoons + " surface " + q(surface_data("seed000_hermite16_T10.json")) + " --sample 3");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["type"] == "hermite16");
@@ -110,10 +110,11 @@ TEST_CASE("coons surface: meshes, PNG and a net file that coons solve reads", "[
   TempDir dir;
   const std::string obj = dir.file("s.obj"), ply = dir.file("s.ply"), vts = dir.file("s.vts"), png = dir.file("s.png"),
                     net = dir.file("net.json");
-  const std::string plane = dir.write("plane.json", R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]})");
+  const std::string plane =
+      dir.write("plane.json", R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]})");
   const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_hermite_coons_1.json")) +
-                                      " --sample 9 --obj " + q(obj) + " --ply " + q(ply) + " --vts " + q(vts) + " --png " +
-                                      q(png) + " --net-out " + q(net) + " --reference " + q(plane));
+                                      " --sample 9 --obj " + q(obj) + " --ply " + q(ply) + " --vts " + q(vts) +
+                                      " --png " + q(png) + " --net-out " + q(net) + " --reference " + q(plane));
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
@@ -150,7 +151,8 @@ TEST_CASE("coons surface: every data/surfaces file runs", "[cli][surfaces]") {
   }
 }
 
-TEST_CASE("coons surface: bad descriptions exit 2 with one error line naming the field, nothing written", "[cli][surfaces]") {
+TEST_CASE("coons surface: bad descriptions exit 2 with one error line naming the field, nothing written",
+          "[cli][surfaces]") {
   // Wrong counts.
   check_rejected(R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0]]})", "corners", "exactly 4");
   check_rejected(R"({"type": "ruled", "curves": [{"bezier": [[0,0,0],[1,0,0]]}]})", "curves", "exactly 2");
@@ -163,9 +165,10 @@ TEST_CASE("coons surface: bad descriptions exit 2 with one error line naming the
   check_rejected(R"({"type": "ruled", "curves": [{"expr": ["t", "sin(pi*t", "0"]}, {"bezier": [[0,1,0],[1,1,0]]}]})",
                  "curves[0].expr[1]", "does not parse");
   // Incompatible data: corners, then a general-Coons twist.
-  check_rejected(R"({"type": "bilinear-coons", "bottom": {"bezier": [[0,0,0],[1,0,0]]}, "top": {"bezier": [[0,1,0],[1,1,0]]},
+  check_rejected(
+      R"({"type": "bilinear-coons", "bottom": {"bezier": [[0,0,0],[1,0,0]]}, "top": {"bezier": [[0,1,0],[1,1,0]]},
                      "left": {"bezier": [[0,0,0],[0,1,0]]}, "right": {"bezier": [[1,0,0.5],[1,1,0]]}})",
-                 "right", "bottom-right (u = 1, v = 0)");
+      "right", "bottom-right (u = 1, v = 0)");
   check_rejected(R"({"type": "general-coons",
                      "bottom": {"bezier": [[0,0,0],[1,0,0]]}, "top": {"bezier": [[0,1,0],[1,1,0]]},
                      "left": {"bezier": [[0,0,0],[0,1,0]]}, "right": {"bezier": [[1,0,0],[1,1,0]]},
@@ -183,7 +186,7 @@ TEST_CASE("coons surface: bad options and unreadable files exit 2", "[cli][surfa
   const std::string spec = surface_data("seed000_ferguson_1.json");
   CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 1");
   CHECK(r.status == 2);
-  CHECK(r.err.rfind("error: command line: --sample: ", 0) == 0);
+  CHECK(r.err.rfind("error: command line: --samples: ", 0) == 0);
   r = run_command(kCoons + " surface " + q(spec) + " --obj " + q(dir.file("missing/s.obj")));
   CHECK(r.status == 2);
   CHECK(r.err.rfind("error: command line: --obj: ", 0) == 0);
@@ -195,11 +198,12 @@ TEST_CASE("coons surface: bad options and unreadable files exit 2", "[cli][surfa
   CHECK(r.out.empty());
 }
 
-TEST_CASE("coons join: bicubic Coons patches over C1 transversal curves join G1, bilinear ones do not", "[cli][surfaces]") {
+TEST_CASE("coons join: bicubic Coons patches over C1 transversal curves join G1, bilinear ones do not",
+          "[cli][surfaces]") {
   const std::string dir = std::string(COONS_DATA_DIR) + "/surfaces/";
   auto join = [&](const std::string& kind) {
-    const CommandResult r = run_command(std::string(COONS_BINARY) + " join '" + dir + "join_" + kind + "_a.json' right '" + dir +
-                                        "join_" + kind + "_b.json' left");
+    const CommandResult r = run_command(std::string(COONS_BINARY) + " join '" + dir + "join_" + kind +
+                                        "_a.json' right '" + dir + "join_" + kind + "_b.json' left");
     REQUIRE(r.status == 0);
     return nlohmann::json::parse(r.out);
   };
@@ -210,7 +214,8 @@ TEST_CASE("coons join: bicubic Coons patches over C1 transversal curves join G1,
   CHECK(bilinear["c0"] == true);
   CHECK(bilinear["g1"] == false);
   CHECK(bilinear["max_normal_angle_deg"].get<double>() > 1);
-  const CommandResult bad = run_command(std::string(COONS_BINARY) + " join '" + dir + "join_hermite_a.json' middle '" + dir + "join_hermite_b.json' left");
+  const CommandResult bad = run_command(std::string(COONS_BINARY) + " join '" + dir + "join_hermite_a.json' middle '" +
+                                        dir + "join_hermite_b.json' left");
   CHECK(bad.status == 2);
   CHECK_THAT(bad.err, Catch::Contains("FIRST_SIDE"));
 }

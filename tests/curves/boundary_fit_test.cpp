@@ -4,6 +4,7 @@
 #include <fstream>
 
 #include "coons/curves/boundary_fit.h"
+#include "coons/io/boundary_curves.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
 #include "support/fixtures.h"

@@ -13,7 +13,7 @@
 
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 #include "coons/metrics/energies.h"
 #include "coons/net/coons_net.h"
 #include "support/fixtures.h"
@@ -185,7 +185,7 @@ TEST_CASE("plot_curves: the dome's sweep energies render to a PNG", "[io][plot]"
     for (int k = 0; k <= 20; ++k) {
       const double alpha = -0.25 + 0.025 * k;
       s.x.push_back(alpha);
-      s.y.push_back(energy(solve_mask_net(b, alpha_mask(alpha), "eigen-ldlt").net));
+      s.y.push_back(energy(solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net));
     }
     const auto best = std::min_element(s.y.begin(), s.y.end()) - s.y.begin();
     s.marker_x = {s.x[best]};
@@ -212,7 +212,7 @@ TEST_CASE("plot_nets: the dome's nets render side by side on shared ranges", "[i
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   const std::vector<std::pair<std::string, ControlNet>> nets = {
       {"Coons (α = −1/4)", discrete_coons_net(b)},
-      {"Laplace (α = 0)", solve_mask_net(b, alpha_mask(0), "eigen-ldlt").net}};
+      {"Laplace (α = 0)", solve_mask_net(b, alpha_mask(0), backend("eigen-ldlt")).net}};
   const std::string script = nets_script("out.png", nets, 9, "dome_shape");
   CHECK(script.find("noenhanced") != std::string::npos);
   CHECK(script.find("'dome_shape'") != std::string::npos);

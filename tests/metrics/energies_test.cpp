@@ -5,7 +5,8 @@
 #include "coons/io/boundary_io.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/solve_mask_net.h"
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
+#include "coons/mask/mask_residual.h"
 #include "coons/metrics/energies.h"
 #include "coons/metrics/quadrature.h"
 #include "coons/net/coons_net.h"
@@ -100,7 +101,7 @@ TEST_CASE("net_metrics: the dome table of docs/math.md §7", "[metrics][seed]") 
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   struct Row { double alpha, thin_plate, dirichlet; };
   for (const Row& row : {Row{-0.25, 24.787, 9.877}, Row{-0.20, 18.320, 9.320}, Row{-0.10, 13.990, 8.794}, Row{0.0, 13.444, 8.571}}) {
-    const MaskSolveResult r = solve_mask_net(b, alpha_mask(row.alpha), "eigen-ldlt");
+    const MaskSolveResult r = solve_mask_net(b, alpha_mask(row.alpha), backend("eigen-ldlt"));
     INFO("alpha = " << row.alpha);
     CHECK(thin_plate_energy(r.net) == Approx(row.thin_plate).margin(5e-4));
     CHECK(dirichlet_energy(r.net) == Approx(row.dirichlet).margin(5e-4));
@@ -128,7 +129,7 @@ TEST_CASE("discrete_coons_net: smallest discrete and continuous twist among pert
 
 TEST_CASE("mask_residual: zero for the solved mask, non-zero for another", "[metrics]") {
   const Boundary b = make_random_boundary(6, 6, 8);
-  const ControlNet net = solve_mask_net(b, alpha_mask(-0.1), "eigen-ldlt").net;
+  const ControlNet net = solve_mask_net(b, alpha_mask(-0.1), backend("eigen-ldlt")).net;
   CHECK(mask_residual(net, alpha_mask(-0.1)) < 1e-14);
   CHECK(mask_residual(net, alpha_mask(0.1)) > 1e-3);
 }
@@ -136,7 +137,7 @@ TEST_CASE("mask_residual: zero for the solved mask, non-zero for another", "[met
 TEST_CASE("discrete energies: a blend w*T_d + (1-w)*D_d is minimised by alpha = -w/4", "[metrics]") {
   const Boundary b = make_random_boundary(5, 7, 31);
   for (double w : {0.0, 0.4, 1.0}) {
-    const ControlNet best = solve_mask_net(b, alpha_mask(-w / 4), "eigen-ldlt").net;
+    const ControlNet best = solve_mask_net(b, alpha_mask(-w / 4), backend("eigen-ldlt")).net;
     auto energy = [&](const ControlNet& net) { return w * discrete_twist_energy(net) + (1 - w) * discrete_dirichlet_energy(net); };
     std::mt19937 rng(5);
     std::normal_distribution<double> noise(0, 1e-3);

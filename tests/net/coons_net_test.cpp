@@ -2,7 +2,7 @@
 
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "support/fixtures.h"
 
@@ -34,7 +34,7 @@ TEST_CASE("discrete_coons_net: equals the alpha = -1/4 mask solve", "[net]") {
   for (auto [m, n] : kSizes) {
     const Boundary b = make_random_boundary(m, n, seed++);
     const ControlNet closed = discrete_coons_net(b);
-    const MaskSolveResult solved = solve_mask_net(b, alpha_mask(-0.25), "eigen-ldlt");
+    const MaskSolveResult solved = solve_mask_net(b, alpha_mask(-0.25), backend("eigen-ldlt"));
     INFO("m = " << m << ", n = " << n);
     REQUIRE(solved.summary.ok());
     CHECK(max_difference(closed, solved.net) < 1e-12);
@@ -81,8 +81,8 @@ TEST_CASE("solve_mask_net: affine invariance for every alpha", "[net]") {
   const Eigen::RowVector3d t(3, -2, 0.5);
   const Boundary b = make_random_boundary(6, 9, 7);
   for (double alpha : {-0.25, -0.1, 0.0, 0.2}) {
-    const ControlNet a = solve_mask_net(b, alpha_mask(alpha), "eigen-ldlt").net;
-    const ControlNet ta = solve_mask_net(transformed(b, M, t), alpha_mask(alpha), "eigen-ldlt").net;
+    const ControlNet a = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
+    const ControlNet ta = solve_mask_net(transformed(b, M, t), alpha_mask(alpha), backend("eigen-ldlt")).net;
     INFO("alpha = " << alpha);
     CHECK(max_difference(transformed(a, M, t), ta) < 1e-12);
   }
@@ -94,9 +94,9 @@ TEST_CASE("solve_mask_net: transposing or flipping the boundary transposes or fl
   const ControlNet random = make_random_net(5, 8, 11);
   const Boundary b = boundary_of(random);
   for (double alpha : {-0.25, -0.05, 0.0, 0.15}) {
-    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), "eigen-ldlt").net;
-    const ControlNet net_t = solve_mask_net(boundary_of(transposed(random)), alpha_mask(alpha), "eigen-ldlt").net;
-    const ControlNet net_f = solve_mask_net(boundary_of(flipped_u(random)), alpha_mask(alpha), "eigen-ldlt").net;
+    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
+    const ControlNet net_t = solve_mask_net(boundary_of(transposed(random)), alpha_mask(alpha), backend("eigen-ldlt")).net;
+    const ControlNet net_f = solve_mask_net(boundary_of(flipped_u(random)), alpha_mask(alpha), backend("eigen-ldlt")).net;
     INFO("alpha = " << alpha);
     CHECK(max_difference(transposed(net), net_t) < 1e-13);
     CHECK(max_difference(flipped_u(net), net_f) < 1e-13);
@@ -110,7 +110,7 @@ TEST_CASE("solve_mask_net: every alpha reproduces bilinear nets", "[net]") {
     const ControlNet bilinear = make_bilinear_net(m, n, 5);
     for (double alpha : {-0.25, -0.2, -0.1, 0.0, 0.1, 0.25}) {
       INFO("m = " << m << ", n = " << n << ", alpha = " << alpha);
-      CHECK(max_difference(solve_mask_net(boundary_of(bilinear), alpha_mask(alpha), "eigen-ldlt").net, bilinear) < 1e-13);
+      CHECK(max_difference(solve_mask_net(boundary_of(bilinear), alpha_mask(alpha), backend("eigen-ldlt")).net, bilinear) < 1e-13);
     }
     CHECK(max_difference(discrete_coons_net(boundary_of(bilinear)), bilinear) < 1e-14);
   }
@@ -119,7 +119,7 @@ TEST_CASE("solve_mask_net: every alpha reproduces bilinear nets", "[net]") {
 TEST_CASE("seed example 1: the interior point is (1, 0, 1) for every alpha", "[net][seed]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/seed_example1.json").boundary;
   for (double alpha : {-0.25, -0.1, 0.0, 0.25}) {
-    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), "eigen-ldlt").net;
+    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
     CHECK((net.at(1, 1) - Eigen::RowVector3d(1, 0, 1)).norm() < 1e-15);
   }
   const ControlNet coons = discrete_coons_net(b);
@@ -132,7 +132,7 @@ TEST_CASE("seed example 1: the interior point is (1, 0, 1) for every alpha", "[n
 TEST_CASE("seed example 2: every alpha reproduces the hyperbolic paraboloid z = 2uv", "[net][seed]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/seed_example2.json").boundary;
   for (double alpha : {-0.25, -0.1, 0.0, 0.2}) {
-    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), "eigen-ldlt").net;
+    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
     for (double u : {0.0, 0.3, 0.5, 1.0})
       for (double v : {0.25, 0.75})
         CHECK((evaluate(net, u, v) - Eigen::RowVector3d(u, v, 2 * u * v)).norm() < 1e-14);
@@ -143,7 +143,7 @@ TEST_CASE("dome: the centre heights of docs/math.md §7", "[net][seed]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   const std::pair<double, double> table[] = {{-0.25, 0.828427}, {-0.20, 0.724874}, {-0.10, 0.595432}, {0.0, 0.517767}};
   for (auto [alpha, z] : table) {
-    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), "eigen-ldlt").net;
+    const ControlNet net = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
     CHECK(evaluate(net, 0.5, 0.5)(2) == Approx(z).margin(5e-7));
   }
   CHECK(evaluate(discrete_coons_net(b), 0.5, 0.5)(2) == Approx(0.828427).margin(5e-7));

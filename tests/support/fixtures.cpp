@@ -6,11 +6,12 @@
 #include <fstream>
 #include <random>
 #include <sstream>
+#include <stdexcept>
 #include <sys/wait.h>
 
 #include <unistd.h>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 
 namespace coons::test {
 
@@ -160,6 +161,12 @@ CommandResult run_command(const std::string& command) {
   std::remove(out_name);
   std::remove(err_name);
   return r;
+}
+
+const solvers::SolverInfo& backend(const std::string& name) {
+  const solvers::SolverInfo* info = solvers::find_solver(name);
+  if (!info) throw std::invalid_argument("no backend named '" + name + "' is built in");
+  return *info;
 }
 
 }  // namespace coons::test

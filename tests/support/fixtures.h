@@ -8,6 +8,7 @@
 #include <Eigen/Core>
 
 #include "coons/net/control_net.h"
+#include "solvers/registry.h"
 
 namespace coons::test {
 
@@ -41,6 +42,10 @@ Eigen::RowVector3d bezier_curve(const Eigen::MatrixX3d& P, double t);
 //! d^r/dt^r of the Bernstein basis of degree k at t (#k+1), from the textbook formula
 //! (independent of coons' derivative nets).
 Eigen::VectorXd bernstein_basis_derivative(int k, int r, double t);
+
+//! The registry entry of a backend built into every coons binary (eigen-ldlt, eigen-lu, ...) or of
+//! an optional one the caller has checked for; throws std::invalid_argument for an unknown name.
+const solvers::SolverInfo& backend(const std::string& name);
 
 //! A fresh folder under the system's temporary directory, removed with everything in it.
 struct TempDir {

@@ -4,7 +4,7 @@
 
 #include <cmath>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "coons/net/degree_elevation.h"
 #include "coons/surfaces/surface.h"

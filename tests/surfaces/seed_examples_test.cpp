@@ -7,7 +7,7 @@
 #include <sstream>
 
 #include "coons/io/surface_io.h"
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "coons/surfaces/conoid.h"
 #include "coons/surfaces/surface.h"

@@ -365,7 +365,7 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
 namespace {
 // The fallback of search_alpha and search_mu: a factorisation and solves per evaluation.
 AlphaSearchSummary search_by_solving(const Boundary& boundary, const Objective& objective, MaskFamily family,
-                                     const std::string& solver, const AlphaSearchOptions& options,
+                                     const solvers::SolverInfo& solver, const AlphaSearchOptions& options,
                                      const solvers::SolverOptions& solver_options) {
   MaskObjective f(boundary, objective, std::move(family), solver, solver_options);
   AlphaSearchSummary s = search_impl(f, options);
@@ -374,10 +374,10 @@ AlphaSearchSummary search_by_solving(const Boundary& boundary, const Objective& 
 }
 }  // namespace
 
-AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const std::string& solver,
+AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const solvers::SolverInfo& solver,
                                 const AlphaSearchOptions& options, const solvers::SolverOptions& solver_options) {
 #if COONS_HAVE_FFTW
-  const solvers::SolverInfo* info = solvers::find_solver(solver);
+  const solvers::SolverInfo* info = &solver;
   if (info && info->family == solvers::SolverFamily::kStructured && boundary.m >= 2 && boundary.n >= 2 &&
       SpectralAlphaObjective::supports(objective)) {
     SpectralAlphaSearchObjective f(boundary, objective);
@@ -390,7 +390,7 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
                            solver_options);
 }
 
-AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const std::string& solver,
+AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const solvers::SolverInfo& solver,
                              const AlphaSearchOptions& options, const solvers::SolverOptions& solver_options) {
   if (boundary.m == boundary.n) {
     AlphaSearchOptions on_alpha = options;

@@ -31,6 +31,7 @@
 #include "coons/mask/mask_families.h"
 #include "coons/net/control_net.h"
 #include "solvers/linear_solver.h"
+#include "solvers/registry.h"
 
 namespace coons {
 
@@ -90,8 +91,8 @@ AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective
 //! The search over the α family with the cheapest exact evaluator: the sine basis (no solve per
 //! evaluation; spectral_objective.h) when FFTW is built, `solver` names a structured backend,
 //! m, n ≥ 2 (any objective); otherwise a factorisation and solves per evaluation (MaskObjective).
-//! `solver` must name a registered backend.
-AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const std::string& solver,
+//! `solver` is a backend of the registry.
+AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const solvers::SolverInfo& solver,
                                 const AlphaSearchOptions& options = {},
                                 const solvers::SolverOptions& solver_options = {});
 
@@ -99,7 +100,7 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
 //! the result in s). For m = n that scale is α itself, s = 1 + 4α (docs/math.md §4), so the search runs
 //! as search_alpha does, in the sine basis where it applies, and maps back; for m ≠ n (the
 //! anisotropic masks) it factorizes and solves per evaluation.
-AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const std::string& solver,
+AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const solvers::SolverInfo& solver,
                              const AlphaSearchOptions& options, const solvers::SolverOptions& solver_options = {});
 
 //! The two-parameter symmetric family (α, γ): e_i = 1/4 − α + γ, e_j = 1/4 − α − γ, d = α, i.e.

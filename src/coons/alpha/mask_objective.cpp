@@ -9,15 +9,14 @@
 namespace coons {
 
 MaskObjective::MaskObjective(const Boundary& boundary, Objective objective, MaskFamily family,
-                             const std::string& solver, const solvers::SolverOptions& options)
+                             const solvers::SolverInfo& solver, const solvers::SolverOptions& options)
     : boundary_(boundary),
       unit_(normalised_frame(boundary, objective)),
       frame_(frame_net(unit_.boundary)),
       objective_(std::move(objective)),
       family_(std::move(family)) {
-  const solvers::SolverInfo* info = solvers::find_solver(solver);
-  needs_matrix_ = !info || info->needs_matrix;
-  solver_ = solvers::make_solver(solver, options);
+  needs_matrix_ = solver.needs_matrix;
+  solver_ = solvers::make_solver(solver.name, options);
 }
 
 MaskObjective::~MaskObjective() = default;

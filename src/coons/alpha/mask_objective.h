@@ -18,6 +18,7 @@
 #include "coons/mask/mask_families.h"
 #include "coons/net/control_net.h"
 #include "solvers/linear_solver.h"
+#include "solvers/registry.h"
 
 namespace coons {
 
@@ -36,8 +37,8 @@ class MaskObjective {
     [[nodiscard]] bool ok() const { return summary.ok(); }
   };
 
-  //! `solver` must name a registered backend ("auto" is resolved by the caller).
-  MaskObjective(const Boundary& boundary, Objective objective, MaskFamily family, const std::string& solver,
+  //! `solver` is a backend of the registry ("auto" is resolved by the caller).
+  MaskObjective(const Boundary& boundary, Objective objective, MaskFamily family, const solvers::SolverInfo& solver,
                 const solvers::SolverOptions& options = {});
   ~MaskObjective();
 

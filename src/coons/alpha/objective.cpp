@@ -3,7 +3,7 @@
 #include <cmath>
 #include <sstream>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 
 namespace coons {
 

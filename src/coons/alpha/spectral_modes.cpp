@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cstddef>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 #include "solvers/vector_clones.h"
 
 namespace coons::detail {

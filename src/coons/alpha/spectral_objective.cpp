@@ -6,7 +6,7 @@
 #include <cstddef>
 #include <limits>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "solvers/sine_basis.h"
 #include "coons/alpha/spectral_modes.h"

@@ -6,7 +6,7 @@
 
 #include "coons/alpha/spectral_modes.h"
 #include "coons/alpha/spectral_objective.h"
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "solvers/sine_basis.h"
 

@@ -5,7 +5,7 @@
 
 #include <Eigen/QR>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 
 namespace coons {
 

@@ -5,7 +5,6 @@
 // Based on: G. Farin, Curves and Surfaces for CAGD, 5th ed. (2002), §6.1, §9; docs/math.md §4.
 #pragma once
 
-#include <optional>
 #include <string>
 #include <vector>
 
@@ -17,16 +16,13 @@ namespace coons {
 struct FittedBoundary {
   Boundary boundary;
   double max_deviation = 0;  //!< largest deviation of a fitted side from its curve
+  CornerGap corner_gap;      //!< the largest gap between fitted sides at a corner (before closing it)
+  bool corners_meet = true;  //!< corner_gap ≤ 1e-9 of the boundary's size (else the boundary is unusable)
 };
 
-//! sides = {bottom, top, left, right} (bottom/top in u, left/right in v). m, n ≥ 1. Throws
-//! InputError (naming `source` and the corner) when the curves do not meet at the corners to
-//! 1e-9 of the boundary's size.
-FittedBoundary fit_boundary(const std::vector<Curve>& sides, int m, int n, const std::string& name,
-                            const std::string& source = "curves");
-
-//! The "curves" object of a boundary file ({"bottom": curve, "top": …, "left": …, "right": …},
-//! curves as in docs/formats.md), or nullopt when the file has none. Bad curves throw InputError.
-std::optional<std::vector<Curve>> read_boundary_curves(const std::string& path);
+//! sides = {bottom, top, left, right} (bottom/top in u, left/right in v). m, n ≥ 1. When the curves
+//! meet at the corners (corners_meet), the shared corners are made bit-identical. Reading the curves
+//! from a file and refusing a gap is io's job (coons/io/boundary_curves.h).
+FittedBoundary fit_boundary(const std::vector<Curve>& sides, int m, int n, const std::string& name);
 
 }  // namespace coons

@@ -5,7 +5,7 @@
 
 #include <Eigen/Geometry>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 
 namespace coons {
 

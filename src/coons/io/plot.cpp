@@ -10,7 +10,7 @@
 #include <fstream>
 #include <limits>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 
 namespace coons {
 

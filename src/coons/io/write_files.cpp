@@ -1,6 +1,13 @@
 #include "write_files.h"
 
+#include <fmt/format.h>
+#include <unistd.h>
+
+#include <atomic>
+#include <cctype>
+#include <cerrno>
 #include <cstdio>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -8,25 +15,197 @@
 
 namespace coons {
 
+namespace fs = std::filesystem;
+
+namespace {
+
+std::atomic<unsigned long> staging_counter{0};
+
+// Length of the UTF-8 sequence starting at s[i] that is valid and encodes a letter-like
+// character (any code point ≥ U+00A0), else 0.
+size_t utf8_letter(std::string_view s, size_t i) {
+  const auto c = static_cast<unsigned char>(s[i]);
+  size_t len = c >= 0xF0 && c <= 0xF4 ? 4 : c >= 0xE0 ? 3 : c >= 0xC2 && c < 0xE0 ? 2 : 0;
+  if (len == 0 || i + len > s.size()) return 0;
+  for (size_t k = 1; k < len; ++k)
+    if ((static_cast<unsigned char>(s[i + k]) & 0xC0) != 0x80) return 0;
+  if (len == 2 && c == 0xC2 && static_cast<unsigned char>(s[i + 1]) < 0xA0) return 0;   // C1 controls
+  if (len == 3 && c == 0xE0 && static_cast<unsigned char>(s[i + 1]) < 0xA0) return 0;   // overlong
+  if (len == 3 && c == 0xED && static_cast<unsigned char>(s[i + 1]) >= 0xA0) return 0;  // surrogates
+  if (len == 4 && c == 0xF0 && static_cast<unsigned char>(s[i + 1]) < 0x90) return 0;   // overlong
+  if (len == 4 && c == 0xF4 && static_cast<unsigned char>(s[i + 1]) >= 0x90) return 0;  // > U+10FFFF
+  return len;
+}
+
+std::string os_reason(int error) { return error ? std::strerror(error) : "write failed"; }
+
+}  // namespace
+
+std::string safe_file_stem(std::string_view name) {
+  constexpr size_t kMaxBytes = 80;
+  std::string out;
+  for (size_t i = 0; i < name.size() && out.size() < kMaxBytes;) {
+    const auto c = static_cast<unsigned char>(name[i]);
+    if ((std::isalnum(c) && c < 0x80) || c == '-' || c == '_' || c == '.') {
+      out += char(c);
+      ++i;
+    } else if (const size_t len = utf8_letter(name, i); len > 0) {
+      if (out.size() + len > kMaxBytes) break;
+      out.append(name.substr(i, len));
+      i += len;
+    } else {
+      out += '_';
+      ++i;
+    }
+  }
+  while (!out.empty() && out.front() == '.') out.front() = '_';
+  if (out.empty()) out = "unnamed";
+  return out;
+}
+
+std::string staging_path(const std::string& path) {
+  return fmt::format("{}.tmp-{}-{}", path, static_cast<long>(getpid()), staging_counter.fetch_add(1));
+}
+
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  const std::string temporary = path + ".part";
+  const std::string temporary = staging_path(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) throw InputError(path, "", "cannot create the file");
-    write(out);
-    out.flush();
-    if (!out) {
+    if (!out) throw InputError(path, "", "cannot create the file: " + os_reason(errno));
+    try {
+      write(out);
+    } catch (...) {
       out.close();
       std::remove(temporary.c_str());
-      throw InputError(path, "", "writing failed");
+      throw;
+    }
+    errno = 0;
+    out.flush();
+    const int error = errno;
+    out.close();
+    if (!out) {
+      std::remove(temporary.c_str());
+      throw InputError(path, "", "write failed: " + os_reason(error));
     }
   }
   std::error_code ec;
-  std::filesystem::rename(temporary, path, ec);
+  fs::rename(temporary, path, ec);
   if (ec) {
     std::remove(temporary.c_str());
     throw InputError(path, "", "cannot rename into place: " + ec.message());
   }
+}
+
+OutputSet::OutputSet(std::string folder, std::string option) : folder_(std::move(folder)), option_(std::move(option)) {
+  if (folder_.empty()) folder_ = ".";
+}
+
+OutputSet::~OutputSet() {
+  if (!committed_) rollback();
+}
+
+std::string OutputSet::path_of(const std::string& relative) const {
+  const fs::path rel(relative);
+  if (relative.empty() || rel.is_absolute() || rel.has_root_name())
+    throw InputError(folder_, option_, "the output name '" + relative + "' is not a relative file name");
+  for (const auto& part : rel)
+    if (part == ".." || part == ".")
+      throw InputError(folder_, option_, "the output name '" + relative + "' would leave the folder");
+  return (fs::path(folder_) / rel).string();
+}
+
+void OutputSet::make_folders(const std::string& folder) {
+  std::vector<fs::path> missing;
+  std::error_code ec;
+  for (fs::path p = folder; !p.empty(); p = p.parent_path()) {
+    if (fs::exists(p, ec)) {
+      if (!fs::is_directory(p, ec)) throw InputError(p.string(), option_, "exists and is not a folder");
+      break;
+    }
+    missing.push_back(p);
+    if (p == p.parent_path()) break;
+  }
+  for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
+    if (!fs::create_directory(*it, ec) && ec)
+      throw InputError(it->string(), option_, "cannot create the folder: " + ec.message());
+    created_folders_.push_back(it->string());
+  }
+}
+
+std::string OutputSet::stage(const std::string& relative) {
+  const std::string path = path_of(relative);
+  for (const Entry& e : entries_)
+    if (e.final_path == path) throw InputError(path, option_, "two outputs of this command would have the same name");
+  make_folders(fs::path(path).parent_path().string());
+  entries_.push_back({path, staging_path(path)});
+  return entries_.back().staging;
+}
+
+std::string OutputSet::stage_path(const std::string& path) {
+  for (const Entry& e : entries_)
+    if (e.final_path == path) throw InputError(path, option_, "two outputs of this command would have the same name");
+  entries_.push_back({path, staging_path(path)});
+  return entries_.back().staging;
+}
+
+void OutputSet::write_path(const std::string& path, const std::function<void(std::ostream&)>& write) {
+  write_staged(path, stage_path(path), write);
+}
+
+void OutputSet::write(const std::string& relative, const std::function<void(std::ostream&)>& write) {
+  const std::string path = path_of(relative);
+  write_staged(path, stage(relative), write);
+}
+
+void OutputSet::write_staged(const std::string& path, const std::string& staging,
+                             const std::function<void(std::ostream&)>& write) {
+  std::ofstream out(staging, std::ios::binary | std::ios::trunc);
+  if (!out) throw InputError(path, "", "cannot create the file: " + os_reason(errno));
+  write(out);
+  errno = 0;
+  out.flush();
+  const int error = errno;
+  out.close();
+  if (!out) throw InputError(path, "", "write failed: " + os_reason(error));
+}
+
+void OutputSet::discard(const std::string& relative) {
+  const std::string path = (fs::path(folder_) / relative).string();
+  for (auto it = entries_.begin(); it != entries_.end(); ++it)
+    if (it->final_path == path) {
+      std::remove(it->staging.c_str());
+      entries_.erase(it);
+      return;
+    }
+}
+
+std::vector<std::string> OutputSet::commit() {
+  std::vector<std::string> published;
+  for (const Entry& e : entries_) {
+    std::error_code ec;
+    if (!fs::exists(e.staging, ec)) {
+      for (const auto& p : published) std::remove(p.c_str());
+      throw InputError(e.final_path, "", "was not written");
+    }
+    fs::rename(e.staging, e.final_path, ec);
+    if (ec) {
+      for (const auto& p : published) std::remove(p.c_str());
+      throw InputError(e.final_path, "", "cannot rename into place: " + ec.message());
+    }
+    published.push_back(e.final_path);
+  }
+  committed_ = true;
+  return published;
+}
+
+void OutputSet::rollback() noexcept {
+  for (const Entry& e : entries_) std::remove(e.staging.c_str());
+  entries_.clear();
+  for (auto it = created_folders_.rbegin(); it != created_folders_.rend(); ++it) {
+    std::error_code ec;
+    fs::remove(*it, ec);  // only removes an empty folder
+  }
+  created_folders_.clear();
 }
 
 }  // namespace coons

@@ -1,15 +1,79 @@
-// Output files are written whole or not at all: each goes to a temporary name beside its target
-// and is renamed into place when complete, so a failure never leaves a half-written file.
+// Output files are written whole or not at all, and only inside the folder they were asked for.
+// Each file goes to a staging name unique to the process (path + ".tmp-<pid>-<counter>") beside its
+// target, every write is checked (a full disk is an error with the OS reason), and it is renamed
+// into place (atomically) when complete. An OutputSet stages the files of one command and
+// publishes them together, or removes every file and folder it started on any failure path,
+// exceptions included.
 #pragma once
 
 #include <functional>
 #include <ostream>
 #include <string>
+#include <string_view>
+#include <vector>
 
 namespace coons {
 
-//! Calls write(stream) on a temporary file, then renames it to `path`. Throws InputError
-//! (naming `path`) when the file cannot be written.
+//! A name from an input file made safe as one component of a file name: letters, digits, '-',
+//! '_', '.' and UTF-8 letters kept, every other byte (separators, control characters, quotes) as
+//! '_', no leading '.', at most 80 bytes, "unnamed" when nothing is left.
+std::string safe_file_stem(std::string_view name);
+
+//! The name under which `path` is staged: path + ".tmp-<pid>-<counter>" (unique per process).
+std::string staging_path(const std::string& path);
+
+//! Calls write(stream) on a staging file, checks the stream, then renames it to `path`. Throws
+//! InputError (naming `path` and the OS reason) when the file cannot be written.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+//! The files of one command: staged, then published together (or all removed).
+class OutputSet {
+ public:
+  //! `folder` is where every file goes (created when the first file is staged); `option` names it
+  //! in error messages (e.g. "--out").
+  explicit OutputSet(std::string folder, std::string option = "--out");
+  ~OutputSet();  //!< removes everything staged and every folder it created unless commit() ran
+  OutputSet(const OutputSet&) = delete;
+  OutputSet& operator=(const OutputSet&) = delete;
+
+  //! The final path of a file `relative` to the folder. Throws InputError when `relative` would
+  //! leave the folder (absolute, "..").
+  [[nodiscard]] std::string path_of(const std::string& relative) const;
+
+  //! Reserves `relative` and returns the staging path to write it to (its folders are created).
+  //! Throws InputError when `relative` was already staged in this set.
+  std::string stage(const std::string& relative);
+
+  //! Stages `relative` and writes it through `write` (stream checked).
+  void write(const std::string& relative, const std::function<void(std::ostream&)>& write);
+
+  //! Stages a file at a path chosen on the command line (not from an input file's data): any
+  //! folder, which must exist. Returns the staging path.
+  std::string stage_path(const std::string& path);
+  void write_path(const std::string& path, const std::function<void(std::ostream&)>& write);
+
+  //! Gives up one staged file (removes its staging file, if any).
+  void discard(const std::string& relative);
+
+  //! Renames every staged file into place; returns the final paths in the order staged. On a
+  //! failure, removes what it had published and throws InputError.
+  std::vector<std::string> commit();
+
+  //! Removes what was staged (and created folders that are empty); the destructor does this.
+  void rollback() noexcept;
+
+ private:
+  struct Entry {
+    std::string final_path, staging;
+  };
+  std::string folder_, option_;
+  std::vector<Entry> entries_;
+  std::vector<std::string> created_folders_;  //!< in the order created
+  bool committed_ = false;
+
+  void make_folders(const std::string& folder);
+  static void write_staged(const std::string& path, const std::string& staging,
+                           const std::function<void(std::ostream&)>& write);
+};
 
 }  // namespace coons

@@ -8,22 +8,22 @@
 namespace coons {
 
 MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask,
-                               const std::string& solver, const solvers::SolverOptions& options) {
+                               const solvers::SolverInfo& solver, const solvers::SolverOptions& options) {
   MaskSolveResult result;
   ControlNet frame = frame_net(boundary);
-  const solvers::SolverInfo* info = solvers::find_solver(solver);
-  auto backend = solvers::make_solver(solver, options);
+  const solvers::SolverInfo* info = &solver;
+  auto backend = solvers::make_solver(solver.name, options);
   if (!info || !backend) {
     result.net = frame;
-    result.summary.solver = solver;
+    result.summary.solver = solver.name;
     result.summary.status = solvers::SolveStatus::kNotApplicable;
-    result.summary.message = "no solver named '" + solver + "' is built in";
+    result.summary.message = "no solver named '" + solver.name + "' is built in";
     return result;
   }
   const MaskSystem system = assemble_mask_system(frame, mask, info->needs_matrix);
   if (system.B.rows() == 0) {  // m or n = 1: nothing to solve
     result.net = frame;
-    result.summary.solver = solver;
+    result.summary.solver = solver.name;
     return result;
   }
   solvers::LinearOperator op;

@@ -8,6 +8,7 @@
 #include "coons/mask/mask9.h"
 #include "coons/net/control_net.h"
 #include "solvers/linear_solver.h"
+#include "solvers/registry.h"
 
 namespace coons {
 
@@ -16,9 +17,9 @@ struct MaskSolveResult {
   solvers::SolveSummary summary;  //!< status, iterations, residual, seconds
 };
 
-//! Precondition: `solver` names a registered backend (see solvers::find_solver).
+//! `solver` is a backend of the registry (solvers::available_solvers(); names are looked up at the edge).
 MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask,
-                               const std::string& solver,
+                               const solvers::SolverInfo& solver,
                                const solvers::SolverOptions& options = {});
 
 }  // namespace coons

@@ -3,7 +3,8 @@
 #include <cmath>
 #include <map>
 
-#include "coons/metrics/bernstein.h"
+#include "coons/mask/mask_residual.h"
+#include "coons/net/bernstein.h"
 
 namespace coons {
 
@@ -206,21 +207,6 @@ ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind) 
 
 double discrete_thin_plate_energy(const ControlNet& net) {
   return discrete_energy_form(net, net, DiscreteEnergy::kThinPlate);
-}
-
-double mask_residual(const ControlNet& net, const Mask9& mask) {
-  double worst = 0;
-  for (int i = 1; i < net.m; ++i)
-    for (int j = 1; j < net.n; ++j) {
-      const Eigen::RowVector3d edge_i = net.at(i - 1, j) + net.at(i + 1, j);
-      const Eigen::RowVector3d edge_j = net.at(i, j - 1) + net.at(i, j + 1);
-      const Eigen::RowVector3d diag =
-          net.at(i - 1, j - 1) + net.at(i + 1, j - 1) + net.at(i - 1, j + 1) + net.at(i + 1, j + 1);
-      const Eigen::RowVector3d r =
-          net.at(i, j) - mask.edge_i * edge_i - mask.edge_j * edge_j - mask.diag * diag;
-      worst = std::max(worst, r.cwiseAbs().maxCoeff());
-    }
-  return worst;
 }
 
 NetMetrics net_metrics(const ControlNet& net, const Mask9& mask) {

@@ -63,9 +63,6 @@ std::vector<DifferenceTerm> difference_terms(DiscreteEnergy kind);
 //! ∂E/∂b of a discrete energy at `net`: a net of the same degree (boundary entries included).
 ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind);
 
-//! max over interior points and x, y, z of |b_ij − mask(b)_ij|; 0 when there is no interior.
-double mask_residual(const ControlNet& net, const Mask9& mask);
-
 //! Every metric of the `solve` report (docs/formats.md), computed once.
 struct NetMetrics {
   double twist_energy = 0, thin_plate_energy = 0, dirichlet_energy = 0, e3_energy = 0;

@@ -4,7 +4,7 @@
 #include <cassert>
 
 #include "coons/curves/bezier_fit.h"
-#include "coons/metrics/bernstein.h"
+#include "coons/net/bernstein.h"
 
 namespace coons {
 

@@ -1,0 +1,119 @@
+// `coons export BOUNDARY`: the net as OBJ files and/or the mask system as Matrix Market, written
+// whole or not at all (an OutputSet), inside --out only.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "coons/io/input_error.h"
+#include "coons/io/matrix_market.h"
+#include "coons/io/net_json.h"
+#include "coons/io/obj_export.h"
+#include "coons/io/write_files.h"
+#include "coons/mask/assemble_mask_system.h"
+#include "coons/study/memory_estimate.h"
+#include "registry.h"
+
+namespace coons::cli {
+
+namespace {
+
+struct ExportRequest {
+  std::string boundary;
+  NetRequest net;
+  GlobalOptions global;
+  std::string out_dir = ".";
+  std::string prefix;
+  int samples = 33;
+  bool obj = false, mtx = false;
+};
+
+int run_export(ExportRequest e) {
+  Phases phases("export");
+  phases.start("read");
+  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance);
+  const Boundary& b = input.boundary;
+  const ResolvedRequest r = resolve(e.net, b, e.boundary);
+  if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  if (!e.obj && !e.mtx) e.obj = e.mtx = true;
+  if (e.mtx && r.method != Method::kAlpha)
+    throw InputError("command line", "--mtx",
+                     "Matrix Market export needs --method alpha (closed forms solve no system)");
+  if (!e.prefix.empty() && safe_file_stem(e.prefix) != e.prefix)
+    throw InputError("command line", "--prefix",
+                     "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
+  check_net_memory(e.global, b, r.solver, e.boundary);
+  if (e.obj)
+    check_memory(e.global, samples_bytes(e.samples), fmt::format("{} x {} surface samples", e.samples, e.samples),
+                 "command line", "--samples");
+  const std::string prefix = e.prefix.empty() ? safe_file_stem(b.name) : e.prefix;
+
+  OutputSet out(e.out_dir);
+  std::vector<std::string> names;
+  if (e.obj) names.insert(names.end(), {prefix + ".surface.obj", prefix + ".net.obj"});
+  if (e.mtx) names.insert(names.end(), {prefix + ".A.mtx", prefix + ".B.mtx"});
+  for (const auto& name : names)
+    if (!e.global.force && std::filesystem::exists(out.path_of(name)))
+      throw InputError(out.path_of(name), "--force", "exists; give --force to overwrite it");
+
+  nlohmann::json report = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"method", to_string(r.method)}};
+  NetOutcome outcome;
+  if (e.obj) {
+    phases.start("solve");
+    outcome = make_net(b, r);
+    if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
+    if (outcome.summary && !outcome.summary->ok()) {
+      nlohmann::json failed = solve_report(b, r, outcome, e.net.mu);
+      failed["timing"] = phases.timing();
+      print_json(failed);
+      print_solver_failure(e.boundary, *outcome.summary);
+      return kExitSolverFailed;
+    }
+  }
+  std::vector<std::string> written;
+  if (e.obj) {
+    phases.start("write");
+    written.push_back(out.path_of(names[0]));
+    out.write(names[0], [&](std::ostream& o) { write_surface_obj(o, outcome.net, e.samples); });
+    written.push_back(out.path_of(names[1]));
+    out.write(names[1], [&](std::ostream& o) { write_net_obj(o, outcome.net); });
+  }
+  if (e.mtx) {
+    phases.start("assemble");
+    const MaskSystem system = assemble_mask_system(frame_net(b), r.mask, true);
+    phases.start("write");
+    const std::string& a = names[e.obj ? 2 : 0];
+    const std::string& rhs = names[e.obj ? 3 : 1];
+    written.push_back(out.path_of(a));
+    out.write(a, [&](std::ostream& o) { write_matrix_market(o, system.A); });
+    written.push_back(out.path_of(rhs));
+    out.write(rhs, [&](std::ostream& o) { write_dense_matrix_market(o, system.B); });
+    report["matrix_market"] = {{"matrix", "coordinate real general (both triangles stored)"},
+                               {"rhs", "array real general, #interior by 3 (x, y, z)"}};
+  }
+  report["written"] = written;
+  report["timing"] = phases.timing();
+  print_json(report);
+  out.commit();
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_export(CLI::App& app, Registry& registry) {
+  auto request = std::make_shared<ExportRequest>();
+  auto* cmd = app.add_subcommand("export", "write the net as OBJ files and/or the mask system as Matrix Market");
+  cmd->add_option("BOUNDARY", request->boundary, "boundary JSON file (docs/formats.md)")->required();
+  add_net_options(*cmd, request->net);
+  cmd->add_option("--out", request->out_dir, "output folder")->capture_default_str();
+  cmd->add_option("--prefix", request->prefix, "file name prefix (default: the boundary's name, made safe)");
+  cmd->add_option("--samples", request->samples, "surface samples per direction")->capture_default_str();
+  cmd->add_flag("--obj", request->obj, "write <prefix>.surface.obj and <prefix>.net.obj");
+  cmd->add_flag("--mtx", request->mtx, "write <prefix>.A.mtx and <prefix>.B.mtx (Matrix Market)");
+  cmd->add_flag("--force", request->global.force, "overwrite existing files of the same names");
+  add_memory_option(*cmd, request->global);
+  set_example(*cmd, "coons export data/boundaries/pillow.json --alpha -0.1 --samples 33 --out out/pillow");
+  registry.add(cmd, [request] { return run_export(*request); });
+}
+
+}  // namespace coons::cli

@@ -1,0 +1,94 @@
+#include "registry.h"
+
+#include <filesystem>
+#include <iostream>
+#include <new>
+#include <nlohmann/json.hpp>
+#include <string_view>
+
+#include "coons/config.h"
+#include "coons/io/input_error.h"
+
+namespace coons::cli {
+
+namespace {
+
+std::string one_line(std::string s) {
+  for (char& c : s)
+    if (c == '\n' || c == '\r') c = ' ';
+  return s;
+}
+
+int fail(int status, const std::string& message) {
+  std::cerr << "error: " << one_line(message) << '\n';
+  return status;
+}
+
+}  // namespace
+
+int run(int argc, char** argv) {
+  CLI::App app{
+      "coons — discrete Coons patches: fill a Bézier control net from its boundary "
+      "(Farin & Hansford, CAGD 16, 1999)",
+      "coons"};
+  app.set_version_flag("--version", COONS_VERSION);
+  app.require_subcommand(1);
+  app.footer(
+      "\nExample:\n  coons solve data/boundaries/dome.json --alpha -0.2\n"
+      "Every command has --help with an example; docs/formats.md is the contract.");
+
+  Registry registry;
+  for (int a = 0; a < argc; ++a) registry.command_line += (a ? " " : "") + std::string(a ? argv[a] : "coons");
+  register_solve(app, registry);
+  register_solvers(app, registry);
+  register_export(app, registry);
+  register_batch(app, registry);
+  register_search_alpha(app, registry);
+  register_sweep(app, registry);
+  register_refit(app, registry);
+  register_study(app, registry);
+  register_surface(app, registry);
+  register_join(app, registry);
+
+  // An unknown command is named (CLI11 would only say that an argument was not expected).
+  if (argc > 1 && argv[1][0] != '-') {
+    bool known = false;
+    for (const auto& e : registry.entries) known = known || e.command->get_name() == argv[1];
+    if (!known)
+      return fail(kExitBadInput, "command line: unknown command '" + std::string(argv[1]) + "' (see coons --help)");
+  }
+
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::Success& e) {  // --version
+    return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    return fail(kExitBadInput, std::string("command line: ") + e.what() + " (see coons --help)");
+  }
+
+  // Every exception ends here, after the command's OutputSet (if any) has removed what it started.
+  try {
+    for (const auto& e : registry.entries)
+      if (*e.command) return e.run();
+  } catch (const InputError& e) {
+    return fail(kExitBadInput, e.what());
+  } catch (const nlohmann::json::exception& e) {
+    return fail(kExitBadInput, std::string("input: JSON: ") + e.what());
+  } catch (const std::filesystem::filesystem_error& e) {
+    const std::string path = e.path1().empty() ? "file system" : e.path1().string();
+    return fail(kExitBadInput, path + ": " + e.code().message());
+  } catch (const std::bad_alloc&) {
+    return fail(kExitInternal, "internal: out of memory (see --max-memory)");
+  } catch (const std::exception& e) {
+    return fail(kExitInternal, std::string("internal: ") + e.what());
+  } catch (...) {
+    return fail(kExitInternal, "internal: unknown exception");
+  }
+  return fail(kExitBadInput, "command line: no command given (see coons --help)");
+}
+
+}  // namespace coons::cli

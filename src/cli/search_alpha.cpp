@@ -1,0 +1,191 @@
+// `coons search-alpha BOUNDARY --objective NAME`: the best mask parameter of one boundary for an
+// objective (Ceres, analytic derivative); one JSON report (docs/formats.md).
+#include <fmt/format.h>
+
+#include <cctype>
+#include <cmath>
+#include <iostream>
+#include <memory>
+
+#include "coons/alpha/alpha_search.h"
+#include "coons/io/input_error.h"
+#include "coons/study/backend_choice.h"
+#include "coons/study/memory_estimate.h"
+#include "coons/study/search_report.h"
+#include "coons/study/target.h"
+#include "registry.h"
+
+namespace coons::cli {
+
+namespace {
+
+using Parameter = SearchParameter;
+
+struct SearchRequest {
+  std::string boundary;
+  std::string objective;
+  Parameter parameter = Parameter::kAlpha;
+  std::optional<double> lower, upper;
+  bool allow_indefinite = false;
+  std::string target;
+  int scan_points = 9;
+  int samples = 41;
+  std::string solver = "auto";
+  double corner_tolerance = 1e-9;
+  GlobalOptions global;
+  CLI::Option *target_option = nullptr, *samples_option = nullptr;
+};
+
+// "thin_plate + 10*target" → "thin_plate+10*target": weighted sums may be written with spaces.
+std::string objective_text(const std::string& given) {
+  std::string out;
+  for (char c : given)
+    if (!std::isspace(static_cast<unsigned char>(c))) out += c;
+  return out;
+}
+
+struct SearchSetup {
+  Objective objective;
+  MaskFamily family;
+  AlphaSearchOptions options;
+  const solvers::SolverInfo* solver = nullptr;
+  bool picked_automatically = false;
+};
+
+SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
+  SearchSetup s;
+  std::string why;
+  auto objective = parse_objective(objective_text(r.objective), &why);
+  if (!objective) throw InputError("command line", "--objective", why);
+  s.objective = *objective;
+  if (r.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  if (s.objective.target_weight > 0) {
+    s.objective.target = resolve_target(r.target, r.boundary, b, r.samples);
+    if (!s.objective.target)
+      throw InputError("command line", "--target",
+                       "the objective uses 'target' but neither --target nor the boundary file gives one");
+  } else if (r.target_option->count() > 0) {
+    throw InputError("command line", "--target",
+                     "--target is given but --objective '" + r.objective + "' has no target term");
+  } else if (r.samples_option->count() > 0) {
+    throw InputError("command line", "--samples",
+                     "--samples sets the target's sampling but --objective '" + r.objective + "' has no target term");
+  }
+  bool indefinite = false;
+  switch (r.parameter) {
+    case Parameter::kAlpha:
+      s.family = [](double a) { return alpha_family(a); };
+      s.options.lower = r.lower.value_or(-0.25);
+      s.options.upper = r.upper.value_or(0.25);
+      indefinite = s.options.lower < -0.25 || s.options.upper > 0.25;
+      if (indefinite && !r.allow_indefinite)
+        throw InputError(
+            "command line", r.lower && *r.lower < -0.25 ? "--lower" : "--upper",
+            "bounds outside [-0.25, 0.25] make the system indefinite; add --allow-indefinite to search there");
+      break;
+    case Parameter::kMu: {
+      // searched on the compressed scale s = μ/(μ + mn), so the scan spans μ's orders of magnitude
+      const int m = b.m, n = b.n;
+      s.family = [m, n](double t) { return mu_family_compressed(m, n, t); };
+      const double lower = r.lower.value_or(0.0), upper = r.upper.value_or(1000.0 * m * n);
+      if (!(lower >= 0 && std::isfinite(upper) && upper > lower))
+        throw InputError("command line", "--lower/--upper", "mu bounds need 0 <= lower < upper < infinity");
+      s.options.lower = compressed_of_mu(m, n, lower);
+      s.options.upper = compressed_of_mu(m, n, upper);
+      break;
+    }
+    case Parameter::kAlphaGamma:
+      s.family = [](double a) { return alpha_family(a); };
+      s.options.lower = r.lower.value_or(-0.25);
+      s.options.upper = r.upper.value_or(0.25);
+      if (s.options.lower < -0.25 || s.options.upper > 0.25)
+        throw InputError("command line", "--lower/--upper", "the (alpha, gamma) search stays in [-0.25, 0.25]");
+      break;
+  }
+  if (r.allow_indefinite && r.parameter != Parameter::kAlpha)
+    throw InputError("command line", "--allow-indefinite",
+                     std::string("--allow-indefinite applies to --parameter alpha, not ") + to_string(r.parameter));
+  s.options.scan_points = r.scan_points;
+  if (!s.options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
+  const solvers::SolverInfo* requested = solver_from_name(r.solver);
+  s.solver = &search_backend(requested, b, indefinite);
+  s.picked_automatically = requested == nullptr;
+  return s;
+}
+
+int finish(nlohmann::json report, Phases& phases, SearchStatus status, const SearchRequest& r,
+           const std::string& message) {
+  report["timing"] = phases.timing();
+  print_json(report);
+  // no optimum without its evidence: every evaluation failed, or the verdict rests on failures
+  if (status != SearchStatus::kSolverFailed && status != SearchStatus::kFailedRegion) return kExitOk;
+  std::cerr << fmt::format("error: {}: solver: {} search failed ({})\n", r.boundary,
+                           report["solver"]["name"].get<std::string>(),
+                           message.empty() ? "no successful evaluation" : message);
+  return kExitSolverFailed;
+}
+
+int run_search_alpha(const SearchRequest& r) {
+  Phases phases("search-alpha");
+  phases.start("read");
+  const Boundary b = read_input(r.boundary, r.corner_tolerance).boundary;
+  const SearchSetup setup = setup_search(r, b);
+  check_net_memory(r.global, b, setup.solver, r.boundary);
+  phases.start("solve");
+  const std::string objective = objective_text(r.objective);
+  if (r.parameter == Parameter::kAlphaGamma) {
+    MaskObjective f(b, setup.objective, setup.family, *setup.solver);
+    const AlphaGammaSummary g = search_alpha_gamma(f, setup.options);
+    nlohmann::json out = alpha_gamma_report(b, objective, setup.options, g);
+    out["solver"] = search_solver_block(*setup.solver, setup.picked_automatically, g.status, g.solves, 0, g.message);
+    return finish(out, phases, g.status, r, g.message);
+  }
+  // The α family is searched in the sine basis when it can be (search_alpha): no solve per evaluation.
+  const AlphaSearchSummary s = r.parameter == Parameter::kAlpha
+                                   ? search_alpha(b, setup.objective, *setup.solver, setup.options)
+                                   : search_mu(b, setup.objective, *setup.solver, setup.options);
+  nlohmann::json out = search_report(b, objective, r.parameter, setup.family, setup.options, s);
+  out["solver"] =
+      search_solver_block(*setup.solver, setup.picked_automatically, s.status, s.solves, s.seconds, s.message);
+  return finish(out, phases, s.status, r, s.message);
+}
+
+}  // namespace
+
+void register_search_alpha(CLI::App& app, Registry& registry) {
+  auto r = std::make_shared<SearchRequest>();
+  auto* cmd = app.add_subcommand("search-alpha",
+                                 "the best mask parameter of one boundary for an objective "
+                                 "(Ceres, analytic derivative); prints one JSON report");
+  cmd->add_option("BOUNDARY", r->boundary, "boundary JSON file (docs/formats.md)")->required();
+  cmd->add_option("--objective", r->objective,
+                  "thin_plate, twist, dirichlet, e3, target, discrete_twist, discrete_dirichlet, discrete_thin_plate, "
+                  "or a weighted sum such as \"thin_plate + 10*target\" (spaces allowed)")
+      ->required();
+  const std::map<std::string, Parameter> parameters = {
+      {"alpha", Parameter::kAlpha}, {"mu", Parameter::kMu}, {"alpha-gamma", Parameter::kAlphaGamma}};
+  cmd->add_option("--parameter", r->parameter,
+                  "alpha (the Farin-Hansford family), mu (the anisotropic mask) or "
+                  "alpha-gamma (every symmetric 3x3 mask)")
+      ->transform(CLI::CheckedTransformer(parameters))
+      ->default_str("alpha");
+  cmd->add_option("--lower", r->lower, "lower bound (alpha: -0.25, mu: 0)");
+  cmd->add_option("--upper", r->upper, "upper bound (alpha: 0.25, mu: 1000·m·n)");
+  cmd->add_flag("--allow-indefinite", r->allow_indefinite, "accept alpha bounds outside [-0.25, 0.25]");
+  r->target_option = cmd->add_option("--target", r->target,
+                                     "hermite-coons | coons | NET.json | sphere:cx,cy,cz,r | "
+                                     "cylinder:px,py,pz,dx,dy,dz,r | plane:px,py,pz,nx,ny,nz (default: the boundary "
+                                     "file's \"target\")");
+  cmd->add_option("--scan", r->scan_points, "points of the coarse scan")->capture_default_str();
+  r->samples_option =
+      cmd->add_option("--samples", r->samples, "target objective: samples per direction")->capture_default_str();
+  cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                  "corners must agree to this fraction of the bounding-box diagonal")
+      ->capture_default_str();
+  add_solver_option(*cmd, r->solver);
+  add_memory_option(*cmd, r->global);
+  set_example(*cmd, "coons search-alpha data/boundaries/dome.json --objective \"thin_plate + 10*target\"");
+  registry.add(cmd, [r] { return run_search_alpha(*r); });
+}
+
+}  // namespace coons::cli

@@ -1,0 +1,88 @@
+// `coons study BOUNDARY...`: the α study (coons/study/study.h) with its report: report.md,
+// results.json and figures/, written together (nothing is left on any failure).
+#include "coons/study/study.h"
+
+#include <fmt/format.h>
+
+#include <memory>
+
+#include "coons/io/input_error.h"
+#include "coons/io/write_files.h"
+#include "coons/study/memory_estimate.h"
+#include "coons/study/report_markdown.h"
+#include "registry.h"
+
+namespace coons::cli {
+
+namespace {
+
+struct StudyRequest {
+  std::vector<std::string> inputs;
+  std::vector<int> degrees = {3, 4, 6, 8, 12, 16};
+  std::string out_dir = "out/study";
+  std::string solver = "auto";
+  double corner_tolerance = 1e-9;
+  GlobalOptions global;
+};
+
+int run_study_command(const StudyRequest& r, const std::string& command_line) {
+  Phases phases("study");
+  phases.start("read");
+  const std::vector<std::string> files = expand_inputs(r.inputs);
+  if (files.empty()) throw InputError("command line", "BOUNDARY", "no boundary files given or found");
+  StudyOptions options;
+  options.degrees = r.degrees;
+  options.solver = solver_from_name(r.solver);
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("command line", "--degrees", why);
+  BoundaryReadOptions read_options;
+  read_options.corner_tolerance = r.corner_tolerance;
+  std::vector<StudyInput> inputs;
+  for (const auto& f : files) {
+    inputs.push_back(read_study_input(f, read_options));
+    const Boundary& b = inputs.back().boundary;
+    int largest = std::max(b.m, b.n);
+    for (int d : options.degrees) largest = std::max(largest, d);
+    check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),
+                 fmt::format("the study of {} at degree {}", b.name, largest), f, "degree");
+  }
+
+  phases.start("solve");
+  const StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
+
+  phases.start("write");
+  OutputSet out(r.out_dir);
+  const StudyFigures figures = plot_study_figures(result, [&](const std::string& file) { return out.stage(file); });
+  for (const auto* list : {&figures.energies, &figures.nets})
+    for (const StudyFigure& f : *list)
+      if (!f.error.empty()) out.discard(f.file);
+  for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
+    if (!f->error.empty()) out.discard(f->file);
+  const std::string md = study_report_markdown(result, current_provenance(command_line), figures);
+  out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
+  out.write("report.md", [&](std::ostream& o) { o << md; });
+  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
+  out.commit();
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_study(CLI::App& app, Registry& registry) {
+  auto r = std::make_shared<StudyRequest>();
+  auto* cmd = app.add_subcommand("study",
+                                 "the alpha study: optima per shape and degree, the c/n^2 law, a reference "
+                                 "table for every boundary with a target; a self-contained report with PNG figures");
+  cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them")->required();
+  cmd->add_option("--degrees", r->degrees, "degrees to study each shape at (increasing)")->capture_default_str();
+  cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
+  cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                  "corners must agree to this fraction of the bounding-box diagonal")
+      ->capture_default_str();
+  add_solver_option(*cmd, r->solver);
+  add_memory_option(*cmd, r->global);
+  set_example(*cmd, "coons study data/boundaries --degrees 3 4 6 8 --out out/study");
+  registry.add(cmd, [r, &registry] { return run_study_command(*r, registry.command_line); });
+}
+
+}  // namespace coons::cli

@@ -1,0 +1,35 @@
+#include "boundary_curves.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+#include "coons/io/surface_io.h"
+
+namespace coons {
+
+std::optional<std::vector<Curve>> read_boundary_curves(const std::string& path) {
+  const nlohmann::json doc = read_json_file(path);
+  if (!doc.is_object() || !doc.contains("curves")) return std::nullopt;
+  const nlohmann::json& c = doc["curves"];
+  if (!c.is_object()) throw InputError(path, "curves", "must be an object with bottom, top, left and right");
+  std::vector<Curve> sides;
+  for (const char* side : {"bottom", "top", "left", "right"}) {
+    if (!c.contains(side)) throw InputError(path, std::string("curves.") + side, "missing");
+    sides.push_back(parse_curve(c[side], path, std::string("curves.") + side));
+  }
+  return sides;
+}
+
+FittedBoundary fit_boundary_or_throw(const std::vector<Curve>& sides, int m, int n, const std::string& name,
+                                     const std::string& source) {
+  FittedBoundary f = fit_boundary(sides, m, n, name);
+  if (!f.corners_meet)
+    throw InputError(source, f.corner_gap.corner + " corner",
+                     fmt::format("the curves meet with a gap of {:.3g}", f.corner_gap.gap));
+  return f;
+}
+
+}  // namespace coons

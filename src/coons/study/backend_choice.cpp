@@ -1,0 +1,25 @@
+#include "backend_choice.h"
+
+#include <algorithm>
+
+#include "coons/io/input_error.h"
+#include "coons/mask/assemble_mask_system.h"
+#include "coons/mask/mask9.h"
+
+namespace coons {
+
+const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, const Boundary& b, bool indefinite) {
+  if (!requested) {
+    const auto stencil = mask_stencil(alpha_mask(-0.1), std::max(b.m - 1, 1), std::max(b.n - 1, 1));
+    const solvers::SolverInfo* pick = solvers::find_solver(solvers::choose_auto_solver(stencil));
+    if (pick && (!indefinite || !pick->definite_only)) return *pick;
+    return *solvers::find_solver("eigen-lu");
+  }
+  if (indefinite && requested->definite_only)
+    throw InputError(
+        "command line", "--solver",
+        requested->name + " needs a positive definite system; bounds outside [-0.25, 0.25] need another solver");
+  return *requested;
+}
+
+}  // namespace coons

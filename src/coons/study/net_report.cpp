@@ -1,0 +1,76 @@
+#include "net_report.h"
+
+#include <cmath>
+
+#include "coons/io/net_json.h"
+#include "coons/mask/solve_mask_net.h"
+#include "coons/metrics/energies.h"
+#include "coons/net/coons_net.h"
+
+namespace coons {
+
+using nlohmann::json;
+
+const char* to_string(NetMethod m) {
+  switch (m) {
+    case NetMethod::kAlpha:
+      return "alpha";
+    case NetMethod::kCoons:
+      return "coons";
+    case NetMethod::kHermiteCoons:
+      return "hermite-coons";
+  }
+  return "alpha";
+}
+
+NetOutcome make_net(const Boundary& boundary, NetMethod method, const Mask9& mask, const solvers::SolverInfo* solver,
+                    const solvers::SolverOptions& options) {
+  switch (method) {
+    case NetMethod::kCoons:
+      return {discrete_coons_net(boundary), std::nullopt};
+    case NetMethod::kHermiteCoons:
+      return {hermite_coons_net(boundary), std::nullopt};
+    case NetMethod::kAlpha:
+      break;
+  }
+  MaskSolveResult result = solve_mask_net(boundary, mask, *solver, options);
+  return {std::move(result.net), std::move(result.summary)};
+}
+
+json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
+                const std::optional<double>& mu, bool solver_picked_automatically) {
+  json report;
+  report["boundary"] = boundary.name;
+  report["degree"] = {boundary.m, boundary.n};
+  report["method"] = to_string(method);
+  if (method == NetMethod::kHermiteCoons) {  // the partially bicubic net belongs to no mask
+    report["alpha"] = nullptr;
+    report["beta"] = nullptr;
+    report["mu"] = mu ? json(*mu) : json(nullptr);
+  } else {  // the alpha method, or the Coons net: its mask is α = −1/4
+    report["alpha"] = mask.diag;
+    report["beta"] = number_or_null(mask.edge_i == mask.edge_j ? mask.edge_i : NAN);
+    if (mask.edge_i != mask.edge_j) report["beta_ij"] = {mask.edge_i, mask.edge_j};
+    // μ next to α: given, or the μ of α at degree n (docs/math.md §4) when m = n and α ∈ [−1/4, 0).
+    if (mu)
+      report["mu"] = *mu;
+    else if (boundary.m == boundary.n && mask.diag >= -0.25 && mask.diag < 0 && mask.edge_i == mask.edge_j)
+      report["mu"] = mu_from_alpha(boundary.n, mask.diag);
+    else
+      report["mu"] = nullptr;
+  }
+  if (outcome.summary) {
+    report["solver"] = summary_to_json(*outcome.summary);
+    if (solver_picked_automatically) report["solver"]["picked_by"] = "auto";
+  } else {
+    report["solver"] = {{"name", "closed-form"},
+                        {"status", "not_applicable"},
+                        {"message", "closed-form net: no linear system is solved"}};
+  }
+  const bool ok = !outcome.summary || outcome.summary->ok();
+  report["net"] = ok ? net_to_json(outcome.net) : json(nullptr);
+  report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, mask)) : json(nullptr);
+  return report;
+}
+
+}  // namespace coons

@@ -1,0 +1,103 @@
+#include "search_report.h"
+
+#include "coons/io/net_json.h"
+#include "coons/mask/mask_families.h"
+#include "coons/study/sweep.h"
+
+namespace coons {
+
+using nlohmann::json;
+
+const char* to_string(SearchParameter p) {
+  switch (p) {
+    case SearchParameter::kMu:
+      return "mu";
+    case SearchParameter::kAlphaGamma:
+      return "alpha-gamma";
+    case SearchParameter::kAlpha:
+      break;
+  }
+  return "alpha";
+}
+
+json search_solver_block(const solvers::SolverInfo& solver, bool picked_automatically, SearchStatus status, int solves,
+                         double seconds, const std::string& message) {
+  json block = {
+      {"name", solver.name},
+      {"status", status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion ? "failed" : "success"},
+      {"iterations", solves},
+      {"relative_residual", nullptr},
+      {"seconds", {{"search", seconds}}}};
+  if ((status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion) && !message.empty())
+    block["message"] = message;
+  if (picked_automatically) block["picked_by"] = "auto";
+  return block;
+}
+
+json search_report(const Boundary& b, const std::string& objective, SearchParameter parameter, const MaskFamily& family,
+                   const AlphaSearchOptions& options, const AlphaSearchSummary& s) {
+  const bool by_mu = parameter == SearchParameter::kMu;
+  json out;
+  out["boundary"] = b.name;
+  out["degree"] = {b.m, b.n};
+  out["objective"] = objective;
+  out["parameter"] = to_string(parameter);
+  std::optional<double> alpha, mu;
+  if (s.parameter) {
+    const MaskPoint p = family(*s.parameter);
+    alpha = p.mask.diag;
+    mu = by_mu ? std::optional<double>(mu_of_compressed(b.m, b.n, *s.parameter)) : mu_of_alpha(b, alpha);
+    out["beta"] = p.mask.edge_i == p.mask.edge_j ? json(p.mask.edge_i) : json(nullptr);
+    if (p.mask.edge_i != p.mask.edge_j) out["beta_ij"] = {p.mask.edge_i, p.mask.edge_j};
+  }
+  out["alpha"] = alpha ? json(*alpha) : json(nullptr);
+  out["mu"] = mu ? json(*mu) : json(nullptr);
+  out["value"] = number_or_null(s.value);
+  if (by_mu)
+    out["bounds"] = {mu_of_compressed(b.m, b.n, options.lower), mu_of_compressed(b.m, b.n, options.upper)};
+  else
+    out["bounds"] = {options.lower, options.upper};
+  out["flat"] = s.flat;
+  out["at_bound"] = s.at_bound;
+  out["evaluations"] = s.evaluations;
+  out["solves"] = s.solves;
+  out["status"] = to_string(s.status);
+  if (!s.message.empty()) out["message"] = s.message;
+  out["local_minima"] = s.local_minima;
+  json scan = json::array();
+  for (auto [p, f] : s.scan) scan.push_back({by_mu ? mu_of_compressed(b.m, b.n, p) : p, number_or_null(f)});
+  out["scan"] = scan;
+  out["evaluator"] = s.evaluator.empty() ? "factorize and solve" : s.evaluator;
+  // the evaluations that failed, and where: no optimum is claimed on them
+  out["failed_evaluations"] = s.failed_evaluations;
+  json intervals = json::array();
+  for (auto [lo, hi] : s.failed_intervals)
+    intervals.push_back(by_mu ? json{mu_of_compressed(b.m, b.n, lo), mu_of_compressed(b.m, b.n, hi)} : json{lo, hi});
+  out["failed_intervals"] = intervals;
+  if (s.failed_evaluations > 0) out["first_failure"] = solvers::to_string(s.first_failure);
+  return out;
+}
+
+json alpha_gamma_report(const Boundary& b, const std::string& objective, const AlphaSearchOptions& options,
+                        const AlphaGammaSummary& g) {
+  json out = {{"boundary", b.name},
+              {"degree", {b.m, b.n}},
+              {"objective", objective},
+              {"parameter", "alpha-gamma"},
+              {"alpha", g.flat ? json(nullptr) : json(g.alpha)},
+              {"gamma", g.flat ? json(nullptr) : json(g.gamma)},
+              {"beta_ij", g.flat ? json(nullptr) : json({0.25 - g.alpha + g.gamma, 0.25 - g.alpha - g.gamma})},
+              {"mu", nullptr},
+              {"value", number_or_null(g.value)},
+              {"value_at_gamma0", number_or_null(g.value_at_gamma0)},
+              {"bounds", {options.lower, options.upper}},
+              {"flat", g.flat},
+              {"at_bound", false},
+              {"evaluations", g.evaluations},
+              {"solves", g.solves},
+              {"status", to_string(g.status)}};
+  if (!g.message.empty()) out["message"] = g.message;
+  return out;
+}
+
+}  // namespace coons

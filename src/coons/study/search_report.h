@@ -1,0 +1,33 @@
+// The report of a mask-parameter search (docs/formats.md, `coons search-alpha`): the optimum in
+// α, β and μ, the value, bounds, flat / at_bound, the scan and the solver block.
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "coons/alpha/alpha_search.h"
+#include "coons/net/control_net.h"
+#include "solvers/registry.h"
+
+namespace coons {
+
+//! What a search varies: α of the Farin–Hansford family, μ of the anisotropic masks (searched
+//! on the compressed scale μ/(μ + mn)), or (α, γ), every symmetric affine-invariant 3×3 mask.
+enum class SearchParameter { kAlpha, kMu, kAlphaGamma };
+const char* to_string(SearchParameter parameter);
+
+//! The solver block of a search report, of the same shape as a solve's: the backend, the
+//! search's verdict, its solves as iterations (no residual: many systems are solved).
+nlohmann::json search_solver_block(const solvers::SolverInfo& solver, bool picked_automatically, SearchStatus status,
+                                   int solves, double seconds, const std::string& message);
+
+//! The report of a one-parameter search (α or μ; `family` maps the searched parameter to its
+//! mask, `options` holds the bounds it was searched in).
+nlohmann::json search_report(const Boundary& boundary, const std::string& objective, SearchParameter parameter,
+                             const MaskFamily& family, const AlphaSearchOptions& options, const AlphaSearchSummary& s);
+
+//! The report of the (α, γ) search.
+nlohmann::json alpha_gamma_report(const Boundary& boundary, const std::string& objective,
+                                  const AlphaSearchOptions& options, const AlphaGammaSummary& g);
+
+}  // namespace coons

@@ -1,0 +1,145 @@
+#include "surface_report.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "coons/io/json_file.h"
+#include "coons/io/net_json.h"
+#include "coons/metrics/energies.h"
+#include "coons/net/bernstein.h"
+#include "coons/net/coons_net.h"
+
+namespace coons {
+
+using nlohmann::json;
+
+namespace {
+
+json energies_json(const ControlNet& net) {
+  return {{"twist_energy", twist_energy(net)},
+          {"thin_plate_energy", thin_plate_energy(net)},
+          {"dirichlet_energy", dirichlet_energy(net)},
+          {"e3_energy", e3_energy(net)},
+          {"discrete_twist_energy", discrete_twist_energy(net)},
+          {"discrete_dirichlet_energy", discrete_dirichlet_energy(net)}};
+}
+
+double max_difference(const ControlNet& a, const ControlNet& b) { return (a.points - b.points).cwiseAbs().maxCoeff(); }
+
+json point_json(const Eigen::RowVector3d& p) {
+  return json::array({number_or_null(p(0)), number_or_null(p(1)), number_or_null(p(2))});
+}
+
+double finite_max(const Eigen::VectorXd& x, bool absolute) {
+  double m = 0;
+  for (Eigen::Index k = 0; k < x.size(); ++k)
+    if (std::isfinite(x(k))) m = std::max(m, absolute ? std::abs(x(k)) : x(k));
+  return m;
+}
+
+}  // namespace
+
+SurfaceFile read_surface_reference(const std::string& path, const SurfaceReadOptions& options) {
+  const json doc = read_json_file(path);
+  if (doc.is_object() && !doc.contains("type") && doc.contains("net"))
+    return parse_surface(json{{"type", "bezier"}, {"net", doc["net"]}}, path, options);
+  return parse_surface(doc, path, options);
+}
+
+SurfaceReport surface_report(const SurfaceFile& input, const std::optional<SurfaceFile>& reference,
+                             const SurfaceReportOptions& options) {
+  const Surface& surface = input.surface;
+  const int k = options.samples;
+  SurfaceReport out;
+  out.samples = sample_grid(surface, k);
+  SurfaceSamples& samples = out.samples;
+  if (reference) add_reference_distance(samples, reference->surface);
+  out.fitted = fitted_net(surface, options.fit_degree);
+  const FittedNet& fitted = out.fitted;
+
+  nlohmann::ordered_json& report = out.report;  // read top-down: what it is, diagnostics, metrics, then the big arrays
+  report["surface"] = input.name;
+  report["type"] = to_string(surface.type());
+  report["sample"] = k;
+  report["polynomial"] = fitted.exact;
+  json curves = json::object();
+  for (const auto& [field, curve] : surface.curves()) curves[field] = curve->kind();
+  if (!curves.empty()) report["curves"] = curves;
+  nlohmann::ordered_json& points = out.points;
+  points = nlohmann::ordered_json::array();
+  for (int a = 0; a < k; ++a) {
+    nlohmann::ordered_json row = nlohmann::ordered_json::array();
+    for (int b = 0; b < k; ++b) row.push_back(nlohmann::ordered_json(point_json(samples.points.row(a * k + b))));
+    points.push_back(std::move(row));
+  }
+
+  // The net: exact, or over fitted curves with the deviations.
+  const ControlNet& net = fitted.net;
+  nlohmann::ordered_json& net_block = out.net_block;
+  net_block = {{"degree", {net.m, net.n}}, {"exact", fitted.exact}};
+  if (!fitted.exact) {
+    net_block["fit_degree"] = fitted.fit_degree;
+    json fits = json::array();
+    for (const auto& f : fitted.fits)
+      fits.push_back({{"curve", f.curve}, {"degree", f.degree}, {"max_deviation", number_or_null(f.max_deviation)}});
+    net_block["max_curve_deviation"] = number_or_null(fitted.max_curve_deviation);
+    net_block["curve_fits"] = fits;
+    double worst = 0;
+    const Eigen::MatrixX3d S = sample_surface(net, k, k);
+    for (int row = 0; row < k * k; ++row) worst = std::max(worst, (S.row(row) - samples.points.row(row)).norm());
+    net_block["max_surface_deviation"] = number_or_null(worst);
+  }
+  net_block["net"] = net_to_json(net);
+
+  json metrics = energies_json(net);
+  metrics["of"] = fitted.exact ? "the exact Bezier net" : "the net over the Bezier fits";
+  report["metrics"] = metrics;
+
+  // The closed-form discrete nets of the same boundary, in the same space.
+  json discrete;
+  const Boundary boundary = boundary_of(net, input.name);
+  const ControlNet coons = discrete_coons_net(boundary);
+  discrete["coons"] = {{"max_difference", max_difference(net, coons)}, {"energies", energies_json(coons)}};
+  if (net.m >= 3 && net.n >= 3) {
+    const ControlNet hermite = hermite_coons_net(boundary);
+    discrete["hermite_coons"] = {{"max_difference", max_difference(net, hermite)},
+                                 {"energies", energies_json(hermite)}};
+  }
+  report["discrete_nets"] = discrete;
+
+  json twists = json::array();
+  for (auto [u, v] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}})
+    twists.push_back(point_json(surface.evaluate(u, v).duv));
+  report["corner_twists"] = twists;
+  report["sampled"] = {{"max_abs_mean_curvature", finite_max(samples.mean_curvature, true)},
+                       {"max_abs_gaussian_curvature", finite_max(samples.gaussian_curvature, true)},
+                       {"max_twist", finite_max(samples.twist, false)}};
+
+  if (!input.conditions.empty()) {
+    json conditions = json::array();
+    double worst_position = 0, worst_derivative = 0;
+    for (const auto& c : input.conditions) {
+      conditions.push_back(
+          {{"field", c.field}, {"corner", c.corner}, {"condition", c.condition}, {"gap", number_or_null(c.gap)}});
+      double& worst = c.order == 0 ? worst_position : worst_derivative;
+      worst = std::max(worst, c.gap);
+    }
+    report["compatibility"] = {{"size", input.size},
+                               {"corner_tolerance", options.corner_tolerance},
+                               {"derivative_tolerance", options.derivative_tolerance},
+                               {"max_corner_gap", worst_position},
+                               {"max_derivative_gap", worst_derivative},
+                               {"conditions", std::move(conditions)}};
+  }
+  if (reference) {
+    const Eigen::VectorXd& d = *samples.distance;
+    report["reference"] = {{"file", options.reference_file},
+                           {"type", to_string(reference->surface.type())},
+                           {"max_distance", finite_max(d, false)},
+                           {"rms_distance", std::sqrt(d.squaredNorm() / double(d.size()))},
+                           {"max_parametric_distance", finite_max(*samples.parametric_distance, false)}};
+  }
+  return out;
+}
+
+}  // namespace coons

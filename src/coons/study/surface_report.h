@@ -1,0 +1,40 @@
+// The report of `coons surface`: a surface of the continuous Coons family sampled on a K×K grid,
+// its Bézier net (exact when the surface is polynomial, else over Bézier fits of its curves, with
+// the deviations), the exact energies of that net, its distance to the closed-form discrete nets of
+// its boundary, the corner twists, the compatibility diagnostics and, with a reference surface,
+// the distance field (docs/formats.md "Curves and surfaces").
+#pragma once
+
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+
+#include "coons/io/surface_io.h"
+#include "coons/surfaces/sampling.h"
+#include "coons/surfaces/surface.h"
+
+namespace coons {
+
+struct SurfaceReportOptions {
+  int samples = 21;                //!< K ≥ 2
+  int fit_degree = 5;              //!< largest degree of the Bézier fits of non-Bézier curves
+  double corner_tolerance = 1e-9;  //!< as read (reported with the compatibility diagnostics)
+  double derivative_tolerance = 1e-7;
+  std::string reference_file;  //!< named in the report when there is a reference
+};
+
+struct SurfaceReport {
+  nlohmann::ordered_json report;     //!< everything but the net and the points, in reading order
+  nlohmann::ordered_json net_block;  //!< "net": degree, exactness, fits, the net itself
+  nlohmann::ordered_json points;     //!< K×K points
+  SurfaceSamples samples;            //!< for meshes
+  FittedNet fitted;                  //!< for the net file and the picture
+};
+
+SurfaceReport surface_report(const SurfaceFile& input, const std::optional<SurfaceFile>& reference,
+                             const SurfaceReportOptions& options);
+
+//! A reference: a surface description, or any file holding "net" (a boundary file, a solve report).
+SurfaceFile read_surface_reference(const std::string& path, const SurfaceReadOptions& options);
+
+}  // namespace coons

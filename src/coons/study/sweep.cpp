@@ -1,0 +1,148 @@
+#include "sweep.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "coons/io/net_json.h"
+#include "coons/io/plot.h"
+#include "coons/mask/assemble_mask_system.h"
+#include "coons/mask/mask_families.h"
+
+namespace coons {
+
+using nlohmann::json;
+
+const char* to_string(SweepParameter parameter) { return parameter == SweepParameter::kMu ? "mu" : "alpha"; }
+
+std::vector<double> linspace(double from, double to, int count) {
+  std::vector<double> out(count);
+  for (int k = 0; k < count; ++k) out[k] = count == 1 ? from : from + (to - from) * k / (count - 1);
+  return out;
+}
+
+MaskFamily sweep_family(SweepParameter parameter, const Boundary& b) {
+  if (parameter == SweepParameter::kMu) return [m = b.m, n = b.n](double mu) { return mu_family(m, n, mu); };
+  return [](double a) { return alpha_family(a); };
+}
+
+std::optional<double> mu_of_alpha(const Boundary& b, std::optional<double> alpha) {
+  if (!alpha || b.m != b.n || *alpha < -0.25 || *alpha >= 0) return std::nullopt;
+  return mu_from_alpha(b.n, *alpha);
+}
+
+std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& params, const MaskFamily& family,
+                                const solvers::SolverInfo& info, const std::optional<Target>& target,
+                                const std::function<void(size_t, size_t)>& progress, std::vector<ControlNet>* nets) {
+  const ControlNet frame = frame_net(b);
+  const int rows = std::max(b.m - 1, 0), cols = std::max(b.n - 1, 0);
+  const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(frame, Mask9{1, 0, 0}), mask_rhs(frame, Mask9{0, 1, 0}),
+                                               mask_rhs(frame, Mask9{0, 0, 1})};
+  std::vector<SweepRow> rows_out(params.size());
+  std::vector<Eigen::SparseMatrix<double>> matrices;
+  std::vector<solvers::LinearSolver::SweepMember> members;
+  for (size_t k = 0; k < params.size(); ++k) {
+    rows_out[k].parameter = params[k];
+    rows_out[k].mask = family(params[k]).mask;
+    rows_out[k].summary.solver = info.name;
+    solvers::LinearOperator op;
+    op.stencil = mask_stencil(rows_out[k].mask, rows, cols);
+    members.push_back({op, {rows_out[k].mask.edge_i, rows_out[k].mask.edge_j, rows_out[k].mask.diag}});
+  }
+  if (info.needs_matrix) {
+    matrices.reserve(params.size());
+    for (auto& m : members) {
+      matrices.push_back(solvers::stencil_matrix(*m.op.stencil));
+      m.op.matrix = &matrices.back();
+    }
+  }
+  auto finish_row = [&](size_t k, const ControlNet& net) {
+    rows_out[k].metrics = net_metrics(net, rows_out[k].mask);
+    if (target) rows_out[k].rms_target = rms_distance(net, *target);
+    if (nets) nets->push_back(net);
+    if (progress) progress(k + 1, params.size());
+  };
+  if (rows * cols == 0) {
+    for (size_t k = 0; k < params.size(); ++k) finish_row(k, frame);
+  } else {
+    auto solver = solvers::make_solver(info.name);
+    solver->sweep(basis, members, [&](size_t k, const Eigen::MatrixX3d& X, const solvers::SolveSummary& s) {
+      rows_out[k].summary = s;
+      finish_row(k, s.ok() ? fill_interior(frame, X) : frame);
+    });
+  }
+  return rows_out;
+}
+
+json sweep_line(const Boundary& b, SweepParameter parameter, const SweepRow& row) {
+  const std::string name = to_string(parameter);
+  json line = metrics_to_json(row.metrics);
+  line[name] = row.parameter;
+  if (parameter != SweepParameter::kAlpha) line["alpha"] = row.mask.diag;
+  if (row.mask.edge_i == row.mask.edge_j)
+    line["beta"] = row.mask.edge_i;
+  else
+    line["beta_ij"] = {row.mask.edge_i, row.mask.edge_j};
+  if (parameter == SweepParameter::kAlpha) {
+    const auto mu = mu_of_alpha(b, row.parameter);
+    line["mu"] = mu ? json(*mu) : json(nullptr);
+  }
+  line["status"] = solvers::to_string(row.summary.status);
+  if (!row.summary.ok())
+    line = json{
+        {name, row.parameter}, {"status", solvers::to_string(row.summary.status)}, {"message", row.summary.message}};
+  if (row.rms_target && row.summary.ok()) line["rms_target"] = *row.rms_target;
+  line["solver"] = summary_to_json(row.summary);
+  return line;
+}
+
+std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter parameter,
+                       const std::vector<SweepRow>& rows) {
+  struct Curve {
+    const char* name;
+    double NetMetrics::*field;
+  };
+  const Curve curves[] = {{"thin plate", &NetMetrics::thin_plate_energy},
+                          {"E3", &NetMetrics::e3_energy},
+                          {"twist", &NetMetrics::twist_energy},
+                          {"Dirichlet", &NetMetrics::dirichlet_energy}};
+  std::vector<PlotSeries> series;
+  PlotSeries minima{"minima", {}, {}, true};
+  auto add = [&](const std::string& name, const std::vector<double>& values) {
+    PlotSeries s{name, {}, {}, false};
+    double top = 0;
+    for (double v : values) top = std::max(top, std::abs(v));
+    if (top == 0) return;
+    size_t best = 0;
+    for (size_t k = 0; k < rows.size(); ++k) {
+      if (!rows[k].summary.ok()) continue;
+      s.x.push_back(rows[k].parameter);
+      s.y.push_back(values[k] / top);
+      if (values[k] < values[best]) best = k;
+    }
+    minima.x.push_back(rows[best].parameter);
+    minima.y.push_back(values[best] / top);
+    series.push_back(std::move(s));
+  };
+  for (const Curve& c : curves) {
+    std::vector<double> v;
+    v.reserve(rows.size());
+    for (const auto& r : rows) v.push_back(r.metrics.*(c.field));
+    add(c.name, v);
+  }
+  if (!rows.empty() && rows[0].rms_target) {
+    std::vector<double> v;
+    v.reserve(rows.size());
+    for (const auto& r : rows) v.push_back(r.rms_target.value_or(0));
+    add("rms to target", v);
+  }
+  series.push_back(minima);
+  PlotOptions o;
+  o.title = fmt::format("{} ({}x{}): energies / their maximum", b.name, b.m, b.n);
+  o.xlabel = to_string(parameter);
+  o.ylabel = "normalised value";
+  return plot_curves(png, series, o);
+}
+
+}  // namespace coons

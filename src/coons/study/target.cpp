@@ -1,0 +1,132 @@
+#include "target.h"
+
+#include <fmt/format.h>
+
+#include <cmath>
+#include <sstream>
+#include <stdexcept>
+#include <vector>
+
+#include "coons/io/boundary_io.h"
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+#include "coons/net/coons_net.h"
+
+namespace coons {
+
+using nlohmann::json;
+
+namespace {
+
+std::vector<double> numbers_after_colon(const std::string& spec, size_t count, const std::string& field) {
+  std::vector<double> out;
+  std::stringstream in(spec.substr(spec.find(':') + 1));
+  for (std::string item; std::getline(in, item, ',');) {
+    try {
+      size_t used = 0;
+      out.push_back(std::stod(item, &used));
+      if (used != item.size() || !std::isfinite(out.back())) throw std::invalid_argument(item);
+    } catch (const std::exception&) {
+      throw InputError("command line", field, "'" + item + "' is not a finite number");
+    }
+  }
+  if (out.size() != count)
+    throw InputError("command line", field, fmt::format("'{}' needs {} numbers after the colon", spec, count));
+  return out;
+}
+
+const json& member(const json& object, const char* key, const std::string& source, const std::string& field) {
+  if (!object.is_object()) throw InputError(source, field, "must be an object");
+  const auto it = object.find(key);
+  if (it == object.end()) throw InputError(source, field + "." + key, "missing");
+  return *it;
+}
+
+Eigen::RowVector3d vec3(const json& j, const std::string& source, const std::string& field) {
+  if (!j.is_array() || j.size() != 3) throw InputError(source, field, "must be [x, y, z]");
+  Eigen::RowVector3d p;
+  for (int k = 0; k < 3; ++k) {
+    if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
+      throw InputError(source, field, "must be [x, y, z] of finite numbers");
+    p(k) = j[k].get<double>();
+  }
+  return p;
+}
+
+double positive(const json& j, const std::string& source, const std::string& field) {
+  if (!j.is_number() || !(j.get<double>() > 0) || !std::isfinite(j.get<double>()))
+    throw InputError(source, field, "must be a positive finite number");
+  return j.get<double>();
+}
+
+}  // namespace
+
+std::optional<Target> target_from_json(const json& doc, const std::string& source, int samples) {
+  if (!doc.is_object() || !doc.contains("target")) return std::nullopt;
+  const json& t = doc["target"];
+  if (!t.is_object()) throw InputError(source, "target", "must be an object holding sphere, cylinder or plane");
+  Target out;
+  out.samples = samples;
+  if (t.contains("sphere")) {
+    const json& s = t["sphere"];
+    out.kind = Target::Kind::kSphere;
+    out.point = vec3(member(s, "center", source, "target.sphere"), source, "target.sphere.center");
+    out.radius = positive(member(s, "radius", source, "target.sphere"), source, "target.sphere.radius");
+  } else if (t.contains("cylinder")) {
+    const json& c = t["cylinder"];
+    out.kind = Target::Kind::kCylinder;
+    out.point = vec3(member(c, "point", source, "target.cylinder"), source, "target.cylinder.point");
+    out.direction = vec3(member(c, "axis", source, "target.cylinder"), source, "target.cylinder.axis");
+    out.radius = positive(member(c, "radius", source, "target.cylinder"), source, "target.cylinder.radius");
+  } else if (t.contains("plane")) {
+    const json& p = t["plane"];
+    out.kind = Target::Kind::kPlane;
+    out.point = vec3(member(p, "point", source, "target.plane"), source, "target.plane.point");
+    out.direction = vec3(member(p, "normal", source, "target.plane"), source, "target.plane.normal");
+  } else {
+    throw InputError(source, "target", "must hold sphere, cylinder or plane");
+  }
+  if (out.direction.norm() == 0) throw InputError(source, "target", "axis/normal must not be zero");
+  return out;
+}
+
+std::optional<Target> read_boundary_target(const std::string& path, int samples) {
+  return target_from_json(read_json_file(path), path, samples);
+}
+
+std::optional<Target> resolve_target(const std::string& spec, const std::string& boundary_path, const Boundary& b,
+                                     int samples) {
+  std::optional<Target> t;
+  if (spec.empty()) {
+    t = read_boundary_target(boundary_path, samples);
+  } else if (spec == "hermite-coons" || spec == "coons") {
+    if (spec == "hermite-coons" && (b.m < 3 || b.n < 3))
+      throw InputError(boundary_path, "degree", "--target hermite-coons needs degree >= 3 in both directions");
+    t = Target{};
+    t->net = spec == "coons" ? discrete_coons_net(b) : hermite_coons_net(b);
+  } else if (spec.rfind("sphere:", 0) == 0) {
+    const auto v = numbers_after_colon(spec, 4, "--target");
+    t = Target{Target::Kind::kSphere, {}, {v[0], v[1], v[2]}, {0, 0, 1}, v[3], samples};
+  } else if (spec.rfind("cylinder:", 0) == 0) {
+    const auto v = numbers_after_colon(spec, 7, "--target");
+    t = Target{Target::Kind::kCylinder, {}, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, v[6], samples};
+  } else if (spec.rfind("plane:", 0) == 0) {
+    const auto v = numbers_after_colon(spec, 6, "--target");
+    t = Target{Target::Kind::kPlane, {}, {v[0], v[1], v[2]}, {v[3], v[4], v[5]}, 1, samples};
+  } else {
+    const BoundaryFile f = read_boundary_file(spec);
+    if (!f.net) throw InputError(spec, "net", "a target file must hold a \"net\"");
+    t = Target{};
+    t->net = *f.net;
+  }
+  if (t) {
+    t->samples = samples;
+    if (t->kind != Target::Kind::kNet && t->direction.norm() == 0)
+      throw InputError("command line", "--target", "axis/normal must not be zero");
+    if ((t->kind == Target::Kind::kSphere || t->kind == Target::Kind::kCylinder) && !(t->radius > 0))
+      throw InputError("command line", "--target", "radius must be positive");
+  }
+  return t;
+}
+
+}  // namespace coons

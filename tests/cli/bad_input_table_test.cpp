@@ -1,0 +1,244 @@
+// The bad-input table (issue 10): malformed files, values and option combinations across every
+// command. Each case must exit 2 with exactly one `error:` line that names the file (or "command
+// line"), the field and the reason, print nothing on standard output and leave no file in the
+// output folder.
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <functional>
+#include <nlohmann/json.hpp>
+
+#include "support/fixtures.h"
+
+using namespace coons::test;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+const std::string kData = COONS_DATA_DIR;
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+struct Case {
+  std::string args;     //!< after `coons`; {OUT} is the output folder, {IN} the folder of inputs
+  std::string mention;  //!< the field or file the error line must name
+};
+
+std::string replace_all(std::string s, const std::string& what, const std::string& with) {
+  for (size_t at = s.find(what); at != std::string::npos; at = s.find(what, at + with.size()))
+    s.replace(at, what.size(), with);
+  return s;
+}
+
+}  // namespace
+
+TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, nothing written)", "[cli][bad-input]") {
+  TempDir inputs;
+  const json dome = json::parse(std::ifstream(kData + "/boundaries/dome.json"));
+  auto variant = [&](const std::string& name, const std::function<void(json&)>& edit) {
+    json doc = dome;
+    edit(doc);
+    return "{IN}/" + name;
+  };
+  auto write_variant = [&](const std::string& name, const std::function<void(json&)>& edit) {
+    json doc = dome;
+    edit(doc);
+    inputs.write(name, doc.dump());
+    return "{IN}/" + name;
+  };
+  (void)variant;
+  inputs.write("broken.json", "{\"bottom\": [[0,0,0],");
+  inputs.write("empty.json", "");
+  inputs.write("array.json", "[1, 2, 3]");
+  inputs.write("inf.json",
+               "{\"bottom\":[[0,0,0],[1e999,0,0]],\"top\":[[0,1,0],[1,1,0]],\"left\":[[0,0,0],[0,1,0]],\"right\":[[1,0,"
+               "0],[1,1,0]]}");
+  fs::create_directories(inputs.path / "emptyfolder");
+  inputs.write("notafolder", "x");
+  const std::string notop = write_variant("notop.json", [](json& d) { d.erase("top"); });
+  const std::string longleft = write_variant("long.json", [](json& d) { d["left"].push_back({-1, 1, 0}); });
+  const std::string four = write_variant("four.json", [](json& d) { d["bottom"][1] = {1, 2, 3, 4}; });
+  const std::string corner = write_variant("corner.json", [](json& d) { d["right"][0][2] = 0.5; });
+  const std::string degree = write_variant("degree.json", [](json& d) { d["degree"] = {4, 3}; });
+  const std::string string_point = write_variant("string.json", [](json& d) { d["top"][1][0] = "x"; });
+  const std::string name_number = write_variant("name.json", [](json& d) { d["name"] = 5; });
+  const std::string sphere5 = write_variant("sphere5.json", [](json& d) { d["target"] = {{"sphere", 5}}; });
+  const std::string target_list = write_variant("tlist.json", [](json& d) { d["target"] = json::array({1}); });
+  const std::string no_radius = write_variant("noradius.json", [](json& d) { d["target"]["sphere"].erase("radius"); });
+  const std::string neg_radius = write_variant("negradius.json", [](json& d) { d["target"]["sphere"]["radius"] = -1; });
+  const std::string cone = write_variant("cone.json", [](json& d) { d["target"] = {{"cone", {{"apex", {0, 0, 0}}}}}; });
+  const std::string curves_list = write_variant("curves.json", [](json& d) { d["curves"] = json::array(); });
+  const std::string curves_gap = write_variant("gap.json", [](json& d) {
+    d["curves"]["bottom"] = {{"bezier", {{-1, -1, 0}, {1, -1, 0.5}}}};
+  });
+  const std::string good = q(kData + "/boundaries/dome.json");
+  const std::string pillow = q(kData + "/boundaries/pillow.json");
+  const std::string surface = q(kData + "/surfaces/join_bilinear_a.json");
+  const std::string surface_b = q(kData + "/surfaces/join_bilinear_b.json");
+  inputs.write("badtype.json", "{\"type\": \"teapot\"}");
+  inputs.write("nocorners.json", "{\"type\": \"bilinear\"}");
+
+  const std::vector<Case> cases = {
+      // solve: files
+      {"solve {IN}/missing.json", "missing.json"},
+      {"solve {IN}/broken.json", "broken.json"},
+      {"solve {IN}/empty.json", "empty.json"},
+      {"solve {IN}/array.json", "array.json"},
+      {"solve {IN}/inf.json", "inf.json"},
+      {"solve " + notop, "top"},
+      {"solve " + longleft, "right"},
+      {"solve " + four, "bottom[1]"},
+      {"solve " + corner, "corner"},
+      {"solve " + degree, "degree"},
+      {"solve " + string_point, "top"},
+      {"solve " + name_number, "name"},
+      {"solve " + write_variant("deep.json",
+                                [](json& d) {
+                                  json t = 1;
+                                  for (int k = 0; k < 200; ++k) t = json::array({t});
+                                  d["target"] = t;
+                                }),
+       "deep.json"},
+      {"solve " + write_variant("bigdegree.json",
+                                [](json& d) {
+                                  d["degree"] = {4294967299LL, 4294967299LL};
+                                }),
+       "degree"},
+      {"solve " + write_variant("huge.json", [](json& d) { d["bottom"][1][2] = 1e308; }), "bottom"},
+      {"refit " +
+           write_variant("deeptarget.json",
+                         [](json& d) {
+                           json t = json::object();
+                           for (int k = 0; k < 200; ++k) t = json{{"sphere", t}};
+                           d["target"] = t;
+                         }) +
+           " --degree 4 4 --out {OUT}/r.json",
+       "deeptarget.json"},
+      // solve: options
+      {"solve " + q(kData + "/boundaries/seed_example1.json") + " --method hermite-coons", "degree"},
+      {"solve " + good + " --alpha -0.4 --solver eigen-ldlt", "--alpha"},
+      {"solve " + good + " --solver nonesuch", "--solver"},
+      {"solve " + good + " --method nonesuch", "--method"},
+      {"solve " + good + " --frobnicate", "frobnicate"},
+      {"solve " + good + " --solver gauss-seidel --omega 2.5", "omega"},
+      {"solve " + good + " --corner-tolerance -1", "--corner-tolerance"},
+      {"solve " + good + " --mu -1", "--mu"},
+      {"solve " + good + " --alpha nan", "--alpha"},
+      {"solve " + good + " --max-memory lots", "--max-memory"},
+      {"solve " + good + " --method coons --alpha 0.1", "--alpha"},
+      {"solve " + good + " --alpha 0.1 --mu 2", "--mu"},
+      {"solve " + good + " --tolerance -1 --solver cg", "tolerance"},
+      {"solve", "BOUNDARY"},
+      // solvers
+      {"solvers --frobnicate", "frobnicate"},
+      // export
+      {"export " + good + " --samples 1 --out {OUT}", "--samples"},
+      {"export " + good + " --mtx --method coons --out {OUT}", "--mtx"},
+      {"export " + good + " --prefix ../x --out {OUT}", "--prefix"},
+      {"export " + corner + " --out {OUT}", "corner"},
+      {"export " + good + " --solver nonesuch --out {OUT}", "--solver"},
+      {"export " + good + " --obj --samples 50000 --out {OUT}", "--samples"},
+      {"export " + good + " --out {IN}/notafolder/out", "notafolder"},
+      {"export " + sphere5 + " --method coons --mu 1 --out {OUT}", "--mu"},
+      // batch
+      {"batch {IN}/emptyfolder --out {OUT}", "BOUNDARY"},
+      {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},
+      {"batch " + good + " --alphas -0.1 -0.1 --out {OUT}", "--alphas"},
+      {"batch " + good + " --samples 1 --out {OUT}", "--samples"},
+      {"batch " + good + " " + corner + " --out {OUT}", "corner"},
+      {"batch " + good + " --solver nonesuch --out {OUT}", "--solver"},
+      {"batch " + good + " {IN}/missing.json --out {OUT}", "missing.json"},
+      {"batch " + good + " --out {IN}/notafolder/out", "notafolder"},
+      // search-alpha
+      {"search-alpha " + good + " --objective curvature", "--objective"},
+      {"search-alpha " + good + " --objective '-1*thin_plate'", "--objective"},
+      {"search-alpha " + good + " --objective thin_plate --lower -0.4", "--lower"},
+      {"search-alpha " + good + " --objective thin_plate --upper 0.3", "--upper"},
+      {"search-alpha " + pillow + " --objective target", "--target"},
+      {"search-alpha " + good + " --objective target --target {IN}/nonexistent.json", "nonexistent.json"},
+      {"search-alpha " + good + " --objective target --target sphere:0,0,x,1", "--target"},
+      {"search-alpha " + good + " --objective target --target sphere:0,0,0", "--target"},
+      {"search-alpha " + good + " --objective target --target plane:0,0,0,0,0,0", "--target"},
+      {"search-alpha " + good + " --objective thin_plate --parameter beta", "--parameter"},
+      {"search-alpha " + good + " --objective thin_plate --scan 1", "--scan"},
+      {"search-alpha " + good + " --objective thin_plate --parameter mu --lower 5 --upper 1", "--lower"},
+      {"search-alpha " + sphere5 + " --objective target", "target.sphere"},
+      {"search-alpha " + target_list + " --objective target", "target"},
+      {"search-alpha " + no_radius + " --objective target", "target.sphere.radius"},
+      {"search-alpha " + neg_radius + " --objective target", "target.sphere.radius"},
+      {"search-alpha " + cone + " --objective target", "target"},
+      {"search-alpha " + good + " --objective thin_plate --target coons", "--target"},
+      {"search-alpha " + good, "--objective"},
+      // sweep
+      {"sweep " + good + " --count 1 --out {OUT}", "--count"},
+      {"sweep " + good + " --from 0.1 --to -0.1 --out {OUT}", "--from"},
+      {"sweep " + good + " --from -0.3 --out {OUT}", "--from"},
+      {"sweep " + good + " --parameter beta --out {OUT}", "--parameter"},
+      {"sweep " + good + " --parameter mu --from -1 --out {OUT}", "--from"},
+      {"sweep " + good + " --target sphere:1,2 --out {OUT}", "--target"},
+      {"sweep " + good + " --samples 1 --out {OUT}", "--samples"},
+      {"sweep " + sphere5 + " --out {OUT}", "target.sphere"},
+      {"sweep " + good + " --solver nonesuch --out {OUT}", "--solver"},
+      // study
+      {"study " + good + " --degrees 1 3 --out {OUT}", "--degrees"},
+      {"study " + good + " --degrees 3 300 --out {OUT}", "--degrees"},
+      {"study " + good + " --degrees 6 4 --out {OUT}", "--degrees"},
+      {"study {IN}/emptyfolder --out {OUT}", "BOUNDARY"},
+      {"study " + good + " " + corner + " --degrees 3 4 --out {OUT}", "corner"},
+      {"study " + sphere5 + " --degrees 3 4 --out {OUT}", "target.sphere"},
+      {"study " + curves_list + " --degrees 3 4 --out {OUT}", "curves"},
+      {"study " + curves_gap + " --degrees 3 4 --out {OUT}", "corner"},
+      {"study " + good + " --solver nonesuch --out {OUT}", "--solver"},
+      // refit
+      {"refit " + good + " --degree 0 0 --out {OUT}/r.json", "--degree"},
+      {"refit " + pillow + " --degree 2 2 --out {OUT}/r.json", "curves"},
+      {"refit " + good + " --degree 2001 3 --out {OUT}/r.json", "--degree"},
+      {"refit {IN}/missing.json --degree 4 4 --out {OUT}/r.json", "missing.json"},
+      {"refit " + sphere5 + " --degree 4 4 --out {OUT}/r.json", "target.sphere"},
+      {"refit " + curves_gap + " --degree 4 4 --out {OUT}/r.json", "corner"},
+      {"refit " + good + " --degree 4", "--degree"},
+      // surface
+      {"surface " + surface + " --samples 1 --obj {OUT}/s.obj", "--samples"},
+      {"surface " + surface + " --fit-degree 0 --obj {OUT}/s.obj", "--fit-degree"},
+      {"surface {IN}/badtype.json --obj {OUT}/s.obj", "type"},
+      {"surface {IN}/nocorners.json --obj {OUT}/s.obj", "corners"},
+      {"surface " + surface + " --obj {OUT}/missing/s.obj", "--obj"},
+      {"surface {IN}/missing.json --obj {OUT}/s.obj", "missing.json"},
+      {"surface " + surface + " --sample 100000 --obj {OUT}/s.obj", "--samples"},
+      {"surface " + surface + " --reference {IN}/broken.json --obj {OUT}/s.obj", "broken.json"},
+      // join
+      {"join " + surface + " middle " + surface_b + " left", "FIRST_SIDE"},
+      {"join " + surface + " right " + surface_b + " left --samples 1", "--samples"},
+      {"join {IN}/missing.json right " + surface_b + " left", "missing.json"},
+      {"join {IN}/broken.json right " + surface_b + " left", "broken.json"},
+      // no command, unknown command
+      {"frobnicate", "frobnicate"},
+      {"", "command"},
+  };
+  REQUIRE(cases.size() >= 60);
+  std::map<std::string, int> per_command;
+  for (const Case& c : cases) {
+    TempDir out_dir;
+    const std::string out = (out_dir.path / "out").string();
+    fs::create_directories(out);  // an existing, empty output folder: nothing may appear in it
+    const std::string args = replace_all(replace_all(c.args, "{OUT}", out), "{IN}", inputs.path.string());
+    INFO("coons " << args);
+    const CommandResult r = run_command(std::string(kCoons).append(" ").append(args));
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    // "error: FILE: FIELD: reason" (or "error: command line: ..."): at least file and reason
+    CHECK(std::count(r.err.begin(), r.err.end(), ':') >= 2);
+    CHECK_THAT(r.err, Catch::Contains(c.mention));
+    CHECK(fs::is_empty(out));
+    CHECK(std::distance(fs::directory_iterator(out_dir.path), fs::directory_iterator()) == 1);
+    ++per_command[c.args.substr(0, c.args.find(' '))];
+  }
+  for (const char* command :
+       {"solve", "solvers", "export", "batch", "search-alpha", "sweep", "study", "refit", "surface", "join"})
+    CHECK(per_command[command] >= 1);
+}

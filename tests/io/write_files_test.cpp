@@ -1,0 +1,97 @@
+// Output files: staged, checked, published together or not at all, only inside their folder
+// (coons/io/write_files.h).
+#include "coons/io/write_files.h"
+
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+
+#include "coons/io/input_error.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+namespace fs = std::filesystem;
+
+namespace {
+std::vector<std::string> files_under(const fs::path& root) {
+  std::vector<std::string> out;
+  for (const auto& e : fs::recursive_directory_iterator(root)) out.push_back(fs::relative(e.path(), root).string());
+  std::sort(out.begin(), out.end());
+  return out;
+}
+}  // namespace
+
+TEST_CASE("safe_file_stem: names are data, never paths", "[io]") {
+  CHECK(safe_file_stem("dome") == "dome");
+  CHECK(safe_file_stem("quarter_cylinder-2.v1") == "quarter_cylinder-2.v1");
+  CHECK(safe_file_stem("../escaped") == "_._escaped");
+  CHECK(safe_file_stem("/tmp/x") == "_tmp_x");
+  CHECK(safe_file_stem("a\\b") == "a_b");
+  CHECK(safe_file_stem("line\nbreak\ttab\x01") == "line_break_tab_");
+  CHECK(safe_file_stem("") == "unnamed");
+  CHECK(safe_file_stem(".hidden") == "_hidden");
+  CHECK(safe_file_stem("..") == "_.");
+  CHECK(safe_file_stem("Kegel \xC3\xBC") == "Kegel_\xC3\xBC");  // UTF-8 letters stay
+  CHECK(safe_file_stem("bad \xFF\xFE") == "bad___");            // invalid UTF-8 does not
+  CHECK(safe_file_stem(std::string(1000, 'x')).size() == 80);
+  for (const std::string& name :
+       std::vector<std::string>{"../escaped", "/tmp/x", "a/b", std::string(1, '\0') + "x", std::string(1000, '/')}) {
+    const std::string stem = safe_file_stem(name);
+    CHECK(stem.find('/') == std::string::npos);
+    CHECK(stem != "..");
+    CHECK(stem != ".");
+    CHECK(!stem.empty());
+  }
+}
+
+TEST_CASE("staging_path: unique per call and per process", "[io]") {
+  const std::string a = staging_path("x.obj"), b = staging_path("x.obj");
+  CHECK(a != b);
+  CHECK(a.rfind("x.obj.tmp-", 0) == 0);
+}
+
+TEST_CASE("OutputSet: publishes every file together, or removes files and folders it created", "[io]") {
+  TempDir dir;
+  {
+    OutputSet out((dir.path / "new" / "deeper").string());
+    out.write("a.txt", [](std::ostream& o) { o << "a\n"; });
+    out.write("sub/b.txt", [](std::ostream& o) { o << "b\n"; });
+    CHECK(!fs::exists(dir.path / "new" / "deeper" / "a.txt"));  // staged only
+  }  // no commit: everything goes, the folders it created too
+  CHECK(files_under(dir.path).empty());
+
+  OutputSet out((dir.path / "out").string());
+  out.write("a.txt", [](std::ostream& o) { o << "a\n"; });
+  out.write("sub/b.txt", [](std::ostream& o) { o << "b\n"; });
+  const auto published = out.commit();
+  CHECK(published.size() == 2);
+  CHECK(files_under(dir.path / "out") == std::vector<std::string>{"a.txt", "sub", "sub/b.txt"});
+}
+
+TEST_CASE("OutputSet: names that leave the folder and repeated names are refused", "[io]") {
+  TempDir dir;
+  OutputSet out((dir.path / "out").string());
+  CHECK_THROWS_AS(out.stage("../x.txt"), InputError);
+  CHECK_THROWS_AS(out.stage("/tmp/x.txt"), InputError);
+  CHECK_THROWS_AS(out.stage("a/../../x.txt"), InputError);
+  out.stage("x.txt");
+  CHECK_THROWS_AS(out.stage("x.txt"), InputError);
+  out.rollback();
+  CHECK(files_under(dir.path).empty());
+}
+
+TEST_CASE("OutputSet: an exception inside a write removes what was started", "[io]") {
+  TempDir dir;
+  try {
+    OutputSet out((dir.path / "out").string());
+    out.write("a.txt", [](std::ostream& o) { o << "a\n"; });
+    out.write("b.txt", [](std::ostream& o) {
+      o << "half";
+      throw std::runtime_error("interrupted");
+    });
+    out.commit();
+  } catch (const std::runtime_error&) {
+  }
+  CHECK(files_under(dir.path).empty());
+}

@@ -1,0 +1,130 @@
+// The α study as a library (coons/study/study.h): entries, kinds and reference tables without the CLI.
+#include "coons/study/study.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+#include "coons/net/bernstein.h"
+#include "coons/net/coons_net.h"
+#include "coons/study/provenance.h"
+#include "coons/study/report_markdown.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using nlohmann::json;
+
+namespace {
+
+StudyInput input(const std::string& name, Boundary b, std::optional<Target> target = std::nullopt) {
+  b.name = name;
+  return {name + ".json", b, std::nullopt, std::move(target)};
+}
+
+}  // namespace
+
+TEST_CASE("run_study: two boundaries made in code give their shape, degree-law and reference entries", "[study]") {
+  Target plane;
+  plane.kind = Target::Kind::kPlane;
+  plane.point = {0, 0, 0};
+  plane.direction = {0, 0, 1};
+  const std::vector<StudyInput> inputs = {input("smooth", make_smooth_boundary(3, 3, 7), plane),
+                                          input("wide", make_smooth_boundary(4, 3, 9))};
+  StudyOptions options;
+  options.degrees = {4, 6};
+  options.solver = &backend("eigen-ldlt");
+  std::string why;
+  REQUIRE(options.is_valid(&why));
+  const StudyResult r = run_study(inputs, options);
+
+  REQUIRE(r.shapes.size() == 2);
+  CHECK(r.shapes[0].boundary.name == "smooth");
+  REQUIRE(r.shapes[0].optima.size() == 2);  // thin_plate and e3
+  CHECK(r.shapes[0].optima[0].objective == "thin_plate");
+  CHECK(r.shapes[0].curves.size() == 41);
+  // the Coons value is the objective at α = −1/4: thin plate of the discrete Coons net
+  CHECK(r.shapes[0].optima[0].coons ==
+        Approx(thin_plate_energy(discrete_coons_net(inputs[0].boundary))).epsilon(1e-10));
+  // the degree law: "smooth" (3×3) is elevated to 4 and 6; "wide" (4×3) to 4 and 6 as well
+  REQUIRE(r.laws.size() == 4);
+  CHECK(r.laws[0].boundary == "smooth");
+  CHECK(r.laws[0].cells.size() == 2);
+  CHECK(r.laws[2].boundary == "wide");
+  CHECK(r.laws[2].cells.front().degree == 4);
+  // no curves, so no fit deviations; one target, so one reference table with four rows
+  CHECK(r.fit_deviations.empty());
+  REQUIRE(r.references.size() == 1);
+  CHECK(r.references[0].boundary == "smooth");
+  REQUIRE(r.references[0].rows.size() == 4);
+  CHECK(r.references[0].rows[0].alpha == -0.25);
+  CHECK(r.references[0].rows[0].thin_plate == Approx(r.shapes[0].optima[0].coons).epsilon(1e-10));
+  // the plane z = 0: rms distance of the Coons net's surface to it
+  const ControlNet coons = discrete_coons_net(inputs[0].boundary);
+  CHECK(r.references[0].coons_rms == Approx(rms_distance(coons, plane)).epsilon(1e-12));
+  CHECK(r.references[0].best.value <= r.references[0].coons_rms + 1e-15);
+
+  const json results = study_results_json(r);
+  std::map<std::string, int> kinds;
+  for (const auto& e : results) ++kinds[e["kind"].get<std::string>()];
+  CHECK(kinds["shape"] == 2);
+  CHECK(kinds["degree_law"] == 4);
+  CHECK(kinds["reference_table"] == 1);
+  CHECK(kinds.count("fit_deviation") == 0);
+  for (const auto& e : results)
+    if (e["kind"] == "reference_table") {
+      CHECK(e["rows"].size() == 4);
+      CHECK(e["rows"][1]["alpha"] == -0.2);
+      CHECK(e["coons_rms_target"].get<double>() == Approx(r.references[0].coons_rms));
+    }
+
+  // the report prints the reference table of any boundary with a target, by its own name
+  StudyFigures figures;
+  for (size_t k = 0; k < r.shapes.size(); ++k) {
+    figures.energies.push_back({"figures/x.png", "not drawn in this test"});
+    figures.nets.push_back({"figures/y.png", "not drawn in this test"});
+  }
+  figures.alpha_vs_degree = {"figures/a.png", "not drawn"};
+  figures.mu_vs_degree = {"figures/m.png", "not drawn"};
+  const std::string md = study_report_markdown(r, current_provenance("test"), figures);
+  CHECK_THAT(md, Catch::Contains("### smooth (3×3)"));
+  CHECK_THAT(md, Catch::Contains("rms distance to the target"));
+  CHECK_THAT(md, !Catch::Contains("### wide (4×3)"));
+}
+
+TEST_CASE("StudyOptions: degrees out of range, repeated or unordered are refused", "[study]") {
+  StudyOptions o;
+  std::string why;
+  CHECK(o.is_valid(&why));
+  o.degrees = {1, 4};
+  CHECK(!o.is_valid(&why));
+  CHECK_THAT(why, Catch::Contains("[2, 200]"));
+  o.degrees = {6, 4};
+  CHECK(!o.is_valid(&why));
+  o.degrees = {4, 4};
+  CHECK(!o.is_valid(&why));
+}
+
+TEST_CASE("shape_file_stems: repeated names get their degree, unsafe names are made safe", "[study]") {
+  StudyResult r;
+  for (auto [name, m] : {std::pair<std::string, int>{"dome", 3}, {"dome", 6}, {"../escaped", 3}, {"dome", 3}}) {
+    ShapeEntry s;
+    s.boundary = make_smooth_boundary(m, m, 1);
+    s.boundary.name = name;
+    r.shapes.push_back(s);
+  }
+  const auto stems = shape_file_stems(r);
+  CHECK(stems[0] == "dome");
+  CHECK(stems[1] == "dome-6x6");
+  CHECK(stems[2].find('/') == std::string::npos);
+  CHECK(stems[3] != stems[0]);
+  CHECK(stems[3] != stems[1]);
+}
+
+TEST_CASE("utc_iso8601: a fixed time point in ISO 8601, UTC", "[study]") {
+  const auto t = std::chrono::system_clock::from_time_t(1795000000);  // 2026-11-18T11:06:40Z
+  CHECK(utc_iso8601(t) == "2026-11-18T11:06:40Z");
+  const Provenance p = current_provenance("coons study x");
+  CHECK(p.command_line == "coons study x");
+  CHECK(p.date.size() == 20);
+  CHECK(!p.version.empty());
+}
