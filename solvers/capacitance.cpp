@@ -1,9 +1,8 @@
 #include "capacitance.h"
 
+#include <Eigen/LU>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/LU>
 
 namespace coons::solvers::detail {
 

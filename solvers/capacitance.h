@@ -8,9 +8,8 @@
 // discrete Poisson equation on irregular regions, SIAM J. Numer. Anal. 8 (1971).
 #pragma once
 
-#include <vector>
-
 #include <Eigen/Core>
+#include <vector>
 
 #include "grid_stencil.h"
 #include "sine_transform.h"
@@ -24,8 +23,7 @@ class Capacitance {
   void prepare(int rows, unsigned planning);
   //! The blocks G_p⁻¹ for the modes y_q = y[q] (L = y.size()) and the extra columns' sine
   //! vectors sine_extra[m] = S·e_{C+m}; false when a block or an eigenvalue is singular.
-  bool factor(const GridStencil& s, const std::vector<double>& y,
-              const std::vector<std::vector<double>>& sine_extra);
+  bool factor(const GridStencil& s, const std::vector<double>& y, const std::vector<std::vector<double>>& sine_extra);
   //! U = −(2/(R+1)) S_R [G_p⁻¹ (S_R V)_p], both rows × #extra, row-major.
   void sources(const std::vector<double>& V, std::vector<double>& U);
 

@@ -1,11 +1,11 @@
 // dst: X = S (S B ./ λ) / (2(rows+1)·2(cols+1)), S the 2-D DST-I (FFTW RODFT00 × RODFT00).
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
 // J. ACM 12 (1965); eigenvalues from G. Farin & D. Hansford, Discrete Coons patches, CAGD 16 (1999).
+#include <fftw3.h>
+
 #include <cmath>
 #include <string>
 #include <vector>
-
-#include <fftw3.h>
 
 #include "sine_transform.h"
 #include "structured_solvers.h"
@@ -16,10 +16,9 @@ namespace {
 using detail::AlignedBuffer;
 
 // o = σ·tb + l·τ + r·τ' (then ∘ inv when given): one row of the ring right-hand side's transform.
-COONS_VECTOR_CLONES void ring_row(double sigma, const double* __restrict tb, double l,
-                                  const double* __restrict tau, double r,
-                                  const double* __restrict tau_signed,
-                                  const double* __restrict inv, double* __restrict o, int n) {
+COONS_VECTOR_CLONES void ring_row(double sigma, const double* __restrict tb, double l, const double* __restrict tau,
+                                  double r, const double* __restrict tau_signed, const double* __restrict inv,
+                                  double* __restrict o, int n) {
   if (inv)
     for (int q = 0; q < n; ++q) o[q] = (sigma * tb[q] + l * tau[q] + r * tau_signed[q]) * inv[q];
   else
@@ -71,8 +70,7 @@ class DstSolver : public detail::StructuredSolver {
     col_ = AlignedBuffer(std::size_t(R_));
     inverse_eigenvalues_.assign(n, 0.0);
     const unsigned planning = detail::fft_planning(options_);
-    plan_2d_ = FftwPlan(fftw_plan_r2r_2d(R_, C_, grid_.data(), grid_.data(), FFTW_RODFT00,
-                                         FFTW_RODFT00, planning));
+    plan_2d_ = FftwPlan(fftw_plan_r2r_2d(R_, C_, grid_.data(), grid_.data(), FFTW_RODFT00, FFTW_RODFT00, planning));
     plan_row_ = FftwPlan(fftw_plan_r2r_1d(C_, row_.data(), row_.data(), FFTW_RODFT00, planning));
     plan_col_ = FftwPlan(fftw_plan_r2r_1d(R_, col_.data(), col_.data(), FFTW_RODFT00, planning));
     if (!plan_2d_ || !plan_row_ || !plan_col_) {
@@ -106,15 +104,14 @@ class DstSolver : public detail::StructuredSolver {
       }
     }
     if (!(smallest > kSingularEigenvalue * largest)) {
-      summary.message = "smallest |eigenvalue| " + std::to_string(smallest) + " of largest " +
-                        std::to_string(largest) + ": the stencil is singular";
+      summary.message = "smallest |eigenvalue| " + std::to_string(smallest) + " of largest " + std::to_string(largest) +
+                        ": the stencil is singular";
       return SolveStatus::kSingular;
     }
     return SolveStatus::kSuccess;
   }
 
-  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
-                       SolveSummary& summary) override {
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
     X.resize(B.rows(), 3);
     for (int c = 0; c < 3; ++c) {
       divide_and_invert(X.col(c).data(), forward(B.col(c).data(), true));
@@ -177,8 +174,8 @@ class DstSolver : public detail::StructuredSolver {
     for (int p = 0; p < R_; ++p) {
       const double* tb = p % 2 ? minus.data() : plus.data();
       const double* inv = divided ? inverse_eigenvalues_.data() + std::size_t(p) * C_ : nullptr;
-      ring_row(edge_i_[std::size_t(p)], tb, left_[std::size_t(p)], edge_j_.data(),
-               right_[std::size_t(p)], signed_edge.data(), inv, out + std::size_t(p) * C_, C_);
+      ring_row(edge_i_[std::size_t(p)], tb, left_[std::size_t(p)], edge_j_.data(), right_[std::size_t(p)],
+               signed_edge.data(), inv, out + std::size_t(p) * C_, C_);
     }
     return divided;
   }
@@ -202,9 +199,8 @@ class DstSolver : public detail::StructuredSolver {
   std::vector<std::vector<std::vector<double>>> hat_;  // a sweep's transformed basis
 };
 
-SolveStatus DstSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis,
-                                      const std::vector<double>& weights, Eigen::MatrixX3d& X,
-                                      SolveSummary& summary) {
+SolveStatus DstSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                                      Eigen::MatrixX3d& X, SolveSummary& summary) {
   const Eigen::Index n = Eigen::Index(R_) * C_;
   const std::size_t used = weights.size();
   if (hat_.size() < used || (!hat_.empty() && hat_[0][0].size() != std::size_t(n))) {

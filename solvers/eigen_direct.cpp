@@ -1,11 +1,10 @@
 #include "eigen_direct.h"
 
-#include <cmath>
-#include <string>
-
 #include <Eigen/OrderingMethods>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#include <cmath>
+#include <string>
 
 namespace coons::solvers {
 namespace {
@@ -88,8 +87,7 @@ class EigenDirect : public LinearSolver {
     return judge(factor_, summary);
   }
 
-  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
-                       SolveSummary& summary) override {
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
     X = factor_.solve(B);
     summary.iterations = 1;
     if (factor_.info() != Eigen::Success) {

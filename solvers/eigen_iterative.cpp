@@ -1,11 +1,10 @@
 #include "eigen_iterative.h"
 
+#include <Eigen/IterativeLinearSolvers>
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <type_traits>
-
-#include <Eigen/IterativeLinearSolvers>
 
 namespace coons::solvers {
 
@@ -47,8 +46,10 @@ class EigenIterative : public LinearSolver {
     if (definite_only_ && stencil_not_definite(op, summary)) return SolveStatus::kNotPositiveDefinite;
     krylov_.setTolerance(options_.tolerance);
     limit_ = iteration_limit(options_, op.matrix->rows(), 20, 2e10);
-    if constexpr (kAnalyzeApart) krylov_.factorize(*op.matrix);  // the preconditioner's numeric phase
-    else krylov_.compute(*op.matrix);
+    if constexpr (kAnalyzeApart)
+      krylov_.factorize(*op.matrix);  // the preconditioner's numeric phase
+    else
+      krylov_.compute(*op.matrix);
     if (krylov_.info() != Eigen::Success) {
       summary.message = "the preconditioner could not be computed";
       return definite_only_ ? SolveStatus::kNotPositiveDefinite : SolveStatus::kSingular;
@@ -98,8 +99,7 @@ class EigenIterative : public LinearSolver {
   }
 
  private:
-  static constexpr bool kAnalyzeApart =
-      !std::is_same_v<typename Krylov::Preconditioner, Eigen::IncompleteLUT<double>>;
+  static constexpr bool kAnalyzeApart = !std::is_same_v<typename Krylov::Preconditioner, Eigen::IncompleteLUT<double>>;
   std::string name_;
   bool definite_only_;
   int limit_ = 0;
@@ -108,14 +108,23 @@ class EigenIterative : public LinearSolver {
 
 using Cg = Eigen::ConjugateGradient<SpMat, Eigen::Lower | Eigen::Upper, Eigen::IdentityPreconditioner>;
 using CgJacobi = Eigen::ConjugateGradient<SpMat, Eigen::Lower | Eigen::Upper, Eigen::DiagonalPreconditioner<double>>;
-using CgIc = Eigen::ConjugateGradient<SpMat, Eigen::Lower, Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>>;
+using CgIc = Eigen::ConjugateGradient<SpMat, Eigen::Lower,
+                                      Eigen::IncompleteCholesky<double, Eigen::Lower, Eigen::AMDOrdering<int>>>;
 using Bicgstab = Eigen::BiCGSTAB<SpMat, Eigen::IncompleteLUT<double>>;
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_cg(const SolverOptions& o) { return std::make_unique<EigenIterative<Cg>>("cg", true, o); }
-std::unique_ptr<LinearSolver> make_cg_jacobi(const SolverOptions& o) { return std::make_unique<EigenIterative<CgJacobi>>("cg-jacobi", true, o); }
-std::unique_ptr<LinearSolver> make_cg_ic(const SolverOptions& o) { return std::make_unique<EigenIterative<CgIc>>("cg-ic", true, o); }
-std::unique_ptr<LinearSolver> make_bicgstab(const SolverOptions& o) { return std::make_unique<EigenIterative<Bicgstab>>("bicgstab", false, o); }
+std::unique_ptr<LinearSolver> make_cg(const SolverOptions& o) {
+  return std::make_unique<EigenIterative<Cg>>("cg", true, o);
+}
+std::unique_ptr<LinearSolver> make_cg_jacobi(const SolverOptions& o) {
+  return std::make_unique<EigenIterative<CgJacobi>>("cg-jacobi", true, o);
+}
+std::unique_ptr<LinearSolver> make_cg_ic(const SolverOptions& o) {
+  return std::make_unique<EigenIterative<CgIc>>("cg-ic", true, o);
+}
+std::unique_ptr<LinearSolver> make_bicgstab(const SolverOptions& o) {
+  return std::make_unique<EigenIterative<Bicgstab>>("bicgstab", false, o);
+}
 
 }  // namespace coons::solvers

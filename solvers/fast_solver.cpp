@@ -84,8 +84,10 @@ class FastSolver : public detail::StructuredSolver {
     y_.resize(L);
     for (int q = 0; q < L_; ++q) y_[std::size_t(q)] = std::cos(M_PI * (q + 1) / (L_ + 1));
     sine_column(0, sine_e0_);
-    if (C_ >= 2) sine_column(C_ - 1, sine_e1_);
-    else sine_e1_.assign(L, 0.0);  // a row of one value has no second end
+    if (C_ >= 2)
+      sine_column(C_ - 1, sine_e1_);
+    else
+      sine_e1_.assign(L, 0.0);  // a row of one value has no second end
     sine_extra_.assign(std::size_t(extra_), {});
     for (int m = 0; m < extra_; ++m) sine_column(C_ + m, sine_extra_[std::size_t(m)]);
     unit_e0_.assign(std::size_t(C_), 0.0);
@@ -123,8 +125,7 @@ class FastSolver : public detail::StructuredSolver {
     return status;
   }
 
-  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
-                       SolveSummary& summary) override {
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
     summary.iterations = 1;
     if (path_ == Path::kDst) {
       const SolveSummary inner = dst_->solve(B, X);
@@ -193,12 +194,12 @@ class FastSolver : public detail::StructuredSolver {
       if (slot >= 0)
         detail::eliminate_dense(f.values.data() + std::size_t(slot) * L, l, p, y, L_);
       else
-        detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data(),
-                         sine_e1_.data(), l, p, y, L_);
+        detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data(), sine_e1_.data(), l,
+                                 p, y, L_);
       if (const double* u = sources[std::size_t(c)])
         for (int m = 0; m < extra_; ++m)
           detail::add_scaled(u[std::size_t(i) * std::size_t(extra_) + std::size_t(m)],
-                     sine_extra_[std::size_t(m)].data(), y, L_);
+                             sine_extra_[std::size_t(m)].data(), y, L_);
     };
     for (int i = 0; i < R_; ++i) {
       if (i > 0) pivots_for(i - 1);
@@ -278,9 +279,9 @@ class FastSolver : public detail::StructuredSolver {
   std::vector<double> y_, sine_e0_, sine_e1_, unit_e0_, unit_e1_;
   std::vector<std::vector<double>> sine_extra_;
   AlignedBuffer row_;
-  ModePivots modes_;         // the transform path's tridiagonal systems, one per mode
-  Capacitance capacitance_;  // the widened grid's sources
-  KroneckerSolve kronecker_; // the Kronecker path
+  ModePivots modes_;          // the transform path's tridiagonal systems, one per mode
+  Capacitance capacitance_;   // the widened grid's sources
+  KroneckerSolve kronecker_;  // the Kronecker path
   std::array<AlignedBuffer, 3> running_, forward_, block_;
   // Rows of forward_ (used when L > C) start at multiples of 64 bytes.
   [[nodiscard]] std::size_t forward_stride() const { return (std::size_t(L_) + 7) / 8 * 8; }
@@ -288,9 +289,8 @@ class FastSolver : public detail::StructuredSolver {
   std::vector<std::array<RowForm, 3>> physical_, transformed_;  // a sweep's basis, split by rows
 };
 
-SolveStatus FastSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis,
-                                       const std::vector<double>& w, Eigen::MatrixX3d& X,
-                                       SolveSummary& summary) {
+SolveStatus FastSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& w,
+                                       Eigen::MatrixX3d& X, SolveSummary& summary) {
   const Eigen::Index n = Eigen::Index(R_) * C_;
   const std::size_t used = w.size();
   summary.iterations = 1;
@@ -320,8 +320,8 @@ SolveStatus FastSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basi
   for (int c = 0; c < 3; ++c) {
     std::vector<const RowForm*> parts;
     for (std::size_t r = 0; r < used; ++r) parts.push_back(&forms_of_basis[r][std::size_t(c)]);
-    forms[std::size_t(c)] = kron ? detail::combine(parts, w, R_, unit_e0_, unit_e1_)
-                                 : detail::combine(parts, w, R_, sine_e0_, sine_e1_);
+    forms[std::size_t(c)] =
+        kron ? detail::combine(parts, w, R_, unit_e0_, unit_e1_) : detail::combine(parts, w, R_, sine_e0_, sine_e1_);
   }
   if (!kron) {
     solve_transform(forms, X);

@@ -1,9 +1,8 @@
 #include "gmres.h"
 
+#include <Eigen/IterativeLinearSolvers>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/IterativeLinearSolvers>
 
 namespace coons::solvers {
 
@@ -44,8 +43,10 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
     g[0] = beta;
     int j = 0;
     for (; j < k && out.iterations < options.iteration.max_iterations; ++j) {
-      if (precondition) precondition(V[std::size_t(j)], Z[std::size_t(j)]);
-      else Z[std::size_t(j)] = V[std::size_t(j)];
+      if (precondition)
+        precondition(V[std::size_t(j)], Z[std::size_t(j)]);
+      else
+        Z[std::size_t(j)] = V[std::size_t(j)];
       apply(Z[std::size_t(j)], w);
       for (int i = 0; i <= j; ++i) {  // modified Gram–Schmidt
         H(i, j) = w.dot(V[std::size_t(i)]);
@@ -107,14 +108,14 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
   out.relative_residual = rel;
   if (out.status == SolveStatus::kSuccess && rel > tol) {
     out.status = SolveStatus::kNotConverged;
-    out.message = "relative residual " + std::to_string(rel) + " after " +
-                  std::to_string(out.iterations) + " iterations";
+    out.message =
+        "relative residual " + std::to_string(rel) + " after " + std::to_string(out.iterations) + " iterations";
   }
   return out;
 }
 
-VectorMap ilut_preconditioner(const Eigen::SparseMatrix<double>& A, std::string* message,
-                              double drop_tolerance, int fill_factor) {
+VectorMap ilut_preconditioner(const Eigen::SparseMatrix<double>& A, std::string* message, double drop_tolerance,
+                              int fill_factor) {
   auto ilu = std::make_shared<Eigen::IncompleteLUT<double>>();
   ilu->setDroptol(drop_tolerance);
   ilu->setFillfactor(fill_factor);

@@ -10,12 +10,11 @@
 // Sparse Linear Systems, 2nd ed., SIAM (2003), §9.3.2.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
 #include <string>
-
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
 
 #include "iteration_summary.h"
 
@@ -24,7 +23,7 @@ namespace coons::solvers {
 using VectorMap = std::function<void(const Eigen::VectorXd& in, Eigen::VectorXd& out)>;
 
 struct GmresOptions {
-  int restart = 50;  //!< k: Krylov vectors kept before a restart
+  int restart = 50;                              //!< k: Krylov vectors kept before a restart
   IterationOptions iteration{1e-10, 1000, 1e8};  //!< tolerance and limit on total inner iterations
 
   bool is_valid(std::string* why) const;

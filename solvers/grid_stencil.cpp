@@ -113,8 +113,7 @@ void refill_stencil_matrix(const GridStencil& s, Eigen::SparseMatrix<double>& A)
   double* value = A.valuePtr();
   Eigen::Index pos = 0;
   for (int i = 0; i < s.rows; ++i)
-    for (int j = 0; j < s.cols; ++j)
-      for_each_in_column(s, i, j, [&](Eigen::Index, double w) { value[pos++] = w; });
+    for (int j = 0; j < s.cols; ++j) for_each_in_column(s, i, j, [&](Eigen::Index, double w) { value[pos++] = w; });
 }
 
 }  // namespace coons::solvers

@@ -33,8 +33,10 @@ bool KroneckerSolve::factor(const GridStencil& s) {
 }
 
 void KroneckerSolve::solve(const RowForm& f, const double* b, double* x) {
-  if (int(f.dense_rows.size()) <= kMaxRank) solve_rank(f, x);
-  else solve_dense(b, x);
+  if (int(f.dense_rows.size()) <= kMaxRank)
+    solve_rank(f, x);
+  else
+    solve_dense(b, x);
 }
 
 void KroneckerSolve::solve_rank(const RowForm& f, double* x) {

@@ -1,7 +1,7 @@
 #include "linear_solver.h"
 
-#include <chrono>
 #include <algorithm>
+#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <limits>
@@ -13,26 +13,40 @@ namespace coons::solvers {
 
 const char* to_string(SolveStatus status) {
   switch (status) {
-    case SolveStatus::kSuccess: return "success";
-    case SolveStatus::kNotConverged: return "not_converged";
-    case SolveStatus::kDiverged: return "diverged";
-    case SolveStatus::kNotPositiveDefinite: return "not_positive_definite";
-    case SolveStatus::kSingular: return "singular";
-    case SolveStatus::kNotApplicable: return "not_applicable";
-    case SolveStatus::kFailure: return "failure";
+    case SolveStatus::kSuccess:
+      return "success";
+    case SolveStatus::kNotConverged:
+      return "not_converged";
+    case SolveStatus::kDiverged:
+      return "diverged";
+    case SolveStatus::kNotPositiveDefinite:
+      return "not_positive_definite";
+    case SolveStatus::kSingular:
+      return "singular";
+    case SolveStatus::kNotApplicable:
+      return "not_applicable";
+    case SolveStatus::kFailure:
+      return "failure";
   }
   return "failure";
 }
 
 const char* to_string(Ordering ordering) {
   switch (ordering) {
-    case Ordering::kAuto: return "auto";
-    case Ordering::kNatural: return "natural";
-    case Ordering::kAmd: return "amd";
-    case Ordering::kColamd: return "colamd";
-    case Ordering::kMetis: return "metis";
-    case Ordering::kNestedDissection: return "nested-dissection";
-    case Ordering::kCholmodDefault: return "cholmod-default";
+    case Ordering::kAuto:
+      return "auto";
+    case Ordering::kNatural:
+      return "natural";
+    case Ordering::kAmd:
+      return "amd";
+    case Ordering::kColamd:
+      return "colamd";
+    case Ordering::kMetis:
+      return "metis";
+    case Ordering::kNestedDissection:
+      return "nested-dissection";
+    case Ordering::kCholmodDefault:
+      return "cholmod-default";
   }
   return "auto";
 }
@@ -53,9 +67,9 @@ bool SolverOptions::is_valid(std::string* why) const {
 
 std::string SolveSummary::brief_report() const {
   std::ostringstream out;
-  out << solver << ": " << to_string(status) << ", " << iterations << " iteration"
-      << (iterations == 1 ? "" : "s") << ", residual " << format_g(relative_residual) << ", "
-      << analyze_seconds + factorize_seconds + solve_seconds << " s";
+  out << solver << ": " << to_string(status) << ", " << iterations << " iteration" << (iterations == 1 ? "" : "s")
+      << ", residual " << format_g(relative_residual) << ", " << analyze_seconds + factorize_seconds + solve_seconds
+      << " s";
   if (!message.empty()) out << " (" << message << ")";
   return out.str();
 }
@@ -126,8 +140,7 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
   if (B.rows() != op_.size()) {
     SolveSummary bad = summary_;
     bad.status = SolveStatus::kFailure;
-    bad.message = "right-hand side has " + std::to_string(B.rows()) + " rows, operator " +
-                  std::to_string(op_.size());
+    bad.message = "right-hand side has " + std::to_string(B.rows()) + " rows, operator " + std::to_string(op_.size());
     return bad;
   }
   summary_.message.clear();
@@ -157,8 +170,8 @@ void LinearSolver::judge_solution(const Eigen::MatrixX3d& B, const Eigen::Matrix
   }
 }
 
-void LinearSolver::judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                                     const Eigen::MatrixX3d& X, SolveSummary& summary) const {
+void LinearSolver::judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X,
+                                     SolveSummary& summary) const {
   if (!options_.compute_residual) return;
   const double r = relative_residual(op, B, X);
   if (!std::isfinite(r)) {
@@ -172,8 +185,7 @@ void LinearSolver::judge_exact_solve(const LinearOperator& op, const Eigen::Matr
   summary.relative_residual = r;
   if (summary.ok() && r > options_.singular_residual) {
     summary.status = SolveStatus::kSingular;
-    summary.message = "true residual " + format_g(r) +
-                      " after an exact solve: the operator is numerically singular";
+    summary.message = "true residual " + format_g(r) + " after an exact solve: the operator is numerically singular";
   }
 }
 
@@ -193,19 +205,18 @@ bool LinearSolver::out_of_time() const {
   return options_.time_limit_seconds > 0 && seconds_since(solve_start_) >= options_.time_limit_seconds;
 }
 
-SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::MatrixX3d& X,
-                                           SolveSummary& summary) const {
+SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::MatrixX3d& X, SolveSummary& summary) const {
   summary.iterations = end.iterations;
   const bool overflow = !std::isfinite(end.residual);
   summary.relative_residual = overflow ? std::numeric_limits<double>::max() : end.residual;
   if (end.converged && !overflow) return SolveStatus::kSuccess;
-  const std::string after = " after " + std::to_string(end.iterations) + " iteration" +
-                            (end.iterations == 1 ? "" : "s");
+  const std::string after =
+      " after " + std::to_string(end.iterations) + " iteration" + (end.iterations == 1 ? "" : "s");
   if (end.diverged || overflow || end.residual > end.initial) {
     X.setZero();
     summary.message = "diverged: the residual grew from " + format_g(end.initial) + " to " +
-                      (overflow ? std::string("overflow (reported as the largest double)")
-                                : format_g(end.residual)) + after;
+                      (overflow ? std::string("overflow (reported as the largest double)") : format_g(end.residual)) +
+                      after;
     return SolveStatus::kDiverged;
   }
   summary.message = "not converged: residual " + format_g(end.residual) + after + " (" +
@@ -215,8 +226,7 @@ SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::Matri
   return SolveStatus::kNotConverged;
 }
 
-SolveSummary LinearSolver::compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                                             Eigen::MatrixX3d& X) {
+SolveSummary LinearSolver::compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
   if (analyze(op) != SolveStatus::kSuccess || factorize(op) != SolveStatus::kSuccess) {
     X.setZero(B.rows(), 3);
     return summary_;
@@ -231,14 +241,13 @@ Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const s
   return B;
 }
 
-SolveStatus LinearSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis,
-                                         const std::vector<double>& weights, Eigen::MatrixX3d& X,
-                                         SolveSummary& summary) {
+SolveStatus LinearSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
+                                         Eigen::MatrixX3d& X, SolveSummary& summary) {
   return do_solve(combine_rhs(basis, weights, op_.size()), X, summary);
 }
 
-void LinearSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
-                         const std::vector<SweepMember>& members, const SweepSink& sink) {
+void LinearSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis, const std::vector<SweepMember>& members,
+                         const SweepSink& sink) {
   do_begin_sweep();
   Eigen::MatrixX3d X;
   for (std::size_t k = 0; k < members.size(); ++k) {
@@ -260,8 +269,7 @@ void LinearSolver::sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis,
   }
 }
 
-double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                         const Eigen::MatrixX3d& X) {
+double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X) {
   if (B.rows() == 0) return 0;
   Eigen::MatrixXd AX;
   if (op.matrix) {

@@ -8,15 +8,14 @@
 // Backends never throw for numerical trouble: a failure is a status in the summary.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <chrono>
 #include <functional>
 #include <memory>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
 
 #include "grid_stencil.h"
 
@@ -26,12 +25,12 @@ struct StencilOperator;  // stencil_operator.h: 3×3 or 5×5 stencils with a fre
 
 enum class SolveStatus {
   kSuccess,
-  kNotConverged,        //!< iteration limit reached before the tolerance
-  kDiverged,            //!< an iteration grew without bound (e.g. Jacobi for α < 0)
-  kNotPositiveDefinite, //!< a Cholesky-type method met a non-positive pivot
-  kSingular,            //!< the operator is singular (to working precision)
-  kNotApplicable,       //!< the backend cannot handle this operator (e.g. needs a grid stencil)
-  kFailure,             //!< anything else, explained by the message
+  kNotConverged,         //!< iteration limit reached before the tolerance
+  kDiverged,             //!< an iteration grew without bound (e.g. Jacobi for α < 0)
+  kNotPositiveDefinite,  //!< a Cholesky-type method met a non-positive pivot
+  kSingular,             //!< the operator is singular (to working precision)
+  kNotApplicable,        //!< the backend cannot handle this operator (e.g. needs a grid stencil)
+  kFailure,              //!< anything else, explained by the message
 };
 
 //! "success", "not_converged", "diverged", "not_positive_definite", "singular", ...
@@ -43,7 +42,7 @@ enum class Ordering { kAuto, kNatural, kAmd, kColamd, kMetis, kNestedDissection,
 const char* to_string(Ordering ordering);
 
 struct SolverOptions {
-  double tolerance = 1e-12;     //!< iterative: stop at ‖Ax − b‖/‖b‖ ≤ tolerance
+  double tolerance = 1e-12;  //!< iterative: stop at ‖Ax − b‖/‖b‖ ≤ tolerance
   //! iterative: the iteration limit; 0 is automatic and always finite (see iteration_limit()).
   int max_iterations = 0;
   //! iterative: stop after this many seconds of one solve (0: no time limit; the iteration
@@ -55,10 +54,10 @@ struct SolverOptions {
   //! process-wide wisdom, which later estimated plans of the same size reuse: a program that
   //! wants identical results should not mix the two modes.)
   bool measure_fft_plans = false;
-  double sor_omega = 1.0;       //!< gauss-seidel: over-relaxation factor in (0, 2)
+  double sor_omega = 1.0;               //!< gauss-seidel: over-relaxation factor in (0, 2)
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
-  bool compute_residual = true; //!< compute the true residual after solve (costs one apply)
-  double singular_residual = 1e-6; //!< exact solvers: a larger true residual means "singular"
+  bool compute_residual = true;         //!< compute the true residual after solve (costs one apply)
+  double singular_residual = 1e-6;      //!< exact solvers: a larger true residual means "singular"
 
   //! True when the options are usable; otherwise explains why in *why.
   bool is_valid(std::string* why) const;
@@ -67,11 +66,11 @@ struct SolverOptions {
 struct SolveSummary {
   std::string solver;  //!< registry name of the backend
   SolveStatus status = SolveStatus::kSuccess;
-  std::string message; //!< empty on success, otherwise why
-  int iterations = 0;  //!< 1 for direct and transform solvers
+  std::string message;           //!< empty on success, otherwise why
+  int iterations = 0;            //!< 1 for direct and transform solvers
   double relative_residual = 0;  //!< max over columns of ‖A x − b‖ / ‖b‖ (‖b‖ = 0: ‖A x‖)
   double analyze_seconds = 0, factorize_seconds = 0, solve_seconds = 0;
-  std::string ordering;  //!< fill-reducing ordering used, if any
+  std::string ordering;      //!< fill-reducing ordering used, if any
   long long factor_nnz = 0;  //!< non-zeros of the factor(s), 0 when there is none
 
   [[nodiscard]] bool ok() const { return status == SolveStatus::kSuccess; }
@@ -109,8 +108,7 @@ class LinearSolver {
   //! X = A⁻¹ B for the last factorized operator. B is left unchanged.
   SolveSummary solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X);
   //! analyze + factorize + solve.
-  SolveSummary compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                                 Eigen::MatrixX3d& X);
+  SolveSummary compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X);
 
   //! One member of a sweep: an operator (same grid and pattern for every member) and the
   //! weights of its right-hand side in the sweep's basis: B = Σ_r rhs_weights[r] · basis[r].
@@ -118,8 +116,7 @@ class LinearSolver {
     LinearOperator op;
     std::vector<double> rhs_weights;
   };
-  using SweepSink = std::function<void(std::size_t member, const Eigen::MatrixX3d& X,
-                                       const SolveSummary& summary)>;
+  using SweepSink = std::function<void(std::size_t member, const Eigen::MatrixX3d& X, const SolveSummary& summary)>;
 
   //! Solve a family of systems that share everything but the values (e.g. an α sweep, whose
   //! right-hand side is affine in α), reusing what does not depend on the values: the analysis
@@ -139,8 +136,7 @@ class LinearSolver {
   virtual SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) = 0;
   //! Fills X; sets iterations (and may set the status). Iterative backends end with
   //! finish_iteration(), which gives every one the same verdict and message.
-  virtual SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
-                               SolveSummary& summary) = 0;
+  virtual SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) = 0;
 
   //! X for a factorized sweep member whose right-hand side is Σ_r weights[r]·basis[r] (weights
   //! cut to the basis size). The default forms it and calls do_solve(); structured backends
@@ -158,12 +154,12 @@ class LinearSolver {
   //! How an iteration ended, for finish_iteration().
   struct IterationEnd {
     int iterations = 0;
-    int limit = 0;               //!< the iteration limit in force
-    double initial = 1;          //!< relative residual at the start (x = 0: 1)
-    double residual = 1;         //!< relative residual reached (estimate or true)
-    bool converged = false;      //!< the backend's own test passed
-    bool timed_out = false;      //!< stopped by options.time_limit_seconds
-    bool diverged = false;       //!< stopped because the residual grew without bound
+    int limit = 0;           //!< the iteration limit in force
+    double initial = 1;      //!< relative residual at the start (x = 0: 1)
+    double residual = 1;     //!< relative residual reached (estimate or true)
+    bool converged = false;  //!< the backend's own test passed
+    bool timed_out = false;  //!< stopped by options.time_limit_seconds
+    bool diverged = false;   //!< stopped because the residual grew without bound
   };
   //! The one verdict of every iterative backend: success when converged; kDiverged when the
   //! residual grew (1e8-fold, to overflow, or ends above its start) — X is then set to zero;
@@ -207,7 +203,6 @@ Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const s
                              Eigen::Index rows);
 
 //! max over columns of ‖A x − b‖/‖b‖, with A from the matrix or, when absent, the stencil.
-double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B,
-                         const Eigen::MatrixX3d& X);
+double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
 
 }  // namespace coons::solvers

@@ -3,7 +3,6 @@
 #include <cmath>
 #include <string>
 
-
 namespace coons::solvers {
 namespace {
 
@@ -34,9 +33,7 @@ inline double neighbour_sum(const GridStencil& s, const double* x, int i, int j)
 class MaskIteration : public LinearSolver {
  public:
   MaskIteration(Scheme scheme, const SolverOptions& options) : LinearSolver(options), scheme_(scheme) {}
-  [[nodiscard]] std::string name() const override {
-    return scheme_ == Scheme::kJacobi ? "jacobi" : "gauss-seidel";
-  }
+  [[nodiscard]] std::string name() const override { return scheme_ == Scheme::kJacobi ? "jacobi" : "gauss-seidel"; }
   [[nodiscard]] bool exact() const override { return false; }
 
  protected:
@@ -113,7 +110,11 @@ class MaskIteration : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_jacobi(const SolverOptions& o) { return std::make_unique<MaskIteration>(Scheme::kJacobi, o); }
-std::unique_ptr<LinearSolver> make_gauss_seidel(const SolverOptions& o) { return std::make_unique<MaskIteration>(Scheme::kGaussSeidel, o); }
+std::unique_ptr<LinearSolver> make_jacobi(const SolverOptions& o) {
+  return std::make_unique<MaskIteration>(Scheme::kJacobi, o);
+}
+std::unique_ptr<LinearSolver> make_gauss_seidel(const SolverOptions& o) {
+  return std::make_unique<MaskIteration>(Scheme::kGaussSeidel, o);
+}
 
 }  // namespace coons::solvers

@@ -88,16 +88,13 @@ bool ModePivots::factor(const GridStencil& s, const std::vector<double>& y) {
   return true;
 }
 
-
 void ModePivots::load(int from, int to) {
   const double* o = off_.data();
   double* r = pivots_.data();
   double* l = multipliers_.data();
   const double* row = pivot_values_.data() + pivot_offset_[std::size_t(to)];
   const int lo = pivot_lo_[std::size_t(to)], hi = pivot_hi_[std::size_t(to)];
-  auto value = [&](int q) {
-    return q < lo ? row[q] : q >= hi ? row[lo + q - hi] : pivot_limit_[std::size_t(q)];
-  };
+  auto value = [&](int q) { return q < lo ? row[q] : q >= hi ? row[lo + q - hi] : pivot_limit_[std::size_t(q)]; };
   if (from < 0) {  // the whole row
     for (int q = 0; q < L_; ++q) r[q] = value(q);
     multiply(o, r, l, L_);

@@ -28,8 +28,8 @@ namespace {
 
 using namespace mg_detail;
 
-void cycle_at(const std::vector<Level>& levels, std::size_t l, const MultigridOptions& o,
-              const Vector& b, Vector& x, CycleType type) {
+void cycle_at(const std::vector<Level>& levels, std::size_t l, const MultigridOptions& o, const Vector& b, Vector& x,
+              CycleType type) {
   const Level& L = levels[l];
   if (l + 1 == levels.size()) {
     solve_direct(L, b, x);
@@ -48,8 +48,7 @@ void cycle_at(const std::vector<Level>& levels, std::size_t l, const MultigridOp
 
 }  // namespace
 
-SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& options,
-                             std::string* message) {
+SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& options, std::string* message) {
   levels_.clear();
   fine_number_.clear();
   options_ = options;
@@ -68,8 +67,7 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
   fine.radius = op.radius;
   fine.constant = true;
   fine.coef = op.weights;
-  fine.free = op.free.empty() ? std::vector<unsigned char>(std::size_t(op.rows) * op.cols, 1)
-                              : op.free;
+  fine.free = op.free.empty() ? std::vector<unsigned char>(std::size_t(op.rows) * op.cols, 1) : op.free;
   for (auto& f : fine.free) f = f ? 1 : 0;
   fine.unknowns = std::count(fine.free.begin(), fine.free.end(), 1);
   fine_number_ = free_numbering(op);
@@ -92,8 +90,8 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
       return SolveStatus::kSingular;
     }
   if (!setup_direct(levels_.back())) {
-    if (message) *message = "the coarsest system (" + std::to_string(levels_.back().unknowns) +
-                            " unknowns) is singular";
+    if (message)
+      *message = "the coarsest system (" + std::to_string(levels_.back().unknowns) + " unknowns) is singular";
     levels_.clear();
     return SolveStatus::kSingular;
   }
@@ -178,8 +176,8 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
     out.history.push_back(rel);
     if (!std::isfinite(rel) || rel > options.divergence * out.history.front()) {
       out.status = SolveStatus::kDiverged;
-      out.message = "the multigrid iteration diverged: residual grew from " +
-                    std::to_string(out.history.front()) + " to " + std::to_string(rel);
+      out.message = "the multigrid iteration diverged: residual grew from " + std::to_string(out.history.front()) +
+                    " to " + std::to_string(rel);
       xg = last_good;
       residual(L, bg, xg, r);
       rel = r.norm() / bnorm;
@@ -188,23 +186,21 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
     last_good = xg;
     if (rel > options.tolerance && stagnated(out.history, 10)) {
       out.status = SolveStatus::kNotConverged;
-      out.message = "the multigrid iteration stalled at relative residual " + std::to_string(rel) +
-                    " after " + std::to_string(out.iterations) + " cycles";
+      out.message = "the multigrid iteration stalled at relative residual " + std::to_string(rel) + " after " +
+                    std::to_string(out.iterations) + " cycles";
       break;
     }
   }
   out.relative_residual = rel;
   if (out.status == SolveStatus::kSuccess && rel > options.tolerance) {
     out.status = SolveStatus::kNotConverged;
-    out.message = "relative residual " + std::to_string(rel) + " after " +
-                  std::to_string(out.iterations) + " cycles";
+    out.message = "relative residual " + std::to_string(rel) + " after " + std::to_string(out.iterations) + " cycles";
   }
   from_grid(fine_number_, xg, size(), x);
   return out;
 }
 
-IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x,
-                              const IterationOptions& options) {
+IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x, const IterationOptions& options) {
   IterationSummary out;
   if (!mg.ready() || b.size() != mg.size()) {
     out.status = SolveStatus::kFailure;
@@ -262,8 +258,8 @@ IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x,
     if (rel <= options.tolerance) break;
     if (stagnated(out.history, 25)) {
       out.status = SolveStatus::kNotConverged;
-      out.message = "conjugate gradients stalled at relative residual " + std::to_string(rel) +
-                    " after " + std::to_string(out.iterations) + " iterations";
+      out.message = "conjugate gradients stalled at relative residual " + std::to_string(rel) + " after " +
+                    std::to_string(out.iterations) + " iterations";
       break;
     }
     precondition(r, z);

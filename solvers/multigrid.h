@@ -33,12 +33,11 @@
 // coarse operators, the m_P + m_R > 2m rule for the interpolation order).
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
 
 #include "iteration_summary.h"
 #include "stencil_operator.h"
@@ -54,8 +53,8 @@ enum class Interpolation { kAuto, kLinear, kCubic };
 struct MultigridOptions {
   CycleType cycle = CycleType::kV;
   Interpolation interpolation = Interpolation::kAuto;
-  int pre_smoothing = 1;   //!< alternating line sweeps (rows, then columns) before the coarse correction
-  int post_smoothing = 1;  //!< adjoint sweeps after it
+  int pre_smoothing = 1;                //!< alternating line sweeps (rows, then columns) before the coarse correction
+  int post_smoothing = 1;               //!< adjoint sweeps after it
   Eigen::Index coarsest_unknowns = 64;  //!< solve directly at or below this many free points
   int max_levels = 20;
 
@@ -76,8 +75,7 @@ class Multigrid {
 
   //! Builds the hierarchy. kSuccess; kFailure for invalid input (why in *message); kSingular when
   //! a line block or the coarsest system has a zero pivot.
-  SolveStatus setup(const StencilOperator& op, const MultigridOptions& options = {},
-                    std::string* message = nullptr);
+  SolveStatus setup(const StencilOperator& op, const MultigridOptions& options = {}, std::string* message = nullptr);
 
   [[nodiscard]] bool ready() const;
   [[nodiscard]] Eigen::Index size() const;  //!< free unknowns of the finest level
@@ -89,8 +87,7 @@ class Multigrid {
   //! z = B r: one cycle of the chosen type from a zero initial guess (the preconditioner).
   void precondition(const Eigen::VectorXd& r, Eigen::VectorXd& z) const;
   //! The stationary iteration x ← x + B (b − A x), starting from x (set to 0 if its size is wrong).
-  IterationSummary solve(const Eigen::VectorXd& b, Eigen::VectorXd& x,
-                         const IterationOptions& options = {}) const;
+  IterationSummary solve(const Eigen::VectorXd& b, Eigen::VectorXd& x, const IterationOptions& options = {}) const;
 
   struct Level;
 

@@ -5,7 +5,6 @@
 
 namespace coons::solvers::mg_detail {
 
-
 // (A x)(p) over the stencil of point p; x is zero at fixed points and outside the grid.
 static double apply_at(const Level& L, const double* x, int i, int j) {
   const int r = L.radius, w = L.width(), C = L.cols;
@@ -228,8 +227,7 @@ Level galerkin_coarse(const Level& F, int reach) {
   Cl.free.assign(std::size_t(Cl.points()), 0);
   for (int I = 0; I < Cl.rows; ++I)
     for (int J = 0; J < Cl.cols; ++J)
-      Cl.free[std::size_t(I) * Cl.cols + J] =
-          F.free[std::size_t(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j];
+      Cl.free[std::size_t(I) * Cl.cols + J] = F.free[std::size_t(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j];
   Cl.unknowns = std::count(Cl.free.begin(), Cl.free.end(), 1);
   Cl.coef.assign(std::size_t(Cl.points()) * wc * wc, 0.0);
   // Two passes, row by row: B = A P for the fine rows a coarse row needs (kept in a ring of
@@ -241,8 +239,8 @@ Level galerkin_coarse(const Level& F, int reach) {
   auto parents_along = [&](int len, int coarse_len, int offset) {
     std::vector<Parents> out(static_cast<std::size_t>(len));
     for (int f = 0; f < len; ++f)
-      out[std::size_t(f)].count = coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index,
-                                                 out[std::size_t(f)].weight);
+      out[std::size_t(f)].count =
+          coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index, out[std::size_t(f)].weight);
     return out;
   };
   const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i);
@@ -253,8 +251,7 @@ Level galerkin_coarse(const Level& F, int reach) {
     return t >= 0 ? (t + 1) / 2 : -((-t) / 2);
   };
   const int ring = 2 * reach + 1;
-  std::vector<std::vector<double>> B(std::size_t(ring),
-                                     std::vector<double>(std::size_t(F.cols) * bw * bw, 0.0));
+  std::vector<std::vector<double>> B(std::size_t(ring), std::vector<double>(std::size_t(F.cols) * bw * bw, 0.0));
   auto compute_row = [&](int i) {
     std::vector<double>& row = B[std::size_t(i % ring)];
     std::fill(row.begin(), row.end(), 0.0);
@@ -354,6 +351,5 @@ void solve_direct(const Level& L, const Vector& b, Vector& x) {
   for (Eigen::Index p = 0; p < L.points(); ++p)
     if (L.number[p] >= 0) x[p] = xf[L.number[p]];
 }
-
 
 }  // namespace coons::solvers::mg_detail

@@ -2,12 +2,11 @@
 // solvers layer. Vectors are grid vectors (rows·cols, zero at fixed points) of one level.
 #pragma once
 
-#include <memory>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
+#include <memory>
+#include <vector>
 
 #include "multigrid.h"
 
@@ -15,11 +14,11 @@ namespace coons::solvers {
 
 struct Multigrid::Level {
   int rows = 0, cols = 0, radius = 1;
-  int offset_i = 1, offset_j = 1;  // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
-  int reach = 1;                    // interpolation from this level to the next finer: 1 linear, 3 cubic
-  bool constant = false;            // one stencil for every point (the finest level)
-  std::vector<double> coef;         // width² weights per point (or once when constant)
-  std::vector<unsigned char> free;  // rows·cols
+  int offset_i = 1, offset_j = 1;      // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
+  int reach = 1;                       // interpolation from this level to the next finer: 1 linear, 3 cubic
+  bool constant = false;               // one stencil for every point (the finest level)
+  std::vector<double> coef;            // width² weights per point (or once when constant)
+  std::vector<unsigned char> free;     // rows·cols
   std::vector<double> row_lu, col_lu;  // banded LU of the row and column line blocks
   Eigen::Index unknowns = 0;
   // The coarsest level only: the direct solve over its free points.

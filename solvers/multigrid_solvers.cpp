@@ -49,8 +49,8 @@ class MultigridBackend : public LinearSolver {
       return SolveStatus::kNotApplicable;
     }
     if (op.matrix && op.matrix->rows() != grid->size()) {
-      summary.message = "the matrix has " + std::to_string(op.matrix->rows()) +
-                        " rows but the grid operator " + std::to_string(grid->size()) + " free points";
+      summary.message = "the matrix has " + std::to_string(op.matrix->rows()) + " rows but the grid operator " +
+                        std::to_string(grid->size()) + " free points";
       return SolveStatus::kNotApplicable;
     }
     if (method_ == Method::kCg && !grid->symmetric()) {

@@ -16,9 +16,12 @@ namespace coons::solvers {
 
 const char* to_string(SolverFamily family) {
   switch (family) {
-    case SolverFamily::kDirect: return "direct";
-    case SolverFamily::kIterative: return "iterative";
-    case SolverFamily::kStructured: return "structured";
+    case SolverFamily::kDirect:
+      return "direct";
+    case SolverFamily::kIterative:
+      return "iterative";
+    case SolverFamily::kStructured:
+      return "structured";
   }
   return "direct";
 }
@@ -34,27 +37,44 @@ struct Entry {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
-      {{"eigen-ldlt", SolverFamily::kDirect, true, true, "Eigen SimplicialLDLT, AMD ordering"}, make_eigen_ldlt},
-      {{"eigen-llt", SolverFamily::kDirect, true, true, "Eigen SimplicialLLT, AMD ordering"}, make_eigen_llt},
-      {{"eigen-lu", SolverFamily::kDirect, true, false, "Eigen SparseLU, COLAMD ordering (indefinite systems too)"}, make_eigen_lu},
+    {{"eigen-ldlt", SolverFamily::kDirect, true, true, "Eigen SimplicialLDLT, AMD ordering"}, make_eigen_ldlt},
+    {{"eigen-llt", SolverFamily::kDirect, true, true, "Eigen SimplicialLLT, AMD ordering"}, make_eigen_llt},
+    {{"eigen-lu", SolverFamily::kDirect, true, false, "Eigen SparseLU, COLAMD ordering (indefinite systems too)"},
+     make_eigen_lu},
 #if COONS_HAVE_SUITESPARSE
-      {{"cholmod", SolverFamily::kDirect, true, true, "CHOLMOD supernodal LL^T, AMD ordering (--ordering to change)"}, make_cholmod_supernodal},
-      {{"cholmod-simplicial", SolverFamily::kDirect, true, true, "CHOLMOD simplicial LDL^T, AMD ordering"}, make_cholmod_simplicial},
-      {{"umfpack", SolverFamily::kDirect, true, false, "UMFPACK multifrontal LU (indefinite systems too)"}, make_umfpack},
+    {{"cholmod", SolverFamily::kDirect, true, true, "CHOLMOD supernodal LL^T, AMD ordering (--ordering to change)"},
+     make_cholmod_supernodal},
+    {{"cholmod-simplicial", SolverFamily::kDirect, true, true, "CHOLMOD simplicial LDL^T, AMD ordering"},
+     make_cholmod_simplicial},
+    {{"umfpack", SolverFamily::kDirect, true, false, "UMFPACK multifrontal LU (indefinite systems too)"}, make_umfpack},
 #endif
-      {{"cg", SolverFamily::kIterative, true, true, "conjugate gradients, no preconditioner"}, make_cg},
-      {{"cg-jacobi", SolverFamily::kIterative, true, true, "conjugate gradients, diagonal preconditioner"}, make_cg_jacobi},
-      {{"cg-ic", SolverFamily::kIterative, true, true, "conjugate gradients, incomplete Cholesky"}, make_cg_ic},
-      {{"bicgstab", SolverFamily::kIterative, true, false, "BiCGSTAB with incomplete LU (ILUT)"}, make_bicgstab},
-      {{"jacobi", SolverFamily::kIterative, false, false, "the Jacobi mask iteration (diverges for alpha < 0)"}, make_jacobi},
-      {{"gauss-seidel", SolverFamily::kIterative, false, false, "the Gauss-Seidel / SOR mask iteration (--omega)"}, make_gauss_seidel},
+    {{"cg", SolverFamily::kIterative, true, true, "conjugate gradients, no preconditioner"}, make_cg},
+    {{"cg-jacobi", SolverFamily::kIterative, true, true, "conjugate gradients, diagonal preconditioner"},
+     make_cg_jacobi},
+    {{"cg-ic", SolverFamily::kIterative, true, true, "conjugate gradients, incomplete Cholesky"}, make_cg_ic},
+    {{"bicgstab", SolverFamily::kIterative, true, false, "BiCGSTAB with incomplete LU (ILUT)"}, make_bicgstab},
+    {{"jacobi", SolverFamily::kIterative, false, false, "the Jacobi mask iteration (diverges for alpha < 0)"},
+     make_jacobi},
+    {{"gauss-seidel", SolverFamily::kIterative, false, false, "the Gauss-Seidel / SOR mask iteration (--omega)"},
+     make_gauss_seidel},
 #if COONS_HAVE_FFTW
-      {{"dst", SolverFamily::kStructured, false, false, "2-D discrete sine transform (FFTW RODFT00), exact for any alpha on rectangular grids"}, make_dst_solver},
-      {{"fast", SolverFamily::kStructured, false, false, "sine transform along j + tridiagonal solves along i; Kronecker path for alpha = -1/4; exact for any alpha"}, make_fast_solver},
+    {{"dst", SolverFamily::kStructured, false, false,
+      "2-D discrete sine transform (FFTW RODFT00), exact for any alpha on rectangular grids"},
+     make_dst_solver},
+    {{"fast", SolverFamily::kStructured, false, false,
+      "sine transform along j + tridiagonal solves along i; Kronecker path for alpha = -1/4; exact for any alpha"},
+     make_fast_solver},
 #endif
-      {{"mg", SolverFamily::kIterative, false, false, "geometric multigrid V-cycles, alternating line Gauss-Seidel, Galerkin coarse grids (3x3/5x5 stencils, free sets)"}, make_mg},
-      {{"mg-cg", SolverFamily::kIterative, false, true, "conjugate gradients preconditioned by one symmetric multigrid V-cycle"}, make_mg_cg},
-      {{"gmres", SolverFamily::kIterative, false, false, "restarted GMRES(50), multigrid-preconditioned on a grid stencil, else ILUT (nonsymmetric systems)"}, make_gmres},
+    {{"mg", SolverFamily::kIterative, false, false,
+      "geometric multigrid V-cycles, alternating line Gauss-Seidel, Galerkin coarse grids (3x3/5x5 stencils, free "
+      "sets)"},
+     make_mg},
+    {{"mg-cg", SolverFamily::kIterative, false, true,
+      "conjugate gradients preconditioned by one symmetric multigrid V-cycle"},
+     make_mg_cg},
+    {{"gmres", SolverFamily::kIterative, false, false,
+      "restarted GMRES(50), multigrid-preconditioned on a grid stencil, else ILUT (nonsymmetric systems)"},
+     make_gmres},
   };
   return list;
 }

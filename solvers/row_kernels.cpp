@@ -15,9 +15,9 @@ COONS_VECTOR_CLONES void eliminate_dense(const double* __restrict h, const doubl
 }
 
 // x = a·s + b·t − l∘p (p = nullptr: without the last term).
-COONS_VECTOR_CLONES void eliminate_sparse(double a, double b, const double* __restrict s,
-                                          const double* __restrict t, const double* __restrict l,
-                                          const double* __restrict p, double* __restrict x, int n) {
+COONS_VECTOR_CLONES void eliminate_sparse(double a, double b, const double* __restrict s, const double* __restrict t,
+                                          const double* __restrict l, const double* __restrict p, double* __restrict x,
+                                          int n) {
   if (!p) {
     for (int q = 0; q < n; ++q) x[q] = a * s[q] + b * t[q];
     return;
@@ -26,21 +26,18 @@ COONS_VECTOR_CLONES void eliminate_sparse(double a, double b, const double* __re
 }
 
 // l = o∘r.
-COONS_VECTOR_CLONES void multiply(const double* __restrict o, const double* __restrict r,
-                                  double* __restrict l, int n) {
+COONS_VECTOR_CLONES void multiply(const double* __restrict o, const double* __restrict r, double* __restrict l, int n) {
   for (int q = 0; q < n; ++q) l[q] = o[q] * r[q];
 }
 
 // xh = (y − o∘xh)∘r.
 COONS_VECTOR_CLONES void back_substitute(const double* __restrict y, const double* __restrict o,
-                                         const double* __restrict r, double* __restrict xh,
-                                         int n) {
+                                         const double* __restrict r, double* __restrict xh, int n) {
   for (int q = 0; q < n; ++q) xh[q] = (y[q] - o[q] * xh[q]) * r[q];
 }
 
 // x = Σ_k a_k v_k (K ≥ 1 terms).
-COONS_VECTOR_CLONES void rank_row(const double* a, const double* const* v, int K,
-                                  double* __restrict x, int n) {
+COONS_VECTOR_CLONES void rank_row(const double* a, const double* const* v, int K, double* __restrict x, int n) {
   int k = 0;
   if (K % 2) {
     const double a0 = a[0];
@@ -69,8 +66,7 @@ COONS_VECTOR_CLONES void axpy_rows(const double* __restrict y, double l, const d
 }
 
 // x += a·v.
-COONS_VECTOR_CLONES void add_scaled(double a, const double* __restrict v, double* __restrict x,
-                                    int n) {
+COONS_VECTOR_CLONES void add_scaled(double a, const double* __restrict v, double* __restrict x, int n) {
   for (int j = 0; j < n; ++j) x[j] += a * v[j];
 }
 

@@ -6,16 +6,19 @@
 namespace coons::solvers::detail {
 
 //! x = h − l∘p (p = nullptr: x = h).
-void eliminate_dense(const double* __restrict h, const double* __restrict l, const double* __restrict p, double* __restrict x, int n);
+void eliminate_dense(const double* __restrict h, const double* __restrict l, const double* __restrict p,
+                     double* __restrict x, int n);
 
 //! x = a·s + b·t − l∘p (p = nullptr: without the last term).
-void eliminate_sparse(double a, double b, const double* __restrict s, const double* __restrict t, const double* __restrict l, const double* __restrict p, double* __restrict x, int n);
+void eliminate_sparse(double a, double b, const double* __restrict s, const double* __restrict t,
+                      const double* __restrict l, const double* __restrict p, double* __restrict x, int n);
 
 //! l = o∘r.
 void multiply(const double* __restrict o, const double* __restrict r, double* __restrict l, int n);
 
 //! xh = (y − o∘xh)∘r.
-void back_substitute(const double* __restrict y, const double* __restrict o, const double* __restrict r, double* __restrict xh, int n);
+void back_substitute(const double* __restrict y, const double* __restrict o, const double* __restrict r,
+                     double* __restrict xh, int n);
 
 //! x = Σ_k a_k v_k (K ≥ 1 terms).
 void rank_row(const double* a, const double* const* v, int K, double* __restrict x, int n);

@@ -16,8 +16,8 @@ using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 //           (the inner loop runs across the block's rows, which stay in cache), then the forward
 //           elimination along i of those rows (the two rows above are still in cache);
 //   pass 2, bottom to top: the scaling by 1/d and the back substitution along i, whole rows.
-void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols,
-                     const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
+void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const Eigen::MatrixX3d& B,
+                     Eigen::MatrixX3d& X) {
   constexpr Eigen::Index kBlock = 16;
   X.resize(B.rows(), 3);
   if (rows == 0 || cols == 0) return;
@@ -68,9 +68,8 @@ class SeparableBandedSolver final : public LinearSolver {
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
     if (op.size() != op_.size()) {
-      summary.message = "the operator has " + std::to_string(op.size()) +
-                        " unknowns, the separable grid " + std::to_string(op_.rows) + " x " +
-                        std::to_string(op_.cols);
+      summary.message = "the operator has " + std::to_string(op.size()) + " unknowns, the separable grid " +
+                        std::to_string(op_.rows) + " x " + std::to_string(op_.cols);
       return SolveStatus::kNotApplicable;
     }
     return SolveStatus::kSuccess;
@@ -150,8 +149,7 @@ Eigen::SparseMatrix<double> separable_banded_matrix(const SeparableBandedOperato
   return A;
 }
 
-SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B,
-                                   Eigen::MatrixX3d& X) {
+SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
   BandedLdlt fi, fj;
   if (B.rows() != op.size()) return SolveStatus::kNotApplicable;
   if (banded_ldlt(op.along_i, op.rows, fi) != SolveStatus::kSuccess ||

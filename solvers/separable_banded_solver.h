@@ -21,22 +21,21 @@
 // Matrix Computations, §4.3 (banded LDLᵀ).
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <array>
 #include <memory>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
 
 #include "linear_solver.h"
 
 namespace coons::solvers {
 
 struct SeparableBandedOperator {
-  int rows = 0;                               //!< grid points along i
-  int cols = 0;                               //!< grid points along j
-  std::array<double, 3> along_i{1, 0, 0};     //!< p0, p1, p2: diagonal and the two off-diagonals of P
-  std::array<double, 3> along_j{1, 0, 0};     //!< q0, q1, q2 of Q
+  int rows = 0;                            //!< grid points along i
+  int cols = 0;                            //!< grid points along j
+  std::array<double, 3> along_i{1, 0, 0};  //!< p0, p1, p2: diagonal and the two off-diagonals of P
+  std::array<double, 3> along_j{1, 0, 0};  //!< q0, q1, q2 of Q
 
   [[nodiscard]] Eigen::Index size() const { return Eigen::Index(rows) * cols; }
 };
@@ -54,8 +53,7 @@ struct BandedLdlt {
 SolveStatus banded_ldlt(const std::array<double, 3>& diagonals, int k, BandedLdlt& f);
 
 //! X = A⁻¹ B (#size by 3) in one call (factorize and solve). B and X may not alias.
-SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B,
-                                   Eigen::MatrixX3d& X);
+SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X);
 
 //! The same as a LinearSolver (name "separable-banded"): factorize ignores the values of op and
 //! uses the operator given here; analyze reports kNotApplicable when op's size is not rows·cols.

@@ -1,8 +1,8 @@
 #include "sine_basis.h"
 
-#include <cmath>
-
 #include <fftw3.h>
+
+#include <cmath>
 
 namespace coons::solvers {
 
@@ -32,8 +32,8 @@ Eigen::MatrixXd sine_transform_1d(const Eigen::MatrixXd& X) {
   const double scale = 1.0 / std::sqrt(2.0 * (n + 1));
   double* buffer = fftw_alloc_real(size_t(n) * size_t(X.cols()));
   const fftw_r2r_kind kind = FFTW_RODFT00;
-  fftw_plan plan = fftw_plan_many_r2r(1, &n, int(X.cols()), buffer, nullptr, 1, n, buffer, nullptr, 1, n, &kind,
-                                      FFTW_ESTIMATE);
+  fftw_plan plan =
+      fftw_plan_many_r2r(1, &n, int(X.cols()), buffer, nullptr, 1, n, buffer, nullptr, 1, n, &kind, FFTW_ESTIMATE);
   Eigen::Map<Eigen::MatrixXd>(buffer, n, X.cols()) = X;
   fftw_execute(plan);
   Y = scale * Eigen::Map<const Eigen::MatrixXd>(buffer, n, X.cols());

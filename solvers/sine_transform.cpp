@@ -36,16 +36,13 @@ AlignedBuffer& AlignedBuffer::operator=(AlignedBuffer&& other) noexcept {
   return *this;
 }
 
-unsigned fft_planning(const SolverOptions& options) {
-  return options.measure_fft_plans ? FFTW_MEASURE : FFTW_ESTIMATE;
-}
+unsigned fft_planning(const SolverOptions& options) { return options.measure_fft_plans ? FFTW_MEASURE : FFTW_ESTIMATE; }
 
 SineTransform::SineTransform(int n, unsigned planning) : n_(n) {
   const int N = n + 1;
   y_ = AlignedBuffer(std::size_t(N));
   z_ = AlignedBuffer(2 * std::size_t(N / 2 + 1));
-  plan_ = fftw_plan_dft_r2c_1d(N, y_.data(), reinterpret_cast<fftw_complex*>(z_.data()),
-                               planning);
+  plan_ = fftw_plan_dft_r2c_1d(N, y_.data(), reinterpret_cast<fftw_complex*>(z_.data()), planning);
   if (!plan_) throw std::bad_alloc();
   weight_.resize(std::size_t(N));
   for (int j = 0; j < N; ++j) weight_[std::size_t(j)] = std::sin(M_PI * j / N);
@@ -88,7 +85,7 @@ namespace {
 // The three passes of SineTransform::apply on distinct arrays, so that the compiler vectorises them.
 // Pre-pass: y_j = sin(πj/N)(f_j + f_{N−j}) + ½(f_j − f_{N−j}), f_j = in[j−1], y_0 = 0.
 COONS_VECTOR_CLONES void sine_pre_pass(const double* __restrict in, double* __restrict y, const double* __restrict w,
-                   int N) {
+                                       int N) {
   const int h = (N - 1) / 2;
   y[0] = 0;
   for (int j = 1; j <= h; ++j) {
@@ -111,7 +108,7 @@ COONS_VECTOR_CLONES void sine_running_sums(const double* __restrict z, double* _
     for (int t = 1; t < M; ++t) s[t] = acc += z[2 * t];
     return;
   }
-  const int L = (M + 3) / 4, last = M - 3 * L;  // blocks [bL, (b+1)L), the last one shorter
+  const int L = (M + 3) / 4, last = M - 3 * L;      // blocks [bL, (b+1)L), the last one shorter
   double a0 = -0.5 * z[0], a1 = 0, a2 = 0, a3 = 0;  // block 0 starts with ½ Re Y_0
   double *s0 = s, *s1 = s + L, *s2 = s + 2 * L, *s3 = s + 3 * L;
   const double *z0 = z, *z1 = z + 2 * L, *z2 = z + 4 * L, *z3 = z + 6 * L;
@@ -134,8 +131,8 @@ COONS_VECTOR_CLONES void sine_running_sums(const double* __restrict z, double* _
 }
 
 // out[2k] = F_{2k+1} = s_k, out[2k−1] = F_{2k} = −Im Y_k.
-COONS_VECTOR_CLONES void sine_post_pass(const double* __restrict z, const double* __restrict s,
-                    double* __restrict out, int n, double scale) {
+COONS_VECTOR_CLONES void sine_post_pass(const double* __restrict z, const double* __restrict s, double* __restrict out,
+                                        int n, double scale) {
   const int M = (n + 1) / 2;
   out[0] = scale * s[0];
   for (int k = 1; k < M; ++k) {
@@ -172,9 +169,7 @@ bool Tridiagonal::factor(int n, double d, double o) {
   return !(positive && negative) || smallest >= kUnsafePivot * scale;
 }
 
-void Tridiagonal::solve(const double* b, double* x) const {
-  solve_strided(b, x, 1);
-}
+void Tridiagonal::solve(const double* b, double* x) const { solve_strided(b, x, 1); }
 
 void Tridiagonal::solve_strided(const double* b, double* x, std::ptrdiff_t stride) const {
   const int n = size();

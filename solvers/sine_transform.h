@@ -68,9 +68,9 @@ class SineTransform {
   void release();
 
   int n_ = 0;
-  void* plan_ = nullptr;   // fftw_plan (r2c of length n+1)
-  AlignedBuffer y_;        // real FFT input, length n+1
-  AlignedBuffer z_;        // half-complex FFT output, 2·((n+1)/2 + 1)
+  void* plan_ = nullptr;        // fftw_plan (r2c of length n+1)
+  AlignedBuffer y_;             // real FFT input, length n+1
+  AlignedBuffer z_;             // half-complex FFT output, 2·((n+1)/2 + 1)
   std::vector<double> weight_;  // sin(π j/(n+1)), j = 0..n
   std::vector<double> sums_;    // running sums of the post-pass
   std::vector<double> first_column_;

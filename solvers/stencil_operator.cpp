@@ -26,8 +26,8 @@ bool StencilOperator::is_valid(std::string* why) const {
   if (rows < 1 || cols < 1) return fail("the grid needs at least one row and one column");
   if (radius != 1 && radius != 2) return fail("the stencil radius must be 1 (3x3) or 2 (5x5)");
   if (weights.size() != std::size_t(width() * width()))
-    return fail("a radius-" + std::to_string(radius) + " stencil needs " +
-                std::to_string(width() * width()) + " weights, got " + std::to_string(weights.size()));
+    return fail("a radius-" + std::to_string(radius) + " stencil needs " + std::to_string(width() * width()) +
+                " weights, got " + std::to_string(weights.size()));
   for (double w : weights)
     if (!std::isfinite(w)) return fail("the stencil weights must be finite");
   if (!free.empty() && free.size() != std::size_t(rows) * std::size_t(cols))
@@ -46,8 +46,7 @@ StencilOperator make_stencil_operator(int rows, int cols, const std::vector<doub
 
 StencilOperator stencil_operator(const GridStencil& s) {
   return make_stencil_operator(s.rows, s.cols,
-                               {s.diag, s.edge_i, s.diag, s.edge_j, s.center, s.edge_j, s.diag,
-                                s.edge_i, s.diag});
+                               {s.diag, s.edge_i, s.diag, s.edge_j, s.center, s.edge_j, s.diag, s.edge_i, s.diag});
 }
 
 std::vector<Eigen::Index> free_numbering(const StencilOperator& op) {
@@ -95,9 +94,8 @@ void apply_stencil_operator(const StencilOperator& op, const Eigen::MatrixXd& X,
 Eigen::SparseMatrix<double> stencil_operator_matrix(const StencilOperator& op) {
   const std::vector<Eigen::Index> number = free_numbering(op);
   std::vector<Eigen::Triplet<double>> entries;
-  for_each_coupling(op, number, [&](Eigen::Index row, Eigen::Index col, double w) {
-    entries.emplace_back(int(row), int(col), w);
-  });
+  for_each_coupling(op, number,
+                    [&](Eigen::Index row, Eigen::Index col, double w) { entries.emplace_back(int(row), int(col), w); });
   const Eigen::Index n = op.size();
   Eigen::SparseMatrix<double> A(n, n);
   A.setFromTriplets(entries.begin(), entries.end());

@@ -10,11 +10,10 @@
 // convection term) are allowed for the methods that do not need symmetry.
 #pragma once
 
-#include <string>
-#include <vector>
-
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <string>
+#include <vector>
 
 #include "grid_stencil.h"
 

@@ -1,11 +1,11 @@
 #include "suitesparse_direct.h"
 
+#include <cholmod.h>
+#include <umfpack.h>
+
 #include <cmath>
 #include <string>
 #include <vector>
-
-#include <cholmod.h>
-#include <umfpack.h>
 
 namespace coons::solvers {
 namespace {
@@ -44,14 +44,22 @@ cholmod_dense view_dense(const Eigen::MatrixX3d& B) {
 
 const char* cholmod_ordering_name(int ordering) {
   switch (ordering) {
-    case CHOLMOD_NATURAL: return "natural";
-    case CHOLMOD_GIVEN: return "given";
-    case CHOLMOD_AMD: return "amd";
-    case CHOLMOD_METIS: return "metis";
-    case CHOLMOD_NESDIS: return "nested-dissection";
-    case CHOLMOD_COLAMD: return "colamd";
-    case CHOLMOD_POSTORDERED: return "natural-postordered";
-    default: return "unknown";
+    case CHOLMOD_NATURAL:
+      return "natural";
+    case CHOLMOD_GIVEN:
+      return "given";
+    case CHOLMOD_AMD:
+      return "amd";
+    case CHOLMOD_METIS:
+      return "metis";
+    case CHOLMOD_NESDIS:
+      return "nested-dissection";
+    case CHOLMOD_COLAMD:
+      return "colamd";
+    case CHOLMOD_POSTORDERED:
+      return "natural-postordered";
+    default:
+      return "unknown";
   }
 }
 
@@ -67,11 +75,21 @@ class Cholmod : public LinearSolver {
     switch (options.ordering) {
       case Ordering::kAuto:
       case Ordering::kAmd:
-      case Ordering::kColamd: common_.method[0].ordering = CHOLMOD_AMD; break;  // COLAMD is for A·Aᵀ, AMD for A
-      case Ordering::kMetis: common_.method[0].ordering = CHOLMOD_METIS; break;
-      case Ordering::kNestedDissection: common_.method[0].ordering = CHOLMOD_NESDIS; break;
-      case Ordering::kNatural: common_.method[0].ordering = CHOLMOD_NATURAL; break;
-      case Ordering::kCholmodDefault: common_.nmethods = 0; break;  // CHOLMOD tries METIS and AMD
+      case Ordering::kColamd:
+        common_.method[0].ordering = CHOLMOD_AMD;
+        break;  // COLAMD is for A·Aᵀ, AMD for A
+      case Ordering::kMetis:
+        common_.method[0].ordering = CHOLMOD_METIS;
+        break;
+      case Ordering::kNestedDissection:
+        common_.method[0].ordering = CHOLMOD_NESDIS;
+        break;
+      case Ordering::kNatural:
+        common_.method[0].ordering = CHOLMOD_NATURAL;
+        break;
+      case Ordering::kCholmodDefault:
+        common_.nmethods = 0;
+        break;  // CHOLMOD tries METIS and AMD
     }
     common_.postorder = 1;
   }
@@ -139,8 +157,10 @@ class Cholmod : public LinearSolver {
     long zero = 0, negative = 0;
     for (size_t j = 0; j < factor_->n; ++j) {
       const double d = x[p[j]];
-      if (std::abs(d) <= 1e-13 * scale) ++zero;
-      else if (d < 0) ++negative;
+      if (std::abs(d) <= 1e-13 * scale)
+        ++zero;
+      else if (d < 0)
+        ++negative;
     }
     if (zero) {
       summary.message = std::to_string(zero) + " zero pivot(s) in D";
@@ -160,12 +180,18 @@ class Cholmod : public LinearSolver {
 
 const char* umfpack_ordering_name(double used) {
   switch (int(used)) {
-    case UMFPACK_ORDERING_CHOLMOD: return "cholmod";
-    case UMFPACK_ORDERING_AMD: return "amd";
-    case UMFPACK_ORDERING_GIVEN: return "given";
-    case UMFPACK_ORDERING_METIS: return "metis";
-    case UMFPACK_ORDERING_NONE: return "natural";
-    default: return "umfpack-default";
+    case UMFPACK_ORDERING_CHOLMOD:
+      return "cholmod";
+    case UMFPACK_ORDERING_AMD:
+      return "amd";
+    case UMFPACK_ORDERING_GIVEN:
+      return "given";
+    case UMFPACK_ORDERING_METIS:
+      return "metis";
+    case UMFPACK_ORDERING_NONE:
+      return "natural";
+    default:
+      return "umfpack-default";
   }
 }
 
@@ -173,8 +199,10 @@ class Umfpack : public LinearSolver {
  public:
   explicit Umfpack(const SolverOptions& options) : LinearSolver(options) {
     umfpack_di_defaults(control_);
-    if (options.ordering == Ordering::kMetis) control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_METIS;
-    else if (options.ordering == Ordering::kNatural) control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_NONE;
+    if (options.ordering == Ordering::kMetis)
+      control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_METIS;
+    else if (options.ordering == Ordering::kNatural)
+      control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_NONE;
     else if (options.ordering == Ordering::kAmd || options.ordering == Ordering::kColamd)
       control_[UMFPACK_ORDERING] = UMFPACK_ORDERING_AMD;
   }
@@ -204,8 +232,8 @@ class Umfpack : public LinearSolver {
     if (numeric_) umfpack_di_free_numeric(&numeric_);
     matrix_ = op.matrix;
     const SpMat& A = *op.matrix;
-    const int status = umfpack_di_numeric(A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), symbolic_,
-                                          &numeric_, control_, info_);
+    const int status =
+        umfpack_di_numeric(A.outerIndexPtr(), A.innerIndexPtr(), A.valuePtr(), symbolic_, &numeric_, control_, info_);
     summary.factor_nnz = static_cast<long long>(info_[UMFPACK_LNZ] + info_[UMFPACK_UNZ]);
     if (status == UMFPACK_WARNING_singular_matrix) {
       summary.message = "UMFPACK: the matrix is singular (rcond " + std::to_string(info_[UMFPACK_RCOND]) + ")";
@@ -248,8 +276,12 @@ class Umfpack : public LinearSolver {
 
 }  // namespace
 
-std::unique_ptr<LinearSolver> make_cholmod_supernodal(const SolverOptions& o) { return std::make_unique<Cholmod>(true, o); }
-std::unique_ptr<LinearSolver> make_cholmod_simplicial(const SolverOptions& o) { return std::make_unique<Cholmod>(false, o); }
+std::unique_ptr<LinearSolver> make_cholmod_supernodal(const SolverOptions& o) {
+  return std::make_unique<Cholmod>(true, o);
+}
+std::unique_ptr<LinearSolver> make_cholmod_simplicial(const SolverOptions& o) {
+  return std::make_unique<Cholmod>(false, o);
+}
 std::unique_ptr<LinearSolver> make_umfpack(const SolverOptions& o) { return std::make_unique<Umfpack>(o); }
 
 }  // namespace coons::solvers

@@ -145,7 +145,8 @@ void BM_Solve(benchmark::State& state, std::string name, int N, double alpha) {
   SolveSummary s;
   // Structured backends plan their FFTs once per size per process (FFTW keeps the wisdom): one
   // untimed solve first, so that every timed solve is a fresh solver at steady state.
-  if (find_solver(backend)->family == SolverFamily::kStructured) make_solver(backend, timed)->compute_and_solve(op, p.system.B, X);
+  if (find_solver(backend)->family == SolverFamily::kStructured)
+    make_solver(backend, timed)->compute_and_solve(op, p.system.B, X);
   for (auto _ : state) {
     auto solver = make_solver(backend, timed);
     s = solver->compute_and_solve(op, p.system.B, X);
@@ -187,7 +188,8 @@ void BM_AlphaSweep(benchmark::State& state, std::string name, int N) {
   const SolverInfo* info = find_solver(name);
   const Problem& p = problem(N, -0.25, info->needs_matrix);
   // B(α) = α·B_diag + β·B_edge: the two basis right-hand sides
-  const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(p.frame, Mask9{0, 0, 1}), mask_rhs(p.frame, Mask9{0.5, 0.5, 0})};
+  const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(p.frame, Mask9{0, 0, 1}),
+                                               mask_rhs(p.frame, Mask9{0.5, 0.5, 0})};
   std::vector<GridStencil> stencils;
   std::vector<Eigen::SparseMatrix<double>> matrices;
   std::vector<LinearSolver::SweepMember> members;
@@ -206,9 +208,8 @@ void BM_AlphaSweep(benchmark::State& state, std::string name, int N) {
   double checksum = 0;
   for (auto _ : state) {
     auto solver = make_solver(name, timed);
-    solver->sweep(basis, members, [&](std::size_t, const Eigen::MatrixX3d& X, const SolveSummary&) {
-      checksum += X(0, 0);
-    });
+    solver->sweep(basis, members,
+                  [&](std::size_t, const Eigen::MatrixX3d& X, const SolveSummary&) { checksum += X(0, 0); });
   }
   benchmark::DoNotOptimize(checksum);
   set_common_counters(state, N);
@@ -258,7 +259,8 @@ void BM_SearchAlpha(benchmark::State& state, std::string name, int N, bool spect
       s = search_mask_parameter(f);
 #endif
     } else {
-      MaskObjective f(b, objective, [](double a) { return alpha_family(a); }, *find_solver(name), options);
+      MaskObjective f(
+          b, objective, [](double a) { return alpha_family(a); }, *find_solver(name), options);
       s = search_mask_parameter(f);
     }
     benchmark::DoNotOptimize(s.value);
@@ -302,40 +304,60 @@ int main(int argc, char** argv) {
   }
   const double min_time = config.quick ? 0.01 : 0.2;
   auto wanted = [&](const std::string& name) {
-    return config.backends.empty() || std::find(config.backends.begin(), config.backends.end(), name) != config.backends.end();
+    return config.backends.empty() ||
+           std::find(config.backends.begin(), config.backends.end(), name) != config.backends.end();
   };
 
   for (int N : config.sizes) {
     benchmark::RegisterBenchmark(("BM_MemoryPass/N:" + std::to_string(N)).c_str(), BM_MemoryPass, N)->UseRealTime();
-    benchmark::RegisterBenchmark(("BM_ClosedFormCoons/N:" + std::to_string(N)).c_str(), BM_ClosedFormCoons, N)->UseRealTime();
+    benchmark::RegisterBenchmark(("BM_ClosedFormCoons/N:" + std::to_string(N)).c_str(), BM_ClosedFormCoons, N)
+        ->UseRealTime();
     if (N <= 1023) {
       benchmark::RegisterBenchmark(("BM_Assemble/N:" + std::to_string(N)).c_str(), BM_Assemble, N)->UseRealTime();
-      benchmark::RegisterBenchmark(("BM_RefillValues/N:" + std::to_string(N)).c_str(), BM_RefillValues, N)->UseRealTime();
+      benchmark::RegisterBenchmark(("BM_RefillValues/N:" + std::to_string(N)).c_str(), BM_RefillValues, N)
+          ->UseRealTime();
     }
     for (const SolverInfo& info : available_solvers()) {
       if (!wanted(info.name)) continue;
       for (double alpha : config.alphas) {
         if (!config.quick && N > size_cap(info, alpha)) continue;
-        const std::string tag = "/" + info.name + "/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6);
-        benchmark::RegisterBenchmark(("BM_Solve" + tag).c_str(), BM_Solve, info.name, N, alpha)->UseRealTime()->MinTime(min_time);
+        const std::string tag =
+            "/" + info.name + "/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6);
+        benchmark::RegisterBenchmark(("BM_Solve" + tag).c_str(), BM_Solve, info.name, N, alpha)
+            ->UseRealTime()
+            ->MinTime(min_time);
         if (info.family != SolverFamily::kIterative)
-          benchmark::RegisterBenchmark(("BM_Refactorize" + tag).c_str(), BM_Refactorize, info.name, N, alpha)->UseRealTime()->MinTime(min_time);
+          benchmark::RegisterBenchmark(("BM_Refactorize" + tag).c_str(), BM_Refactorize, info.name, N, alpha)
+              ->UseRealTime()
+              ->MinTime(min_time);
       }
       if (info.family == SolverFamily::kStructured && (config.quick || N >= 1023 || N == config.sizes.back()))
-        benchmark::RegisterBenchmark(("BM_AlphaSweep/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_AlphaSweep, info.name, N)->UseRealTime();
+        benchmark::RegisterBenchmark(("BM_AlphaSweep/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_AlphaSweep,
+                                     info.name, N)
+            ->UseRealTime();
       if (info.name == "fast" && N <= 1023) {
-        benchmark::RegisterBenchmark(("BM_SearchAlpha/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_SearchAlpha, info.name, N, false)->UseRealTime();
-        benchmark::RegisterBenchmark(("BM_SearchAlphaSpectral/" + info.name + "/N:" + std::to_string(N)).c_str(), BM_SearchAlpha, info.name, N, true)->UseRealTime();
+        benchmark::RegisterBenchmark(("BM_SearchAlpha/" + info.name + "/N:" + std::to_string(N)).c_str(),
+                                     BM_SearchAlpha, info.name, N, false)
+            ->UseRealTime();
+        benchmark::RegisterBenchmark(("BM_SearchAlphaSpectral/" + info.name + "/N:" + std::to_string(N)).c_str(),
+                                     BM_SearchAlpha, info.name, N, true)
+            ->UseRealTime();
       }
     }
     if (find_solver("cholmod") && wanted("cholmod") && N <= 1023)
       for (Ordering o : {Ordering::kAmd, Ordering::kMetis, Ordering::kNestedDissection, Ordering::kCholmodDefault})
-        benchmark::RegisterBenchmark(("BM_CholmodOrdering/" + std::string(to_string(o)) + "/N:" + std::to_string(N)).c_str(),
-                                     BM_CholmodOrdering, o, N)->UseRealTime()->MinTime(min_time);
+        benchmark::RegisterBenchmark(
+            ("BM_CholmodOrdering/" + std::string(to_string(o)) + "/N:" + std::to_string(N)).c_str(), BM_CholmodOrdering,
+            o, N)
+            ->UseRealTime()
+            ->MinTime(min_time);
     if (wanted("auto"))
       for (double alpha : config.alphas)
-        benchmark::RegisterBenchmark(("BM_Solve/auto/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6)).c_str(),
-                                     BM_Solve, std::string("auto"), N, alpha)->UseRealTime()->MinTime(min_time);
+        benchmark::RegisterBenchmark(
+            ("BM_Solve/auto/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6)).c_str(), BM_Solve,
+            std::string("auto"), N, alpha)
+            ->UseRealTime()
+            ->MinTime(min_time);
   }
   int rest_argc = int(rest.size());
   benchmark::Initialize(&rest_argc, rest.data());

@@ -1,10 +1,9 @@
-#include <catch2/catch.hpp>
+#include "coons/alpha/alpha_search.h"
 
 #include <boost/math/tools/minima.hpp>
+#include <catch2/catch.hpp>
 
 #include "coons/config.h"
-
-#include "coons/alpha/alpha_search.h"
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
 #include "coons/net/coons_net.h"
@@ -23,7 +22,9 @@ Objective objective_named(const std::string& name) {
   return *o;
 }
 
-MaskFamily alpha_only() { return [](double a) { return alpha_family(a); }; }
+MaskFamily alpha_only() {
+  return [](double a) { return alpha_family(a); };
+}
 
 }  // namespace
 
@@ -44,8 +45,10 @@ TEST_CASE("MaskObjective: the analytic derivative equals finite differences", "[
   target.target = Target{};
   target.target->net = hermite_coons_net(make_smooth_boundary(6, 5, 3));
   target.target->samples = 15;
-  MaskObjective by_mu(b, objective_named("thin_plate"), [](double mu) { return mu_family(6, 5, mu); }, backend("eigen-ldlt"));
-  MaskObjective by_gamma(b, objective_named("e3"), [](double g) { return gamma_family(-0.15, g); }, backend("eigen-ldlt"));
+  MaskObjective by_mu(
+      b, objective_named("thin_plate"), [](double mu) { return mu_family(6, 5, mu); }, backend("eigen-ldlt"));
+  MaskObjective by_gamma(
+      b, objective_named("e3"), [](double g) { return gamma_family(-0.15, g); }, backend("eigen-ldlt"));
   MaskObjective to_target(b, target, alpha_only(), backend("eigen-ldlt"));
   for (auto [f, p, h] : {std::tuple{&by_mu, 7.0, 1e-4}, {&by_gamma, 0.03, 1e-6}, {&to_target, -0.1, 1e-6}}) {
     const double fd = (f->evaluate(p + h).value - f->evaluate(p - h).value) / (2 * h);
@@ -65,8 +68,8 @@ TEST_CASE("search_mask_parameter: equals Brent's minimiser on random smooth boun
       REQUIRE((s.status == SearchStatus::kSuccess || s.status == SearchStatus::kFlat));
       if (s.flat || s.local_minima > 1) continue;
       MaskObjective g(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
-      const auto brent = boost::math::tools::brent_find_minima(
-          [&](double a) { return g.evaluate(a).value; }, -0.25, 0.25, std::numeric_limits<double>::digits / 2);
+      const auto brent = boost::math::tools::brent_find_minima([&](double a) { return g.evaluate(a).value; }, -0.25,
+                                                               0.25, std::numeric_limits<double>::digits / 2);
       REQUIRE(s.parameter);
       CHECK(*s.parameter == Approx(brent.first).margin(1e-6));
       CHECK(s.value <= brent.second * (1 + 1e-12) + 1e-15);
@@ -95,7 +98,8 @@ TEST_CASE("search_mask_parameter: a planar boundary is flat, no optimum claimed"
     CHECK(s.status == SearchStatus::kFlat);
     CHECK(!s.parameter);
   }
-  MaskObjective bilinear(boundary_of(make_bilinear_net(5, 4, 2)), objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
+  MaskObjective bilinear(boundary_of(make_bilinear_net(5, 4, 2)), objective_named("thin_plate"), alpha_only(),
+                         backend("eigen-ldlt"));
   CHECK(search_mask_parameter(bilinear).flat);
 }
 
@@ -144,8 +148,12 @@ TEST_CASE("MaskObjective::evaluate_mask: the gradient in (alpha, gamma) equals f
   auto mask = [](double a, double g) { return Mask9{0.25 - a + g, 0.25 - a - g, a}; };
   std::vector<double> grad, unused;
   f.evaluate_mask(mask(alpha, gamma), {Mask9{-1, -1, 1}, Mask9{1, -1, 0}}, grad);
-  const double fa = (f.evaluate_mask(mask(alpha + h, gamma), {}, unused).value - f.evaluate_mask(mask(alpha - h, gamma), {}, unused).value) / (2 * h);
-  const double fg = (f.evaluate_mask(mask(alpha, gamma + h), {}, unused).value - f.evaluate_mask(mask(alpha, gamma - h), {}, unused).value) / (2 * h);
+  const double fa = (f.evaluate_mask(mask(alpha + h, gamma), {}, unused).value -
+                     f.evaluate_mask(mask(alpha - h, gamma), {}, unused).value) /
+                    (2 * h);
+  const double fg = (f.evaluate_mask(mask(alpha, gamma + h), {}, unused).value -
+                     f.evaluate_mask(mask(alpha, gamma - h), {}, unused).value) /
+                    (2 * h);
   CHECK(grad[0] == Approx(fa).epsilon(1e-6));
   CHECK(grad[1] == Approx(fg).epsilon(1e-6));
 }
@@ -168,7 +176,8 @@ TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on 
   CHECK(std::abs(t.gamma) < 0.25 + t.alpha);
 }
 
-TEST_CASE("discrete objectives: derivative equals finite differences; discrete twist is minimal at alpha = -1/4", "[alpha]") {
+TEST_CASE("discrete objectives: derivative equals finite differences; discrete twist is minimal at alpha = -1/4",
+          "[alpha]") {
   const Boundary b = make_smooth_boundary(7, 6, 12);
   for (const char* name : {"discrete_twist", "discrete_dirichlet", "discrete_thin_plate"}) {
     MaskObjective f(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
@@ -195,7 +204,9 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
     AlphaSearchOptions options;
     options.lower = 0;
     options.upper = compressed_of_mu(degree, degree, 1000.0 * degree * degree);
-    MaskObjective by_mu(b, objective_named("thin_plate"), [degree](double s) { return mu_family_compressed(degree, degree, s); }, backend("eigen-ldlt"));
+    MaskObjective by_mu(
+        b, objective_named("thin_plate"), [degree](double s) { return mu_family_compressed(degree, degree, s); },
+        backend("eigen-ldlt"));
     const AlphaSearchSummary m = search_mask_parameter(by_mu, options);
     REQUIRE(a.parameter);
     REQUIRE(m.parameter);
@@ -207,18 +218,23 @@ TEST_CASE("search over mu: agrees with the alpha search through alpha(n) = -n^2/
     CHECK(sine.evaluator == "sine basis");
     CHECK(sine.solves == 0);
     REQUIRE(sine.parameter);
-    CHECK(mu_of_compressed(degree, degree, *sine.parameter) == Approx(mu_of_compressed(degree, degree, *m.parameter)).epsilon(1e-4));
+    CHECK(mu_of_compressed(degree, degree, *sine.parameter) ==
+          Approx(mu_of_compressed(degree, degree, *m.parameter)).epsilon(1e-4));
     CHECK(sine.value == Approx(m.value).epsilon(1e-10));
   }
   // a non-square net keeps the anisotropic family and its solves
   AlphaSearchOptions options;
   options.lower = 0;
   options.upper = compressed_of_mu(5, 7, 1000.0 * 35);
-  CHECK(search_mu(make_smooth_boundary(5, 7, 2), objective_named("thin_plate"), backend("fast"), options).evaluator == "factorize and solve");
+  CHECK(search_mu(make_smooth_boundary(5, 7, 2), objective_named("thin_plate"), backend("fast"), options).evaluator ==
+        "factorize and solve");
   // and the compressed family's derivative is right
-  MaskObjective f(make_smooth_boundary(5, 7, 2), objective_named("e3"), [](double s) { return mu_family_compressed(5, 7, s); }, backend("eigen-ldlt"));
+  MaskObjective f(
+      make_smooth_boundary(5, 7, 2), objective_named("e3"), [](double s) { return mu_family_compressed(5, 7, s); },
+      backend("eigen-ldlt"));
   const double h = 1e-7, s = 0.3;
-  CHECK(f.evaluate(s).derivative == Approx((f.evaluate(s + h).value - f.evaluate(s - h).value) / (2 * h)).epsilon(1e-5));
+  CHECK(f.evaluate(s).derivative ==
+        Approx((f.evaluate(s + h).value - f.evaluate(s - h).value) / (2 * h)).epsilon(1e-5));
 }
 
 TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal", "[alpha]") {
@@ -243,12 +259,14 @@ TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal"
 TEST_CASE("SpectralAlphaObjective: equals the energy of the solved net, with exact derivatives", "[alpha]") {
   for (auto [m, n] : {std::pair{4, 4}, {6, 9}, {11, 5}, {2, 7}, {5, 2}}) {
     const Boundary b = make_smooth_boundary(m, n, 21);
-    for (const char* name : {"discrete_thin_plate", "discrete_twist", "discrete_dirichlet", "discrete_thin_plate+0.3*discrete_dirichlet",
-                             "thin_plate", "twist", "dirichlet", "e3", "e3+0.2*dirichlet+discrete_twist", "target",
-                             "thin_plate+30*target", "sphere", "thin_plate+5*cylinder", "plane"}) {
+    for (const char* name :
+         {"discrete_thin_plate", "discrete_twist", "discrete_dirichlet", "discrete_thin_plate+0.3*discrete_dirichlet",
+          "thin_plate", "twist", "dirichlet", "e3", "e3+0.2*dirichlet+discrete_twist", "target", "thin_plate+30*target",
+          "sphere", "thin_plate+5*cylinder", "plane"}) {
       const std::string shape = name;
       Objective o = objective_named(shape == "sphere" || shape == "plane" ? "target"
-                                    : shape == "thin_plate+5*cylinder" ? "thin_plate+5*target" : shape);
+                                    : shape == "thin_plate+5*cylinder"    ? "thin_plate+5*target"
+                                                                          : shape);
       if (o.target_weight > 0) {  // a net of another degree compared at the samples, or a surface
         o.target = Target{};
         o.target->net = make_random_net(m + 1, n, 9);
@@ -268,7 +286,8 @@ TEST_CASE("SpectralAlphaObjective: equals the energy of the solved net, with exa
         CHECK(s.value == Approx(d.value).epsilon(1e-9));  // cancellation between E₀ and the modes near α = −1/4
         CHECK(s.derivative == Approx(d.derivative).epsilon(1e-7).margin(1e-8));
         const double h = 1e-5;
-        const double fd2 = (spectral.evaluate(alpha + h).derivative - spectral.evaluate(alpha - h).derivative) / (2 * h);
+        const double fd2 =
+            (spectral.evaluate(alpha + h).derivative - spectral.evaluate(alpha - h).derivative) / (2 * h);
         CHECK(s.second_derivative == Approx(fd2).epsilon(1e-5).margin(1e-8));
       }
     }
@@ -325,7 +344,8 @@ TEST_CASE("search_mask_parameter: the spectral search is exact and needs few eva
 TEST_CASE("search_mask_parameter: the spectral search finds the optimum of the solve-based search", "[alpha]") {
   for (std::uint32_t seed = 1; seed <= 6; ++seed) {
     const Boundary b = make_smooth_boundary(5 + int(seed), 4 + int(2 * seed % 7), seed);
-    for (const char* name : {"discrete_thin_plate", "discrete_thin_plate+0.5*discrete_dirichlet", "thin_plate", "e3+0.5*dirichlet"}) {
+    for (const char* name :
+         {"discrete_thin_plate", "discrete_thin_plate+0.5*discrete_dirichlet", "thin_plate", "e3+0.5*dirichlet"}) {
       MaskObjective direct(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
       SpectralAlphaSearchObjective spectral(b, objective_named(name));
       const AlphaSearchSummary d = search_mask_parameter(direct), s = search_mask_parameter(spectral);

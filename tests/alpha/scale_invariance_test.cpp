@@ -2,14 +2,12 @@
 // by 1e6 and scaled by 1e−150 … 1e150 has the same α*, flatness and bound, energies scaled by s²
 // (distances by s), and the same net up to the transformation.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <string>
 #include <vector>
 
-#include "coons/config.h"
-
 #include "coons/alpha/alpha_search.h"
+#include "coons/config.h"
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
 #include "coons/metrics/energies.h"
@@ -26,8 +24,8 @@ struct Placement {
 };
 
 const std::vector<Placement>& placements() {
-  static const std::vector<Placement> list = {
-      {1e-150, 0}, {1e-12, 0}, {1e12, 0}, {1e150, 0}, {1, 1e6}, {0x1p40, 0x1p60}};
+  static const std::vector<Placement> list = {{1e-150, 0}, {1e-12, 0}, {1e12, 0},
+                                              {1e150, 0},  {1, 1e6},   {0x1p40, 0x1p60}};
   return list;
 }
 
@@ -72,8 +70,9 @@ const Boundary& dome() {
 }
 
 const std::vector<std::string>& objectives() {
-  static const std::vector<std::string> list = {"thin_plate", "twist", "dirichlet", "e3", "discrete_twist",
-                                                "discrete_dirichlet", "discrete_thin_plate", "target"};
+  static const std::vector<std::string> list = {
+      "thin_plate",          "twist", "dirichlet", "e3", "discrete_twist", "discrete_dirichlet",
+      "discrete_thin_plate", "target"};
   return list;
 }
 
@@ -120,7 +119,8 @@ TEST_CASE("search_mu: the optimum is invariant under translation and scaling of 
     INFO(name << " at scale 1: " << at_one.brief_report());
     REQUIRE(at_one.status == SearchStatus::kSuccess);
     for (const Placement& p : placements()) {
-      const AlphaSearchSummary moved = search_mu(placed(dome(), p), objective_named(name, p), backend("eigen-ldlt"), options);
+      const AlphaSearchSummary moved =
+          search_mu(placed(dome(), p), objective_named(name, p), backend("eigen-ldlt"), options);
       INFO("scale " << p.scale << ", shift " << p.shift << ": " << moved.brief_report());
       check_same_search(at_one, moved, value_scale(name, p.scale));
     }

@@ -1,8 +1,8 @@
-#include <catch2/catch.hpp>
+#include "coons/curves/analytic_curve.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 
-#include "coons/curves/analytic_curve.h"
 #include "coons/curves/bezier_fit.h"
 #include "coons/curves/numerical_derivative.h"
 #include "support/surface_fixtures.h"
@@ -19,9 +19,12 @@ TEST_CASE("numerical_derivative: documented accuracy on smooth functions of unit
   auto f = [](double s) { return Eigen::RowVector3d(std::sin(3 * s), std::exp(s), std::pow(s, 5) - s * s); };
   auto exact = [](int r, double s) -> Eigen::RowVector3d {
     switch (r) {
-      case 1: return {3 * std::cos(3 * s), std::exp(s), 5 * std::pow(s, 4) - 2 * s};
-      case 2: return {-9 * std::sin(3 * s), std::exp(s), 20 * std::pow(s, 3) - 2};
-      default: return {-27 * std::cos(3 * s), std::exp(s), 60 * s * s};
+      case 1:
+        return {3 * std::cos(3 * s), std::exp(s), 5 * std::pow(s, 4) - 2 * s};
+      case 2:
+        return {-9 * std::sin(3 * s), std::exp(s), 20 * std::pow(s, 3) - 2};
+      default:
+        return {-27 * std::cos(3 * s), std::exp(s), 60 * s * s};
     }
   };
   const double tolerance[4] = {0, 1e-11, 1e-10, 1e-9};
@@ -29,7 +32,8 @@ TEST_CASE("numerical_derivative: documented accuracy on smooth functions of unit
   for (int r = 1; r <= 3; ++r)
     for (double s : {0.0, 0.1, 0.5, 0.9, 1.0}) {
       const NumericalDerivative d = numerical_derivative(f, r, s);
-      const double err = (d.value - exact(r, s)).cwiseAbs().maxCoeff() / std::max(1.0, exact(r, s).cwiseAbs().maxCoeff());
+      const double err =
+          (d.value - exact(r, s)).cwiseAbs().maxCoeff() / std::max(1.0, exact(r, s).cwiseAbs().maxCoeff());
       worst[r] = std::max(worst[r], err);
       CHECK_FALSE(d.one_sided);
     }
@@ -92,7 +96,7 @@ TEST_CASE("AnalyticCurve: an expression that does not parse names its component"
     CHECK(std::string(e.what()).find("2*t-") != std::string::npos);
   }
   CHECK_THROWS_AS(AnalyticCurve({"t", "0", "foo(t)"}), ExpressionError);
-  CHECK_THROWS_AS(AnalyticCurve({"x", "0", "0"}), ExpressionError);   // unknown variable
+  CHECK_THROWS_AS(AnalyticCurve({"x", "0", "0"}), ExpressionError);     // unknown variable
   CHECK_THROWS_AS(AnalyticCurve({"t, 2", "0", "0"}), ExpressionError);  // two values
   CHECK_THROWS_AS(AnalyticCurve({"", "0", "0"}), ExpressionError);
 }

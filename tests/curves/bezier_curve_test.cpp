@@ -1,6 +1,7 @@
+#include "coons/curves/bezier_curve.h"
+
 #include <catch2/catch.hpp>
 
-#include "coons/curves/bezier_curve.h"
 #include "coons/curves/curve.h"
 #include "support/fixtures.h"
 #include "support/surface_fixtures.h"

@@ -1,9 +1,9 @@
-#include <catch2/catch.hpp>
+#include "coons/curves/boundary_fit.h"
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 
-#include "coons/curves/boundary_fit.h"
 #include "coons/io/boundary_curves.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
@@ -19,8 +19,10 @@ TEST_CASE("fit_boundary: polynomial curves are refitted exactly", "[curves]") {
   const Boundary native = read_boundary_file(path).boundary;
   const FittedBoundary f = fit_boundary(*curves, 3, 3, "conoid");
   CHECK(f.max_deviation < 1e-13);
-  for (auto [a, b] : {std::pair{&f.boundary.bottom, &native.bottom}, {&f.boundary.top, &native.top},
-                      {&f.boundary.left, &native.left}, {&f.boundary.right, &native.right}})
+  for (auto [a, b] : {std::pair{&f.boundary.bottom, &native.bottom},
+                      {&f.boundary.top, &native.top},
+                      {&f.boundary.left, &native.left},
+                      {&f.boundary.right, &native.right}})
     CHECK((*a - *b).cwiseAbs().maxCoeff() < 1e-13);
 }
 

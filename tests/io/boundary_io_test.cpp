@@ -1,8 +1,8 @@
-#include <catch2/catch.hpp>
+#include "coons/io/boundary_io.h"
 
+#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
-#include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
 #include "support/fixtures.h"

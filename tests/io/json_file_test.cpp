@@ -1,14 +1,13 @@
 // The input edge's limits: nesting depth, file size, integer ranges and coordinate magnitudes are
 // checked when a file is read, and each refusal is an InputError naming file, field and reason.
+#include "coons/io/json_file.h"
+
 #include <catch2/catch.hpp>
-
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
-#include "coons/io/json_file.h"
 #include "coons/io/net_json.h"
 #include "coons/io/surface_io.h"
 #include "support/fixtures.h"

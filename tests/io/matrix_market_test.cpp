@@ -1,9 +1,9 @@
-#include <catch2/catch.hpp>
+#include "coons/io/matrix_market.h"
 
+#include <catch2/catch.hpp>
 #include <filesystem>
 
 #include "coons/io/input_error.h"
-#include "coons/io/matrix_market.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "support/fixtures.h"
 

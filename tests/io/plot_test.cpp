@@ -13,8 +13,8 @@
 
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
-#include "coons/net/bernstein.h"
 #include "coons/metrics/energies.h"
+#include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "support/fixtures.h"
 

@@ -1,13 +1,12 @@
 // The stencil file {"weights": [[...]]} and the free grid: valid input gives the normalised
 // stencil, each kind of bad input an InputError naming the field and the index.
-#include <catch2/catch.hpp>
+#include "coons/io/stencil_json.h"
 
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
 #include <string>
 
-#include <nlohmann/json.hpp>
-
 #include "coons/io/input_error.h"
-#include "coons/io/stencil_json.h"
 
 using namespace coons;
 using json = nlohmann::json;
@@ -47,7 +46,8 @@ TEST_CASE("stencil_from_json: a 5x5 file gives the normalised stencil, centre im
 
 TEST_CASE("stencil_from_json: a 3x3 mask-form file gives the alpha stencil", "[io]") {
   // b = α K + β E written as weights with centre implied (−1 = −Σ others): α = −1/4, β = 1/2.
-  const Stencil s = stencil_from_json(json::parse("{\"weights\": [[-0.25, 0.5, -0.25], [0.5, null, 0.5], [-0.25, 0.5, -0.25]]}"), "f");
+  const Stencil s = stencil_from_json(
+      json::parse("{\"weights\": [[-0.25, 0.5, -0.25], [0.5, null, 0.5], [-0.25, 0.5, -0.25]]}"), "f");
   CHECK((s.weights - alpha_stencil(alpha_mask(-0.25)).weights).cwiseAbs().maxCoeff() < 1e-16);
   // point symmetry only (an anisotropic, skewed mask) is accepted
   CHECK(error_of("{\"weights\": [[0.1, 0.2, 0.0], [0.3, null, 0.3], [0.0, 0.2, 0.1]]}").empty());
@@ -57,16 +57,19 @@ TEST_CASE("stencil_from_json: bad stencils name the field and the index", "[io]"
   CHECK(error_of("[1, 2]") == "s.json: a stencil file is a JSON object with \"weights\"");
   CHECK(error_of("{\"w\": 1}") == "s.json: weights: missing");
   CHECK(error_of("{\"weights\": [[1], [2]]}") == "s.json: weights: must be an array of 3 or 5 rows, got 2");
-  CHECK(error_of("{\"weights\": [[1, 1, 1], [1, null, 1], [1, 1]]}") == "s.json: weights[2]: must be an array of 3 numbers");
-  CHECK(error_of("{\"weights\": [[1, 1, 1], [1, null, \"a\"], [1, 1, 1]]}") == "s.json: weights[1][2]: must be a finite number");
+  CHECK(error_of("{\"weights\": [[1, 1, 1], [1, null, 1], [1, 1]]}") ==
+        "s.json: weights[2]: must be an array of 3 numbers");
+  CHECK(error_of("{\"weights\": [[1, 1, 1], [1, null, \"a\"], [1, 1, 1]]}") ==
+        "s.json: weights[1][2]: must be a finite number");
   CHECK(error_of("{\"weights\": [[1, 1, 1], [1, \"c\", 1], [1, 1, 1]]}") ==
         "s.json: weights[1][1]: must be a number or null (the centre is implied)");
   CHECK(error_of("{\"weights\": [[1, 2, 1], [1, null, 1], [1, 1, 1]]}") ==
         "s.json: weights[0][1]: breaks the symmetry W(a, b) = W(-a, -b): 2 here, 1 at weights[2][1]");
   CHECK(error_of("{\"weights\": [[1, -1, 1], [-1, null, -1], [1, -1, 1]]}") ==
         "s.json: weights: the weights around the centre sum to 0, so the implied centre is 0");
-  CHECK(error_of("{\"weights\": [[1, 1, 1], [1, 5, 1], [1, 1, 1]]}") ==
-        "s.json: weights[1][1]: the centre is implied by the others (the weights sum to 0): write null, 0 or -8, not 5");
+  CHECK(
+      error_of("{\"weights\": [[1, 1, 1], [1, 5, 1], [1, 1, 1]]}") ==
+      "s.json: weights[1][1]: the centre is implied by the others (the weights sum to 0): write null, 0 or -8, not 5");
 }
 
 TEST_CASE("free_grid_from_json: a 0/1 grid of the net's shape, errors at the index", "[io]") {

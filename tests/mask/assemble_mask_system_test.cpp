@@ -1,8 +1,8 @@
-#include <catch2/catch.hpp>
+#include "coons/mask/assemble_mask_system.h"
 
 #include <Eigen/Dense>
+#include <catch2/catch.hpp>
 
-#include "coons/mask/assemble_mask_system.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -25,8 +25,10 @@ void dense_reference(const ControlNet& net, const Mask9& mask, Eigen::MatrixXd& 
           if (!di && !dj) continue;
           const double w = di == 0 ? mask.edge_j : (dj == 0 ? mask.edge_i : mask.diag);
           const int ii = i + di, jj = j + dj;
-          if (ii == 0 || ii == m || jj == 0 || jj == n) B.row(row) += w * net.at(ii, jj);
-          else A(row, (ii - 1) * cols + (jj - 1)) -= w;
+          if (ii == 0 || ii == m || jj == 0 || jj == n)
+            B.row(row) += w * net.at(ii, jj);
+          else
+            A(row, (ii - 1) * cols + (jj - 1)) -= w;
         }
     }
 }
@@ -86,5 +88,6 @@ TEST_CASE("anisotropic_mask: affine invariant, and isotropic alpha(mu) when m = 
       }
     }
   for (int n : {3, 8, 16})
-    for (double alpha : {-0.24, -0.2, -0.1, -0.01}) CHECK(alpha_from_mu(n, mu_from_alpha(n, alpha)) == Approx(alpha).epsilon(1e-13));
+    for (double alpha : {-0.24, -0.2, -0.1, -0.01})
+      CHECK(alpha_from_mu(n, mu_from_alpha(n, alpha)) == Approx(alpha).epsilon(1e-13));
 }

@@ -1,7 +1,6 @@
 // The named stencils: their weights, the C1 family as the Euler–Lagrange operator of its energy
 // (from the exact Hessian of the energy, not from the header's algebra), symbols and factors.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "coons/mask/stencil.h"

@@ -1,14 +1,14 @@
 // The checks of a stencil problem (bad input of issue 11): a free grid of the wrong shape, too
 // few data rings, free points in the rings or whose stencil leaves the net, and free sets that
 // make the system singular, each naming the field and the point.
-#include <catch2/catch.hpp>
+#include "coons/mask/stencil_problem.h"
 
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <string>
 
 #include "coons/io/input_error.h"
 #include "coons/io/stencil_json.h"
-#include "coons/mask/stencil_problem.h"
 #include "mask/stencil_reference.h"
 #include "support/fixtures.h"
 
@@ -49,7 +49,8 @@ TEST_CASE("check_stencil_problem: too few rings for a 5x5 mask", "[mask]") {
   CHECK(issues[0].field == "rings");
   CHECK(mentions(issues[0].reason, "too few for a 5x5 mask"));
   // and the free points at depth 1 whose stencil leaves the net are named
-  const auto leaves = std::find_if(issues.begin(), issues.end(), [](const ProblemIssue& i) { return i.field == "free[1][1]"; });
+  const auto leaves =
+      std::find_if(issues.begin(), issues.end(), [](const ProblemIssue& i) { return i.field == "free[1][1]"; });
   REQUIRE(leaves != issues.end());
   CHECK(leaves->i == 1);
   CHECK(leaves->j == 1);

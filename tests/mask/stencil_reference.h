@@ -3,11 +3,10 @@
 // the discrete energies whose Euler–Lagrange operators the 5×5 masks are.
 #pragma once
 
+#include <Eigen/Dense>
 #include <cstdint>
 #include <random>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "coons/mask/stencil.h"
 #include "coons/mask/stencil_problem.h"
@@ -43,8 +42,10 @@ inline void dense_stencil_system(const StencilProblem& p, const Stencil& s, Eige
       for (int a = -s.radius; a <= s.radius; ++a)
         for (int b = -s.radius; b <= s.radius; ++b) {
           const double w = s.weights(s.radius + a, s.radius + b);
-          if (id(i + a, j + b) >= 0) A(row, id(i + a, j + b)) += w;
-          else B.row(row) -= w * p.net.at(i + a, j + b);
+          if (id(i + a, j + b) >= 0)
+            A(row, id(i + a, j + b)) += w;
+          else
+            B.row(row) -= w * p.net.at(i + a, j + b);
         }
     }
 }

@@ -3,7 +3,6 @@
 // the thin-plate Euler–Lagrange property of the biharmonic mask, the C1 family, the α family on
 // any free set and any number of rings, and non-rectangular free sets.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <random>
 
@@ -91,7 +90,8 @@ GeneralCoonsData general_coons_data(const ControlNet& net) {
   };
   using V = Eigen::RowVector3d;
   BoundaryCurves b{curve_u([&](int i) -> V { return net.at(i, 0); }), curve_u([&](int i) -> V { return net.at(i, n); }),
-                   curve_v([&](int j) -> V { return net.at(0, j); }), curve_v([&](int j) -> V { return net.at(m, j); })};
+                   curve_v([&](int j) -> V { return net.at(0, j); }),
+                   curve_v([&](int j) -> V { return net.at(m, j); })};
   GeneralCoonsData g{b,
                      curve_v([&](int j) -> V { return m * (net.at(1, j) - net.at(0, j)); }),
                      curve_v([&](int j) -> V { return m * (net.at(m, j) - net.at(m - 1, j)); }),
@@ -100,7 +100,8 @@ GeneralCoonsData general_coons_data(const ControlNet& net) {
                      {}};
   for (int c = 0; c < 4; ++c) {
     const int i = c % 2 ? m - 1 : 0, j = c / 2 ? n - 1 : 0;
-    g.twist[std::size_t(c)] = double(m) * n * (net.at(i + 1, j + 1) - net.at(i + 1, j) - net.at(i, j + 1) + net.at(i, j));
+    g.twist[std::size_t(c)] =
+        double(m) * n * (net.at(i + 1, j + 1) - net.at(i + 1, j) - net.at(i, j + 1) + net.at(i, j));
   }
   return g;
 }
@@ -111,8 +112,9 @@ TEST_CASE("assemble_stencil_system: matrix and right-hand side equal the dense r
   std::uint32_t seed = 100;
   for (auto [m, n] : {std::pair{4, 4}, {5, 9}, {11, 6}, {8, 8}, {13, 7}}) {
     const ControlNet net = make_random_net(m, n, seed++);
-    for (const Stencil& s : {alpha_stencil(alpha_mask(0.1)), alpha_stencil(anisotropic_mask(m, n, 2)), c1_coons_stencil(),
-                             biharmonic_stencil(), c1_family_stencil(0.35), random_stencil(2, seed), random_stencil(1, seed)}) {
+    for (const Stencil& s :
+         {alpha_stencil(alpha_mask(0.1)), alpha_stencil(anisotropic_mask(m, n, 2)), c1_coons_stencil(),
+          biharmonic_stencil(), c1_family_stencil(0.35), random_stencil(2, seed), random_stencil(1, seed)}) {
       for (double density : {1.0, 0.7, 0.3}) {
         const StencilProblem p = make_problem(net, 2, random_free(m, n, s.radius, density, seed++));
         INFO("m = " << m << ", n = " << n << ", radius " << s.radius << ", density " << density);
@@ -156,7 +158,8 @@ TEST_CASE("refill_stencil_system: one pattern serves the C1 family, values and r
   CHECK(refill_stencil_system(p, biharmonic_stencil(), narrow));
 }
 
-TEST_CASE("solve_stencil_net: c1-coons on Bezier data is the net of the general (bicubically blended) Coons patch", "[mask]") {
+TEST_CASE("solve_stencil_net: c1-coons on Bezier data is the net of the general (bicubically blended) Coons patch",
+          "[mask]") {
   std::uint32_t seed = 200;
   for (auto [m, n] : {std::pair{4, 4}, {5, 7}, {9, 6}, {12, 12}, {6, 15}}) {
     const ControlNet net = make_random_net(m, n, seed++);
@@ -169,7 +172,8 @@ TEST_CASE("solve_stencil_net: c1-coons on Bezier data is the net of the general 
     double ring_gap = 0;
     for (int i = 0; i <= m; ++i)
       for (int j = 0; j <= n; ++j)
-        if (std::min({i, j, m - i, n - j}) < 2) ring_gap = std::max(ring_gap, (coons->at(i, j) - net.at(i, j)).cwiseAbs().maxCoeff());
+        if (std::min({i, j, m - i, n - j}) < 2)
+          ring_gap = std::max(ring_gap, (coons->at(i, j) - net.at(i, j)).cwiseAbs().maxCoeff());
     CHECK(ring_gap < 1e-12);
     // ... and c1-coons with those two rings fills in exactly the patch's interior, which a
     // random net's interior is not.
@@ -186,7 +190,7 @@ TEST_CASE("solve_stencil_net: c1-coons reproduces every net that is cubic in eac
     const ControlNet exact = bicubic_index_net(m, n, seed++);
     // the free points' values are ignored: start from random ones
     const ControlNet start = fill_free_points(exact, number_free_points(free_points(make_problem(exact, 2))),
-                             Eigen::MatrixX3d::Random((m - 3) * (n - 3), 3));
+                                              Eigen::MatrixX3d::Random((m - 3) * (n - 3), 3));
     INFO("m = " << m << ", n = " << n);
     CHECK(relative_difference(solve_with(make_problem(start, 2), c1_coons_stencil()), exact) < 1e-10);
     // also cubic in i only (anything in j): Δ⁴_i kills it, so Δ⁴_i Δ⁴_j does too
@@ -232,7 +236,8 @@ TEST_CASE("solve_stencil_net: biharmonic minimises the discrete thin-plate energ
   }
 }
 
-TEST_CASE("solve_stencil_net: the C1 family minimises its energy and meets c1-coons and biharmonic at the ends", "[mask]") {
+TEST_CASE("solve_stencil_net: the C1 family minimises its energy and meets c1-coons and biharmonic at the ends",
+          "[mask]") {
   const int m = 9, n = 7;
   const FreeGrid free = random_free(m, n, 2, 0.8, 41);
   const StencilProblem p = make_problem(make_random_net(m, n, 42), 2, free);
@@ -290,7 +295,8 @@ TEST_CASE("solve_stencil_net: L-shaped, holed and cut free sets equal the dense 
   cut.row(7).setConstant(false);  // a fixed interior curve: row i = 7 held
   for (const FreeGrid* free : {&L, &hole, &cut}) {
     const StencilProblem p = make_problem(net, 2, *free);
-    for (const Stencil& s : {c1_coons_stencil(), biharmonic_stencil(), c1_family_stencil(0.5), alpha_stencil(alpha_mask(-0.25))}) {
+    for (const Stencil& s :
+         {c1_coons_stencil(), biharmonic_stencil(), c1_family_stencil(0.5), alpha_stencil(alpha_mask(-0.25))}) {
       CHECK(check_stencil_problem(p, s).empty());
       const ControlNet solved = solve_with(p, s, "eigen-ldlt");
       CHECK(relative_difference(solved, dense_stencil_solve(p, s)) < 1e-10);
@@ -304,15 +310,16 @@ TEST_CASE("solve_stencil_net: L-shaped, holed and cut free sets equal the dense 
     const ControlNet bicubic = bicubic_index_net(m, n, 601);
     CHECK(relative_difference(solve_with(make_problem(bicubic, 2, *free), c1_coons_stencil()), bicubic) < 1e-10);
     const ControlNet bilinear = make_bilinear_net(m, n, 602);
-    CHECK(relative_difference(solve_with(make_problem(bilinear, 2, *free), alpha_stencil(alpha_mask(0.1))), bilinear) < 1e-12);
+    CHECK(relative_difference(solve_with(make_problem(bilinear, 2, *free), alpha_stencil(alpha_mask(0.1))), bilinear) <
+          1e-12);
   }
   // A held row decouples the two halves for a 3×3 mask; a 5×5 mask reaches across one row and
   // needs two held rows (a curve and its cross-boundary ribbon): changing data below the cut
   // does not move the free points above it.
   FreeGrid cut2 = cut;
   cut2.row(8).setConstant(false);
-  for (const auto& [free, stencil] : {std::pair{&cut, alpha_stencil(alpha_mask(-0.25))}, {&cut2, c1_coons_stencil()},
-                                      {&cut, c1_coons_stencil()}}) {
+  for (const auto& [free, stencil] :
+       {std::pair{&cut, alpha_stencil(alpha_mask(-0.25))}, {&cut2, c1_coons_stencil()}, {&cut, c1_coons_stencil()}}) {
     StencilProblem p = make_problem(net, 2, *free);
     const ControlNet before = solve_with(p, stencil);
     p.net.at(1, 5) += Eigen::RowVector3d(1, 1, 1);
@@ -321,8 +328,10 @@ TEST_CASE("solve_stencil_net: L-shaped, holed and cut free sets equal the dense 
     double upper = 0;
     for (int i = 8; i <= m; ++i)
       for (int j = 0; j <= n; ++j) upper = std::max(upper, (before.at(i, j) - after.at(i, j)).cwiseAbs().maxCoeff());
-    if (free == &cut && stencil.radius == 2) CHECK(upper > 1e-6);  // one held row is not enough for 5×5
-    else CHECK(upper < 1e-12);
+    if (free == &cut && stencil.radius == 2)
+      CHECK(upper > 1e-6);  // one held row is not enough for 5×5
+    else
+      CHECK(upper < 1e-12);
   }
 }
 
@@ -385,8 +394,8 @@ TEST_CASE("solve_stencil_net: c1-coons through the separable banded solver equal
       INFO("m = " << m << ", n = " << n << ", rings = " << rings);
       const double diff = relative_difference(r.net, direct);
       const double err = relative_difference(r.net, truth), err_direct = relative_difference(direct, truth);
-      INFO("c1-coons " << m << " x " << n << ", rings " << rings << ": separable error " << err
-                       << ", eigen-ldlt error " << err_direct << ", difference " << diff);
+      INFO("c1-coons " << m << " x " << n << ", rings " << rings << ": separable error " << err << ", eigen-ldlt error "
+                       << err_direct << ", difference " << diff);
       CHECK(err <= 2 * err_direct + 1e-12);
       CHECK(err < 1e-9);
       CHECK(diff <= std::max(1e-10, 3 * (err + err_direct)));
@@ -399,7 +408,8 @@ TEST_CASE("solve_stencil_net: c1-coons through the separable banded solver equal
   CHECK(relative_difference(solve_stencil_net(p, alpha_stencil(alpha_mask(-0.25)), *coons).net,
                             dense_stencil_solve(p, alpha_stencil(alpha_mask(-0.25)))) < 1e-12);
   CHECK_FALSE(make_separable_solver(make_problem(make_random_net(9, 7, 1), 2), biharmonic_stencil()));
-  CHECK_FALSE(make_separable_solver(make_problem(make_random_net(9, 7, 1), 2, random_free(9, 7, 2, 0.7, 3)), c1_coons_stencil()));
+  CHECK_FALSE(make_separable_solver(make_problem(make_random_net(9, 7, 1), 2, random_free(9, 7, 2, 0.7, 3)),
+                                    c1_coons_stencil()));
 }
 
 TEST_CASE("solve_stencil_net: a problem that does not fit the mask is a status, not a crash", "[mask]") {
@@ -410,7 +420,8 @@ TEST_CASE("solve_stencil_net: a problem that does not fit the mask is a status, 
   CHECK(r.summary.message.find("rings") != std::string::npos);
   CHECK(max_difference(r.net, p.net) == 0);
   // a singular indefinite member (α = −1/2 at m = n = 3) is reported by the solver's status
-  const StencilSolveResult s = solve_stencil_net(make_problem(make_random_net(3, 3, 2), 1), alpha_stencil(alpha_mask(-0.5)), *solver);
+  const StencilSolveResult s =
+      solve_stencil_net(make_problem(make_random_net(3, 3, 2), 1), alpha_stencil(alpha_mask(-0.5)), *solver);
   CHECK_FALSE(s.summary.ok());
 }
 
@@ -418,7 +429,8 @@ TEST_CASE("solve_stencil_net: every backend solves 5x5 masks on free sets or say
   const int m = 9, n = 8;
   FreeGrid L = random_free(m, n, 2, 1.0, 1);
   L.block(5, 5, 3, 2).setConstant(false);
-  for (const StencilProblem& p : {make_problem(make_random_net(m, n, 950), 2), make_problem(make_random_net(m, n, 951), 2, L)}) {
+  for (const StencilProblem& p :
+       {make_problem(make_random_net(m, n, 950), 2), make_problem(make_random_net(m, n, 951), 2, L)}) {
     for (const Stencil& s : {c1_coons_stencil(), biharmonic_stencil(), c1_family_stencil(0.5)}) {
       const ControlNet ref = dense_stencil_solve(p, s);
       for (const auto& info : solvers::available_solvers()) {

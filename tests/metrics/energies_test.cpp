@@ -1,14 +1,14 @@
-#include <catch2/catch.hpp>
+#include "coons/metrics/energies.h"
 
+#include <catch2/catch.hpp>
 #include <random>
 
 #include "coons/io/boundary_io.h"
 #include "coons/mask/assemble_mask_system.h"
-#include "coons/mask/solve_mask_net.h"
-#include "coons/net/bernstein.h"
 #include "coons/mask/mask_residual.h"
-#include "coons/metrics/energies.h"
+#include "coons/mask/solve_mask_net.h"
 #include "coons/metrics/quadrature.h"
+#include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "support/fixtures.h"
 
@@ -60,13 +60,16 @@ TEST_CASE("surface_energy: equals Gauss-Legendre quadrature for every (a, b)", "
       }
     const NetMetrics metrics = net_metrics(net, alpha_mask(-0.25));
     CHECK(metrics.twist_energy == Approx(quadrature_energy(net, 1, 1)).epsilon(1e-11).margin(1e-12));
-    CHECK(metrics.dirichlet_energy == Approx(quadrature_energy(net, 1, 0) + quadrature_energy(net, 0, 1)).epsilon(1e-11));
+    CHECK(metrics.dirichlet_energy ==
+          Approx(quadrature_energy(net, 1, 0) + quadrature_energy(net, 0, 1)).epsilon(1e-11));
     CHECK(metrics.thin_plate_energy ==
           Approx(quadrature_energy(net, 2, 0) + 2 * quadrature_energy(net, 1, 1) + quadrature_energy(net, 0, 2))
-              .epsilon(1e-11).margin(1e-12));
+              .epsilon(1e-11)
+              .margin(1e-12));
     CHECK(metrics.e3_energy == Approx(quadrature_energy(net, 3, 0) + 3 * quadrature_energy(net, 2, 1) +
                                       3 * quadrature_energy(net, 1, 2) + quadrature_energy(net, 0, 3))
-                                   .epsilon(1e-11).margin(1e-12));
+                                   .epsilon(1e-11)
+                                   .margin(1e-12));
     CHECK(metrics.twist_energy == twist_energy(net));
     CHECK(metrics.thin_plate_energy == Approx(thin_plate_energy(net)).epsilon(1e-15));
     CHECK(metrics.e3_energy == Approx(e3_energy(net)).epsilon(1e-15));
@@ -99,8 +102,11 @@ TEST_CASE("net_metrics: seed example 1 reference values (twist 0, Dirichlet 20/3
 
 TEST_CASE("net_metrics: the dome table of docs/math.md §7", "[metrics][seed]") {
   const Boundary b = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
-  struct Row { double alpha, thin_plate, dirichlet; };
-  for (const Row& row : {Row{-0.25, 24.787, 9.877}, Row{-0.20, 18.320, 9.320}, Row{-0.10, 13.990, 8.794}, Row{0.0, 13.444, 8.571}}) {
+  struct Row {
+    double alpha, thin_plate, dirichlet;
+  };
+  for (const Row& row :
+       {Row{-0.25, 24.787, 9.877}, Row{-0.20, 18.320, 9.320}, Row{-0.10, 13.990, 8.794}, Row{0.0, 13.444, 8.571}}) {
     const MaskSolveResult r = solve_mask_net(b, alpha_mask(row.alpha), backend("eigen-ldlt"));
     INFO("alpha = " << row.alpha);
     CHECK(thin_plate_energy(r.net) == Approx(row.thin_plate).margin(5e-4));
@@ -138,7 +144,9 @@ TEST_CASE("discrete energies: a blend w*T_d + (1-w)*D_d is minimised by alpha = 
   const Boundary b = make_random_boundary(5, 7, 31);
   for (double w : {0.0, 0.4, 1.0}) {
     const ControlNet best = solve_mask_net(b, alpha_mask(-w / 4), backend("eigen-ldlt")).net;
-    auto energy = [&](const ControlNet& net) { return w * discrete_twist_energy(net) + (1 - w) * discrete_dirichlet_energy(net); };
+    auto energy = [&](const ControlNet& net) {
+      return w * discrete_twist_energy(net) + (1 - w) * discrete_dirichlet_energy(net);
+    };
     std::mt19937 rng(5);
     std::normal_distribution<double> noise(0, 1e-3);
     for (int trial = 0; trial < 20; ++trial) {

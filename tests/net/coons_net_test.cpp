@@ -1,9 +1,10 @@
+#include "coons/net/coons_net.h"
+
 #include <catch2/catch.hpp>
 
 #include "coons/io/boundary_io.h"
 #include "coons/mask/solve_mask_net.h"
 #include "coons/net/bernstein.h"
-#include "coons/net/coons_net.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -25,7 +26,8 @@ Eigen::RowVector3d coons_patch(const Boundary& b, double u, double v, F0 f0) {
 double linear_f0(double t) { return 1 - t; }
 double hermite_f0(double t) { return 1 - 3 * t * t + 2 * t * t * t; }
 
-const std::pair<int, int> kSizes[] = {{2, 2}, {3, 3}, {2, 5}, {5, 2}, {4, 7}, {9, 6}, {12, 12}, {17, 8}, {1, 4}, {6, 1}};
+const std::pair<int, int> kSizes[] = {{2, 2}, {3, 3},   {2, 5},  {5, 2}, {4, 7},
+                                      {9, 6}, {12, 12}, {17, 8}, {1, 4}, {6, 1}};
 
 }  // namespace
 
@@ -71,7 +73,8 @@ TEST_CASE("hermite_blend_weights: Bernstein coefficients of F0 at every degree",
   for (int k = 3; k <= 20; ++k) {
     const std::vector<double> w = hermite_blend_weights(k);
     const Eigen::Map<const Eigen::VectorXd> W(w.data(), k + 1);
-    for (double t : {0.0, 0.2, 0.5, 0.8, 1.0}) CHECK(bernstein_basis(k, t).dot(W) == Approx(hermite_f0(t)).margin(1e-14));
+    for (double t : {0.0, 0.2, 0.5, 0.8, 1.0})
+      CHECK(bernstein_basis(k, t).dot(W) == Approx(hermite_f0(t)).margin(1e-14));
   }
 }
 
@@ -95,8 +98,10 @@ TEST_CASE("solve_mask_net: transposing or flipping the boundary transposes or fl
   const Boundary b = boundary_of(random);
   for (double alpha : {-0.25, -0.05, 0.0, 0.15}) {
     const ControlNet net = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
-    const ControlNet net_t = solve_mask_net(boundary_of(transposed(random)), alpha_mask(alpha), backend("eigen-ldlt")).net;
-    const ControlNet net_f = solve_mask_net(boundary_of(flipped_u(random)), alpha_mask(alpha), backend("eigen-ldlt")).net;
+    const ControlNet net_t =
+        solve_mask_net(boundary_of(transposed(random)), alpha_mask(alpha), backend("eigen-ldlt")).net;
+    const ControlNet net_f =
+        solve_mask_net(boundary_of(flipped_u(random)), alpha_mask(alpha), backend("eigen-ldlt")).net;
     INFO("alpha = " << alpha);
     CHECK(max_difference(transposed(net), net_t) < 1e-13);
     CHECK(max_difference(flipped_u(net), net_f) < 1e-13);
@@ -110,7 +115,8 @@ TEST_CASE("solve_mask_net: every alpha reproduces bilinear nets", "[net]") {
     const ControlNet bilinear = make_bilinear_net(m, n, 5);
     for (double alpha : {-0.25, -0.2, -0.1, 0.0, 0.1, 0.25}) {
       INFO("m = " << m << ", n = " << n << ", alpha = " << alpha);
-      CHECK(max_difference(solve_mask_net(boundary_of(bilinear), alpha_mask(alpha), backend("eigen-ldlt")).net, bilinear) < 1e-13);
+      CHECK(max_difference(solve_mask_net(boundary_of(bilinear), alpha_mask(alpha), backend("eigen-ldlt")).net,
+                           bilinear) < 1e-13);
     }
     CHECK(max_difference(discrete_coons_net(boundary_of(bilinear)), bilinear) < 1e-14);
   }
@@ -126,7 +132,8 @@ TEST_CASE("seed example 1: the interior point is (1, 0, 1) for every alpha", "[n
   CHECK((coons.at(1, 1) - Eigen::RowVector3d(1, 0, 1)).norm() < 1e-15);
   // The patch is (u + v, u² − v², 1 − u + v).
   for (double u : {0.1, 0.5, 0.8})
-    for (double v : {0.2, 0.6}) CHECK((evaluate(coons, u, v) - Eigen::RowVector3d(u + v, u * u - v * v, 1 - u + v)).norm() < 1e-14);
+    for (double v : {0.2, 0.6})
+      CHECK((evaluate(coons, u, v) - Eigen::RowVector3d(u + v, u * u - v * v, 1 - u + v)).norm() < 1e-14);
 }
 
 TEST_CASE("seed example 2: every alpha reproduces the hyperbolic paraboloid z = 2uv", "[net][seed]") {
@@ -134,8 +141,7 @@ TEST_CASE("seed example 2: every alpha reproduces the hyperbolic paraboloid z = 
   for (double alpha : {-0.25, -0.1, 0.0, 0.2}) {
     const ControlNet net = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
     for (double u : {0.0, 0.3, 0.5, 1.0})
-      for (double v : {0.25, 0.75})
-        CHECK((evaluate(net, u, v) - Eigen::RowVector3d(u, v, 2 * u * v)).norm() < 1e-14);
+      for (double v : {0.25, 0.75}) CHECK((evaluate(net, u, v) - Eigen::RowVector3d(u, v, 2 * u * v)).norm() < 1e-14);
   }
 }
 

@@ -1,18 +1,17 @@
 // Multigrid, multigrid-preconditioned CG and GMRES on grid stencils (3×3 and 5×5, full rectangles
 // and free sets), against sparse direct solves; symmetry of the V-cycle; iteration counts.
-#include <catch2/catch.hpp>
+#include "solvers/multigrid.h"
 
+#include <Eigen/Dense>
+#include <Eigen/SparseCholesky>
+#include <Eigen/SparseLU>
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
 #include <string>
 #include <vector>
 
-#include <Eigen/Dense>
-#include <Eigen/SparseCholesky>
-#include <Eigen/SparseLU>
-
 #include "solvers/gmres.h"
-#include "solvers/multigrid.h"
 #include "solvers/multigrid_solvers.h"
 #include "solvers/registry.h"
 #include "solvers/stencil_operator.h"
@@ -64,9 +63,9 @@ std::vector<unsigned char> shape_mask(Shape shape, int rows, int cols) {
   if (shape == Shape::kFull) return {};
   for (int i = 0; i < rows; ++i)
     for (int j = 0; j < cols; ++j) {
-      const bool out = shape == Shape::kLShape ? (i >= rows / 2 && j >= cols / 2)
-                                               : (std::abs(i - rows / 2) <= rows / 6 &&
-                                                  std::abs(j - cols / 3) <= cols / 5);
+      const bool out = shape == Shape::kLShape
+                           ? (i >= rows / 2 && j >= cols / 2)
+                           : (std::abs(i - rows / 2) <= rows / 6 && std::abs(j - cols / 3) <= cols / 5);
       if (out) free[std::size_t(i) * cols + j] = 0;
     }
   return free;
@@ -104,7 +103,8 @@ double relative_error(const Eigen::MatrixXd& X, const Eigen::MatrixXd& reference
 
 }  // namespace
 
-TEST_CASE("apply_stencil_operator: equals the product with stencil_operator_matrix on a masked 5x5 stencil", "[solvers][mg]") {
+TEST_CASE("apply_stencil_operator: equals the product with stencil_operator_matrix on a masked 5x5 stencil",
+          "[solvers][mg]") {
   StencilOperator op = make_stencil_operator(9, 7, biharmonic());
   op.weights[3] = 0.7;  // make it nonsymmetric: w(−2, 1) ≠ w(2, −1)
   op.free = shape_mask(Shape::kHole, 9, 7);
@@ -119,7 +119,8 @@ TEST_CASE("apply_stencil_operator: equals the product with stencil_operator_matr
   CHECK((Y - A * X).cwiseAbs().maxCoeff() < 1e-13);
   // The 3×3 GridStencil and its operator give the same matrix.
   const GridStencil s{6, 5, 1.0, -0.3, -0.2, 0.05};
-  CHECK((Eigen::MatrixXd(stencil_matrix(s)) - Eigen::MatrixXd(stencil_operator_matrix(stencil_operator(s)))).norm() == 0);
+  CHECK((Eigen::MatrixXd(stencil_matrix(s)) - Eigen::MatrixXd(stencil_operator_matrix(stencil_operator(s)))).norm() ==
+        0);
 }
 
 TEST_CASE("StencilOperator::is_valid: rejects wrong sizes and radii", "[solvers][mg]") {
@@ -137,7 +138,8 @@ TEST_CASE("StencilOperator::is_valid: rejects wrong sizes and radii", "[solvers]
   CHECK(!op.is_valid(&why));
 }
 
-TEST_CASE("multigrid backends: agree with a sparse direct solve on 3x3 and 5x5 stencils and free sets", "[solvers][mg]") {
+TEST_CASE("multigrid backends: agree with a sparse direct solve on 3x3 and 5x5 stencils and free sets",
+          "[solvers][mg]") {
   SolverOptions options;
   options.tolerance = 1e-11;
   for (const NamedStencil& stencil : symmetric_stencils())
@@ -153,14 +155,16 @@ TEST_CASE("multigrid backends: agree with a sparse direct solve on 3x3 and 5x5 s
         lop.grid = &op;
         // Solutions agree to the condition number: O(N²) for the second-order stencils, O(N⁴)
         // at α = −1/4 and for the biharmonic, O(N⁸) for c1-coons.
-        const double error_bound = stencil.name == "c1-coons" ? 1e-4 : op.radius == 2 || stencil.name == "alpha -1/4" ? 1e-6 : 1e-8;
+        const double error_bound = stencil.name == "c1-coons"                       ? 1e-4
+                                   : op.radius == 2 || stencil.name == "alpha -1/4" ? 1e-6
+                                                                                    : 1e-8;
         for (const char* name : {"mg", "mg-cg", "gmres"}) {
           Eigen::MatrixX3d X;
           const SolveSummary s = make_solver(name, options)->compute_and_solve(lop, B, X);
-          INFO(name << " on " << stencil.name << ", shape " << int(shape) << ", " << rows << "x" << cols
-                    << ": " << s.brief_report());
-          INFO(name << " on " << stencil.name << ", shape " << int(shape) << ", " << rows << "x" << cols
-                    << ": " << s.brief_report());
+          INFO(name << " on " << stencil.name << ", shape " << int(shape) << ", " << rows << "x" << cols << ": "
+                    << s.brief_report());
+          INFO(name << " on " << stencil.name << ", shape " << int(shape) << ", " << rows << "x" << cols << ": "
+                    << s.brief_report());
           REQUIRE(s.ok());
           CHECK(s.relative_residual < 1e-10);
           CHECK(relative_error(X, reference) < error_bound);
@@ -201,7 +205,10 @@ TEST_CASE("Multigrid::precondition: a V-cycle is a symmetric positive definite o
   }
 }
 
-TEST_CASE("multigrid backends: mg within 10 cycles on second-order stencils and mg-cg within 40 iterations on fourth-order ones at 63x63", "[solvers][mg]") {
+TEST_CASE(
+    "multigrid backends: mg within 10 cycles on second-order stencils and mg-cg within 40 iterations on fourth-order "
+    "ones at 63x63",
+    "[solvers][mg]") {
   SolverOptions options;
   options.tolerance = 1e-10;
   for (const NamedStencil& stencil : symmetric_stencils()) {
@@ -233,16 +240,16 @@ TEST_CASE("multigrid_cg: iteration counts stay bounded from 31x31 to 511x511", "
       const Eigen::VectorXd b = boundary_rhs(op).col(0);
       Eigen::VectorXd x_mg, x_cg;
       const IterationSummary v = mg.solve(b, x_mg, iteration), c = multigrid_cg(mg, b, x_cg, iteration);
-      WARN(stencil.name << " N = " << N << ": mg " << v.iterations << " cycles (factor "
-                        << v.convergence_factor() << "), mg-cg " << c.iterations << " iterations (factor "
-                        << c.convergence_factor() << ")");
+      WARN(stencil.name << " N = " << N << ": mg " << v.iterations << " cycles (factor " << v.convergence_factor()
+                        << "), mg-cg " << c.iterations << " iterations (factor " << c.convergence_factor() << ")");
       CHECK(c.ok());
       CHECK(c.iterations <= 40);
       if (stencil.name == "laplace" || stencil.name == "alpha -0.1") CHECK(v.iterations <= 10);
     }
 }
 
-TEST_CASE("Multigrid: a fixed margin around the free points changes neither the iterations nor the solution", "[solvers][mg]") {
+TEST_CASE("Multigrid: a fixed margin around the free points changes neither the iterations nor the solution",
+          "[solvers][mg]") {
   for (const NamedStencil& stencil : symmetric_stencils()) {
     const int N = 45, rings = stencil.weights.size() == 25 ? 2 : 1, R = N + 2 * rings;
     const StencilOperator bare = make_stencil_operator(N, N, stencil.weights);

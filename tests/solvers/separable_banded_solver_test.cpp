@@ -1,13 +1,11 @@
 // The separable banded solver (A = P ⊗ Q, pentadiagonal Toeplitz factors) against the sparse
 // direct solve of the assembled operator, and its statuses.
-#include <catch2/catch.hpp>
-
-#include <algorithm>
-#include <random>
+#include "solvers/separable_banded_solver.h"
 
 #include <Eigen/SparseLU>
-
-#include "solvers/separable_banded_solver.h"
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <random>
 
 using namespace coons::solvers;
 
@@ -21,9 +19,7 @@ Eigen::MatrixX3d random_rhs(Eigen::Index rows, std::uint32_t seed) {
   return B;
 }
 
-double relative_error(const Eigen::MatrixX3d& X, const Eigen::MatrixX3d& ref) {
-  return (X - ref).norm() / ref.norm();
-}
+double relative_error(const Eigen::MatrixX3d& X, const Eigen::MatrixX3d& ref) { return (X - ref).norm() / ref.norm(); }
 
 }  // namespace
 
@@ -50,7 +46,8 @@ TEST_CASE("separable_banded_solve: equals the sparse direct solve on several siz
   std::uint32_t seed = 1;
   const std::array<double, 3> fourth{6, -4, 1}, second{2, -1, 0}, dominant{7.5, -2, 0.5}, indefinite{-3, 1, 0.25};
   for (auto [rows, cols] : {std::pair{1, 1}, {2, 3}, {5, 7}, {17, 4}, {30, 41}, {64, 9}, {120, 100}}) {
-    for (const auto& [p, q] : {std::pair{fourth, fourth}, {fourth, second}, {dominant, fourth}, {indefinite, dominant}}) {
+    for (const auto& [p, q] :
+         {std::pair{fourth, fourth}, {fourth, second}, {dominant, fourth}, {indefinite, dominant}}) {
       INFO(rows << " x " << cols << ", p = (" << p[0] << ", " << p[1] << ", " << p[2] << ")");
       const SeparableBandedOperator op{rows, cols, p, q};
       const Eigen::SparseMatrix<double> A = separable_banded_matrix(op);
@@ -96,5 +93,6 @@ TEST_CASE("make_separable_banded_solver: the LinearSolver life cycle with its st
   const SeparableBandedOperator bad{2, 3, {1, 1, 0}, {6, -4, 1}};
   const Eigen::SparseMatrix<double> Abad = separable_banded_matrix(bad);
   lin.matrix = &Abad;
-  CHECK(make_separable_banded_solver(bad)->compute_and_solve(lin, random_rhs(6, 2), Y).status == SolveStatus::kSingular);
+  CHECK(make_separable_banded_solver(bad)->compute_and_solve(lin, random_rhs(6, 2), Y).status ==
+        SolveStatus::kSingular);
 }

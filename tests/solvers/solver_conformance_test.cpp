@@ -1,10 +1,8 @@
 // One harness for every registered backend (cf. AMGCL's tests, Eigen's sparse_solver.h): agreement
 // with a dense reference, right-hand side untouched, analyze-once = fresh solves, failure statuses.
-#include <catch2/catch.hpp>
-
-#include <set>
-
 #include <Eigen/Dense>
+#include <catch2/catch.hpp>
+#include <set>
 
 #include "coons/mask/assemble_mask_system.h"
 #include "solvers/registry.h"
@@ -107,9 +105,12 @@ TEST_CASE("every solver: reports indefinite and singular systems", "[solvers]") 
       Eigen::MatrixX3d X;
       const SolveSummary summary = make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X);
       INFO(summary.brief_report());
-      if (info.definite_only) CHECK(summary.status == SolveStatus::kNotPositiveDefinite);
-      else if (info.name == "jacobi") CHECK(summary.status == SolveStatus::kDiverged);
-      else if (summary.ok()) CHECK(summary.relative_residual < 1e-8);
+      if (info.definite_only)
+        CHECK(summary.status == SolveStatus::kNotPositiveDefinite);
+      else if (info.name == "jacobi")
+        CHECK(summary.status == SolveStatus::kDiverged);
+      else if (summary.ok())
+        CHECK(summary.relative_residual < 1e-8);
       CHECK(std::isfinite(summary.relative_residual));
     }
   }
@@ -168,8 +169,8 @@ TEST_CASE("gauss-seidel: converges at alpha = -1/4, and SOR needs fewer sweeps",
 TEST_CASE("iteration_limit: automatic limits are finite and bounded by the work", "[solvers]") {
   const SolverOptions automatic;
   CHECK(iteration_limit(automatic, 3844, 1000, 1e8) == 26014);  // 64×64 net: 1e8 / 3844 sweeps
-  CHECK(iteration_limit(automatic, 9, 1000, 1e8) == 9000);       // small nets: 1000 per unknown
-  CHECK(iteration_limit(automatic, 1, 20, 2e10) == 100);         // at least 100
+  CHECK(iteration_limit(automatic, 9, 1000, 1e8) == 9000);      // small nets: 1000 per unknown
+  CHECK(iteration_limit(automatic, 1, 20, 2e10) == 100);        // at least 100
   CHECK(iteration_limit(automatic, 1'000'000'000, 1000, 1e8) == 100);
   SolverOptions fixed;
   fixed.max_iterations = 7;

@@ -6,14 +6,14 @@
 
 #if COONS_HAVE_FFTW
 
+#include <fftw3.h>
+
+#include <Eigen/Dense>
 #include <cmath>
 #include <cstring>
 #include <functional>
 #include <random>
 #include <vector>
-
-#include <Eigen/Dense>
-#include <fftw3.h>
 
 #include "solvers/sine_basis.h"
 #include "solvers/sine_transform.h"
@@ -26,8 +26,8 @@ namespace {
 using Factory = std::function<std::unique_ptr<LinearSolver>(const SolverOptions&)>;
 
 const std::vector<std::pair<const char*, Factory>>& structured() {
-  static const std::vector<std::pair<const char*, Factory>> list = {
-      {"dst", make_dst_solver}, {"fast", make_fast_solver}};
+  static const std::vector<std::pair<const char*, Factory>> list = {{"dst", make_dst_solver},
+                                                                    {"fast", make_fast_solver}};
   return list;
 }
 
@@ -69,8 +69,7 @@ LinearOperator stencil_operator(const GridStencil& s) {
   return op;
 }
 
-void check_against_reference(const char* name, const Factory& make, const GridStencil& s,
-                             const Eigen::MatrixX3d& B) {
+void check_against_reference(const char* name, const Factory& make, const GridStencil& s, const Eigen::MatrixX3d& B) {
   // NOLINTNEXTLINE(performance-unnecessary-copy-initialization): a snapshot of B, to see the solver leave it alone
   const Eigen::MatrixX3d B_copy = B;
   const Eigen::MatrixX3d reference = dense_reference(s, B);
@@ -90,9 +89,22 @@ void check_against_reference(const char* name, const Factory& make, const GridSt
 
 const std::vector<std::pair<int, int>>& grids() {
   static const std::vector<std::pair<int, int>> list = {
-      {1, 1}, {1, 6}, {6, 1}, {2, 2}, {2, 5}, {3, 3}, {4, 7}, {7, 4}, {9, 9}, {12, 17}, {16, 15},
+      {1, 1},
+      {1, 6},
+      {6, 1},
+      {2, 2},
+      {2, 5},
+      {3, 3},
+      {4, 7},
+      {7, 4},
+      {9, 9},
+      {12, 17},
+      {16, 15},
       // cols + 1 with a prime factor > 13: fast widens the grid by 1 (17, 23) or 3 (37) columns
-      {7, 16}, {16, 22}, {5, 36}, {1, 16}};
+      {7, 16},
+      {16, 22},
+      {5, 36},
+      {1, 16}};
   return list;
 }
 
@@ -131,9 +143,9 @@ TEST_CASE("sine_transform_1d: orthonormal, and the 2-D transform of u ⊗ v is �
     const Eigen::VectorXd u = Eigen::VectorXd::NullaryExpr(rows, [&] { return r(rng); });
     const Eigen::VectorXd v = Eigen::VectorXd::NullaryExpr(cols, [&] { return r(rng); });
     const Eigen::VectorXd uh = sine_transform_1d(u), vh = sine_transform_1d(v);
-    CHECK(uh.norm() == Approx(u.norm()).epsilon(1e-13));               // orthonormal
-    CHECK((sine_transform_1d(uh) - u).norm() <= 1e-13 * u.norm());     // its own inverse
-    Eigen::MatrixXd grid(Eigen::Index(rows) * cols, 1);                // u ⊗ v, row-major
+    CHECK(uh.norm() == Approx(u.norm()).epsilon(1e-13));            // orthonormal
+    CHECK((sine_transform_1d(uh) - u).norm() <= 1e-13 * u.norm());  // its own inverse
+    Eigen::MatrixXd grid(Eigen::Index(rows) * cols, 1);             // u ⊗ v, row-major
     for (int i = 0; i < rows; ++i) grid.block(Eigen::Index(i) * cols, 0, cols, 1) = u(i) * v;
     const Eigen::MatrixXd g = sine_transform_2d(grid, rows, cols);
     for (int p = 0; p < rows; ++p)
@@ -170,11 +182,8 @@ TEST_CASE("fast: the Kronecker path equals the transform path", "[solvers]") {
   // those with more than a few dense rows the two batches of tridiagonal solves.
   std::uint32_t seed = 40;
   const std::vector<GridStencil> kronecker = {
-      alpha_stencil(13, 10, -0.25),
-      {9, 14, 2.0, -0.6, -0.5, 0.15},
-      {10, 10, 1.0, -0.3, 0.0, 0.0},  // T_j = I
-      {1, 8, 1.0, -0.5, -0.5, 0.25},
-      {8, 1, 1.0, -0.5, -0.5, 0.25},
+      alpha_stencil(13, 10, -0.25),  {9, 14, 2.0, -0.6, -0.5, 0.15}, {10, 10, 1.0, -0.3, 0.0, 0.0},  // T_j = I
+      {1, 8, 1.0, -0.5, -0.5, 0.25}, {8, 1, 1.0, -0.5, -0.5, 0.25},
   };
   for (const GridStencil& s : kronecker) {
     REQUIRE(s.center * s.diag == Approx(s.edge_i * s.edge_j));
@@ -238,22 +247,22 @@ TEST_CASE("structured solvers: report a singular stencil", "[solvers]") {
 
 TEST_CASE("structured solvers: an indefinite stencil is solved exactly or reported, never NaN", "[solvers]") {
   for (double alpha : {-0.4, 0.4, -1.0})
-  for (auto [rows, cols] : {std::pair{19, 19}, {17, 22}}) {
-    const GridStencil s = alpha_stencil(rows, cols, alpha);
-    const Eigen::MatrixX3d B = ring_rhs(s, 70);
-    for (const auto& [name, make] : structured()) {
-      Eigen::MatrixX3d X;
-      const SolveSummary summary = make({})->compute_and_solve(stencil_operator(s), B, X);
-      INFO(name << ", " << rows << "x" << cols << ", alpha = " << alpha << ": " << summary.brief_report());
-      CHECK(std::isfinite(summary.relative_residual));
-      if (summary.ok()) {
-        CHECK(summary.relative_residual < 1e-8);
-        CHECK(X.allFinite());
-        const Eigen::MatrixX3d reference = dense_reference(s, B);
-        CHECK((X - reference).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, reference.cwiseAbs().maxCoeff()));
+    for (auto [rows, cols] : {std::pair{19, 19}, {17, 22}}) {
+      const GridStencil s = alpha_stencil(rows, cols, alpha);
+      const Eigen::MatrixX3d B = ring_rhs(s, 70);
+      for (const auto& [name, make] : structured()) {
+        Eigen::MatrixX3d X;
+        const SolveSummary summary = make({})->compute_and_solve(stencil_operator(s), B, X);
+        INFO(name << ", " << rows << "x" << cols << ", alpha = " << alpha << ": " << summary.brief_report());
+        CHECK(std::isfinite(summary.relative_residual));
+        if (summary.ok()) {
+          CHECK(summary.relative_residual < 1e-8);
+          CHECK(X.allFinite());
+          const Eigen::MatrixX3d reference = dense_reference(s, B);
+          CHECK((X - reference).cwiseAbs().maxCoeff() <= 1e-8 * std::max(1.0, reference.cwiseAbs().maxCoeff()));
+        }
       }
     }
-  }
 }
 
 TEST_CASE("structured solvers: need the grid stencil", "[solvers]") {

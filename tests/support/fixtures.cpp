@@ -1,5 +1,8 @@
 #include "support/fixtures.h"
 
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <array>
 #include <cstdio>
 #include <cstdlib>
@@ -7,9 +10,6 @@
 #include <random>
 #include <sstream>
 #include <stdexcept>
-#include <sys/wait.h>
-
-#include <unistd.h>
 
 #include "coons/net/bernstein.h"
 
@@ -99,9 +99,7 @@ ControlNet flipped_u(const ControlNet& net) {
   return out;
 }
 
-double max_difference(const ControlNet& a, const ControlNet& b) {
-  return (a.points - b.points).cwiseAbs().maxCoeff();
-}
+double max_difference(const ControlNet& a, const ControlNet& b) { return (a.points - b.points).cwiseAbs().maxCoeff(); }
 
 Eigen::RowVector3d bezier_curve(const Eigen::MatrixX3d& P, double t) {
   const Eigen::VectorXd B = bernstein_basis(int(P.rows()) - 1, t);

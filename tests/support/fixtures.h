@@ -1,11 +1,10 @@
 // Test fixtures made in code: boundaries and nets with fixed seeds.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <filesystem>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "coons/net/control_net.h"
 #include "solvers/registry.h"

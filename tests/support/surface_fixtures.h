@@ -1,11 +1,10 @@
 // Fixtures for the curve and surface tests, made in code with fixed seeds.
 #pragma once
 
+#include <Eigen/Core>
 #include <cstdint>
 #include <functional>
 #include <string>
-
-#include <Eigen/Core>
 
 #include "coons/curves/curve.h"
 #include "coons/surfaces/coons_patch.h"

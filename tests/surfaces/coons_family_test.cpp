@@ -1,7 +1,6 @@
 // Properties of the Coons family: interpolation of the boundary data, exact Bézier nets, corner
 // twists (LN1), and the compatibility conditions of the general Coons patch.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 
 #include "coons/net/bernstein.h"
@@ -43,14 +42,13 @@ GeneralCoonsData data_of(const ControlNet& net) {
 // A compatible general-Coons datum that is not polynomial: analytic curves of the surface
 // z = sin(πu) sin(πv) + uv over the unit square.
 GeneralCoonsData analytic_data() {
-  return GeneralCoonsData{
-      BoundaryCurves{AnalyticCurve({"u", "0", "0"}), AnalyticCurve({"u", "1", "u"}), AnalyticCurve({"0", "v", "0"}),
-                     AnalyticCurve({"1", "v", "v"})},
-      AnalyticCurve({"1", "0", "pi*sin(pi*v) + v"}),
-      AnalyticCurve({"1", "0", "-pi*sin(pi*v) + v"}),
-      AnalyticCurve({"0", "1", "pi*sin(pi*u) + u"}),
-      AnalyticCurve({"0", "1", "-pi*sin(pi*u) + u"}),
-      {V(0, 0, kPi2 + 1), V(0, 0, -kPi2 + 1), V(0, 0, -kPi2 + 1), V(0, 0, kPi2 + 1)}};
+  return GeneralCoonsData{BoundaryCurves{AnalyticCurve({"u", "0", "0"}), AnalyticCurve({"u", "1", "u"}),
+                                         AnalyticCurve({"0", "v", "0"}), AnalyticCurve({"1", "v", "v"})},
+                          AnalyticCurve({"1", "0", "pi*sin(pi*v) + v"}),
+                          AnalyticCurve({"1", "0", "-pi*sin(pi*v) + v"}),
+                          AnalyticCurve({"0", "1", "pi*sin(pi*u) + u"}),
+                          AnalyticCurve({"0", "1", "-pi*sin(pi*u) + u"}),
+                          {V(0, 0, kPi2 + 1), V(0, 0, -kPi2 + 1), V(0, 0, -kPi2 + 1), V(0, 0, kPi2 + 1)}};
 }
 
 double boundary_error(const Surface& s, const BoundaryCurves& b) {
@@ -83,7 +81,8 @@ double net_error(const Surface& s, const ControlNet& net) {
       const SurfacePoint p = s.evaluate(u, v);
       for (int a = 0; a <= 2; ++a)
         for (int b = 0; a + b <= 2; ++b)
-          e = std::max(e, (evaluate_derivative(net, a, b, u, v) - p.derivative(a, b)).norm() / std::max(1.0, p.derivative(a, b).norm()));
+          e = std::max(e, (evaluate_derivative(net, a, b, u, v) - p.derivative(a, b)).norm() /
+                              std::max(1.0, p.derivative(a, b).norm()));
     }
   return e;
 }
@@ -140,11 +139,13 @@ TEST_CASE("general Coons patch: a surface of degree <= 3 in u or in v is reprodu
   for (auto [m, n] : {std::pair{3, 3}, {3, 7}, {5, 2}}) {
     const ControlNet net = make_random_net(m, n, 40 + m + n);
     const Surface s = make_general_coons(data_of(net));
-    CHECK(max_distance([&](double u, double v) { return s.at(u, v); }, [&](double u, double v) { return evaluate(net, u, v); }) < 1e-13);
+    CHECK(max_distance([&](double u, double v) { return s.at(u, v); },
+                       [&](double u, double v) { return evaluate(net, u, v); }) < 1e-13);
   }
 }
 
-TEST_CASE("bezier_net: the net of every polynomial surface evaluates to the surface (point and derivatives)", "[surfaces]") {
+TEST_CASE("bezier_net: the net of every polynomial surface evaluates to the surface (point and derivatives)",
+          "[surfaces]") {
   const BoundaryCurves b = make_random_boundary_curves(4, 3, 11);
   const HermitePatch h{random_vectors(1), random_vectors(2), random_vectors(3), random_vectors(4)};
   Conoid oblique{make_random_bezier(3, 12), V(0.1, 0.2, -0.3), V(1, 0.5, 0.2), V(0.8, 0.1, -0.3)};
@@ -153,7 +154,9 @@ TEST_CASE("bezier_net: the net of every polynomial surface evaluates to the surf
       {"sectorial", make_sectorial(make_random_bezier(4, 15), V(0, 0, 2))},
       {"bilinear", make_bilinear(random_vectors(16))},
       {"oblique conoid", make_conoid(oblique)},
-      {"parabolic conoid", make_conoid(right_conoid(BezierCurve((Eigen::MatrixX3d(3, 3) << -1, 0, 0, 0, 0, 2, 1, 0, 0).finished()), 2, 0.5))},
+      {"parabolic conoid",
+       make_conoid(
+           right_conoid(BezierCurve((Eigen::MatrixX3d(3, 3) << -1, 0, 0, 0, 0, 2, 1, 0, 0).finished()), 2, 0.5))},
       {"bilinear-coons", make_coons(b, CoonsBlending::kLinear)},
       {"hermite-coons", make_coons(b, CoonsBlending::kHermite)},
       {"hermite-coons, degree 1", make_coons(make_random_boundary_curves(1, 2, 17), CoonsBlending::kHermite)},
@@ -172,7 +175,8 @@ TEST_CASE("bezier_net: the net of every polynomial surface evaluates to the surf
   CHECK_FALSE(make_conoid(right_helicoidal_conoid(1, 0, 6)).bezier_net());
 }
 
-TEST_CASE("bezier_net: the Coons patches of Bezier curves are the closed-form discrete nets (docs/math.md §2, §6)", "[surfaces]") {
+TEST_CASE("bezier_net: the Coons patches of Bezier curves are the closed-form discrete nets (docs/math.md §2, §6)",
+          "[surfaces]") {
   for (auto [m, n] : {std::pair{3, 3}, {5, 4}, {2, 6}}) {
     const BoundaryCurves b = make_random_boundary_curves(m, n, 50 + m * n);
     const ControlNet linear = *make_coons(b, CoonsBlending::kLinear).bezier_net();
@@ -254,9 +258,10 @@ TEST_CASE("Hermite-blended Coons patch: cross derivatives blend the corner tange
     CHECK((s.evaluate(1, v).du - expected).norm() < 1e-13);
   }
   // And the partially bicubic patch of (u, v, u² F0(v))'s boundary is that surface.
-  const Surface p = make_coons(BoundaryCurves{AnalyticCurve({"u", "0", "u^2"}), AnalyticCurve({"u", "1", "0"}),
-                                              AnalyticCurve({"0", "v", "0"}), AnalyticCurve({"1", "v", "2*v^3 - 3*v^2 + 1"})},
-                               CoonsBlending::kHermite);
+  const Surface p =
+      make_coons(BoundaryCurves{AnalyticCurve({"u", "0", "u^2"}), AnalyticCurve({"u", "1", "0"}),
+                                AnalyticCurve({"0", "v", "0"}), AnalyticCurve({"1", "v", "2*v^3 - 3*v^2 + 1"})},
+                 CoonsBlending::kHermite);
   CHECK(max_distance([&](double u, double v) { return p.at(u, v); },
                      [](double u, double v) { return V(u, v, u * u * hermite(0, v)); }) < 1e-15);
 }

@@ -1,8 +1,9 @@
 // Joining patches along a shared boundary (LN1, LN2): C⁰ always; a common tangent plane for
 // partially bicubic Coons patches over C¹ (or equally scaled G¹) transversal boundaries.
+#include "coons/surfaces/joining.h"
+
 #include <catch2/catch.hpp>
 
-#include "coons/surfaces/joining.h"
 #include "support/surface_fixtures.h"
 
 using namespace coons;
@@ -25,10 +26,10 @@ std::pair<Surface, Surface> two_patches(CoonsBlending blending, double lambda_bo
   b_bottom << a_bottom.row(3), a_bottom.row(3) + lambda_bottom * tb / 3, V(1.6, 0.2, -0.1), V(2, 0.1, 0.3);
   b_top << a_top.row(3), a_top.row(3) + lambda_top * tt / 3, V(1.7, 1.2, 0.9), V(2, 1, 0.2);
   b_right << 2, 0.1, 0.3, 2.2, 0.5, 0.0, 2, 1, 0.2;
-  const Surface a = make_coons(BoundaryCurves{BezierCurve(a_bottom), BezierCurve(a_top), BezierCurve(a_left), BezierCurve(shared)},
-                               blending);
-  const Surface b = make_coons(BoundaryCurves{BezierCurve(b_bottom), BezierCurve(b_top), BezierCurve(shared), BezierCurve(b_right)},
-                               blending);
+  const Surface a = make_coons(
+      BoundaryCurves{BezierCurve(a_bottom), BezierCurve(a_top), BezierCurve(a_left), BezierCurve(shared)}, blending);
+  const Surface b = make_coons(
+      BoundaryCurves{BezierCurve(b_bottom), BezierCurve(b_top), BezierCurve(shared), BezierCurve(b_right)}, blending);
   return {a, b};
 }
 
@@ -53,7 +54,8 @@ TEST_CASE("compare_seam: bicubic Coons patches over G1 boundaries with one ratio
   }
 }
 
-TEST_CASE("compare_seam: G1 boundaries with different ratios at the two ends give a kink (the limit of the claim)", "[surfaces]") {
+TEST_CASE("compare_seam: G1 boundaries with different ratios at the two ends give a kink (the limit of the claim)",
+          "[surfaces]") {
   // r_u(1, v) = F0(v) b'(1) + F1(v) t'(1) on A and F0(v) λ_b b'(1) + F1(v) λ_t t'(1) on B: parallel
   // only at the ends when λ_b ≠ λ_t, so the tangent planes differ in between.
   const auto [a, b] = two_patches(CoonsBlending::kHermite, 0.5, 2.0);

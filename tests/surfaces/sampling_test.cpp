@@ -1,11 +1,11 @@
 // Sampled fields (curvatures, twist, distance to a reference) and the mesh files built from them.
-#include <catch2/catch.hpp>
+#include "coons/surfaces/sampling.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 #include <sstream>
 
 #include "coons/io/mesh_export.h"
-#include "coons/surfaces/sampling.h"
 #include "support/surface_fixtures.h"
 
 using namespace coons;
@@ -18,9 +18,10 @@ constexpr double kPi = 3.14159265358979323846;
 // A cylinder of radius R as the ruled surface of two circles (exact derivatives).
 Surface cylinder(double R) {
   auto circle = [R](double z) {
-    return closed_form_curve([=](double s) { return V(R * std::cos(kPi * s), R * std::sin(kPi * s), z); },
-                             [=](double s) { return V(-kPi * R * std::sin(kPi * s), kPi * R * std::cos(kPi * s), 0); },
-                             [=](double s) { return V(-kPi * kPi * R * std::cos(kPi * s), -kPi * kPi * R * std::sin(kPi * s), 0); });
+    return closed_form_curve(
+        [=](double s) { return V(R * std::cos(kPi * s), R * std::sin(kPi * s), z); },
+        [=](double s) { return V(-kPi * R * std::sin(kPi * s), kPi * R * std::cos(kPi * s), 0); },
+        [=](double s) { return V(-kPi * kPi * R * std::cos(kPi * s), -kPi * kPi * R * std::sin(kPi * s), 0); });
   };
   return make_ruled(circle(0), circle(1));
 }
@@ -59,7 +60,7 @@ TEST_CASE("add_reference_distance: the distance of the 16-vector bump to its pla
   SurfaceSamples s = sample_grid(bump, 7);
   add_reference_distance(s, plane);
   REQUIRE(s.distance);
-  for (int r = 0; r < 49; ++r) CHECK(std::abs((*s.distance)(r) - std::abs(s.points(r, 2))) < 1e-12);
+  for (int r = 0; r < 49; ++r) CHECK(std::abs((*s.distance)(r)-std::abs(s.points(r, 2))) < 1e-12);
   // The closest point of a point above the saddle z = 2uv.
   const Surface saddle = make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 2)});
   const SurfacePoint q = saddle.evaluate(0.4, 0.7);
@@ -82,7 +83,8 @@ TEST_CASE("write_grid_obj, write_grid_ply, write_grid_vts: sizes, fields and str
   CHECK(ply.str().rfind("ply\nformat ascii 1.0\n", 0) == 0);
   CHECK(ply.str().find("element vertex 16\n") != std::string::npos);
   CHECK(ply.str().find("element face 9\n") != std::string::npos);
-  for (const char* field : {"mean_curvature", "gaussian_curvature", "twist", "distance", "parametric_distance", "singular"}) {
+  for (const char* field :
+       {"mean_curvature", "gaussian_curvature", "twist", "distance", "parametric_distance", "singular"}) {
     CHECK(ply.str().find(std::string("property double ") + field + "\n") != std::string::npos);
     CHECK(vts.str().find(std::string("Name=\"") + field + "\"") != std::string::npos);
   }
@@ -108,7 +110,7 @@ TEST_CASE("sample_grid: the apex of a sectorial surface is singular, and marked 
   const Surface cone = make_sectorial(Curve::segment(V(1, 0, 0), V(0, 1, 0)), V(0, 0, 1));
   const SurfaceSamples s = sample_grid(cone, 3);
   for (int a = 0; a < 3; ++a) {
-    CHECK(s.normals.row(a * 3 + 2).hasNaN());   // v = 1: the apex
+    CHECK(s.normals.row(a * 3 + 2).hasNaN());  // v = 1: the apex
     CHECK(s.normals.row(a * 3 + 0).allFinite());
   }
   std::stringstream vts;
@@ -116,7 +118,8 @@ TEST_CASE("sample_grid: the apex of a sectorial surface is singular, and marked 
   const std::string text = vts.str();
   const size_t start = text.find("Name=\"singular\"");
   REQUIRE(start != std::string::npos);
-  const std::string values = text.substr(text.find('>', start) + 1, text.find("</DataArray>", start) - text.find('>', start) - 1);
+  const std::string values =
+      text.substr(text.find('>', start) + 1, text.find("</DataArray>", start) - text.find('>', start) - 1);
   std::stringstream in(values);
   std::vector<double> flags;
   for (double x; in >> x;) flags.push_back(x);

@@ -1,6 +1,5 @@
 // Every worked example of the lecture notes LN0–LN4 (docs/references.md) (data/surfaces/) against its closed form.
 #include <catch2/catch.hpp>
-
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -105,8 +104,9 @@ TEST_CASE("LN0, the 16-vector example: z = T H13(u) H13(v) for several T", "[sur
     const Surface s = make_hermite16(HermitePatch{corners, du, dv, {V(0, 0, T), V(0, 0, 0), V(0, 0, 0), V(0, 0, 0)}});
     auto closed = [T](double u, double v) { return V(u, v, T * hermite(2, u) * hermite(2, v)); };
     CHECK(gap(s, closed) < 1e-13 * std::max(1.0, T));
-    CHECK(derivative_gap(s, 1, 1, [T](double u, double v) { return V(0, 0, T * hermite(2, u, 1) * hermite(2, v, 1)); }) <
-          1e-13 * std::max(1.0, T));
+    CHECK(derivative_gap(s, 1, 1, [T](double u, double v) {
+            return V(0, 0, T * hermite(2, u, 1) * hermite(2, v, 1));
+          }) < 1e-13 * std::max(1.0, T));
     // Bézier form at the (0,0) corner: b11 = p + r_u/3 + r_v/3 + r_uv/9 (docs/math.md §6).
     const ControlNet net = *s.bezier_net();
     CHECK((net.at(1, 1) - V(1.0 / 3, 1.0 / 3, T / 9)).norm() < 1e-15 * std::max(1.0, T));
@@ -126,7 +126,8 @@ TEST_CASE("LN0, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's curv
   auto c1 = [](double u) { return V(u, u * u, -u / 2); };
   CHECK(gap(s1, [&](double u, double v) { return V((1 - v) * c0(u) + v * c1(u)); }) < 1e-15);
   CHECK(derivative_gap(s1, 1, 0, [&](double u, double v) {
-          return V((1 - v) * V(1, kPi / 2 * std::cos(kPi / 2 * u), -kPi / 2 * std::sin(kPi / 2 * u)) + v * V(1, 2 * u, -0.5));
+          return V((1 - v) * V(1, kPi / 2 * std::cos(kPi / 2 * u), -kPi / 2 * std::sin(kPi / 2 * u)) +
+                   v * V(1, 2 * u, -0.5));
         }) < 1e-9);
   CHECK(derivative_gap(s1, 0, 1, [&](double u, double) { return V(c1(u) - c0(u)); }) < 1e-15);
   CHECK(derivative_gap(s1, 0, 2, [](double, double) { return V(0, 0, 0); }) == 0);
@@ -140,7 +141,9 @@ TEST_CASE("LN0, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's curv
 TEST_CASE("LN0, the right parabolic conoid x = u, y = y_P(1-v), z = z_P + v(z(u) - z_P)", "[surfaces][seeds]") {
   // The data file: z(u) = 4u(1 - u) as a quadratic Bézier, y_P = 1, z_P = 0.5: an exact net of degree (2, 1).
   const Surface s = load("seed000_parabolic_conoid.json");
-  auto closed = [](double yp, double zp, double u, double v) { return V(u, yp * (1 - v), zp + v * (4 * u * (1 - u) - zp)); };
+  auto closed = [](double yp, double zp, double u, double v) {
+    return V(u, yp * (1 - v), zp + v * (4 * u * (1 - u) - zp));
+  };
   CHECK(gap(s, [&](double u, double v) { return closed(1, 0.5, u, v); }) < 1e-15);
   const ControlNet net = *s.bezier_net();
   CHECK(net.m == 2);
@@ -153,7 +156,8 @@ TEST_CASE("LN0, the right parabolic conoid x = u, y = y_P(1-v), z = z_P + v(z(u)
   }
 }
 
-TEST_CASE("LN0, right circular and elliptic conoids, and an oblique (Kuepper-type) circular conoid", "[surfaces][seeds]") {
+TEST_CASE("LN0, right circular and elliptic conoids, and an oblique (Kuepper-type) circular conoid",
+          "[surfaces][seeds]") {
   // Right conoids over a half ellipse (a cos θ, 0, b sin θ), θ = π(1 − u): x = x(u), y = y_P(1 − v),
   // z = z_P + v(z(u) − z_P); a = b is the circular conoid.
   for (auto [a, b] : {std::pair{1.0, 1.0}, {2.0, 0.7}}) {
@@ -200,7 +204,8 @@ TEST_CASE("LN2, the right helicoidal conoid (u cos v, u sin v, v)", "[surfaces][
           const double th = 2 * kPi * a;
           return V(-2 * kPi * w * std::sin(th), 2 * kPi * w * std::cos(th), 2 * kPi);
         }) < 1e-13);
-  CHECK(derivative_gap(h, 0, 1, [](double a, double) { return V(std::cos(2 * kPi * a), std::sin(2 * kPi * a), 0); }) < 1e-14);
+  CHECK(derivative_gap(h, 0, 1, [](double a, double) { return V(std::cos(2 * kPi * a), std::sin(2 * kPi * a), 0); }) <
+        1e-14);
   // A minimal surface: H = 0; K = −1/(1 + w²)² in the (w, θ) metric.
   for (double a : {0.1, 0.6})
     for (double w : {0.2, 0.9}) {

@@ -1,11 +1,11 @@
 // Surface descriptions (docs/formats.md): every type parses; every kind of bad input is an InputError
 // that names the field.
-#include <catch2/catch.hpp>
+#include "coons/io/surface_io.h"
 
+#include <catch2/catch.hpp>
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
-#include "coons/io/surface_io.h"
 #include "support/surface_fixtures.h"
 
 using namespace coons;
@@ -57,10 +57,13 @@ std::pair<std::string, std::string> error_of(const json& doc) {
 
 TEST_CASE("parse_surface: every type of docs/formats.md (and the extensions) builds its surface", "[surfaces]") {
   const std::vector<json> docs = {
-      {{"type", "ruled"}, {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t^2"}}, {"interval", {0, 1}}}}}},
+      {{"type", "ruled"},
+       {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t^2"}}, {"interval", {0, 1}}}}}},
       {{"type", "sectorial"}, {"curve", segment({0, 0, 0}, {1, 0, 0})}, {"point", {0, 1, 1}}},
       {{"type", "bilinear"}, {"corners", kSquare}},
-      {{"type", "conoid"}, {"directrix", {{"expr", {"t", "0", "1-t^2"}}, {"interval", {-1, 1}}}}, {"line", {{0, 2, 0}, {1, 0, 0}}},
+      {{"type", "conoid"},
+       {"directrix", {{"expr", {"t", "0", "1-t^2"}}, {"interval", {-1, 1}}}},
+       {"line", {{0, 2, 0}, {1, 0, 0}}},
        {"plane_normal", {1, 0, 0}}},
       coons_doc("bilinear-coons"),
       coons_doc("hermite-coons"),
@@ -68,7 +71,9 @@ TEST_CASE("parse_surface: every type of docs/formats.md (and the extensions) bui
       {{"type", "hermite16"}, {"corners", kSquare}, {"du", kDu}, {"dv", kDv}, {"twist", kZero4}},
       general_doc(),
       {{"type", "bezier"}, {"net", {{{0, 0, 0}, {0, 1, 0}}, {{1, 0, 0}, {1, 1, 1}}}}},
-      {{"type", "ruled"}, {"name", "extensions"}, {"comment", "point and hermite curves"},
+      {{"type", "ruled"},
+       {"name", "extensions"},
+       {"comment", "point and hermite curves"},
        {"curves", {{{"point", {0, 0, 1}}}, {{"hermite", {{0, 0, 0}, {1, 0, 0}, {1, 0, 0}, {1, 0, 0}}}}}}},
   };
   for (const json& d : docs) {
@@ -95,7 +100,10 @@ TEST_CASE("parse_surface: wrong counts name the field", "[surfaces]") {
   std::tie(field, reason) = error_of(d);
   CHECK(field == "curves");
 
-  d = {{"type", "ferguson"}, {"corners", kSquare}, {"du", kDu}, {"dv", json::array({{0, 1, 0}, {0, 1}, {0, 1, 0}, {0, 1, 0}})}};
+  d = {{"type", "ferguson"},
+       {"corners", kSquare},
+       {"du", kDu},
+       {"dv", json::array({{0, 1, 0}, {0, 1}, {0, 1, 0}, {0, 1, 0}})}};
   std::tie(field, reason) = error_of(d);
   CHECK(field == "dv[1]");
   CHECK(reason.find("3 coordinates") != std::string::npos);
@@ -166,7 +174,8 @@ TEST_CASE("parse_surface: an expression that does not parse, or is not finite, n
   CHECK(field == "curves[1].expr[2]");
   CHECK(reason.find("not finite at t = 0") != std::string::npos);
 
-  d = {{"type", "ruled"}, {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t"}}, {"interval", {2, 2}}}}}};
+  d = {{"type", "ruled"},
+       {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t"}}, {"interval", {2, 2}}}}}};
   std::tie(field, reason) = error_of(d);
   CHECK(field == "curves[1].interval");
 }
@@ -204,7 +213,10 @@ TEST_CASE("parse_surface: incompatible general-Coons data name the corner and th
 }
 
 TEST_CASE("parse_surface: a conoid whose line is parallel to its plane is rejected", "[surfaces]") {
-  json d = {{"type", "conoid"}, {"directrix", segment({0, 0, 1}, {1, 0, 1})}, {"line", {{0, 1, 0}, {0, 1, 0}}}, {"plane_normal", {1, 0, 0}}};
+  json d = {{"type", "conoid"},
+            {"directrix", segment({0, 0, 1}, {1, 0, 1})},
+            {"line", {{0, 1, 0}, {0, 1, 0}}},
+            {"plane_normal", {1, 0, 0}}};
   auto [field, reason] = error_of(d);
   CHECK(field == "plane_normal");
   CHECK(reason.find("parallel") != std::string::npos);

@@ -1,8 +1,8 @@
-#include <catch2/catch.hpp>
+#include "coons/tri/tri_energy.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 
-#include "coons/tri/tri_energy.h"
 #include "coons/tri/tri_solve.h"
 #include "tri/tri_fixtures.h"
 
@@ -71,7 +71,8 @@ TEST_CASE("tri energies: Dirichlet, thin plate and twist equal quadrature to 1e-
   for (int n = 1; n <= 12; ++n) {
     const TriNet net = random_tri_net(n, 1500 + n);
     const double dirichlet = integrate(2 * n, [&](double x, double y) {
-      return directional_derivative(net, at(x, y), ex_minus_ez()).squaredNorm() + directional_derivative(net, at(x, y), ey_minus_ez()).squaredNorm();
+      return directional_derivative(net, at(x, y), ex_minus_ez()).squaredNorm() +
+             directional_derivative(net, at(x, y), ey_minus_ez()).squaredNorm();
     });
     const double thin_plate = integrate(2 * n, [&](double x, double y) {
       return second_directional_derivative(net, at(x, y), ex_minus_ez(), ex_minus_ez()).squaredNorm() +

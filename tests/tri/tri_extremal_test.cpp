@@ -1,7 +1,8 @@
+#include "coons/tri/tri_extremal.h"
+
 #include <catch2/catch.hpp>
 
 #include "coons/tri/tri_energy.h"
-#include "coons/tri/tri_extremal.h"
 #include "coons/tri/tri_solve.h"
 #include "tri/tri_fixtures.h"
 
@@ -19,10 +20,12 @@ double energy(const TriNet& net, const Eigen::MatrixXd& K) { return (net.points.
 TEST_CASE("tri_energy_hessian: P^T K P is the exact energy of tri_energy.h", "[tri]") {
   for (int n = 1; n <= 8; ++n) {
     const TriNet net = random_tri_net(n, 1900 + n);
-    REQUIRE(energy(net, tri_energy_hessian(n, TriEnergy::kDirichlet)) == Approx(tri_dirichlet_energy(net)).epsilon(1e-12));
+    REQUIRE(energy(net, tri_energy_hessian(n, TriEnergy::kDirichlet)) ==
+            Approx(tri_dirichlet_energy(net)).epsilon(1e-12));
     REQUIRE(energy(net, tri_energy_hessian(n, TriEnergy::kThinPlate)) ==
             Approx(tri_thin_plate_energy(net)).epsilon(1e-12).margin(1e-14));
-    REQUIRE(energy(net, tri_energy_hessian(n, TriEnergy::kTwist)) == Approx(tri_twist_energy(net)).epsilon(1e-12).margin(1e-14));
+    REQUIRE(energy(net, tri_energy_hessian(n, TriEnergy::kTwist)) ==
+            Approx(tri_twist_energy(net)).epsilon(1e-12).margin(1e-14));
   }
 }
 
@@ -35,8 +38,7 @@ TEST_CASE("TriDomain: the equilateral domain makes Dirichlet and thin plate symm
     bool right_changes = false;
     for (const auto& perm : all_permutations()) {
       REQUIRE(energy(permuted(net, perm), K) == Approx(energy(net, K)).epsilon(1e-12));
-      if (std::abs(energy(permuted(net, perm), Kr) - energy(net, Kr)) > 1e-6 * energy(net, Kr))
-        right_changes = true;
+      if (std::abs(energy(permuted(net, perm), Kr) - energy(net, Kr)) > 1e-6 * energy(net, Kr)) right_changes = true;
     }
     REQUIRE(right_changes);
   }
@@ -80,7 +82,8 @@ TEST_CASE("fit_tri_mask: finds the c of a solved net and -1/6 for a quadratic ne
   REQUIRE_FALSE(fit_tri_mask(elevated_linear(6, 1)).determined);
 }
 
-TEST_CASE("minimize_tri_energy: equilateral cubic extremals are members c = 1/3, 1/12, 0; degree 4 and up are not", "[tri]") {
+TEST_CASE("minimize_tri_energy: equilateral cubic extremals are members c = 1/3, 1/12, 0; degree 4 and up are not",
+          "[tri]") {
   // On the equilateral domain the cubic's centre of the Dirichlet extremal is (1/3)Σ corners (c = 1/3),
   // of the thin-plate one (1/8)Σ edges + (1/12)Σ corners (c = 1/12), of the twist (1/6)Σ edges (c = 0,
   // any domain). From degree 4 on no member of the family is an energy extremal.
@@ -101,7 +104,9 @@ TEST_CASE("minimize_tri_energy: equilateral cubic extremals are members c = 1/3,
     }
 }
 
-TEST_CASE("minimize_tri_energy: none of the extremals has quadratic precision, the Dirichlet one has harmonic precision", "[tri]") {
+TEST_CASE(
+    "minimize_tri_energy: none of the extremals has quadratic precision, the Dirichlet one has harmonic precision",
+    "[tri]") {
   // (x² − y², 2xy, x + y) on the reference triangle: harmonic in every coordinate.
   TriNet harmonic(2);
   harmonic.at(2, 0, 0) = Eigen::RowVector3d(1, 0, 1);

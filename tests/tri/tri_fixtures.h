@@ -19,14 +19,10 @@ inline TriNet random_tri_net(int n, std::uint32_t seed) {
 }
 
 //! A random quadratic (degree 2) patch elevated to degree n ≥ 2.
-inline TriNet elevated_quadratic(int n, std::uint32_t seed) {
-  return elevate_degree(random_tri_net(2, seed), n - 2);
-}
+inline TriNet elevated_quadratic(int n, std::uint32_t seed) { return elevate_degree(random_tri_net(2, seed), n - 2); }
 
 //! A random random-affine patch (degree 1) elevated to degree n ≥ 1.
-inline TriNet elevated_linear(int n, std::uint32_t seed) {
-  return elevate_degree(random_tri_net(1, seed), n - 1);
-}
+inline TriNet elevated_linear(int n, std::uint32_t seed) { return elevate_degree(random_tri_net(1, seed), n - 1); }
 
 //! max |a − b| over all coordinates.
 inline double max_abs_difference(const TriNet& a, const TriNet& b) {

@@ -1,8 +1,8 @@
-#include <catch2/catch.hpp>
+#include "coons/tri/tri_mask.h"
 
 #include <Eigen/SparseLU>
+#include <catch2/catch.hpp>
 
-#include "coons/tri/tri_mask.h"
 #include "coons/tri/tri_solve.h"
 #include "tri/tri_fixtures.h"
 
@@ -93,7 +93,8 @@ TEST_CASE("tri_mask_sensitivity_rhs: one extra solve gives the derivative of the
   };
   const TriNet solved = solve(c);
   const TriMaskSystem sys = assemble_tri_mask_system(solved, TriMask{c});
-  const Eigen::MatrixX3d dx_dc = Eigen::SparseLU<Eigen::SparseMatrix<double>>(sys.A).solve(tri_mask_sensitivity_rhs(solved));
+  const Eigen::MatrixX3d dx_dc =
+      Eigen::SparseLU<Eigen::SparseMatrix<double>>(sys.A).solve(tri_mask_sensitivity_rhs(solved));
   const Eigen::MatrixX3d fd = (interior_of(solve(c + h)) - interior_of(solve(c - h))) / (2 * h);
   REQUIRE(dx_dc.norm() > 1e-3);
   REQUIRE((dx_dc - fd).cwiseAbs().maxCoeff() < 1e-6 * (1 + fd.cwiseAbs().maxCoeff()));

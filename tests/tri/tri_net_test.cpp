@@ -1,8 +1,8 @@
-#include <catch2/catch.hpp>
+#include "coons/tri/tri_net.h"
 
+#include <catch2/catch.hpp>
 #include <cmath>
 
-#include "coons/tri/tri_net.h"
 #include "support/fixtures.h"
 #include "tri/tri_fixtures.h"
 
@@ -20,14 +20,14 @@ Eigen::RowVector3d bernstein_sum(const TriNet& net, const Eigen::Vector3d& uvw) 
   for (int i = 0; i <= n; ++i)
     for (int j = 0; j <= n - i; ++j) {
       const int k = n - i - j;
-      p += factorial(n) / (factorial(i) * factorial(j) * factorial(k)) * std::pow(uvw(0), i) *
-           std::pow(uvw(1), j) * std::pow(uvw(2), k) * net.at(i, j, k);
+      p += factorial(n) / (factorial(i) * factorial(j) * factorial(k)) * std::pow(uvw(0), i) * std::pow(uvw(1), j) *
+           std::pow(uvw(2), k) * net.at(i, j, k);
     }
   return p;
 }
 
-const Eigen::Vector3d kSamplePoints[] = {{0.2, 0.3, 0.5}, {1, 0, 0}, {0, 0.4, 0.6}, {0.7, 0.2, 0.1},
-                                        {1.0 / 3, 1.0 / 3, 1.0 / 3}};
+const Eigen::Vector3d kSamplePoints[] = {
+    {0.2, 0.3, 0.5}, {1, 0, 0}, {0, 0.4, 0.6}, {0.7, 0.2, 0.1}, {1.0 / 3, 1.0 / 3, 1.0 / 3}};
 
 }  // namespace
 
@@ -101,8 +101,8 @@ TEST_CASE("derivative_net: first and second directional derivatives match finite
       const double h = 1e-5;
       const Eigen::RowVector3d fd = (evaluate(net, uvw + h * d1) - evaluate(net, uvw - h * d1)) / (2 * h);
       REQUIRE((directional_derivative(net, uvw, d1) - fd).norm() < 1e-6);
-      const Eigen::RowVector3d fd2 = (directional_derivative(net, uvw + h * d2, d1) -
-                                      directional_derivative(net, uvw - h * d2, d1)) / (2 * h);
+      const Eigen::RowVector3d fd2 =
+          (directional_derivative(net, uvw + h * d2, d1) - directional_derivative(net, uvw - h * d2, d1)) / (2 * h);
       REQUIRE((second_directional_derivative(net, uvw, d1, d2) - fd2).norm() < 1e-5 * (1 + fd2.norm()));
     }
   }

@@ -1,10 +1,9 @@
-#include <catch2/catch.hpp>
-
-#include <algorithm>
+#include "coons/tri/tri_solve.h"
 
 #include <Eigen/Dense>
+#include <algorithm>
+#include <catch2/catch.hpp>
 
-#include "coons/tri/tri_solve.h"
 #include "solvers/registry.h"
 #include "tri/tri_fixtures.h"
 
@@ -66,8 +65,8 @@ TEST_CASE("solve_tri_net: the cubic's centre is 1/4 (edge points) - 1/6 (corners
   for (std::uint32_t seed = 1; seed <= 20; ++seed) {
     const TriNet net = random_tri_net(3, seed);
     const TriNet solved = solve_with(net, -1.0 / 6);
-    const Eigen::RowVector3d edges = net.at(2, 1, 0) + net.at(1, 2, 0) + net.at(0, 2, 1) + net.at(0, 1, 2) +
-                                     net.at(1, 0, 2) + net.at(2, 0, 1);
+    const Eigen::RowVector3d edges =
+        net.at(2, 1, 0) + net.at(1, 2, 0) + net.at(0, 2, 1) + net.at(0, 1, 2) + net.at(1, 0, 2) + net.at(2, 0, 1);
     const Eigen::RowVector3d corners = net.at(3, 0, 0) + net.at(0, 3, 0) + net.at(0, 0, 3);
     REQUIRE((solved.at(1, 1, 1) - (edges / 4 - corners / 6)).norm() < 1e-14);
     // and for any c: a·edges + c·corners
@@ -137,7 +136,8 @@ TEST_CASE("solve_tri_net: for c = -1/6 every cubic sub-net has the cubic's quadr
     for (int k0 = 0; k0 <= n - 3; ++k0)
       for (int j0 = 0; j0 <= n - 3 - k0; ++j0) {
         const TriNet s = sub_net(solved, n - 3 - k0 - j0, j0, k0);
-        const Eigen::RowVector3d edges = s.at(2, 1, 0) + s.at(1, 2, 0) + s.at(0, 2, 1) + s.at(0, 1, 2) + s.at(1, 0, 2) + s.at(2, 0, 1);
+        const Eigen::RowVector3d edges =
+            s.at(2, 1, 0) + s.at(1, 2, 0) + s.at(0, 2, 1) + s.at(0, 1, 2) + s.at(1, 0, 2) + s.at(2, 0, 1);
         const Eigen::RowVector3d corners = s.at(3, 0, 0) + s.at(0, 3, 0) + s.at(0, 0, 3);
         REQUIRE((s.at(1, 1, 1) - (edges / 4 - corners / 6)).norm() < 1e-11);
       }

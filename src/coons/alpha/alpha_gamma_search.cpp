@@ -1,10 +1,10 @@
 // The two-parameter symmetric family (α, γ) of alpha_search.h: a 1-D α search at γ = 0, then
 // Ceres's line search in both, inside the triangle where the operator is definite.
+#include <ceres/ceres.h>
+
 #include <algorithm>
 #include <cmath>
 #include <vector>
-
-#include <ceres/ceres.h>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/ceres_refinement.h"

@@ -1,14 +1,14 @@
 #include "alpha_search.h"
 
+#include <ceres/ceres.h>
+
 #include <algorithm>
 #include <chrono>
-#include <type_traits>
-#include <utility>
 #include <cmath>
 #include <optional>
 #include <sstream>
-
-#include <ceres/ceres.h>
+#include <type_traits>
+#include <utility>
 
 #include "coons/alpha/ceres_refinement.h"
 #include "coons/alpha/search_failures.h"
@@ -25,7 +25,8 @@ bool AlphaSearchOptions::is_valid(std::string* why) const {
     if (why) *why = reason;
     return false;
   };
-  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper)) return fail("bounds must be finite with lower < upper");
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper))
+    return fail("bounds must be finite with lower < upper");
   if (scan_points < 3) return fail("scan_points must be at least 3");
   if (!(flat_tolerance > 0)) return fail("flat_tolerance must be positive");
   if (!(parameter_tolerance > 0)) return fail("parameter_tolerance must be positive");
@@ -35,11 +36,16 @@ bool AlphaSearchOptions::is_valid(std::string* why) const {
 
 const char* to_string(SearchStatus s) {
   switch (s) {
-    case SearchStatus::kSuccess: return "success";
-    case SearchStatus::kFlat: return "flat";
-    case SearchStatus::kSolverFailed: return "solver_failed";
-    case SearchStatus::kNotConverged: return "not_converged";
-    case SearchStatus::kFailedRegion: return "failed_region";
+    case SearchStatus::kSuccess:
+      return "success";
+    case SearchStatus::kFlat:
+      return "flat";
+    case SearchStatus::kSolverFailed:
+      return "solver_failed";
+    case SearchStatus::kNotConverged:
+      return "not_converged";
+    case SearchStatus::kFailedRegion:
+      return "failed_region";
   }
   return "solver_failed";
 }
@@ -164,7 +170,8 @@ class SearchRun {
       const double p = i + 1 == k ? options_.upper : options_.lower + i * step;
       grid_.push_back(objective_.evaluate(p, /*with_derivative=*/false));  // values suffice to scan
       if (!grid_.back().ok()) {
-        if (failed_points++ == 0) first_failure = "at " + solvers::format_g(p) + ": " + grid_.back().summary.brief_report();
+        if (failed_points++ == 0)
+          first_failure = "at " + solvers::format_g(p) + ": " + grid_.back().summary.brief_report();
         grid_.back().value = HUGE_VAL;
       }
       s_.scan.emplace_back(p, grid_.back().value);
@@ -386,8 +393,8 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
     return s;
   }
 #endif
-  return search_by_solving(boundary, objective, [](double a) { return alpha_family(a); }, solver, options,
-                           solver_options);
+  return search_by_solving(
+      boundary, objective, [](double a) { return alpha_family(a); }, solver, options, solver_options);
 }
 
 AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const solvers::SolverInfo& solver,
@@ -403,9 +410,9 @@ AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objectiv
     if (!s.message.empty()) s.message += " (parameters in this message are alpha = (s - 1)/4)";
     return s;
   }
-  return search_by_solving(boundary, objective,
-                           [m = boundary.m, n = boundary.n](double t) { return mu_family_compressed(m, n, t); }, solver,
-                           options, solver_options);
+  return search_by_solving(
+      boundary, objective, [m = boundary.m, n = boundary.n](double t) { return mu_family_compressed(m, n, t); }, solver,
+      options, solver_options);
 }
 
 #if COONS_HAVE_FFTW
@@ -415,4 +422,3 @@ AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective
 #endif
 
 }  // namespace coons
-

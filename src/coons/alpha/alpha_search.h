@@ -62,7 +62,7 @@ struct AlphaSearchSummary {
   //! lowest successful evaluation (not an optimum); 0 when no evaluation succeeded.
   double value = 0;
   bool flat = false, at_bound = false;
-  int local_minima = 0;             //!< interior local minima seen by the scan
+  int local_minima = 0;  //!< interior local minima seen by the scan
   int evaluations = 0, solves = 0;
   //! (parameter, value) of the coarse grid; a failed point's value is +∞ (HUGE_VAL)
   std::vector<std::pair<double, double>> scan;
@@ -73,8 +73,8 @@ struct AlphaSearchSummary {
   //! between them, in increasing order (a single failed point is [p, p]).
   std::vector<std::pair<double, double>> failed_intervals;
   double seconds = 0;
-  std::string ceres_report;         //!< Ceres's BriefReport of the refinement, if any
-  std::string evaluator;            //!< "sine basis" or "factorize and solve" (search_alpha)
+  std::string ceres_report;  //!< Ceres's BriefReport of the refinement, if any
+  std::string evaluator;     //!< "sine basis" or "factorize and solve" (search_alpha)
 
   [[nodiscard]] std::string brief_report() const;
 };
@@ -85,7 +85,8 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
 class SpectralAlphaSearchObjective;
 //! The same search on the α family, evaluated in the sine basis (no
 //! solves; see spectral_objective.h).
-AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective, const AlphaSearchOptions& options = {});
+AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective,
+                                         const AlphaSearchOptions& options = {});
 #endif
 
 //! The search over the α family with the cheapest exact evaluator: the sine basis (no solve per

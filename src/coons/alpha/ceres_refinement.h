@@ -7,13 +7,13 @@
 // Based on: Ceres Solver's GradientProblemSolver and Problem (S. Agarwal, K. Mierle et al.).
 #pragma once
 
+#include <ceres/ceres.h>
+
 #include <cmath>
 #include <optional>
 #include <type_traits>
 #include <utility>
 #include <vector>
-
-#include <ceres/ceres.h>
 
 #include "coons/alpha/alpha_search.h"
 

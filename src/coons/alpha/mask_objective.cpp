@@ -24,7 +24,8 @@ MaskObjective::~MaskObjective() = default;
 MaskObjective::Evaluation MaskObjective::evaluate(double p, bool with_derivative) {
   const MaskPoint mp = family_(p);
   std::vector<double> gradient;
-  Evaluation e = evaluate_mask(mp.mask, with_derivative ? std::vector<Mask9>{mp.derivative} : std::vector<Mask9>{}, gradient);
+  Evaluation e =
+      evaluate_mask(mp.mask, with_derivative ? std::vector<Mask9>{mp.derivative} : std::vector<Mask9>{}, gradient);
   e.parameter = p;
   e.derivative = gradient.empty() ? 0.0 : gradient[0];
   e.has_derivative = with_derivative && e.ok();
@@ -54,8 +55,10 @@ MaskObjective::Evaluation MaskObjective::evaluate_mask(const Mask9& mask, const 
   solvers::LinearOperator op;
   op.stencil = mask_stencil(mask, rows, cols);
   if (needs_matrix_) {
-    if (A_.rows() == 0) A_ = solvers::stencil_matrix(*op.stencil);
-    else solvers::refill_stencil_matrix(*op.stencil, A_);
+    if (A_.rows() == 0)
+      A_ = solvers::stencil_matrix(*op.stencil);
+    else
+      solvers::refill_stencil_matrix(*op.stencil, A_);
     op.matrix = &A_;
   }
   if (solver_->factorize(op) != solvers::SolveStatus::kSuccess) {

@@ -6,12 +6,11 @@
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
+#include <Eigen/SparseCore>
 #include <functional>
 #include <memory>
 #include <string>
 #include <vector>
-
-#include <Eigen/SparseCore>
 
 #include "coons/alpha/normalised_frame.h"
 #include "coons/alpha/objective.h"

@@ -26,8 +26,7 @@ double target_distance(const Target& t, const Eigen::RowVector3d& p, Eigen::RowV
       const double r = q.norm();
       const Eigen::RowVector3d n = r > 0 ? Eigen::RowVector3d(q / r) : Eigen::RowVector3d::Zero();
       if (gradient) *gradient = n;
-      if (hessian && r > 0)
-        *hessian = (Eigen::Matrix3d::Identity() - axis.transpose() * axis - n.transpose() * n) / r;
+      if (hessian && r > 0) *hessian = (Eigen::Matrix3d::Identity() - axis.transpose() * axis - n.transpose() * n) / r;
       return r - t.radius;
     }
     case Target::Kind::kPlane: {
@@ -35,7 +34,8 @@ double target_distance(const Target& t, const Eigen::RowVector3d& p, Eigen::RowV
       if (gradient) *gradient = normal;
       return (p - t.point).dot(normal);
     }
-    case Target::Kind::kNet: break;
+    case Target::Kind::kNet:
+      break;
   }
   if (gradient) gradient->setZero();
   return 0;
@@ -98,16 +98,27 @@ std::optional<Objective> parse_objective(const std::string& text, std::string* w
       return std::nullopt;
     }
     std::vector<EnergyTerm> terms;
-    if (name == "thin_plate") terms = thin_plate_terms();
-    else if (name == "twist") terms = twist_terms();
-    else if (name == "dirichlet") terms = dirichlet_terms();
-    else if (name == "e3") terms = e3_terms();
-    else if (name == "target") out.target_weight += weight;
-    else if (name == "discrete_twist") out.discrete.emplace_back(DiscreteEnergy::kTwist, weight);
-    else if (name == "discrete_dirichlet") out.discrete.emplace_back(DiscreteEnergy::kDirichlet, weight);
-    else if (name == "discrete_thin_plate") out.discrete.emplace_back(DiscreteEnergy::kThinPlate, weight);
+    if (name == "thin_plate")
+      terms = thin_plate_terms();
+    else if (name == "twist")
+      terms = twist_terms();
+    else if (name == "dirichlet")
+      terms = dirichlet_terms();
+    else if (name == "e3")
+      terms = e3_terms();
+    else if (name == "target")
+      out.target_weight += weight;
+    else if (name == "discrete_twist")
+      out.discrete.emplace_back(DiscreteEnergy::kTwist, weight);
+    else if (name == "discrete_dirichlet")
+      out.discrete.emplace_back(DiscreteEnergy::kDirichlet, weight);
+    else if (name == "discrete_thin_plate")
+      out.discrete.emplace_back(DiscreteEnergy::kThinPlate, weight);
     else {
-      if (why) *why = "unknown objective '" + name + "' (thin_plate, twist, dirichlet, e3, target, discrete_twist, discrete_dirichlet, discrete_thin_plate, or weighted sums)";
+      if (why)
+        *why = "unknown objective '" + name +
+               "' (thin_plate, twist, dirichlet, e3, target, discrete_twist, discrete_dirichlet, discrete_thin_plate, "
+               "or weighted sums)";
       return std::nullopt;
     }
     for (EnergyTerm t : terms) {

@@ -6,11 +6,10 @@
 // C. H. Séquin, Functional optimization for fair surface design, SIGGRAPH 1992.
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "coons/metrics/energies.h"
 #include "coons/net/control_net.h"
@@ -21,11 +20,11 @@ namespace coons {
 struct Target {
   enum class Kind { kNet, kSphere, kCylinder, kPlane };
   Kind kind = Kind::kNet;
-  ControlNet net;               //!< kNet: compared point by point at the same (u, v)
-  Eigen::RowVector3d point{0, 0, 0};  //!< sphere centre, a point on the cylinder axis or plane
+  ControlNet net;                         //!< kNet: compared point by point at the same (u, v)
+  Eigen::RowVector3d point{0, 0, 0};      //!< sphere centre, a point on the cylinder axis or plane
   Eigen::RowVector3d direction{0, 0, 1};  //!< cylinder axis or plane normal (any length)
-  double radius = 1;            //!< sphere and cylinder
-  int samples = 41;             //!< the surface is sampled on samples × samples points
+  double radius = 1;                      //!< sphere and cylinder
+  int samples = 41;                       //!< the surface is sampled on samples × samples points
 };
 
 //! Signed distance of p to an analytic target (sphere, cylinder, plane) and its gradient.
@@ -38,10 +37,10 @@ double target_distance(const Target& target, const Eigen::RowVector3d& p, Eigen:
 double rms_distance(const ControlNet& net, const Target& target);
 
 struct Objective {
-  std::string name;                 //!< as given, e.g. "thin_plate" or "thin_plate+0.1*e3"
-  std::vector<EnergyTerm> energy;   //!< Σ weight·E(a, b)
+  std::string name;                                         //!< as given, e.g. "thin_plate" or "thin_plate+0.1*e3"
+  std::vector<EnergyTerm> energy;                           //!< Σ weight·E(a, b)
   std::vector<std::pair<DiscreteEnergy, double>> discrete;  //!< Σ weight·(discrete energy), O(mn)
-  double target_weight = 0;         //!< weight of the rms distance to `target`
+  double target_weight = 0;                                 //!< weight of the rms distance to `target`
   std::optional<Target> target;
 };
 

@@ -2,10 +2,9 @@
 // rounding error of f', from the per-mode sums of the discrete terms (spectral_modes.h), the
 // Kronecker quadratics (spectral_quadratic.cpp) and the samples of an analytic target.
 // Sizes: one pass over the rows × cols modes, a few rows × cols products per quadratic term.
+#include <Eigen/Core>
 #include <array>
 #include <cmath>
-
-#include <Eigen/Core>
 
 #include "coons/alpha/spectral_modes.h"
 #include "coons/alpha/spectral_objective.h"

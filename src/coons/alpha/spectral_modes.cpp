@@ -29,8 +29,9 @@ COONS_VECTOR_CLONES void mode_row(const double* __restrict u, const double* __re
   }
 }
 
-COONS_VECTOR_CLONES ModeSums mode_sums(double alpha, const double* __restrict xi, int rows, const double* __restrict eta,
-                                       int cols, const double* __restrict quad, const double* __restrict lin) {
+COONS_VECTOR_CLONES ModeSums mode_sums(double alpha, const double* __restrict xi, int rows,
+                                       const double* __restrict eta, int cols, const double* __restrict quad,
+                                       const double* __restrict lin) {
   const double gamma = alpha + 0.25;
   ModeSums total;
   for (int p = 0; p < rows; ++p) {
@@ -60,7 +61,6 @@ COONS_VECTOR_CLONES ModeSums mode_sums(double alpha, const double* __restrict xi
   }
   return total;
 }
-
 
 Eigen::MatrixXd basis_at_samples(int degree, int k) {
   Eigen::MatrixXd B(k, degree + 1);

@@ -5,9 +5,8 @@
 // mask family).
 #pragma once
 
-#include <cmath>
-
 #include <Eigen/Core>
+#include <cmath>
 
 namespace coons::detail {
 
@@ -24,19 +23,18 @@ struct FactorColumns {
 };
 using FC = FactorColumns;
 
-
 //! One row p of modes: per coordinate R̂(p, q) = r_b(p)·L̂0(q) + r_t(p)·L̂1(q) + l̂0(p)·r_l(q) + l̂1(p)·r_r(q),
 // ĉ likewise; quad = symbol·Σ R̂², lin = 2·Σ ĉ·R̂. `u` is row p of the i-direction factors, V the
 // j-direction factors (#cols by FC::kCount, column-major).
-void mode_row(const double* __restrict u, const double* __restrict V, int cols,
-                                  const double* __restrict symbol, double* __restrict quad, double* __restrict lin);
+void mode_row(const double* __restrict u, const double* __restrict V, int cols, const double* __restrict symbol,
+              double* __restrict quad, double* __restrict lin);
 
 //! Σ over the modes of f, f', f'' and min |λ| (see evaluate); one pass over two arrays.
 struct ModeSums {
   double f = 0, df = 0, d2f = 0, df_abs = 0, smallest = HUGE_VAL;
 };
-ModeSums mode_sums(double alpha, const double* __restrict xi, int rows, const double* __restrict eta,
-                                       int cols, const double* __restrict quad, const double* __restrict lin);
+ModeSums mode_sums(double alpha, const double* __restrict xi, int rows, const double* __restrict eta, int cols,
+                   const double* __restrict quad, const double* __restrict lin);
 
 //! The Bernstein basis of a degree at the k samples s/(k − 1) of sample_surface (#k by degree+1).
 Eigen::MatrixXd basis_at_samples(int degree, int k);

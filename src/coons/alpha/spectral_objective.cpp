@@ -6,10 +6,10 @@
 #include <cstddef>
 #include <limits>
 
+#include "coons/alpha/spectral_modes.h"
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "solvers/sine_basis.h"
-#include "coons/alpha/spectral_modes.h"
 
 namespace coons {
 
@@ -90,7 +90,7 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objectiv
   const Sides sides = frame_sides(b);
   const int m = b.m, n = b.n;
   const Eigen::VectorXd si = Eigen::VectorXd::LinSpaced(m + 1, 0, 1), sj = Eigen::VectorXd::LinSpaced(n + 1, 0, 1);
-  Eigen::MatrixXd A[3], B[3];  // N_C = A[c]·B[c]ᵀ per coordinate
+  Eigen::MatrixXd A[3], B[3];                  // N_C = A[c]·B[c]ᵀ per coordinate
   Eigen::MatrixXd Ui(m + 1, 6), Vj(n + 1, 6);  // the sides: [bottom | top], [left′ | right′]
   Ui << sides.bottom, sides.top;
   Vj.leftCols(3) = sides.left - (1 - sj.array()).matrix() * sides.left.row(0) - sj * sides.left.row(n);
@@ -115,8 +115,8 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objectiv
     F.middleCols(FC::kBlend, 2) = blends.middleRows(1, k);
     return solvers::sine_transform_1d(F);
   };
-  const Eigen::MatrixXd U = factors(Ui, A[0].leftCols(2), true);   // rows_ × FC::kCount
-  const Eigen::MatrixXd V = factors(Vj, B[0].rightCols(2), false); // cols_ × FC::kCount
+  const Eigen::MatrixXd U = factors(Ui, A[0].leftCols(2), true);    // rows_ × FC::kCount
+  const Eigen::MatrixXd V = factors(Vj, B[0].rightCols(2), false);  // cols_ × FC::kCount
 
   // ξ = 1 − cos θ = 2 sin²(θ/2) without the cancellation of 1 − cos for the low modes, whose
   // eigenvalues (ξη at α = −1/4, ~1e-11 at N = 1023) carry the whole answer near −1/4.

@@ -17,18 +17,17 @@
 // mask family); R. W. Hockney, J. ACM 12 (1965) (sine-transform solvers).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <optional>
 #include <utility>
 #include <vector>
 
-#include <Eigen/Core>
-
 #include "coons/alpha/normalised_frame.h"
 #include "coons/alpha/objective.h"
 #include "coons/metrics/energies.h"
-#include "solvers/linear_solver.h"
 #include "coons/net/control_net.h"
+#include "solvers/linear_solver.h"
 
 namespace coons {
 
@@ -37,7 +36,7 @@ class SpectralAlphaObjective {
   struct Value {
     double value = 0, derivative = 0, second_derivative = 0;
     double derivative_noise = 0;  //!< the rounding error of `derivative` (an estimate)
-    bool ok = false;  //!< false when λ(α) vanishes for a mode (a singular α)
+    bool ok = false;              //!< false when λ(α) vanishes for a mode (a singular α)
   };
 
   //! The objective's terms:
@@ -64,8 +63,8 @@ class SpectralAlphaObjective {
  private:
   int rows_, cols_;
   double e0_ = 0;
-  Eigen::VectorXd xi_, eta_;               // 1 − cos(pπ/(rows+1)), 1 − cos(qπ/(cols+1))
-  Eigen::ArrayXd quad_, lin_;              // per mode: symbol·Σ_xyz R̂², 2·Σ_xyz ĉ·R̂ (discrete terms)
+  Eigen::VectorXd xi_, eta_;   // 1 − cos(pπ/(rows+1)), 1 − cos(qπ/(cols+1))
+  Eigen::ArrayXd quad_, lin_;  // per mode: symbol·Σ_xyz R̂², 2·Σ_xyz ĉ·R̂ (discrete terms)
   struct KroneckerTerm {
     Eigen::MatrixXd a, b;  // S K_a S (rows × rows) and S K_b S (cols × cols) at the interior
     double weight = 0;
@@ -74,15 +73,15 @@ class SpectralAlphaObjective {
   struct Quadratic {
     double constant = 0;
     std::array<Eigen::MatrixXd, 3> c_hat;  // rows × cols (std::array: clang-tidy 14 misreads a C array member)
-    double c_scale = 0;        // ĉ's rounding error is about ε times this
+    double c_scale = 0;                    // ĉ's rounding error is about ε times this
     std::vector<KroneckerTerm> terms;
   };
-  Quadratic exact_, target_;               // the exact energies; the mean square distance to a target net
+  Quadratic exact_, target_;  // the exact energies; the mean square distance to a target net
   double target_weight_ = 0;
-  Eigen::MatrixXd r_hat_[3];               // R̂ per coordinate (rows × cols), for the two above
-  std::optional<Target> analytic_;         // an analytic target, measured at its samples:
-  Eigen::MatrixXd p_, q_;                  //   B_u S (k × rows) and B_v S (k × cols)
-  Eigen::MatrixXd coons_samples_[3];       //   the Coons net's surface at the samples (k × k)
+  Eigen::MatrixXd r_hat_[3];          // R̂ per coordinate (rows × cols), for the two above
+  std::optional<Target> analytic_;    // an analytic target, measured at its samples:
+  Eigen::MatrixXd p_, q_;             //   B_u S (k × rows) and B_v S (k × cols)
+  Eigen::MatrixXd coons_samples_[3];  //   the Coons net's surface at the samples (k × k)
   Quadratic exact_energies(const ControlNet& coons, const std::vector<EnergyTerm>& exact, const Eigen::MatrixXd (&A)[3],
                            const Eigen::MatrixXd (&B)[3]) const;
   Quadratic mean_square_distance(const ControlNet& coons, const ControlNet& target, int samples) const;
@@ -96,8 +95,8 @@ class SpectralAlphaSearchObjective {
  public:
   struct Evaluation {
     double parameter = 0, value = 0, derivative = 0, second_derivative = 0;
-    double derivative_noise = 0;  //!< |derivative| below this is zero within rounding
-    bool has_derivative = true;  //!< always: the derivatives cost nothing extra
+    double derivative_noise = 0;    //!< |derivative| below this is zero within rounding
+    bool has_derivative = true;     //!< always: the derivatives cost nothing extra
     solvers::SolveSummary summary;  //!< status singular when λ vanishes at this α
     [[nodiscard]] bool ok() const { return summary.ok(); }
   };

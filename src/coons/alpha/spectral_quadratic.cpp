@@ -39,9 +39,9 @@ Eigen::MatrixXd sine_both_sides(const Eigen::MatrixXd& K) {
 }  // namespace
 
 SpectralAlphaObjective::Quadratic SpectralAlphaObjective::exact_energies(const ControlNet& coons,
-                                                                        const std::vector<EnergyTerm>& exact,
-                                                                        const Eigen::MatrixXd (&A)[3],
-                                                                        const Eigen::MatrixXd (&B)[3]) const {
+                                                                         const std::vector<EnergyTerm>& exact,
+                                                                         const Eigen::MatrixXd (&A)[3],
+                                                                         const Eigen::MatrixXd (&B)[3]) const {
   // Σ w·tr(Nᵀ K_a N K_b) per coordinate: ĉ as the outer product of the transformed K_a A and K_b B
   // at the interior, and E(N_C) from the Coons net itself: the factors' 4×4 Gram matrices would
   // lose ε·‖K_a A‖‖K_b B‖ to cancellation (1e-14 where E(N_C) = 0, as for the twist of a bilinear
@@ -64,8 +64,8 @@ SpectralAlphaObjective::Quadratic SpectralAlphaObjective::exact_energies(const C
 }
 
 SpectralAlphaObjective::Quadratic SpectralAlphaObjective::mean_square_distance(const ControlNet& coons,
-                                                                              const ControlNet& target,
-                                                                              int samples) const {
+                                                                               const ControlNet& target,
+                                                                               int samples) const {
   // (1/k²) Σ_xyz ‖B_u N B_vᵀ − T‖², T the target sampled at the same (u, v) (objective.cpp).
   const int m = rows_ + 1, n = cols_ + 1, k = samples;
   const Eigen::MatrixXd Bu = basis_at_samples(m, k), Bv = basis_at_samples(n, k);
@@ -80,7 +80,8 @@ SpectralAlphaObjective::Quadratic SpectralAlphaObjective::mean_square_distance(c
     q.c_hat[c] = sine_2d(G.block(1, 1, rows_, cols_));
     q.c_scale += Bu.norm() * Bv.norm() / k * (D.norm() + Tc.norm() / k);
   }
-  q.terms.push_back({sine_both_sides(Bu.transpose() * Bu), sine_both_sides(Bv.transpose() * Bv / (double(k) * k)), 1.0});
+  q.terms.push_back(
+      {sine_both_sides(Bu.transpose() * Bu), sine_both_sides(Bv.transpose() * Bv / (double(k) * k)), 1.0});
   return q;
 }
 

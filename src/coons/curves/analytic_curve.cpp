@@ -1,10 +1,10 @@
 #include "analytic_curve.h"
 
-#include <algorithm>
-#include <cmath>
-
 #include <fmt/format.h>
 #include <muParser.h>
+
+#include <algorithm>
+#include <cmath>
 
 #include "coons/curves/numerical_derivative.h"
 
@@ -25,8 +25,8 @@ struct AnalyticCurve::Compiled {
         int results = 0;
         p.Eval(results);  // compiles; reports syntax errors and unknown names
         if (results != 1)
-          throw ExpressionError(c, fmt::format("'{}' gives {} values (a ',' in the expression?), need one",
-                                               expressions[c], results));
+          throw ExpressionError(
+              c, fmt::format("'{}' gives {} values (a ',' in the expression?), need one", expressions[c], results));
       } catch (const mu::Parser::exception_type& e) {
         std::string message = e.GetMsg();
         if (!message.empty() && message.back() == '.') message.pop_back();
@@ -42,11 +42,12 @@ struct AnalyticCurve::Compiled {
 };
 
 AnalyticCurve::AnalyticCurve(std::array<std::string, 3> expressions, double t1, double t2)
-    : expressions_(std::move(expressions)), t1_(t1), t2_(t2),
-      compiled_(std::make_unique<Compiled>(expressions_)) {}
+    : expressions_(std::move(expressions)), t1_(t1), t2_(t2), compiled_(std::make_unique<Compiled>(expressions_)) {}
 
 AnalyticCurve::AnalyticCurve(const AnalyticCurve& other)
-    : expressions_(other.expressions_), t1_(other.t1_), t2_(other.t2_),
+    : expressions_(other.expressions_),
+      t1_(other.t1_),
+      t2_(other.t2_),
       compiled_(std::make_unique<Compiled>(expressions_)) {}
 
 AnalyticCurve& AnalyticCurve::operator=(const AnalyticCurve& other) {

@@ -9,20 +9,18 @@
 // LN1, linear reparametrisation; muparser (I. Berg, https://beltoforion.de/en/muparser).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <memory>
 #include <stdexcept>
 #include <string>
-
-#include <Eigen/Core>
 
 namespace coons {
 
 //! An expression that does not compile or has no single value.
 class ExpressionError : public std::invalid_argument {
  public:
-  ExpressionError(int component, const std::string& message)
-      : std::invalid_argument(message), component_(component) {}
+  ExpressionError(int component, const std::string& message) : std::invalid_argument(message), component_(component) {}
   //! 0, 1, 2 for x, y, z.
   [[nodiscard]] int component() const { return component_; }
 

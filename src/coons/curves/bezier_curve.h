@@ -4,10 +4,9 @@
 // G. Farin, Curves and Surfaces for CAGD, 5th ed. (2002), ch. 4 (de Casteljau, blossoms), 5, 6.
 #pragma once
 
+#include <Eigen/Core>
 #include <utility>
 #include <vector>
-
-#include <Eigen/Core>
 
 namespace coons {
 

@@ -1,9 +1,8 @@
 #include "bezier_fit.h"
 
+#include <Eigen/QR>
 #include <algorithm>
 #include <cassert>
-
-#include <Eigen/QR>
 
 #include "coons/net/bernstein.h"
 

@@ -4,11 +4,10 @@
 // Based on: LN0, LN1, LN4 — every surface of the Coons family is built from such curves.
 #pragma once
 
+#include <Eigen/Core>
 #include <functional>
 #include <string>
 #include <variant>
-
-#include <Eigen/Core>
 
 #include "coons/curves/analytic_curve.h"
 #include "coons/curves/bezier_curve.h"
@@ -25,9 +24,9 @@ class Curve {
  public:
   using Variant = std::variant<BezierCurve, AnalyticCurve, FunctionCurve>;
 
-  Curve(BezierCurve c) : v_(std::move(c)) {}     // NOLINT: implicit on purpose (a curve is any of these)
-  Curve(AnalyticCurve c) : v_(std::move(c)) {}   // NOLINT
-  Curve(FunctionCurve c) : v_(std::move(c)) {}   // NOLINT
+  Curve(BezierCurve c) : v_(std::move(c)) {}    // NOLINT: implicit on purpose (a curve is any of these)
+  Curve(AnalyticCurve c) : v_(std::move(c)) {}  // NOLINT
+  Curve(FunctionCurve c) : v_(std::move(c)) {}  // NOLINT
 
   //! The constant curve c(s) = p (degree-0 Bézier).
   static Curve constant(const Eigen::RowVector3d& p);
@@ -35,8 +34,8 @@ class Curve {
   static Curve segment(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b);
   //! The Ferguson (Hermite) cubic with c(0) = p0, c(1) = p1, c'(0) = d0, c'(1) = d1, as the
   //! Bézier cubic (p0, p0 + d0/3, p1 − d1/3, p1).
-  static Curve hermite_cubic(const Eigen::RowVector3d& p0, const Eigen::RowVector3d& p1,
-                             const Eigen::RowVector3d& d0, const Eigen::RowVector3d& d1);
+  static Curve hermite_cubic(const Eigen::RowVector3d& p0, const Eigen::RowVector3d& p1, const Eigen::RowVector3d& d0,
+                             const Eigen::RowVector3d& d1);
 
   [[nodiscard]] Eigen::RowVector3d at(double s) const;
   //! d^r c / ds^r, r ≥ 0 (exact for Bézier and function curves, numerical for analytic ones).

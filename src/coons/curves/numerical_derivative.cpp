@@ -19,9 +19,15 @@ bool finite(const Eigen::RowVector3d& x) { return x.allFinite(); }
 Eigen::RowVector3d central(const std::function<Eigen::RowVector3d(double)>& f, int r, double s, double h) {
   Eigen::RowVector3d d;
   switch (r) {
-    case 1: d = (f(s + h) - f(s - h)) / (2 * h); break;
-    case 2: d = (f(s + h) - 2 * f(s) + f(s - h)) / (h * h); break;
-    default: d = (f(s + 2 * h) - 2 * f(s + h) + 2 * f(s - h) - f(s - 2 * h)) / (2 * h * h * h); break;
+    case 1:
+      d = (f(s + h) - f(s - h)) / (2 * h);
+      break;
+    case 2:
+      d = (f(s + h) - 2 * f(s) + f(s - h)) / (h * h);
+      break;
+    default:
+      d = (f(s + 2 * h) - 2 * f(s + h) + 2 * f(s - h) - f(s - 2 * h)) / (2 * h * h * h);
+      break;
   }
   return d;
 }
@@ -55,8 +61,8 @@ NumericalDerivative tableau(D difference, double h0, double ratio, bool* broke_o
     double factor = ratio;
     for (int k = 1; k <= i; ++k, factor *= ratio) {
       T[i][k] = (factor * T[i][k - 1] - T[i - 1][k - 1]) / (factor - 1);
-      const double err = std::max((T[i][k] - T[i][k - 1]).cwiseAbs().maxCoeff(),
-                                  (T[i][k] - T[i - 1][k - 1]).cwiseAbs().maxCoeff());
+      const double err =
+          std::max((T[i][k] - T[i][k - 1]).cwiseAbs().maxCoeff(), (T[i][k] - T[i - 1][k - 1]).cwiseAbs().maxCoeff());
       if (err <= best.error_estimate) {
         best.error_estimate = err;
         best.value = T[i][k];
@@ -96,8 +102,8 @@ NumericalDerivative consistent(D difference, double h0, double ratio, bool* nonf
 
 }  // namespace
 
-NumericalDerivative numerical_derivative(const std::function<Eigen::RowVector3d(double)>& f, int r, double s,
-                                         double h0, double domain_lo, double domain_hi) {
+NumericalDerivative numerical_derivative(const std::function<Eigen::RowVector3d(double)>& f, int r, double s, double h0,
+                                         double domain_lo, double domain_hi) {
   assert(r >= 1 && r <= 3);
   if (h0 <= 0) h0 = 0.1;
   bool nonfinite = false;

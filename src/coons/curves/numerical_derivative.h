@@ -16,9 +16,8 @@
 // for order 1).
 #pragma once
 
-#include <functional>
-
 #include <Eigen/Core>
+#include <functional>
 
 namespace coons {
 

@@ -1,10 +1,10 @@
 #include "boundary_io.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <limits>
-
-#include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
@@ -54,14 +54,12 @@ void check_degree(const Parser& p, const json& doc, int m, int n) {
   // Range-checked before narrowing: 4294967299 must not read as 3.
   const auto dm = json_integer(d[0], p.source(), "degree[0]", 1, std::numeric_limits<int>::max());
   const auto dn = json_integer(d[1], p.source(), "degree[1]", 1, std::numeric_limits<int>::max());
-  if (dm != m || dn != n)
-    p.fail("degree", fmt::format("says [{}, {}] but the points give [{}, {}]", dm, dn, m, n));
+  if (dm != m || dn != n) p.fail("degree", fmt::format("says [{}, {}] but the points give [{}, {}]", dm, dn, m, n));
 }
 
 }  // namespace
 
-BoundaryFile parse_boundary(const json& doc, const std::string& source,
-                            const BoundaryReadOptions& options) {
+BoundaryFile parse_boundary(const json& doc, const std::string& source, const BoundaryReadOptions& options) {
   Parser p(source);
   if (!doc.is_object()) p.fail("", "the top level must be a JSON object");
   BoundaryFile out;

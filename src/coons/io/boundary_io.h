@@ -3,10 +3,9 @@
 // the field and the reason.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "coons/net/control_net.h"
 

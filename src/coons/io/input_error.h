@@ -11,7 +11,9 @@ class InputError : public std::runtime_error {
  public:
   InputError(std::string file, std::string field, std::string reason)
       : std::runtime_error(file + ": " + (field.empty() ? "" : field + ": ") + reason),
-        file_(std::move(file)), field_(std::move(field)), reason_(std::move(reason)) {}
+        file_(std::move(file)),
+        field_(std::move(field)),
+        reason_(std::move(reason)) {}
 
   [[nodiscard]] const std::string& file() const { return file_; }
   [[nodiscard]] const std::string& field() const { return field_; }

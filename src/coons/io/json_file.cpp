@@ -1,12 +1,12 @@
 #include "json_file.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <limits>
 #include <sstream>
-
-#include <fmt/format.h>
 
 #include "coons/io/input_error.h"
 
@@ -81,8 +81,8 @@ nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& op
   return parse_json_text(text, path, options);
 }
 
-std::int64_t json_integer(const nlohmann::json& j, const std::string& source, const std::string& field,
-                          std::int64_t lo, std::int64_t hi) {
+std::int64_t json_integer(const nlohmann::json& j, const std::string& source, const std::string& field, std::int64_t lo,
+                          std::int64_t hi) {
   const std::string range = fmt::format("an integer in [{}, {}]", lo, hi);
   if (j.is_number_unsigned()) {
     const auto u = j.get<std::uint64_t>();
@@ -106,7 +106,8 @@ double json_coordinate(const nlohmann::json& j, const std::string& source, const
   if (std::abs(x) > kMaxCoordinate)
     throw InputError(source, field,
                      fmt::format("{} is {:.17g}, beyond the bound |x| <= {:g} (energies scale as x^2 and would "
-                                 "overflow; scale the model down)", what, x, kMaxCoordinate));
+                                 "overflow; scale the model down)",
+                                 what, x, kMaxCoordinate));
   return x;
 }
 

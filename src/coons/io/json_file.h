@@ -7,9 +7,8 @@
 #pragma once
 
 #include <cstdint>
-#include <string>
-
 #include <nlohmann/json.hpp>
+#include <string>
 
 namespace coons {
 
@@ -26,16 +25,15 @@ struct JsonReadOptions {
 inline constexpr const char* kDocumentField = "(document)";
 
 //! Parse `text` read from `source` (the name errors carry), within the limits of `options`.
-nlohmann::json parse_json_text(const std::string& text, const std::string& source,
-                               const JsonReadOptions& options = {});
+nlohmann::json parse_json_text(const std::string& text, const std::string& source, const JsonReadOptions& options = {});
 
 //! Read and parse the file at `path` ("-" is not special: a path is a path).
 nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& options = {});
 
 //! An integer field within [lo, hi]; anything else (a fraction, a string, a value out of range,
 //! however large) is an InputError naming `field` and the bounds.
-std::int64_t json_integer(const nlohmann::json& j, const std::string& source, const std::string& field,
-                          std::int64_t lo, std::int64_t hi);
+std::int64_t json_integer(const nlohmann::json& j, const std::string& source, const std::string& field, std::int64_t lo,
+                          std::int64_t hi);
 
 //! The largest coordinate magnitude the readers accept. Energies and squared residuals scale as
 //! s² for coordinates of size s, times constants up to ~1e5 (high degrees: products of m², n² and

@@ -1,16 +1,16 @@
 #include "matrix_market.h"
 
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
 #include <algorithm>
 #include <cmath>
 #include <cstdio>
-#include <vector>
 #include <filesystem>
 #include <fstream>
 #include <sstream>
-
-#include <fmt/format.h>
-#include <fmt/ostream.h>
 #include <unsupported/Eigen/SparseExtra>
+#include <vector>
 
 #include "coons/io/input_error.h"
 #include "coons/io/write_files.h"
@@ -46,7 +46,7 @@ namespace {
 // index and value before use (Eigen's loadMarket does neither: huge sizes abort with bad_alloc,
 // bad lines are dropped with a message on std::cerr); found by tests/fuzz/fuzz_matrix_market.
 constexpr std::uintmax_t kMaxMarketBytes = std::uintmax_t{1} << 30;  // 1 GiB
-constexpr long long kMaxMarketDimension = 1LL << 26;                  // rows or columns
+constexpr long long kMaxMarketDimension = 1LL << 26;                 // rows or columns
 
 // The whole file, refused above kMaxMarketBytes.
 std::string read_market_text(const std::string& path) {
@@ -107,8 +107,9 @@ std::vector<long long> size_line(const std::string& path, const std::string& lin
   std::string rest;
   if (words >> rest) throw InputError(path, "size line", fmt::format("unexpected '{}' after {} integers", rest, count));
   if (out[0] > kMaxMarketDimension || out[1] > kMaxMarketDimension)
-    throw InputError(path, "size line", fmt::format("{} by {} is beyond the limit of {} rows or columns", out[0], out[1],
-                                                    kMaxMarketDimension));
+    throw InputError(
+        path, "size line",
+        fmt::format("{} by {} is beyond the limit of {} rows or columns", out[0], out[1], kMaxMarketDimension));
   return out;
 }
 
@@ -124,8 +125,9 @@ Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
   if (rows < 1 || cols < 1) throw InputError(path, "size line", "rows and columns must be at least 1");
   // An entry takes at least 6 bytes ("1 1 1\n"): a larger count cannot be in the file.
   if (nnz > rows * cols || nnz > static_cast<long long>(text.size() / 6))
-    throw InputError(path, "size line", fmt::format("{} entries do not fit a {} by {} matrix in a file of {} bytes",
-                                                    nnz, rows, cols, text.size()));
+    throw InputError(
+        path, "size line",
+        fmt::format("{} entries do not fit a {} by {} matrix in a file of {} bytes", nnz, rows, cols, text.size()));
   std::vector<Eigen::Triplet<double>> entries;
   entries.reserve(static_cast<std::size_t>(nnz));
   while (lines.next(line)) {
@@ -136,8 +138,7 @@ Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
     long long i = 0, j = 0;
     double value = 0;
     std::string rest;
-    if (!(words >> i >> j >> value) || (words >> rest))
-      throw InputError(path, field, "expected 'row column value'");
+    if (!(words >> i >> j >> value) || (words >> rest)) throw InputError(path, field, "expected 'row column value'");
     if (i < 1 || i > rows || j < 1 || j > cols)
       throw InputError(path, field, fmt::format("entry ({}, {}) outside the {} by {} matrix", i, j, rows, cols));
     if (!std::isfinite(value)) throw InputError(path, field, "the value is not finite");
@@ -167,7 +168,8 @@ Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
     std::istringstream words(line);
     std::string word;
     while (words >> word) {
-      if (k == B.size()) throw InputError(path, fmt::format("line {}", lines.number()), "more values than the size line says");
+      if (k == B.size())
+        throw InputError(path, fmt::format("line {}", lines.number()), "more values than the size line says");
       const std::string field = fmt::format("entry ({}, {})", k % rows + 1, k / rows + 1);
       std::istringstream number(word);
       double v = 0;

@@ -1,11 +1,11 @@
 #include "mesh_export.h"
 
+#include <fmt/format.h>
+#include <fmt/ostream.h>
+
 #include <cmath>
 #include <utility>
 #include <vector>
-
-#include <fmt/format.h>
-#include <fmt/ostream.h>
 
 namespace coons {
 
@@ -34,10 +34,12 @@ std::string vtk_number(double x) { return fmt::format("{}", finite_or_zero(x)); 
 void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::string& comment) {
   const int k = s.k;
   fmt::print(out, "# coons: surface sampled {}x{}{}\n", k, k, comment.empty() ? "" : " — " + comment);
-  for (Eigen::Index r = 0; r < s.points.rows(); ++r) fmt::print(out, "v {} {} {}\n", s.points(r, 0), s.points(r, 1), s.points(r, 2));
+  for (Eigen::Index r = 0; r < s.points.rows(); ++r)
+    fmt::print(out, "v {} {} {}\n", s.points(r, 0), s.points(r, 1), s.points(r, 2));
   for (Eigen::Index r = 0; r < s.normals.rows(); ++r) {
     const bool ok = s.normals.row(r).allFinite();
-    fmt::print(out, "vn {} {} {}\n", ok ? s.normals(r, 0) : 0.0, ok ? s.normals(r, 1) : 0.0, ok ? s.normals(r, 2) : 1.0);
+    fmt::print(out, "vn {} {} {}\n", ok ? s.normals(r, 0) : 0.0, ok ? s.normals(r, 1) : 0.0,
+               ok ? s.normals(r, 2) : 1.0);
   }
   auto id = [k](int a, int b) { return a * k + b + 1; };
   for (int a = 0; a + 1 < k; ++a)
@@ -81,7 +83,8 @@ void write_grid_vts(std::ostream& out, const SurfaceSamples& s) {
   const Fields fields(s);
   for (const auto& [name, values] : fields.list) {
     out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
-    for (int r = 0; r < k * k; ++r) out << (r % 8 ? " " : "          ") << vtk_number((*values)(r)) << (r % 8 == 7 ? "\n" : "");
+    for (int r = 0; r < k * k; ++r)
+      out << (r % 8 ? " " : "          ") << vtk_number((*values)(r)) << (r % 8 == 7 ? "\n" : "");
     out << (k * k % 8 ? "\n" : "") << "        </DataArray>\n";
   }
   out << "        <DataArray type=\"Float64\" Name=\"Normals\" NumberOfComponents=\"3\" format=\"ascii\">\n";

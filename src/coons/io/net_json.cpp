@@ -49,12 +49,12 @@ json metrics_to_json(const NetMetrics& m) {
 }
 
 json summary_to_json(const solvers::SolveSummary& s) {
-  json out = {{"name", s.solver},
-              {"status", solvers::to_string(s.status)},
-              {"iterations", s.iterations},
-              {"relative_residual", number_or_null(s.relative_residual)},
-              {"seconds",
-               {{"analyze", s.analyze_seconds}, {"factorize", s.factorize_seconds}, {"solve", s.solve_seconds}}}};
+  json out = {
+      {"name", s.solver},
+      {"status", solvers::to_string(s.status)},
+      {"iterations", s.iterations},
+      {"relative_residual", number_or_null(s.relative_residual)},
+      {"seconds", {{"analyze", s.analyze_seconds}, {"factorize", s.factorize_seconds}, {"solve", s.solve_seconds}}}};
   if (!s.message.empty()) out["message"] = s.message;
   if (!s.ordering.empty()) out["ordering"] = s.ordering;
   if (s.factor_nnz > 0) out["factor_nnz"] = s.factor_nnz;

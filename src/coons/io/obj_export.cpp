@@ -41,8 +41,8 @@ void write_net_obj(std::ostream& out, const ControlNet& net) {
   for (Eigen::Index r = 0; r < net.points.rows(); ++r) write_vertex(out, "v", net.points.row(r));
   for (int i = 0; i < net.m; ++i)
     for (int j = 0; j < net.n; ++j)
-      fmt::print(out, "f {} {} {} {}\n", net.index(i, j) + 1, net.index(i + 1, j) + 1,
-                 net.index(i + 1, j + 1) + 1, net.index(i, j + 1) + 1);
+      fmt::print(out, "f {} {} {} {}\n", net.index(i, j) + 1, net.index(i + 1, j) + 1, net.index(i + 1, j + 1) + 1,
+                 net.index(i, j + 1) + 1);
 }
 
 }  // namespace coons

@@ -2,9 +2,8 @@
 
 #include <algorithm>
 #include <cmath>
-#include <sstream>
-
 #include <nlohmann/json.hpp>
+#include <sstream>
 
 #include "coons/io/input_error.h"
 
@@ -31,8 +30,9 @@ Stencil stencil_from_json(const nlohmann::json& doc, const std::string& file) {
   if (!doc.contains("weights")) throw InputError(file, "weights", "missing");
   const nlohmann::json& w = doc.at("weights");
   if (!w.is_array() || (w.size() != 3 && w.size() != 5))
-    throw InputError(file, "weights", "must be an array of 3 or 5 rows" +
-                                          (w.is_array() ? ", got " + std::to_string(w.size()) : std::string()));
+    throw InputError(
+        file, "weights",
+        "must be an array of 3 or 5 rows" + (w.is_array() ? ", got " + std::to_string(w.size()) : std::string()));
   const std::size_t k = w.size(), R = k / 2;
   Eigen::MatrixXd raw = Eigen::MatrixXd::Zero(Eigen::Index(k), Eigen::Index(k));
   bool centre_given = false;
@@ -44,8 +44,9 @@ Stencil stencil_from_json(const nlohmann::json& doc, const std::string& file) {
       const nlohmann::json& x = row[c];
       if (r == R && c == R && x.is_null()) continue;
       if (!x.is_number() || !std::isfinite(x.get<double>()))
-        throw InputError(file, index_field("weights", r, c),
-                         r == R && c == R ? "must be a number or null (the centre is implied)" : "must be a finite number");
+        throw InputError(
+            file, index_field("weights", r, c),
+            r == R && c == R ? "must be a number or null (the centre is implied)" : "must be a finite number");
       if (r == R && c == R) centre_given = true;
       raw(Eigen::Index(r), Eigen::Index(c)) = x.get<double>();
     }

@@ -10,9 +10,8 @@
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
-#include <string>
-
 #include <nlohmann/json_fwd.hpp>
+#include <string>
 
 #include "coons/mask/stencil.h"
 #include "coons/mask/stencil_problem.h"

@@ -1,13 +1,13 @@
 #include "surface_io.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <cmath>
 #include <filesystem>
+#include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
-
-#include <fmt/format.h>
-#include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
@@ -68,8 +68,9 @@ class Reader {
 
   //! An array of exactly `count` points (count < 0: at least 1).
   std::vector<Vec> points(const json& j, const std::string& field, int count) const {
-    if (!j.is_array()) fail(field, count > 0 ? fmt::format("must be an array of {} points", count)
-                                             : std::string("must be an array of points"));
+    if (!j.is_array())
+      fail(field,
+           count > 0 ? fmt::format("must be an array of {} points", count) : std::string("must be an array of points"));
     if (count > 0 && int(j.size()) != count)
       fail(field, fmt::format("must hold exactly {} points, not {}", count, j.size()));
     if (j.empty()) fail(field, "must hold at least one point");
@@ -91,9 +92,11 @@ class Reader {
     for (const auto& f : forms)
       if (j.contains(f)) present.push_back(f);
     if (present.size() != 1)
-      fail(field, present.empty() ? "a curve needs one of \"bezier\", \"expr\" (or \"point\", \"hermite\")"
-                                  : fmt::format("a curve has exactly one of \"bezier\", \"expr\", \"point\", \"hermite\" "
-                                                "(found {})", fmt::join(present, ", ")));
+      fail(field, present.empty()
+                      ? "a curve needs one of \"bezier\", \"expr\" (or \"point\", \"hermite\")"
+                      : fmt::format("a curve has exactly one of \"bezier\", \"expr\", \"point\", \"hermite\" "
+                                    "(found {})",
+                                    fmt::join(present, ", ")));
     const std::string form = present[0];
     for (const auto& [key, value] : j.items()) {
       (void)value;
@@ -119,9 +122,12 @@ class Reader {
                             e.is_array() ? fmt::format(", not {}", e.size()) : ""));
     std::array<std::string, 3> expressions;
     for (int c = 0; c < 3; ++c) {
-      if (e[c].is_number()) expressions[c] = fmt::format("{}", e[c].get<double>());
-      else if (e[c].is_string()) expressions[c] = e[c].get<std::string>();
-      else fail(fmt::format("{}[{}]", sub, c), "must be a string (an expression in t) or a number");
+      if (e[c].is_number())
+        expressions[c] = fmt::format("{}", e[c].get<double>());
+      else if (e[c].is_string())
+        expressions[c] = e[c].get<std::string>();
+      else
+        fail(fmt::format("{}[{}]", sub, c), "must be a string (an expression in t) or a number");
     }
     double t1 = 0, t2 = 1;
     if (j.contains("interval")) {
@@ -165,17 +171,19 @@ void check_conditions(const Reader& r, const std::vector<CompatibilityCondition>
     const double tolerance = c.order == 0 ? o.corner_tolerance * std::max(size, 1e-300)
                                           : o.derivative_tolerance * std::max({size, c.scale, 1e-300});
     if (!(c.gap <= tolerance)) {
-      const char* what = c.order == 0 ? "the curves do not meet" : c.order == 1 ? "cross derivative and tangent disagree"
-                                                                                 : "twist and cross derivative disagree";
-      r.fail(c.field, fmt::format("{} at corner {}: {} fails by {:.3g} (tolerance {:.3g})", what, c.corner,
-                                  c.condition, c.gap, tolerance));
+      const char* what = c.order == 0   ? "the curves do not meet"
+                         : c.order == 1 ? "cross derivative and tangent disagree"
+                                        : "twist and cross derivative disagree";
+      r.fail(c.field, fmt::format("{} at corner {}: {} fails by {:.3g} (tolerance {:.3g})", what, c.corner, c.condition,
+                                  c.gap, tolerance));
     }
   }
 }
 
 BoundaryCurves boundary_curves(const Reader& r, const json& doc) {
-  return BoundaryCurves{r.curve(r.require(doc, "bottom", "bottom"), "bottom"), r.curve(r.require(doc, "top", "top"), "top"),
-                        r.curve(r.require(doc, "left", "left"), "left"), r.curve(r.require(doc, "right", "right"), "right")};
+  return BoundaryCurves{r.curve(r.require(doc, "bottom", "bottom"), "bottom"),
+                        r.curve(r.require(doc, "top", "top"), "top"), r.curve(r.require(doc, "left", "left"), "left"),
+                        r.curve(r.require(doc, "right", "right"), "right")};
 }
 
 }  // namespace
@@ -219,14 +227,18 @@ SurfaceFile parse_surface(const json& doc, const std::string& source, const Surf
     case SurfaceType::kRuled: {
       const json& c = r.require(doc, "curves", "curves");
       if (!c.is_array() || c.size() != 2)
-        r.fail("curves", fmt::format("must hold exactly 2 curves [c0, c1]{}", c.is_array() ? fmt::format(", not {}", c.size()) : ""));
+        r.fail("curves", fmt::format("must hold exactly 2 curves [c0, c1]{}",
+                                     c.is_array() ? fmt::format(", not {}", c.size()) : ""));
       surface = make_ruled(r.curve(c[0], "curves[0]"), r.curve(c[1], "curves[1]"));
       break;
     }
     case SurfaceType::kSectorial:
-      surface = make_sectorial(r.curve(r.require(doc, "curve", "curve"), "curve"), r.point(r.require(doc, "point", "point"), "point"));
+      surface = make_sectorial(r.curve(r.require(doc, "curve", "curve"), "curve"),
+                               r.point(r.require(doc, "point", "point"), "point"));
       break;
-    case SurfaceType::kBilinear: surface = make_bilinear(r.four(doc, "corners")); break;
+    case SurfaceType::kBilinear:
+      surface = make_bilinear(r.four(doc, "corners"));
+      break;
     case SurfaceType::kConoid: {
       const Curve directrix = r.curve(r.require(doc, "directrix", "directrix"), "directrix");
       const std::vector<Vec> line = r.points(r.require(doc, "line", "line"), "line", 2);
@@ -242,18 +254,22 @@ SurfaceFile parse_surface(const json& doc, const std::string& source, const Surf
       size = boundary_size(b);
       conditions = corner_conditions(b);
       check_conditions(r, conditions, size, options);
-      surface = make_coons(std::move(b), type == SurfaceType::kBilinearCoons ? CoonsBlending::kLinear : CoonsBlending::kHermite);
+      surface = make_coons(std::move(b),
+                           type == SurfaceType::kBilinearCoons ? CoonsBlending::kLinear : CoonsBlending::kHermite);
       break;
     }
-    case SurfaceType::kFerguson: surface = make_ferguson(r.four(doc, "corners"), r.four(doc, "du"), r.four(doc, "dv")); break;
+    case SurfaceType::kFerguson:
+      surface = make_ferguson(r.four(doc, "corners"), r.four(doc, "du"), r.four(doc, "dv"));
+      break;
     case SurfaceType::kHermite16:
-      surface = make_hermite16(HermitePatch{r.four(doc, "corners"), r.four(doc, "du"), r.four(doc, "dv"), r.four(doc, "twist")});
+      surface = make_hermite16(
+          HermitePatch{r.four(doc, "corners"), r.four(doc, "du"), r.four(doc, "dv"), r.four(doc, "twist")});
       break;
     case SurfaceType::kGeneralCoons: {
       BoundaryCurves b = boundary_curves(r, doc);
       auto cross = [&](const char* key) { return r.curve(r.require(doc, key, key), key); };
-      GeneralCoonsData g{std::move(b), cross("du_left"), cross("du_right"), cross("dv_bottom"), cross("dv_top"),
-                         r.four(doc, "twist")};
+      GeneralCoonsData g{std::move(b),       cross("du_left"), cross("du_right"),
+                         cross("dv_bottom"), cross("dv_top"),  r.four(doc, "twist")};
       size = boundary_size(g.boundary);
       conditions = compatibility_conditions(g);
       check_conditions(r, conditions, size, options);
@@ -269,7 +285,8 @@ SurfaceFile parse_surface(const json& doc, const std::string& source, const Surf
       for (int i = 0; i <= m; ++i) {
         const std::string field = fmt::format("net[{}]", i);
         if (!rows[i].is_array()) r.fail(field, "must be an array of points");
-        if (int(rows[i].size()) != n + 1) r.fail(field, fmt::format("has {} points, row 0 has {}", rows[i].size(), n + 1));
+        if (int(rows[i].size()) != n + 1)
+          r.fail(field, fmt::format("has {} points, row 0 has {}", rows[i].size(), n + 1));
         for (int j = 0; j <= n; ++j) net.at(i, j) = r.point(rows[i][j], fmt::format("net[{}][{}]", i, j));
       }
       surface = make_bezier_surface(std::move(net));

@@ -11,11 +11,10 @@
 // Based on: docs/formats.md ("Curves and surfaces", "Errors"); the compatibility conditions of LN1.
 #pragma once
 
+#include <nlohmann/json_fwd.hpp>
 #include <string>
 #include <utility>
 #include <vector>
-
-#include <nlohmann/json_fwd.hpp>
 
 #include "coons/curves/curve.h"
 #include "coons/surfaces/surface.h"

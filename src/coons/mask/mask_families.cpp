@@ -34,7 +34,8 @@ MaskPoint gamma_family(double alpha, double gamma) {
 Eigen::MatrixX3d mask_sensitivity_rhs(const ControlNet& net, const Mask9& d) {
   using Grid = Eigen::Map<const Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
   using Out = Eigen::Map<Eigen::Array<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>>;
-  const Eigen::Index m = net.m, n = net.n, rows = std::max<Eigen::Index>(m - 1, 0), cols = std::max<Eigen::Index>(n - 1, 0);
+  const Eigen::Index m = net.m, n = net.n, rows = std::max<Eigen::Index>(m - 1, 0),
+                     cols = std::max<Eigen::Index>(n - 1, 0);
   Eigen::MatrixX3d R(rows * cols, 3);
   if (rows * cols == 0) return R;
   for (int c = 0; c < 3; ++c) {
@@ -43,7 +44,8 @@ Eigen::MatrixX3d mask_sensitivity_rhs(const ControlNet& net, const Mask9& d) {
     // neighbours of the interior block g(1..m−1, 1..n−1), vectorised row by row
     r = d.edge_i * (g.block(0, 1, rows, cols) + g.block(2, 1, rows, cols)) +
         d.edge_j * (g.block(1, 0, rows, cols) + g.block(1, 2, rows, cols)) +
-        d.diag * (g.block(0, 0, rows, cols) + g.block(0, 2, rows, cols) + g.block(2, 0, rows, cols) + g.block(2, 2, rows, cols));
+        d.diag * (g.block(0, 0, rows, cols) + g.block(0, 2, rows, cols) + g.block(2, 0, rows, cols) +
+                  g.block(2, 2, rows, cols));
   }
   return R;
 }

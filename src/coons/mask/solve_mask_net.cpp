@@ -7,8 +7,8 @@
 
 namespace coons {
 
-MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask,
-                               const solvers::SolverInfo& solver, const solvers::SolverOptions& options) {
+MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, const solvers::SolverInfo& solver,
+                               const solvers::SolverOptions& options) {
   MaskSolveResult result;
   ControlNet frame = frame_net(boundary);
   const solvers::SolverInfo* info = &solver;

@@ -18,8 +18,7 @@ struct MaskSolveResult {
 };
 
 //! `solver` is a backend of the registry (solvers::available_solvers(); names are looked up at the edge).
-MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask,
-                               const solvers::SolverInfo& solver,
+MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, const solvers::SolverInfo& solver,
                                const solvers::SolverOptions& options = {});
 
 }  // namespace coons

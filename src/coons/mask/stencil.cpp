@@ -1,10 +1,9 @@
 #include "stencil.h"
 
+#include <Eigen/SVD>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
-
-#include <Eigen/SVD>
 
 namespace coons {
 
@@ -65,8 +64,8 @@ std::optional<Mask9> to_mask9(const Stencil& s0) {
   const Stencil s = trimmed(s0);
   if (s.radius != 1) return std::nullopt;
   const Eigen::MatrixXd& W = s.weights;
-  const bool reflective = W(0, 1) == W(2, 1) && W(1, 0) == W(1, 2) && W(0, 0) == W(0, 2) &&
-                          W(0, 0) == W(2, 0) && W(0, 0) == W(2, 2);
+  const bool reflective =
+      W(0, 1) == W(2, 1) && W(1, 0) == W(1, 2) && W(0, 0) == W(0, 2) && W(0, 0) == W(2, 0) && W(0, 0) == W(2, 2);
   if (!reflective) return std::nullopt;
   Mask9 mask;
   mask.edge_i = -W(0, 1);
@@ -88,9 +87,7 @@ Eigen::MatrixXd c1_family_stencil_derivative(double w) {
 
 double weight_sum(const Stencil& s) { return s.weights.sum(); }
 
-double symmetry_defect(const Stencil& s) {
-  return (s.weights - s.weights.reverse()).cwiseAbs().maxCoeff();
-}
+double symmetry_defect(const Stencil& s) { return (s.weights - s.weights.reverse()).cwiseAbs().maxCoeff(); }
 
 double stencil_symbol(const Stencil& s, double theta, double phi) {
   double sigma = 0;

@@ -37,10 +37,9 @@
 // energy minimisers); P. Salvi, quadfit (5×5 masks with two rings).
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <utility>
-
-#include <Eigen/Core>
 
 #include "coons/mask/mask9.h"
 

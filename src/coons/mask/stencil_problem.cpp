@@ -1,13 +1,12 @@
 #include "stencil_problem.h"
 
+#include <Eigen/Dense>
+#include <Eigen/SparseCore>
+#include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
 #include <string>
 #include <utility>
-
-#include <Eigen/Dense>
-#include <Eigen/SparseCore>
-#include <Eigen/SparseLU>
 
 namespace coons {
 
@@ -50,8 +49,7 @@ std::vector<std::vector<Point>> coupled_components(const FreeGrid& free, const S
 }
 
 // The mask equations restricted to one component (A(q, p) = W(p − q)).
-Eigen::SparseMatrix<double> component_matrix(const std::vector<Point>& comp, const Stencil& s,
-                                             const FreeGrid& free) {
+Eigen::SparseMatrix<double> component_matrix(const std::vector<Point>& comp, const Stencil& s, const FreeGrid& free) {
   Eigen::ArrayXXi local = Eigen::ArrayXXi::Constant(free.rows(), free.cols(), -1);
   for (std::size_t k = 0; k < comp.size(); ++k) local(comp[k].first, comp[k].second) = int(k);
   std::vector<Eigen::Triplet<double>> entries;  // a small check matrix: triplets are fine here
@@ -149,12 +147,12 @@ std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, c
   const int m = problem.net.m, n = problem.net.n, r = stencil.radius, rings = problem.rings;
   if (problem.free.size() > 0 && (problem.free.rows() != m + 1 || problem.free.cols() != n + 1)) {
     issues.push_back({"free", -1, -1,
-                      "has " + std::to_string(problem.free.rows()) + " rows of " +
-                          std::to_string(problem.free.cols()) + " points; the net has " + std::to_string(m + 1) +
-                          " rows of " + std::to_string(n + 1)});
+                      "has " + std::to_string(problem.free.rows()) + " rows of " + std::to_string(problem.free.cols()) +
+                          " points; the net has " + std::to_string(m + 1) + " rows of " + std::to_string(n + 1)});
     return issues;
   }
-  if (rings < 0) issues.push_back({"rings", -1, -1, "must be >= 0, got " + std::to_string(rings)});
+  if (rings < 0)
+    issues.push_back({"rings", -1, -1, "must be >= 0, got " + std::to_string(rings)});
   else if (rings < r)
     issues.push_back({"rings", -1, -1,
                       std::to_string(rings) + " data ring(s) are too few for a " + mask_size(stencil) +
@@ -165,11 +163,11 @@ std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, c
       if (!free(i, j)) continue;
       const int depth = std::min({i, j, m - i, n - j});  // rings outside the point
       if (problem.free.size() > 0 && depth < rings)
-        issues.push_back({free_field(i, j), i, j,
-                          "the point lies in the " + std::to_string(rings) + " outer data ring(s)"});
+        issues.push_back(
+            {free_field(i, j), i, j, "the point lies in the " + std::to_string(rings) + " outer data ring(s)"});
       else if (depth < r)
-        issues.push_back({free_field(i, j), i, j,
-                          "the " + mask_size(stencil) + " mask at this free point leaves the net"});
+        issues.push_back(
+            {free_field(i, j), i, j, "the " + mask_size(stencil) + " mask at this free point leaves the net"});
     }
   if (!issues.empty() || !options.check_singular) return issues;
   if (symbol_nonnegative(stencil)) return issues;  // every free set is positive definite
@@ -177,9 +175,8 @@ std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, c
   const bool symmetric = symmetry_defect(stencil) == 0;
   for (const auto& comp : coupled_components(free, stencil)) {
     const Eigen::SparseMatrix<double> A = component_matrix(comp, stencil, free);
-    const auto [ratio, x] = int(comp.size()) <= options.dense_limit
-                                ? near_null_dense(Eigen::MatrixXd(A), symmetric)
-                                : near_null_sparse(A);
+    const auto [ratio, x] =
+        int(comp.size()) <= options.dense_limit ? near_null_dense(Eigen::MatrixXd(A), symmetric) : near_null_sparse(A);
     if (ratio > options.singular_tolerance) continue;
     const double top = x.cwiseAbs().maxCoeff();
     std::vector<Point> named;
@@ -190,8 +187,7 @@ std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, c
       list += (k ? ", " : "") + point_name(named[k].first, named[k].second);
     if (int(named.size()) > options.max_named_points)
       list += " and " + std::to_string(named.size() - std::size_t(options.max_named_points)) + " more";
-    issues.push_back({free_field(named.front().first, named.front().second), named.front().first,
-                      named.front().second,
+    issues.push_back({free_field(named.front().first, named.front().second), named.front().first, named.front().second,
                       "the mask system is singular: the free points " + list +
                           " decouple (they carry a null vector of the equations)"});
   }

@@ -22,10 +22,9 @@
 // where it is ≥ 0.1 of its largest entry are named as the ones that decouple.
 #pragma once
 
+#include <Eigen/Core>
 #include <string>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "coons/mask/stencil.h"
 #include "coons/net/control_net.h"
@@ -55,10 +54,10 @@ struct ProblemIssue {
 };
 
 struct ProblemCheckOptions {
-  bool check_singular = true;       //!< also check that the system is non-singular
-  int dense_limit = 400;            //!< components up to this size are checked densely
-  double singular_tolerance = 1e-10;//!< relative size of the smallest |eigenvalue| taken as zero
-  int max_named_points = 8;         //!< list at most this many points in a reason
+  bool check_singular = true;         //!< also check that the system is non-singular
+  int dense_limit = 400;              //!< components up to this size are checked densely
+  double singular_tolerance = 1e-10;  //!< relative size of the smallest |eigenvalue| taken as zero
+  int max_named_points = 8;           //!< list at most this many points in a reason
 
   bool is_valid(std::string* why) const;
 };

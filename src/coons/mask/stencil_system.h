@@ -17,12 +17,11 @@
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <array>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
-#include <Eigen/SparseCore>
 
 #include "coons/mask/stencil.h"
 #include "coons/mask/stencil_problem.h"
@@ -39,8 +38,8 @@ struct StencilAssemblyOptions {
 //! The free points of a problem and their numbering.
 struct FreeNumbering {
   int m = 0, n = 0;
-  std::vector<int> unknown;                 //!< #(m+1)(n+1): the unknown of point (i, j), −1 for data
-  std::vector<std::array<int, 2>> points;   //!< #free: (i, j) of each unknown, row-major order
+  std::vector<int> unknown;                //!< #(m+1)(n+1): the unknown of point (i, j), −1 for data
+  std::vector<std::array<int, 2>> points;  //!< #free: (i, j) of each unknown, row-major order
   [[nodiscard]] int at(int i, int j) const { return unknown[std::size_t(i) * (n + 1) + j]; }
   [[nodiscard]] int size() const { return int(points.size()); }
 };
@@ -60,10 +59,10 @@ struct StencilSystem {
   int radius = 1;
   bool box_pattern = false;
   Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> pattern;  //!< the stored offsets, (2r+1)²
-  Eigen::SparseMatrix<double> A;  //!< #free by #free (empty when not requested)
-  Eigen::MatrixX3d B;             //!< #free by 3
-  std::optional<solvers::GridStencil> grid;                   //!< 3×3 stencil on a full rectangle
-  std::optional<solvers::SeparableBandedOperator> separable;  //!< separable stencil on a full rectangle
+  Eigen::SparseMatrix<double> A;                               //!< #free by #free (empty when not requested)
+  Eigen::MatrixX3d B;                                          //!< #free by 3
+  std::optional<solvers::GridStencil> grid;                    //!< 3×3 stencil on a full rectangle
+  std::optional<solvers::SeparableBandedOperator> separable;   //!< separable stencil on a full rectangle
 };
 
 //! Precondition: check_stencil_problem(problem, stencil) has no structural issue (every free

@@ -85,8 +85,7 @@ double thin_plate_energy(const ControlNet& net) {
 
 double e3_energy(const ControlNet& net) {
   GramCache g;
-  return energy(net, 3, 0, g) + 3 * energy(net, 2, 1, g) + 3 * energy(net, 1, 2, g) +
-         energy(net, 0, 3, g);
+  return energy(net, 3, 0, g) + 3 * energy(net, 2, 1, g) + 3 * energy(net, 1, 2, g) + energy(net, 0, 3, g);
 }
 
 double discrete_twist_energy(const ControlNet& net) {
@@ -132,11 +131,15 @@ double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEn
         break;
       case DiscreteEnergy::kThinPlate:
         if (m >= 2) {
-          auto dii = [m, n](const GridMap& g) { return g.bottomRows(m - 1) - 2 * g.middleRows(1, m - 1) + g.topRows(m - 1); };
+          auto dii = [m, n](const GridMap& g) {
+            return g.bottomRows(m - 1) - 2 * g.middleRows(1, m - 1) + g.topRows(m - 1);
+          };
           e += (dii(x) * dii(y)).sum();
         }
         if (n >= 2) {
-          auto djj = [m, n](const GridMap& g) { return g.rightCols(n - 1) - 2 * g.middleCols(1, n - 1) + g.leftCols(n - 1); };
+          auto djj = [m, n](const GridMap& g) {
+            return g.rightCols(n - 1) - 2 * g.middleCols(1, n - 1) + g.leftCols(n - 1);
+          };
           e += (djj(x) * djj(y)).sum();
         }
         e += 2 * (d11(x) * d11(y)).sum();
@@ -148,9 +151,12 @@ double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEn
 
 std::vector<DifferenceTerm> difference_terms(DiscreteEnergy kind) {
   switch (kind) {
-    case DiscreteEnergy::kTwist: return {{1, 1, 1}};
-    case DiscreteEnergy::kDirichlet: return {{1, 0, 1}, {0, 1, 1}};
-    case DiscreteEnergy::kThinPlate: return {{2, 0, 1}, {1, 1, 2}, {0, 2, 1}};
+    case DiscreteEnergy::kTwist:
+      return {{1, 1, 1}};
+    case DiscreteEnergy::kDirichlet:
+      return {{1, 0, 1}, {0, 1, 1}};
+    case DiscreteEnergy::kThinPlate:
+      return {{2, 0, 1}, {1, 1, 2}, {0, 2, 1}};
   }
   return {};
 }
@@ -165,7 +171,9 @@ ControlNet discrete_energy_gradient(const ControlNet& net, DiscreteEnergy kind) 
     const GridMap b = grid(net, c);
     Grid out(g.points.col(c).data(), m + 1, n + 1);
     auto add_twist = [&](double weight) {
-      const RowArray r = 2 * weight * (b.bottomRightCorner(m, n) - b.bottomLeftCorner(m, n) - b.topRightCorner(m, n) + b.topLeftCorner(m, n));
+      const RowArray r =
+          2 * weight *
+          (b.bottomRightCorner(m, n) - b.bottomLeftCorner(m, n) - b.topRightCorner(m, n) + b.topLeftCorner(m, n));
       out.bottomRightCorner(m, n) += r;
       out.bottomLeftCorner(m, n) -= r;
       out.topRightCorner(m, n) -= r;
@@ -216,8 +224,7 @@ NetMetrics net_metrics(const ControlNet& net, const Mask9& mask) {
   out.twist_energy = e11;
   out.dirichlet_energy = energy(net, 1, 0, g) + energy(net, 0, 1, g);
   out.thin_plate_energy = energy(net, 2, 0, g) + 2 * e11 + energy(net, 0, 2, g);
-  out.e3_energy = energy(net, 3, 0, g) + 3 * energy(net, 2, 1, g) + 3 * energy(net, 1, 2, g) +
-                  energy(net, 0, 3, g);
+  out.e3_energy = energy(net, 3, 0, g) + 3 * energy(net, 2, 1, g) + 3 * energy(net, 1, 2, g) + energy(net, 0, 3, g);
   out.discrete_twist_energy = discrete_twist_energy(net);
   out.discrete_dirichlet_energy = discrete_dirichlet_energy(net);
   out.mask_residual = mask_residual(net, mask);

@@ -1,16 +1,15 @@
 // Control nets and boundaries of tensor-product Bézier surfaces (conventions: docs/math.md §1).
 #pragma once
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 namespace coons {
 
 //! An (m+1)×(n+1) net of points b[i][j] ∈ R³, stored row-major: row i·(n+1)+j of `points`.
 struct ControlNet {
-  int m = 0;  //!< degree in u (index i)
-  int n = 0;  //!< degree in v (index j)
+  int m = 0;                //!< degree in u (index i)
+  int n = 0;                //!< degree in v (index j)
   Eigen::MatrixX3d points;  //!< #(m+1)(n+1) by 3
 
   ControlNet() = default;

@@ -15,15 +15,14 @@ std::vector<double> hermite_blend_weights(int k) {
   std::vector<double> w(k + 1);
   const double kk1 = double(k) * (k - 1), kk2 = kk1 * (k - 2);
   for (int i = 0; i <= k; ++i) {
-    const double t2 = double(i) * (i - 1) / kk1;              // Bernstein coefficients of t²
-    const double t3 = double(i) * (i - 1) * (i - 2) / kk2;    // and of t³
+    const double t2 = double(i) * (i - 1) / kk1;            // Bernstein coefficients of t²
+    const double t3 = double(i) * (i - 1) * (i - 2) / kk2;  // and of t³
     w[i] = 1.0 - 3.0 * t2 + 2.0 * t3;
   }
   return w;
 }
 
-ControlNet boolean_sum_net(const Boundary& b, const std::vector<double>& w_u,
-                           const std::vector<double>& w_v) {
+ControlNet boolean_sum_net(const Boundary& b, const std::vector<double>& w_u, const std::vector<double>& w_v) {
   const int m = b.m, n = b.n;
   assert(int(w_u.size()) == m + 1 && int(w_v.size()) == n + 1);
   ControlNet net;

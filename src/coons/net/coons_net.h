@@ -21,8 +21,7 @@ namespace coons {
 
 //! The Boolean-sum net for blend weights w_u (#m+1, weight of the left side) and w_v (#n+1,
 //! weight of the bottom side). Corners are taken from bottom and top.
-ControlNet boolean_sum_net(const Boundary& boundary, const std::vector<double>& w_u,
-                           const std::vector<double>& w_v);
+ControlNet boolean_sum_net(const Boundary& boundary, const std::vector<double>& w_u, const std::vector<double>& w_v);
 
 //! Linear blend weights 1 − i/k, i = 0..k.
 std::vector<double> linear_blend_weights(int k);

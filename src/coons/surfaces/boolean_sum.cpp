@@ -61,14 +61,20 @@ Blend Blend::from_monomial(const std::vector<double>& c) {
   return out;
 }
 
-Blend linear_blend(int i) { return Blend::from_monomial(i == 0 ? std::vector<double>{1, -1} : std::vector<double>{0, 1}); }
+Blend linear_blend(int i) {
+  return Blend::from_monomial(i == 0 ? std::vector<double>{1, -1} : std::vector<double>{0, 1});
+}
 
 Blend hermite_blend(int i) {
   switch (i) {
-    case 0: return Blend::from_monomial({1, 0, -3, 2});
-    case 1: return Blend::from_monomial({0, 0, 3, -2});
-    case 2: return Blend::from_monomial({0, 1, -2, 1});
-    default: return Blend::from_monomial({0, 0, -1, 1});
+    case 0:
+      return Blend::from_monomial({1, 0, -3, 2});
+    case 1:
+      return Blend::from_monomial({0, 0, 3, -2});
+    case 2:
+      return Blend::from_monomial({0, 1, -2, 1});
+    default:
+      return Blend::from_monomial({0, 0, -1, 1});
   }
 }
 
@@ -77,7 +83,8 @@ SurfacePoint evaluate(const BooleanSum& sum, double u, double v) {
   for (auto& row : d)
     for (auto& x : row) x.setZero();
   for (const auto& term : sum.u_blended) {
-    const Eigen::RowVector3d X[3] = {term.curve.derivative(0, v), term.curve.derivative(1, v), term.curve.derivative(2, v)};
+    const Eigen::RowVector3d X[3] = {term.curve.derivative(0, v), term.curve.derivative(1, v),
+                                     term.curve.derivative(2, v)};
     for (int a = 0; a <= 2; ++a) {
       const double w = term.blend.value(a, u);
       if (w == 0) continue;
@@ -85,7 +92,8 @@ SurfacePoint evaluate(const BooleanSum& sum, double u, double v) {
     }
   }
   for (const auto& term : sum.v_blended) {
-    const Eigen::RowVector3d Y[3] = {term.curve.derivative(0, u), term.curve.derivative(1, u), term.curve.derivative(2, u)};
+    const Eigen::RowVector3d Y[3] = {term.curve.derivative(0, u), term.curve.derivative(1, u),
+                                     term.curve.derivative(2, u)};
     for (int b = 0; b <= 2; ++b) {
       const double w = term.blend.value(b, v);
       if (w == 0) continue;

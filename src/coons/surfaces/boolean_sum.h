@@ -14,10 +14,9 @@
 // Numer. Anal. 8 (1971); LN1 (the matrix forms of the six Coons patches).
 #pragma once
 
+#include <Eigen/Core>
 #include <optional>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "coons/curves/curve.h"
 #include "coons/net/control_net.h"
@@ -50,9 +49,9 @@ struct BlendedCurve {
 };
 
 struct BooleanSum {
-  std::vector<BlendedCurve> u_blended;  //!< a_k(u)·X_k(v): blend in u, curve in v
-  std::vector<BlendedCurve> v_blended;  //!< Y_l(u)·b_l(v): curve in u, blend in v
-  std::vector<Blend> tensor_u, tensor_v;  //!< s_k(u), t_l(v)
+  std::vector<BlendedCurve> u_blended;                  //!< a_k(u)·X_k(v): blend in u, curve in v
+  std::vector<BlendedCurve> v_blended;                  //!< Y_l(u)·b_l(v): curve in u, blend in v
+  std::vector<Blend> tensor_u, tensor_v;                //!< s_k(u), t_l(v)
   std::vector<std::vector<Eigen::RowVector3d>> tensor;  //!< T_kl, #tensor_u by #tensor_v
 };
 

@@ -1,9 +1,9 @@
 #include "conoid.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <memory>
-
-#include <fmt/format.h>
 
 namespace coons {
 

@@ -13,9 +13,8 @@
 // lecture notes), přímý kruhový a přímý šroubový konoid.
 #pragma once
 
-#include <string>
-
 #include <Eigen/Core>
+#include <string>
 
 #include "coons/curves/curve.h"
 #include "coons/surfaces/boolean_sum.h"

@@ -17,10 +17,10 @@ BooleanSum to_boolean_sum(const GeneralCoonsData& g) {
   sum.tensor.assign(4, std::vector<Eigen::RowVector3d>(4));
   for (int i = 0; i < 2; ++i)
     for (int j = 0; j < 2; ++j) {
-      sum.tensor[i][j] = -u_curve[j]->at(i);                   // r(i, j)
-      sum.tensor[i][2 + j] = -v_curve[i]->derivative(1, j);    // r_v(i, j)
-      sum.tensor[2 + i][j] = -u_curve[j]->derivative(1, i);    // r_u(i, j)
-      sum.tensor[2 + i][2 + j] = -g.twist[i + 2 * j];          // r_uv(i, j)
+      sum.tensor[i][j] = -u_curve[j]->at(i);                 // r(i, j)
+      sum.tensor[i][2 + j] = -v_curve[i]->derivative(1, j);  // r_v(i, j)
+      sum.tensor[2 + i][j] = -u_curve[j]->derivative(1, i);  // r_u(i, j)
+      sum.tensor[2 + i][2 + j] = -g.twist[i + 2 * j];        // r_uv(i, j)
     }
   return sum;
 }
@@ -43,21 +43,23 @@ std::vector<CompatibilityCondition> compatibility_conditions(const GeneralCoonsD
   const Curve* dv[2] = {&g.dv_bottom, &g.dv_top};
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i)
-      add(du_name[i], i + 2 * j, std::string(du_name[i]) + "(" + std::to_string(j) + ") = " + u_name[j] + "'(" +
-                                     std::to_string(i) + ")",
+      add(du_name[i], i + 2 * j,
+          std::string(du_name[i]) + "(" + std::to_string(j) + ") = " + u_name[j] + "'(" + std::to_string(i) + ")",
           du[i]->at(j), u_curve[j]->derivative(1, i), 1);
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i)
-      add(dv_name[j], i + 2 * j, std::string(dv_name[j]) + "(" + std::to_string(i) + ") = " + v_name[i] + "'(" +
-                                     std::to_string(j) + ")",
+      add(dv_name[j], i + 2 * j,
+          std::string(dv_name[j]) + "(" + std::to_string(i) + ") = " + v_name[i] + "'(" + std::to_string(j) + ")",
           dv[j]->at(i), v_curve[i]->derivative(1, j), 1);
   // Twists against the derivatives of the cross derivatives.
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i) {
       const int c = i + 2 * j;
       const std::string field = "twist[" + std::to_string(c) + "]";
-      add(field, c, field + " = " + du_name[i] + "'(" + std::to_string(j) + ")", g.twist[c], du[i]->derivative(1, j), 2);
-      add(field, c, field + " = " + dv_name[j] + "'(" + std::to_string(i) + ")", g.twist[c], dv[j]->derivative(1, i), 2);
+      add(field, c, field + " = " + du_name[i] + "'(" + std::to_string(j) + ")", g.twist[c], du[i]->derivative(1, j),
+          2);
+      add(field, c, field + " = " + dv_name[j] + "'(" + std::to_string(i) + ")", g.twist[c], dv[j]->derivative(1, i),
+          2);
     }
   return out;
 }

@@ -19,10 +19,9 @@
 // LN4 (Russian), generalised Coons surfaces (6.16)–(6.19); S. A. Coons, MIT MAC-TR-41 (1967).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <vector>
-
-#include <Eigen/Core>
 
 #include "coons/surfaces/coons_patch.h"
 
@@ -30,10 +29,10 @@ namespace coons {
 
 struct GeneralCoonsData {
   BoundaryCurves boundary;
-  Curve du_left;    //!< ∂r/∂u (0, v), a curve in v
-  Curve du_right;   //!< ∂r/∂u (1, v)
-  Curve dv_bottom;  //!< ∂r/∂v (u, 0), a curve in u
-  Curve dv_top;     //!< ∂r/∂v (u, 1)
+  Curve du_left;                            //!< ∂r/∂u (0, v), a curve in v
+  Curve du_right;                           //!< ∂r/∂u (1, v)
+  Curve dv_bottom;                          //!< ∂r/∂v (u, 0), a curve in u
+  Curve dv_top;                             //!< ∂r/∂v (u, 1)
   std::array<Eigen::RowVector3d, 4> twist;  //!< r_uv at (0,0), (1,0), (0,1), (1,1)
 };
 

@@ -2,8 +2,8 @@
 
 namespace coons {
 
-HermitePatch ferguson_patch(const std::array<Eigen::RowVector3d, 4>& corners, const std::array<Eigen::RowVector3d, 4>& du,
-                            const std::array<Eigen::RowVector3d, 4>& dv) {
+HermitePatch ferguson_patch(const std::array<Eigen::RowVector3d, 4>& corners,
+                            const std::array<Eigen::RowVector3d, 4>& du, const std::array<Eigen::RowVector3d, 4>& dv) {
   HermitePatch h{corners, du, dv, {}};
   for (auto& t : h.twist) t.setZero();
   return h;

@@ -12,9 +12,8 @@
 // curve interpolation, J. ACM 11 (1964) 221–228.
 #pragma once
 
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 #include "coons/surfaces/boolean_sum.h"
 
@@ -29,8 +28,8 @@ struct HermitePatch {
 };
 
 //! The 12-vector patch: twists zero.
-HermitePatch ferguson_patch(const std::array<Eigen::RowVector3d, 4>& corners, const std::array<Eigen::RowVector3d, 4>& du,
-                            const std::array<Eigen::RowVector3d, 4>& dv);
+HermitePatch ferguson_patch(const std::array<Eigen::RowVector3d, 4>& corners,
+                            const std::array<Eigen::RowVector3d, 4>& du, const std::array<Eigen::RowVector3d, 4>& dv);
 
 BooleanSum to_boolean_sum(const HermitePatch& h);
 

@@ -1,19 +1,22 @@
 #include "joining.h"
 
+#include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-
-#include <Eigen/Geometry>
 
 namespace coons {
 
 namespace {
 SurfacePoint on_side(const Surface& s, Side side, double t) {
   switch (side) {
-    case Side::kBottom: return s.evaluate(t, 0);
-    case Side::kTop: return s.evaluate(t, 1);
-    case Side::kLeft: return s.evaluate(0, t);
-    default: return s.evaluate(1, t);
+    case Side::kBottom:
+      return s.evaluate(t, 0);
+    case Side::kTop:
+      return s.evaluate(t, 1);
+    case Side::kLeft:
+      return s.evaluate(0, t);
+    default:
+      return s.evaluate(1, t);
   }
 }
 }  // namespace

@@ -8,9 +8,8 @@
 // (přechodová plocha); LN4 (Russian lecture notes), ruled, sectorial and bilinear surfaces.
 #pragma once
 
-#include <array>
-
 #include <Eigen/Core>
+#include <array>
 
 #include "coons/curves/curve.h"
 #include "coons/surfaces/boolean_sum.h"

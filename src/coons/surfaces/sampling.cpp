@@ -1,11 +1,10 @@
 #include "sampling.h"
 
+#include <Eigen/Dense>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Dense>
 
 namespace coons {
 

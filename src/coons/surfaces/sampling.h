@@ -6,9 +6,8 @@
 // closest points by Newton's method on ½‖r(u,v) − p‖² with clamping to [0, 1]².
 #pragma once
 
-#include <optional>
-
 #include <Eigen/Core>
+#include <optional>
 
 #include "coons/surfaces/surface.h"
 
@@ -20,8 +19,8 @@ struct SurfaceSamples {
   Eigen::MatrixX3d normals;        //!< unit r_u × r_v (NaN where singular)
   Eigen::VectorXd mean_curvature;  //!< H (NaN where singular)
   Eigen::VectorXd gaussian_curvature;
-  Eigen::VectorXd twist;                         //!< ‖r_uv‖
-  std::optional<Eigen::VectorXd> distance;       //!< to the reference surface (closest point)
+  Eigen::VectorXd twist;                               //!< ‖r_uv‖
+  std::optional<Eigen::VectorXd> distance;             //!< to the reference surface (closest point)
   std::optional<Eigen::VectorXd> parametric_distance;  //!< ‖r(u,v) − r_ref(u,v)‖
 };
 

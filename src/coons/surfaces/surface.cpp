@@ -30,15 +30,24 @@ constexpr Named kNames[] = {
 BooleanSum make_sum(SurfaceType type, const SurfaceData& data) {
   switch (type) {
     case SurfaceType::kRuled:
-    case SurfaceType::kSectorial: return to_boolean_sum(std::get<RuledSurface>(data));
-    case SurfaceType::kBilinear: return to_boolean_sum(std::get<BilinearSurface>(data));
-    case SurfaceType::kConoid: return to_boolean_sum(std::get<Conoid>(data));
-    case SurfaceType::kBilinearCoons: return to_boolean_sum(std::get<BoundaryCurves>(data), CoonsBlending::kLinear);
-    case SurfaceType::kHermiteCoons: return to_boolean_sum(std::get<BoundaryCurves>(data), CoonsBlending::kHermite);
+    case SurfaceType::kSectorial:
+      return to_boolean_sum(std::get<RuledSurface>(data));
+    case SurfaceType::kBilinear:
+      return to_boolean_sum(std::get<BilinearSurface>(data));
+    case SurfaceType::kConoid:
+      return to_boolean_sum(std::get<Conoid>(data));
+    case SurfaceType::kBilinearCoons:
+      return to_boolean_sum(std::get<BoundaryCurves>(data), CoonsBlending::kLinear);
+    case SurfaceType::kHermiteCoons:
+      return to_boolean_sum(std::get<BoundaryCurves>(data), CoonsBlending::kHermite);
     case SurfaceType::kFerguson:
-    case SurfaceType::kHermite16: return to_boolean_sum(std::get<HermitePatch>(data));
-    case SurfaceType::kGeneralCoons: return to_boolean_sum(std::get<GeneralCoonsData>(data));
-    case SurfaceType::kBezier: (void)std::get<ControlNet>(data); return {};
+    case SurfaceType::kHermite16:
+      return to_boolean_sum(std::get<HermitePatch>(data));
+    case SurfaceType::kGeneralCoons:
+      return to_boolean_sum(std::get<GeneralCoonsData>(data));
+    case SurfaceType::kBezier:
+      (void)std::get<ControlNet>(data);
+      return {};
   }
   return {};
 }
@@ -63,7 +72,8 @@ std::vector<std::string> surface_type_names() {
   return out;
 }
 
-Surface::Surface(SurfaceType type, SurfaceData data) : type_(type), data_(std::move(data)), sum_(make_sum(type_, data_)) {}
+Surface::Surface(SurfaceType type, SurfaceData data)
+    : type_(type), data_(std::move(data)), sum_(make_sum(type_, data_)) {}
 
 SurfacePoint Surface::evaluate(double u, double v) const {
   if (type_ != SurfaceType::kBezier) return coons::evaluate(sum_, u, v);
@@ -99,8 +109,8 @@ std::vector<std::pair<std::string, const Curve*>> Surface::curves() const {
         } else if constexpr (std::is_same_v<T, BoundaryCurves>) {
           out = {{"bottom", &d.bottom}, {"top", &d.top}, {"left", &d.left}, {"right", &d.right}};
         } else if constexpr (std::is_same_v<T, GeneralCoonsData>) {
-          out = {{"bottom", &d.boundary.bottom}, {"top", &d.boundary.top},   {"left", &d.boundary.left},
-                 {"right", &d.boundary.right},   {"du_left", &d.du_left},    {"du_right", &d.du_right},
+          out = {{"bottom", &d.boundary.bottom}, {"top", &d.boundary.top}, {"left", &d.boundary.left},
+                 {"right", &d.boundary.right},   {"du_left", &d.du_left},  {"du_right", &d.du_right},
                  {"dv_bottom", &d.dv_bottom},    {"dv_top", &d.dv_top}};
         }
       },
@@ -126,20 +136,25 @@ Surface Surface::map_curves(const std::function<Curve(const std::string&, const 
     case SurfaceType::kBilinearCoons:
     case SurfaceType::kHermiteCoons: {
       const auto& d = std::get<BoundaryCurves>(data_);
-      return Surface(type_, BoundaryCurves{f("bottom", d.bottom), f("top", d.top), f("left", d.left), f("right", d.right)});
+      return Surface(type_,
+                     BoundaryCurves{f("bottom", d.bottom), f("top", d.top), f("left", d.left), f("right", d.right)});
     }
     case SurfaceType::kGeneralCoons: {
       const auto& d = std::get<GeneralCoonsData>(data_);
       const BoundaryCurves& b = d.boundary;
       return make_general_coons(GeneralCoonsData{
           BoundaryCurves{f("bottom", b.bottom), f("top", b.top), f("left", b.left), f("right", b.right)},
-          f("du_left", d.du_left), f("du_right", d.du_right), f("dv_bottom", d.dv_bottom), f("dv_top", d.dv_top), d.twist});
+          f("du_left", d.du_left), f("du_right", d.du_right), f("dv_bottom", d.dv_bottom), f("dv_top", d.dv_top),
+          d.twist});
     }
-    default: return *this;
+    default:
+      return *this;
   }
 }
 
-Surface make_ruled(Curve c0, Curve c1) { return Surface(SurfaceType::kRuled, RuledSurface{std::move(c0), std::move(c1)}); }
+Surface make_ruled(Curve c0, Curve c1) {
+  return Surface(SurfaceType::kRuled, RuledSurface{std::move(c0), std::move(c1)});
+}
 Surface make_sectorial(Curve c, const Eigen::RowVector3d& apex) {
   return Surface(SurfaceType::kSectorial, sectorial_surface(std::move(c), apex));
 }
@@ -148,7 +163,8 @@ Surface make_bilinear(const std::array<Eigen::RowVector3d, 4>& corners) {
 }
 Surface make_conoid(Conoid c) { return Surface(SurfaceType::kConoid, std::move(c)); }
 Surface make_coons(BoundaryCurves b, CoonsBlending blending) {
-  return Surface(blending == CoonsBlending::kLinear ? SurfaceType::kBilinearCoons : SurfaceType::kHermiteCoons, std::move(b));
+  return Surface(blending == CoonsBlending::kLinear ? SurfaceType::kBilinearCoons : SurfaceType::kHermiteCoons,
+                 std::move(b));
 }
 Surface make_ferguson(const std::array<Eigen::RowVector3d, 4>& corners, const std::array<Eigen::RowVector3d, 4>& du,
                       const std::array<Eigen::RowVector3d, 4>& dv) {

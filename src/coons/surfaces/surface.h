@@ -24,9 +24,15 @@
 namespace coons {
 
 enum class SurfaceType {
-  kRuled, kSectorial, kBilinear, kConoid,
-  kBilinearCoons, kHermiteCoons,
-  kFerguson, kHermite16, kGeneralCoons,
+  kRuled,
+  kSectorial,
+  kBilinear,
+  kConoid,
+  kBilinearCoons,
+  kHermiteCoons,
+  kFerguson,
+  kHermite16,
+  kGeneralCoons,
   kBezier,  //!< a tensor-product Bézier net (e.g. a discrete Coons or α-net)
 };
 

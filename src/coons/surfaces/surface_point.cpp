@@ -1,9 +1,8 @@
 #include "surface_point.h"
 
+#include <Eigen/Geometry>
 #include <cmath>
 #include <limits>
-
-#include <Eigen/Geometry>
 
 namespace coons {
 
@@ -21,7 +20,8 @@ Eigen::RowVector3d unit_normal(const SurfacePoint& s) {
   const Eigen::RowVector3d n = s.du.cross(s.dv);
   const double len = n.norm();
   const double scale = s.du.norm() * s.dv.norm();
-  if (!(len > 1e-14 * scale) || !(len > 0)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  if (!(len > 1e-14 * scale) || !(len > 0))
+    return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   return n / len;
 }
 

@@ -1,9 +1,8 @@
 #include "coons/tri/tri_extremal.h"
 
+#include <Eigen/Dense>
 #include <cmath>
 #include <vector>
-
-#include <Eigen/Dense>
 
 #include "coons/tri/tri_energy.h"
 

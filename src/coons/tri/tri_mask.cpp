@@ -15,9 +15,15 @@ bool TriMask::is_valid(std::string* why) const {
 
 const std::array<TriStencilEntry, 9>& tri_stencil() {
   static const std::array<TriStencilEntry, 9> entries = {{
-      {{1, -1, 0}, true}, {{-1, 1, 0}, true}, {{1, 0, -1}, true},
-      {{-1, 0, 1}, true}, {{0, 1, -1}, true}, {{0, -1, 1}, true},
-      {{2, -1, -1}, false}, {{-1, 2, -1}, false}, {{-1, -1, 2}, false},
+      {{1, -1, 0}, true},
+      {{-1, 1, 0}, true},
+      {{1, 0, -1}, true},
+      {{-1, 0, 1}, true},
+      {{0, 1, -1}, true},
+      {{0, -1, 1}, true},
+      {{2, -1, -1}, false},
+      {{-1, 2, -1}, false},
+      {{-1, -1, 2}, false},
   }};
   return entries;
 }

@@ -8,11 +8,10 @@
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
-#include <array>
-#include <string>
-
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <array>
+#include <string>
 
 #include "coons/tri/tri_net.h"
 

@@ -74,8 +74,7 @@ TriNet derivative_net(const TriNet& net, const Eigen::Vector3d& d) {
   return out;
 }
 
-Eigen::RowVector3d directional_derivative(const TriNet& net, const Eigen::Vector3d& uvw,
-                                          const Eigen::Vector3d& d) {
+Eigen::RowVector3d directional_derivative(const TriNet& net, const Eigen::Vector3d& uvw, const Eigen::Vector3d& d) {
   return evaluate(derivative_net(net, d), uvw);
 }
 

@@ -7,10 +7,9 @@
 // de Casteljau, derivatives, degree elevation, subdivision).
 #pragma once
 
+#include <Eigen/Core>
 #include <array>
 #include <string>
-
-#include <Eigen/Core>
 
 namespace coons::tri {
 
@@ -70,9 +69,7 @@ struct TriCornerGap {
 TriCornerGap largest_corner_gap(const TriBoundary& boundary);
 
 //! True when (i, j, k) is an interior index of degree n.
-inline bool is_interior(int n, int i, int j, int k) {
-  return i >= 1 && j >= 1 && k >= 1 && i + j + k == n;
-}
+inline bool is_interior(int n, int i, int j, int k) { return i >= 1 && j >= 1 && k >= 1 && i + j + k == n; }
 
 //! The point at barycentric (u, v, w) by de Casteljau (any affine (u, v, w), usually u+v+w = 1).
 Eigen::RowVector3d evaluate(const TriNet& net, const Eigen::Vector3d& uvw);
@@ -82,8 +79,7 @@ Eigen::RowVector3d evaluate(const TriNet& net, const Eigen::Vector3d& uvw);
 TriNet derivative_net(const TriNet& net, const Eigen::Vector3d& d);
 
 //! D_d p(u, v, w) and D_d1 D_d2 p(u, v, w).
-Eigen::RowVector3d directional_derivative(const TriNet& net, const Eigen::Vector3d& uvw,
-                                          const Eigen::Vector3d& d);
+Eigen::RowVector3d directional_derivative(const TriNet& net, const Eigen::Vector3d& uvw, const Eigen::Vector3d& d);
 Eigen::RowVector3d second_directional_derivative(const TriNet& net, const Eigen::Vector3d& uvw,
                                                  const Eigen::Vector3d& d1, const Eigen::Vector3d& d2);
 

@@ -12,8 +12,9 @@ TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask) 
   if (!info->needs_matrix)
     return {false, info->name + " works on the rectangular grid stencil, not on triangular systems"};
   if (info->definite_only && mask.c != 0.0)
-    return {false, info->name + " is only for symmetric positive definite systems; the triangular "
-                                "mask system is not symmetric for c != 0"};
+    return {false, info->name +
+                       " is only for symmetric positive definite systems; the triangular "
+                       "mask system is not symmetric for c != 0"};
   return {true, {}};
 }
 

@@ -28,9 +28,9 @@ TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask);
 std::vector<std::string> tri_applicable_solvers(const TriMask& mask);
 
 struct TriSolveOptions {
-  TriMask mask;                             //!< the member of the family (its c)
-  std::string solver = "eigen-lu";          //!< a registry name
-  solvers::SolverOptions solver_options;    //!< tolerance, ordering, ...
+  TriMask mask;                           //!< the member of the family (its c)
+  std::string solver = "eigen-lu";        //!< a registry name
+  solvers::SolverOptions solver_options;  //!< tolerance, ordering, ...
 
   //! True when the mask and the solver options are usable and the solver exists; else why.
   bool is_valid(std::string* why) const;
