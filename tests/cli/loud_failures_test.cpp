@@ -399,7 +399,7 @@ TEST_CASE("coons search-alpha: evaluations that fail are reported and no optimum
   CHECK(report["failed_evaluations"].get<int>() > 0);
   REQUIRE(!report["failed_intervals"].empty());
   CHECK(report["failed_intervals"][0][0] == -0.25);
-  CHECK(report["solver"]["status"] == "failed");
+  CHECK(report["solver"]["status"] == "failure");
   // a search whose every evaluation succeeded says so too
   const json ok = json::parse(run_command(kCoons + " search-alpha " + q(dome()) + " --objective thin_plate").out);
   CHECK(ok["failed_evaluations"] == 0);

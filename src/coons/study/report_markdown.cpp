@@ -60,18 +60,17 @@ StudyFigures plot_study_figures(const StudyResult& r, const std::function<std::s
   for (const DegreeLawEntry& law : r.laws) {
     if (law.objective != "thin_plate") continue;
     if (law.fit) {
-      PlotSeries measured{law.boundary + " " + law.objective + " α*+1/4", {}, {}, true};
-      PlotSeries fitted{law.boundary + " " + law.objective + " c/n²", {}, {}, false};
-      for (auto [d, a] : law.interior) {
-        measured.x.push_back(d);
-        measured.y.push_back(a + 0.25);
-      }
+      // one colour per shape: the fitted c/n² line with the measured α* + 1/4 marked on it
+      PlotSeries fitted{fmt::format("{}: c/n², c = {:.3g}", law.boundary, law.fit->c), {}, {}, false};
       for (int d = r.degrees.front(); d <= r.degrees.back(); ++d) {
         fitted.x.push_back(d);
         fitted.y.push_back(law.fit->c / (double(d) * d));
       }
-      law_series.push_back(measured);
-      law_series.push_back(fitted);
+      for (auto [d, a] : law.interior) {
+        fitted.marker_x.push_back(d);
+        fitted.marker_y.push_back(a + 0.25);
+      }
+      law_series.push_back(std::move(fitted));
     }
     PlotSeries mu_line{law.boundary + " " + law.objective, {}, {}, false};
     for (const DegreeCell& c : law.cells)
@@ -89,6 +88,7 @@ StudyFigures plot_study_figures(const StudyResult& r, const std::function<std::s
                           true,
                           1100,
                           700};
+  law_options.marker_title = "measured α* + 1/4";
   figures.alpha_vs_degree.error = law_series.empty()
                                       ? "no shape has two interior optima"
                                       : plot_curves(path_of(figures.alpha_vs_degree.file), law_series, law_options);

@@ -22,12 +22,12 @@ const char* to_string(SearchParameter p) {
 
 json search_solver_block(const solvers::SolverInfo& solver, bool picked_automatically, SearchStatus status, int solves,
                          double seconds, const std::string& message) {
-  json block = {
-      {"name", solver.name},
-      {"status", status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion ? "failed" : "success"},
-      {"iterations", solves},
-      {"relative_residual", nullptr},
-      {"seconds", {{"search", seconds}}}};
+  json block = {{"name", solver.name},
+                {"status", status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion ? "failure"
+                                                                                                          : "success"},
+                {"iterations", solves},
+                {"relative_residual", nullptr},
+                {"seconds", {{"search", seconds}}}};
   if ((status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion) && !message.empty())
     block["message"] = message;
   if (picked_automatically) block["picked_by"] = "auto";

@@ -183,7 +183,7 @@ json study_results_json(const StudyResult& r) {
       solves += o.alpha.solves + o.mu.solves;
     }
     entry["solver"] = {{"name", shape.solver},
-                       {"status", failed ? "failed" : "success"},
+                       {"status", failed ? "failure" : "success"},
                        {"iterations", solves},
                        {"relative_residual", nullptr}};
     if (shape.solver_picked_automatically) entry["solver"]["picked_by"] = "auto";

@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
@@ -107,41 +108,51 @@ std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter
                           {"E3", &NetMetrics::e3_energy},
                           {"twist", &NetMetrics::twist_energy},
                           {"Dirichlet", &NetMetrics::dirichlet_energy}};
-  std::vector<PlotSeries> series;
-  PlotSeries minima{"minima", {}, {}, true};
-  auto add = [&](const std::string& name, const std::vector<double>& values) {
-    PlotSeries s{name, {}, {}, false};
-    double top = 0;
-    for (double v : values) top = std::max(top, std::abs(v));
-    if (top == 0) return;
-    size_t best = 0;
-    for (size_t k = 0; k < rows.size(); ++k) {
-      if (!rows[k].summary.ok()) continue;
-      s.x.push_back(rows[k].parameter);
-      s.y.push_back(values[k] / top);
-      if (values[k] < values[best]) best = k;
-    }
-    minima.x.push_back(rows[best].parameter);
-    minima.y.push_back(values[best] / top);
-    series.push_back(std::move(s));
-  };
+  // Each curve divided by its largest value, its minimum marked in its own colour. Curves that
+  // are zero up to rounding (below 1e-12 of the largest curve) carry no shape and are left out.
+  std::vector<std::pair<std::string, std::vector<double>>> candidates;
   for (const Curve& c : curves) {
     std::vector<double> v;
     v.reserve(rows.size());
     for (const auto& r : rows) v.push_back(r.metrics.*(c.field));
-    add(c.name, v);
+    candidates.emplace_back(c.name, std::move(v));
   }
   if (!rows.empty() && rows[0].rms_target) {
     std::vector<double> v;
     v.reserve(rows.size());
     for (const auto& r : rows) v.push_back(r.rms_target.value_or(0));
-    add("rms to target", v);
+    candidates.emplace_back("rms to target", std::move(v));
   }
-  series.push_back(minima);
+  auto largest = [&](const std::vector<double>& values) {
+    double top = 0;
+    for (size_t k = 0; k < rows.size(); ++k)
+      if (rows[k].summary.ok()) top = std::max(top, std::abs(values[k]));
+    return top;
+  };
+  double overall = 0;
+  for (const auto& c : candidates) overall = std::max(overall, largest(c.second));
+  std::vector<PlotSeries> series;
+  for (const auto& [name, values] : candidates) {
+    const double top = largest(values);
+    if (!(top > 1e-12 * overall)) continue;
+    PlotSeries s{name, {}, {}, false};
+    std::optional<size_t> best;
+    for (size_t k = 0; k < rows.size(); ++k) {
+      if (!rows[k].summary.ok()) continue;
+      s.x.push_back(rows[k].parameter);
+      s.y.push_back(values[k] / top);
+      if (!best || values[k] < values[*best]) best = k;
+    }
+    if (!best) continue;
+    s.marker_x = {rows[*best].parameter};
+    s.marker_y = {values[*best] / top};
+    series.push_back(std::move(s));
+  }
   PlotOptions o;
   o.title = fmt::format("{} ({}x{}): energies / their maximum", b.name, b.m, b.n);
   o.xlabel = to_string(parameter);
   o.ylabel = "normalised value";
+  o.marker_title = "minimum";
   return plot_curves(png, series, o);
 }
 
