@@ -132,7 +132,7 @@ void BM_ClosedFormCoons(benchmark::State& state, int N) {
 }
 
 // One fresh solve: analyze + factorize + solve (the residual is computed once, untimed).
-void BM_Solve(benchmark::State& state, std::string name, int N, double alpha) {
+void BM_Solve(benchmark::State& state, const std::string& name, int N, double alpha) {
   const SolverInfo* info = find_solver(name);
   std::string backend = name;
   if (name == "auto") backend = choose_auto_solver(mask_stencil(alpha_mask(alpha), N, N));
@@ -165,7 +165,7 @@ void BM_Solve(benchmark::State& state, std::string name, int N, double alpha) {
 }
 
 // Analysis reused: only factorize + solve per α (what an α search pays per evaluation).
-void BM_Refactorize(benchmark::State& state, std::string name, int N, double alpha) {
+void BM_Refactorize(benchmark::State& state, const std::string& name, int N, double alpha) {
   const SolverInfo* info = find_solver(name);
   const Problem& p = problem(N, alpha, info->needs_matrix);
   const LinearOperator op = operator_of(p.system, info->needs_matrix);
@@ -184,7 +184,7 @@ void BM_Refactorize(benchmark::State& state, std::string name, int N, double alp
 }
 
 // 101 values of α in [−1/4, 1/4] through the sweep API (right-hand side affine in α).
-void BM_AlphaSweep(benchmark::State& state, std::string name, int N) {
+void BM_AlphaSweep(benchmark::State& state, const std::string& name, int N) {
   const SolverInfo* info = find_solver(name);
   const Problem& p = problem(N, -0.25, info->needs_matrix);
   // B(α) = α·B_diag + β·B_edge: the two basis right-hand sides
@@ -240,7 +240,7 @@ void BM_CholmodOrdering(benchmark::State& state, Ordering ordering, int N) {
 // of one solve of the same backend at the same N: `solve` evaluates each α by factorize + solves
 // (its last evaluation holds the optimal net); `spectral` in the sine basis, set-up included, after
 // which the optimal net costs one more solve: the report adds that solve at its measured cost.
-void BM_SearchAlpha(benchmark::State& state, std::string name, int N, bool spectral) {
+void BM_SearchAlpha(benchmark::State& state, const std::string& name, int N, bool spectral) {
   const Boundary b = bench_boundary(N);
   std::string why;
   const Objective objective = *parse_objective("discrete_thin_plate", &why);

@@ -192,8 +192,8 @@ TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   // μ of α at degree n: α = −n²/(4(n² + μ))
   const double alpha = report["alpha"], mu = report["mu"];
   CHECK(alpha == Approx(-9.0 / (4 * (9 + mu))).epsilon(1e-12));
-  const CommandResult flat = run_command(kCoons + " search-alpha " +
-                                         quoted(kData + "/boundaries/sixteen_vector_twist.json") + " --objective e3");
+  const CommandResult flat = run_command(
+      kCoons + " search-alpha " + quoted(kData + "/boundaries/sixteen_vector_twist.json").append(" --objective e3"));
   REQUIRE(flat.status == 0);
   CHECK(json::parse(flat.out)["flat"] == true);
   CHECK(json::parse(flat.out)["alpha"].is_null());

@@ -35,7 +35,7 @@ GeneralCoonsData data_of(const ControlNet& net) {
   const ControlNet du = derivative_net(net, 1, 0), dv = derivative_net(net, 0, 1);
   const BoundaryCurves b{row(net, 0), row(net, net.n), column(net, 0), column(net, net.m)};
   std::array<V, 4> twist;
-  for (int c = 0; c < 4; ++c) twist[c] = evaluate_derivative(net, 1, 1, c % 2, c / 2);
+  for (int c = 0; c < 4; ++c) twist[c] = evaluate_derivative(net, 1, 1, c % 2, c < 2 ? 0.0 : 1.0);
   return GeneralCoonsData{b, column(du, 0), column(du, du.m), row(dv, 0), row(dv, dv.n), twist};
 }
 
@@ -228,7 +228,7 @@ TEST_CASE("bicubic Coons and Ferguson patches: zero twists at the four corners (
   const Surface ferguson = make_ferguson(h.corners, h.du, h.dv);
   const Surface sixteen = make_hermite16(h);
   for (int c = 0; c < 4; ++c) {
-    const double u = c % 2, v = c / 2;
+    const double u = c % 2, v = c < 2 ? 0.0 : 1.0;
     CHECK(coons.evaluate(u, v).duv.norm() < 1e-13);
     CHECK(ferguson.evaluate(u, v).duv.norm() < 1e-13);
     // The 16-vector patch has the twists it is given, and its corner tangents.

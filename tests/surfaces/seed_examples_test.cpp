@@ -149,7 +149,8 @@ TEST_CASE("LN0, the right parabolic conoid x = u, y = y_P(1-v), z = z_P + v(z(u)
   CHECK(net.m == 2);
   CHECK(net.n == 1);
   // The same with an analytic parabola and other lines, through LN0's right-conoid form.
-  for (auto [yp, zp] : {std::pair{2.0, 0.0}, {-1.0, 3.0}, {0.5, 1.0}}) {
+  for (auto [yp_bound, zp_bound] : {std::pair{2.0, 0.0}, {-1.0, 3.0}, {0.5, 1.0}}) {
+    const double yp = yp_bound, zp = zp_bound;  // C++17 lambdas cannot capture structured bindings
     const Surface e = make_conoid(right_conoid(AnalyticCurve({"t", "0", "4*t*(1-t)"}), yp, zp));
     CHECK(gap(e, [&](double u, double v) { return closed(yp, zp, u, v); }) < 1e-14);
     CHECK(derivative_gap(e, 1, 1, [](double u, double) { return V(0, 0, 4 - 8 * u); }) < 1e-8);
@@ -160,7 +161,8 @@ TEST_CASE("LN0, right circular and elliptic conoids, and an oblique (Kuepper-typ
           "[surfaces][seeds]") {
   // Right conoids over a half ellipse (a cos θ, 0, b sin θ), θ = π(1 − u): x = x(u), y = y_P(1 − v),
   // z = z_P + v(z(u) − z_P); a = b is the circular conoid.
-  for (auto [a, b] : {std::pair{1.0, 1.0}, {2.0, 0.7}}) {
+  for (auto [a_bound, b_bound] : {std::pair{1.0, 1.0}, {2.0, 0.7}}) {
+    const double a = a_bound, b = b_bound;  // C++17 lambdas cannot capture structured bindings
     const Curve profile = AnalyticCurve({fmt_number(a) + "*cos(t)", "0", fmt_number(b) + "*sin(t)"}, kPi, 0);
     const double yp = 3, zp = 0.25;
     const Surface s = make_conoid(right_conoid(profile, yp, zp));
@@ -239,8 +241,10 @@ TEST_CASE("LN4, the linear Coons surface of the domain bounded by ellipse arcs",
   CHECK(gap(s, [&](double x, double y) { return closed(2, 1, h * x, h * y); }) < 1e-14);
   CHECK(derivative_gap(s, 1, 0, [&](double x, double y) { return V(h * closed_du(2, 1, h * x, h * y)); }) < 1e-8);
   // Other ellipses, with exact curve derivatives.
-  for (auto [a, b] : {std::pair{1.0, 1.0}, {3.0, 0.5}}) {
-    auto arc = [h](std::function<V(double)> f, std::function<V(double)> df, std::function<V(double)> d2f) {
+  for (auto [a_bound, b_bound] : {std::pair{1.0, 1.0}, {3.0, 0.5}}) {
+    const double a = a_bound, b = b_bound;  // C++17 lambdas cannot capture structured bindings
+    auto arc = [h](const std::function<V(double)>& f, const std::function<V(double)>& df,
+                   const std::function<V(double)>& d2f) {
       return closed_form_curve([=](double s) { return f(h * s); }, [=](double s) { return V(h * df(h * s)); },
                                [=](double s) { return V(h * h * d2f(h * s)); });
     };

@@ -98,12 +98,12 @@ class MarketLines {
 
 // The integers of a size line, rows and columns within kMaxMarketDimension, nothing else on the line.
 std::vector<long long> size_line(const std::string& path, const std::string& line, int count) {
-  constexpr long long hi = 1LL << 62;
+  constexpr long long kHi = 1LL << 62;
   std::istringstream words(line);
   std::vector<long long> out(count);
   for (auto& v : out)
-    if (!(words >> v) || v < 0 || v > hi)
-      throw InputError(path, "size line", fmt::format("expected {} integers in [0, {}]", count, hi));
+    if (!(words >> v) || v < 0 || v > kHi)
+      throw InputError(path, "size line", fmt::format("expected {} integers in [0, {}]", count, kHi));
   std::string rest;
   if (words >> rest) throw InputError(path, "size line", fmt::format("unexpected '{}' after {} integers", rest, count));
   if (out[0] > kMaxMarketDimension || out[1] > kMaxMarketDimension)
