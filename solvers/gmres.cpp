@@ -75,7 +75,7 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
         ++j;
         break;
       }
-      V[std::size_t(j + 1)] = w / next;
+      V[std::size_t(j) + 1] = w / next;
     }
     if (j == 0) break;
     // x += Z y with H(0:j, 0:j) y = g(0:j)

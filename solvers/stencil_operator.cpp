@@ -25,7 +25,7 @@ bool StencilOperator::is_valid(std::string* why) const {
   };
   if (rows < 1 || cols < 1) return fail("the grid needs at least one row and one column");
   if (radius != 1 && radius != 2) return fail("the stencil radius must be 1 (3x3) or 2 (5x5)");
-  if (weights.size() != std::size_t(width() * width()))
+  if (weights.size() != std::size_t(width()) * std::size_t(width()))
     return fail("a radius-" + std::to_string(radius) + " stencil needs " + std::to_string(width() * width()) +
                 " weights, got " + std::to_string(weights.size()));
   for (double w : weights)

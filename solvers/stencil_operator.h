@@ -30,7 +30,7 @@ struct StencilOperator {
 
   [[nodiscard]] int width() const { return 2 * radius + 1; }
   [[nodiscard]] double weight(int di, int dj) const {
-    return weights[std::size_t((di + radius) * width() + dj + radius)];
+    return weights[std::size_t(di + radius) * std::size_t(width()) + std::size_t(dj + radius)];
   }
   [[nodiscard]] bool is_free(int i, int j) const {
     return free.empty() || free[std::size_t(i) * std::size_t(cols) + std::size_t(j)] != 0;

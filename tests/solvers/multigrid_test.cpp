@@ -33,13 +33,13 @@ std::vector<double> c1_coons() {  // outer product of (1, −4, 6, −4, 1)
   const double a[5] = {1, -4, 6, -4, 1};
   std::vector<double> w(25);
   for (int i = 0; i < 5; ++i)
-    for (int j = 0; j < 5; ++j) w[std::size_t(i * 5 + j)] = a[i] * a[j];
+    for (int j = 0; j < 5; ++j) w[std::size_t(i) * 5 + std::size_t(j)] = a[i] * a[j];
   return w;
 }
 
 std::vector<double> biharmonic() {  // 13 points: centre 20, edges −8, diagonals 2, axial distance 2: 1
   std::vector<double> w(25, 0.0);
-  auto set = [&](int di, int dj, double v) { w[std::size_t((di + 2) * 5 + dj + 2)] = v; };
+  auto set = [&](int di, int dj, double v) { w[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] = v; };
   set(0, 0, 20);
   for (int s : {-1, 1}) {
     set(s, 0, -8), set(0, s, -8), set(2 * s, 0, 1), set(0, 2 * s, 1);
