@@ -10,8 +10,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "coons/alpha/ceres_refinement.h"
-#include "coons/alpha/search_failures.h"
+#include "coons/alpha/search_run.h"
 #include "coons/config.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
@@ -46,6 +45,8 @@ const char* to_string(SearchStatus s) {
       return "not_converged";
     case SearchStatus::kFailedRegion:
       return "failed_region";
+    case SearchStatus::kNotApplicable:
+      return "not_applicable";
   }
   return "solver_failed";
 }
@@ -62,311 +63,8 @@ std::string AlphaSearchSummary::brief_report() const {
   return out.str();
 }
 
-// The search itself, for any objective with evaluate(p, with_derivative), boundary(), objective(),
-// evaluations() and solves() (MaskObjective, SpectralAlphaSearchObjective).
-namespace {
-
-// An evaluator seen in its normalised frame: values divided by the frame's value factor (a power
-// of two, so exactly), the frame's boundary and objective. Every tolerance of the search is then
-// met by values of the size a unit boundary gives, whatever the caller's coordinates.
-template <class Obj>
-class InUnitFrame {
- public:
-  using Evaluation = typename Obj::Evaluation;
-  explicit InUnitFrame(Obj& objective) : objective_(objective), k_(objective.unit_frame().value_factor) {}
-  Evaluation evaluate(double p, bool with_derivative = true) {
-    Evaluation e = objective_.evaluate(p, with_derivative);
-    log_.push_back({p, e.ok()});
-    if (!e.ok() && first_failure_ == solvers::SolveStatus::kSuccess) first_failure_ = e.summary.status;
-    e.value /= k_;
-    e.derivative /= k_;
-    e.derivative_noise /= k_;
-    if constexpr (detail::HasSecondDerivative<Obj>::value) e.second_derivative /= k_;
-    return e;
-  }
-  [[nodiscard]] const Boundary& boundary() const { return objective_.unit_frame().boundary; }
-  [[nodiscard]] const Objective& objective() const { return objective_.unit_frame().objective; }
-  [[nodiscard]] int evaluations() const { return objective_.evaluations(); }
-  [[nodiscard]] int solves() const { return objective_.solves(); }
-  [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
-  [[nodiscard]] double value_factor() const { return k_; }
-  //! Every evaluation made through this view: (parameter, succeeded), in order.
-  [[nodiscard]] const std::vector<std::pair<double, bool>>& log() const { return log_; }
-  [[nodiscard]] solvers::SolveStatus first_failure() const { return first_failure_; }
-
- private:
-  Obj& objective_;
-  double k_;
-  std::vector<std::pair<double, bool>> log_;
-  solvers::SolveStatus first_failure_ = solvers::SolveStatus::kSuccess;
-};
-
-template <class Obj>
-AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& options);
-
-// A line search on values cannot place α* closer than √(ε·f/f'') (f is flat at rounding level
-// there: about 1e−9 relative for the discrete thin plate of the dome); secant steps on the exact
-// derivative, f' = 0, can. Steps stay in [a, b] and are kept only while |f'| decreases.
-template <class Obj>
-typename Obj::Evaluation polish_stationary(Obj& objective, typename Obj::Evaluation at, double a, double b) {
-  if (!at.ok() || !at.has_derivative || at.derivative == 0) return at;
-  const double width = b - a, h = 1e-6 * width;
-  auto other = objective.evaluate(std::clamp(at.parameter + (at.derivative > 0 ? -h : h), a, b));
-  for (int it = 0; it < 8 && other.ok() && other.parameter != at.parameter; ++it) {
-    const double slope = (other.derivative - at.derivative) / (other.parameter - at.parameter);
-    if (!(slope > 0)) break;  // not convex here: leave it to the line search's point
-    const double next = at.parameter - at.derivative / slope;
-    if (!(next >= a && next <= b) || std::abs(next - at.parameter) <= 1e-15 * width) break;
-    auto e = objective.evaluate(next);
-    if (!e.ok() || !(std::abs(e.derivative) < std::abs(at.derivative))) break;
-    other = std::move(at);
-    at = std::move(e);
-  }
-  return at;
-}
-
-// The search in the evaluator's normalised frame, its values reported in the caller's units.
-template <class Obj>
-AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options) {
-  InUnitFrame<Obj> unit(objective);
-  AlphaSearchSummary s = search_in_frame(unit, options);
-  s.value *= unit.value_factor();
-  for (auto& point : s.scan) point.second *= unit.value_factor();
-  s.first_failure = unit.first_failure();
-  detail::judge_failures(s, unit.log());
-  return s;
-}
-
-// One search, step by step: scan, the flat and bound verdicts, the refinement of the best scan
-// point (Newton on f' = 0 where f'' is known, else Ceres's line search and a secant polish), and
-// the verdict on the refined point. Each step returns true when it has decided the summary.
-template <class Obj>
-class SearchRun {
- public:
-  using Evaluation = typename Obj::Evaluation;
-  SearchRun(Obj& objective, const AlphaSearchOptions& options) : objective_(objective), options_(options) {}
-
-  AlphaSearchSummary run() {
-    if (!scan() && !flat() && !on_bound()) refine();
-    s_.evaluations = objective_.evaluations();
-    s_.solves = objective_.solves();
-    s_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
-    return s_;
-  }
-
- private:
-  void append(const std::string& text) { s_.message += (s_.message.empty() ? "" : "; ") + text; }
-  Evaluation with_derivative(const Evaluation& e) { return e.has_derivative ? e : objective_.evaluate(e.parameter); }
-
-  // 1. Coarse scan. A point where the solver fails (a singular α outside [−1/4, 1/4]) is a
-  //    penalty, not an abort: it counts as +∞ and is reported; a scan where every point fails is a
-  //    failure.
-  bool scan() {
-    const int k = options_.scan_points;
-    const double step = (options_.upper - options_.lower) / (k - 1);
-    int failed_points = 0;
-    std::string first_failure;
-    for (int i = 0; i < k; ++i) {
-      const double p = i + 1 == k ? options_.upper : options_.lower + i * step;
-      grid_.push_back(objective_.evaluate(p, /*with_derivative=*/false));  // values suffice to scan
-      if (!grid_.back().ok()) {
-        if (failed_points++ == 0)
-          first_failure = "at " + solvers::format_g(p) + ": " + grid_.back().summary.brief_report();
-        grid_.back().value = HUGE_VAL;
-      }
-      s_.scan.emplace_back(p, grid_.back().value);
-    }
-    if (failed_points == k) {
-      s_.status = SearchStatus::kSolverFailed;
-      s_.message = "every scan point failed; " + first_failure;
-      return true;
-    }
-    for (int i = 0; i < k; ++i) {
-      if (!grid_[i].ok()) continue;
-      lo_ = std::min(lo_, grid_[i].value);
-      hi_ = std::max(hi_, grid_[i].value);
-      if (best_ < 0 || grid_[i].value < grid_[best_].value) best_ = i;
-    }
-    for (int i = 1; i + 1 < k; ++i)
-      if (grid_[i].ok() && grid_[i - 1].ok() && grid_[i + 1].ok() && grid_[i].value < grid_[i - 1].value &&
-          grid_[i].value <= grid_[i + 1].value)
-        ++s_.local_minima;
-    if (failed_points > 0)
-      s_.message = std::to_string(failed_points) + " scan point(s) could not be solved and were skipped (first " +
-                   first_failure + ")";
-    return false;
-  }
-
-  // 2. Flat: the range is at rounding level of the objective's natural scale. Rounding errors of
-  //    size ε·diag in the net reach an energy of derivative order k amplified by degree^k, so the
-  //    floor is diag²·degree^(2k)·1e-16 (far above (ε·diag·degree^k)², far below real signals).
-  //    Discrete energies of the net carry no degree factors (order 0).
-  bool flat() {
-    const Boundary& boundary = objective_.boundary();
-    const double diag = bounding_box_diagonal(boundary);
-    int order = 0;
-    for (const EnergyTerm& t : objective_.objective().energy) order = std::max(order, t.a + t.b);
-    const double degree = std::max({boundary.m, boundary.n, 1});
-    const bool energies = !objective_.objective().energy.empty() || !objective_.objective().discrete.empty();
-    floor_ = energies ? 1e-16 * diag * diag * std::pow(degree, 2.0 * order) : 1e-8 * diag;
-    if (hi_ - lo_ <= options_.flat_tolerance * std::max({std::abs(hi_), std::abs(lo_), floor_})) {
-      s_.status = SearchStatus::kFlat;
-      s_.flat = true;
-      s_.value = grid_[best_].value;
-      s_.message = "the objective does not depend on the parameter over the bounds";
-      return true;
-    }
-    if (s_.local_minima > 1)
-      append("the scan saw " + std::to_string(s_.local_minima) + " local minima; the lowest was refined");
-    return false;
-  }
-
-  // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards (a slope
-  //    at rounding level, as at a minimum on the bound itself, counts as outwards).
-  bool on_bound() {
-    const int k = int(grid_.size());
-    if (best_ == 0 || best_ == k - 1) grid_[best_] = with_derivative(grid_[best_]);  // its slope decides
-    if ((best_ == 0 && grid_[0].derivative >= -grid_[0].derivative_noise) ||
-        (best_ == k - 1 && grid_[k - 1].derivative <= grid_[k - 1].derivative_noise)) {
-      s_.parameter = grid_[best_].parameter;
-      s_.value = grid_[best_].value;
-      s_.at_bound = true;
-      return true;
-    }
-    return false;
-  }
-
-  // Newton on f' = 0 needs a start where f is convex and a bracket where f' changes sign: shrink
-  // the bracket on the sign of f' until it is resolved and its new end is convex, then let Ceres
-  // take Newton steps. The family's scale collapses at objective.scale_origin() (α = −1/4, where
-  // α* + 1/4 ≈ c/n², docs/math.md §4), so a bracket spanning many scales of the distance d to it is
-  // split at the geometric mean of its ends' distances (√(h·d_hi) from the origin itself, h the
-  // Newton step there), which halves log(d_hi/d_lo) per evaluation; a resolved bracket
-  // (d_hi ≤ 1.5·d_lo) is split at its midpoint. Returns the evaluation at the minimum, if found.
-  std::optional<Evaluation> refine_by_newton(int ia, int ib) {
-    const double a = grid_[ia].parameter, b = grid_[ib].parameter;
-    auto elo = grid_[ia].ok() ? with_derivative(grid_[ia]) : objective_.evaluate(a);
-    auto ehi = grid_[ib].ok() ? with_derivative(grid_[ib]) : objective_.evaluate(b);
-    if (!(elo.ok() && ehi.ok() && elo.derivative < 0 && ehi.derivative > 0)) return std::nullopt;
-    const double origin = objective_.scale_origin();
-    auto split = [&]() -> std::pair<double, bool> {  // (the point, geometric)
-      const double dl = elo.parameter - origin, dh = ehi.parameter - origin;
-      if (dl > 0 && dh > 1.5 * dl) return {origin + std::sqrt(dl * dh), true};
-      if (dl == 0 && elo.second_derivative > 0) {
-        const double h = -elo.derivative / elo.second_derivative;
-        if (h > 0 && 4 * h < dh) return {origin + std::sqrt(h * dh), true};
-      }
-      return {0.5 * (elo.parameter + ehi.parameter), false};
-    };
-    auto em = elo;
-    for (int it = 0; it < 60; ++it) {
-      em = objective_.evaluate(split().first);
-      if (!em.ok()) break;
-      (em.derivative > 0 ? ehi : elo) = em;
-      if (em.second_derivative > 0 && !split().second) break;
-    }
-    if (!(em.ok() && em.second_derivative > 0)) return std::nullopt;
-    double p = em.parameter;
-    const double scale = std::max(em.second_derivative * (ehi.parameter - elo.parameter), 1e-300);
-    ceres::Problem problem;
-    std::vector<Evaluation> seen = {em};
-    problem.AddResidualBlock(new detail::Stationarity<Obj>(objective_, scale, failed_, seen), nullptr, &p);
-    problem.SetParameterLowerBound(&p, 0, elo.parameter);
-    problem.SetParameterUpperBound(&p, 0, ehi.parameter);
-    ceres::Solver::Options o;
-    o.linear_solver_type = ceres::DENSE_QR;
-    detail::set_search_tolerances(o, options_, 1e-16, 1e-16);
-    detail::ShortStep stop(options_.parameter_tolerance * (options_.upper - options_.lower));
-    o.callbacks.push_back(&stop);
-    ceres::Solver::Summary summary;
-    ceres::Solve(o, &problem, &summary);
-    s_.ceres_report = summary.BriefReport();
-    no_convergence_ = summary.termination_type == ceres::NO_CONVERGENCE;
-    ceres_message_ = summary.message;
-    Evaluation last = detail::evaluate_once(objective_, p, seen);
-    // a minimum: f'' > 0 and the Newton step to f' = 0 is negligible
-    if (last.ok() && last.second_derivative > 0 && std::abs(last.derivative) <= 1e-6 * (b - a) * last.second_derivative)
-      return last;
-    return std::nullopt;
-  }
-
-  // Ceres's line search on f(centre + half·tanh θ), then secant steps on f' = 0.
-  Evaluation refine_by_line_search(int ia, int ib) {
-    const double a = grid_[ia].parameter, b = grid_[ib].parameter;
-    const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
-    double theta = std::atanh(std::clamp((grid_[best_].parameter - centre) / half, -0.9, 0.9));
-    std::vector<Evaluation> latest;  // Ceres usually ends on its latest evaluation
-    ceres::GradientProblem problem(new detail::BracketedObjective<Obj>(objective_, centre, half, failed_, latest));
-    ceres::GradientProblemSolver::Summary summary;
-    ceres::Solve(detail::ceres_options(options_), problem, &theta, &summary);
-    s_.ceres_report = summary.BriefReport();
-    no_convergence_ = summary.termination_type == ceres::NO_CONVERGENCE;
-    ceres_message_ = summary.message;
-    Evaluation e = detail::evaluate_once(objective_, centre + half * std::tanh(theta), latest);
-    if (!no_convergence_) e = polish_stationary(objective_, std::move(e), a, b);
-    return e;
-  }
-
-  // 4. Refine in the bracket of the best point's neighbours, then the verdict on the result: a
-  //    grid point may still be lower if the line search stalled (never report a worse point), and
-  //    a scan point that Ceres could not improve on is an optimum only if its slope vanishes (on
-  //    the scale of the objective's variation over the scan).
-  void refine() {
-    const int k = int(grid_.size());
-    const int ia = std::max(best_ - 1, 0), ib = std::min(best_ + 1, k - 1);
-    const double a = grid_[ia].parameter, b = grid_[ib].parameter;
-    std::optional<Evaluation> refined;
-    if constexpr (detail::HasSecondDerivative<Obj>::value) refined = refine_by_newton(ia, ib);
-    const Evaluation e = refined ? *refined : refine_by_line_search(ia, ib);
-    if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
-      s_.status = SearchStatus::kSolverFailed;
-      s_.message = "solver failed during refinement: " + e.summary.brief_report();
-      return;
-    }
-    if (failed_) append("Ceres stepped back from unsolvable trial points");
-    s_.parameter = e.parameter;
-    s_.value = e.value;
-    bool stalled = false;
-    if (grid_[best_].value < e.value) {
-      s_.parameter = grid_[best_].parameter;
-      s_.value = grid_[best_].value;
-      stalled = true;
-    }
-    const double edge_tolerance = 1e-7 * (options_.upper - options_.lower);
-    s_.at_bound = std::abs(*s_.parameter - options_.lower) <= edge_tolerance ||
-                  std::abs(*s_.parameter - options_.upper) <= edge_tolerance;
-    if (no_convergence_) {
-      s_.status = SearchStatus::kNotConverged;
-      s_.message = "Ceres: " + ceres_message_;
-    } else if (stalled && !s_.at_bound) {
-      const auto at = with_derivative(grid_[best_]);
-      if (at.ok() && std::abs(at.derivative) * (b - a) > 1e-6 * std::max(hi_ - lo_, floor_)) {
-        s_.status = SearchStatus::kNotConverged;
-        append("the refinement stalled where the slope is " + solvers::format_g(at.derivative) + ", not zero");
-      }
-    }
-  }
-
-  Obj& objective_;
-  const AlphaSearchOptions& options_;
-  const std::chrono::steady_clock::time_point start_ = std::chrono::steady_clock::now();
-  AlphaSearchSummary s_;
-  std::vector<Evaluation> grid_;
-  double lo_ = HUGE_VAL, hi_ = -HUGE_VAL, floor_ = 0;
-  int best_ = -1;
-  bool failed_ = false, no_convergence_ = false;
-  std::string ceres_message_;
-};
-
-template <class Obj>
-AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& options) {
-  return SearchRun<Obj>(objective, options).run();
-}
-
-}  // namespace
-
 AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSearchOptions& options) {
-  return search_impl(objective, options);
+  return detail::search_impl(objective, options);
 }
 
 namespace {
@@ -375,7 +73,7 @@ AlphaSearchSummary search_by_solving(const Boundary& boundary, const Objective& 
                                      const solvers::SolverInfo& solver, const AlphaSearchOptions& options,
                                      const solvers::SolverOptions& solver_options) {
   MaskObjective f(boundary, objective, std::move(family), solver, solver_options);
-  AlphaSearchSummary s = search_impl(f, options);
+  AlphaSearchSummary s = detail::search_impl(f, options);
   s.evaluator = "factorize and solve";
   return s;
 }
@@ -388,7 +86,7 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
   if (info && info->family == solvers::SolverFamily::kStructured && boundary.m >= 2 && boundary.n >= 2 &&
       SpectralAlphaObjective::supports(objective)) {
     SpectralAlphaSearchObjective f(boundary, objective);
-    AlphaSearchSummary s = search_impl(f, options);
+    AlphaSearchSummary s = detail::search_impl(f, options);
     s.evaluator = "sine basis";
     return s;
   }
@@ -417,7 +115,7 @@ AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objectiv
 
 #if COONS_HAVE_FFTW
 AlphaSearchSummary search_mask_parameter(SpectralAlphaSearchObjective& objective, const AlphaSearchOptions& options) {
-  return search_impl(objective, options);
+  return detail::search_impl(objective, options);
 }
 #endif
 

@@ -49,9 +49,11 @@ struct AlphaSearchOptions {
 //! the objective does not depend on the parameter; kSolverFailed: no evaluation succeeded, or the
 //! one at the refined optimum failed; kNotConverged: Ceres or the refinement did not converge;
 //! kFailedRegion: some evaluations failed where the optimum (or the flatness) would rest on them
-//! — next to the lowest successful point, or anywhere when the rest is flat — so none is claimed.
-enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged, kFailedRegion };
-//! "success", "flat", "solver_failed", "not_converged", "failed_region".
+//! — next to the lowest successful point, or anywhere when the rest is flat — so none is claimed;
+//! kNotApplicable: the problem does not fit the family (e.g. one data ring for the 5×5 C1
+//! family, weight_search.h); nothing was evaluated.
+enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged, kFailedRegion, kNotApplicable };
+//! "success", "flat", "solver_failed", "not_converged", "failed_region", "not_applicable".
 const char* to_string(SearchStatus status);
 
 struct AlphaSearchSummary {

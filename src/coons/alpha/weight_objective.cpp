@@ -1,0 +1,92 @@
+#include "weight_objective.h"
+
+#include <utility>
+
+#include "coons/mask/stencil.h"
+
+namespace coons {
+
+WeightObjective::WeightObjective(const StencilProblem& problem, Objective objective, const solvers::SolverInfo& solver,
+                                 const solvers::SolverOptions& options)
+    : problem_(problem), unit_(normalised_frame(boundary_of(problem.net), objective)) {
+  // the whole net (both rings of data) moves into the frame of its outer boundary: exact, the
+  // scale is a power of two
+  problem_.net.points = (problem.net.points.rowwise() - unit_.centre) / unit_.scale;
+  solver_ = solvers::make_solver(solver.name, options);
+}
+
+WeightObjective::~WeightObjective() = default;
+
+WeightObjective::Evaluation WeightObjective::evaluate(double w, bool with_derivative) {
+  ++evaluations_;
+  Evaluation e;
+  e.parameter = w;
+  e.net = problem_.net;
+  if (!solver_) {
+    e.summary.status = solvers::SolveStatus::kNotApplicable;
+    e.summary.message = "no such solver";
+    e.net = unit_.to_original(std::move(e.net));
+    return e;
+  }
+  e.summary.solver = solver_->name();
+  const Stencil stencil = c1_family_stencil(w);
+  const ControlNet zero(problem_.net.m, problem_.net.n);  // a variation of the free points only
+  const Objective& objective = unit_.objective;
+  const double k = unit_.value_factor;  // a power of two: exact
+  if (!system_) {
+    StencilAssemblyOptions assembly;
+    assembly.box_pattern = true;  // one pattern, one analysis, for every w
+    system_ = assemble_stencil_system(problem_, stencil, assembly);
+  } else {
+    refill_stencil_system(problem_, stencil, *system_);  // same radius, box pattern: cannot fail
+  }
+  const FreeNumbering& numbering = system_->numbering;
+  ControlNet net = problem_.net;
+  if (numbering.size() > 0) {
+    solvers::LinearOperator op;
+    op.matrix = &system_->A;
+    if (analyses_ == 0) {
+      ++analyses_;
+      if (solver_->analyze(op) != solvers::SolveStatus::kSuccess) {
+        e.summary = solver_->summary();
+        e.net = unit_.to_original(std::move(e.net));
+        return e;
+      }
+    }
+    if (solver_->factorize(op) != solvers::SolveStatus::kSuccess) {
+      e.summary = solver_->summary();
+      e.net = unit_.to_original(std::move(e.net));
+      return e;
+    }
+    Eigen::MatrixX3d X;
+    e.summary = solver_->solve(system_->B, X);
+    ++solves_;
+    if (!e.summary.ok()) {
+      e.net = unit_.to_original(std::move(e.net));
+      return e;
+    }
+    net = fill_free_points(std::move(net), numbering, X);
+  }
+  e.value = k * evaluate_objective(objective, net, zero).value;
+  if (with_derivative) {
+    ControlNet dN = zero;
+    if (numbering.size() > 0) {
+      Eigen::MatrixX3d dX;
+      const solvers::SolveSummary ds =
+          solver_->solve(stencil_sensitivity_rhs(net, numbering, c1_family_stencil_derivative(w)), dX);
+      ++solves_;
+      if (!ds.ok()) {
+        e.summary = ds;
+        e.net = unit_.to_original(std::move(net));
+        return e;
+      }
+      dN = fill_free_points(std::move(dN), numbering, dX);
+    }
+    e.derivative = k * evaluate_objective(objective, net, dN).derivative;
+    e.has_derivative = true;
+  }
+  e.net = unit_.to_original(std::move(net));
+  return e;
+}
+
+}  // namespace coons

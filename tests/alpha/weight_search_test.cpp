@@ -1,0 +1,169 @@
+#include "coons/alpha/weight_search.h"
+
+#include <boost/math/tools/minima.hpp>
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+#include "coons/alpha/weight_objective.h"
+#include "coons/mask/solve_stencil_net.h"
+#include "coons/mask/stencil.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+
+namespace {
+
+Objective objective_named(const std::string& name) {
+  std::string why;
+  auto o = parse_objective(name, &why);
+  REQUIRE(o);
+  return *o;
+}
+
+// A smooth random surface sampled on the (m+1)×(n+1) grid: a random cubic in (u, v) plus a
+// random wave, so that no member of the C1 family reproduces it. Two data rings.
+StencilProblem ribbon_problem(int m, int n, std::uint32_t seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> c(-1, 1);
+  Eigen::Matrix<double, 16, 3> coefficients;
+  for (int r = 0; r < 16; ++r)
+    for (int d = 0; d < 3; ++d) coefficients(r, d) = c(rng);
+  const double fu = 2 + 2 * (c(rng) + 1), fv = 2 + 2 * (c(rng) + 1), phase = 3 * c(rng);
+  StencilProblem p;
+  p.net = ControlNet(m, n);
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= n; ++j) {
+      const double u = double(i) / m, v = double(j) / n;
+      Eigen::RowVector3d point(u, v, 0);
+      for (int a = 0; a < 4; ++a)
+        for (int b = 0; b < 4; ++b) point += 0.3 * std::pow(u, a) * std::pow(v, b) * coefficients.row(4 * a + b);
+      point.z() += 0.4 * std::sin(fu * u + phase) * std::cos(fv * v);
+      p.net.at(i, j) = point;
+    }
+  p.rings = 2;
+  return p;
+}
+
+}  // namespace
+
+TEST_CASE("WeightObjective: the analytic derivative equals central differences", "[alpha]") {
+  const StencilProblem p = ribbon_problem(8, 7, 3);
+  for (const char* name : {"thin_plate", "twist", "dirichlet", "e3", "thin_plate+0.3*e3"}) {
+    WeightObjective f(p, objective_named(name), backend("eigen-ldlt"));
+    for (double w : {0.05, 0.4, 0.9}) {
+      const double h = 1e-5;
+      const double fd = (f.evaluate(w + h).value - f.evaluate(w - h).value) / (2 * h);
+      const auto e = f.evaluate(w);
+      INFO(name << " at w = " << w);
+      REQUIRE(e.ok());
+      CHECK(e.has_derivative);
+      CHECK(e.derivative == Approx(fd).epsilon(1e-6).margin(1e-9 * std::abs(e.value)));
+    }
+    CHECK(f.analyses() == 1);  // one symbolic analysis for every w
+  }
+}
+
+TEST_CASE("WeightObjective: the net is the one solve_stencil_net gives for c1_family_stencil(w)", "[alpha]") {
+  StencilProblem p = ribbon_problem(9, 6, 11);
+  // far from the origin and large: the evaluator works in its normalised frame, the caller's units out
+  p.net.points = (p.net.points * 1e3).rowwise() + Eigen::RowVector3d(5e4, -2e4, 7e3);
+  WeightObjective f(p, objective_named("thin_plate"), backend("eigen-ldlt"));
+  auto solver = solvers::make_solver("eigen-ldlt");
+  for (double w : {0.0, 0.3, 1.0}) {
+    const auto e = f.evaluate(w);
+    REQUIRE(e.ok());
+    const StencilSolveResult direct = solve_stencil_net(p, c1_family_stencil(w), *solver);
+    REQUIRE(direct.summary.ok());
+    CHECK(max_difference(e.net, direct.net) <= 1e-9 * 5e4);
+    CHECK(e.value == Approx(combined_energy(direct.net, thin_plate_terms())).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("search_weight: equals Brent's minimiser on random ribbon problems", "[alpha]") {
+  int interior = 0;
+  std::uint32_t seed = 20;
+  for (auto [m, n] : {std::pair{7, 7}, std::pair{9, 6}, std::pair{6, 10}, std::pair{8, 8}, std::pair{10, 7}}) {
+    const StencilProblem p = ribbon_problem(m, n, seed++);
+    for (const char* name : {"thin_plate", "twist", "dirichlet", "e3"}) {
+      const Objective objective = objective_named(name);
+      const AlphaSearchSummary s = search_weight(p, objective, backend("eigen-ldlt"));
+      INFO(name << ", m = " << m << ", n = " << n << ": " << s.brief_report());
+      REQUIRE((s.status == SearchStatus::kSuccess));
+      REQUIRE(s.parameter);
+      WeightObjective g(p, objective, backend("eigen-ldlt"));
+      const auto brent =
+          boost::math::tools::brent_find_minima([&](double w) { return g.evaluate(w, false).value; }, 0.0, 1.0, 40);
+      CHECK(*s.parameter == Approx(brent.first).margin(1e-6));
+      CHECK(s.value <= brent.second * (1 + 1e-12));
+      CHECK(s.value == Approx(g.evaluate(*s.parameter, false).value).epsilon(1e-14));
+      if (!s.at_bound) ++interior;
+      CHECK(s.solves <= 2 * s.evaluations);
+    }
+  }
+  CHECK(interior >= 3);  // the comparison covered interior optima, not only bounds
+}
+
+TEST_CASE("search_weight: an optimum on a bound is reported at_bound, with its outward slope", "[alpha]") {
+  const StencilProblem p = ribbon_problem(8, 8, 23);
+  // the thin plate energy of smooth ribbon data is least at the biharmonic end, w = 0
+  WeightObjective f(p, objective_named("thin_plate"), backend("eigen-ldlt"));
+  const AlphaSearchSummary s = search_weight(p, objective_named("thin_plate"), backend("eigen-ldlt"));
+  INFO(s.brief_report());
+  REQUIRE(s.status == SearchStatus::kSuccess);
+  REQUIRE(s.parameter);
+  CHECK(s.at_bound);
+  CHECK_FALSE(s.flat);
+  CHECK(*s.parameter == 0.0);
+  CHECK(f.evaluate(0.0).derivative > 0);
+  // e3's interior optimum (near 0.84) lies above [0.1, 0.5]: the search stops on the upper bound
+  WeightSearchOptions narrow;
+  narrow.search.lower = 0.1;
+  narrow.search.upper = 0.5;
+  const AlphaSearchSummary t = search_weight(p, objective_named("e3"), backend("eigen-ldlt"), narrow);
+  INFO(t.brief_report());
+  REQUIRE(t.status == SearchStatus::kSuccess);
+  REQUIRE(t.parameter);
+  CHECK(t.at_bound);
+  CHECK(*t.parameter == 0.5);
+  const AlphaSearchSummary full = search_weight(p, objective_named("e3"), backend("eigen-ldlt"));
+  REQUIRE(full.parameter);
+  CHECK_FALSE(full.at_bound);
+  CHECK(*full.parameter > 0.5);
+}
+
+TEST_CASE("search_weight: bilinear data is flat, no optimum claimed", "[alpha]") {
+  // every member of the family reproduces a bilinear net (δ⁴ and δ² annihilate linear data)
+  StencilProblem p;
+  p.net = make_bilinear_net(8, 7, 5);
+  p.rings = 2;
+  for (const char* name : {"thin_plate", "twist", "e3"}) {
+    const AlphaSearchSummary s = search_weight(p, objective_named(name), backend("eigen-ldlt"));
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kFlat);
+    CHECK(s.flat);
+    CHECK_FALSE(s.parameter);
+    CHECK_FALSE(s.at_bound);
+  }
+}
+
+TEST_CASE("search_weight: a problem with one data ring is refused as not applicable", "[alpha]") {
+  StencilProblem p = ribbon_problem(7, 7, 4);
+  p.rings = 1;
+  const AlphaSearchSummary s = search_weight(p, objective_named("thin_plate"), backend("eigen-ldlt"));
+  CHECK(s.status == SearchStatus::kNotApplicable);
+  CHECK(std::string(to_string(s.status)) == "not_applicable");
+  CHECK(s.message.rfind("rings: ", 0) == 0);
+  CHECK_FALSE(s.parameter);
+  CHECK(s.evaluations == 0);
+  // bounds outside the family's [0, 1] and a backend without a matrix are refused too
+  WeightSearchOptions wide;
+  wide.search.upper = 1.5;
+  std::string why;
+  CHECK_FALSE(wide.is_valid(&why));
+  p.rings = 2;
+  CHECK(search_weight(p, objective_named("thin_plate"), backend("eigen-ldlt"), wide).status ==
+        SearchStatus::kNotApplicable);
+  CHECK(WeightSearchOptions{}.is_valid(nullptr));
+}
