@@ -8,11 +8,14 @@
 #include <memory>
 
 #include "coons/alpha/alpha_search.h"
+#include "coons/alpha/weight_search.h"
 #include "coons/io/input_error.h"
+#include "coons/mask/stencil.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/search_report.h"
 #include "coons/study/target.h"
+#include "coons/study/two_ring_problem.h"
 #include "registry.h"
 
 namespace coons::cli {
@@ -101,6 +104,12 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
       if (s.options.lower < -0.25 || s.options.upper > 0.25)
         throw InputError("command line", "--lower/--upper", "the (alpha, gamma) search stays in [-0.25, 0.25]");
       break;
+    case Parameter::kWeight:  // the C1 family, a 5×5 stencil: searched by search_weight, no 3×3 family
+      s.options.lower = r.lower.value_or(0.0);
+      s.options.upper = r.upper.value_or(1.0);
+      if (!(s.options.lower >= 0 && s.options.upper <= 1))
+        throw InputError("command line", "--lower/--upper", "the C1 family's weight is searched in [0, 1]");
+      break;
   }
   if (r.allow_indefinite && r.parameter != Parameter::kAlpha)
     throw InputError("command line", "--allow-indefinite",
@@ -108,9 +117,20 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   s.options.scan_points = r.scan_points;
   if (!s.options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  s.solver = &search_backend(requested, b, indefinite);
+  s.solver = r.parameter == Parameter::kWeight ? &weight_search_backend(requested, false)
+                                               : &search_backend(requested, b, indefinite);
   s.picked_automatically = requested == nullptr;
   return s;
+}
+
+// The two data rings the C1 family needs, from the file: bad input when it has one ring, or when
+// the 5×5 stencil does not fit its free points.
+StencilProblem weight_problem(const std::string& path, const BoundaryFile& file) {
+  TwoRingProblem two = two_ring_problem(path, file);
+  if (!two.problem) throw InputError(path, two.field, two.reason);
+  const std::vector<ProblemIssue> issues = check_stencil_problem(*two.problem, c1_family_stencil(0.5));
+  if (!issues.empty()) throw InputError(path, issues.front().field, issues.front().reason);
+  return std::move(*two.problem);
 }
 
 int finish(nlohmann::json report, Phases& phases, SearchStatus status, const SearchRequest& r,
@@ -118,7 +138,9 @@ int finish(nlohmann::json report, Phases& phases, SearchStatus status, const Sea
   report["timing"] = phases.timing();
   print_json(report);
   // no optimum without its evidence: every evaluation failed, or the verdict rests on failures
-  if (status != SearchStatus::kSolverFailed && status != SearchStatus::kFailedRegion) return kExitOk;
+  if (status != SearchStatus::kSolverFailed && status != SearchStatus::kFailedRegion &&
+      status != SearchStatus::kNotApplicable)
+    return kExitOk;
   std::cerr << fmt::format("error: {}: solver: {} search failed ({})\n", r.boundary,
                            report["solver"]["name"].get<std::string>(),
                            message.empty() ? "no successful evaluation" : message);
@@ -128,11 +150,23 @@ int finish(nlohmann::json report, Phases& phases, SearchStatus status, const Sea
 int run_search_alpha(const SearchRequest& r) {
   Phases phases("search-alpha");
   phases.start("read");
-  const Boundary b = read_input(r.boundary, r.corner_tolerance).boundary;
+  const BoundaryFile file = read_input(r.boundary, r.corner_tolerance);
+  const Boundary& b = file.boundary;
   const SearchSetup setup = setup_search(r, b);
   check_net_memory(r.global, b, setup.solver, r.boundary);
-  phases.start("solve");
   const std::string objective = objective_text(r.objective);
+  if (r.parameter == Parameter::kWeight) {
+    const StencilProblem problem = weight_problem(r.boundary, file);
+    phases.start("solve");
+    WeightSearchOptions options;
+    options.search = setup.options;
+    const AlphaSearchSummary s = search_weight(problem, setup.objective, *setup.solver, options);
+    nlohmann::json out = weight_search_report(b, objective, options.search, s);
+    out["solver"] =
+        search_solver_block(*setup.solver, setup.picked_automatically, s.status, s.solves, s.seconds, s.message);
+    return finish(out, phases, s.status, r, s.message);
+  }
+  phases.start("solve");
   if (r.parameter == Parameter::kAlphaGamma) {
     MaskObjective f(b, setup.objective, setup.family, *setup.solver);
     const AlphaGammaSummary g = search_alpha_gamma(f, setup.options);
@@ -163,14 +197,17 @@ void register_search_alpha(CLI::App& app, Registry& registry) {
                   "or a weighted sum such as \"thin_plate + 10*target\" (spaces allowed)")
       ->required();
   const std::map<std::string, Parameter> parameters = {
-      {"alpha", Parameter::kAlpha}, {"mu", Parameter::kMu}, {"alpha-gamma", Parameter::kAlphaGamma}};
+      {"alpha", Parameter::kAlpha},
+      {"mu", Parameter::kMu},
+      {"alpha-gamma", Parameter::kAlphaGamma},
+      {"weight", Parameter::kWeight}};
   cmd->add_option("--parameter", r->parameter,
-                  "alpha (the Farin-Hansford family), mu (the anisotropic mask) or "
-                  "alpha-gamma (every symmetric 3x3 mask)")
+                  "alpha (the Farin-Hansford family), mu (the anisotropic mask), "
+                  "alpha-gamma (every symmetric 3x3 mask) or weight (the 5x5 c1-family; needs two data rings)")
       ->transform(CLI::CheckedTransformer(parameters))
       ->default_str("alpha");
-  cmd->add_option("--lower", r->lower, "lower bound (alpha: -0.25, mu: 0)");
-  cmd->add_option("--upper", r->upper, "upper bound (alpha: 0.25, mu: 1000·m·n)");
+  cmd->add_option("--lower", r->lower, "lower bound (alpha: -0.25, mu: 0, weight: 0)");
+  cmd->add_option("--upper", r->upper, "upper bound (alpha: 0.25, mu: 1000·m·n, weight: 1)");
   cmd->add_flag("--allow-indefinite", r->allow_indefinite, "accept alpha bounds outside [-0.25, 0.25]");
   r->target_option = cmd->add_option("--target", r->target,
                                      "hermite-coons | coons | NET.json | sphere:cx,cy,cz,r | "

@@ -1,6 +1,7 @@
 // The command-line contract of docs/formats.md, driven through the real binary.
 #include <unistd.h>
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -8,6 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
+#include "coons/alpha/weight_search.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/net_json.h"
 #include "coons/net/coons_net.h"
@@ -222,6 +224,55 @@ TEST_CASE("coons search-alpha: bad input gives exit 2 and one error line", "[cli
   const CommandResult wide = run_command(kCoons + " search-alpha " + dome +
                                          " --objective thin_plate --lower -0.3 --allow-indefinite --solver eigen-lu");
   CHECK(wide.status == 0);
+}
+
+TEST_CASE("coons search-alpha --parameter weight: the C1 family on two data rings; one ring is bad input",
+          "[cli][alpha]") {
+  TempDir dir;
+  const ControlNet net = make_random_net(7, 6, 12);
+  json doc = {{"name", "two rings"}, {"net", net_to_json(net)}, {"rings", 2}};
+  const std::string two = dir.write("two.json", doc.dump());
+  const CommandResult r =
+      run_command(kCoons + " search-alpha " + quoted(two) + " --objective e3 --parameter weight --solver eigen-ldlt");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["parameter"] == "weight");
+  CHECK(report["mask"] == "c1-family");
+  CHECK(report["bounds"] == json::array({0.0, 1.0}));
+  for (const char* key : {"weight", "value", "flat", "at_bound", "evaluations", "solves", "status", "scan", "evaluator",
+                          "failed_evaluations", "failed_intervals", "solver", "timing"})
+    CHECK(report.contains(key));
+  CHECK_FALSE(report.contains("alpha"));
+  // the library's search on the same problem, the same answer
+  std::string why;
+  const AlphaSearchSummary s = search_weight(rings_problem(net, 2), *parse_objective("e3", &why), backend("eigen-ldlt"));
+  REQUIRE(report["status"] == to_string(s.status));
+  if (s.parameter)
+    CHECK(report["weight"].get<double>() == Approx(*s.parameter).margin(1e-12));
+  else
+    CHECK(report["weight"].is_null());
+  CHECK(report["value"].get<double>() == Approx(s.value).epsilon(1e-12));
+
+  // one ring: bad input naming the field
+  doc["rings"] = 1;
+  const std::string one = dir.write("one.json", doc.dump());
+  const std::string sides = quoted(kData + "/boundaries/dome.json");
+  const std::pair<std::string, std::string> cases[] = {
+      {quoted(one) + " --objective e3 --parameter weight", "rings"},
+      {sides + " --objective e3 --parameter weight", "ribbons"},
+      {quoted(two) + " --objective e3 --parameter weight --upper 1.5", "--upper"},
+      {quoted(two) + " --objective e3 --parameter weight --solver gauss-seidel", "--solver"},
+  };
+  for (const auto& [args, mention] : cases) {
+    INFO(args);
+    const CommandResult bad = run_command(std::string(kCoons).append(" search-alpha ").append(args));
+    CHECK(bad.status == 2);
+    CHECK(bad.out.empty());
+    CHECK(bad.err.rfind("error: ", 0) == 0);
+    CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+    CHECK_THAT(bad.err, Catch::Contains(mention));
+  }
 }
 
 TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", "[cli][alpha]") {

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "coons/alpha/weight_search.h"
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "coons/study/provenance.h"
@@ -18,7 +19,11 @@ namespace {
 
 StudyInput input(const std::string& name, Boundary b, std::optional<Target> target = std::nullopt) {
   b.name = name;
-  return {name + ".json", b, std::nullopt, std::move(target)};
+  StudyInput in;
+  in.file = name + ".json";
+  in.boundary = std::move(b);
+  in.target = std::move(target);
+  return in;
 }
 
 }  // namespace
@@ -89,6 +94,62 @@ TEST_CASE("run_study: two boundaries made in code give their shape, degree-law a
   CHECK_THAT(md, Catch::Contains("### smooth (3×3)"));
   CHECK_THAT(md, Catch::Contains("rms distance to the target"));
   CHECK_THAT(md, !Catch::Contains("### wide (4×3)"));
+  // no input has two data rings: no C1 column, no weight fields (the output of the α study alone)
+  CHECK_THAT(md, !Catch::Contains("w* (C1 family)"));
+  for (const auto& e : results)
+    if (e["kind"] == "shape") {
+      CHECK_FALSE(e.contains("weight_solver"));
+      CHECK_FALSE(e["thin_plate"].contains("weight"));
+    }
+}
+
+TEST_CASE("run_study: an input with two data rings gets w* of the C1 family beside alpha*, others a dash with the reason",
+          "[study]") {
+  // the two rings: a random net's frame and second ring, the inside free
+  ControlNet net = make_random_net(6, 6, 31);
+  StudyInput ribbons = input("ribbons", boundary_of(net));
+  ribbons.two_rings = rings_problem(net, 2);
+  StudyInput plain = input("plain", make_smooth_boundary(4, 4, 9));
+  plain.one_ring = "ribbons: missing";
+  StudyOptions options;
+  options.degrees = {6};
+  options.solver = &backend("mg");  // no matrix: the weight searches take a direct backend instead
+  const StudyResult r = run_study({ribbons, plain}, options);
+  REQUIRE(r.shapes.size() == 2);
+  for (const ShapeOptimum& o : r.shapes[0].optima) {
+    REQUIRE(o.weight);
+    INFO(o.objective << ": " << o.weight->brief_report());
+    CHECK(o.weight->status == SearchStatus::kSuccess);
+    REQUIRE(o.weight->parameter);
+    // the reported value is the objective of the net the C1 stencil gives at w*
+    const Objective objective = *parse_objective(o.objective, nullptr);
+    const AlphaSearchSummary again = search_weight(*ribbons.two_rings, objective, backend("eigen-ldlt"));
+    REQUIRE(again.parameter);
+    CHECK(*o.weight->parameter == Approx(*again.parameter).margin(1e-8));
+    CHECK(o.weight->value == Approx(again.value).epsilon(1e-12));
+  }
+  CHECK(r.shapes[0].weight_solver != "fast");
+  for (const ShapeOptimum& o : r.shapes[1].optima) CHECK_FALSE(o.weight);
+
+  const json results = study_results_json(r);
+  REQUIRE(results[0]["kind"] == "shape");
+  const json& tp = results[0]["thin_plate"];
+  CHECK(tp["weight"].get<double>() == *r.shapes[0].optima[0].weight->parameter);
+  CHECK(tp["weight_value"].get<double>() == r.shapes[0].optima[0].weight->value);
+  for (const char* key : {"weight_flat", "weight_at_bound", "weight_status"}) CHECK(tp.contains(key));
+  CHECK(results[0].contains("weight_solver"));
+  CHECK_FALSE(results[1]["thin_plate"].contains("weight"));
+
+  StudyFigures figures;
+  for (size_t k = 0; k < r.shapes.size(); ++k) {
+    figures.energies.push_back({"figures/x.png", "not drawn in this test"});
+    figures.nets.push_back({"figures/y.png", "not drawn in this test"});
+  }
+  figures.alpha_vs_degree = {"figures/a.png", "not drawn"};
+  figures.mu_vs_degree = {"figures/m.png", "not drawn"};
+  const std::string md = study_report_markdown(r, current_provenance("test"), figures);
+  CHECK_THAT(md, Catch::Contains("| w* (C1 family) | value at w* |"));
+  CHECK_THAT(md, Catch::Contains("| – (ribbons: missing) | – |"));
 }
 
 TEST_CASE("StudyOptions: degrees out of range, repeated or unordered are refused", "[study]") {

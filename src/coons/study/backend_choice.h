@@ -13,4 +13,10 @@ namespace coons {
 const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, const Boundary& boundary,
                                           bool indefinite);
 
+//! The backend of the C1 family's weight search (a 5×5 stencil, positive definite for w ∈ [0, 1]):
+//! `requested` when it works from the assembled matrix, else (and for auto, nullptr) cholmod when
+//! built, else eigen-ldlt. `fallback` (false) makes a requested backend without a matrix an
+//! InputError ("--solver") instead.
+const solvers::SolverInfo& weight_search_backend(const solvers::SolverInfo* requested, bool fallback);
+
 }  // namespace coons

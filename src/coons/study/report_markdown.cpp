@@ -2,6 +2,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <map>
 
 #include "coons/io/plot.h"
@@ -121,14 +122,36 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
 
   line("## 1. Coons, Laplace and optimal nets at each shape's own degree");
   line("");
-  line("| shape | degree | objective | α* | value at α* | at Coons (−1/4) | at Laplace (0) | μ* |");
-  line("|---|---|---|---|---|---|---|---|");
+  // the C1 family's column only when some input has two data rings (the report is otherwise unchanged)
+  const bool c1_column = std::any_of(r.shapes.begin(), r.shapes.end(), [](const ShapeEntry& shape) {
+    return std::any_of(shape.optima.begin(), shape.optima.end(), [](const ShapeOptimum& o) { return o.weight; });
+  });
+  if (c1_column) {
+    line("w* is the weight of the 5×5 C1 family (w = 1: `c1-coons`, w = 0: `biharmonic`, docs/formats.md \"Masks\"),");
+    line("found by `search_weight` on the shape's two data rings; a shape with one data ring has none (–, with the");
+    line("reason).");
+    line("");
+    line("| shape | degree | objective | α* | value at α* | at Coons (−1/4) | at Laplace (0) | μ* | w* (C1 family) | "
+         "value at w* |");
+    line("|---|---|---|---|---|---|---|---|---|---|");
+  } else {
+    line("| shape | degree | objective | α* | value at α* | at Coons (−1/4) | at Laplace (0) | μ* |");
+    line("|---|---|---|---|---|---|---|---|");
+  }
   for (const ShapeEntry& shape : r.shapes) {
     const Boundary& b = shape.boundary;
-    for (const ShapeOptimum& o : shape.optima)
-      line(fmt::format("| {} | {}×{} | {} | {} | {} | {:.6g} | {:.6g} | {} |", b.name, b.m, b.n, o.objective,
-                       format_optimum(o.alpha), o.alpha.flat ? "–" : fmt::format("{:.6g}", o.alpha.value), o.coons,
-                       o.laplace, format_optimum(o.mu, 3)));
+    for (const ShapeOptimum& o : shape.optima) {
+      std::string row = fmt::format("| {} | {}×{} | {} | {} | {} | {:.6g} | {:.6g} | {} |", b.name, b.m, b.n,
+                                    o.objective, format_optimum(o.alpha),
+                                    o.alpha.flat ? "–" : fmt::format("{:.6g}", o.alpha.value), o.coons, o.laplace,
+                                    format_optimum(o.mu, 3));
+      if (c1_column)
+        row += o.weight ? fmt::format(" {} | {} |", format_optimum(*o.weight),
+                                      o.weight->flat || !o.weight->parameter ? "–"
+                                                                               : fmt::format("{:.6g}", o.weight->value))
+                        : fmt::format(" – ({}) | – |", shape.one_ring);
+      line(row);
+    }
   }
   line("");
 

@@ -1,5 +1,7 @@
 #include "search_report.h"
 
+#include <functional>
+
 #include "coons/io/net_json.h"
 #include "coons/mask/mask_families.h"
 #include "coons/study/sweep.h"
@@ -14,6 +16,8 @@ const char* to_string(SearchParameter p) {
       return "mu";
     case SearchParameter::kAlphaGamma:
       return "alpha-gamma";
+    case SearchParameter::kWeight:
+      return "weight";
     case SearchParameter::kAlpha:
       break;
   }
@@ -22,17 +26,43 @@ const char* to_string(SearchParameter p) {
 
 json search_solver_block(const solvers::SolverInfo& solver, bool picked_automatically, SearchStatus status, int solves,
                          double seconds, const std::string& message) {
+  const bool failed = status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion ||
+                      status == SearchStatus::kNotApplicable;
   json block = {{"name", solver.name},
-                {"status", status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion ? "failure"
-                                                                                                          : "success"},
+                {"status", failed ? "failure" : "success"},
                 {"iterations", solves},
                 {"relative_residual", nullptr},
                 {"seconds", {{"search", seconds}}}};
-  if ((status == SearchStatus::kSolverFailed || status == SearchStatus::kFailedRegion) && !message.empty())
-    block["message"] = message;
+  if (failed && !message.empty()) block["message"] = message;
   if (picked_automatically) block["picked_by"] = "auto";
   return block;
 }
+
+namespace {
+
+// The fields every one-parameter report shares, from "flat" on; `shown` maps a searched parameter
+// to the units of the report.
+void add_search_fields(json& out, const AlphaSearchSummary& s, const std::function<double(double)>& shown) {
+  out["flat"] = s.flat;
+  out["at_bound"] = s.at_bound;
+  out["evaluations"] = s.evaluations;
+  out["solves"] = s.solves;
+  out["status"] = to_string(s.status);
+  if (!s.message.empty()) out["message"] = s.message;
+  out["local_minima"] = s.local_minima;
+  json scan = json::array();
+  for (auto [p, f] : s.scan) scan.push_back({shown(p), number_or_null(f)});
+  out["scan"] = scan;
+  out["evaluator"] = s.evaluator.empty() ? "factorize and solve" : s.evaluator;
+  // the evaluations that failed, and where: no optimum is claimed on them
+  out["failed_evaluations"] = s.failed_evaluations;
+  json intervals = json::array();
+  for (auto [lo, hi] : s.failed_intervals) intervals.push_back({shown(lo), shown(hi)});
+  out["failed_intervals"] = intervals;
+  if (s.failed_evaluations > 0) out["first_failure"] = solvers::to_string(s.first_failure);
+}
+
+}  // namespace
 
 json search_report(const Boundary& b, const std::string& objective, SearchParameter parameter, const MaskFamily& family,
                    const AlphaSearchOptions& options, const AlphaSearchSummary& s) {
@@ -57,24 +87,22 @@ json search_report(const Boundary& b, const std::string& objective, SearchParame
     out["bounds"] = {mu_of_compressed(b.m, b.n, options.lower), mu_of_compressed(b.m, b.n, options.upper)};
   else
     out["bounds"] = {options.lower, options.upper};
-  out["flat"] = s.flat;
-  out["at_bound"] = s.at_bound;
-  out["evaluations"] = s.evaluations;
-  out["solves"] = s.solves;
-  out["status"] = to_string(s.status);
-  if (!s.message.empty()) out["message"] = s.message;
-  out["local_minima"] = s.local_minima;
-  json scan = json::array();
-  for (auto [p, f] : s.scan) scan.push_back({by_mu ? mu_of_compressed(b.m, b.n, p) : p, number_or_null(f)});
-  out["scan"] = scan;
-  out["evaluator"] = s.evaluator.empty() ? "factorize and solve" : s.evaluator;
-  // the evaluations that failed, and where: no optimum is claimed on them
-  out["failed_evaluations"] = s.failed_evaluations;
-  json intervals = json::array();
-  for (auto [lo, hi] : s.failed_intervals)
-    intervals.push_back(by_mu ? json{mu_of_compressed(b.m, b.n, lo), mu_of_compressed(b.m, b.n, hi)} : json{lo, hi});
-  out["failed_intervals"] = intervals;
-  if (s.failed_evaluations > 0) out["first_failure"] = solvers::to_string(s.first_failure);
+  add_search_fields(out, s, [&](double p) { return by_mu ? mu_of_compressed(b.m, b.n, p) : p; });
+  return out;
+}
+
+json weight_search_report(const Boundary& b, const std::string& objective, const AlphaSearchOptions& options,
+                          const AlphaSearchSummary& s) {
+  json out;
+  out["boundary"] = b.name;
+  out["degree"] = {b.m, b.n};
+  out["objective"] = objective;
+  out["parameter"] = to_string(SearchParameter::kWeight);
+  out["mask"] = "c1-family";
+  out["weight"] = s.parameter ? json(*s.parameter) : json(nullptr);
+  out["value"] = number_or_null(s.value);
+  out["bounds"] = {options.lower, options.upper};
+  add_search_fields(out, s, [](double p) { return p; });
   return out;
 }
 

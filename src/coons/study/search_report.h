@@ -12,8 +12,9 @@
 namespace coons {
 
 //! What a search varies: α of the Farin–Hansford family, μ of the anisotropic masks (searched
-//! on the compressed scale μ/(μ + mn)), or (α, γ), every symmetric affine-invariant 3×3 mask.
-enum class SearchParameter { kAlpha, kMu, kAlphaGamma };
+//! on the compressed scale μ/(μ + mn)), (α, γ), every symmetric affine-invariant 3×3 mask, or the
+//! weight w of the 5×5 C1 family (weight_search.h).
+enum class SearchParameter { kAlpha, kMu, kAlphaGamma, kWeight };
 const char* to_string(SearchParameter parameter);
 
 //! The solver block of a search report, of the same shape as a solve's: the backend, the
@@ -25,6 +26,11 @@ nlohmann::json search_solver_block(const solvers::SolverInfo& solver, bool picke
 //! mask, `options` holds the bounds it was searched in).
 nlohmann::json search_report(const Boundary& boundary, const std::string& objective, SearchParameter parameter,
                              const MaskFamily& family, const AlphaSearchOptions& options, const AlphaSearchSummary& s);
+
+//! The report of the C1 family's weight search: "parameter": "weight", "mask": "c1-family",
+//! "weight" (w*, null without an optimum) and the fields of the α report other than alpha, beta, mu.
+nlohmann::json weight_search_report(const Boundary& boundary, const std::string& objective,
+                                    const AlphaSearchOptions& options, const AlphaSearchSummary& s);
 
 //! The report of the (α, γ) search.
 nlohmann::json alpha_gamma_report(const Boundary& boundary, const std::string& objective,

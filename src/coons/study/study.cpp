@@ -4,16 +4,19 @@
 
 #include <map>
 
+#include "coons/alpha/weight_search.h"
 #include "coons/io/boundary_curves.h"
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
 #include "coons/mask/mask_families.h"
 #include "coons/mask/solve_mask_net.h"
+#include "coons/mask/stencil.h"
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "coons/net/degree_elevation.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/target.h"
+#include "coons/study/two_ring_problem.h"
 
 namespace coons {
 
@@ -28,7 +31,16 @@ json optional_number(const std::optional<double>& x) { return x ? number_or_null
 StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& options) {
   StudyInput in;
   in.file = path;
-  in.boundary = read_boundary_file(path, options).boundary;
+  const BoundaryFile file = read_boundary_file(path, options);
+  in.boundary = file.boundary;
+  TwoRingProblem two = two_ring_problem(path, file);
+  if (two.problem) {
+    const std::vector<ProblemIssue> issues = check_stencil_problem(*two.problem, c1_family_stencil(0.5));
+    if (!issues.empty()) throw InputError(path, issues.front().field, issues.front().reason);
+    in.two_rings = std::move(two.problem);
+  } else {
+    in.one_ring = two.field == "ribbons" ? "one data ring, no ribbons" : "one data ring, rings 1";
+  }
   in.curves = read_boundary_curves(path);
   in.target = read_boundary_target(path);
   return in;
@@ -102,7 +114,10 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
   for (const StudyInput& in : inputs) {
     const Boundary& b = in.boundary;
     const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
-    ShapeEntry shape{in.file, b, solver.name, options.solver == nullptr, {}, {}, {}};
+    ShapeEntry shape{in.file, b, solver.name, options.solver == nullptr, {}, {}, in.one_ring, {}, {}};
+    const solvers::SolverInfo& weight_solver = weight_search_backend(options.solver, true);
+    if (in.two_rings) shape.weight_solver = weight_solver.name;
+    if (!in.two_rings && shape.one_ring.empty()) shape.one_ring = "one data ring";
     std::optional<double> alpha_tp;
     for (const Objective& objective : objectives) {
       MaskObjective f(
@@ -113,6 +128,7 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
       o.coons = f.evaluate(-0.25).value;
       o.laplace = f.evaluate(0.0).value;
       if (b.m > 1 && b.n > 1) o.mu = study_search_mu(b, objective, solver);
+      if (in.two_rings) o.weight = search_weight(*in.two_rings, objective, weight_solver);
       if (objective.name == "thin_plate" && o.alpha.parameter && !o.alpha.flat) alpha_tp = o.alpha.parameter;
       shape.optima.push_back(std::move(o));
     }
@@ -202,7 +218,16 @@ json study_results_json(const StudyResult& r) {
                             {"mu_at_bound", mu.at_bound},
                             {"mu_local_minima", mu.local_minima},
                             {"status", to_string(s.status)}};
+      if (o.weight) {  // the C1 family beside α* (inputs with two data rings only)
+        json& block = entry[o.objective];
+        block["weight"] = optional_number(o.weight->parameter);
+        block["weight_value"] = number_or_null(o.weight->value);
+        block["weight_flat"] = o.weight->flat;
+        block["weight_at_bound"] = o.weight->at_bound;
+        block["weight_status"] = to_string(o.weight->status);
+      }
     }
+    if (!shape.weight_solver.empty()) entry["weight_solver"] = shape.weight_solver;
     results.push_back(std::move(entry));
   }
   for (const DegreeLawEntry& law : r.laws) {

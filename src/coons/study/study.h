@@ -3,7 +3,8 @@
 // curves over α; the optimum at many degrees (refitted from the analytic sides, or elevated
 // exactly) with the degree law α* + 1/4 ≈ c/n²; and, for every boundary that carries a target, a
 // reference table (S(½,½).z, thin plate, Dirichlet, rms distance at α = −1/4, −1/5, −1/10, 0) and
-// the α that fits the target best. Usable without the command line: run_study computes, the
+// the α that fits the target best; for every boundary with two data rings ("ribbons", or a net
+// with "rings" ≥ 2) the best weight w* of the 5×5 C1 family beside α* (weight_search.h). Usable without the command line: run_study computes, the
 // report functions (report_markdown.h) write.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
@@ -19,6 +20,7 @@
 #include "coons/alpha/objective.h"
 #include "coons/curves/curve.h"
 #include "coons/io/boundary_io.h"
+#include "coons/mask/stencil_problem.h"
 #include "coons/study/degree_law.h"
 #include "coons/study/sweep.h"
 #include "solvers/registry.h"
@@ -31,6 +33,8 @@ struct StudyInput {
   Boundary boundary;
   std::optional<std::vector<Curve>> curves;  //!< analytic sides: refitted at each degree
   std::optional<Target> target;              //!< reference table and best-fit α
+  std::optional<StencilProblem> two_rings;   //!< two data rings: the C1 family's column
+  std::string one_ring;                      //!< without them: why, short ("one data ring, no ribbons")
 };
 
 //! Reads a boundary file with its curves and target; every input error is thrown here.
@@ -42,6 +46,8 @@ struct StudyOptions {
   const solvers::SolverInfo* solver = nullptr;      //!< nullptr: auto, per boundary and degree
   int curve_points = 41;                            //!< α values of the energy curves
   std::vector<double> reference_alphas = {-0.25, -0.2, -0.1, 0.0};
+  //! The weight searches' backend: `solver` when it works from the matrix, else cholmod or
+  //! eigen-ldlt (backend_choice.h: weight_search_backend).
 
   bool is_valid(std::string* why) const;
 };
@@ -54,6 +60,8 @@ struct ShapeOptimum {  //!< one objective at the shape's own degree
   AlphaSearchSummary alpha;       //!< α*
   AlphaSearchSummary mu;          //!< μ* (parameter in μ units); not searched when m or n is 1
   double coons = 0, laplace = 0;  //!< the objective at α = −1/4 and α = 0
+  //! w* of the C1 family and its value; absent when the input has one data ring
+  std::optional<AlphaSearchSummary> weight;
 };
 
 struct ShapeEntry {
@@ -62,6 +70,8 @@ struct ShapeEntry {
   std::string solver;  //!< the backend of its searches
   bool solver_picked_automatically = false;
   std::vector<ShapeOptimum> optima;
+  std::string weight_solver;  //!< the backend of the weight searches (two data rings only)
+  std::string one_ring;       //!< why there are none (StudyInput::one_ring)
   std::vector<SweepRow> curves;                              //!< energies on the α grid
   std::vector<std::pair<std::string, ControlNet>> pictures;  //!< Coons, Laplace, thin-plate optimum
 };
