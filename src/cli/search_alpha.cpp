@@ -196,11 +196,10 @@ void register_search_alpha(CLI::App& app, Registry& registry) {
                   "thin_plate, twist, dirichlet, e3, target, discrete_twist, discrete_dirichlet, discrete_thin_plate, "
                   "or a weighted sum such as \"thin_plate + 10*target\" (spaces allowed)")
       ->required();
-  const std::map<std::string, Parameter> parameters = {
-      {"alpha", Parameter::kAlpha},
-      {"mu", Parameter::kMu},
-      {"alpha-gamma", Parameter::kAlphaGamma},
-      {"weight", Parameter::kWeight}};
+  const std::map<std::string, Parameter> parameters = {{"alpha", Parameter::kAlpha},
+                                                       {"mu", Parameter::kMu},
+                                                       {"alpha-gamma", Parameter::kAlphaGamma},
+                                                       {"weight", Parameter::kWeight}};
   cmd->add_option("--parameter", r->parameter,
                   "alpha (the Farin-Hansford family), mu (the anisotropic mask), "
                   "alpha-gamma (every symmetric 3x3 mask) or weight (the 5x5 c1-family; needs two data rings)")

@@ -246,7 +246,8 @@ TEST_CASE("coons search-alpha --parameter weight: the C1 family on two data ring
   CHECK_FALSE(report.contains("alpha"));
   // the library's search on the same problem, the same answer
   std::string why;
-  const AlphaSearchSummary s = search_weight(rings_problem(net, 2), *parse_objective("e3", &why), backend("eigen-ldlt"));
+  const AlphaSearchSummary s =
+      search_weight(rings_problem(net, 2), *parse_objective("e3", &why), backend("eigen-ldlt"));
   REQUIRE(report["status"] == to_string(s.status));
   if (s.parameter)
     CHECK(report["weight"].get<double>() == Approx(*s.parameter).margin(1e-12));

@@ -103,8 +103,9 @@ TEST_CASE("run_study: two boundaries made in code give their shape, degree-law a
     }
 }
 
-TEST_CASE("run_study: an input with two data rings gets w* of the C1 family beside alpha*, others a dash with the reason",
-          "[study]") {
+TEST_CASE(
+    "run_study: an input with two data rings gets w* of the C1 family beside alpha*, others a dash with the reason",
+    "[study]") {
   // the two rings: a random net's frame and second ring, the inside free
   ControlNet net = make_random_net(6, 6, 31);
   StudyInput ribbons = input("ribbons", boundary_of(net));

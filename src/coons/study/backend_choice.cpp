@@ -25,10 +25,11 @@ const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, 
 const solvers::SolverInfo& weight_search_backend(const solvers::SolverInfo* requested, bool fallback) {
   if (requested && requested->needs_matrix) return *requested;
   if (requested && !fallback)
-    throw InputError("command line", "--solver",
-                     requested->name +
-                         " solves 3x3 grid stencils only; --parameter weight (a 5x5 stencil) needs a backend that works "
-                         "from the matrix");
+    throw InputError(
+        "command line", "--solver",
+        requested->name +
+            " solves 3x3 grid stencils only; --parameter weight (a 5x5 stencil) needs a backend that works "
+            "from the matrix");
   const solvers::SolverInfo* cholmod = solvers::find_solver("cholmod");
   return cholmod ? *cholmod : *solvers::find_solver("eigen-ldlt");
 }

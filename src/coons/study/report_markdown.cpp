@@ -131,8 +131,9 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     line("found by `search_weight` on the shape's two data rings; a shape with one data ring has none (–, with the");
     line("reason).");
     line("");
-    line("| shape | degree | objective | α* | value at α* | at Coons (−1/4) | at Laplace (0) | μ* | w* (C1 family) | "
-         "value at w* |");
+    line(
+        "| shape | degree | objective | α* | value at α* | at Coons (−1/4) | at Laplace (0) | μ* | w* (C1 family) | "
+        "value at w* |");
     line("|---|---|---|---|---|---|---|---|---|---|");
   } else {
     line("| shape | degree | objective | α* | value at α* | at Coons (−1/4) | at Laplace (0) | μ* |");
@@ -141,15 +142,15 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
   for (const ShapeEntry& shape : r.shapes) {
     const Boundary& b = shape.boundary;
     for (const ShapeOptimum& o : shape.optima) {
-      std::string row = fmt::format("| {} | {}×{} | {} | {} | {} | {:.6g} | {:.6g} | {} |", b.name, b.m, b.n,
-                                    o.objective, format_optimum(o.alpha),
-                                    o.alpha.flat ? "–" : fmt::format("{:.6g}", o.alpha.value), o.coons, o.laplace,
-                                    format_optimum(o.mu, 3));
+      std::string row =
+          fmt::format("| {} | {}×{} | {} | {} | {} | {:.6g} | {:.6g} | {} |", b.name, b.m, b.n, o.objective,
+                      format_optimum(o.alpha), o.alpha.flat ? "–" : fmt::format("{:.6g}", o.alpha.value), o.coons,
+                      o.laplace, format_optimum(o.mu, 3));
       if (c1_column)
-        row += o.weight ? fmt::format(" {} | {} |", format_optimum(*o.weight),
-                                      o.weight->flat || !o.weight->parameter ? "–"
-                                                                               : fmt::format("{:.6g}", o.weight->value))
-                        : fmt::format(" – ({}) | – |", shape.one_ring);
+        row += o.weight
+                   ? fmt::format(" {} | {} |", format_optimum(*o.weight),
+                                 o.weight->flat || !o.weight->parameter ? "–" : fmt::format("{:.6g}", o.weight->value))
+                   : fmt::format(" – ({}) | – |", shape.one_ring);
       line(row);
     }
   }
