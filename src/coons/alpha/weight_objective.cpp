@@ -6,8 +6,8 @@
 
 namespace coons {
 
-WeightObjective::WeightObjective(const StencilProblem& problem, Objective objective, const solvers::SolverInfo& solver,
-                                 const solvers::SolverOptions& options)
+WeightObjective::WeightObjective(const StencilProblem& problem, const Objective& objective,
+                                 const solvers::SolverInfo& solver, const solvers::SolverOptions& options)
     : problem_(problem), unit_(normalised_frame(boundary_of(problem.net), objective)) {
   // the whole net (both rings of data) moves into the frame of its outer boundary: exact, the
   // scale is a power of two

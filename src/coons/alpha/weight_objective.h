@@ -41,7 +41,7 @@ class WeightObjective {
   //! `solver` is a backend of the registry that works from the matrix. Precondition: the problem
   //! fits the 5×5 stencil (check_stencil_problem with c1_family_stencil has no issue; search_weight
   //! checks it and refuses otherwise).
-  WeightObjective(const StencilProblem& problem, Objective objective, const solvers::SolverInfo& solver,
+  WeightObjective(const StencilProblem& problem, const Objective& objective, const solvers::SolverInfo& solver,
                   const solvers::SolverOptions& options = {});
   ~WeightObjective();
   WeightObjective(const WeightObjective&) = delete;
