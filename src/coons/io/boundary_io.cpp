@@ -2,13 +2,17 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
 #include <filesystem>
 #include <limits>
 #include <nlohmann/json.hpp>
+#include <vector>
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
+#include "coons/io/stencil_json.h"
+#include "coons/net/coons_net.h"
 
 namespace coons {
 
@@ -32,9 +36,11 @@ class Parser {
     return out;
   }
 
-  Eigen::MatrixX3d points(const json& doc, const std::string& field) const {
-    if (!doc.contains(field)) fail(field, "missing");
-    const json& list = doc[field];
+  //! doc[key] as a list of points; errors name `prefix` + key (e.g. "ribbons.left[2]").
+  Eigen::MatrixX3d points(const json& doc, const std::string& key, const std::string& prefix = "") const {
+    const std::string field = prefix + key;
+    if (!doc.contains(key)) fail(field, "missing");
+    const json& list = doc[key];
     if (!list.is_array()) fail(field, "must be an array of points");
     Eigen::MatrixX3d out(list.size(), 3);
     for (size_t k = 0; k < list.size(); ++k) out.row(k) = point(list[k], fmt::format("{}[{}]", field, k));
@@ -55,6 +61,99 @@ void check_degree(const Parser& p, const json& doc, int m, int n) {
   const auto dm = json_integer(d[0], p.source(), "degree[0]", 1, std::numeric_limits<int>::max());
   const auto dn = json_integer(d[1], p.source(), "degree[1]", 1, std::numeric_limits<int>::max());
   if (dm != m || dn != n) p.fail("degree", fmt::format("says [{}, {}] but the points give [{}, {}]", dm, dn, m, n));
+}
+
+// The number of rings of an (m+1)×(n+1) net (the innermost may be a row, a column or a point).
+int rings_of(int m, int n) { return std::min(m, n) / 2 + 1; }
+
+int parse_rings(const Parser& p, const json& doc, int m, int n) {
+  if (!doc.contains("rings")) return 1;
+  const int most = rings_of(m, n);
+  const auto rings = json_integer(doc["rings"], p.source(), "rings", 1, std::numeric_limits<int>::max());
+  if (rings > most)
+    p.fail("rings", fmt::format("{} data rings, but a net of degree ({}, {}) has only {}", rings, m, n, most));
+  return int(rings);
+}
+
+// Free points must lie inside the data rings (the mask-dependent checks come later, with the mask).
+void check_free_inside_rings(const Parser& p, const FreeGrid& free, int rings) {
+  const int m = int(free.rows()) - 1, n = int(free.cols()) - 1;
+  for (int i = 0; i <= m; ++i)
+    for (int j = 0; j <= n; ++j)
+      if (free(i, j) && std::min({i, j, m - i, n - j}) < rings)
+        p.fail(fmt::format("free[{}][{}]", i, j),
+               fmt::format("the point lies in the {} outer data ring(s) (\"rings\"); only points inside them can "
+                           "be free",
+                           rings));
+}
+
+double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {
+  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
+  Eigen::RowVector3d hi = -lo;
+  for (const auto* list : lists)
+    if (list->rows() > 0) {
+      lo = lo.cwiseMin(list->colwise().minCoeff());
+      hi = hi.cwiseMax(list->colwise().maxCoeff());
+    }
+  return (hi.array() >= lo.array()).all() ? (hi - lo).norm() : 0.0;
+}
+
+Ribbons parse_ribbons(const Parser& p, const json& doc, const Boundary& b, double corner_tolerance) {
+  const json& r = doc["ribbons"];
+  if (!r.is_object())
+    p.fail("ribbons", "must be an object with \"bottom\", \"top\", \"left\" and \"right\" (the second ring)");
+  if (b.m < 4 || b.n < 4)
+    p.fail("ribbons",
+           fmt::format("need degree >= 4 in both directions (two data rings around at least one free point), the "
+                       "sides give ({}, {}); write a smaller net in the \"net\" form with \"rings\"",
+                       b.m, b.n));
+  Ribbons out;
+  out.bottom = p.points(r, "bottom", "ribbons.");
+  out.top = p.points(r, "top", "ribbons.");
+  out.left = p.points(r, "left", "ribbons.");
+  out.right = p.points(r, "right", "ribbons.");
+  const int m = b.m, n = b.n;
+  const std::pair<const Eigen::MatrixX3d*, const char*> lists[] = {
+      {&out.bottom, "bottom"}, {&out.top, "top"}, {&out.left, "left"}, {&out.right, "right"}};
+  for (const auto& [list, name] : lists) {
+    const int want = (name[0] == 'b' || name[0] == 't') ? m + 1 : n + 1;
+    if (list->rows() != want)
+      p.fail(fmt::format("ribbons.{}", name),
+             fmt::format("has {} points, the {} side has {} (a ribbon runs along its side)", list->rows(),
+                         name[0] == 'b' || name[0] == 't' ? "bottom" : "left", want));
+  }
+  // Every point two of the lists share: (field, its value, what else gives it, that value).
+  struct Shared {
+    std::string field;
+    Eigen::RowVector3d value;
+    std::string other;
+    Eigen::RowVector3d other_value;
+  };
+  const Shared shared[] = {
+      {"ribbons.bottom[0]", out.bottom.row(0), "left[1]", b.left.row(1)},
+      {fmt::format("ribbons.bottom[{}]", m), out.bottom.row(m), "right[1]", b.right.row(1)},
+      {"ribbons.top[0]", out.top.row(0), fmt::format("left[{}]", n - 1), b.left.row(n - 1)},
+      {fmt::format("ribbons.top[{}]", m), out.top.row(m), fmt::format("right[{}]", n - 1), b.right.row(n - 1)},
+      {"ribbons.left[0]", out.left.row(0), "bottom[1]", b.bottom.row(1)},
+      {fmt::format("ribbons.left[{}]", n), out.left.row(n), "top[1]", b.top.row(1)},
+      {"ribbons.right[0]", out.right.row(0), fmt::format("bottom[{}]", m - 1), b.bottom.row(m - 1)},
+      {fmt::format("ribbons.right[{}]", n), out.right.row(n), fmt::format("top[{}]", m - 1), b.top.row(m - 1)},
+      {"ribbons.left[1]", out.left.row(1), "ribbons.bottom[1]", out.bottom.row(1)},
+      {fmt::format("ribbons.left[{}]", n - 1), out.left.row(n - 1), "ribbons.top[1]", out.top.row(1)},
+      {"ribbons.right[1]", out.right.row(1), fmt::format("ribbons.bottom[{}]", m - 1), out.bottom.row(m - 1)},
+      {fmt::format("ribbons.right[{}]", n - 1), out.right.row(n - 1), fmt::format("ribbons.top[{}]", m - 1),
+       out.top.row(m - 1)},
+  };
+  const double diagonal =
+      points_diagonal({&b.bottom, &b.top, &b.left, &b.right, &out.bottom, &out.top, &out.left, &out.right});
+  const double tolerance = corner_tolerance * std::max(diagonal, 1e-300);
+  for (const Shared& s : shared) {
+    const double gap = (s.value - s.other_value).norm();
+    if (!(gap <= tolerance))
+      p.fail(s.field, fmt::format("is the same net point as {}, but they disagree by {:.3g} (tolerance {:.3g})",
+                                  s.other, gap, tolerance));
+  }
+  return out;
 }
 
 }  // namespace
@@ -84,10 +183,20 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
       for (int j = 0; j <= n; ++j) net.at(i, j) = p.point(rows[i][j], fmt::format("net[{}][{}]", i, j));
     }
     check_degree(p, doc, m, n);
+    if (doc.contains("ribbons"))
+      p.fail("ribbons", "belongs to the sides form; a \"net\" holds its data rings itself (use \"rings\")");
+    out.rings = parse_rings(p, doc, m, n);
+    if (doc.contains("free")) {
+      out.free = free_grid_from_json(doc["free"], m, n, source);
+      check_free_inside_rings(p, out.free, out.rings);
+    }
     out.boundary = boundary_of(net, name);
     out.net = std::move(net);
     return out;
   }
+  for (const char* field : {"rings", "free"})
+    if (doc.contains(field))
+      p.fail(field, "belongs to the \"net\" form; the sides form has one data ring, or two with \"ribbons\"");
 
   Boundary& b = out.boundary;
   b.name = name;
@@ -110,11 +219,50 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
   if (gap.gap > tolerance)
     p.fail(gap.corner + " corner",
            fmt::format("the two sides meeting there disagree by {:.3g} (tolerance {:.3g})", gap.gap, tolerance));
+  if (doc.contains("ribbons")) {
+    out.ribbons = parse_ribbons(p, doc, b, options.corner_tolerance);
+    out.rings = 2;
+  }
   return out;
 }
 
 BoundaryFile read_boundary_file(const std::string& path, const BoundaryReadOptions& options) {
   return parse_boundary(read_json_file(path), path, options);
 }
+
+StencilProblem stencil_problem(const BoundaryFile& file) {
+  StencilProblem problem;
+  problem.rings = file.rings;
+  if (file.net) {
+    problem.net = *file.net;
+    problem.free = file.free;
+    return problem;
+  }
+  const Boundary& b = file.boundary;
+  if (!file.ribbons) {
+    problem.net = discrete_coons_net(b);
+    return problem;
+  }
+  // The ribbons as the boundary of the (m−2)×(n−2) net inside the frame: its discrete Coons net
+  // holds them on its frame (shared points from the bottom/top ribbons, as frame_net takes
+  // corners) and start values inside; the sides go around it.
+  const Ribbons& r = *file.ribbons;
+  const int m = b.m, n = b.n;
+  Boundary inner;
+  inner.m = m - 2;
+  inner.n = n - 2;
+  inner.bottom = r.bottom.middleRows(1, m - 1);
+  inner.top = r.top.middleRows(1, m - 1);
+  inner.left = r.left.middleRows(1, n - 1);
+  inner.right = r.right.middleRows(1, n - 1);
+  const ControlNet inside = discrete_coons_net(inner);
+  ControlNet net = frame_net(b);
+  for (int i = 1; i < m; ++i)
+    for (int j = 1; j < n; ++j) net.at(i, j) = inside.at(i - 1, j - 1);
+  problem.net = std::move(net);
+  return problem;
+}
+
+bool is_classical(const BoundaryFile& file) { return file.rings == 1 && file.free.size() == 0; }
 
 }  // namespace coons

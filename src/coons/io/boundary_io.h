@@ -1,12 +1,22 @@
-// Reading the boundary JSON of docs/formats.md: four sides (bottom/top: m+1 points, left/right: n+1)
-// or a full "net" (m+1 rows of n+1 points). Every violation throws InputError naming the file,
-// the field and the reason.
+// Reading the boundary JSON of docs/formats.md: four sides (bottom/top: m+1 points, left/right: n+1),
+// optionally with the second ring as "ribbons", or a full "net" (m+1 rows of n+1 points), optionally
+// with "rings" (how many outer rings are data) and a "free" grid (the points to solve for). Every
+// violation throws InputError naming the file, the field (with the index) and the reason.
+//
+//   ribbons  {"bottom": b[i][1], "top": b[i][n−1] (i = 0..m), "left": b[1][j], "right": b[m−1][j]
+//            (j = 0..n)}: all four or none; their ends are points of the sides and of each other
+//            and must agree to the corner tolerance. Needs m, n ≥ 4 (two data rings around at
+//            least one free point); a smaller net with two data rings is written in the "net" form.
+//   rings    an integer from 1 to min(m, n)/2 + 1 (the rings the net has; all of them: nothing is free).
+//   free     (m+1) rows of (n+1) values 0/1; a free point must lie inside the data rings.
 #pragma once
 
+#include <Eigen/Core>
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
 
+#include "coons/mask/stencil_problem.h"
 #include "coons/net/control_net.h"
 
 namespace coons {
@@ -16,9 +26,18 @@ struct BoundaryReadOptions {
   double corner_tolerance = 1e-9;
 };
 
+//! The second ring of a net given with its sides: bottom = b[i][1], top = b[i][n−1] (#m+1 by 3),
+//! left = b[1][j], right = b[m−1][j] (#n+1 by 3).
+struct Ribbons {
+  Eigen::MatrixX3d bottom, top, left, right;
+};
+
 struct BoundaryFile {
-  Boundary boundary;              //!< always present (from the sides or the net's frame)
-  std::optional<ControlNet> net;  //!< present when the file held "net"
+  Boundary boundary;               //!< always present (from the sides or the net's frame)
+  std::optional<ControlNet> net;   //!< present when the file held "net"
+  std::optional<Ribbons> ribbons;  //!< present when the sides came with "ribbons"
+  int rings = 1;                   //!< data rings: "rings" of the net form, 2 with ribbons, else 1
+  FreeGrid free;                   //!< the "free" grid of the net form (empty: inside the rings)
 };
 
 //! Parse and validate. `source` names the input in error messages (a path or "<stdin>").
@@ -27,5 +46,14 @@ BoundaryFile parse_boundary(const nlohmann::json& doc, const std::string& source
 
 //! Read a file and parse it; unreadable files and malformed JSON are InputErrors too.
 BoundaryFile read_boundary_file(const std::string& path, const BoundaryReadOptions& options = {});
+
+//! The mask problem a file describes: the net form gives its net, rings and free grid; sides with
+//! ribbons a net holding both data rings (rings = 2) with the discrete Coons net of the inner ring
+//! inside as start values; sides alone the discrete Coons net with rings = 1. Never throws (the
+//! file was validated when parsed); whether a mask fits the problem is check_stencil_problem's.
+StencilProblem stencil_problem(const BoundaryFile& file);
+
+//! True for the classical problem: one data ring and no free grid.
+bool is_classical(const BoundaryFile& file);
 
 }  // namespace coons
