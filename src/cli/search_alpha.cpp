@@ -126,7 +126,7 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
 // The two data rings the C1 family needs, from the file: bad input when it has one ring, or when
 // the 5×5 stencil does not fit its free points.
 StencilProblem weight_problem(const std::string& path, const BoundaryFile& file) {
-  TwoRingProblem two = two_ring_problem(path, file);
+  TwoRingProblem two = two_ring_problem(file);
   if (!two.problem) throw InputError(path, two.field, two.reason);
   const std::vector<ProblemIssue> issues = check_stencil_problem(*two.problem, c1_family_stencil(0.5));
   if (!issues.empty()) throw InputError(path, issues.front().field, issues.front().reason);

@@ -255,6 +255,30 @@ TEST_CASE("coons search-alpha --parameter weight: the C1 family on two data ring
     CHECK(report["weight"].is_null());
   CHECK(report["value"].get<double>() == Approx(s.value).epsilon(1e-12));
 
+  // the same two rings as sides with "ribbons": the same search
+  json with_ribbons = boundary_to_json(boundary_of(net));
+  auto column = [&](int j) {
+    json c = json::array();
+    for (int i = 0; i <= net.m; ++i) c.push_back({net.at(i, j)(0), net.at(i, j)(1), net.at(i, j)(2)});
+    return c;
+  };
+  auto row = [&](int i) {
+    json c = json::array();
+    for (int j = 0; j <= net.n; ++j) c.push_back({net.at(i, j)(0), net.at(i, j)(1), net.at(i, j)(2)});
+    return c;
+  };
+  with_ribbons["ribbons"] = {
+      {"bottom", column(1)}, {"top", column(net.n - 1)}, {"left", row(1)}, {"right", row(net.m - 1)}};
+  const std::string ribbons = dir.write("ribbons.json", with_ribbons.dump());
+  const CommandResult rr = run_command(kCoons + " search-alpha " + quoted(ribbons) +
+                                       " --objective e3 --parameter weight --solver eigen-ldlt");
+  INFO(rr.err);
+  REQUIRE(rr.status == 0);
+  const json by_ribbons = json::parse(rr.out);
+  CHECK(by_ribbons["status"] == report["status"]);
+  CHECK(by_ribbons["weight"] == report["weight"]);
+  CHECK(by_ribbons["value"].get<double>() == Approx(report["value"].get<double>()).epsilon(1e-12));
+
   // one ring: bad input naming the field
   doc["rings"] = 1;
   const std::string one = dir.write("one.json", doc.dump());

@@ -5,6 +5,7 @@
 #include <cmath>
 
 #include "coons/alpha/weight_search.h"
+#include "coons/io/net_json.h"
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
 #include "coons/study/provenance.h"
@@ -189,4 +190,22 @@ TEST_CASE("utc_iso8601: a fixed time point in ISO 8601, UTC", "[study]") {
   CHECK(p.command_line == "coons study x");
   CHECK(p.date.size() == 20);
   CHECK(!p.version.empty());
+}
+
+TEST_CASE("read_study_input: a net with rings 2 gives the two-ring problem, one ring gives the reason", "[study]") {
+  TempDir dir;
+  const ControlNet net = make_random_net(6, 5, 8);
+  json doc = {{"name", "r"}, {"net", net_to_json(net)}, {"rings", 2}};
+  const StudyInput two = read_study_input(dir.write("two.json", doc.dump()));
+  REQUIRE(two.two_rings);
+  CHECK(two.two_rings->rings == 2);
+  CHECK(max_difference(two.two_rings->net, net) == 0);
+  CHECK(two.one_ring.empty());
+  doc["rings"] = 1;
+  const StudyInput one = read_study_input(dir.write("one.json", doc.dump()));
+  CHECK_FALSE(one.two_rings);
+  CHECK(one.one_ring == "one data ring, rings 1");
+  const StudyInput sides = read_study_input(dir.write("sides.json", boundary_to_json(boundary_of(net)).dump()));
+  CHECK_FALSE(sides.two_rings);
+  CHECK(sides.one_ring == "one data ring, no ribbons");
 }

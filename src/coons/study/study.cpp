@@ -33,7 +33,7 @@ StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& 
   in.file = path;
   const BoundaryFile file = read_boundary_file(path, options);
   in.boundary = file.boundary;
-  TwoRingProblem two = two_ring_problem(path, file);
+  TwoRingProblem two = two_ring_problem(file);
   if (two.problem) {
     const std::vector<ProblemIssue> issues = check_stencil_problem(*two.problem, c1_family_stencil(0.5));
     if (!issues.empty()) throw InputError(path, issues.front().field, issues.front().reason);

@@ -19,8 +19,8 @@ struct TwoRingProblem {
   std::string reason;                     //!< and why, one line, no trailing period
 };
 
-//! `path` is the file `file` was read from (named in input errors). Throws InputError only for a
-//! malformed field the boundary reader does not check itself.
-TwoRingProblem two_ring_problem(const std::string& path, const BoundaryFile& file);
+//! From the file's stencil_problem (boundary_io.h): its net, rings and free grid when it has two
+//! data rings or more. Never throws.
+TwoRingProblem two_ring_problem(const BoundaryFile& file);
 
 }  // namespace coons
