@@ -166,4 +166,8 @@ TEST_CASE("search_weight: a problem with one data ring is refused as not applica
   CHECK(search_weight(p, objective_named("thin_plate"), backend("eigen-ldlt"), wide).status ==
         SearchStatus::kNotApplicable);
   CHECK(WeightSearchOptions{}.is_valid(nullptr));
+  const AlphaSearchSummary no_matrix = search_weight(p, objective_named("thin_plate"), backend("gauss-seidel"));
+  CHECK(no_matrix.status == SearchStatus::kNotApplicable);
+  CHECK(no_matrix.message.rfind("solver: ", 0) == 0);
+  CHECK(no_matrix.evaluations == 0);
 }
