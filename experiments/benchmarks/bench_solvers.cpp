@@ -2,12 +2,14 @@
 // Every figure is meant to be read as a multiple of BM_MemoryPass at the same N, measured in the
 // same run (scripts/bench.sh turns the JSON output into a table, a plot and scaling exponents).
 //
-//   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick]
+//   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick] [--large]
 //                 [google benchmark flags, e.g. --benchmark_format=json]
 //
 // Default sizes per family keep the full run within minutes: direct backends up to 1023,
 // Krylov backends up to 255 (127 at α = −1/4, where CG needs O(N²) iterations), the classical
-// mask iterations up to 63, structured backends up to 2047.
+// mask iterations up to 63, structured backends up to 2047. The 5×5 set (BM_Stencil5: c1-coons,
+// biharmonic, the c1 family at w = 0.5 on the full rectangle, and w = 0.5 with a hole, through
+// separable-banded, fast5 and pcg-fast) runs at N = 127..511, and at 1023 with --large.
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -26,6 +28,7 @@
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
+#include "solvers/stencil_operator.h"
 
 using namespace coons;
 using namespace coons::solvers;
@@ -37,6 +40,7 @@ struct Config {
   std::vector<double> alphas = {-0.25, -0.1, 0.0};
   std::vector<std::string> backends;  // empty: all
   bool quick = false;
+  bool large = false;  // the 5×5 set at N = 1023 too
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -272,6 +276,77 @@ void BM_SearchAlpha(benchmark::State& state, const std::string& name, int N, boo
   state.SetLabel(name + (spectral ? " spectral " : " solve ") + to_string(s.status));
 }
 
+// The 5×5 problems: w·C + (1−w)·T on the N×N free points of a net with two data rings, every point
+// free, or (hole) a centred square of side N/4 fixed too; the right-hand side is that of a mask
+// system: the fixed points' values (a smooth surface, x, y and z) moved to the right-hand side.
+struct Stencil5Problem {
+  StencilOperator op;
+  Eigen::MatrixX3d B;
+};
+
+const Stencil5Problem& stencil5_problem(double w, bool hole, int N) {
+  static std::map<std::tuple<double, bool, int>, Stencil5Problem> cache;
+  const auto key = std::make_tuple(w, hole, N);
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  const double d4[5] = {1, -4, 6, -4, 1}, d2[5] = {0, 1, -2, 1, 0}, e[5] = {0, 0, 1, 0, 0};
+  std::vector<double> weights(25);
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      weights[std::size_t(i) * 5 + std::size_t(j)] =
+          (w * d4[i] * d4[j] + (1 - w) * (d4[i] * e[j] + 2 * d2[i] * d2[j] + e[i] * d4[j])) / (20 + 16 * w);
+  Stencil5Problem p;
+  p.op = make_stencil_operator(N, N, weights);
+  if (hole) {
+    p.op.free.assign(std::size_t(N) * std::size_t(N), 1);
+    for (int i = 3 * N / 8; i < 3 * N / 8 + N / 4; ++i)
+      for (int j = 3 * N / 8; j < 3 * N / 8 + N / 4; ++j) p.op.free[std::size_t(i) * std::size_t(N) + std::size_t(j)] = 0;
+  }
+  // point (i, j) of the N×N grid is (i + 2, j + 2) of the (N + 4)² net
+  const auto value = [N](int i, int j, int c) {
+    const double u = double(i + 2) / (N + 3), v = double(j + 2) / (N + 3);
+    return c == 0 ? u : c == 1 ? v : std::sin(3 * u) * std::cos(2 * v) + 0.1 * std::sin(17 * u * v);
+  };
+  const std::vector<Eigen::Index> number = free_numbering(p.op);
+  p.B.setZero(p.op.size(), 3);
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) {
+      const Eigen::Index row = number[std::size_t(i) * std::size_t(N) + std::size_t(j)];
+      if (row < 0) continue;
+      for (int di = -2; di <= 2; ++di)
+        for (int dj = -2; dj <= 2; ++dj) {
+          const int ii = i + di, jj = j + dj;
+          const bool inside = ii >= 0 && ii < N && jj >= 0 && jj < N;
+          if (inside && number[std::size_t(ii) * std::size_t(N) + std::size_t(jj)] >= 0) continue;  // free
+          for (int c = 0; c < 3; ++c) p.B(row, c) -= p.op.weight(di, dj) * value(ii, jj, c);
+        }
+    }
+  return cache.emplace(key, std::move(p)).first->second;
+}
+
+// One fresh solve (analyze + factorize + solve) of a 5×5 problem, from the grid operator only.
+void BM_Stencil5(benchmark::State& state, const std::string& name, double w, bool hole, int N) {
+  const Stencil5Problem& p = stencil5_problem(w, hole, N);
+  LinearOperator op;
+  op.grid = &p.op;
+  SolverOptions timed;
+  timed.compute_residual = false;
+  Eigen::MatrixX3d X;
+  SolveSummary s = make_solver(name, timed)->compute_and_solve(op, p.B, X);  // plans the FFTs
+  for (auto _ : state) {
+    auto solver = make_solver(name, timed);
+    s = solver->compute_and_solve(op, p.B, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  s.relative_residual = relative_residual(op, p.B, X);
+  set_common_counters(state, N);
+  state.counters["w"] = w;
+  state.counters["iterations"] = s.iterations;
+  state.counters["residual"] = s.relative_residual;
+  state.counters["ok"] = s.ok();
+  state.SetLabel(name + (s.ok() ? "" : std::string(" status=") + to_string(s.status)));
+}
+
 int size_cap(const SolverInfo& info, double alpha) {
   if (info.family == SolverFamily::kStructured) return 2047;
   if (info.family == SolverFamily::kDirect) return 1023;
@@ -295,6 +370,8 @@ int main(int argc, char** argv) {
       for (const auto& s : split(value("--alphas="))) config.alphas.push_back(std::stod(s));
     } else if (arg.rfind("--backends=", 0) == 0) {
       config.backends = split(value("--backends="));
+    } else if (arg == "--large") {
+      config.large = true;
     } else if (arg == "--quick") {
       config.quick = true;
       config.sizes = {15, 31};
@@ -319,6 +396,7 @@ int main(int argc, char** argv) {
     }
     for (const SolverInfo& info : available_solvers()) {
       if (!wanted(info.name)) continue;
+      if (info.name == "fast5" || info.name == "separable-banded") continue;  // 5×5 / separable: BM_Stencil5
       for (double alpha : config.alphas) {
         if (!config.quick && N > size_cap(info, alpha)) continue;
         const std::string tag =
@@ -351,6 +429,24 @@ int main(int argc, char** argv) {
             o, N)
             ->UseRealTime()
             ->MinTime(min_time);
+    if (config.quick || (N >= 127 && (N <= 511 || (N <= 1023 && config.large)))) {
+      struct Case {
+        const char* name;
+        const char* backend;
+        double w;
+        bool hole;
+      };
+      for (const Case& c : {Case{"c1-coons", "separable-banded", 1.0, false}, Case{"c1-coons", "fast5", 1.0, false},
+                            Case{"biharmonic", "fast5", 0.0, false}, Case{"c1-family-0.5", "fast5", 0.5, false},
+                            Case{"hole-0.5", "pcg-fast", 0.5, true}}) {
+        if (!find_solver(c.backend) || !wanted(c.backend)) continue;
+        benchmark::RegisterBenchmark(
+            ("BM_Stencil5/" + std::string(c.name) + "/" + c.backend + "/N:" + std::to_string(N)).c_str(), BM_Stencil5,
+            std::string(c.backend), c.w, c.hole, N)
+            ->UseRealTime()
+            ->MinTime(min_time);
+      }
+    }
     if (wanted("auto"))
       for (double alpha : config.alphas)
         benchmark::RegisterBenchmark(
