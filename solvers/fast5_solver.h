@@ -20,10 +20,15 @@
 //              factors (O(rows·cols)) and the capacitance blocks (O(rows·cols));
 //   solve      per right-hand side: a sine transform of each row, two banded passes along i, the
 //              capacitance solves, an inverse transform of each row.
-// summary.iterations is the largest number of capacitance CG iterations (to 1e-14). Measured on
-// square grids N×N at w = 0.5 (c1-family) / biharmonic: 10 / 8 at N = 31, 12 / 9 at 127,
-// 14 / 10 at 511, 15 / 10 at 1023 (the Jacobi-scaled capacitance blocks have condition numbers of
-// about 1.5 (biharmonic) to 2 (w = 0.5), growing like N for w → 1).
+// The capacitance operator is formed from differences of large terms (the sine-basis inverses of
+// the low modes cancel), so a first solve loses digits as N grows (relative residual 5e-8 at
+// N = 511, 1e-6 at 1023 on mask data); up to two steps of iterative refinement on the true
+// residual (A applied in Kronecker form, O(rows·cols)) bring it to ~1e-14 at every N measured.
+// summary.iterations is the largest number of capacitance CG iterations (to 1e-14) of any solve.
+// Measured (BM_Stencil5, N×N, mask right-hand sides), biharmonic / c1-family w = 0.5: 5 / 5 at
+// N = 15, 6 / 6 at 31, 7 / 7 at 127, 7 / 8 at 255, 8 / 8 at 511, 8 / 9 at 1023: about log N.
+// The Jacobi-scaled capacitance blocks have condition numbers of 1.1–1.3 (biharmonic) and
+// 1.35–1.5 (w = 0.5) from N = 15 to 63, but 5, 10, 20 (∝ N) for the pure c1-coons stencil.
 // b = 0 (pure c1-coons, κ ∝ N⁸) is separable and goes to the separable banded solver instead.
 // Based on: P. E. Bjørstad, Fast numerical solution of the biharmonic Dirichlet problem on
 // rectangles, SIAM J. Numer. Anal. 20 (1983) 59–71 (capacitance on the boundary columns);

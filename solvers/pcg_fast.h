@@ -7,9 +7,10 @@
 // every other stencil is not_applicable. The preconditioner (A_box⁻¹)_FF is the inverse of the
 // Schur complement A_FF − A_FX A_XX⁻¹ A_XF, so the preconditioned operator is the identity plus
 // a term of rank at most the number of fixed points next to free ones inside the rectangle:
-// the iterations grow with the fixed set's perimeter, not with the grid (measured: a square
-// hole of side N/4 in an N×N c1-family w = 0.5 grid, 3 right-hand sides to 1e-12: 38 iterations
-// at N = 31, 60 at 63, 85 at 127). On a full rectangle it converges in one iteration.
+// the iterations grow with the fixed set's perimeter (measured, BM_Stencil5: a centred square hole
+// of side N/4 in an N×N c1-family w = 0.5 grid, mask right-hand sides, 3 columns to 1e-12: 11
+// iterations at N = 15, 30 at 31, 89 at 127, 186 at 255 — about linear in N, so a fixed hole is
+// cheap and a hole that grows with the grid is not). On a full rectangle it takes one iteration.
 //
 //   analyze    the grid operator (op.grid, else the 3×3 op.stencil) and the inner solver's analysis;
 //   factorize  the inner solver's factorisation; for 3×3 stencils the exact eigenvalue range of the

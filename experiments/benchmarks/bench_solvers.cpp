@@ -300,7 +300,8 @@ const Stencil5Problem& stencil5_problem(double w, bool hole, int N) {
   if (hole) {
     p.op.free.assign(std::size_t(N) * std::size_t(N), 1);
     for (int i = 3 * N / 8; i < 3 * N / 8 + N / 4; ++i)
-      for (int j = 3 * N / 8; j < 3 * N / 8 + N / 4; ++j) p.op.free[std::size_t(i) * std::size_t(N) + std::size_t(j)] = 0;
+      for (int j = 3 * N / 8; j < 3 * N / 8 + N / 4; ++j)
+        p.op.free[std::size_t(i) * std::size_t(N) + std::size_t(j)] = 0;
   }
   // point (i, j) of the N×N grid is (i + 2, j + 2) of the (N + 4)² net
   const auto value = [N](int i, int j, int c) {

@@ -187,8 +187,8 @@ TEST_CASE("pcg-fast: indefinite 3x3 boxes and stencils without a structured solv
   std::vector<double> other = c1_family(0.5);
   other[0] += 0.01;
   const StencilOperator uncovered = make_problem(12, 12, other, Shape::kHole);
-  for (const auto& [op, expected] : {std::pair{&indefinite, SolveStatus::kNotPositiveDefinite},
-                                     {&uncovered, SolveStatus::kNotApplicable}}) {
+  for (const auto& [op, expected] :
+       {std::pair{&indefinite, SolveStatus::kNotPositiveDefinite}, {&uncovered, SolveStatus::kNotApplicable}}) {
     LinearOperator lop;
     lop.grid = op;
     Eigen::MatrixX3d X;

@@ -13,8 +13,8 @@
 // The backends get op.matrix when assembled, op.stencil (a GridStencil) when the stencil is
 // 3×3 on a full rectangle, so the transform backends ("dst", "fast") solve the α family with any
 // number of rings, and op.grid (the stencil on the free points' bounding rectangle with its free
-// mask) always, for fast5, pcg-fast and the multigrid backends. Numerical trouble is a status in the summary, never an exception.
-// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
+// mask) always, for fast5, pcg-fast and the multigrid backends. Numerical trouble is a status in the summary, never an
+// exception. Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
 #include <functional>
