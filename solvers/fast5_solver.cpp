@@ -20,11 +20,11 @@ constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
 constexpr std::array<double, 5> kImpulse = {0, 0, 1, 0, 0};
 constexpr double kCapacitanceTolerance = 1e-14;
 constexpr int kRefinements = 2;             // at most this many refinement steps per right-hand side
-constexpr double kRefinedResidual = 1e-12;  // relative residual at which refinement stops
+constexpr double kRefinedResidual = 1e-11;  // relative residual at which refinement stops
 
-double c_weight(int di, int dj) { return kDelta4[std::size_t(di + 2)] * kDelta4[std::size_t(dj + 2)]; }
+double c_weight(int di, int dj) { return kDelta4[std::size_t(di) + 2] * kDelta4[std::size_t(dj) + 2]; }
 double t_weight(int di, int dj) {
-  const auto i = std::size_t(di + 2), j = std::size_t(dj + 2);
+  const auto i = std::size_t(di) + 2, j = std::size_t(dj) + 2;
   return kDelta4[i] * kImpulse[j] + 2 * kDelta2[i] * kDelta2[j] + kImpulse[i] * kDelta4[j];
 }
 
@@ -205,7 +205,7 @@ class Fast5Solver final : public LinearSolver {
       std::vector<int> qs;
       for (int q = qpar; q < C_; q += 2) qs.push_back(q);
       for (int ppar = 0; ppar < 2; ++ppar) {
-        CapacitanceBlock& blk = blocks_[std::size_t(2 * qpar + ppar)];
+        CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
         blk.modes.clear();
         for (int p = ppar; p < R_; p += 2) blk.modes.push_back(p);
         const auto n = Eigen::Index(blk.modes.size());
@@ -304,7 +304,7 @@ class Fast5Solver final : public LinearSolver {
       along_i_.apply(g.data(), ghat.data(), scale_i);
       hhat.setZero();
       for (int ppar = 0; ppar < 2; ++ppar) {
-        const CapacitanceBlock& blk = blocks_[std::size_t(2 * qpar + ppar)];
+        const CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
         Eigen::VectorXd rhs(Eigen::Index(blk.modes.size()));
         for (std::size_t k = 0; k < blk.modes.size(); ++k) rhs[Eigen::Index(k)] = ghat[blk.modes[k]];
         iterations = std::max(iterations, blk.solve(rhs, part));

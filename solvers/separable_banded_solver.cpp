@@ -4,7 +4,6 @@
 #include <cmath>
 #include <optional>
 #include <string>
-#include <utility>
 
 #include "stencil_operator.h"
 
@@ -65,7 +64,7 @@ void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int c
 class SeparableBandedSolver final : public LinearSolver {
  public:
   SeparableBandedSolver(std::optional<SeparableBandedOperator> op, const SolverOptions& options)
-      : LinearSolver(options), fixed_(std::move(op)) {}
+      : LinearSolver(options), fixed_(op) {}
 
   [[nodiscard]] std::string name() const override { return "separable-banded"; }
 
