@@ -46,6 +46,7 @@ def main():
     sweep = defaultdict(dict)    # backend -> N -> seconds
     ordering = defaultdict(dict)  # (ordering) -> N -> seconds
     search = defaultdict(dict)    # backend -> N -> (seconds, bench)
+    stencil5 = defaultdict(dict)  # (problem, backend) -> N -> (seconds, bench)
     for b in runs:
         name = b["name"]
         n = int(b.get("N", 0))
@@ -65,6 +66,8 @@ def main():
             search[m.group(1) + " (sine basis)"][n] = (t, b)
         elif m := re.match(r"BM_CholmodOrdering/([^/]+)/", name):
             ordering[m.group(1)][n] = t
+        elif m := re.match(r"BM_Stencil5/([^/]+)/([^/]+)/N:", name):
+            stencil5[(m.group(1), m.group(2))][n] = (t, b)
 
     lines = [f"# Solver scaling: {doc['context'].get('date', '')}, {doc['context'].get('num_cpus', '?')} CPUs",
              "",
@@ -158,6 +161,30 @@ def main():
                              f"{one[0]:.3g} | {ratio} |" if one else f"| {backend} | {n} | {t:.3g} | – | – | – | – |")
         lines.append("")
 
+    if stencil5:
+        lines.append("## 5×5 masks (two data rings): fresh solve as a multiple of the memory pass")
+        lines.append("")
+        lines.append("c1-coons = C, biharmonic = T, c1-family-0.5 = (C + T)/2 on the full N×N rectangle;")
+        lines.append("hole-0.5 = the same with a centred square of side N/4 fixed. `it`: iterations (fast5: of")
+        lines.append("the capacitance CG; pcg-fast: of the outer CG); `res`: true relative residual.")
+        lines.append("")
+        n5 = sorted({n for per_n in stencil5.values() for n in per_n})
+        lines.append("| problem | backend | " + " | ".join(f"N={n}" for n in n5) + " |")
+        lines.append("|" + "---|" * (len(n5) + 2))
+        for (problem, backend), per_n in sorted(stencil5.items()):
+            cells = []
+            for n in n5:
+                if n not in per_n or n not in memory:
+                    cells.append("–")
+                    continue
+                t, b = per_n[n]
+                cell = f"{t:.3g} s ({t / memory[n]:.1f}×), {int(b.get('iterations', 1))} it, res {b.get('residual', 0):.1e}"
+                if not b.get("ok", 1):
+                    cell += " ✗"
+                cells.append(cell)
+            lines.append(f"| {problem} | {backend} | " + " | ".join(cells) + " |")
+        lines.append("")
+
     if ordering:
         lines.append("## CHOLMOD supernodal by ordering (α = −0.25)")
         lines.append("")
@@ -211,6 +238,14 @@ def main():
             sr = search[label].get(n)
             row(f"α search with its net, {label.split(' ', 1)[1][1:-1]}, / one `fast` solve",
                 search_cost(label, sr[0], one[0]) if sr and one else None, 10, "×")
+        def ratio5(problem, backend):
+            hit = stencil5.get((problem, backend), {}).get(n)
+            return hit[0] / mem if hit and hit[1].get("ok", 1) else None
+
+        if stencil5:
+            row("c1-coons via `separable-banded`", ratio5("c1-coons", "separable-banded"), 3)
+            row("biharmonic via `fast5`", ratio5("biharmonic", "fast5"), 10)
+            row("c1-family w = 0.5 via `fast5`", ratio5("c1-family-0.5", "fast5"), 10)
         chol = ordering and {name: per_n[n] for name, per_n in ordering.items() if n in per_n}
         if chol and ("cholmod", -0.25) in solve and n in solve[("cholmod", -0.25)]:
             best = min(chol.values())

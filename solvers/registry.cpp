@@ -5,10 +5,13 @@
 #include "eigen_iterative.h"
 #include "mask_iterations.h"
 #include "multigrid_solvers.h"
+#include "separable_banded_solver.h"
 #if COONS_HAVE_SUITESPARSE
 #include "suitesparse_direct.h"
 #endif
 #if COONS_HAVE_FFTW
+#include "fast5_solver.h"
+#include "pcg_fast.h"
 #include "structured_solvers.h"
 #endif
 
@@ -64,7 +67,15 @@ const std::vector<Entry>& entries() {
     {{"fast", SolverFamily::kStructured, false, false,
       "sine transform along j + tridiagonal solves along i; Kronecker path for alpha = -1/4; exact for any alpha"},
      make_fast_solver},
+    {{"fast5", SolverFamily::kStructured, false, false,
+      "5x5 a*C + b*T stencils (c1-coons, c1-family, biharmonic) on a full rectangle: sine transform along j, "
+      "banded solves along i, capacitance CG on the first and last column; exact"},
+     make_fast5_solver},
 #endif
+    {{"separable-banded", SolverFamily::kStructured, false, false,
+      "separable stencils u(a) v(b) (c1-coons, alpha = -1/4) on a full rectangle: two batches of banded LDL^T "
+      "solves; exact"},
+     make_separable_banded},
     {{"mg", SolverFamily::kIterative, false, false,
       "geometric multigrid V-cycles, alternating line Gauss-Seidel, Galerkin coarse grids (3x3/5x5 stencils, free "
       "sets)"},
@@ -75,6 +86,12 @@ const std::vector<Entry>& entries() {
     {{"gmres", SolverFamily::kIterative, false, false,
       "restarted GMRES(50), multigrid-preconditioned on a grid stencil, else ILUT (nonsymmetric systems)"},
      make_gmres},
+#if COONS_HAVE_FFTW
+    {{"pcg-fast", SolverFamily::kIterative, false, true,
+      "conjugate gradients preconditioned by the exact structured solve of the bounding rectangle (free sets with "
+      "holes, L-shapes, fixed curves)"},
+     make_pcg_fast_solver},
+#endif
   };
   return list;
 }

@@ -2,7 +2,10 @@
 
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
+
+#include "stencil_operator.h"
 
 namespace coons::solvers {
 
@@ -60,22 +63,18 @@ void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int c
 
 class SeparableBandedSolver final : public LinearSolver {
  public:
-  SeparableBandedSolver(const SeparableBandedOperator& op, const SolverOptions& options)
-      : LinearSolver(options), op_(op) {}
+  SeparableBandedSolver(std::optional<SeparableBandedOperator> op, const SolverOptions& options)
+      : LinearSolver(options), fixed_(op) {}
 
   [[nodiscard]] std::string name() const override { return "separable-banded"; }
 
  protected:
   SolveStatus do_analyze(const LinearOperator& op, SolveSummary& summary) override {
-    if (op.size() != op_.size()) {
-      summary.message = "the operator has " + std::to_string(op.size()) + " unknowns, the separable grid " +
-                        std::to_string(op_.rows) + " x " + std::to_string(op_.cols);
-      return SolveStatus::kNotApplicable;
-    }
-    return SolveStatus::kSuccess;
+    return describe(op, summary) ? SolveStatus::kSuccess : SolveStatus::kNotApplicable;
   }
 
-  SolveStatus do_factorize(const LinearOperator&, SolveSummary& summary) override {
+  SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
+    if (!describe(op, summary)) return SolveStatus::kNotApplicable;
     if (banded_ldlt(op_.along_i, op_.rows, fi_) != SolveStatus::kSuccess ||
         banded_ldlt(op_.along_j, op_.cols, fj_) != SolveStatus::kSuccess) {
       summary.message = "a zero pivot in the banded LDL^T of a factor";
@@ -92,6 +91,28 @@ class SeparableBandedSolver final : public LinearSolver {
   }
 
  private:
+  // op_ = the operator given at construction, else the one read from op; false (with the reason
+  // in the summary) when there is none or its size differs from op's.
+  bool describe(const LinearOperator& op, SolveSummary& summary) {
+    if (fixed_) {
+      op_ = *fixed_;
+    } else if (auto found = separable_operator(op)) {
+      op_ = *found;
+    } else {
+      summary.message =
+          "needs a separable stencil (w(a,b) = u(a) v(b), symmetric) on a full rectangle (a grid stencil or "
+          "grid operator)";
+      return false;
+    }
+    if (op.size() != op_.size()) {
+      summary.message = "the operator has " + std::to_string(op.size()) + " unknowns, the separable grid " +
+                        std::to_string(op_.rows) + " x " + std::to_string(op_.cols);
+      return false;
+    }
+    return true;
+  }
+
+  std::optional<SeparableBandedOperator> fixed_;
   SeparableBandedOperator op_;
   BandedLdlt fi_, fj_;
 };
@@ -162,6 +183,47 @@ SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eige
 std::unique_ptr<LinearSolver> make_separable_banded_solver(const SeparableBandedOperator& op,
                                                            const SolverOptions& options) {
   return std::make_unique<SeparableBandedSolver>(op, options);
+}
+
+std::unique_ptr<LinearSolver> make_separable_banded(const SolverOptions& options) {
+  return std::make_unique<SeparableBandedSolver>(std::nullopt, options);
+}
+
+std::optional<SeparableBandedOperator> separable_operator(const StencilOperator& g) {
+  if (!g.is_valid(nullptr) || g.size() != Eigen::Index(g.rows) * g.cols) return std::nullopt;
+  const int r = g.radius;
+  int pi = 0, pj = 0;  // the largest weight: the pivot of the rank-one split
+  double scale = 0;
+  for (int di = -r; di <= r; ++di)
+    for (int dj = -r; dj <= r; ++dj)
+      if (std::abs(g.weight(di, dj)) > scale) {
+        scale = std::abs(g.weight(di, dj));
+        pi = di;
+        pj = dj;
+      }
+  if (!(scale > 0)) return std::nullopt;
+  const double tol = 1e-12 * scale;
+  const double pivot = g.weight(pi, pj);
+  for (int di = -r; di <= r; ++di)
+    for (int dj = -r; dj <= r; ++dj) {
+      const double w = g.weight(di, dj);
+      if (std::abs(w - g.weight(di, pj) * g.weight(pi, dj) / pivot) > tol) return std::nullopt;
+      if (std::abs(w - g.weight(-di, dj)) > tol || std::abs(w - g.weight(di, -dj)) > tol) return std::nullopt;
+    }
+  SeparableBandedOperator op;
+  op.rows = g.rows;
+  op.cols = g.cols;
+  for (int k = 0; k <= r; ++k) {
+    op.along_i[std::size_t(k)] = g.weight(k, pj);
+    op.along_j[std::size_t(k)] = g.weight(pi, k) / pivot;
+  }
+  return op;
+}
+
+std::optional<SeparableBandedOperator> separable_operator(const LinearOperator& op) {
+  if (op.grid) return separable_operator(*op.grid);
+  if (op.stencil) return separable_operator(stencil_operator(*op.stencil));
+  return std::nullopt;
 }
 
 }  // namespace coons::solvers

@@ -25,9 +25,11 @@
 #include <Eigen/SparseCore>
 #include <array>
 #include <memory>
+#include <optional>
 #include <vector>
 
 #include "linear_solver.h"
+#include "stencil_operator.h"
 
 namespace coons::solvers {
 
@@ -59,5 +61,15 @@ SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eige
 //! uses the operator given here; analyze reports kNotApplicable when op's size is not rows·cols.
 std::unique_ptr<LinearSolver> make_separable_banded_solver(const SeparableBandedOperator& op,
                                                            const SolverOptions& options = {});
+
+//! The registry's "separable-banded": reads the operator from op.grid (3×3 or 5×5, every point
+//! free) or op.stencil at analyze/factorize; kNotApplicable when the stencil is not separable.
+std::unique_ptr<LinearSolver> make_separable_banded(const SolverOptions& options = {});
+
+//! The stencil as P ⊗ Q when it is separable (w(a, b) = u(a)·v(b) to 1e-12 relative, u and v
+//! symmetric) and every grid point is free; nullopt otherwise.
+std::optional<SeparableBandedOperator> separable_operator(const StencilOperator& grid);
+//! The same for op.grid, else op.stencil; nullopt when op has neither.
+std::optional<SeparableBandedOperator> separable_operator(const LinearOperator& op);
 
 }  // namespace coons::solvers

@@ -2,12 +2,15 @@
 // Every figure is meant to be read as a multiple of BM_MemoryPass at the same N, measured in the
 // same run (scripts/bench.sh turns the JSON output into a table, a plot and scaling exponents).
 //
-//   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick]
+//   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick] [--large] [--hard]
 //                 [google benchmark flags, e.g. --benchmark_format=json]
 //
 // Default sizes per family keep the full run within minutes: direct backends up to 1023,
 // Krylov backends up to 255 (127 at α = −1/4, where CG needs O(N²) iterations), the classical
-// mask iterations up to 63, structured backends up to 2047.
+// mask iterations up to 63, structured backends up to 2047. The 5×5 set (BM_Stencil5: c1-coons,
+// biharmonic, the c1 family at w = 0.5 on the full rectangle, and w = 0.5 with a hole, through
+// separable-banded, fast5 and pcg-fast) runs at N = 127..511, and at 1023 with --large. --hard adds
+// experiment E04 (BM_Hard: nine backends on the 5×5 problems, also an L-shape and a fixed line).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -26,6 +29,7 @@
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
+#include "solvers/stencil_operator.h"
 
 using namespace coons;
 using namespace coons::solvers;
@@ -37,6 +41,8 @@ struct Config {
   std::vector<double> alphas = {-0.25, -0.1, 0.0};
   std::vector<std::string> backends;  // empty: all
   bool quick = false;
+  bool large = false;  // the 5×5 set at N = 1023 too
+  bool hard = false;   // experiment E04 (BM_Hard): nine backends on the 5×5 problems
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -272,6 +278,116 @@ void BM_SearchAlpha(benchmark::State& state, const std::string& name, int N, boo
   state.SetLabel(name + (spectral ? " spectral " : " solve ") + to_string(s.status));
 }
 
+// The 5×5 problems: w·C + (1−w)·T on the N×N free points of a net with two data rings, every point
+// free, or (hole) a centred square of side N/4 fixed too; the right-hand side is that of a mask
+// system: the fixed points' values (a smooth surface, x, y and z) moved to the right-hand side.
+struct Stencil5Problem {
+  StencilOperator op;
+  Eigen::MatrixX3d B;
+  Eigen::SparseMatrix<double> A;  // assembled on demand (BM_Hard)
+};
+
+// kHole: a centred square of side N/4 fixed; kLShape: the quarter i, j ≥ N/2 fixed; kLine: the
+// row i = N/2 fixed from j = N/8 to 7N/8 (an interior curve held).
+enum class FreeShape { kFull, kHole, kLShape, kLine };
+
+Stencil5Problem& stencil5_problem(double w, FreeShape shape, int N) {
+  static std::map<std::tuple<double, FreeShape, int>, Stencil5Problem> cache;
+  const auto key = std::make_tuple(w, shape, N);
+  auto it = cache.find(key);
+  if (it != cache.end()) return it->second;
+  const double d4[5] = {1, -4, 6, -4, 1}, d2[5] = {0, 1, -2, 1, 0}, e[5] = {0, 0, 1, 0, 0};
+  std::vector<double> weights(25);
+  for (int i = 0; i < 5; ++i)
+    for (int j = 0; j < 5; ++j)
+      weights[std::size_t(i) * 5 + std::size_t(j)] =
+          (w * d4[i] * d4[j] + (1 - w) * (d4[i] * e[j] + 2 * d2[i] * d2[j] + e[i] * d4[j])) / (20 + 16 * w);
+  Stencil5Problem p;
+  p.op = make_stencil_operator(N, N, weights);
+  if (shape != FreeShape::kFull) {
+    p.op.free.assign(std::size_t(N) * std::size_t(N), 1);
+    for (int i = 0; i < N; ++i)
+      for (int j = 0; j < N; ++j) {
+        bool fixed = false;
+        if (shape == FreeShape::kHole)
+          fixed = i >= 3 * N / 8 && i < 3 * N / 8 + N / 4 && j >= 3 * N / 8 && j < 3 * N / 8 + N / 4;
+        if (shape == FreeShape::kLShape) fixed = i >= N / 2 && j >= N / 2;
+        if (shape == FreeShape::kLine) fixed = i == N / 2 && j >= N / 8 && j < N - N / 8;
+        if (fixed) p.op.free[std::size_t(i) * std::size_t(N) + std::size_t(j)] = 0;
+      }
+  }
+  // point (i, j) of the N×N grid is (i + 2, j + 2) of the (N + 4)² net
+  const auto value = [N](int i, int j, int c) {
+    const double u = double(i + 2) / (N + 3), v = double(j + 2) / (N + 3);
+    return c == 0 ? u : c == 1 ? v : std::sin(3 * u) * std::cos(2 * v) + 0.1 * std::sin(17 * u * v);
+  };
+  const std::vector<Eigen::Index> number = free_numbering(p.op);
+  p.B.setZero(p.op.size(), 3);
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) {
+      const Eigen::Index row = number[std::size_t(i) * std::size_t(N) + std::size_t(j)];
+      if (row < 0) continue;
+      for (int di = -2; di <= 2; ++di)
+        for (int dj = -2; dj <= 2; ++dj) {
+          const int ii = i + di, jj = j + dj;
+          const bool inside = ii >= 0 && ii < N && jj >= 0 && jj < N;
+          if (inside && number[std::size_t(ii) * std::size_t(N) + std::size_t(jj)] >= 0) continue;  // free
+          for (int c = 0; c < 3; ++c) p.B(row, c) -= p.op.weight(di, dj) * value(ii, jj, c);
+        }
+    }
+  return cache.emplace(key, std::move(p)).first->second;
+}
+
+// One fresh solve (analyze + factorize + solve) of a 5×5 problem, from the grid operator only.
+void BM_Stencil5(benchmark::State& state, const std::string& name, double w, bool hole, int N) {
+  const Stencil5Problem& p = stencil5_problem(w, hole ? FreeShape::kHole : FreeShape::kFull, N);
+  LinearOperator op;
+  op.grid = &p.op;
+  SolverOptions timed;
+  timed.compute_residual = false;
+  Eigen::MatrixX3d X;
+  SolveSummary s = make_solver(name, timed)->compute_and_solve(op, p.B, X);  // plans the FFTs
+  for (auto _ : state) {
+    auto solver = make_solver(name, timed);
+    s = solver->compute_and_solve(op, p.B, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  s.relative_residual = relative_residual(op, p.B, X);
+  set_common_counters(state, N);
+  state.counters["w"] = w;
+  state.counters["iterations"] = s.iterations;
+  state.counters["residual"] = s.relative_residual;
+  state.counters["ok"] = s.ok();
+  state.SetLabel(name + (s.ok() ? "" : std::string(" status=") + to_string(s.status)));
+}
+
+// Experiment E04: every backend on the 5×5 problems (matrix and grid operator both given), one
+// fresh solve, iterative ones stopped after 10 s (reported as not_converged).
+void BM_Hard(benchmark::State& state, const std::string& name, double w, FreeShape shape, int N) {
+  Stencil5Problem& p = stencil5_problem(w, shape, N);
+  if (p.A.rows() == 0) p.A = stencil_operator_matrix(p.op);
+  LinearOperator op;
+  op.matrix = &p.A;
+  op.grid = &p.op;
+  SolverOptions timed;
+  timed.compute_residual = false;
+  timed.time_limit_seconds = 10;
+  Eigen::MatrixX3d X;
+  SolveSummary s;
+  if (find_solver(name)->family == SolverFamily::kStructured) make_solver(name, timed)->compute_and_solve(op, p.B, X);
+  for (auto _ : state) {
+    s = make_solver(name, timed)->compute_and_solve(op, p.B, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  s.relative_residual = X.rows() == p.B.rows() ? relative_residual(op, p.B, X) : NAN;
+  set_common_counters(state, N);
+  state.counters["w"] = w;
+  state.counters["iterations"] = s.iterations;
+  state.counters["residual"] = s.relative_residual;
+  state.counters["ok"] = s.ok();
+  state.SetLabel(name + " status=" + to_string(s.status));
+}
+
 int size_cap(const SolverInfo& info, double alpha) {
   if (info.family == SolverFamily::kStructured) return 2047;
   if (info.family == SolverFamily::kDirect) return 1023;
@@ -295,6 +411,10 @@ int main(int argc, char** argv) {
       for (const auto& s : split(value("--alphas="))) config.alphas.push_back(std::stod(s));
     } else if (arg.rfind("--backends=", 0) == 0) {
       config.backends = split(value("--backends="));
+    } else if (arg == "--hard") {
+      config.hard = true;
+    } else if (arg == "--large") {
+      config.large = true;
     } else if (arg == "--quick") {
       config.quick = true;
       config.sizes = {15, 31};
@@ -319,6 +439,7 @@ int main(int argc, char** argv) {
     }
     for (const SolverInfo& info : available_solvers()) {
       if (!wanted(info.name)) continue;
+      if (info.name == "fast5" || info.name == "separable-banded") continue;  // 5×5 / separable: BM_Stencil5
       for (double alpha : config.alphas) {
         if (!config.quick && N > size_cap(info, alpha)) continue;
         const std::string tag =
@@ -351,6 +472,44 @@ int main(int argc, char** argv) {
             o, N)
             ->UseRealTime()
             ->MinTime(min_time);
+    if (config.quick || (N >= 127 && (N <= 511 || (N <= 1023 && config.large)))) {
+      struct Case {
+        const char* name;
+        const char* backend;
+        double w;
+        bool hole;
+      };
+      for (const Case& c : {Case{"c1-coons", "separable-banded", 1.0, false}, Case{"c1-coons", "fast5", 1.0, false},
+                            Case{"biharmonic", "fast5", 0.0, false}, Case{"c1-family-0.5", "fast5", 0.5, false},
+                            Case{"hole-0.5", "pcg-fast", 0.5, true}}) {
+        if (!find_solver(c.backend) || !wanted(c.backend)) continue;
+        benchmark::RegisterBenchmark(
+            ("BM_Stencil5/" + std::string(c.name) + "/" + c.backend + "/N:" + std::to_string(N)).c_str(), BM_Stencil5,
+            std::string(c.backend), c.w, c.hole, N)
+            ->UseRealTime()
+            ->MinTime(min_time);
+      }
+    }
+    if (config.hard && N <= 1023) {
+      struct HardCase {
+        const char* name;
+        double w;
+        FreeShape shape;
+      };
+      for (const HardCase& c :
+           {HardCase{"c1-coons", 1.0, FreeShape::kFull}, HardCase{"biharmonic", 0.0, FreeShape::kFull},
+            HardCase{"c1-family-0.5", 0.5, FreeShape::kFull}, HardCase{"hole-0.5", 0.5, FreeShape::kHole},
+            HardCase{"L-shape-0.5", 0.5, FreeShape::kLShape}, HardCase{"line-0.5", 0.5, FreeShape::kLine}})
+        for (const char* backend :
+             {"cholmod", "eigen-ldlt", "umfpack", "cg", "mg-cg", "gmres", "fast5", "separable-banded", "pcg-fast"}) {
+          if (!find_solver(backend) || !wanted(backend)) continue;
+          benchmark::RegisterBenchmark(
+              ("BM_Hard/" + std::string(c.name) + "/" + backend + "/N:" + std::to_string(N)).c_str(), BM_Hard,
+              std::string(backend), c.w, c.shape, N)
+              ->UseRealTime()
+              ->MinTime(0.01);
+        }
+    }
     if (wanted("auto"))
       for (double alpha : config.alphas)
         benchmark::RegisterBenchmark(

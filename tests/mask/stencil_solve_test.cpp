@@ -273,9 +273,11 @@ TEST_CASE("solve_stencil_net: the alpha family on any free set and with two ring
         const ControlNet ref = dense_stencil_solve(p, s);
         for (const char* backend : {"eigen-ldlt", "eigen-lu"})
           CHECK(relative_difference(solve_with(p, s, backend), ref) < 1e-9);
-        // the transform backends get the grid stencil of the inner rectangle
+        // the transform backends get the grid stencil of the inner rectangle (fast5 is for 5×5
+        // stencils, separable-banded for separable ones: of this family only α = −1/4)
         for (const auto& info : solvers::available_solvers())
-          if (info.family == solvers::SolverFamily::kStructured)
+          if (info.family == solvers::SolverFamily::kStructured && info.name != "fast5" &&
+              (info.name != "separable-banded" || alpha == -0.25))
             CHECK(relative_difference(solve_with(p, s, info.name), ref) < 1e-9);
       }
       const StencilProblem holes = make_problem(net, 1, random_free(m, n, 1, 0.6, seed++));

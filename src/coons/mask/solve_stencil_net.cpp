@@ -21,6 +21,7 @@ solvers::LinearOperator operator_of(const StencilSystem& system) {
   solvers::LinearOperator op;
   if (system.A.rows() > 0) op.matrix = &system.A;
   op.stencil = system.grid;
+  if (system.grid_operator.rows > 0) op.grid = &system.grid_operator;
   return op;
 }
 

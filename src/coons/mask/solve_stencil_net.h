@@ -10,10 +10,11 @@
 //   make_separable_solver  the exact structured solver when the free set is a full rectangle and
 //                          the stencil separable (c1-coons: Δ⁴_i Δ⁴_j, two batches of
 //                          pentadiagonal solves; the α = −1/4 mask: tridiagonal), else nullptr.
-// The backends get op.matrix when assembled and op.stencil (a GridStencil) when the stencil is
+// The backends get op.matrix when assembled, op.stencil (a GridStencil) when the stencil is
 // 3×3 on a full rectangle, so the transform backends ("dst", "fast") solve the α family with any
-// number of rings. Numerical trouble is a status in the summary, never an exception.
-// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
+// number of rings, and op.grid (the stencil on the free points' bounding rectangle with its free
+// mask) always, for fast5, pcg-fast and the multigrid backends. Numerical trouble is a status in the summary, never an
+// exception. Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
 #include <functional>

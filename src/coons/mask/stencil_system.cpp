@@ -1,5 +1,6 @@
 #include "stencil_system.h"
 
+#include <algorithm>
 #include <cassert>
 #include <utility>
 
@@ -32,9 +33,33 @@ void for_each_in_column(const FreeNumbering& f, const Eigen::Array<bool, Eigen::
     }
 }
 
+// The stencil on the bounding rectangle of the free points with their free mask (row q of the
+// system weighs the point q + d with W(d), as the StencilOperator does).
+solvers::StencilOperator grid_operator_of(const Stencil& stencil, const FreeNumbering& f) {
+  solvers::StencilOperator op;
+  if (f.points.empty()) return op;
+  int i0 = f.points.front()[0], i1 = f.points.back()[0], j0 = f.points.front()[1], j1 = j0;
+  for (const auto& p : f.points) {
+    j0 = std::min(j0, p[1]);
+    j1 = std::max(j1, p[1]);
+  }
+  op.rows = i1 - i0 + 1;
+  op.cols = j1 - j0 + 1;
+  op.radius = stencil.radius;
+  const int r = stencil.radius;
+  for (int a = -r; a <= r; ++a)
+    for (int b = -r; b <= r; ++b) op.weights.push_back(stencil.at(a, b));
+  if (f.points.size() != std::size_t(op.rows) * std::size_t(op.cols)) {
+    op.free.assign(std::size_t(op.rows) * std::size_t(op.cols), 0);
+    for (const auto& [i, j] : f.points) op.free[std::size_t(i - i0) * std::size_t(op.cols) + std::size_t(j - j0)] = 1;
+  }
+  return op;
+}
+
 void describe_structure(const Stencil& stencil, StencilSystem& system) {
   system.grid.reset();
   system.separable.reset();
+  system.grid_operator = grid_operator_of(stencil, system.numbering);
   const auto rect = free_rectangle(system.numbering);
   if (!rect) return;
   if (const auto mask = to_mask9(stencil)) {

@@ -13,7 +13,8 @@
 // and B. When the free set is a full rectangle and the stencil 3×3, the system is also described
 // as a solvers::GridStencil (for the matrix-free and transform backends); when the free set is a
 // full rectangle and the stencil separable (W = u vᵀ: c1-coons, the α = −1/4 mask), as a
-// solvers::SeparableBandedOperator (A = P ⊗ Q, pentadiagonal Toeplitz P and Q).
+// solvers::SeparableBandedOperator (A = P ⊗ Q, pentadiagonal Toeplitz P and Q). Always, the
+// stencil on the free points' bounding rectangle is given as a solvers::StencilOperator.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
@@ -27,6 +28,7 @@
 #include "coons/mask/stencil_problem.h"
 #include "solvers/grid_stencil.h"
 #include "solvers/separable_banded_solver.h"
+#include "solvers/stencil_operator.h"
 
 namespace coons {
 
@@ -63,6 +65,9 @@ struct StencilSystem {
   Eigen::MatrixX3d B;                                          //!< #free by 3
   std::optional<solvers::GridStencil> grid;                    //!< 3×3 stencil on a full rectangle
   std::optional<solvers::SeparableBandedOperator> separable;   //!< separable stencil on a full rectangle
+  //! The stencil on the bounding rectangle of the free points, with their free mask (empty when the
+  //! rectangle is full; rows = 0 when nothing is free): for the grid backends (fast5, pcg-fast, mg).
+  solvers::StencilOperator grid_operator;
 };
 
 //! Precondition: check_stencil_problem(problem, stencil) has no structural issue (every free
