@@ -11,6 +11,9 @@
 #if COONS_HAVE_FFTW
 #include "structured_solvers.h"
 #endif
+#if COONS_HAVE_HYPRE
+#include "hypre_solvers.h"
+#endif
 
 namespace coons::solvers {
 
@@ -75,6 +78,17 @@ const std::vector<Entry>& entries() {
     {{"gmres", SolverFamily::kIterative, false, false,
       "restarted GMRES(50), multigrid-preconditioned on a grid stencil, else ILUT (nonsymmetric systems)"},
      make_gmres},
+#if COONS_HAVE_HYPRE
+    {{"hypre-amg", SolverFamily::kIterative, true, false,
+      "hypre BoomerAMG preconditioning PCG (symmetric) or GMRES (otherwise), on the matrix; MPI-distributed"},
+     make_hypre_amg},
+    {{"hypre-pfmg", SolverFamily::kIterative, false, true,
+      "hypre PFMG V-cycle preconditioning PCG on the grid stencil (Struct interface); MPI-distributed"},
+     make_hypre_pfmg},
+    {{"hypre-smg", SolverFamily::kIterative, false, true,
+      "hypre SMG V-cycle preconditioning PCG on the grid stencil (Struct interface); MPI-distributed"},
+     make_hypre_smg},
+#endif
   };
   return list;
 }
