@@ -7,6 +7,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <string>
+#include <vector>
 
 #include "coons/config.h"
 #include "solvers/mpi_runtime.h"
@@ -177,6 +178,39 @@ TEST_CASE("hypre backends: a zero column is solved exactly and the others as alo
     REQUIRE(s.ok());
     CHECK(X.col(2).isZero(0));
     CHECK(s.relative_residual < 1e-10);
+  }
+}
+
+TEST_CASE("hypre backends: solve tiny and thin grids and report a grid without free points", "[solvers][hypre]") {
+  SolverOptions options;
+  options.tolerance = 1e-12;
+  for (const NamedStencil& stencil : symmetric_stencils())
+    for (auto [rows, cols] : {std::pair{1, 1}, {1, 9}, {2, 2}, {3, 200}, {150, 4}}) {
+      const StencilOperator op = make_stencil_operator(rows, cols, stencil.weights);
+      const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
+      const Eigen::MatrixX3d B = boundary_rhs(op);
+      const Eigen::MatrixX3d reference = Eigen::SparseLU<Eigen::SparseMatrix<double>>(A).solve(B);
+      std::vector<const char*> names;  // as in the agreement test above
+      if (stencil.name != "c1-coons") names.push_back("hypre-amg");
+      if (op.radius == 1) names.push_back("hypre-smg");
+      if (op.radius == 1 && stencil.name != "alpha -1/4") names.push_back("hypre-pfmg");
+      for (const char* name : names) {
+        Eigen::MatrixX3d X;
+        const SolveSummary s = solve_grid(name, op, &A, B, X, options);
+        INFO(name << " on " << stencil.name << ", " << rows << "x" << cols << ": " << s.brief_report());
+        REQUIRE(s.ok());
+        CHECK(relative_error(X, reference) < 1e-6);
+      }
+    }
+  StencilOperator none = make_stencil_operator(4, 5, nine_point(1, -0.25, 0));
+  none.free.assign(20, 0);
+  const Eigen::SparseMatrix<double> empty(0, 0);
+  for (const char* name : {"hypre-amg", "hypre-pfmg", "hypre-smg"}) {
+    Eigen::MatrixX3d X;
+    const SolveSummary s = solve_grid(name, none, &empty, Eigen::MatrixX3d(0, 3), X);
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SolveStatus::kNotApplicable);  // nothing to solve: reported, not crashed
+    CHECK(X.rows() == 0);
   }
 }
 
