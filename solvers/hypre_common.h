@@ -1,5 +1,5 @@
-// What the hypre backends share (internal to solvers/, built with hypre only): the communicator,
-// hypre's error flag as a message, and the all-gather of a solution split by blocks of rows.
+// What the hypre backends share (internal to solvers/, built with hypre only): the communicator
+// and the all-gather of a solution split by blocks of rows.
 #pragma once
 
 #include <mpi.h>
@@ -32,13 +32,6 @@ inline void all_gather_blocks(const std::vector<double>& local, long long rows, 
   global.assign(std::size_t(rows * row_length), 0.0);
   MPI_Allgatherv(local.data(), int(local.size()), MPI_DOUBLE, global.data(), counts.data(), displacements.data(),
                  MPI_DOUBLE, MPI_COMM_WORLD);
-}
-
-//! The largest value over the ranks (every rank gets it).
-inline double max_over_ranks(double value) {
-  double out = value;
-  MPI_Allreduce(&value, &out, 1, MPI_DOUBLE, MPI_MAX, MPI_COMM_WORLD);
-  return out;
 }
 
 }  // namespace coons::solvers::hypre_detail

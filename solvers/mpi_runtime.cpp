@@ -31,8 +31,6 @@ void finalize_mpi() {
 
 }  // namespace
 
-bool mpi_built() { return COONS_HAVE_MPI != 0; }
-
 bool launched_by_mpi() {
   for (const char* name : {"OMPI_COMM_WORLD_SIZE", "PMI_SIZE", "PMIX_RANK", "SLURM_STEP_NUM_TASKS"})
     if (std::getenv(name)) return true;

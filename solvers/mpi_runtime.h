@@ -10,9 +10,6 @@
 
 namespace coons::solvers {
 
-//! True when coons was built with MPI (and hypre).
-bool mpi_built();
-
 //! True when an MPI launcher started this process (its rank variables are set: Open MPI's
 //! OMPI_COMM_WORLD_SIZE, PMI/PMIx's PMI_SIZE or PMIX_RANK, Slurm's srun SLURM_STEP_NUM_TASKS).
 bool launched_by_mpi();
