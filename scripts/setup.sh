@@ -13,6 +13,8 @@ packages=(
   libbenchmark-dev              # the solver benchmarks
   catch2                        # the test suite (v2.13)
   libfftw3-dev                  # sine-transform solvers
+  libhypre-dev                  # optional hypre backends: hypre-amg (BoomerAMG), hypre-pfmg, hypre-smg
+  openmpi-bin libopenmpi-dev    # MPI for hypre and distributed solves (mpirun -np K coons solve ...)
   libcli11-dev                  # command-line parsing
   nlohmann-json3-dev            # JSON in and out
   libfmt-dev                    # formatting

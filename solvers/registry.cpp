@@ -14,6 +14,9 @@
 #include "pcg_fast.h"
 #include "structured_solvers.h"
 #endif
+#if COONS_HAVE_HYPRE
+#include "hypre_solvers.h"
+#endif
 
 namespace coons::solvers {
 
@@ -91,6 +94,17 @@ const std::vector<Entry>& entries() {
       "conjugate gradients preconditioned by the exact structured solve of the bounding rectangle (free sets with "
       "holes, L-shapes, fixed curves)"},
      make_pcg_fast_solver},
+#endif
+#if COONS_HAVE_HYPRE
+    {{"hypre-amg", SolverFamily::kIterative, true, false,
+      "hypre BoomerAMG preconditioning PCG (symmetric) or GMRES (otherwise), on the matrix; MPI-distributed"},
+     make_hypre_amg},
+    {{"hypre-pfmg", SolverFamily::kIterative, false, true,
+      "hypre PFMG V-cycle preconditioning PCG on the grid stencil (Struct interface); MPI-distributed"},
+     make_hypre_pfmg},
+    {{"hypre-smg", SolverFamily::kIterative, false, true,
+      "hypre SMG V-cycle preconditioning PCG on the grid stencil (Struct interface); MPI-distributed"},
+     make_hypre_smg},
 #endif
   };
   return list;

@@ -1,0 +1,35 @@
+// Grid-stencil problems for the solver tests: named 3×3 and 5×5 stencils (second- and fourth-order),
+// free sets (full rectangle, L-shape, hole) and right-hand sides of a boundary-value problem.
+#pragma once
+
+#include <Eigen/Core>
+#include <string>
+#include <vector>
+
+#include "solvers/stencil_operator.h"
+
+namespace coons::test {
+
+struct NamedStencil {
+  std::string name;
+  std::vector<double> weights;
+};
+
+//! The 3×3 weights {d, e, d, e, c, e, d, e, d}.
+std::vector<double> nine_point(double center, double edge, double diag);
+//! The outer product of (1, −4, 6, −4, 1) (5×5).
+std::vector<double> c1_coons();
+//! 13 points: centre 20, edges −8, diagonals 2, axial distance 2: 1 (5×5).
+std::vector<double> biharmonic();
+//! laplace, alpha -0.1, alpha -1/4, c1-coons, biharmonic.
+std::vector<NamedStencil> symmetric_stencils();
+
+enum class Shape { kFull, kLShape, kHole };
+//! The free mask of a shape (empty for kFull).
+std::vector<unsigned char> shape_mask(Shape shape, int rows, int cols);
+
+//! Right-hand sides as in a boundary-value problem: a smooth function f on every fixed point (off
+//! the grid and in the mask), moved to the right-hand side: b = −Σ w(d) f(neighbour).
+Eigen::MatrixX3d boundary_rhs(const solvers::StencilOperator& op);
+
+}  // namespace coons::test
