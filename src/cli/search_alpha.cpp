@@ -13,7 +13,9 @@
 #include "coons/study/memory_estimate.h"
 #include "coons/study/search_report.h"
 #include "coons/study/target.h"
+#include "coons/io/tri_boundary_io.h"
 #include "registry.h"
+#include "tri_commands.h"
 
 namespace coons::cli {
 
@@ -113,6 +115,15 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   return s;
 }
 
+TriSearchArgs tri_search_args(const SearchRequest& r) {
+  TriSearchArgs a{r.boundary, r.objective, r.solver, r.lower, r.upper, r.scan_points, r.samples, r.corner_tolerance,
+                  &r.global, ""};
+  if (r.parameter != Parameter::kAlpha) a.rejected = "--parameter";
+  if (r.allow_indefinite) a.rejected = "--allow-indefinite";
+  if (r.target_option->count() > 0) a.rejected = "--target";
+  return a;
+}
+
 int finish(nlohmann::json report, Phases& phases, SearchStatus status, const SearchRequest& r,
            const std::string& message) {
   report["timing"] = phases.timing();
@@ -126,6 +137,7 @@ int finish(nlohmann::json report, Phases& phases, SearchStatus status, const Sea
 }
 
 int run_search_alpha(const SearchRequest& r) {
+  if (is_triangle_file(r.boundary)) return run_tri_search(tri_search_args(r));
   Phases phases("search-alpha");
   phases.start("read");
   const Boundary b = read_input(r.boundary, r.corner_tolerance).boundary;

@@ -2,17 +2,14 @@
 
 #include <utility>
 
-#include "solvers/registry.h"
 
 namespace coons::tri {
 
-TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask) {
-  const solvers::SolverInfo* info = solvers::find_solver(solver);
-  if (!info) return {false, "no backend named '" + std::string(solver) + "' in this build"};
-  if (!info->needs_matrix)
-    return {false, info->name + " works on the rectangular grid stencil, not on triangular systems"};
-  if (info->definite_only && mask.c != 0.0)
-    return {false, info->name +
+TriBackendCheck check_tri_backend(const solvers::SolverInfo& info, const TriMask& mask) {
+  if (!info.needs_matrix)
+    return {false, info.name + " works on the rectangular grid stencil, not on triangular systems"};
+  if (info.definite_only && mask.c != 0.0)
+    return {false, info.name +
                        " is only for symmetric positive definite systems; the triangular "
                        "mask system is not symmetric for c != 0"};
   return {true, {}};
@@ -21,29 +18,35 @@ TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask) 
 std::vector<std::string> tri_applicable_solvers(const TriMask& mask) {
   std::vector<std::string> names;
   for (const auto& info : solvers::available_solvers())
-    if (check_tri_backend(info.name, mask).applicable) names.push_back(info.name);
+    if (check_tri_backend(info, mask).applicable) names.push_back(info.name);
   return names;
 }
 
 bool TriSolveOptions::is_valid(std::string* why) const {
   if (!mask.is_valid(why) || !solver_options.is_valid(why)) return false;
-  if (!solvers::find_solver(solver)) {
-    if (why) *why = "no backend named '" + solver + "' in this build";
+  if (!solver) {
+    if (why) *why = "no solver backend given";
     return false;
   }
   return true;
 }
 
+const solvers::SolverInfo& default_tri_solver() {
+  const solvers::SolverInfo* info = solvers::find_solver("umfpack");
+  if (!info) info = solvers::find_solver("eigen-lu");
+  return *info;  // eigen-lu is always built
+}
+
 TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options) {
   TriSolveResult result{frame, {}};
-  result.summary.solver = options.solver;
+  result.summary.solver = options.solver ? options.solver->name : std::string();
   std::string why;
   if (!options.is_valid(&why)) {
     result.summary.status = solvers::SolveStatus::kFailure;
     result.summary.message = why;
     return result;
   }
-  const TriBackendCheck check = check_tri_backend(options.solver, options.mask);
+  const TriBackendCheck check = check_tri_backend(*options.solver, options.mask);
   if (!check.applicable) {
     result.summary.status = solvers::SolveStatus::kNotApplicable;
     result.summary.message = check.reason;
@@ -51,7 +54,7 @@ TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options
   }
   if (interior_size(frame.n) == 0) return result;  // nothing to solve (n < 3)
   const TriMaskSystem sys = assemble_tri_mask_system(frame, options.mask);
-  auto solver = solvers::make_solver(options.solver, options.solver_options);
+  auto solver = solvers::make_solver(options.solver->name, options.solver_options);
   solvers::LinearOperator op;
   op.matrix = &sys.A;
   Eigen::MatrixX3d X = Eigen::MatrixX3d::Zero(sys.B.rows(), 3);

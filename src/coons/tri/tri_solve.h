@@ -8,12 +8,12 @@
 #pragma once
 
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "coons/tri/tri_mask.h"
 #include "coons/tri/tri_net.h"
 #include "solvers/linear_solver.h"
+#include "solvers/registry.h"
 
 namespace coons::tri {
 
@@ -22,17 +22,22 @@ struct TriBackendCheck {
   bool applicable = false;
   std::string reason;  //!< empty when applicable
 };
-TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask);
+TriBackendCheck check_tri_backend(const solvers::SolverInfo& solver, const TriMask& mask);
+
+//! The backend `auto` stands for on triangular systems: an LU-type one (umfpack when it is built,
+//! else eigen-lu), which applies to every member of the family.
+const solvers::SolverInfo& default_tri_solver();
 
 //! The registry backends (in registry order) that apply to the system of `mask`.
 std::vector<std::string> tri_applicable_solvers(const TriMask& mask);
 
 struct TriSolveOptions {
-  TriMask mask;                           //!< the member of the family (its c)
-  std::string solver = "eigen-lu";        //!< a registry name
+  TriMask mask;  //!< the member of the family (its c)
+  //! A backend of the registry (never null; names become backends only in the CLI).
+  const solvers::SolverInfo* solver = &default_tri_solver();
   solvers::SolverOptions solver_options;  //!< tolerance, ordering, ...
 
-  //! True when the mask and the solver options are usable and the solver exists; else why.
+  //! True when the mask and the solver options are usable and a solver is set; else why.
   bool is_valid(std::string* why) const;
 };
 
