@@ -9,10 +9,10 @@
 #include "coons/io/matrix_market.h"
 #include "coons/io/net_json.h"
 #include "coons/io/obj_export.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/study/memory_estimate.h"
-#include "coons/io/tri_boundary_io.h"
 #include "registry.h"
 #include "tri_commands.h"
 

@@ -9,11 +9,11 @@
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/io/input_error.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/search_report.h"
 #include "coons/study/target.h"
-#include "coons/io/tri_boundary_io.h"
 #include "registry.h"
 #include "tri_commands.h"
 
@@ -116,8 +116,8 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
 }
 
 TriSearchArgs tri_search_args(const SearchRequest& r) {
-  TriSearchArgs a{r.boundary, r.objective, r.solver, r.lower, r.upper, r.scan_points, r.samples, r.corner_tolerance,
-                  &r.global, ""};
+  TriSearchArgs a{r.boundary,    r.objective, r.solver,           r.lower,   r.upper,
+                  r.scan_points, r.samples,   r.corner_tolerance, &r.global, ""};
   if (r.parameter != Parameter::kAlpha) a.rejected = "--parameter";
   if (r.allow_indefinite) a.rejected = "--allow-indefinite";
   if (r.target_option->count() > 0) a.rejected = "--target";

@@ -9,11 +9,11 @@
 
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/target.h"
-#include "coons/io/tri_boundary_io.h"
 #include "registry.h"
 #include "tri_commands.h"
 
@@ -36,8 +36,8 @@ struct SweepRequest {
 };
 
 TriSweepArgs tri_sweep_args(const SweepRequest& r) {
-  TriSweepArgs a{r.boundary, r.solver, r.out_dir, std::nullopt, std::nullopt, r.count, r.samples, r.corner_tolerance,
-                 &r.global, ""};
+  TriSweepArgs a{r.boundary, r.solver,  r.out_dir,          std::nullopt, std::nullopt,
+                 r.count,    r.samples, r.corner_tolerance, &r.global,    ""};
   if (r.from_option->count() > 0) a.from = r.from;
   if (r.to_option->count() > 0) a.to = r.to;
   if (r.parameter != SweepParameter::kAlpha) a.rejected = "--parameter";

@@ -130,8 +130,8 @@ int run_tri_export(const TriExportArgs& e) {
     if (!e.global->force && std::filesystem::exists(out.path_of(name)))
       throw InputError(out.path_of(name), "--force", "exists; give --force to overwrite it");
 
-  nlohmann::json report = {{"boundary", b.name}, {"type", "triangle"}, {"degree", b.n}, {"method", "alpha"},
-                           {"alpha", r.options.mask.c}, {"a", r.options.mask.a()}};
+  nlohmann::json report = {{"boundary", b.name}, {"type", "triangle"},        {"degree", b.n},
+                           {"method", "alpha"},  {"alpha", r.options.mask.c}, {"a", r.options.mask.a()}};
   phases.start("solve");
   const tri::TriSolveResult result = tri::solve_tri_net(b, r.options);
   report["solver"] = summary_to_json(result.summary);
@@ -164,8 +164,9 @@ int run_tri_export(const TriExportArgs& e) {
     phases.start("write");
     write(prefix + ".A.mtx", [&](std::ostream& o) { write_matrix_market(o, system.A); });
     write(prefix + ".B.mtx", [&](std::ostream& o) { write_dense_matrix_market(o, system.B); });
-    report["matrix_market"] = {{"matrix", "coordinate real general, I - mask on the interior (not symmetric for c != 0)"},
-                               {"rhs", "array real general, #interior by 3 (x, y, z), interior in the net's row order"}};
+    report["matrix_market"] = {
+        {"matrix", "coordinate real general, I - mask on the interior (not symmetric for c != 0)"},
+        {"rhs", "array real general, #interior by 3 (x, y, z), interior in the net's row order"}};
   }
   report["written"] = written;
   report["timing"] = phases.timing();
@@ -257,8 +258,8 @@ int run_tri_sweep(const TriSweepArgs& a) {
   out.write(stem + ".jsonl", [&](std::ostream& o) {
     for (const auto& line : lines) o << line << '\n';
   });
-  nlohmann::json summary = {{"boundary", b.name}, {"type", "triangle"}, {"degree", b.n}, {"parameter", "c"},
-                            {"values", values.size()}, {"from", from}, {"to", to}, {"jsonl", jsonl}};
+  nlohmann::json summary = {{"boundary", b.name},      {"type", "triangle"}, {"degree", b.n}, {"parameter", "c"},
+                            {"values", values.size()}, {"from", from},       {"to", to},      {"jsonl", jsonl}};
   nlohmann::json block = summary_to_json(failed ? *failed : first);
   if (picked) block["picked_by"] = "auto";
   summary["solver"] = block;

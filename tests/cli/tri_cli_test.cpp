@@ -99,15 +99,15 @@ TEST_CASE("coons solve: bad triangular inputs exit 2 naming the side and point",
   short_side["sides"][2].erase(3);
   json bad_point = doc;
   bad_point["sides"][0][2] = json::array({1, 2});
-  const std::pair<json, std::string> cases[] = {
-      {gap, "sides[1][0]: corner (0,4,0) differs from sides[0][4] by 0.1"},
-      {short_side, "sides[2]: has 4 points, sides[0] has 5"},
-      {bad_point, "sides[0][2]: a point must have 3 coordinates, not 2"}};
+  const std::pair<json, std::string> cases[] = {{gap, "sides[1][0]: corner (0,4,0) differs from sides[0][4] by 0.1"},
+                                                {short_side, "sides[2]: has 4 points, sides[0] has 5"},
+                                                {bad_point, "sides[0][2]: a point must have 3 coordinates, not 2"}};
   int k = 0;
   for (const auto& [bad, expected] : cases) {
     const std::string file = dir.write("bad" + std::to_string(k++) + ".json", bad.dump());
     const std::vector<std::string> commands = {"solve", "export --out '" + dir.file("out") + "'",
-                                               "search-alpha --objective thin_plate", "sweep --out '" + dir.file("out") + "'"};
+                                               "search-alpha --objective thin_plate",
+                                               "sweep --out '" + dir.file("out") + "'"};
     for (const std::string& command : commands) {
       const std::string verb = command.substr(0, command.find(' '));
       const CommandResult r = run_command(kCoons + " " + verb + " '" + file + "'" + command.substr(verb.size()));

@@ -64,7 +64,10 @@ TEST_CASE("parse_tri_boundary: side lengths, degree, points and type are checked
       {[](json& d) { d["sides"][0] = json::array({d["sides"][0][0]}); }, "T.json: sides[0]: needs at least 2 points"},
       {[](json& d) { d["degree"] = 5; }, "T.json: degree: says 5 but the sides have 4 points (degree 3)"},
       {[](json& d) { d["degree"] = 2.5; }, "T.json: degree: must be an integer"},
-      {[](json& d) { d["sides"][2][1] = json::array({1, 2}); }, "T.json: sides[2][1]: a point must have 3 coordinates"},
+      {[](json& d) {
+         d["sides"][2][1] = json::array({1, 2});
+       },
+       "T.json: sides[2][1]: a point must have 3 coordinates"},
       {[](json& d) { d["sides"][2][2][1] = "x"; }, "T.json: sides[2][2]:"},
       {[](json& d) { d["name"] = 3; }, "T.json: name: must be a string"},
       {[](json& d) { d["type"] = "quad"; }, "T.json: type: must be \"triangle\""},

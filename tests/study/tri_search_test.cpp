@@ -79,10 +79,12 @@ TEST_CASE("search_tri_c: the optimum is the minimum of a fine scan, inside the b
       const double v = evaluate_tri_objective(frame, o, c, lu(), false).value;
       if (v < best) best = v, best_c = c;
     }
-    INFO("seed " << seed << ": search " << *s.parameter << " (" << s.value << "), scan " << best_c << " (" << best << ")");
+    INFO("seed " << seed << ": search " << *s.parameter << " (" << s.value << "), scan " << best_c << " (" << best
+                 << ")");
     REQUIRE(s.value <= best * (1 + 1e-12));
     REQUIRE(std::abs(*s.parameter - best_c) <= (options.upper - options.lower) / 400);
-    if (!s.at_bound) REQUIRE(std::abs(evaluate_tri_objective(frame, o, *s.parameter, lu(), true).derivative) < 1e-6 * s.value);
+    if (!s.at_bound)
+      REQUIRE(std::abs(evaluate_tri_objective(frame, o, *s.parameter, lu(), true).derivative) < 1e-6 * s.value);
   }
 }
 
@@ -111,7 +113,8 @@ TEST_CASE("search_tri_c: a Cholesky-type backend fails the search instead of giv
   const TriNet frame = frame_net(boundary_of(random_tri_net(6, 77)));
   AlphaSearchOptions options;
   std::tie(options.lower, options.upper) = default_tri_bounds(6);
-  const AlphaSearchSummary s = search_tri_c(frame, objective("thin_plate"), *solvers::find_solver("eigen-ldlt"), options);
+  const AlphaSearchSummary s =
+      search_tri_c(frame, objective("thin_plate"), *solvers::find_solver("eigen-ldlt"), options);
   REQUIRE((s.status == SearchStatus::kFailedRegion || s.status == SearchStatus::kSolverFailed));
   REQUIRE_FALSE(s.parameter);
   REQUIRE(s.failed_evaluations > 0);

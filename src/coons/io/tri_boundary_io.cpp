@@ -70,7 +70,8 @@ tri::TriBoundary parse_tri_boundary(const json& doc, const std::string& source, 
   }
   for (int s = 0; s < 3; ++s) {
     b.sides[s].resize(b.n + 1, 3);
-    for (int q = 0; q <= b.n; ++q) b.sides[s].row(q) = read_point(sides[s][q], source, fmt::format("sides[{}][{}]", s, q));
+    for (int q = 0; q <= b.n; ++q)
+      b.sides[s].row(q) = read_point(sides[s][q], source, fmt::format("sides[{}][{}]", s, q));
   }
   // The corners: side s starts where side s − 1 ends.
   Eigen::RowVector3d lo = b.sides[0].colwise().minCoeff(), hi = b.sides[0].colwise().maxCoeff();
@@ -85,8 +86,9 @@ tri::TriBoundary parse_tri_boundary(const json& doc, const std::string& source, 
     const int before = (s + 2) % 3;
     const double gap = (b.sides[s].row(0) - b.sides[before].row(n)).norm();
     if (gap > tolerance)
-      fail(fmt::format("sides[{}][0]", s), fmt::format("corner {} differs from sides[{}][{}] by {:.3g} (tolerance {:.3g})",
-                                                       corners[s], before, n, gap, tolerance));
+      fail(fmt::format("sides[{}][0]", s),
+           fmt::format("corner {} differs from sides[{}][{}] by {:.3g} (tolerance {:.3g})", corners[s], before, n, gap,
+                       tolerance));
   }
   return b;
 }

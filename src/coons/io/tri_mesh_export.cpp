@@ -39,7 +39,8 @@ void write_vtk_vectors(std::ostream& out, const char* name, const Eigen::MatrixX
 
 void write_tri_surface_obj(std::ostream& out, const tri::TriSurfaceSamples& s, int degree) {
   fmt::print(out, "# coons: triangular Bezier surface of degree {} sampled with {} points per side\n", degree, s.k);
-  for (Eigen::Index r = 0; r < s.points.rows(); ++r) fmt::print(out, "v {} {} {}\n", s.points(r, 0), s.points(r, 1), s.points(r, 2));
+  for (Eigen::Index r = 0; r < s.points.rows(); ++r)
+    fmt::print(out, "v {} {} {}\n", s.points(r, 0), s.points(r, 1), s.points(r, 2));
   for (Eigen::Index r = 0; r < s.normals.rows(); ++r) {
     if (s.singular(r)) {
       out << "vn 0 0 1\n";
@@ -47,8 +48,7 @@ void write_tri_surface_obj(std::ostream& out, const tri::TriSurfaceSamples& s, i
       fmt::print(out, "vn {} {} {}\n", s.normals(r, 0), s.normals(r, 1), s.normals(r, 2));
     }
   }
-  for (const auto& t : s.triangles)
-    fmt::print(out, "f {0}//{0} {1}//{1} {2}//{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  for (const auto& t : s.triangles) fmt::print(out, "f {0}//{0} {1}//{1} {2}//{2}\n", t[0] + 1, t[1] + 1, t[2] + 1);
 }
 
 void write_tri_net_obj(std::ostream& out, const tri::TriNet& net) {
@@ -57,7 +57,8 @@ void write_tri_net_obj(std::ostream& out, const tri::TriNet& net) {
   for (Eigen::Index r = 0; r < net.points.rows(); ++r)
     fmt::print(out, "v {} {} {}\n", net.points(r, 0), net.points(r, 1), net.points(r, 2));
   if (net.n == 0) return;
-  for (const auto& t : tri::tri_grid_triangles(net.n + 1)) fmt::print(out, "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
+  for (const auto& t : tri::tri_grid_triangles(net.n + 1))
+    fmt::print(out, "f {} {} {}\n", t[0] + 1, t[1] + 1, t[2] + 1);
 }
 
 void write_tri_surface_ply(std::ostream& out, const tri::TriSurfaceSamples& s, int degree) {
@@ -95,8 +96,7 @@ void write_tri_surface_vtu(std::ostream& out, const tri::TriSurfaceSamples& s) {
     out << (c % 8 ? " " : "          ") << 3 * (c + 1) << (c % 8 == 7 ? "\n" : "");
   out << (s.triangles.size() % 8 ? "\n" : "") << "        </DataArray>\n"
       << "        <DataArray type=\"UInt8\" Name=\"types\" format=\"ascii\">\n";
-  for (size_t c = 0; c < s.triangles.size(); ++c)
-    out << (c % 8 ? " " : "          ") << 5 << (c % 8 == 7 ? "\n" : "");
+  for (size_t c = 0; c < s.triangles.size(); ++c) out << (c % 8 ? " " : "          ") << 5 << (c % 8 == 7 ? "\n" : "");
   out << (s.triangles.size() % 8 ? "\n" : "") << "        </DataArray>\n      </Cells>\n    </Piece>\n"
       << "  </UnstructuredGrid>\n</VTKFile>\n";
 }

@@ -79,7 +79,8 @@ json tri_sweep_line(const tri::TriBoundary& boundary, const TriEvaluation& e, co
     return line;
   }
   line["metrics"] = tri_metrics_to_json(tri::tri_net_metrics(e.net, tri::TriMask{e.parameter}));
-  if (target_only.target) line["rms_target"] = number_or_null(std::sqrt(tri_target_mean_square(e.net, *target_only.target)));
+  if (target_only.target)
+    line["rms_target"] = number_or_null(std::sqrt(tri_target_mean_square(e.net, *target_only.target)));
   return line;
 }
 

@@ -25,6 +25,7 @@ nlohmann::json tri_search_report(const tri::TriBoundary& boundary, const std::st
                                  const AlphaSearchOptions& options, const AlphaSearchSummary& s);
 
 //! One JSON Lines record of a sweep over c: c, a, status, every metric, rms_target with a target.
-nlohmann::json tri_sweep_line(const tri::TriBoundary& boundary, const TriEvaluation& e, const TriObjective& target_only);
+nlohmann::json tri_sweep_line(const tri::TriBoundary& boundary, const TriEvaluation& e,
+                              const TriObjective& target_only);
 
 }  // namespace coons

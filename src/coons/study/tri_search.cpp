@@ -18,14 +18,13 @@ bool TriObjective::uses_target() const {
 }
 
 std::optional<TriObjective> parse_tri_objective(const std::string& text, std::string* why) {
-  static const std::map<std::string, TriTerm> names = {
-      {"thin_plate", TriTerm::kThinPlate},
-      {"dirichlet", TriTerm::kDirichlet},
-      {"twist", TriTerm::kTwist},
-      {"discrete_thin_plate", TriTerm::kDiscreteThinPlate},
-      {"discrete_dirichlet", TriTerm::kDiscreteDirichlet},
-      {"discrete_twist", TriTerm::kDiscreteTwist},
-      {"target", TriTerm::kTarget}};
+  static const std::map<std::string, TriTerm> names = {{"thin_plate", TriTerm::kThinPlate},
+                                                       {"dirichlet", TriTerm::kDirichlet},
+                                                       {"twist", TriTerm::kTwist},
+                                                       {"discrete_thin_plate", TriTerm::kDiscreteThinPlate},
+                                                       {"discrete_dirichlet", TriTerm::kDiscreteDirichlet},
+                                                       {"discrete_twist", TriTerm::kDiscreteTwist},
+                                                       {"target", TriTerm::kTarget}};
   auto fail = [&](const std::string& reason) -> std::optional<TriObjective> {
     if (why) *why = reason;
     return std::nullopt;
@@ -56,9 +55,7 @@ std::optional<TriObjective> parse_tri_objective(const std::string& text, std::st
   return out;
 }
 
-std::pair<double, double> default_tri_bounds(int n) {
-  return {-1.0 / 6 - 1.0 / (4.0 * std::max(n - 3, 1)), 1.0 / 3};
-}
+std::pair<double, double> default_tri_bounds(int n) { return {-1.0 / 6 - 1.0 / (4.0 * std::max(n - 3, 1)), 1.0 / 3}; }
 
 double tri_target_mean_square(const TriNet& net, const Target& target) {
   const int k = std::max(target.samples, 2);
@@ -165,8 +162,9 @@ TriEvaluation evaluate_tri_objective(const TriNet& frame, const TriObjective& ob
   if (with_derivative) {
     e.has_derivative = true;
     for (const auto& [term, weight] : objective.terms)
-      e.derivative += weight * (term == TriTerm::kTarget ? (objective.target ? target_derivative(e.net, dnet, *objective.target) : 0.0)
-                                                         : quadratic_derivative(e.net, dnet, term));
+      e.derivative += weight * (term == TriTerm::kTarget
+                                    ? (objective.target ? target_derivative(e.net, dnet, *objective.target) : 0.0)
+                                    : quadratic_derivative(e.net, dnet, term));
   }
   return e;
 }

@@ -30,9 +30,9 @@ namespace coons {
 enum class TriTerm { kThinPlate, kDirichlet, kTwist, kDiscreteThinPlate, kDiscreteDirichlet, kDiscreteTwist, kTarget };
 
 struct TriObjective {
-  std::string name;                              //!< as given (spaces removed)
+  std::string name;                               //!< as given (spaces removed)
   std::vector<std::pair<TriTerm, double>> terms;  //!< Σ weight·term
-  std::optional<Target> target;                  //!< sphere, cylinder or plane (kTarget terms)
+  std::optional<Target> target;                   //!< sphere, cylinder or plane (kTarget terms)
   [[nodiscard]] bool uses_target() const;
 };
 

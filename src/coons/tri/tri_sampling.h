@@ -17,11 +17,11 @@
 namespace coons::tri {
 
 struct TriSurfaceSamples {
-  int k = 0;                    //!< points per side
-  Eigen::MatrixX3d points;      //!< #K(K+1)/2 by 3, row order
-  Eigen::MatrixX3d normals;     //!< unit normals (0 where singular)
+  int k = 0;                 //!< points per side
+  Eigen::MatrixX3d points;   //!< #K(K+1)/2 by 3, row order
+  Eigen::MatrixX3d normals;  //!< unit normals (0 where singular)
   Eigen::VectorXd mean_curvature, gaussian_curvature;
-  Eigen::VectorXi singular;     //!< 1 where the normal is undefined
+  Eigen::VectorXi singular;                   //!< 1 where the normal is undefined
   std::vector<std::array<int, 3>> triangles;  //!< (K−1)² triangles, counter-clockwise in (x, y)
 };
 

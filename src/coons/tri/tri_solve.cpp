@@ -2,7 +2,6 @@
 
 #include <utility>
 
-
 namespace coons::tri {
 
 TriBackendCheck check_tri_backend(const solvers::SolverInfo& info, const TriMask& mask) {
