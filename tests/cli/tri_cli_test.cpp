@@ -1,4 +1,6 @@
 // The triangular side of the command line (docs/formats.md, "Triangular boundaries"), through the binary.
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
@@ -110,11 +112,11 @@ TEST_CASE("coons solve: bad triangular inputs exit 2 naming the side and point",
                                                "sweep --out '" + dir.file("out") + "'"};
     for (const std::string& command : commands) {
       const std::string verb = command.substr(0, command.find(' '));
-      const CommandResult r = run_command(kCoons + " " + verb + " '" + file + "'" + command.substr(verb.size()));
+      const CommandResult r = run_command(fmt::format("{} {} '{}'{}", kCoons, verb, file, command.substr(verb.size())));
       INFO(command << ": " << r.err);
       CHECK(r.status == 2);
       CHECK(r.out.empty());
-      CHECK(r.err.rfind("error: " + file + ": " + expected, 0) == 0);
+      CHECK(r.err.rfind(fmt::format("error: {}: {}", file, expected), 0) == 0);
       CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
     }
   }
@@ -122,7 +124,7 @@ TEST_CASE("coons solve: bad triangular inputs exit 2 naming the side and point",
   // options that mean nothing for a triangle
   const std::string file = kTriangles + "sphere_octant.json";
   for (const std::string option : {"--mu 2", "--method coons", "--allow-indefinite"}) {
-    const CommandResult r = run_command(kCoons + " solve '" + file + "' " + option);
+    const CommandResult r = run_command(fmt::format("{} solve '{}' {}", kCoons, file, option));
     INFO(option);
     CHECK(r.status == 2);
     CHECK(r.out.empty());
