@@ -63,6 +63,19 @@ TEST_CASE("evaluate_tri_objective: the derivative from one extra solve equals a 
   }
 }
 
+TEST_CASE("evaluate_tri_objective: the derivative does not depend on where the boundary lies", "[study][tri]") {
+  TriNet net = random_tri_net(7, 90);
+  const TriNet frame = frame_net(boundary_of(net));
+  net.points.rowwise() += Eigen::RowVector3d(3e5, -2e5, 1e5);
+  const TriNet moved = frame_net(boundary_of(net));
+  for (const char* name : {"thin_plate", "dirichlet", "twist", "discrete_twist"}) {
+    const TriEvaluation here = evaluate_tri_objective(frame, objective(name), -0.1, lu(), true);
+    const TriEvaluation there = evaluate_tri_objective(moved, objective(name), -0.1, lu(), true);
+    INFO(name << ": " << here.derivative << " vs " << there.derivative);
+    REQUIRE(there.derivative == Approx(here.derivative).epsilon(1e-6).margin(1e-9 * here.value));
+  }
+}
+
 TEST_CASE("search_tri_c: the optimum is the minimum of a fine scan, inside the bounds", "[study][tri]") {
   for (const std::uint32_t seed : {1u, 2u, 3u}) {
     const int n = 5 + int(seed);

@@ -108,7 +108,8 @@ double target_derivative(const TriNet& net, const TriNet& dnet, const Target& ta
 
 // Q(P + s·dP) − Q(P − s·dP) = 4s·B(P, dP) for a quadratic form Q, so dQ/dc = 2B(P, dP).
 double quadratic_derivative(const TriNet& net, const TriNet& dnet, TriTerm term) {
-  const double size = net.points.norm(), dsize = dnet.points.norm();
+  // the size of P about its centroid: the energies do not see a translation, so neither should s
+  const double size = (net.points.rowwise() - net.points.colwise().mean()).norm(), dsize = dnet.points.norm();
   if (dsize == 0) return 0;
   const double s = size > 0 ? size / dsize : 1.0;
   TriNet plus = net, minus = net;
