@@ -1,9 +1,11 @@
 // Solving the triangular mask system (tri_mask.h) of a boundary with a backend of the solver
 // registry. The system is not symmetric unless c = 0, so only backends for general matrices apply
-// (eigen-lu, umfpack, bicgstab); Cholesky-type and CG backends (registry flag definite_only) apply
-// only to c = 0, where A = I − (1/6)·(interior adjacency) is symmetric positive definite; the grid-stencil
-// backends (jacobi, gauss-seidel, dst, fast: needs_matrix = false) know only rectangular grids.
-// A backend that does not apply reports not_applicable and leaves the interior untouched.
+// (eigen-lu, umfpack, bicgstab, and gmres, a grid-stencil backend that also takes an assembled
+// matrix: asked of the backend, not listed here); Cholesky-type and CG backends (registry flag
+// definite_only) apply only to c = 0, where A = I − (1/6)·(interior adjacency) is symmetric positive
+// definite; the other grid-stencil backends (jacobi, gauss-seidel, dst, fast, mg) know only
+// rectangular grids. A backend that does not apply reports not_applicable and leaves the interior
+// untouched.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
