@@ -43,6 +43,7 @@ SCHEMA_OF_FOLDER = {
     "data/boundaries": ["boundary.schema.json"],
     "data/surfaces": ["surface.schema.json"],
     "data/reference": ["reference.schema.json"],
+    "data/triangles": ["triangle.schema.json"],
 }
 
 P = [0.0, 0.0, 0.0]
@@ -64,6 +65,7 @@ def with_(doc, **changes):
 ACCEPTED = [
     ("boundary.schema.json", GOOD_BOUNDARY, "the sides form"),
     ("boundary.schema.json", {"net": [[P, P], [P, P]]}, "the net form"),
+    ("triangle.schema.json", {"type": "triangle", "degree": 1, "sides": [[P, P], [P, P], [P, P]]}, "a triangle"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, extension="coons ignores it"), "an unknown field (ignored by coons)"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"plane": {"point": P, "normal": [0, 0, 1]}}), "a plane target"),
     ("net.schema.json", {"name": "n", "degree": [1, 1], "exact": True, "net": [[P, P], [P, P]]}, "coons surface --net-out"),
@@ -97,6 +99,9 @@ REJECTED = [
                                                            for s in ("bottom", "top", "left", "right")}),
      "a curve with two forms"),
     ("net.schema.json", {"name": "n"}, "a net file without a net"),
+    ("triangle.schema.json", {"type": "triangle", "sides": [[P, P], [P, P]]}, "a triangle of two sides"),
+    ("triangle.schema.json", {"type": "quad", "sides": [[P, P], [P, P], [P, P]]}, "a type that is not triangle"),
+    ("triangle.schema.json", {"type": "triangle", "sides": [[P, P], [P, P], [P, [0, 0]]]}, "a point of 2 coordinates"),
     ("surface.schema.json", {"curves": []}, "no type"),
     ("surface.schema.json", {"type": "torus"}, "an unknown type"),
     ("surface.schema.json", {"type": "bilinear", "corners": [P, P, P]}, "three corners"),

@@ -9,10 +9,12 @@
 #include "coons/io/matrix_market.h"
 #include "coons/io/net_json.h"
 #include "coons/io/obj_export.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/study/memory_estimate.h"
 #include "registry.h"
+#include "tri_commands.h"
 
 namespace coons::cli {
 
@@ -25,10 +27,15 @@ struct ExportRequest {
   std::string out_dir = ".";
   std::string prefix;
   int samples = 33;
-  bool obj = false, mtx = false;
+  bool obj = false, mtx = false, ply = false, vtu = false;
 };
 
 int run_export(ExportRequest e) {
+  if (is_triangle_file(e.boundary))
+    return run_tri_export({e.boundary, &e.net, &e.global, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vtu});
+  if (e.ply || e.vtu)
+    throw InputError("command line", e.ply ? "--ply" : "--vtu",
+                     "is written for triangular boundaries (for a rectangular one: coons surface --ply/--vts)");
   Phases phases("export");
   phases.start("read");
   const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance);
@@ -110,6 +117,8 @@ void register_export(CLI::App& app, Registry& registry) {
   cmd->add_option("--samples", request->samples, "surface samples per direction")->capture_default_str();
   cmd->add_flag("--obj", request->obj, "write <prefix>.surface.obj and <prefix>.net.obj");
   cmd->add_flag("--mtx", request->mtx, "write <prefix>.A.mtx and <prefix>.B.mtx (Matrix Market)");
+  cmd->add_flag("--ply", request->ply, "triangles: write <prefix>.surface.ply");
+  cmd->add_flag("--vtu", request->vtu, "triangles: write <prefix>.surface.vtu (VTK unstructured grid)");
   cmd->add_flag("--force", request->global.force, "overwrite existing files of the same names");
   add_memory_option(*cmd, request->global);
   set_example(*cmd, "coons export data/boundaries/pillow.json --alpha -0.1 --samples 33 --out out/pillow");

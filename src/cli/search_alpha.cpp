@@ -11,12 +11,14 @@
 #include "coons/alpha/weight_search.h"
 #include "coons/io/input_error.h"
 #include "coons/mask/stencil.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/search_report.h"
 #include "coons/study/target.h"
 #include "coons/study/two_ring_problem.h"
 #include "registry.h"
+#include "tri_commands.h"
 
 namespace coons::cli {
 
@@ -133,6 +135,15 @@ StencilProblem weight_problem(const std::string& path, const BoundaryFile& file)
   return std::move(*two.problem);
 }
 
+TriSearchArgs tri_search_args(const SearchRequest& r) {
+  TriSearchArgs a{r.boundary,    r.objective, r.solver,           r.lower,   r.upper,
+                  r.scan_points, r.samples,   r.corner_tolerance, &r.global, ""};
+  if (r.parameter != Parameter::kAlpha) a.rejected = "--parameter";
+  if (r.allow_indefinite) a.rejected = "--allow-indefinite";
+  if (r.target_option->count() > 0) a.rejected = "--target";
+  return a;
+}
+
 int finish(nlohmann::json report, Phases& phases, SearchStatus status, const SearchRequest& r,
            const std::string& message) {
   report["timing"] = phases.timing();
@@ -148,6 +159,7 @@ int finish(nlohmann::json report, Phases& phases, SearchStatus status, const Sea
 }
 
 int run_search_alpha(const SearchRequest& r) {
+  if (is_triangle_file(r.boundary)) return run_tri_search(tri_search_args(r));
   Phases phases("search-alpha");
   phases.start("read");
   const BoundaryFile file = read_input(r.boundary, r.corner_tolerance);

@@ -2,7 +2,9 @@
 #include <memory>
 
 #include "coons/io/input_error.h"
+#include "coons/io/tri_boundary_io.h"
 #include "registry.h"
+#include "tri_commands.h"
 
 namespace coons::cli {
 
@@ -15,6 +17,7 @@ struct SolveRequest {
 };
 
 int run_solve(const SolveRequest& request) {
+  if (is_triangle_file(request.boundary)) return run_tri_solve(request.boundary, request.net, request.global);
   Phases phases("solve");
   phases.start("read");
   const BoundaryFile input = read_input(request.boundary, request.net.corner_tolerance);

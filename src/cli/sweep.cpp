@@ -9,11 +9,13 @@
 
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/target.h"
 #include "registry.h"
+#include "tri_commands.h"
 
 namespace coons::cli {
 
@@ -33,7 +35,18 @@ struct SweepRequest {
   CLI::Option *from_option = nullptr, *to_option = nullptr;
 };
 
+TriSweepArgs tri_sweep_args(const SweepRequest& r) {
+  TriSweepArgs a{r.boundary, r.solver,  r.out_dir,          std::nullopt, std::nullopt,
+                 r.count,    r.samples, r.corner_tolerance, &r.global,    ""};
+  if (r.from_option->count() > 0) a.from = r.from;
+  if (r.to_option->count() > 0) a.to = r.to;
+  if (r.parameter != SweepParameter::kAlpha) a.rejected = "--parameter";
+  if (!r.target.empty()) a.rejected = "--target";
+  return a;
+}
+
 int run_sweep_command(const SweepRequest& r) {
+  if (is_triangle_file(r.boundary)) return run_tri_sweep(tri_sweep_args(r));
   Phases phases("sweep");
   phases.start("read");
   const Boundary b = read_input(r.boundary, r.corner_tolerance).boundary;

@@ -1,18 +1,32 @@
 #include "coons/tri/tri_solve.h"
 
+#include <Eigen/SparseCore>
 #include <utility>
-
-#include "solvers/registry.h"
 
 namespace coons::tri {
 
-TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask) {
-  const solvers::SolverInfo* info = solvers::find_solver(solver);
-  if (!info) return {false, "no backend named '" + std::string(solver) + "' in this build"};
-  if (!info->needs_matrix)
-    return {false, info->name + " works on the rectangular grid stencil, not on triangular systems"};
-  if (info->definite_only && mask.c != 0.0)
-    return {false, info->name +
+namespace {
+
+// Whether a backend accepts an operator given only as an assembled matrix: needs_matrix backends
+// do; of the grid-stencil ones some (gmres) fall back to the matrix. Asked of the backend itself
+// (analyze on a 1×1 matrix), so that no list of names has to be kept here.
+bool accepts_matrix(const solvers::SolverInfo& info) {
+  if (info.needs_matrix) return true;
+  Eigen::SparseMatrix<double> one(1, 1);
+  one.insert(0, 0) = 1.0;
+  solvers::LinearOperator op;
+  op.matrix = &one;
+  const auto solver = solvers::make_solver(info.name);
+  return solver && solver->analyze(op) != solvers::SolveStatus::kNotApplicable;
+}
+
+}  // namespace
+
+TriBackendCheck check_tri_backend(const solvers::SolverInfo& info, const TriMask& mask) {
+  if (!accepts_matrix(info))
+    return {false, info.name + " works on the rectangular grid stencil only, not on triangular systems"};
+  if (info.definite_only && mask.c != 0.0)
+    return {false, info.name +
                        " is only for symmetric positive definite systems; the triangular "
                        "mask system is not symmetric for c != 0"};
   return {true, {}};
@@ -21,29 +35,35 @@ TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask) 
 std::vector<std::string> tri_applicable_solvers(const TriMask& mask) {
   std::vector<std::string> names;
   for (const auto& info : solvers::available_solvers())
-    if (check_tri_backend(info.name, mask).applicable) names.push_back(info.name);
+    if (check_tri_backend(info, mask).applicable) names.push_back(info.name);
   return names;
 }
 
 bool TriSolveOptions::is_valid(std::string* why) const {
   if (!mask.is_valid(why) || !solver_options.is_valid(why)) return false;
-  if (!solvers::find_solver(solver)) {
-    if (why) *why = "no backend named '" + solver + "' in this build";
+  if (!solver) {
+    if (why) *why = "no solver backend given";
     return false;
   }
   return true;
 }
 
+const solvers::SolverInfo& default_tri_solver() {
+  const solvers::SolverInfo* info = solvers::find_solver("umfpack");
+  if (!info) info = solvers::find_solver("eigen-lu");
+  return *info;  // eigen-lu is always built
+}
+
 TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options) {
   TriSolveResult result{frame, {}};
-  result.summary.solver = options.solver;
+  result.summary.solver = options.solver ? options.solver->name : std::string();
   std::string why;
   if (!options.is_valid(&why)) {
     result.summary.status = solvers::SolveStatus::kFailure;
     result.summary.message = why;
     return result;
   }
-  const TriBackendCheck check = check_tri_backend(options.solver, options.mask);
+  const TriBackendCheck check = check_tri_backend(*options.solver, options.mask);
   if (!check.applicable) {
     result.summary.status = solvers::SolveStatus::kNotApplicable;
     result.summary.message = check.reason;
@@ -51,7 +71,7 @@ TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options
   }
   if (interior_size(frame.n) == 0) return result;  // nothing to solve (n < 3)
   const TriMaskSystem sys = assemble_tri_mask_system(frame, options.mask);
-  auto solver = solvers::make_solver(options.solver, options.solver_options);
+  auto solver = solvers::make_solver(options.solver->name, options.solver_options);
   solvers::LinearOperator op;
   op.matrix = &sys.A;
   Eigen::MatrixX3d X = Eigen::MatrixX3d::Zero(sys.B.rows(), 3);

@@ -1,19 +1,21 @@
 // Solving the triangular mask system (tri_mask.h) of a boundary with a backend of the solver
 // registry. The system is not symmetric unless c = 0, so only backends for general matrices apply
-// (eigen-lu, umfpack, bicgstab); Cholesky-type and CG backends (registry flag definite_only) apply
-// only to c = 0, where A = I − (1/6)·(interior adjacency) is symmetric positive definite; the grid-stencil
-// backends (jacobi, gauss-seidel, dst, fast: needs_matrix = false) know only rectangular grids.
-// A backend that does not apply reports not_applicable and leaves the interior untouched.
+// (eigen-lu, umfpack, bicgstab, and gmres, a grid-stencil backend that also takes an assembled
+// matrix: asked of the backend, not listed here); Cholesky-type and CG backends (registry flag
+// definite_only) apply only to c = 0, where A = I − (1/6)·(interior adjacency) is symmetric positive
+// definite; the other grid-stencil backends (jacobi, gauss-seidel, dst, fast, mg) know only
+// rectangular grids. A backend that does not apply reports not_applicable and leaves the interior
+// untouched.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
 #include <string>
-#include <string_view>
 #include <vector>
 
 #include "coons/tri/tri_mask.h"
 #include "coons/tri/tri_net.h"
 #include "solvers/linear_solver.h"
+#include "solvers/registry.h"
 
 namespace coons::tri {
 
@@ -22,17 +24,22 @@ struct TriBackendCheck {
   bool applicable = false;
   std::string reason;  //!< empty when applicable
 };
-TriBackendCheck check_tri_backend(std::string_view solver, const TriMask& mask);
+TriBackendCheck check_tri_backend(const solvers::SolverInfo& solver, const TriMask& mask);
+
+//! The backend `auto` stands for on triangular systems: an LU-type one (umfpack when it is built,
+//! else eigen-lu), which applies to every member of the family.
+const solvers::SolverInfo& default_tri_solver();
 
 //! The registry backends (in registry order) that apply to the system of `mask`.
 std::vector<std::string> tri_applicable_solvers(const TriMask& mask);
 
 struct TriSolveOptions {
-  TriMask mask;                           //!< the member of the family (its c)
-  std::string solver = "eigen-lu";        //!< a registry name
+  TriMask mask;  //!< the member of the family (its c)
+  //! A backend of the registry (never null; names become backends only in the CLI).
+  const solvers::SolverInfo* solver = &default_tri_solver();
   solvers::SolverOptions solver_options;  //!< tolerance, ordering, ...
 
-  //! True when the mask and the solver options are usable and the solver exists; else why.
+  //! True when the mask and the solver options are usable and a solver is set; else why.
   bool is_valid(std::string* why) const;
 };
 

@@ -1,0 +1,280 @@
+// solve, export, search-alpha and sweep on triangular boundaries (tri_commands.h).
+#include "tri_commands.h"
+
+#include <fmt/format.h>
+
+#include <cctype>
+#include <cmath>
+#include <filesystem>
+#include <iostream>
+
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+#include "coons/io/matrix_market.h"
+#include "coons/io/net_json.h"
+#include "coons/io/tri_boundary_io.h"
+#include "coons/io/tri_mesh_export.h"
+#include "coons/io/write_files.h"
+#include "coons/study/memory_estimate.h"
+#include "coons/study/search_report.h"
+#include "coons/study/sweep.h"
+#include "coons/study/target.h"
+#include "coons/study/tri_report.h"
+#include "coons/study/tri_search.h"
+#include "coons/tri/tri_sampling.h"
+
+namespace coons::cli {
+
+namespace {
+
+bool given(const CLI::Option* o) { return o && o->count() > 0; }
+
+tri::TriBoundary read_tri_input(const std::string& path, double corner_tolerance) {
+  if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
+    throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
+  TriBoundaryReadOptions options;
+  options.corner_tolerance = corner_tolerance;
+  return read_tri_boundary_file(path, options);
+}
+
+//! --solver for triangles: auto is an LU-type backend (default_tri_solver).
+const solvers::SolverInfo& tri_backend(const std::string& name, bool& picked_automatically) {
+  const solvers::SolverInfo* info = solver_from_name(name);
+  picked_automatically = info == nullptr;
+  return info ? *info : tri::default_tri_solver();
+}
+
+// A triangle of degree n is bounded by the (n+1)×(n+1) grid's memory (about half of it).
+void check_tri_memory(const GlobalOptions& g, int n, const solvers::SolverInfo* solver, const std::string& file,
+                      double extra = 0) {
+  check_memory(g, net_solve_bytes(n, n, solver) + net_metrics_bytes(n, n) + extra,
+               fmt::format("a triangular net of degree {}", n), file, "degree");
+}
+
+// The request of solve/export for a triangle: only --method alpha, no --mu, --omega or
+// --allow-indefinite (they have no meaning here); c defaults to −1/6.
+struct TriRequest {
+  tri::TriSolveOptions options;
+  bool picked_automatically = false;
+};
+
+TriRequest resolve_tri(const NetRequest& r) {
+  if (given(r.method_option) && r.method != Method::kAlpha)
+    throw InputError("command line", "--method",
+                     "a triangular boundary has only --method alpha (the mask family over c, --alpha c)");
+  const std::pair<const CLI::Option*, const char*> not_triangular[] = {
+      {r.mu_option, "--mu"}, {r.omega_option, "--omega"}, {r.indefinite_option, "--allow-indefinite"}};
+  for (const auto& [option, name] : not_triangular)
+    if (given(option)) throw InputError("command line", name, "does not apply to a triangular boundary");
+  TriRequest out;
+  out.options.mask.c = given(r.alpha_option) ? r.alpha : -1.0 / 6;
+  if (!std::isfinite(out.options.mask.c)) throw InputError("command line", "--alpha", "must be a finite number");
+  out.options.solver = &tri_backend(r.solver, out.picked_automatically);
+  out.options.solver_options.tolerance = r.tolerance;
+  out.options.solver_options.max_iterations = r.max_iterations;
+  std::string why;
+  if (!out.options.solver_options.is_valid(&why)) throw InputError("command line", "solver options", why);
+  return out;
+}
+
+std::string without_spaces(const std::string& given) {
+  std::string out;
+  for (char c : given)
+    if (!std::isspace(static_cast<unsigned char>(c))) out += c;
+  return out;
+}
+
+}  // namespace
+
+int run_tri_solve(const std::string& path, const NetRequest& net, const GlobalOptions& global) {
+  Phases phases("solve");
+  phases.start("read");
+  const tri::TriBoundary b = read_tri_input(path, net.corner_tolerance);
+  const TriRequest r = resolve_tri(net);
+  check_tri_memory(global, b.n, r.options.solver, path);
+  phases.start("solve");
+  const tri::TriSolveResult result = tri::solve_tri_net(b, r.options);
+  phases.start("metrics");
+  nlohmann::json report = tri_solve_report(b, r.options.mask, result, r.picked_automatically);
+  report["timing"] = phases.timing();
+  print_json(report);
+  if (!result.summary.ok()) {
+    print_solver_failure(path, result.summary);
+    return kExitSolverFailed;
+  }
+  return kExitOk;
+}
+
+int run_tri_export(const TriExportArgs& e) {
+  Phases phases("export");
+  phases.start("read");
+  const tri::TriBoundary b = read_tri_input(e.boundary, e.net->corner_tolerance);
+  const TriRequest r = resolve_tri(*e.net);
+  if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  const bool all = !e.obj && !e.mtx && !e.ply && !e.vtu;
+  const bool obj = all || e.obj, mtx = all || e.mtx, ply = all || e.ply, vtu = all || e.vtu;
+  if (!e.prefix.empty() && safe_file_stem(e.prefix) != e.prefix)
+    throw InputError("command line", "--prefix",
+                     "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
+  const bool surface = obj || ply || vtu;
+  check_tri_memory(*e.global, b.n, r.options.solver, e.boundary, surface ? samples_bytes(e.samples) / 2 : 0.0);
+  const std::string prefix = e.prefix.empty() ? safe_file_stem(b.name) : e.prefix;
+
+  OutputSet out(e.out_dir);
+  std::vector<std::string> names;
+  if (obj) names.insert(names.end(), {prefix + ".surface.obj", prefix + ".net.obj"});
+  if (ply) names.push_back(prefix + ".surface.ply");
+  if (vtu) names.push_back(prefix + ".surface.vtu");
+  if (mtx) names.insert(names.end(), {prefix + ".A.mtx", prefix + ".B.mtx"});
+  for (const auto& name : names)
+    if (!e.global->force && std::filesystem::exists(out.path_of(name)))
+      throw InputError(out.path_of(name), "--force", "exists; give --force to overwrite it");
+
+  nlohmann::json report = {{"boundary", b.name}, {"type", "triangle"},        {"degree", b.n},
+                           {"method", "alpha"},  {"alpha", r.options.mask.c}, {"a", r.options.mask.a()}};
+  phases.start("solve");
+  const tri::TriSolveResult result = tri::solve_tri_net(b, r.options);
+  report["solver"] = summary_to_json(result.summary);
+  if (r.picked_automatically) report["solver"]["picked_by"] = "auto";
+  if (!result.summary.ok()) {
+    nlohmann::json failed = tri_solve_report(b, r.options.mask, result, r.picked_automatically);
+    failed["timing"] = phases.timing();
+    print_json(failed);
+    print_solver_failure(e.boundary, result.summary);
+    return kExitSolverFailed;
+  }
+  phases.start("write");
+  std::vector<std::string> written;
+  auto write = [&](const std::string& name, const std::function<void(std::ostream&)>& writer) {
+    written.push_back(out.path_of(name));
+    out.write(name, writer);
+  };
+  if (surface) {
+    const tri::TriSurfaceSamples samples = tri::sample_tri_surface(result.net, e.samples);
+    if (obj) {
+      write(prefix + ".surface.obj", [&](std::ostream& o) { write_tri_surface_obj(o, samples, b.n); });
+      write(prefix + ".net.obj", [&](std::ostream& o) { write_tri_net_obj(o, result.net); });
+    }
+    if (ply) write(prefix + ".surface.ply", [&](std::ostream& o) { write_tri_surface_ply(o, samples, b.n); });
+    if (vtu) write(prefix + ".surface.vtu", [&](std::ostream& o) { write_tri_surface_vtu(o, samples); });
+  }
+  if (mtx) {
+    phases.start("assemble");
+    const tri::TriMaskSystem system = tri::assemble_tri_mask_system(tri::frame_net(b), r.options.mask);
+    phases.start("write");
+    write(prefix + ".A.mtx", [&](std::ostream& o) { write_matrix_market(o, system.A); });
+    write(prefix + ".B.mtx", [&](std::ostream& o) { write_dense_matrix_market(o, system.B); });
+    report["matrix_market"] = {
+        {"matrix", "coordinate real general, I - mask on the interior (not symmetric for c != 0)"},
+        {"rhs", "array real general, #interior by 3 (x, y, z), interior in the net's row order"}};
+  }
+  report["written"] = written;
+  report["timing"] = phases.timing();
+  print_json(report);
+  out.commit();
+  return kExitOk;
+}
+
+int run_tri_search(const TriSearchArgs& a) {
+  Phases phases("search-alpha");
+  phases.start("read");
+  const tri::TriBoundary b = read_tri_input(a.boundary, a.corner_tolerance);
+  if (!a.rejected.empty()) throw InputError("command line", a.rejected, "does not apply to a triangular boundary");
+  const std::string text = without_spaces(a.objective);
+  std::string why;
+  std::optional<TriObjective> objective = parse_tri_objective(text, &why);
+  if (!objective) throw InputError("command line", "--objective", why);
+  if (a.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  if (objective->uses_target()) {
+    objective->target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
+    if (!objective->target)
+      throw InputError("command line", "--objective", "the objective uses 'target' but the file has no \"target\"");
+  }
+  AlphaSearchOptions options;
+  const auto [lower, upper] = default_tri_bounds(b.n);
+  options.lower = a.lower.value_or(lower);
+  options.upper = a.upper.value_or(upper);
+  options.scan_points = a.scan_points;
+  if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
+  bool picked = false;
+  const solvers::SolverInfo& solver = tri_backend(a.solver, picked);
+  check_tri_memory(*a.global, b.n, &solver, a.boundary);
+  phases.start("solve");
+  const AlphaSearchSummary s = search_tri_c(tri::frame_net(b), *objective, solver, options);
+  nlohmann::json report = tri_search_report(b, text, options, s);
+  report["solver"] = search_solver_block(solver, picked, s.status, s.solves, s.seconds, s.message);
+  report["timing"] = phases.timing();
+  print_json(report);
+  if (s.status != SearchStatus::kSolverFailed && s.status != SearchStatus::kFailedRegion) return kExitOk;
+  std::cerr << fmt::format("error: {}: solver: {} search failed ({})\n", a.boundary, solver.name,
+                           s.message.empty() ? "no successful evaluation" : s.message);
+  return kExitSolverFailed;
+}
+
+int run_tri_sweep(const TriSweepArgs& a) {
+  Phases phases("sweep");
+  phases.start("read");
+  const tri::TriBoundary b = read_tri_input(a.boundary, a.corner_tolerance);
+  if (!a.rejected.empty()) throw InputError("command line", a.rejected, "does not apply to a triangular boundary");
+  if (a.count < 2 || a.count > 100000) throw InputError("command line", "--count", "must be between 2 and 100000");
+  const auto [lower, upper] = default_tri_bounds(b.n);
+  const double from = a.from.value_or(lower), to = a.to.value_or(upper);
+  if (!(std::isfinite(from) && std::isfinite(to) && from < to))
+    throw InputError("command line", "--from/--to", "need finite values with from < to");
+  if (a.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  TriObjective target_only;  // no terms: the evaluations only solve; the target gives rms_target
+  target_only.target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
+  bool picked = false;
+  const solvers::SolverInfo& solver = tri_backend(a.solver, picked);
+  check_tri_memory(*a.global, b.n, &solver, a.boundary);
+
+  phases.start("solve");
+  const tri::TriNet frame = tri::frame_net(b);
+  std::vector<std::string> lines;
+  std::optional<solvers::SolveSummary> failed;  // the first failure
+  int failed_values = 0;
+  nlohmann::json intervals = nlohmann::json::array();
+  bool previous_failed = false;
+  solvers::SolveSummary first;
+  const std::vector<double> values = linspace(from, to, a.count);
+  for (size_t k = 0; k < values.size(); ++k) {
+    phases.note(fmt::format("{}/{}", k + 1, values.size()));
+    const TriEvaluation e = evaluate_tri_objective(frame, target_only, values[k], solver, false);
+    lines.push_back(dump(tri_sweep_line(b, e, target_only)));
+    if (k == 0) first = e.summary;
+    if (!e.ok()) {
+      if (failed_values++ == 0) failed = e.summary;
+      if (previous_failed)
+        intervals.back()[1] = values[k];
+      else
+        intervals.push_back({values[k], values[k]});
+    }
+    previous_failed = !e.ok();
+  }
+  phases.start("write");
+  OutputSet out(a.out_dir);
+  const std::string stem = safe_file_stem(b.name) + ".sweep-c";
+  const std::string jsonl = out.path_of(stem + ".jsonl");
+  out.write(stem + ".jsonl", [&](std::ostream& o) {
+    for (const auto& line : lines) o << line << '\n';
+  });
+  nlohmann::json summary = {{"boundary", b.name},      {"type", "triangle"}, {"degree", b.n}, {"parameter", "c"},
+                            {"values", values.size()}, {"from", from},       {"to", to},      {"jsonl", jsonl}};
+  nlohmann::json block = summary_to_json(failed ? *failed : first);
+  if (picked) block["picked_by"] = "auto";
+  summary["solver"] = block;
+  if (failed) {
+    summary["failed_values"] = failed_values;
+    summary["failed_intervals"] = intervals;
+  }
+  summary["timing"] = phases.timing();
+  print_json(summary);
+  out.commit();
+  if (failed) {
+    print_solver_failure(a.boundary, *failed);
+    return kExitSolverFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace coons::cli

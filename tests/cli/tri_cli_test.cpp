@@ -1,0 +1,221 @@
+// The triangular side of the command line (docs/formats.md, "Triangular boundaries"), through the binary.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "coons/io/tri_boundary_io.h"
+#include "coons/tri/tri_solve.h"
+#include "support/fixtures.h"
+#include "tri/tri_fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+const std::string kTriangles = std::string(COONS_DATA_DIR) + "/triangles/";
+
+std::string read_text(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream s;
+  s << in.rdbuf();
+  return s.str();
+}
+
+int count_lines_starting(const std::string& text, const std::string& prefix) {
+  std::istringstream in(text);
+  int count = 0;
+  for (std::string line; std::getline(in, line);) count += line.rfind(prefix, 0) == 0 ? 1 : 0;
+  return count;
+}
+
+}  // namespace
+
+TEST_CASE("coons solve: a triangular file gives the triangle report, net in the contract's row order", "[cli][tri]") {
+  const std::string file = kTriangles + "sphere_octant.json";
+  const CommandResult r = run_command(kCoons + " solve '" + file + "' --alpha -0.1 --solver eigen-lu");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["type"] == "triangle");
+  CHECK(report["degree"] == 6);
+  CHECK(report["method"] == "alpha");
+  CHECK(report["alpha"] == -0.1);
+  CHECK(report["a"].get<double>() == Approx((1 + 0.3) / 6));
+  CHECK(report["solver"]["name"] == "eigen-lu");
+  CHECK(report["solver"]["status"] == "success");
+  for (const char* key : {"dirichlet_energy", "thin_plate_energy", "twist_energy", "discrete_dirichlet_energy",
+                          "discrete_thin_plate_energy", "discrete_twist_energy", "mask_residual"})
+    CHECK(report["metrics"][key].is_number());
+  // the net equals the library's solve, row by row: net[k][j] = b[n-k-j][j][k]
+  tri::TriSolveOptions options;
+  options.mask.c = -0.1;
+  options.solver = solvers::find_solver("eigen-lu");
+  const tri::TriNet expected = tri::solve_tri_net(read_tri_boundary_file(file), options).net;
+  CHECK(report["net"] == tri_net_to_json(expected));
+  CHECK(report["metrics"]["mask_residual"].get<double>() < 1e-14);
+}
+
+TEST_CASE("coons solve: --solver auto on a triangle picks an LU backend; c defaults to -1/6", "[cli][tri]") {
+  const CommandResult r = run_command(kCoons + " solve '" + kTriangles + "monkey_saddle.json'");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["alpha"].get<double>() == -1.0 / 6);
+  CHECK(report["solver"]["picked_by"] == "auto");
+  CHECK((report["solver"]["name"] == "umfpack" || report["solver"]["name"] == "eigen-lu"));
+}
+
+TEST_CASE("coons solve: a symmetric-only backend on a triangle reports not_applicable, exit 3", "[cli][tri]") {
+  const std::string file = kTriangles + "dome_half.json";
+  const CommandResult r = run_command(kCoons + " solve '" + file + "' --alpha -0.1 --solver eigen-ldlt");
+  REQUIRE(r.status == 3);
+  const json report = json::parse(r.out);
+  CHECK(report["solver"]["status"] == "not_applicable");
+  CHECK(report["net"].is_null());
+  CHECK(report["metrics"].is_null());
+  CHECK(count_lines_starting(r.err, "error: " + file + ": solver: eigen-ldlt not_applicable") == 1);
+  // c = 0 is symmetric positive definite: there it applies and agrees with LU
+  const CommandResult zero = run_command(kCoons + " solve '" + file + "' --alpha 0 --solver eigen-ldlt");
+  const CommandResult zero_lu = run_command(kCoons + " solve '" + file + "' --alpha 0 --solver eigen-lu");
+  REQUIRE(zero.status == 0);
+  REQUIRE(zero_lu.status == 0);
+  const json a = json::parse(zero.out)["net"], b = json::parse(zero_lu.out)["net"];
+  for (size_t k = 0; k < a.size(); ++k)
+    for (size_t j = 0; j < a[k].size(); ++j)
+      for (int c = 0; c < 3; ++c) CHECK(a[k][j][c].get<double>() == Approx(b[k][j][c].get<double>()).margin(1e-12));
+}
+
+TEST_CASE("coons solve: bad triangular inputs exit 2 naming the side and point", "[cli][tri]") {
+  TempDir dir;
+  json doc = tri_boundary_to_json(tri::boundary_of(tri::test::random_tri_net(4, 5), "bad"));
+  json gap = doc;
+  gap["sides"][1][0][0] = gap["sides"][1][0][0].get<double>() + 0.1;
+  json short_side = doc;
+  short_side["sides"][2].erase(3);
+  json bad_point = doc;
+  bad_point["sides"][0][2] = json::array({1, 2});
+  const std::pair<json, std::string> cases[] = {{gap, "sides[1][0]: corner (0,4,0) differs from sides[0][4] by 0.1"},
+                                                {short_side, "sides[2]: has 4 points, sides[0] has 5"},
+                                                {bad_point, "sides[0][2]: a point must have 3 coordinates, not 2"}};
+  int k = 0;
+  for (const auto& [bad, expected] : cases) {
+    const std::string file = dir.write("bad" + std::to_string(k++) + ".json", bad.dump());
+    const std::vector<std::string> commands = {"solve", "export --out '" + dir.file("out") + "'",
+                                               "search-alpha --objective thin_plate",
+                                               "sweep --out '" + dir.file("out") + "'"};
+    for (const std::string& command : commands) {
+      const std::string verb = command.substr(0, command.find(' '));
+      const CommandResult r = run_command(fmt::format("{} {} '{}'{}", kCoons, verb, file, command.substr(verb.size())));
+      INFO(command << ": " << r.err);
+      CHECK(r.status == 2);
+      CHECK(r.out.empty());
+      CHECK(r.err.rfind(fmt::format("error: {}: {}", file, expected), 0) == 0);
+      CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    }
+  }
+  CHECK_FALSE(fs::exists(dir.file("out")));
+  // options that mean nothing for a triangle
+  const std::string file = kTriangles + "sphere_octant.json";
+  for (const std::string option : {"--mu 2", "--method coons", "--allow-indefinite"}) {
+    const CommandResult r = run_command(fmt::format("{} solve '{}' {}", kCoons, file, option));
+    INFO(option);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(count_lines_starting(r.err, "error: command line: --") == 1);
+  }
+}
+
+TEST_CASE("coons export: a triangle as OBJ (surface and net), PLY and VTU", "[cli][tri]") {
+  TempDir dir;
+  const std::string file = kTriangles + "sphere_octant.json";
+  const CommandResult r = run_command(kCoons + " export '" + file + "' --samples 5 --out '" + dir.file("x") + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["written"].size() == 6);
+  const std::string prefix = dir.file("x/sphere_octant");
+  const std::string surface = read_text(prefix + ".surface.obj");
+  CHECK(count_lines_starting(surface, "v ") == 15);
+  CHECK(count_lines_starting(surface, "vn ") == 15);
+  CHECK(count_lines_starting(surface, "f ") == 16);
+  const std::string net = read_text(prefix + ".net.obj");
+  CHECK(count_lines_starting(net, "v ") == 28);
+  CHECK(count_lines_starting(net, "f ") == 36);
+  const std::string ply = read_text(prefix + ".surface.ply");
+  CHECK(ply.find("element vertex 15\n") != std::string::npos);
+  CHECK(ply.find("element face 16\n") != std::string::npos);
+  CHECK(count_lines_starting(ply, "3 ") == 16);
+  const std::string vtu = read_text(prefix + ".surface.vtu");
+  CHECK(vtu.find("<Piece NumberOfPoints=\"15\" NumberOfCells=\"16\">") != std::string::npos);
+  CHECK(vtu.find("Name=\"types\"") != std::string::npos);
+  CHECK(fs::exists(prefix + ".A.mtx"));
+  // every surface vertex of the octant lies near the unit sphere (the c = -1/6 net is not on it:
+  // 8% inside at the centre)
+  std::istringstream in(surface);
+  for (std::string line; std::getline(in, line);)
+    if (line.rfind("v ", 0) == 0) {
+      std::istringstream p(line.substr(2));
+      double x = 0, y = 0, z = 0;
+      p >> x >> y >> z;
+      const double radius = std::sqrt(x * x + y * y + z * z);
+      CHECK(radius > 0.9);
+      CHECK(radius < 1 + 1e-5);
+    }
+  // without --force the files are not replaced
+  const CommandResult again = run_command(kCoons + " export '" + file + "' --vtu --out '" + dir.file("x") + "'");
+  CHECK(again.status == 2);
+  CHECK(count_lines_starting(again.err, "error: ") == 1);
+  // --ply and --vtu are for triangles
+  const CommandResult rect = run_command(kCoons + " export '" + std::string(COONS_DATA_DIR) +
+                                         "/boundaries/dome.json' --vtu --out '" + dir.file("y") + "'");
+  CHECK(rect.status == 2);
+  CHECK_FALSE(fs::exists(dir.file("y")));
+}
+
+TEST_CASE("coons search-alpha: the best c of a triangle, with bounds that avoid the singular member", "[cli][tri]") {
+  const std::string file = kTriangles + "sphere_octant.json";
+  const CommandResult r = run_command(kCoons + " search-alpha '" + file + "' --objective target");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["type"] == "triangle");
+  CHECK(report["status"] == "success");
+  CHECK(report["flat"] == false);
+  CHECK(report["at_bound"] == false);
+  const double c = report["alpha"].get<double>();
+  CHECK(c > report["bounds"][0].get<double>());
+  CHECK(c < report["bounds"][1].get<double>());
+  CHECK(report["bounds"][0].get<double>() == Approx(-1.0 / 6 - 1.0 / 12));
+  // the target value is the mean squared distance to the sphere: small for the octant
+  CHECK(report["value"].get<double>() < 1e-4);
+  const CommandResult rejected = run_command(kCoons + " search-alpha '" + file + "' --objective e3");
+  CHECK(rejected.status == 2);
+  CHECK(count_lines_starting(rejected.err, "error: command line: --objective: unknown objective 'e3'") == 1);
+}
+
+TEST_CASE("coons sweep: a triangle gives NAME.sweep-c.jsonl, one line per c", "[cli][tri]") {
+  TempDir dir;
+  const std::string file = kTriangles + "dome_half.json";
+  const CommandResult r = run_command(kCoons + " sweep '" + file + "' --count 5 --out '" + dir.path.string() + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json summary = json::parse(r.out);
+  CHECK(summary["parameter"] == "c");
+  std::istringstream lines(read_text(dir.file("dome_half.sweep-c.jsonl")));
+  int count = 0;
+  for (std::string line; std::getline(lines, line); ++count) {
+    const json row = json::parse(line);
+    CHECK(row["status"] == "success");
+    CHECK(row["metrics"]["thin_plate_energy"].is_number());
+    CHECK(row["rms_target"].get<double>() > 0);
+    CHECK(row["rms_target"].get<double>() < 0.2);
+  }
+  CHECK(count == 5);
+}
