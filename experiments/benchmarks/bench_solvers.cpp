@@ -4,6 +4,11 @@
 //
 //   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick]
 //                 [google benchmark flags, e.g. --benchmark_format=json]
+//   bench_solvers --dump-mtx=DIR [--sizes=...] [--alphas=...]
+//
+// --dump-mtx writes, instead of running anything, every (N, α) system the suite times as
+// DIR/mask_N<N>_alpha<α>.A.mtx and .B.mtx (Matrix Market, src/coons/io/matrix_market.h), so that
+// other solvers (or `coons bench-matrix A.mtx B.mtx`) can rerun them.
 //
 // Default sizes per family keep the full run within minutes: direct backends up to 1023,
 // Krylov backends up to 255 (127 at α = −1/4, where CG needs O(N²) iterations), the classical
@@ -11,7 +16,9 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <random>
 #include <sstream>
@@ -20,6 +27,7 @@
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/config.h"
+#include "coons/io/matrix_market.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
@@ -37,6 +45,7 @@ struct Config {
   std::vector<double> alphas = {-0.25, -0.1, 0.0};
   std::vector<std::string> backends;  // empty: all
   bool quick = false;
+  std::string dump_dir;  // --dump-mtx: write the systems there and run nothing
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -272,6 +281,27 @@ void BM_SearchAlpha(benchmark::State& state, const std::string& name, int N, boo
   state.SetLabel(name + (spectral ? " spectral " : " solve ") + to_string(s.status));
 }
 
+// The systems BM_Solve times (the same boundary, mask and assembly), as Matrix Market files.
+int dump_systems(const Config& config) {
+  std::filesystem::create_directories(config.dump_dir);
+  for (int N : config.sizes)
+    for (double alpha : config.alphas) {
+      const Problem& p = problem(N, alpha, true);
+      std::ostringstream name;
+      name << config.dump_dir << "/mask_N" << N << "_alpha" << alpha;
+      try {
+        write_matrix_market(name.str() + ".A.mtx", p.system.A);
+        write_dense_matrix_market(name.str() + ".B.mtx", p.system.B);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+      }
+      std::printf("%s.A.mtx, %s.B.mtx: %lld unknowns, 3 right-hand sides\n", name.str().c_str(), name.str().c_str(),
+                  static_cast<long long>(p.system.A.rows()));
+    }
+  return 0;
+}
+
 int size_cap(const SolverInfo& info, double alpha) {
   if (info.family == SolverFamily::kStructured) return 2047;
   if (info.family == SolverFamily::kDirect) return 1023;
@@ -295,6 +325,8 @@ int main(int argc, char** argv) {
       for (const auto& s : split(value("--alphas="))) config.alphas.push_back(std::stod(s));
     } else if (arg.rfind("--backends=", 0) == 0) {
       config.backends = split(value("--backends="));
+    } else if (arg.rfind("--dump-mtx=", 0) == 0) {
+      config.dump_dir = value("--dump-mtx=");
     } else if (arg == "--quick") {
       config.quick = true;
       config.sizes = {15, 31};
@@ -302,6 +334,7 @@ int main(int argc, char** argv) {
       rest.push_back(argv[a]);
     }
   }
+  if (!config.dump_dir.empty()) return dump_systems(config);
   const double min_time = config.quick ? 0.01 : 0.2;
   auto wanted = [&](const std::string& name) {
     return config.backends.empty() ||
