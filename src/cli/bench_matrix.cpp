@@ -36,7 +36,7 @@ std::vector<const solvers::SolverInfo*> chosen_backends(const std::vector<std::s
     if (!info) {
       std::string built_in;
       for (const auto& s : solvers::available_solvers()) built_in += (built_in.empty() ? "" : ", ") + s.name;
-      throw InputError("command line", "--solvers", "unknown solver '" + name + "' (built in: " + built_in + ")");
+      throw InputError("command line", "--solvers", fmt::format("unknown solver '{}' (built in: {})", name, built_in));
     }
     if (std::find(out.begin(), out.end(), info) != out.end())
       throw InputError("command line", "--solvers", "'" + name + "' is named twice");

@@ -99,7 +99,9 @@ TEST_CASE("read_market_matrix: a symmetric file equals its expanded general copy
   };
   for (const auto& [qualifiers, body] : forms) {
     INFO(qualifiers);
-    const MarketMatrix m = read_market_matrix(dir.write("m.mtx", "%%MatrixMarket matrix " + qualifiers + "\n" + body));
+    std::string text = "%%MatrixMarket matrix " + qualifiers + "\n";
+    text += body;
+    const MarketMatrix m = read_market_matrix(dir.write("m.mtx", text));
     REQUIRE(m.matrix.rows() == 3);
     CHECK((Eigen::MatrixXd(m.matrix) - full).cwiseAbs().maxCoeff() == 0);
   }
