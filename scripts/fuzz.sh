@@ -42,6 +42,7 @@ for t in "${targets[@]}"; do
   if [ "$t" = fuzz_matrix_market ]; then
     printf '%%%%MatrixMarket matrix coordinate real general\n3 3 4\n1 1 4\n2 2 4\n3 3 4\n1 3 -1\n' >"$corpus/seed_sparse.mtx"
     printf '%%%%MatrixMarket matrix array real general\n% a comment\n3 2\n1\n2\n3\n4\n5\n6.5e-3\n' >"$corpus/seed_dense.mtx"
+    printf '%%%%MatrixMarket matrix coordinate real symmetric\n3 3 4\n1 1 4\n2 1 -1\n2 2 4\n3 3 4\n' >"$corpus/seed_symmetric.mtx"
   fi
   log=$build/$t.log
   status=0

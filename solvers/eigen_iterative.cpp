@@ -67,6 +67,9 @@ class EigenIterative : public LinearSolver {
     end.converged = true;
     end.residual = 0;
     for (int c = 0; c < 3; ++c) {
+      // A zero column has the solution zero. (Eigen's BiCGSTAB returns at once for it but leaves
+      // its iteration count at the limit, which would be reported as the iterations of the solve.)
+      if (B.col(c).squaredNorm() == 0) continue;
       int used = 0;
       double error = 0;
       Eigen::VectorXd x = Eigen::VectorXd::Zero(B.rows());

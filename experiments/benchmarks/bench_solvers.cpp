@@ -4,6 +4,11 @@
 //
 //   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick] [--large] [--hard]
 //                 [google benchmark flags, e.g. --benchmark_format=json]
+//   bench_solvers --dump-mtx=DIR [--sizes=...] [--alphas=...]
+//
+// --dump-mtx writes, instead of running anything, every (N, α) system the suite times as
+// DIR/mask_N<N>_alpha<α>.A.mtx and .B.mtx (Matrix Market, src/coons/io/matrix_market.h), so that
+// other solvers (or `coons bench-matrix A.mtx B.mtx`) can rerun them.
 //
 // Default sizes per family keep the full run within minutes: direct backends up to 1023,
 // Krylov backends up to 255 (127 at α = −1/4, where CG needs O(N²) iterations), the classical
@@ -17,7 +22,9 @@
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
+#include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <map>
 #include <random>
 #include <sstream>
@@ -26,6 +33,7 @@
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/config.h"
+#include "coons/io/matrix_market.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
@@ -47,6 +55,7 @@ struct Config {
   bool large = false;  // the 5×5 set at N = 1023 too
   bool hard = false;   // experiment E04 (BM_Hard): nine backends on the 5×5 problems
   bool sizes_given = false;  // --sizes: the multigrid-class backends run up to 1023
+  std::string dump_dir;  // --dump-mtx: write the systems there and run nothing
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -396,6 +405,27 @@ bool multigrid_class(const std::string& name) {
   return name == "mg" || name == "mg-cg" || name.rfind("hypre-", 0) == 0;
 }
 
+// The systems BM_Solve times (the same boundary, mask and assembly), as Matrix Market files.
+int dump_systems(const Config& config) {
+  std::filesystem::create_directories(config.dump_dir);
+  for (int N : config.sizes)
+    for (double alpha : config.alphas) {
+      const Problem& p = problem(N, alpha, true);
+      std::ostringstream name;
+      name << config.dump_dir << "/mask_N" << N << "_alpha" << alpha;
+      try {
+        write_matrix_market(name.str() + ".A.mtx", p.system.A);
+        write_dense_matrix_market(name.str() + ".B.mtx", p.system.B);
+      } catch (const std::exception& e) {
+        std::fprintf(stderr, "error: %s\n", e.what());
+        return 2;
+      }
+      std::printf("%s.A.mtx, %s.B.mtx: %lld unknowns, 3 right-hand sides\n", name.str().c_str(), name.str().c_str(),
+                  static_cast<long long>(p.system.A.rows()));
+    }
+  return 0;
+}
+
 int size_cap(const SolverInfo& info, double alpha, const Config& config) {
   if (info.family == SolverFamily::kStructured) return 2047;
   if (multigrid_class(info.name)) return config.sizes_given ? 1023 : 255;
@@ -425,6 +455,8 @@ int main(int argc, char** argv) {
       config.hard = true;
     } else if (arg == "--large") {
       config.large = true;
+    } else if (arg.rfind("--dump-mtx=", 0) == 0) {
+      config.dump_dir = value("--dump-mtx=");
     } else if (arg == "--quick") {
       config.quick = true;
       config.sizes = {15, 31};
@@ -432,6 +464,7 @@ int main(int argc, char** argv) {
       rest.push_back(argv[a]);
     }
   }
+  if (!config.dump_dir.empty()) return dump_systems(config);
   const double min_time = config.quick ? 0.01 : 0.2;
   auto wanted = [&](const std::string& name) {
     return config.backends.empty() ||

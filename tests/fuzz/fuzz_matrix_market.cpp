@@ -1,6 +1,6 @@
 // libFuzzer target: the project's Matrix Market readers (src/coons/io/matrix_market.h: sparse
-// coordinate and dense array, both real general), fed the bytes through a file as `coons` reads
-// them. An InputError is the expected answer to bad bytes; anything else is a finding.
+// coordinate and dense array, both real general, and read_market_matrix for every real kind), fed the bytes through a
+// file as `coons` reads them. An InputError is the expected answer to bad bytes; anything else is a finding.
 #include <unistd.h>
 
 #include <cstddef>
@@ -39,6 +39,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   try {
     (void)coons::read_dense_matrix_market(path);
+  } catch (const coons::InputError&) {
+  }
+  try {
+    (void)coons::read_market_matrix(path);
   } catch (const coons::InputError&) {
   }
   std::remove(path.c_str());

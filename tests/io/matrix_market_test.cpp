@@ -69,3 +69,90 @@ TEST_CASE("read_dense_matrix_market: the size must fit the file and every value 
   CHECK(error_of("2 1\n1\nnan\n") == "entry (2, 1): not a number");
   CHECK(error_of("1 1\n1\n2\n") == "line 4: more values than the size line says");
 }
+
+TEST_CASE("read_market_matrix: a symmetric file equals its expanded general copy", "[io]") {
+  const TempDir dir;
+  // the bundled SuiteSparse-style file (lower triangle stored) against the general file of its full matrix
+  const std::string bundled = std::string(COONS_DATA_DIR) + "/matrices/anisotropic_diffusion.mtx";
+  const MarketMatrix symmetric = read_market_matrix(bundled);
+  CHECK(symmetric.symmetry == "symmetric");
+  const Eigen::SparseMatrix<double>& S = symmetric.matrix;
+  REQUIRE(S.rows() == 1024);
+  CHECK(S.nonZeros() == 2 * 3008 - 1024);  // off-diagonal entries mirrored, the diagonal once
+  const std::string general = dir.file("general.mtx");
+  write_matrix_market(general, S);
+  const Eigen::SparseMatrix<double> G = read_matrix_market(general);
+  CHECK(read_market_matrix(general).symmetry == "general");
+  CHECK((Eigen::MatrixXd(S) - Eigen::MatrixXd(G)).cwiseAbs().maxCoeff() == 0);
+  CHECK((Eigen::MatrixXd(S) - Eigen::MatrixXd(S.transpose())).cwiseAbs().maxCoeff() == 0);
+
+  // the same small matrix in every form the reader takes
+  Eigen::MatrixXd full(3, 3);
+  full << 4, -1, 0, -1, 4, -2, 0, -2, 5;
+  const std::vector<std::pair<std::string, std::string>> forms = {
+      {"coordinate real general", "3 3 7\n1 1 4\n2 1 -1\n1 2 -1\n2 2 4\n3 2 -2\n2 3 -2\n3 3 5\n"},
+      {"coordinate real symmetric", "3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n"},
+      {"coordinate integer symmetric", "3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n"},
+      {"array real general", "3 3\n4\n-1\n0\n-1\n4\n-2\n0\n-2\n5\n"},
+      {"array real symmetric", "3 3\n4\n-1\n0\n4\n-2\n5\n"},
+      {"  coordinate   REAL symmetric", "% a comment\n\n3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n"},
+  };
+  for (const auto& [qualifiers, body] : forms) {
+    INFO(qualifiers);
+    std::string text = "%%MatrixMarket matrix " + qualifiers + "\n";
+    text += body;
+    const MarketMatrix m = read_market_matrix(dir.write("m.mtx", text));
+    REQUIRE(m.matrix.rows() == 3);
+    CHECK((Eigen::MatrixXd(m.matrix) - full).cwiseAbs().maxCoeff() == 0);
+  }
+  const MarketMatrix pattern =
+      read_market_matrix(dir.write("p.mtx", "%%MatrixMarket matrix coordinate pattern general\n2 3 2\n1 1\n2 3\n"));
+  CHECK(Eigen::MatrixXd(pattern.matrix) == (Eigen::MatrixXd(2, 3) << 1, 0, 0, 0, 0, 1).finished());
+  const MarketMatrix skew =
+      read_market_matrix(dir.write("s.mtx", "%%MatrixMarket matrix coordinate real skew-symmetric\n2 2 1\n2 1 3\n"));
+  CHECK(Eigen::MatrixXd(skew.matrix) == (Eigen::MatrixXd(2, 2) << 0, -3, 3, 0).finished());
+  const MarketMatrix columns = read_market_matrix(std::string(COONS_DATA_DIR) + "/matrices/convection_diffusion_b.mtx");
+  CHECK(columns.matrix.rows() == 576);
+  CHECK(columns.matrix.cols() == 2);
+}
+
+TEST_CASE("read_market_matrix: a bad file names its line and the reason", "[io]") {
+  const TempDir dir;
+  auto error_of = [&](const std::string& text) -> std::string {
+    const std::string path = dir.write("bad.mtx", text);
+    try {
+      read_market_matrix(path);
+    } catch (const InputError& e) {
+      CHECK(e.file() == path);
+      return e.field() + ": " + e.reason();
+    }
+    return "no error";
+  };
+  const std::string coordinate = "%%MatrixMarket matrix coordinate real general\n";
+  const std::string symmetric = "%%MatrixMarket matrix coordinate real symmetric\n";
+  CHECK(error_of(coordinate + "2 2 1\n1 1 1\n") == "no error");
+  CHECK(error_of("%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n") ==
+        "line 1: complex matrices are not supported (real systems only)");
+  CHECK(error_of("%%MatrixMarket tensor coordinate real general\n").find("line 1: expected '%%MatrixMarket") == 0);
+  CHECK(error_of("%%MatrixMarket matrix array pattern general\n") ==
+        "line 1: a pattern matrix needs the coordinate format");
+  CHECK(error_of(coordinate + "% c\n2 x 1\n").find("line 3: expected 3 integers") == 0);
+  CHECK(error_of(coordinate + "2 2\n").find("line 2: expected 3 integers") == 0);
+  CHECK(error_of(symmetric + "2 3 1\n1 1 1\n") == "line 2: a symmetric matrix must be square, not 2 by 3");
+  CHECK(error_of(coordinate + "2 2 1\n3 1 1\n") == "line 3: entry (3, 1) outside the 2 by 2 matrix");
+  CHECK(error_of(coordinate + "2 2 1\n0 1 1\n") == "line 3: entry (0, 1) outside the 2 by 2 matrix");
+  CHECK(error_of(coordinate + "2 2 1\n1 1 1e999\n") == "line 3: the value '1e999' is not finite");
+  CHECK(error_of(coordinate + "2 2 1\n1 1 nan\n") == "line 3: the value 'nan' is not finite");
+  CHECK(error_of(coordinate + "2 2 1\n1 1 x\n") == "line 3: 'x' is not a number");
+  CHECK(error_of(coordinate + "2 2 1\n1 1\n") == "line 3: expected 'row column value'");
+  CHECK(error_of(coordinate + "2 2 2\n1 1 1\n") == "line 2: promises 2 entries, the file holds 1");
+  CHECK(error_of(coordinate + "2 2 1\n1 1 1\n2 2 1\n") == "line 4: more entries than the 1 of the size line");
+  CHECK(error_of(symmetric + "2 2 1\n1 2 1\n") ==
+        "line 3: entry (1, 2) above the diagonal: a symmetric file stores the lower triangle");
+  CHECK(error_of("%%MatrixMarket matrix coordinate integer general\n1 1 1\n1 1 1.5\n") ==
+        "line 3: '1.5' is not an integer");
+  CHECK(error_of("%%MatrixMarket matrix array real general\n2 1\n1\n") ==
+        "line 2: promises a 2 by 1 general matrix, the file ends at entry (2, 1)");
+  CHECK(error_of("%%MatrixMarket matrix array real general\n1 1\n1\n2\n") ==
+        "line 4: more values than the size line says");
+}

@@ -4,10 +4,14 @@
 #include <fmt/ostream.h>
 
 #include <algorithm>
+#include <cctype>
+#include <cerrno>
 #include <cmath>
 #include <cstdio>
+#include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <optional>
 #include <sstream>
 #include <unsupported/Eigen/SparseExtra>
 #include <vector>
@@ -75,11 +79,14 @@ std::string normalised_words(const std::string& line) {
 // Reads the lines after the banner, skipping comments and blank lines.
 class MarketLines {
  public:
-  MarketLines(const std::string& path, const std::string& text, const char* banner) : in_(text) {
-    std::string first;
-    std::getline(in_, first);
-    if (normalised_words(first) != banner) throw InputError(path, "header", fmt::format("expected '{}'", banner));
+  explicit MarketLines(const std::string& text) : in_(text) {
+    std::getline(in_, banner_);
+    if (!banner_.empty() && banner_.back() == '\r') banner_.pop_back();
   }
+  MarketLines(const std::string& path, const std::string& text, const char* banner) : MarketLines(text) {
+    if (normalised_words(banner_) != banner) throw InputError(path, "header", fmt::format("expected '{}'", banner));
+  }
+  [[nodiscard]] const std::string& banner() const { return banner_; }
   bool next(std::string& line) {
     while (std::getline(in_, line)) {
       ++number_;
@@ -93,22 +100,24 @@ class MarketLines {
 
  private:
   std::istringstream in_;
+  std::string banner_;
   int number_ = 0;
 };
 
 // The integers of a size line, rows and columns within kMaxMarketDimension, nothing else on the line.
-std::vector<long long> size_line(const std::string& path, const std::string& line, int count) {
+std::vector<long long> size_line(const std::string& path, const std::string& line, int count,
+                                 const std::string& field = "size line") {
   constexpr long long kHi = 1LL << 62;
   std::istringstream words(line);
   std::vector<long long> out(count);
   for (auto& v : out)
     if (!(words >> v) || v < 0 || v > kHi)
-      throw InputError(path, "size line", fmt::format("expected {} integers in [0, {}]", count, kHi));
+      throw InputError(path, field, fmt::format("expected {} integers in [0, {}]", count, kHi));
   std::string rest;
-  if (words >> rest) throw InputError(path, "size line", fmt::format("unexpected '{}' after {} integers", rest, count));
+  if (words >> rest) throw InputError(path, field, fmt::format("unexpected '{}' after {} integers", rest, count));
   if (out[0] > kMaxMarketDimension || out[1] > kMaxMarketDimension)
     throw InputError(
-        path, "size line",
+        path, field,
         fmt::format("{} by {} is beyond the limit of {} rows or columns", out[0], out[1], kMaxMarketDimension));
   return out;
 }
@@ -184,6 +193,181 @@ Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
     throw InputError(path, fmt::format("entry ({}, {})", k % std::max(rows, 1LL) + 1, k / std::max(rows, 1LL) + 1),
                      "missing");
   return B;
+}
+
+namespace {
+
+// The banner of any real matrix file: its format, field and symmetry, lower case.
+struct Banner {
+  std::string format, field, symmetry;
+};
+
+Banner parse_banner(const std::string& path, const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> words;
+  for (std::string w; in >> w;) {
+    std::transform(w.begin(), w.end(), w.begin(), [](unsigned char c) { return char(std::tolower(c)); });
+    words.push_back(w);
+  }
+  const std::string field = "line 1";
+  const std::string expected =
+      "expected '%%MatrixMarket matrix coordinate|array real|integer|pattern general|symmetric|skew-symmetric'";
+  if (words.size() != 5 || words[0] != "%%matrixmarket" || words[1] != "matrix")
+    throw InputError(path, field, expected);
+  Banner b{words[2], words[3], words[4]};
+  if (b.format != "coordinate" && b.format != "array")
+    throw InputError(path, field, fmt::format("unknown format '{}' ({})", b.format, expected));
+  if (b.field == "complex") throw InputError(path, field, "complex matrices are not supported (real systems only)");
+  if (b.field != "real" && b.field != "integer" && b.field != "pattern" && b.field != "double")
+    throw InputError(path, field, fmt::format("unknown field '{}' ({})", b.field, expected));
+  if (b.field == "double") b.field = "real";  // an alias some writers use
+  if (b.field == "pattern" && b.format == "array")
+    throw InputError(path, field, "a pattern matrix needs the coordinate format");
+  if (b.symmetry == "hermitian") throw InputError(path, field, "hermitian matrices are complex: not supported");
+  if (b.symmetry != "general" && b.symmetry != "symmetric" && b.symmetry != "skew-symmetric")
+    throw InputError(path, field, fmt::format("unknown symmetry '{}' ({})", b.symmetry, expected));
+  return b;
+}
+
+// A 1-based index in [1, hi] (a whole token), else nullopt.
+std::optional<long long> parse_index(const std::string& token) {
+  errno = 0;
+  char* end = nullptr;
+  const long long v = std::strtoll(token.c_str(), &end, 10);
+  if (token.empty() || *end != '\0' || errno == ERANGE) return std::nullopt;
+  return v;
+}
+
+// One value of the file's field: a finite number (a whole token), integers for `integer`.
+double parse_value(const std::string& path, const std::string& where, const std::string& token, const Banner& b) {
+  char* end = nullptr;
+  const double v =
+      b.field == "integer" ? double(std::strtoll(token.c_str(), &end, 10)) : std::strtod(token.c_str(), &end);
+  if (token.empty() || *end != '\0')
+    throw InputError(path, where,
+                     fmt::format("'{}' is not {}", token, b.field == "integer" ? "an integer" : "a number"));
+  if (!std::isfinite(v)) throw InputError(path, where, fmt::format("the value '{}' is not finite", token));
+  return v;
+}
+
+std::vector<std::string> tokens_of(const std::string& line) {
+  std::istringstream in(line);
+  std::vector<std::string> out;
+  for (std::string w; in >> w;) out.push_back(w);
+  return out;
+}
+
+// Adds (i, j, v) and, for a symmetric or skew-symmetric file, its mirror image.
+void add_entry(std::vector<Eigen::Triplet<double>>& entries, long long i, long long j, double v, const Banner& b) {
+  entries.emplace_back(Eigen::Index(i), Eigen::Index(j), v);
+  if (i != j && b.symmetry != "general")
+    entries.emplace_back(Eigen::Index(j), Eigen::Index(i), b.symmetry == "symmetric" ? v : -v);
+}
+
+// `size_field` names the size line (the field of a count that does not match the file).
+void read_coordinate_entries(const std::string& path, const std::string& size_field, MarketLines& lines,
+                             const Banner& b, long long rows, long long cols, long long nnz,
+                             std::vector<Eigen::Triplet<double>>& entries) {
+  const std::size_t width = b.field == "pattern" ? 2 : 3;
+  const std::string form = b.field == "pattern" ? "'row column'" : "'row column value'";
+  long long count = 0;
+  std::string line;
+  while (lines.next(line)) {
+    const std::string where = fmt::format("line {}", lines.number());
+    if (count == nnz) throw InputError(path, where, fmt::format("more entries than the {} of the size line", nnz));
+    const std::vector<std::string> t = tokens_of(line);
+    if (t.size() != width) throw InputError(path, where, "expected " + form);
+    const std::optional<long long> i = parse_index(t[0]), j = parse_index(t[1]);
+    if (!i || !j) throw InputError(path, where, "expected " + form + " with integer row and column");
+    if (*i < 1 || *i > rows || *j < 1 || *j > cols)
+      throw InputError(path, where, fmt::format("entry ({}, {}) outside the {} by {} matrix", *i, *j, rows, cols));
+    if (b.symmetry == "symmetric" && *i < *j)
+      throw InputError(
+          path, where,
+          fmt::format("entry ({}, {}) above the diagonal: a symmetric file stores the lower triangle", *i, *j));
+    if (b.symmetry == "skew-symmetric" && *i <= *j)
+      throw InputError(
+          path, where,
+          fmt::format("entry ({}, {}) not below the diagonal: a skew-symmetric file stores the strict lower triangle",
+                      *i, *j));
+    const double v = b.field == "pattern" ? 1.0 : parse_value(path, where, t[2], b);
+    add_entry(entries, *i - 1, *j - 1, v, b);
+    ++count;
+  }
+  if (count != nnz)
+    throw InputError(path, size_field, fmt::format("promises {} entries, the file holds {}", nnz, count));
+}
+
+void read_array_entries(const std::string& path, const std::string& size_field, MarketLines& lines, const Banner& b,
+                        long long rows, long long cols, std::vector<Eigen::Triplet<double>>& entries) {
+  // the (i, j) of the k-th stored value: column by column, the lower (or strict lower) triangle
+  // only for a symmetric (skew-symmetric) file
+  const long long first_row_offset = b.symmetry == "general" ? -1 : (b.symmetry == "symmetric" ? 0 : 1);
+  long long i = first_row_offset < 0 ? 0 : first_row_offset, j = 0;
+  auto advance = [&] {
+    if (++i == rows) {
+      ++j;
+      i = first_row_offset < 0 ? 0 : j + first_row_offset;
+    }
+  };
+  auto done = [&] { return j >= cols || (first_row_offset >= 0 && i >= rows); };
+  std::string line;
+  while (lines.next(line)) {
+    const std::string where = fmt::format("line {}", lines.number());
+    for (const std::string& token : tokens_of(line)) {
+      if (done()) throw InputError(path, where, "more values than the size line says");
+      const double v = parse_value(path, where, token, b);
+      if (v != 0) add_entry(entries, i, j, v, b);
+      advance();
+    }
+  }
+  if (!done())
+    throw InputError(path, size_field,
+                     fmt::format("promises a {} by {} {} matrix, the file ends at entry ({}, {})", rows, cols,
+                                 b.symmetry, i + 1, j + 1));
+}
+
+}  // namespace
+
+MarketMatrix read_market_matrix(const std::string& path) {
+  const std::string text = read_market_text(path);
+  MarketLines lines(text);
+  const Banner b = parse_banner(path, lines.banner());
+  std::string line;
+  if (!lines.next(line)) throw InputError(path, "size line", "missing");
+  const int size_line_number = lines.number();
+  const std::string where = fmt::format("line {}", size_line_number);
+  const bool coordinate = b.format == "coordinate";
+  const std::vector<long long> size = size_line(path, line, coordinate ? 3 : 2, where);
+  const long long rows = size[0], cols = size[1];
+  if (rows < 1 || cols < 1) throw InputError(path, where, "rows and columns must be at least 1");
+  if (b.symmetry != "general" && rows != cols)
+    throw InputError(path, where, fmt::format("a {} matrix must be square, not {} by {}", b.symmetry, rows, cols));
+  std::vector<Eigen::Triplet<double>> entries;
+  if (coordinate) {
+    // An entry takes at least 4 bytes ("1 1\n"): a larger count cannot be in the file.
+    const long long nnz = size[2];
+    if (nnz > rows * cols || nnz > static_cast<long long>(text.size() / 4))
+      throw InputError(
+          path, where,
+          fmt::format("{} entries do not fit a {} by {} matrix in a file of {} bytes", nnz, rows, cols, text.size()));
+    entries.reserve(static_cast<std::size_t>(b.symmetry == "general" ? nnz : 2 * nnz));
+    read_coordinate_entries(path, where, lines, b, rows, cols, nnz, entries);
+  } else {
+    // A value takes at least 2 bytes ("1\n"): a larger matrix cannot be in the file.
+    if (rows * cols / (b.symmetry == "general" ? 1 : 2) > static_cast<long long>(text.size() / 2))
+      throw InputError(path, where,
+                       fmt::format("a {} by {} matrix does not fit in a file of {} bytes", rows, cols, text.size()));
+    read_array_entries(path, where, lines, b, rows, cols, entries);
+  }
+  MarketMatrix out;
+  out.matrix.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  out.matrix.setFromTriplets(entries.begin(), entries.end());
+  out.format = b.format;
+  out.field = b.field;
+  out.symmetry = b.symmetry;
+  out.size_line = size_line_number;
+  return out;
 }
 
 }  // namespace coons

@@ -1,4 +1,5 @@
-// Matrix Market output of an assembled mask system, for other solvers and tools.
+// Matrix Market output of an assembled mask system, for other solvers and tools, and input of
+// any real Matrix Market matrix (`coons bench-matrix`).
 // The matrix is written as `coordinate real general` (every stored entry, both triangles, as
 // Eigen's saveMarket does, scientific with 17 decimals: it reads back bit-exactly); the right-hand sides
 // as one dense `array real general` file of #rows by 3 (column-major, as the format prescribes).
@@ -23,5 +24,21 @@ void write_dense_matrix_market(std::ostream& out, const Eigen::MatrixXd& B);
 Eigen::SparseMatrix<double> read_matrix_market(const std::string& path);
 //! Throws InputError when the file is missing or not a real general array.
 Eigen::MatrixXd read_dense_matrix_market(const std::string& path);
+
+//! A matrix as read by read_market_matrix(): the full matrix, whatever the file stored.
+struct MarketMatrix {
+  Eigen::SparseMatrix<double> matrix;  //!< symmetric and skew-symmetric files expanded to both triangles
+  std::string format;                  //!< "coordinate" or "array"
+  std::string field;                   //!< "real", "integer" or "pattern" (every stored entry 1)
+  std::string symmetry;                //!< "general", "symmetric" or "skew-symmetric"
+  int size_line = 0;                   //!< the number of the size line (for errors about the sizes)
+};
+
+//! Any real Matrix Market matrix, as the NIST format and the SuiteSparse collection write them:
+//! `coordinate` or `array`; `real`, `integer` or `pattern`; `general`, `symmetric` (the lower
+//! triangle stored, mirrored here) or `skew-symmetric`. Duplicate coordinate entries are summed;
+//! zeros of an array file are not stored. Throws InputError "FILE: line N: reason" for a wrong
+//! banner, size line, entry, index out of range, entry in the wrong triangle or non-finite value.
+MarketMatrix read_market_matrix(const std::string& path);
 
 }  // namespace coons

@@ -1,0 +1,123 @@
+#include "general_system.h"
+
+#include <algorithm>
+#include <cmath>
+
+namespace coons::solvers {
+
+double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
+  const Eigen::MatrixXd R = B - A * X;
+  const Eigen::MatrixXd scale = A.cwiseAbs() * X.cwiseAbs() + B.cwiseAbs();
+  double worst = 0;
+  for (Eigen::Index c = 0; c < R.cols(); ++c)
+    for (Eigen::Index i = 0; i < R.rows(); ++i) {
+      const double r = std::abs(R(i, c));
+      if (r == 0) continue;  // also covers a zero denominator (then the residual is zero)
+      worst = std::max(worst, scale(i, c) > 0 ? r / scale(i, c) : 1.0);
+    }
+  return worst;
+}
+
+double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
+  const Eigen::MatrixXd AX = A * X;
+  double worst = 0;
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    const double b = B.col(c).norm();
+    const double r = (B.col(c) - AX.col(c)).norm();
+    worst = std::max(worst, b > 0 ? r / b : r);
+  }
+  return worst;
+}
+
+double symmetry_defect(const Eigen::SparseMatrix<double>& A) {
+  if (A.rows() != A.cols()) return HUGE_VAL;
+  const Eigen::SparseMatrix<double> At = A.transpose();
+  const Eigen::SparseMatrix<double> D = A - At;
+  double largest = 0, defect = 0;
+  for (Eigen::Index k = 0; k < A.nonZeros(); ++k) largest = std::max(largest, std::abs(A.valuePtr()[k]));
+  for (Eigen::Index k = 0; k < D.nonZeros(); ++k) defect = std::max(defect, std::abs(D.valuePtr()[k]));
+  return largest > 0 ? defect / largest : 0.0;
+}
+
+std::string GeneralRun::status_name() const { return skipped ? "skipped" : to_string(status); }
+
+namespace {
+
+// Runs the solve phase block by block; true when every column was solved (whatever the status).
+bool solve_blocks(LinearSolver& solver, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, GeneralRun& run) {
+  X.setZero(B.rows(), B.cols());
+  double seconds = 0;
+  int iterations = 0;
+  for (Eigen::Index first = 0; first < B.cols(); first += 3) {
+    const Eigen::Index width = std::min<Eigen::Index>(3, B.cols() - first);
+    Eigen::MatrixX3d block = Eigen::MatrixX3d::Zero(B.rows(), 3);
+    block.leftCols(width) = B.middleCols(first, width);
+    Eigen::MatrixX3d solution;
+    const SolveSummary s = solver.solve(block, solution);
+    seconds += s.solve_seconds;
+    iterations = std::max(iterations, s.iterations);
+    if (!s.ok() && run.status == SolveStatus::kSuccess) {
+      run.status = s.status;
+      run.reason = s.message;
+    }
+    if (solution.rows() != B.rows() || s.status == SolveStatus::kDiverged || s.status == SolveStatus::kFailure) {
+      run.solve_seconds = seconds;
+      return false;
+    }
+    X.middleCols(first, width) = solution.leftCols(width);
+  }
+  run.solve_seconds = seconds;
+  run.iterations = iterations;
+  return true;
+}
+
+}  // namespace
+
+GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& system, const SolverOptions& options) {
+  GeneralRun run;
+  run.solver = info.name;
+  if (info.definite_only && !system.symmetric) {
+    run.skipped = true;
+    run.reason = "needs a symmetric positive definite matrix; A is not symmetric (max |A - A^T| / max |A| = " +
+                 format_g(symmetry_defect(*system.A)) + ")";
+    return run;
+  }
+  const std::unique_ptr<LinearSolver> solver = make_solver(info.name, options);
+  LinearOperator op;
+  op.matrix = system.A;
+  SolveStatus status = solver->analyze(op);
+  if (status == SolveStatus::kNotApplicable) {
+    run.skipped = true;
+    run.reason = solver->summary().message;
+    return run;
+  }
+  run.analyze_seconds = solver->summary().analyze_seconds;
+  if (status == SolveStatus::kSuccess) {
+    status = solver->factorize(op);
+    run.factorize_seconds = solver->summary().factorize_seconds;
+  }
+  if (status == SolveStatus::kNotApplicable) {  // found out only with the values
+    GeneralRun skipped;
+    skipped.solver = info.name;
+    skipped.skipped = true;
+    skipped.reason = solver->summary().message;
+    return skipped;
+  }
+  if (status != SolveStatus::kSuccess) {
+    run.status = status;
+    run.reason = solver->summary().message;
+    return run;
+  }
+  if (solver->summary().factor_nnz > 0) run.factor_nnz = solver->summary().factor_nnz;
+  Eigen::MatrixXd X;
+  if (!solve_blocks(*solver, *system.B, X, run) || !X.allFinite()) return run;
+  run.relative_residual = relative_residual(*system.A, X, *system.B);
+  run.backward_error = backward_error(*system.A, X, *system.B);
+  if (!std::isfinite(*run.relative_residual) || !std::isfinite(*run.backward_error)) {
+    run.relative_residual.reset();
+    run.backward_error.reset();
+  }
+  return run;
+}
+
+}  // namespace coons::solvers

@@ -1,0 +1,66 @@
+// One backend on a general square system A X = B read from outside coons (e.g. a Matrix Market
+// file): A n by n sparse, B n by k (any k ≥ 1). Runs analyze, factorize and solve (B in blocks of
+// three columns, the backends' width, padded with zero columns), then measures the solution with
+// its own norms rather than the backend's: the relative residual and the componentwise backward
+// error. Backends that cannot take such a system (they need a grid stencil, or a symmetric matrix
+// where A is not) are reported as skipped, with the reason.
+// Based on: W. Oettli and W. Prager, Numer. Math. 6 (1964) 405–409 (the componentwise backward
+// error); N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM 2002, §7.2.
+#pragma once
+
+#include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <optional>
+#include <string>
+
+#include "linear_solver.h"
+#include "registry.h"
+
+namespace coons::solvers {
+
+//! max over rows i and columns c of |B − A X|_ic / (|A| |X| + |B|)_ic, a row whose denominator is
+//! zero counting as 0 (its residual is then zero too). Lies in [0, 1] up to rounding; the smallest
+//! relative componentwise perturbation of A and B for which X is an exact solution (Oettli–Prager).
+//! X must be finite, with the shape of B.
+double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B);
+
+//! max over columns of ‖B − A X‖₂ / ‖B‖₂ (a zero column of B: ‖A X‖₂).
+double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B);
+
+//! max |A − Aᵀ| / max |A| (0 for a zero matrix): 0 for an exactly symmetric matrix.
+double symmetry_defect(const Eigen::SparseMatrix<double>& A);
+
+//! A is treated as symmetric when symmetry_defect(A) is at most this (rounding of written values).
+constexpr double kSymmetryDefectLimit = 1e-14;
+
+//! What one backend did on the system. Every number is measured; a phase not reached, or a
+//! solution not worth measuring (none, diverged, not finite), leaves its fields empty.
+struct GeneralRun {
+  std::string solver;
+  bool skipped = false;  //!< the backend does not apply to this system (reason says why)
+  SolveStatus status = SolveStatus::kSuccess;
+  std::string reason;  //!< why skipped, or the backend's message when it did not succeed
+  std::optional<double> analyze_seconds, factorize_seconds, solve_seconds;  //!< solve: all blocks
+  std::optional<int> iterations;                                            //!< the most over the column blocks
+  std::optional<double> relative_residual, backward_error;
+  std::optional<long long> factor_nnz;  //!< non-zeros of the factor(s) or preconditioner, when there is one
+
+  [[nodiscard]] bool ok() const { return !skipped && status == SolveStatus::kSuccess; }
+  //! "skipped" or to_string(status).
+  [[nodiscard]] std::string status_name() const;
+};
+
+//! The system and what is known of it, computed once for every backend.
+struct GeneralSystem {
+  const Eigen::SparseMatrix<double>* A = nullptr;  //!< square, borrowed
+  const Eigen::MatrixXd* B = nullptr;              //!< A.rows() by k, borrowed
+  bool symmetric = false;                          //!< symmetry_defect(A) ≤ kSymmetryDefectLimit
+};
+
+//! Runs the backend `info` (a fresh solver with `options`) on the system: skipped when it needs a
+//! symmetric matrix (info.definite_only) and A is not symmetric, or when the backend itself finds
+//! it not applicable (it needs a grid stencil); otherwise the three phases, stopping at the first
+//! that fails, and the measurements of X when it has one for every column.
+GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& system, const SolverOptions& options);
+
+}  // namespace coons::solvers

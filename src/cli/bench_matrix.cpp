@@ -1,0 +1,162 @@
+// `coons bench-matrix A.mtx [B.mtx]`: any Matrix Market system through every general backend that
+// accepts it; one JSON object per backend (JSON Lines) or, with --table, a Markdown table.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <iostream>
+#include <memory>
+#include <optional>
+
+#include "coons/io/input_error.h"
+#include "coons/io/matrix_market.h"
+#include "registry.h"
+#include "solvers/general_system.h"
+
+namespace coons::cli {
+
+namespace {
+
+struct BenchMatrixRequest {
+  std::string matrix, rhs;
+  std::vector<std::string> solvers;  //!< empty: every backend built in
+  bool table = false;
+  double tolerance = 1e-10;
+  int max_iterations = 0;
+  GlobalOptions global;
+};
+
+std::vector<const solvers::SolverInfo*> chosen_backends(const std::vector<std::string>& names) {
+  std::vector<const solvers::SolverInfo*> out;
+  if (names.empty()) {
+    for (const auto& info : solvers::available_solvers()) out.push_back(&info);
+    return out;
+  }
+  for (const std::string& name : names) {
+    const solvers::SolverInfo* info = solvers::find_solver(name);
+    if (!info) {
+      std::string built_in;
+      for (const auto& s : solvers::available_solvers()) built_in += (built_in.empty() ? "" : ", ") + s.name;
+      throw InputError("command line", "--solvers", fmt::format("unknown solver '{}' (built in: {})", name, built_in));
+    }
+    if (std::find(out.begin(), out.end(), info) != out.end())
+      throw InputError("command line", "--solvers", "'" + name + "' is named twice");
+    out.push_back(info);
+  }
+  return out;
+}
+
+nlohmann::json or_null(const std::optional<double>& v) { return v ? nlohmann::json(*v) : nlohmann::json(nullptr); }
+
+nlohmann::ordered_json run_to_json(const solvers::GeneralRun& run, const solvers::SolverInfo& info) {
+  nlohmann::ordered_json j;
+  j["solver"] = run.solver;
+  j["family"] = solvers::to_string(info.family);
+  j["status"] = run.status_name();
+  if (run.skipped) j["reason"] = run.reason;
+  if (!run.skipped && !run.ok()) j["message"] = run.reason;
+  j["seconds"] = {{"analyze", or_null(run.analyze_seconds)},
+                  {"factorize", or_null(run.factorize_seconds)},
+                  {"solve", or_null(run.solve_seconds)}};
+  j["iterations"] = run.iterations ? nlohmann::json(*run.iterations) : nlohmann::json(nullptr);
+  j["relative_residual"] = or_null(run.relative_residual);
+  j["backward_error"] = or_null(run.backward_error);
+  j["factor_nnz"] = run.factor_nnz ? nlohmann::json(*run.factor_nnz) : nlohmann::json(nullptr);
+  return j;
+}
+
+std::string cell(const std::optional<double>& v) { return v ? fmt::format("{:.3g}", *v) : "–"; }
+
+std::string table_row(const solvers::GeneralRun& run) {
+  std::string note;  // a table cell: '|' escaped, one line
+  for (const char c : run.reason) note += c == '|' ? std::string("\\|") : std::string(1, c == '\n' ? ' ' : c);
+  return fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", run.solver, run.status_name(),
+                     cell(run.analyze_seconds), cell(run.factorize_seconds), cell(run.solve_seconds),
+                     run.iterations ? std::to_string(*run.iterations) : "–", cell(run.relative_residual),
+                     cell(run.backward_error), run.factor_nnz ? std::to_string(*run.factor_nnz) : "–", note);
+}
+
+int run_bench_matrix(const BenchMatrixRequest& r) {
+  solvers::SolverOptions options;
+  options.tolerance = r.tolerance;
+  options.max_iterations = r.max_iterations;
+  std::string why;
+  if (!(r.tolerance > 0 && r.tolerance < 1)) throw InputError("command line", "--tolerance", "must lie in (0, 1)");
+  if (!options.is_valid(&why)) throw InputError("command line", "--max-iterations", why);
+  const std::vector<const solvers::SolverInfo*> backends = chosen_backends(r.solvers);
+
+  const MarketMatrix a = read_market_matrix(r.matrix);
+  const Eigen::SparseMatrix<double>& A = a.matrix;
+  const Eigen::Index n = A.rows();
+  if (A.rows() != A.cols())
+    throw InputError(r.matrix, fmt::format("line {}", a.size_line),
+                     fmt::format("A must be square, not {} by {}", A.rows(), A.cols()));
+  Eigen::MatrixXd B;
+  if (r.rhs.empty()) {
+    B = A * Eigen::VectorXd::Ones(n);
+  } else {
+    const MarketMatrix b = read_market_matrix(r.rhs);
+    if (b.matrix.rows() != n)
+      throw InputError(r.rhs, fmt::format("line {}", b.size_line),
+                       fmt::format("B has {} rows, A ({}) has {}", b.matrix.rows(), r.matrix, n));
+    check_memory(r.global, 2.0 * 8.0 * double(n) * double(b.matrix.cols()),
+                 fmt::format("a dense {} by {} right-hand side and its solution", n, b.matrix.cols()), r.rhs,
+                 fmt::format("line {}", b.size_line));
+    B = Eigen::MatrixXd(b.matrix);
+  }
+  solvers::GeneralSystem system;
+  system.A = &A;
+  system.B = &B;
+  const double defect = solvers::symmetry_defect(A);
+  system.symmetric = defect <= solvers::kSymmetryDefectLimit;
+
+  if (r.table) {
+    print_text(fmt::format(
+        "{}: {} by {}, {} stored entries ({} {} {} in the file), {}; {} right-hand side{}; iterative tolerance {}\n\n"
+        "| solver | status | analyze [s] | factorize [s] | solve [s] | iterations | relative residual | backward "
+        "error | factor nnz | note |\n|---|---|---|---|---|---|---|---|---|---|\n",
+        r.matrix, n, n, A.nonZeros(), a.format, a.field, a.symmetry,
+        system.symmetric ? "symmetric" : fmt::format("not symmetric (defect {:.3g})", defect), B.cols(),
+        B.cols() == 1 ? (r.rhs.empty() ? " (A times ones)" : "") : "s", solvers::format_g(r.tolerance)));
+  }
+  int succeeded = 0, failed = 0;
+  for (const solvers::SolverInfo* info : backends) {
+    const solvers::GeneralRun run = solvers::run_general_system(*info, system, options);
+    succeeded += run.ok() ? 1 : 0;
+    failed += !run.ok() && !run.skipped ? 1 : 0;
+    if (r.table)
+      print_text(table_row(run));
+    else
+      print_json(run_to_json(run, *info), -1);
+  }
+  if (failed > 0 && succeeded == 0) {
+    std::cerr << fmt::format("error: {}: solver: no backend solved the system ({} failed)\n", r.matrix, failed);
+    return kExitSolverFailed;
+  }
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_bench_matrix(CLI::App& app, Registry& registry) {
+  auto request = std::make_shared<BenchMatrixRequest>();
+  auto* cmd =
+      app.add_subcommand("bench-matrix", "run a Matrix Market system A X = B through every backend that accepts it");
+  cmd->add_option("A.mtx", request->matrix,
+                  "square matrix (Matrix Market: coordinate or array; real, integer or "
+                  "pattern; general, symmetric or skew-symmetric)")
+      ->required();
+  cmd->add_option("B.mtx", request->rhs, "right-hand side(s), n by k, array or coordinate (default: A times ones)");
+  cmd->add_option("--solvers", request->solvers, "only these backends, comma separated (see `coons solvers`)")
+      ->delimiter(',');
+  cmd->add_flag("--table", request->table, "print a Markdown table instead of JSON Lines");
+  cmd->add_option("--tolerance", request->tolerance, "relative residual at which every iterative backend stops")
+      ->capture_default_str();
+  cmd->add_option("--max-iterations", request->max_iterations,
+                  "iteration limit of the iterative backends (0: automatic, always finite)")
+      ->capture_default_str();
+  add_memory_option(*cmd, request->global);
+  set_example(*cmd, "coons bench-matrix data/matrices/anisotropic_diffusion.mtx --table");
+  registry.add(cmd, [request] { return run_bench_matrix(*request); });
+}
+
+}  // namespace coons::cli

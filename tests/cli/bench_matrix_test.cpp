@@ -1,0 +1,148 @@
+// `coons bench-matrix` (issue 14): Matrix Market systems from outside coons through every backend.
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <sstream>
+
+#include "solvers/registry.h"
+#include "support/fixtures.h"
+
+using namespace coons::test;
+using nlohmann::json;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+const std::string kMatrices = std::string(COONS_DATA_DIR) + "/matrices/";
+
+std::vector<std::string> lines_of(const std::string& text) {
+  std::vector<std::string> out;
+  std::istringstream in(text);
+  for (std::string line; std::getline(in, line);)
+    if (!line.empty()) out.push_back(line);
+  return out;
+}
+
+}  // namespace
+
+TEST_CASE("coons bench-matrix: JSON Lines parse and carry every contract field", "[cli]") {
+  const CommandResult r = run_command(kCoons + " bench-matrix " + kMatrices + "convection_diffusion.mtx " + kMatrices +
+                                      "convection_diffusion_b.mtx");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.empty());
+  CHECK(r.out.find("nan") == std::string::npos);
+  const std::vector<std::string> lines = lines_of(r.out);
+  REQUIRE(lines.size() == coons::solvers::available_solvers().size());
+  int succeeded = 0;
+  for (const std::string& line : lines) {
+    const json row = json::parse(line);
+    INFO(line);
+    for (const char* field :
+         {"solver", "status", "seconds", "iterations", "relative_residual", "backward_error", "factor_nnz"})
+      CHECK(row.contains(field));
+    for (const char* phase : {"analyze", "factorize", "solve"}) CHECK(row["seconds"].contains(phase));
+    const coons::solvers::SolverInfo* info = coons::solvers::find_solver(row["solver"].get<std::string>());
+    REQUIRE(info != nullptr);
+    if (row["status"] == "skipped") {
+      // the matrix is nonsymmetric: the symmetric-only backends and the grid-only ones are skipped
+      CHECK((info->definite_only || !info->needs_matrix));
+      CHECK(!row["reason"].get<std::string>().empty());
+      CHECK(row["backward_error"].is_null());
+      CHECK(row["seconds"]["analyze"].is_null());
+    } else if (row["status"] == "success") {
+      ++succeeded;
+      CHECK(row["backward_error"].get<double>() < 1e-9);
+      CHECK(row["relative_residual"].get<double>() < 1e-9);
+      CHECK(row["seconds"]["solve"].get<double>() >= 0);
+      CHECK(row["iterations"].get<int>() >= 1);
+      if (info->family == coons::solvers::SolverFamily::kDirect) {
+        CHECK(row["backward_error"].get<double>() < 1e-14);
+        CHECK(row["factor_nnz"].get<long long>() >= 576);
+      }
+    } else {
+      CHECK(!row["message"].get<std::string>().empty());
+    }
+  }
+  CHECK(succeeded >= 3);
+}
+
+TEST_CASE("coons bench-matrix: --table prints one row per backend", "[cli]") {
+  const CommandResult r = run_command(kCoons + " bench-matrix " + kMatrices +
+                                      "anisotropic_diffusion.mtx --table --solvers eigen-ldlt,cg,jacobi,dst");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  int rows = 0;
+  std::string seen;
+  for (const std::string& line : lines_of(r.out)) {
+    if (line.rfind("| ", 0) != 0 || line.rfind("| solver", 0) == 0) continue;
+    ++rows;
+    seen += line.substr(2, line.find(' ', 2) - 2) + ",";
+  }
+  CHECK(rows == 4);
+  CHECK(seen == "eigen-ldlt,cg,jacobi,dst,");
+  CHECK(r.out.find("symmetric") != std::string::npos);  // the symmetric file is recognised as such
+  CHECK(r.out.find("| eigen-ldlt | success |") != std::string::npos);
+  CHECK(r.out.find("| jacobi | skipped |") != std::string::npos);
+}
+
+TEST_CASE("coons bench-matrix: a symmetric file runs the symmetric-only backends", "[cli]") {
+  const CommandResult r = run_command(kCoons + " bench-matrix " + kMatrices +
+                                      "anisotropic_diffusion.mtx --solvers cholmod,eigen-llt,cg-ic");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  for (const std::string& line : lines_of(r.out)) {
+    const json row = json::parse(line);
+    INFO(line);
+    if (row["solver"] == "cholmod" && !coons::solvers::find_solver("cholmod")) continue;
+    CHECK(row["status"] == "success");
+    CHECK(row["backward_error"].get<double>() < 1e-9);
+  }
+}
+
+TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming the file and the line",
+          "[cli][bad-input]") {
+  const TempDir dir;
+  const std::string A = kMatrices + "convection_diffusion.mtx";
+  const std::string header = "%%MatrixMarket matrix coordinate real general\n";
+  struct Case {
+    std::string args, mention;
+  };
+  const std::vector<Case> cases = {
+      {dir.write("header.mtx", "%%MatrixMarket matrix coordinate complex general\n1 1 1\n1 1 1 0\n"),
+       "header.mtx: line 1:"},
+      {dir.write("size.mtx", header + "% comment\n3 3\n"), "size.mtx: line 3:"},
+      {dir.write("index.mtx", header + "2 2 1\n3 1 1\n"), "index.mtx: line 3: entry (3, 1) outside"},
+      {dir.write("inf.mtx", header + "2 2 1\n1 1 inf\n"), "inf.mtx: line 3: the value 'inf' is not finite"},
+      {dir.write("wide.mtx", header + "2 3 1\n1 1 1\n"), "wide.mtx: line 2: A must be square, not 2 by 3"},
+      {A + " " + dir.write("rows.mtx", "%%MatrixMarket matrix array real general\n2 1\n1\n1\n"),
+       "rows.mtx: line 2: B has 2 rows"},
+      {dir.file("missing.mtx"), "missing.mtx: cannot open the file"},
+      {A + " --solvers eigen-lu,nosuch", "command line: --solvers: unknown solver 'nosuch' (built in: eigen-ldlt"},
+      {A + " --tolerance 0", "command line: --tolerance"},
+  };
+  for (const Case& c : cases) {
+    const CommandResult r = run_command(kCoons + " bench-matrix " + c.args);
+    INFO(c.args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(lines_of(r.err).size() == 1);
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(r.err.find(c.mention) != std::string::npos);
+  }
+}
+
+TEST_CASE("coons bench-matrix: a system no backend solves exits 3 with its statuses", "[cli]") {
+  const TempDir dir;
+  // singular: the second row and column are empty
+  const std::string singular =
+      dir.write("singular.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 2\n1 1 1\n3 3 1\n");
+  const CommandResult r = run_command(kCoons + " bench-matrix " + singular + " --solvers eigen-lu");
+  INFO(r.out << r.err);
+  CHECK(r.status == 3);
+  CHECK(lines_of(r.err).size() == 1);
+  const json row = json::parse(lines_of(r.out).at(0));
+  CHECK(row["status"] != "success");
+  CHECK(row["status"] != "skipped");
+  CHECK(row["backward_error"].is_null());
+  CHECK(row["relative_residual"].is_null());
+}

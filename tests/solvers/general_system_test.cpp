@@ -1,0 +1,142 @@
+// Backends on general systems from outside coons (solvers/general_system.h).
+#include "solvers/general_system.h"
+
+#include <catch2/catch.hpp>
+#include <random>
+
+#include "support/fixtures.h"
+
+using namespace coons::solvers;
+
+namespace {
+
+Eigen::SparseMatrix<double> sparse_of(const Eigen::MatrixXd& dense) { return dense.sparseView(); }
+
+// A diagonally dominant, nonsymmetric n by n matrix with a few off-diagonal entries per row.
+Eigen::SparseMatrix<double> random_nonsymmetric(int n, unsigned seed) {
+  std::mt19937 rng(seed);
+  std::uniform_real_distribution<double> u(-1, 1);
+  std::vector<Eigen::Triplet<double>> t;
+  for (int i = 0; i < n; ++i) {
+    t.emplace_back(i, i, 8 + u(rng));
+    for (int k = 0; k < 3; ++k) t.emplace_back(i, int((i * 7 + k * 13 + 1) % n), u(rng));
+  }
+  Eigen::SparseMatrix<double> A(n, n);
+  A.setFromTriplets(t.begin(), t.end());
+  return A;
+}
+
+}  // namespace
+
+TEST_CASE("backward_error: the exact solution of a system is at rounding level", "[solvers]") {
+  const Eigen::SparseMatrix<double> A = random_nonsymmetric(50, 3);
+  const Eigen::MatrixXd X = Eigen::MatrixXd::Random(50, 2);
+  const Eigen::MatrixXd B = A * X;  // X is exact up to the rounding of this product
+  const double error = backward_error(A, X, B);
+  CHECK(error < 4e-16);
+  CHECK(relative_residual(A, X, B) < 1e-15);
+}
+
+TEST_CASE("backward_error: a perturbed solution has the Oettli-Prager value", "[solvers]") {
+  // A = [2 1; 1 3], x = (1, 1), b = (3, 4); x' = (1.1, 1): r = (-0.2, -0.1),
+  // |A||x'| + |b| = (6.2, 8.1), so the backward error is max(0.2/6.2, 0.1/8.1) = 1/31.
+  const Eigen::SparseMatrix<double> A = sparse_of((Eigen::MatrixXd(2, 2) << 2, 1, 1, 3).finished());
+  const Eigen::MatrixXd B = (Eigen::MatrixXd(2, 1) << 3, 4).finished();
+  const Eigen::MatrixXd exact = Eigen::MatrixXd::Ones(2, 1);
+  const Eigen::MatrixXd perturbed = (Eigen::MatrixXd(2, 1) << 1.1, 1).finished();
+  CHECK(backward_error(A, exact, B) == 0);
+  CHECK(backward_error(A, perturbed, B) == Approx(1.0 / 31).epsilon(1e-14));
+  // and the worst column counts: the exact column beside it changes nothing
+  Eigen::MatrixXd both(2, 2), rhs(2, 2);
+  both << exact, perturbed;
+  rhs << B, B;
+  CHECK(backward_error(A, both, rhs) == Approx(1.0 / 31).epsilon(1e-14));
+  // ‖r‖/‖b‖ = √0.05 / 5
+  CHECK(relative_residual(A, perturbed, B) == Approx(std::sqrt(0.05) / 5).epsilon(1e-14));
+}
+
+TEST_CASE("symmetry_defect: zero for a symmetric matrix, the relative asymmetry otherwise", "[solvers]") {
+  const Eigen::SparseMatrix<double> S = sparse_of((Eigen::MatrixXd(2, 2) << 4, -1, -1, 4).finished());
+  const Eigen::SparseMatrix<double> N = sparse_of((Eigen::MatrixXd(2, 2) << 4, -1, -0.5, 4).finished());
+  CHECK(symmetry_defect(S) == 0);
+  CHECK(symmetry_defect(N) == Approx(0.5 / 4));
+}
+
+TEST_CASE("run_general_system: every backend either measures its solution or says why not", "[solvers]") {
+  const Eigen::SparseMatrix<double> A = random_nonsymmetric(40, 5);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Random(40, 4);  // two blocks: 3 + 1 columns
+  GeneralSystem system;
+  system.A = &A;
+  system.B = &B;
+  system.symmetric = symmetry_defect(A) <= kSymmetryDefectLimit;
+  REQUIRE_FALSE(system.symmetric);
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  int solved = 0, skipped = 0;
+  for (const SolverInfo& info : available_solvers()) {
+    const GeneralRun run = run_general_system(info, system, options);
+    INFO(info.name << ": " << run.status_name() << " " << run.reason);
+    CHECK(run.solver == info.name);
+    if (run.skipped) {
+      ++skipped;
+      CHECK_FALSE(run.reason.empty());
+      CHECK_FALSE(run.analyze_seconds.has_value());
+      CHECK_FALSE(run.backward_error.has_value());
+      // the symmetric-only backends and the grid-only ones, nothing else
+      CHECK((info.definite_only || !info.needs_matrix));
+      if (info.definite_only) CHECK(run.reason.find("not symmetric") != std::string::npos);
+      continue;
+    }
+    REQUIRE(run.ok());
+    ++solved;
+    REQUIRE(run.backward_error.has_value());
+    REQUIRE(run.relative_residual.has_value());
+    REQUIRE(run.solve_seconds.has_value());
+    CHECK(*run.relative_residual < (info.family == SolverFamily::kDirect ? 1e-13 : 1e-9));
+    CHECK(*run.backward_error < (info.family == SolverFamily::kDirect ? 1e-14 : 1e-9));
+    if (info.family == SolverFamily::kDirect) CHECK(run.factor_nnz.value_or(0) >= A.rows());
+  }
+  CHECK(solved >= 3);  // eigen-lu, bicgstab, gmres at least
+  CHECK(skipped >= 4);
+}
+
+TEST_CASE("run_general_system: a singular matrix fails with its status and no numbers", "[solvers]") {
+  Eigen::MatrixXd dense = Eigen::MatrixXd::Identity(4, 4);
+  dense(2, 2) = 0;  // a zero row and column
+  const Eigen::SparseMatrix<double> A = sparse_of(dense);
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(4, 1);
+  GeneralSystem system;
+  system.A = &A;
+  system.B = &B;
+  system.symmetric = true;
+  const GeneralRun run = run_general_system(coons::test::backend("eigen-lu"), system, SolverOptions{});
+  CHECK_FALSE(run.ok());
+  CHECK_FALSE(run.skipped);
+  CHECK(run.status_name() != "success");
+  CHECK_FALSE(run.reason.empty());
+  CHECK_FALSE(run.relative_residual.has_value());
+  CHECK_FALSE(run.backward_error.has_value());
+}
+
+TEST_CASE("Krylov backends: a zero right-hand-side column adds no iterations", "[solvers]") {
+  // A symmetric positive definite matrix: the nonsymmetric one plus its transpose, shifted.
+  const Eigen::SparseMatrix<double> N = random_nonsymmetric(60, 9);
+  Eigen::SparseMatrix<double> A = Eigen::SparseMatrix<double>(N.transpose()) + N;
+  for (int i = 0; i < 60; ++i) A.coeffRef(i, i) += 4;
+  LinearOperator op;
+  op.matrix = &A;
+  const Eigen::VectorXd b = Eigen::VectorXd::LinSpaced(60, -1, 2);
+  Eigen::MatrixX3d padded = Eigen::MatrixX3d::Zero(60, 3), full(60, 3);
+  padded.col(0) = b;
+  full << b, b, b;
+  for (const char* name : {"cg", "cg-jacobi", "cg-ic", "bicgstab", "gmres"}) {
+    INFO(name);
+    Eigen::MatrixX3d X;
+    const SolveSummary with_zeros = make_solver(name)->compute_and_solve(op, padded, X);
+    REQUIRE(with_zeros.ok());
+    CHECK(X.rightCols(2).cwiseAbs().maxCoeff() == 0);
+    const SolveSummary without = make_solver(name)->compute_and_solve(op, full, X);
+    CHECK(with_zeros.iterations == without.iterations);
+    CHECK(with_zeros.iterations < 100);
+  }
+}
