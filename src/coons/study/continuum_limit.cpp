@@ -57,6 +57,13 @@ double weighted_square(const Eigen::MatrixXd& D, const Eigen::VectorXd& w) {
 ContinuumProblem::ContinuumProblem(const Boundary& boundary)
     : degree_(boundary.m), coons_(discrete_coons_net(boundary)) {
   const int N = degree_;
+  Eigen::RowVector3d lo = coons_.at(0, 0), hi = lo;
+  for (int i = 0; i <= coons_.m; ++i)
+    for (int j = 0; j <= coons_.n; ++j) {
+      lo = lo.cwiseMin(coons_.at(i, j));
+      hi = hi.cwiseMax(coons_.at(i, j));
+    }
+  scale_ = (hi - lo).squaredNorm();
   const QuadratureRule rule = gauss_legendre(N + 2);
   nodes_ = rule.nodes;
   weights_ = rule.weights;
@@ -160,7 +167,7 @@ ContinuumOptimum continuum_optimum(const ContinuumProblem& problem, const std::v
     hi = std::max(hi, out.scan[k].second);
   }
   out.value = out.scan[best].second;
-  if (hi - lo <= options.flat_tolerance * std::max(std::abs(hi), 1e-300)) {
+  if (hi - lo <= options.flat_tolerance * std::max(std::abs(hi), problem.energy_scale())) {
     out.status = ContinuumStatus::kFlat;
     return out;
   }

@@ -34,6 +34,9 @@ class ContinuumProblem {
   [[nodiscard]] double energy(double mu, const std::vector<EnergyTerm>& terms) const;
   //! p_μ(u, v).
   [[nodiscard]] Eigen::RowVector3d evaluate(double mu, double u, double v) const;
+  //! The squared diagonal of the boundary's bounding box: the size of an energy of order one
+  //! (an energy far below it is rounding, not shape).
+  [[nodiscard]] double energy_scale() const { return scale_; }
 
  private:
   //! coefficients c_kl of each coordinate (#N−1 by N−1)
@@ -47,12 +50,14 @@ class ContinuumProblem {
   Eigen::VectorXd lambda_;
   std::vector<Eigen::MatrixXd> twist_rhs_, dirichlet_rhs_;  //!< VᵀRV per coordinate
   ControlNet coons_;                          //!< p₀
+  double scale_ = 0;
 };
 
 struct ContinuumOptions {
   double mu_lower = 1e-3, mu_upper = 1e6;  //!< searched on a log scale; μ = 0 is checked as well
   int scan_points = 37;                    //!< log grid before Brent
-  double flat_tolerance = 1e-12;           //!< relative range below which the energy is flat in μ
+  //! flat in μ when the energy's range is below this times max(|energy|, energy_scale())
+  double flat_tolerance = 1e-10;
 
   bool is_valid(std::string* why) const;
 };
