@@ -107,8 +107,7 @@ void register_degree_limit(CLI::App& app, Registry& registry) {
                                  "the measured degree law: alpha* and mu* at each degree, the limit of mu*(n) "
                                  "with its error and rate, the candidate fits, the continuum optimum (Ritz)");
   cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them")->required();
-  cmd->add_option("--objective", r->objectives, "objectives (thin_plate, e3, sums; no target)")
-      ->capture_default_str();
+  cmd->add_option("--objective", r->objectives, "objectives (thin_plate, e3, sums; no target)")->capture_default_str();
   cmd->add_option("--degrees", r->degrees, "degrees to search at (increasing; default 3 ... 64)");
   cmd->add_option("--continuum-degrees", r->continuum_degrees, "degrees N of the Ritz spaces (increasing, <= 80)")
       ->capture_default_str();

@@ -61,9 +61,12 @@ TEST_CASE("coons degree-limit: bad input is one error line, exit 2, nothing writ
   TempDir dir;
   const std::string out = dir.file("report");
   const std::string pillow = "'" + kData + "/boundaries/pillow.json'";
-  for (const std::string& args : {pillow + " --degrees 6 4", pillow + " --objective no_such_energy",
-                                  pillow + " --objective thin_plate e3", pillow + " --continuum-degrees 100",
-                                  pillow + " --degrees 4 6 --objective target --out '" + out + "'"}) {
+  const std::string target_out = " --degrees 4 6 --objective target --out '" + out + "'";
+  for (const std::string& options :
+       {std::string(" --degrees 6 4"), std::string(" --objective no_such_energy"),
+        std::string(" --objective thin_plate e3"), std::string(" --continuum-degrees 100"), target_out}) {
+    std::string args = pillow;
+    args += options;
     const CommandResult r = run_command(kCoons + " degree-limit " + args);
     INFO(args << "\n" << r.err);
     CHECK(r.status == 2);
@@ -79,7 +82,8 @@ TEST_CASE("coons degree-limit: --out writes the report with its generated conclu
   const std::string out = dir.file("report");
   const CommandResult r = run_command(kCoons + " degree-limit '" + kData + "/boundaries/pillow.json' '" + kData +
                                       "/boundaries/saddle.json' --objective thin_plate e3 --degrees 4 6 8 "
-                                      "--continuum-degrees 8 --out '" + out + "'");
+                                      "--continuum-degrees 8 --out '" +
+                                      out + "'");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(fs::exists(out + "/report.md"));

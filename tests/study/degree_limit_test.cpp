@@ -43,9 +43,9 @@ TEST_CASE("triple_limit: recovers the limit and the rate of an exact power seque
 }
 
 TEST_CASE("triple_limit: differences that change sign or do not shrink give no limit", "[study]") {
-  CHECK(!triple_limit(4, 1.0, 6, 2.0, 8, 1.5, 0.05, 8));   // up, then down
-  CHECK(!triple_limit(4, 1.0, 6, 2.0, 8, 4.0, 0.05, 8));   // growing steps: no positive rate
-  CHECK(!triple_limit(4, 1.0, 6, 1.0, 8, 1.0, 0.05, 8));   // constant: no rate
+  CHECK(!triple_limit(4, 1.0, 6, 2.0, 8, 1.5, 0.05, 8));  // up, then down
+  CHECK(!triple_limit(4, 1.0, 6, 2.0, 8, 4.0, 0.05, 8));  // growing steps: no positive rate
+  CHECK(!triple_limit(4, 1.0, 6, 1.0, 8, 1.0, 0.05, 8));  // constant: no rate
 }
 
 TEST_CASE("fit_degree_limit: each candidate form recovers its own exact sequence", "[study]") {

@@ -48,9 +48,7 @@ Eigen::MatrixXd bernstein_at(int k, const Eigen::VectorXd& u) {
 }
 
 //! Σ_ij w_i w_j D_ij²
-double weighted_square(const Eigen::MatrixXd& D, const Eigen::VectorXd& w) {
-  return w.dot(D.cwiseAbs2() * w);
-}
+double weighted_square(const Eigen::MatrixXd& D, const Eigen::VectorXd& w) { return w.dot(D.cwiseAbs2() * w); }
 
 }  // namespace
 
@@ -74,7 +72,8 @@ ContinuumProblem::ContinuumProblem(const Boundary& boundary)
     for (int b = 0; b <= kMaxOrder; ++b) {
       const ControlNet d = derivative_net(coons_, a, b);
       const Eigen::MatrixXd Bu = bernstein_at(d.m, nodes_), Bv = bernstein_at(d.n, nodes_);
-      for (int c = 0; c < 3; ++c) base_[size_t(c)][size_t(a * 4 + b)] = Bu * coordinate_grid(d, c) * Bv.transpose();
+      for (int c = 0; c < 3; ++c)
+        base_[size_t(c)][size_t(a) * 4 + size_t(b)] = Bu * coordinate_grid(d, c) * Bv.transpose();
     }
   if (N < 2) return;
   const Eigen::MatrixXd M = phi_[0] * W * phi_[0].transpose(), K = phi_[1] * W * phi_[1].transpose();
@@ -111,7 +110,7 @@ double ContinuumProblem::energy(double mu, const std::vector<EnergyTerm>& terms)
   for (const EnergyTerm& t : terms) {
     if (t.a > kMaxOrder || t.b > kMaxOrder) continue;  // a derivative beyond third order: not needed
     for (int c = 0; c < 3; ++c) {
-      Eigen::MatrixXd D = base_[size_t(c)][size_t(t.a * 4 + t.b)];
+      Eigen::MatrixXd D = base_[size_t(c)][size_t(t.a) * 4 + size_t(t.b)];
       if (!C.empty()) D += phi_[size_t(t.a)].transpose() * C[size_t(c)] * phi_[size_t(t.b)];
       e += t.weight * weighted_square(D, weights_);
     }
@@ -142,9 +141,12 @@ bool ContinuumOptions::is_valid(std::string* why) const {
 
 const char* to_string(ContinuumStatus status) {
   switch (status) {
-    case ContinuumStatus::kSuccess: return "success";
-    case ContinuumStatus::kFlat: return "flat";
-    case ContinuumStatus::kAtBound: return "at_bound";
+    case ContinuumStatus::kSuccess:
+      return "success";
+    case ContinuumStatus::kFlat:
+      return "flat";
+    case ContinuumStatus::kAtBound:
+      return "at_bound";
   }
   return "unknown";
 }
@@ -176,8 +178,8 @@ ContinuumOptimum continuum_optimum(const ContinuumProblem& problem, const std::v
     return out;
   }
   auto f = [&](double log_mu) { return problem.energy(std::exp(log_mu), terms); };
-  const auto [x, value] =
-      boost::math::tools::brent_find_minima(f, std::log(out.scan[best - 1].first), std::log(out.scan[best + 1].first), 50);
+  const auto [x, value] = boost::math::tools::brent_find_minima(f, std::log(out.scan[best - 1].first),
+                                                                std::log(out.scan[best + 1].first), 50);
   out.mu = std::exp(x);
   out.value = value;
   return out;
@@ -201,8 +203,7 @@ std::optional<double> exact_energy_mu(const ControlNet& net) {
   for (int c = 0; c < 3; ++c) {
     const Eigen::MatrixXd B = coordinate_grid(net, c);
     const Eigen::MatrixXd g_tw = 2 * Du.transpose() * Gm1 * (Du * B * Dv.transpose()) * Gn1 * Dv;
-    const Eigen::MatrixXd g_d =
-        2 * Du.transpose() * Gm1 * Du * B * Gn + 2 * Gm * B * Dv.transpose() * Gn1 * Dv;
+    const Eigen::MatrixXd g_d = 2 * Du.transpose() * Gm1 * Du * B * Gn + 2 * Gm * B * Dv.transpose() * Gn1 * Dv;
     const auto ti = g_tw.block(1, 1, m - 1, n - 1);
     const auto di = g_d.block(1, 1, m - 1, n - 1);
     tw_d += ti.cwiseProduct(di).sum();

@@ -44,12 +44,12 @@ class ContinuumProblem {
 
   int degree_ = 0;
   Eigen::VectorXd nodes_, weights_;
-  std::vector<Eigen::MatrixXd> phi_;          //!< phi_[r](k, q) = φ_k^(r)(node q), r = 0..3
+  std::vector<Eigen::MatrixXd> phi_;                //!< phi_[r](k, q) = φ_k^(r)(node q), r = 0..3
   std::vector<std::vector<Eigen::MatrixXd>> base_;  //!< base_[c][a*4+b] = ∂^a_u ∂^b_v p₀ at the nodes
-  Eigen::MatrixXd V_;                         //!< K V = M V Λ
+  Eigen::MatrixXd V_;                               //!< K V = M V Λ
   Eigen::VectorXd lambda_;
   std::vector<Eigen::MatrixXd> twist_rhs_, dirichlet_rhs_;  //!< VᵀRV per coordinate
-  ControlNet coons_;                          //!< p₀
+  ControlNet coons_;                                        //!< p₀
   double scale_ = 0;
 };
 
@@ -69,9 +69,9 @@ const char* to_string(ContinuumStatus status);  //!< "success", "flat", "at_boun
 
 struct ContinuumOptimum {
   ContinuumStatus status = ContinuumStatus::kSuccess;
-  int degree = 0;                    //!< N of the Ritz space
-  std::optional<double> mu;          //!< absent unless kSuccess
-  double value = 0;                  //!< the energy at the optimum (or at the best scan point)
+  int degree = 0;                               //!< N of the Ritz space
+  std::optional<double> mu;                     //!< absent unless kSuccess
+  double value = 0;                             //!< the energy at the optimum (or at the best scan point)
   std::vector<std::pair<double, double>> scan;  //!< (μ, energy), μ = 0 first
 };
 

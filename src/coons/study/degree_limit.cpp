@@ -23,9 +23,12 @@ bool DegreeLimitOptions::is_valid(std::string* why) const {
 
 const char* to_string(DegreeLimitStatus status) {
   switch (status) {
-    case DegreeLimitStatus::kSuccess: return "success";
-    case DegreeLimitStatus::kTooFewPoints: return "too_few_points";
-    case DegreeLimitStatus::kNotMonotone: return "not_monotone";
+    case DegreeLimitStatus::kSuccess:
+      return "success";
+    case DegreeLimitStatus::kTooFewPoints:
+      return "too_few_points";
+    case DegreeLimitStatus::kNotMonotone:
+      return "not_monotone";
   }
   return "unknown";
 }
@@ -76,12 +79,14 @@ LimitFit fit_inverse_powers(const std::vector<std::pair<int, double>>& points, c
     y(i) = w * value;
   }
   const Eigen::VectorXd c = A.colPivHouseholderQr().solve(y);
-  for (Eigen::Index k = 0; k < cols; ++k) fit.parameters.emplace_back(parameter_name(exponents[size_t(k)], size_t(k)), c(k));
+  for (Eigen::Index k = 0; k < cols; ++k)
+    fit.parameters.emplace_back(parameter_name(exponents[size_t(k)], size_t(k)), c(k));
   fit.residual = rows > 0 ? (A * c - y).norm() / std::sqrt(double(rows)) : 0;
   return fit;
 }
 
-DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& points, const DegreeLimitOptions& options) {
+DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& points,
+                                   const DegreeLimitOptions& options) {
   DegreeLimitResult r;
   r.within_from.assign(options.tolerances.size(), std::nullopt);
   std::vector<std::pair<int, double>> tail;
@@ -104,7 +109,8 @@ DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& po
     const auto& [n1, y1] = points[k - 2];
     const auto& [n2, y2] = points[k - 1];
     const auto& [n3, y3] = points[k];
-    if (auto t = triple_limit(n1, y1, n2, y2, n3, y3, options.min_rate, options.max_rate)) r.rates.emplace_back(n3, t->rate);
+    if (auto t = triple_limit(n1, y1, n2, y2, n3, y3, options.min_rate, options.max_rate))
+      r.rates.emplace_back(n3, t->rate);
   }
   if (points.size() < 3) {
     r.status = DegreeLimitStatus::kTooFewPoints;
@@ -112,9 +118,9 @@ DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& po
     return r;
   }
   const size_t last = points.size() - 1;
-  const auto t = triple_limit(points[last - 2].first, points[last - 2].second, points[last - 1].first,
-                              points[last - 1].second, points[last].first, points[last].second, options.min_rate,
-                              options.max_rate);
+  const auto t =
+      triple_limit(points[last - 2].first, points[last - 2].second, points[last - 1].first, points[last - 1].second,
+                   points[last].first, points[last].second, options.min_rate, options.max_rate);
   if (!t) {
     r.status = DegreeLimitStatus::kNotMonotone;
     r.message = "the last three points do not approach a limit monotonically with a rate in range";
@@ -127,9 +133,9 @@ DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& po
   double error = 0;
   bool have_error = false;
   if (points.size() >= 4) {
-    const auto before = triple_limit(points[last - 3].first, points[last - 3].second, points[last - 2].first,
-                                     points[last - 2].second, points[last - 1].first, points[last - 1].second,
-                                     options.min_rate, options.max_rate);
+    const auto before =
+        triple_limit(points[last - 3].first, points[last - 3].second, points[last - 2].first, points[last - 2].second,
+                     points[last - 1].first, points[last - 1].second, options.min_rate, options.max_rate);
     if (before) {
       error = std::abs(t->limit - before->limit);
       have_error = true;

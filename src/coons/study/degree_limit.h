@@ -16,8 +16,8 @@
 namespace coons {
 
 struct DegreeLimitOptions {
-  int fit_from_degree = 8;  //!< the fits use the points with n ≥ this (the asymptotic range)
-  double min_rate = 0.05, max_rate = 8;  //!< range of the exponent p searched and accepted
+  int fit_from_degree = 8;                        //!< the fits use the points with n ≥ this (the asymptotic range)
+  double min_rate = 0.05, max_rate = 8;           //!< range of the exponent p searched and accepted
   std::vector<double> tolerances = {0.05, 0.01};  //!< relative distances to μ∞ for within_from
 
   bool is_valid(std::string* why) const;
@@ -25,7 +25,7 @@ struct DegreeLimitOptions {
 
 //! One candidate form, fitted by least squares over the points with n ≥ fit_from_degree.
 struct LimitFit {
-  std::string form;                                      //!< "mu_inf + a/n", ...
+  std::string form;                                        //!< "mu_inf + a/n", ...
   std::vector<std::pair<std::string, double>> parameters;  //!< ("mu_inf", .), ("a", .), ("b" or "p", .)
   double residual = 0;  //!< root-mean-square relative residual |μ − fit|/|μ| over the points used
   int points = 0;

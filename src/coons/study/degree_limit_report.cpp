@@ -23,8 +23,8 @@ std::vector<std::pair<int, double>> interior_mus(const DegreeLimitEntry& e) {
 }
 
 bool all_flat(const DegreeLimitEntry& e) {
-  return !e.cells.empty() &&
-         std::all_of(e.cells.begin(), e.cells.end(), [](const DegreeLimitCell& c) { return c.kind == DegreeOptimum::kFlat; });
+  return !e.cells.empty() && std::all_of(e.cells.begin(), e.cells.end(),
+                                         [](const DegreeLimitCell& c) { return c.kind == DegreeOptimum::kFlat; });
 }
 
 bool is_constant(const DegreeLimitEntry& e, const ClaimThresholds& t) {
@@ -67,19 +67,21 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
     else if (other == 0)
       out.push_back("α* = −1/4 (the Coons net, μ = 0) at every degree: the optimum is on the bound, no interior μ*.");
     else
-      out.push_back(fmt::format("no interior optimum with α* < 0 at any of the {} degrees (on a bound, α* ≥ 0, flat "
-                                "or failed): no μ*.",
-                                e.cells.size()));
+      out.push_back(
+          fmt::format("no interior optimum with α* < 0 at any of the {} degrees (on a bound, α* ≥ 0, flat "
+                      "or failed): no μ*.",
+                      e.cells.size()));
     return out;
   }
   // 1. constant or drifting
   if (is_constant(e, t))
-    out.push_back(fmt::format("μ* does not depend on the degree: max/min = {:.3f} over n = 4 … 32.", *e.mu_spread.ratio));
+    out.push_back(
+        fmt::format("μ* does not depend on the degree: max/min = {:.3f} over n = 4 … 32.", *e.mu_spread.ratio));
   else
-    out.push_back(fmt::format("μ* drifts with the degree: μ*({}) = {}, μ*({}) = {}{}.", mus.front().first,
-                              num(mus.front().second), mus.back().first, num(mus.back().second),
-                              e.mu_spread.ratio ? fmt::format(" (max/min {:.3g} over n = 4 … 32)", *e.mu_spread.ratio)
-                                                : std::string()));
+    out.push_back(fmt::format(
+        "μ* drifts with the degree: μ*({}) = {}, μ*({}) = {}{}.", mus.front().first, num(mus.front().second),
+        mus.back().first, num(mus.back().second),
+        e.mu_spread.ratio ? fmt::format(" (max/min {:.3g} over n = 4 … 32)", *e.mu_spread.ratio) : std::string()));
   // 2. the limit
   const int last = mus.back().first;
   if (has_reliable_limit(e, t))
@@ -87,31 +89,31 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
                               num(*e.limit.limit), fmt::format("{:.2g}", *e.limit.limit_error), *e.limit.rate,
                               within_text(e.limit.within_from[0], last), within_text(e.limit.within_from[1], last)));
   else if (e.limit.limit)
-    out.push_back(fmt::format("no limit claimed: the extrapolation gives μ∞ = {} ± {}, an error above {:.0f} %.",
-                              num(*e.limit.limit),
-                              e.limit.limit_error ? fmt::format("{:.2g}", *e.limit.limit_error) : std::string("?"),
-                              100 * t.limit_error));
+    out.push_back(fmt::format(
+        "no limit claimed: the extrapolation gives μ∞ = {} ± {}, an error above {:.0f} %.", num(*e.limit.limit),
+        e.limit.limit_error ? fmt::format("{:.2g}", *e.limit.limit_error) : std::string("?"), 100 * t.limit_error));
   else
-    out.push_back("no limit claimed: " + (e.limit.message.empty() ? std::string("no extrapolation") : e.limit.message) + ".");
+    out.push_back("no limit claimed: " + (e.limit.message.empty() ? std::string("no extrapolation") : e.limit.message) +
+                  ".");
   if (const LimitFit* f = best_fit(e))
-    out.push_back(fmt::format("Of the candidate forms, {} fits best (rms relative residual {:.2g} over n ≥ 8).", f->form,
-                              f->residual));
+    out.push_back(fmt::format("Of the candidate forms, {} fits best (rms relative residual {:.2g} over n ≥ 8).",
+                              f->form, f->residual));
   // 3. the continuum optimum
   const ContinuumSummary cs = continuum_summary(e);
   if (cs.mu && meets_continuum(e, t))
     out.push_back(fmt::format("μ*(n) tends to the continuum optimum μ_c = {} (Ritz, N = {}): |μ∞ − μ_c| = {:.2g}.",
                               num(*cs.mu), cs.degree, std::abs(*e.limit.limit - *cs.mu)));
   else if (cs.mu && e.limit.limit)
-    out.push_back(fmt::format("μ∞ = {} and the continuum optimum μ_c = {} (Ritz, N = {}) differ by {:.1f} %: not "
-                              "claimed to agree.",
-                              num(*e.limit.limit), num(*cs.mu), cs.degree,
-                              100 * std::abs(*e.limit.limit - *cs.mu) / *cs.mu));
+    out.push_back(
+        fmt::format("μ∞ = {} and the continuum optimum μ_c = {} (Ritz, N = {}) differ by {:.1f} %: not "
+                    "claimed to agree.",
+                    num(*e.limit.limit), num(*cs.mu), cs.degree, 100 * std::abs(*e.limit.limit - *cs.mu) / *cs.mu));
   else if (cs.mu)
     out.push_back(fmt::format("The continuum optimum is μ_c = {} (Ritz, N = {}); μ*({}) = {}.", num(*cs.mu), cs.degree,
                               last, num(mus.back().second)));
   else if (!e.continuum.empty())
-    out.push_back(fmt::format("The continuum problem has no interior optimum in μ ({}).",
-                              to_string(e.continuum.back().status)));
+    out.push_back(
+        fmt::format("The continuum problem has no interior optimum in μ ({}).", to_string(e.continuum.back().status)));
   // 4. which parametrisation varies least over n = 4 … 32
   if (e.mu_spread.ratio) {
     std::string best = "μ*";
@@ -153,8 +155,8 @@ std::string degree_limit_headline(const std::vector<DegreeLimitEntry>& entries, 
     }
   }
   if (constant) return fmt::format("{}: μ* does not depend on the degree (max/min ≤ {:.3f})", objective, hi);
-  std::string s = fmt::format("{}: μ* drifts with the degree (max/min {:.3g} to {:.3g} over n = 4 … 32)", objective,
-                              lo, hi);
+  std::string s =
+      fmt::format("{}: μ* drifts with the degree (max/min {:.3g} to {:.3g} over n = 4 … 32)", objective, lo, hi);
   if (limits) {
     s += fmt::format(" and converges, as n^−p with p = {:.2f} … {:.2f}", p_lo, p_hi);
     if (continuum) s += ", to the optimum of the continuous problem";
@@ -286,10 +288,10 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
     const ContinuumSummary cs = continuum_summary(e);
     const std::string none = "–";
     row += fmt::format(" {} | {} | {} | {} | {} | {} |",
-                       e.limit.limit ? num(*e.limit.limit) + (e.limit.limit_error
-                                                                  ? fmt::format(" ± {:.2g}", *e.limit.limit_error)
-                                                                  : std::string())
-                                     : none,
+                       e.limit.limit
+                           ? num(*e.limit.limit) +
+                                 (e.limit.limit_error ? fmt::format(" ± {:.2g}", *e.limit.limit_error) : std::string())
+                           : none,
                        e.limit.rate ? fmt::format("{:.2f}", *e.limit.rate) : none,
                        e.limit.within_from[0] ? std::to_string(*e.limit.within_from[0]) : none,
                        e.limit.within_from[1] ? std::to_string(*e.limit.within_from[1]) : none,
@@ -305,7 +307,8 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
   for (const DegreeLimitEntry& e : entries)
     for (const LimitFit& f : e.limit.fits) {
       std::string params;
-      for (const auto& [name, value] : f.parameters) params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", name, num(value));
+      for (const auto& [name, value] : f.parameters)
+        params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", name, num(value));
       line(fmt::format("| {} | {} | {} | {} | {:.2g} |", e.boundary, e.objective, f.form, params, f.residual));
     }
   line("");
@@ -321,7 +324,9 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
   line("");
   line("| shape | objective | μ* | μ_exact | ν* |");
   line("|---|---|---|---|---|");
-  auto ratio = [](const Spread& s) { return s.ratio ? fmt::format("{:.3g} ({} degrees)", *s.ratio, s.points) : std::string("–"); };
+  auto ratio = [](const Spread& s) {
+    return s.ratio ? fmt::format("{:.3g} ({} degrees)", *s.ratio, s.points) : std::string("–");
+  };
   for (const DegreeLimitEntry& e : entries)
     if (e.mu_spread.ratio || e.galerkin_spread.ratio)
       line(fmt::format("| {} | {} | {} | {} | {} |", e.boundary, e.objective, ratio(e.mu_spread),

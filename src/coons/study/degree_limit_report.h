@@ -17,8 +17,8 @@ namespace coons {
 
 //! Thresholds of the claims (relative).
 struct ClaimThresholds {
-  double constant = 0.05;      //!< "μ* does not depend on the degree": max/min − 1 ≤ this
-  double limit_error = 0.05;   //!< "μ* converges to μ∞": error ≤ this·|μ∞|
+  double constant = 0.05;       //!< "μ* does not depend on the degree": max/min − 1 ≤ this
+  double limit_error = 0.05;    //!< "μ* converges to μ∞": error ≤ this·|μ∞|
   double continuum_gap = 0.05;  //!< "μ*(n) tends to μ_c": |μ∞ − μ_c| ≤ max(this·μ_c, 2·error)
 };
 

@@ -44,10 +44,14 @@ std::optional<double> mu_of_alpha(int n, double alpha) {
 
 const char* to_string(DegreeOptimum kind) {
   switch (kind) {
-    case DegreeOptimum::kInterior: return "interior";
-    case DegreeOptimum::kFlat: return "flat";
-    case DegreeOptimum::kAtBound: return "at_bound";
-    case DegreeOptimum::kFailed: return "failed";
+    case DegreeOptimum::kInterior:
+      return "interior";
+    case DegreeOptimum::kFlat:
+      return "flat";
+    case DegreeOptimum::kAtBound:
+      return "at_bound";
+    case DegreeOptimum::kFailed:
+      return "failed";
   }
   return "unknown";
 }
@@ -126,8 +130,8 @@ DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& obje
   e.limit = fit_degree_limit(mus, options.limit);
   if (exact_terms_only(objective)) {
     for (int d : options.continuum_degrees)
-      if (at.count(d)) e.continuum.push_back(continuum_optimum(ContinuumProblem(at.at(d).first), objective.energy,
-                                                               options.continuum));
+      if (at.count(d))
+        e.continuum.push_back(continuum_optimum(ContinuumProblem(at.at(d).first), objective.energy, options.continuum));
   } else {
     e.continuum_unavailable = "the objective is not a sum of exact energies E(a, b)";
   }
@@ -168,14 +172,16 @@ json degree_limit_json(const DegreeLimitEntry& e) {
   for (const LimitFit& f : e.limit.fits) {
     json parameters = json::object();
     for (const auto& [name, value] : f.parameters) parameters[name] = number_or_null(value);
-    fits.push_back({{"form", f.form}, {"parameters", parameters}, {"residual", number_or_null(f.residual)},
-                    {"points", f.points}});
+    fits.push_back(
+        {{"form", f.form}, {"parameters", parameters}, {"residual", number_or_null(f.residual)}, {"points", f.points}});
   }
   json rates = json::array();
   for (auto [n, p] : e.limit.rates) rates.push_back({{"degree", n}, {"rate", number_or_null(p)}});
   json continuum = json::array();
   for (const ContinuumOptimum& c : e.continuum)
-    continuum.push_back({{"degree", c.degree}, {"mu", optional_number(c.mu)}, {"status", to_string(c.status)},
+    continuum.push_back({{"degree", c.degree},
+                         {"mu", optional_number(c.mu)},
+                         {"status", to_string(c.status)},
                          {"value", number_or_null(c.value)}});
   const ContinuumSummary cs = continuum_summary(e);
   auto spread = [](const Spread& s) { return json{{"max_over_min", optional_number(s.ratio)}, {"points", s.points}}; };

@@ -21,11 +21,11 @@
 namespace coons {
 
 struct DegreeLimitStudyOptions {
-  std::vector<int> degrees;                          //!< increasing, each in [2, 200]
+  std::vector<int> degrees;                           //!< increasing, each in [2, 200]
   std::vector<int> continuum_degrees = {24, 32, 40};  //!< N of the Ritz spaces, increasing
-  int spread_from = 4, spread_to = 32;               //!< degrees over which spreads are taken
-  int exact_mu_max_degree = 32;                      //!< μ_exact and ν* up to this degree
-  const solvers::SolverInfo* solver = nullptr;       //!< nullptr: auto
+  int spread_from = 4, spread_to = 32;                //!< degrees over which spreads are taken
+  int exact_mu_max_degree = 32;                       //!< μ_exact and ν* up to this degree
+  const solvers::SolverInfo* solver = nullptr;        //!< nullptr: auto
   DegreeLimitOptions limit;
   ContinuumOptions continuum;
 
@@ -42,8 +42,8 @@ struct DegreeLimitCell {
   int degree = 0;
   DegreeOptimum kind = DegreeOptimum::kInterior;
   AlphaSearchSummary alpha;
-  std::optional<double> mu;        //!< μ* (interior α* < 0 only)
-  std::optional<double> exact_mu;  //!< μ_exact of the α*-net (degree ≤ exact_mu_max_degree)
+  std::optional<double> mu;                  //!< μ* (interior α* < 0 only)
+  std::optional<double> exact_mu;            //!< μ_exact of the α*-net (degree ≤ exact_mu_max_degree)
   std::optional<ContinuumOptimum> galerkin;  //!< ν*: the exact-energy family at this degree
   std::optional<double> max_deviation;       //!< refitted sides: their largest deviation
 };
@@ -56,8 +56,8 @@ struct Spread {  //!< max/min of a parametrisation's optimum over [spread_from, 
 struct DegreeLimitEntry {
   std::string boundary, objective;
   std::vector<DegreeLimitCell> cells;
-  DegreeLimitResult limit;                //!< of the interior μ*(n)
-  std::vector<ContinuumOptimum> continuum;  //!< one per continuum degree
+  DegreeLimitResult limit;                           //!< of the interior μ*(n)
+  std::vector<ContinuumOptimum> continuum;           //!< one per continuum degree
   std::optional<std::string> continuum_unavailable;  //!< why (objective not a sum of exact energies)
   Spread mu_spread, exact_mu_spread, galerkin_spread;
 };
