@@ -65,9 +65,11 @@ TEST_CASE("coons degree-limit: bad input is one error line, exit 2, nothing writ
   for (const std::string& options :
        {std::string(" --degrees 6 4"), std::string(" --objective no_such_energy"),
         std::string(" --objective thin_plate e3"), std::string(" --continuum-degrees 100"), target_out}) {
-    std::string args = pillow;
-    args += options;
-    const CommandResult r = run_command(kCoons + " degree-limit " + args);
+    std::string command = kCoons;
+    command += " degree-limit ";
+    const std::string args = pillow + options;
+    command += args;
+    const CommandResult r = run_command(command);
     INFO(args << "\n" << r.err);
     CHECK(r.status == 2);
     CHECK(r.out.empty());

@@ -168,7 +168,7 @@ std::string degree_limit_headline(const std::vector<DegreeLimitEntry>& entries, 
     with_limit += has_reliable_limit(*e, t) ? 1 : 0;
     agreeing += meets_continuum(*e, t) ? 1 : 0;
   }
-  s += fmt::format("; a limit within 5 % for {} of {} shapes, {} of them at the continuum optimum", with_limit,
+  s += fmt::format("; a limit known to 5 % for {} of {} shapes, {} of them at the continuum optimum", with_limit,
                    with.size(), agreeing);
   return s;
 }
