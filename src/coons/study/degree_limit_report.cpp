@@ -217,6 +217,13 @@ std::vector<StudyFigure> plot_degree_limit_figures(const std::vector<DegreeLimit
       figures.push_back(f);
     }
     if (!gap_series.empty()) {
+      // the slope of a first-order law, for the eye: 20/n over the degrees drawn
+      double first = HUGE_VAL, last = 0;
+      for (const PlotSeries& g : gap_series) {
+        first = std::min(first, g.x.front());
+        last = std::max(last, g.x.back());
+      }
+      gap_series.push_back(PlotSeries{"reference slope: 20/n", {first, last}, {20 / first, 20 / last}, false});
       o.title = "distance of μ*(n) from the continuum optimum (" + objective + ")";
       o.ylabel = "|μ*(n) − μ_c|";
       StudyFigure f{"figures/mu_gap_vs_degree_" + safe_file_stem(objective) + ".png", ""};
