@@ -12,7 +12,7 @@ std::vector<std::string> study_conclusions(const StudyResult& r, double same_alp
   std::vector<std::string> out;
   // 1. One α for every shape? Per objective, over the shapes with an optimum (interior or bound).
   for (const std::string& objective : r.objectives) {
-    std::string lo_shape, hi_shape;
+    std::string lo_shape, hi_shape;  // "name" or "name, on the bound"
     double lo = HUGE_VAL, hi = -HUGE_VAL;
     int count = 0;
     for (const ShapeEntry& shape : r.shapes)
@@ -22,11 +22,11 @@ std::vector<std::string> study_conclusions(const StudyResult& r, double same_alp
         ++count;
         if (*o.alpha.parameter < lo) {
           lo = *o.alpha.parameter;
-          lo_shape = shape.boundary.name;
+          lo_shape = shape.boundary.name + (o.alpha.at_bound ? ", on the bound" : "");
         }
         if (*o.alpha.parameter > hi) {
           hi = *o.alpha.parameter;
-          hi_shape = shape.boundary.name;
+          hi_shape = shape.boundary.name + (o.alpha.at_bound ? ", on the bound" : "");
         }
       }
     if (count < 2)
