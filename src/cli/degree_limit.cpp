@@ -45,7 +45,8 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
   options.continuum_degrees = r.continuum_degrees;
   options.solver = solver_from_name(r.solver);
   std::string why;
-  if (!options.is_valid(&why)) throw InputError("command line", "--degrees", why);
+  if (!options.is_valid(&why))
+    throw InputError("command line", why.rfind("continuum", 0) == 0 ? "--continuum-degrees" : "--degrees", why);
   std::vector<Objective> objectives;
   for (const std::string& name : r.objectives) {
     auto o = parse_objective(name, &why);
