@@ -2,6 +2,9 @@
 # Re-runs an experiment and rewrites its results and its README:
 #   bash scripts/run_experiment.sh E01_farin_hansford | E02_degree_dependence [--dry-run]
 #
+# A title may be computed: `{headline}` in question.md's first line is replaced by the first bullet
+# of the report's "## N. Headline" (degree-limit) or "## N. Conclusions" (study) section.
+#
 # The exact command is experiments/NAME/command: one line, the program and its arguments separated
 # by spaces (no quoting, no shell syntax). It is run directly as an argument vector, never through
 # a shell or `eval`, and it must write into experiments/NAME/results/ and nowhere else. The README
@@ -35,8 +38,8 @@ done
 grep -qxF "    $line" "$dir/question.md" || fail "$dir/question.md: does not show the command of $dir/command"
 
 case "$name" in
-  E01_*) sections='^## (1|3)\.' ;;
-  E02_*) sections='^## 2\.' ;;
+  E01_*) sections='^## (1|3|5)\.' ;;
+  E02_*) sections='^## (1|2|3|4)\.' ;;
   *) fail "$name: no sections chosen for its README (edit scripts/run_experiment.sh)" ;;
 esac
 
@@ -56,8 +59,15 @@ bash scripts/setup.sh
 bash scripts/build.sh >/dev/null
 "${argv[@]}" >/dev/null
 
+# A question.md whose title holds {headline} gets the report's headline (the first bullet of its
+# "## N. Headline" or "## N. Conclusions" section): a title computed from the data, never written by hand.
+headline=$(awk '/^## [0-9]+\. (Headline|Conclusions)/{h = 1; next} /^## /{h = 0} h && /^- /{sub(/^- /, ""); sub(/\.$/, ""); print; exit}' \
+  "$dir/results/report.md")
+if grep -q '{headline}' "$dir/question.md" && [ -z "$headline" ]; then
+  fail "$dir/results/report.md: no headline for the title of $dir/README.md"
+fi
 {
-  cat "$dir/question.md"
+  awk -v h="$headline" '{gsub(/\{headline\}/, h); print}' "$dir/question.md"
   echo "**Result** ($(date -u +%Y-%m-%d), $(nproc) cores, made from revision \`$revision\`$note; the full report is [results/report.md](results/report.md)):"
   echo
   awk -v pat="$sections" '/^## /{keep = ($0 ~ pat)} keep' "$dir/results/report.md" | sed 's#(figures/#(results/figures/#g'

@@ -10,6 +10,7 @@
 #include "coons/io/write_files.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
+#include "coons/study/study_conclusions.h"
 #include "registry.h"
 
 namespace coons::cli {
@@ -58,7 +59,8 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
       if (!f.error.empty()) out.discard(f.file);
   for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
     if (!f->error.empty()) out.discard(f->file);
-  const std::string md = study_report_markdown(result, current_provenance(command_line), figures);
+  const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
+                         study_conclusions_markdown(result);
   out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
   print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));

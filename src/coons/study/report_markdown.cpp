@@ -113,8 +113,10 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
       p.ceres_version));
   line("");
   line("α is the weight of the four diagonal neighbours in b_ij = α·K + β·E (Farin & Hansford 1999); α = −1/4 is the");
-  line("Coons net, α = 0 the Laplace net. μ is the degree-independent membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖², with");
-  line("α(n) = −n²/(4(n² + μ)) (docs/math.md §4). Optima come from `search_alpha` (coarse scan, then Ceres with the");
+  line("Coons net, α = 0 the Laplace net. μ is the membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖², with");
+  line(
+      "α(n) = −n²/(4(n² + μ)) (docs/math.md §4; μ* still drifts with n, as O(1/n)). Optima come from `search_alpha` "
+      "(coarse scan, then Ceres with the");
   line("analytic derivative; objectives over α are evaluated in the sine basis of the mask family, with no solve per");
   line("evaluation); `flat` means the objective does not depend on α, `bound` that the optimum is on a bound,");
   line("`multi` that the scan saw several local minima.");

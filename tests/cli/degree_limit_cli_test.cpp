@@ -1,0 +1,96 @@
+// `coons degree-limit` through the real binary, at small degrees: the docs/formats.md fields,
+// μ* = −n²(1 + 4α*)/(4α*), null (not a number) where the optimum is flat, and the error contract.
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/fixtures.h"
+
+using namespace coons::test;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+const std::string kData = COONS_DATA_DIR;
+
+}  // namespace
+
+TEST_CASE("coons degree-limit: the fields of the degree law, mu* from alpha*", "[cli]") {
+  const CommandResult r = run_command(kCoons + " degree-limit '" + kData +
+                                      "/boundaries/pillow.json' --objective thin_plate --degrees 4 5 6 8 10 12 "
+                                      "--continuum-degrees 10 14");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json j = json::parse(r.out);
+  CHECK(j["degrees"] == json({4, 5, 6, 8, 10, 12}));
+  for (const char* key : {"alpha_star", "mu_star", "mu_limit", "mu_limit_error", "rate", "fits",
+                          "within_5_percent_from", "within_1_percent_from", "mu_continuum", "spread"})
+    CHECK(j.contains(key));
+  for (size_t k = 0; k < 6; ++k) {
+    const double n = j["degrees"][k], a = j["alpha_star"][k], mu = j["mu_star"][k];
+    CHECK(mu == Approx(-n * n * (1 + 4 * a) / (4 * a)).epsilon(1e-12));
+  }
+  // μ* falls with the degree and stays above the continuum optimum, which is converged in N
+  CHECK(j["mu_star"][5].get<double>() < j["mu_star"][0].get<double>());
+  REQUIRE(j["continuum"].size() == 2);
+  const double c10 = j["continuum"][0]["mu"], c14 = j["continuum"][1]["mu"];
+  CHECK(std::abs(c10 - c14) < 1e-3 * c14);
+  CHECK(j["mu_star"][5].get<double>() > c14);
+  CHECK(j["fits"].size() == 3);  // three points from n = 8: the two-parameter forms and the a/n + b/n² form
+}
+
+TEST_CASE("coons degree-limit: a flat objective gives nulls, not numbers", "[cli]") {
+  const CommandResult r = run_command(kCoons + " degree-limit '" + kData +
+                                      "/boundaries/saddle.json' --objective thin_plate --degrees 4 6 "
+                                      "--continuum-degrees 6");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json j = json::parse(r.out);
+  CHECK(j["optimum"] == json({"flat", "flat"}));
+  CHECK(j["mu_star"] == json({nullptr, nullptr}));
+  CHECK(j["mu_limit"].is_null());
+  CHECK(j["within_5_percent_from"].is_null());
+  CHECK(j["continuum"][0]["status"] == "flat");
+}
+
+TEST_CASE("coons degree-limit: bad input is one error line, exit 2, nothing written", "[cli]") {
+  TempDir dir;
+  const std::string out = dir.file("report");
+  const std::string pillow = "'" + kData + "/boundaries/pillow.json'";
+  const std::string target_out = " --degrees 4 6 --objective target --out '" + out + "'";
+  for (const std::string& options :
+       {std::string(" --degrees 6 4"), std::string(" --objective no_such_energy"),
+        std::string(" --objective thin_plate e3"), std::string(" --continuum-degrees 100"), target_out}) {
+    std::string command = kCoons;
+    command += " degree-limit ";
+    const std::string args = pillow + options;
+    command += args;
+    const CommandResult r = run_command(command);
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: command line: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
+TEST_CASE("coons degree-limit: --out writes the report with its generated conclusions", "[cli]") {
+  TempDir dir;
+  const std::string out = dir.file("report");
+  const CommandResult r = run_command(kCoons + " degree-limit '" + kData + "/boundaries/pillow.json' '" + kData +
+                                      "/boundaries/saddle.json' --objective thin_plate e3 --degrees 4 6 8 "
+                                      "--continuum-degrees 8 --out '" +
+                                      out + "'");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(fs::exists(out + "/report.md"));
+  const json results = json::parse(std::ifstream(out + "/results.json"));
+  CHECK(results.size() == 4);
+  CHECK(r.out.find("## 2. Conclusions") != std::string::npos);
+  CHECK(r.out.find("saddle, thin_plate.** flat at every degree") != std::string::npos);
+}

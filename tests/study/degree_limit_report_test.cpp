@@ -1,0 +1,111 @@
+// The generated conclusions of the degree-law report (coons/study/degree_limit_report.h): a claim
+// is printed only when the table supports it, otherwise the measured value takes its place.
+#include "coons/study/degree_limit_report.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace coons;
+
+namespace {
+
+//! A synthetic entry: μ*(n) = limit + a/n at the given degrees, with the limit fitted as the
+//! report's generator sees it, and a continuum optimum mu_c.
+DegreeLimitEntry synthetic(double limit, double a, std::optional<double> mu_c) {
+  DegreeLimitEntry e;
+  e.boundary = "synthetic";
+  e.objective = "thin_plate";
+  std::vector<std::pair<int, double>> mus;
+  for (int n : {4, 8, 12, 16, 24, 32, 48, 64}) {
+    DegreeLimitCell c;
+    c.degree = n;
+    c.mu = limit + a / n;
+    c.alpha.parameter = -double(n) * n / (4 * (double(n) * n + *c.mu));
+    mus.emplace_back(n, *c.mu);
+    e.cells.push_back(c);
+  }
+  e.limit = fit_degree_limit(mus);
+  double lo = HUGE_VAL, hi = 0;
+  for (auto [n, mu] : mus)
+    if (n <= 32) {
+      lo = std::min(lo, mu);
+      hi = std::max(hi, mu);
+    }
+  e.mu_spread.ratio = hi / lo;
+  e.mu_spread.points = 6;
+  if (mu_c) {
+    ContinuumOptimum o;
+    o.degree = 40;
+    o.mu = mu_c;
+    e.continuum.push_back(o);
+  }
+  return e;
+}
+
+std::string joined(const std::vector<std::string>& v) {
+  std::string s;
+  for (const auto& x : v) s += x + "\n";
+  return s;
+}
+
+bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
+
+}  // namespace
+
+TEST_CASE("degree_limit_conclusions: a drifting mu* is never called degree-independent", "[study]") {
+  const std::string text = joined(degree_limit_conclusions(synthetic(5, 40, 5)));
+  INFO(text);
+  CHECK_FALSE(contains(text, "does not depend on the degree"));
+  CHECK(contains(text, "μ* drifts with the degree"));
+  CHECK(contains(text, "μ*(4) = 15"));  // the measured drift is printed instead
+}
+
+TEST_CASE("degree_limit_conclusions: a nearly constant mu* is called degree-independent", "[study]") {
+  const std::string text = joined(degree_limit_conclusions(synthetic(5, 0.4, std::nullopt)));
+  INFO(text);
+  CHECK(contains(text, "does not depend on the degree"));
+  CHECK_FALSE(contains(text, "drifts"));
+}
+
+TEST_CASE("degree_limit_conclusions: agreement with the continuum only when the numbers agree", "[study]") {
+  const std::string agree = joined(degree_limit_conclusions(synthetic(5, 40, 5.01)));
+  INFO(agree);
+  CHECK(contains(agree, "tends to the continuum optimum"));
+  // the same table against a continuum optimum 30 % away: the claim is replaced by the gap
+  const std::string apart = joined(degree_limit_conclusions(synthetic(5, 40, 6.5)));
+  INFO(apart);
+  CHECK_FALSE(contains(apart, "tends to the continuum optimum"));
+  CHECK(contains(apart, "differ by 23.1 %"));
+}
+
+TEST_CASE("degree_limit_conclusions: no convergence claimed when the tail turns", "[study]") {
+  DegreeLimitEntry e = synthetic(5, 40, 5);
+  e.cells.back().mu = 9.0;  // the last point turns upwards
+  std::vector<std::pair<int, double>> mus;
+  for (const auto& c : e.cells) mus.emplace_back(c.degree, *c.mu);
+  e.limit = fit_degree_limit(mus);
+  const std::string text = joined(degree_limit_conclusions(e));
+  INFO(text);
+  CHECK_FALSE(contains(text, "converges"));
+  CHECK_FALSE(contains(text, "tends to the continuum"));
+  CHECK(contains(text, "no limit claimed"));
+}
+
+TEST_CASE("degree_limit_headline: claims only what every shape of the table supports", "[study]") {
+  const std::vector<DegreeLimitEntry> agreeing = {synthetic(5, 40, 5), synthetic(7, 30, 7)};
+  const std::string all = degree_limit_headline(agreeing, "thin_plate");
+  INFO(all);
+  CHECK(contains(all, "drifts with the degree"));
+  CHECK(contains(all, "converges"));
+  CHECK(contains(all, "to the optimum of the continuous problem"));
+  // one shape whose limit misses its continuum optimum: the headline no longer says it
+  const std::vector<DegreeLimitEntry> one_off = {synthetic(5, 40, 5), synthetic(7, 30, 9)};
+  const std::string some = degree_limit_headline(one_off, "thin_plate");
+  INFO(some);
+  CHECK_FALSE(contains(some, "to the optimum of the continuous problem"));
+  CHECK(contains(some, "converges, as n^−p"));
+  // constant sequences give the constant headline, drifting ones never do
+  const std::string constant = degree_limit_headline({synthetic(5, 0.3, std::nullopt)}, "thin_plate");
+  CHECK(contains(constant, "does not depend on the degree"));
+  CHECK_FALSE(contains(all, "does not depend on the degree"));
+}

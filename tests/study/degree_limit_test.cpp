@@ -1,0 +1,126 @@
+// The limit of μ*(n) as the degree grows (coons/study/degree_limit.h).
+#include "coons/study/degree_limit.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <random>
+
+using namespace coons;
+
+namespace {
+
+std::vector<std::pair<int, double>> sequence(double limit, double a, double p, double b = 0, double q = 0) {
+  std::vector<std::pair<int, double>> out;
+  for (int n : {3, 4, 5, 6, 8, 10, 12, 16, 20, 24, 32, 40, 48, 64})
+    out.emplace_back(n, limit + a * std::pow(n, -p) + b * std::pow(n, -q));
+  return out;
+}
+
+double parameter(const LimitFit& f, const std::string& name) {
+  for (const auto& [key, value] : f.parameters)
+    if (key == name) return value;
+  FAIL("no parameter " << name);
+  return 0;
+}
+
+const LimitFit& fit_named(const DegreeLimitResult& r, const std::string& form) {
+  for (const LimitFit& f : r.fits)
+    if (f.form == form) return f;
+  FAIL("no fit " << form);
+  return r.fits.front();
+}
+
+}  // namespace
+
+TEST_CASE("triple_limit: recovers the limit and the rate of an exact power sequence", "[study]") {
+  for (double p : {0.5, 1.0, 2.0, 3.5}) {
+    auto y = [&](int n) { return 5.0 + 40.0 * std::pow(n, -p); };
+    const auto t = triple_limit(8, y(8), 12, y(12), 20, y(20), 0.05, 8);
+    REQUIRE(t);
+    CHECK(t->rate == Approx(p).epsilon(1e-9));
+    CHECK(t->limit == Approx(5.0).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("triple_limit: differences that change sign or do not shrink give no limit", "[study]") {
+  CHECK(!triple_limit(4, 1.0, 6, 2.0, 8, 1.5, 0.05, 8));  // up, then down
+  CHECK(!triple_limit(4, 1.0, 6, 2.0, 8, 4.0, 0.05, 8));  // growing steps: no positive rate
+  CHECK(!triple_limit(4, 1.0, 6, 1.0, 8, 1.0, 0.05, 8));  // constant: no rate
+}
+
+TEST_CASE("fit_degree_limit: each candidate form recovers its own exact sequence", "[study]") {
+  const auto r1 = fit_degree_limit(sequence(5.5, 30, 1));
+  CHECK(parameter(fit_named(r1, "mu_inf + a/n"), "mu_inf") == Approx(5.5).epsilon(1e-10));
+  CHECK(parameter(fit_named(r1, "mu_inf + a/n"), "a") == Approx(30).epsilon(1e-10));
+  CHECK(fit_named(r1, "mu_inf + a/n").residual < 1e-12);
+  CHECK(fit_named(r1, "mu_inf + a/n^2").residual > 1e-3);  // the wrong form shows its misfit
+  const auto r2 = fit_degree_limit(sequence(7.0, 90, 2));
+  CHECK(parameter(fit_named(r2, "mu_inf + a/n^2"), "mu_inf") == Approx(7.0).epsilon(1e-10));
+  CHECK(fit_named(r2, "mu_inf + a/n^2").residual < 1e-12);
+  const auto r3 = fit_degree_limit(sequence(6.0, 20, 1, -50, 2));
+  CHECK(parameter(fit_named(r3, "mu_inf + a/n + b/n^2"), "mu_inf") == Approx(6.0).epsilon(1e-9));
+  CHECK(parameter(fit_named(r3, "mu_inf + a/n + b/n^2"), "b") == Approx(-50).epsilon(1e-8));
+  const auto r4 = fit_degree_limit(sequence(4.0, 25, 1.5));
+  const LimitFit& free = fit_named(r4, "mu_inf + a*n^-p");
+  CHECK(parameter(free, "p") == Approx(1.5).epsilon(1e-4));
+  CHECK(parameter(free, "mu_inf") == Approx(4.0).epsilon(1e-5));
+}
+
+TEST_CASE("fit_degree_limit: the extrapolated limit, its rate and the within-tolerance degrees", "[study]") {
+  const auto r = fit_degree_limit(sequence(6.0, 30, 1));
+  REQUIRE(r.status == DegreeLimitStatus::kSuccess);
+  REQUIRE(r.limit);
+  CHECK(*r.limit == Approx(6.0).epsilon(1e-9));
+  CHECK(*r.rate == Approx(1.0).epsilon(1e-8));
+  REQUIRE(r.limit_error);
+  CHECK(*r.limit_error < 1e-6);
+  // 30/n ≤ 0.3 (5 %) from n = 100: not reached by n = 64; 30/n ≤ 0.3 never in range → null
+  REQUIRE(r.within_from.size() == 2);
+  CHECK(!r.within_from[0]);
+  CHECK(!r.within_from[1]);
+  // a faster sequence: 6 + 30/n² is within 5 % (0.3) from n = 10 and within 1 % (0.06) from n = 24
+  const auto fast = fit_degree_limit(sequence(6.0, 30, 2));
+  REQUIRE(fast.within_from[0]);
+  CHECK(*fast.within_from[0] == 10);
+  REQUIRE(fast.within_from[1]);
+  CHECK(*fast.within_from[1] == 24);
+}
+
+TEST_CASE("fit_degree_limit: with noise the error estimate covers the actual error", "[study]") {
+  std::mt19937 rng(7);
+  std::normal_distribution<double> noise(0, 1e-3);
+  for (int trial = 0; trial < 5; ++trial) {
+    auto points = sequence(6.0, 30, 1, 40, 2);
+    for (auto& p : points) p.second *= 1 + noise(rng);
+    const auto r = fit_degree_limit(points);
+    if (r.status != DegreeLimitStatus::kSuccess) {
+      CHECK(!r.limit);  // no limit claimed without a monotone tail
+      continue;
+    }
+    REQUIRE(r.limit_error);
+    CHECK(std::abs(*r.limit - 6.0) <= *r.limit_error + 1e-12);
+  }
+}
+
+TEST_CASE("fit_degree_limit: too few points or a tail that turns give no limit", "[study]") {
+  const auto two = fit_degree_limit({{4, 10.0}, {8, 7.0}});
+  CHECK(two.status == DegreeLimitStatus::kTooFewPoints);
+  CHECK(!two.limit);
+  const auto turning = fit_degree_limit({{4, 10.0}, {8, 7.0}, {12, 6.0}, {16, 6.5}});
+  CHECK(turning.status == DegreeLimitStatus::kNotMonotone);
+  CHECK(!turning.limit);
+  CHECK(!turning.rate);
+  CHECK(!turning.within_from[0]);
+}
+
+TEST_CASE("DegreeLimitOptions: is_valid rejects a bad rate range or tolerance", "[study]") {
+  std::string why;
+  DegreeLimitOptions o;
+  CHECK(o.is_valid(&why));
+  o.max_rate = 0.01;
+  CHECK(!o.is_valid(&why));
+  o = {};
+  o.tolerances = {1.5};
+  CHECK(!o.is_valid(&why));
+  CHECK(why.find("tolerance") != std::string::npos);
+}
