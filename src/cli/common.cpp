@@ -134,9 +134,9 @@ void resolve_mask(const NetRequest& r, ResolvedRequest& out) {
   if (out.mask_kind != MaskKind::kAlpha) {
     for (const auto& [option, name] : {std::pair{r.alpha_option, "--alpha"}, std::pair{r.mu_option, "--mu"}})
       if (given(option))
-        throw InputError("command line", name,
-                         fmt::format("{} chooses the 3x3 mask of --mask alpha; it does not apply to --mask {}", name,
-                                     r.mask));
+        throw InputError(
+            "command line", name,
+            fmt::format("{} chooses the 3x3 mask of --mask alpha; it does not apply to --mask {}", name, r.mask));
   }
   if (given(r.weight_option) && out.mask_kind != MaskKind::kC1Family)
     throw InputError("command line", "--weight",
@@ -243,19 +243,25 @@ bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r) {
 
 Stencil request_stencil(const ResolvedRequest& r) { return r.stencil ? *r.stencil : alpha_stencil(r.mask); }
 
-StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const NetRequest& request,
-                                 const GlobalOptions& global, const std::string& source) {
+StencilRun check_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source) {
   if (r.method != Method::kAlpha)
-    throw InputError("command line", "--method",
-                     fmt::format("--method {} is a closed form over one data ring, but {} has {}; use --method alpha "
-                                 "(a --mask solve)",
-                                 to_string(r.method), source,
-                                 input.rings > 1 ? fmt::format("{} data rings", input.rings)
-                                                 : std::string("a free grid")));
+    throw InputError(
+        "command line", "--method",
+        fmt::format("--method {} is a closed form over one data ring, but {} has {}; use --method alpha "
+                    "(a --mask solve)",
+                    to_string(r.method), source,
+                    input.rings > 1 ? fmt::format("{} data rings", input.rings) : std::string("a free grid")));
   StencilRun run;
   run.problem = stencil_problem(input);
   run.stencil = request_stencil(r);
   require_valid_problem(run.problem, run.stencil, source);
+  return run;
+}
+
+StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const NetRequest& request,
+                                 const GlobalOptions& global, const std::string& source) {
+  check_net_memory(global, input.boundary, request.solver == "auto" ? nullptr : r.solver, source);
+  StencilRun run = check_stencil_request(input, r, source);
   std::unique_ptr<solvers::LinearSolver> solver;
   if (request.solver == "auto") {
     run.picked_automatically = true;
@@ -263,7 +269,7 @@ StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedReques
     if (!solver) {
       // Positive definite systems (the symbol is >= 0: every named mask, alpha in [-1/4, 1/4]):
       // sparse Cholesky; others a sparse LU.
-      const char* name = !symbol_nonnegative(run.stencil) ? "eigen-lu"
+      const char* name = !symbol_nonnegative(run.stencil)  ? "eigen-lu"
                          : solvers::find_solver("cholmod") ? "cholmod"
                                                            : "eigen-ldlt";
       solver = solvers::make_solver(name, r.options);
@@ -271,7 +277,6 @@ StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedReques
   } else {
     solver = solvers::make_solver(r.solver->name, r.options);
   }
-  check_net_memory(global, input.boundary, run.picked_automatically ? nullptr : r.solver, source);
   run.result = solve_stencil_net(run.problem, run.stencil, *solver);
   return run;
 }

@@ -57,7 +57,7 @@ struct NetRequest {
   double tolerance = 1e-12;
   int max_iterations = 0;
   double omega = 1.0;
-  std::string mask = "alpha";   //!< --mask (solve only)
+  std::string mask = "alpha";    //!< --mask (solve only)
   std::optional<double> weight;  //!< --weight (c1-family)
   // which options were given (for contradictions)
   CLI::Option *method_option = nullptr, *alpha_option = nullptr, *mu_option = nullptr, *solver_option = nullptr,
@@ -99,8 +99,10 @@ struct StencilRun {
   StencilSolveResult result;
   bool picked_automatically = false;
 };
-//! Refuses closed-form methods beyond one ring, checks the problem (require_valid_problem: exit 2
-//! naming field and point), picks the solver (auto: the separable one when it applies, else a
+//! Refuses closed-form methods beyond one ring and checks the problem (require_valid_problem:
+//! InputError naming the field and the point); result is left empty.
+StencilRun check_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source);
+//! check_stencil_request, then picks the solver (auto: the separable one when it applies, else a
 //! sparse direct backend) and solves. The solve's trouble is in result.summary.
 StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const NetRequest& request,
                                  const GlobalOptions& global, const std::string& source);

@@ -44,7 +44,7 @@ namespace {
 // m = n and α ∈ [−1/4, 0).
 void alpha_fields(json& report, const Boundary& boundary, const Mask9& mask, const std::optional<double>& mu) {
   report["alpha"] = mask.diag;
-    report["beta"] = number_or_null(mask.edge_i == mask.edge_j ? mask.edge_i : NAN);
+  report["beta"] = number_or_null(mask.edge_i == mask.edge_j ? mask.edge_i : NAN);
   if (mask.edge_i != mask.edge_j) report["beta_ij"] = {mask.edge_i, mask.edge_j};
   if (mu)
     report["mu"] = *mu;
