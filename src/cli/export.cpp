@@ -124,8 +124,9 @@ int run_export(ExportRequest e) {
     written.push_back(out.path_of(rhs));
     out.write(rhs, [&](std::ostream& o) { write_dense_matrix_market(o, B); });
     report["matrix_market"] = {{"matrix", "coordinate real general (both triangles stored)"},
-                               {"rhs", "array real general, #free by 3 (x, y, z; the interior points for the "
-                                        "classical problem)"}};
+                               {"rhs",
+                                "array real general, #free by 3 (x, y, z; the interior points for the "
+                                "classical problem)"}};
   }
   report["written"] = written;
   report["timing"] = phases.timing();
