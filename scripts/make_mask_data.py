@@ -92,9 +92,9 @@ def torus_patch(u, v):
 
 
 def saddle_bump(u, v):
-    """z = (x^2 - y^2)/2 + 0.6 exp(-((x - 0.2)^2 + (y + 0.1)^2)/0.25) over [-1, 1]^2."""
+    """z = (x^2 - y^2)/2 + 0.6 exp(-((x - 0.2)^2 + (y + 0.1)^2)/0.6) over [-1, 1]^2."""
     x, y = 2 * u - 1, 2 * v - 1
-    return [x, y, 0.5 * (x * x - y * y) + 0.6 * math.exp(-((x - 0.2) ** 2 + (y + 0.1) ** 2) / 0.25)]
+    return [x, y, 0.5 * (x * x - y * y) + 0.6 * math.exp(-((x - 0.2) ** 2 + (y + 0.1) ** 2) / 0.6)]
 
 
 def gentle_hill(u, v):
