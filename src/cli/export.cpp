@@ -109,11 +109,11 @@ int run_export(ExportRequest e) {
     Eigen::MatrixX3d B;
     if (run) {
       StencilSystem system = assemble_stencil_system(run->problem, run->stencil);
-      A = std::move(system.A);
+      A.swap(system.A);  // Eigen::SparseMatrix has no move assignment
       B = std::move(system.B);
     } else {
       MaskSystem system = assemble_mask_system(frame_net(b), r.mask, true);
-      A = std::move(system.A);
+      A.swap(system.A);
       B = std::move(system.B);
     }
     phases.start("write");
