@@ -44,6 +44,7 @@ SCHEMA_OF_FOLDER = {
     "data/surfaces": ["surface.schema.json"],
     "data/reference": ["reference.schema.json"],
     "data/triangles": ["triangle.schema.json"],
+    "data/free_sets": ["boundary.schema.json", "net.schema.json"],
 }
 
 P = [0.0, 0.0, 0.0]
@@ -66,6 +67,10 @@ ACCEPTED = [
     ("boundary.schema.json", GOOD_BOUNDARY, "the sides form"),
     ("boundary.schema.json", {"net": [[P, P], [P, P]]}, "the net form"),
     ("triangle.schema.json", {"type": "triangle", "degree": 1, "sides": [[P, P], [P, P], [P, P]]}, "a triangle"),
+    ("boundary.schema.json", {"net": [[P, P], [P, P]], "rings": 1, "free": [[0, 0], [0, False]]},
+     "the net form with rings and a free grid"),
+    ("boundary.schema.json", with_(GOOD_BOUNDARY, ribbons={s: [P, P] for s in ("bottom", "top", "left", "right")}),
+     "the sides form with ribbons (their lengths and ends are the reader's to check)"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, extension="coons ignores it"), "an unknown field (ignored by coons)"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"plane": {"point": P, "normal": [0, 0, 1]}}), "a plane target"),
     ("net.schema.json", {"name": "n", "degree": [1, 1], "exact": True, "net": [[P, P], [P, P]]}, "coons surface --net-out"),
@@ -91,6 +96,11 @@ REJECTED = [
     ("boundary.schema.json", with_(GOOD_BOUNDARY, degree=[1.5, 1]), "a degree that is not an integer"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, name=7), "a name that is not a string"),
     ("boundary.schema.json", {"net": [[P, P]]}, "a net of one row"),
+    ("boundary.schema.json", with_(GOOD_BOUNDARY, ribbons={"bottom": [P, P]}), "ribbons without top, left, right"),
+    ("boundary.schema.json", with_(GOOD_BOUNDARY, rings=2), "rings in the sides form"),
+    ("boundary.schema.json", {"net": [[P, P], [P, P]], "free": [[0, 2], [0, 0]]}, "a free flag of 2"),
+    ("boundary.schema.json", {"net": [[P, P], [P, P]], "rings": 0}, "rings 0"),
+    ("boundary.schema.json", {"net": [[P, P], [P, P]], "ribbons": {}}, "ribbons in the net form"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"sphere": {"center": P}}), "a sphere without a radius"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"sphere": {"center": P, "radius": -1}}), "a negative radius"),
     ("boundary.schema.json", with_(GOOD_BOUNDARY, target={"torus": {}}), "an unknown target"),
@@ -120,7 +130,8 @@ REJECTED = [
 
 # The bundled files document themselves: what each one is and where it comes from (coons does not
 # read these fields, so the schemas accept any value; here the data files are held to strings).
-DOCUMENTED_BY = {"data/boundaries": ["description", "source"], "data/surfaces": ["source"]}
+DOCUMENTED_BY = {"data/boundaries": ["description", "source"], "data/surfaces": ["source"],
+                 "data/free_sets": ["description", "source"]}
 
 
 def check_schemas():

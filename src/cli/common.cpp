@@ -12,6 +12,8 @@
 #include <map>
 
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+#include "coons/io/stencil_json.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/net_report.h"
 
@@ -97,8 +99,72 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
       cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
 }
 
+void add_mask_options(CLI::App& cmd, NetRequest& r) {
+  r.mask_option = cmd.add_option("--mask", r.mask,
+                                 "alpha (the 3x3 family, --alpha/--mu), c1-coons, biharmonic, c1-family "
+                                 "(--weight), or file:PATH (a stencil file, docs/formats.md)")
+                      ->capture_default_str();
+  r.weight_option = cmd.add_option("--weight", r.weight, "c1-family: w in [0, 1] (1: c1-coons, 0: biharmonic)");
+}
+
 namespace {
+
 bool given(const CLI::Option* o) { return o && o->count() > 0; }
+
+// --mask and --weight: the stencil of every mask but alpha, and their contradictions.
+void resolve_mask(const NetRequest& r, ResolvedRequest& out) {
+  out.mask_name = r.mask;
+  const std::string file_prefix = "file:";
+  if (r.mask == "alpha") {
+    out.mask_kind = MaskKind::kAlpha;
+  } else if (r.mask == "c1-coons") {
+    out.mask_kind = MaskKind::kC1Coons;
+  } else if (r.mask == "biharmonic") {
+    out.mask_kind = MaskKind::kBiharmonic;
+  } else if (r.mask == "c1-family") {
+    out.mask_kind = MaskKind::kC1Family;
+  } else if (r.mask.rfind(file_prefix, 0) == 0) {
+    out.mask_kind = MaskKind::kFile;
+    if (r.mask.size() == file_prefix.size())
+      throw InputError("command line", "--mask", "file: needs the path of a stencil file (--mask file:PATH)");
+  } else {
+    throw InputError("command line", "--mask",
+                     "unknown mask '" + r.mask + "' (alpha, c1-coons, biharmonic, c1-family, file:PATH)");
+  }
+  if (out.mask_kind != MaskKind::kAlpha) {
+    for (const auto& [option, name] : {std::pair{r.alpha_option, "--alpha"}, std::pair{r.mu_option, "--mu"}})
+      if (given(option))
+        throw InputError(
+            "command line", name,
+            fmt::format("{} chooses the 3x3 mask of --mask alpha; it does not apply to --mask {}", name, r.mask));
+  }
+  if (given(r.weight_option) && out.mask_kind != MaskKind::kC1Family)
+    throw InputError("command line", "--weight",
+                     "--weight is the w of --mask c1-family; it does not apply to --mask " + r.mask);
+  switch (out.mask_kind) {
+    case MaskKind::kAlpha:
+      return;
+    case MaskKind::kC1Coons:
+      out.stencil = c1_coons_stencil();
+      return;
+    case MaskKind::kBiharmonic:
+      out.stencil = biharmonic_stencil();
+      return;
+    case MaskKind::kC1Family:
+      if (!r.weight) throw InputError("command line", "--weight", "--mask c1-family needs --weight w in [0, 1]");
+      if (!(*r.weight >= 0 && *r.weight <= 1))
+        throw InputError("command line", "--weight", fmt::format("must be a number in [0, 1], got {}", *r.weight));
+      out.weight = r.weight;
+      out.stencil = c1_family_stencil(*r.weight);
+      return;
+    case MaskKind::kFile: {
+      const std::string path = r.mask.substr(file_prefix.size());
+      out.stencil = stencil_from_json(read_json_file(path), path);
+      return;
+    }
+  }
+}
+
 }  // namespace
 
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source) {
@@ -112,7 +178,9 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
                                                                      {r.tolerance_option, "--tolerance"},
                                                                      {r.max_iterations_option, "--max-iterations"},
                                                                      {r.omega_option, "--omega"},
-                                                                     {r.indefinite_option, "--allow-indefinite"}};
+                                                                     {r.indefinite_option, "--allow-indefinite"},
+                                                                     {r.mask_option, "--mask"},
+                                                                     {r.weight_option, "--weight"}};
     for (const auto& [option, name] : alpha_only)
       if (given(option))
         throw InputError("command line", "--method",
@@ -125,6 +193,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
     throw InputError("command line", "--omega",
                      "--omega is the over-relaxation of --solver gauss-seidel, not of " + r.solver);
 
+  resolve_mask(r, out);
   if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");
   if (r.mu && !(std::isfinite(*r.mu) && *r.mu >= 0))
     throw InputError("command line", "--mu", "must be a finite number >= 0");
@@ -166,6 +235,59 @@ NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r) {
 json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                   const std::optional<double>& mu) {
   return net_report(boundary, r.method, r.mask, outcome, mu, r.picked_automatically);
+}
+
+bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r) {
+  return is_classical(input) && r.mask_kind == MaskKind::kAlpha;
+}
+
+Stencil request_stencil(const ResolvedRequest& r) { return r.stencil ? *r.stencil : alpha_stencil(r.mask); }
+
+StencilRun check_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source) {
+  if (r.method != Method::kAlpha)
+    throw InputError(
+        "command line", "--method",
+        fmt::format("--method {} is a closed form over one data ring, but {} has {}; use --method alpha "
+                    "(a --mask solve)",
+                    to_string(r.method), source,
+                    input.rings > 1 ? fmt::format("{} data rings", input.rings) : std::string("a free grid")));
+  StencilRun run;
+  run.problem = stencil_problem(input);
+  run.stencil = request_stencil(r);
+  require_valid_problem(run.problem, run.stencil, source);
+  return run;
+}
+
+StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const NetRequest& request,
+                                 const GlobalOptions& global, const std::string& source) {
+  check_net_memory(global, input.boundary, request.solver == "auto" ? nullptr : r.solver, source);
+  StencilRun run = check_stencil_request(input, r, source);
+  std::unique_ptr<solvers::LinearSolver> solver;
+  if (request.solver == "auto") {
+    run.picked_automatically = true;
+    solver = make_separable_solver(run.problem, run.stencil, r.options);
+    if (!solver) {
+      // Positive definite systems (the symbol is >= 0: every named mask, alpha in [-1/4, 1/4]):
+      // sparse Cholesky; others a sparse LU.
+      const char* name = !symbol_nonnegative(run.stencil)  ? "eigen-lu"
+                         : solvers::find_solver("cholmod") ? "cholmod"
+                                                           : "eigen-ldlt";
+      solver = solvers::make_solver(name, r.options);
+    }
+  } else {
+    solver = solvers::make_solver(r.solver->name, r.options);
+  }
+  run.result = solve_stencil_net(run.problem, run.stencil, *solver);
+  return run;
+}
+
+json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const StencilRun& run,
+                    const std::optional<double>& mu) {
+  MaskLabel label;
+  label.name = r.mask_name;
+  label.weight = r.weight;
+  if (r.mask_kind == MaskKind::kAlpha) label.mask9 = r.mask;
+  return stencil_net_report(input.boundary, run.problem, run.stencil, label, run.result, mu, run.picked_automatically);
 }
 
 BoundaryFile read_input(const std::string& path, double corner_tolerance) {

@@ -11,6 +11,9 @@
 
 #include "coons/io/boundary_io.h"
 #include "coons/mask/mask9.h"
+#include "coons/mask/solve_stencil_net.h"
+#include "coons/mask/stencil.h"
+#include "coons/mask/stencil_problem.h"
 #include "coons/net/control_net.h"
 #include "coons/study/net_report.h"
 #include "solvers/linear_solver.h"
@@ -24,6 +27,9 @@ constexpr int kExitBadInput = 2;
 constexpr int kExitSolverFailed = 3;
 
 using Method = NetMethod;
+
+//! `--mask NAME` (docs/formats.md, Masks): the strings become this here, nowhere else.
+enum class MaskKind { kAlpha, kC1Coons, kBiharmonic, kC1Family, kFile };
 
 //! The options of every command (registered on each subcommand).
 struct GlobalOptions {
@@ -51,10 +57,12 @@ struct NetRequest {
   double tolerance = 1e-12;
   int max_iterations = 0;
   double omega = 1.0;
+  std::string mask = "alpha";    //!< --mask (solve only)
+  std::optional<double> weight;  //!< --weight (c1-family)
   // which options were given (for contradictions)
   CLI::Option *method_option = nullptr, *alpha_option = nullptr, *mu_option = nullptr, *solver_option = nullptr,
               *tolerance_option = nullptr, *max_iterations_option = nullptr, *omega_option = nullptr,
-              *indefinite_option = nullptr;
+              *indefinite_option = nullptr, *mask_option = nullptr, *weight_option = nullptr;
 };
 
 struct ResolvedRequest {
@@ -63,15 +71,43 @@ struct ResolvedRequest {
   const solvers::SolverInfo* solver = nullptr;  //!< concrete backend (alpha method only)
   bool picked_automatically = false;            //!< --solver auto chose it
   solvers::SolverOptions options;
+  MaskKind mask_kind = MaskKind::kAlpha;
+  std::string mask_name = "alpha";  //!< as given ("file:PATH" included)
+  std::optional<double> weight;     //!< c1-family
+  std::optional<Stencil> stencil;   //!< every mask but alpha (whose stencil is alpha_stencil(mask))
 };
 
 void add_net_options(CLI::App& cmd, NetRequest& r);
+//! --mask and --weight (solve).
+void add_mask_options(CLI::App& cmd, NetRequest& r);
 //! --solver alone (search, sweep, batch, study).
 void add_solver_option(CLI::App& cmd, std::string& solver);
 //! Checks the request against the boundary; throws InputError naming the bad option (or both
 //! options of a contradiction).
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source);
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r);
+
+//! True when the classical path applies: one data ring, no free grid, the alpha mask.
+bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r);
+//! The stencil of a resolved request.
+Stencil request_stencil(const ResolvedRequest& r);
+
+//! A stencil solve of a file beyond the classical problem, checked at the input edge first.
+struct StencilRun {
+  StencilProblem problem;
+  Stencil stencil;
+  StencilSolveResult result;
+  bool picked_automatically = false;
+};
+//! Refuses closed-form methods beyond one ring and checks the problem (require_valid_problem:
+//! InputError naming the field and the point); result is left empty.
+StencilRun check_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source);
+//! check_stencil_request, then picks the solver (auto: the separable one when it applies, else a
+//! sparse direct backend) and solves. The solve's trouble is in result.summary.
+StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const NetRequest& request,
+                                 const GlobalOptions& global, const std::string& source);
+nlohmann::json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const StencilRun& run,
+                              const std::optional<double>& mu);
 //! The solve report (docs/formats.md) without the timing block; metrics computed here.
 nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                             const std::optional<double>& mu);

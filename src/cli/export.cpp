@@ -4,6 +4,7 @@
 
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "coons/io/input_error.h"
 #include "coons/io/matrix_market.h"
@@ -12,6 +13,7 @@
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/mask/assemble_mask_system.h"
+#include "coons/mask/stencil_system.h"
 #include "coons/study/memory_estimate.h"
 #include "registry.h"
 #include "tri_commands.h"
@@ -50,6 +52,11 @@ int run_export(ExportRequest e) {
     throw InputError("command line", "--prefix",
                      "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
   check_net_memory(e.global, b, r.solver, e.boundary);
+  // Beyond the classical problem (two data rings, a free grid, a mask other than alpha): the
+  // stencil solve of `coons solve`, checked here, before anything is written.
+  const bool classical = is_classical_request(input, r);
+  std::optional<StencilRun> run;
+  if (!classical) run = check_stencil_request(input, r, e.boundary);
   if (e.obj)
     check_memory(e.global, samples_bytes(e.samples), fmt::format("{} x {} surface samples", e.samples, e.samples),
                  "command line", "--samples");
@@ -65,7 +72,25 @@ int run_export(ExportRequest e) {
 
   nlohmann::json report = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"method", to_string(r.method)}};
   NetOutcome outcome;
-  if (e.obj) {
+  if (run) {
+    report["mask"] = r.mask_name;
+    if (r.weight) report["weight"] = *r.weight;
+    report["rings"] = run->problem.rings;
+    report["free_points"] = free_points(run->problem).count();
+  }
+  if (e.obj && run) {
+    phases.start("solve");
+    *run = solve_stencil_request(input, r, e.net, e.global, e.boundary);
+    report["solver"] = summary_to_json(run->result.summary);
+    if (!run->result.summary.ok()) {
+      nlohmann::json failed = stencil_report(input, r, *run, e.net.mu);
+      failed["timing"] = phases.timing();
+      print_json(failed);
+      print_solver_failure(e.boundary, run->result.summary);
+      return kExitSolverFailed;
+    }
+    outcome.net = run->result.net;
+  } else if (e.obj) {
     phases.start("solve");
     outcome = make_net(b, r);
     if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
@@ -87,16 +112,28 @@ int run_export(ExportRequest e) {
   }
   if (e.mtx) {
     phases.start("assemble");
-    const MaskSystem system = assemble_mask_system(frame_net(b), r.mask, true);
+    Eigen::SparseMatrix<double> A;
+    Eigen::MatrixX3d B;
+    if (run) {
+      StencilSystem system = assemble_stencil_system(run->problem, run->stencil);
+      A.swap(system.A);  // Eigen::SparseMatrix has no move assignment
+      B = std::move(system.B);
+    } else {
+      MaskSystem system = assemble_mask_system(frame_net(b), r.mask, true);
+      A.swap(system.A);
+      B = std::move(system.B);
+    }
     phases.start("write");
     const std::string& a = names[e.obj ? 2 : 0];
     const std::string& rhs = names[e.obj ? 3 : 1];
     written.push_back(out.path_of(a));
-    out.write(a, [&](std::ostream& o) { write_matrix_market(o, system.A); });
+    out.write(a, [&](std::ostream& o) { write_matrix_market(o, A); });
     written.push_back(out.path_of(rhs));
-    out.write(rhs, [&](std::ostream& o) { write_dense_matrix_market(o, system.B); });
+    out.write(rhs, [&](std::ostream& o) { write_dense_matrix_market(o, B); });
     report["matrix_market"] = {{"matrix", "coordinate real general (both triangles stored)"},
-                               {"rhs", "array real general, #interior by 3 (x, y, z)"}};
+                               {"rhs",
+                                "array real general, #free by 3 (x, y, z; the interior points for the "
+                                "classical problem)"}};
   }
   report["written"] = written;
   report["timing"] = phases.timing();
@@ -112,6 +149,7 @@ void register_export(CLI::App& app, Registry& registry) {
   auto* cmd = app.add_subcommand("export", "write the net as OBJ files and/or the mask system as Matrix Market");
   cmd->add_option("BOUNDARY", request->boundary, "boundary JSON file (docs/formats.md)")->required();
   add_net_options(*cmd, request->net);
+  add_mask_options(*cmd, request->net);
   cmd->add_option("--out", request->out_dir, "output folder")->capture_default_str();
   cmd->add_option("--prefix", request->prefix, "file name prefix (default: the boundary's name, made safe)");
   cmd->add_option("--samples", request->samples, "surface samples per direction")->capture_default_str();

@@ -16,12 +16,30 @@ struct SolveRequest {
   GlobalOptions global;
 };
 
+// Beyond the classical problem: two data rings, a free grid, or a mask other than alpha.
+int run_stencil_solve(const SolveRequest& request, const BoundaryFile& input, const ResolvedRequest& r,
+                      Phases& phases) {
+  phases.start("solve");  // checks and assembling included
+  const StencilRun run = solve_stencil_request(input, r, request.net, request.global, request.boundary);
+  phases.start("metrics");
+  nlohmann::json report = stencil_report(input, r, run, request.net.mu);
+  report["timing"] = phases.timing();
+  if (!run.result.summary.ok()) {
+    print_json(report);
+    print_solver_failure(request.boundary, run.result.summary);
+    return kExitSolverFailed;
+  }
+  print_json(report);
+  return kExitOk;
+}
+
 int run_solve(const SolveRequest& request) {
   if (is_triangle_file(request.boundary)) return run_tri_solve(request.boundary, request.net, request.global);
   Phases phases("solve");
   phases.start("read");
   const BoundaryFile input = read_input(request.boundary, request.net.corner_tolerance);
   const ResolvedRequest r = resolve(request.net, input.boundary, request.boundary);
+  if (!is_classical_request(input, r)) return run_stencil_solve(request, input, r, phases);
   check_net_memory(request.global, input.boundary, r.solver, request.boundary);
   phases.start("solve");  // assembling included
   const NetOutcome outcome = make_net(input.boundary, r);
@@ -43,8 +61,11 @@ void register_solve(CLI::App& app, Registry& registry) {
   auto* cmd = app.add_subcommand("solve", "solve one boundary; prints one JSON report (docs/formats.md)");
   cmd->add_option("BOUNDARY", request->boundary, "boundary JSON file (docs/formats.md)")->required();
   add_net_options(*cmd, request->net);
+  add_mask_options(*cmd, request->net);
   add_memory_option(*cmd, request->global);
-  set_example(*cmd, "coons solve data/boundaries/dome.json --alpha -0.2 --solver eigen-ldlt");
+  set_example(*cmd,
+              "coons solve data/boundaries/dome.json --alpha -0.2 --solver eigen-ldlt\n"
+              "  coons solve data/boundaries/sphere_cap_ribbons.json --mask c1-family --weight 0.5");
   registry.add(cmd, [request] { return run_solve(*request); });
 }
 

@@ -73,6 +73,42 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   const std::string curves_gap = write_variant("gap.json", [](json& d) {
     d["curves"]["bottom"] = {{"bezier", {{-1, -1, 0}, {1, -1, 0.5}}}};
   });
+  // beyond one ring (issue 11): ribbons, rings, free grids, masks
+  const json cap = json::parse(std::ifstream(kData + "/boundaries/sphere_cap_ribbons.json"));
+  const json island = json::parse(std::ifstream(kData + "/free_sets/island.json"));
+  auto write_edit = [&](const json& base, const std::string& name, const std::function<void(json&)>& edit) {
+    json doc = base;
+    edit(doc);
+    inputs.write(name, doc.dump());
+    return "{IN}/" + name;
+  };
+  const std::string ribbon_gap = write_edit(cap, "ribbon_gap.json", [](json& d) {
+    d["ribbons"]["left"][1][2] = d["ribbons"]["left"][1][2].get<double>() + 0.01;
+  });
+  const std::string ribbon_short = write_edit(cap, "ribbon_short.json", [](json& d) { d["ribbons"]["top"].erase(0); });
+  const std::string ribbon_missing =
+      write_edit(cap, "ribbon_missing.json", [](json& d) { d["ribbons"].erase("right"); });
+  const std::string rings_zero = write_edit(island, "rings0.json", [](json& d) { d["rings"] = 0; });
+  const std::string rings_many = write_edit(island, "rings9.json", [](json& d) { d["rings"] = 9; });
+  const std::string free_ring = write_edit(island, "free_ring.json", [](json& d) { d["free"][1][4] = 1; });
+  const std::string free_value = write_edit(island, "free_value.json", [](json& d) { d["free"][3][4] = 7; });
+  const std::string free_shape = write_edit(island, "free_shape.json", [](json& d) { d["free"].erase(0); });
+  const std::string free_sides = write_variant("free_sides.json", [](json& d) { d["free"] = {{0, 0}, {0, 0}}; });
+  // one data ring and a free point next to it: fine for 3x3 masks, the 5x5 stencil leaves the net
+  const std::string free_edge = write_edit(island, "free_edge.json", [](json& d) {
+    d["rings"] = 1;
+    d["free"][1][5] = 1;
+  });
+  // a stencil with W(0, ±1) = −1: two free neighbours along j alone make the system singular
+  inputs.write("stencil_pair.json", "{\"weights\": [[1, 0, 1], [-4, null, -4], [1, 0, 1]]}");
+  const std::string free_pair = write_edit(island, "free_pair.json", [](json& d) {
+    for (auto& row : d["free"])
+      for (auto& x : row) x = 0;
+    d["free"][5][3] = 1;
+    d["free"][5][4] = 1;
+  });
+  inputs.write("stencil_asym.json", "{\"weights\": [[0, 1, 0], [2, null, 1], [0, 1, 0]]}");
+  inputs.write("stencil_flat.json", "{\"weights\": [[0, 0, 0], [0, 1, 0], [0, 0, 0]]}");
   const std::string good = q(kData + "/boundaries/dome.json");
   const std::string pillow = q(kData + "/boundaries/pillow.json");
   const std::string surface = q(kData + "/surfaces/join_bilinear_a.json");
@@ -131,11 +167,40 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --alpha 0.1 --mu 2", "--mu"},
       {"solve " + good + " --tolerance -1 --solver cg", "tolerance"},
       {"solve", "BOUNDARY"},
+      {"solve " + ribbon_gap, "ribbons.left[1]"},
+      {"solve " + ribbon_short, "ribbons.top"},
+      {"solve " + ribbon_missing, "ribbons.right"},
+      {"solve " + rings_zero, "rings"},
+      {"solve " + rings_many, "rings"},
+      {"solve " + free_ring + " --mask c1-coons", "free[1][4]"},
+      {"solve " + free_value, "free[3][4]"},
+      {"solve " + free_shape, "free"},
+      {"solve " + free_sides, "free"},
+      {"solve " + free_edge + " --mask biharmonic", "rings"},
+      {"solve " + good + " --mask c1-coons", "rings"},
+      {"solve " + free_pair + " --mask file:{IN}/stencil_pair.json", "free[5][3]: the mask system is singular"},
+      {"solve " + good + " --mask nonesuch", "--mask"},
+      {"solve " + good + " --mask file:", "--mask"},
+      {"solve " + good + " --mask file:{IN}/missing.json", "missing.json"},
+      {"solve " + good + " --mask file:{IN}/stencil_asym.json", "stencil_asym.json: weights[1][0]"},
+      {"solve " + good + " --mask file:{IN}/stencil_flat.json", "stencil_flat.json: weights"},
+      {"solve " + good + " --weight 0.5", "--weight"},
+      {"solve " + good + " --mask c1-coons --weight 0.5", "--weight"},
+      {"solve " + good + " --mask c1-family", "--weight"},
+      {"solve " + good + " --mask c1-family --weight 1.5", "--weight"},
+      {"solve " + good + " --mask biharmonic --alpha 0.1", "--alpha"},
+      {"solve " + good + " --method coons --mask c1-coons", "--mask"},
+      {"solve " + q(kData + "/boundaries/sphere_cap_ribbons.json") + " --method coons", "--method"},
+      {"solve " + q(kData + "/free_sets/island.json") + " --method hermite-coons", "--method"},
       // solvers
       {"solvers --frobnicate", "frobnicate"},
       // export
       {"export " + good + " --samples 1 --out {OUT}", "--samples"},
       {"export " + good + " --mtx --method coons --out {OUT}", "--mtx"},
+      {"export " + good + " --mask c1-coons --out {OUT}", "rings"},
+      {"export " + good + " --weight 0.5 --out {OUT}", "--weight"},
+      {"export " + free_ring + " --out {OUT}", "free[1][4]"},
+      {"export " + free_pair + " --mask file:{IN}/stencil_pair.json --mtx --out {OUT}", "free[5][3]"},
       {"export " + good + " --prefix ../x --out {OUT}", "--prefix"},
       {"export " + corner + " --out {OUT}", "corner"},
       {"export " + good + " --solver nonesuch --out {OUT}", "--solver"},

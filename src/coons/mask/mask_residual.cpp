@@ -19,3 +19,22 @@ double mask_residual(const ControlNet& net, const Mask9& mask) {
 }
 
 }  // namespace coons
+
+namespace coons {
+
+double mask_residual(const ControlNet& net, const FreeGrid& free, const Stencil& stencil) {
+  const int r = stencil.radius;
+  double worst = 0;
+  for (int i = r; i <= net.m - r; ++i)
+    for (int j = r; j <= net.n - r; ++j) {
+      if (!free(i, j)) continue;
+      Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+      for (int a = -r; a <= r; ++a)
+        for (int b = -r; b <= r; ++b)
+          if (const double w = stencil.at(a, b); w != 0) sum += w * net.at(i + a, j + b);
+      worst = std::max(worst, sum.cwiseAbs().maxCoeff());
+    }
+  return worst;
+}
+
+}  // namespace coons

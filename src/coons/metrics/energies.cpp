@@ -217,7 +217,9 @@ double discrete_thin_plate_energy(const ControlNet& net) {
   return discrete_energy_form(net, net, DiscreteEnergy::kThinPlate);
 }
 
-NetMetrics net_metrics(const ControlNet& net, const Mask9& mask) {
+namespace {
+
+NetMetrics net_energies(const ControlNet& net) {
   GramCache g;
   NetMetrics out;
   const double e11 = energy(net, 1, 1, g);
@@ -227,7 +229,20 @@ NetMetrics net_metrics(const ControlNet& net, const Mask9& mask) {
   out.e3_energy = energy(net, 3, 0, g) + 3 * energy(net, 2, 1, g) + 3 * energy(net, 1, 2, g) + energy(net, 0, 3, g);
   out.discrete_twist_energy = discrete_twist_energy(net);
   out.discrete_dirichlet_energy = discrete_dirichlet_energy(net);
+  return out;
+}
+
+}  // namespace
+
+NetMetrics net_metrics(const ControlNet& net, const Mask9& mask) {
+  NetMetrics out = net_energies(net);
   out.mask_residual = mask_residual(net, mask);
+  return out;
+}
+
+NetMetrics net_metrics(const ControlNet& net, const FreeGrid& free, const Stencil& stencil) {
+  NetMetrics out = net_energies(net);
+  out.mask_residual = mask_residual(net, free, stencil);
   return out;
 }
 

@@ -9,6 +9,8 @@
 #include <vector>
 
 #include "coons/mask/mask9.h"
+#include "coons/mask/stencil.h"
+#include "coons/mask/stencil_problem.h"
 #include "coons/net/control_net.h"
 
 namespace coons {
@@ -69,5 +71,7 @@ struct NetMetrics {
   double discrete_twist_energy = 0, discrete_dirichlet_energy = 0, mask_residual = 0;
 };
 NetMetrics net_metrics(const ControlNet& net, const Mask9& mask);
+//! The same energies; mask_residual of `stencil` over the free points (mask_residual.h).
+NetMetrics net_metrics(const ControlNet& net, const FreeGrid& free, const Stencil& stencil);
 
 }  // namespace coons

@@ -1,5 +1,6 @@
 #include "net_report.h"
 
+#include <algorithm>
 #include <cmath>
 
 #include "coons/io/net_json.h"
@@ -37,6 +38,24 @@ NetOutcome make_net(const Boundary& boundary, NetMethod method, const Mask9& mas
   return {std::move(result.net), std::move(result.summary)};
 }
 
+namespace {
+
+// α, β (or β_ij) and μ of a 3×3 mask: μ given, or the μ of α at degree n (docs/math.md §4) when
+// m = n and α ∈ [−1/4, 0).
+void alpha_fields(json& report, const Boundary& boundary, const Mask9& mask, const std::optional<double>& mu) {
+  report["alpha"] = mask.diag;
+  report["beta"] = number_or_null(mask.edge_i == mask.edge_j ? mask.edge_i : NAN);
+  if (mask.edge_i != mask.edge_j) report["beta_ij"] = {mask.edge_i, mask.edge_j};
+  if (mu)
+    report["mu"] = *mu;
+  else if (boundary.m == boundary.n && mask.diag >= -0.25 && mask.diag < 0 && mask.edge_i == mask.edge_j)
+    report["mu"] = mu_from_alpha(boundary.n, mask.diag);
+  else
+    report["mu"] = nullptr;
+}
+
+}  // namespace
+
 json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
                 const std::optional<double>& mu, bool solver_picked_automatically) {
   json report;
@@ -44,21 +63,16 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
   report["degree"] = {boundary.m, boundary.n};
   report["method"] = to_string(method);
   if (method == NetMethod::kHermiteCoons) {  // the partially bicubic net belongs to no mask
+    report["mask"] = nullptr;
     report["alpha"] = nullptr;
     report["beta"] = nullptr;
     report["mu"] = mu ? json(*mu) : json(nullptr);
   } else {  // the alpha method, or the Coons net: its mask is α = −1/4
-    report["alpha"] = mask.diag;
-    report["beta"] = number_or_null(mask.edge_i == mask.edge_j ? mask.edge_i : NAN);
-    if (mask.edge_i != mask.edge_j) report["beta_ij"] = {mask.edge_i, mask.edge_j};
-    // μ next to α: given, or the μ of α at degree n (docs/math.md §4) when m = n and α ∈ [−1/4, 0).
-    if (mu)
-      report["mu"] = *mu;
-    else if (boundary.m == boundary.n && mask.diag >= -0.25 && mask.diag < 0 && mask.edge_i == mask.edge_j)
-      report["mu"] = mu_from_alpha(boundary.n, mask.diag);
-    else
-      report["mu"] = nullptr;
+    report["mask"] = "alpha";
+    alpha_fields(report, boundary, mask, mu);
   }
+  report["rings"] = 1;
+  report["free_points"] = std::max(boundary.m - 1, 0) * std::max(boundary.n - 1, 0);
   if (outcome.summary) {
     report["solver"] = summary_to_json(*outcome.summary);
     if (solver_picked_automatically) report["solver"]["picked_by"] = "auto";
@@ -70,6 +84,37 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
   const bool ok = !outcome.summary || outcome.summary->ok();
   report["net"] = ok ? net_to_json(outcome.net) : json(nullptr);
   report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, mask)) : json(nullptr);
+  return report;
+}
+
+}  // namespace coons
+
+namespace coons {
+
+json stencil_net_report(const Boundary& boundary, const StencilProblem& problem, const Stencil& stencil,
+                        const MaskLabel& label, const StencilSolveResult& result, const std::optional<double>& mu,
+                        bool solver_picked_automatically) {
+  json report;
+  report["boundary"] = boundary.name;
+  report["degree"] = {boundary.m, boundary.n};
+  report["method"] = to_string(NetMethod::kAlpha);
+  report["mask"] = label.name;
+  if (label.weight) report["weight"] = *label.weight;
+  if (label.mask9) {
+    alpha_fields(report, boundary, *label.mask9, mu);
+  } else {
+    report["alpha"] = nullptr;
+    report["beta"] = nullptr;
+    report["mu"] = nullptr;
+  }
+  const FreeGrid free = free_points(problem);
+  report["rings"] = problem.rings;
+  report["free_points"] = free.count();
+  report["solver"] = summary_to_json(result.summary);
+  if (solver_picked_automatically) report["solver"]["picked_by"] = "auto";
+  const bool ok = result.summary.ok();
+  report["net"] = ok ? net_to_json(result.net) : json(nullptr);
+  report["metrics"] = ok ? metrics_to_json(net_metrics(result.net, free, stencil)) : json(nullptr);
   return report;
 }
 

@@ -1,0 +1,184 @@
+// `coons solve --mask`: problems beyond the classical one (ribbons, rings, free grids, 5×5 masks)
+// through the real binary, compared with the library's solve of the same problem.
+#include <Eigen/Dense>
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "coons/io/boundary_io.h"
+#include "coons/io/input_error.h"
+#include "coons/io/matrix_market.h"
+#include "coons/mask/mask_residual.h"
+#include "coons/mask/solve_stencil_net.h"
+#include "coons/mask/stencil.h"
+#include "coons/mask/stencil_system.h"
+#include "solvers/registry.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+using nlohmann::json;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+const std::string kData = COONS_DATA_DIR;
+
+std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+ControlNet net_of(const json& report) { return *parse_boundary(json{{"net", report.at("net")}}, "report").net; }
+
+ControlNet library_solve(const std::string& file, const Stencil& stencil, const std::string& solver) {
+  const StencilProblem problem = stencil_problem(read_boundary_file(file));
+  auto backend = solvers::make_solver(solver);
+  const StencilSolveResult r = solve_stencil_net(problem, stencil, *backend);
+  REQUIRE(r.summary.ok());
+  return r.net;
+}
+
+json solve(const std::string& args, int expected_status = 0) {
+  const CommandResult r = run_command(kCoons + " solve " + args);
+  INFO("coons solve " << args << "\n" << r.err);
+  REQUIRE(r.status == expected_status);
+  return json::parse(r.out);
+}
+
+}  // namespace
+
+TEST_CASE("coons solve --mask c1-coons: a ribbon file gives the library's solve of its problem", "[cli]") {
+  const std::string file = kData + "/boundaries/sphere_cap_ribbons.json";
+  const ControlNet expected = library_solve(file, c1_coons_stencil(), "eigen-ldlt");
+  const json direct = solve(quoted(file) + " --mask c1-coons --solver eigen-ldlt");
+  CHECK(net_of(direct).points == expected.points);  // the same operations, bit for bit
+  // auto: the separable banded solver (a full rectangle, a separable stencil), to rounding
+  const json fast = solve(quoted(file) + " --mask c1-coons");
+  CHECK(fast["solver"]["name"] == "separable-banded");
+  CHECK(fast["solver"]["picked_by"] == "auto");
+  CHECK(max_difference(net_of(fast), expected) < 1e-12);
+  // the two data rings are kept, and the solve stays near the sphere's fit it was cut from
+  const BoundaryFile f = read_boundary_file(file);
+  const ControlNet data = stencil_problem(f).net;
+  const ControlNet solved = net_of(fast);
+  for (int i = 0; i <= 6; ++i)
+    for (int j = 0; j <= 6; ++j)
+      if (std::min({i, j, 6 - i, 6 - j}) < 2) CHECK(solved.at(i, j) == data.at(i, j));
+}
+
+TEST_CASE("coons solve --mask: the report names the mask, weight, rings and free points; metrics for every mask",
+          "[cli]") {
+  const std::string file = kData + "/free_sets/island.json";
+  const BoundaryFile f = read_boundary_file(file);
+  const FreeGrid free = free_points(stencil_problem(f));
+  for (const std::string mask : {"alpha", "c1-coons", "biharmonic", "c1-family"}) {
+    const bool family = mask == "c1-family";
+    const json report = solve(quoted(file) + " --mask " + mask + (family ? " --weight 0.25" : ""));
+    INFO(mask);
+    CHECK(report["mask"] == mask);
+    CHECK(report["method"] == "alpha");
+    CHECK(report.contains("weight") == family);
+    if (family) CHECK(report["weight"] == 0.25);
+    CHECK(report["rings"] == 2);
+    CHECK(report["free_points"] == free.count());
+    CHECK(report["free_points"] == 40);
+    CHECK(report["alpha"].is_null() == (mask != "alpha"));
+    for (const char* key : {"twist_energy", "thin_plate_energy", "dirichlet_energy", "e3_energy",
+                            "discrete_twist_energy", "discrete_dirichlet_energy", "mask_residual"})
+      CHECK(report["metrics"][key].is_number());
+    const Stencil stencil = mask == "alpha"        ? alpha_stencil(alpha_mask(-0.25))
+                            : mask == "c1-coons"   ? c1_coons_stencil()
+                            : mask == "biharmonic" ? biharmonic_stencil()
+                                                   : c1_family_stencil(0.25);
+    const ControlNet net = net_of(report);
+    CHECK(report["metrics"]["mask_residual"].get<double>() == mask_residual(net, free, stencil));
+    CHECK(report["metrics"]["mask_residual"].get<double>() < 1e-12);
+    // the fixed island is data: kept exactly
+    CHECK(net.at(5, 5) == f.net->at(5, 5));
+  }
+  // c1-family at w = 1 is c1-coons
+  const json one = solve(quoted(file) + " --mask c1-family --weight 1 --solver eigen-ldlt");
+  const json c1 = solve(quoted(file) + " --mask c1-coons --solver eigen-ldlt");
+  CHECK(max_difference(net_of(one), net_of(c1)) < 1e-12);
+}
+
+TEST_CASE("coons solve --mask file:PATH: a stencil file is the mask it spells, named as given", "[cli]") {
+  TempDir dir;
+  // c1-coons written out: the outer product of (1, −4, 6, −4, 1), centre implied
+  const double d[5] = {1, -4, 6, -4, 1};
+  json weights = json::array();
+  for (double a : d) {
+    json row = json::array();
+    for (double b : d) row.push_back(a * b);
+    weights.push_back(row);
+  }
+  weights[2][2] = nullptr;
+  const std::string stencil = dir.write("c1.json", json{{"weights", weights}}.dump());
+  const std::string file = kData + "/boundaries/saddle_bump_ribbons.json";
+  const json from_file = solve(quoted(file) + " --mask file:" + quoted(stencil) + " --solver eigen-ldlt");
+  CHECK(from_file["mask"] == "file:" + stencil);
+  CHECK(!from_file.contains("weight"));
+  const json named = solve(quoted(file) + " --mask c1-coons --solver eigen-ldlt");
+  CHECK(max_difference(net_of(from_file), net_of(named)) < 1e-12);
+  CHECK(from_file["metrics"]["thin_plate_energy"].get<double>() ==
+        Approx(named["metrics"]["thin_plate_energy"].get<double>()).epsilon(1e-12));
+}
+
+TEST_CASE("coons solve: the classical problem keeps its path and numbers; --mask alpha is the default", "[cli]") {
+  const std::string file = kData + "/boundaries/dome.json";
+  json plain = solve(quoted(file) + " --alpha -0.2 --solver eigen-ldlt");
+  json masked = solve(quoted(file) + " --mask alpha --alpha -0.2 --solver eigen-ldlt");
+  CHECK(plain["mask"] == "alpha");
+  CHECK(plain["rings"] == 1);
+  CHECK(plain["free_points"] == 4);
+  plain.erase("timing");
+  masked.erase("timing");
+  plain["solver"].erase("seconds");
+  masked["solver"].erase("seconds");
+  CHECK(plain == masked);
+  CHECK(plain["metrics"]["thin_plate_energy"].get<double>() == Approx(18.320).margin(5e-4));
+  // two data rings with the alpha mask go through the stencil solve: same α fields
+  const json rings = solve(quoted(kData + "/boundaries/torus_patch_ribbons.json") + " --alpha -0.1");
+  CHECK(rings["mask"] == "alpha");
+  CHECK(rings["alpha"] == -0.1);
+  CHECK(rings["rings"] == 2);
+  CHECK(rings["free_points"] == 8);
+}
+
+TEST_CASE("coons solve --mask: a named backend that does not apply reports its status and exits 3", "[cli]") {
+  const std::string file = kData + "/boundaries/sphere_cap_ribbons.json";
+  const CommandResult r = run_command(kCoons + " solve " + quoted(file) + " --mask c1-coons --solver dst");
+  CHECK(r.status == 3);
+  const json report = json::parse(r.out);
+  CHECK(report["solver"]["name"] == "dst");
+  CHECK(report["solver"]["status"] == "not_applicable");
+  CHECK(report["net"].is_null());
+  CHECK(report["metrics"].is_null());
+  CHECK_THAT(r.err, Catch::StartsWith("error: " + file + ": solver: dst not_applicable"));
+}
+
+TEST_CASE("coons export --mask: the OBJ net is the stencil solve, the Matrix Market files its system", "[cli]") {
+  TempDir out;
+  const std::string file = kData + "/free_sets/l_hole.json";
+  const CommandResult r = run_command(kCoons + " export " + quoted(file) + " --mask biharmonic --out " +
+                                      quoted(out.path.string()) + " --prefix hole");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["mask"] == "biharmonic");
+  CHECK(report["rings"] == 2);
+  CHECK(report["free_points"] == 20);
+  CHECK(report["solver"]["status"] == "success");
+  const StencilProblem problem = stencil_problem(read_boundary_file(file));
+  const StencilSystem system = assemble_stencil_system(problem, biharmonic_stencil());
+  const Eigen::SparseMatrix<double> A = read_matrix_market(out.file("hole.A.mtx"));
+  const Eigen::MatrixXd B = read_dense_matrix_market(out.file("hole.B.mtx"));
+  REQUIRE(A.rows() == 20);
+  CHECK(Eigen::MatrixXd(A) == Eigen::MatrixXd(system.A));
+  CHECK(B == Eigen::MatrixXd(system.B));
+  CHECK(std::filesystem::exists(out.file("hole.net.obj")));
+  // a closed form on a free grid is refused before anything is written
+  const CommandResult bad =
+      run_command(kCoons + " export " + quoted(file) + " --method coons --out " + quoted(out.file("none")));
+  CHECK(bad.status == 2);
+  CHECK(!std::filesystem::exists(out.file("none")));
+}
