@@ -1,15 +1,18 @@
 #!/usr/bin/env bash
 # Runs the solver benchmark suite and writes a Markdown table, log-log plots and scaling exponents.
-#   bash scripts/bench.sh [--quick] [--no-build] [--out DIR] [bench_solvers flags...]
+#   bash scripts/bench.sh [--quick] [--no-build] [--report-only] [--out DIR] [bench_solvers flags...]
 # --quick: tiny sizes (CI runs this so the benchmarks never rot). Default output folder:
 # experiments/E03_solver_scaling/results (or build/bench-quick with --quick).
+# --report-only: no build and no run; the tables, README and conclusions are made again from the
+# committed DIR/bench.json (the plots are kept as they are).
 set -euo pipefail
 cd "$(dirname "$0")/.."
-quick=0; build=1; out=""; extra=()
+quick=0; build=1; run=1; out=""; extra=()
 while [ $# -gt 0 ]; do
   case "$1" in
     --quick) quick=1 ;;
     --no-build) build=0 ;;
+    --report-only) build=0; run=0 ;;
     --out) out="$2"; shift ;;
     *) extra+=("$1") ;;
   esac
@@ -22,18 +25,30 @@ fi
 mkdir -p "$out"
 args=(--benchmark_format=console --benchmark_out="$out/bench.json" --benchmark_out_format=json)
 [ $quick -eq 1 ] && args+=(--quick)
-"${COONS_BUILD_DIR:-build}/bench_solvers" "${args[@]}" ${extra[@]+"${extra[@]}"} > "$out/bench.log"
-python3 scripts/bench_report.py "$out/bench.json" "$out"
+if [ $run -eq 1 ]; then
+  "${COONS_BUILD_DIR:-build}/bench_solvers" "${args[@]}" ${extra[@]+"${extra[@]}"} > "$out/bench.log"
+  python3 scripts/bench_report.py "$out/bench.json" "$out"
+else
+  COONS_NO_PLOTS=1 python3 scripts/bench_report.py "$out/bench.json" "$out" > /dev/null
+fi
 # The default (full) run rewrites E03's README: its question, then this run's computed tables.
 if [ "$out" = experiments/E03_solver_scaling/results ]; then
   readme=experiments/E03_solver_scaling/README.md
+  if [ $run -eq 1 ]; then
+    result="**Result** ($(date -u +%Y-%m-%d), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')):"
+  else
+    result="$(grep -m1 '^\*\*Result\*\*' "$readme")"
+  fi
   {
     cat experiments/E03_solver_scaling/question.md
-    echo "**Result** ($(date -u +%Y-%m-%d), $(nproc) cores, $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //')):"
+    echo "$result"
     echo
     sed 's/^# /### /; s/^## /### /' "$out/table.md"
     echo
     for png in "$out"/scaling_alpha*.png; do echo "![$(basename "$png")](results/$(basename "$png"))"; echo; done
-  } > "$readme"
+  } > "$readme.new"
+  mv "$readme.new" "$readme"
+  # the conclusions, computed from the tables just written (and checked by ctest: e03_conclusions_*)
+  python3 scripts/bench_conclusions.py --write "$readme"
   echo "wrote $readme"
 fi

@@ -256,7 +256,7 @@ def main():
     open(os.path.join(out, "table.md"), "w").write(table)
     print(table)
 
-    if shutil.which("gnuplot"):
+    if shutil.which("gnuplot") and not os.environ.get("COONS_NO_PLOTS"):
         for alpha in alphas:
             series = [(backend, per_n) for (backend, a), per_n in sorted(solve.items()) if a == alpha]
             data_files = []

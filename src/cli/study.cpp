@@ -4,10 +4,12 @@
 
 #include <fmt/format.h>
 
+#include <cstdint>
 #include <memory>
 
 #include "coons/io/input_error.h"
 #include "coons/io/write_files.h"
+#include "coons/study/alpha_family.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
@@ -23,14 +25,57 @@ struct StudyRequest {
   std::string out_dir = "out/study";
   std::string solver = "auto";
   double corner_tolerance = 1e-9;
+  std::string family;  // "random-smooth": the family study instead of files
+  int count = 200;
+  std::uint64_t seed = 1;
+  bool degrees_given = false;
   GlobalOptions global;
 };
 
+// `coons study --family random-smooth`: α* over a seeded family (coons/study/alpha_family.h).
+int run_family_command(const StudyRequest& r) {
+  Phases phases("study");
+  if (!r.inputs.empty())
+    throw InputError("command line", "--family", "give either boundary files or --family, not both");
+  if (r.family != "random-smooth")
+    throw InputError("command line", "--family", fmt::format("unknown family '{}' (known: random-smooth)", r.family));
+  AlphaFamilyOptions options;
+  if (r.degrees_given) options.degrees = r.degrees;
+  options.count = r.count;
+  options.seed = r.seed;
+  options.solver = solver_from_name(r.solver);
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("command line", "--family", why);
+  check_memory(r.global,
+               net_solve_bytes(options.degrees.back(), options.degrees.back(), options.solver) +
+                   net_metrics_bytes(options.degrees.back(), options.degrees.back()),
+               fmt::format("the family study at degree {}", options.degrees.back()), "command line", "--degrees");
+  phases.start("solve");
+  const AlphaFamilyResult result = run_alpha_family(options, [&](const std::string& s) { phases.note(s); });
+  phases.start("write");
+  OutputSet out(r.out_dir);
+  std::vector<std::string> figures;
+  for (const std::string& o : result.objectives) figures.push_back(fmt::format("figures/alpha_family_{}.png", o));
+  const std::vector<std::string> errors = plot_alpha_family(result, [&](size_t i) { return out.stage(figures[i]); });
+  for (size_t i = 0; i < figures.size(); ++i)
+    if (i < errors.size() && !errors[i].empty()) {
+      out.discard(figures[i]);
+      figures[i].clear();
+    }
+  const std::string md = alpha_family_markdown(result, figures);
+  out.write("results.json", [&](std::ostream& o) { o << dump(alpha_family_json(result), 1) << '\n'; });
+  out.write("report.md", [&](std::ostream& o) { o << md; });
+  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
+  out.commit();
+  return kExitOk;
+}
+
 int run_study_command(const StudyRequest& r, const std::string& command_line) {
+  if (!r.family.empty()) return run_family_command(r);
   Phases phases("study");
   phases.start("read");
   const std::vector<std::string> files = expand_inputs(r.inputs);
-  if (files.empty()) throw InputError("command line", "BOUNDARY", "no boundary files given or found");
+  if (files.empty()) throw InputError("command line", "BOUNDARY", "no boundary files given or found (or --family)");
   StudyOptions options;
   options.degrees = r.degrees;
   options.solver = solver_from_name(r.solver);
@@ -75,8 +120,15 @@ void register_study(CLI::App& app, Registry& registry) {
   auto* cmd = app.add_subcommand("study",
                                  "the alpha study: optima per shape and degree, the c/n^2 law, a reference "
                                  "table for every boundary with a target; a self-contained report with PNG figures");
-  cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them")->required();
-  cmd->add_option("--degrees", r->degrees, "degrees to study each shape at (increasing)")->capture_default_str();
+  cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them (or --family)");
+  auto* degrees = cmd->add_option("--degrees", r->degrees,
+                                  "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
+                      ->capture_default_str();
+  cmd->add_option("--family", r->family,
+                  "random-smooth: instead of files, the distribution of alpha* over a seeded family of random "
+                  "smooth boundaries and the best single alpha");
+  cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
+  cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
   cmd->add_option("--corner-tolerance", r->corner_tolerance,
                   "corners must agree to this fraction of the bounding-box diagonal")
@@ -84,7 +136,10 @@ void register_study(CLI::App& app, Registry& registry) {
   add_solver_option(*cmd, r->solver);
   add_memory_option(*cmd, r->global);
   set_example(*cmd, "coons study data/boundaries --degrees 3 4 6 8 --out out/study");
-  registry.add(cmd, [r, &registry] { return run_study_command(*r, registry.command_line); });
+  registry.add(cmd, [r, degrees, &registry] {
+    r->degrees_given = degrees->count() > 0;
+    return run_study_command(*r, registry.command_line);
+  });
 }
 
 }  // namespace coons::cli

@@ -1,0 +1,85 @@
+// Farin–Hansford's "no single α is best", quantified: over a seeded family of random smooth
+// boundaries (random_boundary.h) and at each degree n (the sides elevated exactly to n), the
+// optimum α* of every boundary and objective (the sine-basis search, alpha_search.h), its
+// distribution (quantiles; how many are flat or on a bound), the single α that minimises the
+// family's mean relative energy loss L(α) = mean_b (f_b(α) − f_b*)/f_b*, and what each boundary
+// loses with it against its own optimum (mean, 90th percentile, max). Sizes: count boundaries ×
+// degrees × objectives searches, plus grid_points + about 40 evaluations of every f_b per cell.
+// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700 (the claim).
+#pragma once
+
+#include <cstdint>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "coons/alpha/objective.h"
+#include "coons/curves/random_boundary.h"
+#include "solvers/registry.h"
+
+namespace coons {
+
+struct AlphaFamilyOptions {
+  std::vector<int> degrees = {3, 5, 8, 12, 20};  //!< increasing, each in [side_degree, 200]
+  std::vector<Objective> objectives;             //!< empty: thin_plate and e3
+  int count = 200;                               //!< boundaries of the family, in [1, 100000]
+  std::uint64_t seed = 1;
+  RandomSmoothOptions generator;
+  int grid_points = 81;                         //!< α + 1/4 on a log grid over [1e−6, 1/2] for the best single α
+  const solvers::SolverInfo* solver = nullptr;  //!< nullptr: auto
+
+  bool is_valid(std::string* why) const;
+};
+
+//! Quantiles by linear interpolation between order statistics (q in [0, 1]); nullopt if empty.
+std::optional<double> quantile(std::vector<double> values, double q);
+
+struct Distribution {  //!< of a sample: its size and the quantiles 0, 0.1, 0.25, 0.5, 0.75, 0.9, 1
+  int size = 0;
+  double min = 0, q10 = 0, q25 = 0, median = 0, q75 = 0, q90 = 0, max = 0;
+};
+std::optional<Distribution> distribution_of(const std::vector<double>& values);
+
+struct AlphaFamilyCell {
+  int degree = 0;
+  std::string objective;
+  //! per boundary: α* when the search found an optimum (interior or on a bound), μ* when interior
+  //! and α* < 0 (μ = −n²(1 + 4α)/(4α)), the relative loss at the best single α
+  std::vector<std::optional<double>> alpha_star, mu_star, loss;
+  int interior = 0, flat = 0, at_bound = 0, failed = 0;
+  std::optional<Distribution> alpha, mu, losses;
+  std::optional<double> loss_mean;
+  std::optional<double> best_alpha;  //!< the single α minimising the mean loss over the family
+  std::optional<double> best_mu;     //!< its μ
+};
+
+struct AlphaFamilyResult {
+  AlphaFamilyOptions options;
+  std::vector<std::string> objectives;
+  std::vector<AlphaFamilyCell> cells;  //!< objective-major, degrees in order
+};
+
+//! `progress` (may be empty) is told "degree n, objective" before each cell.
+AlphaFamilyResult run_alpha_family(const AlphaFamilyOptions& options,
+                                   const std::function<void(const std::string&)>& progress = {});
+
+//! The α* + 1/4 minimising mean_b (f_b(α) − f_b*)/f_b* for curves f_b evaluated by `f(b, α)`
+//! (b in [0, count)), from a log grid of `grid_points` values of α + 1/4 over [1e−6, 1/2] refined
+//! by golden sections between the best grid point's neighbours; f_b* = min(optimum[b], the grid's
+//! least value of f_b). Returns nullopt when count is 0. Exposed for tests.
+std::optional<double> best_single_alpha(int count, const std::vector<double>& optimum,
+                                        const std::function<double(int, double)>& f, int grid_points);
+
+nlohmann::json alpha_family_json(const AlphaFamilyResult& result);
+//! The tables, one per objective, and the conclusions computed from them.
+std::string alpha_family_markdown(const AlphaFamilyResult& result, const std::vector<std::string>& figures);
+//! The conclusions alone (each sentence only where the table supports it).
+std::string alpha_family_conclusions(const AlphaFamilyResult& result);
+//! One histogram per objective of α* + 1/4 on log bins, a step line per degree, the best single α
+//! marked; `png(i)` names objective i's file. Returns the errors ("" when made).
+std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& result,
+                                           const std::function<std::string(size_t)>& png);
+
+}  // namespace coons

@@ -1,0 +1,165 @@
+// The markdown, conclusions and histograms of the random-family α study (alpha_family.h).
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "coons/io/plot.h"
+#include "coons/study/alpha_family.h"
+
+namespace coons {
+
+namespace {
+
+std::string g4(const std::optional<double>& x) { return x ? fmt::format("{:.4g}", *x) : "–"; }
+std::string percent(double x) { return fmt::format("{:.3g} %", 100 * x); }
+
+std::vector<const AlphaFamilyCell*> cells_of(const AlphaFamilyResult& r, const std::string& objective) {
+  std::vector<const AlphaFamilyCell*> out;
+  for (const AlphaFamilyCell& c : r.cells)
+    if (c.objective == objective) out.push_back(&c);
+  return out;
+}
+
+}  // namespace
+
+std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
+  std::string out;
+  const int count = r.options.count;
+  for (const std::string& objective : r.objectives) {
+    const auto cells = cells_of(r, objective);
+    std::vector<std::string> above, within, losses, medians, spreads, bounds;
+    std::vector<double> median_gap;
+    for (const AlphaFamilyCell* c : cells) {
+      if (c->losses && c->loss_mean) {
+        (c->losses->max > 0.01 ? above : within).push_back(fmt::format("{}", c->degree));
+        losses.push_back(fmt::format("n = {}: α = {} loses {} on average, {} at the 90th percentile, {} at worst",
+                                     c->degree, g4(c->best_alpha), percent(*c->loss_mean), percent(c->losses->q90),
+                                     percent(c->losses->max)));
+      }
+      if (c->alpha) {
+        medians.push_back(fmt::format("{:.3g}", c->alpha->median));
+        median_gap.push_back(c->alpha->median + 0.25);
+      }
+      if (c->mu && c->mu->q10 > 0)
+        spreads.push_back(fmt::format("{:.3g} (n = {})", c->mu->q90 / c->mu->q10, c->degree));
+      if (c->flat + c->at_bound + c->failed > 0)
+        bounds.push_back(
+            fmt::format("n = {}: {} flat, {} on a bound, {} failed", c->degree, c->flat, c->at_bound, c->failed));
+    }
+    out += fmt::format("- **{}** ({} boundaries). ", objective, count);
+    if (!above.empty() && within.empty())
+      out += fmt::format(
+          "No single α is best at any degree studied: the best single α for the family loses "
+          "more than 1 % against some boundary's own optimum at n = {}. ",
+          fmt::join(above, ", "));
+    else if (above.empty() && !within.empty())
+      out += fmt::format("One α serves the whole family within 1 % of every boundary's own optimum at n = {}. ",
+                         fmt::join(within, ", "));
+    else if (!above.empty())
+      out += fmt::format(
+          "The best single α loses more than 1 % for some boundary at n = {}, and stays within "
+          "1 % for every boundary at n = {}. ",
+          fmt::join(above, ", "), fmt::join(within, ", "));
+    if (!losses.empty()) out += fmt::format("The best single α: {}. ", fmt::join(losses, "; "));
+    if (median_gap.size() >= 2) {
+      const bool falling = std::is_sorted(median_gap.rbegin(), median_gap.rend()) && median_gap.back() < median_gap[0];
+      out += falling
+                 ? fmt::format("The median α* moves towards −1/4 as n grows ({}). ", fmt::join(medians, ", "))
+                 : fmt::format("The median α* per degree: {} (not monotone towards −1/4). ", fmt::join(medians, ", "));
+    }
+    if (!spreads.empty()) out += fmt::format("μ*'s 90th over 10th percentile: {}. ", fmt::join(spreads, ", "));
+    out += bounds.empty() ? std::string("Every search found an interior optimum.")
+                          : fmt::format("Not interior: {}.", fmt::join(bounds, "; "));
+    out += "\n";
+  }
+  return out;
+}
+
+std::string alpha_family_markdown(const AlphaFamilyResult& r, const std::vector<std::string>& figures) {
+  const AlphaFamilyOptions& o = r.options;
+  std::string md = fmt::format(
+      "## The random-smooth family: is one α best?\n\n{} boundaries (seed {}): sides of degree {} with shared "
+      "corners over the unit square, heights uniform in ±{}, in-plane displacements uniform in ±{}; each "
+      "elevated exactly to the degree n. The loss of a boundary is (f(α) − f*)/f* at the family's best "
+      "single α (the α minimising the mean loss). μ* and its quantiles count the boundaries with −1/4 < α* < 0 only "
+      "(α* ≥ 0 has no μ).\n\n",
+      o.count, o.seed, o.generator.side_degree, o.generator.height, o.generator.wiggle);
+  for (size_t i = 0; i < r.objectives.size(); ++i) {
+    md += fmt::format("### {}\n\n", r.objectives[i]);
+    md +=
+        "| n | interior | flat | on a bound | failed | α* 10 % | α* median | α* 90 % | μ* 10 % | μ* median | "
+        "μ* 90 % | best α | its μ | loss mean | loss 90 % | loss max |\n";
+    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i])) {
+      auto q = [](const std::optional<Distribution>& d, double Distribution::*field) {
+        return d ? fmt::format("{:.4g}", (*d).*field) : std::string("–");
+      };
+      auto lq = [](const std::optional<Distribution>& d, double Distribution::*field) {
+        return d ? percent((*d).*field) : std::string("–");
+      };
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
+                        c->degree, c->interior, c->flat, c->at_bound, c->failed, q(c->alpha, &Distribution::q10),
+                        q(c->alpha, &Distribution::median), q(c->alpha, &Distribution::q90),
+                        q(c->mu, &Distribution::q10), q(c->mu, &Distribution::median), q(c->mu, &Distribution::q90),
+                        g4(c->best_alpha), g4(c->best_mu), c->loss_mean ? percent(*c->loss_mean) : "–",
+                        lq(c->losses, &Distribution::q90), lq(c->losses, &Distribution::max));
+    }
+    md += "\n";
+    if (i < figures.size() && !figures[i].empty())
+      md += fmt::format("![α* of {}]({})\n\n", r.objectives[i], figures[i]);
+  }
+  md += "### Conclusions (computed from the tables)\n\n" + alpha_family_conclusions(r);
+  return md;
+}
+
+std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& r, const std::function<std::string(size_t)>& png) {
+  std::vector<std::string> errors;
+  constexpr int kBins = 24;
+  for (size_t i = 0; i < r.objectives.size(); ++i) {
+    const auto cells = cells_of(r, r.objectives[i]);
+    double lo = HUGE_VAL, hi = -HUGE_VAL;
+    for (const AlphaFamilyCell* c : cells)
+      for (const auto& a : c->alpha_star)
+        if (a && *a > -0.25) {
+          lo = std::min(lo, std::log10(*a + 0.25));
+          hi = std::max(hi, std::log10(*a + 0.25));
+        }
+    if (!(lo < hi)) {
+      errors.emplace_back("no spread of α* to draw");
+      continue;
+    }
+    std::vector<PlotSeries> series;
+    for (const AlphaFamilyCell* c : cells) {
+      std::vector<int> counts(kBins, 0);
+      for (const auto& a : c->alpha_star)
+        if (a && *a > -0.25) {
+          const int bin = std::min(kBins - 1, int((std::log10(*a + 0.25) - lo) / (hi - lo) * kBins));
+          ++counts[bin];
+        }
+      PlotSeries s;
+      s.title = fmt::format("n = {}", c->degree);
+      for (int b = 0; b < kBins; ++b)
+        for (int edge : {b, b + 1}) {
+          s.x.push_back(std::pow(10.0, lo + (hi - lo) * edge / kBins));
+          s.y.push_back(counts[b]);
+        }
+      if (c->best_alpha && *c->best_alpha > -0.25) {
+        s.marker_x.push_back(*c->best_alpha + 0.25);
+        s.marker_y.push_back(*std::max_element(counts.begin(), counts.end()));
+      }
+      series.push_back(std::move(s));
+    }
+    PlotOptions options;
+    options.title = fmt::format("α* over {} random smooth boundaries, {}", r.options.count, r.objectives[i]);
+    options.xlabel = "α* + 1/4";
+    options.ylabel = "boundaries per bin";
+    options.log_x = true;
+    options.y_scale = AxisScale::kLinear;
+    options.marker_title = "best single α";
+    errors.push_back(plot_curves(png(i), series, options));
+  }
+  return errors;
+}
+
+}  // namespace coons

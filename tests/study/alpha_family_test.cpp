@@ -1,0 +1,81 @@
+#include "coons/study/alpha_family.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+
+using namespace coons;
+
+TEST_CASE("quantile: interpolates between order statistics") {
+  CHECK(*quantile({3, 1, 2, 4}, 0) == 1);
+  CHECK(*quantile({3, 1, 2, 4}, 1) == 4);
+  CHECK(*quantile({3, 1, 2, 4}, 0.5) == Approx(2.5));
+  CHECK_FALSE(quantile({}, 0.5));
+  const auto d = distribution_of({1, 2, 3, 4, 5, 6, 7, 8, 9, 10, 11});
+  REQUIRE(d);
+  CHECK(d->q10 == Approx(2));
+  CHECK(d->median == Approx(6));
+}
+
+TEST_CASE("best_single_alpha: the minimiser of a known mean relative loss") {
+  // f_b(α) = 1 + (α − c_b)²: relative loss (α − c_b)², mean minimised at the mean of c_b.
+  const std::vector<double> c = {-0.2, -0.1, -0.15};
+  const auto best = best_single_alpha(
+      3, {1, 1, 1}, [&](int b, double alpha) { return 1 + (alpha - c[b]) * (alpha - c[b]); }, 81);
+  REQUIRE(best);
+  CHECK(*best == Approx(-0.15).margin(1e-6));
+  CHECK_FALSE(best_single_alpha(
+      0, {}, [](int, double) { return 0.0; }, 81));
+}
+
+TEST_CASE("run_alpha_family: every boundary is counted once, losses are not negative") {
+  AlphaFamilyOptions options;
+  options.degrees = {3, 6};
+  options.count = 6;
+  options.seed = 5;
+  std::string why;
+  Objective thin_plate = *parse_objective("thin_plate", &why);
+  options.objectives = {thin_plate};
+  REQUIRE(options.is_valid(&why));
+  const AlphaFamilyResult r = run_alpha_family(options);
+  REQUIRE(r.cells.size() == 2);
+  for (const AlphaFamilyCell& c : r.cells) {
+    CHECK(c.interior + c.flat + c.at_bound + c.failed == options.count);
+    for (const auto& a : c.alpha_star)
+      if (a) CHECK((*a >= -0.25 && *a <= 0.25));
+    REQUIRE(c.best_alpha);
+    REQUIRE(c.losses);
+    CHECK(c.losses->min >= 0);
+    CHECK(*c.loss_mean <= c.losses->max);
+  }
+  const auto json = alpha_family_json(r);
+  CHECK(json["cells"][0]["alpha_star"].size() == 6);
+  CHECK(json["family"] == "random-smooth");
+}
+
+TEST_CASE("alpha_family_conclusions: 'no single α' only when some boundary loses more than 1 %") {
+  AlphaFamilyResult r;
+  r.options.count = 2;
+  r.objectives = {"thin_plate"};
+  AlphaFamilyCell c;
+  c.degree = 3;
+  c.objective = "thin_plate";
+  c.best_alpha = -0.1;
+  c.loss = {0.001, 0.002};
+  c.losses = distribution_of({0.001, 0.002});
+  c.loss_mean = 0.0015;
+  c.interior = 2;
+  r.cells = {c};
+  CHECK(alpha_family_conclusions(r).find("within 1 %") != std::string::npos);
+  CHECK(alpha_family_conclusions(r).find("No single") == std::string::npos);
+  r.cells[0].losses = distribution_of({0.001, 0.2});
+  r.cells[0].loss_mean = 0.1005;
+  CHECK(alpha_family_conclusions(r).find("No single α is best") != std::string::npos);
+}
+
+TEST_CASE("AlphaFamilyOptions: degrees below the sides' degree are refused") {
+  AlphaFamilyOptions options;
+  options.degrees = {2, 4};
+  std::string why;
+  CHECK_FALSE(options.is_valid(&why));
+  CHECK(why.find("degree 2") != std::string::npos);
+}
