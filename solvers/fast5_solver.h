@@ -27,6 +27,10 @@
 // residual (A applied in Kronecker form, O(rows·cols); the columns still above 1e-11 are refined
 // together, the others are left alone), bring it to
 // 5e-15–1.4e-13 up to N = 511 and 7e-12 (biharmonic) / 9e-14 (w = 0.5) at 1023.
+// Cost at N = 1023 (BM_Stencil5, CPU time against the memory pass, a loaded 2-core machine):
+// about 80× (biharmonic) and 105× (w = 0.5); without refinement 35× at residual 1e-6 / 6e-6, so
+// two thirds of the time are the refinement's two extra solves (each two passes of row DSTs).
+// Reaching 10× needs a capacitance formed without cancellation (no refinement) and fused passes.
 // summary.iterations is the largest number of capacitance CG iterations (to 1e-14) of any solve.
 // Measured (BM_Stencil5, N×N, mask right-hand sides), biharmonic / c1-family w = 0.5: 5 / 5 at
 // N = 15, 6 / 6 at 31, 7 / 7 at 127, 7 / 8 at 255, 8 / 8 at 511, 8 / 9 at 1023: about log N.
