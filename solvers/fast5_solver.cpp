@@ -50,29 +50,44 @@ struct CapacitanceBlock {
   double kappa = 0;
   Eigen::MatrixXd G;  // #modes by #(modes q of the column parity)
 
-  void apply(const Eigen::VectorXd& v, Eigen::VectorXd& out) const {
-    out = diag.cwiseProduct(v) - (kappa * u.dot(v)) * u - G * (G.transpose() * v);
+  void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const {
+    out.noalias() = diag.asDiagonal() * V;
+    out.noalias() -= (kappa * u) * (u.transpose() * V);
+    out.noalias() -= G * (G.transpose() * V);  // one read of G for every right-hand side
   }
 
-  // Conjugate gradients with the diagonal as preconditioner; returns the iterations.
-  int solve(const Eigen::VectorXd& rhs, Eigen::VectorXd& x) const {
-    const Eigen::Index n = rhs.size();
-    x.setZero(n);
-    const double target = kCapacitanceTolerance * rhs.norm();
-    if (n == 0 || !(target > 0)) return 0;
-    Eigen::VectorXd r = rhs, z = r.cwiseQuotient(diag), p = z, Ap;
-    double rz = r.dot(z);
+  // Conjugate gradients with the diagonal as preconditioner, one column per right-hand side
+  // (each with its own step lengths; a converged column is frozen); returns the iterations.
+  int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X) const {
+    const Eigen::Index n = rhs.rows(), m = rhs.cols();
+    X.setZero(n, m);
+    if (n == 0 || m == 0) return 0;
+    Eigen::ArrayXd target = kCapacitanceTolerance * rhs.colwise().norm().transpose().array();
+    Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP;
+    Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
+    std::vector<bool> active(static_cast<std::size_t>(m), false);
+    for (Eigen::Index c = 0; c < m; ++c) active[std::size_t(c)] = target[c] > 0;
     const int limit = int(2 * n + 50);
     for (int k = 1; k <= limit; ++k) {
-      apply(p, Ap);
-      const double step = rz / p.dot(Ap);
-      x += step * p;
-      r -= step * Ap;
-      if (r.norm() <= target) return k;
-      z = r.cwiseQuotient(diag);
-      const double rz_next = r.dot(z);
-      p = z + (rz_next / rz) * p;
-      rz = rz_next;
+      apply(P, AP);
+      bool any = false;
+      for (Eigen::Index c = 0; c < m; ++c) {
+        if (!active[std::size_t(c)]) continue;
+        const double step = rz[c] / P.col(c).dot(AP.col(c));
+        X.col(c) += step * P.col(c);
+        R.col(c) -= step * AP.col(c);
+        if (R.col(c).norm() <= target[c]) {
+          active[std::size_t(c)] = false;
+          P.col(c).setZero();
+          continue;
+        }
+        Z.col(c) = R.col(c).cwiseQuotient(diag);
+        const double rz_next = R.col(c).dot(Z.col(c));
+        P.col(c) = Z.col(c) + (rz_next / rz[c]) * P.col(c);
+        rz[c] = rz_next;
+        any = true;
+      }
+      if (!any) return k;
     }
     return limit;
   }
@@ -148,22 +163,37 @@ class Fast5Solver final : public LinearSolver {
       return status;
     }
     X.resize(B.rows(), 3);
-    int iterations = 0;
+    std::array<const double*, 3> rhs{};
+    std::array<double*, 3> out{};
     for (int c = 0; c < 3; ++c) {
-      iterations = std::max(iterations, solve_column(B.col(c).data(), X.col(c).data()));
-      // The capacitance operator is formed from differences of large terms (the sine-basis
-      // inverses of the modes next to the corner cancel), so the first solve loses digits that
-      // grow with N; iterative refinement on the true residual (O(rows·cols)) restores them.
-      const Eigen::Map<const RowMajor> b(B.col(c).data(), R_, C_);
-      Eigen::Map<RowMajor> x(X.col(c).data(), R_, C_);
-      const double norm_b = b.norm();
-      for (int k = 0; k < kRefinements; ++k) {
-        apply_operator(x, residual_);
-        residual_ = b - residual_;
-        if (!(residual_.norm() > kRefinedResidual * norm_b)) break;
-        correction_.resize(R_, C_);
-        iterations = std::max(iterations, solve_column(residual_.data(), correction_.data()));
-        x += correction_;
+      rhs[std::size_t(c)] = B.col(c).data();
+      out[std::size_t(c)] = X.col(c).data();
+    }
+    int iterations = solve_columns(rhs, out, 3);
+    // The capacitance operator is formed from differences of large terms (the sine-basis
+    // inverses of the modes next to the corner cancel), so the first solve loses digits that
+    // grow with N; iterative refinement on the true residual (O(rows·cols)) restores them,
+    // for the columns whose residual is still above kRefinedResidual, all of them in one pass.
+    for (int k = 0; k < kRefinements; ++k) {
+      int count = 0;
+      for (int c = 0; c < 3; ++c) {
+        const Eigen::Map<const RowMajor> b(B.col(c).data(), R_, C_);
+        Eigen::Map<RowMajor> x(X.col(c).data(), R_, C_);
+        RowMajor& r = residuals_[std::size_t(count)];
+        apply_operator(x, r);
+        r = b - r;
+        if (!(r.norm() > kRefinedResidual * b.norm())) continue;
+        corrections_[std::size_t(count)].resize(R_, C_);
+        rhs[std::size_t(count)] = r.data();
+        out[std::size_t(count)] = corrections_[std::size_t(count)].data();
+        targets_[std::size_t(count)] = c;
+        ++count;
+      }
+      if (count == 0) break;
+      iterations = std::max(iterations, solve_columns(rhs, out, count));
+      for (int c = 0; c < count; ++c) {
+        Eigen::Map<RowMajor> x(X.col(targets_[std::size_t(c)]).data(), R_, C_);
+        x += corrections_[std::size_t(c)];
       }
     }
     summary.iterations = iterations;
@@ -288,33 +318,47 @@ class Fast5Solver final : public LinearSolver {
     }
   }
 
-  // One right-hand side (a row-major grid) to one solution; returns the capacitance iterations.
-  int solve_column(const double* b, double* x) {
+  // count right-hand sides (row-major grids) to their solutions; the capacitance systems of all
+  // of them are solved together (one read of each block per iteration). Returns the iterations.
+  int solve_columns(const std::array<const double*, 3>& b, const std::array<double*, 3>& x, int count) {
     const double scale_j = std::sqrt(2.0 / (C_ + 1)), scale_i = std::sqrt(2.0 / (R_ + 1));
-    hat_.resize(R_, C_);
-    for (int r = 0; r < R_; ++r) along_j_.apply(b + std::ptrdiff_t(r) * C_, &hat_(r, 0), scale_j);
-    y_ = hat_;
-    banded_solve(y_);
-    int iterations = 0;
-    Eigen::VectorXd g, ghat(R_), hhat(R_), h(R_), part;
+    Eigen::MatrixXd tmasks = Eigen::MatrixXd::Zero(C_, 2), g2(R_, 2), h2(R_, 2);  // t_q on the modes of each parity
+    std::array<Eigen::MatrixXd, 2> ghat, hhat;
     for (int qpar = 0; qpar < 2; ++qpar) {
-      Eigen::VectorXd tmask = Eigen::VectorXd::Zero(C_);
-      for (int q = qpar; q < C_; q += 2) tmask[q] = t_[q];
-      g = y_ * tmask;
-      along_i_.apply(g.data(), ghat.data(), scale_i);
-      hhat.setZero();
+      for (int q = qpar; q < C_; q += 2) tmasks(q, qpar) = t_[q];
+      ghat[std::size_t(qpar)].resize(R_, count);
+      hhat[std::size_t(qpar)].setZero(R_, count);
+    }
+    for (int c = 0; c < count; ++c) {
+      RowMajor& hat = hats_[std::size_t(c)];
+      hat.resize(R_, C_);
+      for (int r = 0; r < R_; ++r) along_j_.apply(b[std::size_t(c)] + std::ptrdiff_t(r) * C_, &hat(r, 0), scale_j);
+      y_ = hat;
+      banded_solve(y_);
+      g2.noalias() = y_ * tmasks;  // both parities in one pass over the grid
+      for (int qpar = 0; qpar < 2; ++qpar)
+        along_i_.apply(g2.col(qpar).data(), ghat[std::size_t(qpar)].col(c).data(), scale_i);
+    }
+    int iterations = 0;
+    Eigen::MatrixXd rhs, part;
+    for (int qpar = 0; qpar < 2; ++qpar)
       for (int ppar = 0; ppar < 2; ++ppar) {
         const CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
-        Eigen::VectorXd rhs(Eigen::Index(blk.modes.size()));
-        for (std::size_t k = 0; k < blk.modes.size(); ++k) rhs[Eigen::Index(k)] = ghat[blk.modes[k]];
+        rhs.resize(Eigen::Index(blk.modes.size()), count);
+        for (std::size_t k = 0; k < blk.modes.size(); ++k)
+          rhs.row(Eigen::Index(k)) = ghat[std::size_t(qpar)].row(blk.modes[k]);
         iterations = std::max(iterations, blk.solve(rhs, part));
-        for (std::size_t k = 0; k < blk.modes.size(); ++k) hhat[blk.modes[k]] = part[Eigen::Index(k)];
+        for (std::size_t k = 0; k < blk.modes.size(); ++k)
+          hhat[std::size_t(qpar)].row(blk.modes[k]) = part.row(Eigen::Index(k));
       }
-      along_i_.apply(hhat.data(), h.data(), scale_i);
-      hat_.noalias() -= h * tmask.transpose();
+    for (int c = 0; c < count; ++c) {
+      RowMajor& hat = hats_[std::size_t(c)];
+      for (int qpar = 0; qpar < 2; ++qpar)
+        along_i_.apply(hhat[std::size_t(qpar)].col(c).data(), h2.col(qpar).data(), scale_i);
+      hat.noalias() -= h2 * tmasks.transpose();  // a rank-two update, one pass
+      banded_solve(hat);
+      for (int r = 0; r < R_; ++r) along_j_.apply(&hat(r, 0), x[std::size_t(c)] + std::ptrdiff_t(r) * C_, scale_j);
     }
-    banded_solve(hat_);
-    for (int r = 0; r < R_; ++r) along_j_.apply(&hat_(r, 0), x + std::ptrdiff_t(r) * C_, scale_j);
     return iterations;
   }
 
@@ -325,7 +369,9 @@ class Fast5Solver final : public LinearSolver {
   Eigen::VectorXd nu_, t_;
   RowMajor inv_d_, l1_, l2_;
   std::array<CapacitanceBlock, 4> blocks_;
-  RowMajor hat_, y_, u_, v_, residual_, correction_;  // scratch
+  RowMajor y_, u_, v_;  // scratch
+  std::array<RowMajor, 3> hats_, residuals_, corrections_;
+  std::array<int, 3> targets_{};
 };
 
 }  // namespace

@@ -13,7 +13,8 @@
 // parity of p: per block a diagonal, a rank-one term and a low-rank term −G Gᵀ, all in closed
 // form from the eigenvalues λ_pq = a μ_p² ν_q² + b (μ_p + ν_q)². It is solved by conjugate
 // gradients with its diagonal as preconditioner (four blocks of about rows/2 unknowns, each
-// iteration O(rows·cols/4) flops, no transforms).
+// iteration O(rows·cols/4) flops, no transforms), for all right-hand sides at once (one read of
+// each block per iteration; the blocks are as large as the grid, so this is what a solve costs).
 //
 //   analyze    sine-transform plans along i and j;
 //   factorize  recognise a and b from the weights (else not_applicable); the per-mode banded
@@ -23,8 +24,13 @@
 // The capacitance operator is formed from differences of large terms (the sine-basis inverses of
 // the low modes cancel), so a first solve loses digits as N grows (relative residual 5e-8 at
 // N = 511, 1e-6 at 1023 on mask data); up to two steps of iterative refinement on the true
-// residual (A applied in Kronecker form, O(rows·cols)), stopping below 1e-11, bring it to
+// residual (A applied in Kronecker form, O(rows·cols); the columns still above 1e-11 are refined
+// together, the others are left alone), bring it to
 // 5e-15–1.4e-13 up to N = 511 and 7e-12 (biharmonic) / 9e-14 (w = 0.5) at 1023.
+// Cost at N = 1023 (BM_Stencil5, CPU time against the memory pass, a loaded 2-core machine):
+// about 80× (biharmonic) and 105× (w = 0.5); without refinement 35× at residual 1e-6 / 6e-6, so
+// two thirds of the time are the refinement's two extra solves (each two passes of row DSTs).
+// Reaching 10× needs a capacitance formed without cancellation (no refinement) and fused passes.
 // summary.iterations is the largest number of capacitance CG iterations (to 1e-14) of any solve.
 // Measured (BM_Stencil5, N×N, mask right-hand sides), biharmonic / c1-family w = 0.5: 5 / 5 at
 // N = 15, 6 / 6 at 31, 7 / 7 at 127, 7 / 8 at 255, 8 / 8 at 511, 8 / 9 at 1023: about log N.
