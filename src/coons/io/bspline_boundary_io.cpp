@@ -1,0 +1,59 @@
+#include "coons/io/bspline_boundary_io.h"
+
+#include <fmt/format.h>
+
+#include <nlohmann/json.hpp>
+
+#include "coons/curves/bspline_curve.h"
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+
+namespace coons {
+
+namespace {
+
+Eigen::VectorXd parse_knot_vector(const nlohmann::json& doc, const std::string& source, const std::string& field,
+                                  int degree, int count) {
+  const nlohmann::json& j = doc.at(field);
+  if (!j.is_array()) throw InputError(source, field, "must be an array of numbers (a clamped knot vector)");
+  Eigen::VectorXd knots(Eigen::Index(j.size()));
+  for (std::size_t i = 0; i < j.size(); ++i)
+    knots(Eigen::Index(i)) = json_coordinate(j[i], source, fmt::format("{}[{}]", field, i), "the knot");
+  const std::vector<KnotProblem> problems = knot_vector_problems(knots, degree, count);
+  if (!problems.empty()) {
+    const KnotProblem& first = problems.front();
+    throw InputError(source, first.index < 0 ? field : fmt::format("{}[{}]", field, first.index), first.reason);
+  }
+  return knots;
+}
+
+}  // namespace
+
+std::optional<BSplineKnots> parse_bspline_knots(const nlohmann::json& doc, const std::string& source, int count_u,
+                                                int count_v) {
+  if (!doc.is_object()) return std::nullopt;
+  const bool has_degree = doc.contains("degree_spline");
+  const bool has_u = doc.contains("knots_u");
+  const bool has_v = doc.contains("knots_v");
+  if (!has_degree && !has_u && !has_v) return std::nullopt;
+  for (const auto& [field, present] :
+       {std::pair{"degree_spline", has_degree}, std::pair{"knots_u", has_u}, std::pair{"knots_v", has_v}})
+    if (!present)
+      throw InputError(source, field, "missing: a B-spline boundary needs all of degree_spline, knots_u and knots_v");
+  const nlohmann::json& degrees = doc.at("degree_spline");
+  if (!degrees.is_array() || degrees.size() != 2)
+    throw InputError(source, "degree_spline", "must be [p, q], two integers (the degrees in u and v)");
+  BSplineKnots out;
+  out.degree_u = int(json_integer(degrees[0], source, "degree_spline[0]", 1, 64));
+  out.degree_v = int(json_integer(degrees[1], source, "degree_spline[1]", 1, 64));
+  out.knots_u = parse_knot_vector(doc, source, "knots_u", out.degree_u, count_u);
+  out.knots_v = parse_knot_vector(doc, source, "knots_v", out.degree_v, count_v);
+  return out;
+}
+
+BSplineBoundary bspline_boundary(const Boundary& b, const BSplineKnots& k) {
+  return {BSplineCurve(k.degree_u, k.knots_u, b.bottom), BSplineCurve(k.degree_u, k.knots_u, b.top),
+          BSplineCurve(k.degree_v, k.knots_v, b.left), BSplineCurve(k.degree_v, k.knots_v, b.right)};
+}
+
+}  // namespace coons

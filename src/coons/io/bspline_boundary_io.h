@@ -1,0 +1,33 @@
+// The B-spline fields of a boundary file (docs/formats.md, "B-spline boundaries"):
+// "degree_spline": [p, q], "knots_u" (bottom/top, #m+1 + p + 1 knots) and "knots_v" (left/right,
+// #n+1 + q + 1 knots), where m + 1 and n + 1 are the point counts of the sides. Parsed and
+// validated here; not yet read by the command line (solve/export still treat the sides as Bézier).
+#pragma once
+
+#include <Eigen/Core>
+#include <nlohmann/json_fwd.hpp>
+#include <optional>
+#include <string>
+
+#include "coons/net/control_net.h"
+#include "coons/surfaces/bspline_surface.h"
+
+namespace coons {
+
+struct BSplineKnots {
+  int degree_u = 1, degree_v = 1;    //!< p (bottom/top), q (left/right)
+  Eigen::VectorXd knots_u, knots_v;  //!< #count_u + p + 1, #count_v + q + 1
+};
+
+//! The three fields when the document has any of them, std::nullopt when it has none. Throws
+//! InputError("source", field, reason) when one is missing while another is present, when
+//! degree_spline is not two integers in [1, 64], and for every rule of knot_vector_problems, with
+//! the field naming the knot ("knots_u[4]") or the whole vector ("knots_u").
+std::optional<BSplineKnots> parse_bspline_knots(const nlohmann::json& doc, const std::string& source, int count_u,
+                                                int count_v);
+
+//! The four sides of a boundary as B-spline curves on those knots (bottom/top on knots_u,
+//! left/right on knots_v).
+BSplineBoundary bspline_boundary(const Boundary& boundary, const BSplineKnots& knots);
+
+}  // namespace coons
