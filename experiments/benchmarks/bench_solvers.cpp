@@ -52,10 +52,10 @@ struct Config {
   std::vector<double> alphas = {-0.25, -0.1, 0.0};
   std::vector<std::string> backends;  // empty: all
   bool quick = false;
-  bool large = false;  // the 5×5 set at N = 1023 too
-  bool hard = false;   // experiment E04 (BM_Hard): nine backends on the 5×5 problems
+  bool large = false;        // the 5×5 set at N = 1023 too
+  bool hard = false;         // experiment E04 (BM_Hard): nine backends on the 5×5 problems
   bool sizes_given = false;  // --sizes: the multigrid-class backends run up to 1023
-  std::string dump_dir;  // --dump-mtx: write the systems there and run nothing
+  std::string dump_dir;      // --dump-mtx: write the systems there and run nothing
 };
 
 std::vector<std::string> split(const std::string& s) {
