@@ -1,5 +1,6 @@
 // `coons study BOUNDARY...`: the α study (coons/study/study.h) with its report: report.md,
-// results.json and figures/, written together (nothing is left on any failure).
+// results.json and figures/, written together (nothing is left on any failure). Triangular
+// boundary files among the inputs get the triangle rows of tri_study.h.
 #include "coons/study/study.h"
 
 #include <fmt/format.h>
@@ -8,6 +9,7 @@
 #include <memory>
 
 #include "coons/io/input_error.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
 #include "coons/study/memory_estimate.h"
@@ -84,7 +86,16 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   BoundaryReadOptions read_options;
   read_options.corner_tolerance = r.corner_tolerance;
   std::vector<StudyInput> inputs;
+  std::vector<TriStudyInput> triangles;
   for (const auto& f : files) {
+    if (is_triangle_file(f)) {
+      triangles.push_back(read_tri_study_input(f, r.corner_tolerance));
+      int largest = triangles.back().boundary.n;
+      for (int d : options.degrees) largest = std::max(largest, d);
+      check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),
+                   fmt::format("the study of {} at degree {}", triangles.back().boundary.name, largest), f, "degree");
+      continue;
+    }
     inputs.push_back(read_study_input(f, read_options));
     const Boundary& b = inputs.back().boundary;
     int largest = std::max(b.m, b.n);
@@ -94,7 +105,9 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   }
 
   phases.start("solve");
-  const StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
+  StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
+  result.triangles =
+      run_tri_study(triangles, options.degrees, options.solver, [&](const std::string& s) { phases.note(s); });
 
   phases.start("write");
   OutputSet out(r.out_dir);
@@ -105,7 +118,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
     if (!f->error.empty()) out.discard(f->file);
   const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
-                         study_conclusions_markdown(result);
+                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6");
   out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
   print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
@@ -119,7 +132,8 @@ void register_study(CLI::App& app, Registry& registry) {
   auto r = std::make_shared<StudyRequest>();
   auto* cmd = app.add_subcommand("study",
                                  "the alpha study: optima per shape and degree, the c/n^2 law, a reference "
-                                 "table for every boundary with a target; a self-contained report with PNG figures");
+                                 "table for every boundary with a target, the best c of every triangular boundary; a "
+                                 "self-contained report with PNG figures");
   cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them (or --family)");
   auto* degrees = cmd->add_option("--degrees", r->degrees,
                                   "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
@@ -135,7 +149,7 @@ void register_study(CLI::App& app, Registry& registry) {
       ->capture_default_str();
   add_solver_option(*cmd, r->solver);
   add_memory_option(*cmd, r->global);
-  set_example(*cmd, "coons study data/boundaries --degrees 3 4 6 8 --out out/study");
+  set_example(*cmd, "coons study data/boundaries data/triangles --degrees 3 4 6 8 --out out/study");
   registry.add(cmd, [r, degrees, &registry] {
     r->degrees_given = degrees->count() > 0;
     return run_study_command(*r, registry.command_line);

@@ -219,3 +219,25 @@ TEST_CASE("coons sweep: a triangle gives NAME.sweep-c.jsonl, one line per c", "[
   }
   CHECK(count == 5);
 }
+
+TEST_CASE("coons study: a triangular file among the inputs gets its rows in results.json and report.md", "[cli][tri]") {
+  const fs::path out = fs::temp_directory_path() / "coons_tri_study_cli";
+  fs::remove_all(out);
+  const CommandResult r = run_command(
+      fmt::format("{} study '{}' --degrees 6 8 --out '{}'", kCoons, kTriangles + "sphere_octant.json", out.string()));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json results = json::parse(read_text((out / "results.json").string()));
+  const auto it = std::find_if(results.begin(), results.end(), [](const json& e) { return e["kind"] == "triangle"; });
+  REQUIRE(it != results.end());
+  CHECK((*it)["boundary"] == "sphere_octant");
+  const json& target = (*it)["objectives"]["target"];
+  REQUIRE(target.size() == 2);  // its own degree 6, then 8
+  CHECK(target[1]["degree"] == 8);
+  CHECK(target[0]["flat"] == false);
+  CHECK(target[0]["c"].get<double>() < 0);
+  const std::string report = read_text((out / "report.md").string());
+  CHECK(report.find("## 6. Triangular boundaries") != std::string::npos);
+  CHECK(report.find("### sphere_octant (triangle, degree 6)") != std::string::npos);
+  fs::remove_all(out);
+}

@@ -279,6 +279,7 @@ json study_results_json(const StudyResult& r) {
                        {"coons_rms_target", number_or_null(t.coons_rms)},
                        {"coons_over_best", s.value > 0 ? number_or_null(t.coons_rms / s.value) : json(nullptr)}});
   }
+  for (json& entry : tri_study_results_json(r.triangles)) results.push_back(std::move(entry));
   return results;
 }
 

@@ -23,6 +23,7 @@
 #include "coons/mask/stencil_problem.h"
 #include "coons/study/degree_law.h"
 #include "coons/study/sweep.h"
+#include "coons/study/tri_study.h"
 #include "solvers/registry.h"
 
 namespace coons {
@@ -112,6 +113,7 @@ struct StudyResult {
   std::vector<DegreeLawEntry> laws;
   std::vector<FitDeviationEntry> fit_deviations;
   std::vector<ReferenceTable> references;
+  std::vector<TriStudyEntry> triangles;  //!< triangular boundaries (run_tri_study)
 };
 
 //! Everything the report shows; `progress` (optional) hears a short line per finished step.
@@ -119,8 +121,8 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
                       const std::function<void(const std::string&)>& progress = {});
 
 //! results.json: one entry per shape ("kind": "shape"), per shape and objective over the degrees
-//! ("degree_law"), per refitted shape ("fit_deviation") and per target ("reference_table"); every
-//! number the report prints.
+//! ("degree_law"), per refitted shape ("fit_deviation"), per target ("reference_table") and per
+//! triangular boundary ("triangle", tri_study.h); every number the report prints.
 nlohmann::json study_results_json(const StudyResult& result);
 
 //! The μ search of the study: μ ∈ [0, 1000·mn] on the compressed scale, reported in μ units.
