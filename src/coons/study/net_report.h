@@ -25,8 +25,9 @@ struct NetOutcome {
 NetOutcome make_net(const Boundary& boundary, NetMethod method, const Mask9& mask, const solvers::SolverInfo* solver,
                     const solvers::SolverOptions& options = {});
 
-//! The solve report without a timing block; `mu` as given on the command line, if it was.
+//! The solve report without a timing block; `mu` as given on the command line, if it was. With
+//! `with_net` false a successful net is left out of it, for the caller to write (write_net_json).
 nlohmann::json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
-                          const std::optional<double>& mu, bool solver_picked_automatically);
+                          const std::optional<double>& mu, bool solver_picked_automatically, bool with_net = true);
 
 }  // namespace coons
