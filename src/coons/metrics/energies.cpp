@@ -88,6 +88,7 @@ std::vector<double> pair_forms(const ControlNet& X, const ControlNet& Y, const s
 
 std::vector<std::pair<int, int>> pairs_of(const std::vector<EnergyTerm>& terms) {
   std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(terms.size());
   for (const EnergyTerm& t : terms) pairs.emplace_back(t.a, t.b);
   return pairs;
 }
