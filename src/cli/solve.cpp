@@ -4,6 +4,7 @@
 #include "coons/io/input_error.h"
 #include "coons/io/tri_boundary_io.h"
 #include "registry.h"
+#include "report_output.h"
 #include "tri_commands.h"
 
 namespace coons::cli {
@@ -44,9 +45,10 @@ int run_solve(const SolveRequest& request) {
   phases.start("solve");  // assembling included
   const NetOutcome outcome = make_net(input.boundary, r);
   phases.start("metrics");
-  nlohmann::json report = solve_report(input.boundary, r, outcome, request.net.mu);
-  report["timing"] = phases.timing();
-  print_json(report);
+  const nlohmann::json report =
+      net_report(input.boundary, r.method, r.mask, outcome, request.net.mu, r.picked_automatically, false);
+  const bool ok = !outcome.summary || outcome.summary->ok();
+  print_net_report(report, ok ? &outcome.net : nullptr, phases);  // the write phase, then timing
   if (outcome.summary && !outcome.summary->ok()) {
     print_solver_failure(request.boundary, *outcome.summary);
     return kExitSolverFailed;

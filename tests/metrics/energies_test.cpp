@@ -34,7 +34,47 @@ double quadrature_energy(const ControlNet& net, int a, int b) {
   return e;
 }
 
+// The energy as it was computed before the banded products: dense Gram matrices around each
+// derivative net, Σ_xyz sum((G_u C G_v) ∘ C).
+double dense_gram_energy(const ControlNet& net, int a, int b) {
+  if (a > net.m || b > net.n) return 0;
+  const ControlNet d = derivative_net(net, a, b);
+  const Eigen::MatrixXd Gu = bernstein_gram(d.m), Gv = bernstein_gram(d.n);
+  double e = 0;
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd C = coordinate_grid(d, c);
+    e += ((Gu * C) * Gv).cwiseProduct(C).sum();
+  }
+  return e;
+}
+
 }  // namespace
+
+TEST_CASE("net_metrics: the dense Gram products' energies to 1e-12", "[metrics]") {
+  std::uint32_t seed = 21;
+  for (auto [m, n] : {std::pair{1, 2}, {3, 3}, {5, 9}, {17, 12}, {40, 33}}) {
+    INFO("m = " << m << ", n = " << n);
+    const ControlNet net = make_random_net(m, n, seed++);
+    const auto E = [&net](int a, int b) { return dense_gram_energy(net, a, b); };
+    const NetMetrics metrics = net_metrics(net, alpha_mask(-0.2));
+    CHECK(metrics.twist_energy == Approx(E(1, 1)).epsilon(1e-12));
+    CHECK(metrics.dirichlet_energy == Approx(E(1, 0) + E(0, 1)).epsilon(1e-12));
+    CHECK(metrics.thin_plate_energy == Approx(E(2, 0) + 2 * E(1, 1) + E(0, 2)).epsilon(1e-12));
+    CHECK(metrics.e3_energy == Approx(E(3, 0) + 3 * E(2, 1) + 3 * E(1, 2) + E(0, 3)).epsilon(1e-12));
+    const ControlNet other = make_random_net(m, n, seed + 100);
+    for (int a = 0; a <= 3; ++a)
+      for (int b = 0; a + b <= 3; ++b) {
+        INFO("a = " << a << ", b = " << b);
+        CHECK(surface_energy(net, a, b) == Approx(E(a, b)).epsilon(1e-12).margin(1e-300));
+        // the bilinear form: E(X + Y) = E(X) + 2 form(X, Y) + E(Y)
+        ControlNet sum = net;
+        sum.points += other.points;
+        const double form = (dense_gram_energy(sum, a, b) - E(a, b) - dense_gram_energy(other, a, b)) / 2;
+        CHECK(surface_energy_form(net, other, a, b) ==
+              Approx(form).epsilon(1e-9).margin(1e-9 * (E(a, b) + dense_gram_energy(other, a, b))));
+      }
+  }
+}
 
 TEST_CASE("gauss_legendre: integrates polynomials of degree 2k-1 exactly", "[metrics]") {
   for (int k = 1; k <= 12; ++k) {

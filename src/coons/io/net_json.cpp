@@ -1,6 +1,11 @@
 #include "net_json.h"
 
+#include <fmt/compile.h>
+#include <fmt/format.h>
+
 #include <cmath>
+#include <iterator>
+#include <string>
 
 namespace coons {
 
@@ -25,6 +30,54 @@ json net_to_json(const ControlNet& net) {
     rows.push_back(std::move(row));
   }
   return rows;
+}
+
+namespace {
+// x as nlohmann's dump would print it, up to the choice among round-trip digit strings: the
+// shortest (fmt), with ".0" added when that reads as an integer.
+void append_number(fmt::memory_buffer& out, double x) {
+  if (!std::isfinite(x)) {
+    out.append(std::string_view("null"));
+    return;
+  }
+  const std::size_t start = out.size();
+  fmt::format_to(std::back_inserter(out), FMT_COMPILE("{}"), x);
+  const std::string_view digits(out.data() + start, out.size() - start);
+  if (digits.find_first_of(".e") == std::string_view::npos) out.append(std::string_view(".0"));
+}
+}  // namespace
+
+void write_net_json(const ControlNet& net, int level, const std::function<void(std::string_view)>& sink) {
+  constexpr std::size_t kPiece = std::size_t(1) << 20;
+  fmt::memory_buffer out;
+  out.reserve(kPiece + 4096);
+  const std::string outer(2 * std::size_t(level), ' '), row_indent = outer + "  ", point_indent = row_indent + "  ";
+  auto put = [&out](std::string_view s) { out.append(s); };
+  put("[\n");
+  for (int i = 0; i <= net.m; ++i) {
+    put(row_indent);
+    put("[\n");
+    for (int j = 0; j <= net.n; ++j) {
+      const auto p = net.at(i, j);
+      put(point_indent);
+      put("[");
+      append_number(out, p(0));
+      put(", ");
+      append_number(out, p(1));
+      put(", ");
+      append_number(out, p(2));
+      put(j < net.n ? "],\n" : "]\n");
+      if (out.size() >= kPiece) {
+        sink(std::string_view(out.data(), out.size()));
+        out.clear();
+      }
+    }
+    put(row_indent);
+    put(i < net.m ? "],\n" : "]\n");
+  }
+  put(outer);
+  put("]");
+  sink(std::string_view(out.data(), out.size()));
 }
 
 json boundary_to_json(const Boundary& b) {

@@ -2,7 +2,9 @@
 // back exactly (nlohmann's shortest round-trip doubles).
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
+#include <string_view>
 
 #include "coons/metrics/energies.h"
 #include "coons/net/control_net.h"
@@ -12,6 +14,12 @@ namespace coons {
 
 //! m+1 rows of n+1 [x, y, z] points: net[i][j] = b[i][j].
 nlohmann::json net_to_json(const ControlNet& net);
+
+//! The same array as JSON text, without building it: pretty-printed with 2 spaces as if nested
+//! `level` deep, one point per line ("[x, y, z]"), every number in its shortest round-trip form
+//! (fmt), with ".0" on integral values as nlohmann's dump writes them. Handed to `sink` in pieces of
+//! about 1 MiB. A non-finite coordinate is written as null.
+void write_net_json(const ControlNet& net, int level, const std::function<void(std::string_view)>& sink);
 
 //! A boundary file (docs/formats.md) holding the four sides.
 nlohmann::json boundary_to_json(const Boundary& boundary);

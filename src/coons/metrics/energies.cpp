@@ -1,55 +1,114 @@
 #include "energies.h"
 
+#include <algorithm>
 #include <cmath>
 #include <map>
+#include <utility>
 
 #include "coons/mask/mask_residual.h"
+#include "coons/net/banded_gram.h"
 #include "coons/net/bernstein.h"
 
 namespace coons {
 
 namespace {
 
-// Gram matrices are reused across the energies of one net.
+// Banded Gram matrices, reused across the energies of one net.
 class GramCache {
  public:
-  const Eigen::MatrixXd& operator()(int k) {
+  const BandedGram& operator()(int k) {
     auto it = cache_.find(k);
-    if (it == cache_.end()) it = cache_.emplace(k, bernstein_gram(k)).first;
+    if (it == cache_.end()) it = cache_.emplace(k, BandedGram(k)).first;
     return it->second;
   }
 
  private:
-  std::map<int, Eigen::MatrixXd> cache_;
+  std::map<int, BandedGram> cache_;
 };
 
-double form(const ControlNet& X, const ControlNet& Y, int a, int b, GramCache& gram) {
-  if (a > X.m || b > X.n) return 0;
-  const ControlNet dx = derivative_net(X, a, b);
-  const ControlNet dy = &X == &Y ? dx : derivative_net(Y, a, b);
-  const Eigen::MatrixXd& Gu = gram(dx.m);
-  const Eigen::MatrixXd& Gv = gram(dx.n);
-  double e = 0;
-  for (int c = 0; c < 3; ++c) {
-    const Eigen::MatrixXd CX = coordinate_grid(dx, c);
-    const Eigen::MatrixXd CY = &X == &Y ? CX : coordinate_grid(dy, c);
-    e += ((Gu * CX) * Gv).cwiseProduct(CY).sum();
-  }
-  return e;
+Eigen::MatrixXd row_differences(Eigen::MatrixXd P, int order) {  // Δ^order along the rows (index i)
+  for (int r = 0; r < order; ++r) P = (P.bottomRows(P.rows() - 1) - P.topRows(P.rows() - 1)).eval();
+  return P;
 }
 
-double energy(const ControlNet& net, int a, int b, GramCache& gram) { return form(net, net, a, b, gram); }
+Eigen::MatrixXd column_differences(Eigen::MatrixXd P, int order) {  // Δ^order along the columns (index j)
+  for (int r = 0; r < order; ++r) P = (P.rightCols(P.cols() - 1) - P.leftCols(P.cols() - 1)).eval();
+  return P;
+}
+
+double falling_factorial(int k, int order) {
+  double f = 1;
+  for (int r = 0; r < order; ++r) f *= k - r;
+  return f;
+}
+
+// form(X, Y; a, b) = Σ_xyz tr(C_Xᵀ G^{m−a} C_Y G^{n−b}) with C = [m!/(m−a)!][n!/(n−b)!] Δ^a X Δ^bᵀ for
+// every pair at once. The differences of one direction commute with the Gram matrix of the other:
+//   tr(C_Xᵀ G_u C_Y G_v) ∝ ⟨(G^{m−a} Δ^a X) Δ^bᵀ, Δ^a (Y Δ^bᵀ G^{n−b})⟩,
+// so one product per order a (left) and one per order b (right) serve every pair: 8 banded
+// products for the 9 pairs of net_metrics instead of 18 dense ones, and the differences are taken
+// before each product, as the derivative nets would be.
+std::vector<double> pair_forms(const ControlNet& X, const ControlNet& Y, const std::vector<std::pair<int, int>>& pairs,
+                               GramCache& gram) {
+  std::vector<double> out(pairs.size(), 0.0);
+  std::vector<int> left_orders, right_orders;
+  for (const auto& [a, b] : pairs)
+    if (a <= X.m && b <= X.n) {
+      left_orders.push_back(a);
+      right_orders.push_back(b);
+    }
+  for (std::vector<int>* orders : {&left_orders, &right_orders}) {
+    std::sort(orders->begin(), orders->end());
+    orders->erase(std::unique(orders->begin(), orders->end()), orders->end());
+  }
+  if (left_orders.empty()) return out;
+  const bool same = &X == &Y;
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd x = coordinate_grid(X, c);
+    std::map<int, Eigen::MatrixXd> right;  // Y Δ^bᵀ G^{n−b}
+    {
+      const Eigen::MatrixXd y = same ? Eigen::MatrixXd() : coordinate_grid(Y, c);
+      for (int b : right_orders) right[b] = gram(X.n - b).right(column_differences(same ? x : y, b));
+    }
+    for (int a : left_orders) {
+      const Eigen::MatrixXd left = gram(X.m - a).left(row_differences(x, a));  // G^{m−a} Δ^a X
+      for (std::size_t p = 0; p < pairs.size(); ++p) {
+        const auto [pa, pb] = pairs[p];
+        if (pa != a || pb > X.n) continue;
+        out[p] += column_differences(left, pb).cwiseProduct(row_differences(right.at(pb), a)).sum();
+      }
+    }
+  }
+  for (std::size_t p = 0; p < pairs.size(); ++p) {
+    const double factor = falling_factorial(X.m, pairs[p].first) * falling_factorial(X.n, pairs[p].second);
+    out[p] *= factor * factor;
+  }
+  return out;
+}
+
+std::vector<std::pair<int, int>> pairs_of(const std::vector<EnergyTerm>& terms) {
+  std::vector<std::pair<int, int>> pairs;
+  pairs.reserve(terms.size());
+  for (const EnergyTerm& t : terms) pairs.emplace_back(t.a, t.b);
+  return pairs;
+}
+
+double weighted_sum(const std::vector<EnergyTerm>& terms, const std::vector<double>& values) {
+  double e = 0;
+  for (std::size_t t = 0; t < terms.size(); ++t) e += terms[t].weight * values[t];
+  return e;
+}
 
 }  // namespace
 
 double surface_energy(const ControlNet& net, int a, int b) {
   GramCache gram;
-  return energy(net, a, b, gram);
+  return pair_forms(net, net, {{a, b}}, gram)[0];
 }
 
 double surface_energy_form(const ControlNet& X, const ControlNet& Y, int a, int b) {
   GramCache gram;
-  return form(X, Y, a, b, gram);
+  return pair_forms(X, Y, {{a, b}}, gram)[0];
 }
 
 std::vector<EnergyTerm> twist_terms() { return {{1, 1, 1}}; }
@@ -58,35 +117,18 @@ std::vector<EnergyTerm> thin_plate_terms() { return {{2, 0, 1}, {1, 1, 2}, {0, 2
 std::vector<EnergyTerm> e3_terms() { return {{3, 0, 1}, {2, 1, 3}, {1, 2, 3}, {0, 3, 1}}; }
 
 double combined_energy(const ControlNet& net, const std::vector<EnergyTerm>& terms) {
-  GramCache gram;
-  double e = 0;
-  for (const EnergyTerm& t : terms) e += t.weight * energy(net, t.a, t.b, gram);
-  return e;
+  return combined_energy_form(net, net, terms);
 }
 
 double combined_energy_form(const ControlNet& X, const ControlNet& Y, const std::vector<EnergyTerm>& terms) {
   GramCache gram;
-  double e = 0;
-  for (const EnergyTerm& t : terms) e += t.weight * form(X, Y, t.a, t.b, gram);
-  return e;
+  return weighted_sum(terms, pair_forms(X, Y, pairs_of(terms), gram));
 }
 
-double twist_energy(const ControlNet& net) { return surface_energy(net, 1, 1); }
-
-double dirichlet_energy(const ControlNet& net) {
-  GramCache g;
-  return energy(net, 1, 0, g) + energy(net, 0, 1, g);
-}
-
-double thin_plate_energy(const ControlNet& net) {
-  GramCache g;
-  return energy(net, 2, 0, g) + 2 * energy(net, 1, 1, g) + energy(net, 0, 2, g);
-}
-
-double e3_energy(const ControlNet& net) {
-  GramCache g;
-  return energy(net, 3, 0, g) + 3 * energy(net, 2, 1, g) + 3 * energy(net, 1, 2, g) + energy(net, 0, 3, g);
-}
+double twist_energy(const ControlNet& net) { return combined_energy(net, twist_terms()); }
+double dirichlet_energy(const ControlNet& net) { return combined_energy(net, dirichlet_terms()); }
+double thin_plate_energy(const ControlNet& net) { return combined_energy(net, thin_plate_terms()); }
+double e3_energy(const ControlNet& net) { return combined_energy(net, e3_terms()); }
 
 double discrete_twist_energy(const ControlNet& net) {
   double e = 0;
@@ -220,13 +262,16 @@ double discrete_thin_plate_energy(const ControlNet& net) {
 namespace {
 
 NetMetrics net_energies(const ControlNet& net) {
+  // Every pair of the four energies in one pass (8 Gram products).
+  const std::vector<std::pair<int, int>> pairs = {{1, 1}, {1, 0}, {0, 1}, {2, 0}, {0, 2},
+                                                  {3, 0}, {2, 1}, {1, 2}, {0, 3}};
   GramCache g;
+  const std::vector<double> e = pair_forms(net, net, pairs, g);
   NetMetrics out;
-  const double e11 = energy(net, 1, 1, g);
-  out.twist_energy = e11;
-  out.dirichlet_energy = energy(net, 1, 0, g) + energy(net, 0, 1, g);
-  out.thin_plate_energy = energy(net, 2, 0, g) + 2 * e11 + energy(net, 0, 2, g);
-  out.e3_energy = energy(net, 3, 0, g) + 3 * energy(net, 2, 1, g) + 3 * energy(net, 1, 2, g) + energy(net, 0, 3, g);
+  out.twist_energy = e[0];
+  out.dirichlet_energy = e[1] + e[2];
+  out.thin_plate_energy = e[3] + 2 * e[0] + e[4];
+  out.e3_energy = e[5] + 3 * e[6] + 3 * e[7] + e[8];
   out.discrete_twist_energy = discrete_twist_energy(net);
   out.discrete_dirichlet_energy = discrete_dirichlet_energy(net);
   return out;

@@ -1,6 +1,7 @@
 #include "bernstein.h"
 
 #include <cmath>
+#include <utility>
 
 namespace coons {
 
@@ -15,28 +16,40 @@ Eigen::VectorXd bernstein_basis(int k, double t) {
   return b;
 }
 
-Eigen::MatrixXd bernstein_gram(int k) {
-  Eigen::MatrixXd G(k + 1, k + 1);
-  if (k <= 510) {
+BernsteinGramEntries::BernsteinGramEntries(int k) : k_(k), log_form_(k > 510) {
+  if (!log_form_) {
     // Pascal's rule in double: exact up to 2^53 (k ≤ 26), relative error ~k·ε beyond; C(1020, 510)
     // still fits in a double.
-    std::vector<double> ck(k + 1, 0.0), c2k(2 * k + 1, 0.0);
-    ck[0] = c2k[0] = 1;
+    ck_.assign(k + 1, 0.0);
+    c2k_.assign(2 * k + 1, 0.0);
+    ck_[0] = c2k_[0] = 1;
     for (int r = 1; r <= 2 * k; ++r)
-      for (int i = r; i >= 1; --i) c2k[i] += c2k[i - 1];
+      for (int i = r; i >= 1; --i) c2k_[i] += c2k_[i - 1];
     for (int r = 1; r <= k; ++r)
-      for (int i = r; i >= 1; --i) ck[i] += ck[i - 1];
-    for (int i = 0; i <= k; ++i)
-      for (int l = i; l <= k; ++l) G(i, l) = G(l, i) = ck[i] * (ck[l] / c2k[i + l]) / (2 * k + 1);
-    return G;
+      for (int i = r; i >= 1; --i) ck_[i] += ck_[i - 1];
+    return;
   }
   // Beyond, log-binomials (relative error ~1e-12 at k ≈ 1000).
   auto log_binomial = [](int n, int i) {
     return std::lgamma(n + 1.0) - std::lgamma(i + 1.0) - std::lgamma(n - i + 1.0);
   };
+  ck_.resize(k + 1);
+  c2k_.resize(2 * k + 1);
+  for (int i = 0; i <= k; ++i) ck_[i] = log_binomial(k, i);
+  for (int r = 0; r <= 2 * k; ++r) c2k_[r] = log_binomial(2 * k, r);
+}
+
+double BernsteinGramEntries::operator()(int i, int l) const {
+  if (i > l) std::swap(i, l);  // the upper triangle's expression, so that G is exactly symmetric
+  if (!log_form_) return ck_[i] * (ck_[l] / c2k_[i + l]) / (2 * k_ + 1);
+  return std::exp(ck_[i] + ck_[l] - c2k_[i + l]) / (2 * k_ + 1);
+}
+
+Eigen::MatrixXd bernstein_gram(int k) {
+  const BernsteinGramEntries entry(k);
+  Eigen::MatrixXd G(k + 1, k + 1);
   for (int i = 0; i <= k; ++i)
-    for (int l = i; l <= k; ++l)
-      G(i, l) = G(l, i) = std::exp(log_binomial(k, i) + log_binomial(k, l) - log_binomial(2 * k, i + l)) / (2 * k + 1);
+    for (int l = i; l <= k; ++l) G(i, l) = G(l, i) = entry(i, l);
   return G;
 }
 

@@ -4,6 +4,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <vector>
 
 #include "coons/net/control_net.h"
 
@@ -14,6 +15,20 @@ Eigen::VectorXd bernstein_basis(int k, double t);
 
 //! G[i][l] = ∫₀¹ B_i^k B_l^k = C(k,i)·C(k,l) / ((2k+1)·C(2k,i+l)), (#k+1 by #k+1).
 Eigen::MatrixXd bernstein_gram(int k);
+
+//! Single entries of bernstein_gram(k), bit for bit, without forming the matrix (the binomials
+//! are tabulated once: O(k²) additions up to k = 510, O(k) log-gamma calls beyond).
+class BernsteinGramEntries {
+ public:
+  explicit BernsteinGramEntries(int k);
+  //! G[i][l] = G[l][i], 0 ≤ i, l ≤ k.
+  [[nodiscard]] double operator()(int i, int l) const;
+
+ private:
+  int k_;
+  bool log_form_;
+  std::vector<double> ck_, c2k_;  //!< C(k, i) and C(2k, r), or their logarithms beyond k = 510
+};
 
 //! Coordinate c (0, 1, 2) of the net as an (m+1) by (n+1) matrix.
 Eigen::MatrixXd coordinate_grid(const ControlNet& net, int c);

@@ -57,7 +57,7 @@ void alpha_fields(json& report, const Boundary& boundary, const Mask9& mask, con
 }  // namespace
 
 json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
-                const std::optional<double>& mu, bool solver_picked_automatically) {
+                const std::optional<double>& mu, bool solver_picked_automatically, bool with_net) {
   json report;
   report["boundary"] = boundary.name;
   report["degree"] = {boundary.m, boundary.n};
@@ -82,7 +82,10 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
                         {"message", "closed-form net: no linear system is solved"}};
   }
   const bool ok = !outcome.summary || outcome.summary->ok();
-  report["net"] = ok ? net_to_json(outcome.net) : json(nullptr);
+  if (!ok)
+    report["net"] = nullptr;
+  else if (with_net)
+    report["net"] = net_to_json(outcome.net);
   report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, mask)) : json(nullptr);
   return report;
 }

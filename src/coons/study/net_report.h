@@ -30,9 +30,10 @@ struct NetOutcome {
 NetOutcome make_net(const Boundary& boundary, NetMethod method, const Mask9& mask, const solvers::SolverInfo* solver,
                     const solvers::SolverOptions& options = {});
 
-//! The solve report without a timing block; `mu` as given on the command line, if it was.
+//! The solve report without a timing block; `mu` as given on the command line, if it was. With
+//! `with_net` false a successful net is left out of it, for the caller to write (write_net_json).
 nlohmann::json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
-                          const std::optional<double>& mu, bool solver_picked_automatically);
+                          const std::optional<double>& mu, bool solver_picked_automatically, bool with_net = true);
 
 //! Which mask a stencil report names: `name` as the user gave it ("c1-family", "file:PATH"), the
 //! weight of the C1 family, the 3×3 mask when it is the alpha family (α, β, μ are reported then).
