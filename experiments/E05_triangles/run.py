@@ -12,7 +12,12 @@ is run for X in OBJECTIVES (and `target` when the file has one). The conclusions
 from the table (claims()); each is rendered as a sentence only in the form its numbers support, and
 --check recomputes every claim from results/results.json, fails when the README's conclusions
 differ from the generated ones or a claim contradicts the table, and tampers the table once per
-claim to show that the check can fail. Python 3 standard library only."""
+claim to show that the check can fail.
+
+A second section compares the rectangular α family with the triangular c family on the same known
+surface (the unit square split along its diagonal; question.md states exactly what is compared):
+results/split.json, its conclusions checked the same way, and the figures results/split_distance.png
+and results/optimal_c.png (gnuplot). Python 3 standard library only (and gnuplot)."""
 import argparse
 import copy
 import datetime
