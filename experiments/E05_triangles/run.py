@@ -560,7 +560,7 @@ def main():
             if any_hit:
                 lines.append(f"| {shape} | {objective} | " + " | ".join(cells) + " |")
     report = "\n".join(lines) + "\n\n" + conclusions_markdown(claims(rows)) + "\n" + split_markdown(split)
-    (out / "report.md").write_text(report)
+    (out / "report.md").write_text(report.replace("](results/", "]("))  # links relative to results/
     question = (HERE / "question.md").read_text()
     (HERE / "README.md").write_text(question.rstrip() + "\n\n" + report)
 
