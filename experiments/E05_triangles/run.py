@@ -12,13 +12,19 @@ is run for X in OBJECTIVES (and `target` when the file has one). The conclusions
 from the table (claims()); each is rendered as a sentence only in the form its numbers support, and
 --check recomputes every claim from results/results.json, fails when the README's conclusions
 differ from the generated ones or a claim contradicts the table, and tampers the table once per
-claim to show that the check can fail. Python 3 standard library only."""
+claim to show that the check can fail.
+
+A second section compares the rectangular α family with the triangular c family on the same known
+surface (the unit square split along its diagonal; question.md states exactly what is compared):
+results/split.json, its conclusions checked the same way, and the figures results/split_distance.png
+and results/optimal_c.png (gnuplot). Python 3 standard library only (and gnuplot)."""
 import argparse
 import copy
 import datetime
 import json
 import pathlib
 import subprocess
+import sys
 import tempfile
 
 HERE = pathlib.Path(__file__).resolve().parent
@@ -187,6 +193,256 @@ def tampered(rows, claim):
     return rows
 
 
+# ---- The square split along its diagonal: the rectangular α family against the triangular c family.
+sys.path.insert(0, str(ROOT / "scripts"))
+import split_square  # noqa: E402  (scripts/split_square.py: the boundaries, the sampling on T)
+
+SPLIT_SHAPES = ["dome", "monkey_saddle"]
+SPLIT_DEGREES = [4, 6, 8]
+SCAN = 41  # members per family for the distance curves (figure)
+
+
+def solve_net(coons, path, alpha):
+    r = subprocess.run([coons, "solve", str(path), "--alpha", repr(alpha)], capture_output=True, text=True)
+    if r.returncode != 0:
+        raise SystemExit(f"{path} --alpha {alpha}: exit {r.returncode}: {r.stderr.strip()}")
+    return json.loads(r.stdout)["net"]
+
+
+def golden(f, lo, hi, iterations=30):
+    g = (5**0.5 - 1) / 2
+    a, b = lo, hi
+    x1, x2 = b - g * (b - a), a + g * (b - a)
+    f1, f2 = f(x1), f(x2)
+    for _ in range(iterations):
+        if f1 < f2:
+            b, x2, f2 = x2, x1, f1
+            x1 = b - g * (b - a)
+            f1 = f(x1)
+        else:
+            a, x1, f1 = x1, x2, f2
+            x2 = a + g * (b - a)
+            f2 = f(x2)
+    return (x1, f1) if f1 < f2 else (x2, f2)
+
+
+def split_family(coons, path, family, shape, n, fixed):
+    """One family on one boundary: the thin-plate optimum over its own domain (coons search-alpha),
+    the RMS distance on T over the search range (SCAN members), its minimiser (golden section
+    about the best scanned member), and distance and thin-plate energy on T at every member."""
+    sampler = split_square.Sampler(family, n)
+    report = search(coons, path, "thin_plate")
+    lo, hi = report["bounds"]
+
+    def rms(a):
+        return sampler.distance(solve_net(coons, path, a), shape)[0]
+
+    scan = [[lo + (hi - lo) * q / (SCAN - 1)] for q in range(SCAN)]
+    for point in scan:
+        point.append(rms(point[0]))
+    best = min(range(SCAN), key=lambda q: scan[q][1])
+    fit, _ = golden(rms, scan[max(best - 1, 0)][0], scan[min(best + 1, SCAN - 1)][0])
+    members = dict(fixed, thin_plate_opt=report["alpha"], fit_opt=fit)
+    out = {"bounds": [lo, hi], "scan": scan, "members": {}}
+    for name, a in members.items():
+        net = solve_net(coons, path, a)
+        d_rms, d_max = sampler.distance(net, shape)
+        at_bound = report["at_bound"] if name == "thin_plate_opt" else (
+            name == "fit_opt" and min(abs(a - lo), abs(a - hi)) < 1e-6 * (hi - lo))
+        out["members"][name] = {"alpha": a, "rms": d_rms, "max": d_max, "thin_plate_T": sampler.thin_plate(net),
+                                "at_bound": at_bound}
+    if family == "rectangle" and shape == "dome":  # symmetric about the other diagonal: E(T) = E(square)/2
+        r = subprocess.run([coons, "solve", str(path), "--alpha", "0"], capture_output=True, text=True, check=True)
+        out["quadrature_check"] = {"exact_square": json.loads(r.stdout)["metrics"]["thin_plate_energy"],
+                                   "twice_T": 2 * out["members"]["0"]["thin_plate_T"]}
+    return out
+
+
+def split_rows(coons, tmp):
+    rows = []
+    for shape in SPLIT_SHAPES:
+        for n in SPLIT_DEGREES:
+            rect, tri, errors = split_square.boundaries(shape, n)
+            rpath, tpath = pathlib.Path(tmp) / f"{rect['name']}.json", pathlib.Path(tmp) / f"{tri['name']}.json"
+            rpath.write_text(json.dumps(rect))
+            tpath.write_text(json.dumps(tri))
+            rows.append({"shape": shape, "degree": n, "fit_error": errors,
+                         "rectangle": split_family(coons, rpath, "rectangle", shape, n, {"-1/4": -0.25, "0": 0.0}),
+                         "triangle": split_family(coons, tpath, "triangle", shape, n, {"-1/6": -1 / 6, "0": 0.0})})
+    return rows
+
+
+def split_measure(rows, claim):
+    """Recomputes a split claim from the table."""
+    kind = claim["kind"]
+    if kind == "split_fit":  # the best-fitting member of each family: which family is nearer s on T
+        cells = {}
+        for r in rows:
+            a, c = r["rectangle"]["members"]["fit_opt"]["rms"], r["triangle"]["members"]["fit_opt"]["rms"]
+            cells[f"{r['shape']} n = {r['degree']}"] = "rectangle" if a < c else "triangle"
+        rect = sorted(k for k, v in cells.items() if v == "rectangle")
+        return {"rectangle_better": rect, "total": len(cells), "holds": len(rect) == len(cells)}
+    if kind == "split_precision":  # the precision members α = −1/4 and c = −1/6: which is nearer s on T
+        rect = sorted(f"{r['shape']} n = {r['degree']}" for r in rows
+                      if r["rectangle"]["members"]["-1/4"]["rms"] < r["triangle"]["members"]["-1/6"]["rms"])
+        return {"rectangle_better": rect, "total": len(rows), "holds": len(rect) == len(rows)}
+    if kind == "split_energy":  # the thin-plate optima: which net has the lower thin-plate energy on T
+        cells = {}
+        for r in rows:
+            a = r["rectangle"]["members"]["thin_plate_opt"]["thin_plate_T"]
+            c = r["triangle"]["members"]["thin_plate_opt"]["thin_plate_T"]
+            cells[f"{r['shape']} n = {r['degree']}"] = "rectangle" if a < c else "triangle"
+        rect = sorted(k for k, v in cells.items() if v == "rectangle")
+        return {"rectangle_lower": rect, "total": len(cells), "holds": len(rect) == len(cells)}
+    if kind == "split_tp_vs_fit":  # does the thin-plate optimum of the triangle fit s as well as its fit optimum
+        ratios = {f"{r['shape']} n = {r['degree']}": round(r["triangle"]["members"]["thin_plate_opt"]["rms"] /
+                                                              r["triangle"]["members"]["fit_opt"]["rms"], 3)
+                  for r in rows if r["triangle"]["members"]["fit_opt"]["rms"] > 0}
+        return {"worst": max(ratios.values()) if ratios else None, "holds": bool(ratios) and max(ratios.values()) < 1.5}
+    raise ValueError(kind)
+
+
+def split_claims(rows):
+    return [dict({"kind": k}, **split_measure(rows, {"kind": k})) for k in ("split_fit", "split_precision", "split_energy", "split_tp_vs_fit")]
+
+
+def split_sentence(claim):
+    k, h = claim["kind"], claim["holds"]
+    if k == "split_fit":
+        n = len(claim["rectangle_better"])
+        if h:
+            return (f"On the lower-left half T, the best-fitting α-net of the square is nearer the known surface than "
+                    f"the best-fitting c-net of the triangle in every one of the {claim['total']} cells.")
+        return (f"On T, the best-fitting α-net of the square is nearer the known surface than the best-fitting c-net "
+                f"of the triangle in {n} of {claim['total']} cells ({', '.join(claim['rectangle_better']) or 'none'}); "
+                f"in the others the triangle's is nearer.")
+    if k == "split_precision":
+        n = len(claim["rectangle_better"])
+        if h:
+            return (f"At the reference members, the α = −1/4 net is nearer the surface on T than the c = −1/6 net in "
+                    f"every one of the {claim['total']} cells.")
+        return (f"At the reference members, the α = −1/4 net is nearer the surface on T than the c = −1/6 net in "
+                f"{n} of {claim['total']} cells ({', '.join(claim['rectangle_better']) or 'none'}); in the others "
+                f"the c = −1/6 net is nearer.")
+    if k == "split_energy":
+        n = len(claim["rectangle_lower"])
+        if h:
+            return (f"The α*-net (thin plate over the square) has a lower thin-plate energy on T than the c*-net "
+                    f"(thin plate over the triangle) in every one of the {claim['total']} cells.")
+        return (f"The α*-net (thin plate over the square) has the lower thin-plate energy on T in {n} of "
+                f"{claim['total']} cells ({', '.join(claim['rectangle_lower']) or 'none'}); in the others the "
+                f"c*-net's is lower.")
+    if k == "split_tp_vs_fit":
+        if claim["worst"] is None:
+            return "No triangle fits its surface inexactly, so the thin-plate and fit optima are not compared."
+        if h:
+            return (f"The triangle's thin-plate optimum c* is a good proxy for its best fit: its RMS distance is at "
+                    f"most {claim['worst']:.3f} times the smallest over c.")
+        return (f"The triangle's thin-plate optimum c* is not a proxy for its best fit: its RMS distance reaches "
+                f"{claim['worst']:.3f} times the smallest over c.")
+    raise ValueError(k)
+
+
+def split_tampered(rows, claim):
+    rows = copy.deepcopy(rows)
+    key = {"split_fit": "rms", "split_precision": "rms", "split_energy": "thin_plate_T",
+           "split_tp_vs_fit": "rms"}[claim["kind"]]
+    member = {"split_energy": ("thin_plate_opt", "thin_plate_opt"),
+              "split_precision": ("-1/4", "-1/6")}.get(claim["kind"], ("fit_opt", "fit_opt"))
+    for r in rows:
+        if claim["kind"] == "split_tp_vs_fit":
+            r["triangle"]["members"]["thin_plate_opt"]["rms"] = r["triangle"]["members"]["fit_opt"]["rms"] * (
+                2.0 if claim["holds"] else 1.0)
+            continue
+        a, c = r["rectangle"]["members"][member[0]], r["triangle"]["members"][member[1]]
+        if claim["holds"]:
+            a[key] = c[key] + 1.0
+        else:
+            a[key] = c[key] / 2
+    return rows
+
+
+def split_markdown(rows):
+    lines = ["## The square split along its diagonal: α against c", "",
+             "Per shape and degree n: the sides' largest fit errors, then for each family the members compared on "
+             "T = {u + v ≤ 1}: the value of α (square) or c (triangle), the RMS and largest distance of the filling "
+             "from the known surface at 1600 points of T, and the thin-plate energy ∫_T |F_uu|² + 2|F_uv|² + |F_vv|² "
+             "du dv. `tp*` is the thin-plate optimum over the family's own domain (`coons search-alpha "
+             "--objective thin_plate`: the whole square for α, the triangle for c), `fit*` the member nearest the "
+             "surface on T (RMS, golden section).", ""]
+    for r in rows:
+        e = r["fit_error"]
+        lines += [f"### {r['shape']}, n = {r['degree']}", "",
+                  f"Fit errors (largest deviation of the Bézier side from s): bottom {e['bottom']:.2e}, left "
+                  f"{e['left']:.2e}, top {e['top']:.2e}, right {e['right']:.2e}, diagonal {e['diagonal']:.2e}.", "",
+                  "| family | member | α or c | RMS distance on T | max distance on T | thin plate on T |",
+                  "|---|---|---|---|---|---|"]
+        for family in ("rectangle", "triangle"):
+            for name, m in r[family]["members"].items():
+                mark = " (bound)" if m["at_bound"] else ""
+                lines.append(f"| {family} | {name} | {m['alpha']:.5f}{mark} | {m['rms']:.3e} | {m['max']:.3e} | "
+                             f"{m['thin_plate_T']:.5g} |")
+        q = r["rectangle"].get("quadrature_check")
+        if q:
+            lines += ["", f"Quadrature check (the dome is symmetric about the other diagonal): twice the thin plate "
+                          f"on T of the α = 0 net is {q['twice_T']:.6g}, its exact energy over the square "
+                          f"(`coons solve`) {q['exact_square']:.6g} (relative difference "
+                          f"{abs(q['twice_T'] / q['exact_square'] - 1):.1e})."]
+        lines.append("")
+    lines += ["![RMS distance from the surface on T over the member of each family](results/split_distance.png)", "",
+              "### Conclusions of this section, computed from the table", ""]
+    lines += [f"- {split_sentence(c)}" for c in split_claims(rows)]
+    return "\n".join(lines) + "\n"
+
+
+def split_figure(rows, out):
+    """results/split_distance.png: RMS distance on T against α (square) and c (triangle), one panel per
+    shape at the top degree, the compared members marked."""
+    top = max(SPLIT_DEGREES)
+    data, panels = [], []
+    for r in [r for r in rows if r["degree"] == top]:
+        plots = []
+        for family in ("rectangle", "triangle"):
+            name = out / f"split_{r['shape']}_{family}.dat"
+            name.write_text("".join(f"{a:.6g} {d:.6g}\n" for a, d in r[family]["scan"]))
+            data.append(name)
+            plots.append(f"'{name}' with linespoints title '{family} ({'α' if family == 'rectangle' else 'c'})'")
+            name = out / f"split_{r['shape']}_{family}_members.dat"
+            name.write_text("".join(f"{m['alpha']:.6g} {m['rms']:.6g}\n" for m in r[family]["members"].values()))
+            data.append(name)
+            plots.append(f"'{name}' with points pt 7 ps 1.5 title '{family}: reference members, tp*, fit*'")
+        panels.append(f"set title '{r['shape']}, n = {top}'\nplot " + ", ".join(plots) + "\n")
+    script = (f"set terminal pngcairo noenhanced size 1200,550\nset output '{out / 'split_distance.png'}'\n"
+              "set multiplot layout 1,2\nset xlabel 'member (α for the square, c for the triangle)'\n"
+              "set ylabel 'RMS distance from the surface on T'\nset logscale y\nset format y '%.0e'\n"
+              "set key outside below\n" + "".join(panels) + "unset multiplot\n")
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    for path in data:
+        path.unlink()
+
+
+def optimum_figure(rows, out):
+    """results/optimal_c.png: the interior thin-plate and target optima c* against the degree, per shape."""
+    data, plots = [], []
+    for shape in sorted({r["boundary"] for r in rows}):
+        for objective in ("thin_plate", "target"):
+            points = sorted((r["degree"], r["c"]) for r in rows if r["boundary"] == shape and
+                            r["objective"] == objective and r["c"] is not None and not r["at_bound"] and not r["flat"])
+            if not points:
+                continue
+            name = out / f"opt_{shape}_{objective}.dat"
+            name.write_text("".join(f"{d} {c:.8g}\n" for d, c in points))
+            data.append(name)
+            plots.append(f"'{name}' with linespoints title '{shape} {objective}'")
+    script = (f"set terminal pngcairo noenhanced size 900,600\nset output '{out / 'optimal_c.png'}'\n"
+              "set xlabel 'degree n'\nset ylabel 'optimal c'\nset key outside below\n"
+              "set title 'Interior optima c* of the triangular family (−1/6: quadratic precision)'\n"
+              "plot " + ", ".join(plots) + ", -1.0/6 with lines dashtype 2 title 'c = −1/6'\n")
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    for path in data:
+        path.unlink()
+
+
 def conclusions_markdown(claim_list):
     return "\n".join(["## Conclusions, computed from the table", "",
                       "Each sentence is generated from `results/results.json` in the form its numbers support; "
@@ -204,9 +460,20 @@ def check():
     for claim in claim_list:  # the check can fail: a table that contradicts each claim is caught
         if not contradictions(tampered(rows, claim), [claim]):
             problems.append(f"self-test: a table contradicting '{sentence(claim)}' was not caught")
+    split = json.loads((HERE / "results" / "split.json").read_text())
+    split_list = split_claims(split)
+    for claim in split_list:
+        for key, value in split_measure(split, claim).items():
+            if claim.get(key) != value:
+                problems.append(f"{claim['kind']}: {key} is {value}, the claim says {claim.get(key)}")
+        changed = split_tampered(split, claim)
+        if split_measure(changed, claim) == {k: claim[k] for k in split_measure(changed, claim)}:
+            problems.append(f"self-test: a table contradicting '{split_sentence(claim)}' was not caught")
+    if split_markdown(split) not in readme:
+        problems.append("README.md's split section is not the one results/split.json gives (rerun run.py)")
     for p in problems:
         print("E05 check:", p)
-    print(f"E05 check: {len(claim_list)} conclusions, {len(problems)} problems")
+    print(f"E05 check: {len(claim_list) + len(split_list)} conclusions, {len(problems)} problems")
     raise SystemExit(1 if problems else 0)
 
 
@@ -233,9 +500,13 @@ def main():
                                  "c": report["alpha"], "value": report["value"], "bounds": report["bounds"],
                                  "flat": report["flat"], "at_bound": report["at_bound"],
                                  "status": report["status"], "evaluations": report["evaluations"]})
+        split = split_rows(args.coons, tmp)
     out = HERE / "results"
     out.mkdir(exist_ok=True)
     (out / "results.json").write_text(json.dumps(rows, indent=1) + "\n")
+    (out / "split.json").write_text(json.dumps(split, indent=1) + "\n")
+    split_figure(split, out)
+    optimum_figure(rows, out)
 
     def fmt(row):
         if row["c"] is None:
@@ -262,6 +533,7 @@ def main():
         bounds = sorted({tuple(r["bounds"]) for r in mine})
         lines += ["", "Search bounds: " + ", ".join(f"n = {d}: [{b[0]:.4f}, {b[1]:.4f}]" for d, b in
                                                      sorted({(r['degree'], tuple(r['bounds'])) for r in mine})), ""]
+    lines += ["![The interior thin-plate and target optima c* against the degree](results/optimal_c.png)", ""]
     # Patterns looked for in the numbers above (computed, not assumed).
     lines += ["## Checks", "",
               "Distance of each optimum from −1/6 (the quadratic-precision member), and of the twist optimum from "
@@ -287,8 +559,8 @@ def main():
                 cells.append(f"{r['c'] - reference:+.2e}")
             if any_hit:
                 lines.append(f"| {shape} | {objective} | " + " | ".join(cells) + " |")
-    report = "\n".join(lines) + "\n\n" + conclusions_markdown(claims(rows))
-    (out / "report.md").write_text(report)
+    report = "\n".join(lines) + "\n\n" + conclusions_markdown(claims(rows)) + "\n" + split_markdown(split)
+    (out / "report.md").write_text(report.replace("](results/", "]("))  # links relative to results/
     question = (HERE / "question.md").read_text()
     (HERE / "README.md").write_text(question.rstrip() + "\n\n" + report)
 
