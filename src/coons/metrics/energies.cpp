@@ -162,8 +162,8 @@ double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEn
     auto d11 = [m, n](const GridMap& g) {
       return g.bottomRightCorner(m, n) - g.bottomLeftCorner(m, n) - g.topRightCorner(m, n) + g.topLeftCorner(m, n);
     };
-    auto di = [m, n](const GridMap& g) { return g.bottomRows(m) - g.topRows(m); };
-    auto dj = [m, n](const GridMap& g) { return g.rightCols(n) - g.leftCols(n); };
+    auto di = [m](const GridMap& g) { return g.bottomRows(m) - g.topRows(m); };
+    auto dj = [n](const GridMap& g) { return g.rightCols(n) - g.leftCols(n); };
     switch (kind) {
       case DiscreteEnergy::kTwist:
         e += (d11(x) * d11(y)).sum();
@@ -173,13 +173,13 @@ double discrete_energy_form(const ControlNet& X, const ControlNet& Y, DiscreteEn
         break;
       case DiscreteEnergy::kThinPlate:
         if (m >= 2) {
-          auto dii = [m, n](const GridMap& g) {
+          auto dii = [m](const GridMap& g) {
             return g.bottomRows(m - 1) - 2 * g.middleRows(1, m - 1) + g.topRows(m - 1);
           };
           e += (dii(x) * dii(y)).sum();
         }
         if (n >= 2) {
-          auto djj = [m, n](const GridMap& g) {
+          auto djj = [n](const GridMap& g) {
             return g.rightCols(n - 1) - 2 * g.middleCols(1, n - 1) + g.leftCols(n - 1);
           };
           e += (djj(x) * djj(y)).sum();
