@@ -42,18 +42,8 @@ class HypreStructBackend : public LinearSolver {
       summary.message = "needs a grid stencil (hypre's Struct interface), not only a matrix; use hypre-amg";
       return SolveStatus::kNotApplicable;
     }
-    std::string why;
-    if (!grid->is_valid(&why)) {
-      summary.message = "invalid grid operator: " + why;
-      return SolveStatus::kNotApplicable;
-    }
-    if (grid->size() == 0) {
-      summary.message = "the grid operator has no free points";
-      return SolveStatus::kNotApplicable;
-    }
-    if (op.matrix && op.matrix->rows() != grid->size()) {
-      summary.message = "the matrix has " + std::to_string(op.matrix->rows()) + " rows but the grid operator " +
-                        std::to_string(grid->size()) + " free points";
+    if (std::string why = grid_operator_problem(*grid, op.matrix); !why.empty()) {
+      summary.message = why;
       return SolveStatus::kNotApplicable;
     }
     if (grid->radius != 1) {  // PFMG aborts the process on 25 points; SMG's set-up fails

@@ -39,18 +39,8 @@ class MultigridBackend : public LinearSolver {
                             : "needs a grid stencil (3x3 or 5x5, with its free mask), not only a matrix";
       return SolveStatus::kNotApplicable;
     }
-    std::string why;
-    if (!grid->is_valid(&why)) {
-      summary.message = "invalid grid operator: " + why;
-      return SolveStatus::kNotApplicable;
-    }
-    if (grid->size() == 0) {
-      summary.message = "the grid operator has no free points";
-      return SolveStatus::kNotApplicable;
-    }
-    if (op.matrix && op.matrix->rows() != grid->size()) {
-      summary.message = "the matrix has " + std::to_string(op.matrix->rows()) + " rows but the grid operator " +
-                        std::to_string(grid->size()) + " free points";
+    if (std::string why = grid_operator_problem(*grid, op.matrix); !why.empty()) {
+      summary.message = why;
       return SolveStatus::kNotApplicable;
     }
     if (method_ == Method::kCg && !grid->symmetric()) {

@@ -102,4 +102,14 @@ Eigen::SparseMatrix<double> stencil_operator_matrix(const StencilOperator& op) {
   return A;
 }
 
+std::string grid_operator_problem(const StencilOperator& op, const Eigen::SparseMatrix<double>* matrix) {
+  std::string why;
+  if (!op.is_valid(&why)) return "invalid grid operator: " + why;
+  if (op.size() == 0) return "the grid operator has no free points";
+  if (matrix && matrix->rows() != op.size())
+    return "the matrix has " + std::to_string(matrix->rows()) + " rows but the grid operator " +
+           std::to_string(op.size()) + " free points";
+  return {};
+}
+
 }  // namespace coons::solvers

@@ -58,4 +58,9 @@ void apply_stencil_operator(const StencilOperator& op, const Eigen::MatrixXd& X,
 //! The operator as a compressed sparse matrix over the free points (#free by #free).
 Eigen::SparseMatrix<double> stencil_operator_matrix(const StencilOperator& op);
 
+//! Why a backend cannot solve on this grid operator, given with `matrix` (nullptr: none): the
+//! operator is invalid, has no free points, or the matrix has another number of rows. Empty when
+//! it can.
+std::string grid_operator_problem(const StencilOperator& op, const Eigen::SparseMatrix<double>* matrix);
+
 }  // namespace coons::solvers
