@@ -100,17 +100,12 @@ bool describe(const LinearOperator& op, SolveSummary& summary, C1FamilyWeights* 
     return false;
   }
   const StencilOperator& g = *op.grid;
-  std::string why;
-  if (!g.is_valid(&why)) {
-    summary.message = "invalid grid operator: " + why;
+  if (std::string why = grid_operator_problem(g, op.matrix); !why.empty()) {
+    summary.message = why;
     return false;
   }
   if (g.size() != Eigen::Index(g.rows) * g.cols) {
     summary.message = "needs a full rectangle (every grid point free); use pcg-fast for other free sets";
-    return false;
-  }
-  if (op.matrix && op.matrix->rows() != g.size()) {
-    summary.message = "the matrix and the grid operator differ in size";
     return false;
   }
   const auto w = c1_family_weights(g);

@@ -136,13 +136,8 @@ class PcgFastSolver final : public LinearSolver {
       summary.message = "needs a grid operator (3x3 or 5x5 with its free mask) or a grid stencil";
       return false;
     }
-    std::string why;
-    if (!grid_.is_valid(&why)) {
-      summary.message = "invalid grid operator: " + why;
-      return false;
-    }
-    if (grid_.size() == 0 || (op.matrix && op.matrix->rows() != grid_.size())) {
-      summary.message = "the grid operator has no free points, or not as many as the matrix has rows";
+    if (std::string why = grid_operator_problem(grid_, op.matrix); !why.empty()) {
+      summary.message = why;
       return false;
     }
     if (!grid_.symmetric()) {
