@@ -71,12 +71,14 @@ int run_family_command(const StudyRequest& r) {
 int run_study_command(const StudyRequest& r, const std::string& command_line) {
   if (!r.merge.empty()) {
     if (!r.inputs.empty() || !r.family.empty() || !r.shard.empty())
-      throw InputError("command line", "--merge", "takes the study from the shards: give no boundaries, --family or --shard");
+      throw InputError("command line", "--merge",
+                       "takes the study from the shards: give no boundaries, --family or --shard");
     return run_study_merge(r.merge, r.out_dir);
   }
   if (!r.family.empty()) return run_family_command(r);
   if (!r.shard.empty())
-    throw InputError("command line", "--shard", "splits the family study (--family) only; boundary files are not sharded yet");
+    throw InputError("command line", "--shard",
+                     "splits the family study (--family) only; boundary files are not sharded yet");
   Phases phases("study");
   phases.start("read");
   const std::vector<std::string> files = expand_inputs(r.inputs);

@@ -11,11 +11,11 @@
 #include <set>
 #include <tuple>
 
+#include "common.h"
 #include "coons/io/input_error.h"
 #include "coons/io/write_files.h"
 #include "coons/study/family_tasks.h"
 #include "coons/study/provenance.h"
-#include "common.h"
 
 namespace coons::cli {
 
@@ -137,8 +137,8 @@ int run_family_shard(const AlphaFamilyOptions& options, int shard, int shards, c
     seconds += r.seconds;
     ++ran;
   }
-  print_text(fmt::format("shard {}/{}: {} tasks, {} already there, {} run ({:.3g} s of task time); {}\n", shard,
-                         shards, mine.size(), skipped, ran, seconds, path.string()));
+  print_text(fmt::format("shard {}/{}: {} tasks, {} already there, {} run ({:.3g} s of task time); {}\n", shard, shards,
+                         mine.size(), skipped, ran, seconds, path.string()));
   return kExitOk;
 }
 
@@ -146,10 +146,10 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
   Phases phases("study");
   phases.start("read");
   if (!fs::is_directory(merge_dir)) throw InputError(merge_dir, "--merge", "is not a folder");
-  static const std::regex kName(R"(shard-[0-9]+-of-[0-9]+\.jsonl)");
+  const std::regex shard_name(R"(shard-[0-9]+-of-[0-9]+\.jsonl)");
   std::vector<fs::path> files;
   for (const auto& e : fs::directory_iterator(merge_dir))
-    if (e.is_regular_file() && std::regex_match(e.path().filename().string(), kName)) files.push_back(e.path());
+    if (e.is_regular_file() && std::regex_match(e.path().filename().string(), shard_name)) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw InputError(merge_dir, "--merge", "holds no shard-I-of-N.jsonl file");
 
@@ -173,9 +173,9 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
       }
       FamilyTaskResult t = family_task_from_record(r, where);
       if (r["key"] != family_task_key(options, t.task, version, revision))
-        throw InputError(where, "key", fmt::format("'{}' is not the key of its task (boundary {}, degree {}, {})",
-                                                   r["key"].get<std::string>(), t.task.index, t.task.degree,
-                                                   t.task.objective));
+        throw InputError(where, "key",
+                         fmt::format("'{}' is not the key of its task (boundary {}, degree {}, {})",
+                                     r["key"].get<std::string>(), t.task.index, t.task.degree, t.task.objective));
       by_task.emplace(std::make_tuple(t.task.objective, t.task.degree, t.task.index), std::move(t));
     }
   }
@@ -198,11 +198,11 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
     results.push_back(it->second);
   }
   if (missing > 0)
-    throw InputError(merge_dir, "--merge",
-                     fmt::format("{} of {} tasks are missing (the first: boundary {}, degree {}, {}); run their "
-                                 "shards (again) before merging",
-                                 missing, all.size(), first_missing->index, first_missing->degree,
-                                 first_missing->objective));
+    throw InputError(
+        merge_dir, "--merge",
+        fmt::format("{} of {} tasks are missing (the first: boundary {}, degree {}, {}); run their "
+                    "shards (again) before merging",
+                    missing, all.size(), first_missing->index, first_missing->degree, first_missing->objective));
   if (by_task.size() != all.size())
     throw InputError(merge_dir, "--merge",
                      fmt::format("the shards hold {} tasks outside the study's list", by_task.size() - all.size()));

@@ -22,14 +22,14 @@ case "$mode" in
     ;;
   slurm)
     for i in 0 1 2; do
-      SLURM_ARRAY_TASK_ID=$i SLURM_ARRAY_TASK_COUNT=3 COONS=$coons \
-        "$src/scripts/slurm/study.sbatch" shard "$tmp/sharded" -- "${args[@]}" >/dev/null
+      SLURM_ARRAY_TASK_ID=$i COONS=$coons \
+        "$src/scripts/slurm/study.sbatch" shard 3 "$tmp/sharded" -- "${args[@]}" >/dev/null
     done
     COONS=$coons "$src/scripts/slurm/study.sbatch" merge "$tmp/sharded" >/dev/null
     printf '#!/bin/sh\necho "$@" >> %s/sbatch.log\necho 4242\n' "$tmp" > "$tmp/sbatch"
     chmod +x "$tmp/sbatch"
     SBATCH=$tmp/sbatch COONS=$coons "$src/scripts/slurm/study.sbatch" submit 3 "$tmp/sub" -- "${args[@]}" >/dev/null
-    grep -q -- "--array=0-2 .*study.sbatch shard $tmp/sub -- ${args[*]}" "$tmp/sbatch.log" || fail "array: $(cat "$tmp/sbatch.log")"
+    grep -q -- "--array=0-2 .*study.sbatch shard 3 $tmp/sub -- ${args[*]}" "$tmp/sbatch.log" || fail "array: $(cat "$tmp/sbatch.log")"
     grep -q -- "--dependency=afterok:4242 .*study.sbatch merge $tmp/sub" "$tmp/sbatch.log" || fail "merge: $(cat "$tmp/sbatch.log")"
     ;;
   *) fail "unknown mode $mode" ;;

@@ -99,28 +99,30 @@ std::string alpha_family_markdown(const AlphaFamilyResult& r, const std::vector<
   for (size_t i = 0; i < n; ++i) {
     md += fmt::format("### {}\n\n", r.objectives[i]);
     md += "**The optima.** Where each boundary's own α* and μ* lie.\n\n";
-    md += "| n | interior | flat | on a bound | failed | flat or on a bound | α* 10 % | α* median | α* 90 % | μ* 10 % | "
-          "μ* median | μ* 90 % |\n";
+    md +=
+        "| n | interior | flat | on a bound | failed | flat or on a bound | α* 10 % | α* median | α* 90 % | μ* 10 % | "
+        "μ* median | μ* 90 % |\n";
     md += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
     for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i]))
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, c->interior,
-                        c->flat, c->at_bound, c->failed,
-                        o.count > 0 ? percent(double(c->flat + c->at_bound) / o.count) : "–",
-                        q(c->alpha, &Distribution::q10), q(c->alpha, &Distribution::median),
-                        q(c->alpha, &Distribution::q90), q(c->mu, &Distribution::q10), q(c->mu, &Distribution::median),
-                        q(c->mu, &Distribution::q90));
-    md += "\n**One α for all.** The best single α, how far it is from each boundary's own "
-          "(the factor (α* + 1/4)/(α + 1/4)) and what each boundary loses with it (the relative excess "
-          "(f(α) − f*)/f*).\n\n";
-    md += "| n | best α | its μ | factor 10 % | factor median | factor 90 % | excess median | excess mean | "
-          "excess 90 % | excess max |\n";
+      md += fmt::format(
+          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, c->interior, c->flat,
+          c->at_bound, c->failed, o.count > 0 ? percent(double(c->flat + c->at_bound) / o.count) : "–",
+          q(c->alpha, &Distribution::q10), q(c->alpha, &Distribution::median), q(c->alpha, &Distribution::q90),
+          q(c->mu, &Distribution::q10), q(c->mu, &Distribution::median), q(c->mu, &Distribution::q90));
+    md +=
+        "\n**One α for all.** The best single α, how far it is from each boundary's own "
+        "(the factor (α* + 1/4)/(α + 1/4)) and what each boundary loses with it (the relative excess "
+        "(f(α) − f*)/f*).\n\n";
+    md +=
+        "| n | best α | its μ | factor 10 % | factor median | factor 90 % | excess median | excess mean | "
+        "excess 90 % | excess max |\n";
     md += "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i]))
       md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, g4(c->best_alpha),
-                        g4(c->best_mu), q(c->alpha_ratio, &Distribution::q10),
-                        q(c->alpha_ratio, &Distribution::median), q(c->alpha_ratio, &Distribution::q90),
-                        lq(c->losses, &Distribution::median), c->loss_mean ? percent(*c->loss_mean) : "–",
-                        lq(c->losses, &Distribution::q90), lq(c->losses, &Distribution::max));
+                        g4(c->best_mu), q(c->alpha_ratio, &Distribution::q10), q(c->alpha_ratio, &Distribution::median),
+                        q(c->alpha_ratio, &Distribution::q90), lq(c->losses, &Distribution::median),
+                        c->loss_mean ? percent(*c->loss_mean) : "–", lq(c->losses, &Distribution::q90),
+                        lq(c->losses, &Distribution::max));
     md += "\n" + figure(i, "α* of " + r.objectives[i]) + figure(n + i, "μ* of " + r.objectives[i]) +
           figure(2 * n + i, "excess at the best single α, " + r.objectives[i]);
   }
@@ -194,13 +196,12 @@ std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& r, const std
   }
   for (size_t i = 0; i < n; ++i) {
     PlotOptions o;
-    o.title = fmt::format("μ* over {} random smooth boundaries, {} (interior optima with α* < 0)", count,
-                          r.objectives[i]);
+    o.title =
+        fmt::format("μ* over {} random smooth boundaries, {} (interior optima with α* < 0)", count, r.objectives[i]);
     o.xlabel = "μ* = −n²(1 + 4α*)/(4α*)";
     o.marker_title = "μ of the best single α";
     errors.push_back(plot_log_histograms(
-        png(n + i), cells_of(r, r.objectives[i]),
-        [](const AlphaFamilyCell& c, size_t b) { return c.mu_star[b]; },
+        png(n + i), cells_of(r, r.objectives[i]), [](const AlphaFamilyCell& c, size_t b) { return c.mu_star[b]; },
         [](const AlphaFamilyCell& c) { return c.best_mu; }, o));
   }
   for (size_t i = 0; i < n; ++i) {
@@ -208,8 +209,8 @@ std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& r, const std
     o.title = fmt::format("relative excess (f(α) − f*)/f* at the best single α, {}", r.objectives[i]);
     o.xlabel = "relative excess over the boundary's own optimum";
     errors.push_back(plot_log_histograms(
-        png(2 * n + i), cells_of(r, r.objectives[i]),
-        [](const AlphaFamilyCell& c, size_t b) { return c.loss[b]; }, {}, o));
+        png(2 * n + i), cells_of(r, r.objectives[i]), [](const AlphaFamilyCell& c, size_t b) { return c.loss[b]; }, {},
+        o));
   }
   return errors;
 }

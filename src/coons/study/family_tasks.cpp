@@ -62,10 +62,14 @@ std::optional<std::pair<int, int>> parse_shard(const std::string& text, std::str
 
 std::string to_string(FamilyTaskStatus s) {
   switch (s) {
-    case FamilyTaskStatus::kInterior: return "interior";
-    case FamilyTaskStatus::kAtBound: return "at_bound";
-    case FamilyTaskStatus::kFlat: return "flat";
-    case FamilyTaskStatus::kFailed: return "failed";
+    case FamilyTaskStatus::kInterior:
+      return "interior";
+    case FamilyTaskStatus::kAtBound:
+      return "at_bound";
+    case FamilyTaskStatus::kFlat:
+      return "flat";
+    case FamilyTaskStatus::kFailed:
+      return "failed";
   }
   return "failed";
 }
@@ -108,8 +112,8 @@ FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const Family
   FamilyTaskResult r;
   r.task = task;
   const Objective objective = objective_named(task.objective);
-  const Boundary b = elevate_boundary(random_smooth_boundary(options.seed, task.index, options.generator),
-                                      task.degree, task.degree);
+  const Boundary b =
+      elevate_boundary(random_smooth_boundary(options.seed, task.index, options.generator), task.degree, task.degree);
   const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
   const AlphaSearchSummary s = search_alpha(b, objective, solver);
   if (s.flat) {
@@ -145,20 +149,19 @@ json family_study_json(const AlphaFamilyOptions& o, const std::vector<std::strin
 std::string family_task_key(const AlphaFamilyOptions& o, const FamilyTask& task, const std::string& version,
                             const std::string& revision) {
   // Every input that changes the task's result, in a fixed order (json objects sort their keys).
-  const json inputs = {{"family", "random-smooth"},
-                       {"seed", o.seed},
-                       {"generator",
-                        {{"side_degree", o.generator.side_degree},
-                         {"height", o.generator.height},
-                         {"wiggle", o.generator.wiggle}}},
-                       {"index", task.index},
-                       {"degree", task.degree},
-                       {"objective", task.objective},
-                       {"parameter", "alpha"},
-                       {"grid_points", o.grid_points},
-                       {"solver", o.solver ? o.solver->name : std::string("auto")},
-                       {"version", version},
-                       {"git_revision", revision}};
+  const json inputs = {
+      {"family", "random-smooth"},
+      {"seed", o.seed},
+      {"generator",
+       {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
+      {"index", task.index},
+      {"degree", task.degree},
+      {"objective", task.objective},
+      {"parameter", "alpha"},
+      {"grid_points", o.grid_points},
+      {"solver", o.solver ? o.solver->name : std::string("auto")},
+      {"version", version},
+      {"git_revision", revision}};
   std::uint64_t h = 14695981039346656037ULL;  // FNV-1a, 64 bit
   for (const unsigned char c : inputs.dump()) {
     h ^= c;
@@ -273,10 +276,18 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
       for (int k = 0; k < count && next < results.size(); ++k, ++next) {
         const FamilyTaskResult& t = results[next];
         switch (t.status) {
-          case FamilyTaskStatus::kFlat: ++cell.flat; continue;
-          case FamilyTaskStatus::kFailed: ++cell.failed; continue;
-          case FamilyTaskStatus::kAtBound: ++cell.at_bound; break;
-          case FamilyTaskStatus::kInterior: ++cell.interior; break;
+          case FamilyTaskStatus::kFlat:
+            ++cell.flat;
+            continue;
+          case FamilyTaskStatus::kFailed:
+            ++cell.failed;
+            continue;
+          case FamilyTaskStatus::kAtBound:
+            ++cell.at_bound;
+            break;
+          case FamilyTaskStatus::kInterior:
+            ++cell.interior;
+            break;
         }
         cell.alpha_star[k] = t.alpha;
         if (t.status == FamilyTaskStatus::kInterior && t.alpha) cell.mu_star[k] = mu_of_alpha(degree, *t.alpha);
