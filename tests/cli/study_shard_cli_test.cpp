@@ -115,3 +115,29 @@ TEST_CASE("coons study --shard/--merge: bad input is one error line, exit 2, not
     CHECK_FALSE(fs::exists(out));
   }
 }
+
+TEST_CASE("coons study --shard/--merge: records of another study or with a wrong key are refused", "[cli]") {
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  for (int i = 0; i < 2; ++i)
+    REQUIRE(run_command(kCoons + kFamily + " --shard " + std::to_string(i) + "/2 --out " + quoted(shards)).status == 0);
+  // the same folder for a study with another seed: its shard file holds another study
+  const CommandResult other = run_command(
+      kCoons + " study --family random-smooth --count 4 --seed 4 --degrees 3 5 --shard 0/2 --out " + quoted(shards));
+  CHECK(other.status == 2);
+  CHECK(other.err.find("shard-0-of-2.jsonl: study: holds tasks of another study") != std::string::npos);
+  // a record whose key is not its task's: the merge names the file and the field
+  const std::string file = shards + "/shard-1-of-2.jsonl";
+  std::vector<json> records = read_lines(file);
+  records[2]["index"] = records[2]["index"].get<int>() + 2;
+  std::ofstream out(file, std::ios::binary | std::ios::trunc);
+  for (const json& r : records) out << r.dump() << '\n';
+  out.close();
+  const CommandResult merged =
+      run_command(kCoons + " study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.err.find("shard-1-of-2.jsonl: key: ") != std::string::npos);
+  CHECK(merged.out.empty());
+  CHECK_FALSE(fs::exists(dir.file("merged")));
+}

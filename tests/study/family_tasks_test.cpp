@@ -60,9 +60,9 @@ TEST_CASE("family_task_key: changes with every input of the task and with the co
 }
 
 TEST_CASE("interpolate_on_grid: exact at the nodes and for cubics in the grid index") {
-  std::vector<double> values;
   auto cubic = [](double s) { return 1 + s - 0.3 * s * s + 0.02 * s * s * s; };
-  for (int k = 0; k < 9; ++k) values.push_back(cubic(k));
+  std::vector<double> values(9);
+  for (int k = 0; k < 9; ++k) values[k] = cubic(k);
   for (int k = 0; k < 9; ++k) CHECK(interpolate_on_grid(values, k) == values[k]);
   for (double s : {0.25, 1.5, 4.7, 7.9}) CHECK(interpolate_on_grid(values, s) == Approx(cubic(s)).epsilon(1e-12));
   values[6] = HUGE_VAL;  // a failed evaluation: linear between finite neighbours, ∞ next to it
