@@ -25,6 +25,7 @@ packages=(
   python3-jsonschema            # the documentation checks: data files against docs/schema/ (scripts/check_docs.py)
   clang libclang-rt-14-dev      # libFuzzer and clang's sanitizer runtimes: scripts/fuzz.sh (run by .ci/run)
   clang-format clang-tidy       # the style checks of .ci/run: scripts/format.sh --check, scripts/tidy.sh
+  parallel time                 # sharded studies on one machine: scripts/study-parallel.sh (GNU parallel; /usr/bin/time -v for --time)
 )
 
 missing=()

@@ -12,10 +12,12 @@
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
+#include "coons/study/family_tasks.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
 #include "registry.h"
+#include "study_shard.h"
 
 namespace coons::cli {
 
@@ -31,6 +33,8 @@ struct StudyRequest {
   int count = 200;
   std::uint64_t seed = 1;
   bool degrees_given = false;
+  std::string shard;  // --shard I/N: one part of the family study's tasks (study_shard.h)
+  std::string merge;  // --merge DIR: the report from the shards in DIR
   GlobalOptions global;
 };
 
@@ -52,28 +56,29 @@ int run_family_command(const StudyRequest& r) {
                net_solve_bytes(options.degrees.back(), options.degrees.back(), options.solver) +
                    net_metrics_bytes(options.degrees.back(), options.degrees.back()),
                fmt::format("the family study at degree {}", options.degrees.back()), "command line", "--degrees");
+  if (!r.shard.empty()) {
+    const auto shard = parse_shard(r.shard, &why);
+    if (!shard) throw InputError("command line", "--shard", why);
+    return run_family_shard(options, shard->first, shard->second, r.out_dir);
+  }
   phases.start("solve");
   const AlphaFamilyResult result = run_alpha_family(options, [&](const std::string& s) { phases.note(s); });
   phases.start("write");
-  OutputSet out(r.out_dir);
-  std::vector<std::string> figures;
-  for (const std::string& o : result.objectives) figures.push_back(fmt::format("figures/alpha_family_{}.png", o));
-  const std::vector<std::string> errors = plot_alpha_family(result, [&](size_t i) { return out.stage(figures[i]); });
-  for (size_t i = 0; i < figures.size(); ++i)
-    if (i < errors.size() && !errors[i].empty()) {
-      out.discard(figures[i]);
-      figures[i].clear();
-    }
-  const std::string md = alpha_family_markdown(result, figures);
-  out.write("results.json", [&](std::ostream& o) { o << dump(alpha_family_json(result), 1) << '\n'; });
-  out.write("report.md", [&](std::ostream& o) { o << md; });
-  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
-  out.commit();
+  write_family_report(result, r.out_dir);
   return kExitOk;
 }
 
 int run_study_command(const StudyRequest& r, const std::string& command_line) {
+  if (!r.merge.empty()) {
+    if (!r.inputs.empty() || !r.family.empty() || !r.shard.empty())
+      throw InputError("command line", "--merge",
+                       "takes the study from the shards: give no boundaries, --family or --shard");
+    return run_study_merge(r.merge, r.out_dir);
+  }
   if (!r.family.empty()) return run_family_command(r);
+  if (!r.shard.empty())
+    throw InputError("command line", "--shard",
+                     "splits the family study (--family) only; boundary files are not sharded yet");
   Phases phases("study");
   phases.start("read");
   const std::vector<std::string> files = expand_inputs(r.inputs);
@@ -143,6 +148,10 @@ void register_study(CLI::App& app, Registry& registry) {
                   "smooth boundaries and the best single alpha");
   cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
   cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
+  cmd->add_option("--shard", r->shard,
+                  "I/N: with --family, run the I-th of N disjoint parts of the task list into "
+                  "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
+  cmd->add_option("--merge", r->merge, "DIR: the report (to --out) from the shard files in DIR");
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
   cmd->add_option("--corner-tolerance", r->corner_tolerance,
                   "corners must agree to this fraction of the bounding-box diagonal")

@@ -22,7 +22,9 @@ TEST_CASE("best_single_alpha: the minimiser of a known mean relative loss") {
   const auto best = best_single_alpha(
       3, {1, 1, 1}, [&](int b, double alpha) { return 1 + (alpha - c[b]) * (alpha - c[b]); }, 81);
   REQUIRE(best);
-  CHECK(*best == Approx(-0.15).margin(1e-6));
+  // f_b is tabulated on the log grid and interpolated between nodes: the mean loss at the α found,
+  // 1 + (α + 0.15)² + const, is within 1e-6 of its least value, so α is within 1e-3 of −0.15
+  CHECK(*best == Approx(-0.15).margin(1e-3));
   CHECK_FALSE(best_single_alpha(
       0, {}, [](int, double) { return 0.0; }, 81));
 }

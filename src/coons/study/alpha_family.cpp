@@ -4,19 +4,9 @@
 
 #include <algorithm>
 #include <cmath>
-#include <memory>
 
-#include "coons/alpha/alpha_search.h"
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
-#include "coons/mask/mask_families.h"
-#include "coons/net/degree_elevation.h"
-#include "coons/study/backend_choice.h"
-#include "coons/study/degree_limit_study.h"
-#include "coons/study/study.h"
-#if COONS_HAVE_FFTW
-#include "coons/alpha/spectral_objective.h"
-#endif
 
 namespace coons {
 
@@ -63,35 +53,61 @@ std::optional<Distribution> distribution_of(const std::vector<double>& values) {
   return d;
 }
 
-std::optional<double> best_single_alpha(int count, const std::vector<double>& optimum,
-                                        const std::function<double(int, double)>& f, int grid_points) {
-  if (count <= 0) return std::nullopt;
+std::vector<double> family_alpha_grid(int grid_points) {
   const double lo = std::log(1e-6), hi = std::log(0.5);
   std::vector<double> grid(grid_points);
-  for (int k = 0; k < grid_points; ++k) grid[k] = lo + (hi - lo) * k / (grid_points - 1);
-  std::vector<std::vector<double>> values(count, std::vector<double>(grid_points));
+  for (int k = 0; k < grid_points; ++k) grid[k] = std::exp(lo + (hi - lo) * k / (grid_points - 1)) - 0.25;
+  return grid;
+}
+
+double interpolate_on_grid(const std::vector<double>& values, double s) {
+  const int size = int(values.size());
+  if (size == 0) return HUGE_VAL;
+  if (size == 1) return values[0];
+  s = std::clamp(s, 0.0, double(size - 1));
+  const int k = std::min(int(std::floor(s)), size - 2);  // s in [k, k + 1]
+  const int first = std::clamp(k - 1, 0, std::max(size - 4, 0));
+  const int last = std::min(first + 3, size - 1);
+  bool finite = true;
+  for (int j = first; j <= last; ++j) finite = finite && std::isfinite(values[j]);
+  if (!finite || last - first < 3) {
+    if (!std::isfinite(values[k]) || !std::isfinite(values[k + 1])) return HUGE_VAL;
+    return values[k] + (s - k) * (values[k + 1] - values[k]);
+  }
+  double sum = 0;
+  for (int j = first; j <= last; ++j) {
+    double w = 1;
+    for (int i = first; i <= last; ++i)
+      if (i != j) w *= (s - i) / double(j - i);
+    sum += w * values[j];
+  }
+  return sum;
+}
+
+std::optional<BestSingleAlpha> best_single_alpha_on_grid(const std::vector<std::vector<double>>& values,
+                                                         const std::vector<double>& optimum) {
+  const auto count = int(values.size());
+  if (count == 0) return std::nullopt;
+  const auto grid_points = int(values[0].size());
   std::vector<double> best(optimum);
   for (int b = 0; b < count; ++b)
-    for (int k = 0; k < grid_points; ++k) {
-      values[b][k] = f(b, std::exp(grid[k]) - 0.25);
-      if (std::isfinite(values[b][k])) best[b] = std::min(best[b], values[b][k]);
-    }
+    for (double v : values[b])
+      if (std::isfinite(v)) best[b] = std::min(best[b], v);
   auto loss = [&](int b, double value) {
     if (!std::isfinite(value)) return HUGE_VAL;
     return best[b] > 0 ? (value - best[b]) / best[b] : value - best[b];
   };
+  auto mean_at = [&](double s) {
+    double sum = 0;
+    for (int b = 0; b < count; ++b) sum += loss(b, interpolate_on_grid(values[b], s)) / count;
+    return sum;
+  };
   std::vector<double> mean(grid_points, 0);
-  for (int k = 0; k < grid_points; ++k) {
+  for (int k = 0; k < grid_points; ++k)
     for (int b = 0; b < count; ++b) mean[k] += loss(b, values[b][k]) / count;
-  }
   const auto at = int(std::min_element(mean.begin(), mean.end()) - mean.begin());
   if (!std::isfinite(mean[at])) return std::nullopt;
-  auto mean_at = [&](double t) {
-    double s = 0;
-    for (int b = 0; b < count; ++b) s += loss(b, f(b, std::exp(t) - 0.25)) / count;
-    return s;
-  };
-  double a = grid[std::max(at - 1, 0)], d = grid[std::min(at + 1, grid_points - 1)];
+  double a = std::max(at - 1, 0), d = std::min(at + 1, grid_points - 1);
   const double r = (std::sqrt(5.0) - 1) / 2;
   double x1 = d - r * (d - a), x2 = a + r * (d - a), f1 = mean_at(x1), f2 = mean_at(x2);
   for (int it = 0; it < 40; ++it) {
@@ -109,108 +125,20 @@ std::optional<double> best_single_alpha(int count, const std::vector<double>& op
       f2 = mean_at(x2);
     }
   }
-  const double t = f1 <= f2 ? x1 : x2;
-  return std::min(f1, f2) <= mean[at] ? std::exp(t) - 0.25 : std::exp(grid[at]) - 0.25;
+  const double s = std::min(f1, f2) <= mean[at] ? (f1 <= f2 ? x1 : x2) : double(at);
+  const double lo = std::log(1e-6), hi = std::log(0.5);
+  return BestSingleAlpha{std::exp(lo + (hi - lo) * s / (grid_points - 1)) - 0.25, s};
 }
 
-namespace {
-
-// f_b(α) of one boundary: the sine basis where it applies, else a factorisation and a solve.
-std::function<double(double)> alpha_curve(const Boundary& b, const Objective& objective,
-                                          const solvers::SolverInfo& solver) {
-#if COONS_HAVE_FFTW
-  if (b.m >= 2 && b.n >= 2 && SpectralAlphaObjective::supports(objective)) {
-    auto f = std::make_shared<SpectralAlphaSearchObjective>(b, objective);
-    return [f](double alpha) {
-      const auto e = f->evaluate(alpha, false);
-      return e.ok() ? e.value : HUGE_VAL;
-    };
-  }
-#endif
-  auto f = std::make_shared<MaskObjective>(
-      b, objective, [](double a) { return alpha_family(a); }, solver);
-  return [f](double alpha) {
-    const auto e = f->evaluate(alpha, false);
-    return e.ok() ? e.value : HUGE_VAL;
-  };
-}
-
-std::vector<double> present(const std::vector<std::optional<double>>& v) {
-  std::vector<double> out;
-  for (const auto& x : v)
-    if (x) out.push_back(*x);
-  return out;
-}
-
-AlphaFamilyCell run_cell(const std::vector<Boundary>& family, int degree, const Objective& objective,
-                         const AlphaFamilyOptions& options) {
-  AlphaFamilyCell cell;
-  cell.degree = degree;
-  cell.objective = objective.name;
-  const int count = int(family.size());
-  cell.alpha_star.resize(count);
-  cell.mu_star.resize(count);
-  cell.loss.resize(count);
-  std::vector<int> used;  // boundaries with an optimum
-  std::vector<double> optimum;
-  std::vector<std::function<double(double)>> curves;
-  for (int k = 0; k < count; ++k) {
-    const Boundary b = elevate_boundary(family[k], degree, degree);
-    const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
-    const AlphaSearchSummary s = search_alpha(b, objective, solver);
-    if (s.flat) {
-      ++cell.flat;
-      continue;
-    }
-    if (!s.parameter || s.status != SearchStatus::kSuccess) {
-      ++cell.failed;
-      continue;
-    }
-    cell.alpha_star[k] = s.parameter;
-    cell.mu_star[k] = s.at_bound ? std::nullopt : mu_of_alpha(degree, *s.parameter);
-    ++(s.at_bound ? cell.at_bound : cell.interior);
-    used.push_back(k);
-    optimum.push_back(s.value);
-    curves.push_back(alpha_curve(b, objective, solver));
-  }
-  cell.alpha = distribution_of(present(cell.alpha_star));
-  cell.mu = distribution_of(present(cell.mu_star));
-  cell.best_alpha = best_single_alpha(
-      int(used.size()), optimum, [&](int b, double alpha) { return curves[b](alpha); }, options.grid_points);
-  if (cell.best_alpha) {
-    cell.best_mu = mu_of_alpha(degree, *cell.best_alpha);
-    for (size_t u = 0; u < used.size(); ++u) {
-      const double value = curves[u](*cell.best_alpha);
-      const double own = std::min(optimum[u], value);
-      if (std::isfinite(value) && own > 0) cell.loss[used[u]] = (value - own) / own;
-    }
-  }
-  const std::vector<double> losses = present(cell.loss);
-  cell.losses = distribution_of(losses);
-  if (!losses.empty()) {
-    double sum = 0;
-    for (double x : losses) sum += x;
-    cell.loss_mean = sum / double(losses.size());
-  }
-  return cell;
-}
-
-}  // namespace
-
-AlphaFamilyResult run_alpha_family(const AlphaFamilyOptions& options,
-                                   const std::function<void(const std::string&)>& progress) {
-  AlphaFamilyResult r;
-  r.options = options;
-  const std::vector<Objective> objectives =
-      options.objectives.empty() ? default_study_objectives() : options.objectives;
-  for (const Objective& o : objectives) r.objectives.push_back(o.name);
-  const std::vector<Boundary> family = random_smooth_family(options.seed, options.count, options.generator);
-  for (const Objective& o : objectives)
-    for (int d : options.degrees) {
-      if (progress) progress(fmt::format("degree {}, {}", d, o.name));
-      r.cells.push_back(run_cell(family, d, o, options));
-    }
-  return r;
+std::optional<double> best_single_alpha(int count, const std::vector<double>& optimum,
+                                        const std::function<double(int, double)>& f, int grid_points) {
+  if (count <= 0) return std::nullopt;
+  const std::vector<double> grid = family_alpha_grid(grid_points);
+  std::vector<std::vector<double>> values(count, std::vector<double>(grid_points));
+  for (int b = 0; b < count; ++b)
+    for (int k = 0; k < grid_points; ++k) values[b][k] = f(b, grid[k]);
+  const auto best = best_single_alpha_on_grid(values, optimum);
+  return best ? std::optional<double>(best->alpha) : std::nullopt;
 }
 
 namespace {
@@ -255,7 +183,8 @@ json alpha_family_json(const AlphaFamilyResult& r) {
                      {"best_mu", optional_number(c.best_mu)},
                      {"loss", optional_list(c.loss)},
                      {"loss_quantiles", distribution_json(c.losses)},
-                     {"loss_mean", optional_number(c.loss_mean)}});
+                     {"loss_mean", optional_number(c.loss_mean)},
+                     {"alpha_ratio_quantiles", distribution_json(c.alpha_ratio)}});
   return {{"family", "random-smooth"},
           {"seed", o.seed},
           {"count", o.count},

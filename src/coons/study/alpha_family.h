@@ -2,9 +2,11 @@
 // boundaries (random_boundary.h) and at each degree n (the sides elevated exactly to n), the
 // optimum α* of every boundary and objective (the sine-basis search, alpha_search.h), its
 // distribution (quantiles; how many are flat or on a bound), the single α that minimises the
-// family's mean relative energy loss L(α) = mean_b (f_b(α) − f_b*)/f_b*, and what each boundary
-// loses with it against its own optimum (mean, 90th percentile, max). Sizes: count boundaries ×
-// degrees × objectives searches, plus grid_points + about 40 evaluations of every f_b per cell.
+// family's mean relative energy loss L(α) = mean_b (f_b(α) − f_b*)/f_b* (f_b tabulated on a log
+// grid of α + 1/4 and interpolated between its nodes), and what each boundary loses with it against
+// its own optimum (mean, quantiles, max). Sizes: count boundaries × degrees × objectives searches,
+// plus grid_points evaluations of every f_b. The work is a list of independent tasks
+// (family_tasks.h), which `coons study --shard` splits and `--merge` assembles.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700 (the claim).
 #pragma once
 
@@ -53,6 +55,9 @@ struct AlphaFamilyCell {
   std::optional<double> loss_mean;
   std::optional<double> best_alpha;  //!< the single α minimising the mean loss over the family
   std::optional<double> best_mu;     //!< its μ
+  //! (α*_b + 1/4)/(best α + 1/4) over the boundaries with α* > −1/4: how far the best single α is
+  //! from each boundary's own, as a factor on α + 1/4
+  std::optional<Distribution> alpha_ratio;
 };
 
 struct AlphaFamilyResult {
@@ -65,20 +70,41 @@ struct AlphaFamilyResult {
 AlphaFamilyResult run_alpha_family(const AlphaFamilyOptions& options,
                                    const std::function<void(const std::string&)>& progress = {});
 
-//! The α* + 1/4 minimising mean_b (f_b(α) − f_b*)/f_b* for curves f_b evaluated by `f(b, α)`
-//! (b in [0, count)), from a log grid of `grid_points` values of α + 1/4 over [1e−6, 1/2] refined
-//! by golden sections between the best grid point's neighbours; f_b* = min(optimum[b], the grid's
-//! least value of f_b). Returns nullopt when count is 0. Exposed for tests.
+//! The log grid of the best single α: α_k = exp(t_k) − 1/4 with t_k = log 10⁻⁶ + k·h,
+//! h = (log ½ − log 10⁻⁶)/(grid_points − 1), k = 0 … grid_points − 1.
+std::vector<double> family_alpha_grid(int grid_points);
+
+//! Values on that grid at the fractional index s ∈ [0, size − 1]: the cubic through the four
+//! nearest nodes (in t), the line through the two bracketing nodes next to a non-finite value
+//! (∞ when one of those is not finite). Exact at the nodes.
+double interpolate_on_grid(const std::vector<double>& values, double s);
+
+struct BestSingleAlpha {
+  double alpha = 0;  //!< the α minimising the mean relative loss
+  double s = 0;      //!< its fractional grid index (for interpolate_on_grid)
+};
+
+//! The α minimising mean_b (f_b(α) − f_b*)/f_b* where f_b is `values[b]` on family_alpha_grid
+//! (interpolated between nodes) and f_b* = min(optimum[b], least of values[b]): the best node,
+//! refined by golden sections between its neighbours. nullopt when there are no curves or no
+//! finite mean. Every family study (sharded or not) computes it from the same stored values.
+std::optional<BestSingleAlpha> best_single_alpha_on_grid(const std::vector<std::vector<double>>& values,
+                                                         const std::vector<double>& optimum);
+
+//! best_single_alpha_on_grid of the curves f(b, α) (b in [0, count)) tabulated on a grid of
+//! `grid_points`. Returns nullopt when count is 0.
 std::optional<double> best_single_alpha(int count, const std::vector<double>& optimum,
                                         const std::function<double(int, double)>& f, int grid_points);
 
 nlohmann::json alpha_family_json(const AlphaFamilyResult& result);
-//! The tables, one per objective, and the conclusions computed from them.
+//! The tables, two per objective, and the conclusions computed from them; `figures` as
+//! plot_alpha_family numbers them ("" where there is none).
 std::string alpha_family_markdown(const AlphaFamilyResult& result, const std::vector<std::string>& figures);
 //! The conclusions alone (each sentence only where the table supports it).
 std::string alpha_family_conclusions(const AlphaFamilyResult& result);
-//! One histogram per objective of α* + 1/4 on log bins, a step line per degree, the best single α
-//! marked; `png(i)` names objective i's file. Returns the errors ("" when made).
+//! Histograms on log bins, a step line per degree: for each objective i, png(i) of α* + 1/4 (the
+//! best single α marked), png(n + i) of μ* (its μ marked), png(2n + i) of the relative excess at
+//! the best single α (n objectives). Returns the errors ("" when made), one per figure.
 std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& result,
                                            const std::function<std::string(size_t)>& png);
 

@@ -3,6 +3,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
 
 #include "coons/io/plot.h"
 #include "coons/study/alpha_family.h"
@@ -85,79 +86,131 @@ std::string alpha_family_markdown(const AlphaFamilyResult& r, const std::vector<
       "single α (the α minimising the mean loss). μ* and its quantiles count the boundaries with −1/4 < α* < 0 only "
       "(α* ≥ 0 has no μ).\n\n",
       o.count, o.seed, o.generator.side_degree, o.generator.height, o.generator.wiggle);
-  for (size_t i = 0; i < r.objectives.size(); ++i) {
+  const size_t n = r.objectives.size();
+  auto q = [](const std::optional<Distribution>& d, double Distribution::*field) {
+    return d ? fmt::format("{:.4g}", (*d).*field) : std::string("–");
+  };
+  auto lq = [](const std::optional<Distribution>& d, double Distribution::*field) {
+    return d ? percent((*d).*field) : std::string("–");
+  };
+  auto figure = [&](size_t k, const std::string& what) {
+    return k < figures.size() && !figures[k].empty() ? fmt::format("![{}]({})\n\n", what, figures[k]) : std::string();
+  };
+  for (size_t i = 0; i < n; ++i) {
     md += fmt::format("### {}\n\n", r.objectives[i]);
+    md += "**The optima.** Where each boundary's own α* and μ* lie.\n\n";
     md +=
-        "| n | interior | flat | on a bound | failed | α* 10 % | α* median | α* 90 % | μ* 10 % | μ* median | "
-        "μ* 90 % | best α | its μ | loss mean | loss 90 % | loss max |\n";
-    md += "|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|---|\n";
-    for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i])) {
-      auto q = [](const std::optional<Distribution>& d, double Distribution::*field) {
-        return d ? fmt::format("{:.4g}", (*d).*field) : std::string("–");
-      };
-      auto lq = [](const std::optional<Distribution>& d, double Distribution::*field) {
-        return d ? percent((*d).*field) : std::string("–");
-      };
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n",
-                        c->degree, c->interior, c->flat, c->at_bound, c->failed, q(c->alpha, &Distribution::q10),
-                        q(c->alpha, &Distribution::median), q(c->alpha, &Distribution::q90),
-                        q(c->mu, &Distribution::q10), q(c->mu, &Distribution::median), q(c->mu, &Distribution::q90),
-                        g4(c->best_alpha), g4(c->best_mu), c->loss_mean ? percent(*c->loss_mean) : "–",
-                        lq(c->losses, &Distribution::q90), lq(c->losses, &Distribution::max));
-    }
-    md += "\n";
-    if (i < figures.size() && !figures[i].empty())
-      md += fmt::format("![α* of {}]({})\n\n", r.objectives[i], figures[i]);
+        "| n | interior | flat | on a bound | failed | flat or on a bound | α* 10 % | α* median | α* 90 % | μ* 10 % | "
+        "μ* median | μ* 90 % |\n";
+    md += "|---|---|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i]))
+      md += fmt::format(
+          "| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, c->interior, c->flat,
+          c->at_bound, c->failed, o.count > 0 ? percent(double(c->flat + c->at_bound) / o.count) : "–",
+          q(c->alpha, &Distribution::q10), q(c->alpha, &Distribution::median), q(c->alpha, &Distribution::q90),
+          q(c->mu, &Distribution::q10), q(c->mu, &Distribution::median), q(c->mu, &Distribution::q90));
+    md +=
+        "\n**One α for all.** The best single α, how far it is from each boundary's own "
+        "(the factor (α* + 1/4)/(α + 1/4)) and what each boundary loses with it (the relative excess "
+        "(f(α) − f*)/f*).\n\n";
+    md +=
+        "| n | best α | its μ | factor 10 % | factor median | factor 90 % | excess median | excess mean | "
+        "excess 90 % | excess max |\n";
+    md += "|---|---|---|---|---|---|---|---|---|---|\n";
+    for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i]))
+      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, g4(c->best_alpha),
+                        g4(c->best_mu), q(c->alpha_ratio, &Distribution::q10), q(c->alpha_ratio, &Distribution::median),
+                        q(c->alpha_ratio, &Distribution::q90), lq(c->losses, &Distribution::median),
+                        c->loss_mean ? percent(*c->loss_mean) : "–", lq(c->losses, &Distribution::q90),
+                        lq(c->losses, &Distribution::max));
+    md += "\n" + figure(i, "α* of " + r.objectives[i]) + figure(n + i, "μ* of " + r.objectives[i]) +
+          figure(2 * n + i, "excess at the best single α, " + r.objectives[i]);
   }
   md += "### Conclusions (computed from the tables)\n\n" + alpha_family_conclusions(r);
   return md;
 }
 
-std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& r, const std::function<std::string(size_t)>& png) {
-  std::vector<std::string> errors;
+namespace {
+
+// One histogram per degree of log10 of `value(cell, b)` (skipped where it returns nothing), as step
+// lines over common log bins, with `mark(cell)` (when given) marked at the tallest bin's height.
+std::string plot_log_histograms(const std::string& png, const std::vector<const AlphaFamilyCell*>& cells,
+                                const std::function<std::optional<double>(const AlphaFamilyCell&, size_t)>& value,
+                                const std::function<std::optional<double>(const AlphaFamilyCell&)>& mark,
+                                PlotOptions options) {
   constexpr int kBins = 24;
-  for (size_t i = 0; i < r.objectives.size(); ++i) {
-    const auto cells = cells_of(r, r.objectives[i]);
-    double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (const AlphaFamilyCell* c : cells)
-      for (const auto& a : c->alpha_star)
-        if (a && *a > -0.25) {
-          lo = std::min(lo, std::log10(*a + 0.25));
-          hi = std::max(hi, std::log10(*a + 0.25));
-        }
-    if (!(lo < hi)) {
-      errors.emplace_back("no spread of α* to draw");
-      continue;
-    }
-    std::vector<PlotSeries> series;
-    for (const AlphaFamilyCell* c : cells) {
-      std::vector<int> counts(kBins, 0);
-      for (const auto& a : c->alpha_star)
-        if (a && *a > -0.25) {
-          const int bin = std::min(kBins - 1, int((std::log10(*a + 0.25) - lo) / (hi - lo) * kBins));
-          ++counts[bin];
-        }
-      PlotSeries s;
-      s.title = fmt::format("n = {}", c->degree);
-      for (int b = 0; b < kBins; ++b)
-        for (int edge : {b, b + 1}) {
-          s.x.push_back(std::pow(10.0, lo + (hi - lo) * edge / kBins));
-          s.y.push_back(counts[b]);
-        }
-      if (c->best_alpha && *c->best_alpha > -0.25) {
-        s.marker_x.push_back(*c->best_alpha + 0.25);
+  double lo = HUGE_VAL, hi = -HUGE_VAL;
+  for (const AlphaFamilyCell* c : cells)
+    for (size_t b = 0; b < c->alpha_star.size(); ++b)
+      if (const auto v = value(*c, b); v && *v > 0 && std::isfinite(*v)) {
+        lo = std::min(lo, std::log10(*v));
+        hi = std::max(hi, std::log10(*v));
+      }
+  if (!(lo < hi)) return "no spread of values to draw";
+  std::vector<PlotSeries> series;
+  for (const AlphaFamilyCell* c : cells) {
+    std::vector<int> counts(kBins, 0);
+    for (size_t b = 0; b < c->alpha_star.size(); ++b)
+      if (const auto v = value(*c, b); v && *v > 0 && std::isfinite(*v))
+        ++counts[std::min(kBins - 1, int((std::log10(*v) - lo) / (hi - lo) * kBins))];
+    PlotSeries s;
+    s.title = fmt::format("n = {}", c->degree);
+    for (int k = 0; k < kBins; ++k)
+      for (int edge : {k, k + 1}) {
+        s.x.push_back(std::pow(10.0, lo + (hi - lo) * edge / kBins));
+        s.y.push_back(counts[k]);
+      }
+    if (mark)
+      if (const auto m = mark(*c); m && *m > 0) {
+        s.marker_x.push_back(*m);
         s.marker_y.push_back(*std::max_element(counts.begin(), counts.end()));
       }
-      series.push_back(std::move(s));
-    }
-    PlotOptions options;
-    options.title = fmt::format("α* over {} random smooth boundaries, {}", r.options.count, r.objectives[i]);
-    options.xlabel = "α* + 1/4";
-    options.ylabel = "boundaries per bin";
-    options.log_x = true;
-    options.y_scale = AxisScale::kLinear;
-    options.marker_title = "best single α";
-    errors.push_back(plot_curves(png(i), series, options));
+    series.push_back(std::move(s));
+  }
+  options.log_x = true;
+  options.y_scale = AxisScale::kLinear;
+  options.ylabel = "boundaries per bin";
+  return plot_curves(png, series, options);
+}
+
+}  // namespace
+
+std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& r, const std::function<std::string(size_t)>& png) {
+  std::vector<std::string> errors;
+  const size_t n = r.objectives.size();
+  const int count = r.options.count;
+  for (size_t i = 0; i < n; ++i) {
+    PlotOptions o;
+    o.title = fmt::format("α* over {} random smooth boundaries, {}", count, r.objectives[i]);
+    o.xlabel = "α* + 1/4";
+    o.marker_title = "best single α";
+    errors.push_back(plot_log_histograms(
+        png(i), cells_of(r, r.objectives[i]),
+        [](const AlphaFamilyCell& c, size_t b) -> std::optional<double> {
+          return c.alpha_star[b] ? std::optional<double>(*c.alpha_star[b] + 0.25) : std::nullopt;
+        },
+        [](const AlphaFamilyCell& c) -> std::optional<double> {
+          return c.best_alpha ? std::optional<double>(*c.best_alpha + 0.25) : std::nullopt;
+        },
+        o));
+  }
+  for (size_t i = 0; i < n; ++i) {
+    PlotOptions o;
+    o.title =
+        fmt::format("μ* over {} random smooth boundaries, {} (interior optima with α* < 0)", count, r.objectives[i]);
+    o.xlabel = "μ* = −n²(1 + 4α*)/(4α*)";
+    o.marker_title = "μ of the best single α";
+    errors.push_back(plot_log_histograms(
+        png(n + i), cells_of(r, r.objectives[i]), [](const AlphaFamilyCell& c, size_t b) { return c.mu_star[b]; },
+        [](const AlphaFamilyCell& c) { return c.best_mu; }, o));
+  }
+  for (size_t i = 0; i < n; ++i) {
+    PlotOptions o;
+    o.title = fmt::format("relative excess (f(α) − f*)/f* at the best single α, {}", r.objectives[i]);
+    o.xlabel = "relative excess over the boundary's own optimum";
+    errors.push_back(plot_log_histograms(
+        png(2 * n + i), cells_of(r, r.objectives[i]), [](const AlphaFamilyCell& c, size_t b) { return c.loss[b]; }, {},
+        o));
   }
   return errors;
 }

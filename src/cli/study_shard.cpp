@@ -1,0 +1,216 @@
+// `coons study --shard I/N` and `coons study --merge DIR` (study_shard.h).
+#include "study_shard.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+#include <map>
+#include <regex>
+#include <set>
+#include <tuple>
+
+#include "common.h"
+#include "coons/io/input_error.h"
+#include "coons/io/write_files.h"
+#include "coons/study/family_tasks.h"
+#include "coons/study/provenance.h"
+
+namespace coons::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+namespace {
+
+// The complete, parsable lines of a JSON Lines file (objects with a string "key"); `clean` is false
+// when something else was there (a truncated last line of a killed run, a broken line).
+struct ShardFile {
+  std::vector<json> records;
+  std::vector<std::string> lines;
+  bool clean = true;
+};
+
+ShardFile read_shard_file(const fs::path& path) {
+  ShardFile out;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path.string(), "", "cannot be read");
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  size_t pos = 0;
+  while (pos < text.size()) {
+    const size_t end = text.find('\n', pos);
+    if (end == std::string::npos) {  // no newline: the line a killed run was writing
+      out.clean = false;
+      break;
+    }
+    std::string line = text.substr(pos, end - pos);
+    pos = end + 1;
+    json j = json::parse(line, nullptr, false);
+    if (j.is_discarded() || !j.is_object() || !j.contains("key") || !j["key"].is_string()) {
+      out.clean = false;
+      continue;
+    }
+    out.records.push_back(std::move(j));
+    out.lines.push_back(std::move(line));
+  }
+  return out;
+}
+
+std::string revision_of(const Provenance& p) { return p.git_revision; }
+
+}  // namespace
+
+void write_family_report(const AlphaFamilyResult& result, const std::string& out_dir) {
+  OutputSet out(out_dir);
+  std::vector<std::string> figures;
+  for (const char* kind : {"alpha", "mu", "loss"})
+    for (const std::string& o : result.objectives) figures.push_back(fmt::format("figures/{}_family_{}.png", kind, o));
+  const std::vector<std::string> errors = plot_alpha_family(result, [&](size_t i) { return out.stage(figures[i]); });
+  for (size_t i = 0; i < figures.size(); ++i)
+    if (i >= errors.size() || !errors[i].empty()) {
+      if (i < errors.size()) out.discard(figures[i]);
+      figures[i].clear();
+    }
+  const std::string md = alpha_family_markdown(result, figures);
+  out.write("results.json", [&](std::ostream& o) { o << dump(alpha_family_json(result), 1) << '\n'; });
+  out.write("report.md", [&](std::ostream& o) { o << md; });
+  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
+  out.commit();
+}
+
+int run_family_shard(const AlphaFamilyOptions& options, int shard, int shards, const std::string& out_dir) {
+  Phases phases("study");
+  std::vector<std::string> objectives;
+  if (options.objectives.empty())
+    objectives = {"thin_plate", "e3"};
+  else
+    for (const Objective& o : options.objectives) objectives.push_back(o.name);
+  const Provenance p = current_provenance("");
+  const json study = family_study_json(options, objectives, p.version, revision_of(p));
+  const std::vector<FamilyTask> mine = shard_tasks(family_tasks(options, objectives), shard, shards);
+
+  const fs::path dir(out_dir);
+  if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(out_dir, "--out", "exists and is not a folder");
+  const fs::path path = dir / fmt::format("shard-{}-of-{}.jsonl", shard, shards);
+  std::set<std::string> done;
+  ShardFile existing;
+  if (fs::exists(path)) {
+    existing = read_shard_file(path);
+    for (const json& r : existing.records) {
+      if (!r.contains("study") || r["study"] != study)
+        throw InputError(path.string(), "study",
+                         "holds tasks of another study (other options or another coons revision); give another "
+                         "--out or remove the file");
+      done.insert(r["key"].get<std::string>());
+    }
+  }
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(out_dir, "--out", "cannot be created: " + ec.message());
+  if (!existing.clean) {  // drop the unfinished last line (and anything unreadable) before appending
+    const fs::path tmp = path.string() + ".tmp";
+    {
+      std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
+      for (const std::string& line : existing.lines) o << line << '\n';
+      if (!o) throw InputError(tmp.string(), "--out", "cannot be written");
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) throw InputError(path.string(), "--out", "cannot be replaced: " + ec.message());
+  }
+  std::ofstream o(path, std::ios::binary | std::ios::app);
+  if (!o) throw InputError(path.string(), "--out", "cannot be written");
+  phases.start("solve");
+  int ran = 0, skipped = 0;
+  double seconds = 0;
+  for (size_t t = 0; t < mine.size(); ++t) {
+    const std::string key = family_task_key(options, mine[t], p.version, revision_of(p));
+    if (done.count(key)) {
+      ++skipped;
+      continue;
+    }
+    phases.note(fmt::format("{}/{}", t + 1, mine.size()));
+    const FamilyTaskResult r = run_family_task(options, mine[t]);
+    o << dump(family_task_record(study, key, r)) << '\n' << std::flush;
+    if (!o) throw InputError(path.string(), "--out", "cannot be written");
+    done.insert(key);
+    seconds += r.seconds;
+    ++ran;
+  }
+  print_text(fmt::format("shard {}/{}: {} tasks, {} already there, {} run ({:.3g} s of task time); {}\n", shard, shards,
+                         mine.size(), skipped, ran, seconds, path.string()));
+  return kExitOk;
+}
+
+int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
+  Phases phases("study");
+  phases.start("read");
+  if (!fs::is_directory(merge_dir)) throw InputError(merge_dir, "--merge", "is not a folder");
+  const std::regex shard_name(R"(shard-[0-9]+-of-[0-9]+\.jsonl)");
+  std::vector<fs::path> files;
+  for (const auto& e : fs::directory_iterator(merge_dir))
+    if (e.is_regular_file() && std::regex_match(e.path().filename().string(), shard_name)) files.push_back(e.path());
+  std::sort(files.begin(), files.end());
+  if (files.empty()) throw InputError(merge_dir, "--merge", "holds no shard-I-of-N.jsonl file");
+
+  std::optional<json> study;
+  AlphaFamilyOptions options;
+  std::vector<std::string> objectives;
+  std::string version, revision;
+  std::map<std::tuple<std::string, int, int>, FamilyTaskResult> by_task;
+  for (const fs::path& file : files) {
+    const std::string where = file.string();
+    for (const json& r : read_shard_file(file).records) {
+      if (!r.contains("study")) throw InputError(where, "study", "missing");
+      if (!study) {
+        study = r["study"];
+        options = family_options_of(*study, &objectives, where);
+        const json coons = study->value("coons", json::object());
+        version = coons.value("version", "");
+        revision = coons.value("git_revision", "");
+      } else if (r["study"] != *study) {
+        throw InputError(where, "study", "the shards hold tasks of different studies (options or coons revision)");
+      }
+      FamilyTaskResult t = family_task_from_record(r, where);
+      if (r["key"] != family_task_key(options, t.task, version, revision))
+        throw InputError(where, "key",
+                         fmt::format("'{}' is not the key of its task (boundary {}, degree {}, {})",
+                                     r["key"].get<std::string>(), t.task.index, t.task.degree, t.task.objective));
+      by_task.emplace(std::make_tuple(t.task.objective, t.task.degree, t.task.index), std::move(t));
+    }
+  }
+  if (!study) throw InputError(merge_dir, "--merge", "the shards hold no finished task");
+
+  const std::vector<FamilyTask> all = family_tasks(options, objectives);
+  std::vector<FamilyTaskResult> results;
+  results.reserve(all.size());
+  size_t missing = 0;
+  const FamilyTask* first_missing = nullptr;
+  double seconds = 0;
+  for (const FamilyTask& t : all) {
+    const auto it = by_task.find(std::make_tuple(t.objective, t.degree, t.index));
+    if (it == by_task.end()) {
+      if (!first_missing) first_missing = &t;
+      ++missing;
+      continue;
+    }
+    seconds += it->second.seconds;
+    results.push_back(it->second);
+  }
+  if (missing > 0)
+    throw InputError(
+        merge_dir, "--merge",
+        fmt::format("{} of {} tasks are missing (the first: boundary {}, degree {}, {}); run their "
+                    "shards (again) before merging",
+                    missing, all.size(), first_missing->index, first_missing->degree, first_missing->objective));
+  if (by_task.size() != all.size())
+    throw InputError(merge_dir, "--merge",
+                     fmt::format("the shards hold {} tasks outside the study's list", by_task.size() - all.size()));
+  phases.start("write");
+  write_family_report(assemble_alpha_family(options, objectives, results), out_dir);
+  print_text(fmt::format("merged {} tasks from {} shard files: {:.4g} s of task time, {:.3g} s per task\n", all.size(),
+                         files.size(), seconds, seconds / double(all.size())));
+  return kExitOk;
+}
+
+}  // namespace coons::cli

@@ -1,0 +1,355 @@
+#include "coons/study/family_tasks.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <map>
+#include <memory>
+
+#include "coons/alpha/alpha_search.h"
+#include "coons/io/input_error.h"
+#include "coons/io/net_json.h"
+#include "coons/mask/mask_families.h"
+#include "coons/net/degree_elevation.h"
+#include "coons/study/backend_choice.h"
+#include "coons/study/degree_limit_study.h"
+#include "coons/study/study.h"
+#if COONS_HAVE_FFTW
+#include "coons/alpha/spectral_objective.h"
+#endif
+
+namespace coons {
+
+using nlohmann::json;
+
+std::vector<FamilyTask> family_tasks(const AlphaFamilyOptions& options, const std::vector<std::string>& objectives) {
+  std::vector<FamilyTask> out;
+  out.reserve(objectives.size() * options.degrees.size() * size_t(std::max(options.count, 0)));
+  for (const std::string& o : objectives)
+    for (int d : options.degrees)
+      for (int k = 0; k < options.count; ++k) out.push_back({k, d, o});
+  return out;
+}
+
+std::vector<FamilyTask> shard_tasks(const std::vector<FamilyTask>& all, int shard, int shards) {
+  std::vector<FamilyTask> out;
+  for (size_t t = 0; t < all.size(); ++t)
+    if (shards > 0 && t % size_t(shards) == size_t(shard)) out.push_back(all[t]);
+  return out;
+}
+
+std::optional<std::pair<int, int>> parse_shard(const std::string& text, std::string* why) {
+  auto fail = [&](const std::string& reason) -> std::optional<std::pair<int, int>> {
+    if (why) *why = reason;
+    return std::nullopt;
+  };
+  const size_t slash = text.find('/');
+  auto whole = [](const std::string& s, int* out) {
+    if (s.empty() || s.size() > 9 || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }))
+      return false;
+    *out = std::stoi(s);
+    return true;
+  };
+  int shard = 0, shards = 0;
+  if (slash == std::string::npos || !whole(text.substr(0, slash), &shard) || !whole(text.substr(slash + 1), &shards))
+    return fail(fmt::format("'{}' is not I/N (two whole numbers, e.g. 0/4)", text));
+  if (shards < 1) return fail(fmt::format("N must be at least 1, not {}", shards));
+  if (shard >= shards) return fail(fmt::format("I must be in [0, N) = [0, {}), not {}", shards, shard));
+  return std::make_pair(shard, shards);
+}
+
+std::string to_string(FamilyTaskStatus s) {
+  switch (s) {
+    case FamilyTaskStatus::kInterior:
+      return "interior";
+    case FamilyTaskStatus::kAtBound:
+      return "at_bound";
+    case FamilyTaskStatus::kFlat:
+      return "flat";
+    case FamilyTaskStatus::kFailed:
+      return "failed";
+  }
+  return "failed";
+}
+
+namespace {
+
+// f_b(α) of one boundary: the sine basis where it applies, else a factorisation and a solve.
+std::function<double(double)> alpha_curve(const Boundary& b, const Objective& objective,
+                                          const solvers::SolverInfo& solver) {
+#if COONS_HAVE_FFTW
+  if (b.m >= 2 && b.n >= 2 && SpectralAlphaObjective::supports(objective)) {
+    auto f = std::make_shared<SpectralAlphaSearchObjective>(b, objective);
+    return [f](double alpha) {
+      const auto e = f->evaluate(alpha, false);
+      return e.ok() ? e.value : HUGE_VAL;
+    };
+  }
+#endif
+  auto f = std::make_shared<MaskObjective>(
+      b, objective, [](double a) { return alpha_family(a); }, solver);
+  return [f](double alpha) {
+    const auto e = f->evaluate(alpha, false);
+    return e.ok() ? e.value : HUGE_VAL;
+  };
+}
+
+Objective objective_named(const std::string& name) {
+  std::string why;
+  const std::optional<Objective> o = parse_objective(name, &why);
+  if (!o) throw InputError("study", "objective", why);
+  return *o;
+}
+
+json finite_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
+
+}  // namespace
+
+FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const FamilyTask& task) {
+  const auto start = std::chrono::steady_clock::now();
+  FamilyTaskResult r;
+  r.task = task;
+  const Objective objective = objective_named(task.objective);
+  const Boundary b =
+      elevate_boundary(random_smooth_boundary(options.seed, task.index, options.generator), task.degree, task.degree);
+  const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
+  const AlphaSearchSummary s = search_alpha(b, objective, solver);
+  if (s.flat) {
+    r.status = FamilyTaskStatus::kFlat;
+  } else if (!s.parameter || s.status != SearchStatus::kSuccess) {
+    r.status = FamilyTaskStatus::kFailed;
+  } else {
+    r.status = s.at_bound ? FamilyTaskStatus::kAtBound : FamilyTaskStatus::kInterior;
+    r.alpha = s.parameter;
+    r.value = s.value;
+    const auto curve = alpha_curve(b, objective, solver);
+    for (double alpha : family_alpha_grid(options.grid_points)) r.grid.push_back(curve(alpha));
+  }
+  r.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return r;
+}
+
+json family_study_json(const AlphaFamilyOptions& o, const std::vector<std::string>& objectives,
+                       const std::string& version, const std::string& revision) {
+  return {{"family", "random-smooth"},
+          {"seed", o.seed},
+          {"count", o.count},
+          {"generator",
+           {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
+          {"degrees", o.degrees},
+          {"objectives", objectives},
+          {"parameter", "alpha"},
+          {"grid_points", o.grid_points},
+          {"solver", o.solver ? o.solver->name : std::string("auto")},
+          {"coons", {{"version", version}, {"git_revision", revision}}}};
+}
+
+std::string family_task_key(const AlphaFamilyOptions& o, const FamilyTask& task, const std::string& version,
+                            const std::string& revision) {
+  // Every input that changes the task's result, in a fixed order (json objects sort their keys).
+  const json inputs = {
+      {"family", "random-smooth"},
+      {"seed", o.seed},
+      {"generator",
+       {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
+      {"index", task.index},
+      {"degree", task.degree},
+      {"objective", task.objective},
+      {"parameter", "alpha"},
+      {"grid_points", o.grid_points},
+      {"solver", o.solver ? o.solver->name : std::string("auto")},
+      {"version", version},
+      {"git_revision", revision}};
+  std::uint64_t h = 14695981039346656037ULL;  // FNV-1a, 64 bit
+  for (const unsigned char c : inputs.dump()) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+json family_task_record(const json& study, const std::string& key, const FamilyTaskResult& r) {
+  json grid = json::array();
+  for (double v : r.grid) grid.push_back(finite_or_null(v));
+  return {{"key", key},
+          {"study", study},
+          {"index", r.task.index},
+          {"degree", r.task.degree},
+          {"objective", r.task.objective},
+          {"parameter", "alpha"},
+          {"status", to_string(r.status)},
+          {"alpha", r.alpha ? finite_or_null(*r.alpha) : json(nullptr)},
+          {"value", r.alpha ? finite_or_null(r.value) : json(nullptr)},
+          {"grid", grid},
+          {"seconds", r.seconds}};
+}
+
+namespace {
+
+template <typename T>
+T field(const json& j, const char* name, const std::string& where) {
+  if (!j.is_object() || !j.contains(name)) throw InputError(where, name, "missing");
+  try {
+    return j.at(name).get<T>();
+  } catch (const json::exception&) {
+    throw InputError(where, name, "has the wrong type");
+  }
+}
+
+}  // namespace
+
+AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>* objectives,
+                                     const std::string& where) {
+  AlphaFamilyOptions o;
+  if (field<std::string>(study, "family", where) != "random-smooth")
+    throw InputError(where, "study.family", "not a random-smooth family study");
+  o.seed = field<std::uint64_t>(study, "seed", where);
+  o.count = field<int>(study, "count", where);
+  const json generator = field<json>(study, "generator", where);
+  o.generator.side_degree = field<int>(generator, "side_degree", where);
+  o.generator.height = field<double>(generator, "height", where);
+  o.generator.wiggle = field<double>(generator, "wiggle", where);
+  o.degrees = field<std::vector<int>>(study, "degrees", where);
+  o.grid_points = field<int>(study, "grid_points", where);
+  const auto solver = field<std::string>(study, "solver", where);
+  if (solver != "auto") {
+    o.solver = solvers::find_solver(solver);
+    if (!o.solver) throw InputError(where, "study.solver", fmt::format("'{}' is not built into this coons", solver));
+  }
+  *objectives = field<std::vector<std::string>>(study, "objectives", where);
+  for (const std::string& name : *objectives) {
+    std::string why;
+    if (!parse_objective(name, &why)) throw InputError(where, "study.objectives", why);
+  }
+  std::string why;
+  if (!o.is_valid(&why)) throw InputError(where, "study", why);
+  return o;
+}
+
+FamilyTaskResult family_task_from_record(const json& record, const std::string& where) {
+  FamilyTaskResult r;
+  r.task.index = field<int>(record, "index", where);
+  r.task.degree = field<int>(record, "degree", where);
+  r.task.objective = field<std::string>(record, "objective", where);
+  const auto status = field<std::string>(record, "status", where);
+  bool known = false;
+  for (FamilyTaskStatus s :
+       {FamilyTaskStatus::kInterior, FamilyTaskStatus::kAtBound, FamilyTaskStatus::kFlat, FamilyTaskStatus::kFailed})
+    if (status == to_string(s)) {
+      r.status = s;
+      known = true;
+    }
+  if (!known) throw InputError(where, "status", fmt::format("unknown status '{}'", status));
+  const bool optimum = r.status == FamilyTaskStatus::kInterior || r.status == FamilyTaskStatus::kAtBound;
+  if (optimum) {
+    r.alpha = field<double>(record, "alpha", where);
+    r.value = field<double>(record, "value", where);
+    for (const json& v : field<json>(record, "grid", where)) {
+      if (!v.is_null() && !v.is_number()) throw InputError(where, "grid", "not a number or null");
+      r.grid.push_back(v.is_null() ? HUGE_VAL : v.get<double>());
+    }
+  }
+  if (record.contains("seconds") && record["seconds"].is_number()) r.seconds = record["seconds"].get<double>();
+  return r;
+}
+
+AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const std::vector<std::string>& objectives,
+                                        const std::vector<FamilyTaskResult>& results) {
+  AlphaFamilyResult r;
+  r.options = options;
+  r.objectives = objectives;
+  const int count = options.count;
+  size_t next = 0;
+  for (const std::string& objective : objectives)
+    for (int degree : options.degrees) {
+      AlphaFamilyCell cell;
+      cell.degree = degree;
+      cell.objective = objective;
+      cell.alpha_star.resize(count);
+      cell.mu_star.resize(count);
+      cell.loss.resize(count);
+      std::vector<int> used;
+      std::vector<double> optimum;
+      std::vector<std::vector<double>> curves;
+      for (int k = 0; k < count && next < results.size(); ++k, ++next) {
+        const FamilyTaskResult& t = results[next];
+        switch (t.status) {
+          case FamilyTaskStatus::kFlat:
+            ++cell.flat;
+            continue;
+          case FamilyTaskStatus::kFailed:
+            ++cell.failed;
+            continue;
+          case FamilyTaskStatus::kAtBound:
+            ++cell.at_bound;
+            break;
+          case FamilyTaskStatus::kInterior:
+            ++cell.interior;
+            break;
+        }
+        cell.alpha_star[k] = t.alpha;
+        if (t.status == FamilyTaskStatus::kInterior && t.alpha) cell.mu_star[k] = mu_of_alpha(degree, *t.alpha);
+        used.push_back(k);
+        optimum.push_back(t.value);
+        curves.push_back(t.grid);
+      }
+      std::vector<double> alphas, mus;
+      for (const auto& a : cell.alpha_star)
+        if (a) alphas.push_back(*a);
+      for (const auto& m : cell.mu_star)
+        if (m) mus.push_back(*m);
+      cell.alpha = distribution_of(alphas);
+      cell.mu = distribution_of(mus);
+      const std::optional<BestSingleAlpha> best = best_single_alpha_on_grid(curves, optimum);
+      if (best) {
+        cell.best_alpha = best->alpha;
+        cell.best_mu = mu_of_alpha(degree, best->alpha);
+        std::vector<double> losses, ratios;
+        for (size_t u = 0; u < used.size(); ++u) {
+          const double value = interpolate_on_grid(curves[u], best->s);
+          double own = std::min(optimum[u], value);
+          for (double v : curves[u])
+            if (std::isfinite(v)) own = std::min(own, v);
+          if (std::isfinite(value) && own > 0) {
+            cell.loss[used[u]] = (value - own) / own;
+            losses.push_back(*cell.loss[used[u]]);
+          }
+          const double a = *cell.alpha_star[used[u]];
+          if (a > -0.25 && best->alpha > -0.25) ratios.push_back((a + 0.25) / (best->alpha + 0.25));
+        }
+        cell.losses = distribution_of(losses);
+        cell.alpha_ratio = distribution_of(ratios);
+        if (!losses.empty()) {
+          double sum = 0;
+          for (double x : losses) sum += x;
+          cell.loss_mean = sum / double(losses.size());
+        }
+      }
+      r.cells.push_back(std::move(cell));
+    }
+  return r;
+}
+
+AlphaFamilyResult run_alpha_family(const AlphaFamilyOptions& options,
+                                   const std::function<void(const std::string&)>& progress) {
+  std::vector<std::string> objectives;
+  if (options.objectives.empty())
+    for (const Objective& o : default_study_objectives()) objectives.push_back(o.name);
+  else
+    for (const Objective& o : options.objectives) objectives.push_back(o.name);
+  std::vector<FamilyTaskResult> results;
+  int last_degree = -1;
+  std::string last_objective;
+  for (const FamilyTask& task : family_tasks(options, objectives)) {
+    if (progress && (task.degree != last_degree || task.objective != last_objective))
+      progress(fmt::format("degree {}, {}", task.degree, task.objective));
+    last_degree = task.degree;
+    last_objective = task.objective;
+    results.push_back(run_family_task(options, task));
+  }
+  return assemble_alpha_family(options, objectives, results);
+}
+
+}  // namespace coons

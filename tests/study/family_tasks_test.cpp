@@ -1,0 +1,96 @@
+#include "coons/study/family_tasks.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <set>
+
+#include "coons/io/input_error.h"
+
+using namespace coons;
+
+TEST_CASE("parse_shard: I/N with 0 <= I < N, anything else is refused with a reason") {
+  std::string why;
+  const auto s = parse_shard("2/5", &why);
+  REQUIRE(s);
+  CHECK(s->first == 2);
+  CHECK(s->second == 5);
+  for (const char* bad : {"5/5", "1/0", "-1/3", "1", "a/b", "1/2/3", "", "1 /2"}) {
+    why.clear();
+    CHECK_FALSE(parse_shard(bad, &why));
+    CHECK_FALSE(why.empty());
+  }
+}
+
+TEST_CASE("shard_tasks: the shards partition the task list") {
+  AlphaFamilyOptions options;
+  options.degrees = {3, 5, 8};
+  options.count = 7;
+  const std::vector<FamilyTask> all = family_tasks(options, {"thin_plate", "e3"});
+  REQUIRE(all.size() == 42);
+  std::multiset<std::tuple<std::string, int, int>> seen;
+  for (int i = 0; i < 4; ++i)
+    for (const FamilyTask& t : shard_tasks(all, i, 4)) seen.emplace(t.objective, t.degree, t.index);
+  CHECK(seen.size() == all.size());
+  for (const FamilyTask& t : all) CHECK(seen.count({t.objective, t.degree, t.index}) == 1);
+  CHECK(shard_tasks(all, 0, 50).size() == 1);
+}
+
+TEST_CASE("family_task_key: changes with every input of the task and with the coons revision") {
+  AlphaFamilyOptions options;
+  const FamilyTask task{4, 5, "thin_plate"};
+  const std::string key = family_task_key(options, task, "1.0", "abc");
+  CHECK(key.size() == 16);
+  CHECK(family_task_key(options, task, "1.0", "abc") == key);
+  std::set<std::string> keys = {key};
+  keys.insert(family_task_key(options, {5, 5, "thin_plate"}, "1.0", "abc"));
+  keys.insert(family_task_key(options, {4, 8, "thin_plate"}, "1.0", "abc"));
+  keys.insert(family_task_key(options, {4, 5, "e3"}, "1.0", "abc"));
+  keys.insert(family_task_key(options, task, "1.1", "abc"));
+  keys.insert(family_task_key(options, task, "1.0", "abd"));
+  AlphaFamilyOptions other = options;
+  other.seed = 2;
+  keys.insert(family_task_key(other, task, "1.0", "abc"));
+  other = options;
+  other.generator.height = 0.25;
+  keys.insert(family_task_key(other, task, "1.0", "abc"));
+  CHECK(keys.size() == 8);
+  other = options;
+  other.count = 999;  // the count is not an input of boundary 4's task
+  CHECK(family_task_key(other, task, "1.0", "abc") == key);
+}
+
+TEST_CASE("interpolate_on_grid: exact at the nodes and for cubics in the grid index") {
+  auto cubic = [](double s) { return 1 + s - 0.3 * s * s + 0.02 * s * s * s; };
+  std::vector<double> values(9);
+  for (int k = 0; k < 9; ++k) values[k] = cubic(k);
+  for (int k = 0; k < 9; ++k) CHECK(interpolate_on_grid(values, k) == values[k]);
+  for (double s : {0.25, 1.5, 4.7, 7.9}) CHECK(interpolate_on_grid(values, s) == Approx(cubic(s)).epsilon(1e-12));
+  values[6] = HUGE_VAL;  // a failed evaluation: linear between finite neighbours, ∞ next to it
+  CHECK(interpolate_on_grid(values, 4.5) == Approx(0.5 * (values[4] + values[5])));
+  CHECK(std::isinf(interpolate_on_grid(values, 5.5)));
+}
+
+TEST_CASE("family_task_record: a record read back is the same result") {
+  AlphaFamilyOptions options;
+  options.count = 3;
+  options.degrees = {3};
+  options.grid_points = 9;
+  const FamilyTaskResult r = run_family_task(options, {1, 3, "thin_plate"});
+  REQUIRE(r.alpha);
+  REQUIRE(r.grid.size() == 9);
+  const auto study = family_study_json(options, {"thin_plate"}, "v", "r");
+  const FamilyTaskResult back =
+      family_task_from_record(nlohmann::json::parse(family_task_record(study, "k", r).dump()), "f");
+  CHECK(back.alpha == r.alpha);
+  CHECK(back.value == r.value);
+  CHECK(back.grid == r.grid);
+  CHECK(back.status == r.status);
+  std::vector<std::string> objectives;
+  const AlphaFamilyOptions again = family_options_of(study, &objectives, "f");
+  CHECK(again.degrees == options.degrees);
+  CHECK(again.count == 3);
+  CHECK(objectives == std::vector<std::string>{"thin_plate"});
+  nlohmann::json broken = family_task_record(study, "k", r);
+  broken["status"] = "maybe";
+  CHECK_THROWS_AS(family_task_from_record(broken, "f"), InputError);
+}
