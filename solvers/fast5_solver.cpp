@@ -18,7 +18,12 @@ using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
 constexpr std::array<double, 5> kImpulse = {0, 0, 1, 0, 0};
-constexpr double kCapacitanceTolerance = 1e-14;
+// The capacitance CG stops at this residual relative to its right-hand side: the boundary
+// corrections remove what is left (the first solve is only accurate to 1e-5 there at N = 1023
+// anyway, see the header). A correction solves to the accuracy it needs (to bring the boundary
+// residual to a tenth of kBoundaryResidual), within [kCorrectionTolerance, 1e-2].
+constexpr double kCapacitanceTolerance = 1e-7;
+constexpr double kCorrectionTolerance = 1e-10;
 constexpr int kCorrections = 3;              // at most this many boundary corrections per solve
 constexpr double kBoundaryResidual = 1e-13;  // relative residual on the boundary columns at which they stop
 
@@ -73,11 +78,11 @@ struct CapacitanceBlock {
 
   // Conjugate gradients with the diagonal as preconditioner, one column per right-hand side
   // (each with its own step lengths; a converged column is frozen); returns the iterations.
-  int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X) const {
+  int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const {
     const Eigen::Index n = rhs.rows(), m = rhs.cols();
     X.setZero(n, m);
     if (n == 0 || m == 0) return 0;
-    Eigen::ArrayXd target = kCapacitanceTolerance * rhs.colwise().norm().transpose().array();
+    Eigen::ArrayXd target = tolerance * rhs.colwise().norm().transpose().array();
     Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP, s;
     Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
     std::vector<bool> active(static_cast<std::size_t>(m), false);
@@ -107,6 +112,111 @@ struct CapacitanceBlock {
     return limit;
   }
 };
+
+// The banded LDLᵀ factors of M_q for every mode q, row by row. M_q is Toeplitz, so its factors
+// converge geometrically down the rows (after about 40/√ν_q rows, ν_q the mode's eigenvalue):
+// from row r_q on they equal their limit to the last bit, and only the rows above are stored.
+// Row r keeps the modes q < active[r] (the ones not yet converged there; active is
+// non-increasing), contiguous from offset[r]; the others read the limit.
+struct ModeFactors {
+  int rows = 0, cols = 0;
+  std::vector<int> active;
+  std::vector<std::size_t> offset;
+  std::vector<double> inv_d, l1, l2;        // stored part
+  std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
+};
+
+// Full rows of the factors, kept up to date as a sweep moves one row at a time (only the stored
+// modes are copied; the rest keep the limit).
+class FactorRow {
+ public:
+  explicit FactorRow(const ModeFactors& f)
+      : f_(f), inv_d(f.lim_inv_d), l1(f.lim_l1), l2(f.lim_l2), active_(0) {}
+  void seek(int r) {
+    const int q = f_.active[std::size_t(r)];
+    const std::size_t o = f_.offset[std::size_t(r)];
+    std::copy_n(f_.inv_d.data() + o, q, inv_d.data());
+    std::copy_n(f_.l1.data() + o, q, l1.data());
+    std::copy_n(f_.l2.data() + o, q, l2.data());
+    for (int k = q; k < active_; ++k) {  // converged since the last row
+      inv_d[std::size_t(k)] = f_.lim_inv_d[std::size_t(k)];
+      l1[std::size_t(k)] = f_.lim_l1[std::size_t(k)];
+      l2[std::size_t(k)] = f_.lim_l2[std::size_t(k)];
+    }
+    active_ = q;
+  }
+  const ModeFactors& f_;
+  std::vector<double> inv_d, l1, l2;
+
+ private:
+  int active_;
+};
+
+constexpr double kConverged = 1e-15;
+
+ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows) {
+  ModeFactors f;
+  const int cols = int(nu.size());
+  f.rows = rows;
+  f.cols = cols;
+  f.lim_inv_d.resize(std::size_t(cols));
+  f.lim_l1.resize(std::size_t(cols));
+  f.lim_l2.resize(std::size_t(cols));
+  std::vector<int> converged(std::size_t(cols), rows);
+  const auto modes = std::size_t(cols);
+  std::vector<std::vector<double>> d(modes), l1(modes), l2(modes);
+  for (int q = 0; q < cols; ++q) {
+    const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
+    const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
+    auto& dq = d[std::size_t(q)];
+    auto& l1q = l1[std::size_t(q)];
+    auto& l2q = l2[std::size_t(q)];
+    double dm1 = 0, dm2 = 0, l1m1 = 0, l2m1 = 0, l2m2 = 0;
+    for (int r = 0; r < rows; ++r) {
+      const double dr = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
+      const double l1r = (a1 - l2m1 * dm1 * l1m1) / dr, l2r = a2 / dr;
+      const double change = std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r),
+                                      std::abs(l2r - l2m1) / l2r});
+      if (r >= 3 && change <= kConverged) {
+        converged[std::size_t(q)] = r;
+        break;
+      }
+      dq.push_back(dr);
+      l1q.push_back(l1r);
+      l2q.push_back(l2r);
+      dm2 = dm1;
+      dm1 = dr;
+      l1m1 = l1r;
+      l2m2 = l2m1;
+      l2m1 = l2r;
+    }
+    f.lim_inv_d[std::size_t(q)] = 1 / dq.back();
+    f.lim_l1[std::size_t(q)] = l1q.back();
+    f.lim_l2[std::size_t(q)] = l2q.back();
+  }
+  f.active.assign(std::size_t(rows), 0);
+  f.offset.assign(std::size_t(rows) + 1, 0);
+  int q_max = cols;
+  for (int r = 0; r < rows; ++r) {
+    while (q_max > 0 && converged[std::size_t(q_max) - 1] <= r) --q_max;
+    f.active[std::size_t(r)] = q_max;
+    f.offset[std::size_t(r) + 1] = f.offset[std::size_t(r)] + std::size_t(q_max);
+  }
+  const std::size_t total = f.offset.back();
+  f.inv_d.resize(total);
+  f.l1.resize(total);
+  f.l2.resize(total);
+  for (int r = 0; r < rows; ++r)
+    for (int q = 0; q < f.active[std::size_t(r)]; ++q) {
+      const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
+      const auto& dq = d[std::size_t(q)];
+      const bool stored = std::size_t(r) < dq.size();
+      f.inv_d[at] = stored ? 1 / dq[std::size_t(r)] : f.lim_inv_d[std::size_t(q)];
+      f.l1[at] = stored ? l1[std::size_t(q)][std::size_t(r)] : f.lim_l1[std::size_t(q)];
+      f.l2[at] = stored ? l2[std::size_t(q)][std::size_t(r)] : f.lim_l2[std::size_t(q)];
+    }
+  return f;
+}
 
 // The unknown-independent checks of fast5: a grid operator, every point free, a·C + b·T.
 bool describe(const LinearOperator& op, SolveSummary& summary, C1FamilyWeights* weights) {
@@ -173,6 +283,7 @@ class Fast5Solver final : public LinearSolver {
       return status;
     }
     const int count = 3;
+    for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
     const double scale_j = std::sqrt(2.0 / (C_ + 1));
     for (int c = 0; c < count; ++c) {
       RowMajor& hat = hats_[std::size_t(c)];
@@ -182,14 +293,15 @@ class Fast5Solver final : public LinearSolver {
     // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = ŷ − A₁⁻¹ U h.
     banded_solve_all(count, dots_);
     std::array<Eigen::MatrixXd, 2> h;
-    int iterations = capacitance_solve(dots_, count, false, h);
+    int iterations = capacitance_solve(dots_, count, kCapacitanceTolerance, h);
     add_boundary_response(count, h, -1.0, true);
     // The columns 0 and cols−1 carry the rounding of h (see the header): correct them from the
     // residual there, which is exact, until it is below kBoundaryResidual relative to b.
     std::array<Eigen::MatrixXd, 2> rho;
     for (int step = 0; step < kCorrections; ++step) {
       if (!boundary_residual(B, count, rho)) break;
-      iterations = std::max(iterations, capacitance_solve(rho, count, true, h));
+      const double tolerance = std::clamp(0.1 * kBoundaryResidual / boundary_ratio_, kCorrectionTolerance, 1e-2);
+      iterations = std::max(iterations, capacitance_solve(rho, count, tolerance, h));
       add_boundary_response(count, h, 1.0, false);
     }
     X.resize(B.rows(), 3);
@@ -202,35 +314,10 @@ class Fast5Solver final : public LinearSolver {
   }
 
  private:
-  // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j,
-  // stored row-major by (row r, mode q), computed a row at a time for all modes together.
+  // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
   void factor_modes() {
-    const double a = weights_.a, b = weights_.b;
     nu_ = second_difference_eigenvalues(C_);
-    inv_d_.resize(R_, C_);
-    l1_.setZero(R_, C_);
-    l2_.setZero(R_, C_);
-    Eigen::ArrayXd d0(C_), d1(C_), d2(C_), dprev(C_), dprev2(C_), d(C_);
-    for (int q = 0; q < C_; ++q) {
-      const double alpha = a * nu_[q] * nu_[q] + b, beta = 2 * b * nu_[q], gamma = b * nu_[q] * nu_[q];
-      d0[q] = 6 * alpha + 2 * beta + gamma;  // definite: no zero pivot
-      d1[q] = -4 * alpha - beta;
-      d2[q] = alpha;
-    }
-    for (int r = 0; r < R_; ++r) {
-      d = d0;
-      if (r >= 1) d -= l1_.row(r - 1).transpose().array().square() * dprev;
-      if (r >= 2) d -= l2_.row(r - 2).transpose().array().square() * dprev2;
-      inv_d_.row(r) = d.inverse().transpose();
-      if (r + 1 < R_) {
-        Eigen::ArrayXd l = d1;
-        if (r >= 1) l -= l2_.row(r - 1).transpose().array() * dprev * l1_.row(r - 1).transpose().array();
-        l1_.row(r) = (l / d).transpose();
-      }
-      if (r + 2 < R_) l2_.row(r) = (d2 / d).transpose();
-      dprev2 = dprev;
-      dprev = d;
-    }
+    factors_ = coons::solvers::factor_modes(weights_.a, weights_.b, nu_, R_);
   }
 
   // The four capacitance blocks (parity of q) × (parity of p), see the header, and the sine
@@ -245,6 +332,11 @@ class Fast5Solver final : public LinearSolver {
     near_.clear();  // columns 0, 1, 2, cols−3, cols−2, cols−1
     for (int j : {0, 1, 2, C_ - 3, C_ - 2, C_ - 1})
       if (j >= 0 && j < C_ && std::find(near_.begin(), near_.end(), j) == near_.end()) near_.push_back(j);
+    near_index_.fill(0);  // columns 0, 1, 2, cols−3, cols−2, cols−1 → their place in near_
+    for (int k = 0; k < 6; ++k) {
+      const int j = k < 3 ? k : C_ - 6 + k;
+      if (j >= 0 && j < C_) near_index_[std::size_t(k)] = int(std::find(near_.begin(), near_.end(), j) - near_.begin());
+    }
     near_sines_.resize(C_, Eigen::Index(near_.size()));
     for (std::size_t k = 0; k < near_.size(); ++k)
       for (int q = 0; q < C_; ++q)
@@ -296,43 +388,61 @@ class Fast5Solver final : public LinearSolver {
     }
   }
 
-  // work_[c] = M⁻¹ hats_[c] for every mode q (rows × cols, row-major), all right-hand sides in
-  // one sweep down and one up (each factor row read once for all of them); g(r, 2c + parity) =
-  // Σ_q (M⁻¹ hat)(r, q)·t_q over the modes q of that parity.
-  void banded_solve_all(int count, Eigen::MatrixXd& g) {
-    g.resize(R_, 2 * count);
+  // Down the rows: work_[c] = L⁻¹(base), base = hats_[c] (with from_hats) plus, with z, the sources
+  // sign·U z_c on the boundary columns (parity coordinates: (U z)(r, q) = t_q z(r, parity of q)
+  // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once).
+  void sweep_down(int count, bool from_hats, const std::array<Eigen::MatrixXd, 2>* z, double sign) {
     for (int c = 0; c < count; ++c) work_[std::size_t(c)].resize(R_, C_);
-    for (int r = 0; r < R_; ++r)
+    zeros_.assign(std::size_t(C_), 0.0);
+    FactorRow above(factors_), above2(factors_);  // rows r − 1 and r − 2
+    const double* t_even = tmasks_.col(0).data();
+    const double* t_odd = tmasks_.col(1).data();
+    for (int r = 0; r < R_; ++r) {
+      if (r >= 1) above.seek(r - 1);
+      if (r >= 2) above2.seek(r - 2);
       for (int c = 0; c < count; ++c) {
-        RowMajor& W = work_[std::size_t(c)];
-        const RowMajor& Y = hats_[std::size_t(c)];
-        if (r == 0) {
-          W.row(r) = Y.row(r);
-        } else if (r == 1) {
-          W.row(r).array() = Y.row(r).array() - l1_.row(r - 1).array() * W.row(r - 1).array();
+        double* w = &work_[std::size_t(c)](r, 0);
+        const double* y = from_hats ? &hats_[std::size_t(c)](r, 0) : zeros_.data();
+        const double ze = z ? sign * (*z)[0](r, c) : 0, zo = z ? sign * (*z)[1](r, c) : 0;
+        if (r >= 2) {  // one fused pass over the row (vectorised)
+          const double* w1 = w - C_;
+          const double* w2 = w - 2 * std::ptrdiff_t(C_);
+          const double* l1 = above.l1.data();
+          const double* l2 = above2.l2.data();
+          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q] - l1[q] * w1[q] - l2[q] * w2[q];
         } else {
-          W.row(r).array() = Y.row(r).array() - l1_.row(r - 1).array() * W.row(r - 1).array() -
-                             l2_.row(r - 2).array() * W.row(r - 2).array();
+          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q];
+          if (r == 1)
+            for (int q = 0; q < C_; ++q) w[q] -= above.l1[std::size_t(q)] * w[q - C_];
         }
       }
-    backward_sweep(count, g, tmasks_, nullptr);
+    }
   }
 
-  // The sweep up of the banded solve on work_[c] (already swept down); out(r, ·) = row r of the
-  // result times `dots` (one row per mode); with add, hats_[c] += the result and out is taken of
-  // the sum.
-  void backward_sweep(int count, Eigen::MatrixXd& out, const Eigen::MatrixXd& dots, bool* add) {
+  // Up the rows: work_[c] ← (LD)⁻ᵀ work_[c], completing work_[c] = M⁻¹ base. With add, hats_[c] +=
+  // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`.
+  void sweep_up(int count, Eigen::MatrixXd& out, const Eigen::MatrixXd& dots, bool add) {
     const Eigen::Index k = dots.cols();
     out.resize(R_, k * count);
-    for (int r = R_ - 1; r >= 0; --r)
+    FactorRow row(factors_);
+    for (int r = R_ - 1; r >= 0; --r) {
+      row.seek(r);
+      const double* inv_d = row.inv_d.data();
+      const double* l1 = row.l1.data();
+      const double* l2 = row.l2.data();
       for (int c = 0; c < count; ++c) {
         RowMajor& W = work_[std::size_t(c)];
-        if (r + 1 < R_) {
-          W.row(r).array() = W.row(r).array() * inv_d_.row(r).array() - l1_.row(r).array() * W.row(r + 1).array();
+        double* w = &W(r, 0);
+        if (r + 2 < R_) {
+          const double* w1 = w + C_;
+          const double* w2 = w + 2 * std::ptrdiff_t(C_);
+          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
+        } else if (r + 1 < R_) {
+          const double* w1 = w + C_;
+          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
         } else {
-          W.row(r).array() *= inv_d_.row(r).array();
+          for (int q = 0; q < C_; ++q) w[q] *= inv_d[q];
         }
-        if (r + 2 < R_) W.row(r).array() -= l2_.row(r).array() * W.row(r + 2).array();
         if (add) {
           RowMajor& Y = hats_[std::size_t(c)];
           Y.row(r) += W.row(r);
@@ -341,48 +451,37 @@ class Fast5Solver final : public LinearSolver {
           out.block(r, k * c, 1, k).noalias() = W.row(r) * dots;
         }
       }
+    }
   }
 
-  // With replace: hats_[c] ← M⁻¹(hats_[c] + sign·U z_c); otherwise hats_[c] += sign·M⁻¹ U z_c, the
-  // response to sources z on the boundary columns (parity coordinates: (U z)(r, q) = t_q z(r, parity
-  // of q) in the sine basis along j). near_values_[c] = the result on the columns near_.
+  // g(r, 2c + parity) = Σ_q (M⁻¹ hat_c)(r, q)·t_q over the modes q of that parity (hats_ kept).
+  void banded_solve_all(int count, Eigen::MatrixXd& g) {
+    sweep_down(count, true, nullptr, 0);
+    sweep_up(count, g, tmasks_, false);
+  }
+
+  // With replace: hats_[c] ← M⁻¹(hats_[c] + sign·U z_c); otherwise hats_[c] += sign·M⁻¹ U z_c.
+  // near_values_ = the result on the columns near_ (see sweep_up).
   void add_boundary_response(int count, const std::array<Eigen::MatrixXd, 2>& z, double sign, bool replace) {
-    for (int c = 0; c < count; ++c) work_[std::size_t(c)].resize(R_, C_);
-    for (int r = 0; r < R_; ++r)
-      for (int c = 0; c < count; ++c) {
-        RowMajor& W = work_[std::size_t(c)];
-        if (replace) {
-          W.row(r) = hats_[std::size_t(c)].row(r);
-          W.row(r).noalias() += (sign * z[0](r, c)) * tmasks_.col(0).transpose();
-        } else {
-          W.row(r).noalias() = (sign * z[0](r, c)) * tmasks_.col(0).transpose();
-        }
-        W.row(r).noalias() += (sign * z[1](r, c)) * tmasks_.col(1).transpose();
-        if (r >= 1) W.row(r).array() -= l1_.row(r - 1).array() * W.row(r - 1).array();
-        if (r >= 2) W.row(r).array() -= l2_.row(r - 2).array() * W.row(r - 2).array();
-      }
-    if (replace) {
-      backward_sweep(count, near_values_, near_sines_, nullptr);
+    sweep_down(count, replace, &z, sign);
+    sweep_up(count, near_values_, near_sines_, !replace);
+    if (replace)
       for (int c = 0; c < count; ++c) std::swap(hats_[std::size_t(c)], work_[std::size_t(c)]);
-    } else {
-      bool add = true;
-      backward_sweep(count, near_values_, near_sines_, &add);
-    }
   }
 
   // The capacitance system for each parity of q: rhs[qpar] is rows × count in the grid (along i);
   // with apply_h the right-hand side is H⁻¹·rhs. out[qpar] = Cap⁻¹ (H⁻¹) rhs, the same shape.
-  int capacitance_solve(const Eigen::MatrixXd& g, int count, bool apply_h, std::array<Eigen::MatrixXd, 2>& out) {
+  int capacitance_solve(const Eigen::MatrixXd& g, int count, double tolerance, std::array<Eigen::MatrixXd, 2>& out) {
     std::array<Eigen::MatrixXd, 2> rhs;
     for (int qpar = 0; qpar < 2; ++qpar) {
       rhs[std::size_t(qpar)].resize(R_, count);
       for (int c = 0; c < count; ++c) rhs[std::size_t(qpar)].col(c) = g.col(2 * c + qpar);
     }
-    return capacitance_solve(rhs, count, apply_h, out);
+    return capacitance_solve(rhs, count, tolerance, out, false);
   }
 
-  int capacitance_solve(const std::array<Eigen::MatrixXd, 2>& rhs, int count, bool apply_h,
-                        std::array<Eigen::MatrixXd, 2>& out) {
+  int capacitance_solve(const std::array<Eigen::MatrixXd, 2>& rhs, int count, double tolerance,
+                        std::array<Eigen::MatrixXd, 2>& out, bool apply_h = true) {
     const double scale_i = std::sqrt(2.0 / (R_ + 1));
     Eigen::MatrixXd hat(R_, count), part, block_rhs;
     Eigen::VectorXd column(R_);
@@ -398,7 +497,7 @@ class Fast5Solver final : public LinearSolver {
         block_rhs.resize(Eigen::Index(blk.modes.size()), count);
         for (std::size_t k = 0; k < blk.modes.size(); ++k) block_rhs.row(Eigen::Index(k)) = hat.row(blk.modes[k]);
         if (apply_h) blk.apply_h_inverse(block_rhs);
-        iterations = std::max(iterations, blk.solve(block_rhs, part));
+        iterations = std::max(iterations, blk.solve(block_rhs, part, tolerance));
         for (std::size_t k = 0; k < blk.modes.size(); ++k) solved.row(blk.modes[k]) = part.row(Eigen::Index(k));
       }
       out[std::size_t(qpar)].resize(R_, count);
@@ -414,14 +513,16 @@ class Fast5Solver final : public LinearSolver {
   // near_values_; false when it is below kBoundaryResidual·‖b‖ for every right-hand side.
   bool boundary_residual(const Eigen::MatrixX3d& B, int count, std::array<Eigen::MatrixXd, 2>& rho) {
     const double a = weights_.a, b = weights_.b;
+    std::array<double, 25> w5{};
+    for (int di = -2; di <= 2; ++di)
+      for (int dj = -2; dj <= 2; ++dj) w5[std::size_t(5 * (di + 2) + dj + 2)] = a * c_weight(di, dj) + b * t_weight(di, dj);
     std::array<Eigen::MatrixXd, 2> side;  // the residual on column 0 and on column cols−1
     bool large = false;
     for (int s = 0; s < 2; ++s) side[std::size_t(s)].resize(R_, count);
     for (int c = 0; c < count; ++c) {
       const auto value = [&](int i, int j) {
         if (i < 0 || i >= R_ || j < 0 || j >= C_) return 0.0;
-        const auto k = std::find(near_.begin(), near_.end(), j) - near_.begin();
-        return near_values_(i, Eigen::Index(near_.size()) * c + k);
+        return near_values_(i, Eigen::Index(near_.size()) * c + near_index_[std::size_t(j < 3 ? j : j - C_ + 6)]);
       };
       double norm2 = 0;
       for (int s = 0; s < 2; ++s) {
@@ -429,12 +530,14 @@ class Fast5Solver final : public LinearSolver {
         for (int i = 0; i < R_; ++i) {
           double r = B(Eigen::Index(i) * C_ + j, c);
           for (int di = -2; di <= 2; ++di)
-            for (int dj = -2; dj <= 2; ++dj) r -= (a * c_weight(di, dj) + b * t_weight(di, dj)) * value(i + di, j + dj);
+            for (int dj = -2; dj <= 2; ++dj) r -= w5[std::size_t(5 * (di + 2) + dj + 2)] * value(i + di, j + dj);
           side[std::size_t(s)](i, c) = r;
         }
         norm2 += side[std::size_t(s)].col(c).squaredNorm();
       }
-      if (std::sqrt(norm2) > kBoundaryResidual * B.col(c).norm()) large = true;
+      const double ratio = std::sqrt(norm2) / b_norms_[std::size_t(c)];
+      boundary_ratio_ = c == 0 ? ratio : std::max(boundary_ratio_, ratio);
+      if (ratio > kBoundaryResidual) large = true;
     }
     if (!large) return false;
     for (int s = 0; s < 2; ++s) rho[std::size_t(s)].resize(R_, count);
@@ -455,7 +558,11 @@ class Fast5Solver final : public LinearSolver {
   Eigen::VectorXd nu_, t_;
   Eigen::MatrixXd tmasks_, near_sines_, dots_;
   std::vector<int> near_;
-  RowMajor inv_d_, l1_, l2_;
+  std::array<int, 6> near_index_{};
+  std::array<double, 3> b_norms_{};
+  double boundary_ratio_ = 0;  // the largest ‖ρ‖/‖b‖ of the last boundary_residual
+  ModeFactors factors_;
+  std::vector<double> zeros_;  // a row of zeros (sweep_down without a grid)
   std::array<CapacitanceBlock, 4> blocks_;
   std::array<RowMajor, 3> hats_, work_;
   Eigen::MatrixXd near_values_;  // rows × (#near_ · count)
