@@ -33,9 +33,10 @@
 // the fly). At most kCorrections of them, until ‖ρ‖ ≤ 1e-13‖b‖: none to one up to N = 255, two
 // at 1023. Relative residuals after them (mask data, 3 right-hand sides): 1e-13 (biharmonic) /
 // 4e-13 (w = 0.5) at N = 255, 7e-13 / 3e-12 at 1023 (the columns other than 0 and cols−1).
-// Cost at N = 1023 (BM_Stencil5, CPU time against the memory pass, 2 cores with load 11):
-// about 30× (biharmonic) and 40× (w = 0.5), from 160× / 210× with two full refinement steps
-// (residual, two row transforms and the whole solve again each) measured the same way.
+// Cost at N = 1023 (CPU time of a fresh solve, 3 right-hand sides, 2 cores with load 12.7):
+// biharmonic 90 ms and w = 0.5 105 ms, against 309 and 392 ms with two whole-grid refinement
+// steps (residual, two row transforms and the whole solve again each), measured together; the
+// memory pass took 1.8–4 ms at that load, so about 25–50× (biharmonic) and 30–60× (w = 0.5).
 // The 10× target is not reached: what is left is the capacitance CG (a fifth), the four banded
 // sweeps (two fifths) and the two row transforms (a sixth). A capacitance formed without the
 // forward error (so no correction sweeps) would need another exact representation of A₁⁻¹ on
