@@ -122,7 +122,7 @@ struct ModeFactors {
   int rows = 0, cols = 0;
   std::vector<int> active;
   std::vector<std::size_t> offset;
-  std::vector<double> inv_d, l1, l2;        // stored part
+  std::vector<double> inv_d, l1, l2;              // stored part
   std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
 };
 
@@ -130,8 +130,7 @@ struct ModeFactors {
 // modes are copied; the rest keep the limit).
 class FactorRow {
  public:
-  explicit FactorRow(const ModeFactors& f)
-      : f_(f), inv_d(f.lim_inv_d), l1(f.lim_l1), l2(f.lim_l2), active_(0) {}
+  explicit FactorRow(const ModeFactors& f) : f_(f), inv_d(f.lim_inv_d), l1(f.lim_l1), l2(f.lim_l2), active_(0) {}
   void seek(int r) {
     const int q = f_.active[std::size_t(r)];
     const std::size_t o = f_.offset[std::size_t(r)];
@@ -175,8 +174,8 @@ ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows
     for (int r = 0; r < rows; ++r) {
       const double dr = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
       const double l1r = (a1 - l2m1 * dm1 * l1m1) / dr, l2r = a2 / dr;
-      const double change = std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r),
-                                      std::abs(l2r - l2m1) / l2r});
+      const double change =
+          std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r), std::abs(l2r - l2m1) / l2r});
       if (r >= 3 && change <= kConverged) {
         converged[std::size_t(q)] = r;
         break;
@@ -340,7 +339,8 @@ class Fast5Solver final : public LinearSolver {
     near_sines_.resize(C_, Eigen::Index(near_.size()));
     for (std::size_t k = 0; k < near_.size(); ++k)
       for (int q = 0; q < C_; ++q)
-        near_sines_(q, Eigen::Index(k)) = std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (near_[k] + 1) * (q + 1) / (C_ + 1));
+        near_sines_(q, Eigen::Index(k)) =
+            std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (near_[k] + 1) * (q + 1) / (C_ + 1));
     const auto lambda = [&](int p, int q) {
       const double s = mu[p] + nu_[q];
       return a * mu[p] * mu[p] * nu_[q] * nu_[q] + b * s * s;
@@ -515,7 +515,8 @@ class Fast5Solver final : public LinearSolver {
     const double a = weights_.a, b = weights_.b;
     std::array<double, 25> w5{};
     for (int di = -2; di <= 2; ++di)
-      for (int dj = -2; dj <= 2; ++dj) w5[std::size_t(5 * (di + 2) + dj + 2)] = a * c_weight(di, dj) + b * t_weight(di, dj);
+      for (int dj = -2; dj <= 2; ++dj)
+        w5[std::size_t(5 * (di + 2) + dj + 2)] = a * c_weight(di, dj) + b * t_weight(di, dj);
     std::array<Eigen::MatrixXd, 2> side;  // the residual on column 0 and on column cols−1
     bool large = false;
     for (int s = 0; s < 2; ++s) side[std::size_t(s)].resize(R_, count);

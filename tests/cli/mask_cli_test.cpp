@@ -1,12 +1,12 @@
 // `coons solve --mask`: problems beyond the classical one (ribbons, rings, free grids, 5×5 masks)
 // through the real binary, compared with the library's solve of the same problem.
 #include <Eigen/Dense>
-#include <catch2/catch.hpp>
 #include <algorithm>
+#include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
-#include <sstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "coons/io/boundary_io.h"
@@ -198,8 +198,8 @@ TEST_CASE("coons batch --mask: every file's stencil solve as coons solve --mask 
   const std::string cap = kData + "/boundaries/sphere_cap_ribbons.json";
   const std::string torus = kData + "/boundaries/torus_patch_ribbons.json";
   const std::string options = " --mask c1-family --weight 0.5 --solver eigen-ldlt";
-  const CommandResult r =
-      run_command(kCoons + " batch " + quoted(cap) + " " + quoted(torus) + options + " --out " + quoted(out.path.string()));
+  const CommandResult r = run_command(kCoons + " batch " + quoted(cap) + " " + quoted(torus) + options + " --out " +
+                                      quoted(out.path.string()));
   INFO(r.err);
   REQUIRE(r.status == 0);
   for (const auto& [file, folder] : {std::pair{cap, std::string("sphere_cap_ribbons-6x6")},
@@ -220,8 +220,8 @@ TEST_CASE("coons batch --mask: every file's stencil solve as coons solve --mask 
   CHECK(table.find("| coons ") == std::string::npos);  // no closed-form rows
   CHECK(table.find("| alpha ") == std::string::npos);
   // bad input, nothing written: --alphas with another mask, a file with one data ring
-  for (const std::string& bad : {quoted(cap) + " --mask biharmonic --alphas 0", kData + "/boundaries/dome.json --mask c1-coons",
-                                 quoted(cap) + " --mask c1-family"}) {
+  for (const std::string& bad : {quoted(cap) + " --mask biharmonic --alphas 0",
+                                 kData + "/boundaries/dome.json --mask c1-coons", quoted(cap) + " --mask c1-family"}) {
     const CommandResult e = run_command(kCoons + " batch " + bad + " --out " + quoted(out.file("none")));
     INFO(bad << "\n" << e.err);
     CHECK(e.status == 2);
