@@ -516,7 +516,7 @@ class Fast5Solver final : public LinearSolver {
     std::array<double, 25> w5{};
     for (int di = -2; di <= 2; ++di)
       for (int dj = -2; dj <= 2; ++dj)
-        w5[std::size_t(5 * (di + 2) + dj + 2)] = a * c_weight(di, dj) + b * t_weight(di, dj);
+        w5[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] = a * c_weight(di, dj) + b * t_weight(di, dj);
     std::array<Eigen::MatrixXd, 2> side;  // the residual on column 0 and on column cols−1
     bool large = false;
     for (int s = 0; s < 2; ++s) side[std::size_t(s)].resize(R_, count);
@@ -531,7 +531,8 @@ class Fast5Solver final : public LinearSolver {
         for (int i = 0; i < R_; ++i) {
           double r = B(Eigen::Index(i) * C_ + j, c);
           for (int di = -2; di <= 2; ++di)
-            for (int dj = -2; dj <= 2; ++dj) r -= w5[std::size_t(5 * (di + 2) + dj + 2)] * value(i + di, j + dj);
+            for (int dj = -2; dj <= 2; ++dj)
+              r -= w5[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] * value(i + di, j + dj);
           side[std::size_t(s)](i, c) = r;
         }
         norm2 += side[std::size_t(s)].col(c).squaredNorm();

@@ -222,7 +222,11 @@ TEST_CASE("coons batch --mask: every file's stencil solve as coons solve --mask 
   // bad input, nothing written: --alphas with another mask, a file with one data ring
   for (const std::string& bad : {quoted(cap) + " --mask biharmonic --alphas 0",
                                  kData + "/boundaries/dome.json --mask c1-coons", quoted(cap) + " --mask c1-family"}) {
-    const CommandResult e = run_command(kCoons + " batch " + bad + " --out " + quoted(out.file("none")));
+    std::string command = kCoons + " batch ";
+    command += bad;
+    command += " --out ";
+    command += quoted(out.file("none"));
+    const CommandResult e = run_command(command);
     INFO(bad << "\n" << e.err);
     CHECK(e.status == 2);
     CHECK(e.out.empty());
