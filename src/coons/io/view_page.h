@@ -40,6 +40,7 @@ struct ViewMark {  //!< a named parameter value drawn on the curves (e.g. "Coons
 
 struct ViewSlider {
   std::string parameter;  //!< "alpha" or "weight": the body attribute is data-PARAMETER
+  std::string symbol;     //!< the parameter's symbol on the page ("α", "w", "c")
   std::string label;      //!< shown beside the slider
   double lower = 0, upper = 1;
   double initial = 0;

@@ -51,7 +51,8 @@ constexpr std::string_view kScript = R"JS(
       if (Math.abs(s.frames[k].parameter - value) < Math.abs(s.frames[best].parameter - value)) best = k;
     return best;
   }
-  function symbol(s) { return s.parameter === 'alpha' ? '\u03b1' : s.parameter; }
+  function symbol(s) { return s.symbol || s.parameter; }
+  function tick(x) { return String(Number(Number(x).toPrecision(3))); }
   function fmt(x) { return x === null || x === undefined ? '–' : Number(x).toPrecision(5); }
 
   // --- 3D: the surface with reflection lines, the net --------------------------------------
@@ -211,27 +212,34 @@ constexpr std::string_view kScript = R"JS(
     for (var t = 0; t <= 4; ++t) {
       var p = s.lower + t / 4 * (s.upper - s.lower);
       svg.appendChild(el('line', { x1: x(p), x2: x(p), y1: B, y2: B + 4, stroke: '#999' }));
-      svg.appendChild(el('text', { x: x(p), y: B + 17, 'text-anchor': 'middle', 'font-size': 12 }, fmt(p)));
+      svg.appendChild(el('text', { x: x(p), y: B + 17, 'text-anchor': 'middle', 'font-size': 12 }, tick(p)));
       svg.appendChild(el('text', { x: L - 6, y: y(t / 4) + 4, 'text-anchor': 'end', 'font-size': 12 }, (t / 4).toFixed(2)));
     }
     svg.appendChild(el('text', { x: (L + R) / 2, y: B + 34, 'text-anchor': 'middle', 'font-size': 13 }, s.label));
     svg.appendChild(el('text', { x: 14, y: (T + B) / 2, 'font-size': 13, 'text-anchor': 'middle',
-                                 transform: 'rotate(-90 14 ' + (T + B) / 2 + ')' }, 'energy / its largest value'));
+                                 transform: 'rotate(-90 14 ' + (T + B) / 2 + ')' }, '(energy \u2212 min) / (max \u2212 min)'));
     s.marks.forEach(function (m) {
       svg.appendChild(el('line', { x1: x(m.parameter), x2: x(m.parameter), y1: T, y2: B, stroke: '#bbb',
                                    'stroke-dasharray': '4 3' }));
-      svg.appendChild(el('text', { x: x(m.parameter) + 4, y: T + 26, 'font-size': 11, fill: '#777' }, m.name));
+      var right = x(m.parameter) > (L + R) / 2;
+      svg.appendChild(el('text', { x: x(m.parameter) + (right ? -4 : 4), y: T + 26, 'font-size': 11, fill: '#777',
+                                   'text-anchor': right ? 'end' : 'start' }, m.name));
     });
     var legend = document.getElementById('legend');
     legend.textContent = '';
     s.curves.forEach(function (c, ci) {
-      var colour = colours[ci % colours.length], largest = 0;
-      c.values.forEach(function (v) { if (v !== null && v > largest) largest = v; });
-      if (!(largest > 0)) largest = 1;
+      // each curve scaled to [0, 1] over the slider's range, so that every minimum shows
+      var colour = colours[ci % colours.length], least = Infinity, largest = -Infinity;
+      c.values.forEach(function (v) {
+        if (v === null) return;
+        least = Math.min(least, v); largest = Math.max(largest, v);
+      });
+      var span = largest > least ? largest - least : 1;
+      function scaled(v) { return (v - least) / span; }
       var path = '';
       c.values.forEach(function (v, k) {
         if (v === null) return;
-        path += (path ? ' L' : 'M') + x(s.frames[k].parameter).toFixed(1) + ' ' + y(v / largest).toFixed(1);
+        path += (path ? ' L' : 'M') + x(s.frames[k].parameter).toFixed(1) + ' ' + y(scaled(v)).toFixed(1);
       });
       svg.appendChild(el('path', { d: path, fill: 'none', stroke: colour, 'stroke-width': 1.6 }));
       var line = document.createElement('div');
@@ -241,7 +249,7 @@ constexpr std::string_view kScript = R"JS(
       var text = c.name + ': ';
       if (c.optimum !== null) {
         var k = nearest(s, c.optimum), v = c.values[k];
-        svg.appendChild(el('circle', { cx: x(c.optimum), cy: y(v === null ? 0 : v / largest), r: 4.5,
+        svg.appendChild(el('circle', { cx: x(c.optimum), cy: y(v === null ? 0 : scaled(v)), r: 4.5,
                                        fill: colour, stroke: '#fff' }));
         text += symbol(s) + '* = ' + fmt(c.optimum);
         if (c.optimum <= s.lower || c.optimum >= s.upper) text += ' (on a bound)';
