@@ -76,3 +76,24 @@ TEST_CASE("coons view: a missing three.js is bad input naming libjs-three, nothi
   CHECK_FALSE(fs::exists(page));
   fs::remove_all(dir);
 }
+
+TEST_CASE("coons study --html: a page per shape in pages/, linked from the report", "[cli][view]") {
+  if (!COONS_HAVE_THREE_JS) {
+    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
+    return;
+  }
+  const fs::path dir = fresh_folder("study");
+  const CommandResult r =
+      run_command(kCoons + " study " + q(kData + "/boundaries/dome.json") + " " +
+                  q(kData + "/triangles/dome_half.json") + " --degrees 3 4 --html --out " + q((dir / "out").string()));
+  REQUIRE(r.status == 0);
+  std::ifstream in(dir / "out" / "report.md");
+  std::stringstream report;
+  report << in.rdbuf();
+  CHECK(report.str().find("## Pages") != std::string::npos);
+  for (const char* page : {"pages/dome.html", "pages/dome_half.html"}) {
+    CHECK(report.str().find(std::string("(") + page + ")") != std::string::npos);
+    CHECK(fs::file_size(dir / "out" / page) > 100000);
+  }
+  fs::remove_all(dir);
+}

@@ -16,7 +16,8 @@ ViewPage small_page() {
   page.generator = "coons test";
   ViewSlider s;
   s.parameter = "alpha";
-  s.label = "α";
+  s.symbol = "α";
+  s.label = "α (the family)";
   s.lower = -0.25;
   s.upper = 0.25;
   s.net_edges = grid_edges(2, 2);
@@ -86,6 +87,7 @@ TEST_CASE("view_page_json: valid JSON that reads back, with no '<' to end its sc
   CHECK(doc["title"] == page.title);
   const auto& s = doc["sliders"][0];
   CHECK(s["parameter"] == "alpha");
+  CHECK(s["symbol"] == "α");
   CHECK(s["frames"].size() == 2);
   CHECK(s["frames"][1]["parameter"].get<double>() == 0.0);
   CHECK(s["frames"][0]["net"].size() == 12);

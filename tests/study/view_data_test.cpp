@@ -1,8 +1,10 @@
 // The data of the `coons view` page (coons/study/view_data.h): the α family's nets, energies and optima.
 #include "coons/study/view_data.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 
+#include "coons/mask/stencil_problem.h"
 #include "coons/metrics/energies.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
@@ -71,4 +73,78 @@ TEST_CASE("ViewOptions::is_valid: frames, samples, the interval and the curves",
   o.objectives = {"target"};
   CHECK_FALSE(o.is_valid(&why));
   CHECK(why.find("target") != std::string::npos);
+}
+
+TEST_CASE("weight_view_slider: the C1 family keeps both data rings, energies and optima of its frames",
+          "[study][view]") {
+  ControlNet net = discrete_coons_net(test::make_smooth_boundary(6, 6, 3));
+  net.points += 0.05 * Eigen::MatrixX3d::Random(net.points.rows(), 3);  // ribbons that are not the Coons net's
+  const StencilProblem problem = rings_problem(net, 2);
+  ViewOptions options;
+  options.frames = 6;
+  options.samples = 4;
+  options.objectives = {"thin_plate"};
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-ldlt");
+  REQUIRE(solver);
+  const ViewSlider s = weight_view_slider(problem, options, *solver, 1.0);
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  CHECK(s.parameter == "weight");
+  CHECK(s.frames.front().parameter == 0.0);
+  CHECK(s.frames.back().parameter == 1.0);
+  for (const ViewFrame& f : s.frames) {
+    REQUIRE(f.ok);
+    for (int i = 0; i <= 6; ++i)
+      for (int j = 0; j <= 6; ++j)
+        if (i < 2 || j < 2 || i > 4 || j > 4) CHECK(f.net.row(net.index(i, j)) == net.points.row(net.index(i, j)));
+  }
+  // w = 0 and w = 1 give different interiors
+  CHECK((s.frames.front().net - s.frames.back().net).cwiseAbs().maxCoeff() > 1e-6);
+  const ViewCurve& c = s.curves.front();
+  for (size_t k = 0; k < s.frames.size(); ++k) {
+    ControlNet shown(6, 6);
+    shown.points = s.frames[k].net;
+    CHECK(c.values[k] == Approx(thin_plate_energy(shown)).epsilon(1e-12));
+    if (c.optimum) CHECK(c.values[k] >= *std::min_element(c.values.begin(), c.values.end()));
+  }
+}
+
+TEST_CASE("tri_view_slider: c = -1/6 gives the cubic's quadratic-precision centre, edges and optima", "[study][view]") {
+  tri::TriNet cubic(3);
+  cubic.points = Eigen::MatrixX3d::Random(tri::net_size(3), 3);
+  const tri::TriBoundary boundary = tri::boundary_of(cubic, "cubic");
+  CHECK(tri_net_edges(3).size() == 18);
+  CHECK(tri_net_edges(1).size() == 3);
+  ViewOptions options;
+  options.frames = 5;
+  options.samples = 4;
+  options.lower = options.upper = 0;  // the search's default bounds
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-lu");
+  REQUIRE(solver);
+  const ViewSlider s = tri_view_slider(boundary, options, *solver, -1.0 / 6.0);
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  CHECK(s.faces.size() == 9);
+  const ViewFrame* quadratic = nullptr;
+  for (const ViewFrame& f : s.frames)
+    if (f.parameter == -1.0 / 6.0) quadratic = &f;
+  REQUIRE(quadratic);
+  // b111 = 1/4 · (the six edge points) − 1/6 · (the three corners)
+  Eigen::RowVector3d corners = Eigen::RowVector3d::Zero(), edges = Eigen::RowVector3d::Zero();
+  for (int k = 0; k <= 3; ++k)
+    for (int j = 0; j + k <= 3; ++j) {
+      const int i = 3 - j - k;
+      if (i == 3 || j == 3 || k == 3)
+        corners += cubic.at(i, j, k);
+      else if (i == 0 || j == 0 || k == 0)
+        edges += cubic.at(i, j, k);
+    }
+  const Eigen::RowVector3d centre = quadratic->net.row(tri::net_index(3, 1, 1));
+  CHECK((centre - (edges / 4 - corners / 6)).norm() < 1e-12);
+  REQUIRE(s.curves.size() == 3);
+  CHECK(s.curves[0].name == "thin_plate");
 }

@@ -66,6 +66,7 @@ void append_indices(std::string& out, const std::vector<std::array<int, N>>& lis
 
 void append_slider(std::string& out, const ViewSlider& s) {
   nlohmann::json head = {{"parameter", s.parameter},
+                         {"symbol", s.symbol},
                          {"label", s.label},
                          {"lower", s.lower},
                          {"upper", s.upper},
