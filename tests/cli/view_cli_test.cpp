@@ -22,7 +22,7 @@ const std::string kData = COONS_DATA_DIR;
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
 fs::path fresh_folder(const std::string& name) {
-  const fs::path dir = fs::temp_directory_path() / ("coons-view-cli-" + name + "-" + std::to_string(::getpid()));
+  fs::path dir = fs::temp_directory_path() / ("coons-view-cli-" + name + "-" + std::to_string(::getpid()));
   fs::remove_all(dir);
   fs::create_directories(dir);
   return dir;

@@ -158,6 +158,7 @@ ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& 
   }
   const std::vector<double> values = slider_values(0, 1, options.frames, curves, {0.0, 1.0});
   std::vector<Stencil> members;
+  members.reserve(values.size());
   for (double w : values) members.push_back(c1_family_stencil(w));
   auto backend = solvers::make_solver(solver.name);
   solve_stencil_sweep(problem, members, *backend, [&](size_t k, const StencilSolveResult& result) {
