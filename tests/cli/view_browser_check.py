@@ -8,7 +8,8 @@ Writes WORKDIR/page.html with `coons view`, opens it at #alpha=-0.2 and checks: 
 no exception and no data-error attribute; data-ready="1"; data-alpha is the nearest precomputed
 value to -0.2; the screenshot of the 3D view is not blank (many colours, a part neither white nor
 one colour); moving the slider through window.coonsView.setAlpha changes data-alpha, the drawn net
-(data-net-hash) and the picture; moving it back gives the first net again. Exit 77 (skipped) when
+(data-net-hash) and the picture; moving it back gives the first net again; every other slider
+(setValue: the C1 weight) changes its data attribute and the drawn net. Exit 77 (skipped) when
 chromium is not installed or coons was built without three.js. With --expect-error a failing
 script is added to the page and the check must see its error (the check's own test)."""
 import base64
@@ -247,6 +248,19 @@ def main():
         evaluate("window.coonsView.setAlpha(%r)" % expected)
         if body("data-net-hash") != first_hash:
             fail("moving back to alpha=%r did not draw the first net again" % expected)
+        # the other sliders (the C1 weight of a boundary with ribbons) move their nets too
+        for parameter in evaluate("window.coonsView.parameters()")[1:]:
+            choices = evaluate("window.coonsView.values('%s')" % parameter)
+            before = body("data-net-hash")
+            for value in (choices[len(choices) // 3], choices[2 * len(choices) // 3]):
+                shown = evaluate("window.coonsView.setValue('%s', %r)" % (parameter, value))
+                now = body("data-net-hash")
+                print("%s: %s=%r net-hash=%s" % (parameter, parameter, shown, now))
+                if shown != value or float(body("data-" + parameter)) != value or body("data-shown") != parameter:
+                    fail("setValue('%s', %r) shows %r" % (parameter, value, body("data-" + parameter)))
+                if now == before:
+                    fail("the drawn net did not change when %s moved to %r" % (parameter, value))
+                before = now
 
         if expect_error:
             time.sleep(0.5)
