@@ -9,7 +9,8 @@ no exception and no data-error attribute; data-ready="1"; data-alpha is the near
 value to -0.2; the screenshot of the 3D view is not blank (many colours, a part neither white nor
 one colour); moving the slider through window.coonsView.setAlpha changes data-alpha, the drawn net
 (data-net-hash) and the picture; moving it back gives the first net again; every other slider
-(setValue: the C1 weight) changes its data attribute and the drawn net. Exit 77 (skipped) when
+(setValue: the C1 weight) changes its data attribute and the drawn net; the only request the page
+makes is the page itself (nothing fetched). Exit 77 (skipped) when
 chromium is not installed or coons was built without three.js. With --expect-error a failing
 script is added to the page and the check must see its error (the check's own test)."""
 import base64
@@ -175,7 +176,7 @@ def main():
         targets = browser.send("Target.getTargets")["targetInfos"]
         target = next(t for t in targets if t["type"] == "page")
         session = browser.send("Target.attachToTarget", {"targetId": target["targetId"], "flatten": True})["sessionId"]
-        for domain in ("Runtime.enable", "Log.enable", "Page.enable"):
+        for domain in ("Runtime.enable", "Log.enable", "Page.enable", "Network.enable"):
             browser.send(domain, session=session)
         browser.send("Page.navigate", {"url": "file://" + os.path.abspath(page) + "#alpha=-0.2"}, session=session)
 
@@ -270,6 +271,12 @@ def main():
             print("ok: the check sees a script error: " + errors[0][:120])
             return 0
         errors = page_errors()
+        fetched = [e["params"]["request"]["url"] for e in browser.events
+                   if e.get("method") == "Network.requestWillBeSent"]
+        outside = [u for u in fetched if not u.startswith("file://") and not u.startswith("data:")]
+        if outside or len(fetched) != 1:
+            fail("the page fetched more than itself: %r" % fetched)
+        print("requests: %r" % fetched)
         if errors:
             fail("errors in the page: " + " | ".join(errors))
         print("ok: no console errors, the page is drawn and the slider moves the net")
