@@ -230,11 +230,17 @@ def main():
         first_hash = body("data-net-hash")
         png1 = screenshot("view-alpha-start.png")
         colours, coverage, rows1 = pixel_stats(png1)
-        print("start: alpha=%r net-hash=%s colours=%d non-white=%.3f" % (alpha, first_hash, colours, coverage))
+        print("start: alpha=%r mu=%s net-hash=%s colours=%d non-white=%.3f" % (alpha, body("data-mu"), first_hash,
+                                                                              colours, coverage))
         if colours < 64 or coverage < 0.05:
             fail("the 3D view looks blank (%d colours, %.1f%% not white)" % (colours, 100 * coverage))
 
+        mu = body("data-mu")
+        if mu is not None and not float(mu) > 0:
+            fail("data-mu=%r at alpha=%r is not a positive number" % (mu, alpha))
         shown = evaluate("window.coonsView.setAlpha(0.1)")
+        if body("data-mu") is not None:
+            fail("data-mu=%r at alpha=0.1, which has no mu" % body("data-mu"))
         second_alpha, second_hash = float(body("data-alpha")), body("data-net-hash")
         png2 = screenshot("view-alpha-moved.png")
         _, _, rows2 = pixel_stats(png2)

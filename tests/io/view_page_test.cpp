@@ -29,6 +29,7 @@ ViewPage small_page() {
     f.points = Eigen::MatrixX3d::Random(4, 3);
     f.normals = Eigen::MatrixX3d::Random(4, 3);
     f.normals(0, 0) = NAN;
+    if (a < 0) f.mu = 3.0;
     s.frames.push_back(f);
   }
   s.curves.push_back({"thin_plate", {2.0, NAN}, -0.1, "success"});
@@ -90,6 +91,8 @@ TEST_CASE("view_page_json: valid JSON that reads back, with no '<' to end its sc
   CHECK(s["symbol"] == "α");
   CHECK(s["frames"].size() == 2);
   CHECK(s["frames"][1]["parameter"].get<double>() == 0.0);
+  CHECK(s["frames"][0]["mu"].get<double>() == 3.0);
+  CHECK_FALSE(s["frames"][1].contains("mu"));
   CHECK(s["frames"][0]["net"].size() == 12);
   CHECK(s["frames"][0]["net"][4].get<double>() == Approx(page.sliders[0].frames[0].net(1, 1)).epsilon(1e-5));
   CHECK(s["frames"][0]["normals"][0].get<double>() == 0.0);  // the NaN normal

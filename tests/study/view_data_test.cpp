@@ -35,6 +35,7 @@ TEST_CASE("alpha_view_slider: the frames hold the family's nets, their energies 
     CHECK(f.net.rows() == 30);
     CHECK(f.points.rows() == 25);
   }
+  CHECK_FALSE(s.frames.front().mu);  // m ≠ n: no μ
   // the frame at α = −1/4 is the discrete Coons net
   const ViewFrame& coons = s.frames.front();
   CHECK(coons.parameter == -0.25);

@@ -95,6 +95,10 @@ void append_slider(std::string& out, const ViewSlider& s) {
     if (k > 0) out += ',';
     out += "{\"parameter\":";
     append_number(out, f.parameter, true);
+    if (f.mu && std::isfinite(*f.mu)) {
+      out += ",\"mu\":";
+      append_number(out, *f.mu, true);
+    }
     out += f.ok ? ",\"ok\":true,\"net\":" : ",\"ok\":false,\"net\":";
     append_flat(out, f.net);
     out += ",\"points\":";

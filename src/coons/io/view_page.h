@@ -4,7 +4,8 @@
 // and surface the sliders can show is computed beforehand (view_data.h) and embedded as JSON:
 // per frame the net (#net points by 3) and the sampled surface (#samples by 3, with unit
 // normals); per slider the net's edges and the surface's triangles, shared by its frames.
-// The page sets on document.body: data-PARAMETER (the value shown, e.g. data-alpha), data-ready="1"
+// The page sets on document.body: data-PARAMETER (the value shown, e.g. data-alpha; data-mu with
+// it where the frame has a μ), data-ready="1"
 // once drawn, data-net-hash (a hash of the drawn net's coordinates), data-error (the first script
 // error); window.coonsView.setValue(parameter, v) and setAlpha(v) move a slider (the browser test).
 #pragma once
@@ -21,6 +22,7 @@ namespace coons {
 struct ViewFrame {
   double parameter = 0;
   bool ok = true;            //!< false: the solve failed; the page shows no surface for it
+  std::optional<double> mu;  //!< the μ of this α where it has one (m = n, α ∈ [−1/4, 0)), shown beside it
   Eigen::MatrixX3d net;      //!< control points, in the order of the slider's net_edges indices
   Eigen::MatrixX3d points;   //!< surface samples
   Eigen::MatrixX3d normals;  //!< unit normals of the samples (a non-finite one is written as 0)

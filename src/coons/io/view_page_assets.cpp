@@ -287,8 +287,14 @@ constexpr std::string_view kScript = R"JS(
     current[si] = fi;
     var s = sliders[si], p = s.frames[fi].parameter;
     if (moveInput) inputs[si].value = p;
-    outputs[si].textContent = '= ' + fmt(p) + (s.frames[fi].ok ? '' : ' (solve failed)');
+    var mu = s.frames[fi].mu;
+    outputs[si].textContent = '= ' + fmt(p) + (mu === undefined ? '' : ' (\u03bc = ' + fmt(mu) + ')') +
+                              (s.frames[fi].ok ? '' : ' (solve failed)');
     body.setAttribute('data-' + s.parameter, String(p));
+    if (s.parameter === 'alpha') {
+      if (mu === undefined) body.removeAttribute('data-mu');
+      else body.setAttribute('data-mu', String(mu));
+    }
     body.setAttribute('data-shown', s.parameter);
     draw3d(si);
     drawCurves(si);

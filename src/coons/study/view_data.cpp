@@ -120,6 +120,7 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
     ViewFrame f;
     f.parameter = rows[k].parameter;
     f.ok = rows[k].summary.ok() || boundary.m < 2 || boundary.n < 2;
+    f.mu = mu_of_alpha(boundary, f.parameter);
     sample_view_frame(nets[k], options.samples, f);
     slider.frames.push_back(std::move(f));
   }
