@@ -282,19 +282,24 @@ constexpr std::string_view kScript = R"JS(
     inputs.push(input); outputs.push(output);
   });
 
+  // the slider's text and the body's attributes of its current value
+  function describe(si) {
+    var s = sliders[si], f = s.frames[current[si]], mu = f.mu;
+    outputs[si].textContent = '= ' + fmt(f.parameter) + (mu === undefined ? '' : ' (\u03bc = ' + fmt(mu) + ')') +
+                              (f.ok ? '' : ' (solve failed)');
+    body.setAttribute('data-' + s.parameter, String(f.parameter));
+    if (s.parameter === 'alpha') {
+      if (mu === undefined) body.removeAttribute('data-mu');
+      else body.setAttribute('data-mu', String(mu));
+    }
+  }
+
   function show(si, fi, moveInput) {
     active = si;
     current[si] = fi;
     var s = sliders[si], p = s.frames[fi].parameter;
     if (moveInput) inputs[si].value = p;
-    var mu = s.frames[fi].mu;
-    outputs[si].textContent = '= ' + fmt(p) + (mu === undefined ? '' : ' (\u03bc = ' + fmt(mu) + ')') +
-                              (s.frames[fi].ok ? '' : ' (solve failed)');
-    body.setAttribute('data-' + s.parameter, String(p));
-    if (s.parameter === 'alpha') {
-      if (mu === undefined) body.removeAttribute('data-mu');
-      else body.setAttribute('data-mu', String(mu));
-    }
+    describe(si);
     body.setAttribute('data-shown', s.parameter);
     draw3d(si);
     drawCurves(si);
@@ -335,8 +340,7 @@ constexpr std::string_view kScript = R"JS(
   var first = fromHash();
   sliders.forEach(function (s, si) {
     inputs[si].value = s.frames[current[si]].parameter;
-    body.setAttribute('data-' + s.parameter, String(s.frames[current[si]].parameter));
-    outputs[si].textContent = '= ' + fmt(s.frames[current[si]].parameter);
+    describe(si);
   });
   show(first >= 0 ? first : 0, current[first >= 0 ? first : 0], true);
   window.addEventListener('hashchange', function () {
