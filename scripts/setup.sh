@@ -24,6 +24,8 @@ packages=(
   python3                       # benchmark tables (scripts/bench_report.py, standard library only)
   python3-jsonschema            # the documentation checks: data files against docs/schema/ (scripts/check_docs.py)
   clang libclang-rt-14-dev      # libFuzzer and clang's sanitizer runtimes: scripts/fuzz.sh (run by .ci/run)
+  libjs-three                   # three.js (r111), inlined into the pages of `coons view` (optional)
+  chromium                      # the headless-browser test of `coons view` pages (optional)
   clang-format clang-tidy       # the style checks of .ci/run: scripts/format.sh --check, scripts/tidy.sh
   parallel time                 # sharded studies on one machine: scripts/study-parallel.sh (GNU parallel; /usr/bin/time -v for --time)
 )

@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <memory>
 
+#include "coons/config.h"
 #include "coons/io/input_error.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
@@ -18,6 +19,7 @@
 #include "coons/study/study_conclusions.h"
 #include "registry.h"
 #include "study_shard.h"
+#include "view_command.h"
 
 namespace coons::cli {
 
@@ -35,6 +37,7 @@ struct StudyRequest {
   bool degrees_given = false;
   std::string shard;  // --shard I/N: one part of the family study's tasks (study_shard.h)
   std::string merge;  // --merge DIR: the report from the shards in DIR
+  bool html = false;  // --html: a `coons view` page per shape (study_pages.cpp)
   GlobalOptions global;
 };
 
@@ -88,6 +91,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   options.solver = solver_from_name(r.solver);
   std::string why;
   if (!options.is_valid(&why)) throw InputError("command line", "--degrees", why);
+  const std::string three_js = r.html ? read_three_js(COONS_THREE_JS_PATH) : "";
   BoundaryReadOptions read_options;
   read_options.corner_tolerance = r.corner_tolerance;
   std::vector<StudyInput> inputs;
@@ -122,8 +126,9 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
       if (!f.error.empty()) out.discard(f.file);
   for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
     if (!f->error.empty()) out.discard(f->file);
+  const std::string pages = r.html ? write_study_pages(result, inputs, out, three_js, options.solver) : "";
   const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
-                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6");
+                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6") + pages;
   out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
   print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
@@ -153,6 +158,7 @@ void register_study(CLI::App& app, Registry& registry) {
                   "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
   cmd->add_option("--merge", r->merge, "DIR: the report (to --out) from the shard files in DIR");
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
+  cmd->add_flag("--html", r->html, "also a coons view page per shape in pages/, linked from the report");
   cmd->add_option("--corner-tolerance", r->corner_tolerance,
                   "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
