@@ -32,16 +32,17 @@ struct ImportRequest {
 int run_import_step(const ImportRequest& q) {
 #if COONS_HAVE_OCCT
   if (q.out.empty()) throw InputError("command line", "--out", "is required (the boundary file to write)");
-  if (!q.force && std::filesystem::exists(q.out)) throw InputError(q.out, "--force", "exists; give --force to overwrite it");
+  if (!q.force && std::filesystem::exists(q.out))
+    throw InputError(q.out, "--force", "exists; give --force to overwrite it");
   cad::StepImportOptions options;
   options.face = q.face;
   options.edges = q.edges;
   options.gap_tolerance = q.gap_tolerance;
   const cad::StepImport import = cad::import_step_boundary(q.file, options);
   const std::string what = q.face >= 0 ? "face " + std::to_string(q.face) : "4 edges";
-  const std::string name =
-      q.name.empty() ? std::filesystem::path(q.file).stem().string() + (q.face >= 0 ? "-face" + std::to_string(q.face) : "")
-                     : q.name;
+  const std::string name = q.name.empty() ? std::filesystem::path(q.file).stem().string() +
+                                                (q.face >= 0 ? "-face" + std::to_string(q.face) : "")
+                                          : q.name;
   const nlohmann::json doc = cad::boundary_document(import, name, "coons import-step " + q.file + " (" + what + ")");
   OutputSet out(".", "--out");
   out.write_path(q.out, [&](std::ostream& o) { o << doc.dump(2) << '\n'; });

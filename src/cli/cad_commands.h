@@ -33,6 +33,4 @@ std::vector<std::string> write_cad_export(const CadExportRequest& r, const CadEx
                                           const std::string& boundary_path, const Boundary& b, const ControlNet& net,
                                           OutputSet& out);
 
-
-
 }  // namespace coons::cli

@@ -6,6 +6,7 @@
 #include <memory>
 #include <optional>
 
+#include "cad_commands.h"
 #include "coons/io/input_error.h"
 #include "coons/io/matrix_market.h"
 #include "coons/io/net_json.h"
@@ -15,7 +16,6 @@
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/stencil_system.h"
 #include "coons/study/memory_estimate.h"
-#include "cad_commands.h"
 #include "registry.h"
 #include "tri_commands.h"
 

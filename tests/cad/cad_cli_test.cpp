@@ -51,7 +51,8 @@ TEST_CASE("coons export --step --iges: the written surface is the solved net, ex
 TEST_CASE("coons import-step: the bundled B-spline patch gives a B-spline boundary file", "[cad][cli]") {
   const test::TempDir dir;
   const std::string out = dir.file("patch.json");
-  const CommandResult r = run_command(kCoons + " import-step " + kData + "cad/bspline_patch.step --face 0 --out " + out);
+  const CommandResult r =
+      run_command(kCoons + " import-step " + kData + "cad/bspline_patch.step --face 0 --out " + out);
   INFO(r.err);
   REQUIRE(r.status == 0);
   std::ifstream in(out);

@@ -1,5 +1,7 @@
 // STEP/IGES writing of B-spline surfaces through OpenCASCADE, read back by OpenCASCADE
 // (STEPControl_Reader / IGESControl_Reader -> face -> BRep_Tool::Surface -> Geom_BSplineSurface).
+#include "coons/cad/cad_surface.h"
+
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRep_Tool.hxx>
 #include <Precision.hxx>
@@ -9,7 +11,6 @@
 #include <fstream>
 #include <sstream>
 
-#include "coons/cad/cad_surface.h"
 #include "coons/cad/occt_convert.h"
 #include "coons/io/input_error.h"
 #include "support/bspline_fixtures.h"

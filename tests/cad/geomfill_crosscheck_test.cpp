@@ -6,8 +6,8 @@
 // own curves and surface). The measured numbers are printed (WARN) for docs/cad.md.
 #include <GeomFill_BSplineCurves.hxx>
 #include <Standard_Failure.hxx>
-#include <stdexcept>
 #include <catch2/catch.hpp>
+#include <stdexcept>
 
 #include "coons/cad/occt_convert.h"
 #include "coons/net/coons_net.h"
@@ -25,7 +25,8 @@ BSplineSurface geomfill(const BSplineBoundary& b, GeomFill_FillingStyle style) {
     return r;
   };
   try {
-    GeomFill_BSplineCurves fill(cad::to_occt(b.bottom), cad::to_occt(b.right), reversed(b.top), reversed(b.left), style);
+    GeomFill_BSplineCurves fill(cad::to_occt(b.bottom), cad::to_occt(b.right), reversed(b.top), reversed(b.left),
+                                style);
     return cad::from_occt(*fill.Surface());
   } catch (const Standard_Failure& e) {
     throw std::runtime_error(std::string("GeomFill_BSplineCurves: ") + e.DynamicType()->Name() + ": " +
@@ -73,7 +74,9 @@ BSplineBoundary random_bezier_boundary(int m, int n, std::uint32_t seed) {
 
 }  // namespace
 
-TEST_CASE("GeomFill_BSplineCurves: Stretch equals the discrete Coons net on Bezier boundaries", "[cad]") {
+TEST_CASE(
+    "GeomFill_BSplineCurves: Stretch equals the discrete Coons net on Bezier boundaries, CoonsStyle the Hermite one",
+    "[cad]") {
   double stretch = 0, coons_style = 0, coons_style_hermite = 0;
   int cases = 0;
   for (int m = 1; m <= 5; ++m)
@@ -94,7 +97,8 @@ TEST_CASE("GeomFill_BSplineCurves: Stretch equals the discrete Coons net on Bezi
                              << ", max |GeomFill CoonsStyle - discrete Coons net| = " << coons_style
                              << ", max |GeomFill CoonsStyle - Hermite Coons net| = " << coons_style_hermite);
   CHECK(stretch <= 1e-14);
-  CHECK(coons_style > 1e-3);  // CoonsStyle blends by cubic Hermite functions: another surface
+  CHECK(coons_style > 1e-3);            // CoonsStyle blends by cubic Hermite functions: another surface,
+  CHECK(coons_style_hermite <= 1e-14);  // coons' hermite-coons net (docs/math.md §2)
 }
 
 TEST_CASE("GeomFill_BSplineCurves: non-uniform knots differ from the Greville net, which is the Coons patch", "[cad]") {

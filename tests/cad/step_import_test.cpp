@@ -1,5 +1,7 @@
 // import_step_boundary: four edges of a STEP file (a face's outer wire or edges by index) as a
 // compatible B-spline boundary; the bundled samples of data/cad/; the input errors.
+#include "coons/cad/step_import.h"
+
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRepBuilderAPI_MakePolygon.hxx>
@@ -16,7 +18,6 @@
 #include "cad_fixtures.h"
 #include "coons/cad/cad_surface.h"
 #include "coons/cad/occt_convert.h"
-#include "coons/cad/step_import.h"
 #include "coons/io/input_error.h"
 #include "support/bspline_fixtures.h"
 #include "support/fixtures.h"
@@ -106,14 +107,13 @@ TEST_CASE("import_step_boundary: four edges in any order and orientation give on
   for (const auto& order : orders)
     for (int flips = 0; flips < 16; flips += 5) {  // which edges are stored reversed
       std::vector<BSplineCurve> stored;
-      for (int k = 0; k < 4; ++k)
-        stored.push_back(((flips >> k) & 1) ? reversed(loop[order[k]]) : loop[order[k]]);
+      for (int k = 0; k < 4; ++k) stored.push_back(((flips >> k) & 1) ? reversed(loop[order[k]]) : loop[order[k]]);
       const std::string path = write_edges(dir, "edges.step", stored);
       const cad::StepImport import = cad::import_step_boundary(path, edges({0, 1, 2, 3}));
       // bottom is edge 0 in its stored direction: the loop itself when edge 0 is not flipped,
       // else the same loop walked the other way (bottom and left swap roles, reversed).
-      const BSplineBoundary expected = (flips & 1) ? BSplineBoundary{reversed(b.bottom), reversed(b.top), b.right, b.left}
-                                                   : b;
+      const BSplineBoundary expected =
+          (flips & 1) ? BSplineBoundary{reversed(b.bottom), reversed(b.top), b.right, b.left} : b;
       // Knots of a reversed side are a + b − u: the identity up to rounding (1 − (1 − 0.3) ≠ 0.3).
       INFO("order " << order[0] << order[1] << order[2] << order[3] << " flips " << flips);
       require_same_boundary(import.boundary, expected, 4e-16);
@@ -214,7 +214,7 @@ TEST_CASE("import_step_boundary: bad files and choices are input errors naming t
                             GC_MakeArcOfCircle(gp_Pnt(0, 2, 0.5), gp_Pnt(-0.5, 1, 0.25), gp_Pnt(0, 0, 0)).Value())
                             .Edge());
   const std::string arc = write_shape(dir, "arc.step", compound);
-  CHECK_THROWS_WITH(cad::import_step_boundary(arc, edges({0, 1, 2, 3})),
-                    Catch::StartsWith(arc + ": edge 3: is rational") &&
-                        Catch::Contains("rational boundaries are not supported"));
+  CHECK_THROWS_WITH(
+      cad::import_step_boundary(arc, edges({0, 1, 2, 3})),
+      Catch::StartsWith(arc + ": edge 3: is rational") && Catch::Contains("rational boundaries are not supported"));
 }

@@ -1,5 +1,7 @@
 #include "coons/cad/cad_surface.h"
 
+#include <fmt/format.h>
+
 #include <BRepBuilderAPI_MakeEdge.hxx>
 #include <BRepBuilderAPI_MakeFace.hxx>
 #include <BRep_Builder.hxx>
@@ -16,7 +18,6 @@
 #include <TopoDS_Edge.hxx>
 #include <TopoDS_Face.hxx>
 #include <cmath>
-#include <fmt/format.h>
 
 #include "coons/cad/occt_convert.h"
 #include "coons/io/input_error.h"
@@ -59,8 +60,9 @@ void check_writable(const BSplineSurface& s, const std::string& target, const st
   for (const Eigen::VectorXd* knots : {&s.knots_u, &s.knots_v})
     for (Eigen::Index k = 0; k < knots->size(); ++k)
       if (!exactly_printable((*knots)(k)))
-        throw InputError(target, option,
-                         fmt::format("knot {:g}: only 0 and magnitudes in [1e-99, 1e99) are written exactly", (*knots)(k)));
+        throw InputError(
+            target, option,
+            fmt::format("knot {:g}: only 0 and magnitudes in [1e-99, 1e99) are written exactly", (*knots)(k)));
 }
 
 namespace {

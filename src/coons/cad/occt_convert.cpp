@@ -13,10 +13,10 @@
 #include <Message_PrinterOStream.hxx>
 #include <STEPControl_Reader.hxx>
 #include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
 #include <StepData_Protocol.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepData_StepWriter.hxx>
-#include <Standard_Failure.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array1OfPnt.hxx>
@@ -140,7 +140,8 @@ void write_step_shape(std::ostream& out, const TopoDS_Shape& shape, const std::s
 void write_iges_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& target) {
   silence_occt_messages();
   IGESControl_Writer writer("MM", 0);
-  if (!writer.AddShape(shape)) throw InputError(target, "--iges", "OpenCASCADE could not translate the surface to IGES");
+  if (!writer.AddShape(shape))
+    throw InputError(target, "--iges", "OpenCASCADE could not translate the surface to IGES");
   writer.ComputeModel();
   IGESData_IGESWriter iges(writer.Model());
   exact_reals(iges.FloatWriter());

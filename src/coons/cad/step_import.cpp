@@ -1,11 +1,13 @@
 #include "coons/cad/step_import.h"
 
+#include <fmt/format.h>
+
 #include <BRepTools.hxx>
 #include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
 #include <GeomConvert.hxx>
 #include <Geom_BSplineCurve.hxx>
 #include <Geom_Curve.hxx>
-#include <Geom2d_Curve.hxx>
 #include <Geom_TrimmedCurve.hxx>
 #include <Precision.hxx>
 #include <ShapeAnalysis_WireOrder.hxx>
@@ -20,7 +22,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <fmt/format.h>
 #include <set>
 
 #include "coons/cad/occt_convert.h"
@@ -64,7 +65,8 @@ BSplineCurve reversed(const BSplineCurve& c) {
 // The edge's 3D curve over its parameter range as a non-rational, non-periodic B-spline.
 BSplineCurve edge_curve(const TopoDS_Edge& edge, int index, const std::string& path) {
   const std::string field = fmt::format("edge {}", index);
-  if (BRep_Tool::Degenerated(edge)) throw InputError(path, field, "is degenerated (a point): a Coons side needs a curve");
+  if (BRep_Tool::Degenerated(edge))
+    throw InputError(path, field, "is degenerated (a point): a Coons side needs a curve");
   double first = 0, last = 0;
   const Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, first, last);
   if (curve.IsNull()) throw InputError(path, field, "has no 3D curve");
@@ -135,7 +137,7 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   out.file_edges = edges.Extent();
 
   std::vector<int> chosen;  // the file's edge indices, 0-based
-  int start_edge = 0;         // position in `chosen` of the bottom side
+  int start_edge = 0;       // position in `chosen` of the bottom side
   bool start_reversed = false;
   if (options.face >= 0) {
     if (options.face >= faces.Extent())
@@ -148,9 +150,9 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
     if (wire.IsNull()) throw InputError(path, "--face", fmt::format("face {} has no outer wire", options.face));
     for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) chosen.push_back(edges.FindIndex(e.Current()) - 1);
     if (chosen.size() != 4)
-      throw InputError(path, "--face",
-                       fmt::format("face {} has {} edges in its outer wire; a Coons boundary needs 4", options.face,
-                                   chosen.size()));
+      throw InputError(
+          path, "--face",
+          fmt::format("face {} has {} edges in its outer wire; a Coons boundary needs 4", options.face, chosen.size()));
     const auto [bottom, reversed_bottom] = bottom_of_face(face, wire);
     if (bottom >= 0) {
       start_edge = bottom;
@@ -208,7 +210,8 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
     const BSplineCurve& a = walk[k];
     const BSplineCurve& b = walk[(k + 1) % 4];
     const double gap = (a.points.row(a.count() - 1) - b.points.row(0)).norm();
-    out.gaps.push_back({kCorner[k], fmt::format("edge {} -> edge {}", out.edge_indices[k], out.edge_indices[(k + 1) % 4]), gap});
+    out.gaps.push_back(
+        {kCorner[k], fmt::format("edge {} -> edge {}", out.edge_indices[k], out.edge_indices[(k + 1) % 4]), gap});
     out.max_gap = std::max(out.max_gap, gap);
     if (!(gap <= limit))
       throw InputError(path, std::string("corner ") + kCorner[k],
@@ -273,15 +276,21 @@ nlohmann::json import_note(const StepImport& import) {
   static const std::array<const char*, 4> kSide{"bottom", "right", "top", "left"};
   nlohmann::json chain = nlohmann::json::array();
   for (std::size_t k = 0; k < import.edge_indices.size(); ++k)
-    chain.push_back({{"side", kSide[k]}, {"edge", import.edge_indices[k]}, {"reversed", bool(import.edge_reversed[k])}});
+    chain.push_back(
+        {{"side", kSide[k]}, {"edge", import.edge_indices[k]}, {"reversed", bool(import.edge_reversed[k])}});
   nlohmann::json gaps = nlohmann::json::array();
   for (const auto& g : import.gaps) gaps.push_back({{"corner", g.corner}, {"edges", g.edges}, {"gap", g.gap}});
   nlohmann::json notes = nlohmann::json::array();
   for (const auto& n : import.notes)
     notes.push_back({{"side", n.side}, {"degree_raised_by", n.degree_raised_by}, {"knots_inserted", n.knots_inserted}});
-  return {{"file_faces", import.file_faces}, {"file_edges", import.file_edges}, {"chain", chain},
-          {"corner_gaps", gaps},           {"max_gap", import.max_gap},       {"diagonal", import.diagonal},
-          {"compatibility", notes},        {"form", import.is_bezier() ? "bezier" : "bspline"}};
+  return {{"file_faces", import.file_faces},
+          {"file_edges", import.file_edges},
+          {"chain", chain},
+          {"corner_gaps", gaps},
+          {"max_gap", import.max_gap},
+          {"diagonal", import.diagonal},
+          {"compatibility", notes},
+          {"form", import.is_bezier() ? "bezier" : "bspline"}};
 }
 
 nlohmann::json boundary_document(const StepImport& import, const std::string& name, const std::string& source) {

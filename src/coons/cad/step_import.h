@@ -19,8 +19,8 @@
 namespace coons::cad {
 
 struct StepImportOptions {
-  int face = -1;            //!< --face K: 0-based, in OpenCASCADE's order of the file's faces (-1: not given)
-  std::vector<int> edges;   //!< --edges a,b,c,d: 0-based, in OpenCASCADE's order of the file's edges
+  int face = -1;                //!< --face K: 0-based, in OpenCASCADE's order of the file's faces (-1: not given)
+  std::vector<int> edges;       //!< --edges a,b,c,d: 0-based, in OpenCASCADE's order of the file's edges
   double gap_tolerance = 1e-6;  //!< largest corner gap, as a fraction of the bounding-box diagonal of the poles
   //! Exactly one of face and edges (four distinct indices ≥ 0), tolerance finite and ≥ 0.
   [[nodiscard]] bool is_valid(std::string* why) const;
@@ -36,9 +36,9 @@ struct StepImport {
   BSplineBoundary boundary;  //!< compatible, over [0, 1], corners shared exactly
   std::vector<CornerGapNote> gaps;
   double max_gap = 0;
-  double diagonal = 0;  //!< bounding-box diagonal of the poles (the gap tolerance's unit)
-  std::vector<int> edge_indices;        //!< the file's edge index of bottom, right, top, left
-  std::vector<bool> edge_reversed;      //!< whether that side runs against the edge's curve
+  double diagonal = 0;                   //!< bounding-box diagonal of the poles (the gap tolerance's unit)
+  std::vector<int> edge_indices;         //!< the file's edge index of bottom, right, top, left
+  std::vector<bool> edge_reversed;       //!< whether that side runs against the edge's curve
   std::vector<CompatibilityNote> notes;  //!< what compatible_boundary changed
   int file_faces = 0, file_edges = 0;
   //! Every side a single span (knots only at 0 and 1): the boundary is a Bézier boundary.
