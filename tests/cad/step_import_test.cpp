@@ -48,14 +48,14 @@ void require_same_boundary(const BSplineBoundary& a, const BSplineBoundary& b, d
 }
 
 std::string write_edges(const test::TempDir& dir, const std::string& name, const std::vector<BSplineCurve>& curves) {
-  const std::string path = dir.file(name);
+  std::string path = dir.file(name);
   std::ofstream out(path);
   cad::write_step_edges(out, curves, path);
   return path;
 }
 
 std::string write_shape(const test::TempDir& dir, const std::string& name, const TopoDS_Shape& shape) {
-  const std::string path = dir.file(name);
+  std::string path = dir.file(name);
   std::ofstream out(path);
   cad::write_step_shape(out, shape, "", path);
   return path;
@@ -107,6 +107,7 @@ TEST_CASE("import_step_boundary: four edges in any order and orientation give on
   for (const auto& order : orders)
     for (int flips = 0; flips < 16; flips += 5) {  // which edges are stored reversed
       std::vector<BSplineCurve> stored;
+      stored.reserve(4);
       for (int k = 0; k < 4; ++k) stored.push_back(((flips >> k) & 1) ? reversed(loop[order[k]]) : loop[order[k]]);
       const std::string path = write_edges(dir, "edges.step", stored);
       const cad::StepImport import = cad::import_step_boundary(path, edges({0, 1, 2, 3}));

@@ -30,6 +30,12 @@
 
 namespace coons::cad {
 
+namespace {
+// Corner k joins side k of the loop (bottom, right, top, left) to side k + 1.
+constexpr std::array<const char*, 4> kCorner{"bottom-right", "top-right", "top-left", "bottom-left"};
+constexpr std::array<const char*, 4> kSide{"bottom", "right", "top", "left"};
+}  // namespace
+
 bool StepImportOptions::is_valid(std::string* why) const {
   auto fail = [&](const std::string& reason) {
     if (why) *why = reason;
@@ -204,7 +210,6 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   }
 
   // Corner k joins the end of walk[k] to the start of walk[k + 1].
-  static const std::array<const char*, 4> kCorner{"bottom-right", "top-right", "top-left", "bottom-left"};
   const double limit = options.gap_tolerance * out.diagonal;
   for (int k = 0; k < 4; ++k) {
     const BSplineCurve& a = walk[k];
@@ -273,7 +278,6 @@ nlohmann::json knots_json(const Eigen::VectorXd& U) {
 }  // namespace
 
 nlohmann::json import_note(const StepImport& import) {
-  static const std::array<const char*, 4> kSide{"bottom", "right", "top", "left"};
   nlohmann::json chain = nlohmann::json::array();
   for (std::size_t k = 0; k < import.edge_indices.size(); ++k)
     chain.push_back(
