@@ -198,6 +198,10 @@ TEST_CASE("import_step_boundary: bad files and choices are input errors naming t
   CHECK_THROWS_WITH(cad::import_step_boundary(patch, edges({0, 1, 2, 7})),
                     Catch::StartsWith(patch + ": --edges: edge 7 out of range"));
   CHECK_THROWS_AS(cad::import_step_boundary(patch, edges({0, 1, 2})), InputError);
+  cad::StepImportOptions negative = face(0);
+  negative.gap_tolerance = -1;
+  CHECK_THROWS_WITH(cad::import_step_boundary(patch, negative),
+                    Catch::Equals("command line: --gap-tolerance: --gap-tolerance must be finite and >= 0"));
 
   // a triangle: 3 edges
   BRepBuilderAPI_MakePolygon triangle(gp_Pnt(0, 0, 0), gp_Pnt(1, 0, 0), gp_Pnt(0, 1, 0), Standard_True);

@@ -133,7 +133,11 @@ namespace {
 
 StepImport import_boundary(const std::string& path, const StepImportOptions& options) {
   std::string why;
-  if (!options.is_valid(&why)) throw InputError("command line", options.face >= 0 ? "--face" : "--edges", why);
+  if (!options.is_valid(&why)) {
+    std::string field = options.face >= 0 ? "--face" : "--edges";
+    if (why.rfind("--", 0) == 0) field = why.substr(0, why.find_first_of(" :"));  // the option the rule names
+    throw InputError("command line", field, why);
+  }
   const TopoDS_Shape shape = read_step_shape(path);
   TopTools_IndexedMapOfShape faces, edges;
   TopExp::MapShapes(shape, TopAbs_FACE, faces);
