@@ -15,6 +15,7 @@ packages=(
   libfftw3-dev                  # sine-transform solvers
   libhypre-dev                  # optional hypre backends: hypre-amg (BoomerAMG), hypre-pfmg, hypre-smg
   openmpi-bin libopenmpi-dev    # MPI for hypre and distributed solves (mpirun -np K coons solve ...)
+  libocct-data-exchange-dev libocct-modeling-algorithms-dev  # optional OpenCASCADE: import-step, export --step/--iges
   libcli11-dev                  # command-line parsing
   nlohmann-json3-dev            # JSON in and out
   libfmt-dev                    # formatting
