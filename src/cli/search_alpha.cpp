@@ -172,14 +172,14 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
   std::string why;
   const auto objective = parse_objective(objective_text(r.objective), &why);
   if (!objective || !bspline_objective_supported(*objective, &why)) throw InputError("command line", "--objective", why);
-  AlphaSearchOptions options;
-  options.lower = r.lower.value_or(-0.25);
-  options.upper = r.upper.value_or(0.25);
+  AlphaSearchOptions options = default_bspline_search_options();  // [-1/4, 0]: definite there
+  options.lower = r.lower.value_or(options.lower);
+  options.upper = r.upper.value_or(options.upper);
   options.scan_points = r.scan_points;
-  if ((options.lower < -0.25 || options.upper > 0.25) && !r.allow_indefinite)
+  if ((options.lower < -0.25 || options.upper > 0) && !r.allow_indefinite)
     throw InputError("command line", r.lower && *r.lower < -0.25 ? "--lower" : "--upper",
-                     "bounds outside [-0.25, 0.25] may make the system indefinite; add --allow-indefinite to search "
-                     "there");
+                     "the non-uniform system of a B-spline boundary is definite for alpha in [-0.25, 0] only (it can "
+                     "be singular above 0); add --allow-indefinite to search outside");
   if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
   if (requested && !requested->needs_matrix)

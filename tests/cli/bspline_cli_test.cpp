@@ -109,3 +109,26 @@ TEST_CASE("coons export: a B-spline boundary as sampled OBJ, PLY and VTS and its
   for (std::string line; std::getline(obj, line);) vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
   CHECK(vertices == 81);
 }
+
+TEST_CASE("coons search-alpha and study: a B-spline boundary is searched over the non-uniform family",
+          "[cli][bspline]") {
+  const CommandResult r = run_command(kCoons + " search-alpha " + q(kWave) + " --objective thin_plate");
+  REQUIRE(r.status == 0);
+  const json s = json::parse(r.out);
+  CHECK(s["status"] == "success");
+  CHECK(s["alpha"].get<double>() > -0.25);
+  CHECK(s["alpha"].get<double>() < 0.25);
+  CHECK(s["beta"].is_null());
+  CHECK(s["bspline"]["degree_spline"] == json({3, 2}));
+  const CommandResult target = run_command(kCoons + " search-alpha " + q(kWave) + " --objective target --target coons");
+  CHECK(target.status == 2);
+  CHECK(target.out.empty());
+  TempDir out;
+  const CommandResult study = run_command(kCoons + " study " + q(kWave) + " --degrees 3 --out " + q(out.path.string()));
+  REQUIRE(study.status == 0);
+  CHECK(study.out.find("## B-spline boundaries") != std::string::npos);
+  CHECK(study.out.find("| bspline_wave |") != std::string::npos);
+  const json rows = json::parse(std::ifstream(out.path / "bspline.json"));
+  REQUIRE(rows.size() == 1);
+  CHECK(rows[0]["best_alpha"]["thin_plate"]["status"] == "success");
+}

@@ -12,6 +12,16 @@
 
 namespace coons {
 
+AlphaSearchOptions default_bspline_search_options() {
+  AlphaSearchOptions options;
+  options.lower = -0.25;
+  options.upper = 0.0;
+  // The Gram forms of short knot spans cancel large terms: the energies of one net vary by ~1e-11
+  // relative between equivalent solves, so flatness is judged at 1e-9.
+  options.flat_tolerance = 1e-9;
+  return options;
+}
+
 bool bspline_objective_supported(const Objective& objective, std::string* why) {
   if (objective.target_weight > 0) {
     if (why) *why = "a target term compares Bézier nets; a B-spline boundary takes energies only";

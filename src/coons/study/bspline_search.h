@@ -32,9 +32,15 @@ std::optional<BSplineObjectiveValue> bspline_alpha_objective(const BSplineBounda
 //! the targets compare Bézier nets). False with the reason in *why otherwise.
 bool bspline_objective_supported(const Objective& objective, std::string* why);
 
+//! The default bounds of the B-spline search: [−1/4, 0], where the non-uniform system is positive
+//! definite (docs/math.md §10); above 0 it can be singular on strongly non-uniform abscissae.
+//! Flat below a relative range of 1e-9 (the energies' rounding on short knot spans is ~1e-11).
+AlphaSearchOptions default_bspline_search_options();
+
 //! The search; `solver_name` a backend of the registry that takes an assembled matrix.
 AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& compatible, const Objective& objective,
-                                        const std::string& solver_name, const AlphaSearchOptions& options = {},
+                                        const std::string& solver_name,
+                                        const AlphaSearchOptions& options = default_bspline_search_options(),
                                         const solvers::SolverOptions& solver_options = {});
 
 }  // namespace coons

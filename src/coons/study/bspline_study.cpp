@@ -38,8 +38,8 @@ std::vector<BSplineStudyRow> run_bspline_study(const std::vector<BSplineStudyInp
     row.count_u = b.bottom.count();
     row.count_v = b.left.count();
     row.notes = in.sides.notes;
-    // [−1/4, 1/4] is searched; Cholesky only where the system is known to be definite.
-    row.solver = solver.empty() ? auto_bspline_solver(0.25) : solver;
+    // [−1/4, 0] is searched (default_bspline_search_options), where the system is definite.
+    row.solver = solver.empty() ? auto_bspline_solver(0.0) : solver;
     row.thin_plate_coons = thin_plate_at(b, -0.25, row.solver);
     row.thin_plate_laplace = thin_plate_at(b, 0.0, row.solver);
     for (const Objective& o : objectives) {
