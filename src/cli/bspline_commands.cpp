@@ -60,10 +60,11 @@ BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& i
     out.picked_automatically = true;
   } else {
     if (!r.solver->needs_matrix)
-      throw InputError("command line", "--solver",
-                       fmt::format("{} works from a grid stencil; the non-uniform mask system of a B-spline boundary "
-                                   "is an assembled matrix (a direct or iterative backend: eigen-ldlt, eigen-lu, cg, …)",
-                                   r.solver->name));
+      throw InputError(
+          "command line", "--solver",
+          fmt::format("{} works from a grid stencil; the non-uniform mask system of a B-spline boundary "
+                      "is an assembled matrix (a direct or iterative backend: eigen-ldlt, eigen-lu, cg, …)",
+                      r.solver->name));
     out.solver = r.solver->name;
   }
   return out;
@@ -145,8 +146,8 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   if (sampled) {
     phases.start("write");
     const SurfaceSamples samples = sample_bspline_grid(outcome.surface, e.samples);
-    const std::string comment = fmt::format("B-spline surface of {} ({} x {} samples)", input.boundary.name,
-                                            e.samples, e.samples);
+    const std::string comment =
+        fmt::format("B-spline surface of {} ({} x {} samples)", input.boundary.name, e.samples, e.samples);
     if (e.obj) {
       write(prefix + ".surface.obj", [&](std::ostream& o) { write_grid_obj(o, samples, comment); });
       write(prefix + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.surface.net); });

@@ -45,7 +45,10 @@ int run_export(ExportRequest e) {
                               input, e.net, e.global, phases);
   }
   if (e.ply || e.vtu || e.vts)
-    throw InputError("command line", e.ply ? "--ply" : e.vtu ? "--vtu" : "--vts",
+    throw InputError("command line",
+                     e.ply   ? "--ply"
+                     : e.vtu ? "--vtu"
+                             : "--vts",
                      "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply/--vts)");
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);

@@ -171,7 +171,8 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
                      "target objectives compare Bézier nets; a B-spline boundary takes energies only");
   std::string why;
   const auto objective = parse_objective(objective_text(r.objective), &why);
-  if (!objective || !bspline_objective_supported(*objective, &why)) throw InputError("command line", "--objective", why);
+  if (!objective || !bspline_objective_supported(*objective, &why))
+    throw InputError("command line", "--objective", why);
   AlphaSearchOptions options = default_bspline_search_options();  // [-1/4, 0]: definite there
   options.lower = r.lower.value_or(options.lower);
   options.upper = r.upper.value_or(options.upper);
@@ -184,8 +185,9 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
   if (requested && !requested->needs_matrix)
     throw InputError("command line", "--solver",
-                     requested->name + " works from a grid stencil; a B-spline boundary needs a backend that takes "
-                                       "an assembled matrix");
+                     requested->name +
+                         " works from a grid stencil; a B-spline boundary needs a backend that takes "
+                         "an assembled matrix");
   const std::string solver =
       requested ? requested->name : auto_bspline_solver(options.upper <= 0 ? options.lower : options.upper);
   const BSplineInput& in = *file.bspline;
@@ -201,8 +203,8 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
   out["mu"] = nullptr;
   out.erase("beta_ij");
   out["bspline"] = bspline_block(frame, in);
-  out["solver"] =
-      search_solver_block(*solvers::find_solver(solver), requested == nullptr, s.status, s.solves, s.seconds, s.message);
+  out["solver"] = search_solver_block(*solvers::find_solver(solver), requested == nullptr, s.status, s.solves,
+                                      s.seconds, s.message);
   return finish(out, phases, s.status, r, s.message);
 }
 

@@ -10,9 +10,9 @@
 
 #include "coons/io/input_error.h"
 #include "coons/io/tri_boundary_io.h"
-#include "coons/study/bspline_study.h"
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
+#include "coons/study/bspline_study.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
@@ -101,7 +101,8 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
     if (!is_triangle_file(f)) {
       const BoundaryFile file = read_boundary_file(f, read_options);
       if (file.bspline) {  // a row at its own knots (bspline_study.h), not the degree study
-        check_memory(r.global, 64.0 * file.bspline->compatible.bottom.count() * file.bspline->compatible.left.count() * 100,
+        check_memory(r.global,
+                     64.0 * file.bspline->compatible.bottom.count() * file.bspline->compatible.left.count() * 100,
                      fmt::format("the B-spline row of {}", file.boundary.name), f, "knots_u");
         bsplines.push_back({f, file.boundary.name, *file.bspline});
         continue;

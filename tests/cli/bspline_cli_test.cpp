@@ -79,9 +79,9 @@ TEST_CASE("coons solve: bad knot vectors and options are one error line naming t
     CHECK(r.err.rfind("error: " + path + ": " + c.field + ": ", 0) == 0);
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   }
-  for (const auto& [options, field] : {std::pair{"--mu 3", "--mu"}, std::pair{"--mask c1-coons", "--mask"},
-                                       std::pair{"--method hermite-coons", "--method"},
-                                       std::pair{"--solver dst", "--solver"}}) {
+  for (const auto& [options, field] :
+       {std::pair{"--mu 3", "--mu"}, std::pair{"--mask c1-coons", "--mask"},
+        std::pair{"--method hermite-coons", "--method"}, std::pair{"--solver dst", "--solver"}}) {
     const CommandResult r = run_command(kCoons + " solve " + q(kWave) + " " + options);
     INFO(options << ": " << r.err);
     CHECK(r.status == 2);
@@ -96,8 +96,9 @@ TEST_CASE("coons solve: bad knot vectors and options are one error line naming t
 TEST_CASE("coons export: a B-spline boundary as sampled OBJ, PLY and VTS and its system as Matrix Market",
           "[cli][bspline]") {
   TempDir out;
-  const CommandResult r = run_command(kCoons + " export " + q(kWave) + " --alpha -0.1 --samples 9 --obj --ply --vts --mtx --out " +
-                                      q(out.path.string()));
+  const CommandResult r =
+      run_command(kCoons + " export " + q(kWave) + " --alpha -0.1 --samples 9 --obj --ply --vts --mtx --out " +
+                  q(out.path.string()));
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["written"].size() == 6);

@@ -23,7 +23,9 @@ Eigen::VectorXd greville_of(int degree, const Eigen::VectorXd& knots) {
 }
 
 // The frame of a random net (interior zero).
-ControlNet random_frame(int m, int n, std::uint32_t seed) { return frame_net(boundary_of(make_random_net(m, n, seed))); }
+ControlNet random_frame(int m, int n, std::uint32_t seed) {
+  return frame_net(boundary_of(make_random_net(m, n, seed)));
+}
 
 double sparse_distance(const Eigen::SparseMatrix<double>& A, const Eigen::SparseMatrix<double>& B) {
   return Eigen::MatrixXd(A - B).cwiseAbs().maxCoeff();
@@ -81,7 +83,8 @@ TEST_CASE("solve_nonuniform_mask_net: alpha = -1/4 reproduces the Greville-weigh
       const BSplineBoundary b =
           compatible_boundary(make_random_bspline_boundary(p, p + 3 + q, q, q + 5, std::uint32_t(100 + 10 * p + q)));
       const BSplineSurface coons = greville_coons_surface(b);
-      const NonUniformSolveResult solved = solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), -0.25, *solver);
+      const NonUniformSolveResult solved =
+          solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), -0.25, *solver);
       REQUIRE(solved.summary.ok());
       INFO("p = " << p << ", q = " << q);
       CHECK((solved.net.points - coons.net.points).cwiseAbs().maxCoeff() < 1e-10);
@@ -104,8 +107,7 @@ TEST_CASE("solve_nonuniform_mask_net: linear precision (bilinear data in the Gre
     for (int j = 0; j <= grid.n(); ++j) exact.at(i, j) = f(grid.xi(i), grid.eta(j));
   auto solver = solvers::make_solver("eigen-lu");
   for (const double alpha : {-0.25, -0.1, 0.0, 0.15}) {
-    const NonUniformSolveResult r =
-        solve_nonuniform_mask_net(frame_net(boundary_of(exact)), grid, alpha, *solver);
+    const NonUniformSolveResult r = solve_nonuniform_mask_net(frame_net(boundary_of(exact)), grid, alpha, *solver);
     REQUIRE(r.summary.ok());
     CHECK((r.net.points - exact.points).cwiseAbs().maxCoeff() < 1e-12);
     const BSplineSurface s{3, 2, knots_u, knots_v, r.net};

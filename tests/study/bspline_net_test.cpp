@@ -28,8 +28,7 @@ double distance_to_patch(const BSplineSurface& s, const BSplineBoundary& given, 
 
 }  // namespace
 
-TEST_CASE("make_bspline_net: random knot vectors (degrees 1-5, m != n): coons and alpha = -1/4 are the continuous "
-          "Coons patch",
+TEST_CASE("make_bspline_net: random knot vectors give the continuous Coons patch (coons, alpha = -1/4)",
           "[study][bspline]") {
   // Evidence (issue 12): sizes, degrees and knots drawn at random; opposite sides differ in degree,
   // knots, point count and domain, so every case goes through compatible_boundary first.

@@ -102,4 +102,3 @@ TEST_CASE("run_bspline_study: one row per B-spline boundary with both energies a
   CHECK(md.find("| random |") != std::string::npos);
   CHECK(bspline_study_json(rows)[0]["best_alpha"].contains("e3"));
 }
-

@@ -105,8 +105,7 @@ TEST_CASE("bspline_energy_form: polarises the energy", "[surfaces][bspline]") {
               .epsilon(1e-12));
 }
 
-TEST_CASE("sample_bspline_grid: points are the surface, derivatives match central differences",
-          "[surfaces][bspline]") {
+TEST_CASE("sample_bspline_grid: points are the surface, derivatives match central differences", "[surfaces][bspline]") {
   BSplineSurface s = random_surface(3, 6, 2, 5, 91);
   s.knots_u = s.knots_u * 2.0 + Eigen::VectorXd::Constant(s.knots_u.size(), 1.0);  // domain [1, 3]
   const SurfaceSamples samples = sample_bspline_grid(s, 5);
@@ -115,7 +114,8 @@ TEST_CASE("sample_bspline_grid: points are the surface, derivatives match centra
   const SurfacePoint p = bspline_surface_point(s, u, v);
   const Eigen::RowVector3d du = (bspline_surface_point(s, u + h, v).p - bspline_surface_point(s, u - h, v).p) / (2 * h);
   const Eigen::RowVector3d dv = (bspline_surface_point(s, u, v + h).p - bspline_surface_point(s, u, v - h).p) / (2 * h);
-  const Eigen::RowVector3d duv = (bspline_surface_point(s, u, v + h).du - bspline_surface_point(s, u, v - h).du) / (2 * h);
+  const Eigen::RowVector3d duv =
+      (bspline_surface_point(s, u, v + h).du - bspline_surface_point(s, u, v - h).du) / (2 * h);
   CHECK((p.du - du).norm() < 1e-6);
   CHECK((p.dv - dv).norm() < 1e-6);
   CHECK((p.duv - duv).norm() < 1e-5);

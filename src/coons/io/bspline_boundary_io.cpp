@@ -35,9 +35,9 @@ Eigen::VectorXd parse_direction(const nlohmann::json& doc, const std::string& so
   if (!j.is_object()) return parse_knot_vector(j, source, field, degree, count);
   for (const auto& [key, value] : j.items())
     if (key != first_side && key != second_side)
-      throw InputError(source, fmt::format("{}.{}", field, key),
-                       fmt::format("unknown side (per-side knots of {} are \"{}\" and \"{}\")", field, first_side,
-                                   second_side));
+      throw InputError(
+          source, fmt::format("{}.{}", field, key),
+          fmt::format("unknown side (per-side knots of {} are \"{}\" and \"{}\")", field, first_side, second_side));
   for (const char* side : {first_side, second_side})
     if (!j.contains(side))
       throw InputError(source, fmt::format("{}.{}", field, side),

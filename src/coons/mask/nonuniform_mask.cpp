@@ -114,8 +114,7 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
   out.summary = solver.compute_and_solve(op, system.B, X);
   if (!out.summary.ok()) return out;
   const auto fill = [cols](ControlNet& net, const Eigen::MatrixX3d& values) {
-    for (Eigen::Index k = 0; k < values.rows(); ++k)
-      net.at(1 + int(k / cols), 1 + int(k % cols)) = values.row(k);
+    for (Eigen::Index k = 0; k < values.rows(); ++k) net.at(1 + int(k / cols), 1 + int(k % cols)) = values.row(k);
   };
   fill(out.net, X);
   if (with_derivative) {

@@ -56,8 +56,9 @@ NetMetrics bspline_metrics(const BSplineSurface& s, double alpha) {
   out.e3_energy = bspline_combined_energy(s, bspline_e3_terms());
   out.discrete_twist_energy = discrete_twist_energy(s.net);
   out.discrete_dirichlet_energy = discrete_dirichlet_energy(s.net);
-  const GrevilleGrid grid{greville_abscissae(BSplineCurve(s.degree_u, s.knots_u, Eigen::MatrixX3d::Zero(s.net.m + 1, 3))),
-                          greville_abscissae(BSplineCurve(s.degree_v, s.knots_v, Eigen::MatrixX3d::Zero(s.net.n + 1, 3)))};
+  const GrevilleGrid grid{
+      greville_abscissae(BSplineCurve(s.degree_u, s.knots_u, Eigen::MatrixX3d::Zero(s.net.m + 1, 3))),
+      greville_abscissae(BSplineCurve(s.degree_v, s.knots_v, Eigen::MatrixX3d::Zero(s.net.n + 1, 3)))};
   out.mask_residual = nonuniform_mask_residual(s.net, grid, alpha);
   return out;
 }
@@ -78,9 +79,8 @@ json bspline_block(const BSplineSurface& s, const BSplineInput& input) {
   block["greville_v"] = vector_json(grid.eta);
   json notes = json::array();
   for (const CompatibilityNote& note : input.notes)
-    notes.push_back({{"side", note.side},
-                     {"degree_raised_by", note.degree_raised_by},
-                     {"knots_inserted", note.knots_inserted}});
+    notes.push_back(
+        {{"side", note.side}, {"degree_raised_by", note.degree_raised_by}, {"knots_inserted", note.knots_inserted}});
   block["compatibility"] = notes;
   return block;
 }

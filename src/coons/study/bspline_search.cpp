@@ -161,12 +161,13 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
   }
   for (int k = 1; k + 1 < n; ++k) {
     const auto& here = scan[std::size_t(k)].f;
-    const auto& before = scan[std::size_t(k - 1)].f;
-    const auto& after = scan[std::size_t(k + 1)].f;
+    const auto& before = scan[std::size_t(k) - 1].f;
+    const auto& after = scan[std::size_t(k) + 1].f;
     if (here && before && after && here->value < before->value && here->value < after->value) ++s.local_minima;
   }
   s.value = lowest;
-  const bool near_failure = (best > 0 && !scan[std::size_t(best - 1)].f) || (best + 1 < n && !scan[std::size_t(best + 1)].f);
+  const bool near_failure =
+      (best > 0 && !scan[std::size_t(best) - 1].f) || (best + 1 < n && !scan[std::size_t(best) + 1].f);
   if (highest - lowest <= options.flat_tolerance * std::max({std::abs(highest), std::abs(lowest), 1e-300})) {
     s.flat = true;
     s.status = s.failed_evaluations > 0 ? SearchStatus::kFailedRegion : SearchStatus::kFlat;
@@ -185,7 +186,7 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
     optimum = at;  // on a bound, the objective rising into the interval
   } else {
     const bool go_left = d > 0;
-    const Point& other = scan[std::size_t(go_left ? best - 1 : best + 1)];
+    const Point& other = scan[go_left ? std::size_t(best) - 1 : std::size_t(best) + 1];
     if (!other.f) {
       s.status = SearchStatus::kFailedRegion;
       s.message = "an evaluation next to the lowest scan point failed";

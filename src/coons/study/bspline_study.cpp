@@ -93,7 +93,8 @@ nlohmann::json bspline_study_json(const std::vector<BSplineStudyRow>& rows) {
                           {"thin_plate_laplace", number_or_null(r.thin_plate_laplace)}};
     nlohmann::json notes = nlohmann::json::array();
     for (const CompatibilityNote& n : r.notes)
-      notes.push_back({{"side", n.side}, {"degree_raised_by", n.degree_raised_by}, {"knots_inserted", n.knots_inserted}});
+      notes.push_back(
+          {{"side", n.side}, {"degree_raised_by", n.degree_raised_by}, {"knots_inserted", n.knots_inserted}});
     row["compatibility"] = notes;
     nlohmann::json searches = nlohmann::json::object();
     for (const auto& [objective, s] : r.searches)

@@ -24,7 +24,7 @@ struct BSplineStudyRow {
   int degree_u = 0, degree_v = 0, count_u = 0, count_v = 0;  //!< of the compatible net
   std::vector<CompatibilityNote> notes;
   std::string solver;
-  double thin_plate_coons = 0, thin_plate_laplace = 0;  //!< NaN when the solve failed
+  double thin_plate_coons = 0, thin_plate_laplace = 0;               //!< NaN when the solve failed
   std::vector<std::pair<std::string, AlphaSearchSummary>> searches;  //!< per objective
 };
 
