@@ -7,6 +7,7 @@
 #include <optional>
 
 #include "cad_commands.h"
+#include "bspline_commands.h"
 #include "coons/io/input_error.h"
 #include "coons/io/matrix_market.h"
 #include "coons/io/net_json.h"
@@ -30,19 +31,29 @@ struct ExportRequest {
   std::string out_dir = ".";
   std::string prefix;
   int samples = 33;
-  bool obj = false, mtx = false, ply = false, vtu = false;
+  bool obj = false, mtx = false, ply = false, vtu = false, vts = false;
   CadExportRequest cad;  // --step, --iges (cad_commands.h)
 };
 
 int run_export(ExportRequest e) {
+  if (is_triangle_file(e.boundary) && e.vts)
+    throw InputError("command line", "--vts", "is written for B-spline boundaries (triangles: --vtu)");
   if (is_triangle_file(e.boundary))
     return run_tri_export({e.boundary, &e.net, &e.global, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vtu});
-  if (e.ply || e.vtu)
-    throw InputError("command line", e.ply ? "--ply" : "--vtu",
-                     "is written for triangular boundaries (for a rectangular one: coons surface --ply/--vts)");
   Phases phases("export");
   phases.start("read");
-  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance);
+  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true);
+  if (input.bspline) {
+    if (e.vtu) throw InputError("command line", "--vtu", "is written for triangular boundaries (B-spline: --vts)");
+    return run_bspline_export({e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force},
+                              input, e.net, e.global, phases);
+  }
+  if (e.ply || e.vtu || e.vts)
+    throw InputError("command line",
+                     e.ply   ? "--ply"
+                     : e.vtu ? "--vtu"
+                             : "--vts",
+                     "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply/--vts)");
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
   if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
@@ -167,6 +178,7 @@ void register_export(CLI::App& app, Registry& registry) {
   cmd->add_flag("--ply", request->ply, "triangles: write <prefix>.surface.ply");
   cmd->add_flag("--vtu", request->vtu, "triangles: write <prefix>.surface.vtu (VTK unstructured grid)");
   add_cad_export_options(*cmd, request->cad);
+  cmd->add_flag("--vts", request->vts, "B-spline boundaries: write <prefix>.surface.vts (VTK structured grid)");
   cmd->add_flag("--force", request->global.force, "overwrite existing files of the same names");
   add_memory_option(*cmd, request->global);
   set_example(*cmd, "coons export data/boundaries/pillow.json --alpha -0.1 --samples 33 --out out/pillow");

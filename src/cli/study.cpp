@@ -14,6 +14,7 @@
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
 #include "coons/study/family_tasks.h"
+#include "coons/study/bspline_study.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
@@ -96,6 +97,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   read_options.corner_tolerance = r.corner_tolerance;
   std::vector<StudyInput> inputs;
   std::vector<TriStudyInput> triangles;
+  std::vector<BSplineStudyInput> bsplines;
   for (const auto& f : files) {
     if (is_triangle_file(f)) {
       triangles.push_back(read_tri_study_input(f, r.corner_tolerance));
@@ -104,6 +106,16 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
       check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),
                    fmt::format("the study of {} at degree {}", triangles.back().boundary.name, largest), f, "degree");
       continue;
+    }
+    if (!is_triangle_file(f)) {
+      const BoundaryFile file = read_boundary_file(f, read_options);
+      if (file.bspline) {  // a row at its own knots (bspline_study.h), not the degree study
+        check_memory(r.global,
+                     64.0 * file.bspline->compatible.bottom.count() * file.bspline->compatible.left.count() * 100,
+                     fmt::format("the B-spline row of {}", file.boundary.name), f, "knots_u");
+        bsplines.push_back({f, file.boundary.name, *file.bspline});
+        continue;
+      }
     }
     inputs.push_back(read_study_input(f, read_options));
     const Boundary& b = inputs.back().boundary;
@@ -117,6 +129,10 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
   result.triangles =
       run_tri_study(triangles, options.degrees, options.solver, [&](const std::string& s) { phases.note(s); });
+  // A backend that works from a grid stencil cannot take the non-uniform system: auto there.
+  const std::vector<BSplineStudyRow> bspline_rows = run_bspline_study(
+      bsplines, default_study_objectives(),
+      options.solver != nullptr && options.solver->needs_matrix ? options.solver->name : std::string());
 
   phases.start("write");
   OutputSet out(r.out_dir);
@@ -128,8 +144,11 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
     if (!f->error.empty()) out.discard(f->file);
   const std::string pages = r.html ? write_study_pages(result, inputs, out, three_js, options.solver) : "";
   const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
-                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6") + pages;
+                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6") +
+                         (bspline_rows.empty() ? "" : "\n" + bspline_study_markdown(bspline_rows)) + pages;
   out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
+  if (!bspline_rows.empty())
+    out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(bspline_rows), 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
   print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
   out.commit();
