@@ -95,7 +95,7 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   const BSplineResolved r = resolve_bspline(request, input, e.file);
   const BSplineInput& in = *input.bspline;
   if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
-  if (!e.obj && !e.mtx && !e.ply && !e.vts) e.obj = e.mtx = true;
+  if (!e.obj && !e.mtx && !e.ply && !e.vts && !e.cad.any()) e.obj = e.mtx = true;
   if (e.mtx && r.method != Method::kAlpha)
     throw InputError("command line", "--mtx",
                      "Matrix Market export needs --method alpha (closed forms solve no system)");
@@ -103,6 +103,7 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
     throw InputError("command line", "--prefix",
                      "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
   check_bspline_memory(global, in, e.file);
+  if (e.cad.any()) check_cad_export(e.cad, e.force);
   const bool sampled = e.obj || e.ply || e.vts;
   if (sampled)
     check_memory(global, samples_bytes(e.samples), fmt::format("{} x {} surface samples", e.samples, e.samples),
@@ -125,7 +126,7 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
                            {"method", to_string(r.method)}};
   report["bspline"] = bspline_block(frame_surface, in);
   BSplineNetOutcome outcome;
-  if (sampled) {
+  if (sampled || e.cad.any()) {
     phases.start("solve");
     outcome = solve_bspline(in, r);
     if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
@@ -154,6 +155,10 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
     }
     if (e.ply) write(prefix + ".surface.ply", [&](std::ostream& o) { write_grid_ply(o, samples, comment); });
     if (e.vts) write(prefix + ".surface.vts", [&](std::ostream& o) { write_grid_vts(o, samples); });
+  }
+  if (e.cad.any()) {
+    phases.start("write");
+    for (auto& path : write_cad_export(e.cad, outcome.surface, out)) written.push_back(path);
   }
   if (e.mtx) {
     phases.start("assemble");

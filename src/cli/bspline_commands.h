@@ -5,6 +5,7 @@
 
 #include <string>
 
+#include "cad_commands.h"
 #include "common.h"
 
 namespace coons::cli {
@@ -18,6 +19,7 @@ struct BSplineExportRequest {
   std::string file, out_dir, prefix;
   int samples = 33;
   bool obj = false, mtx = false, ply = false, vts = false, force = false;
+  CadExportRequest cad;  //!< --step, --iges: the solved surface with its knots (cad_commands.h)
 };
 int run_bspline_export(const BSplineExportRequest& e, const BoundaryFile& input, const NetRequest& request,
                        const GlobalOptions& global, Phases& phases);

@@ -5,9 +5,7 @@
 #include <memory>
 
 #include "coons/config.h"
-#include "coons/io/bspline_boundary_io.h"
 #include "coons/io/input_error.h"
-#include "coons/io/json_file.h"
 #if COONS_HAVE_OCCT
 #include "coons/cad/cad_surface.h"
 #include "coons/cad/step_import.h"
@@ -64,39 +62,26 @@ void add_cad_export_options(CLI::App& cmd, CadExportRequest& r) {
   cmd.add_option("--iges", r.iges, "also write the net as a B-spline surface to this IGES file (OpenCASCADE)");
 }
 
-CadExportPlan check_cad_export(const CadExportRequest& r, const std::string& boundary_path, const Boundary& b,
-                               Method method, bool classical, bool force) {
+void check_cad_export(const CadExportRequest& r, bool force) {
   const std::string option = r.step.empty() ? "--iges" : "--step";
   if (!COONS_HAVE_OCCT) throw InputError("command line", option, kNoOcct);
   for (const std::string* path : {&r.step, &r.iges})
     if (!path->empty() && !force && std::filesystem::exists(*path))
       throw InputError(*path, "--force", "exists; give --force to overwrite it");
   if (!r.step.empty() && r.step == r.iges) throw InputError("command line", "--iges", "is the same file as --step");
-  CadExportPlan plan;
-  const nlohmann::json doc = read_json_file(boundary_path);
-  plan.bspline = parse_bspline_knots(doc, boundary_path, b.m + 1, b.n + 1).has_value();
-  if (plan.bspline && (method != Method::kCoons || !classical))
-    throw InputError("command line", option,
-                     "a B-spline boundary (knots_u, knots_v) is written as its Greville Coons net: give --method coons "
-                     "(the non-uniform mask family is not exported in this version)");
-  return plan;
 }
 
-std::vector<std::string> write_cad_export(const CadExportRequest& r, const CadExportPlan& plan,
-                                          const std::string& boundary_path, const Boundary& b, const ControlNet& net,
-                                          OutputSet& out) {
+BSplineSurface bezier_surface_for_cad(const ControlNet& net) {
 #if COONS_HAVE_OCCT
-  BSplineSurface surface;
-  if (plan.bspline) {
-    const nlohmann::json doc = read_json_file(boundary_path);
-    const BSplineKnots knots = *parse_bspline_knots(doc, boundary_path, b.m + 1, b.n + 1);
-    // The Greville net does not change under an affine map of the knots: keep the file's knots.
-    surface = greville_coons_surface(compatible_boundary(bspline_boundary(b, knots)));
-    surface.knots_u = knots.knots_u;
-    surface.knots_v = knots.knots_v;
-  } else {
-    surface = cad::bezier_as_bspline(net);
-  }
+  return cad::bezier_as_bspline(net);
+#else
+  (void)net;
+  throw InputError("command line", "--step", kNoOcct);
+#endif
+}
+
+std::vector<std::string> write_cad_export(const CadExportRequest& r, const BSplineSurface& surface, OutputSet& out) {
+#if COONS_HAVE_OCCT
   std::vector<std::string> written;
   if (!r.step.empty()) {
     cad::check_writable(surface, r.step, "--step");
@@ -110,7 +95,7 @@ std::vector<std::string> write_cad_export(const CadExportRequest& r, const CadEx
   }
   return written;
 #else
-  (void)plan, (void)boundary_path, (void)b, (void)net, (void)out;
+  (void)surface, (void)out;
   throw InputError("command line", r.step.empty() ? "--iges" : "--step", kNoOcct);
 #endif
 }

@@ -8,6 +8,7 @@
 
 #include "coons/io/write_files.h"
 #include "coons/net/control_net.h"
+#include "coons/surfaces/bspline_surface.h"
 #include "registry.h"
 
 namespace coons::cli {
@@ -18,19 +19,14 @@ struct CadExportRequest {
 };
 void add_cad_export_options(CLI::App& cmd, CadExportRequest& r);
 
-//! What export writes to STEP/IGES: checked before anything is solved.
-struct CadExportPlan {
-  bool bspline = false;  //!< the file has knots_u/knots_v/degree_spline: the Greville net is written
-};
 //! Refuses (InputError) when OpenCASCADE is not built in, when a target exists without --force,
-//! and for a B-spline boundary file (knots_u …) asked for another method than coons.
-CadExportPlan check_cad_export(const CadExportRequest& r, const std::string& boundary_path, const Boundary& b,
-                               Method method, bool classical, bool force);
-//! Stages the STEP and IGES files of the net in `out` (published with the other files); returns
-//! their final paths. For a B-spline boundary the net written is the Greville Coons net with the
-//! file's knots (coons' Bézier net otherwise, as a single-span B-spline).
-std::vector<std::string> write_cad_export(const CadExportRequest& r, const CadExportPlan& plan,
-                                          const std::string& boundary_path, const Boundary& b, const ControlNet& net,
-                                          OutputSet& out);
+//! and when --step and --iges name one file. Called before anything is solved or written.
+void check_cad_export(const CadExportRequest& r, bool force);
+//! Stages the STEP and IGES files of `surface` in `out` (published with the other files); returns
+//! their final paths. A B-spline boundary's surface keeps its knots; a Bézier net goes through
+//! bezier_surface_for_cad first.
+std::vector<std::string> write_cad_export(const CadExportRequest& r, const BSplineSurface& surface, OutputSet& out);
+//! A Bézier net as the single-span clamped B-spline surface STEP and IGES carry.
+BSplineSurface bezier_surface_for_cad(const ControlNet& net);
 
 }  // namespace coons::cli

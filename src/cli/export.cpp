@@ -45,7 +45,7 @@ int run_export(ExportRequest e) {
   const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true);
   if (input.bspline) {
     if (e.vtu) throw InputError("command line", "--vtu", "is written for triangular boundaries (B-spline: --vts)");
-    return run_bspline_export({e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force},
+    return run_bspline_export({e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force, e.cad},
                               input, e.net, e.global, phases);
   }
   if (e.ply || e.vtu || e.vts)
@@ -70,8 +70,7 @@ int run_export(ExportRequest e) {
   const bool classical = is_classical_request(input, r);
   std::optional<StencilRun> run;
   if (!classical) run = check_stencil_request(input, r, e.boundary);
-  CadExportPlan cad_plan;
-  if (e.cad.any()) cad_plan = check_cad_export(e.cad, e.boundary, b, r.method, classical, e.global.force);
+  if (e.cad.any()) check_cad_export(e.cad, e.global.force);
   const bool solve_net = e.obj || e.cad.any();
   if (e.obj)
     check_memory(e.global, samples_bytes(e.samples), fmt::format("{} x {} surface samples", e.samples, e.samples),
@@ -153,7 +152,7 @@ int run_export(ExportRequest e) {
   }
   if (e.cad.any()) {
     phases.start("write");
-    for (auto& path : write_cad_export(e.cad, cad_plan, e.boundary, b, outcome.net, out)) written.push_back(path);
+    for (auto& path : write_cad_export(e.cad, bezier_surface_for_cad(outcome.net), out)) written.push_back(path);
   }
   report["written"] = written;
   report["timing"] = phases.timing();

@@ -1,5 +1,7 @@
 // `coons export --step/--iges` and `coons import-step` end to end (the built binary).
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -97,11 +99,34 @@ TEST_CASE("coons import-step, export --step: bad input exits 2 with one line, no
     CHECK_FALSE(std::filesystem::exists(out));
   }
   CHECK(std::filesystem::is_empty(dir.path));
-  // a B-spline boundary is exported as its Greville net: other methods are refused
-  const std::string patch = dir.file("patch.json");
+}
+
+TEST_CASE("coons export --step: a B-spline boundary's alpha net is written with its knots, as solve gives it",
+          "[cad][cli]") {
+  const test::TempDir dir;
+  const std::string patch = dir.file("patch.json"), step = dir.file("p.step");
   REQUIRE(run_command(kCoons + " import-step " + kData + "cad/bspline_patch.step --face 0 --out " + patch).status == 0);
-  const CommandResult alpha = run_command(kCoons + " export " + patch + " --method alpha --step " + dir.file("p.step"));
-  CHECK(alpha.status == 2);
-  CHECK(alpha.err.find("--method coons") != std::string::npos);
-  CHECK_FALSE(std::filesystem::exists(dir.file("p.step")));
+  const std::string options = " --method alpha --alpha -0.1 --solver eigen-lu";
+  const CommandResult e = run_command(kCoons + " export " + patch + options + " --step " + step);
+  INFO(e.err);
+  REQUIRE(e.status == 0);
+  CHECK(nlohmann::json::parse(e.out)["written"] == nlohmann::json::array({step}));
+  const CommandResult solved = run_command(kCoons + " solve " + patch + options);
+  REQUIRE(solved.status == 0);
+  const nlohmann::json net = nlohmann::json::parse(solved.out)["net"];
+  const auto back = cad::read_step_surfaces(step);
+  REQUIRE(back.size() == 1);
+  const ControlNet& written = back[0].net;
+  REQUIRE(net.size() == static_cast<std::size_t>(written.m + 1));
+  double differs_from_greville = 0;
+  const auto greville = cad::read_step_surfaces(kData + "cad/bspline_patch.step");
+  for (int i = 0; i <= written.m; ++i)
+    for (int j = 0; j <= written.n; ++j)
+      for (int c = 0; c < 3; ++c) {
+        CHECK(written.at(i, j)(c) == net[i][j][c].get<double>());
+        differs_from_greville = std::max(differs_from_greville, std::abs(written.at(i, j)(c) - greville[0].net.at(i, j)(c)));
+      }
+  CHECK(differs_from_greville > 1e-6);  // alpha = -0.1 is not the Coons net the sample holds
+  CHECK(back[0].knots_u == greville[0].knots_u);
+  CHECK(back[0].knots_v == greville[0].knots_v);
 }
