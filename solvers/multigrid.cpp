@@ -83,6 +83,7 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
     if (coarse.unknowns == 0) break;
     levels_.push_back(std::move(coarse));
   }
+  for (auto& L : levels_) L.threads = resolved_threads(options.threads);
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l)
     if (!factor_lines(levels_[l])) {
       if (message) *message = "a line block of level " + std::to_string(l) + " has a zero pivot";

@@ -57,6 +57,9 @@ struct MultigridOptions {
   int post_smoothing = 1;               //!< adjoint sweeps after it
   Eigen::Index coarsest_unknowns = 64;  //!< solve directly at or below this many free points
   int max_levels = 20;
+  //! threads of the residual, restriction and operator loops (1; 0: every core). They run over
+  //! independent points, so results are identical for every count. The line smoother stays serial.
+  int threads = 1;
 
   bool is_valid(std::string* why) const;
 };

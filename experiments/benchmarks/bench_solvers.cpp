@@ -150,8 +150,14 @@ void BM_ClosedFormCoons(benchmark::State& state, int N) {
   set_common_counters(state, N);
 }
 
+// SolverOptions::threads: the structured and mg rows run at 1 and 2 (label threads=K).
+bool threaded(const std::string& name) {
+  const SolverInfo* info = find_solver(name);
+  return info && (info->family == SolverFamily::kStructured || name == "mg" || name == "mg-cg");
+}
+
 // One fresh solve: analyze + factorize + solve (the residual is computed once, untimed).
-void BM_Solve(benchmark::State& state, const std::string& name, int N, double alpha) {
+void BM_Solve(benchmark::State& state, const std::string& name, int N, double alpha, int threads = 1) {
   const SolverInfo* info = find_solver(name);
   std::string backend = name;
   if (name == "auto") backend = choose_auto_solver(mask_stencil(alpha_mask(alpha), N, N));
@@ -160,6 +166,7 @@ void BM_Solve(benchmark::State& state, const std::string& name, int N, double al
   const LinearOperator op = operator_of(p.system, info->needs_matrix);
   SolverOptions timed;
   timed.compute_residual = false;
+  timed.threads = threads;
   Eigen::MatrixX3d X;
   SolveSummary s;
   // Structured backends plan their FFTs once per size per process (FFTW keeps the wisdom): one
@@ -179,7 +186,9 @@ void BM_Solve(benchmark::State& state, const std::string& name, int N, double al
   state.counters["residual"] = s.relative_residual;
   state.counters["factor_nnz"] = double(s.factor_nnz);
   state.counters["ok"] = s.ok();
+  state.counters["threads"] = threads;
   state.SetLabel(backend + (s.ordering.empty() ? "" : " ordering=" + s.ordering) +
+                 (threaded(backend) ? " threads=" + std::to_string(threads) : "") +
                  (s.ok() ? "" : std::string(" status=") + to_string(s.status)));
 }
 
@@ -487,9 +496,13 @@ int main(int argc, char** argv) {
         if (!config.quick && N > size_cap(info, alpha, config)) continue;
         const std::string tag =
             "/" + info.name + "/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6);
-        benchmark::RegisterBenchmark(("BM_Solve" + tag).c_str(), BM_Solve, info.name, N, alpha)
+        benchmark::RegisterBenchmark(("BM_Solve" + tag).c_str(), BM_Solve, info.name, N, alpha, 1)
             ->UseRealTime()
             ->MinTime(min_time);
+        if (threaded(info.name))
+          benchmark::RegisterBenchmark(("BM_Solve" + tag + "/threads:2").c_str(), BM_Solve, info.name, N, alpha, 2)
+              ->UseRealTime()
+              ->MinTime(min_time);
         if (info.family != SolverFamily::kIterative)
           benchmark::RegisterBenchmark(("BM_Refactorize" + tag).c_str(), BM_Refactorize, info.name, N, alpha)
               ->UseRealTime()
@@ -557,7 +570,7 @@ int main(int argc, char** argv) {
       for (double alpha : config.alphas)
         benchmark::RegisterBenchmark(
             ("BM_Solve/auto/N:" + std::to_string(N) + "/alpha:" + std::to_string(alpha).substr(0, 6)).c_str(), BM_Solve,
-            std::string("auto"), N, alpha)
+            std::string("auto"), N, alpha, 1)
             ->UseRealTime()
             ->MinTime(min_time);
   }

@@ -101,6 +101,31 @@ TEST_CASE("multigrid backends: agree with a sparse direct solve on 3x3 and 5x5 s
       }
 }
 
+TEST_CASE("multigrid backends: one and two threads give the same solution bit for bit", "[solvers][mg]") {
+  // The threaded loops (residual, restriction, operator) write disjoint points: no reordering of sums.
+  for (Shape shape : {Shape::kFull, Shape::kHole})
+    for (const NamedStencil& stencil : symmetric_stencils()) {
+      StencilOperator op = make_stencil_operator(63, 57, stencil.weights);
+      op.free = shape_mask(shape, 63, 57);
+      const Eigen::MatrixX3d B = boundary_rhs(op);
+      LinearOperator lop;
+      lop.grid = &op;
+      for (const char* name : {"mg", "mg-cg"}) {
+        SolverOptions one, two;
+        one.tolerance = two.tolerance = 1e-10;
+        two.threads = 2;
+        Eigen::MatrixX3d X1, X2;
+        const SolveSummary s1 = make_solver(name, one)->compute_and_solve(lop, B, X1);
+        const SolveSummary s2 = make_solver(name, two)->compute_and_solve(lop, B, X2);
+        INFO(name << " on " << stencil.name << ", shape " << int(shape) << ": " << s1.brief_report() << " / "
+                  << s2.brief_report());
+        CHECK(s1.status == s2.status);
+        CHECK(s1.iterations == s2.iterations);
+        CHECK(X1 == X2);
+      }
+    }
+}
+
 TEST_CASE("Multigrid::precondition: a V-cycle is a symmetric positive definite operator", "[solvers][mg]") {
   for (const NamedStencil& stencil : symmetric_stencils()) {
     StencilOperator op = make_stencil_operator(37, 29, stencil.weights);

@@ -255,6 +255,24 @@ TEST_CASE("SolverOptions: a negative or non-finite time limit is invalid", "[sol
   CHECK_FALSE(options.is_valid(&why));
 }
 
+TEST_CASE("SolverOptions: threads lie in 0 .. 256, and 0 means every core", "[solvers]") {
+  std::string why;
+  SolverOptions options;
+  CHECK(options.threads == 1);
+  for (int threads : {0, 1, 2, kMaxThreads}) {
+    options.threads = threads;
+    CHECK(options.is_valid(&why));
+  }
+  for (int threads : {-1, kMaxThreads + 1}) {
+    options.threads = threads;
+    CHECK_FALSE(options.is_valid(&why));
+    CHECK_THAT(why, Catch::Contains("threads"));
+  }
+  CHECK(resolved_threads(3) == 3);
+  CHECK(resolved_threads(0) >= 1);
+  CHECK(resolved_threads(0) <= kMaxThreads);
+}
+
 TEST_CASE("format_g: prints like %g, never 0.000000 for a small tolerance", "[solvers]") {
   CHECK(format_g(1e-12) == "1e-12");
   CHECK(format_g(0.25) == "0.25");
