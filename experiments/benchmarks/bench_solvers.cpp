@@ -3,7 +3,7 @@
 // same run (scripts/bench.sh turns the JSON output into a table, a plot and scaling exponents).
 //
 //   bench_solvers [--sizes=63,127,...] [--alphas=-0.25,-0.1,0] [--backends=name,...] [--quick] [--large] [--hard]
-//                 [google benchmark flags, e.g. --benchmark_format=json]
+//                 [--mg-iterations] [google benchmark flags, e.g. --benchmark_format=json]
 //   bench_solvers --dump-mtx=DIR [--sizes=...] [--alphas=...]
 //
 // --dump-mtx writes, instead of running anything, every (N, α) system the suite times as
@@ -18,7 +18,9 @@
 // experiment E04 (BM_Hard: nine backends on the 5×5 problems, also an L-shape and a fixed line).
 // The multigrid-class backends (mg, mg-cg,
 // hypre-amg, hypre-pfmg, hypre-smg) run up to 255 at every α, and up to 1023 when --sizes asks
-// for it (opt-in: hypre-amg needs minutes at α = −1/4 from 255 on).
+// for it (opt-in: hypre-amg needs minutes at α = −1/4 from 255 on). --mg-iterations runs only
+// BM_MgIterations: the iteration counts of mg, mg-cg, hypre-smg and hypre-pfmg at 1e−10 on the
+// α family and the 5×5 set (scripts/bench_mg.sh puts them into docs/solvers.md).
 #include <benchmark/benchmark.h>
 
 #include <algorithm>
@@ -54,6 +56,7 @@ struct Config {
   bool quick = false;
   bool large = false;        // the 5×5 set at N = 1023 too
   bool hard = false;         // experiment E04 (BM_Hard): nine backends on the 5×5 problems
+  bool mg_iterations = false;  // BM_MgIterations only (iteration counts of mg, mg-cg, hypre at 1e−10)
   bool sizes_given = false;  // --sizes: the multigrid-class backends run up to 1023
   std::string dump_dir;      // --dump-mtx: write the systems there and run nothing
 };
@@ -410,6 +413,40 @@ void BM_Hard(benchmark::State& state, const std::string& name, double w, FreeSha
   state.SetLabel(name + " status=" + to_string(s.status));
 }
 
+// Iteration counts of the multigrid-class backends (--mg-iterations): one fresh solve of the three
+// right-hand sides to relative residual 1e−10 (the target of issue 14), from the grid operator.
+// problem: "alpha" (the mask system at α) or "c1-coons" / "biharmonic" (the 5×5 set, w = 1 / 0).
+void BM_MgIterations(benchmark::State& state, const std::string& name, const std::string& problem_name, double alpha,
+                     int N) {
+  LinearOperator op;
+  const Eigen::MatrixX3d* B = nullptr;
+  if (problem_name == "alpha") {
+    const Problem& p = problem(N, alpha, false);
+    op.stencil = p.system.stencil;
+    B = &p.system.B;
+  } else {
+    const Stencil5Problem& p = stencil5_problem(problem_name == "c1-coons" ? 1.0 : 0.0, FreeShape::kFull, N);
+    op.grid = &p.op;
+    B = &p.B;
+  }
+  SolverOptions options;
+  options.tolerance = 1e-10;
+  options.compute_residual = false;
+  Eigen::MatrixX3d X;
+  SolveSummary s;
+  for (auto _ : state) {
+    s = make_solver(name, options)->compute_and_solve(op, *B, X);
+    benchmark::DoNotOptimize(X.data());
+  }
+  set_common_counters(state, N);
+  state.counters["alpha"] = alpha;
+  state.counters["iterations"] = s.iterations;
+  state.counters["residual"] = X.rows() == B->rows() ? relative_residual(op, *B, X) : NAN;
+  state.counters["ok"] = s.ok();
+  state.SetLabel(name + " " + (problem_name == "alpha" ? "alpha=" + std::to_string(alpha).substr(0, 5) : problem_name) +
+                 " status=" + to_string(s.status));
+}
+
 bool multigrid_class(const std::string& name) {
   return name == "mg" || name == "mg-cg" || name.rfind("hypre-", 0) == 0;
 }
@@ -443,6 +480,36 @@ int size_cap(const SolverInfo& info, double alpha, const Config& config) {
   return alpha <= -0.25 ? 127 : 255;
 }
 
+// The BM_MgIterations set: mg at α = 0 and −0.1, mg-cg at every α and on c1-coons and biharmonic,
+// hypre-smg and hypre-pfmg beside them on the 3×3 systems.
+void register_mg_iterations(const Config& config) {
+  struct Case {
+    const char* backend;
+    const char* problem;
+    double alpha;
+  };
+  const std::vector<Case> cases = {
+      {"mg", "alpha", 0.0},          {"mg", "alpha", -0.1},         {"mg-cg", "alpha", 0.0},
+      {"mg-cg", "alpha", -0.1},      {"mg-cg", "alpha", -0.25},     {"mg-cg", "c1-coons", 0},
+      {"mg-cg", "biharmonic", 0},    {"hypre-smg", "alpha", 0.0},   {"hypre-smg", "alpha", -0.1},
+      {"hypre-smg", "alpha", -0.25}, {"hypre-pfmg", "alpha", 0.0},  {"hypre-pfmg", "alpha", -0.1},
+      {"hypre-pfmg", "alpha", -0.25}};
+  for (int N : config.sizes)
+    for (const Case& c : cases) {
+      if (!find_solver(c.backend) || (!config.backends.empty() && std::find(config.backends.begin(),
+                                                                            config.backends.end(),
+                                                                            c.backend) == config.backends.end()))
+        continue;
+      const std::string what = std::string(c.problem) == "alpha" ? "alpha:" + std::to_string(c.alpha).substr(0, 5)
+                                                                  : std::string(c.problem);
+      benchmark::RegisterBenchmark(
+          ("BM_MgIterations/" + what + "/" + c.backend + "/N:" + std::to_string(N)).c_str(), BM_MgIterations,
+          std::string(c.backend), std::string(c.problem), c.alpha, N)
+          ->UseRealTime()
+          ->Iterations(1);
+    }
+}
+
 }  // namespace
 
 int main(int argc, char** argv) {
@@ -462,6 +529,8 @@ int main(int argc, char** argv) {
       config.backends = split(value("--backends="));
     } else if (arg == "--hard") {
       config.hard = true;
+    } else if (arg == "--mg-iterations") {
+      config.mg_iterations = true;
     } else if (arg == "--large") {
       config.large = true;
     } else if (arg.rfind("--dump-mtx=", 0) == 0) {
@@ -480,7 +549,8 @@ int main(int argc, char** argv) {
            std::find(config.backends.begin(), config.backends.end(), name) != config.backends.end();
   };
 
-  for (int N : config.sizes) {
+  if (config.mg_iterations) register_mg_iterations(config);
+  for (int N : config.mg_iterations ? std::vector<int>{} : config.sizes) {
     benchmark::RegisterBenchmark(("BM_MemoryPass/N:" + std::to_string(N)).c_str(), BM_MemoryPass, N)->UseRealTime();
     benchmark::RegisterBenchmark(("BM_ClosedFormCoons/N:" + std::to_string(N)).c_str(), BM_ClosedFormCoons, N)
         ->UseRealTime();

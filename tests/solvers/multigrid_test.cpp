@@ -240,10 +240,38 @@ TEST_CASE("Multigrid::solve: stops with not_converged when the residual stalls",
   const IterationSummary s = mg.solve(b, x, options);
   INFO(s.message);
   CHECK(s.status == SolveStatus::kNotConverged);
-  CHECK_THAT(s.message, Catch::Contains("stalled"));
+  CHECK_THAT(s.message, Catch::Contains("rounding floor"));
   CHECK(s.iterations < 400);
   CHECK(x.allFinite());
   CHECK(s.relative_residual < 1e-6);
+}
+
+TEST_CASE("multigrid_cg: stops at the rounding floor with its best iterate when the tolerance is below it",
+          "[solvers][mg]") {
+  // α = −1/4 with data from a smooth function: b holds second differences of it, so the floor
+  // ε(Σ|w| ‖x‖ + ‖b‖)/‖b‖ lies far above 1e-16. Continued CG let the true residual grow again
+  // (2e-12 to 7e-11 at 1023x1023); restarting from the true residual ends at the floor instead.
+  const StencilOperator op = make_stencil_operator(127, 127, nine_point(1, -0.5, 0.25));
+  const Eigen::VectorXd b = boundary_rhs(op).col(2);
+  Multigrid mg;
+  REQUIRE(mg.setup(op) == SolveStatus::kSuccess);
+  IterationOptions options;
+  options.tolerance = 1e-17;
+  options.max_iterations = 200;
+  Eigen::VectorXd x;
+  const IterationSummary s = multigrid_cg(mg, b, x, options);
+  INFO(s.message);
+  CHECK(s.status == SolveStatus::kNotConverged);
+  CHECK_THAT(s.message, Catch::Contains("rounding floor"));
+  CHECK(s.iterations < 40);
+  CHECK(x.allFinite());
+  CHECK(s.relative_residual < 1e-11);
+  // The same system to 1e-10 succeeds well before.
+  options.tolerance = 1e-10;
+  Eigen::VectorXd y;
+  const IterationSummary ok = multigrid_cg(mg, b, y, options);
+  CHECK(ok.ok());
+  CHECK(ok.iterations < s.iterations);
 }
 
 TEST_CASE("gmres: solves a nonsymmetric convection-diffusion stencil like a dense LU", "[solvers][mg]") {
