@@ -54,11 +54,11 @@ struct Config {
   std::vector<double> alphas = {-0.25, -0.1, 0.0};
   std::vector<std::string> backends;  // empty: all
   bool quick = false;
-  bool large = false;        // the 5×5 set at N = 1023 too
-  bool hard = false;         // experiment E04 (BM_Hard): nine backends on the 5×5 problems
+  bool large = false;          // the 5×5 set at N = 1023 too
+  bool hard = false;           // experiment E04 (BM_Hard): nine backends on the 5×5 problems
   bool mg_iterations = false;  // BM_MgIterations only (iteration counts of mg, mg-cg, hypre at 1e−10)
-  bool sizes_given = false;  // --sizes: the multigrid-class backends run up to 1023
-  std::string dump_dir;      // --dump-mtx: write the systems there and run nothing
+  bool sizes_given = false;    // --sizes: the multigrid-class backends run up to 1023
+  std::string dump_dir;        // --dump-mtx: write the systems there and run nothing
 };
 
 std::vector<std::string> split(const std::string& s) {
@@ -489,22 +489,21 @@ void register_mg_iterations(const Config& config) {
     double alpha;
   };
   const std::vector<Case> cases = {
-      {"mg", "alpha", 0.0},          {"mg", "alpha", -0.1},         {"mg-cg", "alpha", 0.0},
-      {"mg-cg", "alpha", -0.1},      {"mg-cg", "alpha", -0.25},     {"mg-cg", "c1-coons", 0},
-      {"mg-cg", "biharmonic", 0},    {"hypre-smg", "alpha", 0.0},   {"hypre-smg", "alpha", -0.1},
-      {"hypre-smg", "alpha", -0.25}, {"hypre-pfmg", "alpha", 0.0},  {"hypre-pfmg", "alpha", -0.1},
+      {"mg", "alpha", 0.0},          {"mg", "alpha", -0.1},        {"mg-cg", "alpha", 0.0},
+      {"mg-cg", "alpha", -0.1},      {"mg-cg", "alpha", -0.25},    {"mg-cg", "c1-coons", 0},
+      {"mg-cg", "biharmonic", 0},    {"hypre-smg", "alpha", 0.0},  {"hypre-smg", "alpha", -0.1},
+      {"hypre-smg", "alpha", -0.25}, {"hypre-pfmg", "alpha", 0.0}, {"hypre-pfmg", "alpha", -0.1},
       {"hypre-pfmg", "alpha", -0.25}};
   for (int N : config.sizes)
     for (const Case& c : cases) {
-      if (!find_solver(c.backend) || (!config.backends.empty() && std::find(config.backends.begin(),
-                                                                            config.backends.end(),
-                                                                            c.backend) == config.backends.end()))
+      if (!find_solver(c.backend) ||
+          (!config.backends.empty() &&
+           std::find(config.backends.begin(), config.backends.end(), c.backend) == config.backends.end()))
         continue;
-      const std::string what = std::string(c.problem) == "alpha" ? "alpha:" + std::to_string(c.alpha).substr(0, 5)
-                                                                  : std::string(c.problem);
-      benchmark::RegisterBenchmark(
-          ("BM_MgIterations/" + what + "/" + c.backend + "/N:" + std::to_string(N)).c_str(), BM_MgIterations,
-          std::string(c.backend), std::string(c.problem), c.alpha, N)
+      const std::string what =
+          std::string(c.problem) == "alpha" ? "alpha:" + std::to_string(c.alpha).substr(0, 5) : std::string(c.problem);
+      benchmark::RegisterBenchmark(("BM_MgIterations/" + what + "/" + c.backend + "/N:" + std::to_string(N)).c_str(),
+                                   BM_MgIterations, std::string(c.backend), std::string(c.problem), c.alpha, N)
           ->UseRealTime()
           ->Iterations(1);
     }
