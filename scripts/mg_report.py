@@ -1,12 +1,14 @@
 #!/usr/bin/env python3
 """Tables of the multigrid iteration counts and of the 1- and 2-thread solves, from bench_solvers JSON.
 
-    python3 scripts/mg_report.py MG_ITERATIONS.json [THREADS.json] [--docs docs/solvers.md]
+    python3 scripts/mg_report.py --iterations A.json [B.json ...] [--threads T.json] [--docs docs/solvers.md]
 
-MG_ITERATIONS.json: `bench_solvers --mg-iterations --benchmark_out=...`; THREADS.json: a BM_Solve run
-with the threaded backends (`--backends=fast,dst,mg`). Prints Markdown; with --docs it replaces the
-text between the markers <!-- mg-report:begin --> and <!-- mg-report:end --> of that file.
+--iterations: `bench_solvers --mg-iterations --benchmark_out=...` runs (several files are merged, e.g.
+a run that was split by size); --threads: a BM_Solve run with the threaded backends
+(`--backends=fast,dst,mg`). Prints Markdown; with --docs it replaces the text between the markers
+<!-- mg-report:begin --> and <!-- mg-report:end --> of that file.
 """
+import argparse
 import json
 import re
 import sys
@@ -108,33 +110,32 @@ def threads_table(data):
     return text
 
 
-def main(argv):
-    docs = None
-    if "--docs" in argv:
-        i = argv.index("--docs")
-        docs = argv[i + 1]
-        argv = argv[:i] + argv[i + 2:]
-    if not argv:
-        print(__doc__, file=sys.stderr)
-        return 2
-    mg = load(argv[0])
+def main():
+    parser = argparse.ArgumentParser(description="multigrid iteration and thread tables")
+    parser.add_argument("--iterations", nargs="+", required=True)
+    parser.add_argument("--threads")
+    parser.add_argument("--docs")
+    args = parser.parse_args()
+    runs = [load(path) for path in args.iterations]
+    mg = {"context": runs[0]["context"], "benchmarks": [b for r in runs for b in r["benchmarks"]]}
+    notes = "; ".join(load_note(r) for r in runs)
     parts = [f"Iterations to relative residual 1e−10, three right-hand sides, one fresh set-up and solve "
-             f"(`bench_solvers --mg-iterations`; {load_note(mg)}; the seconds are wall-clock on the shared "
+             f"(`bench_solvers --mg-iterations`; {notes}; the seconds are wall-clock on the shared "
              f"machine):", "", iteration_table(mg)]
-    if len(argv) > 1:
-        th = load(argv[1])
+    if args.threads:
+        th = load(args.threads)
         parts += ["", f"One and two threads (`SolverOptions::threads`; `bench_solvers --backends=fast,dst,mg`; "
                       f"{load_note(th)}; tolerance 1e−12 for `mg`):", "", threads_table(th)]
     text = "\n".join(parts) + "\n"
-    if docs:
-        with open(docs) as f:
+    if args.docs:
+        with open(args.docs) as f:
             doc = f.read()
         if BEGIN not in doc or END not in doc:
-            print(f"error: {docs}: markers {BEGIN} / {END} missing", file=sys.stderr)
+            print(f"error: {args.docs}: markers {BEGIN} / {END} missing", file=sys.stderr)
             return 2
         head, rest = doc.split(BEGIN, 1)
         _, tail = rest.split(END, 1)
-        with open(docs, "w") as f:
+        with open(args.docs, "w") as f:
             f.write(head + BEGIN + "\n" + text + END + tail)
     else:
         sys.stdout.write(text)
@@ -142,4 +143,4 @@ def main(argv):
 
 
 if __name__ == "__main__":
-    sys.exit(main(sys.argv[1:]))
+    sys.exit(main())

@@ -269,9 +269,11 @@ IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x, c
   };
   // Near the rounding floor the recursive residual r drifts from b − A x and CG, continued, lets
   // x drift too (at α = −1/4, N = 1023 the true residual grew from 2e−12 to 7e−11 in 40 further
-  // iterations). So once r is below the tolerance or the floor, the true residual replaces it and
-  // CG restarts from there (p = B r); when two restarts in a row gain less than a factor 2, the
-  // floor is reached and the best iterate is returned.
+  // iterations). So once r is below the tolerance, or stops decreasing below the estimated floor
+  // ε(Σ|w| ‖x‖ + ‖b‖)/‖b‖, the true residual replaces it and CG restarts from there (p = B r);
+  // when two restarts in a row gain less than a factor 2, the floor is reached and the best
+  // iterate is returned. (Restarting whenever r is below that estimate, a pessimistic bound, cost
+  // c1-coons at N = 511 31 iterations instead of 13.)
   Vector x_best = xg;
   double best = rel;
   double last_true = rel;  // the lowest true residual at a restart so far
@@ -309,8 +311,9 @@ IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x, c
     xg += step * p;
     r -= step * q;
     ++out.iterations;
+    const double previous = rel;
     rel = r.norm() / bnorm;
-    if (rel <= std::max(options.tolerance, rounding_floor(L, xg, bnorm))) {
+    if (rel <= options.tolerance || (rel >= previous && rel <= rounding_floor(L, xg, bnorm))) {
       residual(L, bg, xg, r);  // the true residual replaces the recursive one
       rel = r.norm() / bnorm;
       out.history.push_back(rel);

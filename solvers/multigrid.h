@@ -105,9 +105,9 @@ class Multigrid {
 //! Conjugate gradients preconditioned by one cycle of mg (use a V-cycle with pre = post smoothing:
 //! it is then symmetric positive definite for a positive definite A). Reports kNotPositiveDefinite
 //! when a curvature pᵀAp or rᵀBr is not positive (kNotConverged when pᵀAp is below its own
-//! rounding). Once the recursive residual falls below the tolerance or the rounding floor
-//! ε(Σ|w| ‖x‖ + ‖b‖)/‖b‖, the true residual replaces it and CG restarts; two restarts in a row
-//! that gain less than a factor 2 end it with kNotConverged ("rounding floor") and the best iterate.
+//! rounding). Once the recursive residual falls below the tolerance, the true residual replaces it
+//! and CG restarts; two restarts in a row that gain less than a factor 2 end it with kNotConverged
+//! ("rounding floor", with the estimate ε(Σ|w| ‖x‖ + ‖b‖)/‖b‖) and the best iterate.
 IterationSummary multigrid_cg(const Multigrid& mg, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                               const IterationOptions& options = {});
 
