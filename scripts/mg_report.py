@@ -66,7 +66,7 @@ def threads_table(data):
     for b in data["benchmarks"]:
         t = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
         cpu = b["cpu_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
-        m = re.match(r"BM_MemoryPass/N:(\d+)$", b["name"])
+        m = re.match(r"BM_MemoryPass/N:(\d+)", b["name"])
         if m:
             memory[int(m.group(1))] = t
             continue

@@ -496,6 +496,9 @@ void register_mg_iterations(const Config& config) {
       {"hypre-pfmg", "alpha", -0.25}};
   for (int N : config.sizes)
     for (const Case& c : cases) {
+      // c1-coons at N = 1023 has κ ≈ 2.6e22 > 1/ε: beyond what residual correction resolves in
+      // double (docs/solvers.md); a run of it was stopped after 12 minutes.
+      if (std::string(c.problem) == "c1-coons" && N > 511) continue;
       if (!find_solver(c.backend) ||
           (!config.backends.empty() &&
            std::find(config.backends.begin(), config.backends.end(), c.backend) == config.backends.end()))
