@@ -55,8 +55,9 @@ def main():
             memory[n] = t
         elif m := re.match(r"BM_(ClosedFormCoons|Assemble|RefillValues)/", name):
             simple[m.group(1)][n] = t
-        elif m := re.match(r"BM_(Solve|Refactorize)/([^/]+)/N:\d+/alpha:([-0-9.]+)", name):
-            key = (m.group(2), float(m.group(3)))
+        elif m := re.match(r"BM_(Solve|Refactorize)/([^/]+)/N:\d+/alpha:([-0-9.]+)(?:/threads:(\d+))?", name):
+            backend = m.group(2) + (f" ({m.group(4)} threads)" if m.group(4) else "")
+            key = (backend, float(m.group(3)))
             (solve if m.group(1) == "Solve" else refactor)[key][n] = (t, b)
         elif m := re.match(r"BM_AlphaSweep/([^/]+)/", name):
             sweep[m.group(1)][n] = t

@@ -70,7 +70,9 @@ class DstSolver : public detail::StructuredSolver {
     col_ = AlignedBuffer(std::size_t(R_));
     inverse_eigenvalues_.assign(n, 0.0);
     const unsigned planning = detail::fft_planning(options_);
+    detail::fft_plan_threads(options_.threads);  // the 2-D transforms are the cost: only they get threads
     plan_2d_ = FftwPlan(fftw_plan_r2r_2d(R_, C_, grid_.data(), grid_.data(), FFTW_RODFT00, FFTW_RODFT00, planning));
+    detail::fft_plan_threads(1);
     plan_row_ = FftwPlan(fftw_plan_r2r_1d(C_, row_.data(), row_.data(), FFTW_RODFT00, planning));
     plan_col_ = FftwPlan(fftw_plan_r2r_1d(R_, col_.data(), col_.data(), FFTW_RODFT00, planning));
     if (!plan_2d_ || !plan_row_ || !plan_col_) {

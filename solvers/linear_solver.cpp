@@ -6,6 +6,7 @@
 #include <cstdio>
 #include <limits>
 #include <sstream>
+#include <thread>
 
 #include "stencil_operator.h"
 
@@ -62,7 +63,14 @@ bool SolverOptions::is_valid(std::string* why) const {
     return fail("time_limit_seconds must be finite and >= 0");
   if (!(sor_omega > 0 && sor_omega < 2)) return fail("sor_omega must lie in (0, 2)");
   if (!(singular_residual > 0)) return fail("singular_residual must be positive");
+  if (threads < 0 || threads > kMaxThreads) return fail("threads must lie in 0 .. 256 (0: every core)");
   return true;
+}
+
+int resolved_threads(int threads) {
+  if (threads > 0) return std::min(threads, kMaxThreads);
+  const auto cores = int(std::thread::hardware_concurrency());
+  return std::clamp(cores, 1, kMaxThreads);
 }
 
 std::string SolveSummary::brief_report() const {

@@ -54,6 +54,10 @@ struct SolverOptions {
   //! process-wide wisdom, which later estimated plans of the same size reuse: a program that
   //! wants identical results should not mix the two modes.)
   bool measure_fft_plans = false;
+  //! threads for the backends that use them (dst: FFTW's 2-D transforms; mg, mg-cg, mg-gmres:
+  //! the multigrid level loops). 1 by default; 0 means every core of the machine. Results agree
+  //! across thread counts to rounding (mg: bit for bit). Without OpenMP in the build it is ignored.
+  int threads = 1;
   double sor_omega = 1.0;               //!< gauss-seidel: over-relaxation factor in (0, 2)
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
   bool compute_residual = true;         //!< compute the true residual after solve (costs one apply)
@@ -62,6 +66,13 @@ struct SolverOptions {
   //! True when the options are usable; otherwise explains why in *why.
   bool is_valid(std::string* why) const;
 };
+
+//! Upper bound of SolverOptions::threads.
+constexpr int kMaxThreads = 256;
+
+//! The number of threads `threads` asks for: itself when positive, the machine's cores for 0
+//! (at least 1, at most kMaxThreads).
+int resolved_threads(int threads);
 
 struct SolveSummary {
   std::string solver;  //!< registry name of the backend

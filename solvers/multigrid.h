@@ -57,6 +57,9 @@ struct MultigridOptions {
   int post_smoothing = 1;               //!< adjoint sweeps after it
   Eigen::Index coarsest_unknowns = 64;  //!< solve directly at or below this many free points
   int max_levels = 20;
+  //! threads of the residual, restriction and operator loops (1; 0: every core). They run over
+  //! independent points, so results are identical for every count. The line smoother stays serial.
+  int threads = 1;
 
   bool is_valid(std::string* why) const;
 };
@@ -101,7 +104,10 @@ class Multigrid {
 
 //! Conjugate gradients preconditioned by one cycle of mg (use a V-cycle with pre = post smoothing:
 //! it is then symmetric positive definite for a positive definite A). Reports kNotPositiveDefinite
-//! when a curvature pᵀAp or rᵀBr is not positive.
+//! when a curvature pᵀAp or rᵀBr is not positive (kNotConverged when pᵀAp is below its own
+//! rounding). Once the recursive residual falls below the tolerance, the true residual replaces it
+//! and CG restarts; two restarts in a row that gain less than a factor 2 end it with kNotConverged
+//! ("rounding floor", with the estimate ε(Σ|w| ‖x‖ + ‖b‖)/‖b‖) and the best iterate.
 IterationSummary multigrid_cg(const Multigrid& mg, const Eigen::VectorXd& b, Eigen::VectorXd& x,
                               const IterationOptions& options = {});
 

@@ -3,6 +3,14 @@
 #include <algorithm>
 #include <cmath>
 
+// The outer loop over rows on L.threads threads (a local `nt`); every iteration writes its own
+// points, so the result does not depend on the count.
+#if defined(_OPENMP)
+#define COONS_PARALLEL_ROWS _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(static)")
+#else
+#define COONS_PARALLEL_ROWS
+#endif
+
 namespace coons::solvers::mg_detail {
 
 // (A x)(p) over the stencil of point p; x is zero at fixed points and outside the grid.
@@ -32,6 +40,8 @@ static double apply_at(const Level& L, const double* x, int i, int j) {
 
 void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) {
   r.resize(L.points());
+  [[maybe_unused]] const int nt = L.threads;
+  COONS_PARALLEL_ROWS
   for (int i = 0; i < L.rows; ++i)
     for (int j = 0; j < L.cols; ++j) {
       const Eigen::Index p = Eigen::Index(i) * L.cols + j;
@@ -41,6 +51,8 @@ void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) {
 
 void apply_level(const Level& L, const Vector& x, Vector& y) {
   y.resize(L.points());
+  [[maybe_unused]] const int nt = L.threads;
+  COONS_PARALLEL_ROWS
   for (int i = 0; i < L.rows; ++i)
     for (int j = 0; j < L.cols; ++j) {
       const Eigen::Index p = Eigen::Index(i) * L.cols + j;
@@ -165,6 +177,8 @@ static int coarse_parents(int f, int coarse_len, int offset, int reach, int* par
 void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
   const int h = Cl.reach;
   rc.setZero(Cl.points());
+  [[maybe_unused]] const int nt = F.threads;
+  COONS_PARALLEL_ROWS
   for (int I = 0; I < Cl.rows; ++I)
     for (int J = 0; J < Cl.cols; ++J) {
       const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;

@@ -21,6 +21,7 @@ struct Multigrid::Level {
   std::vector<unsigned char> free;     // rows·cols
   std::vector<double> row_lu, col_lu;  // banded LU of the row and column line blocks
   Eigen::Index unknowns = 0;
+  int threads = 1;  // OpenMP threads of the point-wise loops (residual, restriction, apply)
   // The coarsest level only: the direct solve over its free points.
   std::vector<Eigen::Index> number;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> direct;

@@ -74,6 +74,7 @@ class MultigridBackend : public LinearSolver {
     if (grid && grid->symmetric()) {
       MultigridOptions mg_options;  // fourth-order (5×5) stencils: two sweeps per side pay off
       mg_options.pre_smoothing = mg_options.post_smoothing = grid->radius;
+      mg_options.threads = options_.threads;
       const SolveStatus status = mg_.setup(*grid, mg_options, &message);
       if (status == SolveStatus::kSuccess) return status;
       if (method_ != Method::kGmres) {

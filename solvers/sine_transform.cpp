@@ -38,6 +38,15 @@ AlignedBuffer& AlignedBuffer::operator=(AlignedBuffer&& other) noexcept {
 
 unsigned fft_planning(const SolverOptions& options) { return options.measure_fft_plans ? FFTW_MEASURE : FFTW_ESTIMATE; }
 
+void fft_plan_threads(int threads) {
+#if defined(COONS_HAVE_FFTW_OMP)
+  static const bool initialised = fftw_init_threads() != 0;
+  if (initialised) fftw_plan_with_nthreads(resolved_threads(threads));
+#else
+  (void)threads;
+#endif
+}
+
 SineTransform::SineTransform(int n, unsigned planning) : n_(n) {
   const int N = n + 1;
   y_ = AlignedBuffer(std::size_t(N));

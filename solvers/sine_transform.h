@@ -45,6 +45,11 @@ class AlignedBuffer {
 //! otherwise FFTW_ESTIMATE (no timing, so the same plan, and the same rounding, in every run).
 unsigned fft_planning(const SolverOptions& options);
 
+//! Makes the FFTW plans created next use `threads` threads (FFTW's OpenMP library; resolved as in
+//! resolved_threads). Without libfftw3_omp in the build it does nothing. Call it with 1 after
+//! making a threaded plan: the setting is process-wide.
+void fft_plan_threads(int threads);
+
 //! The DST-I of length n (see above) of one row at a time. Plans are made once (with the
 //! planner flag `planning`, see fft_planning) on internal buffers; apply() works on arrays of any
 //! alignment. Not thread-safe (shared scratch).

@@ -101,6 +101,31 @@ TEST_CASE("multigrid backends: agree with a sparse direct solve on 3x3 and 5x5 s
       }
 }
 
+TEST_CASE("multigrid backends: one and two threads give the same solution bit for bit", "[solvers][mg]") {
+  // The threaded loops (residual, restriction, operator) write disjoint points: no reordering of sums.
+  for (Shape shape : {Shape::kFull, Shape::kHole})
+    for (const NamedStencil& stencil : symmetric_stencils()) {
+      StencilOperator op = make_stencil_operator(63, 57, stencil.weights);
+      op.free = shape_mask(shape, 63, 57);
+      const Eigen::MatrixX3d B = boundary_rhs(op);
+      LinearOperator lop;
+      lop.grid = &op;
+      for (const char* name : {"mg", "mg-cg"}) {
+        SolverOptions one, two;
+        one.tolerance = two.tolerance = 1e-10;
+        two.threads = 2;
+        Eigen::MatrixX3d X1, X2;
+        const SolveSummary s1 = make_solver(name, one)->compute_and_solve(lop, B, X1);
+        const SolveSummary s2 = make_solver(name, two)->compute_and_solve(lop, B, X2);
+        INFO(name << " on " << stencil.name << ", shape " << int(shape) << ": " << s1.brief_report() << " / "
+                  << s2.brief_report());
+        CHECK(s1.status == s2.status);
+        CHECK(s1.iterations == s2.iterations);
+        CHECK(X1 == X2);
+      }
+    }
+}
+
 TEST_CASE("Multigrid::precondition: a V-cycle is a symmetric positive definite operator", "[solvers][mg]") {
   for (const NamedStencil& stencil : symmetric_stencils()) {
     StencilOperator op = make_stencil_operator(37, 29, stencil.weights);
@@ -215,10 +240,38 @@ TEST_CASE("Multigrid::solve: stops with not_converged when the residual stalls",
   const IterationSummary s = mg.solve(b, x, options);
   INFO(s.message);
   CHECK(s.status == SolveStatus::kNotConverged);
-  CHECK_THAT(s.message, Catch::Contains("stalled"));
+  CHECK_THAT(s.message, Catch::Contains("rounding floor"));
   CHECK(s.iterations < 400);
   CHECK(x.allFinite());
   CHECK(s.relative_residual < 1e-6);
+}
+
+TEST_CASE("multigrid_cg: stops at the rounding floor with its best iterate when the tolerance is below it",
+          "[solvers][mg]") {
+  // α = −1/4 with data from a smooth function: b holds second differences of it, so the floor
+  // ε(Σ|w| ‖x‖ + ‖b‖)/‖b‖ lies far above 1e-16. Continued CG let the true residual grow again
+  // (2e-12 to 7e-11 at 1023x1023); restarting from the true residual ends at the floor instead.
+  const StencilOperator op = make_stencil_operator(127, 127, nine_point(1, -0.5, 0.25));
+  const Eigen::VectorXd b = boundary_rhs(op).col(2);
+  Multigrid mg;
+  REQUIRE(mg.setup(op) == SolveStatus::kSuccess);
+  IterationOptions options;
+  options.tolerance = 1e-17;
+  options.max_iterations = 200;
+  Eigen::VectorXd x;
+  const IterationSummary s = multigrid_cg(mg, b, x, options);
+  INFO(s.message);
+  CHECK(s.status == SolveStatus::kNotConverged);
+  CHECK_THAT(s.message, Catch::Contains("rounding floor"));
+  CHECK(s.iterations < 40);
+  CHECK(x.allFinite());
+  CHECK(s.relative_residual < 1e-11);
+  // The same system to 1e-10 succeeds well before.
+  options.tolerance = 1e-10;
+  Eigen::VectorXd y;
+  const IterationSummary ok = multigrid_cg(mg, b, y, options);
+  CHECK(ok.ok());
+  CHECK(ok.iterations < s.iterations);
 }
 
 TEST_CASE("gmres: solves a nonsymmetric convection-diffusion stencil like a dense LU", "[solvers][mg]") {

@@ -1,0 +1,146 @@
+#!/usr/bin/env python3
+"""Tables of the multigrid iteration counts and of the 1- and 2-thread solves, from bench_solvers JSON.
+
+    python3 scripts/mg_report.py --iterations A.json [B.json ...] [--threads T.json] [--docs docs/solvers.md]
+
+--iterations: `bench_solvers --mg-iterations --benchmark_out=...` runs (several files are merged, e.g.
+a run that was split by size); --threads: a BM_Solve run with the threaded backends
+(`--backends=fast,dst,mg`). Prints Markdown; with --docs it replaces the text between the markers
+<!-- mg-report:begin --> and <!-- mg-report:end --> of that file.
+"""
+import argparse
+import json
+import re
+import sys
+
+BEGIN, END = "<!-- mg-report:begin -->", "<!-- mg-report:end -->"
+
+
+def load(path):
+    with open(path) as f:
+        return json.load(f)
+
+
+def load_note(data):
+    ctx = data.get("context", {})
+    loads = ctx.get("load_avg", [])
+    when = ctx.get("date", "?")
+    text = f"run {when}, {ctx.get('num_cpus', '?')} cores"
+    if loads:
+        text += ", load average at the start " + ", ".join(f"{x:.1f}" for x in loads)
+    return text
+
+
+def iteration_table(data):
+    rows, sizes = {}, set()
+    for b in data["benchmarks"]:
+        m = re.match(r"BM_MgIterations/([^/]+)/([^/]+)/N:(\d+)", b["name"])
+        if not m:
+            continue
+        problem, backend, n = m.group(1), m.group(2), int(m.group(3))
+        problem = problem.replace("alpha:", "α = ").replace("-0.25", "−1/4").replace("-0.1", "−0.1")
+        sizes.add(n)
+        label = b.get("label", "")
+        status = label.split("status=")[-1] if "status=" in label else "?"
+        it = int(b.get("iterations", -1))
+        res = b.get("residual", float("nan"))
+        seconds = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+        if status == "success":
+            cell = f"{it} ({seconds:.1f} s)"
+        elif status == "not_applicable":
+            cell = "not_applicable"
+        else:
+            cell = f"{status}: {it} it., residual {res:.1e}"
+        rows[(problem, backend)] = rows.get((problem, backend), {})
+        rows[(problem, backend)][n] = cell
+    sizes = sorted(sizes)
+    out = ["| problem | backend | " + " | ".join(f"N = {n}" for n in sizes) + " |",
+           "|---|---|" + "---|" * len(sizes)]
+    for (problem, backend), cells in rows.items():
+        out.append(f"| {problem} | `{backend}` | " + " | ".join(cells.get(n, "–") for n in sizes) + " |")
+    return "\n".join(out)
+
+
+def threads_table(data):
+    memory, solves = {}, {}
+    for b in data["benchmarks"]:
+        t = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+        cpu = b["cpu_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+        m = re.match(r"BM_MemoryPass/N:(\d+)", b["name"])
+        if m:
+            memory[int(m.group(1))] = t
+            continue
+        m = re.match(r"BM_Solve/([^/]+)/N:(\d+)/alpha:([^/]+)(/threads:(\d+))?", b["name"])
+        if m:
+            key = (m.group(1), int(m.group(2)), m.group(3))
+            solves.setdefault(key, {})[int(m.group(5) or 1)] = (t, cpu, b.get("label", ""))
+    out = ["| backend | N | α | 1 thread (wall) | 2 threads (wall) | speed-up | 1 thread / memory pass | 2 threads / memory pass |",
+           "|---|---|---|---|---|---|---|---|"]
+    for (backend, n, alpha), by in sorted(solves.items()):
+        if 1 not in by or 2 not in by:
+            continue
+        one, two = by[1][0], by[2][0]
+        mem = memory.get(n)
+        ratio = (lambda x: f"{x / mem:.0f}×") if mem else (lambda x: "–")
+        out.append(f"| `{backend}` | {n} | {alpha} | {one * 1e3:.1f} ms | {two * 1e3:.1f} ms | {one / two:.2f} | "
+                   f"{ratio(one)} | {ratio(two)} |")
+    mem_note = ", ".join(f"N = {n}: {t * 1e3:.2f} ms" for n, t in sorted(memory.items()))
+    text = "\n".join(out) + f"\n\nMemory pass of the same run: {mem_note}."
+    # The carried-over targets of issue 14, from the same run (one thread).
+    sweeps = {}
+    for b in data["benchmarks"]:
+        m = re.match(r"BM_AlphaSweep/fast/N:(\d+)", b["name"])
+        if m:
+            sweeps[int(m.group(1))] = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+    rows = []
+    for (backend, n, alpha), by in sorted(solves.items()):
+        if alpha.startswith("-0.1") and 1 in by and n in memory:
+            goal = {"fast": 4, "dst": 15}.get(backend)
+            if goal:
+                r = by[1][0] / memory[n]
+                rows.append(f"| `{backend}` at α = −0.1, N = {n} / memory pass | {r:.1f}× | ≤ {goal}× | "
+                            f"{'met' if r <= goal else f'missed by {r / goal:.1f}×'} |")
+            if backend == "fast" and n in sweeps:
+                r = sweeps[n] / by[1][0]
+                rows.append(f"| 101-value α sweep / one `fast` solve, N = {n} | {r:.0f}× | ≤ 60× | "
+                            f"{'met' if r <= 60 else f'missed by {r / 60:.1f}×'} |")
+    if rows:
+        text += ("\n\nCarried-over targets, same run, one thread (wall-clock under the load above):\n\n"
+                 "| target | measured | goal | |\n|---|---|---|---|\n" + "\n".join(rows))
+    return text
+
+
+def main():
+    parser = argparse.ArgumentParser(description="multigrid iteration and thread tables")
+    parser.add_argument("--iterations", nargs="+", required=True)
+    parser.add_argument("--threads")
+    parser.add_argument("--docs")
+    args = parser.parse_args()
+    runs = [load(path) for path in args.iterations]
+    mg = {"context": runs[0]["context"], "benchmarks": [b for r in runs for b in r["benchmarks"]]}
+    notes = "; ".join(load_note(r) for r in runs)
+    parts = [f"Iterations to relative residual 1e−10, three right-hand sides, one fresh set-up and solve "
+             f"(`bench_solvers --mg-iterations`; {notes}; the seconds are wall-clock on the shared "
+             f"machine):", "", iteration_table(mg)]
+    if args.threads:
+        th = load(args.threads)
+        parts += ["", f"One and two threads (`SolverOptions::threads`; `bench_solvers --backends=fast,dst,mg`; "
+                      f"{load_note(th)}; tolerance 1e−12 for `mg`):", "", threads_table(th)]
+    text = "\n".join(parts) + "\n"
+    if args.docs:
+        with open(args.docs) as f:
+            doc = f.read()
+        if BEGIN not in doc or END not in doc:
+            print(f"error: {args.docs}: markers {BEGIN} / {END} missing", file=sys.stderr)
+            return 2
+        head, rest = doc.split(BEGIN, 1)
+        _, tail = rest.split(END, 1)
+        with open(args.docs, "w") as f:
+            f.write(head + BEGIN + "\n" + text + END + tail)
+    else:
+        sys.stdout.write(text)
+    return 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())
