@@ -202,11 +202,16 @@ SPLIT_DEGREES = [4, 6, 8]
 SCAN = 41  # members per family for the distance curves (figure)
 
 
-def solve_net(coons, path, alpha):
+def solve(coons, path, alpha):
+    """The report of `coons solve PATH --alpha ALPHA`."""
     r = subprocess.run([coons, "solve", str(path), "--alpha", repr(alpha)], capture_output=True, text=True)
     if r.returncode != 0:
         raise SystemExit(f"{path} --alpha {alpha}: exit {r.returncode}: {r.stderr.strip()}")
-    return json.loads(r.stdout)["net"]
+    return json.loads(r.stdout)
+
+
+def solve_net(coons, path, alpha):
+    return solve(coons, path, alpha)["net"]
 
 
 def golden(f, lo, hi, iterations=30):
@@ -252,8 +257,7 @@ def split_family(coons, path, family, shape, n, fixed):
         out["members"][name] = {"alpha": a, "rms": d_rms, "max": d_max, "thin_plate_T": sampler.thin_plate(net),
                                 "at_bound": at_bound}
     if family == "rectangle" and shape == "dome":  # symmetric about the other diagonal: E(T) = E(square)/2
-        r = subprocess.run([coons, "solve", str(path), "--alpha", "0"], capture_output=True, text=True, check=True)
-        out["quadrature_check"] = {"exact_square": json.loads(r.stdout)["metrics"]["thin_plate_energy"],
+        out["quadrature_check"] = {"exact_square": solve(coons, path, 0.0)["metrics"]["thin_plate_energy"],
                                    "twice_T": 2 * out["members"]["0"]["thin_plate_T"]}
     return out
 
@@ -306,32 +310,30 @@ def split_claims(rows):
     return [dict({"kind": k}, **split_measure(rows, {"kind": k})) for k in ("split_fit", "split_precision", "split_energy", "split_tp_vs_fit")]
 
 
+def cells_sentence(claim, key, holds, prefix, others):
+    """A split claim over the cells: `holds` when the square's net wins in every cell, else `prefix`
+    with the count and the cells `claim[key]` it wins in, and what `others` says of the rest."""
+    if claim["holds"]:
+        return f"{holds} in every one of the {claim['total']} cells."
+    return (f"{prefix} in {len(claim[key])} of {claim['total']} cells ({', '.join(claim[key]) or 'none'}); "
+            f"in the others {others}.")
+
+
 def split_sentence(claim):
     k, h = claim["kind"], claim["holds"]
     if k == "split_fit":
-        n = len(claim["rectangle_better"])
-        if h:
-            return (f"On the lower-left half T, the best-fitting α-net of the square is nearer the known surface than "
-                    f"the best-fitting c-net of the triangle in every one of the {claim['total']} cells.")
-        return (f"On T, the best-fitting α-net of the square is nearer the known surface than the best-fitting c-net "
-                f"of the triangle in {n} of {claim['total']} cells ({', '.join(claim['rectangle_better']) or 'none'}); "
-                f"in the others the triangle's is nearer.")
+        nearer = "the best-fitting α-net of the square is nearer the known surface than the best-fitting c-net of the triangle"
+        return cells_sentence(claim, "rectangle_better", f"On the lower-left half T, {nearer}", f"On T, {nearer}",
+                              "the triangle's is nearer")
     if k == "split_precision":
-        n = len(claim["rectangle_better"])
-        if h:
-            return (f"At the reference members, the α = −1/4 net is nearer the surface on T than the c = −1/6 net in "
-                    f"every one of the {claim['total']} cells.")
-        return (f"At the reference members, the α = −1/4 net is nearer the surface on T than the c = −1/6 net in "
-                f"{n} of {claim['total']} cells ({', '.join(claim['rectangle_better']) or 'none'}); in the others "
-                f"the c = −1/6 net is nearer.")
+        nearer = "At the reference members, the α = −1/4 net is nearer the surface on T than the c = −1/6 net"
+        return cells_sentence(claim, "rectangle_better", nearer, nearer, "the c = −1/6 net is nearer")
     if k == "split_energy":
-        n = len(claim["rectangle_lower"])
-        if h:
-            return (f"The α*-net (thin plate over the square) has a lower thin-plate energy on T than the c*-net "
-                    f"(thin plate over the triangle) in every one of the {claim['total']} cells.")
-        return (f"The α*-net (thin plate over the square) has the lower thin-plate energy on T in {n} of "
-                f"{claim['total']} cells ({', '.join(claim['rectangle_lower']) or 'none'}); in the others the "
-                f"c*-net's is lower.")
+        return cells_sentence(claim, "rectangle_lower",
+                              "The α*-net (thin plate over the square) has a lower thin-plate energy on T than the "
+                              "c*-net (thin plate over the triangle)",
+                              "The α*-net (thin plate over the square) has the lower thin-plate energy on T",
+                              "the c*-net's is lower")
     if k == "split_tp_vs_fit":
         if claim["worst"] is None:
             return "No triangle fits its surface inexactly, so the thin-plate and fit optima are not compared."
@@ -395,6 +397,13 @@ def split_markdown(rows):
     return "\n".join(lines) + "\n"
 
 
+def gnuplot(script, data):
+    """Runs a gnuplot script, then removes the data files it plotted."""
+    subprocess.run(["gnuplot"], input=script, text=True, check=True)
+    for path in data:
+        path.unlink()
+
+
 def split_figure(rows, out):
     """results/split_distance.png: RMS distance on T against α (square) and c (triangle), one panel per
     shape at the top degree, the compared members marked."""
@@ -416,9 +425,7 @@ def split_figure(rows, out):
               "set multiplot layout 1,2\nset xlabel 'member (α for the square, c for the triangle)'\n"
               "set ylabel 'RMS distance from the surface on T'\nset logscale y\nset format y '%.0e'\n"
               "set key outside below\n" + "".join(panels) + "unset multiplot\n")
-    subprocess.run(["gnuplot"], input=script, text=True, check=True)
-    for path in data:
-        path.unlink()
+    gnuplot(script, data)
 
 
 def optimum_figure(rows, out):
@@ -438,9 +445,7 @@ def optimum_figure(rows, out):
               "set xlabel 'degree n'\nset ylabel 'optimal c'\nset key outside below\n"
               "set title 'Interior optima c* of the triangular family (−1/6: quadratic precision)'\n"
               "plot " + ", ".join(plots) + ", -1.0/6 with lines dashtype 2 title 'c = −1/6'\n")
-    subprocess.run(["gnuplot"], input=script, text=True, check=True)
-    for path in data:
-        path.unlink()
+    gnuplot(script, data)
 
 
 def conclusions_markdown(claim_list):

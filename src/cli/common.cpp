@@ -49,8 +49,8 @@ void check_memory(const GlobalOptions& g, double bytes, const std::string& what,
 }
 
 void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::SolverInfo* solver,
-                      const std::string& file) {
-  const double bytes = net_solve_bytes(b.m, b.n, solver) + net_metrics_bytes(b.m, b.n);
+                      const std::string& file, int stencil_nonzeros) {
+  const double bytes = net_solve_bytes(b.m, b.n, solver, stencil_nonzeros) + net_metrics_bytes(b.m, b.n);
   check_memory(g, bytes, fmt::format("a net of degree ({}, {})", b.m, b.n), file, "degree");
 }
 

@@ -15,6 +15,7 @@
 #include "coons/mask/stencil.h"
 #include "coons/mask/stencil_problem.h"
 #include "coons/net/control_net.h"
+#include "coons/study/memory_estimate.h"
 #include "coons/study/net_report.h"
 #include "solvers/linear_solver.h"
 #include "solvers/registry.h"
@@ -117,9 +118,10 @@ BoundaryFile read_input(const std::string& path, double corner_tolerance, bool a
 //! Files as given, folders expanded to their *.json files (sorted); unreadable folders are InputErrors.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
 
-//! The memory of solving and measuring an (m+1)×(n+1) net, checked against the limit.
+//! The memory of solving and measuring an (m+1)×(n+1) net, checked against the limit;
+//! `stencil_nonzeros` a row of the system (memory_estimate.h: 9 for a 3×3 mask, 25 for a 5×5 stencil).
 void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::SolverInfo* solver,
-                      const std::string& file);
+                      const std::string& file, int stencil_nonzeros = kMask3Nonzeros);
 
 //! Prints a JSON document on standard output and flushes it; a failed write is an InputError
 //! ("<stdout>: write failed: REASON"). Invalid UTF-8 in names is replaced, never an exception.

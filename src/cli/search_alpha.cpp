@@ -216,7 +216,9 @@ int run_search_alpha(const SearchRequest& r) {
   if (file.bspline) return run_bspline_search(r, file, phases);
   const Boundary& b = file.boundary;
   const SearchSetup setup = setup_search(r, b);
-  check_net_memory(r.global, b, setup.solver, r.boundary);
+  // the C1 family's weight is searched on the 5×5 stencil's system
+  check_net_memory(r.global, b, setup.solver, r.boundary,
+                   r.parameter == Parameter::kWeight ? kStencil5Nonzeros : kMask3Nonzeros);
   const std::string objective = objective_text(r.objective);
   if (r.parameter == Parameter::kWeight) {
     const StencilProblem problem = weight_problem(r.boundary, file);

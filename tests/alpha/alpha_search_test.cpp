@@ -15,13 +15,6 @@ using namespace coons::test;
 
 namespace {
 
-Objective objective_named(const std::string& name) {
-  std::string why;
-  auto o = parse_objective(name, &why);
-  REQUIRE(o);
-  return *o;
-}
-
 MaskFamily alpha_only() {
   return [](double a) { return alpha_family(a); };
 }

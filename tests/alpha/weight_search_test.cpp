@@ -15,13 +15,6 @@ using namespace coons::test;
 
 namespace {
 
-Objective objective_named(const std::string& name) {
-  std::string why;
-  auto o = parse_objective(name, &why);
-  REQUIRE(o);
-  return *o;
-}
-
 // A smooth random surface sampled on the (m+1)×(n+1) grid: a random cubic in (u, v) plus a
 // random wave, so that no member of the C1 family reproduces it. Two data rings.
 StencilProblem ribbon_problem(int m, int n, std::uint32_t seed) {

@@ -8,18 +8,13 @@
 #include <functional>
 #include <nlohmann/json.hpp>
 
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 
 using namespace coons::test;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
 namespace {
-
-const std::string kCoons = COONS_BINARY;
-const std::string kData = COONS_DATA_DIR;
-
-std::string q(const std::string& s) { return "'" + s + "'"; }
 
 struct Case {
   std::string args;     //!< after `coons`; {OUT} is the output folder, {IN} the folder of inputs
@@ -109,10 +104,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   });
   inputs.write("stencil_asym.json", "{\"weights\": [[0, 1, 0], [2, null, 1], [0, 1, 0]]}");
   inputs.write("stencil_flat.json", "{\"weights\": [[0, 0, 0], [0, 1, 0], [0, 0, 0]]}");
-  const std::string good = q(kData + "/boundaries/dome.json");
-  const std::string pillow = q(kData + "/boundaries/pillow.json");
-  const std::string surface = q(kData + "/surfaces/join_bilinear_a.json");
-  const std::string surface_b = q(kData + "/surfaces/join_bilinear_b.json");
+  const std::string good = quoted(kData + "/boundaries/dome.json");
+  const std::string pillow = quoted(kData + "/boundaries/pillow.json");
+  const std::string surface = quoted(kData + "/surfaces/join_bilinear_a.json");
+  const std::string surface_b = quoted(kData + "/surfaces/join_bilinear_b.json");
   inputs.write("badtype.json", "{\"type\": \"teapot\"}");
   inputs.write("nocorners.json", "{\"type\": \"bilinear\"}");
 
@@ -153,7 +148,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
            " --degree 4 4 --out {OUT}/r.json",
        "deeptarget.json"},
       // solve: options
-      {"solve " + q(kData + "/boundaries/seed_example1.json") + " --method hermite-coons", "degree"},
+      {"solve " + quoted(kData + "/boundaries/seed_example1.json") + " --method hermite-coons", "degree"},
       {"solve " + good + " --alpha -0.4 --solver eigen-ldlt", "--alpha"},
       {"solve " + good + " --solver nonesuch", "--solver"},
       {"solve " + good + " --method nonesuch", "--method"},
@@ -190,8 +185,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --mask c1-family --weight 1.5", "--weight"},
       {"solve " + good + " --mask biharmonic --alpha 0.1", "--alpha"},
       {"solve " + good + " --method coons --mask c1-coons", "--mask"},
-      {"solve " + q(kData + "/boundaries/sphere_cap_ribbons.json") + " --method coons", "--method"},
-      {"solve " + q(kData + "/free_sets/island.json") + " --method hermite-coons", "--method"},
+      {"solve " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") + " --method coons", "--method"},
+      {"solve " + quoted(kData + "/free_sets/island.json") + " --method hermite-coons", "--method"},
       // solvers
       {"solvers --frobnicate", "frobnicate"},
       // export

@@ -4,14 +4,13 @@
 #include <sstream>
 
 #include "solvers/registry.h"
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 
 using namespace coons::test;
 using nlohmann::json;
 
 namespace {
 
-const std::string kCoons = COONS_BINARY;
 const std::string kMatrices = std::string(COONS_DATA_DIR) + "/matrices/";
 
 std::vector<std::string> lines_of(const std::string& text) {
@@ -25,8 +24,8 @@ std::vector<std::string> lines_of(const std::string& text) {
 }  // namespace
 
 TEST_CASE("coons bench-matrix: JSON Lines parse and carry every contract field", "[cli]") {
-  const CommandResult r = run_command(kCoons + " bench-matrix " + kMatrices + "convection_diffusion.mtx " + kMatrices +
-                                      "convection_diffusion_b.mtx");
+  const CommandResult r =
+      run_coons("bench-matrix " + kMatrices + "convection_diffusion.mtx " + kMatrices + "convection_diffusion_b.mtx");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(r.err.empty());
@@ -67,8 +66,8 @@ TEST_CASE("coons bench-matrix: JSON Lines parse and carry every contract field",
 }
 
 TEST_CASE("coons bench-matrix: --table prints one row per backend", "[cli]") {
-  const CommandResult r = run_command(kCoons + " bench-matrix " + kMatrices +
-                                      "anisotropic_diffusion.mtx --table --solvers eigen-ldlt,cg,jacobi,dst");
+  const CommandResult r =
+      run_coons("bench-matrix " + kMatrices + "anisotropic_diffusion.mtx --table --solvers eigen-ldlt,cg,jacobi,dst");
   INFO(r.err);
   REQUIRE(r.status == 0);
   int rows = 0;
@@ -86,8 +85,8 @@ TEST_CASE("coons bench-matrix: --table prints one row per backend", "[cli]") {
 }
 
 TEST_CASE("coons bench-matrix: a symmetric file runs the symmetric-only backends", "[cli]") {
-  const CommandResult r = run_command(kCoons + " bench-matrix " + kMatrices +
-                                      "anisotropic_diffusion.mtx --solvers cholmod,eigen-llt,cg-ic");
+  const CommandResult r =
+      run_coons("bench-matrix " + kMatrices + "anisotropic_diffusion.mtx --solvers cholmod,eigen-llt,cg-ic");
   INFO(r.err);
   REQUIRE(r.status == 0);
   for (const std::string& line : lines_of(r.out)) {
@@ -121,7 +120,7 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
       {A + " --tolerance 0", "command line: --tolerance"},
   };
   for (const Case& c : cases) {
-    const CommandResult r = run_command(kCoons + " bench-matrix " + c.args);
+    const CommandResult r = run_coons("bench-matrix " + c.args);
     INFO(c.args << "\n" << r.err);
     CHECK(r.status == 2);
     CHECK(r.out.empty());
@@ -136,7 +135,7 @@ TEST_CASE("coons bench-matrix: a system no backend solves exits 3 with its statu
   // singular: the second row and column are empty
   const std::string singular =
       dir.write("singular.mtx", "%%MatrixMarket matrix coordinate real general\n3 3 2\n1 1 1\n3 3 1\n");
-  const CommandResult r = run_command(kCoons + " bench-matrix " + singular + " --solvers eigen-lu");
+  const CommandResult r = run_coons("bench-matrix " + singular + " --solvers eigen-lu");
   INFO(r.out << r.err);
   CHECK(r.status == 3);
   CHECK(lines_of(r.err).size() == 1);

@@ -13,25 +13,16 @@
 #include "coons/io/boundary_io.h"
 #include "coons/io/net_json.h"
 #include "coons/net/coons_net.h"
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 
 using namespace coons;
 using namespace coons::test;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-namespace {
-
-const std::string kCoons = COONS_BINARY;
-const std::string kData = COONS_DATA_DIR;
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-}  // namespace
-
 TEST_CASE("coons solve: the report of docs/formats.md, numbers that read back exactly", "[cli]") {
   const std::string file = kData + "/boundaries/dome.json";
-  const CommandResult r = run_command(kCoons + " solve " + quoted(file) + " --alpha -0.2 --solver eigen-ldlt");
+  const CommandResult r = run_coons("solve " + quoted(file) + " --alpha -0.2 --solver eigen-ldlt");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["boundary"] == "dome");
@@ -53,7 +44,7 @@ TEST_CASE("coons solve: the report of docs/formats.md, numbers that read back ex
 
 TEST_CASE("coons solve: the closed-form Coons net is printed bit-exactly", "[cli]") {
   const std::string file = kData + "/boundaries/helicoid.json";
-  const CommandResult r = run_command(kCoons + " solve " + quoted(file) + " --method coons");
+  const CommandResult r = run_coons("solve " + quoted(file) + " --method coons");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   const ControlNet expected = discrete_coons_net(read_boundary_file(file).boundary);
@@ -63,10 +54,10 @@ TEST_CASE("coons solve: the closed-form Coons net is printed bit-exactly", "[cli
 }
 
 TEST_CASE("coons solvers: lists eigen-ldlt, as lines and as JSON", "[cli]") {
-  const CommandResult lines = run_command(kCoons + " solvers");
+  const CommandResult lines = run_coons("solvers");
   REQUIRE(lines.status == 0);
   CHECK_THAT(lines.out, Catch::Contains("eigen-ldlt\n"));
-  const CommandResult js = run_command(kCoons + " solvers --json");
+  const CommandResult js = run_coons("solvers --json");
   REQUIRE(js.status == 0);
   const json names = json::parse(js.out);
   CHECK(std::find(names.begin(), names.end(), "eigen-ldlt") != names.end());
@@ -132,7 +123,7 @@ TEST_CASE("coons solve: each bad input gives exit 2, one error line and no outpu
   };
   for (const Case& c : cases) {
     INFO(c.what);
-    const CommandResult r = run_command(kCoons + " solve " + c.args);
+    const CommandResult r = run_coons("solve " + c.args);
     CHECK(r.status == 2);
     CHECK(r.out.empty());
     CHECK(r.err.rfind("error: ", 0) == 0);
@@ -141,9 +132,8 @@ TEST_CASE("coons solve: each bad input gives exit 2, one error line and no outpu
   }
   // export writes nothing when the input is bad
   const std::string out = (dir.path / "out").string();
-  const CommandResult r =
-      run_command(kCoons + " export " + quoted(variant("corner2.json", [](json& d) { d["top"][0][0] = 7; })) +
-                  " --out " + quoted(out));
+  const CommandResult r = run_coons("export " + quoted(variant("corner2.json", [](json& d) { d["top"][0][0] = 7; })) +
+                                    " --out " + quoted(out));
   CHECK(r.status == 2);
   CHECK(!fs::exists(out));
 }
@@ -151,8 +141,8 @@ TEST_CASE("coons solve: each bad input gives exit 2, one error line and no outpu
 TEST_CASE("coons export: OBJ files and a Matrix Market system", "[cli]") {
   TempDir dir;
   const std::string out = (dir.path / "out").string();
-  const CommandResult r = run_command(kCoons + " export " + quoted(kData + "/boundaries/pillow.json") +
-                                      " --alpha -0.1 --samples 9 --out " + quoted(out));
+  const CommandResult r = run_coons("export " + quoted(kData + "/boundaries/pillow.json") +
+                                    " --alpha -0.1 --samples 9 --out " + quoted(out));
   REQUIRE(r.status == 0);
   for (const char* f : {"pillow.surface.obj", "pillow.net.obj", "pillow.A.mtx", "pillow.B.mtx"})
     CHECK(fs::exists(fs::path(out) / f));
@@ -169,8 +159,8 @@ TEST_CASE("coons export: OBJ files and a Matrix Market system", "[cli]") {
 TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary", "[cli]") {
   TempDir dir;
   const std::string out = (dir.path / "out").string();
-  const CommandResult r = run_command(kCoons + " batch " + quoted(kData + "/boundaries/dome.json") + " " +
-                                      quoted(kData + "/boundaries/saddle.json") + " --samples 5 --out " + quoted(out));
+  const CommandResult r = run_coons("batch " + quoted(kData + "/boundaries/dome.json") + " " +
+                                    quoted(kData + "/boundaries/saddle.json") + " --samples 5 --out " + quoted(out));
   REQUIRE(r.status == 0);
   CHECK_THAT(r.out, Catch::Contains("dome"));
   CHECK(fs::exists(fs::path(out) / "metrics.md"));
@@ -181,7 +171,7 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
 
 TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   const CommandResult r =
-      run_command(kCoons + " search-alpha " + quoted(kData + "/boundaries/dome.json") + " --objective thin_plate");
+      run_coons("search-alpha " + quoted(kData + "/boundaries/dome.json") + " --objective thin_plate");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   for (const char* key : {"boundary", "degree", "objective", "alpha", "mu", "value", "bounds", "flat", "at_bound",
@@ -221,8 +211,8 @@ TEST_CASE("coons search-alpha: bad input gives exit 2 and one error line", "[cli
     CHECK_THAT(r.err, Catch::Contains(mention));
   }
   // an explicit flag accepts indefinite bounds
-  const CommandResult wide = run_command(kCoons + " search-alpha " + dome +
-                                         " --objective thin_plate --lower -0.3 --allow-indefinite --solver eigen-lu");
+  const CommandResult wide =
+      run_coons("search-alpha " + dome + " --objective thin_plate --lower -0.3 --allow-indefinite --solver eigen-lu");
   CHECK(wide.status == 0);
 }
 
@@ -233,7 +223,7 @@ TEST_CASE("coons search-alpha --parameter weight: the C1 family on two data ring
   json doc = {{"name", "two rings"}, {"net", net_to_json(net)}, {"rings", 2}};
   const std::string two = dir.write("two.json", doc.dump());
   const CommandResult r =
-      run_command(kCoons + " search-alpha " + quoted(two) + " --objective e3 --parameter weight --solver eigen-ldlt");
+      run_coons("search-alpha " + quoted(two) + " --objective e3 --parameter weight --solver eigen-ldlt");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
@@ -270,8 +260,8 @@ TEST_CASE("coons search-alpha --parameter weight: the C1 family on two data ring
   with_ribbons["ribbons"] = {
       {"bottom", column(1)}, {"top", column(net.n - 1)}, {"left", row(1)}, {"right", row(net.m - 1)}};
   const std::string ribbons = dir.write("ribbons.json", with_ribbons.dump());
-  const CommandResult rr = run_command(kCoons + " search-alpha " + quoted(ribbons) +
-                                       " --objective e3 --parameter weight --solver eigen-ldlt");
+  const CommandResult rr =
+      run_coons("search-alpha " + quoted(ribbons) + " --objective e3 --parameter weight --solver eigen-ldlt");
   INFO(rr.err);
   REQUIRE(rr.status == 0);
   const json by_ribbons = json::parse(rr.out);
@@ -304,7 +294,7 @@ TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", 
   TempDir dir;
   const std::string out = (dir.path / "sweep").string();
   const CommandResult r =
-      run_command(kCoons + " sweep " + quoted(kData + "/boundaries/dome.json") + " --count 11 --out " + quoted(out));
+      run_coons("sweep " + quoted(kData + "/boundaries/dome.json") + " --count 11 --out " + quoted(out));
   REQUIRE(r.status == 0);
   std::ifstream in(fs::path(out) / "dome.sweep-alpha.jsonl");
   int lines = 0;
@@ -324,8 +314,8 @@ TEST_CASE("coons study: a report with computed tables and figures", "[cli][alpha
   TempDir dir;
   const std::string out = (dir.path / "study").string();
   const CommandResult r =
-      run_command(kCoons + " study " + quoted(kData + "/boundaries/dome.json") + " " +
-                  quoted(kData + "/boundaries/pillow.json") + " --degrees 3 4 6 --out " + quoted(out));
+      run_coons("study " + quoted(kData + "/boundaries/dome.json") + " " + quoted(kData + "/boundaries/pillow.json") +
+                " --degrees 3 4 6 --out " + quoted(out));
   REQUIRE(r.status == 0);
   std::ifstream in(fs::path(out) / "report.md");
   std::stringstream text;
@@ -343,26 +333,24 @@ TEST_CASE("coons refit: analytic sides at any degree, elevation otherwise, exit 
   TempDir dir;
   const std::string out = (dir.path / "dome6.json").string();
   const CommandResult r =
-      run_command(kCoons + " refit " + quoted(kData + "/boundaries/dome.json") + " --degree 6 6 --out " + quoted(out));
+      run_coons("refit " + quoted(kData + "/boundaries/dome.json") + " --degree 6 6 --out " + quoted(out));
   REQUIRE(r.status == 0);
   const BoundaryFile f = read_boundary_file(out);
   CHECK(f.boundary.m == 6);
   CHECK(json::parse(r.out)["method"] == "refit");
   CHECK(json::parse(r.out)["max_deviation"].get<double>() < 1e-5);
-  CHECK(run_command(kCoons + " solve " + quoted(out)).status == 0);
+  CHECK(run_coons("solve " + quoted(out)).status == 0);
   // the refitted file keeps the analytic sides and the target: refit again, fit the sphere
   const json written = json::parse(std::ifstream(out));
   CHECK(written.contains("curves"));
   CHECK(written.contains("target"));
-  const CommandResult fit = run_command(kCoons + " search-alpha " + quoted(out) + " --objective target");
+  const CommandResult fit = run_coons("search-alpha " + quoted(out) + " --objective target");
   REQUIRE(fit.status == 0);
   CHECK(json::parse(fit.out)["alpha"].get<double>() > -0.25);
-  const CommandResult up =
-      run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 5 4");
+  const CommandResult up = run_coons("refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 5 4");
   REQUIRE(up.status == 0);
   CHECK(json::parse(up.out)["method"] == "elevated");
-  const CommandResult down =
-      run_command(kCoons + " refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 2 2");
+  const CommandResult down = run_coons("refit " + quoted(kData + "/boundaries/pillow.json") + " --degree 2 2");
   CHECK(down.status == 2);
   CHECK(down.out.empty());
   CHECK_THAT(down.err, Catch::Contains("curves"));

@@ -6,23 +6,16 @@
 #include <fstream>
 #include <nlohmann/json.hpp>
 
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 
 using namespace coons::test;
 using nlohmann::json;
 namespace fs = std::filesystem;
 
-namespace {
-
-const std::string kCoons = COONS_BINARY;
-const std::string kData = COONS_DATA_DIR;
-
-}  // namespace
-
 TEST_CASE("coons degree-limit: the fields of the degree law, mu* from alpha*", "[cli]") {
-  const CommandResult r = run_command(kCoons + " degree-limit '" + kData +
-                                      "/boundaries/pillow.json' --objective thin_plate --degrees 4 5 6 8 10 12 "
-                                      "--continuum-degrees 10 14");
+  const CommandResult r = run_coons("degree-limit '" + kData +
+                                    "/boundaries/pillow.json' --objective thin_plate --degrees 4 5 6 8 10 12 "
+                                    "--continuum-degrees 10 14");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json j = json::parse(r.out);
@@ -44,9 +37,9 @@ TEST_CASE("coons degree-limit: the fields of the degree law, mu* from alpha*", "
 }
 
 TEST_CASE("coons degree-limit: a flat objective gives nulls, not numbers", "[cli]") {
-  const CommandResult r = run_command(kCoons + " degree-limit '" + kData +
-                                      "/boundaries/saddle.json' --objective thin_plate --degrees 4 6 "
-                                      "--continuum-degrees 6");
+  const CommandResult r = run_coons("degree-limit '" + kData +
+                                    "/boundaries/saddle.json' --objective thin_plate --degrees 4 6 "
+                                    "--continuum-degrees 6");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json j = json::parse(r.out);
@@ -82,10 +75,10 @@ TEST_CASE("coons degree-limit: bad input is one error line, exit 2, nothing writ
 TEST_CASE("coons degree-limit: --out writes the report with its generated conclusions", "[cli]") {
   TempDir dir;
   const std::string out = dir.file("report");
-  const CommandResult r = run_command(kCoons + " degree-limit '" + kData + "/boundaries/pillow.json' '" + kData +
-                                      "/boundaries/saddle.json' --objective thin_plate e3 --degrees 4 6 8 "
-                                      "--continuum-degrees 8 --out '" +
-                                      out + "'");
+  const CommandResult r = run_coons("degree-limit '" + kData + "/boundaries/pillow.json' '" + kData +
+                                    "/boundaries/saddle.json' --objective thin_plate e3 --degrees 4 6 8 "
+                                    "--continuum-degrees 8 --out '" +
+                                    out + "'");
   INFO(r.err);
   REQUIRE(r.status == 0);
   CHECK(fs::exists(out + "/report.md"));

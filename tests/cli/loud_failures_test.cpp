@@ -11,7 +11,7 @@
 #include <sstream>
 #include <thread>
 
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 
 using namespace coons::test;
 using nlohmann::json;
@@ -19,10 +19,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kCoons = COONS_BINARY;
-const std::string kData = COONS_DATA_DIR;
-
-std::string q(const std::string& s) { return "'" + s + "'"; }
 std::string dome() { return kData + "/boundaries/dome.json"; }
 
 int lines(const std::string& s) { return int(std::count(s.begin(), s.end(), '\n')); }
@@ -96,12 +92,12 @@ TEST_CASE("coons: a target of the wrong type is an input error for search-alpha,
   doc["target"] = {{"sphere", 5}};
   const std::string bad = dir.write("badtarget.json", doc.dump());
   const std::string out = dir.file("out");
-  check_refused(run_command(kCoons + " search-alpha " + q(bad) + " --objective target"), "target.sphere");
-  check_refused(run_command(kCoons + " sweep " + q(bad) + " --out " + q(out)), "target.sphere");
-  check_refused(run_command(kCoons + " study " + q(bad) + " --degrees 3 4 --out " + q(out)), "target.sphere");
+  check_refused(run_coons("search-alpha " + quoted(bad) + " --objective target"), "target.sphere");
+  check_refused(run_coons("sweep " + quoted(bad) + " --out " + quoted(out)), "target.sphere");
+  check_refused(run_coons("study " + quoted(bad) + " --degrees 3 4 --out " + quoted(out)), "target.sphere");
   CHECK(!fs::exists(out));  // no empty figures/ either
   doc["target"] = json::array({1, 2});
-  check_refused(run_command(kCoons + " search-alpha " + q(dir.write("t2.json", doc.dump())) + " --objective target"),
+  check_refused(run_coons("search-alpha " + quoted(dir.write("t2.json", doc.dump())) + " --objective target"),
                 "target");
 }
 
@@ -110,18 +106,18 @@ TEST_CASE("coons: a file without name whose file name is not UTF-8 is solved, ex
   json doc = dome_doc();
   doc.erase("name");
   const std::string file = dir.write("bad\xff\xfe.json", doc.dump());
-  const CommandResult solve = run_command(kCoons + " solve " + q(file));
+  const CommandResult solve = run_coons("solve " + quoted(file));
   REQUIRE(solve.status == 0);
   CHECK(json::parse(solve.out)["degree"] == json::array({3, 3}));
   const std::string out = dir.file("out");
-  const CommandResult exp = run_command(kCoons + " export " + q(file) + " --samples 5 --out " + q(out));
+  const CommandResult exp = run_coons("export " + quoted(file) + " --samples 5 --out " + quoted(out));
   REQUIRE(exp.status == 0);
   for (const auto& f : files_under(out)) CHECK(f.find('\xff') == std::string::npos);  // the name was made safe
   CHECK(files_under(out).size() == 4);
   json spec = json::parse(std::ifstream(kData + "/surfaces/join_bilinear_a.json"));
   spec.erase("name");
   const std::string surface = dir.write("surface\xff.json", spec.dump());
-  const CommandResult r = run_command(kCoons + " surface " + q(surface) + " --samples 3 --obj " + q(dir.file("s.obj")));
+  const CommandResult r = run_coons("surface " + quoted(surface) + " --samples 3 --obj " + quoted(dir.file("s.obj")));
   REQUIRE(r.status == 0);
   CHECK(json::parse(r.out)["points"].size() == 3);
   CHECK(fs::exists(dir.file("s.obj")));
@@ -130,15 +126,16 @@ TEST_CASE("coons: a file without name whose file name is not UTF-8 is solved, ex
 TEST_CASE("coons batch: an output folder that cannot be created is an input error, nothing left", "[cli][loud]") {
   TempDir dir;
   const std::string blocker = dir.write("file", "not a folder");
-  check_refused(run_command(kCoons + " batch " + q(dome()) + " --samples 3 --out " + q(blocker + "/out")), "file");
+  check_refused(run_coons("batch " + quoted(dome()) + " --samples 3 --out " + quoted(blocker + "/out")), "file");
   CHECK(files_under(dir.path) == std::vector<std::string>{"file"});
 }
 
 TEST_CASE("coons: a failed write to standard output is an error with the OS reason", "[cli][loud]") {
   TempDir dir;
   const std::string out = dir.file("out");
-  for (const std::string& args : {" solve " + q(dome()), " search-alpha " + q(dome()) + " --objective thin_plate",
-                                  " export " + q(dome()) + " --samples 3 --out " + q(out), std::string(" solvers")}) {
+  for (const std::string& args :
+       {" solve " + quoted(dome()), " search-alpha " + quoted(dome()) + " --objective thin_plate",
+        " export " + quoted(dome()) + " --samples 3 --out " + quoted(out), std::string(" solvers")}) {
     INFO(args);
     const CommandResult r = run_command(std::string("( ").append(kCoons).append(args).append(" >/dev/full )"));
     CHECK(r.status == 2);
@@ -156,8 +153,8 @@ TEST_CASE("coons export: eight concurrent exports to one folder and prefix publi
   std::vector<int> status(8, -1);
   for (int t = 0; t < 8; ++t)
     threads.emplace_back([&, t] {
-      status[t] = run_command(kCoons + " export " + q(dome()) + " --alpha " + std::to_string(-0.25 + 0.05 * t) +
-                              " --obj --force --samples " + std::to_string(k) + " --prefix same --out " + q(out))
+      status[t] = run_coons("export " + quoted(dome()) + " --alpha " + std::to_string(-0.25 + 0.05 * t) +
+                            " --obj --force --samples " + std::to_string(k) + " --prefix same --out " + quoted(out))
                       .status;
     });
   for (auto& t : threads) t.join();
@@ -170,37 +167,36 @@ TEST_CASE("coons export: eight concurrent exports to one folder and prefix publi
 TEST_CASE("coons export: an existing file is not overwritten without --force", "[cli][loud]") {
   TempDir dir;
   const std::string out = dir.file("out");
-  REQUIRE(run_command(kCoons + " export " + q(dome()) + " --obj --samples 3 --out " + q(out)).status == 0);
+  REQUIRE(run_coons("export " + quoted(dome()) + " --obj --samples 3 --out " + quoted(out)).status == 0);
   const auto before = fs::last_write_time(fs::path(out) / "dome.surface.obj");
-  check_refused(run_command(kCoons + " export " + q(dome()) + " --obj --samples 4 --out " + q(out)), "--force");
+  check_refused(run_coons("export " + quoted(dome()) + " --obj --samples 4 --out " + quoted(out)), "--force");
   CHECK(fs::last_write_time(fs::path(out) / "dome.surface.obj") == before);
-  CHECK(run_command(kCoons + " export " + q(dome()) + " --obj --samples 4 --force --out " + q(out)).status == 0);
+  CHECK(run_coons("export " + quoted(dome()) + " --obj --samples 4 --force --out " + quoted(out)).status == 0);
 }
 
 TEST_CASE("coons: output names carry what distinguishes them", "[cli][loud]") {
   TempDir dir;
   // two α that agree to three digits give two files
   const std::string out = dir.file("batch");
-  REQUIRE(run_command(kCoons + " batch " + q(dome()) + " --alphas -0.1 -0.1004 --samples 3 --out " + q(out)).status ==
-          0);
+  REQUIRE(run_coons("batch " + quoted(dome()) + " --alphas -0.1 -0.1004 --samples 3 --out " + quoted(out)).status == 0);
   CHECK(fs::exists(fs::path(out) / "dome-3x3" / "alpha-0.1.json"));
   CHECK(fs::exists(fs::path(out) / "dome-3x3" / "alpha-0.1004.json"));
-  check_refused(run_command(kCoons + " batch " + q(dome()) + " --alphas -0.1 -0.1 --out " + q(dir.file("twice"))),
+  check_refused(run_coons("batch " + quoted(dome()) + " --alphas -0.1 -0.1 --out " + quoted(dir.file("twice"))),
                 "twice");
   // three boundaries named dome at different degrees, and two at the same degree
   const std::string at4 = dir.file("dome4.json"), at6 = dir.file("dome6.json");
-  REQUIRE(run_command(kCoons + " refit " + q(dome()) + " --degree 4 4 --out " + q(at4)).status == 0);
-  REQUIRE(run_command(kCoons + " refit " + q(dome()) + " --degree 6 6 --out " + q(at6)).status == 0);
+  REQUIRE(run_coons("refit " + quoted(dome()) + " --degree 4 4 --out " + quoted(at4)).status == 0);
+  REQUIRE(run_coons("refit " + quoted(dome()) + " --degree 6 6 --out " + quoted(at6)).status == 0);
   const std::string three = dir.file("three");
-  REQUIRE(run_command(kCoons + " batch " + q(dome()) + " " + q(at4) + " " + q(at6) + " " + q(dome()) +
-                      " --alphas 0 --samples 3 --out " + q(three))
+  REQUIRE(run_coons("batch " + quoted(dome()) + " " + quoted(at4) + " " + quoted(at6) + " " + quoted(dome()) +
+                    " --alphas 0 --samples 3 --out " + quoted(three))
               .status == 0);
   for (const char* folder : {"dome-3x3", "dome-4x4", "dome-6x6", "dome-3x3-2"})
     CHECK(fs::is_directory(fs::path(three) / folder));
   // an α sweep and a μ sweep
   const std::string sweeps = dir.file("sweeps");
-  REQUIRE(run_command(kCoons + " sweep " + q(dome()) + " --count 3 --out " + q(sweeps)).status == 0);
-  REQUIRE(run_command(kCoons + " sweep " + q(dome()) + " --parameter mu --count 3 --out " + q(sweeps)).status == 0);
+  REQUIRE(run_coons("sweep " + quoted(dome()) + " --count 3 --out " + quoted(sweeps)).status == 0);
+  REQUIRE(run_coons("sweep " + quoted(dome()) + " --parameter mu --count 3 --out " + quoted(sweeps)).status == 0);
   CHECK(fs::exists(fs::path(sweeps) / "dome.sweep-alpha.jsonl"));
   CHECK(fs::exists(fs::path(sweeps) / "dome.sweep-mu.jsonl"));
 }
@@ -223,11 +219,10 @@ TEST_CASE("coons: names from input files never place a file outside the output f
     doc["name"] = name;
     const std::string file = dir.write("in" + std::to_string(k) + ".json", doc.dump());
     const fs::path out = dir.path / ("out" + std::to_string(k++));
-    CHECK(run_command(kCoons + " export " + q(file) + " --samples 3 --out " + q(out.string())).status == 0);
-    CHECK(run_command(kCoons + " sweep " + q(file) + " --count 3 --out " + q(out.string())).status == 0);
-    CHECK(run_command(kCoons + " batch " + q(file) + " --alphas 0 --samples 3 --out " + q(out.string())).status == 0);
-    CHECK(run_command(kCoons + " study " + q(file) + " --degrees 3 4 --out " + q((out / "study").string())).status ==
-          0);
+    CHECK(run_coons("export " + quoted(file) + " --samples 3 --out " + quoted(out.string())).status == 0);
+    CHECK(run_coons("sweep " + quoted(file) + " --count 3 --out " + quoted(out.string())).status == 0);
+    CHECK(run_coons("batch " + quoted(file) + " --alphas 0 --samples 3 --out " + quoted(out.string())).status == 0);
+    CHECK(run_coons("study " + quoted(file) + " --degrees 3 4 --out " + quoted((out / "study").string())).status == 0);
     for (const auto& f : files_under(out)) CHECK(fs::path(f).begin()->string() != "..");
   }
   // nothing beside the output folders and the inputs
@@ -240,7 +235,7 @@ TEST_CASE("coons: names from input files never place a file outside the output f
 }
 
 TEST_CASE("coons: contradictory options are errors naming both", "[cli][loud]") {
-  const std::string d = q(dome());
+  const std::string d = quoted(dome());
   const std::pair<std::string, std::vector<std::string>> cases[] = {
       {" solve " + d + " --method coons --alpha 0.1", {"--method", "--alpha"}},
       {" solve " + d + " --method hermite-coons --mu 2", {"--method", "--mu"}},
@@ -263,7 +258,7 @@ TEST_CASE("coons: contradictory options are errors naming both", "[cli][loud]") 
 
 TEST_CASE("coons solve: a failing solver prints its report and one error line (exit 3)", "[cli][loud]") {
   const CommandResult r =
-      run_command(kCoons + " solve " + q(kData + "/boundaries/helicoid.json") + " --solver jacobi --max-iterations 3");
+      run_coons("solve " + quoted(kData + "/boundaries/helicoid.json") + " --solver jacobi --max-iterations 3");
   CHECK(r.status == 3);
   const json report = json::parse(r.out);
   CHECK(report["solver"]["status"] != "success");
@@ -272,8 +267,8 @@ TEST_CASE("coons solve: a failing solver prints its report and one error line (e
                         Catch::Contains(report["solver"]["status"].get<std::string>()));
   // a sweep whose values fail in part of the range says which part
   TempDir dir;
-  const CommandResult sweep = run_command(kCoons + " sweep " + q(kData + "/boundaries/helicoid.json") +
-                                          " --solver jacobi --count 5 --out " + q(dir.file("s")));
+  const CommandResult sweep = run_coons("sweep " + quoted(kData + "/boundaries/helicoid.json") +
+                                        " --solver jacobi --count 5 --out " + quoted(dir.file("s")));
   CHECK(sweep.status == 3);
   CHECK(lines(sweep.err) == 1);
   const json summary = json::parse(sweep.out);
@@ -284,33 +279,33 @@ TEST_CASE("coons solve: a failing solver prints its report and one error line (e
 
 TEST_CASE("coons: sizes are checked before memory is taken", "[cli][loud]") {
   TempDir dir;
-  check_refused(run_command(kCoons + " export " + q(dome()) + " --obj --samples 50000 --out " + q(dir.file("out"))),
+  check_refused(run_coons("export " + quoted(dome()) + " --obj --samples 50000 --out " + quoted(dir.file("out"))),
                 "needs about");
   CHECK(!fs::exists(dir.file("out")));
   const std::string spec = kData + "/surfaces/seed000_ferguson_1.json";
-  if (fs::exists(spec)) check_refused(run_command(kCoons + " surface " + q(spec) + " --sample 100000"), "needs about");
+  if (fs::exists(spec)) check_refused(run_coons("surface " + quoted(spec) + " --sample 100000"), "needs about");
   const std::string huge = flat_boundary(dir, "huge", 40000);
-  const std::string o = q(dir.file("o"));
-  for (const std::string& args : {" solve " + q(huge), " search-alpha " + q(huge) + " --objective thin_plate",
-                                  " export " + q(huge) + " --out " + o, " sweep " + q(huge) + " --out " + o,
-                                  " batch " + q(huge) + " --out " + o}) {
+  const std::string o = quoted(dir.file("o"));
+  for (const std::string& args : {" solve " + quoted(huge), " search-alpha " + quoted(huge) + " --objective thin_plate",
+                                  " export " + quoted(huge) + " --out " + o, " sweep " + quoted(huge) + " --out " + o,
+                                  " batch " + quoted(huge) + " --out " + o}) {
     INFO(args);
     const CommandResult r = run_command(kCoons + args);
     check_refused(r, "needs about");
     CHECK_THAT(r.err, Catch::Contains("(40000, 40000)"));
   }
-  check_refused(run_command(kCoons + " study " + q(huge) + " --out " + q(dir.file("o"))), "needs about");
+  check_refused(run_coons("study " + quoted(huge) + " --out " + quoted(dir.file("o"))), "needs about");
   CHECK(!fs::exists(dir.file("o")));
   const std::string big = flat_boundary(dir, "big", 3000);
-  check_refused(run_command(kCoons + " solve " + q(big) + " --max-memory 1GB"), "needs about");
-  check_refused(run_command(kCoons + " solve " + q(dome()) + " --max-memory lots"), "--max-memory");
+  check_refused(run_coons("solve " + quoted(big) + " --max-memory 1GB"), "needs about");
+  check_refused(run_coons("solve " + quoted(dome()) + " --max-memory lots"), "--max-memory");
 }
 
 TEST_CASE("coons solve: reruns are byte-identical apart from the timing block and solver seconds", "[cli][loud]") {
   for (const char* solver : {"eigen-ldlt", "fast", "auto"}) {
     INFO(solver);
     const std::string cmd =
-        kCoons + " solve " + q(kData + "/boundaries/helicoid.json") + " --alpha -0.1 --solver " + solver;
+        kCoons + " solve " + quoted(kData + "/boundaries/helicoid.json") + " --alpha -0.1 --solver " + solver;
     const CommandResult a = run_command(cmd), b = run_command(cmd);
     if (a.status == 2) continue;  // a backend left out of this build
     REQUIRE(a.status == 0);
@@ -332,16 +327,16 @@ TEST_CASE("coons: every command's --help ends with a worked example; an unknown 
     CHECK(r.status == 0);
     CHECK_THAT(r.out, Catch::Contains("Example:\n  coons"));
   }
-  check_refused(run_command(kCoons + " frobnicate"), "unknown command 'frobnicate'");
-  CHECK_THAT(run_command(kCoons + " search-alpha --help").out, Catch::Contains("discrete_thin_plate"));
-  CHECK_THAT(run_command(kCoons + " surface --help").out, Catch::Contains("--samples"));
+  check_refused(run_coons("frobnicate"), "unknown command 'frobnicate'");
+  CHECK_THAT(run_coons("search-alpha --help").out, Catch::Contains("discrete_thin_plate"));
+  CHECK_THAT(run_coons("surface --help").out, Catch::Contains("--samples"));
 }
 
 TEST_CASE("coons search-alpha: discrete objectives and weighted sums with spaces", "[cli][alpha]") {
   for (const char* objective : {"discrete_twist", "discrete_dirichlet", "discrete_thin_plate", "thin_plate + 10*target",
                                 " 2*e3 +thin_plate "}) {
     INFO(objective);
-    const CommandResult r = run_command(kCoons + " search-alpha " + q(dome()) + " --objective " + q(objective));
+    const CommandResult r = run_coons("search-alpha " + quoted(dome()) + " --objective " + quoted(objective));
     REQUIRE(r.status == 0);
     const json report = json::parse(r.out);
     CHECK(report["objective"].get<std::string>().find(' ') == std::string::npos);
@@ -352,9 +347,10 @@ TEST_CASE("coons search-alpha: discrete objectives and weighted sums with spaces
 
 TEST_CASE("coons study: results.json is the same on a rerun and names each entry's kind", "[cli][alpha]") {
   TempDir dir;
-  const std::string args = " study " + q(dome()) + " " + q(kData + "/boundaries/pillow.json") + " --degrees 3 4 --out ";
-  REQUIRE(run_command(kCoons + args + q(dir.file("a"))).status == 0);
-  REQUIRE(run_command(kCoons + args + q(dir.file("b"))).status == 0);
+  const std::string args =
+      " study " + quoted(dome()) + " " + quoted(kData + "/boundaries/pillow.json") + " --degrees 3 4 --out ";
+  REQUIRE(run_command(kCoons + args + quoted(dir.file("a"))).status == 0);
+  REQUIRE(run_command(kCoons + args + quoted(dir.file("b"))).status == 0);
   std::ifstream a(fs::path(dir.file("a")) / "results.json"), b(fs::path(dir.file("b")) / "results.json");
   std::stringstream ta, tb;
   ta << a.rdbuf();
@@ -370,7 +366,7 @@ TEST_CASE("coons study: results.json is the same on a rerun and names each entry
 
 TEST_CASE("coons: progress with named phases on a terminal, nothing on standard error otherwise", "[cli][loud]") {
   TempDir dir;
-  const std::string sweep = kCoons + " sweep " + q(dome()) + " --count 5 --out " + q(dir.file("s"));
+  const std::string sweep = kCoons + " sweep " + quoted(dome()) + " --count 5 --out " + quoted(dir.file("s"));
   const CommandResult quiet = run_command(sweep);
   REQUIRE(quiet.status == 0);
   CHECK(quiet.err.empty());
@@ -381,7 +377,7 @@ TEST_CASE("coons: progress with named phases on a terminal, nothing on standard 
   }
   // under a pseudo-terminal (script) standard error is a terminal: the phases are shown
   const CommandResult tty =
-      run_command("script -qec " + q(kCoons + " solve " + dome() + " --solver eigen-ldlt") + " /dev/null");
+      run_command("script -qec " + quoted(kCoons + " solve " + dome() + " --solver eigen-ldlt") + " /dev/null");
   CHECK(tty.status == 0);
   CHECK_THAT(tty.out, Catch::Contains("coons solve: read") && Catch::Contains("coons solve: solve") &&
                           Catch::Contains("coons solve: metrics"));
@@ -389,8 +385,8 @@ TEST_CASE("coons: progress with named phases on a terminal, nothing on standard 
 
 TEST_CASE("coons search-alpha: evaluations that fail are reported and no optimum is claimed on them", "[cli][loud]") {
   // Jacobi diverges for α < 0 on the helicoid: the search says where, claims nothing, exits 3
-  const CommandResult r = run_command(kCoons + " search-alpha " + q(kData + "/boundaries/helicoid.json") +
-                                      " --objective thin_plate --solver jacobi");
+  const CommandResult r = run_coons("search-alpha " + quoted(kData + "/boundaries/helicoid.json") +
+                                    " --objective thin_plate --solver jacobi");
   CHECK(r.status == 3);
   CHECK(lines(r.err) == 1);
   const json report = json::parse(r.out);
@@ -401,7 +397,7 @@ TEST_CASE("coons search-alpha: evaluations that fail are reported and no optimum
   CHECK(report["failed_intervals"][0][0] == -0.25);
   CHECK(report["solver"]["status"] == "failure");
   // a search whose every evaluation succeeded says so too
-  const json ok = json::parse(run_command(kCoons + " search-alpha " + q(dome()) + " --objective thin_plate").out);
+  const json ok = json::parse(run_coons("search-alpha " + quoted(dome()) + " --objective thin_plate").out);
   CHECK(ok["failed_evaluations"] == 0);
   CHECK(ok["failed_intervals"].empty());
 }

@@ -17,25 +17,13 @@
 #include "coons/mask/stencil.h"
 #include "coons/mask/stencil_system.h"
 #include "solvers/registry.h"
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 
 using namespace coons;
 using namespace coons::test;
 using nlohmann::json;
 
 namespace {
-
-const std::string kCoons = COONS_BINARY;
-const std::string kData = COONS_DATA_DIR;
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-std::string read_text_file(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream text;
-  text << in.rdbuf();
-  return text.str();
-}
 
 ControlNet net_of(const json& report) { return *parse_boundary(json{{"net", report.at("net")}}, "report").net; }
 
@@ -48,7 +36,7 @@ ControlNet library_solve(const std::string& file, const Stencil& stencil, const 
 }
 
 json solve(const std::string& args, int expected_status = 0) {
-  const CommandResult r = run_command(kCoons + " solve " + args);
+  const CommandResult r = run_coons("solve " + args);
   INFO("coons solve " << args << "\n" << r.err);
   REQUIRE(r.status == expected_status);
   return json::parse(r.out);
@@ -156,7 +144,7 @@ TEST_CASE("coons solve: the classical problem keeps its path and numbers; --mask
 
 TEST_CASE("coons solve --mask: a named backend that does not apply reports its status and exits 3", "[cli]") {
   const std::string file = kData + "/boundaries/sphere_cap_ribbons.json";
-  const CommandResult r = run_command(kCoons + " solve " + quoted(file) + " --mask c1-coons --solver dst");
+  const CommandResult r = run_coons("solve " + quoted(file) + " --mask c1-coons --solver dst");
   CHECK(r.status == 3);
   const json report = json::parse(r.out);
   CHECK(report["solver"]["name"] == "dst");
@@ -169,8 +157,8 @@ TEST_CASE("coons solve --mask: a named backend that does not apply reports its s
 TEST_CASE("coons export --mask: the OBJ net is the stencil solve, the Matrix Market files its system", "[cli]") {
   TempDir out;
   const std::string file = kData + "/free_sets/l_hole.json";
-  const CommandResult r = run_command(kCoons + " export " + quoted(file) + " --mask biharmonic --out " +
-                                      quoted(out.path.string()) + " --prefix hole");
+  const CommandResult r =
+      run_coons("export " + quoted(file) + " --mask biharmonic --out " + quoted(out.path.string()) + " --prefix hole");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
@@ -187,8 +175,7 @@ TEST_CASE("coons export --mask: the OBJ net is the stencil solve, the Matrix Mar
   CHECK(B == Eigen::MatrixXd(system.B));
   CHECK(std::filesystem::exists(out.file("hole.net.obj")));
   // a closed form on a free grid is refused before anything is written
-  const CommandResult bad =
-      run_command(kCoons + " export " + quoted(file) + " --method coons --out " + quoted(out.file("none")));
+  const CommandResult bad = run_coons("export " + quoted(file) + " --method coons --out " + quoted(out.file("none")));
   CHECK(bad.status == 2);
   CHECK(!std::filesystem::exists(out.file("none")));
 }
@@ -198,15 +185,15 @@ TEST_CASE("coons batch --mask: every file's stencil solve as coons solve --mask 
   const std::string cap = kData + "/boundaries/sphere_cap_ribbons.json";
   const std::string torus = kData + "/boundaries/torus_patch_ribbons.json";
   const std::string options = " --mask c1-family --weight 0.5 --solver eigen-ldlt";
-  const CommandResult r = run_command(kCoons + " batch " + quoted(cap) + " " + quoted(torus) + options + " --out " +
-                                      quoted(out.path.string()));
+  const CommandResult r =
+      run_coons("batch " + quoted(cap) + " " + quoted(torus) + options + " --out " + quoted(out.path.string()));
   INFO(r.err);
   REQUIRE(r.status == 0);
   for (const auto& [file, folder] : {std::pair{cap, std::string("sphere_cap_ribbons-6x6")},
                                      std::pair{torus, std::string("torus_patch_ribbons-7x5")}}) {
     const json single = solve(quoted(file) + options);
     const std::string stem = out.file(folder + "/c1-family-w0.5");
-    const json batch = json::parse(read_text_file(stem + ".json"));
+    const json batch = json::parse(read_text(stem + ".json"));
     CHECK(batch["mask"] == "c1-family");
     CHECK(batch["weight"] == 0.5);
     CHECK(batch["solver"]["status"] == "success");
@@ -215,7 +202,7 @@ TEST_CASE("coons batch --mask: every file's stencil solve as coons solve --mask 
     CHECK(std::filesystem::exists(stem + ".surface.obj"));
     CHECK(std::filesystem::exists(stem + ".net.obj"));
   }
-  const std::string table = read_text_file(out.file("metrics.md"));
+  const std::string table = read_text(out.file("metrics.md"));
   CHECK(table.find("| sphere_cap_ribbons     |     6x6 | c1-family  |  w=0.5 |") != std::string::npos);
   CHECK(table.find("| coons ") == std::string::npos);  // no closed-form rows
   CHECK(table.find("| alpha ") == std::string::npos);

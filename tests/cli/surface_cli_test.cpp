@@ -10,7 +10,7 @@
 
 #include "coons/io/boundary_io.h"
 #include "coons/net/coons_net.h"
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 #include "support/surface_fixtures.h"
 
 using namespace coons;
@@ -20,17 +20,6 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kCoons = COONS_BINARY;
-
-std::string q(const std::string& s) { return "'" + s + "'"; }
-
-std::string slurp(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
-
 // Runs `coons surface SPEC` with every output option; checks the error contract.
 void check_rejected(const std::string& spec_text, const std::string& field, const std::string& reason_part) {
   TempDir dir;
@@ -38,8 +27,8 @@ void check_rejected(const std::string& spec_text, const std::string& field, cons
   const std::string outputs[] = {dir.file("s.obj"), dir.file("s.ply"), dir.file("s.vts"), dir.file("s.png"),
                                  dir.file("net.json")};
   const CommandResult r =
-      run_command(kCoons + " surface " + q(spec) + " --sample 5 --obj " + q(outputs[0]) + " --ply " + q(outputs[1]) +
-                  " --vts " + q(outputs[2]) + " --png " + q(outputs[3]) + " --net-out " + q(outputs[4]));
+      run_coons("surface " + quoted(spec) + " --sample 5 --obj " + quoted(outputs[0]) + " --ply " + quoted(outputs[1]) +
+                " --vts " + quoted(outputs[2]) + " --png " + quoted(outputs[3]) + " --net-out " + quoted(outputs[4]));
   INFO(spec_text << "\nstderr: " << r.err);
   CHECK(r.status == 2);
   CHECK(r.out.empty());
@@ -55,8 +44,8 @@ void check_rejected(const std::string& spec_text, const std::string& field, cons
 
 TEST_CASE("coons surface: points[a][b] = r(a/(K-1), b/(K-1)), type, and the exact net of seed example 1",
           "[cli][surfaces]") {
-  const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_bilinear_coons_1.json")) +
-                                      " --sample 5 --fit-degree 2");
+  const CommandResult r =
+      run_coons("surface " + quoted(surface_data("seed000_bilinear_coons_1.json")) + " --sample 5 --fit-degree 2");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["type"] == "bilinear-coons");
@@ -89,8 +78,7 @@ TEST_CASE("coons surface: points[a][b] = r(a/(K-1), b/(K-1)), type, and the exac
 }
 
 TEST_CASE("coons surface: a polynomial surface prints its exact net, twists and energies", "[cli][surfaces]") {
-  const CommandResult r =
-      run_command(kCoons + " surface " + q(surface_data("seed000_hermite16_T10.json")) + " --sample 3");
+  const CommandResult r = run_coons("surface " + quoted(surface_data("seed000_hermite16_T10.json")) + " --sample 3");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["type"] == "hermite16");
@@ -112,28 +100,29 @@ TEST_CASE("coons surface: meshes, PNG and a net file that coons solve reads", "[
                     net = dir.file("net.json");
   const std::string plane =
       dir.write("plane.json", R"({"type": "bilinear", "corners": [[0,0,0],[1,0,0],[0,1,0],[1,1,0]]})");
-  const CommandResult r = run_command(kCoons + " surface " + q(surface_data("seed000_hermite_coons_1.json")) +
-                                      " --sample 9 --obj " + q(obj) + " --ply " + q(ply) + " --vts " + q(vts) +
-                                      " --png " + q(png) + " --net-out " + q(net) + " --reference " + q(plane));
+  const CommandResult r =
+      run_coons("surface " + quoted(surface_data("seed000_hermite_coons_1.json")) + " --sample 9 --obj " + quoted(obj) +
+                " --ply " + quoted(ply) + " --vts " + quoted(vts) + " --png " + quoted(png) + " --net-out " +
+                quoted(net) + " --reference " + quoted(plane));
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["written"].size() == 5);
-  CHECK(slurp(obj).find("\nf ") != std::string::npos);
-  CHECK(slurp(ply).find("property double distance") != std::string::npos);
-  CHECK(slurp(vts).find("Name=\"twist\"") != std::string::npos);
-  CHECK(slurp(png).substr(1, 3) == "PNG");
+  CHECK(read_text(obj).find("\nf ") != std::string::npos);
+  CHECK(read_text(ply).find("property double distance") != std::string::npos);
+  CHECK(read_text(vts).find("Name=\"twist\"") != std::string::npos);
+  CHECK(read_text(png).substr(1, 3) == "PNG");
   CHECK(report["reference"]["max_distance"].get<double>() == Approx(2).margin(1e-9));  // z at (1, 1)
   // The net file is a boundary file: its hermite-coons closed form is this net.
-  const CommandResult solved = run_command(kCoons + " solve " + q(net) + " --method hermite-coons");
+  const CommandResult solved = run_coons("solve " + quoted(net) + " --method hermite-coons");
   REQUIRE(solved.status == 0);
   const json s = json::parse(solved.out);
   const BoundaryFile written = read_boundary_file(net);
   CHECK(max_difference(*written.net, *parse_boundary(json{{"net", s["net"]}}, "solve").net) < 1e-14);
   // A file with "net" (here the solve report) is a reference too: the surface is its own net's.
   const std::string report_file = dir.write("solve.json", solved.out);
-  const CommandResult again = run_command(kCoons + " surface " + q(surface_data("seed000_hermite_coons_1.json")) +
-                                          " --sample 7 --reference " + q(report_file));
+  const CommandResult again = run_coons("surface " + quoted(surface_data("seed000_hermite_coons_1.json")) +
+                                        " --sample 7 --reference " + quoted(report_file));
   REQUIRE(again.status == 0);
   const json compared = json::parse(again.out);
   CHECK(compared["reference"]["type"] == "bezier");
@@ -145,7 +134,7 @@ TEST_CASE("coons surface: every data/surfaces file runs", "[cli][surfaces]") {
   for (const auto& entry : fs::directory_iterator(std::string(COONS_DATA_DIR) + "/surfaces")) {
     if (entry.path().extension() != ".json") continue;
     INFO(entry.path());
-    const CommandResult r = run_command(kCoons + " surface " + q(entry.path().string()) + " --sample 4");
+    const CommandResult r = run_coons("surface " + quoted(entry.path().string()) + " --sample 4");
     CHECK(r.status == 0);
     CHECK(r.err.empty());
   }
@@ -184,16 +173,16 @@ TEST_CASE("coons surface: bad descriptions exit 2 with one error line naming the
 TEST_CASE("coons surface: bad options and unreadable files exit 2", "[cli][surfaces]") {
   TempDir dir;
   const std::string spec = surface_data("seed000_ferguson_1.json");
-  CommandResult r = run_command(kCoons + " surface " + q(spec) + " --sample 1");
+  CommandResult r = run_coons("surface " + quoted(spec) + " --sample 1");
   CHECK(r.status == 2);
   CHECK(r.err.rfind("error: command line: --samples: ", 0) == 0);
-  r = run_command(kCoons + " surface " + q(spec) + " --obj " + q(dir.file("missing/s.obj")));
+  r = run_coons("surface " + quoted(spec) + " --obj " + quoted(dir.file("missing/s.obj")));
   CHECK(r.status == 2);
   CHECK(r.err.rfind("error: command line: --obj: ", 0) == 0);
-  r = run_command(kCoons + " surface " + q(dir.write("broken.json", "{\"type\": ")));
+  r = run_coons("surface " + quoted(dir.write("broken.json", "{\"type\": ")));
   CHECK(r.status == 2);
   CHECK(r.err.find("malformed JSON") != std::string::npos);
-  r = run_command(kCoons + " surface " + q(dir.file("absent.json")));
+  r = run_coons("surface " + quoted(dir.file("absent.json")));
   CHECK(r.status == 2);
   CHECK(r.out.empty());
 }

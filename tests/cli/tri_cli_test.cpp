@@ -10,7 +10,7 @@
 
 #include "coons/io/tri_boundary_io.h"
 #include "coons/tri/tri_solve.h"
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 #include "tri/tri_fixtures.h"
 
 using namespace coons;
@@ -20,15 +20,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kCoons = COONS_BINARY;
 const std::string kTriangles = std::string(COONS_DATA_DIR) + "/triangles/";
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path);
-  std::stringstream s;
-  s << in.rdbuf();
-  return s.str();
-}
 
 int count_lines_starting(const std::string& text, const std::string& prefix) {
   std::istringstream in(text);
@@ -41,7 +33,7 @@ int count_lines_starting(const std::string& text, const std::string& prefix) {
 
 TEST_CASE("coons solve: a triangular file gives the triangle report, net in the contract's row order", "[cli][tri]") {
   const std::string file = kTriangles + "sphere_octant.json";
-  const CommandResult r = run_command(kCoons + " solve '" + file + "' --alpha -0.1 --solver eigen-lu");
+  const CommandResult r = run_coons("solve '" + file + "' --alpha -0.1 --solver eigen-lu");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["type"] == "triangle");
@@ -64,7 +56,7 @@ TEST_CASE("coons solve: a triangular file gives the triangle report, net in the 
 }
 
 TEST_CASE("coons solve: --solver auto on a triangle picks an LU backend; c defaults to -1/6", "[cli][tri]") {
-  const CommandResult r = run_command(kCoons + " solve '" + kTriangles + "monkey_saddle.json'");
+  const CommandResult r = run_coons("solve '" + kTriangles + "monkey_saddle.json'");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   CHECK(report["alpha"].get<double>() == -1.0 / 6);
@@ -74,7 +66,7 @@ TEST_CASE("coons solve: --solver auto on a triangle picks an LU backend; c defau
 
 TEST_CASE("coons solve: a symmetric-only backend on a triangle reports not_applicable, exit 3", "[cli][tri]") {
   const std::string file = kTriangles + "dome_half.json";
-  const CommandResult r = run_command(kCoons + " solve '" + file + "' --alpha -0.1 --solver eigen-ldlt");
+  const CommandResult r = run_coons("solve '" + file + "' --alpha -0.1 --solver eigen-ldlt");
   REQUIRE(r.status == 3);
   const json report = json::parse(r.out);
   CHECK(report["solver"]["status"] == "not_applicable");
@@ -82,8 +74,8 @@ TEST_CASE("coons solve: a symmetric-only backend on a triangle reports not_appli
   CHECK(report["metrics"].is_null());
   CHECK(count_lines_starting(r.err, "error: " + file + ": solver: eigen-ldlt not_applicable") == 1);
   // c = 0 is symmetric positive definite: there it applies and agrees with LU
-  const CommandResult zero = run_command(kCoons + " solve '" + file + "' --alpha 0 --solver eigen-ldlt");
-  const CommandResult zero_lu = run_command(kCoons + " solve '" + file + "' --alpha 0 --solver eigen-lu");
+  const CommandResult zero = run_coons("solve '" + file + "' --alpha 0 --solver eigen-ldlt");
+  const CommandResult zero_lu = run_coons("solve '" + file + "' --alpha 0 --solver eigen-lu");
   REQUIRE(zero.status == 0);
   REQUIRE(zero_lu.status == 0);
   const json a = json::parse(zero.out)["net"], b = json::parse(zero_lu.out)["net"];
@@ -135,7 +127,7 @@ TEST_CASE("coons solve: bad triangular inputs exit 2 naming the side and point",
 TEST_CASE("coons export: a triangle as OBJ (surface and net), PLY and VTU", "[cli][tri]") {
   TempDir dir;
   const std::string file = kTriangles + "sphere_octant.json";
-  const CommandResult r = run_command(kCoons + " export '" + file + "' --samples 5 --out '" + dir.file("x") + "'");
+  const CommandResult r = run_coons("export '" + file + "' --samples 5 --out '" + dir.file("x") + "'");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
@@ -169,19 +161,19 @@ TEST_CASE("coons export: a triangle as OBJ (surface and net), PLY and VTU", "[cl
       CHECK(radius < 1 + 1e-5);
     }
   // without --force the files are not replaced
-  const CommandResult again = run_command(kCoons + " export '" + file + "' --vtu --out '" + dir.file("x") + "'");
+  const CommandResult again = run_coons("export '" + file + "' --vtu --out '" + dir.file("x") + "'");
   CHECK(again.status == 2);
   CHECK(count_lines_starting(again.err, "error: ") == 1);
   // --ply and --vtu are for triangles
-  const CommandResult rect = run_command(kCoons + " export '" + std::string(COONS_DATA_DIR) +
-                                         "/boundaries/dome.json' --vtu --out '" + dir.file("y") + "'");
+  const CommandResult rect = run_coons("export '" + std::string(COONS_DATA_DIR) +
+                                       "/boundaries/dome.json' --vtu --out '" + dir.file("y") + "'");
   CHECK(rect.status == 2);
   CHECK_FALSE(fs::exists(dir.file("y")));
 }
 
 TEST_CASE("coons search-alpha: the best c of a triangle, with bounds that avoid the singular member", "[cli][tri]") {
   const std::string file = kTriangles + "sphere_octant.json";
-  const CommandResult r = run_command(kCoons + " search-alpha '" + file + "' --objective target");
+  const CommandResult r = run_coons("search-alpha '" + file + "' --objective target");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
@@ -195,7 +187,7 @@ TEST_CASE("coons search-alpha: the best c of a triangle, with bounds that avoid 
   CHECK(report["bounds"][0].get<double>() == Approx(-1.0 / 6 - 1.0 / 12));
   // the target value is the mean squared distance to the sphere: small for the octant
   CHECK(report["value"].get<double>() < 1e-4);
-  const CommandResult rejected = run_command(kCoons + " search-alpha '" + file + "' --objective e3");
+  const CommandResult rejected = run_coons("search-alpha '" + file + "' --objective e3");
   CHECK(rejected.status == 2);
   CHECK(count_lines_starting(rejected.err, "error: command line: --objective: unknown objective 'e3'") == 1);
 }
@@ -203,7 +195,7 @@ TEST_CASE("coons search-alpha: the best c of a triangle, with bounds that avoid 
 TEST_CASE("coons sweep: a triangle gives NAME.sweep-c.jsonl, one line per c", "[cli][tri]") {
   TempDir dir;
   const std::string file = kTriangles + "dome_half.json";
-  const CommandResult r = run_command(kCoons + " sweep '" + file + "' --count 5 --out '" + dir.path.string() + "'");
+  const CommandResult r = run_coons("sweep '" + file + "' --count 5 --out '" + dir.path.string() + "'");
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json summary = json::parse(r.out);
@@ -221,10 +213,10 @@ TEST_CASE("coons sweep: a triangle gives NAME.sweep-c.jsonl, one line per c", "[
 }
 
 TEST_CASE("coons study: a triangular file among the inputs gets its rows in results.json and report.md", "[cli][tri]") {
-  const fs::path out = fs::temp_directory_path() / "coons_tri_study_cli";
-  fs::remove_all(out);
-  const CommandResult r = run_command(
-      fmt::format("{} study '{}' --degrees 6 8 --out '{}'", kCoons, kTriangles + "sphere_octant.json", out.string()));
+  const TempDir dir;
+  const fs::path out = dir.path / "study";
+  const CommandResult r =
+      run_coons("study " + quoted(kTriangles + "sphere_octant.json") + " --degrees 6 8 --out " + quoted(out.string()));
   INFO(r.err);
   REQUIRE(r.status == 0);
   const json results = json::parse(read_text((out / "results.json").string()));
@@ -239,5 +231,4 @@ TEST_CASE("coons study: a triangular file among the inputs gets its rows in resu
   const std::string report = read_text((out / "report.md").string());
   CHECK(report.find("## 6. Triangular boundaries") != std::string::npos);
   CHECK(report.find("### sphere_octant (triangle, degree 6)") != std::string::npos);
-  fs::remove_all(out);
 }

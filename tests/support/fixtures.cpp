@@ -7,10 +7,13 @@
 #include <cstdio>
 #include <cstdlib>
 #include <fstream>
+#include <optional>
 #include <random>
 #include <sstream>
 #include <stdexcept>
+#include <utility>
 
+#include "coons/alpha/objective.h"
 #include "coons/net/bernstein.h"
 
 namespace coons::test {
@@ -159,6 +162,13 @@ CommandResult run_command(const std::string& command) {
   std::remove(out_name);
   std::remove(err_name);
   return r;
+}
+
+Objective objective_named(const std::string& name) {
+  std::string why;
+  std::optional<Objective> objective = parse_objective(name, &why);
+  if (!objective) throw std::invalid_argument("objective '" + name + "': " + why);
+  return *std::move(objective);
 }
 
 const solvers::SolverInfo& backend(const std::string& name) {

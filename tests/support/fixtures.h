@@ -9,6 +9,10 @@
 #include "coons/net/control_net.h"
 #include "solvers/registry.h"
 
+namespace coons {
+struct Objective;  // coons/alpha/objective.h
+}  // namespace coons
+
 namespace coons::test {
 
 //! A net with uniformly random points in [−1, 1]³ (fixed seed).
@@ -45,6 +49,9 @@ Eigen::VectorXd bernstein_basis_derivative(int k, int r, double t);
 //! The registry entry of a backend built into every coons binary (eigen-ldlt, eigen-lu, ...) or of
 //! an optional one the caller has checked for; throws std::invalid_argument for an unknown name.
 const solvers::SolverInfo& backend(const std::string& name);
+
+//! The objective parse_objective reads from `name`; throws std::invalid_argument for a name it refuses.
+Objective objective_named(const std::string& name);
 
 //! A fresh folder under the system's temporary directory, removed with everything in it.
 struct TempDir {

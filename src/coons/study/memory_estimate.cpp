@@ -7,6 +7,8 @@
 #include <fstream>
 #include <sstream>
 
+#include "coons/net/banded_gram.h"
+
 namespace coons {
 
 std::optional<double> available_memory_bytes() {
@@ -60,20 +62,29 @@ std::string format_bytes(double bytes) {
   return fmt::format("{:.3g} {}", bytes, units[u]);
 }
 
-double net_solve_bytes(int m, int n, const solvers::SolverInfo* solver) {
+double net_solve_bytes(int m, int n, const solvers::SolverInfo* solver, int stencil_nonzeros) {
   const double points = (double(m) + 1) * (double(n) + 1);
   const double interior = std::max(0.0, double(m) - 1) * std::max(0.0, double(n) - 1);
+  const double width = double(stencil_nonzeros) / kMask3Nonzeros;  // of the fill, against a 3×3 mask's
   double bytes = points * 3 * 8 * 10;
   if (!solver || solver->family == solvers::SolverFamily::kStructured) bytes += interior * 8 * 8 * 3;
-  if (!solver || solver->needs_matrix) bytes += interior * 9 * 16;
+  if (!solver || solver->needs_matrix) bytes += interior * stencil_nonzeros * 16;
   if (!solver || solver->family == solvers::SolverFamily::kDirect)
-    bytes += interior * 8 * std::log2(std::max(interior, 2.0)) * 16;
+    bytes += interior * 8 * std::log2(std::max(interior, 2.0)) * 16 * width;
   return bytes;
+}
+
+double banded_gram_entries(int k) {
+  if (k < 0) return 0;
+  const double rows = double(k) + 1;
+  return rows * std::min(rows, 11 * std::sqrt(double(k)) + BandedGram::kBlockRows);
 }
 
 double net_metrics_bytes(int m, int n) {
   const double points = (double(m) + 1) * (double(n) + 1);
-  return 4 * 8 * ((double(m) + 1) * (m + 1) + (double(n) + 1) * (n + 1)) + points * 3 * 8 * 8;
+  double grams = 0;
+  for (int order = 0; order <= 3; ++order) grams += banded_gram_entries(m - order) + banded_gram_entries(n - order);
+  return 8 * grams + points * 8 * (10 + 3);
 }
 
 double samples_bytes(long long k) { return double(k) * double(k) * 400; }

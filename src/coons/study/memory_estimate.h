@@ -25,14 +25,25 @@ std::optional<double> parse_memory_size(const std::string& text);
 //! "1.2 GB"-style text for messages.
 std::string format_bytes(double bytes);
 
+//! Nonzeros a row of the mask system: the 3×3 masks and the 5×5 stencils (the C1 family).
+constexpr int kMask3Nonzeros = 9;
+constexpr int kStencil5Nonzeros = 25;
+
 //! Solving the mask system of an (m+1)×(n+1) net with `solver` and keeping the net: the net,
 //! frame and right-hand sides (≈ 10 copies of 3 doubles a point) plus the backend's share
-//! (structured: ≈ 8 grids; iterative: the matrix, 9 entries a row; direct: the matrix and a
-//! fill of ≈ 8·log₂(N) entries a row).
-double net_solve_bytes(int m, int n, const solvers::SolverInfo* solver);
+//! (structured: ≈ 8 grids; iterative: the matrix, `stencil_nonzeros` entries a row; direct: the
+//! matrix and a fill of ≈ 8·log₂(N) entries a row for a 3×3 mask, in proportion to
+//! `stencil_nonzeros` for a wider stencil).
+double net_solve_bytes(int m, int n, const solvers::SolverInfo* solver, int stencil_nonzeros = kMask3Nonzeros);
 
-//! The exact energies of a net: Gram matrices and derivative nets, (m+1)² + (n+1)² doubles a few
-//! times over, plus the net.
+//! The entries a banded Gram matrix G^k keeps (banded_gram.h): rows of 32 hold the columns of
+//! their kept entries, ≤ 11·√k + 32 of them a row (≤ 1.2 times what k = 100…10⁴ keep), all
+//! (k+1) of them below k ≈ 100.
+double banded_gram_entries(int k);
+
+//! The exact energies of a net (energies.h: net_metrics): the banded Gram matrices of degrees
+//! m, m−1, m−2, m−3 and n, …, n−3, one coordinate's grid about 10 times over (the differences and
+//! Gram products of the four orders a direction), and the net.
 double net_metrics_bytes(int m, int n);
 
 //! A k×k sampling of a surface with its normals and the text of an OBJ or JSON of it.

@@ -38,11 +38,8 @@ json search_solver_block(const solvers::SolverInfo& solver, bool picked_automati
   return block;
 }
 
-namespace {
-
-// The fields every one-parameter report shares, from "flat" on; `shown` maps a searched parameter
-// to the units of the report.
-void add_search_fields(json& out, const AlphaSearchSummary& s, const std::function<double(double)>& shown) {
+void add_search_fields(json& out, const AlphaSearchSummary& s, const std::function<double(double)>& shown,
+                       const std::string& evaluator_when_unnamed) {
   out["flat"] = s.flat;
   out["at_bound"] = s.at_bound;
   out["evaluations"] = s.evaluations;
@@ -53,7 +50,7 @@ void add_search_fields(json& out, const AlphaSearchSummary& s, const std::functi
   json scan = json::array();
   for (auto [p, f] : s.scan) scan.push_back({shown(p), number_or_null(f)});
   out["scan"] = scan;
-  out["evaluator"] = s.evaluator.empty() ? "factorize and solve" : s.evaluator;
+  out["evaluator"] = s.evaluator.empty() ? evaluator_when_unnamed : s.evaluator;
   // the evaluations that failed, and where: no optimum is claimed on them
   out["failed_evaluations"] = s.failed_evaluations;
   json intervals = json::array();
@@ -61,8 +58,6 @@ void add_search_fields(json& out, const AlphaSearchSummary& s, const std::functi
   out["failed_intervals"] = intervals;
   if (s.failed_evaluations > 0) out["first_failure"] = solvers::to_string(s.first_failure);
 }
-
-}  // namespace
 
 json search_report(const Boundary& b, const std::string& objective, SearchParameter parameter, const MaskFamily& family,
                    const AlphaSearchOptions& options, const AlphaSearchSummary& s) {

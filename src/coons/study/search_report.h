@@ -2,6 +2,7 @@
 // α, β and μ, the value, bounds, flat / at_bound, the scan and the solver block.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -21,6 +22,12 @@ const char* to_string(SearchParameter parameter);
 //! search's verdict, its solves as iterations (no residual: many systems are solved).
 nlohmann::json search_solver_block(const solvers::SolverInfo& solver, bool picked_automatically, SearchStatus status,
                                    int solves, double seconds, const std::string& message);
+
+//! The fields every one-parameter report shares, from "flat" to "first_failure": verdict, counts,
+//! scan, evaluator (`evaluator_when_unnamed` where the summary names none) and the failed
+//! evaluations; `shown` maps a searched parameter to the units of the report.
+void add_search_fields(nlohmann::json& out, const AlphaSearchSummary& s, const std::function<double(double)>& shown,
+                       const std::string& evaluator_when_unnamed = "factorize and solve");
 
 //! The report of a one-parameter search (α or μ; `family` maps the searched parameter to its
 //! mask, `options` holds the bounds it was searched in).

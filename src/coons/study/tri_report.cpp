@@ -4,6 +4,7 @@
 
 #include "coons/io/net_json.h"
 #include "coons/io/tri_boundary_io.h"
+#include "coons/study/search_report.h"
 
 namespace coons {
 
@@ -48,22 +49,8 @@ json tri_search_report(const tri::TriBoundary& boundary, const std::string& obje
   out["a"] = s.parameter ? json(tri::TriMask{*s.parameter}.a()) : json(nullptr);
   out["value"] = number_or_null(s.value);
   out["bounds"] = {options.lower, options.upper};
-  out["flat"] = s.flat;
-  out["at_bound"] = s.at_bound;
-  out["evaluations"] = s.evaluations;
-  out["solves"] = s.solves;
-  out["status"] = to_string(s.status);
-  if (!s.message.empty()) out["message"] = s.message;
-  out["local_minima"] = s.local_minima;
-  json scan = json::array();
-  for (auto [c, f] : s.scan) scan.push_back({c, number_or_null(f)});
-  out["scan"] = scan;
-  out["evaluator"] = s.evaluator;
-  out["failed_evaluations"] = s.failed_evaluations;
-  json intervals = json::array();
-  for (auto [lo, hi] : s.failed_intervals) intervals.push_back({lo, hi});
-  out["failed_intervals"] = intervals;
-  if (s.failed_evaluations > 0) out["first_failure"] = solvers::to_string(s.first_failure);
+  add_search_fields(
+      out, s, [](double c) { return c; }, "");
   return out;
 }
 
