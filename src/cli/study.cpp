@@ -76,9 +76,6 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
     return run_study_merge(r.merge, r.out_dir);
   }
   if (!r.family.empty()) return run_family_command(r);
-  if (!r.shard.empty())
-    throw InputError("command line", "--shard",
-                     "splits the family study (--family) only; boundary files are not sharded yet");
   Phases phases("study");
   phases.start("read");
   const std::vector<std::string> files = expand_inputs(r.inputs);
@@ -109,25 +106,18 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
                  fmt::format("the study of {} at degree {}", b.name, largest), f, "degree");
   }
 
+  if (!r.shard.empty()) {
+    const auto shard = parse_shard(r.shard, &why);
+    if (!shard) throw InputError("command line", "--shard", why);
+    return run_files_shard(files, options, r.corner_tolerance, shard->first, shard->second, r.out_dir);
+  }
   phases.start("solve");
   StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
   result.triangles =
       run_tri_study(triangles, options.degrees, options.solver, [&](const std::string& s) { phases.note(s); });
 
   phases.start("write");
-  OutputSet out(r.out_dir);
-  const StudyFigures figures = plot_study_figures(result, [&](const std::string& file) { return out.stage(file); });
-  for (const auto* list : {&figures.energies, &figures.nets})
-    for (const StudyFigure& f : *list)
-      if (!f.error.empty()) out.discard(f.file);
-  for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
-    if (!f->error.empty()) out.discard(f->file);
-  const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
-                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6");
-  out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
-  out.write("report.md", [&](std::ostream& o) { o << md; });
-  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
-  out.commit();
+  write_study_report(result, r.out_dir, command_line);
   return kExitOk;
 }
 
@@ -148,9 +138,10 @@ void register_study(CLI::App& app, Registry& registry) {
                   "smooth boundaries and the best single alpha");
   cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
   cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
-  cmd->add_option("--shard", r->shard,
-                  "I/N: with --family, run the I-th of N disjoint parts of the task list into "
-                  "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
+  cmd->add_option(
+      "--shard", r->shard,
+      "I/N: run the I-th of N disjoint parts of the task list (family tasks, or one per boundary file) into "
+      "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
   cmd->add_option("--merge", r->merge, "DIR: the report (to --out) from the shard files in DIR");
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
   cmd->add_option("--corner-tolerance", r->corner_tolerance,
