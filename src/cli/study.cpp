@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "coons/io/input_error.h"
@@ -29,7 +32,8 @@ struct StudyRequest {
   std::string out_dir = "out/study";
   std::string solver = "auto";
   double corner_tolerance = 1e-9;
-  std::string family;  // "random-smooth": the family study instead of files
+  std::string family;      // "random-smooth" or "perturbed:NAME": the family study instead of files
+  double amplitude = 0.1;  // of the perturbed family
   int count = 200;
   std::uint64_t seed = 1;
   bool degrees_given = false;
@@ -38,14 +42,39 @@ struct StudyRequest {
   GlobalOptions global;
 };
 
-// `coons study --family random-smooth`: α* over a seeded family (coons/study/alpha_family.h).
+// perturbed:NAME: NAME is a boundary file, or a bundled shape's name (data/boundaries/NAME.json from
+// the current folder, the repository's root).
+std::string perturbed_base_file(const std::string& name) {
+  if (name.empty()) throw InputError("command line", "--family", "perturbed: needs a shape (perturbed:dome) or a file");
+  if (std::filesystem::is_regular_file(name)) return name;
+  std::string bundled = "data/boundaries/" + name + ".json";
+  if (std::filesystem::is_regular_file(bundled)) return bundled;
+  throw InputError("command line", "--family",
+                   fmt::format("'{}' is neither a boundary file nor a bundled shape ({} not found)", name, bundled));
+}
+
+std::string read_file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot be read");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// `coons study --family random-smooth|perturbed:NAME`: α* over a seeded family (coons/study/alpha_family.h).
 int run_family_command(const StudyRequest& r) {
   Phases phases("study");
   if (!r.inputs.empty())
     throw InputError("command line", "--family", "give either boundary files or --family, not both");
-  if (r.family != "random-smooth")
-    throw InputError("command line", "--family", fmt::format("unknown family '{}' (known: random-smooth)", r.family));
   AlphaFamilyOptions options;
+  if (r.family.rfind("perturbed:", 0) == 0) {
+    options.base_name = r.family.substr(10);
+    const std::string file = perturbed_base_file(options.base_name);
+    options.base = read_boundary_file(file).boundary;
+    options.base_content = fnv1a_hex(read_file_text(file));
+    options.amplitude = r.amplitude;
+  } else if (r.family != "random-smooth") {
+    throw InputError("command line", "--family",
+                     fmt::format("unknown family '{}' (known: random-smooth, perturbed:NAME)", r.family));
+  }
   if (r.degrees_given) options.degrees = r.degrees;
   options.count = r.count;
   options.seed = r.seed;
@@ -134,8 +163,13 @@ void register_study(CLI::App& app, Registry& registry) {
                                   "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
                       ->capture_default_str();
   cmd->add_option("--family", r->family,
-                  "random-smooth: instead of files, the distribution of alpha* over a seeded family of random "
-                  "smooth boundaries and the best single alpha");
+                  "random-smooth, or perturbed:NAME (a bundled shape or a boundary file plus random smooth "
+                  "perturbations): instead of files, the distribution of alpha* over a seeded family and the best "
+                  "single alpha");
+  cmd->add_option("--amplitude", r->amplitude,
+                  "with --family perturbed:NAME: the perturbation's size, a fraction of the shape's bounding-box "
+                  "diagonal, in [0, 1]")
+      ->capture_default_str();
   cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
   cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
   cmd->add_option(

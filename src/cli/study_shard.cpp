@@ -57,7 +57,7 @@ fs::path open_shard_file(const std::string& out_dir, int shard, int shards, cons
                          std::set<std::string>* done) {
   const fs::path dir(out_dir);
   if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(out_dir, "--out", "exists and is not a folder");
-  const fs::path path = dir / fmt::format("shard-{}-of-{}.jsonl", shard, shards);
+  fs::path path = dir / fmt::format("shard-{}-of-{}.jsonl", shard, shards);
   ShardFile existing;
   if (fs::exists(path)) {
     existing = read_shard_file(path);

@@ -141,3 +141,43 @@ TEST_CASE("coons study --shard/--merge: records of another study or with a wrong
   CHECK(merged.out.empty());
   CHECK_FALSE(fs::exists(dir.file("merged")));
 }
+
+TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, sharded and merged", "[cli]") {
+  TempDir dir;
+  // by name from the repository's root, as the README runs it; the same file by path for the shards
+  const std::string base = " study --family perturbed:dome --count 3 --seed 2 --degrees 3 4";
+  const std::string family = base + " --amplitude 0.2";
+  const CommandResult whole =
+      run_command("cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons + family + " --out " + quoted(dir.file("w")));
+  INFO(whole.err);
+  REQUIRE(whole.status == 0);
+  for (int i = 0; i < 3; ++i) {
+    const CommandResult r = run_command("cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons + family + " --shard " +
+                                        std::to_string(i) + "/3 --out " + quoted(dir.file("shards")));
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+  }
+  const CommandResult merged =
+      run_command(kCoons + " study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  REQUIRE(merged.status == 0);
+  const json a = json::parse(read_text(dir.file("w/results.json")));
+  CHECK(a == json::parse(read_text(dir.file("merged/results.json"))));
+  CHECK(read_text(dir.file("w/report.md")) == read_text(dir.file("merged/report.md")));
+  CHECK(a["family"] == "perturbed:dome");
+  CHECK(a["amplitude"] == 0.2);
+  CHECK(a["cells"][0]["alpha_star"].size() == 3);
+  // another amplitude is another study: other keys, and its shards are refused in that folder
+  const CommandResult other = run_command("cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons + base +
+                                          " --amplitude 0.3 --shard 0/3 --out " + quoted(dir.file("shards")));
+  CHECK(other.status == 2);
+  CHECK(other.err.find("study: holds tasks of another study") != std::string::npos);
+  // an unknown shape is one error line
+  const CommandResult unknown = run_command(kCoons +
+                                            " study --family perturbed:no_such_shape --count 2 --degrees 3 4 "
+                                            "--out " +
+                                            quoted(dir.file("x")));
+  CHECK(unknown.status == 2);
+  CHECK(unknown.err.rfind("error: command line: --family: 'no_such_shape' is neither", 0) == 0);
+  CHECK_FALSE(fs::exists(dir.file("x")));
+}
