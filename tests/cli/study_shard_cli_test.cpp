@@ -144,16 +144,18 @@ TEST_CASE("coons study --shard/--merge: records of another study or with a wrong
 
 TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, sharded and merged", "[cli]") {
   TempDir dir;
-  // by name from the repository's root, as the README runs it; the same file by path for the shards
-  const std::string base = " study --family perturbed:dome --count 3 --seed 2 --degrees 3 4";
+  // the bundled shape by name, from the repository's root as the README runs it
+  const std::string base = "cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons +
+                           " study --family perturbed:dome --count 3 --seed 2 "
+                           "--degrees 3 4";
   const std::string family = base + " --amplitude 0.2";
-  const CommandResult whole =
-      run_command("cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons + family + " --out " + quoted(dir.file("w")));
+  const CommandResult whole = run_command(family + " --out " + quoted(dir.file("w")));
   INFO(whole.err);
   REQUIRE(whole.status == 0);
   for (int i = 0; i < 3; ++i) {
-    const CommandResult r = run_command("cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons + family + " --shard " +
-                                        std::to_string(i) + "/3 --out " + quoted(dir.file("shards")));
+    std::string command = family;
+    command += " --shard " + std::to_string(i) + "/3 --out " + quoted(dir.file("shards"));
+    const CommandResult r = run_command(command);
     INFO(r.err);
     REQUIRE(r.status == 0);
   }
@@ -168,8 +170,7 @@ TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, shar
   CHECK(a["amplitude"] == 0.2);
   CHECK(a["cells"][0]["alpha_star"].size() == 3);
   // another amplitude is another study: other keys, and its shards are refused in that folder
-  const CommandResult other = run_command("cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons + base +
-                                          " --amplitude 0.3 --shard 0/3 --out " + quoted(dir.file("shards")));
+  const CommandResult other = run_command(base + " --amplitude 0.3 --shard 0/3 --out " + quoted(dir.file("shards")));
   CHECK(other.status == 2);
   CHECK(other.err.find("study: holds tasks of another study") != std::string::npos);
   // an unknown shape is one error line
