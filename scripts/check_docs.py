@@ -5,7 +5,7 @@
     python3 scripts/check_docs.py links        # every relative link in every tracked Markdown file resolves
     python3 scripts/check_docs.py selfcontained  # no tracked file points outside the repository
     python3 scripts/check_docs.py reference    # data/reference/*.json recomputed from first principles
-    python3 scripts/check_docs.py tests        # every test that docs/math.md, docs/solvers.md and data/README.md cite exists
+    python3 scripts/check_docs.py tests        # every test that docs/math.md, docs/solvers.md, data/README.md and docs/cad.md cite exists
     python3 scripts/check_docs.py all
 
 Each check prints one line per finding and a summary; the exit status is 1 when anything fails.
@@ -430,7 +430,7 @@ def check_reference():
 
 # ---- tests --------------------------------------------------------------------------------------
 
-CITING = ["docs/math.md", "docs/solvers.md", "data/README.md"]
+CITING = ["docs/math.md", "docs/solvers.md", "data/README.md", "docs/cad.md"]
 
 
 def check_tests():

@@ -16,7 +16,7 @@ targets=("$@")
 command -v clang++ >/dev/null || { echo "error: fuzz: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
 mkdir -p "$build"
 cmake -S . -B "$build" -DCMAKE_CXX_COMPILER=clang++ -DCMAKE_BUILD_TYPE=RelWithDebInfo \
-      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCOONS_FUZZ=ON -DCOONS_BUILD_TESTS=OFF \
+      -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O1 -g1 -DNDEBUG" -DCOONS_FUZZ=ON -DCOONS_BUILD_TESTS=OFF -DCOONS_WITH_OCCT=OFF \
       -DCOONS_BUILD_BENCHMARKS=OFF >"$build/configure.log" 2>&1 || { cat "$build/configure.log" >&2; exit 1; }
 cmake --build "$build" -j"$(nproc)" --target "${targets[@]}"
 

@@ -12,10 +12,13 @@ jobs=$(nproc)
 # of Debian's Open MPI 4.1 leaves about 3,300 allocations (120 kB) that LeakSanitizer reports, most
 # from plugins unloaded at finalize, whose frames no suppression by name can match short of the
 # slow unwinder (fast_unwind_on_malloc=0) for the whole suite.
+# Without OpenCASCADE (backend_occt says "skipped"): its libraries are not instrumented and keep
+# process-lifetime singletons (message printers, the XSControl session) that LeakSanitizer would
+# have to be taught; coons_cad's own code is checked by the Release suite.
 mkdir -p "$build"
 configure_log=$build/configure.log
 cmake -S . -B "$build" -DCMAKE_BUILD_TYPE=RelWithDebInfo -DCMAKE_CXX_FLAGS_RELWITHDEBINFO="-O2 -g1 -DNDEBUG" \
-      -DCOONS_SANITIZE=ON -DCOONS_BUILD_BENCHMARKS=OFF -DCOONS_WITH_HYPRE=OFF >"$configure_log" 2>&1 || { cat "$configure_log" >&2; exit 1; }
+      -DCOONS_SANITIZE=ON -DCOONS_BUILD_BENCHMARKS=OFF -DCOONS_WITH_HYPRE=OFF -DCOONS_WITH_OCCT=OFF >"$configure_log" 2>&1 || { cat "$configure_log" >&2; exit 1; }
 grep -E "^-- coons:" "$configure_log" || true
 cmake --build "$build" -j"$jobs"  # the library, the CLI, the tests and the fuzz-regression replays
 

@@ -15,6 +15,7 @@ packages=(
   libfftw3-dev                  # sine-transform solvers
   libhypre-dev                  # optional hypre backends: hypre-amg (BoomerAMG), hypre-pfmg, hypre-smg
   openmpi-bin libopenmpi-dev    # MPI for hypre and distributed solves (mpirun -np K coons solve ...)
+  libocct-data-exchange-dev libocct-modeling-algorithms-dev  # optional OpenCASCADE: import-step, export --step/--iges
   libcli11-dev                  # command-line parsing
   nlohmann-json3-dev            # JSON in and out
   libfmt-dev                    # formatting
@@ -24,6 +25,8 @@ packages=(
   python3                       # benchmark tables (scripts/bench_report.py, standard library only)
   python3-jsonschema            # the documentation checks: data files against docs/schema/ (scripts/check_docs.py)
   clang libclang-rt-14-dev      # libFuzzer and clang's sanitizer runtimes: scripts/fuzz.sh (run by .ci/run)
+  libjs-three                   # three.js (r111), inlined into the pages of `coons view` (optional)
+  chromium                      # the headless-browser test of `coons view` pages (optional)
   clang-format clang-tidy       # the style checks of .ci/run: scripts/format.sh --check, scripts/tidy.sh
   parallel time                 # sharded studies on one machine: scripts/study-parallel.sh (GNU parallel; /usr/bin/time -v for --time)
 )

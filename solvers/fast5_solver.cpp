@@ -18,9 +18,14 @@ using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::Ro
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
 constexpr std::array<double, 5> kImpulse = {0, 0, 1, 0, 0};
-constexpr double kCapacitanceTolerance = 1e-14;
-constexpr int kRefinements = 2;             // at most this many refinement steps per right-hand side
-constexpr double kRefinedResidual = 1e-11;  // relative residual at which refinement stops
+// The capacitance CG stops at this residual relative to its right-hand side: the boundary
+// corrections remove what is left (the first solve is only accurate to 1e-5 there at N = 1023
+// anyway, see the header). A correction solves to the accuracy it needs (to bring the boundary
+// residual to a tenth of kBoundaryResidual), within [kCorrectionTolerance, 1e-2].
+constexpr double kCapacitanceTolerance = 1e-7;
+constexpr double kCorrectionTolerance = 1e-10;
+constexpr int kCorrections = 3;              // at most this many boundary corrections per solve
+constexpr double kBoundaryResidual = 1e-13;  // relative residual on the boundary columns at which they stop
 
 double c_weight(int di, int dj) { return kDelta4[std::size_t(di) + 2] * kDelta4[std::size_t(dj) + 2]; }
 double t_weight(int di, int dj) {
@@ -43,33 +48,48 @@ Eigen::VectorXd second_difference_eigenvalues(int n) {
 }
 
 // One parity block of the capacitance matrix in the sine basis along i:
-//   Cap·v = diag ⊙ v − kappa·u (uᵀv) − G (Gᵀv),   symmetric positive definite.
+//   Cap·v = diag ⊙ v − kappa·u (uᵀv) − G (Gᵀv),   symmetric positive definite,
+// and of H⁻¹ (H = a·P_i + b·I) in the same basis: h_inv ⊙ v − kappa·u (uᵀv).
 struct CapacitanceBlock {
   std::vector<int> modes;  // modes p (0-based) along i of this block
-  Eigen::VectorXd diag, u;
+  Eigen::VectorXd diag, h_inv, u;
   double kappa = 0;
-  Eigen::MatrixXd G;  // #modes by #(modes q of the column parity)
+  Eigen::MatrixXd G;  // #modes by #(modes q of the column parity), column-major
 
-  void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const {
+  // out = Cap·V. G is read twice, a column at a time, for all right-hand sides together
+  // (hand-written: Eigen's product would pack G into a copy on every call).
+  void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out, Eigen::MatrixXd& s) const {
+    const Eigen::Index m = V.cols();
     out.noalias() = diag.asDiagonal() * V;
     out.noalias() -= (kappa * u) * (u.transpose() * V);
-    out.noalias() -= G * (G.transpose() * V);  // one read of G for every right-hand side
+    s.resize(G.cols(), m);
+    for (Eigen::Index k = 0; k < G.cols(); ++k)
+      for (Eigen::Index c = 0; c < m; ++c) s(k, c) = G.col(k).dot(V.col(c));
+    for (Eigen::Index k = 0; k < G.cols(); ++k)
+      for (Eigen::Index c = 0; c < m; ++c) out.col(c) -= s(k, c) * G.col(k);
+  }
+
+  // V ← H⁻¹ V (rows of V are this block's modes).
+  void apply_h_inverse(Eigen::MatrixXd& V) const {
+    const Eigen::RowVectorXd uv = u.transpose() * V;
+    V = h_inv.asDiagonal() * V;
+    V.noalias() -= (kappa * u) * uv;
   }
 
   // Conjugate gradients with the diagonal as preconditioner, one column per right-hand side
   // (each with its own step lengths; a converged column is frozen); returns the iterations.
-  int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X) const {
+  int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const {
     const Eigen::Index n = rhs.rows(), m = rhs.cols();
     X.setZero(n, m);
     if (n == 0 || m == 0) return 0;
-    Eigen::ArrayXd target = kCapacitanceTolerance * rhs.colwise().norm().transpose().array();
-    Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP;
+    Eigen::ArrayXd target = tolerance * rhs.colwise().norm().transpose().array();
+    Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP, s;
     Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
     std::vector<bool> active(static_cast<std::size_t>(m), false);
     for (Eigen::Index c = 0; c < m; ++c) active[std::size_t(c)] = target[c] > 0;
     const int limit = int(2 * n + 50);
     for (int k = 1; k <= limit; ++k) {
-      apply(P, AP);
+      apply(P, AP, s);
       bool any = false;
       for (Eigen::Index c = 0; c < m; ++c) {
         if (!active[std::size_t(c)]) continue;
@@ -92,6 +112,110 @@ struct CapacitanceBlock {
     return limit;
   }
 };
+
+// The banded LDLᵀ factors of M_q for every mode q, row by row. M_q is Toeplitz, so its factors
+// converge geometrically down the rows (after about 40/√ν_q rows, ν_q the mode's eigenvalue):
+// from row r_q on they equal their limit to the last bit, and only the rows above are stored.
+// Row r keeps the modes q < active[r] (the ones not yet converged there; active is
+// non-increasing), contiguous from offset[r]; the others read the limit.
+struct ModeFactors {
+  int rows = 0, cols = 0;
+  std::vector<int> active;
+  std::vector<std::size_t> offset;
+  std::vector<double> inv_d, l1, l2;              // stored part
+  std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
+};
+
+// Full rows of the factors, kept up to date as a sweep moves one row at a time (only the stored
+// modes are copied; the rest keep the limit).
+class FactorRow {
+ public:
+  explicit FactorRow(const ModeFactors& f) : f_(f), inv_d(f.lim_inv_d), l1(f.lim_l1), l2(f.lim_l2), active_(0) {}
+  void seek(int r) {
+    const int q = f_.active[std::size_t(r)];
+    const std::size_t o = f_.offset[std::size_t(r)];
+    std::copy_n(f_.inv_d.data() + o, q, inv_d.data());
+    std::copy_n(f_.l1.data() + o, q, l1.data());
+    std::copy_n(f_.l2.data() + o, q, l2.data());
+    for (int k = q; k < active_; ++k) {  // converged since the last row
+      inv_d[std::size_t(k)] = f_.lim_inv_d[std::size_t(k)];
+      l1[std::size_t(k)] = f_.lim_l1[std::size_t(k)];
+      l2[std::size_t(k)] = f_.lim_l2[std::size_t(k)];
+    }
+    active_ = q;
+  }
+  const ModeFactors& f_;
+  std::vector<double> inv_d, l1, l2;
+
+ private:
+  int active_;
+};
+
+constexpr double kConverged = 1e-15;
+
+ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows) {
+  ModeFactors f;
+  const int cols = int(nu.size());
+  f.rows = rows;
+  f.cols = cols;
+  f.lim_inv_d.resize(std::size_t(cols));
+  f.lim_l1.resize(std::size_t(cols));
+  f.lim_l2.resize(std::size_t(cols));
+  std::vector<int> converged(std::size_t(cols), rows);
+  const auto modes = std::size_t(cols);
+  std::vector<std::vector<double>> d(modes), l1(modes), l2(modes);
+  for (int q = 0; q < cols; ++q) {
+    const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
+    const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
+    auto& dq = d[std::size_t(q)];
+    auto& l1q = l1[std::size_t(q)];
+    auto& l2q = l2[std::size_t(q)];
+    double dm1 = 0, dm2 = 0, l1m1 = 0, l2m1 = 0, l2m2 = 0;
+    for (int r = 0; r < rows; ++r) {
+      const double dr = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
+      const double l1r = (a1 - l2m1 * dm1 * l1m1) / dr, l2r = a2 / dr;
+      const double change =
+          std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r), std::abs(l2r - l2m1) / l2r});
+      if (r >= 3 && change <= kConverged) {
+        converged[std::size_t(q)] = r;
+        break;
+      }
+      dq.push_back(dr);
+      l1q.push_back(l1r);
+      l2q.push_back(l2r);
+      dm2 = dm1;
+      dm1 = dr;
+      l1m1 = l1r;
+      l2m2 = l2m1;
+      l2m1 = l2r;
+    }
+    f.lim_inv_d[std::size_t(q)] = 1 / dq.back();
+    f.lim_l1[std::size_t(q)] = l1q.back();
+    f.lim_l2[std::size_t(q)] = l2q.back();
+  }
+  f.active.assign(std::size_t(rows), 0);
+  f.offset.assign(std::size_t(rows) + 1, 0);
+  int q_max = cols;
+  for (int r = 0; r < rows; ++r) {
+    while (q_max > 0 && converged[std::size_t(q_max) - 1] <= r) --q_max;
+    f.active[std::size_t(r)] = q_max;
+    f.offset[std::size_t(r) + 1] = f.offset[std::size_t(r)] + std::size_t(q_max);
+  }
+  const std::size_t total = f.offset.back();
+  f.inv_d.resize(total);
+  f.l1.resize(total);
+  f.l2.resize(total);
+  for (int r = 0; r < rows; ++r)
+    for (int q = 0; q < f.active[std::size_t(r)]; ++q) {
+      const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
+      const auto& dq = d[std::size_t(q)];
+      const bool stored = std::size_t(r) < dq.size();
+      f.inv_d[at] = stored ? 1 / dq[std::size_t(r)] : f.lim_inv_d[std::size_t(q)];
+      f.l1[at] = stored ? l1[std::size_t(q)][std::size_t(r)] : f.lim_l1[std::size_t(q)];
+      f.l2[at] = stored ? l2[std::size_t(q)][std::size_t(r)] : f.lim_l2[std::size_t(q)];
+    }
+  return f;
+}
 
 // The unknown-independent checks of fast5: a grid operator, every point free, a·C + b·T.
 bool describe(const LinearOperator& op, SolveSummary& summary, C1FamilyWeights* weights) {
@@ -157,71 +281,66 @@ class Fast5Solver final : public LinearSolver {
       if (status != SolveStatus::kSuccess) summary.message = "a zero pivot in the banded LDL^T of a factor";
       return status;
     }
-    X.resize(B.rows(), 3);
-    std::array<const double*, 3> rhs{};
-    std::array<double*, 3> out{};
-    for (int c = 0; c < 3; ++c) {
-      rhs[std::size_t(c)] = B.col(c).data();
-      out[std::size_t(c)] = X.col(c).data();
+    const int count = 3;
+    for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
+    const double scale_j = std::sqrt(2.0 / (C_ + 1));
+    for (int c = 0; c < count; ++c) {
+      RowMajor& hat = hats_[std::size_t(c)];
+      hat.resize(R_, C_);
+      for (int r = 0; r < R_; ++r) along_j_.apply(B.col(c).data() + std::ptrdiff_t(r) * C_, &hat(r, 0), scale_j);
     }
-    int iterations = solve_columns(rhs, out, 3);
-    // The capacitance operator is formed from differences of large terms (the sine-basis
-    // inverses of the modes next to the corner cancel), so the first solve loses digits that
-    // grow with N; iterative refinement on the true residual (O(rows·cols)) restores them,
-    // for the columns whose residual is still above kRefinedResidual, all of them in one pass.
-    for (int k = 0; k < kRefinements; ++k) {
-      int count = 0;
-      for (int c = 0; c < 3; ++c) {
-        const Eigen::Map<const RowMajor> b(B.col(c).data(), R_, C_);
-        Eigen::Map<RowMajor> x(X.col(c).data(), R_, C_);
-        RowMajor& r = residuals_[std::size_t(count)];
-        apply_operator(x, r);
-        r = b - r;
-        if (!(r.norm() > kRefinedResidual * b.norm())) continue;
-        corrections_[std::size_t(count)].resize(R_, C_);
-        rhs[std::size_t(count)] = r.data();
-        out[std::size_t(count)] = corrections_[std::size_t(count)].data();
-        targets_[std::size_t(count)] = c;
-        ++count;
-      }
-      if (count == 0) break;
-      iterations = std::max(iterations, solve_columns(rhs, out, count));
-      for (int c = 0; c < count; ++c) {
-        Eigen::Map<RowMajor> x(X.col(targets_[std::size_t(c)]).data(), R_, C_);
-        x += corrections_[std::size_t(c)];
-      }
+    // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = ŷ − A₁⁻¹ U h.
+    banded_solve_all(count, dots_);
+    std::array<Eigen::MatrixXd, 2> h;
+    int iterations = capacitance_solve(dots_, count, kCapacitanceTolerance, h);
+    add_boundary_response(count, h, -1.0, true);
+    // The columns 0 and cols−1 carry the rounding of h (see the header): correct them from the
+    // residual there, which is exact, until it is below kBoundaryResidual relative to b.
+    std::array<Eigen::MatrixXd, 2> rho;
+    for (int step = 0; step < kCorrections; ++step) {
+      if (!boundary_residual(B, count, rho)) break;
+      const double tolerance = std::clamp(0.1 * kBoundaryResidual / boundary_ratio_, kCorrectionTolerance, 1e-2);
+      iterations = std::max(iterations, capacitance_solve(rho, count, tolerance, h));
+      add_boundary_response(count, h, 1.0, false);
+    }
+    X.resize(B.rows(), 3);
+    for (int c = 0; c < count; ++c) {
+      RowMajor& hat = hats_[std::size_t(c)];
+      for (int r = 0; r < R_; ++r) along_j_.apply(&hat(r, 0), X.col(c).data() + std::ptrdiff_t(r) * C_, scale_j);
     }
     summary.iterations = iterations;
     return SolveStatus::kSuccess;
   }
 
  private:
-  // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j,
-  // stored row-major by (row r, mode q) so that the passes along i run across the modes.
+  // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
   void factor_modes() {
-    const double a = weights_.a, b = weights_.b;
     nu_ = second_difference_eigenvalues(C_);
-    inv_d_.setZero(R_, C_);
-    l1_.setZero(R_, C_);
-    l2_.setZero(R_, C_);
-    BandedLdlt f;
-    for (int q = 0; q < C_; ++q) {
-      const double alpha = a * nu_[q] * nu_[q] + b, beta = 2 * b * nu_[q], gamma = b * nu_[q] * nu_[q];
-      banded_ldlt({6 * alpha + 2 * beta + gamma, -4 * alpha - beta, alpha}, R_, f);  // definite: no zero pivot
-      for (int r = 0; r < R_; ++r) {
-        inv_d_(r, q) = 1 / f.d[r];
-        if (r + 1 < R_) l1_(r, q) = f.l1[r];
-        if (r + 2 < R_) l2_(r, q) = f.l2[r];
-      }
-    }
+    factors_ = coons::solvers::factor_modes(weights_.a, weights_.b, nu_, R_);
   }
 
-  // The four capacitance blocks (parity of q) × (parity of p), see the header.
+  // The four capacitance blocks (parity of q) × (parity of p), see the header, and the sine
+  // vectors of the grid columns next to the boundary (for the boundary residual).
   void build_capacitance() {
     const double a = weights_.a, b = weights_.b;
     const Eigen::VectorXd mu = second_difference_eigenvalues(R_);
     const Eigen::VectorXd sigma = std::sqrt(2.0) * first_sine_column(R_);
     t_ = std::sqrt(2.0) * first_sine_column(C_);
+    tmasks_.setZero(C_, 2);  // t_q on the modes of each parity
+    for (int q = 0; q < C_; ++q) tmasks_(q, q % 2) = t_[q];
+    near_.clear();  // columns 0, 1, 2, cols−3, cols−2, cols−1
+    for (int j : {0, 1, 2, C_ - 3, C_ - 2, C_ - 1})
+      if (j >= 0 && j < C_ && std::find(near_.begin(), near_.end(), j) == near_.end()) near_.push_back(j);
+    near_index_.fill(0);  // columns 0, 1, 2, cols−3, cols−2, cols−1 → their place in near_
+    for (int k = 0; k < 6; ++k) {
+      const int j = k < 3 ? k : C_ - 6 + k;
+      if (j >= 0 && j < C_) near_index_[std::size_t(k)] = int(std::find(near_.begin(), near_.end(), j) - near_.begin());
+    }
+    near_sines_.resize(C_, Eigen::Index(near_.size()));
+    for (std::size_t k = 0; k < near_.size(); ++k)
+      for (int q = 0; q < C_; ++q)
+        near_sines_(q, Eigen::Index(k)) =
+            std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (near_[k] + 1) * (q + 1) / (C_ + 1));
     const auto lambda = [&](int p, int q) {
       const double s = mu[p] + nu_[q];
       return a * mu[p] * mu[p] * nu_[q] * nu_[q] + b * s * s;
@@ -235,6 +354,7 @@ class Fast5Solver final : public LinearSolver {
         for (int p = ppar; p < R_; p += 2) blk.modes.push_back(p);
         const auto n = Eigen::Index(blk.modes.size());
         blk.diag.resize(n);
+        blk.h_inv.resize(n);
         blk.u.resize(n);
         blk.G.resize(n, Eigen::Index(qs.size()));
         double su = 0;
@@ -242,119 +362,195 @@ class Fast5Solver final : public LinearSolver {
           const int p = blk.modes[std::size_t(k)];
           const double dl = a * mu[p] * mu[p] + b;  // H = a·P_i + b·I = S(aμ² + b)S + a·E_i
           blk.u[k] = sigma[p] / dl;
-          blk.diag[k] = 1 / dl;
+          blk.h_inv[k] = 1 / dl;
           su += sigma[p] * blk.u[k];
         }
+        blk.diag = blk.h_inv;
         blk.kappa = a / (1 + a * su);
+        Eigen::VectorXd inv_lambda(n);
         for (std::size_t k = 0; k < qs.size(); ++k) {
           const int q = qs[k];
           const double alpha = a * nu_[q] * nu_[q] + b;  // the weight of E_i in M_q
           double gamma = 0;
           for (Eigen::Index m = 0; m < n; ++m) {
             const int p = blk.modes[std::size_t(m)];
-            gamma += sigma[p] * sigma[p] / lambda(p, q);
+            inv_lambda[m] = 1 / lambda(p, q);
+            gamma += sigma[p] * sigma[p] * inv_lambda[m];
           }
           const double c = std::sqrt(t_[q] * t_[q] * alpha / (1 + alpha * gamma));
           for (Eigen::Index m = 0; m < n; ++m) {
             const int p = blk.modes[std::size_t(m)];
-            const double l = lambda(p, q);
-            blk.diag[m] += t_[q] * t_[q] / l;
-            blk.G(m, Eigen::Index(k)) = c * sigma[p] / l;
+            blk.diag[m] += t_[q] * t_[q] * inv_lambda[m];
+            blk.G(m, Eigen::Index(k)) = c * sigma[p] * inv_lambda[m];
           }
         }
       }
     }
   }
 
-  // Y = A X for one grid: A = a·P⊗P + b·(P⊗I + 2·D⊗D + I⊗P), the 1-D operators applied along j
-  // within each row (U = X P, V = X D), then along i as combinations of rows.
-  void apply_operator(const Eigen::Map<RowMajor>& X, RowMajor& Y) {
-    const double a = weights_.a, b = weights_.b;
-    const auto along_j = [&](RowMajor& Z, double c0, double c1, double c2) {
-      Z = c0 * X;
-      if (C_ > 1) {
-        Z.rightCols(C_ - 1) += c1 * X.leftCols(C_ - 1);
-        Z.leftCols(C_ - 1) += c1 * X.rightCols(C_ - 1);
+  // Down the rows: work_[c] = L⁻¹(base), base = hats_[c] (with from_hats) plus, with z, the sources
+  // sign·U z_c on the boundary columns (parity coordinates: (U z)(r, q) = t_q z(r, parity of q)
+  // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once).
+  void sweep_down(int count, bool from_hats, const std::array<Eigen::MatrixXd, 2>* z, double sign) {
+    for (int c = 0; c < count; ++c) work_[std::size_t(c)].resize(R_, C_);
+    zeros_.assign(std::size_t(C_), 0.0);
+    FactorRow above(factors_), above2(factors_);  // rows r − 1 and r − 2
+    const double* t_even = tmasks_.col(0).data();
+    const double* t_odd = tmasks_.col(1).data();
+    for (int r = 0; r < R_; ++r) {
+      if (r >= 1) above.seek(r - 1);
+      if (r >= 2) above2.seek(r - 2);
+      for (int c = 0; c < count; ++c) {
+        double* w = &work_[std::size_t(c)](r, 0);
+        const double* y = from_hats ? &hats_[std::size_t(c)](r, 0) : zeros_.data();
+        const double ze = z ? sign * (*z)[0](r, c) : 0, zo = z ? sign * (*z)[1](r, c) : 0;
+        if (r >= 2) {  // one fused pass over the row (vectorised)
+          const double* w1 = w - C_;
+          const double* w2 = w - 2 * std::ptrdiff_t(C_);
+          const double* l1 = above.l1.data();
+          const double* l2 = above2.l2.data();
+          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q] - l1[q] * w1[q] - l2[q] * w2[q];
+        } else {
+          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q];
+          if (r == 1)
+            for (int q = 0; q < C_; ++q) w[q] -= above.l1[std::size_t(q)] * w[q - C_];
+        }
       }
-      if (C_ > 2 && c2 != 0) {
-        Z.rightCols(C_ - 2) += c2 * X.leftCols(C_ - 2);
-        Z.leftCols(C_ - 2) += c2 * X.rightCols(C_ - 2);
-      }
-    };
-    along_j(u_, 6, -4, 1);
-    along_j(v_, 2, -1, 0);
-    Y = b * u_;
-    const auto add_along_i = [&](const auto& Z, double scale, double c0, double c1, double c2) {
-      if (scale == 0) return;
-      for (int r = 0; r < R_; ++r) {
-        Y.row(r) += (scale * c0) * Z.row(r);
-        if (r >= 1) Y.row(r) += (scale * c1) * Z.row(r - 1);
-        if (r + 1 < R_) Y.row(r) += (scale * c1) * Z.row(r + 1);
-        if (c2 == 0) continue;
-        if (r >= 2) Y.row(r) += (scale * c2) * Z.row(r - 2);
-        if (r + 2 < R_) Y.row(r) += (scale * c2) * Z.row(r + 2);
-      }
-    };
-    add_along_i(u_, a, 6, -4, 1);
-    add_along_i(X, b, 6, -4, 1);
-    add_along_i(v_, 2 * b, 2, -1, 0);
-  }
-
-  // Y ← M_q⁻¹ Y for every mode q (Y rows × cols, row-major).
-  void banded_solve(RowMajor& Y) const {
-    for (int r = 1; r < R_; ++r) {
-      Y.row(r).array() -= l1_.row(r - 1).array() * Y.row(r - 1).array();
-      if (r >= 2) Y.row(r).array() -= l2_.row(r - 2).array() * Y.row(r - 2).array();
-    }
-    Y.row(R_ - 1).array() *= inv_d_.row(R_ - 1).array();
-    for (int r = R_ - 2; r >= 0; --r) {
-      Y.row(r).array() = Y.row(r).array() * inv_d_.row(r).array() - l1_.row(r).array() * Y.row(r + 1).array();
-      if (r + 2 < R_) Y.row(r).array() -= l2_.row(r).array() * Y.row(r + 2).array();
     }
   }
 
-  // count right-hand sides (row-major grids) to their solutions; the capacitance systems of all
-  // of them are solved together (one read of each block per iteration). Returns the iterations.
-  int solve_columns(const std::array<const double*, 3>& b, const std::array<double*, 3>& x, int count) {
-    const double scale_j = std::sqrt(2.0 / (C_ + 1)), scale_i = std::sqrt(2.0 / (R_ + 1));
-    Eigen::MatrixXd tmasks = Eigen::MatrixXd::Zero(C_, 2), g2(R_, 2), h2(R_, 2);  // t_q on the modes of each parity
-    std::array<Eigen::MatrixXd, 2> ghat, hhat;
+  // Up the rows: work_[c] ← (LD)⁻ᵀ work_[c], completing work_[c] = M⁻¹ base. With add, hats_[c] +=
+  // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`.
+  void sweep_up(int count, Eigen::MatrixXd& out, const Eigen::MatrixXd& dots, bool add) {
+    const Eigen::Index k = dots.cols();
+    out.resize(R_, k * count);
+    FactorRow row(factors_);
+    for (int r = R_ - 1; r >= 0; --r) {
+      row.seek(r);
+      const double* inv_d = row.inv_d.data();
+      const double* l1 = row.l1.data();
+      const double* l2 = row.l2.data();
+      for (int c = 0; c < count; ++c) {
+        RowMajor& W = work_[std::size_t(c)];
+        double* w = &W(r, 0);
+        if (r + 2 < R_) {
+          const double* w1 = w + C_;
+          const double* w2 = w + 2 * std::ptrdiff_t(C_);
+          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
+        } else if (r + 1 < R_) {
+          const double* w1 = w + C_;
+          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
+        } else {
+          for (int q = 0; q < C_; ++q) w[q] *= inv_d[q];
+        }
+        if (add) {
+          RowMajor& Y = hats_[std::size_t(c)];
+          Y.row(r) += W.row(r);
+          out.block(r, k * c, 1, k).noalias() = Y.row(r) * dots;
+        } else {
+          out.block(r, k * c, 1, k).noalias() = W.row(r) * dots;
+        }
+      }
+    }
+  }
+
+  // g(r, 2c + parity) = Σ_q (M⁻¹ hat_c)(r, q)·t_q over the modes q of that parity (hats_ kept).
+  void banded_solve_all(int count, Eigen::MatrixXd& g) {
+    sweep_down(count, true, nullptr, 0);
+    sweep_up(count, g, tmasks_, false);
+  }
+
+  // With replace: hats_[c] ← M⁻¹(hats_[c] + sign·U z_c); otherwise hats_[c] += sign·M⁻¹ U z_c.
+  // near_values_ = the result on the columns near_ (see sweep_up).
+  void add_boundary_response(int count, const std::array<Eigen::MatrixXd, 2>& z, double sign, bool replace) {
+    sweep_down(count, replace, &z, sign);
+    sweep_up(count, near_values_, near_sines_, !replace);
+    if (replace)
+      for (int c = 0; c < count; ++c) std::swap(hats_[std::size_t(c)], work_[std::size_t(c)]);
+  }
+
+  // The capacitance system for each parity of q: rhs[qpar] is rows × count in the grid (along i);
+  // with apply_h the right-hand side is H⁻¹·rhs. out[qpar] = Cap⁻¹ (H⁻¹) rhs, the same shape.
+  int capacitance_solve(const Eigen::MatrixXd& g, int count, double tolerance, std::array<Eigen::MatrixXd, 2>& out) {
+    std::array<Eigen::MatrixXd, 2> rhs;
     for (int qpar = 0; qpar < 2; ++qpar) {
-      for (int q = qpar; q < C_; q += 2) tmasks(q, qpar) = t_[q];
-      ghat[std::size_t(qpar)].resize(R_, count);
-      hhat[std::size_t(qpar)].setZero(R_, count);
+      rhs[std::size_t(qpar)].resize(R_, count);
+      for (int c = 0; c < count; ++c) rhs[std::size_t(qpar)].col(c) = g.col(2 * c + qpar);
     }
-    for (int c = 0; c < count; ++c) {
-      RowMajor& hat = hats_[std::size_t(c)];
-      hat.resize(R_, C_);
-      for (int r = 0; r < R_; ++r) along_j_.apply(b[std::size_t(c)] + std::ptrdiff_t(r) * C_, &hat(r, 0), scale_j);
-      y_ = hat;
-      banded_solve(y_);
-      g2.noalias() = y_ * tmasks;  // both parities in one pass over the grid
-      for (int qpar = 0; qpar < 2; ++qpar)
-        along_i_.apply(g2.col(qpar).data(), ghat[std::size_t(qpar)].col(c).data(), scale_i);
-    }
+    return capacitance_solve(rhs, count, tolerance, out, false);
+  }
+
+  int capacitance_solve(const std::array<Eigen::MatrixXd, 2>& rhs, int count, double tolerance,
+                        std::array<Eigen::MatrixXd, 2>& out, bool apply_h = true) {
+    const double scale_i = std::sqrt(2.0 / (R_ + 1));
+    Eigen::MatrixXd hat(R_, count), part, block_rhs;
+    Eigen::VectorXd column(R_);
     int iterations = 0;
-    Eigen::MatrixXd rhs, part;
-    for (int qpar = 0; qpar < 2; ++qpar)
+    for (int qpar = 0; qpar < 2; ++qpar) {
+      for (int c = 0; c < count; ++c) {
+        column = rhs[std::size_t(qpar)].col(c);
+        along_i_.apply(column.data(), hat.col(c).data(), scale_i);
+      }
+      Eigen::MatrixXd solved(R_, count);
       for (int ppar = 0; ppar < 2; ++ppar) {
         const CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
-        rhs.resize(Eigen::Index(blk.modes.size()), count);
-        for (std::size_t k = 0; k < blk.modes.size(); ++k)
-          rhs.row(Eigen::Index(k)) = ghat[std::size_t(qpar)].row(blk.modes[k]);
-        iterations = std::max(iterations, blk.solve(rhs, part));
-        for (std::size_t k = 0; k < blk.modes.size(); ++k)
-          hhat[std::size_t(qpar)].row(blk.modes[k]) = part.row(Eigen::Index(k));
+        block_rhs.resize(Eigen::Index(blk.modes.size()), count);
+        for (std::size_t k = 0; k < blk.modes.size(); ++k) block_rhs.row(Eigen::Index(k)) = hat.row(blk.modes[k]);
+        if (apply_h) blk.apply_h_inverse(block_rhs);
+        iterations = std::max(iterations, blk.solve(block_rhs, part, tolerance));
+        for (std::size_t k = 0; k < blk.modes.size(); ++k) solved.row(blk.modes[k]) = part.row(Eigen::Index(k));
       }
-    for (int c = 0; c < count; ++c) {
-      RowMajor& hat = hats_[std::size_t(c)];
-      for (int qpar = 0; qpar < 2; ++qpar)
-        along_i_.apply(hhat[std::size_t(qpar)].col(c).data(), h2.col(qpar).data(), scale_i);
-      hat.noalias() -= h2 * tmasks.transpose();  // a rank-two update, one pass
-      banded_solve(hat);
-      for (int r = 0; r < R_; ++r) along_j_.apply(&hat(r, 0), x[std::size_t(c)] + std::ptrdiff_t(r) * C_, scale_j);
+      out[std::size_t(qpar)].resize(R_, count);
+      for (int c = 0; c < count; ++c) {
+        column = solved.col(c);
+        along_i_.apply(column.data(), out[std::size_t(qpar)].col(c).data(), scale_i);
+      }
     }
     return iterations;
+  }
+
+  // ρ = (b − A x) on the columns 0 and cols−1 in parity coordinates (rows × count each), x from
+  // near_values_; false when it is below kBoundaryResidual·‖b‖ for every right-hand side.
+  bool boundary_residual(const Eigen::MatrixX3d& B, int count, std::array<Eigen::MatrixXd, 2>& rho) {
+    const double a = weights_.a, b = weights_.b;
+    std::array<double, 25> w5{};
+    for (int di = -2; di <= 2; ++di)
+      for (int dj = -2; dj <= 2; ++dj)
+        w5[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] = a * c_weight(di, dj) + b * t_weight(di, dj);
+    std::array<Eigen::MatrixXd, 2> side;  // the residual on column 0 and on column cols−1
+    bool large = false;
+    for (int s = 0; s < 2; ++s) side[std::size_t(s)].resize(R_, count);
+    for (int c = 0; c < count; ++c) {
+      const auto value = [&](int i, int j) {
+        if (i < 0 || i >= R_ || j < 0 || j >= C_) return 0.0;
+        return near_values_(i, Eigen::Index(near_.size()) * c + near_index_[std::size_t(j < 3 ? j : j - C_ + 6)]);
+      };
+      double norm2 = 0;
+      for (int s = 0; s < 2; ++s) {
+        const int j = s == 0 ? 0 : C_ - 1;
+        for (int i = 0; i < R_; ++i) {
+          double r = B(Eigen::Index(i) * C_ + j, c);
+          for (int di = -2; di <= 2; ++di)
+            for (int dj = -2; dj <= 2; ++dj)
+              r -= w5[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] * value(i + di, j + dj);
+          side[std::size_t(s)](i, c) = r;
+        }
+        norm2 += side[std::size_t(s)].col(c).squaredNorm();
+      }
+      const double ratio = std::sqrt(norm2) / b_norms_[std::size_t(c)];
+      boundary_ratio_ = c == 0 ? ratio : std::max(boundary_ratio_, ratio);
+      if (ratio > kBoundaryResidual) large = true;
+    }
+    if (!large) return false;
+    for (int s = 0; s < 2; ++s) rho[std::size_t(s)].resize(R_, count);
+    if (C_ == 1) {  // U = √2·e₁ in the even parity
+      rho[0] = side[0] / std::sqrt(2.0);
+      rho[1].setZero();
+    } else {
+      rho[0] = (side[0] + side[1]) / std::sqrt(2.0);
+      rho[1] = (side[0] - side[1]) / std::sqrt(2.0);
+    }
+    return true;
   }
 
   int R_ = 0, C_ = 0;
@@ -362,11 +558,16 @@ class Fast5Solver final : public LinearSolver {
   bool separable_ = false;
   detail::SineTransform along_i_, along_j_;
   Eigen::VectorXd nu_, t_;
-  RowMajor inv_d_, l1_, l2_;
+  Eigen::MatrixXd tmasks_, near_sines_, dots_;
+  std::vector<int> near_;
+  std::array<int, 6> near_index_{};
+  std::array<double, 3> b_norms_{};
+  double boundary_ratio_ = 0;  // the largest ‖ρ‖/‖b‖ of the last boundary_residual
+  ModeFactors factors_;
+  std::vector<double> zeros_;  // a row of zeros (sweep_down without a grid)
   std::array<CapacitanceBlock, 4> blocks_;
-  RowMajor y_, u_, v_;  // scratch
-  std::array<RowMajor, 3> hats_, residuals_, corrections_;
-  std::array<int, 3> targets_{};
+  std::array<RowMajor, 3> hats_, work_;
+  Eigen::MatrixXd near_values_;  // rows × (#near_ · count)
 };
 
 }  // namespace

@@ -13,27 +13,37 @@
 // parity of p: per block a diagonal, a rank-one term and a low-rank term −G Gᵀ, all in closed
 // form from the eigenvalues λ_pq = a μ_p² ν_q² + b (μ_p + ν_q)². It is solved by conjugate
 // gradients with its diagonal as preconditioner (four blocks of about rows/2 unknowns, each
-// iteration O(rows·cols/4) flops, no transforms), for all right-hand sides at once (one read of
-// each block per iteration; the blocks are as large as the grid, so this is what a solve costs).
+// iteration O(rows·cols/4) flops, no transforms), for all right-hand sides at once.
 //
 //   analyze    sine-transform plans along i and j;
 //   factorize  recognise a and b from the weights (else not_applicable); the per-mode banded
-//              factors (O(rows·cols)) and the capacitance blocks (O(rows·cols));
-//   solve      per right-hand side: a sine transform of each row, two banded passes along i, the
-//              capacitance solves, an inverse transform of each row.
-// The capacitance operator is formed from differences of large terms (the sine-basis inverses of
-// the low modes cancel), so a first solve loses digits as N grows (relative residual 5e-8 at
-// N = 511, 1e-6 at 1023 on mask data); up to two steps of iterative refinement on the true
-// residual (A applied in Kronecker form, O(rows·cols); the columns still above 1e-11 are refined
-// together, the others are left alone), bring it to
-// 5e-15–1.4e-13 up to N = 511 and 7e-12 (biharmonic) / 9e-14 (w = 0.5) at 1023.
-// Cost at N = 1023 (BM_Stencil5, CPU time against the memory pass, a loaded 2-core machine):
-// about 80× (biharmonic) and 105× (w = 0.5); without refinement 35× at residual 1e-6 / 6e-6, so
-// two thirds of the time are the refinement's two extra solves (each two passes of row DSTs).
-// Reaching 10× needs a capacitance formed without cancellation (no refinement) and fused passes.
-// summary.iterations is the largest number of capacitance CG iterations (to 1e-14) of any solve.
-// Measured (BM_Stencil5, N×N, mask right-hand sides), biharmonic / c1-family w = 0.5: 5 / 5 at
-// N = 15, 6 / 6 at 31, 7 / 7 at 127, 7 / 8 at 255, 8 / 8 at 511, 8 / 9 at 1023: about log N.
+//              factors and the capacitance blocks (O(rows·cols)). M_q is Toeplitz, so its LDLᵀ
+//              factors converge down the rows (to 1e-15 after about 40/√ν_q rows): only the rows
+//              above that are stored (4 % of rows·cols at N = 1023), the rest read the limit;
+//   solve      a sine transform of each row, four sweeps of banded solves along i (down and up,
+//              all right-hand sides in one sweep), the capacitance solves, an inverse transform.
+// Accuracy. The rounding of the first solve sits almost entirely in the capacitance unknowns h
+// (the sources on the columns 0 and cols−1): h comes from A₁⁻¹b, whose banded solves for the low
+// modes (κ(M_q) ∝ N⁴) have forward errors of κ·ε, so the residual there is 5e-8 at N = 511 and
+// 6e-6 at 1023 on mask data, while the other columns are at 5e-12. Since A x − b vanishes off
+// those two columns, a correction needs no residual of the whole grid and no new transform:
+// ρ = (b − A x) on the two columns (from x on the columns 0–2 and cols−3..cols−1, dot products of
+// the transformed rows taken during the sweep up), δx = A⁻¹Uρ = A₁⁻¹U·Cap⁻¹H⁻¹ρ (Woodbury; the
+// capacitance solve alone, then two banded sweeps with the rank-two right-hand side generated on
+// the fly). At most kCorrections of them, until ‖ρ‖ ≤ 1e-13‖b‖: none to one up to N = 255, two
+// at 1023. Relative residuals after them (mask data, 3 right-hand sides): 1e-13 (biharmonic) /
+// 4e-13 (w = 0.5) at N = 255, 7e-13 / 3e-12 at 1023 (the columns other than 0 and cols−1).
+// Cost at N = 1023 (CPU time of a fresh solve, 3 right-hand sides, 2 cores with load 12.7):
+// biharmonic 90 ms and w = 0.5 105 ms, against 309 and 392 ms with two whole-grid refinement
+// steps (residual, two row transforms and the whole solve again each), measured together; the
+// memory pass took 1.8–4 ms at that load, so about 25–50× (biharmonic) and 30–60× (w = 0.5).
+// The 10× target is not reached: what is left is the capacitance CG (a fifth), the four banded
+// sweeps (two fifths) and the two row transforms (a sixth). A capacitance formed without the
+// forward error (so no correction sweeps) would need another exact representation of A₁⁻¹ on
+// the boundary columns; not done.
+// summary.iterations is the largest number of capacitance CG iterations of any capacitance solve
+// (the first to 1e-7, corrections to what they need, at least 1e-10): 6 (biharmonic) and 7
+// (w = 0.5) at N = 1023 on mask data; to 1e-14 it was 8 / 9 (about log N).
 // The Jacobi-scaled capacitance blocks have condition numbers of 1.1–1.3 (biharmonic) and
 // 1.35–1.5 (w = 0.5) from N = 15 to 63, but 5, 10, 20 (∝ N) for the pure c1-coons stencil.
 // b = 0 (pure c1-coons, κ ∝ N⁸) is separable and goes to the separable banded solver instead.

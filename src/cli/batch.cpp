@@ -1,14 +1,19 @@
 // `coons batch BOUNDARY...`: every boundary as the Coons net and at several α; a folder per
 // boundary and degree (<name>-<m>x<n>/) with a solve report and OBJ files per net, named by the
 // method and α to full precision, and a metrics table. All written at the end, together.
+// With --mask NAME (not alpha, as for solve: c1-coons, biharmonic, c1-family --weight w,
+// file:PATH) every boundary is solved once with that mask instead, over its whole problem
+// (ribbons, rings, free grid), the net named by the mask (c1-family-w0.5.json, ...).
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <filesystem>
 #include <memory>
 
 #include "coons/io/input_error.h"
 #include "coons/io/obj_export.h"
 #include "coons/io/write_files.h"
+#include "coons/mask/stencil_problem.h"
 #include "coons/metrics/energies.h"
 #include "coons/study/memory_estimate.h"
 #include "registry.h"
@@ -22,9 +27,18 @@ struct BatchRequest {
   std::string out_dir = "out";
   std::vector<double> alphas = {-0.25, -0.1, 0.0};
   int samples = 33;
-  NetRequest net;  // --solver only
+  NetRequest net;  // --solver, --mask, --weight
   GlobalOptions global;
+  CLI::Option* alphas_option = nullptr;
 };
+
+// The file stem of a --mask run: the mask's name, c1-family with its weight, file: by the file's stem.
+std::string mask_tag(const ResolvedRequest& r) {
+  if (r.mask_kind == MaskKind::kC1Family) return fmt::format("c1-family-w{}", *r.weight);
+  if (r.mask_kind == MaskKind::kFile)
+    return "file-" + safe_file_stem(std::filesystem::path(r.mask_name.substr(5)).stem().string());
+  return r.mask_name;
+}
 
 // "alpha-0.1004": α to full precision (shortest round trip), with its sign.
 std::string alpha_tag(double a) { return fmt::format("alpha{:+}", a == 0 ? 0.0 : a); }
@@ -33,27 +47,57 @@ struct Row {
   std::string boundary;
   int m, n;
   std::string method;
-  double alpha;
+  std::string alpha;  // α, w= of c1-family, or - for the other masks
   std::string status;
   NetMetrics metrics;
 };
 
 std::string metrics_table(const std::vector<Row>& rows) {
   std::string table = fmt::format(
-      "| {:<22} | {:>7} | {:<6} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n", "boundary",
+      "| {:<22} | {:>7} | {:<10} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n", "boundary",
       "degree", "method", "alpha", "twist", "thin plate", "Dirichlet", "E3", "disc. twist", "mask res.", "status");
-  table += "|" + std::string(24, '-') + "|" + std::string(9, '-') + "|" + std::string(8, '-') + "|" +
+  table += "|" + std::string(24, '-') + "|" + std::string(9, '-') + "|" + std::string(12, '-') + "|" +
            std::string(8, '-') + "|" + std::string(13, '-') + "|" + std::string(14, '-') + "|" + std::string(14, '-') +
            "|" + std::string(14, '-') + "|" + std::string(14, '-') + "|" + std::string(11, '-') + "|" +
            std::string(13, '-') + "|\n";
   for (const auto& r : rows)
     table += fmt::format(
-        "| {:<22} | {:>7} | {:<6} | {:>6} | {:>11.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>9.2e} | "
+        "| {:<22} | {:>7} | {:<10} | {:>6} | {:>11.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>9.2e} | "
         "{:<11} |\n",
-        r.boundary, fmt::format("{}x{}", r.m, r.n), r.method, fmt::format("{}", r.alpha), r.metrics.twist_energy,
+        r.boundary, fmt::format("{}x{}", r.m, r.n), r.method, r.alpha, r.metrics.twist_energy,
         r.metrics.thin_plate_energy, r.metrics.dirichlet_energy, r.metrics.e3_energy, r.metrics.discrete_twist_energy,
         r.metrics.mask_residual, r.status);
   return table;
+}
+
+// One --mask run of a boundary: the stencil solve of its whole problem, as `coons solve --mask`.
+void run_mask(const BatchRequest& b, const BoundaryFile& input, const std::string& file, const std::string& folder,
+              OutputSet& out, std::vector<Row>& rows, Phases& phases) {
+  const ResolvedRequest r = resolve(b.net, input.boundary, file);
+  const std::string tag = mask_tag(r);
+  phases.start("solve", fmt::format("{} {}", input.boundary.name, tag));
+  const StencilRun run = solve_stencil_request(input, r, b.net, b.global, file);
+  const bool ok = run.result.summary.ok();
+  Row row{input.boundary.name,
+          input.boundary.m,
+          input.boundary.n,
+          r.mask_name,
+          r.weight ? fmt::format("w={}", *r.weight) : std::string("-"),
+          solvers::to_string(run.result.summary.status),
+          {}};
+  phases.start("metrics");
+  if (ok) row.metrics = net_metrics(run.result.net, free_points(run.problem), run.stencil);
+  rows.push_back(row);
+  const nlohmann::json report = stencil_report(input, r, run, std::nullopt);
+  phases.start("write");
+  const std::string stem = fmt::format("{}/{}", folder, tag);
+  out.write(stem + ".json", [&](std::ostream& o) { o << dump(report, 2) << '\n'; });
+  if (ok) {
+    out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, run.result.net, b.samples); });
+    out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, run.result.net); });
+  } else {
+    print_solver_failure(file, run.result.summary);
+  }
 }
 
 int run_batch(const BatchRequest& b) {
@@ -70,6 +114,10 @@ int run_batch(const BatchRequest& b) {
       throw InputError("command line", "--alphas", fmt::format("{} is given twice", a));
   }
   const solvers::SolverInfo* solver = solver_from_name(b.net.solver);
+  const bool by_mask = b.net.mask != "alpha";
+  if (by_mask && b.alphas_option && b.alphas_option->count() > 0)
+    throw InputError("command line", "--alphas",
+                     "--alphas are the 3x3 masks of --mask alpha; they do not apply to --mask " + b.net.mask);
   check_memory(b.global, samples_bytes(b.samples), fmt::format("{} x {} surface samples", b.samples, b.samples),
                "command line", "--samples");
   // Read and validate every input before anything is computed or written.
@@ -77,6 +125,7 @@ int run_batch(const BatchRequest& b) {
   for (const auto& f : files) {
     boundaries.push_back(read_input(f, b.net.corner_tolerance));
     check_net_memory(b.global, boundaries.back().boundary, solver, f);
+    if (by_mask) check_stencil_request(boundaries.back(), resolve(b.net, boundaries.back().boundary, f), f);
   }
 
   OutputSet out(b.out_dir);
@@ -89,6 +138,10 @@ int run_batch(const BatchRequest& b) {
     for (int copy = 2; std::find(folders.begin(), folders.end(), folder) != folders.end(); ++copy)
       folder = fmt::format("{}-{}x{}-{}", safe_file_stem(boundary.name), boundary.m, boundary.n, copy);
     folders.push_back(folder);
+    if (by_mask) {
+      run_mask(b, boundaries[k], files[k], folder, out, rows, phases);
+      continue;
+    }
     std::vector<std::pair<std::string, NetRequest>> runs;
     NetRequest coons;
     coons.method = Method::kCoons;
@@ -108,7 +161,7 @@ int run_batch(const BatchRequest& b) {
               boundary.m,
               boundary.n,
               to_string(r.method),
-              r.mask.diag,
+              fmt::format("{}", r.mask.diag),
               outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form",
               {}};
       phases.start("metrics");
@@ -129,15 +182,18 @@ int run_batch(const BatchRequest& b) {
   const std::string table = metrics_table(rows);
   out.write("metrics.md", [&](std::ostream& o) {
     o << "# coons batch: metrics of every bundled boundary\n\n"
-      << "Coons = closed-form discrete Coons net; alpha = mask solve. Energies are exact integrals "
+      << (by_mask ? "Every net is the stencil solve of the mask named in the method column (--mask " + b.net.mask +
+                        ", over each file's whole problem: ribbons, rings, free grid). "
+                  : std::string("Coons = closed-form discrete Coons net; alpha = mask solve. "))
+      << "Energies are exact integrals "
          "of the Bézier surface (docs/math.md §5); mask res. is the residual of the row's own mask.\n\n"
       << table;
   });
-  print_text(
-      table + '\n' +
-      fmt::format("{} boundaries, {} nets; results in {}/ (per boundary and degree a folder NAME-MxN/ with "
-                  "coons.json and alpha±A.json reports and their .surface.obj, .net.obj; the table in metrics.md)\n",
-                  boundaries.size(), rows.size(), b.out_dir));
+  print_text(table + '\n' +
+             fmt::format("{} boundaries, {} nets; results in {}/ (per boundary and degree a folder NAME-MxN/ with "
+                         "{} and their .surface.obj, .net.obj; the table in metrics.md)\n",
+                         boundaries.size(), rows.size(), b.out_dir,
+                         by_mask ? "a solve report named by the mask" : "coons.json and alpha±A.json reports"));
   out.commit();
   for (const auto& r : rows)
     if (r.status != "success" && r.status != "closed-form") return kExitSolverFailed;
@@ -153,11 +209,16 @@ void register_batch(CLI::App& app, Registry& registry) {
                                  "write nets and OBJ files and a metrics table");
   cmd->add_option("BOUNDARY", request->inputs, "boundary files or folders of them")->required();
   cmd->add_option("--out", request->out_dir, "output folder")->capture_default_str();
-  cmd->add_option("--alphas", request->alphas, "alpha values to solve at (each once)")->capture_default_str();
+  request->alphas_option =
+      cmd->add_option("--alphas", request->alphas, "alpha values to solve at (each once; --mask alpha only)")
+          ->capture_default_str();
   cmd->add_option("--samples", request->samples, "surface samples per direction")->capture_default_str();
   add_solver_option(*cmd, request->net.solver);
+  add_mask_options(*cmd, request->net);
   add_memory_option(*cmd, request->global);
-  set_example(*cmd, "coons batch data/boundaries --alphas -0.25 -0.1 0 --out out/batch");
+  set_example(*cmd,
+              "coons batch data/boundaries --alphas -0.25 -0.1 0 --out out/batch\n"
+              "  coons batch data/boundaries/*_ribbons.json --mask c1-family --weight 0.5 --out out/c1");
   registry.add(cmd, [request] { return run_batch(*request); });
 }
 

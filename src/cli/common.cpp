@@ -290,12 +290,16 @@ json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const S
   return stencil_net_report(input.boundary, run.problem, run.stencil, label, run.result, mu, run.picked_automatically);
 }
 
-BoundaryFile read_input(const std::string& path, double corner_tolerance) {
+BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline) {
   BoundaryReadOptions options;
   if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
   options.corner_tolerance = corner_tolerance;
-  return read_boundary_file(path, options);
+  BoundaryFile file = read_boundary_file(path, options);
+  if (file.bspline && !accept_bspline)
+    throw InputError(path, "knots_u",
+                     "a B-spline boundary is read by solve, export, search-alpha and study only, not by this command");
+  return file;
 }
 
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {

@@ -111,7 +111,9 @@ nlohmann::json stencil_report(const BoundaryFile& input, const ResolvedRequest& 
 //! The solve report (docs/formats.md) without the timing block; metrics computed here.
 nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                             const std::optional<double>& mu);
-BoundaryFile read_input(const std::string& path, double corner_tolerance);
+//! A B-spline boundary (knots_u, knots_v) is an InputError unless `accept_bspline` (the commands
+//! that handle one: bspline_commands.h).
+BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline = false);
 //! Files as given, folders expanded to their *.json files (sorted); unreadable folders are InputErrors.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
 

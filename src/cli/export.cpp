@@ -6,6 +6,8 @@
 #include <memory>
 #include <optional>
 
+#include "bspline_commands.h"
+#include "cad_commands.h"
 #include "coons/io/input_error.h"
 #include "coons/io/matrix_market.h"
 #include "coons/io/net_json.h"
@@ -29,22 +31,33 @@ struct ExportRequest {
   std::string out_dir = ".";
   std::string prefix;
   int samples = 33;
-  bool obj = false, mtx = false, ply = false, vtu = false;
+  bool obj = false, mtx = false, ply = false, vtu = false, vts = false;
+  CadExportRequest cad;  // --step, --iges (cad_commands.h)
 };
 
 int run_export(ExportRequest e) {
+  if (is_triangle_file(e.boundary) && e.vts)
+    throw InputError("command line", "--vts", "is written for B-spline boundaries (triangles: --vtu)");
   if (is_triangle_file(e.boundary))
     return run_tri_export({e.boundary, &e.net, &e.global, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vtu});
-  if (e.ply || e.vtu)
-    throw InputError("command line", e.ply ? "--ply" : "--vtu",
-                     "is written for triangular boundaries (for a rectangular one: coons surface --ply/--vts)");
   Phases phases("export");
   phases.start("read");
-  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance);
+  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true);
+  if (input.bspline && !e.cad.any()) {  // --step/--iges: the Greville net below (check_cad_export)
+    if (e.vtu) throw InputError("command line", "--vtu", "is written for triangular boundaries (B-spline: --vts)");
+    return run_bspline_export({e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force},
+                              input, e.net, e.global, phases);
+  }
+  if (e.ply || e.vtu || e.vts)
+    throw InputError("command line",
+                     e.ply   ? "--ply"
+                     : e.vtu ? "--vtu"
+                             : "--vts",
+                     "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply/--vts)");
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
   if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
-  if (!e.obj && !e.mtx) e.obj = e.mtx = true;
+  if (!e.obj && !e.mtx && !e.cad.any()) e.obj = e.mtx = true;
   if (e.mtx && r.method != Method::kAlpha)
     throw InputError("command line", "--mtx",
                      "Matrix Market export needs --method alpha (closed forms solve no system)");
@@ -57,6 +70,9 @@ int run_export(ExportRequest e) {
   const bool classical = is_classical_request(input, r);
   std::optional<StencilRun> run;
   if (!classical) run = check_stencil_request(input, r, e.boundary);
+  CadExportPlan cad_plan;
+  if (e.cad.any()) cad_plan = check_cad_export(e.cad, e.boundary, b, r.method, classical, e.global.force);
+  const bool solve_net = e.obj || e.cad.any();
   if (e.obj)
     check_memory(e.global, samples_bytes(e.samples), fmt::format("{} x {} surface samples", e.samples, e.samples),
                  "command line", "--samples");
@@ -78,7 +94,7 @@ int run_export(ExportRequest e) {
     report["rings"] = run->problem.rings;
     report["free_points"] = free_points(run->problem).count();
   }
-  if (e.obj && run) {
+  if (solve_net && run) {
     phases.start("solve");
     *run = solve_stencil_request(input, r, e.net, e.global, e.boundary);
     report["solver"] = summary_to_json(run->result.summary);
@@ -90,7 +106,7 @@ int run_export(ExportRequest e) {
       return kExitSolverFailed;
     }
     outcome.net = run->result.net;
-  } else if (e.obj) {
+  } else if (solve_net) {
     phases.start("solve");
     outcome = make_net(b, r);
     if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
@@ -135,6 +151,10 @@ int run_export(ExportRequest e) {
                                 "array real general, #free by 3 (x, y, z; the interior points for the "
                                 "classical problem)"}};
   }
+  if (e.cad.any()) {
+    phases.start("write");
+    for (auto& path : write_cad_export(e.cad, cad_plan, e.boundary, b, outcome.net, out)) written.push_back(path);
+  }
   report["written"] = written;
   report["timing"] = phases.timing();
   print_json(report);
@@ -157,6 +177,8 @@ void register_export(CLI::App& app, Registry& registry) {
   cmd->add_flag("--mtx", request->mtx, "write <prefix>.A.mtx and <prefix>.B.mtx (Matrix Market)");
   cmd->add_flag("--ply", request->ply, "triangles: write <prefix>.surface.ply");
   cmd->add_flag("--vtu", request->vtu, "triangles: write <prefix>.surface.vtu (VTK unstructured grid)");
+  add_cad_export_options(*cmd, request->cad);
+  cmd->add_flag("--vts", request->vts, "B-spline boundaries: write <prefix>.surface.vts (VTK structured grid)");
   cmd->add_flag("--force", request->global.force, "overwrite existing files of the same names");
   add_memory_option(*cmd, request->global);
   set_example(*cmd, "coons export data/boundaries/pillow.json --alpha -0.1 --samples 33 --out out/pillow");

@@ -51,6 +51,8 @@ int run(int argc, char** argv) {
   register_join(app, registry);
   register_bench_matrix(app, registry);
   register_degree_limit(app, registry);
+  register_view(app, registry);
+  register_import_step(app, registry);
 
   // An unknown command is named (CLI11 would only say that an argument was not expected).
   if (argc > 1 && argv[1][0] != '-') {

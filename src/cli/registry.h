@@ -37,6 +37,8 @@ void register_surface(CLI::App& app, Registry& registry);
 void register_join(CLI::App& app, Registry& registry);
 void register_bench_matrix(CLI::App& app, Registry& registry);
 void register_degree_limit(CLI::App& app, Registry& registry);
+void register_view(CLI::App& app, Registry& registry);
+void register_import_step(CLI::App& app, Registry& registry);  // cad_commands.cpp
 
 //! The `coons` command line (docs/formats.md is its contract). Exit status: 0 success, 1 internal
 //! error, 2 bad input (one `error:` line on stderr, nothing written), 3 a solver failed (the report

@@ -13,6 +13,8 @@
 #include "coons/io/tri_boundary_io.h"
 #include "coons/mask/stencil.h"
 #include "coons/study/backend_choice.h"
+#include "coons/study/bspline_net.h"
+#include "coons/study/bspline_search.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/search_report.h"
 #include "coons/study/target.h"
@@ -158,11 +160,60 @@ int finish(nlohmann::json report, Phases& phases, SearchStatus status, const Sea
   return kExitSolverFailed;
 }
 
+// A B-spline boundary: the non-uniform α family (docs/math.md §10), energies and discrete
+// energies as objectives, a backend that takes an assembled matrix.
+int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases& phases) {
+  if (r.parameter != Parameter::kAlpha)
+    throw InputError("command line", "--parameter",
+                     "a B-spline boundary is searched over alpha of the non-uniform family only");
+  if (r.target_option->count() > 0 || r.samples_option->count() > 0)
+    throw InputError("command line", r.target_option->count() > 0 ? "--target" : "--samples",
+                     "target objectives compare Bézier nets; a B-spline boundary takes energies only");
+  std::string why;
+  const auto objective = parse_objective(objective_text(r.objective), &why);
+  if (!objective || !bspline_objective_supported(*objective, &why))
+    throw InputError("command line", "--objective", why);
+  AlphaSearchOptions options = default_bspline_search_options();  // [-1/4, 0]: definite there
+  options.lower = r.lower.value_or(options.lower);
+  options.upper = r.upper.value_or(options.upper);
+  options.scan_points = r.scan_points;
+  if ((options.lower < -0.25 || options.upper > 0) && !r.allow_indefinite)
+    throw InputError("command line", r.lower && *r.lower < -0.25 ? "--lower" : "--upper",
+                     "the non-uniform system of a B-spline boundary is definite for alpha in [-0.25, 0] only (it can "
+                     "be singular above 0); add --allow-indefinite to search outside");
+  if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
+  const solvers::SolverInfo* requested = solver_from_name(r.solver);
+  if (requested && !requested->needs_matrix)
+    throw InputError("command line", "--solver",
+                     requested->name +
+                         " works from a grid stencil; a B-spline boundary needs a backend that takes "
+                         "an assembled matrix");
+  const std::string solver =
+      requested ? requested->name : auto_bspline_solver(options.upper <= 0 ? options.lower : options.upper);
+  const BSplineInput& in = *file.bspline;
+  phases.start("solve");
+  const AlphaSearchSummary s = search_bspline_alpha(in.compatible, *objective, solver, options);
+  const BSplineSurface frame = bspline_surface_on(in.compatible, bspline_frame(in.compatible));
+  Boundary shape = file.boundary;
+  shape.m = frame.net.m;
+  shape.n = frame.net.n;
+  nlohmann::json out = search_report(
+      shape, objective_text(r.objective), Parameter::kAlpha, [](double a) { return alpha_family(a); }, options, s);
+  out["beta"] = nullptr;  // the non-uniform weights differ from point to point
+  out["mu"] = nullptr;
+  out.erase("beta_ij");
+  out["bspline"] = bspline_block(frame, in);
+  out["solver"] = search_solver_block(*solvers::find_solver(solver), requested == nullptr, s.status, s.solves,
+                                      s.seconds, s.message);
+  return finish(out, phases, s.status, r, s.message);
+}
+
 int run_search_alpha(const SearchRequest& r) {
   if (is_triangle_file(r.boundary)) return run_tri_search(tri_search_args(r));
   Phases phases("search-alpha");
   phases.start("read");
-  const BoundaryFile file = read_input(r.boundary, r.corner_tolerance);
+  const BoundaryFile file = read_input(r.boundary, r.corner_tolerance, true);
+  if (file.bspline) return run_bspline_search(r, file, phases);
   const Boundary& b = file.boundary;
   const SearchSetup setup = setup_search(r, b);
   check_net_memory(r.global, b, setup.solver, r.boundary);

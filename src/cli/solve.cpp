@@ -1,6 +1,7 @@
 // `coons solve BOUNDARY`: one net, one JSON report (docs/formats.md).
 #include <memory>
 
+#include "bspline_commands.h"
 #include "coons/io/input_error.h"
 #include "coons/io/tri_boundary_io.h"
 #include "registry.h"
@@ -38,7 +39,8 @@ int run_solve(const SolveRequest& request) {
   if (is_triangle_file(request.boundary)) return run_tri_solve(request.boundary, request.net, request.global);
   Phases phases("solve");
   phases.start("read");
-  const BoundaryFile input = read_input(request.boundary, request.net.corner_tolerance);
+  const BoundaryFile input = read_input(request.boundary, request.net.corner_tolerance, true);
+  if (input.bspline) return run_bspline_solve(request.boundary, input, request.net, request.global, phases);
   const ResolvedRequest r = resolve(request.net, input.boundary, request.boundary);
   if (!is_classical_request(input, r)) return run_stencil_solve(request, input, r, phases);
   check_net_memory(request.global, input.boundary, r.solver, request.boundary);

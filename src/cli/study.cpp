@@ -11,16 +11,19 @@
 #include <iterator>
 #include <memory>
 
+#include "coons/config.h"
 #include "coons/io/input_error.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
+#include "coons/study/bspline_study.h"
 #include "coons/study/family_tasks.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
 #include "registry.h"
 #include "study_shard.h"
+#include "view_command.h"
 
 namespace coons::cli {
 
@@ -39,6 +42,7 @@ struct StudyRequest {
   bool degrees_given = false;
   std::string shard;  // --shard I/N: one part of the family study's tasks (study_shard.h)
   std::string merge;  // --merge DIR: the report from the shards in DIR
+  bool html = false;  // --html: a `coons view` page per shape (study_pages.cpp)
   GlobalOptions global;
 };
 
@@ -114,10 +118,12 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   options.solver = solver_from_name(r.solver);
   std::string why;
   if (!options.is_valid(&why)) throw InputError("command line", "--degrees", why);
+  const std::string three_js = r.html ? read_three_js(COONS_THREE_JS_PATH) : "";
   BoundaryReadOptions read_options;
   read_options.corner_tolerance = r.corner_tolerance;
   std::vector<StudyInput> inputs;
   std::vector<TriStudyInput> triangles;
+  std::vector<BSplineStudyInput> bsplines;
   for (const auto& f : files) {
     if (is_triangle_file(f)) {
       triangles.push_back(read_tri_study_input(f, r.corner_tolerance));
@@ -126,6 +132,16 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
       check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),
                    fmt::format("the study of {} at degree {}", triangles.back().boundary.name, largest), f, "degree");
       continue;
+    }
+    if (!is_triangle_file(f)) {
+      const BoundaryFile file = read_boundary_file(f, read_options);
+      if (file.bspline) {  // a row at its own knots (bspline_study.h), not the degree study
+        check_memory(r.global,
+                     64.0 * file.bspline->compatible.bottom.count() * file.bspline->compatible.left.count() * 100,
+                     fmt::format("the B-spline row of {}", file.boundary.name), f, "knots_u");
+        bsplines.push_back({f, file.boundary.name, *file.bspline});
+        continue;
+      }
     }
     inputs.push_back(read_study_input(f, read_options));
     const Boundary& b = inputs.back().boundary;
@@ -138,15 +154,30 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   if (!r.shard.empty()) {
     const auto shard = parse_shard(r.shard, &why);
     if (!shard) throw InputError("command line", "--shard", why);
+    if (!bsplines.empty())
+      throw InputError(bsplines.front().file, "--shard",
+                       "B-spline boundaries are not sharded yet (study them unsharded)");
+    if (r.html) throw InputError("command line", "--shard", "--html is not sharded yet (give it to an unsharded run)");
     return run_files_shard(files, options, r.corner_tolerance, shard->first, shard->second, r.out_dir);
   }
   phases.start("solve");
   StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
   result.triangles =
       run_tri_study(triangles, options.degrees, options.solver, [&](const std::string& s) { phases.note(s); });
+  // A backend that works from a grid stencil cannot take the non-uniform system: auto there.
+  const std::vector<BSplineStudyRow> bspline_rows = run_bspline_study(
+      bsplines, default_study_objectives(),
+      options.solver != nullptr && options.solver->needs_matrix ? options.solver->name : std::string());
 
   phases.start("write");
-  write_study_report(result, r.out_dir, command_line);
+  // B-spline rows and pages after the per-shape report (not carried by shards: see run_files_shard)
+  write_study_report(result, r.out_dir, command_line, [&](OutputSet& out) {
+    std::string tail = bspline_rows.empty() ? "" : "\n" + bspline_study_markdown(bspline_rows);
+    if (!bspline_rows.empty())
+      out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(bspline_rows), 1) << '\n'; });
+    if (r.html) tail += write_study_pages(result, inputs, out, three_js, options.solver);
+    return tail;
+  });
   return kExitOk;
 }
 
@@ -178,6 +209,7 @@ void register_study(CLI::App& app, Registry& registry) {
       "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
   cmd->add_option("--merge", r->merge, "DIR: the report (to --out) from the shard files in DIR");
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
+  cmd->add_flag("--html", r->html, "also a coons view page per shape in pages/, linked from the report");
   cmd->add_option("--corner-tolerance", r->corner_tolerance,
                   "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();

@@ -32,7 +32,8 @@ std::string fnv1a_hex(const std::string& text) {
   return fmt::format("{:016x}", h);
 }
 
-void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line) {
+void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
+                        const std::function<std::string(OutputSet&)>& extra) {
   OutputSet out(out_dir);
   const StudyFigures figures = plot_study_figures(result, [&](const std::string& file) { return out.stage(file); });
   for (const auto* list : {&figures.energies, &figures.nets})
@@ -41,7 +42,8 @@ void write_study_report(const StudyResult& result, const std::string& out_dir, c
   for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
     if (!f->error.empty()) out.discard(f->file);
   const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
-                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6");
+                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6") +
+                         (extra ? extra(out) : std::string());
   out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
   print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));

@@ -5,11 +5,13 @@
 #pragma once
 
 #include <filesystem>
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <string>
 #include <vector>
 
+#include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
 #include "coons/study/study.h"
 
@@ -47,7 +49,9 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir);
 
 //! report.md, figures/ and results.json of the per-shape study, staged and published together;
 //! the report is also printed. `command_line` goes into the report's provenance line.
-void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line);
+//! `extra` (optional) writes more files to the same output set and returns Markdown to append.
+void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
+                        const std::function<std::string(OutputSet&)>& extra = {});
 
 //! `coons study FILES --shard I/N`: one task per input file (in the order given), task t in shard
 //! t mod N; every file is read and checked first.

@@ -1,9 +1,12 @@
 // `coons solve --mask`: problems beyond the classical one (ribbons, rings, free grids, 5×5 masks)
 // through the real binary, compared with the library's solve of the same problem.
 #include <Eigen/Dense>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
+#include <sstream>
 #include <string>
 
 #include "coons/io/boundary_io.h"
@@ -26,6 +29,13 @@ const std::string kCoons = COONS_BINARY;
 const std::string kData = COONS_DATA_DIR;
 
 std::string quoted(const std::string& s) { return "'" + s + "'"; }
+
+std::string read_text_file(const std::string& path) {
+  std::ifstream in(path);
+  std::stringstream text;
+  text << in.rdbuf();
+  return text.str();
+}
 
 ControlNet net_of(const json& report) { return *parse_boundary(json{{"net", report.at("net")}}, "report").net; }
 
@@ -181,4 +191,47 @@ TEST_CASE("coons export --mask: the OBJ net is the stencil solve, the Matrix Mar
       run_command(kCoons + " export " + quoted(file) + " --method coons --out " + quoted(out.file("none")));
   CHECK(bad.status == 2);
   CHECK(!std::filesystem::exists(out.file("none")));
+}
+
+TEST_CASE("coons batch --mask: every file's stencil solve as coons solve --mask gives it, named by the mask", "[cli]") {
+  TempDir out;
+  const std::string cap = kData + "/boundaries/sphere_cap_ribbons.json";
+  const std::string torus = kData + "/boundaries/torus_patch_ribbons.json";
+  const std::string options = " --mask c1-family --weight 0.5 --solver eigen-ldlt";
+  const CommandResult r = run_command(kCoons + " batch " + quoted(cap) + " " + quoted(torus) + options + " --out " +
+                                      quoted(out.path.string()));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  for (const auto& [file, folder] : {std::pair{cap, std::string("sphere_cap_ribbons-6x6")},
+                                     std::pair{torus, std::string("torus_patch_ribbons-7x5")}}) {
+    const json single = solve(quoted(file) + options);
+    const std::string stem = out.file(folder + "/c1-family-w0.5");
+    const json batch = json::parse(read_text_file(stem + ".json"));
+    CHECK(batch["mask"] == "c1-family");
+    CHECK(batch["weight"] == 0.5);
+    CHECK(batch["solver"]["status"] == "success");
+    CHECK(batch["net"] == single["net"]);  // the same solve, bit for bit
+    CHECK(batch["metrics"] == single["metrics"]);
+    CHECK(std::filesystem::exists(stem + ".surface.obj"));
+    CHECK(std::filesystem::exists(stem + ".net.obj"));
+  }
+  const std::string table = read_text_file(out.file("metrics.md"));
+  CHECK(table.find("| sphere_cap_ribbons     |     6x6 | c1-family  |  w=0.5 |") != std::string::npos);
+  CHECK(table.find("| coons ") == std::string::npos);  // no closed-form rows
+  CHECK(table.find("| alpha ") == std::string::npos);
+  // bad input, nothing written: --alphas with another mask, a file with one data ring
+  for (const std::string& bad : {quoted(cap) + " --mask biharmonic --alphas 0",
+                                 kData + "/boundaries/dome.json --mask c1-coons", quoted(cap) + " --mask c1-family"}) {
+    std::string command = kCoons + " batch ";
+    command += bad;
+    command += " --out ";
+    command += quoted(out.file("none"));
+    const CommandResult e = run_command(command);
+    INFO(bad << "\n" << e.err);
+    CHECK(e.status == 2);
+    CHECK(e.out.empty());
+    CHECK(e.err.rfind("error: ", 0) == 0);
+    CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
+    CHECK(!std::filesystem::exists(out.file("none")));
+  }
 }

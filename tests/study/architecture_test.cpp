@@ -42,6 +42,7 @@ TEST_CASE("architecture: every layer of the library includes only itself and the
       {"alpha", {"net", "mask", "metrics", "alpha"}},
       {"tri", {"net", "mask", "metrics", "tri"}},
       {"study", {"net", "mask", "metrics", "curves", "surfaces", "tri", "io", "alpha", "study"}},
+      {"cad", {"net", "mask", "metrics", "curves", "surfaces", "tri", "io", "cad"}},  // optional (OpenCASCADE)
   };
   const std::regex coons_header(R"(^coons/([a-z_]+)/)");
   int checked = 0;

@@ -183,6 +183,9 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
       for (int j = 0; j <= n; ++j) net.at(i, j) = p.point(rows[i][j], fmt::format("net[{}][{}]", i, j));
     }
     check_degree(p, doc, m, n);
+    for (const char* field : {"knots_u", "knots_v", "degree_spline"})
+      if (doc.contains(field))
+        p.fail(field, "belongs to the sides form (B-spline boundary curves); a \"net\" file has no knots");
     if (doc.contains("ribbons"))
       p.fail("ribbons", "belongs to the sides form; a \"net\" holds its data rings itself (use \"rings\")");
     out.rings = parse_rings(p, doc, m, n);
@@ -222,6 +225,10 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
   if (doc.contains("ribbons")) {
     out.ribbons = parse_ribbons(p, doc, b, options.corner_tolerance);
     out.rings = 2;
+  }
+  if (const auto knots = parse_bspline_knots(doc, source, b.m + 1, b.n + 1)) {
+    if (out.ribbons) p.fail("ribbons", "B-spline boundaries (knots_u, knots_v) take one data ring; drop \"ribbons\"");
+    out.bspline = bspline_input(b, *knots);
   }
   return out;
 }

@@ -9,6 +9,8 @@
 //            least one free point); a smaller net with two data rings is written in the "net" form.
 //   rings    an integer from 1 to min(m, n)/2 + 1 (the rings the net has; all of them: nothing is free).
 //   free     (m+1) rows of (n+1) values 0/1; a free point must lie inside the data rings.
+//   knots_u, knots_v, degree_spline   the sides are B-spline curves (bspline_boundary_io.h); sides
+//            form without ribbons only. The file's `bspline` then holds them, made compatible.
 #pragma once
 
 #include <Eigen/Core>
@@ -16,6 +18,7 @@
 #include <optional>
 #include <string>
 
+#include "coons/io/bspline_boundary_io.h"
 #include "coons/mask/stencil_problem.h"
 #include "coons/net/control_net.h"
 
@@ -38,6 +41,8 @@ struct BoundaryFile {
   std::optional<Ribbons> ribbons;  //!< present when the sides came with "ribbons"
   int rings = 1;                   //!< data rings: "rings" of the net form, 2 with ribbons, else 1
   FreeGrid free;                   //!< the "free" grid of the net form (empty: inside the rings)
+  //! present when the sides came with knots_u, knots_v and degree_spline (a B-spline boundary)
+  std::optional<BSplineInput> bspline;
 };
 
 //! Parse and validate. `source` names the input in error messages (a path or "<stdin>").

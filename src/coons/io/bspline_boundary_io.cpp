@@ -12,9 +12,8 @@ namespace coons {
 
 namespace {
 
-Eigen::VectorXd parse_knot_vector(const nlohmann::json& doc, const std::string& source, const std::string& field,
+Eigen::VectorXd parse_knot_vector(const nlohmann::json& j, const std::string& source, const std::string& field,
                                   int degree, int count) {
-  const nlohmann::json& j = doc.at(field);
   if (!j.is_array()) throw InputError(source, field, "must be an array of numbers (a clamped knot vector)");
   Eigen::VectorXd knots(Eigen::Index(j.size()));
   for (std::size_t i = 0; i < j.size(); ++i)
@@ -25,6 +24,28 @@ Eigen::VectorXd parse_knot_vector(const nlohmann::json& doc, const std::string& 
     throw InputError(source, first.index < 0 ? field : fmt::format("{}[{}]", field, first.index), first.reason);
   }
   return knots;
+}
+
+// knots_u / knots_v: one vector for both sides, or {"bottom": […], "top": […]} (u) and
+// {"left": […], "right": […]} (v); `second` receives the second side's vector in that form.
+Eigen::VectorXd parse_direction(const nlohmann::json& doc, const std::string& source, const std::string& field,
+                                int degree, int count, const char* first_side, const char* second_side,
+                                Eigen::VectorXd& second) {
+  const nlohmann::json& j = doc.at(field);
+  if (!j.is_object()) return parse_knot_vector(j, source, field, degree, count);
+  for (const auto& [key, value] : j.items())
+    if (key != first_side && key != second_side)
+      throw InputError(
+          source, fmt::format("{}.{}", field, key),
+          fmt::format("unknown side (per-side knots of {} are \"{}\" and \"{}\")", field, first_side, second_side));
+  for (const char* side : {first_side, second_side})
+    if (!j.contains(side))
+      throw InputError(source, fmt::format("{}.{}", field, side),
+                       fmt::format("missing: per-side knots need both \"{}\" and \"{}\"", first_side, second_side));
+  Eigen::VectorXd first =
+      parse_knot_vector(j.at(first_side), source, fmt::format("{}.{}", field, first_side), degree, count);
+  second = parse_knot_vector(j.at(second_side), source, fmt::format("{}.{}", field, second_side), degree, count);
+  return first;
 }
 
 }  // namespace
@@ -46,14 +67,23 @@ std::optional<BSplineKnots> parse_bspline_knots(const nlohmann::json& doc, const
   BSplineKnots out;
   out.degree_u = int(json_integer(degrees[0], source, "degree_spline[0]", 1, 64));
   out.degree_v = int(json_integer(degrees[1], source, "degree_spline[1]", 1, 64));
-  out.knots_u = parse_knot_vector(doc, source, "knots_u", out.degree_u, count_u);
-  out.knots_v = parse_knot_vector(doc, source, "knots_v", out.degree_v, count_v);
+  out.knots_u = parse_direction(doc, source, "knots_u", out.degree_u, count_u, "bottom", "top", out.knots_top);
+  out.knots_v = parse_direction(doc, source, "knots_v", out.degree_v, count_v, "left", "right", out.knots_right);
   return out;
 }
 
 BSplineBoundary bspline_boundary(const Boundary& b, const BSplineKnots& k) {
-  return {BSplineCurve(k.degree_u, k.knots_u, b.bottom), BSplineCurve(k.degree_u, k.knots_u, b.top),
-          BSplineCurve(k.degree_v, k.knots_v, b.left), BSplineCurve(k.degree_v, k.knots_v, b.right)};
+  const Eigen::VectorXd& top = k.knots_top.size() > 0 ? k.knots_top : k.knots_u;
+  const Eigen::VectorXd& right = k.knots_right.size() > 0 ? k.knots_right : k.knots_v;
+  return {BSplineCurve(k.degree_u, k.knots_u, b.bottom), BSplineCurve(k.degree_u, top, b.top),
+          BSplineCurve(k.degree_v, k.knots_v, b.left), BSplineCurve(k.degree_v, right, b.right)};
+}
+
+BSplineInput bspline_input(const Boundary& b, const BSplineKnots& k) {
+  BSplineInput out;
+  out.given = bspline_boundary(b, k);
+  out.compatible = compatible_boundary(out.given, &out.notes);
+  return out;
 }
 
 }  // namespace coons

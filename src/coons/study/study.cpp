@@ -32,6 +32,10 @@ StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& 
   StudyInput in;
   in.file = path;
   const BoundaryFile file = read_boundary_file(path, options);
+  if (file.bspline)
+    throw InputError(path, "knots_u",
+                     "a B-spline boundary is not elevated over Bézier degrees, so degree studies do not apply to it "
+                     "(`coons study` gives it one row at its own knots)");
   in.boundary = file.boundary;
   TwoRingProblem two = two_ring_problem(file);
   if (two.problem) {

@@ -1,0 +1,176 @@
+#include "bspline_commands.h"
+
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <memory>
+
+#include "coons/io/input_error.h"
+#include "coons/io/matrix_market.h"
+#include "coons/io/mesh_export.h"
+#include "coons/io/net_json.h"
+#include "coons/io/obj_export.h"
+#include "coons/io/write_files.h"
+#include "coons/mask/nonuniform_mask.h"
+#include "coons/study/bspline_net.h"
+#include "coons/study/memory_estimate.h"
+#include "coons/surfaces/bspline_sampling.h"
+#include "report_output.h"
+
+namespace coons::cli {
+
+namespace {
+
+bool given(const CLI::Option* o) { return o != nullptr && o->count() > 0; }
+
+// The memory of a B-spline solve: the sparse system (9 entries a row, twice for dA) and the dense
+// Gram matrices of the energies, estimated like a Bézier net of the compatible size.
+void check_bspline_memory(const GlobalOptions& global, const BSplineInput& in, const std::string& file) {
+  const double count_u = in.compatible.bottom.count(), count_v = in.compatible.left.count();
+  const double bytes = count_u * count_v * (2 * 9 * 16 + 200) + 8 * (count_u * count_u + count_v * count_v);
+  check_memory(global, bytes, fmt::format("a B-spline net of {} x {} points", count_u, count_v), file, "knots_u");
+}
+
+BSplineNetOutcome solve_bspline(const BSplineInput& in, const BSplineResolved& r) {
+  std::unique_ptr<solvers::LinearSolver> solver;
+  if (r.method == Method::kAlpha) solver = solvers::make_solver(r.solver, r.options);
+  return make_bspline_net(in.compatible, r.method, r.alpha, solver.get());
+}
+
+}  // namespace
+
+BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& input, const std::string& source) {
+  const ResolvedRequest r = resolve(request, input.boundary, source);  // the contradictions of every net request
+  if (r.method == Method::kHermiteCoons)
+    throw InputError("command line", "--method",
+                     "hermite-coons has no B-spline form; a B-spline boundary takes --method coons or alpha");
+  if (r.mask_kind != MaskKind::kAlpha)
+    throw InputError("command line", "--mask",
+                     "a B-spline boundary (knots_u, knots_v) takes the non-uniform alpha family only (--mask alpha)");
+  if (given(request.mu_option))
+    throw InputError("command line", "--mu",
+                     "--mu chooses the anisotropic Bézier mask; a B-spline boundary takes --alpha");
+  BSplineResolved out;
+  out.method = r.method;
+  out.alpha = r.method == Method::kAlpha ? request.alpha : -0.25;
+  out.options = r.options;
+  if (r.method != Method::kAlpha) return out;
+  if (request.solver == "auto") {
+    out.solver = auto_bspline_solver(out.alpha);
+    out.picked_automatically = true;
+  } else {
+    if (!r.solver->needs_matrix)
+      throw InputError(
+          "command line", "--solver",
+          fmt::format("{} works from a grid stencil; the non-uniform mask system of a B-spline boundary "
+                      "is an assembled matrix (a direct or iterative backend: eigen-ldlt, eigen-lu, cg, …)",
+                      r.solver->name));
+    out.solver = r.solver->name;
+  }
+  return out;
+}
+
+int run_bspline_solve(const std::string& file, const BoundaryFile& input, const NetRequest& request,
+                      const GlobalOptions& global, Phases& phases) {
+  const BSplineResolved r = resolve_bspline(request, input, file);
+  const BSplineInput& in = *input.bspline;
+  check_bspline_memory(global, in, file);
+  phases.start("solve");
+  const BSplineNetOutcome outcome = solve_bspline(in, r);
+  phases.start("metrics");
+  const nlohmann::json report =
+      bspline_net_report(input.boundary.name, in, r.method, r.alpha, outcome, r.picked_automatically, false);
+  const bool ok = !outcome.summary || outcome.summary->ok();
+  print_net_report(report, ok ? &outcome.surface.net : nullptr, phases);
+  if (!ok) {
+    print_solver_failure(file, *outcome.summary);
+    return kExitSolverFailed;
+  }
+  return kExitOk;
+}
+
+int run_bspline_export(const BSplineExportRequest& given_request, const BoundaryFile& input, const NetRequest& request,
+                       const GlobalOptions& global, Phases& phases) {
+  BSplineExportRequest e = given_request;
+  const BSplineResolved r = resolve_bspline(request, input, e.file);
+  const BSplineInput& in = *input.bspline;
+  if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  if (!e.obj && !e.mtx && !e.ply && !e.vts) e.obj = e.mtx = true;
+  if (e.mtx && r.method != Method::kAlpha)
+    throw InputError("command line", "--mtx",
+                     "Matrix Market export needs --method alpha (closed forms solve no system)");
+  if (!e.prefix.empty() && safe_file_stem(e.prefix) != e.prefix)
+    throw InputError("command line", "--prefix",
+                     "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
+  check_bspline_memory(global, in, e.file);
+  const bool sampled = e.obj || e.ply || e.vts;
+  if (sampled)
+    check_memory(global, samples_bytes(e.samples), fmt::format("{} x {} surface samples", e.samples, e.samples),
+                 "command line", "--samples");
+  const std::string prefix = e.prefix.empty() ? safe_file_stem(input.boundary.name) : e.prefix;
+
+  OutputSet out(e.out_dir);
+  std::vector<std::string> names;
+  if (e.obj) names.insert(names.end(), {prefix + ".surface.obj", prefix + ".net.obj"});
+  if (e.ply) names.push_back(prefix + ".surface.ply");
+  if (e.vts) names.push_back(prefix + ".surface.vts");
+  if (e.mtx) names.insert(names.end(), {prefix + ".A.mtx", prefix + ".B.mtx"});
+  for (const auto& name : names)
+    if (!e.force && std::filesystem::exists(out.path_of(name)))
+      throw InputError(out.path_of(name), "--force", "exists; give --force to overwrite it");
+
+  const BSplineSurface frame_surface = bspline_surface_on(in.compatible, bspline_frame(in.compatible));
+  nlohmann::json report = {{"boundary", input.boundary.name},
+                           {"degree", {frame_surface.net.m, frame_surface.net.n}},
+                           {"method", to_string(r.method)}};
+  report["bspline"] = bspline_block(frame_surface, in);
+  BSplineNetOutcome outcome;
+  if (sampled) {
+    phases.start("solve");
+    outcome = solve_bspline(in, r);
+    if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
+    if (outcome.summary && !outcome.summary->ok()) {
+      nlohmann::json failed =
+          bspline_net_report(input.boundary.name, in, r.method, r.alpha, outcome, r.picked_automatically);
+      failed["timing"] = phases.timing();
+      print_json(failed);
+      print_solver_failure(e.file, *outcome.summary);
+      return kExitSolverFailed;
+    }
+  }
+  std::vector<std::string> written;
+  const auto write = [&](const std::string& name, const std::function<void(std::ostream&)>& body) {
+    written.push_back(out.path_of(name));
+    out.write(name, body);
+  };
+  if (sampled) {
+    phases.start("write");
+    const SurfaceSamples samples = sample_bspline_grid(outcome.surface, e.samples);
+    const std::string comment =
+        fmt::format("B-spline surface of {} ({} x {} samples)", input.boundary.name, e.samples, e.samples);
+    if (e.obj) {
+      write(prefix + ".surface.obj", [&](std::ostream& o) { write_grid_obj(o, samples, comment); });
+      write(prefix + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.surface.net); });
+    }
+    if (e.ply) write(prefix + ".surface.ply", [&](std::ostream& o) { write_grid_ply(o, samples, comment); });
+    if (e.vts) write(prefix + ".surface.vts", [&](std::ostream& o) { write_grid_vts(o, samples); });
+  }
+  if (e.mtx) {
+    phases.start("assemble");
+    const NonUniformMaskSystem system =
+        assemble_nonuniform_mask_system(bspline_frame(in.compatible), greville_grid(in.compatible), r.alpha);
+    phases.start("write");
+    write(prefix + ".A.mtx", [&](std::ostream& o) { write_matrix_market(o, system.A); });
+    write(prefix + ".B.mtx", [&](std::ostream& o) { write_dense_matrix_market(o, system.B); });
+    report["matrix_market"] = {
+        {"matrix", "coordinate real general (both triangles stored): the non-uniform alpha system, rows scaled"},
+        {"rhs", "array real general, #interior by 3 (x, y, z)"}};
+  }
+  report["written"] = written;
+  report["timing"] = phases.timing();
+  print_json(report);
+  out.commit();
+  return kExitOk;
+}
+
+}  // namespace coons::cli

@@ -1,0 +1,137 @@
+// `coons import-step` and `coons export --step/--iges` (docs/cad.md).
+#include "cad_commands.h"
+
+#include <filesystem>
+#include <memory>
+
+#include "coons/config.h"
+#include "coons/io/bspline_boundary_io.h"
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+#if COONS_HAVE_OCCT
+#include "coons/cad/cad_surface.h"
+#include "coons/cad/step_import.h"
+#endif
+
+namespace coons::cli {
+
+namespace {
+
+constexpr const char* kNoOcct =
+    "this coons was built without OpenCASCADE (apt-get install libocct-data-exchange-dev "
+    "libocct-modeling-algorithms-dev, then reconfigure; docs/cad.md)";
+
+struct ImportRequest {
+  std::string file, out, name;
+  int face = -1;
+  std::vector<int> edges;
+  double gap_tolerance = 1e-6;
+  bool force = false;
+};
+
+int run_import_step(const ImportRequest& q) {
+#if COONS_HAVE_OCCT
+  if (q.out.empty()) throw InputError("command line", "--out", "is required (the boundary file to write)");
+  if (!q.force && std::filesystem::exists(q.out))
+    throw InputError(q.out, "--force", "exists; give --force to overwrite it");
+  cad::StepImportOptions options;
+  options.face = q.face;
+  options.edges = q.edges;
+  options.gap_tolerance = q.gap_tolerance;
+  const cad::StepImport import = cad::import_step_boundary(q.file, options);
+  const std::string what = q.face >= 0 ? "face " + std::to_string(q.face) : "4 edges";
+  const std::string name = q.name.empty() ? std::filesystem::path(q.file).stem().string() +
+                                                (q.face >= 0 ? "-face" + std::to_string(q.face) : "")
+                                          : q.name;
+  const nlohmann::json doc = cad::boundary_document(import, name, "coons import-step " + q.file + " (" + what + ")");
+  OutputSet out(".", "--out");
+  out.write_path(q.out, [&](std::ostream& o) { o << doc.dump(2) << '\n'; });
+  nlohmann::json report = {{"file", q.file}, {"boundary", name}, {"import", cad::import_note(import)}};
+  report["written"] = {q.out};
+  print_json(report);
+  out.commit();
+  return kExitOk;
+#else
+  (void)q;
+  throw InputError("command line", "import-step", kNoOcct);
+#endif
+}
+
+}  // namespace
+
+void add_cad_export_options(CLI::App& cmd, CadExportRequest& r) {
+  cmd.add_option("--step", r.step, "also write the net as a B-spline surface to this STEP file (OpenCASCADE)");
+  cmd.add_option("--iges", r.iges, "also write the net as a B-spline surface to this IGES file (OpenCASCADE)");
+}
+
+CadExportPlan check_cad_export(const CadExportRequest& r, const std::string& boundary_path, const Boundary& b,
+                               Method method, bool classical, bool force) {
+  const std::string option = r.step.empty() ? "--iges" : "--step";
+  if (!COONS_HAVE_OCCT) throw InputError("command line", option, kNoOcct);
+  for (const std::string* path : {&r.step, &r.iges})
+    if (!path->empty() && !force && std::filesystem::exists(*path))
+      throw InputError(*path, "--force", "exists; give --force to overwrite it");
+  if (!r.step.empty() && r.step == r.iges) throw InputError("command line", "--iges", "is the same file as --step");
+  CadExportPlan plan;
+  const nlohmann::json doc = read_json_file(boundary_path);
+  plan.bspline = parse_bspline_knots(doc, boundary_path, b.m + 1, b.n + 1).has_value();
+  if (plan.bspline && (method != Method::kCoons || !classical))
+    throw InputError("command line", option,
+                     "a B-spline boundary (knots_u, knots_v) is written as its Greville Coons net: give --method coons "
+                     "(the non-uniform mask family is not exported in this version)");
+  return plan;
+}
+
+std::vector<std::string> write_cad_export(const CadExportRequest& r, const CadExportPlan& plan,
+                                          const std::string& boundary_path, const Boundary& b, const ControlNet& net,
+                                          OutputSet& out) {
+#if COONS_HAVE_OCCT
+  BSplineSurface surface;
+  if (plan.bspline) {
+    const nlohmann::json doc = read_json_file(boundary_path);
+    const BSplineKnots knots = *parse_bspline_knots(doc, boundary_path, b.m + 1, b.n + 1);
+    // The Greville net does not change under an affine map of the knots: keep the file's knots.
+    surface = greville_coons_surface(compatible_boundary(bspline_boundary(b, knots)));
+    surface.knots_u = knots.knots_u;
+    surface.knots_v = knots.knots_v;
+  } else {
+    surface = cad::bezier_as_bspline(net);
+  }
+  std::vector<std::string> written;
+  if (!r.step.empty()) {
+    cad::check_writable(surface, r.step, "--step");
+    out.write_path(r.step, [&](std::ostream& o) { cad::write_step_surface(o, surface, r.step); });
+    written.push_back(r.step);
+  }
+  if (!r.iges.empty()) {
+    cad::check_writable(surface, r.iges, "--iges");
+    out.write_path(r.iges, [&](std::ostream& o) { cad::write_iges_surface(o, surface, r.iges); });
+    written.push_back(r.iges);
+  }
+  return written;
+#else
+  (void)plan, (void)boundary_path, (void)b, (void)net, (void)out;
+  throw InputError("command line", r.step.empty() ? "--iges" : "--step", kNoOcct);
+#endif
+}
+
+void register_import_step(CLI::App& app, Registry& registry) {
+  auto q = std::make_shared<ImportRequest>();
+  auto* cmd = app.add_subcommand("import-step", "a boundary file from four edges of a STEP file (OpenCASCADE)");
+  cmd->add_option("FILE", q->file, "STEP file (.step, .stp)")->required();
+  auto* face = cmd->add_option("--face", q->face, "the outer wire of face K (0-based, OpenCASCADE's order)");
+  auto* edges = cmd->add_option("--edges", q->edges, "four edges a,b,c,d (0-based), any order and orientation")
+                    ->delimiter(',')
+                    ->expected(4);
+  face->excludes(edges);
+  cmd->add_option("--out", q->out, "the boundary file to write (docs/formats.md)")->required();
+  cmd->add_option("--name", q->name, "the boundary's name (default: the file's stem and the face)");
+  cmd->add_option("--gap-tolerance", q->gap_tolerance,
+                  "largest corner gap, as a fraction of the bounding-box diagonal of the poles")
+      ->capture_default_str();
+  cmd->add_flag("--force", q->force, "overwrite an existing --out file");
+  set_example(*cmd, "coons import-step data/cad/bspline_patch.step --face 0 --out patch.json");
+  registry.add(cmd, [q] { return run_import_step(*q); });
+}
+
+}  // namespace coons::cli

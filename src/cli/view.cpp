@@ -1,0 +1,208 @@
+// `coons view BOUNDARY --out PAGE.html`: one self-contained HTML page (three.js inlined) with the
+// surface shaded with reflection lines, its control net, an α slider over precomputed nets and
+// the energy curves with the optima (coons/study/view_data.h, coons/io/view_page.h); a boundary
+// with ribbons also gets the C1 family's weight slider, a triangular boundary the slider of c.
+#include <fmt/format.h>
+
+#include <filesystem>
+#include <fstream>
+#include <memory>
+#include <sstream>
+
+#include "coons/config.h"
+#include "coons/io/boundary_curves.h"
+#include "coons/io/input_error.h"
+#include "coons/io/tri_boundary_io.h"
+#include "coons/io/view_page.h"
+#include "coons/io/write_files.h"
+#include "coons/net/degree_elevation.h"
+#include "coons/study/backend_choice.h"
+#include "coons/study/two_ring_problem.h"
+#include "coons/study/view_data.h"
+#include "coons/tri/tri_solve.h"
+#include "registry.h"
+#include "view_command.h"
+
+namespace coons::cli {
+
+namespace {
+
+struct ViewRequest {
+  std::string boundary;
+  std::string out;
+  int alphas = 101;
+  int samples = 33;
+  double from = -0.25, to = 0.25;
+  std::optional<double> alpha;
+  std::vector<int> degree;
+  std::string three_js = COONS_THREE_JS_PATH;
+  std::string solver = "auto";
+  double corner_tolerance = 1e-9;
+  GlobalOptions global;
+};
+
+}  // namespace
+
+std::string read_three_js(const std::string& path) {
+  if (path.empty())
+    throw InputError("command line", "--three-js",
+                     "three.js was not found when coons was built: install the Debian package libjs-three "
+                     "(then reconfigure) or give --three-js PATH/three.min.js");
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "--three-js", "cannot open three.js (Debian package libjs-three)");
+  std::ostringstream text;
+  text << in.rdbuf();
+  if (text.str().find("REVISION") == std::string::npos)
+    throw InputError(path, "--three-js", "this is not three.js (no REVISION in it)");
+  return text.str();
+}
+
+namespace {
+
+// The boundary at the degree asked for: refitted from its analytic sides, or elevated exactly.
+Boundary at_degree(const Boundary& b, const std::vector<int>& degree, const std::string& path) {
+  if (degree.empty()) return b;
+  if (degree.size() != 2 || degree[0] < 1 || degree[1] < 1 || degree[0] > 200 || degree[1] > 200)
+    throw InputError("command line", "--degree", "needs two degrees M N in [1, 200]");
+  const int m = degree[0], n = degree[1];
+  if (const auto curves = read_boundary_curves(path))
+    return fit_boundary_or_throw(*curves, m, n, b.name, path).boundary;
+  if (m >= b.m && n >= b.n) return elevate_boundary(b, m, n);
+  throw InputError(path, "curves",
+                   fmt::format("degree ({}, {}) is below the boundary's ({}, {}); lowering it needs the analytic "
+                               "sides (a \"curves\" object)",
+                               m, n, b.m, b.n));
+}
+
+// The triangle's slider (c of the triangular family; `--degree`, `--from`/`--to` do not apply).
+ViewSlider triangle_slider(const ViewRequest& r, const ViewOptions& options, std::string* solver_name,
+                           std::string* title, nlohmann::json* degree) {
+  if (!r.degree.empty()) throw InputError("command line", "--degree", "does not apply to a triangular boundary");
+  TriBoundaryReadOptions read;
+  read.corner_tolerance = r.corner_tolerance;
+  const tri::TriBoundary t = read_tri_boundary_file(r.boundary, read);
+  const solvers::SolverInfo* solver = &tri::default_tri_solver();
+  if (r.solver != "auto") {
+    solver = solver_from_name(r.solver);
+    const tri::TriBackendCheck check = tri::check_tri_backend(*solver, tri::TriMask{-1.0 / 6.0});
+    if (!check.applicable) throw InputError("command line", "--solver", check.reason);
+  }
+  *solver_name = solver->name;
+  *title = t.name.empty() ? r.boundary : t.name;
+  *degree = t.n;
+  ViewOptions tri_options = options;
+  tri_options.lower = tri_options.upper = 0;  // the search's default bounds
+  ViewSlider slider = tri_view_slider(t, tri_options, *solver, r.alpha.value_or(-1.0 / 6.0));
+  if (!r.alpha)
+    for (const ViewCurve& c : slider.curves)
+      if (c.name == "thin_plate" && c.optimum) slider.initial = *c.optimum;
+  return slider;
+}
+
+int run_view(const ViewRequest& r) {
+  Phases phases("view");
+  phases.start("read");
+  if (!r.global.force && std::filesystem::exists(r.out))
+    throw InputError(r.out, "--force", "exists; give --force to overwrite it");
+  const std::filesystem::path parent = std::filesystem::path(r.out).parent_path();
+  if (!parent.empty() && !std::filesystem::is_directory(parent))
+    throw InputError("command line", "--out", fmt::format("the folder '{}' does not exist", parent.string()));
+  const std::string three_js = read_three_js(r.three_js);
+  ViewOptions options;
+  options.frames = r.alphas;
+  options.samples = r.samples;
+  options.lower = r.from;
+  options.upper = r.to;
+  std::string why;
+  if (!options.is_valid(&why)) throw InputError("command line", "--alphas/--samples/--from/--to", why);
+  ViewPage page;
+  page.generator = std::string("coons ") + COONS_VERSION;
+  std::string solver_name;
+  nlohmann::json degree;  // [m, n], or n for a triangle
+  if (is_triangle_file(r.boundary)) {
+    phases.start("solve");
+    page.sliders.push_back(triangle_slider(r, options, &solver_name, &page.title, &degree));
+    page.subtitle =
+        fmt::format("triangular net, {} values of c, solver {}", page.sliders[0].frames.size(), solver_name);
+  } else {
+    const BoundaryFile file = read_input(r.boundary, r.corner_tolerance);
+    const Boundary b = at_degree(file.boundary, r.degree, r.boundary);
+    degree = {b.m, b.n};
+    if (r.alpha && !(*r.alpha >= r.from && *r.alpha <= r.to))
+      throw InputError("command line", "--alpha", fmt::format("must lie in [{}, {}]", r.from, r.to));
+    const solvers::SolverInfo& solver = search_backend(solver_from_name(r.solver), b, false);
+    solver_name = solver.name;
+    const double points = (b.m + 1.0) * (b.n + 1.0) + 2.0 * r.samples * r.samples;
+    check_memory(r.global, (2 * r.alphas + 12.0) * points * 3 * (8 + 14) + 2e6,
+                 fmt::format("a page of {} nets of degree ({}, {})", r.alphas, b.m, b.n), r.boundary, "degree");
+    // the C1 family's slider where the file has two data rings (ribbons) and keeps its degree
+    const TwoRingProblem two = two_ring_problem(file);
+    const bool weight = two.problem && (b.m == file.boundary.m && b.n == file.boundary.n);
+
+    phases.start("solve");
+    page.sliders.push_back(alpha_view_slider(b, options, solver, r.alpha.value_or(-0.25)));
+    if (!r.alpha)  // open at the thin-plate optimum when there is one
+      for (const ViewCurve& c : page.sliders[0].curves)
+        if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
+    if (weight) {
+      const solvers::SolverInfo& weight_solver = weight_search_backend(solver_from_name(r.solver), true);
+      page.sliders.push_back(weight_view_slider(*two.problem, options, weight_solver, 1.0));
+      for (const ViewCurve& c : page.sliders[1].curves)
+        if (c.name == "thin_plate" && c.optimum) page.sliders[1].initial = *c.optimum;
+    }
+    page.title = b.name.empty() ? r.boundary : b.name;
+    page.subtitle =
+        fmt::format("degree ({}, {}), {} values of α in [{}, {}]{}, solver {}", b.m, b.n, page.sliders[0].frames.size(),
+                    r.from, r.to, weight ? ", and the C1 weight w on the ribbons" : "", solver.name);
+  }
+  if (!page.is_valid(&why)) throw std::logic_error("view page: " + why);
+
+  phases.start("write");
+  const std::string html = view_page_html(page, three_js);
+  OutputSet out(parent.empty() ? "." : parent.string());
+  out.write_path(r.out, [&](std::ostream& o) { o << html; });
+  const ViewSlider& alpha = page.sliders.front();
+  nlohmann::json summary = {{"boundary", page.title},         {"degree", degree},     {"page", r.out},
+                            {"frames", alpha.frames.size()},  {"samples", r.samples}, {"bytes", html.size()},
+                            {"initial_alpha", alpha.initial}, {"solver", solver_name}};
+  for (const ViewSlider& s : page.sliders) {
+    nlohmann::json optima = nlohmann::json::object();
+    for (const ViewCurve& c : s.curves)
+      optima[c.name] = c.optimum ? nlohmann::json(*c.optimum) : nlohmann::json(c.status);
+    summary[s.parameter == "alpha" ? "optima" : s.parameter + "_optima"] = optima;
+  }
+  summary["sliders"] = nlohmann::json::array();
+  for (const ViewSlider& s : page.sliders) summary["sliders"].push_back(s.parameter);
+  summary["timing"] = phases.timing();
+  print_json(summary);
+  out.commit();
+  return kExitOk;
+}
+
+}  // namespace
+
+void register_view(CLI::App& app, Registry& registry) {
+  auto r = std::make_shared<ViewRequest>();
+  auto* cmd = app.add_subcommand("view",
+                                 "one self-contained HTML page: the surface with reflection lines, its net, an "
+                                 "alpha slider and the energy curves with the optima");
+  cmd->add_option("BOUNDARY", r->boundary, "boundary JSON file (docs/formats.md)")->required();
+  cmd->add_option("--out", r->out, "the HTML file to write")->required();
+  cmd->add_option("--alphas", r->alphas, "alpha values on an even grid (the optima are added)")->capture_default_str();
+  cmd->add_option("--samples", r->samples, "surface samples per direction")->capture_default_str();
+  cmd->add_option("--from", r->from, "smallest alpha")->capture_default_str();
+  cmd->add_option("--to", r->to, "largest alpha")->capture_default_str();
+  cmd->add_option("--alpha", r->alpha, "the alpha shown first (default: the thin-plate optimum, else -0.25)");
+  cmd->add_option("--degree", r->degree, "M N: refit (or elevate) the boundary to this degree first")->expected(2);
+  cmd->add_option("--three-js", r->three_js, "three.min.js to inline (Debian libjs-three)")->capture_default_str();
+  cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                  "corners must agree to this fraction of the bounding-box diagonal")
+      ->capture_default_str();
+  cmd->add_flag("--force", r->global.force, "overwrite the page");
+  add_solver_option(*cmd, r->solver);
+  add_memory_option(*cmd, r->global);
+  set_example(*cmd, "coons view data/boundaries/dome.json --out dome.html   (then open dome.html#alpha=-0.2)");
+  registry.add(cmd, [r] { return run_view(*r); });
+}
+
+}  // namespace coons::cli

@@ -1,0 +1,188 @@
+#include "coons/cad/occt_convert.h"
+
+#include <APIHeaderSection_MakeHeader.hxx>
+#include <IFSelect_ReturnStatus.hxx>
+#include <IGESControl_Reader.hxx>
+#include <IGESControl_Writer.hxx>
+#include <IGESData_IGESModel.hxx>
+#include <IGESData_IGESWriter.hxx>
+#include <IGESSelect_WorkLibrary.hxx>
+#include <Interface_Static.hxx>
+#include <Message.hxx>
+#include <Message_Messenger.hxx>
+#include <Message_PrinterOStream.hxx>
+#include <STEPControl_Reader.hxx>
+#include <STEPControl_Writer.hxx>
+#include <Standard_Failure.hxx>
+#include <StepData_Protocol.hxx>
+#include <StepData_StepModel.hxx>
+#include <StepData_StepWriter.hxx>
+#include <TColStd_Array1OfInteger.hxx>
+#include <TColStd_Array1OfReal.hxx>
+#include <TColgp_Array1OfPnt.hxx>
+#include <TColgp_Array2OfPnt.hxx>
+#include <TCollection_HAsciiString.hxx>
+#include <XSControl_WorkSession.hxx>
+#include <filesystem>
+#include <fstream>
+#include <mutex>
+#include <utility>
+#include <vector>
+
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+
+namespace coons::cad {
+
+namespace {
+
+// Distinct knots and their multiplicities as OpenCASCADE arrays (1-based).
+std::pair<TColStd_Array1OfReal, TColStd_Array1OfInteger> occt_knots(const Eigen::VectorXd& knots) {
+  const auto distinct = knot_multiplicities(knots);
+  TColStd_Array1OfReal values(1, int(distinct.size()));
+  TColStd_Array1OfInteger mults(1, int(distinct.size()));
+  for (std::size_t k = 0; k < distinct.size(); ++k) {
+    values(int(k) + 1) = distinct[k].first;
+    mults(int(k) + 1) = distinct[k].second;
+  }
+  return {values, mults};
+}
+
+Eigen::VectorXd full_knots(const TColStd_Array1OfReal& sequence) {
+  Eigen::VectorXd knots(sequence.Length());
+  for (int k = sequence.Lower(); k <= sequence.Upper(); ++k) knots(k - sequence.Lower()) = sequence(k);
+  return knots;
+}
+
+// Every real as %.16E: 17 significant digits, so that strtod on reading gives the same double.
+// Zero suppression stays off: OpenCASCADE's suppression cuts the exponent of long mantissas.
+void exact_reals(Interface_FloatWriter& writer) {
+  writer.SetFormat("%.16E");
+  writer.SetZeroSuppress(Standard_False);
+}
+
+}  // namespace
+
+Handle(Geom_BSplineCurve) to_occt(const BSplineCurve& c) {
+  TColgp_Array1OfPnt poles(1, c.count());
+  for (int i = 0; i < c.count(); ++i) poles(i + 1) = gp_Pnt(c.points(i, 0), c.points(i, 1), c.points(i, 2));
+  const auto [knots, mults] = occt_knots(c.knots);
+  return new Geom_BSplineCurve(poles, knots, mults, c.degree);
+}
+
+Handle(Geom_BSplineSurface) to_occt(const BSplineSurface& s) {
+  TColgp_Array2OfPnt poles(1, s.net.m + 1, 1, s.net.n + 1);
+  for (int i = 0; i <= s.net.m; ++i)
+    for (int j = 0; j <= s.net.n; ++j) {
+      const auto p = s.net.at(i, j);
+      poles(i + 1, j + 1) = gp_Pnt(p(0), p(1), p(2));
+    }
+  const auto [ku, mu] = occt_knots(s.knots_u);
+  const auto [kv, mv] = occt_knots(s.knots_v);
+  return new Geom_BSplineSurface(poles, ku, kv, mu, mv, s.degree_u, s.degree_v);
+}
+
+BSplineCurve from_occt(const Geom_BSplineCurve& c) {
+  BSplineCurve out;
+  out.degree = c.Degree();
+  TColStd_Array1OfReal sequence(1, c.NbPoles() + c.Degree() + 1);
+  c.KnotSequence(sequence);
+  out.knots = full_knots(sequence);
+  out.points.resize(c.NbPoles(), 3);
+  for (int i = 1; i <= c.NbPoles(); ++i) {
+    const gp_Pnt& p = c.Pole(i);
+    out.points.row(i - 1) << p.X(), p.Y(), p.Z();
+  }
+  return out;
+}
+
+BSplineSurface from_occt(const Geom_BSplineSurface& s) {
+  BSplineSurface out;
+  out.degree_u = s.UDegree();
+  out.degree_v = s.VDegree();
+  TColStd_Array1OfReal su(1, s.NbUPoles() + s.UDegree() + 1), sv(1, s.NbVPoles() + s.VDegree() + 1);
+  s.UKnotSequence(su);
+  s.VKnotSequence(sv);
+  out.knots_u = full_knots(su);
+  out.knots_v = full_knots(sv);
+  out.net = ControlNet(s.NbUPoles() - 1, s.NbVPoles() - 1);
+  for (int i = 1; i <= s.NbUPoles(); ++i)
+    for (int j = 1; j <= s.NbVPoles(); ++j) {
+      const gp_Pnt& p = s.Pole(i, j);
+      out.net.at(i - 1, j - 1) << p.X(), p.Y(), p.Z();
+    }
+  return out;
+}
+
+void silence_occt_messages() {
+  static std::once_flag once;
+  std::call_once(once, [] { Message::DefaultMessenger()->RemovePrinters(STANDARD_TYPE(Message_PrinterOStream)); });
+}
+
+void write_step_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& time_stamp,
+                      const std::string& target) {
+  silence_occt_messages();
+  STEPControl_Writer writer;
+  if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
+    throw InputError(target, "--step", "OpenCASCADE could not translate the surface to STEP");
+  const Handle(StepData_StepModel) model = writer.Model();
+  if (!time_stamp.empty()) {
+    APIHeaderSection_MakeHeader header(model);
+    header.SetTimeStamp(new TCollection_HAsciiString(time_stamp.c_str()));
+    header.Apply(model);
+  }
+  StepData_StepWriter step(model);
+  exact_reals(step.FloatWriter());
+  step.SendModel(Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol()));
+  if (!step.Print(out)) throw InputError(target, "--step", "OpenCASCADE could not print the STEP file");
+}
+
+void write_iges_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& target) {
+  silence_occt_messages();
+  IGESControl_Writer writer("MM", 0);
+  if (!writer.AddShape(shape))
+    throw InputError(target, "--iges", "OpenCASCADE could not translate the surface to IGES");
+  writer.ComputeModel();
+  IGESData_IGESWriter iges(writer.Model());
+  exact_reals(iges.FloatWriter());
+  iges.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
+  if (!iges.Print(out)) throw InputError(target, "--iges", "OpenCASCADE could not print the IGES file");
+}
+
+namespace {
+
+void require_readable(const std::string& path) {
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, kDocumentField, "cannot be read (not an existing regular file)");
+  std::ifstream probe(path);
+  if (!probe) throw InputError(path, kDocumentField, "cannot be read");
+}
+
+}  // namespace
+
+TopoDS_Shape read_step_shape(const std::string& path) {
+  silence_occt_messages();
+  require_readable(path);
+  STEPControl_Reader reader;
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    throw InputError(path, kDocumentField, "OpenCASCADE cannot read it as a STEP file");
+  if (reader.TransferRoots() == 0) throw InputError(path, kDocumentField, "the STEP file holds no shape");
+  TopoDS_Shape shape = reader.OneShape();
+  if (shape.IsNull()) throw InputError(path, kDocumentField, "the STEP file holds no shape");
+  return shape;
+}
+
+TopoDS_Shape read_iges_shape(const std::string& path) {
+  silence_occt_messages();
+  require_readable(path);
+  IGESControl_Reader reader;
+  if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
+    throw InputError(path, kDocumentField, "OpenCASCADE cannot read it as an IGES file");
+  if (reader.TransferRoots() == 0) throw InputError(path, kDocumentField, "the IGES file holds no shape");
+  TopoDS_Shape shape = reader.OneShape();
+  if (shape.IsNull()) throw InputError(path, kDocumentField, "the IGES file holds no shape");
+  return shape;
+}
+
+}  // namespace coons::cad

@@ -1,0 +1,321 @@
+#include "coons/cad/step_import.h"
+
+#include <fmt/format.h>
+
+#include <BRepTools.hxx>
+#include <BRep_Tool.hxx>
+#include <Geom2d_Curve.hxx>
+#include <GeomConvert.hxx>
+#include <Geom_BSplineCurve.hxx>
+#include <Geom_Curve.hxx>
+#include <Geom_TrimmedCurve.hxx>
+#include <Precision.hxx>
+#include <ShapeAnalysis_WireOrder.hxx>
+#include <Standard_Failure.hxx>
+#include <TopExp.hxx>
+#include <TopExp_Explorer.hxx>
+#include <TopTools_IndexedMapOfShape.hxx>
+#include <TopoDS.hxx>
+#include <TopoDS_Edge.hxx>
+#include <TopoDS_Face.hxx>
+#include <TopoDS_Wire.hxx>
+#include <algorithm>
+#include <array>
+#include <cmath>
+#include <set>
+
+#include "coons/cad/occt_convert.h"
+#include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
+
+namespace coons::cad {
+
+namespace {
+// Corner k joins side k of the loop (bottom, right, top, left) to side k + 1.
+constexpr std::array<const char*, 4> kCorner{"bottom-right", "top-right", "top-left", "bottom-left"};
+constexpr std::array<const char*, 4> kSide{"bottom", "right", "top", "left"};
+}  // namespace
+
+bool StepImportOptions::is_valid(std::string* why) const {
+  auto fail = [&](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if ((face >= 0) == !edges.empty()) return fail("give exactly one of --face and --edges");
+  if (face < -1) return fail("--face must be >= 0");
+  if (!edges.empty()) {
+    if (edges.size() != 4) return fail(fmt::format("--edges needs 4 edge indices ({} given)", edges.size()));
+    if (std::set<int>(edges.begin(), edges.end()).size() != 4) return fail("--edges: the 4 indices must differ");
+    for (int e : edges)
+      if (e < 0) return fail("--edges: indices are >= 0");
+  }
+  if (!std::isfinite(gap_tolerance) || gap_tolerance < 0) return fail("--gap-tolerance must be finite and >= 0");
+  return true;
+}
+
+bool StepImport::is_bezier() const {
+  auto single = [](const BSplineCurve& c) { return c.count() == c.degree + 1; };
+  return single(boundary.bottom) && single(boundary.top) && single(boundary.left) && single(boundary.right);
+}
+
+namespace {
+
+BSplineCurve reversed(const BSplineCurve& c) {
+  BSplineCurve r = c;
+  const double a = c.start(), b = c.end();
+  for (Eigen::Index k = 0; k < c.knots.size(); ++k) r.knots(k) = a + b - c.knots(c.knots.size() - 1 - k);
+  r.points = c.points.colwise().reverse();
+  return r;
+}
+
+// The edge's 3D curve over its parameter range as a non-rational, non-periodic B-spline.
+BSplineCurve edge_curve(const TopoDS_Edge& edge, int index, const std::string& path) {
+  const std::string field = fmt::format("edge {}", index);
+  if (BRep_Tool::Degenerated(edge))
+    throw InputError(path, field, "is degenerated (a point): a Coons side needs a curve");
+  double first = 0, last = 0;
+  const Handle(Geom_Curve) curve = BRep_Tool::Curve(edge, first, last);
+  if (curve.IsNull()) throw InputError(path, field, "has no 3D curve");
+  Handle(Geom_BSplineCurve) bspline;
+  try {
+    bspline = GeomConvert::CurveToBSplineCurve(new Geom_TrimmedCurve(curve, first, last));
+  } catch (const Standard_Failure& e) {
+    throw InputError(path, field,
+                     std::string("OpenCASCADE cannot convert its ") + curve->DynamicType()->Name() +
+                         " to a B-spline: " + e.GetMessageString());
+  }
+  if (bspline.IsNull())
+    throw InputError(path, field, std::string("its ") + curve->DynamicType()->Name() + " has no B-spline form");
+  if (bspline->IsRational())
+    throw InputError(path, field,
+                     std::string("is rational (") + curve->DynamicType()->Name() +
+                         " as a rational B-spline): rational boundaries are not supported");
+  if (bspline->IsPeriodic()) bspline->SetNotPeriodic();
+  BSplineCurve c = from_occt(*bspline);
+  std::string why;
+  if (!c.is_valid(&why)) throw InputError(path, field, "its B-spline form is not clamped: " + why);
+  return c;
+}
+
+// For a face: the position in its wire of the edge that runs along v = v_min of the face's
+// parameter rectangle, and whether it runs towards decreasing u; {-1, false} when there is none.
+std::pair<int, bool> bottom_of_face(const TopoDS_Face& face, const TopoDS_Wire& wire) {
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  const double tol = 1e-9 * std::max(1.0, std::abs(v1 - v0)) + Precision::PConfusion();
+  int k = 0;
+  for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next(), ++k) {
+    double first = 0, last = 0;
+    const Handle(Geom2d_Curve) uv = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Current()), face, first, last);
+    if (uv.IsNull()) continue;
+    const gp_Pnt2d a = uv->Value(first), b = uv->Value(last), m = uv->Value(0.5 * (first + last));
+    if (std::abs(a.Y() - v0) <= tol && std::abs(b.Y() - v0) <= tol && std::abs(m.Y() - v0) <= tol &&
+        std::abs(a.X() - b.X()) > tol)
+      return {k, b.X() < a.X()};
+  }
+  return {-1, false};
+}
+
+gp_XYZ xyz(const Eigen::RowVector3d& p) { return {p(0), p(1), p(2)}; }
+
+double diagonal_of(const std::array<BSplineCurve, 4>& curves) {
+  Eigen::RowVector3d lo = curves[0].points.row(0), hi = lo;
+  for (const auto& c : curves) {
+    lo = lo.cwiseMin(c.points.colwise().minCoeff());
+    hi = hi.cwiseMax(c.points.colwise().maxCoeff());
+  }
+  return (hi - lo).norm();
+}
+
+}  // namespace
+
+namespace {
+
+StepImport import_boundary(const std::string& path, const StepImportOptions& options) {
+  std::string why;
+  if (!options.is_valid(&why)) {
+    std::string field = options.face >= 0 ? "--face" : "--edges";
+    if (why.rfind("--", 0) == 0) field = why.substr(0, why.find_first_of(" :"));  // the option the rule names
+    throw InputError("command line", field, why);
+  }
+  const TopoDS_Shape shape = read_step_shape(path);
+  TopTools_IndexedMapOfShape faces, edges;
+  TopExp::MapShapes(shape, TopAbs_FACE, faces);
+  TopExp::MapShapes(shape, TopAbs_EDGE, edges);
+  StepImport out;
+  out.file_faces = faces.Extent();
+  out.file_edges = edges.Extent();
+
+  std::vector<int> chosen;  // the file's edge indices, 0-based
+  int start_edge = 0;       // position in `chosen` of the bottom side
+  bool start_reversed = false;
+  if (options.face >= 0) {
+    if (options.face >= faces.Extent())
+      throw InputError(path, "--face",
+                       faces.Extent() == 0 ? fmt::format("face {} out of range: the file has no faces", options.face)
+                                           : fmt::format("face {} out of range: the file has {} face(s), 0 to {}",
+                                                         options.face, faces.Extent(), faces.Extent() - 1));
+    const TopoDS_Face face = TopoDS::Face(faces(options.face + 1));
+    const TopoDS_Wire wire = BRepTools::OuterWire(face);
+    if (wire.IsNull()) throw InputError(path, "--face", fmt::format("face {} has no outer wire", options.face));
+    for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) chosen.push_back(edges.FindIndex(e.Current()) - 1);
+    if (chosen.size() != 4)
+      throw InputError(
+          path, "--face",
+          fmt::format("face {} has {} edges in its outer wire; a Coons boundary needs 4", options.face, chosen.size()));
+    const auto [bottom, reversed_bottom] = bottom_of_face(face, wire);
+    if (bottom >= 0) {
+      start_edge = bottom;
+      start_reversed = reversed_bottom;
+    }
+  } else {
+    for (int e : options.edges)
+      if (e >= edges.Extent())
+        throw InputError(path, "--edges",
+                         fmt::format("edge {} out of range: the file has {} edge(s){}", e, edges.Extent(),
+                                     edges.Extent() ? fmt::format(", 0 to {}", edges.Extent() - 1) : ""));
+    chosen = options.edges;
+  }
+
+  std::array<BSplineCurve, 4> curves;
+  for (int k = 0; k < 4; ++k) curves[k] = edge_curve(TopoDS::Edge(edges(chosen[k] + 1)), chosen[k], path);
+  out.diagonal = diagonal_of(curves);
+
+  // The chain, as OpenCASCADE orders a wire's edges (3D mode).
+  ShapeAnalysis_WireOrder order(Standard_True, Precision::Confusion());
+  for (const auto& c : curves) order.Add(xyz(c.points.row(0)), xyz(c.points.row(c.count() - 1)));
+  order.Perform(Standard_True);
+  if (!order.IsDone()) throw InputError(path, "edges", "OpenCASCADE could not chain the four edges into a loop");
+  std::array<int, 4> signed_order{};
+  for (int k = 0; k < 4; ++k) signed_order[k] = order.Ordered(k + 1);  // 1-based, negative: reversed
+  // Start at the bottom edge (the first given, or the face's v = v_min edge) in its direction.
+  int start = 0;
+  while (std::abs(signed_order[start]) != start_edge + 1) ++start;
+  std::array<int, 4> chain{};
+  for (int k = 0; k < 4; ++k) chain[k] = signed_order[(start + k) % 4];
+  if ((chain[0] < 0) != start_reversed) {  // walk the loop the other way round
+    const std::array<int, 4> other{-chain[0], -chain[3], -chain[2], -chain[1]};
+    chain = other;
+  }
+  // The loop's sides head to tail. Each curve is reversed at most once (bottom and right run with
+  // the loop, top and left against it), so a curve stored in the side's direction is copied exactly.
+  std::array<BSplineCurve, 4> walk;
+  for (int k = 0; k < 4; ++k) {
+    const int e = std::abs(chain[k]) - 1;
+    walk[k] = chain[k] > 0 ? curves[e] : reversed(curves[e]);
+    out.edge_indices.push_back(chosen[e]);
+    out.edge_reversed.push_back(chain[k] < 0);
+  }
+  std::array<BSplineCurve, 4> sides;  // bottom, right, top, left in their own directions
+  for (int k = 0; k < 4; ++k) {
+    const int e = std::abs(chain[k]) - 1;
+    const bool against_loop = k >= 2;
+    sides[k] = (chain[k] < 0) != against_loop ? reversed(curves[e]) : curves[e];
+  }
+
+  // Corner k joins the end of walk[k] to the start of walk[k + 1].
+  const double limit = options.gap_tolerance * out.diagonal;
+  for (int k = 0; k < 4; ++k) {
+    const BSplineCurve& a = walk[k];
+    const BSplineCurve& b = walk[(k + 1) % 4];
+    const double gap = (a.points.row(a.count() - 1) - b.points.row(0)).norm();
+    out.gaps.push_back(
+        {kCorner[k], fmt::format("edge {} -> edge {}", out.edge_indices[k], out.edge_indices[(k + 1) % 4]), gap});
+    out.max_gap = std::max(out.max_gap, gap);
+    if (!(gap <= limit))
+      throw InputError(path, std::string("corner ") + kCorner[k],
+                       fmt::format("gap {:.6g} between edge {} and edge {} exceeds the tolerance {:.3g} x diagonal "
+                                   "{:.6g} = {:.6g} (--gap-tolerance)",
+                                   gap, out.edge_indices[k], out.edge_indices[(k + 1) % 4], options.gap_tolerance,
+                                   out.diagonal, limit));
+  }
+  // Close the gaps at their midpoints (the clamped ends are the curves' end points).
+  BSplineBoundary raw{sides[0], sides[2], sides[3], sides[1]};
+  auto close = [](auto a, auto b) {  // two rows (block views) of the sides' points
+    if (a == b) return;
+    const Eigen::RowVector3d mid = 0.5 * (a + b);
+    a = mid;
+    b = mid;
+  };
+  close(raw.bottom.points.row(0), raw.left.points.row(0));
+  close(raw.bottom.points.row(raw.bottom.count() - 1), raw.right.points.row(0));
+  close(raw.top.points.row(0), raw.left.points.row(raw.left.count() - 1));
+  close(raw.top.points.row(raw.top.count() - 1), raw.right.points.row(raw.right.count() - 1));
+  // Over [0, 1]; opposite knot vectors that differ by rounding only (a reversed curve's knots are
+  // a + b − u) are made equal, so that no knot is inserted twice a rounding error apart.
+  for (BSplineCurve* c : {&raw.bottom, &raw.top, &raw.left, &raw.right}) *c = reparametrised(*c, 0.0, 1.0);
+  auto snap = [](const BSplineCurve& from, BSplineCurve& to) {
+    if (from.degree == to.degree && from.knots.size() == to.knots.size() &&
+        (from.knots - to.knots).cwiseAbs().maxCoeff() <= 1e-12)
+      to.knots = from.knots;
+  };
+  snap(raw.bottom, raw.top);
+  snap(raw.left, raw.right);
+  out.boundary = compatible_boundary(raw, &out.notes);
+  return out;
+}
+
+}  // namespace
+
+StepImport import_step_boundary(const std::string& path, const StepImportOptions& options) {
+  try {
+    return import_boundary(path, options);
+  } catch (const Standard_Failure& e) {
+    throw InputError(path, kDocumentField, std::string("OpenCASCADE failed: ") + e.GetMessageString());
+  }
+}
+
+namespace {
+
+nlohmann::json points_json(const Eigen::MatrixX3d& P) {
+  nlohmann::json rows = nlohmann::json::array();
+  for (Eigen::Index i = 0; i < P.rows(); ++i) rows.push_back({P(i, 0), P(i, 1), P(i, 2)});
+  return rows;
+}
+
+nlohmann::json knots_json(const Eigen::VectorXd& U) {
+  nlohmann::json knots = nlohmann::json::array();
+  for (Eigen::Index k = 0; k < U.size(); ++k) knots.push_back(U(k));
+  return knots;
+}
+
+}  // namespace
+
+nlohmann::json import_note(const StepImport& import) {
+  nlohmann::json chain = nlohmann::json::array();
+  for (std::size_t k = 0; k < import.edge_indices.size(); ++k)
+    chain.push_back(
+        {{"side", kSide[k]}, {"edge", import.edge_indices[k]}, {"reversed", bool(import.edge_reversed[k])}});
+  nlohmann::json gaps = nlohmann::json::array();
+  for (const auto& g : import.gaps) gaps.push_back({{"corner", g.corner}, {"edges", g.edges}, {"gap", g.gap}});
+  nlohmann::json notes = nlohmann::json::array();
+  for (const auto& n : import.notes)
+    notes.push_back({{"side", n.side}, {"degree_raised_by", n.degree_raised_by}, {"knots_inserted", n.knots_inserted}});
+  return {{"file_faces", import.file_faces},
+          {"file_edges", import.file_edges},
+          {"chain", chain},
+          {"corner_gaps", gaps},
+          {"max_gap", import.max_gap},
+          {"diagonal", import.diagonal},
+          {"compatibility", notes},
+          {"form", import.is_bezier() ? "bezier" : "bspline"}};
+}
+
+nlohmann::json boundary_document(const StepImport& import, const std::string& name, const std::string& source) {
+  const BSplineBoundary& b = import.boundary;
+  nlohmann::json doc = {{"name", name}, {"source", source}};
+  doc["degree"] = {b.bottom.count() - 1, b.left.count() - 1};
+  if (!import.is_bezier()) {
+    doc["degree_spline"] = {b.bottom.degree, b.left.degree};
+    doc["knots_u"] = knots_json(b.bottom.knots);
+    doc["knots_v"] = knots_json(b.left.knots);
+  }
+  doc["bottom"] = points_json(b.bottom.points);
+  doc["top"] = points_json(b.top.points);
+  doc["left"] = points_json(b.left.points);
+  doc["right"] = points_json(b.right.points);
+  doc["import"] = import_note(import);
+  return doc;
+}
+
+}  // namespace coons::cad

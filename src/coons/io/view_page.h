@@ -1,0 +1,83 @@
+// The page of `coons view` (docs/formats.md, "`coons view`"): one self-contained HTML file with
+// three.js inlined, the surface shaded with reflection lines, its control net, one slider per
+// parameter family and the energy curves with the current value and the optima marked. Every net
+// and surface the sliders can show is computed beforehand (view_data.h) and embedded as JSON:
+// per frame the net (#net points by 3) and the sampled surface (#samples by 3, with unit
+// normals); per slider the net's edges and the surface's triangles, shared by its frames.
+// The page sets on document.body: data-PARAMETER (the value shown, e.g. data-alpha; data-mu with
+// it where the frame has a μ), data-ready="1"
+// once drawn, data-net-hash (a hash of the drawn net's coordinates), data-error (the first script
+// error); window.coonsView.setValue(parameter, v) and setAlpha(v) move a slider (the browser test).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace coons {
+
+struct ViewFrame {
+  double parameter = 0;
+  bool ok = true;            //!< false: the solve failed; the page shows no surface for it
+  std::optional<double> mu;  //!< the μ of this α where it has one (m = n, α ∈ [−1/4, 0)), shown beside it
+  Eigen::MatrixX3d net;      //!< control points, in the order of the slider's net_edges indices
+  Eigen::MatrixX3d points;   //!< surface samples
+  Eigen::MatrixX3d normals;  //!< unit normals of the samples (a non-finite one is written as 0)
+};
+
+struct ViewCurve {
+  std::string name;                //!< "thin_plate", "e3", ...
+  std::vector<double> values;      //!< one per frame (non-finite: not drawn)
+  std::optional<double> optimum;   //!< the parameter of its minimum (the search's, not the grid's)
+  std::string status = "success";  //!< the search's status (to_string(SearchStatus))
+};
+
+struct ViewMark {  //!< a named parameter value drawn on the curves (e.g. "Coons" at −1/4)
+  std::string name;
+  double parameter = 0;
+};
+
+struct ViewSlider {
+  std::string parameter;  //!< "alpha" or "weight": the body attribute is data-PARAMETER
+  std::string symbol;     //!< the parameter's symbol on the page ("α", "w", "c")
+  std::string label;      //!< shown beside the slider
+  double lower = 0, upper = 1;
+  double initial = 0;
+  std::vector<std::array<int, 2>> net_edges;  //!< index pairs into ViewFrame::net
+  std::vector<std::array<int, 3>> faces;      //!< index triples into ViewFrame::points
+  std::vector<ViewFrame> frames;              //!< increasing parameter
+  std::vector<ViewCurve> curves;
+  std::vector<ViewMark> marks;
+};
+
+struct ViewPage {
+  std::string title;
+  std::string subtitle;             //!< e.g. "degree (6, 6), 101 values of α"
+  std::string generator;            //!< "coons VERSION"
+  std::vector<ViewSlider> sliders;  //!< at least one; the first one is shown first
+
+  //! Checks the sizes (frames, faces and edges in range, curves of one value per frame).
+  bool is_valid(std::string* why) const;
+};
+
+//! The edges of a rows × cols grid of points numbered r·cols + c (rows, cols ≥ 1).
+std::vector<std::array<int, 2>> grid_edges(int rows, int cols);
+//! Two triangles per cell of a k × k grid (k ≥ 2).
+std::vector<std::array<int, 3>> grid_faces(int k);
+
+//! The embedded data: one JSON object (coordinates with 5 significant digits, parameters and
+//! curve values in shortest round-trip form). Safe inside a <script> element ("</" is escaped).
+std::string view_page_json(const ViewPage& page);
+
+//! The whole HTML file; `three_js` is the text of three.min.js (revision 111 or later).
+//! Precondition: page.is_valid().
+std::string view_page_html(const ViewPage& page, std::string_view three_js);
+
+//! The page's own script and style (view_page_assets.cpp).
+std::string_view view_page_script();
+std::string_view view_page_style();
+
+}  // namespace coons

@@ -1,0 +1,359 @@
+// The script and style of the `coons view` page (view_page.h). The script reads the embedded
+// JSON (#coons-data), draws with three.js (global THREE, revision 111 or later) and SVG.
+#include "view_page.h"
+
+namespace coons {
+
+namespace {
+
+constexpr std::string_view kStyle = R"CSS(
+body { margin: 0; font: 14px/1.4 sans-serif; color: #222; background: #fafafa; }
+header { padding: 6px 14px; border-bottom: 1px solid #ddd; background: #fff; }
+header h1 { font-size: 18px; margin: 0; display: inline-block; }
+header p { margin: 0 0 0 12px; display: inline-block; color: #555; }
+main { display: flex; flex-wrap: wrap; gap: 12px; padding: 12px; }
+#view3d { position: relative; flex: 1 1 560px; min-width: 320px; height: 560px; background: #fff;
+          border: 1px solid #ddd; }
+#surface { width: 100%; height: 100%; display: block; cursor: grab; }
+.hint { position: absolute; right: 8px; bottom: 4px; color: #999; font-size: 12px; }
+#side { flex: 0 1 540px; min-width: 320px; }
+.slider { margin: 4px 0 10px 0; }
+.slider label { display: block; font-weight: bold; }
+.slider input { width: 100%; }
+.slider output { font-family: monospace; }
+#curves { width: 100%; background: #fff; border: 1px solid #ddd; }
+#legend { font-size: 13px; margin-top: 6px; }
+#legend span.swatch { display: inline-block; width: 18px; height: 3px; vertical-align: middle; margin-right: 4px; }
+footer { padding: 4px 14px; color: #777; font-size: 12px; }
+)CSS";
+
+constexpr std::string_view kScript = R"JS(
+(function () {
+  'use strict';
+  var body = document.body;
+  function record(message) {
+    if (!body.hasAttribute('data-error')) body.setAttribute('data-error', String(message));
+  }
+  var consoleError = console.error;
+  console.error = function () {
+    record(Array.prototype.join.call(arguments, ' '));
+    return consoleError.apply(console, arguments);
+  };
+  var data = JSON.parse(document.getElementById('coons-data').textContent);
+  var sliders = data.sliders;
+  var colours = ['#c0392b', '#2471a3', '#1e8449', '#7d3c98', '#b9770e', '#17202a'];
+  var active = 0;
+  var current = sliders.map(function (s) { return nearest(s, s.initial); });
+
+  function nearest(s, value) {
+    var best = 0;
+    for (var k = 1; k < s.frames.length; ++k)
+      if (Math.abs(s.frames[k].parameter - value) < Math.abs(s.frames[best].parameter - value)) best = k;
+    return best;
+  }
+  function symbol(s) { return s.symbol || s.parameter; }
+  function tick(x) { return String(Number(Number(x).toPrecision(3))); }
+  function fmt(x) { return x === null || x === undefined ? '–' : Number(x).toPrecision(5); }
+
+  // --- 3D: the surface with reflection lines, the net --------------------------------------
+  var three = null;
+  function setup3d() {
+    var canvas = document.getElementById('surface');
+    var renderer = new THREE.WebGLRenderer({ canvas: canvas, antialias: true, preserveDrawingBuffer: true });
+    renderer.setPixelRatio(window.devicePixelRatio || 1);
+    renderer.setClearColor(0xffffff, 1);
+    var scene = new THREE.Scene();
+    var camera = new THREE.PerspectiveCamera(30, 1, 0.001, 1000);
+    var turn = new THREE.Group();   // the user's rotation
+    var upright = new THREE.Group();  // coons' z up is three's y up
+    upright.rotation.x = -Math.PI / 2;
+    turn.add(upright);
+    scene.add(turn);
+    // bounds over every frame of every slider: the view does not jump when a slider moves
+    var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    sliders.forEach(function (s) {
+      s.frames.forEach(function (f) {
+        [f.net, f.points].forEach(function (a) {
+          for (var i = 0; i < a.length; ++i) {
+            lo[i % 3] = Math.min(lo[i % 3], a[i]);
+            hi[i % 3] = Math.max(hi[i % 3], a[i]);
+          }
+        });
+      });
+    });
+    var centre = [0, 1, 2].map(function (c) { return (lo[c] + hi[c]) / 2; });
+    var radius = Math.max(1e-9, 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]));
+    upright.position.set(0, 0, 0);
+    var content = new THREE.Group();
+    content.position.set(-centre[0], -centre[1], -centre[2]);
+    upright.add(content);
+    var material = new THREE.ShaderMaterial({
+      uniforms: { stripes: { value: 16.0 } },
+      side: THREE.DoubleSide,
+      vertexShader: [
+        'varying vec3 vNormal;', 'varying vec3 vWorld;', 'void main() {',
+        '  vec4 w = modelMatrix * vec4(position, 1.0);', '  vWorld = w.xyz;',
+        '  vNormal = mat3(modelMatrix) * normal;',
+        '  gl_Position = projectionMatrix * viewMatrix * w;', '}'
+      ].join('\n'),
+      fragmentShader: [
+        'uniform float stripes;', 'varying vec3 vNormal;', 'varying vec3 vWorld;', 'void main() {',
+        '  vec3 n = normalize(vNormal);', '  if (!gl_FrontFacing) n = -n;',
+        '  vec3 v = normalize(vWorld - cameraPosition);',
+        '  vec3 r = reflect(v, n);',
+        // light lines parallel to the world x axis, around it: the angle of r about that axis
+        '  float phi = atan(r.y, r.z);',
+        '  float band = smoothstep(-0.25, 0.25, cos(stripes * phi));',
+        '  float diffuse = 0.45 + 0.55 * abs(dot(n, v));',
+        '  vec3 light = vec3(0.98, 0.80, 0.45);', '  vec3 dark = vec3(0.12, 0.10, 0.16);',
+        '  gl_FragColor = vec4(mix(dark, light, band) * diffuse, 1.0);', '}'
+      ].join('\n')
+    });
+    var meshes = sliders.map(function (s) {
+      var n = s.frames[0].points.length;
+      var geometry = new THREE.BufferGeometry();
+      geometry.setIndex(s.faces);
+      geometry.setAttribute('position', new THREE.BufferAttribute(new Float32Array(n), 3));
+      geometry.setAttribute('normal', new THREE.BufferAttribute(new Float32Array(n), 3));
+      var mesh = new THREE.Mesh(geometry, material);
+      mesh.frustumCulled = false;
+      var lines = new THREE.BufferGeometry();
+      lines.setAttribute('position', new THREE.BufferAttribute(new Float32Array(s.edges.length * 3), 3));
+      var net = new THREE.LineSegments(lines, new THREE.LineBasicMaterial({ color: 0x1f4e9c }));
+      net.frustumCulled = false;
+      var dots = new THREE.BufferGeometry();
+      dots.setAttribute('position', new THREE.BufferAttribute(new Float32Array(s.frames[0].net.length), 3));
+      var points = new THREE.Points(dots, new THREE.PointsMaterial({ color: 0x1f4e9c, size: 5, sizeAttenuation: false }));
+      points.frustumCulled = false;
+      var holder = new THREE.Group();
+      holder.add(mesh); holder.add(net); holder.add(points);
+      holder.visible = false;
+      content.add(holder);
+      return { holder: holder, mesh: mesh, net: net, points: points };
+    });
+    var distance = radius / Math.sin(camera.fov * Math.PI / 360) * 1.05;
+    var direction = new THREE.Vector3(0.9, 0.75, 1.1).normalize();
+    function place() {
+      camera.position.copy(direction).multiplyScalar(distance);
+      camera.near = distance / 100; camera.far = distance * 10;
+      camera.lookAt(0, 0, 0);
+      camera.updateProjectionMatrix();
+    }
+    function render() {
+      var w = canvas.clientWidth || 600, h = canvas.clientHeight || 500;
+      renderer.setSize(w, h, false);
+      camera.aspect = w / h;
+      place();
+      renderer.render(scene, camera);
+    }
+    var drag = null;
+    canvas.addEventListener('pointerdown', function (e) { drag = [e.clientX, e.clientY]; });
+    window.addEventListener('pointerup', function () { drag = null; });
+    canvas.addEventListener('pointermove', function (e) {
+      if (!drag) return;
+      turn.rotation.y += (e.clientX - drag[0]) * 0.01;
+      turn.rotation.x += (e.clientY - drag[1]) * 0.01;
+      drag = [e.clientX, e.clientY];
+      render();
+    });
+    canvas.addEventListener('wheel', function (e) {
+      e.preventDefault();
+      distance *= Math.exp(e.deltaY * 0.001);
+      render();
+    }, { passive: false });
+    window.addEventListener('resize', render);
+    return { meshes: meshes, render: render };
+  }
+
+  function hash(array) {  // FNV-1a over the bytes of the drawn coordinates
+    var bytes = new Uint8Array(array.buffer, array.byteOffset, array.byteLength), h = 0x811c9dc5;
+    for (var i = 0; i < bytes.length; ++i) h = Math.imul(h ^ bytes[i], 0x01000193) >>> 0;
+    return ('0000000' + h.toString(16)).slice(-8);
+  }
+
+  function draw3d(si) {
+    var s = sliders[si], f = s.frames[current[si]];
+    var netCoords = new Float32Array(s.edges.length * 3);
+    // s.edges holds index pairs, flattened: one line vertex per entry
+    for (var k = 0; k < s.edges.length; ++k)
+      for (var c = 0; c < 3; ++c) netCoords[3 * k + c] = f.net[3 * s.edges[k] + c];
+    if (three) {
+      three.meshes.forEach(function (m, j) { m.holder.visible = j === si; });
+      var m = three.meshes[si];
+      m.mesh.visible = f.ok;
+      m.mesh.geometry.attributes.position.array.set(f.points);
+      m.mesh.geometry.attributes.position.needsUpdate = true;
+      m.mesh.geometry.attributes.normal.array.set(f.normals);
+      m.mesh.geometry.attributes.normal.needsUpdate = true;
+      m.net.geometry.attributes.position.array.set(netCoords);
+      m.net.geometry.attributes.position.needsUpdate = true;
+      m.points.geometry.attributes.position.array.set(f.net);
+      m.points.geometry.attributes.position.needsUpdate = true;
+      three.render();
+    }
+    body.setAttribute('data-net-hash', hash(netCoords));
+  }
+
+  // --- the energy curves (SVG) ---------------------------------------------------------------
+  var svgNS = 'http://www.w3.org/2000/svg';
+  function el(name, attributes, text) {
+    var node = document.createElementNS(svgNS, name);
+    for (var a in attributes) node.setAttribute(a, attributes[a]);
+    if (text !== undefined) node.textContent = text;
+    return node;
+  }
+  function drawCurves(si) {
+    var s = sliders[si], svg = document.getElementById('curves');
+    while (svg.firstChild) svg.removeChild(svg.firstChild);
+    var L = 56, R = 510, T = 14, B = 280;
+    function x(p) { return L + (p - s.lower) / (s.upper - s.lower) * (R - L); }
+    function y(v) { return B - v * (B - T); }
+    svg.appendChild(el('rect', { x: L, y: T, width: R - L, height: B - T, fill: 'none', stroke: '#999' }));
+    for (var t = 0; t <= 4; ++t) {
+      var p = s.lower + t / 4 * (s.upper - s.lower);
+      svg.appendChild(el('line', { x1: x(p), x2: x(p), y1: B, y2: B + 4, stroke: '#999' }));
+      svg.appendChild(el('text', { x: x(p), y: B + 17, 'text-anchor': 'middle', 'font-size': 12 }, tick(p)));
+      svg.appendChild(el('text', { x: L - 6, y: y(t / 4) + 4, 'text-anchor': 'end', 'font-size': 12 }, (t / 4).toFixed(2)));
+    }
+    svg.appendChild(el('text', { x: (L + R) / 2, y: B + 34, 'text-anchor': 'middle', 'font-size': 13 }, s.label));
+    svg.appendChild(el('text', { x: 14, y: (T + B) / 2, 'font-size': 13, 'text-anchor': 'middle',
+                                 transform: 'rotate(-90 14 ' + (T + B) / 2 + ')' }, '(energy \u2212 min) / (max \u2212 min)'));
+    s.marks.forEach(function (m) {
+      svg.appendChild(el('line', { x1: x(m.parameter), x2: x(m.parameter), y1: T, y2: B, stroke: '#bbb',
+                                   'stroke-dasharray': '4 3' }));
+      var right = x(m.parameter) > (L + R) / 2;
+      svg.appendChild(el('text', { x: x(m.parameter) + (right ? -4 : 4), y: T + 26, 'font-size': 11, fill: '#777',
+                                   'text-anchor': right ? 'end' : 'start' }, m.name));
+    });
+    var legend = document.getElementById('legend');
+    legend.textContent = '';
+    s.curves.forEach(function (c, ci) {
+      // each curve scaled to [0, 1] over the slider's range, so that every minimum shows
+      var colour = colours[ci % colours.length], least = Infinity, largest = -Infinity;
+      c.values.forEach(function (v) {
+        if (v === null) return;
+        least = Math.min(least, v); largest = Math.max(largest, v);
+      });
+      var span = largest > least ? largest - least : 1;
+      function scaled(v) { return (v - least) / span; }
+      var path = '';
+      c.values.forEach(function (v, k) {
+        if (v === null) return;
+        path += (path ? ' L' : 'M') + x(s.frames[k].parameter).toFixed(1) + ' ' + y(scaled(v)).toFixed(1);
+      });
+      svg.appendChild(el('path', { d: path, fill: 'none', stroke: colour, 'stroke-width': 1.6 }));
+      var line = document.createElement('div');
+      var swatch = document.createElement('span');
+      swatch.className = 'swatch'; swatch.style.background = colour;
+      line.appendChild(swatch);
+      var text = c.name + ': ';
+      if (c.optimum !== null) {
+        var k = nearest(s, c.optimum), v = c.values[k];
+        svg.appendChild(el('circle', { cx: x(c.optimum), cy: y(v === null ? 0 : scaled(v)), r: 4.5,
+                                       fill: colour, stroke: '#fff' }));
+        text += symbol(s) + '* = ' + fmt(c.optimum);
+        if (c.optimum <= s.lower || c.optimum >= s.upper) text += ' (on a bound)';
+      } else {
+        text += 'no optimum (' + c.status + ')';
+      }
+      text += ', shown: ' + fmt(c.values[current[si]]);
+      line.appendChild(document.createTextNode(text));
+      legend.appendChild(line);
+    });
+    var p = s.frames[current[si]].parameter;
+    svg.appendChild(el('line', { x1: x(p), x2: x(p), y1: T, y2: B, stroke: '#e00', 'stroke-width': 2, id: 'current' }));
+  }
+
+  // --- sliders ------------------------------------------------------------------------------
+  var inputs = [], outputs = [];
+  sliders.forEach(function (s, si) {
+    var box = document.createElement('div');
+    box.className = 'slider';
+    var label = document.createElement('label');
+    label.textContent = s.label + ' ';
+    var output = document.createElement('output');
+    label.appendChild(output);
+    var input = document.createElement('input');
+    input.type = 'range'; input.min = s.lower; input.max = s.upper; input.step = 'any';
+    input.setAttribute('data-parameter', s.parameter);
+    input.addEventListener('input', function () { show(si, nearest(s, Number(input.value)), false); });
+    box.appendChild(label); box.appendChild(input);
+    document.getElementById('controls').appendChild(box);
+    inputs.push(input); outputs.push(output);
+  });
+
+  // the slider's text and the body's attributes of its current value
+  function describe(si) {
+    var s = sliders[si], f = s.frames[current[si]], mu = f.mu;
+    outputs[si].textContent = '= ' + fmt(f.parameter) + (mu === undefined ? '' : ' (\u03bc = ' + fmt(mu) + ')') +
+                              (f.ok ? '' : ' (solve failed)');
+    body.setAttribute('data-' + s.parameter, String(f.parameter));
+    if (s.parameter === 'alpha') {
+      if (mu === undefined) body.removeAttribute('data-mu');
+      else body.setAttribute('data-mu', String(mu));
+    }
+  }
+
+  function show(si, fi, moveInput) {
+    active = si;
+    current[si] = fi;
+    var s = sliders[si], p = s.frames[fi].parameter;
+    if (moveInput) inputs[si].value = p;
+    describe(si);
+    body.setAttribute('data-shown', s.parameter);
+    draw3d(si);
+    drawCurves(si);
+    return p;
+  }
+
+  function setValue(parameter, value) {
+    for (var si = 0; si < sliders.length; ++si)
+      if (sliders[si].parameter === parameter) return show(si, nearest(sliders[si], Number(value)), true);
+    throw new Error('no slider for ' + parameter);
+  }
+
+  function fromHash() {
+    var shown = -1;
+    sliders.forEach(function (s, si) {
+      var m = new RegExp('[#&]' + s.parameter + '=([^&]+)').exec(window.location.hash);
+      if (m && isFinite(Number(m[1]))) { current[si] = nearest(s, Number(m[1])); shown = si; }
+    });
+    return shown;
+  }
+
+  window.coonsView = {
+    setValue: setValue,
+    setAlpha: function (a) { return setValue(sliders[0].parameter, a); },
+    parameters: function () { return sliders.map(function (s) { return s.parameter; }); },
+    values: function (parameter) {
+      for (var si = 0; si < sliders.length; ++si)
+        if (sliders[si].parameter === parameter) return sliders[si].frames.map(function (f) { return f.parameter; });
+      return [];
+    }
+  };
+
+  try {
+    three = setup3d();
+  } catch (e) {
+    record('WebGL: ' + (e && e.message ? e.message : e));
+  }
+  var first = fromHash();
+  sliders.forEach(function (s, si) {
+    inputs[si].value = s.frames[current[si]].parameter;
+    describe(si);
+  });
+  show(first >= 0 ? first : 0, current[first >= 0 ? first : 0], true);
+  window.addEventListener('hashchange', function () {
+    var si = fromHash();
+    if (si >= 0) show(si, current[si], true);
+  });
+  body.setAttribute('data-ready', '1');
+})();
+)JS";
+
+}  // namespace
+
+std::string_view view_page_script() { return kScript; }
+std::string_view view_page_style() { return kStyle; }
+
+}  // namespace coons

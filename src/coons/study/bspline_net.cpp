@@ -1,0 +1,119 @@
+#include "coons/study/bspline_net.h"
+
+#include <algorithm>
+#include <utility>
+
+#include "coons/io/net_json.h"
+#include "coons/surfaces/bspline_energy.h"
+#include "solvers/registry.h"
+
+namespace coons {
+
+using nlohmann::json;
+
+GrevilleGrid greville_grid(const BSplineBoundary& b) {
+  return {greville_abscissae(reparametrised(b.bottom, 0.0, 1.0)), greville_abscissae(reparametrised(b.left, 0.0, 1.0))};
+}
+
+BSplineSurface bspline_surface_on(const BSplineBoundary& b, ControlNet net) {
+  BSplineSurface s;
+  s.degree_u = b.bottom.degree;
+  s.degree_v = b.left.degree;
+  s.knots_u = reparametrised(b.bottom, 0.0, 1.0).knots;
+  s.knots_v = reparametrised(b.left, 0.0, 1.0).knots;
+  s.net = std::move(net);
+  return s;
+}
+
+ControlNet bspline_frame(const BSplineBoundary& b) {
+  Boundary frame;
+  frame.m = b.bottom.count() - 1;
+  frame.n = b.left.count() - 1;
+  frame.bottom = b.bottom.points;
+  frame.top = b.top.points;
+  frame.left = b.left.points;
+  frame.right = b.right.points;
+  return frame_net(frame);
+}
+
+std::string auto_bspline_solver(double alpha) {
+  if (!(alpha >= -0.25 && alpha <= 0.0)) return "eigen-lu";
+  return solvers::find_solver("cholmod") != nullptr ? "cholmod" : "eigen-ldlt";
+}
+
+BSplineNetOutcome make_bspline_net(const BSplineBoundary& b, NetMethod method, double alpha,
+                                   solvers::LinearSolver* solver) {
+  if (method != NetMethod::kAlpha || solver == nullptr) return {greville_coons_surface(b), std::nullopt};
+  NonUniformSolveResult result = solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, *solver);
+  return {bspline_surface_on(b, std::move(result.net)), std::move(result.summary)};
+}
+
+NetMetrics bspline_metrics(const BSplineSurface& s, double alpha) {
+  NetMetrics out;
+  out.twist_energy = bspline_combined_energy(s, bspline_twist_terms());
+  out.thin_plate_energy = bspline_combined_energy(s, bspline_thin_plate_terms());
+  out.dirichlet_energy = bspline_combined_energy(s, bspline_dirichlet_terms());
+  out.e3_energy = bspline_combined_energy(s, bspline_e3_terms());
+  out.discrete_twist_energy = discrete_twist_energy(s.net);
+  out.discrete_dirichlet_energy = discrete_dirichlet_energy(s.net);
+  const GrevilleGrid grid{
+      greville_abscissae(BSplineCurve(s.degree_u, s.knots_u, Eigen::MatrixX3d::Zero(s.net.m + 1, 3))),
+      greville_abscissae(BSplineCurve(s.degree_v, s.knots_v, Eigen::MatrixX3d::Zero(s.net.n + 1, 3)))};
+  out.mask_residual = nonuniform_mask_residual(s.net, grid, alpha);
+  return out;
+}
+
+namespace {
+
+json vector_json(const Eigen::VectorXd& v) { return std::vector<double>(v.data(), v.data() + v.size()); }
+
+}  // namespace
+
+json bspline_block(const BSplineSurface& s, const BSplineInput& input) {
+  json block;
+  block["degree_spline"] = {s.degree_u, s.degree_v};
+  block["knots_u"] = vector_json(s.knots_u);
+  block["knots_v"] = vector_json(s.knots_v);
+  const GrevilleGrid grid = greville_grid(input.compatible);
+  block["greville_u"] = vector_json(grid.xi);
+  block["greville_v"] = vector_json(grid.eta);
+  json notes = json::array();
+  for (const CompatibilityNote& note : input.notes)
+    notes.push_back(
+        {{"side", note.side}, {"degree_raised_by", note.degree_raised_by}, {"knots_inserted", note.knots_inserted}});
+  block["compatibility"] = notes;
+  return block;
+}
+
+json bspline_net_report(const std::string& name, const BSplineInput& input, NetMethod method, double alpha,
+                        const BSplineNetOutcome& outcome, bool solver_picked_automatically, bool with_net) {
+  const BSplineSurface& s = outcome.surface;
+  json report;
+  report["boundary"] = name;
+  report["degree"] = {s.net.m, s.net.n};
+  report["method"] = to_string(method);
+  report["mask"] = "alpha";
+  report["alpha"] = alpha;
+  report["beta"] = nullptr;  // the non-uniform weights differ from point to point
+  report["mu"] = nullptr;
+  report["rings"] = 1;
+  report["free_points"] = std::max(s.net.m - 1, 0) * std::max(s.net.n - 1, 0);
+  if (outcome.summary) {
+    report["solver"] = summary_to_json(*outcome.summary);
+    if (solver_picked_automatically) report["solver"]["picked_by"] = "auto";
+  } else {
+    report["solver"] = {{"name", "closed-form"},
+                        {"status", "not_applicable"},
+                        {"message", "closed-form net: no linear system is solved"}};
+  }
+  report["bspline"] = bspline_block(s, input);
+  const bool ok = !outcome.summary || outcome.summary->ok();
+  if (!ok)
+    report["net"] = nullptr;
+  else if (with_net)
+    report["net"] = net_to_json(s.net);
+  report["metrics"] = ok ? metrics_to_json(bspline_metrics(s, alpha)) : json(nullptr);
+  return report;
+}
+
+}  // namespace coons

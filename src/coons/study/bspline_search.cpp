@@ -1,0 +1,218 @@
+#include "coons/study/bspline_search.h"
+
+#include <algorithm>
+#include <chrono>
+#include <cmath>
+#include <vector>
+
+#include "coons/mask/nonuniform_mask.h"
+#include "coons/study/bspline_net.h"
+#include "coons/surfaces/bspline_energy.h"
+#include "solvers/registry.h"
+
+namespace coons {
+
+AlphaSearchOptions default_bspline_search_options() {
+  AlphaSearchOptions options;
+  options.lower = -0.25;
+  options.upper = 0.0;
+  // The Gram forms of short knot spans cancel large terms: the energies of one net vary by ~1e-11
+  // relative between equivalent solves, so flatness is judged at 1e-9.
+  options.flat_tolerance = 1e-9;
+  return options;
+}
+
+bool bspline_objective_supported(const Objective& objective, std::string* why) {
+  if (objective.target_weight > 0) {
+    if (why) *why = "a target term compares Bézier nets; a B-spline boundary takes energies only";
+    return false;
+  }
+  return true;
+}
+
+std::optional<BSplineObjectiveValue> bspline_alpha_objective(const BSplineBoundary& b, const Objective& objective,
+                                                             double alpha, solvers::LinearSolver& solver,
+                                                             solvers::SolveStatus* status) {
+  const NonUniformSolveResult r = solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, solver, true);
+  if (status) *status = r.summary.status;
+  if (!r.summary.ok()) return std::nullopt;
+  const BSplineSurface s = bspline_surface_on(b, r.net);
+  std::vector<BSplineEnergyTerm> terms;
+  for (const EnergyTerm& t : objective.energy) terms.push_back({t.a, t.b, t.weight});
+  BSplineObjectiveValue out;
+  out.value = bspline_combined_energy(s, terms);
+  out.derivative = 2 * bspline_combined_energy_form(s, r.net, r.derivative, terms);
+  for (const auto& [kind, weight] : objective.discrete) {
+    out.value += weight * discrete_energy_form(r.net, r.net, kind);
+    out.derivative += 2 * weight * discrete_energy_form(r.net, r.derivative, kind);
+  }
+  if (!std::isfinite(out.value) || !std::isfinite(out.derivative)) return std::nullopt;
+  return out;
+}
+
+namespace {
+
+struct Point {
+  double alpha = 0;
+  std::optional<BSplineObjectiveValue> f;
+};
+
+class Evaluator {
+ public:
+  Evaluator(const BSplineBoundary& b, const Objective& o, std::string solver, const solvers::SolverOptions& options,
+            AlphaSearchSummary& summary)
+      : b_(b), objective_(o), solver_(std::move(solver)), options_(options), summary_(summary) {}
+
+  Point operator()(double alpha) {
+    auto backend = solvers::make_solver(solver_, options_);
+    solvers::SolveStatus status = solvers::SolveStatus::kFailure;
+    Point p{alpha, backend ? bspline_alpha_objective(b_, objective_, alpha, *backend, &status) : std::nullopt};
+    ++summary_.evaluations;
+    summary_.solves += 2;
+    if (!p.f) {
+      if (summary_.failed_evaluations++ == 0) summary_.first_failure = status;
+    }
+    return p;
+  }
+
+ private:
+  const BSplineBoundary& b_;
+  const Objective& objective_;
+  std::string solver_;
+  solvers::SolverOptions options_;
+  AlphaSearchSummary& summary_;
+};
+
+// The root of f′ in [left, right] with f′(left) ≤ 0 ≤ f′(right): Illinois regula falsi, a
+// bisection step whenever it stalls. Returns the last point evaluated inside (or an end).
+Point derivative_root(Evaluator& eval, Point left, Point right, const AlphaSearchOptions& options) {
+  double fl = left.f->derivative, fr = right.f->derivative;
+  int side = 0;
+  Point best = std::abs(fl) < std::abs(fr) ? left : right;
+  for (int it = 0; it < options.max_iterations && right.alpha - left.alpha > options.parameter_tolerance; ++it) {
+    double x = fr != fl ? (left.alpha * fr - right.alpha * fl) / (fr - fl) : 0.5 * (left.alpha + right.alpha);
+    const double width = right.alpha - left.alpha;
+    if (!(x > left.alpha + 0.01 * width && x < right.alpha - 0.01 * width)) x = 0.5 * (left.alpha + right.alpha);
+    const Point p = eval(x);
+    if (!p.f) return p;  // a failure inside the bracket: the caller reports it
+    best = p;
+    const double d = p.f->derivative;
+    // The derivative is zero to rounding: the change over the bracket is below the value's last digits.
+    if (std::abs(d) * (right.alpha - left.alpha) <= 1e-15 * std::abs(p.f->value)) break;
+    if (d < 0) {
+      left = p;
+      fl = d;
+      if (side == -1) fr /= 2;
+      side = -1;
+    } else {
+      right = p;
+      fr = d;
+      if (side == 1) fl /= 2;
+      side = 1;
+    }
+  }
+  return best;
+}
+
+void record_failed_intervals(AlphaSearchSummary& s, const std::vector<Point>& scan) {
+  for (std::size_t k = 0; k < scan.size(); ++k) {
+    if (scan[k].f) continue;
+    if (k > 0 && !scan[k - 1].f)
+      s.failed_intervals.back().second = scan[k].alpha;
+    else
+      s.failed_intervals.emplace_back(scan[k].alpha, scan[k].alpha);
+  }
+}
+
+}  // namespace
+
+AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objective& objective,
+                                        const std::string& solver_name, const AlphaSearchOptions& options,
+                                        const solvers::SolverOptions& solver_options) {
+  const auto started = std::chrono::steady_clock::now();
+  AlphaSearchSummary s;
+  s.evaluator = "factorize and solve (non-uniform B-spline family)";
+  Evaluator eval(b, objective, solver_name, solver_options, s);
+  const auto finish = [&]() -> AlphaSearchSummary {
+    s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
+    return s;
+  };
+  std::vector<Point> scan;
+  const int n = std::max(options.scan_points, 2);
+  for (int k = 0; k < n; ++k) {
+    const double alpha = options.lower + (options.upper - options.lower) * k / (n - 1);
+    scan.push_back(eval(alpha));
+    s.scan.emplace_back(alpha, scan.back().f ? scan.back().f->value : HUGE_VAL);
+  }
+  record_failed_intervals(s, scan);
+  int best = -1;
+  double lowest = HUGE_VAL, highest = -HUGE_VAL;
+  for (int k = 0; k < n; ++k)
+    if (scan[std::size_t(k)].f) {
+      const double v = scan[std::size_t(k)].f->value;
+      if (best < 0 || v < lowest) best = k;
+      lowest = std::min(lowest, v);
+      highest = std::max(highest, v);
+    }
+  if (best < 0) {
+    s.status = SearchStatus::kSolverFailed;
+    s.message = "no evaluation succeeded";
+    return finish();
+  }
+  for (int k = 1; k + 1 < n; ++k) {
+    const auto& here = scan[std::size_t(k)].f;
+    const auto& before = scan[std::size_t(k) - 1].f;
+    const auto& after = scan[std::size_t(k) + 1].f;
+    if (here && before && after && here->value < before->value && here->value < after->value) ++s.local_minima;
+  }
+  s.value = lowest;
+  const bool near_failure =
+      (best > 0 && !scan[std::size_t(best) - 1].f) || (best + 1 < n && !scan[std::size_t(best) + 1].f);
+  if (highest - lowest <= options.flat_tolerance * std::max({std::abs(highest), std::abs(lowest), 1e-300})) {
+    s.flat = true;
+    s.status = s.failed_evaluations > 0 ? SearchStatus::kFailedRegion : SearchStatus::kFlat;
+    s.message = s.failed_evaluations > 0 ? "flat where evaluated, but some evaluations failed" : "";
+    return finish();
+  }
+  if (near_failure) {
+    s.status = SearchStatus::kFailedRegion;
+    s.message = "an evaluation next to the lowest scan point failed";
+    return finish();
+  }
+  const Point& at = scan[std::size_t(best)];
+  Point optimum = at;
+  const double d = at.f->derivative;
+  if ((best == 0 && d >= 0) || (best == n - 1 && d <= 0)) {
+    optimum = at;  // on a bound, the objective rising into the interval
+  } else {
+    const bool go_left = d > 0;
+    const Point& other = scan[go_left ? std::size_t(best) - 1 : std::size_t(best) + 1];
+    if (!other.f) {
+      s.status = SearchStatus::kFailedRegion;
+      s.message = "an evaluation next to the lowest scan point failed";
+      return finish();
+    }
+    const Point left = go_left ? other : at, right = go_left ? at : other;
+    if (left.f->derivative <= 0 && right.f->derivative >= 0) {
+      optimum = derivative_root(eval, left, right, options);
+    } else {
+      s.status = SearchStatus::kNotConverged;
+      s.message = "the derivative does not change sign next to the lowest scan point";
+    }
+  }
+  if (!optimum.f) {
+    s.status = SearchStatus::kSolverFailed;
+    s.message = "the evaluation at the refined optimum failed";
+    return finish();
+  }
+  if (optimum.f->value > lowest) optimum = at;  // never report worse than the scan
+  s.parameter = optimum.alpha;
+  s.value = optimum.f->value;
+  // Within the parameter tolerance of a bound counts as on it (the minimum of the twist energy is
+  // the Coons net at α = −1/4, found from inside to that tolerance).
+  s.at_bound = std::abs(optimum.alpha - options.lower) <= options.parameter_tolerance ||
+               std::abs(optimum.alpha - options.upper) <= options.parameter_tolerance;
+  return finish();
+}
+
+}  // namespace coons

@@ -1,0 +1,46 @@
+// The α search on a B-spline boundary (docs/math.md §10): the non-uniform mask family, each α one
+// factorisation and two solves (the net N and dN/dα, nonuniform_mask.h), the objective's exact
+// value and derivative from the B-spline energies (bspline_energy.h) and the discrete energies of
+// the net. A coarse scan over the bounds, then the root of the derivative inside the bracket of
+// the best scan point (Illinois regula falsi, bisection safeguard). Flat objectives, optima on a
+// bound and failed evaluations next to the optimum are reported as such (the statuses of
+// alpha_search.h). Evaluated on the boundary as given (no normalised frame).
+// Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the α search).
+#pragma once
+
+#include <optional>
+#include <string>
+
+#include "coons/alpha/alpha_search.h"
+#include "coons/alpha/objective.h"
+#include "coons/surfaces/bspline_surface.h"
+#include "solvers/linear_solver.h"
+
+namespace coons {
+
+//! The objective's value and dvalue/dα at α, or nullopt when the solve failed (`status` then
+//! holds why).
+struct BSplineObjectiveValue {
+  double value = 0, derivative = 0;
+};
+std::optional<BSplineObjectiveValue> bspline_alpha_objective(const BSplineBoundary& compatible,
+                                                             const Objective& objective, double alpha,
+                                                             solvers::LinearSolver& solver,
+                                                             solvers::SolveStatus* status = nullptr);
+
+//! Objectives the B-spline search takes: energies and discrete energies (a target term is not:
+//! the targets compare Bézier nets). False with the reason in *why otherwise.
+bool bspline_objective_supported(const Objective& objective, std::string* why);
+
+//! The default bounds of the B-spline search: [−1/4, 0], where the non-uniform system is positive
+//! definite (docs/math.md §10); above 0 it can be singular on strongly non-uniform abscissae.
+//! Flat below a relative range of 1e-9 (the energies' rounding on short knot spans is ~1e-11).
+AlphaSearchOptions default_bspline_search_options();
+
+//! The search; `solver_name` a backend of the registry that takes an assembled matrix.
+AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& compatible, const Objective& objective,
+                                        const std::string& solver_name,
+                                        const AlphaSearchOptions& options = default_bspline_search_options(),
+                                        const solvers::SolverOptions& solver_options = {});
+
+}  // namespace coons

@@ -1,0 +1,245 @@
+#include "view_data.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <cmath>
+
+#include "coons/alpha/alpha_search.h"
+#include "coons/alpha/objective.h"
+#include "coons/alpha/weight_search.h"
+#include "coons/mask/solve_stencil_net.h"
+#include "coons/metrics/energies.h"
+#include "coons/study/sweep.h"
+#include "coons/study/tri_search.h"
+#include "coons/surfaces/sampling.h"
+#include "coons/surfaces/surface.h"
+#include "coons/tri/tri_energy.h"
+#include "coons/tri/tri_sampling.h"
+#include "coons/tri/tri_solve.h"
+
+namespace coons {
+
+namespace {
+
+double metric_of(const NetMetrics& m, const std::string& name) {
+  if (name == "thin_plate") return m.thin_plate_energy;
+  if (name == "e3") return m.e3_energy;
+  if (name == "dirichlet") return m.dirichlet_energy;
+  if (name == "twist") return m.twist_energy;
+  if (name == "discrete_twist") return m.discrete_twist_energy;
+  if (name == "discrete_dirichlet") return m.discrete_dirichlet_energy;
+  return NAN;
+}
+
+double energy_of(const ControlNet& net, const std::string& name) {
+  if (name == "thin_plate") return thin_plate_energy(net);
+  if (name == "e3") return e3_energy(net);
+  if (name == "dirichlet") return dirichlet_energy(net);
+  if (name == "twist") return twist_energy(net);
+  if (name == "discrete_twist") return discrete_twist_energy(net);
+  if (name == "discrete_dirichlet") return discrete_dirichlet_energy(net);
+  return NAN;
+}
+
+// The grid of a slider with the optima (and the marks) added, increasing, without repeats.
+std::vector<double> slider_values(double lower, double upper, int count, const std::vector<ViewCurve>& curves,
+                                  const std::vector<double>& marks) {
+  std::vector<double> values = linspace(lower, upper, count);
+  for (const ViewCurve& c : curves)
+    if (c.optimum) values.push_back(*c.optimum);
+  for (double mark : marks)
+    if (mark >= lower && mark <= upper) values.push_back(mark);
+  std::sort(values.begin(), values.end());
+  values.erase(std::unique(values.begin(), values.end(),
+                           [](double a, double b) { return std::abs(a - b) <= 1e-12 * (1 + std::abs(a)); }),
+               values.end());
+  return values;
+}
+
+}  // namespace
+
+bool ViewOptions::is_valid(std::string* why) const {
+  auto fail = [&](const std::string& reason) {
+    if (why) *why = reason;
+    return false;
+  };
+  if (frames < 2 || frames > 2001) return fail(fmt::format("frames must be in [2, 2001], not {}", frames));
+  if (samples < 2 || samples > 257) return fail(fmt::format("samples must be in [2, 257], not {}", samples));
+  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper && lower >= -0.25 && upper <= 0.25))
+    return fail("the interval must lie in [-0.25, 0.25] with lower < upper");
+  for (const std::string& name : objectives)
+    if (std::isnan(metric_of(NetMetrics{}, name))) return fail(fmt::format("no energy curve for '{}'", name));
+  return true;
+}
+
+void sample_view_frame(const ControlNet& net, int samples, ViewFrame& frame) {
+  const SurfaceSamples s = sample_grid(make_bezier_surface(net), samples);
+  frame.net = net.points;
+  frame.points = s.points;
+  frame.normals = s.normals;
+}
+
+ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& options, const solvers::SolverInfo& solver,
+                             double initial) {
+  ViewSlider slider;
+  slider.parameter = "alpha";
+  slider.symbol = "α";
+  slider.label = "α (the 3×3 mask family)";
+  slider.lower = options.lower;
+  slider.upper = options.upper;
+  slider.initial = initial;
+  slider.net_edges = grid_edges(boundary.m + 1, boundary.n + 1);
+  slider.faces = grid_faces(options.samples);
+
+  // the optima first: their α are frames too, so that the page shows each exactly
+  std::vector<ViewCurve> curves;
+  for (const std::string& name : options.objectives) {
+    ViewCurve c;
+    c.name = name;
+    std::string why;
+    const std::optional<Objective> objective = parse_objective(name, &why);
+    if (objective && boundary.m >= 2 && boundary.n >= 2) {
+      AlphaSearchOptions search;
+      search.lower = options.lower;
+      search.upper = options.upper;
+      const AlphaSearchSummary found = search_alpha(boundary, *objective, solver, search);
+      c.status = to_string(found.status);
+      if (found.status == SearchStatus::kSuccess) c.optimum = found.parameter;
+    } else {
+      c.status = "not_applicable";
+    }
+    curves.push_back(c);
+  }
+  const std::vector<double> values = slider_values(options.lower, options.upper, options.frames, curves, {-0.25, 0.0});
+
+  std::vector<ControlNet> nets;
+  const std::vector<SweepRow> rows =
+      run_sweep(boundary, values, sweep_family(SweepParameter::kAlpha, boundary), solver, std::nullopt, {}, &nets);
+  for (size_t k = 0; k < rows.size(); ++k) {
+    ViewFrame f;
+    f.parameter = rows[k].parameter;
+    f.ok = rows[k].summary.ok() || boundary.m < 2 || boundary.n < 2;
+    f.mu = mu_of_alpha(boundary, f.parameter);
+    sample_view_frame(nets[k], options.samples, f);
+    slider.frames.push_back(std::move(f));
+  }
+  for (ViewCurve& c : curves) {
+    for (const SweepRow& row : rows) c.values.push_back(row.summary.ok() ? metric_of(row.metrics, c.name) : NAN);
+    slider.curves.push_back(std::move(c));
+  }
+  for (const auto& [name, alpha] : {std::pair<const char*, double>{"Coons", -0.25}, {"Laplace", 0.0}})
+    if (alpha >= options.lower && alpha <= options.upper) slider.marks.push_back({name, alpha});
+  return slider;
+}
+
+ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& options,
+                              const solvers::SolverInfo& solver, double initial) {
+  ViewSlider slider;
+  slider.parameter = "weight";
+  slider.symbol = "w";
+  slider.label = "w (the C1 family on the ribbons: 0 biharmonic, 1 C1 Coons)";
+  slider.lower = 0;
+  slider.upper = 1;
+  slider.initial = initial;
+  slider.net_edges = grid_edges(problem.net.m + 1, problem.net.n + 1);
+  slider.faces = grid_faces(options.samples);
+  std::vector<ViewCurve> curves;
+  for (const std::string& name : options.objectives) {
+    ViewCurve c;
+    c.name = name;
+    std::string why;
+    const std::optional<Objective> objective = parse_objective(name, &why);
+    if (objective) {
+      const AlphaSearchSummary found = search_weight(problem, *objective, solver);
+      c.status = to_string(found.status);
+      if (found.status == SearchStatus::kSuccess) c.optimum = found.parameter;
+    }
+    curves.push_back(c);
+  }
+  const std::vector<double> values = slider_values(0, 1, options.frames, curves, {0.0, 1.0});
+  std::vector<Stencil> members;
+  members.reserve(values.size());
+  for (double w : values) members.push_back(c1_family_stencil(w));
+  auto backend = solvers::make_solver(solver.name);
+  solve_stencil_sweep(problem, members, *backend, [&](size_t k, const StencilSolveResult& result) {
+    ViewFrame f;
+    f.parameter = values[k];
+    f.ok = result.summary.ok();
+    sample_view_frame(result.net, options.samples, f);
+    for (ViewCurve& c : curves) c.values.push_back(f.ok ? energy_of(result.net, c.name) : NAN);
+    slider.frames.push_back(std::move(f));
+  });
+  slider.curves = std::move(curves);
+  slider.marks = {{"biharmonic", 0.0}, {"C1 Coons", 1.0}};
+  return slider;
+}
+
+std::vector<std::array<int, 2>> tri_net_edges(int n) {
+  std::vector<std::array<int, 2>> edges;
+  for (int k = 0; k <= n; ++k)
+    for (int j = 0; j + k <= n; ++j) {
+      const int p = int(tri::net_index(n, j, k));
+      if (j + k + 1 <= n) edges.push_back({p, int(tri::net_index(n, j + 1, k))});
+      if (j + k + 1 <= n) edges.push_back({p, int(tri::net_index(n, j, k + 1))});
+      if (j >= 1 && k + 1 <= n) edges.push_back({p, int(tri::net_index(n, j - 1, k + 1))});
+    }
+  return edges;
+}
+
+ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& options,
+                           const solvers::SolverInfo& solver, double initial) {
+  const tri::TriNet frame = tri::frame_net(boundary);
+  ViewSlider slider;
+  slider.parameter = "alpha";
+  slider.symbol = "c";
+  slider.label = "c (the triangular mask family)";
+  std::tie(slider.lower, slider.upper) = default_tri_bounds(frame.n);
+  if (options.lower < options.upper) std::tie(slider.lower, slider.upper) = std::pair(options.lower, options.upper);
+  slider.initial = initial;
+  slider.net_edges = tri_net_edges(frame.n);
+  for (const auto& t : tri::tri_grid_triangles(options.samples)) slider.faces.push_back(t);
+  std::vector<ViewCurve> curves;
+  for (const char* name : {"thin_plate", "dirichlet", "twist"}) {
+    ViewCurve c;
+    c.name = name;
+    std::string why;
+    const std::optional<TriObjective> objective = parse_tri_objective(name, &why);
+    if (objective && frame.n >= 3) {
+      AlphaSearchOptions search;
+      search.lower = slider.lower;
+      search.upper = slider.upper;
+      const AlphaSearchSummary found = search_tri_c(frame, *objective, solver, search);
+      c.status = to_string(found.status);
+      if (found.status == SearchStatus::kSuccess) c.optimum = found.parameter;
+    } else {
+      c.status = "not_applicable";
+    }
+    curves.push_back(c);
+  }
+  const std::vector<double> values =
+      slider_values(slider.lower, slider.upper, options.frames, curves, {-1.0 / 6.0, 0.0});
+  for (double c : values) {
+    tri::TriSolveOptions solve;
+    solve.mask = tri::TriMask{c};
+    solve.solver = &solver;
+    const tri::TriSolveResult result = tri::solve_tri_net(frame, solve);
+    ViewFrame f;
+    f.parameter = c;
+    f.ok = result.summary.ok() || frame.n < 3;
+    const tri::TriSurfaceSamples samples = tri::sample_tri_surface(result.net, options.samples);
+    f.net = result.net.points;
+    f.points = samples.points;
+    f.normals = samples.normals;
+    curves[0].values.push_back(f.ok ? tri::tri_thin_plate_energy(result.net) : NAN);
+    curves[1].values.push_back(f.ok ? tri::tri_dirichlet_energy(result.net) : NAN);
+    curves[2].values.push_back(f.ok ? tri::tri_twist_energy(result.net) : NAN);
+    slider.frames.push_back(std::move(f));
+  }
+  slider.curves = std::move(curves);
+  for (const auto& [name, c] : {std::pair<const char*, double>{"quadratic precision", -1.0 / 6.0}, {"Laplace", 0.0}})
+    if (c >= slider.lower && c <= slider.upper) slider.marks.push_back({name, c});
+  return slider;
+}
+
+}  // namespace coons

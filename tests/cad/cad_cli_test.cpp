@@ -1,0 +1,107 @@
+// `coons export --step/--iges` and `coons import-step` end to end (the built binary).
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "coons/cad/cad_surface.h"
+#include "coons/io/boundary_io.h"
+#include "coons/net/coons_net.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using coons::test::CommandResult;
+using coons::test::run_command;
+
+namespace {
+const std::string kCoons = COONS_BINARY;
+const std::string kData = std::string(COONS_DATA_DIR) + "/";
+}  // namespace
+
+TEST_CASE("coons export --step --iges: the written surface is the solved net, exactly", "[cad][cli]") {
+  const test::TempDir dir;
+  const std::string step = dir.file("pillow.step"), iges = dir.file("pillow.iges");
+  const CommandResult r = run_command(kCoons + " export " + kData + "boundaries/pillow.json --method coons --step " +
+                                      step + " --iges " + iges);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  CHECK(r.err.empty());
+  const auto report = nlohmann::json::parse(r.out);
+  CHECK(report["written"] == nlohmann::json::array({step, iges}));
+  const ControlNet expected = discrete_coons_net(read_boundary_file(kData + "boundaries/pillow.json").boundary);
+  for (const auto& back : {cad::read_step_surfaces(step), cad::read_iges_surfaces(iges)}) {
+    REQUIRE(back.size() == 1);
+    CHECK(back[0].net.points == expected.points);
+    CHECK(back[0].knots_u == cad::bezier_as_bspline(expected).knots_u);
+  }
+  // import-step of that file gives back the boundary file's sides
+  const std::string out = dir.file("back.json");
+  const CommandResult imported = run_command(kCoons + " import-step " + step + " --face 0 --out " + out);
+  INFO(imported.err);
+  REQUIRE(imported.status == 0);
+  const Boundary a = read_boundary_file(out).boundary;
+  const Boundary b = read_boundary_file(kData + "boundaries/pillow.json").boundary;
+  CHECK(a.bottom == b.bottom);
+  CHECK(a.top == b.top);
+  CHECK(a.left == b.left);
+  CHECK(a.right == b.right);
+  CHECK(nlohmann::json::parse(imported.out)["import"]["max_gap"] == 0.0);
+}
+
+TEST_CASE("coons import-step: the bundled B-spline patch gives a B-spline boundary file", "[cad][cli]") {
+  const test::TempDir dir;
+  const std::string out = dir.file("patch.json");
+  const CommandResult r =
+      run_command(kCoons + " import-step " + kData + "cad/bspline_patch.step --face 0 --out " + out);
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  std::ifstream in(out);
+  const auto doc = nlohmann::json::parse(in);
+  CHECK(doc["degree_spline"] == nlohmann::json::array({3, 2}));
+  CHECK(doc["knots_u"] == nlohmann::json::array({0, 0, 0, 0, 0.3, 0.45, 1, 1, 1, 1}));
+  CHECK(doc["knots_v"] == nlohmann::json::array({0, 0, 0, 0.6, 1, 1, 1}));
+  CHECK(doc["import"]["form"] == "bspline");
+  // export --step of that file (--method coons: the Greville net) reads back with the same knots
+  const std::string step = dir.file("again.step");
+  const CommandResult e = run_command(kCoons + " export " + out + " --method coons --step " + step);
+  INFO(e.err);
+  REQUIRE(e.status == 0);
+  const auto again = cad::read_step_surfaces(step);
+  const auto original = cad::read_step_surfaces(kData + "cad/bspline_patch.step");
+  REQUIRE(again.size() == 1);
+  CHECK(again[0].knots_u == original[0].knots_u);
+  CHECK(again[0].knots_v == original[0].knots_v);
+  CHECK(again[0].net.points == original[0].net.points);
+}
+
+TEST_CASE("coons import-step, export --step: bad input exits 2 with one line, nothing written", "[cad][cli]") {
+  const test::TempDir dir;
+  const std::string out = dir.file("x.json");
+  struct Case {
+    std::string args, message;
+  };
+  const std::vector<Case> cases = {
+      {"import-step " + dir.file("none.step") + " --face 0 --out " + out, "none.step: (document): cannot be read"},
+      {"import-step " + kData + "cad/bspline_patch.step --face 4 --out " + out, "--face: face 4 out of range"},
+      {"import-step " + kData + "cad/four_edges.step --edges 0,1,2,9 --out " + out, "--edges: edge 9 out of range"},
+      {"export " + kData + "boundaries/pillow.json --method alpha --step " + dir.file("cad/x.step"), "x.step"},
+  };
+  for (const auto& c : cases) {
+    const CommandResult r = run_command(kCoons + " " + c.args);
+    INFO(c.args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.find(c.message) != std::string::npos);
+    CHECK_FALSE(std::filesystem::exists(out));
+  }
+  CHECK(std::filesystem::is_empty(dir.path));
+  // a B-spline boundary is exported as its Greville net: other methods are refused
+  const std::string patch = dir.file("patch.json");
+  REQUIRE(run_command(kCoons + " import-step " + kData + "cad/bspline_patch.step --face 0 --out " + patch).status == 0);
+  const CommandResult alpha = run_command(kCoons + " export " + patch + " --method alpha --step " + dir.file("p.step"));
+  CHECK(alpha.status == 2);
+  CHECK(alpha.err.find("--method coons") != std::string::npos);
+  CHECK_FALSE(std::filesystem::exists(dir.file("p.step")));
+}

@@ -1,0 +1,135 @@
+// `coons solve/export/search-alpha/study` on B-spline boundary files (docs/formats.md "B-spline
+// boundaries"): the reports, the files, and bad knot vectors (exit 2, one error line naming the
+// file, the field and the index, nothing on standard output).
+#include <catch2/catch.hpp>
+#include <filesystem>
+#include <fstream>
+#include <nlohmann/json.hpp>
+
+#include "support/fixtures.h"
+
+using namespace coons::test;
+using nlohmann::json;
+namespace fs = std::filesystem;
+
+namespace {
+
+const std::string kCoons = COONS_BINARY;
+const std::string kData = COONS_DATA_DIR;
+const std::string kWave = kData + "/boundaries/bspline_wave.json";
+
+std::string q(const std::string& s) { return "'" + s + "'"; }
+
+json wave() { return json::parse(std::ifstream(kWave)); }
+
+}  // namespace
+
+TEST_CASE("coons solve: a B-spline boundary gives its knots, degrees, compatibility notes and exact energies",
+          "[cli][bspline]") {
+  const CommandResult coons = run_command(kCoons + " solve " + q(kWave) + " --method coons");
+  REQUIRE(coons.status == 0);
+  const json c = json::parse(coons.out);
+  CHECK(c["bspline"]["degree_spline"] == json({3, 2}));
+  CHECK(c["bspline"]["compatibility"].size() == 2);  // left and right received each other's knots
+  CHECK(c["degree"] == json({7, 6}));
+  CHECK(c["net"].size() == 8);
+  CHECK(c["metrics"]["mask_residual"].get<double>() < 1e-12);
+  const CommandResult alpha = run_command(kCoons + " solve " + q(kWave) + " --alpha -0.25 --solver eigen-lu");
+  REQUIRE(alpha.status == 0);
+  const json a = json::parse(alpha.out);
+  CHECK(a["solver"]["status"] == "success");
+  CHECK(a["metrics"]["thin_plate_energy"].get<double>() ==
+        Approx(c["metrics"]["thin_plate_energy"].get<double>()).epsilon(1e-9));
+  const CommandResult laplace = run_command(kCoons + " solve " + q(kWave) + " --alpha 0");
+  REQUIRE(laplace.status == 0);
+  const json l = json::parse(laplace.out);
+  CHECK(l["metrics"]["dirichlet_energy"].get<double>() < c["metrics"]["dirichlet_energy"].get<double>());
+  CHECK(l["solver"]["picked_by"] == "auto");
+}
+
+TEST_CASE("coons solve: bad knot vectors and options are one error line naming the file, the field and the index",
+          "[cli][bspline]") {
+  TempDir dir;
+  struct Case {
+    std::string name, field;
+    std::function<void(json&)> edit;
+  };
+  const std::vector<Case> cases = {
+      {"decreasing", "knots_u[5]", [](json& d) { d["knots_u"][5] = 0.05; }},
+      {"unclamped", "knots_u[3]", [](json& d) { d["knots_u"][3] = 0.05; }},
+      {"too_long", "knots_u", [](json& d) { d["knots_u"].push_back(1); }},
+      {"multiplicity", "knots_u[7]",
+       [](json& d) {
+         for (int k = 4; k < 8; ++k) d["knots_u"][k] = 0.5;
+       }},
+      {"right_decreasing", "knots_v.right[4]", [](json& d) { d["knots_v"]["right"][4] = 0.3; }},
+      {"not_number", "knots_v.left[2]", [](json& d) { d["knots_v"]["left"][2] = "zero"; }},
+      {"no_degree", "degree_spline", [](json& d) { d.erase("degree_spline"); }},
+      {"bad_degree", "degree_spline[1]", [](json& d) { d["degree_spline"][1] = 0; }},
+      {"side", "knots_v.middle", [](json& d) { d["knots_v"]["middle"] = json::array(); }},
+  };
+  for (const Case& c : cases) {
+    json doc = wave();
+    c.edit(doc);
+    const std::string path = dir.write(c.name + ".json", doc.dump());
+    const CommandResult r = run_command(kCoons + " solve " + q(path));
+    INFO(c.name << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: " + path + ": " + c.field + ": ", 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+  for (const auto& [options, field] :
+       {std::pair{"--mu 3", "--mu"}, std::pair{"--mask c1-coons", "--mask"},
+        std::pair{"--method hermite-coons", "--method"}, std::pair{"--solver dst", "--solver"}}) {
+    const CommandResult r = run_command(kCoons + " solve " + q(kWave) + " " + options);
+    INFO(options << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find(std::string("command line: ") + field + ": ") != std::string::npos);
+  }
+  const CommandResult sweep = run_command(kCoons + " sweep " + q(kWave));
+  CHECK(sweep.status == 2);
+  CHECK(sweep.err.find("knots_u: ") != std::string::npos);
+}
+
+TEST_CASE("coons export: a B-spline boundary as sampled OBJ, PLY and VTS and its system as Matrix Market",
+          "[cli][bspline]") {
+  TempDir out;
+  const CommandResult r =
+      run_command(kCoons + " export " + q(kWave) + " --alpha -0.1 --samples 9 --obj --ply --vts --mtx --out " +
+                  q(out.path.string()));
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["written"].size() == 6);
+  for (const char* name : {"bspline_wave.surface.obj", "bspline_wave.net.obj", "bspline_wave.surface.ply",
+                           "bspline_wave.surface.vts", "bspline_wave.A.mtx", "bspline_wave.B.mtx"})
+    CHECK(fs::exists(out.path / name));
+  std::ifstream obj(out.path / "bspline_wave.surface.obj");
+  int vertices = 0;
+  for (std::string line; std::getline(obj, line);) vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
+  CHECK(vertices == 81);
+}
+
+TEST_CASE("coons search-alpha and study: a B-spline boundary is searched over the non-uniform family",
+          "[cli][bspline]") {
+  const CommandResult r = run_command(kCoons + " search-alpha " + q(kWave) + " --objective thin_plate");
+  REQUIRE(r.status == 0);
+  const json s = json::parse(r.out);
+  CHECK(s["status"] == "success");
+  CHECK(s["alpha"].get<double>() > -0.25);
+  CHECK(s["alpha"].get<double>() < 0.25);
+  CHECK(s["beta"].is_null());
+  CHECK(s["bspline"]["degree_spline"] == json({3, 2}));
+  const CommandResult target = run_command(kCoons + " search-alpha " + q(kWave) + " --objective target --target coons");
+  CHECK(target.status == 2);
+  CHECK(target.out.empty());
+  TempDir out;
+  const CommandResult study = run_command(kCoons + " study " + q(kWave) + " --degrees 3 --out " + q(out.path.string()));
+  REQUIRE(study.status == 0);
+  CHECK(study.out.find("## B-spline boundaries") != std::string::npos);
+  CHECK(study.out.find("| bspline_wave |") != std::string::npos);
+  const json rows = json::parse(std::ifstream(out.path / "bspline.json"));
+  REQUIRE(rows.size() == 1);
+  CHECK(rows[0]["best_alpha"]["thin_plate"]["status"] == "success");
+}

@@ -1,0 +1,104 @@
+#include "coons/study/bspline_search.h"
+
+#include <catch2/catch.hpp>
+
+#include "coons/study/bspline_net.h"
+#include "coons/study/bspline_study.h"
+#include "coons/surfaces/bspline_energy.h"
+#include "solvers/registry.h"
+#include "support/bspline_fixtures.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+using namespace coons::test;
+
+namespace {
+
+Objective objective(const std::string& text) {
+  std::string why;
+  return *parse_objective(text, &why);
+}
+
+}  // namespace
+
+TEST_CASE("bspline_alpha_objective: the derivative from one extra solve matches central differences",
+          "[study][bspline]") {
+  const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 7, 2, 6, 5));
+  auto solver = solvers::make_solver("eigen-lu");
+  for (const char* name : {"thin_plate", "e3", "twist+0.5*dirichlet", "discrete_thin_plate"}) {
+    const Objective o = objective(name);
+    const double alpha = -0.07, h = 1e-5;
+    const auto at = bspline_alpha_objective(b, o, alpha, *solver);
+    const auto plus = bspline_alpha_objective(b, o, alpha + h, *solver);
+    const auto minus = bspline_alpha_objective(b, o, alpha - h, *solver);
+    REQUIRE((at && plus && minus));
+    INFO(name);
+    CHECK(at->derivative == Approx((plus->value - minus->value) / (2 * h)).epsilon(1e-5).margin(1e-8));
+  }
+}
+
+TEST_CASE("search_bspline_alpha: finds the minimum of a fine scan; twist has its minimum at the Coons net",
+          "[study][bspline]") {
+  // Random control points on random knots (repeated ones included): strongly non-uniform Greville
+  // spacing, where the family is singular at some alpha > 0; searched in [-1/4, 0].
+  const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 8, 2, 6, 9));
+  auto solver = solvers::make_solver("eigen-lu");
+  for (const char* name : {"thin_plate", "e3"}) {
+    const Objective o = objective(name);
+    const AlphaSearchSummary s = search_bspline_alpha(b, o, "eigen-lu");
+    REQUIRE(s.parameter);
+    double best = HUGE_VAL;
+    for (int k = 0; k <= 200; ++k)
+      best = std::min(best, bspline_alpha_objective(b, o, -0.25 + 0.25 * k / 200, *solver)->value);
+    INFO(name << ": alpha " << *s.parameter << ", status " << to_string(s.status));
+    CHECK(s.value <= best * (1 + 1e-12));
+    CHECK(s.value == Approx(bspline_alpha_objective(b, o, *s.parameter, *solver)->value).epsilon(1e-12));
+  }
+  const AlphaSearchSummary twist = search_bspline_alpha(b, objective("twist"), "eigen-lu");
+  REQUIRE(twist.parameter);
+  CHECK(*twist.parameter == Approx(-0.25).margin(1e-8));
+  CHECK(twist.at_bound);
+  const AlphaSearchSummary dirichlet = search_bspline_alpha(b, objective("dirichlet"), "eigen-lu");
+  REQUIRE(dirichlet.parameter);
+  CHECK(dirichlet.at_bound);
+  CHECK(*dirichlet.parameter == 0.0);  // the default upper bound: [-1/4, 0] is where the system is definite
+}
+
+TEST_CASE("search_bspline_alpha: a boundary every alpha fills alike is flat, with no optimum claimed",
+          "[study][bspline]") {
+  // Bilinear data in the Greville abscissae: every member reproduces it (linear precision).
+  const BSplineBoundary given = make_random_bspline_boundary(2, 6, 3, 5, 12);
+  BSplineBoundary b = compatible_boundary(given);
+  const GrevilleGrid grid = greville_grid(b);
+  const auto f = [](double u, double v) { return Eigen::RowVector3d(u, v, 0.3 * u * v); };
+  for (int i = 0; i <= grid.m(); ++i) {
+    b.bottom.points.row(i) = f(grid.xi(i), 0);
+    b.top.points.row(i) = f(grid.xi(i), 1);
+  }
+  for (int j = 0; j <= grid.n(); ++j) {
+    b.left.points.row(j) = f(0, grid.eta(j));
+    b.right.points.row(j) = f(1, grid.eta(j));
+  }
+  const AlphaSearchSummary s = search_bspline_alpha(b, objective("thin_plate"), "eigen-lu");
+  CHECK(s.status == SearchStatus::kFlat);
+  CHECK(s.flat);
+  CHECK_FALSE(s.parameter);
+}
+
+TEST_CASE("run_bspline_study: one row per B-spline boundary with both energies and a verdict per objective",
+          "[study][bspline]") {
+  BSplineStudyInput in;
+  in.name = "random";
+  in.file = "random.json";
+  in.sides.given = make_random_bspline_boundary(2, 6, 2, 5, 21);
+  in.sides.compatible = compatible_boundary(in.sides.given, &in.sides.notes);
+  std::vector<Objective> objectives = {objective("thin_plate"), objective("e3")};
+  const std::vector<BSplineStudyRow> rows = run_bspline_study({in}, objectives, "");
+  REQUIRE(rows.size() == 1);
+  CHECK(rows[0].searches.size() == 2);
+  CHECK(std::isfinite(rows[0].thin_plate_coons));
+  CHECK(rows[0].thin_plate_laplace < rows[0].thin_plate_coons * 10);
+  const std::string md = bspline_study_markdown(rows);
+  CHECK(md.find("| random |") != std::string::npos);
+  CHECK(bspline_study_json(rows)[0]["best_alpha"].contains("e3"));
+}

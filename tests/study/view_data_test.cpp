@@ -1,0 +1,151 @@
+// The data of the `coons view` page (coons/study/view_data.h): the α family's nets, energies and optima.
+#include "coons/study/view_data.h"
+
+#include <algorithm>
+#include <catch2/catch.hpp>
+
+#include "coons/mask/stencil_problem.h"
+#include "coons/metrics/energies.h"
+#include "coons/net/coons_net.h"
+#include "solvers/registry.h"
+#include "support/fixtures.h"
+
+using namespace coons;
+
+TEST_CASE("alpha_view_slider: the frames hold the family's nets, their energies and the optima", "[study][view]") {
+  const Boundary b = test::make_smooth_boundary(5, 4, 7);
+  ViewOptions options;
+  options.frames = 11;
+  options.samples = 5;
+  options.objectives = {"thin_plate", "dirichlet"};
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-ldlt");
+  REQUIRE(solver);
+  const ViewSlider s = alpha_view_slider(b, options, *solver, -0.2);
+  std::string why;
+  ViewPage page;
+  page.sliders.push_back(s);
+  REQUIRE(page.is_valid(&why));
+  CHECK(s.parameter == "alpha");
+  CHECK(s.net_edges.size() == size_t(6 * 4 + 5 * 5));
+  CHECK(s.faces.size() == size_t(2 * 4 * 4));
+  REQUIRE(s.curves.size() == 2);
+  REQUIRE(s.frames.size() >= 11);
+  for (const ViewFrame& f : s.frames) {
+    CHECK(f.ok);
+    CHECK(f.net.rows() == 30);
+    CHECK(f.points.rows() == 25);
+  }
+  CHECK_FALSE(s.frames.front().mu);  // m ≠ n: no μ
+  // the frame at α = −1/4 is the discrete Coons net
+  const ViewFrame& coons = s.frames.front();
+  CHECK(coons.parameter == -0.25);
+  CHECK((coons.net - discrete_coons_net(b).points).cwiseAbs().maxCoeff() < 1e-9);
+  // the curves are the exact energies of the frames' nets
+  for (size_t k = 0; k < s.frames.size(); k += 3) {
+    ControlNet net(5, 4);
+    net.points = s.frames[k].net;
+    CHECK(s.curves[0].values[k] == Approx(thin_plate_energy(net)).epsilon(1e-12));
+    CHECK(s.curves[1].values[k] == Approx(dirichlet_energy(net)).epsilon(1e-12));
+  }
+  // each optimum is a frame, and no frame of its curve is lower
+  for (const ViewCurve& c : s.curves) {
+    if (!c.optimum) continue;
+    size_t at = s.frames.size();
+    for (size_t k = 0; k < s.frames.size(); ++k)
+      if (s.frames[k].parameter == *c.optimum) at = k;
+    REQUIRE(at < s.frames.size());
+    for (double v : c.values) CHECK(v >= c.values[at] * (1 - 1e-9));
+  }
+  // the surface samples lie on the net's Bézier surface: the corners are the net's corners
+  CHECK((s.frames[3].points.row(0) - s.frames[3].net.row(0)).norm() < 1e-12);
+  CHECK((s.frames[3].points.row(24) - s.frames[3].net.row(29)).norm() < 1e-12);
+}
+
+TEST_CASE("ViewOptions::is_valid: frames, samples, the interval and the curves", "[study][view]") {
+  std::string why;
+  CHECK(ViewOptions{}.is_valid(&why));
+  ViewOptions o;
+  o.frames = 1;
+  CHECK_FALSE(o.is_valid(&why));
+  o = ViewOptions{};
+  o.upper = 0.3;
+  CHECK_FALSE(o.is_valid(&why));
+  o = ViewOptions{};
+  o.objectives = {"target"};
+  CHECK_FALSE(o.is_valid(&why));
+  CHECK(why.find("target") != std::string::npos);
+}
+
+TEST_CASE("weight_view_slider: the C1 family keeps both data rings, energies and optima of its frames",
+          "[study][view]") {
+  ControlNet net = discrete_coons_net(test::make_smooth_boundary(6, 6, 3));
+  net.points += 0.05 * Eigen::MatrixX3d::Random(net.points.rows(), 3);  // ribbons that are not the Coons net's
+  const StencilProblem problem = rings_problem(net, 2);
+  ViewOptions options;
+  options.frames = 6;
+  options.samples = 4;
+  options.objectives = {"thin_plate"};
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-ldlt");
+  REQUIRE(solver);
+  const ViewSlider s = weight_view_slider(problem, options, *solver, 1.0);
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  CHECK(s.parameter == "weight");
+  CHECK(s.frames.front().parameter == 0.0);
+  CHECK(s.frames.back().parameter == 1.0);
+  for (const ViewFrame& f : s.frames) {
+    REQUIRE(f.ok);
+    for (int i = 0; i <= 6; ++i)
+      for (int j = 0; j <= 6; ++j)
+        if (i < 2 || j < 2 || i > 4 || j > 4) CHECK(f.net.row(net.index(i, j)) == net.points.row(net.index(i, j)));
+  }
+  // w = 0 and w = 1 give different interiors
+  CHECK((s.frames.front().net - s.frames.back().net).cwiseAbs().maxCoeff() > 1e-6);
+  const ViewCurve& c = s.curves.front();
+  for (size_t k = 0; k < s.frames.size(); ++k) {
+    ControlNet shown(6, 6);
+    shown.points = s.frames[k].net;
+    CHECK(c.values[k] == Approx(thin_plate_energy(shown)).epsilon(1e-12));
+    if (c.optimum) CHECK(c.values[k] >= *std::min_element(c.values.begin(), c.values.end()));
+  }
+}
+
+TEST_CASE("tri_view_slider: c = -1/6 gives the cubic's quadratic-precision centre, edges and optima", "[study][view]") {
+  tri::TriNet cubic(3);
+  cubic.points = Eigen::MatrixX3d::Random(tri::net_size(3), 3);
+  const tri::TriBoundary boundary = tri::boundary_of(cubic, "cubic");
+  CHECK(tri_net_edges(3).size() == 18);
+  CHECK(tri_net_edges(1).size() == 3);
+  ViewOptions options;
+  options.frames = 5;
+  options.samples = 4;
+  options.lower = options.upper = 0;  // the search's default bounds
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-lu");
+  REQUIRE(solver);
+  const ViewSlider s = tri_view_slider(boundary, options, *solver, -1.0 / 6.0);
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  CHECK(s.faces.size() == 9);
+  const ViewFrame* quadratic = nullptr;
+  for (const ViewFrame& f : s.frames)
+    if (f.parameter == -1.0 / 6.0) quadratic = &f;
+  REQUIRE(quadratic);
+  // b111 = 1/4 · (the six edge points) − 1/6 · (the three corners)
+  Eigen::RowVector3d corners = Eigen::RowVector3d::Zero(), edges = Eigen::RowVector3d::Zero();
+  for (int k = 0; k <= 3; ++k)
+    for (int j = 0; j + k <= 3; ++j) {
+      const int i = 3 - j - k;
+      if (i == 3 || j == 3 || k == 3)
+        corners += cubic.at(i, j, k);
+      else if (i == 0 || j == 0 || k == 0)
+        edges += cubic.at(i, j, k);
+    }
+  const Eigen::RowVector3d centre = quadratic->net.row(tri::net_index(3, 1, 1));
+  CHECK((centre - (edges / 4 - corners / 6)).norm() < 1e-12);
+  REQUIRE(s.curves.size() == 3);
+  CHECK(s.curves[0].name == "thin_plate");
+}
