@@ -98,3 +98,20 @@ TEST_CASE("coons study FILES --shard: a rerun skips finished files and a missing
   CHECK(merged.err.find("saddle_bump_ribbons.json") != std::string::npos);
   CHECK_FALSE(fs::exists(dir.file("merged")));
 }
+
+TEST_CASE("coons study FILES --shard: B-spline files and --html are refused with one line, nothing written", "[cli]") {
+  TempDir dir;
+  const std::string out = dir.file("shards");
+  const std::string wave = std::string(COONS_DATA_DIR) + "/boundaries/bspline_wave.json";
+  const std::string dome = std::string(COONS_DATA_DIR) + "/boundaries/dome.json";
+  for (const std::string& args :
+       {" study " + quoted(wave) + " --shard 0/2", " study " + quoted(dome) + " --html --shard 0/2"}) {
+    const CommandResult r = run_command(kCoons + args + " --out " + quoted(out));
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.find(": --shard: ") != std::string::npos);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(out));
+  }
+}
