@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# A sharded family study on one machine: runs `coons study … --shard I/N` for I = 0 … N−1 through
+# A sharded study (a family, or boundary files) on one machine: runs `coons study … --shard I/N` for I = 0 … N−1 through
 # GNU parallel (Debian package `parallel`), JOBS at a time, then `coons study --merge` into the
 # report folder. A rerun resumes: every shard skips the tasks already in its file.
 #
@@ -9,9 +9,11 @@
 #   -j JOBS          shards at once (default: the number of CPUs)
 #   --shards-dir DIR where the shard files go (default: REPORT_DIR/shards)
 #   --time           run each shard under /usr/bin/time -v (DIR/time-I-of-N.txt: peak memory, CPU seconds)
-#   STUDY_OPTIONS    the options of `coons study --family …` (not --shard, not --out)
+#   STUDY_OPTIONS    the inputs and options of `coons study` (--family … or boundary files; not --shard,
+#                    not --out)
 # Environment: COONS (the binary, default build/coons).
 # e.g. scripts/study-parallel.sh -n 6 -j 2 --out out/family -- --family random-smooth --count 1000 --degrees 8
+#      scripts/study-parallel.sh -n 4 -j 2 --out out/study -- data/boundaries/*.json --degrees 3 4 6 8
 set -euo pipefail
 
 fail() { echo "error: study-parallel: $*" >&2; exit 2; }

@@ -6,6 +6,9 @@
 #include <fmt/format.h>
 
 #include <cstdint>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
 #include <memory>
 
 #include "coons/config.h"
@@ -13,8 +16,8 @@
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
-#include "coons/study/family_tasks.h"
 #include "coons/study/bspline_study.h"
+#include "coons/study/family_tasks.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
@@ -32,7 +35,8 @@ struct StudyRequest {
   std::string out_dir = "out/study";
   std::string solver = "auto";
   double corner_tolerance = 1e-9;
-  std::string family;  // "random-smooth": the family study instead of files
+  std::string family;      // "random-smooth" or "perturbed:NAME": the family study instead of files
+  double amplitude = 0.1;  // of the perturbed family
   int count = 200;
   std::uint64_t seed = 1;
   bool degrees_given = false;
@@ -42,14 +46,39 @@ struct StudyRequest {
   GlobalOptions global;
 };
 
-// `coons study --family random-smooth`: α* over a seeded family (coons/study/alpha_family.h).
+// perturbed:NAME: NAME is a boundary file, or a bundled shape's name (data/boundaries/NAME.json from
+// the current folder, the repository's root).
+std::string perturbed_base_file(const std::string& name) {
+  if (name.empty()) throw InputError("command line", "--family", "perturbed: needs a shape (perturbed:dome) or a file");
+  if (std::filesystem::is_regular_file(name)) return name;
+  std::string bundled = "data/boundaries/" + name + ".json";
+  if (std::filesystem::is_regular_file(bundled)) return bundled;
+  throw InputError("command line", "--family",
+                   fmt::format("'{}' is neither a boundary file nor a bundled shape ({} not found)", name, bundled));
+}
+
+std::string read_file_text(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot be read");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+// `coons study --family random-smooth|perturbed:NAME`: α* over a seeded family (coons/study/alpha_family.h).
 int run_family_command(const StudyRequest& r) {
   Phases phases("study");
   if (!r.inputs.empty())
     throw InputError("command line", "--family", "give either boundary files or --family, not both");
-  if (r.family != "random-smooth")
-    throw InputError("command line", "--family", fmt::format("unknown family '{}' (known: random-smooth)", r.family));
   AlphaFamilyOptions options;
+  if (r.family.rfind("perturbed:", 0) == 0) {
+    options.base_name = r.family.substr(10);
+    const std::string file = perturbed_base_file(options.base_name);
+    options.base = read_boundary_file(file).boundary;
+    options.base_content = fnv1a_hex(read_file_text(file));
+    options.amplitude = r.amplitude;
+  } else if (r.family != "random-smooth") {
+    throw InputError("command line", "--family",
+                     fmt::format("unknown family '{}' (known: random-smooth, perturbed:NAME)", r.family));
+  }
   if (r.degrees_given) options.degrees = r.degrees;
   options.count = r.count;
   options.seed = r.seed;
@@ -80,9 +109,6 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
     return run_study_merge(r.merge, r.out_dir);
   }
   if (!r.family.empty()) return run_family_command(r);
-  if (!r.shard.empty())
-    throw InputError("command line", "--shard",
-                     "splits the family study (--family) only; boundary files are not sharded yet");
   Phases phases("study");
   phases.start("read");
   const std::vector<std::string> files = expand_inputs(r.inputs);
@@ -125,6 +151,15 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
                  fmt::format("the study of {} at degree {}", b.name, largest), f, "degree");
   }
 
+  if (!r.shard.empty()) {
+    const auto shard = parse_shard(r.shard, &why);
+    if (!shard) throw InputError("command line", "--shard", why);
+    if (!bsplines.empty())
+      throw InputError(bsplines.front().file, "--shard",
+                       "B-spline boundaries are not sharded yet (study them unsharded)");
+    if (r.html) throw InputError("command line", "--shard", "--html is not sharded yet (give it to an unsharded run)");
+    return run_files_shard(files, options, r.corner_tolerance, shard->first, shard->second, r.out_dir);
+  }
   phases.start("solve");
   StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
   result.triangles =
@@ -135,23 +170,14 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
       options.solver != nullptr && options.solver->needs_matrix ? options.solver->name : std::string());
 
   phases.start("write");
-  OutputSet out(r.out_dir);
-  const StudyFigures figures = plot_study_figures(result, [&](const std::string& file) { return out.stage(file); });
-  for (const auto* list : {&figures.energies, &figures.nets})
-    for (const StudyFigure& f : *list)
-      if (!f.error.empty()) out.discard(f.file);
-  for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
-    if (!f->error.empty()) out.discard(f->file);
-  const std::string pages = r.html ? write_study_pages(result, inputs, out, three_js, options.solver) : "";
-  const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
-                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6") +
-                         (bspline_rows.empty() ? "" : "\n" + bspline_study_markdown(bspline_rows)) + pages;
-  out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
-  if (!bspline_rows.empty())
-    out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(bspline_rows), 1) << '\n'; });
-  out.write("report.md", [&](std::ostream& o) { o << md; });
-  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
-  out.commit();
+  // B-spline rows and pages after the per-shape report (not carried by shards: see run_files_shard)
+  write_study_report(result, r.out_dir, command_line, [&](OutputSet& out) {
+    std::string tail = bspline_rows.empty() ? "" : "\n" + bspline_study_markdown(bspline_rows);
+    if (!bspline_rows.empty())
+      out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(bspline_rows), 1) << '\n'; });
+    if (r.html) tail += write_study_pages(result, inputs, out, three_js, options.solver);
+    return tail;
+  });
   return kExitOk;
 }
 
@@ -168,13 +194,19 @@ void register_study(CLI::App& app, Registry& registry) {
                                   "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
                       ->capture_default_str();
   cmd->add_option("--family", r->family,
-                  "random-smooth: instead of files, the distribution of alpha* over a seeded family of random "
-                  "smooth boundaries and the best single alpha");
+                  "random-smooth, or perturbed:NAME (a bundled shape or a boundary file plus random smooth "
+                  "perturbations): instead of files, the distribution of alpha* over a seeded family and the best "
+                  "single alpha");
+  cmd->add_option("--amplitude", r->amplitude,
+                  "with --family perturbed:NAME: the perturbation's size, a fraction of the shape's bounding-box "
+                  "diagonal, in [0, 1]")
+      ->capture_default_str();
   cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
   cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
-  cmd->add_option("--shard", r->shard,
-                  "I/N: with --family, run the I-th of N disjoint parts of the task list into "
-                  "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
+  cmd->add_option(
+      "--shard", r->shard,
+      "I/N: run the I-th of N disjoint parts of the task list (family tasks, or one per boundary file) into "
+      "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
   cmd->add_option("--merge", r->merge, "DIR: the report (to --out) from the shard files in DIR");
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
   cmd->add_flag("--html", r->html, "also a coons view page per shape in pages/, linked from the report");

@@ -22,16 +22,6 @@ namespace coons::cli {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-namespace {
-
-// The complete, parsable lines of a JSON Lines file (objects with a string "key"); `clean` is false
-// when something else was there (a truncated last line of a killed run, a broken line).
-struct ShardFile {
-  std::vector<json> records;
-  std::vector<std::string> lines;
-  bool clean = true;
-};
-
 ShardFile read_shard_file(const fs::path& path) {
   ShardFile out;
   std::ifstream in(path, std::ios::binary);
@@ -57,9 +47,43 @@ ShardFile read_shard_file(const fs::path& path) {
   return out;
 }
 
+namespace {
+
 std::string revision_of(const Provenance& p) { return p.git_revision; }
 
 }  // namespace
+
+fs::path open_shard_file(const std::string& out_dir, int shard, int shards, const json& study,
+                         std::set<std::string>* done) {
+  const fs::path dir(out_dir);
+  if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(out_dir, "--out", "exists and is not a folder");
+  fs::path path = dir / fmt::format("shard-{}-of-{}.jsonl", shard, shards);
+  ShardFile existing;
+  if (fs::exists(path)) {
+    existing = read_shard_file(path);
+    for (const json& r : existing.records) {
+      if (!r.contains("study") || r["study"] != study)
+        throw InputError(path.string(), "study",
+                         "holds tasks of another study (other options or another coons revision); give another "
+                         "--out or remove the file");
+      done->insert(r["key"].get<std::string>());
+    }
+  }
+  std::error_code ec;
+  fs::create_directories(dir, ec);
+  if (ec) throw InputError(out_dir, "--out", "cannot be created: " + ec.message());
+  if (!existing.clean) {  // drop the unfinished last line (and anything unreadable) before appending
+    const fs::path tmp = path.string() + ".tmp";
+    {
+      std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
+      for (const std::string& line : existing.lines) o << line << '\n';
+      if (!o) throw InputError(tmp.string(), "--out", "cannot be written");
+    }
+    fs::rename(tmp, path, ec);
+    if (ec) throw InputError(path.string(), "--out", "cannot be replaced: " + ec.message());
+  }
+  return path;
+}
 
 void write_family_report(const AlphaFamilyResult& result, const std::string& out_dir) {
   OutputSet out(out_dir);
@@ -90,34 +114,8 @@ int run_family_shard(const AlphaFamilyOptions& options, int shard, int shards, c
   const json study = family_study_json(options, objectives, p.version, revision_of(p));
   const std::vector<FamilyTask> mine = shard_tasks(family_tasks(options, objectives), shard, shards);
 
-  const fs::path dir(out_dir);
-  if (fs::exists(dir) && !fs::is_directory(dir)) throw InputError(out_dir, "--out", "exists and is not a folder");
-  const fs::path path = dir / fmt::format("shard-{}-of-{}.jsonl", shard, shards);
   std::set<std::string> done;
-  ShardFile existing;
-  if (fs::exists(path)) {
-    existing = read_shard_file(path);
-    for (const json& r : existing.records) {
-      if (!r.contains("study") || r["study"] != study)
-        throw InputError(path.string(), "study",
-                         "holds tasks of another study (other options or another coons revision); give another "
-                         "--out or remove the file");
-      done.insert(r["key"].get<std::string>());
-    }
-  }
-  std::error_code ec;
-  fs::create_directories(dir, ec);
-  if (ec) throw InputError(out_dir, "--out", "cannot be created: " + ec.message());
-  if (!existing.clean) {  // drop the unfinished last line (and anything unreadable) before appending
-    const fs::path tmp = path.string() + ".tmp";
-    {
-      std::ofstream o(tmp, std::ios::binary | std::ios::trunc);
-      for (const std::string& line : existing.lines) o << line << '\n';
-      if (!o) throw InputError(tmp.string(), "--out", "cannot be written");
-    }
-    fs::rename(tmp, path, ec);
-    if (ec) throw InputError(path.string(), "--out", "cannot be replaced: " + ec.message());
-  }
+  const fs::path path = open_shard_file(out_dir, shard, shards, study, &done);
   std::ofstream o(path, std::ios::binary | std::ios::app);
   if (!o) throw InputError(path.string(), "--out", "cannot be written");
   phases.start("solve");
@@ -152,6 +150,7 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
     if (e.is_regular_file() && std::regex_match(e.path().filename().string(), shard_name)) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw InputError(merge_dir, "--merge", "holds no shard-I-of-N.jsonl file");
+  if (is_files_study_shard(files.front())) return run_files_merge(files, merge_dir, out_dir);
 
   std::optional<json> study;
   AlphaFamilyOptions options;

@@ -4,12 +4,35 @@
 // "Sharded studies").
 #pragma once
 
+#include <filesystem>
+#include <functional>
+#include <nlohmann/json.hpp>
+#include <set>
 #include <string>
 #include <vector>
 
+#include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
+#include "coons/study/study.h"
 
 namespace coons::cli {
+
+//! The complete, parsable lines of a JSON Lines file (objects with a string "key"); `clean` is
+//! false when something else was there (a truncated last line of a killed run, a broken line).
+struct ShardFile {
+  std::vector<nlohmann::json> records;
+  std::vector<std::string> lines;
+  bool clean = true;
+};
+ShardFile read_shard_file(const std::filesystem::path& path);
+
+//! OUT/shard-I-of-N.jsonl made ready for appending: `done` receives the keys already there, an
+//! unfinished last line is dropped; a file of another `study` is an input error.
+std::filesystem::path open_shard_file(const std::string& out_dir, int shard, int shards, const nlohmann::json& study,
+                                      std::set<std::string>* done);
+
+//! FNV-1a (64 bit) of `text`, as 16 lowercase hex digits.
+std::string fnv1a_hex(const std::string& text);
 
 //! report.md, figures/ and results.json of a family study, staged and published together; the
 //! report is also printed.
@@ -21,5 +44,25 @@ int run_family_shard(const AlphaFamilyOptions& options, int shard, int shards, c
 //! Reads every DIR/shard-*-of-*.jsonl, checks that they hold one study with every task, and writes
 //! its report to `out_dir`.
 int run_study_merge(const std::string& merge_dir, const std::string& out_dir);
+
+// ---- boundary-file studies (study_files_shard.cpp) ----
+
+//! report.md, figures/ and results.json of the per-shape study, staged and published together;
+//! the report is also printed. `command_line` goes into the report's provenance line.
+//! `extra` (optional) writes more files to the same output set and returns Markdown to append.
+void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
+                        const std::function<std::string(OutputSet&)>& extra = {});
+
+//! `coons study FILES --shard I/N`: one task per input file (in the order given), task t in shard
+//! t mod N; every file is read and checked first.
+int run_files_shard(const std::vector<std::string>& files, const StudyOptions& options, double corner_tolerance,
+                    int shard, int shards, const std::string& out_dir);
+
+//! Whether the first record of this shard file belongs to a boundary-file study.
+bool is_files_study_shard(const std::filesystem::path& file);
+
+//! The per-shape study's report from the shard files of a boundary-file study.
+int run_files_merge(const std::vector<std::filesystem::path>& files, const std::string& merge_dir,
+                    const std::string& out_dir);
 
 }  // namespace coons::cli

@@ -103,7 +103,7 @@ TEST_CASE("coons study --shard/--merge: bad input is one error line, exit 2, not
   REQUIRE(run_command(kCoons + kFamily + " --shard 0/2 --out " + quoted(dir.file("half"))).status == 0);
   for (const std::string& args :
        {kFamily + " --shard 3/3", kFamily + " --shard 1/0", kFamily + " --shard -1/2", kFamily + " --shard 1",
-        kFamily + " --shard a/b", std::string(" study --shard 0/2 ") + quoted(COONS_DATA_DIR "/boundaries/pillow.json"),
+        kFamily + " --shard a/b", std::string(" study --shard 2/2 ") + quoted(COONS_DATA_DIR "/boundaries/pillow.json"),
         " study --merge " + quoted(dir.file("none")), " study --merge " + quoted(dir.file("half")),
         kFamily + " --merge " + quoted(dir.file("half"))}) {
     const CommandResult r = run_command(kCoons + args + " --out " + quoted(out));
@@ -140,4 +140,45 @@ TEST_CASE("coons study --shard/--merge: records of another study or with a wrong
   CHECK(merged.err.find("shard-1-of-2.jsonl: key: ") != std::string::npos);
   CHECK(merged.out.empty());
   CHECK_FALSE(fs::exists(dir.file("merged")));
+}
+
+TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, sharded and merged", "[cli]") {
+  TempDir dir;
+  // the bundled shape by name, from the repository's root as the README runs it
+  const std::string base = "cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons +
+                           " study --family perturbed:dome --count 3 --seed 2 "
+                           "--degrees 3 4";
+  const std::string family = base + " --amplitude 0.2";
+  const CommandResult whole = run_command(family + " --out " + quoted(dir.file("w")));
+  INFO(whole.err);
+  REQUIRE(whole.status == 0);
+  for (int i = 0; i < 3; ++i) {
+    std::string command = family;
+    command += " --shard " + std::to_string(i) + "/3 --out " + quoted(dir.file("shards"));
+    const CommandResult r = run_command(command);
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+  }
+  const CommandResult merged =
+      run_command(kCoons + " study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  REQUIRE(merged.status == 0);
+  const json a = json::parse(read_text(dir.file("w/results.json")));
+  CHECK(a == json::parse(read_text(dir.file("merged/results.json"))));
+  CHECK(read_text(dir.file("w/report.md")) == read_text(dir.file("merged/report.md")));
+  CHECK(a["family"] == "perturbed:dome");
+  CHECK(a["amplitude"] == 0.2);
+  CHECK(a["cells"][0]["alpha_star"].size() == 3);
+  // another amplitude is another study: other keys, and its shards are refused in that folder
+  const CommandResult other = run_command(base + " --amplitude 0.3 --shard 0/3 --out " + quoted(dir.file("shards")));
+  CHECK(other.status == 2);
+  CHECK(other.err.find("study: holds tasks of another study") != std::string::npos);
+  // an unknown shape is one error line
+  const CommandResult unknown = run_command(kCoons +
+                                            " study --family perturbed:no_such_shape --count 2 --degrees 3 4 "
+                                            "--out " +
+                                            quoted(dir.file("x")));
+  CHECK(unknown.status == 2);
+  CHECK(unknown.err.rfind("error: command line: --family: 'no_such_shape' is neither", 0) == 0);
+  CHECK_FALSE(fs::exists(dir.file("x")));
 }

@@ -6,6 +6,8 @@
 #include <cmath>
 #include <random>
 
+#include "coons/net/degree_elevation.h"
+
 namespace coons {
 
 bool RandomSmoothOptions::is_valid(std::string* why) const {
@@ -51,6 +53,33 @@ Boundary random_smooth_boundary(std::uint64_t seed, int index, const RandomSmoot
   b.top = side(corner[3], corner[2]);     // b[i][n]
   b.left = side(corner[0], corner[3]);    // b[0][j]
   b.right = side(corner[1], corner[2]);   // b[m][j]
+  return b;
+}
+
+Boundary random_smooth_displacement(std::uint64_t seed, int index, const RandomSmoothOptions& options) {
+  RandomSmoothOptions flat = options;
+  flat.height = 0;
+  flat.wiggle = 0;
+  Boundary d = random_smooth_boundary(seed, index, options);
+  const Boundary square = random_smooth_boundary(seed, index, flat);  // the same draws, all scaled by 0
+  d.bottom -= square.bottom;
+  d.top -= square.top;
+  d.left -= square.left;
+  d.right -= square.right;
+  return d;
+}
+
+Boundary perturbed_boundary(const Boundary& base, double amplitude, std::uint64_t seed, int index,
+                            const RandomSmoothOptions& options) {
+  const int m = std::max(base.m, options.side_degree), n = std::max(base.n, options.side_degree);
+  const double scale = amplitude * bounding_box_diagonal(base);
+  Boundary b = elevate_boundary(base, m, n);
+  const Boundary d = elevate_boundary(random_smooth_displacement(seed, index, options), m, n);
+  b.bottom += scale * d.bottom;
+  b.top += scale * d.top;
+  b.left += scale * d.left;
+  b.right += scale * d.right;
+  b.name = fmt::format("{}-perturbed-{}-{}", base.name, seed, index);
   return b;
 }
 

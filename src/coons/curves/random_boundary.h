@@ -29,6 +29,19 @@ struct RandomSmoothOptions {
 //! Boundary `index` of the family with `seed`: m = n = side_degree, named "random-smooth-S-k".
 Boundary random_smooth_boundary(std::uint64_t seed, int index, const RandomSmoothOptions& options = {});
 
+//! The displacement of random-smooth boundary `index`: its sides minus the flat unit square's
+//! (corners at height 0, inner points on the chords), so it is shared at the corners and the
+//! four sides of degree side_degree move in z by up to 2·`height` (the chord between two corner
+//! heights plus its own), in x and y by up to `wiggle`.
+Boundary random_smooth_displacement(std::uint64_t seed, int index, const RandomSmoothOptions& options = {});
+
+//! Member `index` of the perturbed family of `base` (seed `seed`): base + amplitude·diag·D, with
+//! diag the base's bounding-box diagonal and D random_smooth_displacement(seed, index, options);
+//! both elevated exactly to degree (max(m, p), max(n, p)) for p = options.side_degree. Corners
+//! stay as consistent as the base's (D's corners are shared exactly). Named "NAME-perturbed-S-k".
+Boundary perturbed_boundary(const Boundary& base, double amplitude, std::uint64_t seed, int index,
+                            const RandomSmoothOptions& options = {});
+
 //! Boundaries first, first + 1, ..., first + count − 1 of the family.
 std::vector<Boundary> random_smooth_family(std::uint64_t seed, int count, const RandomSmoothOptions& options = {},
                                            int first = 0);

@@ -19,15 +19,27 @@ bool AlphaFamilyOptions::is_valid(std::string* why) const {
   };
   if (!generator.is_valid(why)) return false;
   if (degrees.empty()) return fail("no degrees");
+  const int lowest = base ? std::max({generator.side_degree, base->m, base->n}) : generator.side_degree;
   for (size_t k = 0; k < degrees.size(); ++k) {
-    if (degrees[k] < generator.side_degree || degrees[k] > 200)
-      return fail(fmt::format("degree {} is outside [{}, 200] (the sides have degree {})", degrees[k],
-                              generator.side_degree, generator.side_degree));
+    if (degrees[k] < lowest || degrees[k] > 200)
+      return fail(fmt::format("degree {} is outside [{}, 200] (the sides have degree {})", degrees[k], lowest, lowest));
     if (k > 0 && degrees[k] <= degrees[k - 1]) return fail("degrees must be increasing, each once");
   }
   if (count < 1 || count > 100000) return fail(fmt::format("the count must be in [1, 100000], not {}", count));
   if (grid_points < 5 || grid_points > 10000) return fail("grid_points must be in [5, 10000]");
+  if (!(std::isfinite(amplitude) && amplitude >= 0 && amplitude <= 1))
+    return fail(fmt::format("the amplitude must be in [0, 1], not {}", amplitude));
   return true;
+}
+
+std::string AlphaFamilyOptions::family_name() const {
+  return base_name.empty() ? "random-smooth" : "perturbed:" + base_name;
+}
+
+Boundary family_boundary(const AlphaFamilyOptions& o, int index) {
+  if (o.base_name.empty()) return random_smooth_boundary(o.seed, index, o.generator);
+  if (!o.base) throw std::logic_error("family_boundary: the perturbed family needs its base");
+  return perturbed_boundary(*o.base, o.amplitude, o.seed, index, o.generator);
 }
 
 std::optional<double> quantile(std::vector<double> values, double q) {
@@ -185,14 +197,17 @@ json alpha_family_json(const AlphaFamilyResult& r) {
                      {"loss_quantiles", distribution_json(c.losses)},
                      {"loss_mean", optional_number(c.loss_mean)},
                      {"alpha_ratio_quantiles", distribution_json(c.alpha_ratio)}});
-  return {{"family", "random-smooth"},
-          {"seed", o.seed},
-          {"count", o.count},
-          {"generator",
-           {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
-          {"degrees", o.degrees},
-          {"objectives", r.objectives},
-          {"cells", cells}};
+  json out = {
+      {"family", o.family_name()},
+      {"seed", o.seed},
+      {"count", o.count},
+      {"generator",
+       {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
+      {"degrees", o.degrees},
+      {"objectives", r.objectives},
+      {"cells", cells}};
+  if (!o.base_name.empty()) out["amplitude"] = o.amplitude;
+  return out;
 }
 
 }  // namespace coons

@@ -31,9 +31,20 @@ struct AlphaFamilyOptions {
   RandomSmoothOptions generator;
   int grid_points = 81;                         //!< α + 1/4 on a log grid over [1e−6, 1/2] for the best single α
   const solvers::SolverInfo* solver = nullptr;  //!< nullptr: auto
+  //! The perturbed family (`--family perturbed:NAME`) when not empty: boundary k is
+  //! perturbed_boundary(base, amplitude, seed, k, generator) (random_boundary.h).
+  std::string base_name;
+  std::string base_content;      //!< a hash of the base's file (part of every task's key)
+  std::optional<Boundary> base;  //!< the base itself (a merge, which makes no boundary, has none)
+  double amplitude = 0.1;        //!< of the perturbation, times the base's bounding-box diagonal
 
+  //! "random-smooth" or "perturbed:NAME".
+  [[nodiscard]] std::string family_name() const;
   bool is_valid(std::string* why) const;
 };
+
+//! Boundary `index` of the family the options describe (random-smooth, or the perturbed base).
+Boundary family_boundary(const AlphaFamilyOptions& options, int index);
 
 //! Quantiles by linear interpolation between order statistics (q in [0, 1]); nullopt if empty.
 std::optional<double> quantile(std::vector<double> values, double q);

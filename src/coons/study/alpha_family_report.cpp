@@ -79,13 +79,24 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
 
 std::string alpha_family_markdown(const AlphaFamilyResult& r, const std::vector<std::string>& figures) {
   const AlphaFamilyOptions& o = r.options;
-  std::string md = fmt::format(
-      "## The random-smooth family: is one α best?\n\n{} boundaries (seed {}): sides of degree {} with shared "
-      "corners over the unit square, heights uniform in ±{}, in-plane displacements uniform in ±{}; each "
-      "elevated exactly to the degree n. The loss of a boundary is (f(α) − f*)/f* at the family's best "
-      "single α (the α minimising the mean loss). μ* and its quantiles count the boundaries with −1/4 < α* < 0 only "
-      "(α* ≥ 0 has no μ).\n\n",
-      o.count, o.seed, o.generator.side_degree, o.generator.height, o.generator.wiggle);
+  const std::string loss =
+      "The loss of a boundary is (f(α) − f*)/f* at the family's best single α (the α minimising the mean loss). μ* "
+      "and its quantiles count the boundaries with −1/4 < α* < 0 only (α* ≥ 0 has no μ).\n\n";
+  std::string md =
+      o.base_name.empty()
+          ? fmt::format(
+                "## The random-smooth family: is one α best?\n\n{} boundaries (seed {}): sides of degree {} "
+                "with shared corners over the unit square, heights uniform in ±{}, in-plane displacements "
+                "uniform in ±{}; each elevated exactly to the degree n. ",
+                o.count, o.seed, o.generator.side_degree, o.generator.height, o.generator.wiggle)
+          : fmt::format(
+                "## The family {}: is one α best?\n\n{} perturbations (seed {}) of the boundary {}: its "
+                "sides plus {} × its bounding-box diagonal times a random smooth displacement shared at the "
+                "corners (sides of degree {}, heights uniform in ±{}, in-plane uniform in ±{}); each elevated "
+                "exactly to the degree n. ",
+                o.family_name(), o.count, o.seed, o.base_name, o.amplitude, o.generator.side_degree, o.generator.height,
+                o.generator.wiggle);
+  md += loss;
   const size_t n = r.objectives.size();
   auto q = [](const std::optional<Distribution>& d, double Distribution::*field) {
     return d ? fmt::format("{:.4g}", (*d).*field) : std::string("–");
@@ -181,7 +192,7 @@ std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& r, const std
   const int count = r.options.count;
   for (size_t i = 0; i < n; ++i) {
     PlotOptions o;
-    o.title = fmt::format("α* over {} random smooth boundaries, {}", count, r.objectives[i]);
+    o.title = fmt::format("α* over {} {} boundaries, {}", count, r.options.family_name(), r.objectives[i]);
     o.xlabel = "α* + 1/4";
     o.marker_title = "best single α";
     errors.push_back(plot_log_histograms(
@@ -196,8 +207,8 @@ std::vector<std::string> plot_alpha_family(const AlphaFamilyResult& r, const std
   }
   for (size_t i = 0; i < n; ++i) {
     PlotOptions o;
-    o.title =
-        fmt::format("μ* over {} random smooth boundaries, {} (interior optima with α* < 0)", count, r.objectives[i]);
+    o.title = fmt::format("μ* over {} {} boundaries, {} (interior optima with α* < 0)", count, r.options.family_name(),
+                          r.objectives[i]);
     o.xlabel = "μ* = −n²(1 + 4α*)/(4α*)";
     o.marker_title = "μ of the best single α";
     errors.push_back(plot_log_histograms(

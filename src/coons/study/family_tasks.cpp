@@ -112,8 +112,7 @@ FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const Family
   FamilyTaskResult r;
   r.task = task;
   const Objective objective = objective_named(task.objective);
-  const Boundary b =
-      elevate_boundary(random_smooth_boundary(options.seed, task.index, options.generator), task.degree, task.degree);
+  const Boundary b = elevate_boundary(family_boundary(options, task.index), task.degree, task.degree);
   const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
   const AlphaSearchSummary s = search_alpha(b, objective, solver);
   if (s.flat) {
@@ -133,24 +132,30 @@ FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const Family
 
 json family_study_json(const AlphaFamilyOptions& o, const std::vector<std::string>& objectives,
                        const std::string& version, const std::string& revision) {
-  return {{"family", "random-smooth"},
-          {"seed", o.seed},
-          {"count", o.count},
-          {"generator",
-           {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
-          {"degrees", o.degrees},
-          {"objectives", objectives},
-          {"parameter", "alpha"},
-          {"grid_points", o.grid_points},
-          {"solver", o.solver ? o.solver->name : std::string("auto")},
-          {"coons", {{"version", version}, {"git_revision", revision}}}};
+  json study = {
+      {"family", o.family_name()},
+      {"seed", o.seed},
+      {"count", o.count},
+      {"generator",
+       {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
+      {"degrees", o.degrees},
+      {"objectives", objectives},
+      {"parameter", "alpha"},
+      {"grid_points", o.grid_points},
+      {"solver", o.solver ? o.solver->name : std::string("auto")},
+      {"coons", {{"version", version}, {"git_revision", revision}}}};
+  if (!o.base_name.empty()) {
+    study["amplitude"] = o.amplitude;
+    study["base_content"] = o.base_content;
+  }
+  return study;
 }
 
 std::string family_task_key(const AlphaFamilyOptions& o, const FamilyTask& task, const std::string& version,
                             const std::string& revision) {
   // Every input that changes the task's result, in a fixed order (json objects sort their keys).
-  const json inputs = {
-      {"family", "random-smooth"},
+  json inputs = {
+      {"family", o.family_name()},
       {"seed", o.seed},
       {"generator",
        {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
@@ -162,6 +167,10 @@ std::string family_task_key(const AlphaFamilyOptions& o, const FamilyTask& task,
       {"solver", o.solver ? o.solver->name : std::string("auto")},
       {"version", version},
       {"git_revision", revision}};
+  if (!o.base_name.empty()) {  // the perturbed family: its base (by content) and amplitude too
+    inputs["amplitude"] = o.amplitude;
+    inputs["base_content"] = o.base_content;
+  }
   std::uint64_t h = 14695981039346656037ULL;  // FNV-1a, 64 bit
   for (const unsigned char c : inputs.dump()) {
     h ^= c;
@@ -203,8 +212,14 @@ T field(const json& j, const char* name, const std::string& where) {
 AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>* objectives,
                                      const std::string& where) {
   AlphaFamilyOptions o;
-  if (field<std::string>(study, "family", where) != "random-smooth")
-    throw InputError(where, "study.family", "not a random-smooth family study");
+  const auto family = field<std::string>(study, "family", where);
+  if (family.rfind("perturbed:", 0) == 0 && family.size() > 10) {
+    o.base_name = family.substr(10);
+    o.amplitude = field<double>(study, "amplitude", where);
+    o.base_content = field<std::string>(study, "base_content", where);
+  } else if (family != "random-smooth") {
+    throw InputError(where, "study.family", "not a random-smooth or perturbed family study");
+  }
   o.seed = field<std::uint64_t>(study, "seed", where);
   o.count = field<int>(study, "count", where);
   const json generator = field<json>(study, "generator", where);

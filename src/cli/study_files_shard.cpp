@@ -1,0 +1,197 @@
+// `coons study FILES --shard I/N` and the merge of its shards (study_shard.h): one task per
+// boundary file, whose record carries that file's part of the study (coons/study/study_json.h), so
+// that the merge rebuilds the unsharded run's StudyResult and writes its report with the same
+// writer (docs/formats.md, "Sharded studies").
+#include <fmt/format.h>
+
+#include <fstream>
+#include <iterator>
+#include <map>
+
+#include "common.h"
+#include "coons/io/input_error.h"
+#include "coons/io/tri_boundary_io.h"
+#include "coons/io/write_files.h"
+#include "coons/study/provenance.h"
+#include "coons/study/report_markdown.h"
+#include "coons/study/study_conclusions.h"
+#include "coons/study/study_json.h"
+#include "study_shard.h"
+
+namespace coons::cli {
+
+namespace fs = std::filesystem;
+using nlohmann::json;
+
+std::string fnv1a_hex(const std::string& text) {
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const unsigned char c : text) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  return fmt::format("{:016x}", h);
+}
+
+void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
+                        const std::function<std::string(OutputSet&)>& extra) {
+  OutputSet out(out_dir);
+  const StudyFigures figures = plot_study_figures(result, [&](const std::string& file) { return out.stage(file); });
+  for (const auto* list : {&figures.energies, &figures.nets})
+    for (const StudyFigure& f : *list)
+      if (!f.error.empty()) out.discard(f.file);
+  for (const StudyFigure* f : {&figures.alpha_vs_degree, &figures.mu_vs_degree})
+    if (!f->error.empty()) out.discard(f->file);
+  const std::string md = study_report_markdown(result, current_provenance(command_line), figures) + "\n" +
+                         study_conclusions_markdown(result) + "\n" + tri_study_markdown(result.triangles, "6") +
+                         (extra ? extra(out) : std::string());
+  out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
+  out.write("report.md", [&](std::ostream& o) { o << md; });
+  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
+  out.commit();
+}
+
+namespace {
+
+std::string file_bytes(const std::string& path) {
+  std::ifstream in(path, std::ios::binary);
+  if (!in) throw InputError(path, "", "cannot be read");
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+std::vector<std::string> objective_names(const StudyOptions& options) {
+  std::vector<std::string> out;
+  for (const Objective& o : options.objectives.empty() ? default_study_objectives() : options.objectives)
+    out.push_back(o.name);
+  return out;
+}
+
+// Every input of the study but the files' contents (those are in each task's key).
+json files_study_json(const std::vector<std::string>& files, const StudyOptions& o, double corner_tolerance,
+                      const Provenance& p) {
+  return {{"inputs", "files"},
+          {"files", files},
+          {"degrees", o.degrees},
+          {"objectives", objective_names(o)},
+          {"curve_points", o.curve_points},
+          {"reference_alphas", o.reference_alphas},
+          {"corner_tolerance", corner_tolerance},
+          {"solver", o.solver ? o.solver->name : std::string("auto")},
+          {"coons", {{"version", p.version}, {"git_revision", p.git_revision}}}};
+}
+
+// The task's inputs: the study block's options and the file's name and content.
+std::string files_task_key(const json& study, size_t index, const std::string& content_hash) {
+  json inputs = study;
+  inputs.erase("files");
+  inputs["file"] = study["files"][index];
+  inputs["content"] = content_hash;
+  return fnv1a_hex(inputs.dump());
+}
+
+}  // namespace
+
+int run_files_shard(const std::vector<std::string>& files, const StudyOptions& options, double corner_tolerance,
+                    int shard, int shards, const std::string& out_dir) {
+  Phases phases("study");
+  const Provenance p = current_provenance("");
+  const json study = files_study_json(files, options, corner_tolerance, p);
+  std::set<std::string> done;
+  const fs::path path = open_shard_file(out_dir, shard, shards, study, &done);
+  std::ofstream o(path, std::ios::binary | std::ios::app);
+  if (!o) throw InputError(path.string(), "--out", "cannot be written");
+  phases.start("solve");
+  size_t mine = 0, skipped = 0, ran = 0;
+  for (size_t t = size_t(shard); t < files.size(); t += size_t(shards)) {
+    ++mine;
+    const std::string& file = files[t];
+    const std::string content = fnv1a_hex(file_bytes(file));
+    const std::string key = files_task_key(study, t, content);
+    if (done.count(key)) {
+      ++skipped;
+      continue;
+    }
+    phases.note(file);
+    const auto start = std::chrono::steady_clock::now();
+    StudyResult part;
+    if (is_triangle_file(file)) {
+      part.triangles = run_tri_study({read_tri_study_input(file, corner_tolerance)}, options.degrees, options.solver);
+    } else {
+      BoundaryReadOptions read_options;
+      read_options.corner_tolerance = corner_tolerance;
+      part = run_study({read_study_input(file, read_options)}, options);
+    }
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+    o << dump(json{{"key", key},
+                   {"study", study},
+                   {"index", t},
+                   {"file", file},
+                   {"content", content},
+                   {"result", study_part_json(part)},
+                   {"seconds", seconds}})
+      << '\n'
+      << std::flush;
+    if (!o) throw InputError(path.string(), "--out", "cannot be written");
+    done.insert(key);
+    ++ran;
+  }
+  print_text(fmt::format("shard {}/{}: {} tasks, {} already there, {} run; {}\n", shard, shards, mine, skipped, ran,
+                         path.string()));
+  return kExitOk;
+}
+
+bool is_files_study_shard(const fs::path& file) {
+  const ShardFile f = read_shard_file(file);
+  return !f.records.empty() && f.records.front().contains("study") && f.records.front()["study"].is_object() &&
+         f.records.front()["study"].value("inputs", "") == "files";
+}
+
+int run_files_merge(const std::vector<fs::path>& files, const std::string& merge_dir, const std::string& out_dir) {
+  Phases phases("study");
+  phases.start("read");
+  std::optional<json> study;
+  std::map<size_t, json> by_index;
+  for (const fs::path& file : files) {
+    const std::string where = file.string();
+    for (const json& r : read_shard_file(file).records) {
+      if (!r.contains("study")) throw InputError(where, "study", "missing");
+      if (!study)
+        study = r["study"];
+      else if (r["study"] != *study)
+        throw InputError(where, "study", "the shards hold tasks of different studies (options or coons revision)");
+      if (!r.contains("index") || !r["index"].is_number_unsigned() || !r.contains("content") ||
+          !r["content"].is_string() || !r.contains("result"))
+        throw InputError(where, "index", "a record without index, content or result");
+      const size_t index = r["index"].get<size_t>();
+      if (!(*study)["files"].is_array() || index >= (*study)["files"].size())
+        throw InputError(where, "index", fmt::format("{} is outside the study's file list", index));
+      if (r["key"] != files_task_key(*study, index, r["content"].get<std::string>()))
+        throw InputError(where, "key",
+                         fmt::format("'{}' is not the key of its task ({})", r["key"].get<std::string>(),
+                                     (*study)["files"][index].get<std::string>()));
+      by_index.emplace(index, r);
+    }
+  }
+  if (!study) throw InputError(merge_dir, "--merge", "the shards hold no finished task");
+  const size_t count = (*study)["files"].size();
+  if (by_index.size() != count) {
+    size_t first = 0;
+    while (by_index.count(first)) ++first;
+    throw InputError(merge_dir, "--merge",
+                     fmt::format("{} of {} tasks are missing (the first: {}); run their shards (again) before merging",
+                                 count - by_index.size(), count, (*study)["files"][first].get<std::string>()));
+  }
+  StudyResult result;
+  try {
+    result.degrees = (*study).at("degrees").get<std::vector<int>>();
+    result.objectives = (*study).at("objectives").get<std::vector<std::string>>();
+  } catch (const json::exception&) {
+    throw InputError(files.front().string(), "study", "degrees or objectives malformed");
+  }
+  for (const auto& [index, record] : by_index) append_study_part(record["result"], files.front().string(), &result);
+  phases.start("write");
+  write_study_report(result, out_dir, fmt::format("coons study --merge {} --out {}", merge_dir, out_dir));
+  print_text(fmt::format("merged {} tasks from {} shard files\n", count, files.size()));
+  return kExitOk;
+}
+
+}  // namespace coons::cli
