@@ -45,8 +45,9 @@ int run_export(ExportRequest e) {
   const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true);
   if (input.bspline) {  // every output, --step/--iges included, from the B-spline path (its knots)
     if (e.vtu) throw InputError("command line", "--vtu", "is written for triangular boundaries (B-spline: --vts)");
-    return run_bspline_export({e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force, e.cad},
-                              input, e.net, e.global, phases);
+    return run_bspline_export(
+        {e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force, e.cad}, input, e.net,
+        e.global, phases);
   }
   if (e.ply || e.vtu || e.vts)
     throw InputError("command line",

@@ -124,7 +124,8 @@ TEST_CASE("coons export --step: a B-spline boundary's alpha net is written with 
     for (int j = 0; j <= written.n; ++j)
       for (int c = 0; c < 3; ++c) {
         CHECK(written.at(i, j)(c) == net[i][j][c].get<double>());
-        differs_from_greville = std::max(differs_from_greville, std::abs(written.at(i, j)(c) - greville[0].net.at(i, j)(c)));
+        differs_from_greville =
+            std::max(differs_from_greville, std::abs(written.at(i, j)(c) - greville[0].net.at(i, j)(c)));
       }
   CHECK(differs_from_greville > 1e-6);  // alpha = -0.1 is not the Coons net the sample holds
   CHECK(back[0].knots_u == greville[0].knots_u);

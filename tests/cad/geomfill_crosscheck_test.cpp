@@ -6,6 +6,7 @@
 // own curves and surface). The measured numbers are printed (WARN) for docs/cad.md.
 #include <GeomFill_BSplineCurves.hxx>
 #include <Standard_Failure.hxx>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <stdexcept>
 
@@ -135,4 +136,56 @@ TEST_CASE("GeomFill_BSplineCurves: non-uniform knots differ from the Greville ne
   CHECK(stretch_vs_greville > 1e-3);
   CHECK(stretch_vs_patch > 1e-3);
   CHECK(greville_vs_patch <= 1e-13);
+}
+
+namespace {
+
+// Four sides on the knot vectors `ku` (bottom, top) and `kv` (left, right), random points with
+// shared corners.
+BSplineBoundary boundary_on_knots(int p, const Eigen::VectorXd& ku, int q, const Eigen::VectorXd& kv,
+                                  std::uint32_t seed) {
+  const int cu = int(ku.size()) - p - 1, cv = int(kv.size()) - q - 1;
+  const auto side = [&](int degree, const Eigen::VectorXd& knots, int count, std::uint32_t s) {
+    return BSplineCurve(degree, knots, test::make_random_bspline(degree, count, s).points);
+  };
+  BSplineBoundary b{side(p, ku, cu, seed), side(p, ku, cu, seed + 1), side(q, kv, cv, seed + 2),
+                    side(q, kv, cv, seed + 3)};
+  b.left.points.row(0) = b.bottom.points.row(0);
+  b.right.points.row(0) = b.bottom.points.row(cu - 1);
+  b.left.points.row(cv - 1) = b.top.points.row(0);
+  b.right.points.row(cv - 1) = b.top.points.row(cu - 1);
+  return b;
+}
+
+Eigen::VectorXd clamped_uniform_knots(int degree, int spans) {
+  Eigen::VectorXd k(spans + 2 * degree + 1);
+  for (Eigen::Index i = 0; i < k.size(); ++i) k(i) = std::clamp(double(i - degree), 0.0, double(spans)) / spans;
+  return k;
+}
+
+}  // namespace
+
+TEST_CASE("GeomFill_BSplineCurves: several spans with equally spaced Greville abscissae agree with Stretch", "[cad]") {
+  // Equally spaced Greville abscissae on several spans: degree 1 on uniform knots, and degree 2
+  // on 0 0 0 ½ ½ 1 1 1 (abscissae 0, ¼, ½, ¾, 1). There i/(N − 1) is the Greville weight.
+  const Eigen::VectorXd quadratic = (Eigen::VectorXd(8) << 0, 0, 0, 0.5, 0.5, 1, 1, 1).finished();
+  double equal_spacing = 0;
+  for (std::uint32_t seed : {3U, 5U, 8U}) {
+    const BSplineBoundary a = boundary_on_knots(1, clamped_uniform_knots(1, 6), 2, quadratic, seed);
+    const BSplineBoundary b = boundary_on_knots(2, quadratic, 1, clamped_uniform_knots(1, 4), seed + 10);
+    for (const BSplineBoundary* x : {&a, &b})
+      equal_spacing =
+          std::max(equal_spacing, net_difference(geomfill(*x, GeomFill_StretchStyle), greville_coons_surface(*x).net));
+  }
+  // Clamped uniform cubic knots on 5 spans: the abscissae bunch near the ends, so i/(N − 1) is not
+  // the Greville weight and Stretch is another surface.
+  double cubic = 0;
+  for (std::uint32_t seed : {3U, 5U, 8U}) {
+    const BSplineBoundary c = boundary_on_knots(3, clamped_uniform_knots(3, 5), 3, clamped_uniform_knots(3, 4), seed);
+    cubic = std::max(cubic, net_difference(geomfill(c, GeomFill_StretchStyle), greville_coons_surface(c).net));
+  }
+  WARN("multi-span uniform knots: max pole |Stretch - Greville net| = "
+       << equal_spacing << " (equally spaced abscissae), " << cubic << " (clamped uniform cubic)");
+  CHECK(equal_spacing <= 1e-14);
+  CHECK(cubic > 1e-3);
 }
