@@ -1,7 +1,5 @@
 #include "coons/surfaces/bspline_sampling.h"
 
-#include <cassert>
-
 namespace coons {
 
 SurfacePoint bspline_surface_point(const BSplineSurface& surface, double s, double t) {
@@ -20,27 +18,7 @@ SurfacePoint bspline_surface_point(const BSplineSurface& surface, double s, doub
 }
 
 SurfaceSamples sample_bspline_grid(const BSplineSurface& surface, int k) {
-  assert(k >= 2);
-  SurfaceSamples out;
-  out.k = k;
-  const int count = k * k;
-  out.points.resize(count, 3);
-  out.normals.resize(count, 3);
-  out.mean_curvature.resize(count);
-  out.gaussian_curvature.resize(count);
-  out.twist.resize(count);
-  for (int a = 0; a < k; ++a)
-    for (int b = 0; b < k; ++b) {
-      const int row = a * k + b;
-      const SurfacePoint p = bspline_surface_point(surface, double(a) / (k - 1), double(b) / (k - 1));
-      const Curvatures c = curvatures(p);
-      out.points.row(row) = p.p;
-      out.normals.row(row) = unit_normal(p);
-      out.mean_curvature(row) = c.mean;
-      out.gaussian_curvature(row) = c.gaussian;
-      out.twist(row) = p.duv.norm();
-    }
-  return out;
+  return sample_grid([&surface](double s, double t) { return bspline_surface_point(surface, s, t); }, k);
 }
 
 }  // namespace coons

@@ -9,6 +9,10 @@
 namespace coons {
 
 SurfaceSamples sample_grid(const Surface& s, int k) {
+  return sample_grid([&s](double u, double v) { return s.evaluate(u, v); }, k);
+}
+
+SurfaceSamples sample_grid(const std::function<SurfacePoint(double, double)>& point, int k) {
   assert(k >= 2);
   SurfaceSamples out;
   out.k = k;
@@ -21,7 +25,7 @@ SurfaceSamples sample_grid(const Surface& s, int k) {
   for (int a = 0; a < k; ++a)
     for (int b = 0; b < k; ++b) {
       const int row = a * k + b;
-      const SurfacePoint p = s.evaluate(double(a) / (k - 1), double(b) / (k - 1));
+      const SurfacePoint p = point(double(a) / (k - 1), double(b) / (k - 1));
       const Curvatures c = curvatures(p);
       out.points.row(row) = p.p;
       out.normals.row(row) = unit_normal(p);

@@ -7,6 +7,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 #include <optional>
 
 #include "coons/surfaces/surface.h"
@@ -26,6 +27,8 @@ struct SurfaceSamples {
 
 //! k ≥ 2.
 SurfaceSamples sample_grid(const Surface& s, int k);
+//! The same grid over any surface given by its point function r(s, t), (s, t) ∈ [0, 1]²; k ≥ 2.
+SurfaceSamples sample_grid(const std::function<SurfacePoint(double, double)>& point, int k);
 
 //! Fills distance and parametric_distance.
 void add_reference_distance(SurfaceSamples& samples, const Surface& reference);
