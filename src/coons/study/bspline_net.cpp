@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "coons/io/net_json.h"
+#include "coons/study/net_report.h"
 #include "coons/surfaces/bspline_energy.h"
 #include "solvers/registry.h"
 
@@ -98,14 +99,7 @@ json bspline_net_report(const std::string& name, const BSplineInput& input, NetM
   report["mu"] = nullptr;
   report["rings"] = 1;
   report["free_points"] = std::max(s.net.m - 1, 0) * std::max(s.net.n - 1, 0);
-  if (outcome.summary) {
-    report["solver"] = summary_to_json(*outcome.summary);
-    if (solver_picked_automatically) report["solver"]["picked_by"] = "auto";
-  } else {
-    report["solver"] = {{"name", "closed-form"},
-                        {"status", "not_applicable"},
-                        {"message", "closed-form net: no linear system is solved"}};
-  }
+  report["solver"] = solver_block(outcome.summary, solver_picked_automatically);
   report["bspline"] = bspline_block(s, input);
   const bool ok = !outcome.summary || outcome.summary->ok();
   if (!ok)

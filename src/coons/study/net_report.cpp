@@ -56,6 +56,16 @@ void alpha_fields(json& report, const Boundary& boundary, const Mask9& mask, con
 
 }  // namespace
 
+json solver_block(const std::optional<solvers::SolveSummary>& summary, bool picked_automatically) {
+  if (!summary)
+    return {{"name", "closed-form"},
+            {"status", "not_applicable"},
+            {"message", "closed-form net: no linear system is solved"}};
+  json block = summary_to_json(*summary);
+  if (picked_automatically) block["picked_by"] = "auto";
+  return block;
+}
+
 json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
                 const std::optional<double>& mu, bool solver_picked_automatically, bool with_net) {
   json report;
@@ -73,14 +83,7 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
   }
   report["rings"] = 1;
   report["free_points"] = std::max(boundary.m - 1, 0) * std::max(boundary.n - 1, 0);
-  if (outcome.summary) {
-    report["solver"] = summary_to_json(*outcome.summary);
-    if (solver_picked_automatically) report["solver"]["picked_by"] = "auto";
-  } else {
-    report["solver"] = {{"name", "closed-form"},
-                        {"status", "not_applicable"},
-                        {"message", "closed-form net: no linear system is solved"}};
-  }
+  report["solver"] = solver_block(outcome.summary, solver_picked_automatically);
   const bool ok = !outcome.summary || outcome.summary->ok();
   if (!ok)
     report["net"] = nullptr;

@@ -30,6 +30,10 @@ struct NetOutcome {
 NetOutcome make_net(const Boundary& boundary, NetMethod method, const Mask9& mask, const solvers::SolverInfo* solver,
                     const solvers::SolverOptions& options = {});
 
+//! The report's "solver" block: the summary of a solve ("picked_by": "auto" when auto chose the
+//! backend), or the closed form's not_applicable block when no system was solved.
+nlohmann::json solver_block(const std::optional<solvers::SolveSummary>& summary, bool picked_automatically);
+
 //! The solve report without a timing block; `mu` as given on the command line, if it was. With
 //! `with_net` false a successful net is left out of it, for the caller to write (write_net_json).
 nlohmann::json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
