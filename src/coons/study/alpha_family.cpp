@@ -177,6 +177,18 @@ json optional_list(const std::vector<std::optional<double>>& v) {
 
 }  // namespace
 
+json family_description_json(const AlphaFamilyOptions& o) {
+  json out = {
+      {"family", o.family_name()},
+      {"seed", o.seed},
+      {"count", o.count},
+      {"generator",
+       {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
+      {"degrees", o.degrees}};
+  if (!o.base_name.empty()) out["amplitude"] = o.amplitude;
+  return out;
+}
+
 json alpha_family_json(const AlphaFamilyResult& r) {
   const AlphaFamilyOptions& o = r.options;
   json cells = json::array();
@@ -197,16 +209,9 @@ json alpha_family_json(const AlphaFamilyResult& r) {
                      {"loss_quantiles", distribution_json(c.losses)},
                      {"loss_mean", optional_number(c.loss_mean)},
                      {"alpha_ratio_quantiles", distribution_json(c.alpha_ratio)}});
-  json out = {
-      {"family", o.family_name()},
-      {"seed", o.seed},
-      {"count", o.count},
-      {"generator",
-       {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
-      {"degrees", o.degrees},
-      {"objectives", r.objectives},
-      {"cells", cells}};
-  if (!o.base_name.empty()) out["amplitude"] = o.amplitude;
+  json out = family_description_json(o);
+  out["objectives"] = r.objectives;
+  out["cells"] = cells;
   return out;
 }
 

@@ -107,6 +107,9 @@ std::optional<BestSingleAlpha> best_single_alpha_on_grid(const std::vector<std::
 std::optional<double> best_single_alpha(int count, const std::vector<double>& optimum,
                                         const std::function<double(int, double)>& f, int grid_points);
 
+//! What names a family study's boundaries: family, seed, count, generator, degrees (and the
+//! amplitude of a perturbed family). Shared by results.json and the shard records' study block.
+nlohmann::json family_description_json(const AlphaFamilyOptions& options);
 nlohmann::json alpha_family_json(const AlphaFamilyResult& result);
 //! The tables, two per objective, and the conclusions computed from them; `figures` as
 //! plot_alpha_family numbers them ("" where there is none).

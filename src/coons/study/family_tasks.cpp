@@ -132,22 +132,13 @@ FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const Family
 
 json family_study_json(const AlphaFamilyOptions& o, const std::vector<std::string>& objectives,
                        const std::string& version, const std::string& revision) {
-  json study = {
-      {"family", o.family_name()},
-      {"seed", o.seed},
-      {"count", o.count},
-      {"generator",
-       {{"side_degree", o.generator.side_degree}, {"height", o.generator.height}, {"wiggle", o.generator.wiggle}}},
-      {"degrees", o.degrees},
-      {"objectives", objectives},
-      {"parameter", "alpha"},
-      {"grid_points", o.grid_points},
-      {"solver", o.solver ? o.solver->name : std::string("auto")},
-      {"coons", {{"version", version}, {"git_revision", revision}}}};
-  if (!o.base_name.empty()) {
-    study["amplitude"] = o.amplitude;
-    study["base_content"] = o.base_content;
-  }
+  json study = family_description_json(o);
+  study["objectives"] = objectives;
+  study["parameter"] = "alpha";
+  study["grid_points"] = o.grid_points;
+  study["solver"] = o.solver ? o.solver->name : std::string("auto");
+  study["coons"] = {{"version", version}, {"git_revision", revision}};
+  if (!o.base_name.empty()) study["base_content"] = o.base_content;
   return study;
 }
 
