@@ -30,6 +30,8 @@ namespace {
 
 using namespace mg_detail;
 
+constexpr Eigen::Index kMinThreadedPoints = 2048;
+
 // Vectors of every level for one solve (allocated once, not per cycle): the rhs and correction of
 // the coarse problems, a residual and the smoother's scratch.
 struct Workspace {
@@ -95,7 +97,9 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
     if (coarse.unknowns == 0) break;
     levels_.push_back(std::move(coarse));
   }
-  for (auto& L : levels_) L.threads = resolved_threads(options.threads);
+  // Coarse levels run on one thread: below a few thousand points a parallel region costs more than
+  // it saves (the results are the same for every count).
+  for (auto& L : levels_) L.threads = L.points() >= kMinThreadedPoints ? resolved_threads(options.threads) : 1;
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l)
     if (!factor_lines(levels_[l])) {
       if (message) *message = "a line block of level " + std::to_string(l) + " has a zero pivot";

@@ -1,5 +1,5 @@
 // The stencil kernels of one multigrid level (internal to the solvers layer): (A x)(i, j) at one
-// point, specialised on the radius (1, 2, or 0: the level's own) and on a constant stencil (the
+// point, specialised on the radius (1 … 5, or 0: the level's own) and on a constant stencil (the
 // finest level) so that the interior loops run without bounds checks over registers of weights.
 // Every variant adds the products in the same order (stencil row by row), so results do not depend
 // on which path a point takes.
@@ -81,20 +81,31 @@ inline void eval_row(const Level& L, const double* b, const double* x, double* o
     finish(j, inner && j >= r && j + r < C ? apply_at_interior<kR, kConst>(L, x, i, j) : apply_at_edge(L, x, i, j));
 }
 
-// Calls f(std::integral_constant<int, R>, std::bool_constant<constant>) with R = 1, 2 or 0 (any).
+// Calls f(std::integral_constant<int, R>, std::bool_constant<constant>) with R = the level's radius
+// when it is 1 … 5 (the fine stencils have 1 or 2, bicubic Galerkin levels 4 and 5), else 0 (any).
+template <bool kConst, class F>
+inline void dispatch_radius(int radius, F&& f) {
+  using Constant = std::bool_constant<kConst>;
+  switch (radius) {
+    case 1:
+      return f(std::integral_constant<int, 1>{}, Constant{});
+    case 2:
+      return f(std::integral_constant<int, 2>{}, Constant{});
+    case 3:
+      return f(std::integral_constant<int, 3>{}, Constant{});
+    case 4:
+      return f(std::integral_constant<int, 4>{}, Constant{});
+    case 5:
+      return f(std::integral_constant<int, 5>{}, Constant{});
+    default:
+      return f(std::integral_constant<int, 0>{}, Constant{});
+  }
+}
+
 template <class F>
 inline void dispatch(const Level& L, F&& f) {
-  using One = std::integral_constant<int, 1>;
-  using Two = std::integral_constant<int, 2>;
-  using Any = std::integral_constant<int, 0>;
-  if (L.constant) {
-    if (L.radius == 1) return f(One{}, std::true_type{});
-    if (L.radius == 2) return f(Two{}, std::true_type{});
-    return f(Any{}, std::true_type{});
-  }
-  if (L.radius == 1) return f(One{}, std::false_type{});
-  if (L.radius == 2) return f(Two{}, std::false_type{});
-  return f(Any{}, std::false_type{});
+  if (L.constant) return dispatch_radius<true>(L.radius, std::forward<F>(f));
+  return dispatch_radius<false>(L.radius, std::forward<F>(f));
 }
 
 }  // namespace coons::solvers::mg_detail

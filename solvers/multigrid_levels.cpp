@@ -1,9 +1,9 @@
 #include "multigrid_levels.h"
 
-#include "multigrid_kernels.h"
-
 #include <algorithm>
 #include <cmath>
+
+#include "multigrid_kernels.h"
 
 // The outer loop over rows on L.threads threads (a local `nt`); every iteration writes its own
 // points, so the result does not depend on the count.
@@ -25,8 +25,8 @@ static void eval_grid(const Level& L, const Vector& b, const Vector& x, Vector& 
     constexpr bool kConst = decltype(constant)::value;
     COONS_PARALLEL_ROWS
     for (int i = 0; i < L.rows; ++i)
-      eval_row<kR, kConst, kApply>(L, kApply ? nullptr : b.data(), x.data(), r.data() + Eigen::Index(i) * L.cols, i,
-                                   0, L.cols, 1);
+      eval_row<kR, kConst, kApply>(L, kApply ? nullptr : b.data(), x.data(), r.data() + Eigen::Index(i) * L.cols, i, 0,
+                                   L.cols, 1);
   });
 }
 
@@ -58,6 +58,20 @@ static int coarse_parents(int f, int coarse_len, int offset, int reach, int* par
   return n;
 }
 
+// The coarse parents of every fine index along one axis.
+struct Parents {
+  int count = 0, index[4] = {0, 0, 0, 0};
+  double weight[4] = {0, 0, 0, 0};
+};
+
+static std::vector<Parents> parents_along(int len, int coarse_len, int offset, int reach) {
+  std::vector<Parents> out(static_cast<std::size_t>(len));
+  for (int f = 0; f < len; ++f)
+    out[std::size_t(f)].count =
+        coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index, out[std::size_t(f)].weight);
+  return out;
+}
+
 // r_c = Pᵀ r (P: interpolation restricted to free points).
 void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
   const int h = Cl.reach;
@@ -83,25 +97,28 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
     }
 }
 
-// x += P x_c.
+// x += P x_c, fine row by fine row (each writes its own points): the sum over the coarse parents.
 void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x) {
-  const int h = Cl.reach;
-  for (int I = 0; I < Cl.rows; ++I)
-    for (int J = 0; J < Cl.cols; ++J) {
-      const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
-      if (!Cl.free[q] || xc[q] == 0) continue;
-      for (int a = -h; a <= h; ++a) {
-        const int i = 2 * I + Cl.offset_i + a;
-        const double wa = interp_weight(h, a);
-        if (i < 0 || i >= F.rows || wa == 0) continue;
-        for (int c = -h; c <= h; ++c) {
-          const int j = 2 * J + Cl.offset_j + c;
-          if (j < 0 || j >= F.cols) continue;
-          const Eigen::Index p = Eigen::Index(i) * F.cols + j;
-          if (F.free[p]) x[p] += wa * interp_weight(h, c) * xc[q];
-        }
+  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i, Cl.reach);
+  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j, Cl.reach);
+  [[maybe_unused]] const int nt = F.threads;
+  COONS_PARALLEL_ROWS
+  for (int i = 0; i < F.rows; ++i) {
+    const Parents& pi = parents_i[std::size_t(i)];
+    for (int j = 0; j < F.cols; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * F.cols + j;
+      if (!F.free[p]) continue;
+      const Parents& pj = parents_j[std::size_t(j)];
+      double sum = 0;
+      for (int a = 0; a < pi.count; ++a) {
+        const double* row = xc.data() + Eigen::Index(pi.index[a]) * Cl.cols;
+        double along = 0;
+        for (int c = 0; c < pj.count; ++c) along += pj.weight[c] * row[pj.index[c]];  // xc = 0 at fixed points
+        sum += pi.weight[a] * along;
       }
+      x[p] += sum;
     }
+  }
 }
 
 // The Galerkin operator Pᵀ A P of the fine level, as one stencil per coarse point.
@@ -131,19 +148,8 @@ Level galerkin_coarse(const Level& F, int reach) {
   Cl.coef.assign(std::size_t(Cl.points()) * wc * wc, 0.0);
   // Two passes, row by row: B = A P for the fine rows a coarse row needs (kept in a ring of
   // 2·reach + 1 rows), then A_c = Pᵀ B. B(p, ·) lives in a bw × bw window of coarse points.
-  struct Parents {
-    int count = 0, index[4] = {0, 0, 0, 0};
-    double weight[4] = {0, 0, 0, 0};
-  };
-  auto parents_along = [&](int len, int coarse_len, int offset) {
-    std::vector<Parents> out(static_cast<std::size_t>(len));
-    for (int f = 0; f < len; ++f)
-      out[std::size_t(f)].count =
-          coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index, out[std::size_t(f)].weight);
-    return out;
-  };
-  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i);
-  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j);
+  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i, reach);
+  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j, reach);
   const int bw = rf + reach + 1;
   auto window_start = [&](int f, int offset) {  // ceil((f − rf − reach − offset) / 2)
     const int t = f - rf - reach - offset;

@@ -14,11 +14,11 @@ namespace coons::solvers {
 
 struct Multigrid::Level {
   int rows = 0, cols = 0, radius = 1;
-  int offset_i = 1, offset_j = 1;      // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
-  int reach = 1;                       // interpolation from this level to the next finer: 1 linear, 3 cubic
-  bool constant = false;               // one stencil for every point (the finest level)
-  std::vector<double> coef;            // width² weights per point (or once when constant)
-  std::vector<unsigned char> free;     // rows·cols
+  int offset_i = 1, offset_j = 1;   // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
+  int reach = 1;                    // interpolation from this level to the next finer: 1 linear, 3 cubic
+  bool constant = false;            // one stencil for every point (the finest level)
+  std::vector<double> coef;         // width² weights per point (or once when constant)
+  std::vector<unsigned char> free;  // rows·cols
   // Banded LU (no pivoting) of the row and column line blocks, one entry per grid point p at line
   // position t: lower[(k−1)·points + p] = L(t, t−k), upper[(k−1)·points + p] = U(t, t+k) for
   // k = 1 … radius, inv_pivot[p] = 1 / U(t, t).
@@ -28,7 +28,7 @@ struct Multigrid::Level {
   LineLU row_lu, col_lu;
   int first_i = 0, first_j = 0;  // the first row and column with a free point: line colours count from them
   Eigen::Index unknowns = 0;
-  int threads = 1;  // OpenMP threads of the point-wise loops (residual, restriction, apply)
+  int threads = 1;  // OpenMP threads of the line and point loops (1 below 2048 points)
   // The coarsest level only: the direct solve over its free points.
   std::vector<Eigen::Index> number;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> direct;

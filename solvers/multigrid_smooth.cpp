@@ -23,7 +23,7 @@ namespace coons::solvers::mg_detail {
 
 namespace {
 
-constexpr int kRowGroup = 4;      // rows of one colour solved together (interleaved recurrences)
+constexpr int kRowGroup = 4;         // rows of one colour solved together (interleaved recurrences)
 constexpr int kMinColumnBlock = 32;  // columns of one colour per task of the column sweep, at least
 
 // Banded LU without pivoting of an n × n matrix of half-bandwidth r, stored by rows:
