@@ -13,20 +13,28 @@
 // grows radius 2 to 4 and then 5. The coarsest level (≤ coarsest_unknowns free points, or
 // fewer than 3 rows or columns) is solved by a sparse LU.
 //
-// Smoothing: alternating line Gauss–Seidel. A sweep solves, line after line, the banded system of
-// each grid row (all j at once, bandwidth r), then of each grid column. The stencils
+// Smoothing: alternating multicolour line Gauss–Seidel. A sweep solves the banded systems of the
+// grid rows (all j at once, bandwidth r), colour by colour, then those of the grid columns; a
+// line's colour is its index, counted from the first free line plus one, modulo r + 1, so lines
+// of one colour do not couple and are solved together (zebra lines at r = 1, colour 0 through the
+// coarse points): the result does not depend on the order within a colour or on the thread
+// count, the column solves run across adjacent columns and the row solves interleave several
+// rows. The stencils
 // (−1/2, 1, −1/2)ᵀ(−1/2, 1, −1/2) (centre 1, edges −1/2, diagonals 1/4) and
 // (1, −4, 6, −4, 1)ᵀ(1, −4, 6, −4, 1) are tensor products D⊗D of 1-D difference operators: a mode
 // smooth along i but oscillating along j has a tiny eigenvalue and no point smoother reduces it,
 // but the row-line solve does (its error propagator is a Jacobi/Gauss–Seidel step along j alone),
 // and the column-line solve handles the transposed case. Post-smoothing runs the adjoint sweep
-// (columns, then rows, in reverse order), so a V-cycle with as many pre- as post-sweeps is a
-// symmetric operator: a valid preconditioner for conjugate gradients (multigrid_cg).
+// (the colour steps in reverse order; each is an exact block solve), so a V-cycle with as many
+// pre- as post-sweeps is a symmetric operator: a valid preconditioner for conjugate gradients
+// (multigrid_cg).
 //
 // Measured (N×N grids, N = 31 … 511, relative residual 1e−10, data on the fixed points from a
-// smooth function): V-cycles 7 (centre 1, edges −1/4), 8 (centre 1, edges −0.35, diagonals 0.1),
-// 12 (the first tensor product above), 11–14 (the second), 9–24 (13-point biharmonic); CG with one
-// V-cycle 6, 6, 8, 9–17, 7–13 iterations (tests/solvers/multigrid_test.cpp, the [slow] case).
+// smooth function; tests/solvers/multigrid_test.cpp, the [slow] case, one sweep per side): V-cycles
+// 8–9 (centre 1, edges −1/4), 7–8 (centre 1, edges −0.35, diagonals 0.1), 1 (the first tensor
+// product above: zebra lines and bilinear Galerkin coarsening solve it exactly, up to rounding),
+// 11–14 (the second), 10–25 (13-point biharmonic); CG with one V-cycle 6–7, 6–7, 1, 8–17, 7–13
+// iterations.
 //
 // Based on: W. Hackbusch, Multi-Grid Methods and Applications, Springer (1985); U. Trottenberg,
 // C. W. Oosterlee, A. Schüller, Multigrid, Academic Press (2001) (line smoothers, Galerkin
@@ -57,8 +65,9 @@ struct MultigridOptions {
   int post_smoothing = 1;               //!< adjoint sweeps after it
   Eigen::Index coarsest_unknowns = 64;  //!< solve directly at or below this many free points
   int max_levels = 20;
-  //! threads of the residual, restriction and operator loops (1; 0: every core). They run over
-  //! independent points, so results are identical for every count. The line smoother stays serial.
+  //! threads of the smoother, residual, transfer and operator loops (1; 0: every core) on levels of
+  //! at least 2048 points. They run over independent lines or points, so results are identical for
+  //! every count.
   int threads = 1;
 
   bool is_valid(std::string* why) const;

@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "multigrid_kernels.h"
+
 // The outer loop over rows on L.threads threads (a local `nt`); every iteration writes its own
 // points, so the result does not depend on the count.
 #if defined(_OPENMP)
@@ -13,141 +15,24 @@
 
 namespace coons::solvers::mg_detail {
 
-// (A x)(p) over the stencil of point p; x is zero at fixed points and outside the grid.
-static double apply_at(const Level& L, const double* x, int i, int j) {
-  const int r = L.radius, w = L.width(), C = L.cols;
-  const double* a = L.at(Eigen::Index(i) * C + j);
-  double sum = 0;
-  if (i >= r && i + r < L.rows && j >= r && j + r < C) {
-    for (int di = -r; di <= r; ++di) {
-      const double* xr = x + Eigen::Index(i + di) * C + j;
-      const double* ar = a + (di + r) * w + r;
-      for (int dj = -r; dj <= r; ++dj) sum += ar[dj] * xr[dj];
-    }
-    return sum;
-  }
-  for (int di = -r; di <= r; ++di) {
-    const int ii = i + di;
-    if (ii < 0 || ii >= L.rows) continue;
-    for (int dj = -r; dj <= r; ++dj) {
-      const int jj = j + dj;
-      if (jj < 0 || jj >= C) continue;
-      sum += a[(di + r) * w + dj + r] * x[Eigen::Index(ii) * C + jj];
-    }
-  }
-  return sum;
-}
-
-void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) {
+// r = b − A x (kApply: r = A x) on the free points, row by row.
+template <bool kApply>
+static void eval_grid(const Level& L, const Vector& b, const Vector& x, Vector& r) {
   r.resize(L.points());
   [[maybe_unused]] const int nt = L.threads;
-  COONS_PARALLEL_ROWS
-  for (int i = 0; i < L.rows; ++i)
-    for (int j = 0; j < L.cols; ++j) {
-      const Eigen::Index p = Eigen::Index(i) * L.cols + j;
-      r[p] = L.free[p] ? b[p] - apply_at(L, x.data(), i, j) : 0.0;
-    }
+  dispatch(L, [&](auto radius, auto constant) {
+    constexpr int kR = decltype(radius)::value;
+    constexpr bool kConst = decltype(constant)::value;
+    COONS_PARALLEL_ROWS
+    for (int i = 0; i < L.rows; ++i)
+      eval_row<kR, kConst, kApply>(L, kApply ? nullptr : b.data(), x.data(), r.data() + Eigen::Index(i) * L.cols, i, 0,
+                                   L.cols, 1);
+  });
 }
 
-void apply_level(const Level& L, const Vector& x, Vector& y) {
-  y.resize(L.points());
-  [[maybe_unused]] const int nt = L.threads;
-  COONS_PARALLEL_ROWS
-  for (int i = 0; i < L.rows; ++i)
-    for (int j = 0; j < L.cols; ++j) {
-      const Eigen::Index p = Eigen::Index(i) * L.cols + j;
-      y[p] = L.free[p] ? apply_at(L, x.data(), i, j) : 0.0;
-    }
-}
+void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) { eval_grid<false>(L, b, x, r); }
 
-// Banded LU without pivoting of an n × n matrix of half-bandwidth r, stored by rows:
-// band[t·(2r+1) + k + r] = M(t, t + k). False on a zero (or non-finite) pivot.
-static bool band_factor(double* band, int n, int r) {
-  const int w = 2 * r + 1;
-  double scale = 0;
-  for (int t = 0; t < n * w; ++t) scale = std::max(scale, std::abs(band[t]));
-  for (int t = 0; t < n; ++t) {
-    const double pivot = band[t * w + r];
-    if (!std::isfinite(pivot) || std::abs(pivot) <= 1e-14 * scale) return false;
-    for (int k = 1; k <= r && t + k < n; ++k) {
-      double& l = band[(t + k) * w + r - k];
-      l /= pivot;
-      for (int s = 1; s <= r && t + s < n; ++s) band[(t + k) * w + r + s - k] -= l * band[t * w + r + s];
-    }
-  }
-  return true;
-}
-
-static void band_solve(const double* band, int n, int r, double* y) {
-  const int w = 2 * r + 1;
-  for (int t = 0; t < n; ++t)
-    for (int k = 1; k <= r && t - k >= 0; ++k) y[t] -= band[t * w + r - k] * y[t - k];
-  for (int t = n - 1; t >= 0; --t) {
-    for (int k = 1; k <= r && t + k < n; ++k) y[t] -= band[t * w + r + k] * y[t + k];
-    y[t] /= band[t * w + r];
-  }
-}
-
-// The line blocks: along a row (i fixed) or a column (j fixed); fixed points become identity rows.
-bool factor_lines(Level& L) {
-  const int r = L.radius, w = L.width(), R = L.rows, C = L.cols;
-  L.row_lu.assign(std::size_t(L.points()) * w, 0.0);
-  L.col_lu.assign(std::size_t(L.points()) * w, 0.0);
-  for (int i = 0; i < R; ++i)
-    for (int j = 0; j < C; ++j) {
-      const Eigen::Index p = Eigen::Index(i) * C + j;
-      double* row = &L.row_lu[std::size_t(i) * C * w + std::size_t(j) * w];  // line i, position j
-      double* col = &L.col_lu[std::size_t(j) * R * w + std::size_t(i) * w];  // line j, position i
-      if (!L.free[p]) {
-        row[r] = col[r] = 1;
-        continue;
-      }
-      const double* a = L.at(p);
-      for (int k = -r; k <= r; ++k) {
-        if (j + k >= 0 && j + k < C && L.free[p + k]) row[r + k] = a[r * w + r + k];
-        if (i + k >= 0 && i + k < R && L.free[p + Eigen::Index(k) * C]) col[r + k] = a[(r + k) * w + r];
-      }
-    }
-  for (int i = 0; i < R; ++i)
-    if (!band_factor(&L.row_lu[std::size_t(i) * C * w], C, r)) return false;
-  for (int j = 0; j < C; ++j)
-    if (!band_factor(&L.col_lu[std::size_t(j) * R * w], R, r)) return false;
-  return true;
-}
-
-static void smooth_row(const Level& L, const Vector& b, Vector& x, int i, std::vector<double>& line) {
-  const int C = L.cols;
-  line.resize(std::size_t(C));
-  for (int j = 0; j < C; ++j) {
-    const Eigen::Index p = Eigen::Index(i) * C + j;
-    line[j] = L.free[p] ? b[p] - apply_at(L, x.data(), i, j) : 0.0;
-  }
-  band_solve(&L.row_lu[std::size_t(i) * C * L.width()], C, L.radius, line.data());
-  for (int j = 0; j < C; ++j) x[Eigen::Index(i) * C + j] += line[j];
-}
-
-static void smooth_col(const Level& L, const Vector& b, Vector& x, int j, std::vector<double>& line) {
-  const int R = L.rows, C = L.cols;
-  line.resize(std::size_t(R));
-  for (int i = 0; i < R; ++i) {
-    const Eigen::Index p = Eigen::Index(i) * C + j;
-    line[i] = L.free[p] ? b[p] - apply_at(L, x.data(), i, j) : 0.0;
-  }
-  band_solve(&L.col_lu[std::size_t(j) * R * L.width()], R, L.radius, line.data());
-  for (int i = 0; i < R; ++i) x[Eigen::Index(i) * C + j] += line[i];
-}
-
-// Forward: rows 0..R−1, then columns 0..C−1. Backward (the adjoint): columns C−1..0, rows R−1..0.
-void smooth(const Level& L, const Vector& b, Vector& x, bool forward) {
-  std::vector<double> line;
-  if (forward) {
-    for (int i = 0; i < L.rows; ++i) smooth_row(L, b, x, i, line);
-    for (int j = 0; j < L.cols; ++j) smooth_col(L, b, x, j, line);
-  } else {
-    for (int j = L.cols - 1; j >= 0; --j) smooth_col(L, b, x, j, line);
-    for (int i = L.rows - 1; i >= 0; --i) smooth_row(L, b, x, i, line);
-  }
-}
+void apply_level(const Level& L, const Vector& x, Vector& y) { eval_grid<true>(L, x, x, y); }
 
 // Interpolation weight of a fine point at offset a from a coarse point's own fine point, along one
 // axis: linear (1/2, 1, 1/2) or cubic (−1/16, 0, 9/16, 1, 9/16, 0, −1/16). Values beyond the grid
@@ -171,6 +56,20 @@ static int coarse_parents(int f, int coarse_len, int offset, int reach, int* par
     weight[n++] = w;
   }
   return n;
+}
+
+// The coarse parents of every fine index along one axis.
+struct Parents {
+  int count = 0, index[4] = {0, 0, 0, 0};
+  double weight[4] = {0, 0, 0, 0};
+};
+
+static std::vector<Parents> parents_along(int len, int coarse_len, int offset, int reach) {
+  std::vector<Parents> out(static_cast<std::size_t>(len));
+  for (int f = 0; f < len; ++f)
+    out[std::size_t(f)].count =
+        coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index, out[std::size_t(f)].weight);
+  return out;
 }
 
 // r_c = Pᵀ r (P: interpolation restricted to free points).
@@ -198,25 +97,28 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
     }
 }
 
-// x += P x_c.
+// x += P x_c, fine row by fine row (each writes its own points): the sum over the coarse parents.
 void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x) {
-  const int h = Cl.reach;
-  for (int I = 0; I < Cl.rows; ++I)
-    for (int J = 0; J < Cl.cols; ++J) {
-      const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
-      if (!Cl.free[q] || xc[q] == 0) continue;
-      for (int a = -h; a <= h; ++a) {
-        const int i = 2 * I + Cl.offset_i + a;
-        const double wa = interp_weight(h, a);
-        if (i < 0 || i >= F.rows || wa == 0) continue;
-        for (int c = -h; c <= h; ++c) {
-          const int j = 2 * J + Cl.offset_j + c;
-          if (j < 0 || j >= F.cols) continue;
-          const Eigen::Index p = Eigen::Index(i) * F.cols + j;
-          if (F.free[p]) x[p] += wa * interp_weight(h, c) * xc[q];
-        }
+  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i, Cl.reach);
+  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j, Cl.reach);
+  [[maybe_unused]] const int nt = F.threads;
+  COONS_PARALLEL_ROWS
+  for (int i = 0; i < F.rows; ++i) {
+    const Parents& pi = parents_i[std::size_t(i)];
+    for (int j = 0; j < F.cols; ++j) {
+      const Eigen::Index p = Eigen::Index(i) * F.cols + j;
+      if (!F.free[p]) continue;
+      const Parents& pj = parents_j[std::size_t(j)];
+      double sum = 0;
+      for (int a = 0; a < pi.count; ++a) {
+        const double* row = xc.data() + Eigen::Index(pi.index[a]) * Cl.cols;
+        double along = 0;
+        for (int c = 0; c < pj.count; ++c) along += pj.weight[c] * row[pj.index[c]];  // xc = 0 at fixed points
+        sum += pi.weight[a] * along;
       }
+      x[p] += sum;
     }
+  }
 }
 
 // The Galerkin operator Pᵀ A P of the fine level, as one stencil per coarse point.
@@ -246,19 +148,8 @@ Level galerkin_coarse(const Level& F, int reach) {
   Cl.coef.assign(std::size_t(Cl.points()) * wc * wc, 0.0);
   // Two passes, row by row: B = A P for the fine rows a coarse row needs (kept in a ring of
   // 2·reach + 1 rows), then A_c = Pᵀ B. B(p, ·) lives in a bw × bw window of coarse points.
-  struct Parents {
-    int count = 0, index[4] = {0, 0, 0, 0};
-    double weight[4] = {0, 0, 0, 0};
-  };
-  auto parents_along = [&](int len, int coarse_len, int offset) {
-    std::vector<Parents> out(static_cast<std::size_t>(len));
-    for (int f = 0; f < len; ++f)
-      out[std::size_t(f)].count =
-          coarse_parents(f, coarse_len, offset, reach, out[std::size_t(f)].index, out[std::size_t(f)].weight);
-    return out;
-  };
-  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i);
-  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j);
+  const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i, reach);
+  const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j, reach);
   const int bw = rf + reach + 1;
   auto window_start = [&](int f, int offset) {  // ceil((f − rf − reach − offset) / 2)
     const int t = f - rf - reach - offset;

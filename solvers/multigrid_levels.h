@@ -14,14 +14,21 @@ namespace coons::solvers {
 
 struct Multigrid::Level {
   int rows = 0, cols = 0, radius = 1;
-  int offset_i = 1, offset_j = 1;      // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
-  int reach = 1;                       // interpolation from this level to the next finer: 1 linear, 3 cubic
-  bool constant = false;               // one stencil for every point (the finest level)
-  std::vector<double> coef;            // width² weights per point (or once when constant)
-  std::vector<unsigned char> free;     // rows·cols
-  std::vector<double> row_lu, col_lu;  // banded LU of the row and column line blocks
+  int offset_i = 1, offset_j = 1;   // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
+  int reach = 1;                    // interpolation from this level to the next finer: 1 linear, 3 cubic
+  bool constant = false;            // one stencil for every point (the finest level)
+  std::vector<double> coef;         // width² weights per point (or once when constant)
+  std::vector<unsigned char> free;  // rows·cols
+  // Banded LU (no pivoting) of the row and column line blocks, one entry per grid point p at line
+  // position t: lower[(k−1)·points + p] = L(t, t−k), upper[(k−1)·points + p] = U(t, t+k) for
+  // k = 1 … radius, inv_pivot[p] = 1 / U(t, t).
+  struct LineLU {
+    std::vector<double> lower, upper, inv_pivot;
+  };
+  LineLU row_lu, col_lu;
+  int first_i = 0, first_j = 0;  // the first row and column with a free point: line colours count from them
   Eigen::Index unknowns = 0;
-  int threads = 1;  // OpenMP threads of the point-wise loops (residual, restriction, apply)
+  int threads = 1;  // OpenMP threads of the line and point loops (1 below 2048 points)
   // The coarsest level only: the direct solve over its free points.
   std::vector<Eigen::Index> number;
   std::unique_ptr<Eigen::SparseLU<Eigen::SparseMatrix<double>>> direct;
@@ -44,8 +51,9 @@ void residual(const Level& L, const Vector& b, const Vector& x, Vector& r);
 void apply_level(const Level& L, const Vector& x, Vector& y);
 //! Factorises the row and column line blocks; false on a zero pivot.
 bool factor_lines(Level& L);
-//! One alternating line Gauss–Seidel sweep: forward (rows, then columns) or its adjoint.
-void smooth(const Level& L, const Vector& b, Vector& x, bool forward);
+//! One alternating multicolour line Gauss–Seidel sweep: forward (rows of colour 0 … radius, then
+//! columns likewise) or its adjoint (the reverse order). work: a grid-sized scratch vector.
+void smooth(const Level& L, const Vector& b, Vector& x, Vector& work, bool forward);
 //! r_c = Pᵀ r and x += P x_c between a level and the next coarser one.
 void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc);
 void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x);

@@ -497,7 +497,8 @@ void register_mg_iterations(const Config& config) {
   for (int N : config.sizes)
     for (const Case& c : cases) {
       // c1-coons at N = 1023 has κ ≈ 2.6e22 > 1/ε: beyond what residual correction resolves in
-      // double (docs/solvers.md); a run of it was stopped after 12 minutes.
+      // double (docs/solvers.md); runs of it were stopped after 12 minutes (lexicographic line
+      // smoother) and after 200 s (multicolour one, 2026-11-23, load ≈ 5 on 2 cores).
       if (std::string(c.problem) == "c1-coons" && N > 511) continue;
       if (!find_solver(c.backend) ||
           (!config.backends.empty() &&
