@@ -54,8 +54,10 @@ struct BandedLdlt {
 //! kSuccess, or kSingular on a zero pivot.
 SolveStatus banded_ldlt(const std::array<double, 3>& diagonals, int k, BandedLdlt& f);
 
-//! X = A⁻¹ B (#size by 3) in one call (factorize and solve). B and X may not alias.
-SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X);
+//! X = A⁻¹ B (#size by 3) in one call (factorize and solve) on `threads` threads (1 without
+//! OpenMP; the result does not depend on the count). B and X may not alias.
+SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
+                                   int threads = 1);
 
 //! The same as a LinearSolver (name "separable-banded"): factorize ignores the values of op and
 //! uses the operator given here; analyze reports kNotApplicable when op's size is not rows·cols.
