@@ -6,12 +6,20 @@
 #include <string>
 #include <vector>
 
+#include "fast5_capacitance.h"
+#include "fast5_modes.h"
 #include "separable_banded_solver.h"
 #include "sine_transform.h"
 
 namespace coons::solvers {
 
 namespace {
+
+using fast5_detail::CapacitanceBlock;
+using fast5_detail::FactorRow;
+using fast5_detail::first_sine_column;
+using fast5_detail::ModeFactors;
+using fast5_detail::second_difference_eigenvalues;
 
 using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
 
@@ -31,190 +39,6 @@ double c_weight(int di, int dj) { return kDelta4[std::size_t(di) + 2] * kDelta4[
 double t_weight(int di, int dj) {
   const auto i = std::size_t(di) + 2, j = std::size_t(dj) + 2;
   return kDelta4[i] * kImpulse[j] + 2 * kDelta2[i] * kDelta2[j] + kImpulse[i] * kDelta4[j];
-}
-
-// sqrt(2/(n+1))·sin(kπ/(n+1)), k = 1..n: the orthonormal DST-I of e_1.
-Eigen::VectorXd first_sine_column(int n) {
-  Eigen::VectorXd s(n);
-  for (int k = 0; k < n; ++k) s[k] = std::sqrt(2.0 / (n + 1)) * std::sin(M_PI * (k + 1) / (n + 1));
-  return s;
-}
-
-// 2 − 2cos(kπ/(n+1)), k = 1..n: the eigenvalues of tridiag(−1, 2, −1).
-Eigen::VectorXd second_difference_eigenvalues(int n) {
-  Eigen::VectorXd e(n);
-  for (int k = 0; k < n; ++k) e[k] = 4 * std::pow(std::sin(M_PI * (k + 1) / (2.0 * (n + 1))), 2);
-  return e;
-}
-
-// One parity block of the capacitance matrix in the sine basis along i:
-//   Cap·v = diag ⊙ v − kappa·u (uᵀv) − G (Gᵀv),   symmetric positive definite,
-// and of H⁻¹ (H = a·P_i + b·I) in the same basis: h_inv ⊙ v − kappa·u (uᵀv).
-struct CapacitanceBlock {
-  std::vector<int> modes;  // modes p (0-based) along i of this block
-  Eigen::VectorXd diag, h_inv, u;
-  double kappa = 0;
-  Eigen::MatrixXd G;  // #modes by #(modes q of the column parity), column-major
-
-  // out = Cap·V. G is read twice, a column at a time, for all right-hand sides together
-  // (hand-written: Eigen's product would pack G into a copy on every call).
-  void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out, Eigen::MatrixXd& s) const {
-    const Eigen::Index m = V.cols();
-    out.noalias() = diag.asDiagonal() * V;
-    out.noalias() -= (kappa * u) * (u.transpose() * V);
-    s.resize(G.cols(), m);
-    for (Eigen::Index k = 0; k < G.cols(); ++k)
-      for (Eigen::Index c = 0; c < m; ++c) s(k, c) = G.col(k).dot(V.col(c));
-    for (Eigen::Index k = 0; k < G.cols(); ++k)
-      for (Eigen::Index c = 0; c < m; ++c) out.col(c) -= s(k, c) * G.col(k);
-  }
-
-  // V ← H⁻¹ V (rows of V are this block's modes).
-  void apply_h_inverse(Eigen::MatrixXd& V) const {
-    const Eigen::RowVectorXd uv = u.transpose() * V;
-    V = h_inv.asDiagonal() * V;
-    V.noalias() -= (kappa * u) * uv;
-  }
-
-  // Conjugate gradients with the diagonal as preconditioner, one column per right-hand side
-  // (each with its own step lengths; a converged column is frozen); returns the iterations.
-  int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const {
-    const Eigen::Index n = rhs.rows(), m = rhs.cols();
-    X.setZero(n, m);
-    if (n == 0 || m == 0) return 0;
-    Eigen::ArrayXd target = tolerance * rhs.colwise().norm().transpose().array();
-    Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP, s;
-    Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
-    std::vector<bool> active(static_cast<std::size_t>(m), false);
-    for (Eigen::Index c = 0; c < m; ++c) active[std::size_t(c)] = target[c] > 0;
-    const int limit = int(2 * n + 50);
-    for (int k = 1; k <= limit; ++k) {
-      apply(P, AP, s);
-      bool any = false;
-      for (Eigen::Index c = 0; c < m; ++c) {
-        if (!active[std::size_t(c)]) continue;
-        const double step = rz[c] / P.col(c).dot(AP.col(c));
-        X.col(c) += step * P.col(c);
-        R.col(c) -= step * AP.col(c);
-        if (R.col(c).norm() <= target[c]) {
-          active[std::size_t(c)] = false;
-          P.col(c).setZero();
-          continue;
-        }
-        Z.col(c) = R.col(c).cwiseQuotient(diag);
-        const double rz_next = R.col(c).dot(Z.col(c));
-        P.col(c) = Z.col(c) + (rz_next / rz[c]) * P.col(c);
-        rz[c] = rz_next;
-        any = true;
-      }
-      if (!any) return k;
-    }
-    return limit;
-  }
-};
-
-// The banded LDLᵀ factors of M_q for every mode q, row by row. M_q is Toeplitz, so its factors
-// converge geometrically down the rows (after about 40/√ν_q rows, ν_q the mode's eigenvalue):
-// from row r_q on they equal their limit to the last bit, and only the rows above are stored.
-// Row r keeps the modes q < active[r] (the ones not yet converged there; active is
-// non-increasing), contiguous from offset[r]; the others read the limit.
-struct ModeFactors {
-  int rows = 0, cols = 0;
-  std::vector<int> active;
-  std::vector<std::size_t> offset;
-  std::vector<double> inv_d, l1, l2;              // stored part
-  std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
-};
-
-// Full rows of the factors, kept up to date as a sweep moves one row at a time (only the stored
-// modes are copied; the rest keep the limit).
-class FactorRow {
- public:
-  explicit FactorRow(const ModeFactors& f) : f_(f), inv_d(f.lim_inv_d), l1(f.lim_l1), l2(f.lim_l2), active_(0) {}
-  void seek(int r) {
-    const int q = f_.active[std::size_t(r)];
-    const std::size_t o = f_.offset[std::size_t(r)];
-    std::copy_n(f_.inv_d.data() + o, q, inv_d.data());
-    std::copy_n(f_.l1.data() + o, q, l1.data());
-    std::copy_n(f_.l2.data() + o, q, l2.data());
-    for (int k = q; k < active_; ++k) {  // converged since the last row
-      inv_d[std::size_t(k)] = f_.lim_inv_d[std::size_t(k)];
-      l1[std::size_t(k)] = f_.lim_l1[std::size_t(k)];
-      l2[std::size_t(k)] = f_.lim_l2[std::size_t(k)];
-    }
-    active_ = q;
-  }
-  const ModeFactors& f_;
-  std::vector<double> inv_d, l1, l2;
-
- private:
-  int active_;
-};
-
-constexpr double kConverged = 1e-15;
-
-ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows) {
-  ModeFactors f;
-  const int cols = int(nu.size());
-  f.rows = rows;
-  f.cols = cols;
-  f.lim_inv_d.resize(std::size_t(cols));
-  f.lim_l1.resize(std::size_t(cols));
-  f.lim_l2.resize(std::size_t(cols));
-  std::vector<int> converged(std::size_t(cols), rows);
-  const auto modes = std::size_t(cols);
-  std::vector<std::vector<double>> d(modes), l1(modes), l2(modes);
-  for (int q = 0; q < cols; ++q) {
-    const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
-    const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
-    auto& dq = d[std::size_t(q)];
-    auto& l1q = l1[std::size_t(q)];
-    auto& l2q = l2[std::size_t(q)];
-    double dm1 = 0, dm2 = 0, l1m1 = 0, l2m1 = 0, l2m2 = 0;
-    for (int r = 0; r < rows; ++r) {
-      const double dr = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
-      const double l1r = (a1 - l2m1 * dm1 * l1m1) / dr, l2r = a2 / dr;
-      const double change =
-          std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r), std::abs(l2r - l2m1) / l2r});
-      if (r >= 3 && change <= kConverged) {
-        converged[std::size_t(q)] = r;
-        break;
-      }
-      dq.push_back(dr);
-      l1q.push_back(l1r);
-      l2q.push_back(l2r);
-      dm2 = dm1;
-      dm1 = dr;
-      l1m1 = l1r;
-      l2m2 = l2m1;
-      l2m1 = l2r;
-    }
-    f.lim_inv_d[std::size_t(q)] = 1 / dq.back();
-    f.lim_l1[std::size_t(q)] = l1q.back();
-    f.lim_l2[std::size_t(q)] = l2q.back();
-  }
-  f.active.assign(std::size_t(rows), 0);
-  f.offset.assign(std::size_t(rows) + 1, 0);
-  int q_max = cols;
-  for (int r = 0; r < rows; ++r) {
-    while (q_max > 0 && converged[std::size_t(q_max) - 1] <= r) --q_max;
-    f.active[std::size_t(r)] = q_max;
-    f.offset[std::size_t(r) + 1] = f.offset[std::size_t(r)] + std::size_t(q_max);
-  }
-  const std::size_t total = f.offset.back();
-  f.inv_d.resize(total);
-  f.l1.resize(total);
-  f.l2.resize(total);
-  for (int r = 0; r < rows; ++r)
-    for (int q = 0; q < f.active[std::size_t(r)]; ++q) {
-      const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
-      const auto& dq = d[std::size_t(q)];
-      const bool stored = std::size_t(r) < dq.size();
-      f.inv_d[at] = stored ? 1 / dq[std::size_t(r)] : f.lim_inv_d[std::size_t(q)];
-      f.l1[at] = stored ? l1[std::size_t(q)][std::size_t(r)] : f.lim_l1[std::size_t(q)];
-      f.l2[at] = stored ? l2[std::size_t(q)][std::size_t(r)] : f.lim_l2[std::size_t(q)];
-    }
-  return f;
 }
 
 // The unknown-independent checks of fast5: a grid operator, every point free, a·C + b·T.
@@ -316,7 +140,7 @@ class Fast5Solver final : public LinearSolver {
   // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
   void factor_modes() {
     nu_ = second_difference_eigenvalues(C_);
-    factors_ = coons::solvers::factor_modes(weights_.a, weights_.b, nu_, R_);
+    factors_ = fast5_detail::factor_modes(weights_.a, weights_.b, nu_, R_);
   }
 
   // The four capacitance blocks (parity of q) × (parity of p), see the header, and the sine
@@ -324,7 +148,6 @@ class Fast5Solver final : public LinearSolver {
   void build_capacitance() {
     const double a = weights_.a, b = weights_.b;
     const Eigen::VectorXd mu = second_difference_eigenvalues(R_);
-    const Eigen::VectorXd sigma = std::sqrt(2.0) * first_sine_column(R_);
     t_ = std::sqrt(2.0) * first_sine_column(C_);
     tmasks_.setZero(C_, 2);  // t_q on the modes of each parity
     for (int q = 0; q < C_; ++q) tmasks_(q, q % 2) = t_[q];
@@ -341,51 +164,7 @@ class Fast5Solver final : public LinearSolver {
       for (int q = 0; q < C_; ++q)
         near_sines_(q, Eigen::Index(k)) =
             std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (near_[k] + 1) * (q + 1) / (C_ + 1));
-    const auto lambda = [&](int p, int q) {
-      const double s = mu[p] + nu_[q];
-      return a * mu[p] * mu[p] * nu_[q] * nu_[q] + b * s * s;
-    };
-    for (int qpar = 0; qpar < 2; ++qpar) {
-      std::vector<int> qs;
-      for (int q = qpar; q < C_; q += 2) qs.push_back(q);
-      for (int ppar = 0; ppar < 2; ++ppar) {
-        CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
-        blk.modes.clear();
-        for (int p = ppar; p < R_; p += 2) blk.modes.push_back(p);
-        const auto n = Eigen::Index(blk.modes.size());
-        blk.diag.resize(n);
-        blk.h_inv.resize(n);
-        blk.u.resize(n);
-        blk.G.resize(n, Eigen::Index(qs.size()));
-        double su = 0;
-        for (Eigen::Index k = 0; k < n; ++k) {
-          const int p = blk.modes[std::size_t(k)];
-          const double dl = a * mu[p] * mu[p] + b;  // H = a·P_i + b·I = S(aμ² + b)S + a·E_i
-          blk.u[k] = sigma[p] / dl;
-          blk.h_inv[k] = 1 / dl;
-          su += sigma[p] * blk.u[k];
-        }
-        blk.diag = blk.h_inv;
-        blk.kappa = a / (1 + a * su);
-        Eigen::VectorXd inv_lambda(n);
-        for (std::size_t k = 0; k < qs.size(); ++k) {
-          const int q = qs[k];
-          const double alpha = a * nu_[q] * nu_[q] + b;  // the weight of E_i in M_q
-          double gamma = 0;
-          for (Eigen::Index m = 0; m < n; ++m) {
-            const int p = blk.modes[std::size_t(m)];
-            inv_lambda[m] = 1 / lambda(p, q);
-            gamma += sigma[p] * sigma[p] * inv_lambda[m];
-          }
-          const double c = std::sqrt(t_[q] * t_[q] * alpha / (1 + alpha * gamma));
-          for (Eigen::Index m = 0; m < n; ++m) {
-            const int p = blk.modes[std::size_t(m)];
-            blk.diag[m] += t_[q] * t_[q] * inv_lambda[m];
-            blk.G(m, Eigen::Index(k)) = c * sigma[p] * inv_lambda[m];
-          }
-        }
-      }
-    }
+    blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_);
   }
 
   // Down the rows: work_[c] = L⁻¹(base), base = hats_[c] (with from_hats) plus, with z, the sources
