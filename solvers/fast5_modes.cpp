@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "vector_clones.h"
+
 namespace coons::solvers::fast5_detail {
 
 Eigen::VectorXd first_sine_column(int n) {
@@ -17,18 +19,101 @@ Eigen::VectorXd second_difference_eigenvalues(int n) {
   return e;
 }
 
-void FactorRow::seek(int r) {
-  const int q = f_.active[std::size_t(r)];
-  const std::size_t o = f_.offset[std::size_t(r)];
-  std::copy_n(f_.inv_d.data() + o, q, inv_d.data());
-  std::copy_n(f_.l1.data() + o, q, l1.data());
-  std::copy_n(f_.l2.data() + o, q, l2.data());
-  for (int k = q; k < active_; ++k) {  // converged since the last row
-    inv_d[std::size_t(k)] = f_.lim_inv_d[std::size_t(k)];
-    l1[std::size_t(k)] = f_.lim_l1[std::size_t(k)];
-    l2[std::size_t(k)] = f_.lim_l2[std::size_t(k)];
+namespace {
+
+// The row r factors of the modes [qa, qb) all read from one place: the stored row (q < active[r])
+// or the limits. base(r, q) returns pointers indexed by q.
+struct FactorPointers {
+  const double* inv_d;
+  const double* l1;
+  const double* l2;
+};
+FactorPointers factor_pointers(const ModeFactors& f, int r, int q) {
+  if (q < f.active[std::size_t(r)]) {
+    const std::size_t o = f.offset[std::size_t(r)];
+    return {f.inv_d.data() + o, f.l1.data() + o, f.l2.data() + o};
   }
-  active_ = q;
+  return {f.lim_inv_d.data(), f.lim_l1.data(), f.lim_l2.data()};
+}
+
+COONS_VECTOR_CLONES void down_row(double* __restrict w, const double* __restrict y, double ze,
+                                  const double* __restrict te, double zo, const double* __restrict to,
+                                  const double* __restrict l1, const double* __restrict w1, const double* __restrict l2,
+                                  const double* __restrict w2, int qa, int qb) {
+  if (w2) {
+    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q] - l2[q] * w2[q];
+  } else if (w1) {
+    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q];
+  } else {
+    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q];
+  }
+}
+
+COONS_VECTOR_CLONES void up_row(double* __restrict w, const double* __restrict inv_d, const double* __restrict l1,
+                                const double* __restrict w1, const double* __restrict l2, const double* __restrict w2,
+                                int qa, int qb) {
+  if (w2) {
+    for (int q = qa; q < qb; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
+  } else if (w1) {
+    for (int q = qa; q < qb; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
+  } else {
+    for (int q = qa; q < qb; ++q) w[q] *= inv_d[q];
+  }
+}
+
+}  // namespace
+
+void sweep_down(const ModeFactors& f, int q0, int q1, int count, const SweepInput& in, RowMajor* work) {
+  const int R = f.rows, C = f.cols;
+  const std::vector<double> zeros(std::size_t(C), 0.0);
+  for (int r = 0; r < R; ++r) {
+    // [q0, q1) cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
+    const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], q0, q1) : q1;
+    const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, q1) : q1;
+    const std::array<int, 4> cut{q0, a1, a2, q1};
+    for (int c = 0; c < count; ++c) {
+      double* w = work[c].data() + std::ptrdiff_t(r) * C;
+      const double* y = in.hats ? in.hats[c].data() + std::ptrdiff_t(r) * C : zeros.data();
+      const double ze = in.z ? in.sign * (*in.z)[0](r, c) : 0, zo = in.z ? in.sign * (*in.z)[1](r, c) : 0;
+      const double* w1 = r >= 1 ? w - C : nullptr;
+      const double* w2 = r >= 2 ? w - 2 * std::ptrdiff_t(C) : nullptr;
+      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+        if (cut[s] >= cut[s + 1]) continue;
+        const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 : nullptr;
+        const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 : nullptr;
+        down_row(w, y, ze, in.t_even, zo, in.t_odd, l1, w1, l2, w2, cut[s], cut[s + 1]);
+      }
+    }
+  }
+}
+
+void sweep_up(const ModeFactors& f, int q0, int q1, int count, RowMajor* work, RowMajor* add,
+              const Eigen::MatrixXd& dots, Eigen::MatrixXd& out) {
+  const int R = f.rows, C = f.cols;
+  const Eigen::Index k = dots.cols(), n = q1 - q0;
+  out.resize(R, k * count);
+  for (int r = R - 1; r >= 0; --r) {
+    const int a = std::clamp(f.active[std::size_t(r)], q0, q1);
+    const std::array<int, 3> cut{q0, a, q1};
+    for (int c = 0; c < count; ++c) {
+      double* w = work[c].data() + std::ptrdiff_t(r) * C;
+      const double* w1 = r + 1 < R ? w + C : nullptr;
+      const double* w2 = r + 2 < R ? w + 2 * std::ptrdiff_t(C) : nullptr;
+      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+        if (cut[s] >= cut[s + 1]) continue;
+        const FactorPointers p = factor_pointers(f, r, cut[s]);
+        up_row(w, p.inv_d, p.l1, w1, p.l2, w2, cut[s], cut[s + 1]);
+      }
+      const double* result = w;
+      if (add) {
+        double* y = add[c].data() + std::ptrdiff_t(r) * C;
+        for (int q = q0; q < q1; ++q) y[q] += w[q];
+        result = y;
+      }
+      const Eigen::Map<const Eigen::VectorXd> row(result + q0, n);
+      for (Eigen::Index m = 0; m < k; ++m) out(r, k * c + m) = row.dot(dots.col(m).segment(q0, n));
+    }
+  }
 }
 
 namespace {

@@ -3,11 +3,14 @@
 //   M_q = (a ν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I   (rows × rows, P = toeplitz(6, −4, 1), D = tridiag(−1, 2, −1)),
 // factored here by banded LDLᵀ without pivoting (M_q is definite). The factors converge down the
 // rows, so only the rows above convergence are stored: sizes #rows·#cols at most, 4 % of it at
-// N = 1023; FactorRow rebuilds one full row (#cols) of the factors at a time for the sweeps.
+// N = 1023. The sweeps (down and up the rows, #rows × #cols per right-hand side) read a stored
+// row or the limits directly, one range of modes at a time (the modes are independent).
 // Based on: G. H. Golub & C. F. Van Loan, Matrix Computations, §4.3 (banded LDLᵀ).
 #pragma once
 
 #include <Eigen/Core>
+#include <array>
+#include <cstddef>
 #include <vector>
 
 namespace coons::solvers::fast5_detail {
@@ -31,21 +34,31 @@ struct ModeFactors {
   std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
 };
 
-// Full rows of the factors, kept up to date as a sweep moves one row at a time (only the stored
-// modes are copied; the rest keep the limit).
-class FactorRow {
- public:
-  explicit FactorRow(const ModeFactors& f) : f_(f), inv_d(f.lim_inv_d), l1(f.lim_l1), l2(f.lim_l2), active_(0) {}
-  //! Makes inv_d, l1, l2 the factors of row r.
-  void seek(int r);
-  const ModeFactors& f_;
-  std::vector<double> inv_d, l1, l2;
-
- private:
-  int active_;
-};
-
 //! The factors of M_q for the modes ν = nu (#cols) of the fourth-order stencil a·C + b·T, rows each.
 ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows);
+
+using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+
+//! The right-hand side of a downward sweep, row r, mode q: y(r, q) + sign·(z_even(r, c) t_even[q]
+//! + z_odd(r, c) t_odd[q]) for right-hand side c; y = hats (rows × cols each) or zero (nullptr),
+//! the sources U z on the boundary columns in the sine basis (z = nullptr: none).
+struct SweepInput {
+  const RowMajor* hats = nullptr;
+  const std::array<Eigen::MatrixXd, 2>* z = nullptr;
+  double sign = 1;
+  const double* t_even = nullptr;  //!< t_q on the even modes q, 0 on the odd ones (#cols)
+  const double* t_odd = nullptr;
+};
+
+//! Down the rows for the modes [q0, q1): work[c] = L⁻¹ (the input), c < count. The modes are
+//! independent: disjoint ranges may run on different threads.
+void sweep_down(const ModeFactors& f, int q0, int q1, int count, const SweepInput& in, RowMajor* work);
+
+//! Up the rows for the modes [q0, q1): work[c] ← (LD)⁻ᵀ work[c], completing M⁻¹ of the input;
+//! with add (non-null) add[c] += the result. out(r, k·c + ·) = the part of row r of the result
+//! (of add[c] when given) in [q0, q1) times the same rows of dots (#cols by k): partial sums over
+//! this range of modes.
+void sweep_up(const ModeFactors& f, int q0, int q1, int count, RowMajor* work, RowMajor* add,
+              const Eigen::MatrixXd& dots, Eigen::MatrixXd& out);
 
 }  // namespace coons::solvers::fast5_detail

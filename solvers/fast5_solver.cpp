@@ -11,17 +11,27 @@
 #include "separable_banded_solver.h"
 #include "sine_transform.h"
 
+#if defined(_OPENMP)
+#include <omp.h>
+// A loop over independent units on `nt` threads (a local); each unit writes its own data.
+#define COONS_PARALLEL_FOR _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic)")
+#else
+#define COONS_PARALLEL_FOR
+#endif
+
 namespace coons::solvers {
 
 namespace {
 
 using fast5_detail::CapacitanceBlock;
-using fast5_detail::FactorRow;
 using fast5_detail::first_sine_column;
 using fast5_detail::ModeFactors;
 using fast5_detail::second_difference_eigenvalues;
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using fast5_detail::RowMajor;
+
+// Modes per unit of the threaded sweeps (fixed: the partial sums do not depend on the thread count).
+constexpr int kModeChunk = 128;
 
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
@@ -76,8 +86,10 @@ class Fast5Solver final : public LinearSolver {
     R_ = op.grid->rows;
     C_ = op.grid->cols;
     const unsigned planning = detail::fft_planning(options_);
+    threads_ = resolved_threads(options_.threads);
     along_i_ = detail::SineTransform(R_, planning);
-    along_j_ = detail::SineTransform(C_, planning);
+    along_j_.clear();
+    for (int t = 0; t < threads_; ++t) along_j_.emplace_back(C_, planning);
     return SolveStatus::kSuccess;
   }
 
@@ -101,18 +113,14 @@ class Fast5Solver final : public LinearSolver {
       sep.along_i = {6 * weights_.a, -4 * weights_.a, weights_.a};
       sep.along_j = {6, -4, 1};
       summary.iterations = 1;
-      const SolveStatus status = separable_banded_solve(sep, B, X);
+      const SolveStatus status = separable_banded_solve(sep, B, X, resolved_threads(options_.threads));
       if (status != SolveStatus::kSuccess) summary.message = "a zero pivot in the banded LDL^T of a factor";
       return status;
     }
     const int count = 3;
     for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
-    const double scale_j = std::sqrt(2.0 / (C_ + 1));
-    for (int c = 0; c < count; ++c) {
-      RowMajor& hat = hats_[std::size_t(c)];
-      hat.resize(R_, C_);
-      for (int r = 0; r < R_; ++r) along_j_.apply(B.col(c).data() + std::ptrdiff_t(r) * C_, &hat(r, 0), scale_j);
-    }
+    for (int c = 0; c < count; ++c) hats_[std::size_t(c)].resize(R_, C_);
+    transform_rows(count, true, B, X);
     // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = ŷ − A₁⁻¹ U h.
     banded_solve_all(count, dots_);
     std::array<Eigen::MatrixXd, 2> h;
@@ -128,15 +136,53 @@ class Fast5Solver final : public LinearSolver {
       add_boundary_response(count, h, 1.0, false);
     }
     X.resize(B.rows(), 3);
-    for (int c = 0; c < count; ++c) {
-      RowMajor& hat = hats_[std::size_t(c)];
-      for (int r = 0; r < R_; ++r) along_j_.apply(&hat(r, 0), X.col(c).data() + std::ptrdiff_t(r) * C_, scale_j);
-    }
+    transform_rows(count, false, B, X);
     summary.iterations = iterations;
     return SolveStatus::kSuccess;
   }
 
  private:
+  // forward: hats_[c] = the sine transform of each row of B's column c; a row that is zero but on
+  // the columns 0, 1, cols−2, cols−1 (most rows of a mask system: the data rings are next to them)
+  // is the combination of those four columns' sine vectors instead (exact, no transform).
+  // Otherwise X's column c = the inverse transform of each row of hats_[c]. Rows shared among the
+  // threads, one transform each (a SineTransform is not thread-safe).
+  void transform_rows(int count, bool forward, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
+    const double scale_j = std::sqrt(2.0 / (C_ + 1));
+    const bool edges = forward && C_ >= 6;
+    [[maybe_unused]] const int nt = threads_;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nt) if (nt > 1)
+#endif
+    {
+#if defined(_OPENMP)
+      detail::SineTransform& along_j = along_j_[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
+#else
+      detail::SineTransform& along_j = along_j_[0];
+#endif
+      for (int unit = 0; unit < count * R_; ++unit) {
+        const int c = unit / R_, r = unit % R_;
+        double* hat = hats_[std::size_t(c)].data() + std::ptrdiff_t(r) * C_;
+        if (!forward) {
+          along_j.apply(hat, X.col(c).data() + std::ptrdiff_t(r) * C_, scale_j);
+          continue;
+        }
+        const double* b = B.col(c).data() + std::ptrdiff_t(r) * C_;
+        if (edges && std::all_of(b + 2, b + C_ - 2, [](double v) { return v == 0; })) {
+          const double e0 = b[0], e1 = b[1], e2 = b[C_ - 2], e3 = b[C_ - 1];
+          const double* s0 = near_sines_.col(near_index_[0]).data();
+          const double* s1 = near_sines_.col(near_index_[1]).data();
+          const double* s2 = near_sines_.col(near_index_[4]).data();
+          const double* s3 = near_sines_.col(near_index_[5]).data();
+          for (int q = 0; q < C_; ++q) hat[q] = e0 * s0[q] + e1 * s1[q] + e2 * s2[q] + e3 * s3[q];
+        } else {
+          along_j.apply(b, hat, scale_j);
+        }
+      }
+    }
+  }
+
   // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
   void factor_modes() {
     nu_ = second_difference_eigenvalues(C_);
@@ -169,68 +215,36 @@ class Fast5Solver final : public LinearSolver {
 
   // Down the rows: work_[c] = L⁻¹(base), base = hats_[c] (with from_hats) plus, with z, the sources
   // sign·U z_c on the boundary columns (parity coordinates: (U z)(r, q) = t_q z(r, parity of q)
-  // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once).
+  // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once); the
+  // modes in chunks of kModeChunk, shared among the threads.
   void sweep_down(int count, bool from_hats, const std::array<Eigen::MatrixXd, 2>* z, double sign) {
     for (int c = 0; c < count; ++c) work_[std::size_t(c)].resize(R_, C_);
-    zeros_.assign(std::size_t(C_), 0.0);
-    FactorRow above(factors_), above2(factors_);  // rows r − 1 and r − 2
-    const double* t_even = tmasks_.col(0).data();
-    const double* t_odd = tmasks_.col(1).data();
-    for (int r = 0; r < R_; ++r) {
-      if (r >= 1) above.seek(r - 1);
-      if (r >= 2) above2.seek(r - 2);
-      for (int c = 0; c < count; ++c) {
-        double* w = &work_[std::size_t(c)](r, 0);
-        const double* y = from_hats ? &hats_[std::size_t(c)](r, 0) : zeros_.data();
-        const double ze = z ? sign * (*z)[0](r, c) : 0, zo = z ? sign * (*z)[1](r, c) : 0;
-        if (r >= 2) {  // one fused pass over the row (vectorised)
-          const double* w1 = w - C_;
-          const double* w2 = w - 2 * std::ptrdiff_t(C_);
-          const double* l1 = above.l1.data();
-          const double* l2 = above2.l2.data();
-          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q] - l1[q] * w1[q] - l2[q] * w2[q];
-        } else {
-          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q];
-          if (r == 1)
-            for (int q = 0; q < C_; ++q) w[q] -= above.l1[std::size_t(q)] * w[q - C_];
-        }
-      }
-    }
+    fast5_detail::SweepInput in;
+    in.hats = from_hats ? hats_.data() : nullptr;
+    in.z = z;
+    in.sign = sign;
+    in.t_even = tmasks_.col(0).data();
+    in.t_odd = tmasks_.col(1).data();
+    const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
+    [[maybe_unused]] const int nt = threads_;
+    COONS_PARALLEL_FOR
+    for (int k = 0; k < chunks; ++k)
+      fast5_detail::sweep_down(factors_, k * kModeChunk, std::min(C_, (k + 1) * kModeChunk), count, in, work_.data());
   }
 
   // Up the rows: work_[c] ← (LD)⁻ᵀ work_[c], completing work_[c] = M⁻¹ base. With add, hats_[c] +=
-  // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`.
+  // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`, summed
+  // over the chunks in their order (so the same on any number of threads).
   void sweep_up(int count, Eigen::MatrixXd& out, const Eigen::MatrixXd& dots, bool add) {
-    const Eigen::Index k = dots.cols();
-    out.resize(R_, k * count);
-    FactorRow row(factors_);
-    for (int r = R_ - 1; r >= 0; --r) {
-      row.seek(r);
-      const double* inv_d = row.inv_d.data();
-      const double* l1 = row.l1.data();
-      const double* l2 = row.l2.data();
-      for (int c = 0; c < count; ++c) {
-        RowMajor& W = work_[std::size_t(c)];
-        double* w = &W(r, 0);
-        if (r + 2 < R_) {
-          const double* w1 = w + C_;
-          const double* w2 = w + 2 * std::ptrdiff_t(C_);
-          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
-        } else if (r + 1 < R_) {
-          const double* w1 = w + C_;
-          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
-        } else {
-          for (int q = 0; q < C_; ++q) w[q] *= inv_d[q];
-        }
-        if (add) {
-          RowMajor& Y = hats_[std::size_t(c)];
-          Y.row(r) += W.row(r);
-          out.block(r, k * c, 1, k).noalias() = Y.row(r) * dots;
-        } else {
-          out.block(r, k * c, 1, k).noalias() = W.row(r) * dots;
-        }
-      }
-    }
+    const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
+    partial_.resize(std::size_t(chunks));
+    [[maybe_unused]] const int nt = threads_;
+    COONS_PARALLEL_FOR
+    for (int k = 0; k < chunks; ++k)
+      fast5_detail::sweep_up(factors_, k * kModeChunk, std::min(C_, (k + 1) * kModeChunk), count, work_.data(),
+                             add ? hats_.data() : nullptr, dots, partial_[std::size_t(k)]);
+    out = partial_[0];
+    for (std::size_t k = 1; k < partial_.size(); ++k) out += partial_[k];
   }
 
   // g(r, 2c + parity) = Σ_q (M⁻¹ hat_c)(r, q)·t_q over the modes q of that parity (hats_ kept).
@@ -262,30 +276,37 @@ class Fast5Solver final : public LinearSolver {
   int capacitance_solve(const std::array<Eigen::MatrixXd, 2>& rhs, int count, double tolerance,
                         std::array<Eigen::MatrixXd, 2>& out, bool apply_h = true) {
     const double scale_i = std::sqrt(2.0 / (R_ + 1));
-    Eigen::MatrixXd hat(R_, count), part, block_rhs;
+    std::array<Eigen::MatrixXd, 2> hat, solved;
     Eigen::VectorXd column(R_);
-    int iterations = 0;
-    for (int qpar = 0; qpar < 2; ++qpar) {
+    for (std::size_t qpar = 0; qpar < 2; ++qpar) {
+      hat[qpar].resize(R_, count);
+      solved[qpar].resize(R_, count);
       for (int c = 0; c < count; ++c) {
-        column = rhs[std::size_t(qpar)].col(c);
-        along_i_.apply(column.data(), hat.col(c).data(), scale_i);
-      }
-      Eigen::MatrixXd solved(R_, count);
-      for (int ppar = 0; ppar < 2; ++ppar) {
-        const CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
-        block_rhs.resize(Eigen::Index(blk.modes.size()), count);
-        for (std::size_t k = 0; k < blk.modes.size(); ++k) block_rhs.row(Eigen::Index(k)) = hat.row(blk.modes[k]);
-        if (apply_h) blk.apply_h_inverse(block_rhs);
-        iterations = std::max(iterations, blk.solve(block_rhs, part, tolerance));
-        for (std::size_t k = 0; k < blk.modes.size(); ++k) solved.row(blk.modes[k]) = part.row(Eigen::Index(k));
-      }
-      out[std::size_t(qpar)].resize(R_, count);
-      for (int c = 0; c < count; ++c) {
-        column = solved.col(c);
-        along_i_.apply(column.data(), out[std::size_t(qpar)].col(c).data(), scale_i);
+        column = rhs[qpar].col(c);
+        along_i_.apply(column.data(), hat[qpar].col(c).data(), scale_i);
       }
     }
-    return iterations;
+    // the four blocks (parity of q) × (parity of p) are independent; each writes its own rows
+    std::array<int, 4> iterations{};
+    [[maybe_unused]] const int nt = threads_;
+    COONS_PARALLEL_FOR
+    for (int b = 0; b < 4; ++b) {
+      const CapacitanceBlock& blk = blocks_[std::size_t(b)];
+      const std::size_t qpar = std::size_t(b) / 2;
+      Eigen::MatrixXd block_rhs(Eigen::Index(blk.modes.size()), count), part;
+      for (std::size_t k = 0; k < blk.modes.size(); ++k) block_rhs.row(Eigen::Index(k)) = hat[qpar].row(blk.modes[k]);
+      if (apply_h) blk.apply_h_inverse(block_rhs);
+      iterations[std::size_t(b)] = blk.solve(block_rhs, part, tolerance);
+      for (std::size_t k = 0; k < blk.modes.size(); ++k) solved[qpar].row(blk.modes[k]) = part.row(Eigen::Index(k));
+    }
+    for (std::size_t qpar = 0; qpar < 2; ++qpar) {
+      out[qpar].resize(R_, count);
+      for (int c = 0; c < count; ++c) {
+        column = solved[qpar].col(c);
+        along_i_.apply(column.data(), out[qpar].col(c).data(), scale_i);
+      }
+    }
+    return *std::max_element(iterations.begin(), iterations.end());
   }
 
   // ρ = (b − A x) on the columns 0 and cols−1 in parity coordinates (rows × count each), x from
@@ -335,7 +356,9 @@ class Fast5Solver final : public LinearSolver {
   int R_ = 0, C_ = 0;
   C1FamilyWeights weights_;
   bool separable_ = false;
-  detail::SineTransform along_i_, along_j_;
+  int threads_ = 1;
+  detail::SineTransform along_i_;
+  std::vector<detail::SineTransform> along_j_;  // one per thread
   Eigen::VectorXd nu_, t_;
   Eigen::MatrixXd tmasks_, near_sines_, dots_;
   std::vector<int> near_;
@@ -343,10 +366,10 @@ class Fast5Solver final : public LinearSolver {
   std::array<double, 3> b_norms_{};
   double boundary_ratio_ = 0;  // the largest ‖ρ‖/‖b‖ of the last boundary_residual
   ModeFactors factors_;
-  std::vector<double> zeros_;  // a row of zeros (sweep_down without a grid)
   std::array<CapacitanceBlock, 4> blocks_;
   std::array<RowMajor, 3> hats_, work_;
-  Eigen::MatrixXd near_values_;  // rows × (#near_ · count)
+  std::vector<Eigen::MatrixXd> partial_;  // sweep_up: one product with the dots per chunk of modes
+  Eigen::MatrixXd near_values_;           // rows × (#near_ · count)
 };
 
 }  // namespace
