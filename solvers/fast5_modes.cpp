@@ -63,57 +63,59 @@ COONS_VECTOR_CLONES void up_row(double* __restrict w, const double* __restrict i
 
 }  // namespace
 
-void sweep_down(const ModeFactors& f, int q0, int q1, int count, const SweepInput& in, RowMajor* work) {
+void sweep_down(const ModeFactors& f, int q0, int q1, int chunk, int count, const SweepInput& in, RowMajor* work) {
   const int R = f.rows, C = f.cols;
   const std::vector<double> zeros(std::size_t(C), 0.0);
-  for (int r = 0; r < R; ++r) {
-    // [q0, q1) cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
-    const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], q0, q1) : q1;
-    const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, q1) : q1;
-    const std::array<int, 4> cut{q0, a1, a2, q1};
+  for (int r = 0; r < R; ++r)
     for (int c = 0; c < count; ++c) {
       double* w = work[c].data() + std::ptrdiff_t(r) * C;
       const double* y = in.hats ? in.hats[c].data() + std::ptrdiff_t(r) * C : zeros.data();
       const double ze = in.z ? in.sign * (*in.z)[0](r, c) : 0, zo = in.z ? in.sign * (*in.z)[1](r, c) : 0;
       const double* w1 = r >= 1 ? w - C : nullptr;
       const double* w2 = r >= 2 ? w - 2 * std::ptrdiff_t(C) : nullptr;
-      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-        if (cut[s] >= cut[s + 1]) continue;
-        const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 : nullptr;
-        const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 : nullptr;
-        down_row(w, y, ze, in.t_even, zo, in.t_odd, l1, w1, l2, w2, cut[s], cut[s + 1]);
+      for (int b0 = q0; b0 < q1; b0 += chunk) {
+        const int b1 = std::min(q1, b0 + chunk);
+        // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
+        const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
+        const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, b1) : b1;
+        const std::array<int, 4> cut{b0, a1, a2, b1};
+        for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+          if (cut[s] >= cut[s + 1]) continue;
+          const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 : nullptr;
+          const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 : nullptr;
+          down_row(w, y, ze, in.t_even, zo, in.t_odd, l1, w1, l2, w2, cut[s], cut[s + 1]);
+        }
       }
     }
-  }
 }
 
-void sweep_up(const ModeFactors& f, int q0, int q1, int count, RowMajor* work, RowMajor* add,
-              const Eigen::MatrixXd& dots, Eigen::MatrixXd& out) {
+void sweep_up(const ModeFactors& f, int q0, int q1, int chunk, int count, RowMajor* work, RowMajor* add,
+              const Eigen::MatrixXd& dots, Eigen::MatrixXd* out) {
   const int R = f.rows, C = f.cols;
-  const Eigen::Index k = dots.cols(), n = q1 - q0;
-  out.resize(R, k * count);
-  for (int r = R - 1; r >= 0; --r) {
-    const int a = std::clamp(f.active[std::size_t(r)], q0, q1);
-    const std::array<int, 3> cut{q0, a, q1};
+  const Eigen::Index k = dots.cols();
+  for (int b0 = q0; b0 < q1; b0 += chunk) out[b0 / chunk].resize(R, k * count);
+  for (int r = R - 1; r >= 0; --r)
     for (int c = 0; c < count; ++c) {
       double* w = work[c].data() + std::ptrdiff_t(r) * C;
       const double* w1 = r + 1 < R ? w + C : nullptr;
       const double* w2 = r + 2 < R ? w + 2 * std::ptrdiff_t(C) : nullptr;
-      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-        if (cut[s] >= cut[s + 1]) continue;
-        const FactorPointers p = factor_pointers(f, r, cut[s]);
-        up_row(w, p.inv_d, p.l1, w1, p.l2, w2, cut[s], cut[s + 1]);
+      double* y = add ? add[c].data() + std::ptrdiff_t(r) * C : nullptr;
+      for (int b0 = q0; b0 < q1; b0 += chunk) {
+        const int b1 = std::min(q1, b0 + chunk);
+        const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
+        const std::array<int, 3> cut{b0, a, b1};
+        for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+          if (cut[s] >= cut[s + 1]) continue;
+          const FactorPointers p = factor_pointers(f, r, cut[s]);
+          up_row(w, p.inv_d, p.l1, w1, p.l2, w2, cut[s], cut[s + 1]);
+        }
+        if (y)
+          for (int q = b0; q < b1; ++q) y[q] += w[q];
+        const Eigen::Map<const Eigen::VectorXd> row((y ? y : w) + b0, b1 - b0);
+        Eigen::MatrixXd& o = out[b0 / chunk];
+        for (Eigen::Index m = 0; m < k; ++m) o(r, k * c + m) = row.dot(dots.col(m).segment(b0, b1 - b0));
       }
-      const double* result = w;
-      if (add) {
-        double* y = add[c].data() + std::ptrdiff_t(r) * C;
-        for (int q = q0; q < q1; ++q) y[q] += w[q];
-        result = y;
-      }
-      const Eigen::Map<const Eigen::VectorXd> row(result + q0, n);
-      for (Eigen::Index m = 0; m < k; ++m) out(r, k * c + m) = row.dot(dots.col(m).segment(q0, n));
     }
-  }
 }
 
 namespace {

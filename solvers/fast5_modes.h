@@ -50,15 +50,16 @@ struct SweepInput {
   const double* t_odd = nullptr;
 };
 
-//! Down the rows for the modes [q0, q1): work[c] = L⁻¹ (the input), c < count. The modes are
-//! independent: disjoint ranges may run on different threads.
-void sweep_down(const ModeFactors& f, int q0, int q1, int count, const SweepInput& in, RowMajor* work);
+//! Down the rows for the modes [q0, q1): work[c] = L⁻¹ (the input), c < count, row after row, a
+//! row in chunks of `chunk` modes (q0 a multiple of it). The modes are independent: disjoint
+//! ranges may run on different threads.
+void sweep_down(const ModeFactors& f, int q0, int q1, int chunk, int count, const SweepInput& in, RowMajor* work);
 
 //! Up the rows for the modes [q0, q1): work[c] ← (LD)⁻ᵀ work[c], completing M⁻¹ of the input;
-//! with add (non-null) add[c] += the result. out(r, k·c + ·) = the part of row r of the result
-//! (of add[c] when given) in [q0, q1) times the same rows of dots (#cols by k): partial sums over
-//! this range of modes.
-void sweep_up(const ModeFactors& f, int q0, int q1, int count, RowMajor* work, RowMajor* add,
-              const Eigen::MatrixXd& dots, Eigen::MatrixXd& out);
+//! with add (non-null) add[c] += the result. For each chunk [b, b + chunk) of the modes,
+//! out[b / chunk](r, k·c + ·) = that part of row r of the result (of add[c] when given) times the
+//! same rows of dots (#cols by k): partial sums, the same whatever range a chunk was swept in.
+void sweep_up(const ModeFactors& f, int q0, int q1, int chunk, int count, RowMajor* work, RowMajor* add,
+              const Eigen::MatrixXd& dots, Eigen::MatrixXd* out);
 
 }  // namespace coons::solvers::fast5_detail

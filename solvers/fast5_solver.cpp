@@ -4,6 +4,7 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "fast5_capacitance.h"
@@ -216,7 +217,7 @@ class Fast5Solver final : public LinearSolver {
   // Down the rows: work_[c] = L⁻¹(base), base = hats_[c] (with from_hats) plus, with z, the sources
   // sign·U z_c on the boundary columns (parity coordinates: (U z)(r, q) = t_q z(r, parity of q)
   // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once); the
-  // modes in chunks of kModeChunk, shared among the threads.
+  // modes split among the threads in whole chunks of kModeChunk.
   void sweep_down(int count, bool from_hats, const std::array<Eigen::MatrixXd, 2>* z, double sign) {
     for (int c = 0; c < count; ++c) work_[std::size_t(c)].resize(R_, C_);
     fast5_detail::SweepInput in;
@@ -225,24 +226,33 @@ class Fast5Solver final : public LinearSolver {
     in.sign = sign;
     in.t_even = tmasks_.col(0).data();
     in.t_odd = tmasks_.col(1).data();
-    const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
     [[maybe_unused]] const int nt = threads_;
     COONS_PARALLEL_FOR
-    for (int k = 0; k < chunks; ++k)
-      fast5_detail::sweep_down(factors_, k * kModeChunk, std::min(C_, (k + 1) * kModeChunk), count, in, work_.data());
+    for (int t = 0; t < nt; ++t) {
+      const auto [q0, q1] = mode_range(t);
+      fast5_detail::sweep_down(factors_, q0, q1, kModeChunk, count, in, work_.data());
+    }
+  }
+
+  // The modes of thread t of threads_: whole chunks of kModeChunk, as evenly as they go.
+  [[nodiscard]] std::pair<int, int> mode_range(int t) const {
+    const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
+    const int c0 = chunks * t / threads_, c1 = chunks * (t + 1) / threads_;
+    return {std::min(C_, c0 * kModeChunk), std::min(C_, c1 * kModeChunk)};
   }
 
   // Up the rows: work_[c] ← (LD)⁻ᵀ work_[c], completing work_[c] = M⁻¹ base. With add, hats_[c] +=
   // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`, summed
   // over the chunks in their order (so the same on any number of threads).
   void sweep_up(int count, Eigen::MatrixXd& out, const Eigen::MatrixXd& dots, bool add) {
-    const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
-    partial_.resize(std::size_t(chunks));
+    partial_.resize(std::size_t((C_ + kModeChunk - 1) / kModeChunk));
     [[maybe_unused]] const int nt = threads_;
     COONS_PARALLEL_FOR
-    for (int k = 0; k < chunks; ++k)
-      fast5_detail::sweep_up(factors_, k * kModeChunk, std::min(C_, (k + 1) * kModeChunk), count, work_.data(),
-                             add ? hats_.data() : nullptr, dots, partial_[std::size_t(k)]);
+    for (int t = 0; t < nt; ++t) {
+      const auto [q0, q1] = mode_range(t);
+      fast5_detail::sweep_up(factors_, q0, q1, kModeChunk, count, work_.data(), add ? hats_.data() : nullptr, dots,
+                             partial_.data());
+    }
     out = partial_[0];
     for (std::size_t k = 1; k < partial_.size(); ++k) out += partial_[k];
   }
