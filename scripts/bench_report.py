@@ -67,8 +67,9 @@ def main():
             search[m.group(1) + " (sine basis)"][n] = (t, b)
         elif m := re.match(r"BM_CholmodOrdering/([^/]+)/", name):
             ordering[m.group(1)][n] = t
-        elif m := re.match(r"BM_Stencil5/([^/]+)/([^/]+)/N:", name):
-            stencil5[(m.group(1), m.group(2))][n] = (t, b)
+        elif m := re.match(r"BM_Stencil5/([^/]+)/([^/]+)/N:\d+(?:/threads:(\d+))?", name):
+            backend = m.group(2) + (f" ({m.group(3)} threads)" if m.group(3) else "")
+            stencil5[(m.group(1), backend)][n] = (t, b)
 
     lines = [f"# Solver scaling: {doc['context'].get('date', '')}, {doc['context'].get('num_cpus', '?')} CPUs",
              "",
@@ -247,6 +248,9 @@ def main():
             row("c1-coons via `separable-banded`", ratio5("c1-coons", "separable-banded"), 3)
             row("biharmonic via `fast5`", ratio5("biharmonic", "fast5"), 10)
             row("c1-family w = 0.5 via `fast5`", ratio5("c1-family-0.5", "fast5"), 10)
+            row("c1-coons via `separable-banded`, 2 threads", ratio5("c1-coons", "separable-banded (2 threads)"), 3)
+            row("biharmonic via `fast5`, 2 threads", ratio5("biharmonic", "fast5 (2 threads)"), 10)
+            row("c1-family w = 0.5 via `fast5`, 2 threads", ratio5("c1-family-0.5", "fast5 (2 threads)"), 10)
         chol = ordering and {name: per_n[n] for name, per_n in ordering.items() if n in per_n}
         if chol and ("cholmod", -0.25) in solve and n in solve[("cholmod", -0.25)]:
             best = min(chol.values())

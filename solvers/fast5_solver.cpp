@@ -4,16 +4,35 @@
 #include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
+#include "fast5_capacitance.h"
+#include "fast5_modes.h"
 #include "separable_banded_solver.h"
 #include "sine_transform.h"
+
+#if defined(_OPENMP)
+#include <omp.h>
+// A loop over independent units on `nt` threads (a local); each unit writes its own data.
+#define COONS_PARALLEL_FOR _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic)")
+#else
+#define COONS_PARALLEL_FOR
+#endif
 
 namespace coons::solvers {
 
 namespace {
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+using fast5_detail::CapacitanceBlock;
+using fast5_detail::first_sine_column;
+using fast5_detail::ModeFactors;
+using fast5_detail::second_difference_eigenvalues;
+
+using fast5_detail::RowMajor;
+
+// Modes per unit of the threaded sweeps (fixed: the partial sums do not depend on the thread count).
+constexpr int kModeChunk = 128;
 
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
@@ -31,190 +50,6 @@ double c_weight(int di, int dj) { return kDelta4[std::size_t(di) + 2] * kDelta4[
 double t_weight(int di, int dj) {
   const auto i = std::size_t(di) + 2, j = std::size_t(dj) + 2;
   return kDelta4[i] * kImpulse[j] + 2 * kDelta2[i] * kDelta2[j] + kImpulse[i] * kDelta4[j];
-}
-
-// sqrt(2/(n+1))·sin(kπ/(n+1)), k = 1..n: the orthonormal DST-I of e_1.
-Eigen::VectorXd first_sine_column(int n) {
-  Eigen::VectorXd s(n);
-  for (int k = 0; k < n; ++k) s[k] = std::sqrt(2.0 / (n + 1)) * std::sin(M_PI * (k + 1) / (n + 1));
-  return s;
-}
-
-// 2 − 2cos(kπ/(n+1)), k = 1..n: the eigenvalues of tridiag(−1, 2, −1).
-Eigen::VectorXd second_difference_eigenvalues(int n) {
-  Eigen::VectorXd e(n);
-  for (int k = 0; k < n; ++k) e[k] = 4 * std::pow(std::sin(M_PI * (k + 1) / (2.0 * (n + 1))), 2);
-  return e;
-}
-
-// One parity block of the capacitance matrix in the sine basis along i:
-//   Cap·v = diag ⊙ v − kappa·u (uᵀv) − G (Gᵀv),   symmetric positive definite,
-// and of H⁻¹ (H = a·P_i + b·I) in the same basis: h_inv ⊙ v − kappa·u (uᵀv).
-struct CapacitanceBlock {
-  std::vector<int> modes;  // modes p (0-based) along i of this block
-  Eigen::VectorXd diag, h_inv, u;
-  double kappa = 0;
-  Eigen::MatrixXd G;  // #modes by #(modes q of the column parity), column-major
-
-  // out = Cap·V. G is read twice, a column at a time, for all right-hand sides together
-  // (hand-written: Eigen's product would pack G into a copy on every call).
-  void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out, Eigen::MatrixXd& s) const {
-    const Eigen::Index m = V.cols();
-    out.noalias() = diag.asDiagonal() * V;
-    out.noalias() -= (kappa * u) * (u.transpose() * V);
-    s.resize(G.cols(), m);
-    for (Eigen::Index k = 0; k < G.cols(); ++k)
-      for (Eigen::Index c = 0; c < m; ++c) s(k, c) = G.col(k).dot(V.col(c));
-    for (Eigen::Index k = 0; k < G.cols(); ++k)
-      for (Eigen::Index c = 0; c < m; ++c) out.col(c) -= s(k, c) * G.col(k);
-  }
-
-  // V ← H⁻¹ V (rows of V are this block's modes).
-  void apply_h_inverse(Eigen::MatrixXd& V) const {
-    const Eigen::RowVectorXd uv = u.transpose() * V;
-    V = h_inv.asDiagonal() * V;
-    V.noalias() -= (kappa * u) * uv;
-  }
-
-  // Conjugate gradients with the diagonal as preconditioner, one column per right-hand side
-  // (each with its own step lengths; a converged column is frozen); returns the iterations.
-  int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const {
-    const Eigen::Index n = rhs.rows(), m = rhs.cols();
-    X.setZero(n, m);
-    if (n == 0 || m == 0) return 0;
-    Eigen::ArrayXd target = tolerance * rhs.colwise().norm().transpose().array();
-    Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP, s;
-    Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
-    std::vector<bool> active(static_cast<std::size_t>(m), false);
-    for (Eigen::Index c = 0; c < m; ++c) active[std::size_t(c)] = target[c] > 0;
-    const int limit = int(2 * n + 50);
-    for (int k = 1; k <= limit; ++k) {
-      apply(P, AP, s);
-      bool any = false;
-      for (Eigen::Index c = 0; c < m; ++c) {
-        if (!active[std::size_t(c)]) continue;
-        const double step = rz[c] / P.col(c).dot(AP.col(c));
-        X.col(c) += step * P.col(c);
-        R.col(c) -= step * AP.col(c);
-        if (R.col(c).norm() <= target[c]) {
-          active[std::size_t(c)] = false;
-          P.col(c).setZero();
-          continue;
-        }
-        Z.col(c) = R.col(c).cwiseQuotient(diag);
-        const double rz_next = R.col(c).dot(Z.col(c));
-        P.col(c) = Z.col(c) + (rz_next / rz[c]) * P.col(c);
-        rz[c] = rz_next;
-        any = true;
-      }
-      if (!any) return k;
-    }
-    return limit;
-  }
-};
-
-// The banded LDLᵀ factors of M_q for every mode q, row by row. M_q is Toeplitz, so its factors
-// converge geometrically down the rows (after about 40/√ν_q rows, ν_q the mode's eigenvalue):
-// from row r_q on they equal their limit to the last bit, and only the rows above are stored.
-// Row r keeps the modes q < active[r] (the ones not yet converged there; active is
-// non-increasing), contiguous from offset[r]; the others read the limit.
-struct ModeFactors {
-  int rows = 0, cols = 0;
-  std::vector<int> active;
-  std::vector<std::size_t> offset;
-  std::vector<double> inv_d, l1, l2;              // stored part
-  std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
-};
-
-// Full rows of the factors, kept up to date as a sweep moves one row at a time (only the stored
-// modes are copied; the rest keep the limit).
-class FactorRow {
- public:
-  explicit FactorRow(const ModeFactors& f) : f_(f), inv_d(f.lim_inv_d), l1(f.lim_l1), l2(f.lim_l2), active_(0) {}
-  void seek(int r) {
-    const int q = f_.active[std::size_t(r)];
-    const std::size_t o = f_.offset[std::size_t(r)];
-    std::copy_n(f_.inv_d.data() + o, q, inv_d.data());
-    std::copy_n(f_.l1.data() + o, q, l1.data());
-    std::copy_n(f_.l2.data() + o, q, l2.data());
-    for (int k = q; k < active_; ++k) {  // converged since the last row
-      inv_d[std::size_t(k)] = f_.lim_inv_d[std::size_t(k)];
-      l1[std::size_t(k)] = f_.lim_l1[std::size_t(k)];
-      l2[std::size_t(k)] = f_.lim_l2[std::size_t(k)];
-    }
-    active_ = q;
-  }
-  const ModeFactors& f_;
-  std::vector<double> inv_d, l1, l2;
-
- private:
-  int active_;
-};
-
-constexpr double kConverged = 1e-15;
-
-ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows) {
-  ModeFactors f;
-  const int cols = int(nu.size());
-  f.rows = rows;
-  f.cols = cols;
-  f.lim_inv_d.resize(std::size_t(cols));
-  f.lim_l1.resize(std::size_t(cols));
-  f.lim_l2.resize(std::size_t(cols));
-  std::vector<int> converged(std::size_t(cols), rows);
-  const auto modes = std::size_t(cols);
-  std::vector<std::vector<double>> d(modes), l1(modes), l2(modes);
-  for (int q = 0; q < cols; ++q) {
-    const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
-    const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
-    auto& dq = d[std::size_t(q)];
-    auto& l1q = l1[std::size_t(q)];
-    auto& l2q = l2[std::size_t(q)];
-    double dm1 = 0, dm2 = 0, l1m1 = 0, l2m1 = 0, l2m2 = 0;
-    for (int r = 0; r < rows; ++r) {
-      const double dr = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
-      const double l1r = (a1 - l2m1 * dm1 * l1m1) / dr, l2r = a2 / dr;
-      const double change =
-          std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r), std::abs(l2r - l2m1) / l2r});
-      if (r >= 3 && change <= kConverged) {
-        converged[std::size_t(q)] = r;
-        break;
-      }
-      dq.push_back(dr);
-      l1q.push_back(l1r);
-      l2q.push_back(l2r);
-      dm2 = dm1;
-      dm1 = dr;
-      l1m1 = l1r;
-      l2m2 = l2m1;
-      l2m1 = l2r;
-    }
-    f.lim_inv_d[std::size_t(q)] = 1 / dq.back();
-    f.lim_l1[std::size_t(q)] = l1q.back();
-    f.lim_l2[std::size_t(q)] = l2q.back();
-  }
-  f.active.assign(std::size_t(rows), 0);
-  f.offset.assign(std::size_t(rows) + 1, 0);
-  int q_max = cols;
-  for (int r = 0; r < rows; ++r) {
-    while (q_max > 0 && converged[std::size_t(q_max) - 1] <= r) --q_max;
-    f.active[std::size_t(r)] = q_max;
-    f.offset[std::size_t(r) + 1] = f.offset[std::size_t(r)] + std::size_t(q_max);
-  }
-  const std::size_t total = f.offset.back();
-  f.inv_d.resize(total);
-  f.l1.resize(total);
-  f.l2.resize(total);
-  for (int r = 0; r < rows; ++r)
-    for (int q = 0; q < f.active[std::size_t(r)]; ++q) {
-      const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
-      const auto& dq = d[std::size_t(q)];
-      const bool stored = std::size_t(r) < dq.size();
-      f.inv_d[at] = stored ? 1 / dq[std::size_t(r)] : f.lim_inv_d[std::size_t(q)];
-      f.l1[at] = stored ? l1[std::size_t(q)][std::size_t(r)] : f.lim_l1[std::size_t(q)];
-      f.l2[at] = stored ? l2[std::size_t(q)][std::size_t(r)] : f.lim_l2[std::size_t(q)];
-    }
-  return f;
 }
 
 // The unknown-independent checks of fast5: a grid operator, every point free, a·C + b·T.
@@ -252,8 +87,10 @@ class Fast5Solver final : public LinearSolver {
     R_ = op.grid->rows;
     C_ = op.grid->cols;
     const unsigned planning = detail::fft_planning(options_);
+    threads_ = resolved_threads(options_.threads);
     along_i_ = detail::SineTransform(R_, planning);
-    along_j_ = detail::SineTransform(C_, planning);
+    along_j_.clear();
+    for (int t = 0; t < threads_; ++t) along_j_.emplace_back(C_, planning);
     return SolveStatus::kSuccess;
   }
 
@@ -277,18 +114,14 @@ class Fast5Solver final : public LinearSolver {
       sep.along_i = {6 * weights_.a, -4 * weights_.a, weights_.a};
       sep.along_j = {6, -4, 1};
       summary.iterations = 1;
-      const SolveStatus status = separable_banded_solve(sep, B, X);
+      const SolveStatus status = separable_banded_solve(sep, B, X, resolved_threads(options_.threads));
       if (status != SolveStatus::kSuccess) summary.message = "a zero pivot in the banded LDL^T of a factor";
       return status;
     }
     const int count = 3;
     for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
-    const double scale_j = std::sqrt(2.0 / (C_ + 1));
-    for (int c = 0; c < count; ++c) {
-      RowMajor& hat = hats_[std::size_t(c)];
-      hat.resize(R_, C_);
-      for (int r = 0; r < R_; ++r) along_j_.apply(B.col(c).data() + std::ptrdiff_t(r) * C_, &hat(r, 0), scale_j);
-    }
+    for (int c = 0; c < count; ++c) hats_[std::size_t(c)].resize(R_, C_);
+    transform_rows(count, true, B, X);
     // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = ŷ − A₁⁻¹ U h.
     banded_solve_all(count, dots_);
     std::array<Eigen::MatrixXd, 2> h;
@@ -304,19 +137,57 @@ class Fast5Solver final : public LinearSolver {
       add_boundary_response(count, h, 1.0, false);
     }
     X.resize(B.rows(), 3);
-    for (int c = 0; c < count; ++c) {
-      RowMajor& hat = hats_[std::size_t(c)];
-      for (int r = 0; r < R_; ++r) along_j_.apply(&hat(r, 0), X.col(c).data() + std::ptrdiff_t(r) * C_, scale_j);
-    }
+    transform_rows(count, false, B, X);
     summary.iterations = iterations;
     return SolveStatus::kSuccess;
   }
 
  private:
+  // forward: hats_[c] = the sine transform of each row of B's column c; a row that is zero but on
+  // the columns 0, 1, cols−2, cols−1 (most rows of a mask system: the data rings are next to them)
+  // is the combination of those four columns' sine vectors instead (exact, no transform).
+  // Otherwise X's column c = the inverse transform of each row of hats_[c]. Rows shared among the
+  // threads, one transform each (a SineTransform is not thread-safe).
+  void transform_rows(int count, bool forward, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
+    const double scale_j = std::sqrt(2.0 / (C_ + 1));
+    const bool edges = forward && C_ >= 6;
+    [[maybe_unused]] const int nt = threads_;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nt) if (nt > 1)
+#endif
+    {
+#if defined(_OPENMP)
+      detail::SineTransform& along_j = along_j_[std::size_t(omp_get_thread_num())];
+#pragma omp for schedule(static)
+#else
+      detail::SineTransform& along_j = along_j_[0];
+#endif
+      for (int unit = 0; unit < count * R_; ++unit) {
+        const int c = unit / R_, r = unit % R_;
+        double* hat = hats_[std::size_t(c)].data() + std::ptrdiff_t(r) * C_;
+        if (!forward) {
+          along_j.apply(hat, X.col(c).data() + std::ptrdiff_t(r) * C_, scale_j);
+          continue;
+        }
+        const double* b = B.col(c).data() + std::ptrdiff_t(r) * C_;
+        if (edges && std::all_of(b + 2, b + C_ - 2, [](double v) { return v == 0; })) {
+          const double e0 = b[0], e1 = b[1], e2 = b[C_ - 2], e3 = b[C_ - 1];
+          const double* s0 = near_sines_.col(near_index_[0]).data();
+          const double* s1 = near_sines_.col(near_index_[1]).data();
+          const double* s2 = near_sines_.col(near_index_[4]).data();
+          const double* s3 = near_sines_.col(near_index_[5]).data();
+          for (int q = 0; q < C_; ++q) hat[q] = e0 * s0[q] + e1 * s1[q] + e2 * s2[q] + e3 * s3[q];
+        } else {
+          along_j.apply(b, hat, scale_j);
+        }
+      }
+    }
+  }
+
   // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
   void factor_modes() {
     nu_ = second_difference_eigenvalues(C_);
-    factors_ = coons::solvers::factor_modes(weights_.a, weights_.b, nu_, R_);
+    factors_ = fast5_detail::factor_modes(weights_.a, weights_.b, nu_, R_);
   }
 
   // The four capacitance blocks (parity of q) × (parity of p), see the header, and the sine
@@ -324,7 +195,6 @@ class Fast5Solver final : public LinearSolver {
   void build_capacitance() {
     const double a = weights_.a, b = weights_.b;
     const Eigen::VectorXd mu = second_difference_eigenvalues(R_);
-    const Eigen::VectorXd sigma = std::sqrt(2.0) * first_sine_column(R_);
     t_ = std::sqrt(2.0) * first_sine_column(C_);
     tmasks_.setZero(C_, 2);  // t_q on the modes of each parity
     for (int q = 0; q < C_; ++q) tmasks_(q, q % 2) = t_[q];
@@ -341,117 +211,50 @@ class Fast5Solver final : public LinearSolver {
       for (int q = 0; q < C_; ++q)
         near_sines_(q, Eigen::Index(k)) =
             std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (near_[k] + 1) * (q + 1) / (C_ + 1));
-    const auto lambda = [&](int p, int q) {
-      const double s = mu[p] + nu_[q];
-      return a * mu[p] * mu[p] * nu_[q] * nu_[q] + b * s * s;
-    };
-    for (int qpar = 0; qpar < 2; ++qpar) {
-      std::vector<int> qs;
-      for (int q = qpar; q < C_; q += 2) qs.push_back(q);
-      for (int ppar = 0; ppar < 2; ++ppar) {
-        CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
-        blk.modes.clear();
-        for (int p = ppar; p < R_; p += 2) blk.modes.push_back(p);
-        const auto n = Eigen::Index(blk.modes.size());
-        blk.diag.resize(n);
-        blk.h_inv.resize(n);
-        blk.u.resize(n);
-        blk.G.resize(n, Eigen::Index(qs.size()));
-        double su = 0;
-        for (Eigen::Index k = 0; k < n; ++k) {
-          const int p = blk.modes[std::size_t(k)];
-          const double dl = a * mu[p] * mu[p] + b;  // H = a·P_i + b·I = S(aμ² + b)S + a·E_i
-          blk.u[k] = sigma[p] / dl;
-          blk.h_inv[k] = 1 / dl;
-          su += sigma[p] * blk.u[k];
-        }
-        blk.diag = blk.h_inv;
-        blk.kappa = a / (1 + a * su);
-        Eigen::VectorXd inv_lambda(n);
-        for (std::size_t k = 0; k < qs.size(); ++k) {
-          const int q = qs[k];
-          const double alpha = a * nu_[q] * nu_[q] + b;  // the weight of E_i in M_q
-          double gamma = 0;
-          for (Eigen::Index m = 0; m < n; ++m) {
-            const int p = blk.modes[std::size_t(m)];
-            inv_lambda[m] = 1 / lambda(p, q);
-            gamma += sigma[p] * sigma[p] * inv_lambda[m];
-          }
-          const double c = std::sqrt(t_[q] * t_[q] * alpha / (1 + alpha * gamma));
-          for (Eigen::Index m = 0; m < n; ++m) {
-            const int p = blk.modes[std::size_t(m)];
-            blk.diag[m] += t_[q] * t_[q] * inv_lambda[m];
-            blk.G(m, Eigen::Index(k)) = c * sigma[p] * inv_lambda[m];
-          }
-        }
-      }
-    }
+    blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_);
   }
 
   // Down the rows: work_[c] = L⁻¹(base), base = hats_[c] (with from_hats) plus, with z, the sources
   // sign·U z_c on the boundary columns (parity coordinates: (U z)(r, q) = t_q z(r, parity of q)
-  // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once).
+  // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once); the
+  // modes split among the threads in whole chunks of kModeChunk.
   void sweep_down(int count, bool from_hats, const std::array<Eigen::MatrixXd, 2>* z, double sign) {
     for (int c = 0; c < count; ++c) work_[std::size_t(c)].resize(R_, C_);
-    zeros_.assign(std::size_t(C_), 0.0);
-    FactorRow above(factors_), above2(factors_);  // rows r − 1 and r − 2
-    const double* t_even = tmasks_.col(0).data();
-    const double* t_odd = tmasks_.col(1).data();
-    for (int r = 0; r < R_; ++r) {
-      if (r >= 1) above.seek(r - 1);
-      if (r >= 2) above2.seek(r - 2);
-      for (int c = 0; c < count; ++c) {
-        double* w = &work_[std::size_t(c)](r, 0);
-        const double* y = from_hats ? &hats_[std::size_t(c)](r, 0) : zeros_.data();
-        const double ze = z ? sign * (*z)[0](r, c) : 0, zo = z ? sign * (*z)[1](r, c) : 0;
-        if (r >= 2) {  // one fused pass over the row (vectorised)
-          const double* w1 = w - C_;
-          const double* w2 = w - 2 * std::ptrdiff_t(C_);
-          const double* l1 = above.l1.data();
-          const double* l2 = above2.l2.data();
-          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q] - l1[q] * w1[q] - l2[q] * w2[q];
-        } else {
-          for (int q = 0; q < C_; ++q) w[q] = y[q] + ze * t_even[q] + zo * t_odd[q];
-          if (r == 1)
-            for (int q = 0; q < C_; ++q) w[q] -= above.l1[std::size_t(q)] * w[q - C_];
-        }
-      }
+    fast5_detail::SweepInput in;
+    in.hats = from_hats ? hats_.data() : nullptr;
+    in.z = z;
+    in.sign = sign;
+    in.t_even = tmasks_.col(0).data();
+    in.t_odd = tmasks_.col(1).data();
+    [[maybe_unused]] const int nt = threads_;
+    COONS_PARALLEL_FOR
+    for (int t = 0; t < nt; ++t) {
+      const auto [q0, q1] = mode_range(t);
+      fast5_detail::sweep_down(factors_, q0, q1, kModeChunk, count, in, work_.data());
     }
   }
 
+  // The modes of thread t of threads_: whole chunks of kModeChunk, as evenly as they go.
+  [[nodiscard]] std::pair<int, int> mode_range(int t) const {
+    const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
+    const int c0 = chunks * t / threads_, c1 = chunks * (t + 1) / threads_;
+    return {std::min(C_, c0 * kModeChunk), std::min(C_, c1 * kModeChunk)};
+  }
+
   // Up the rows: work_[c] ← (LD)⁻ᵀ work_[c], completing work_[c] = M⁻¹ base. With add, hats_[c] +=
-  // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`.
+  // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`, summed
+  // over the chunks in their order (so the same on any number of threads).
   void sweep_up(int count, Eigen::MatrixXd& out, const Eigen::MatrixXd& dots, bool add) {
-    const Eigen::Index k = dots.cols();
-    out.resize(R_, k * count);
-    FactorRow row(factors_);
-    for (int r = R_ - 1; r >= 0; --r) {
-      row.seek(r);
-      const double* inv_d = row.inv_d.data();
-      const double* l1 = row.l1.data();
-      const double* l2 = row.l2.data();
-      for (int c = 0; c < count; ++c) {
-        RowMajor& W = work_[std::size_t(c)];
-        double* w = &W(r, 0);
-        if (r + 2 < R_) {
-          const double* w1 = w + C_;
-          const double* w2 = w + 2 * std::ptrdiff_t(C_);
-          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
-        } else if (r + 1 < R_) {
-          const double* w1 = w + C_;
-          for (int q = 0; q < C_; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
-        } else {
-          for (int q = 0; q < C_; ++q) w[q] *= inv_d[q];
-        }
-        if (add) {
-          RowMajor& Y = hats_[std::size_t(c)];
-          Y.row(r) += W.row(r);
-          out.block(r, k * c, 1, k).noalias() = Y.row(r) * dots;
-        } else {
-          out.block(r, k * c, 1, k).noalias() = W.row(r) * dots;
-        }
-      }
+    partial_.resize(std::size_t((C_ + kModeChunk - 1) / kModeChunk));
+    [[maybe_unused]] const int nt = threads_;
+    COONS_PARALLEL_FOR
+    for (int t = 0; t < nt; ++t) {
+      const auto [q0, q1] = mode_range(t);
+      fast5_detail::sweep_up(factors_, q0, q1, kModeChunk, count, work_.data(), add ? hats_.data() : nullptr, dots,
+                             partial_.data());
     }
+    out = partial_[0];
+    for (std::size_t k = 1; k < partial_.size(); ++k) out += partial_[k];
   }
 
   // g(r, 2c + parity) = Σ_q (M⁻¹ hat_c)(r, q)·t_q over the modes q of that parity (hats_ kept).
@@ -483,30 +286,37 @@ class Fast5Solver final : public LinearSolver {
   int capacitance_solve(const std::array<Eigen::MatrixXd, 2>& rhs, int count, double tolerance,
                         std::array<Eigen::MatrixXd, 2>& out, bool apply_h = true) {
     const double scale_i = std::sqrt(2.0 / (R_ + 1));
-    Eigen::MatrixXd hat(R_, count), part, block_rhs;
+    std::array<Eigen::MatrixXd, 2> hat, solved;
     Eigen::VectorXd column(R_);
-    int iterations = 0;
-    for (int qpar = 0; qpar < 2; ++qpar) {
+    for (std::size_t qpar = 0; qpar < 2; ++qpar) {
+      hat[qpar].resize(R_, count);
+      solved[qpar].resize(R_, count);
       for (int c = 0; c < count; ++c) {
-        column = rhs[std::size_t(qpar)].col(c);
-        along_i_.apply(column.data(), hat.col(c).data(), scale_i);
-      }
-      Eigen::MatrixXd solved(R_, count);
-      for (int ppar = 0; ppar < 2; ++ppar) {
-        const CapacitanceBlock& blk = blocks_[2 * std::size_t(qpar) + std::size_t(ppar)];
-        block_rhs.resize(Eigen::Index(blk.modes.size()), count);
-        for (std::size_t k = 0; k < blk.modes.size(); ++k) block_rhs.row(Eigen::Index(k)) = hat.row(blk.modes[k]);
-        if (apply_h) blk.apply_h_inverse(block_rhs);
-        iterations = std::max(iterations, blk.solve(block_rhs, part, tolerance));
-        for (std::size_t k = 0; k < blk.modes.size(); ++k) solved.row(blk.modes[k]) = part.row(Eigen::Index(k));
-      }
-      out[std::size_t(qpar)].resize(R_, count);
-      for (int c = 0; c < count; ++c) {
-        column = solved.col(c);
-        along_i_.apply(column.data(), out[std::size_t(qpar)].col(c).data(), scale_i);
+        column = rhs[qpar].col(c);
+        along_i_.apply(column.data(), hat[qpar].col(c).data(), scale_i);
       }
     }
-    return iterations;
+    // the four blocks (parity of q) × (parity of p) are independent; each writes its own rows
+    std::array<int, 4> iterations{};
+    [[maybe_unused]] const int nt = threads_;
+    COONS_PARALLEL_FOR
+    for (int b = 0; b < 4; ++b) {
+      const CapacitanceBlock& blk = blocks_[std::size_t(b)];
+      const std::size_t qpar = std::size_t(b) / 2;
+      Eigen::MatrixXd block_rhs(Eigen::Index(blk.modes.size()), count), part;
+      for (std::size_t k = 0; k < blk.modes.size(); ++k) block_rhs.row(Eigen::Index(k)) = hat[qpar].row(blk.modes[k]);
+      if (apply_h) blk.apply_h_inverse(block_rhs);
+      iterations[std::size_t(b)] = blk.solve(block_rhs, part, tolerance);
+      for (std::size_t k = 0; k < blk.modes.size(); ++k) solved[qpar].row(blk.modes[k]) = part.row(Eigen::Index(k));
+    }
+    for (std::size_t qpar = 0; qpar < 2; ++qpar) {
+      out[qpar].resize(R_, count);
+      for (int c = 0; c < count; ++c) {
+        column = solved[qpar].col(c);
+        along_i_.apply(column.data(), out[qpar].col(c).data(), scale_i);
+      }
+    }
+    return *std::max_element(iterations.begin(), iterations.end());
   }
 
   // ρ = (b − A x) on the columns 0 and cols−1 in parity coordinates (rows × count each), x from
@@ -556,7 +366,9 @@ class Fast5Solver final : public LinearSolver {
   int R_ = 0, C_ = 0;
   C1FamilyWeights weights_;
   bool separable_ = false;
-  detail::SineTransform along_i_, along_j_;
+  int threads_ = 1;
+  detail::SineTransform along_i_;
+  std::vector<detail::SineTransform> along_j_;  // one per thread
   Eigen::VectorXd nu_, t_;
   Eigen::MatrixXd tmasks_, near_sines_, dots_;
   std::vector<int> near_;
@@ -564,10 +376,10 @@ class Fast5Solver final : public LinearSolver {
   std::array<double, 3> b_norms_{};
   double boundary_ratio_ = 0;  // the largest ‖ρ‖/‖b‖ of the last boundary_residual
   ModeFactors factors_;
-  std::vector<double> zeros_;  // a row of zeros (sweep_down without a grid)
   std::array<CapacitanceBlock, 4> blocks_;
   std::array<RowMajor, 3> hats_, work_;
-  Eigen::MatrixXd near_values_;  // rows × (#near_ · count)
+  std::vector<Eigen::MatrixXd> partial_;  // sweep_up: one product with the dots per chunk of modes
+  Eigen::MatrixXd near_values_;           // rows × (#near_ · count)
 };
 
 }  // namespace

@@ -20,8 +20,14 @@
 //              factors and the capacitance blocks (O(rows·cols)). M_q is Toeplitz, so its LDLᵀ
 //              factors converge down the rows (to 1e-15 after about 40/√ν_q rows): only the rows
 //              above that are stored (4 % of rows·cols at N = 1023), the rest read the limit;
-//   solve      a sine transform of each row, four sweeps of banded solves along i (down and up,
-//              all right-hand sides in one sweep), the capacitance solves, an inverse transform.
+//   solve      a sine transform of each row (a row of B that is zero off the columns 0, 1,
+//              cols−2, cols−1, as in most rows of a mask system, is the combination of those four
+//              columns' sine vectors instead), sweeps of banded solves along i (down and up, all
+//              right-hand sides in one sweep), the capacitance solves, an inverse transform.
+// Threads (SolverOptions::threads, OpenMP): the sweeps split the modes in whole chunks of 128
+// (fast5_modes.h), the four capacitance blocks run in parallel, the row transforms are shared
+// (one SineTransform per thread); the result is the same bit for bit on any count.
+// Files: fast5_modes.h (per-mode factors and sweeps), fast5_capacitance.h (the blocks and their CG).
 // Accuracy. The rounding of the first solve sits almost entirely in the capacitance unknowns h
 // (the sources on the columns 0 and cols−1): h comes from A₁⁻¹b, whose banded solves for the low
 // modes (κ(M_q) ∝ N⁴) have forward errors of κ·ε, so the residual there is 5e-8 at N = 511 and
@@ -37,8 +43,10 @@
 // biharmonic 90 ms and w = 0.5 105 ms, against 309 and 392 ms with two whole-grid refinement
 // steps (residual, two row transforms and the whole solve again each), measured together; the
 // memory pass took 1.8–4 ms at that load, so about 25–50× (biharmonic) and 30–60× (w = 0.5).
-// The 10× target is not reached: what is left is the capacitance CG (a fifth), the four banded
-// sweeps (two fifths) and the two row transforms (a sixth). A capacitance formed without the
+// The 10× target is not reached: what is left is the capacitance CG (a fifth), the banded
+// sweeps (two fifths: four pairs at N = 1023, the first solve, the boundary response and two
+// corrections) and the two row transforms (a sixth). Threads (2026-11-23) change the wall time,
+// not this balance; on one thread the solve costs what it did. A capacitance formed without the
 // forward error (so no correction sweeps) would need another exact representation of A₁⁻¹ on
 // the boundary columns; not done.
 // summary.iterations is the largest number of capacitance CG iterations of any capacitance solve

@@ -1,62 +1,156 @@
 #include "separable_banded_solver.h"
 
 #include <algorithm>
+#include <array>
 #include <cmath>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "stencil_operator.h"
+#include "vector_clones.h"
 
 namespace coons::solvers {
 
 namespace {
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+// The factors as the sweeps read them: reciprocal pivots and the two multipliers, padded so that
+// l1[k−1] and l2[k−2], l2[k−1] exist (they are never used with a non-zero partner).
+struct SweepFactors {
+  std::vector<double> inv_d, l1, l2;
+  explicit SweepFactors(const BandedLdlt& f) {
+    const auto k = std::size_t(f.d.size());
+    inv_d.assign(k, 0.0);
+    l1.assign(k + 2, 0.0);
+    l2.assign(k + 2, 0.0);
+    for (std::size_t r = 0; r < k; ++r) inv_d[r] = 1 / f.d[Eigen::Index(r)];
+    std::copy_n(f.l1.data(), f.l1.size(), l1.data());
+    std::copy_n(f.l2.data(), f.l2.size(), l2.data());
+  }
+};
 
-// X = P⁻¹ R Q⁻¹ for each column of B viewed as a rows × cols grid R (row-major), in two passes
-// over the grid (P⁻¹ and Q⁻¹ act on different sides, so their parts may be interleaved):
-//   pass 1, kBlock rows at a time: copy the rows of B, solve along j in every row of the block
-//           (the inner loop runs across the block's rows, which stay in cache), then the forward
-//           elimination along i of those rows (the two rows above are still in cache);
-//   pass 2, bottom to top: the scaling by 1/d and the back substitution along i, whole rows.
+// Rows of the grid solved along j together: the lanes of the tile.
+constexpr int kLanes = 8;
+// Columns of the grid solved along i together (a strip of rows × kStrip stays in L2).
+constexpr int kStrip = 128;
+
+// Q⁻¹ along j of kLanes grid rows at once: src[t] (length k) → dst[t], through the tile T
+// (k × kLanes, lane-contiguous), so that the recurrences run across the lanes (vectorised) and
+// the transposes are fused into the forward (reading src) and the backward sweep (writing dst).
+COONS_VECTOR_CLONES void solve_lanes_along_j(const double* const* source, double* const* target,
+                                             const double* __restrict inv_d, const double* __restrict l1,
+                                             const double* __restrict l2, int k, double* __restrict T) {
+  std::array<const double*, kLanes> src{};
+  std::array<double*, kLanes> dst{};
+  std::copy_n(source, kLanes, src.begin());
+  std::copy_n(target, kLanes, dst.begin());
+  for (int t = 0; t < kLanes; ++t) T[t] = src[std::size_t(t)][0];
+  if (k > 1)
+    for (int t = 0; t < kLanes; ++t) T[kLanes + t] = src[std::size_t(t)][1] - l1[0] * T[t];
+  for (int j = 2; j < k; ++j) {
+    const double a = l1[j - 1], b = l2[j - 2];
+    double* __restrict row = T + std::ptrdiff_t(j) * kLanes;
+    const double* __restrict up1 = row - kLanes;
+    const double* __restrict up2 = row - 2 * kLanes;
+    for (int t = 0; t < kLanes; ++t) row[t] = src[std::size_t(t)][j] - b * up2[t] - a * up1[t];
+  }
+  const auto store = [&](int j) {
+    const double* row = T + std::ptrdiff_t(j) * kLanes;
+    for (int t = 0; t < kLanes; ++t) dst[std::size_t(t)][j] = row[t];
+  };
+  double* __restrict last = T + std::ptrdiff_t(k - 1) * kLanes;
+  for (int t = 0; t < kLanes; ++t) last[t] *= inv_d[k - 1];
+  store(k - 1);
+  if (k > 1) {
+    double* __restrict row = last - kLanes;
+    for (int t = 0; t < kLanes; ++t) row[t] = row[t] * inv_d[k - 2] - l1[k - 2] * last[t];
+    store(k - 2);
+  }
+  for (int j = k - 3; j >= 0; --j) {
+    const double s = inv_d[j], a = l1[j], b = l2[j];
+    double* __restrict row = T + std::ptrdiff_t(j) * kLanes;
+    const double* __restrict dn1 = row + kLanes;
+    const double* __restrict dn2 = row + 2 * kLanes;
+    for (int t = 0; t < kLanes; ++t) row[t] = row[t] * s - b * dn2[t] - a * dn1[t];
+    store(j);
+  }
+}
+
+// P⁻¹ along i of the columns [j0, j0 + w) of Y (rows × stride, row-major), in place: forward down,
+// scaling and back substitution up (the strip stays in cache between the two).
+COONS_VECTOR_CLONES void solve_strip_along_i(double* __restrict Y, std::ptrdiff_t stride, int rows, int w,
+                                             const double* __restrict inv_d, const double* __restrict l1,
+                                             const double* __restrict l2) {
+  for (int r = 1; r < rows; ++r) {
+    double* __restrict y = Y + r * stride;
+    const double* __restrict y1 = y - stride;
+    const double a = l1[r - 1];
+    if (r >= 2) {
+      const double* __restrict y2 = y1 - stride;
+      const double b = l2[r - 2];
+      for (int q = 0; q < w; ++q) y[q] -= a * y1[q] + b * y2[q];
+    } else {
+      for (int q = 0; q < w; ++q) y[q] -= a * y1[q];
+    }
+  }
+  for (int r = rows - 1; r >= 0; --r) {
+    double* __restrict y = Y + r * stride;
+    const double s = inv_d[r];
+    if (r + 2 < rows) {
+      const double* __restrict y1 = y + stride;
+      const double* __restrict y2 = y1 + stride;
+      const double a = l1[r], b = l2[r];
+      for (int q = 0; q < w; ++q) y[q] = y[q] * s - a * y1[q] - b * y2[q];
+    } else if (r + 1 < rows) {
+      const double* __restrict y1 = y + stride;
+      const double a = l1[r];
+      for (int q = 0; q < w; ++q) y[q] = y[q] * s - a * y1[q];
+    } else {
+      for (int q = 0; q < w; ++q) y[q] *= s;
+    }
+  }
+}
+
+// X = P⁻¹ R Q⁻¹ for each column of B viewed as a rows × cols grid R (row-major), in two sweeps over
+// the grid: Q⁻¹ on blocks of kLanes rows (reading B, writing X), then P⁻¹ on strips of kStrip columns
+// (in place, forward and back within the cached strip). The units of each sweep (blocks, strips,
+// over the three columns) are independent and shared among `threads`; every unit does the same
+// operations whatever the thread count, so the result does not depend on it.
 void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const Eigen::MatrixX3d& B,
-                     Eigen::MatrixX3d& X) {
-  constexpr Eigen::Index kBlock = 16;
+                     Eigen::MatrixX3d& X, int threads) {
   X.resize(B.rows(), 3);
   if (rows == 0 || cols == 0) return;
-  const Eigen::VectorXd inv_di = fi.d.cwiseInverse(), inv_dj = fj.d.cwiseInverse();
-  const double* l1 = fj.l1.data();
-  const double* l2 = fj.l2.data();
-  const double* idj = inv_dj.data();
-  const Eigen::Index k = cols;
-  for (int c = 0; c < 3; ++c) {
-    Eigen::Map<const RowMajor> R(B.col(c).data(), rows, cols);
-    Eigen::Map<RowMajor> Y(X.col(c).data(), rows, cols);
-    for (Eigen::Index r0 = 0; r0 < rows; r0 += kBlock) {
-      const Eigen::Index r1 = std::min<Eigen::Index>(rows, r0 + kBlock);
-      Y.middleRows(r0, r1 - r0) = R.middleRows(r0, r1 - r0);
-      for (Eigen::Index j = 1; j < k; ++j)  // along j: forward
-        for (Eigen::Index r = r0; r < r1; ++r) {
-          double v = Y(r, j) - l1[j - 1] * Y(r, j - 1);
-          if (j >= 2) v -= l2[j - 2] * Y(r, j - 2);
-          Y(r, j) = v;
-        }
-      for (Eigen::Index r = r0; r < r1; ++r) Y(r, k - 1) *= idj[k - 1];
-      for (Eigen::Index j = k - 2; j >= 0; --j)  // along j: scale and back substitution
-        for (Eigen::Index r = r0; r < r1; ++r) {
-          double v = Y(r, j) * idj[j] - l1[j] * Y(r, j + 1);
-          if (j + 2 < k) v -= l2[j] * Y(r, j + 2);
-          Y(r, j) = v;
-        }
-      for (Eigen::Index r = std::max<Eigen::Index>(r0, 1); r < r1; ++r) {  // along i: forward
-        Y.row(r) -= fi.l1[r - 1] * Y.row(r - 1);
-        if (r >= 2) Y.row(r) -= fi.l2[r - 2] * Y.row(r - 2);
+  const SweepFactors si(fi), sj(fj);
+  const int blocks = (rows + kLanes - 1) / kLanes, strips = (cols + kStrip - 1) / kStrip;
+  [[maybe_unused]] const int nt = std::max(1, threads);
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nt) if (nt > 1)
+#endif
+  {
+    std::vector<double> tile(std::size_t(cols) * kLanes), zeros(std::size_t(cols), 0.0);
+    std::vector<double> sink(std::size_t(cols), 0.0);
+    std::array<const double*, kLanes> src{};
+    std::array<double*, kLanes> dst{};
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic)
+#endif
+    for (int unit = 0; unit < 3 * blocks; ++unit) {
+      const int c = unit / blocks, r0 = (unit % blocks) * kLanes;
+      for (int t = 0; t < kLanes; ++t) {
+        const bool inside = r0 + t < rows;
+        const std::ptrdiff_t at = std::ptrdiff_t(r0 + t) * cols;
+        src[std::size_t(t)] = inside ? B.col(c).data() + at : zeros.data();
+        dst[std::size_t(t)] = inside ? X.col(c).data() + at : sink.data();
       }
+      solve_lanes_along_j(src.data(), dst.data(), sj.inv_d.data(), sj.l1.data(), sj.l2.data(), cols, tile.data());
     }
-    Y.row(rows - 1) *= inv_di[rows - 1];
-    for (Eigen::Index r = rows - 2; r >= 0; --r) {  // along i: scale and back substitution
-      Y.row(r) = Y.row(r) * inv_di[r] - fi.l1[r] * Y.row(r + 1);
-      if (r + 2 < rows) Y.row(r) -= fi.l2[r] * Y.row(r + 2);
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic)
+#endif
+    for (int unit = 0; unit < 3 * strips; ++unit) {
+      const int c = unit / strips, j0 = (unit % strips) * kStrip;
+      solve_strip_along_i(X.col(c).data() + j0, cols, rows, std::min(kStrip, cols - j0), si.inv_d.data(), si.l1.data(),
+                          si.l2.data());
     }
   }
 }
@@ -85,7 +179,7 @@ class SeparableBandedSolver final : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    solve_separable(fi_, fj_, op_.rows, op_.cols, B, X);
+    solve_separable(fi_, fj_, op_.rows, op_.cols, B, X, resolved_threads(options_.threads));
     summary.iterations = 1;
     return SolveStatus::kSuccess;
   }
@@ -170,13 +264,14 @@ Eigen::SparseMatrix<double> separable_banded_matrix(const SeparableBandedOperato
   return A;
 }
 
-SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
+SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
+                                   int threads) {
   BandedLdlt fi, fj;
   if (B.rows() != op.size()) return SolveStatus::kNotApplicable;
   if (banded_ldlt(op.along_i, op.rows, fi) != SolveStatus::kSuccess ||
       banded_ldlt(op.along_j, op.cols, fj) != SolveStatus::kSuccess)
     return SolveStatus::kSingular;
-  solve_separable(fi, fj, op.rows, op.cols, B, X);
+  solve_separable(fi, fj, op.rows, op.cols, B, X, threads);
   return SolveStatus::kSuccess;
 }
 

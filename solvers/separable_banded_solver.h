@@ -6,9 +6,12 @@
 //
 // symmetric banded Toeplitz factors with half-bandwidth 2 (pentadiagonal; p2 = 0 gives the
 // tridiagonal case). Since A⁻¹ = P⁻¹ ⊗ Q⁻¹, each column of B, viewed as a rows × cols matrix R,
-// is solved as X = P⁻¹ R Q⁻¹: a batch of banded solves along j (one per grid row, blocks of rows
-// at a time, vectorised across the block) and a batch along i (whole rows at a time), interleaved
-// so that the grid is swept twice. factorize = banded LDLᵀ of P and Q without pivoting
+// is solved as X = P⁻¹ R Q⁻¹ in two sweeps over the grid: Q⁻¹ on blocks of 8 grid rows (read from
+// B into a cols × 8 tile whose recurrences run across the 8 rows, vectorised, and written to X: the
+// transposes are fused into the forward and the backward sweep), then P⁻¹ in place on strips of
+// 128 columns (forward and back while the strip is in cache). Both sweeps' units (row blocks,
+// strips, of all three columns) are independent and shared among SolverOptions::threads (OpenMP;
+// the same result bit for bit on any count). factorize = banded LDLᵀ of P and Q without pivoting
 // (O(rows + cols)); solve = O(rows·cols) per column of B, no fill, no memory beyond X. Exact up
 // to rounding, and on c1-coons data more accurate than a sparse LDLᵀ of A (whose κ grows like
 // k⁸, against k⁴ per factor here); LDLᵀ without pivoting is
@@ -54,8 +57,10 @@ struct BandedLdlt {
 //! kSuccess, or kSingular on a zero pivot.
 SolveStatus banded_ldlt(const std::array<double, 3>& diagonals, int k, BandedLdlt& f);
 
-//! X = A⁻¹ B (#size by 3) in one call (factorize and solve). B and X may not alias.
-SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X);
+//! X = A⁻¹ B (#size by 3) in one call (factorize and solve) on `threads` threads (1 without
+//! OpenMP; the result does not depend on the count). B and X may not alias.
+SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
+                                   int threads = 1);
 
 //! The same as a LinearSolver (name "separable-banded"): factorize ignores the values of op and
 //! uses the operator given here; analyze reports kNotApplicable when op's size is not rows·cols.

@@ -363,13 +363,15 @@ Stencil5Problem& stencil5_problem(double w, FreeShape shape, int N) {
   return cache.emplace(key, std::move(p)).first->second;
 }
 
-// One fresh solve (analyze + factorize + solve) of a 5×5 problem, from the grid operator only.
-void BM_Stencil5(benchmark::State& state, const std::string& name, double w, bool hole, int N) {
+// One fresh solve (analyze + factorize + solve) of a 5×5 problem, from the grid operator only, on
+// `threads` threads (SolverOptions::threads; label threads=K for the structured backends).
+void BM_Stencil5(benchmark::State& state, const std::string& name, double w, bool hole, int N, int threads) {
   const Stencil5Problem& p = stencil5_problem(w, hole ? FreeShape::kHole : FreeShape::kFull, N);
   LinearOperator op;
   op.grid = &p.op;
   SolverOptions timed;
   timed.compute_residual = false;
+  timed.threads = threads;
   Eigen::MatrixX3d X;
   SolveSummary s = make_solver(name, timed)->compute_and_solve(op, p.B, X);  // plans the FFTs
   for (auto _ : state) {
@@ -383,7 +385,9 @@ void BM_Stencil5(benchmark::State& state, const std::string& name, double w, boo
   state.counters["iterations"] = s.iterations;
   state.counters["residual"] = s.relative_residual;
   state.counters["ok"] = s.ok();
-  state.SetLabel(name + (s.ok() ? "" : std::string(" status=") + to_string(s.status)));
+  state.counters["threads"] = threads;
+  state.SetLabel(name + (threaded(name) ? " threads=" + std::to_string(threads) : "") +
+                 (s.ok() ? "" : std::string(" status=") + to_string(s.status)));
 }
 
 // Experiment E04: every backend on the 5×5 problems (matrix and grid operator both given), one
@@ -612,11 +616,15 @@ int main(int argc, char** argv) {
                             Case{"biharmonic", "fast5", 0.0, false}, Case{"c1-family-0.5", "fast5", 0.5, false},
                             Case{"hole-0.5", "pcg-fast", 0.5, true}}) {
         if (!find_solver(c.backend) || !wanted(c.backend)) continue;
-        benchmark::RegisterBenchmark(
-            ("BM_Stencil5/" + std::string(c.name) + "/" + c.backend + "/N:" + std::to_string(N)).c_str(), BM_Stencil5,
-            std::string(c.backend), c.w, c.hole, N)
+        const std::string tag = "BM_Stencil5/" + std::string(c.name) + "/" + c.backend + "/N:" + std::to_string(N);
+        benchmark::RegisterBenchmark(tag.c_str(), BM_Stencil5, std::string(c.backend), c.w, c.hole, N, 1)
             ->UseRealTime()
             ->MinTime(min_time);
+        if (threaded(c.backend))
+          benchmark::RegisterBenchmark((tag + "/threads:2").c_str(), BM_Stencil5, std::string(c.backend), c.w, c.hole,
+                                       N, 2)
+              ->UseRealTime()
+              ->MinTime(min_time);
       }
     }
     if (config.hard && N <= 1023) {

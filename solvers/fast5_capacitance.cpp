@@ -1,0 +1,119 @@
+#include "fast5_capacitance.h"
+
+#include <cmath>
+#include <cstddef>
+
+#include "fast5_modes.h"
+
+namespace coons::solvers::fast5_detail {
+
+// out = Cap·V. G is read twice, a column at a time, for all right-hand sides together
+// (hand-written: Eigen's product would pack G into a copy on every call).
+void CapacitanceBlock::apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out, Eigen::MatrixXd& s) const {
+  const Eigen::Index m = V.cols();
+  out.noalias() = diag.asDiagonal() * V;
+  out.noalias() -= (kappa * u) * (u.transpose() * V);
+  s.resize(G.cols(), m);
+  for (Eigen::Index k = 0; k < G.cols(); ++k)
+    for (Eigen::Index c = 0; c < m; ++c) s(k, c) = G.col(k).dot(V.col(c));
+  for (Eigen::Index k = 0; k < G.cols(); ++k)
+    for (Eigen::Index c = 0; c < m; ++c) out.col(c) -= s(k, c) * G.col(k);
+}
+
+// V ← H⁻¹ V (rows of V are this block's modes).
+void CapacitanceBlock::apply_h_inverse(Eigen::MatrixXd& V) const {
+  const Eigen::RowVectorXd uv = u.transpose() * V;
+  V = h_inv.asDiagonal() * V;
+  V.noalias() -= (kappa * u) * uv;
+}
+
+// Conjugate gradients with the diagonal as preconditioner, one column per right-hand side
+// (each with its own step lengths; a converged column is frozen); returns the iterations.
+int CapacitanceBlock::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const {
+  const Eigen::Index n = rhs.rows(), m = rhs.cols();
+  X.setZero(n, m);
+  if (n == 0 || m == 0) return 0;
+  Eigen::ArrayXd target = tolerance * rhs.colwise().norm().transpose().array();
+  Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP, s;
+  Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
+  std::vector<bool> active(static_cast<std::size_t>(m), false);
+  for (Eigen::Index c = 0; c < m; ++c) active[std::size_t(c)] = target[c] > 0;
+  const int limit = int(2 * n + 50);
+  for (int k = 1; k <= limit; ++k) {
+    apply(P, AP, s);
+    bool any = false;
+    for (Eigen::Index c = 0; c < m; ++c) {
+      if (!active[std::size_t(c)]) continue;
+      const double step = rz[c] / P.col(c).dot(AP.col(c));
+      X.col(c) += step * P.col(c);
+      R.col(c) -= step * AP.col(c);
+      if (R.col(c).norm() <= target[c]) {
+        active[std::size_t(c)] = false;
+        P.col(c).setZero();
+        continue;
+      }
+      Z.col(c) = R.col(c).cwiseQuotient(diag);
+      const double rz_next = R.col(c).dot(Z.col(c));
+      P.col(c) = Z.col(c) + (rz_next / rz[c]) * P.col(c);
+      rz[c] = rz_next;
+      any = true;
+    }
+    if (!any) return k;
+  }
+  return limit;
+}
+
+std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eigen::VectorXd& mu,
+                                                   const Eigen::VectorXd& nu, const Eigen::VectorXd& t) {
+  const int rows = int(mu.size()), cols = int(nu.size());
+  const Eigen::VectorXd sigma = std::sqrt(2.0) * first_sine_column(rows);
+  std::array<CapacitanceBlock, 4> blocks;
+  const auto lambda = [&](int p, int q) {
+    const double s = mu[p] + nu[q];
+    return a * mu[p] * mu[p] * nu[q] * nu[q] + b * s * s;
+  };
+  for (int qpar = 0; qpar < 2; ++qpar) {
+    std::vector<int> qs;
+    for (int q = qpar; q < cols; q += 2) qs.push_back(q);
+    for (int ppar = 0; ppar < 2; ++ppar) {
+      CapacitanceBlock& blk = blocks[2 * std::size_t(qpar) + std::size_t(ppar)];
+      blk.modes.clear();
+      for (int p = ppar; p < rows; p += 2) blk.modes.push_back(p);
+      const auto n = Eigen::Index(blk.modes.size());
+      blk.diag.resize(n);
+      blk.h_inv.resize(n);
+      blk.u.resize(n);
+      blk.G.resize(n, Eigen::Index(qs.size()));
+      double su = 0;
+      for (Eigen::Index k = 0; k < n; ++k) {
+        const int p = blk.modes[std::size_t(k)];
+        const double dl = a * mu[p] * mu[p] + b;  // H = a·P_i + b·I = S(aμ² + b)S + a·E_i
+        blk.u[k] = sigma[p] / dl;
+        blk.h_inv[k] = 1 / dl;
+        su += sigma[p] * blk.u[k];
+      }
+      blk.diag = blk.h_inv;
+      blk.kappa = a / (1 + a * su);
+      Eigen::VectorXd inv_lambda(n);
+      for (std::size_t k = 0; k < qs.size(); ++k) {
+        const int q = qs[k];
+        const double alpha = a * nu[q] * nu[q] + b;  // the weight of E_i in M_q
+        double gamma = 0;
+        for (Eigen::Index m = 0; m < n; ++m) {
+          const int p = blk.modes[std::size_t(m)];
+          inv_lambda[m] = 1 / lambda(p, q);
+          gamma += sigma[p] * sigma[p] * inv_lambda[m];
+        }
+        const double c = std::sqrt(t[q] * t[q] * alpha / (1 + alpha * gamma));
+        for (Eigen::Index m = 0; m < n; ++m) {
+          const int p = blk.modes[std::size_t(m)];
+          blk.diag[m] += t[q] * t[q] * inv_lambda[m];
+          blk.G(m, Eigen::Index(k)) = c * sigma[p] * inv_lambda[m];
+        }
+      }
+    }
+  }
+  return blocks;
+}
+
+}  // namespace coons::solvers::fast5_detail

@@ -1,0 +1,189 @@
+#include "fast5_modes.h"
+
+#include <algorithm>
+#include <cmath>
+
+#include "vector_clones.h"
+
+namespace coons::solvers::fast5_detail {
+
+Eigen::VectorXd first_sine_column(int n) {
+  Eigen::VectorXd s(n);
+  for (int k = 0; k < n; ++k) s[k] = std::sqrt(2.0 / (n + 1)) * std::sin(M_PI * (k + 1) / (n + 1));
+  return s;
+}
+
+Eigen::VectorXd second_difference_eigenvalues(int n) {
+  Eigen::VectorXd e(n);
+  for (int k = 0; k < n; ++k) e[k] = 4 * std::pow(std::sin(M_PI * (k + 1) / (2.0 * (n + 1))), 2);
+  return e;
+}
+
+namespace {
+
+// The row r factors of the modes [qa, qb) all read from one place: the stored row (q < active[r])
+// or the limits. base(r, q) returns pointers indexed by q.
+struct FactorPointers {
+  const double* inv_d;
+  const double* l1;
+  const double* l2;
+};
+FactorPointers factor_pointers(const ModeFactors& f, int r, int q) {
+  if (q < f.active[std::size_t(r)]) {
+    const std::size_t o = f.offset[std::size_t(r)];
+    return {f.inv_d.data() + o, f.l1.data() + o, f.l2.data() + o};
+  }
+  return {f.lim_inv_d.data(), f.lim_l1.data(), f.lim_l2.data()};
+}
+
+COONS_VECTOR_CLONES void down_row(double* __restrict w, const double* __restrict y, double ze,
+                                  const double* __restrict te, double zo, const double* __restrict to,
+                                  const double* __restrict l1, const double* __restrict w1, const double* __restrict l2,
+                                  const double* __restrict w2, int qa, int qb) {
+  if (w2) {
+    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q] - l2[q] * w2[q];
+  } else if (w1) {
+    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q];
+  } else {
+    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q];
+  }
+}
+
+COONS_VECTOR_CLONES void up_row(double* __restrict w, const double* __restrict inv_d, const double* __restrict l1,
+                                const double* __restrict w1, const double* __restrict l2, const double* __restrict w2,
+                                int qa, int qb) {
+  if (w2) {
+    for (int q = qa; q < qb; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
+  } else if (w1) {
+    for (int q = qa; q < qb; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
+  } else {
+    for (int q = qa; q < qb; ++q) w[q] *= inv_d[q];
+  }
+}
+
+}  // namespace
+
+void sweep_down(const ModeFactors& f, int q0, int q1, int chunk, int count, const SweepInput& in, RowMajor* work) {
+  const int R = f.rows, C = f.cols;
+  const std::vector<double> zeros(std::size_t(C), 0.0);
+  for (int r = 0; r < R; ++r)
+    for (int c = 0; c < count; ++c) {
+      double* w = work[c].data() + std::ptrdiff_t(r) * C;
+      const double* y = in.hats ? in.hats[c].data() + std::ptrdiff_t(r) * C : zeros.data();
+      const double ze = in.z ? in.sign * (*in.z)[0](r, c) : 0, zo = in.z ? in.sign * (*in.z)[1](r, c) : 0;
+      const double* w1 = r >= 1 ? w - C : nullptr;
+      const double* w2 = r >= 2 ? w - 2 * std::ptrdiff_t(C) : nullptr;
+      for (int b0 = q0; b0 < q1; b0 += chunk) {
+        const int b1 = std::min(q1, b0 + chunk);
+        // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
+        const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
+        const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, b1) : b1;
+        const std::array<int, 4> cut{b0, a1, a2, b1};
+        for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+          if (cut[s] >= cut[s + 1]) continue;
+          const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 : nullptr;
+          const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 : nullptr;
+          down_row(w, y, ze, in.t_even, zo, in.t_odd, l1, w1, l2, w2, cut[s], cut[s + 1]);
+        }
+      }
+    }
+}
+
+void sweep_up(const ModeFactors& f, int q0, int q1, int chunk, int count, RowMajor* work, RowMajor* add,
+              const Eigen::MatrixXd& dots, Eigen::MatrixXd* out) {
+  const int R = f.rows, C = f.cols;
+  const Eigen::Index k = dots.cols();
+  for (int b0 = q0; b0 < q1; b0 += chunk) out[b0 / chunk].resize(R, k * count);
+  for (int r = R - 1; r >= 0; --r)
+    for (int c = 0; c < count; ++c) {
+      double* w = work[c].data() + std::ptrdiff_t(r) * C;
+      const double* w1 = r + 1 < R ? w + C : nullptr;
+      const double* w2 = r + 2 < R ? w + 2 * std::ptrdiff_t(C) : nullptr;
+      double* y = add ? add[c].data() + std::ptrdiff_t(r) * C : nullptr;
+      for (int b0 = q0; b0 < q1; b0 += chunk) {
+        const int b1 = std::min(q1, b0 + chunk);
+        const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
+        const std::array<int, 3> cut{b0, a, b1};
+        for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+          if (cut[s] >= cut[s + 1]) continue;
+          const FactorPointers p = factor_pointers(f, r, cut[s]);
+          up_row(w, p.inv_d, p.l1, w1, p.l2, w2, cut[s], cut[s + 1]);
+        }
+        if (y)
+          for (int q = b0; q < b1; ++q) y[q] += w[q];
+        const Eigen::Map<const Eigen::VectorXd> row((y ? y : w) + b0, b1 - b0);
+        Eigen::MatrixXd& o = out[b0 / chunk];
+        for (Eigen::Index m = 0; m < k; ++m) o(r, k * c + m) = row.dot(dots.col(m).segment(b0, b1 - b0));
+      }
+    }
+}
+
+namespace {
+constexpr double kConverged = 1e-15;
+}  // namespace
+
+ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows) {
+  ModeFactors f;
+  const int cols = int(nu.size());
+  f.rows = rows;
+  f.cols = cols;
+  f.lim_inv_d.resize(std::size_t(cols));
+  f.lim_l1.resize(std::size_t(cols));
+  f.lim_l2.resize(std::size_t(cols));
+  std::vector<int> converged(std::size_t(cols), rows);
+  const auto modes = std::size_t(cols);
+  std::vector<std::vector<double>> d(modes), l1(modes), l2(modes);
+  for (int q = 0; q < cols; ++q) {
+    const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
+    const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
+    auto& dq = d[std::size_t(q)];
+    auto& l1q = l1[std::size_t(q)];
+    auto& l2q = l2[std::size_t(q)];
+    double dm1 = 0, dm2 = 0, l1m1 = 0, l2m1 = 0, l2m2 = 0;
+    for (int r = 0; r < rows; ++r) {
+      const double dr = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
+      const double l1r = (a1 - l2m1 * dm1 * l1m1) / dr, l2r = a2 / dr;
+      const double change =
+          std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r), std::abs(l2r - l2m1) / l2r});
+      if (r >= 3 && change <= kConverged) {
+        converged[std::size_t(q)] = r;
+        break;
+      }
+      dq.push_back(dr);
+      l1q.push_back(l1r);
+      l2q.push_back(l2r);
+      dm2 = dm1;
+      dm1 = dr;
+      l1m1 = l1r;
+      l2m2 = l2m1;
+      l2m1 = l2r;
+    }
+    f.lim_inv_d[std::size_t(q)] = 1 / dq.back();
+    f.lim_l1[std::size_t(q)] = l1q.back();
+    f.lim_l2[std::size_t(q)] = l2q.back();
+  }
+  f.active.assign(std::size_t(rows), 0);
+  f.offset.assign(std::size_t(rows) + 1, 0);
+  int q_max = cols;
+  for (int r = 0; r < rows; ++r) {
+    while (q_max > 0 && converged[std::size_t(q_max) - 1] <= r) --q_max;
+    f.active[std::size_t(r)] = q_max;
+    f.offset[std::size_t(r) + 1] = f.offset[std::size_t(r)] + std::size_t(q_max);
+  }
+  const std::size_t total = f.offset.back();
+  f.inv_d.resize(total);
+  f.l1.resize(total);
+  f.l2.resize(total);
+  for (int r = 0; r < rows; ++r)
+    for (int q = 0; q < f.active[std::size_t(r)]; ++q) {
+      const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
+      const auto& dq = d[std::size_t(q)];
+      const bool stored = std::size_t(r) < dq.size();
+      f.inv_d[at] = stored ? 1 / dq[std::size_t(r)] : f.lim_inv_d[std::size_t(q)];
+      f.l1[at] = stored ? l1[std::size_t(q)][std::size_t(r)] : f.lim_l1[std::size_t(q)];
+      f.l2[at] = stored ? l2[std::size_t(q)][std::size_t(r)] : f.lim_l2[std::size_t(q)];
+    }
+  return f;
+}
+
+}  // namespace coons::solvers::fast5_detail
