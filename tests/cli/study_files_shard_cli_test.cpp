@@ -4,7 +4,6 @@
 // are there; a rerun skips finished files; a missing shard is an input error on --merge.
 #include <catch2/catch.hpp>
 #include <filesystem>
-#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -34,29 +33,17 @@ std::string without_provenance(const std::string& md) {
 
 TEST_CASE("coons study FILES --shard: three shards merged equal the unsharded run", "[cli]") {
   TempDir dir;
-  const CommandResult whole = run_coons(kFiles + " --out " + quoted(dir.file("whole")));
-  INFO(whole.err);
-  REQUIRE(whole.status == 0);
+  const ShardedStudy run = run_sharded_study(kCoons + " " + kFiles, dir, 3);
   std::set<std::string> keys;
   for (int i = 0; i < 3; ++i) {
-    const CommandResult r =
-        run_coons(kFiles + " --shard " + std::to_string(i) + "/3 --out " + quoted(dir.file("shards")));
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    CHECK(r.out.find("1 tasks, 0 already there, 1 run") != std::string::npos);
-    std::ifstream in(dir.file("shards/shard-" + std::to_string(i) + "-of-3.jsonl"));
-    for (std::string line; std::getline(in, line);) {
-      const json record = json::parse(line);
+    CHECK(run.shards[i].out.find("1 tasks, 0 already there, 1 run") != std::string::npos);
+    for (const json& record : run.records[i]) {
       keys.insert(record["key"].get<std::string>());
       CHECK(record["index"] == i);
       CHECK(record["study"]["inputs"] == "files");
     }
   }
   CHECK(keys.size() == 3);
-  const CommandResult merged =
-      run_coons("study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
-  INFO(merged.err);
-  REQUIRE(merged.status == 0);
   const json a = json::parse(read_text(dir.file("whole/results.json")));
   const json b = json::parse(read_text(dir.file("merged/results.json")));
   CHECK(a == b);

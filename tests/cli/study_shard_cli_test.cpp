@@ -17,40 +17,22 @@ namespace {
 
 const std::string kFamily = "study --family random-smooth --count 4 --seed 3 --degrees 3 5";
 
-std::vector<json> read_lines(const std::string& path) {
-  std::vector<json> out;
-  std::ifstream in(path);
-  for (std::string line; std::getline(in, line);) out.push_back(json::parse(line));
-  return out;
-}
-
 }  // namespace
 
 TEST_CASE("coons study --shard: three shards merged equal the unsharded run", "[cli]") {
   TempDir dir;
-  const CommandResult whole = run_coons(kFamily + " --out " + quoted(dir.file("whole")));
-  INFO(whole.err);
-  REQUIRE(whole.status == 0);
+  const ShardedStudy run = run_sharded_study(kCoons + " " + kFamily, dir, 3);
   std::set<std::string> keys;
   size_t lines = 0;
-  for (int i = 0; i < 3; ++i) {
-    const CommandResult r =
-        run_coons(kFamily + " --shard " + std::to_string(i) + "/3 --out " + quoted(dir.file("shards")));
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    for (const json& record : read_lines(dir.file("shards/shard-" + std::to_string(i) + "-of-3.jsonl"))) {
+  for (const std::vector<json>& shard : run.records)
+    for (const json& record : shard) {
       keys.insert(record["key"].get<std::string>());
       ++lines;
       CHECK(record["study"]["count"] == 4);
       CHECK(record["parameter"] == "alpha");
     }
-  }
   CHECK(lines == 4 * 2 * 2);  // boundaries × degrees × objectives
   CHECK(keys.size() == lines);
-  const CommandResult merged =
-      run_coons("study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
-  INFO(merged.err);
-  REQUIRE(merged.status == 0);
   const json a = json::parse(read_text(dir.file("whole/results.json")));
   const json b = json::parse(read_text(dir.file("merged/results.json")));
   CHECK(a == b);
@@ -67,7 +49,7 @@ TEST_CASE("coons study --shard: a rerun skips finished tasks and redoes a trunca
   const std::string args = kFamily + " --shard 1/2 --out " + quoted(out);
   REQUIRE(run_coons(args).status == 0);
   const std::string file = out + "/shard-1-of-2.jsonl";
-  const std::vector<json> first = read_lines(file);
+  const std::vector<json> first = read_json_lines(file);
   REQUIRE(first.size() == 8);
   // a job killed while writing its last record: half a line, no newline
   std::string text = read_text(file);
@@ -77,7 +59,7 @@ TEST_CASE("coons study --shard: a rerun skips finished tasks and redoes a trunca
   INFO(again.err);
   REQUIRE(again.status == 0);
   CHECK(again.out.find("7 already there, 1 run") != std::string::npos);
-  const std::vector<json> second = read_lines(file);
+  const std::vector<json> second = read_json_lines(file);
   REQUIRE(second.size() == first.size());
   for (size_t k = 0; k < first.size(); ++k) {
     json x = first[k], y = second[k];
@@ -119,7 +101,7 @@ TEST_CASE("coons study --shard/--merge: records of another study or with a wrong
   CHECK(other.err.find("shard-0-of-2.jsonl: study: holds tasks of another study") != std::string::npos);
   // a record whose key is not its task's: the merge names the file and the field
   const std::string file = shards + "/shard-1-of-2.jsonl";
-  std::vector<json> records = read_lines(file);
+  std::vector<json> records = read_json_lines(file);
   records[2]["index"] = records[2]["index"].get<int>() + 2;
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   for (const json& r : records) out << r.dump() << '\n';
@@ -138,24 +120,10 @@ TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, shar
   const std::string base = "cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons +
                            " study --family perturbed:dome --count 3 --seed 2 "
                            "--degrees 3 4";
-  const std::string family = base + " --amplitude 0.2";
-  const CommandResult whole = run_command(family + " --out " + quoted(dir.file("w")));
-  INFO(whole.err);
-  REQUIRE(whole.status == 0);
-  for (int i = 0; i < 3; ++i) {
-    std::string command = family;
-    command += " --shard " + std::to_string(i) + "/3 --out " + quoted(dir.file("shards"));
-    const CommandResult r = run_command(command);
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-  }
-  const CommandResult merged =
-      run_coons("study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
-  INFO(merged.err);
-  REQUIRE(merged.status == 0);
-  const json a = json::parse(read_text(dir.file("w/results.json")));
+  run_sharded_study(base + " --amplitude 0.2", dir, 3);
+  const json a = json::parse(read_text(dir.file("whole/results.json")));
   CHECK(a == json::parse(read_text(dir.file("merged/results.json"))));
-  CHECK(read_text(dir.file("w/report.md")) == read_text(dir.file("merged/report.md")));
+  CHECK(read_text(dir.file("whole/report.md")) == read_text(dir.file("merged/report.md")));
   CHECK(a["family"] == "perturbed:dome");
   CHECK(a["amplitude"] == 0.2);
   CHECK(a["cells"][0]["alpha_star"].size() == 3);
