@@ -27,6 +27,18 @@ StudyInput input(const std::string& name, Boundary b, std::optional<Target> targ
   return in;
 }
 
+// The report's figures of a study result, none drawn (every one with its reason).
+StudyFigures figures_not_drawn(const StudyResult& r) {
+  StudyFigures figures;
+  for (size_t k = 0; k < r.shapes.size(); ++k) {
+    figures.energies.push_back({"figures/x.png", "not drawn in this test"});
+    figures.nets.push_back({"figures/y.png", "not drawn in this test"});
+  }
+  figures.alpha_vs_degree = {"figures/a.png", "not drawn"};
+  figures.mu_vs_degree = {"figures/m.png", "not drawn"};
+  return figures;
+}
+
 }  // namespace
 
 TEST_CASE("run_study: two boundaries made in code give their shape, degree-law and reference entries", "[study]") {
@@ -84,14 +96,7 @@ TEST_CASE("run_study: two boundaries made in code give their shape, degree-law a
     }
 
   // the report prints the reference table of any boundary with a target, by its own name
-  StudyFigures figures;
-  for (size_t k = 0; k < r.shapes.size(); ++k) {
-    figures.energies.push_back({"figures/x.png", "not drawn in this test"});
-    figures.nets.push_back({"figures/y.png", "not drawn in this test"});
-  }
-  figures.alpha_vs_degree = {"figures/a.png", "not drawn"};
-  figures.mu_vs_degree = {"figures/m.png", "not drawn"};
-  const std::string md = study_report_markdown(r, current_provenance("test"), figures);
+  const std::string md = study_report_markdown(r, current_provenance("test"), figures_not_drawn(r));
   CHECK_THAT(md, Catch::Contains("### smooth (3×3)"));
   CHECK_THAT(md, Catch::Contains("rms distance to the target"));
   CHECK_THAT(md, !Catch::Contains("### wide (4×3)"));
@@ -142,14 +147,7 @@ TEST_CASE(
   CHECK(results[0].contains("weight_solver"));
   CHECK_FALSE(results[1]["thin_plate"].contains("weight"));
 
-  StudyFigures figures;
-  for (size_t k = 0; k < r.shapes.size(); ++k) {
-    figures.energies.push_back({"figures/x.png", "not drawn in this test"});
-    figures.nets.push_back({"figures/y.png", "not drawn in this test"});
-  }
-  figures.alpha_vs_degree = {"figures/a.png", "not drawn"};
-  figures.mu_vs_degree = {"figures/m.png", "not drawn"};
-  const std::string md = study_report_markdown(r, current_provenance("test"), figures);
+  const std::string md = study_report_markdown(r, current_provenance("test"), figures_not_drawn(r));
   CHECK_THAT(md, Catch::Contains("| w* (C1 family) | value at w* |"));
   CHECK_THAT(md, Catch::Contains("| – (ribbons: missing) | – |"));
 }
