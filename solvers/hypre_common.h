@@ -1,13 +1,18 @@
-// What the hypre backends share (internal to solvers/, built with hypre only): the communicator
-// and the all-gather of a solution split by blocks of rows.
+// What the hypre backends share (internal to solvers/, built with hypre only): the communicator,
+// the all-gather of a solution split by blocks of rows, and the solve of the three right-hand sides
+// one at a time with its one verdict.
 #pragma once
 
+#include <HYPRE_utilities.h>
 #include <mpi.h>
 
 #include <Eigen/Core>
+#include <algorithm>
+#include <cmath>
 #include <string>
 #include <vector>
 
+#include "linear_solver.h"
 #include "mpi_runtime.h"
 
 namespace coons::solvers::hypre_detail {
@@ -33,5 +38,52 @@ inline void all_gather_blocks(const std::vector<double>& local, long long rows, 
   MPI_Allgatherv(local.data(), int(local.size()), MPI_DOUBLE, global.data(), counts.data(), displacements.data(),
                  MPI_DOUBLE, MPI_COMM_WORLD);
 }
+
+//! A hypre backend: the iteration limit and the column-by-column solve both hypre interfaces use.
+class HypreBackend : public LinearSolver {
+ public:
+  using LinearSolver::LinearSolver;
+
+ protected:
+  //! options.max_iterations, or 500 when it is 0.
+  [[nodiscard]] int limit() const { return options_.max_iterations > 0 ? options_.max_iterations : 500; }
+
+  //! One column's solve as hypre reports it.
+  struct ColumnSolve {
+    HYPRE_Int error = 0;  //!< the solve's error flag
+    HYPRE_Int iterations = 0;
+    double residual = 0;  //!< hypre's final relative residual norm
+  };
+
+  //! X column by column: solve(c) → ColumnSolve for each non-zero column c of B (a zero column
+  //! has x = 0 exactly), then, hypre's error flags cleared, read(c) writes X.col(c). One verdict
+  //! (finish_iteration): the most iterations and the largest residual over the columns, converged
+  //! by hypre's own test on each (any error flag, e.g. a breakdown, is no convergence), diverged
+  //! where X is not finite.
+  template <class Solve, class Read>
+  SolveStatus solve_columns(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary, Solve&& solve,
+                            Read&& read) {
+    X.setZero(B.rows(), 3);
+    IterationEnd end;
+    end.limit = limit();
+    end.converged = true;
+    end.residual = 0;
+    for (int c = 0; c < 3; ++c) {
+      if (B.col(c).isZero(0)) continue;  // x = 0 exactly
+      const ColumnSolve column = solve(c);
+      HYPRE_ClearAllErrors();
+      read(c);
+      end.iterations = std::max(end.iterations, int(column.iterations));
+      end.residual = std::max(end.residual, std::isfinite(column.residual) ? column.residual : HUGE_VAL);
+      end.converged =
+          end.converged && column.error == 0 && column.residual <= options_.tolerance && X.col(c).allFinite();
+    }
+    if (!X.allFinite()) {
+      end.diverged = true;
+      end.residual = HUGE_VAL;
+    }
+    return finish_iteration(end, X, summary);
+  }
+};
 
 }  // namespace coons::solvers::hypre_detail

@@ -22,9 +22,9 @@ bool is_symmetric(const Eigen::SparseMatrix<double>& A) {
   return (A - At).norm() <= 1e-14 * A.norm();
 }
 
-class HypreAmgBackend : public LinearSolver {
+class HypreAmgBackend : public hypre_detail::HypreBackend {
  public:
-  explicit HypreAmgBackend(const SolverOptions& options) : LinearSolver(options) {}
+  explicit HypreAmgBackend(const SolverOptions& options) : HypreBackend(options) {}
   ~HypreAmgBackend() override { release(); }
   HypreAmgBackend(const HypreAmgBackend&) = delete;
   HypreAmgBackend& operator=(const HypreAmgBackend&) = delete;
@@ -59,50 +59,34 @@ class HypreAmgBackend : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    X.setZero(B.rows(), 3);
     const std::size_t local = rows_.size();
     std::vector<double> values(local), gathered;
-    IterationEnd end;
-    end.limit = limit();
-    end.converged = true;
-    end.residual = 0;
-    for (int c = 0; c < 3; ++c) {
-      if (B.col(c).isZero(0)) continue;  // x = 0 exactly
+    auto solve = [&](int c) {
       for (std::size_t p = 0; p < local; ++p) values[p] = B(rows_[p], c);
       set_vector(b_, values);
       std::fill(values.begin(), values.end(), 0.0);
       set_vector(x_, values);
-      HYPRE_Int iterations = 0;
-      double residual = 0;
-      HYPRE_Int error = 0;
+      ColumnSolve out;
       if (gmres_) {
-        error = HYPRE_ParCSRGMRESSolve(solver_, parcsr_, par_b_, par_x_);
-        HYPRE_GMRESGetNumIterations(solver_, &iterations);
-        HYPRE_GMRESGetFinalRelativeResidualNorm(solver_, &residual);
+        out.error = HYPRE_ParCSRGMRESSolve(solver_, parcsr_, par_b_, par_x_);
+        HYPRE_GMRESGetNumIterations(solver_, &out.iterations);
+        HYPRE_GMRESGetFinalRelativeResidualNorm(solver_, &out.residual);
       } else {
-        error = HYPRE_ParCSRPCGSolve(solver_, parcsr_, par_b_, par_x_);
-        HYPRE_PCGGetNumIterations(solver_, &iterations);
-        HYPRE_PCGGetFinalRelativeResidualNorm(solver_, &residual);
+        out.error = HYPRE_ParCSRPCGSolve(solver_, parcsr_, par_b_, par_x_);
+        HYPRE_PCGGetNumIterations(solver_, &out.iterations);
+        HYPRE_PCGGetFinalRelativeResidualNorm(solver_, &out.residual);
       }
-      HYPRE_ClearAllErrors();
+      return out;
+    };
+    auto read = [&](int c) {
       if (local > 0) HYPRE_IJVectorGetValues(x_, HYPRE_Int(local), rows_.data(), values.data());
       hypre_detail::all_gather_blocks(values, B.rows(), 1, gathered);
       X.col(c) = Eigen::Map<const Eigen::VectorXd>(gathered.data(), B.rows());
-      end.iterations = std::max(end.iterations, int(iterations));
-      end.residual = std::max(end.residual, std::isfinite(residual) ? residual : HUGE_VAL);
-      // hypre's own test (any error flag, e.g. a breakdown, is no convergence).
-      end.converged = end.converged && error == 0 && residual <= options_.tolerance && X.col(c).allFinite();
-    }
-    if (!X.allFinite()) {
-      end.diverged = true;
-      end.residual = HUGE_VAL;
-    }
-    return finish_iteration(end, X, summary);
+    };
+    return solve_columns(B, X, summary, solve, read);
   }
 
  private:
-  [[nodiscard]] int limit() const { return options_.max_iterations > 0 ? options_.max_iterations : 500; }
-
   void set_vector(HYPRE_IJVector v, const std::vector<double>& values) const {
     if (!rows_.empty()) HYPRE_IJVectorSetValues(v, HYPRE_Int(rows_.size()), rows_.data(), values.data());
     HYPRE_IJVectorAssemble(v);

@@ -56,10 +56,10 @@ std::optional<StencilOperator> grid_of(const LinearOperator& op) {
   return std::nullopt;
 }
 
-class HypreStructBackend : public LinearSolver {
+class HypreStructBackend : public hypre_detail::HypreBackend {
  public:
   HypreStructBackend(std::string name, StructMethod method, const SolverOptions& options)
-      : LinearSolver(options), name_(std::move(name)), method_(method) {}
+      : HypreBackend(options), name_(std::move(name)), method_(method) {}
   ~HypreStructBackend() override { release(); }
   HypreStructBackend(const HypreStructBackend&) = delete;
   HypreStructBackend& operator=(const HypreStructBackend&) = delete;
@@ -122,16 +122,10 @@ class HypreStructBackend : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    X.setZero(B.rows(), 3);
     const std::size_t local = std::size_t(last_row_ - first_row_) * std::size_t(grid_.cols);
     const std::size_t offset = std::size_t(first_row_) * std::size_t(grid_.cols);
     std::vector<double> values(local), gathered;
-    IterationEnd end;
-    end.limit = limit();
-    end.converged = true;
-    end.residual = 0;
-    for (int c = 0; c < 3; ++c) {
-      if (B.col(c).isZero(0)) continue;  // x = 0 exactly
+    auto solve = [&](int c) {
       for (std::size_t p = 0; p < local; ++p) {
         const Eigen::Index k = number_[offset + p];
         values[p] = k < 0 ? 0.0 : B(k, c);
@@ -139,12 +133,13 @@ class HypreStructBackend : public LinearSolver {
       set_box(b_, values);
       std::fill(values.begin(), values.end(), 0.0);
       set_box(x_, values);
-      const HYPRE_Int error = HYPRE_StructPCGSolve(solver_, A_, b_, x_);
-      HYPRE_Int iterations = 0;
-      double residual = 0;
-      HYPRE_StructPCGGetNumIterations(solver_, &iterations);
-      HYPRE_StructPCGGetFinalRelativeResidualNorm(solver_, &residual);
-      HYPRE_ClearAllErrors();
+      ColumnSolve out;
+      out.error = HYPRE_StructPCGSolve(solver_, A_, b_, x_);
+      HYPRE_StructPCGGetNumIterations(solver_, &out.iterations);
+      HYPRE_StructPCGGetFinalRelativeResidualNorm(solver_, &out.residual);
+      return out;
+    };
+    auto read = [&](int c) {
       if (local > 0) {
         std::array<HYPRE_Int, 2> lower{0, first_row_}, upper{grid_.cols - 1, last_row_ - 1};
         HYPRE_StructVectorGetBoxValues(x_, lower.data(), upper.data(), values.data());
@@ -152,21 +147,11 @@ class HypreStructBackend : public LinearSolver {
       hypre_detail::all_gather_blocks(values, grid_.rows, grid_.cols, gathered);
       for (std::size_t p = 0; p < gathered.size(); ++p)
         if (number_[p] >= 0) X(number_[p], c) = gathered[p];
-      end.iterations = std::max(end.iterations, int(iterations));
-      end.residual = std::max(end.residual, std::isfinite(residual) ? residual : HUGE_VAL);
-      // hypre's own test (any error flag, e.g. a breakdown, is no convergence).
-      end.converged = end.converged && error == 0 && residual <= options_.tolerance && X.col(c).allFinite();
-    }
-    if (!X.allFinite()) {
-      end.diverged = true;
-      end.residual = HUGE_VAL;
-    }
-    return finish_iteration(end, X, summary);
+    };
+    return solve_columns(B, X, summary, solve, read);
   }
 
  private:
-  [[nodiscard]] int limit() const { return options_.max_iterations > 0 ? options_.max_iterations : 500; }
-
   void set_box(HYPRE_StructVector v, std::vector<double>& values) const {
     if (last_row_ > first_row_) {
       std::array<HYPRE_Int, 2> lower{0, first_row_}, upper{grid_.cols - 1, last_row_ - 1};

@@ -94,14 +94,8 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   BSplineExportRequest e = given_request;
   const BSplineResolved r = resolve_bspline(request, input, e.file);
   const BSplineInput& in = *input.bspline;
-  if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   if (!e.obj && !e.mtx && !e.ply && !e.vts && !e.cad.any()) e.obj = e.mtx = true;
-  if (e.mtx && r.method != Method::kAlpha)
-    throw InputError("command line", "--mtx",
-                     "Matrix Market export needs --method alpha (closed forms solve no system)");
-  if (!e.prefix.empty() && safe_file_stem(e.prefix) != e.prefix)
-    throw InputError("command line", "--prefix",
-                     "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
+  check_export_options(e.samples, e.mtx, r.method == Method::kAlpha, e.prefix);
   check_bspline_memory(global, in, e.file);
   if (e.cad.any()) check_cad_export(e.cad, e.force);
   const bool sampled = e.obj || e.ply || e.vts;

@@ -14,6 +14,7 @@
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
 #include "coons/io/stencil_json.h"
+#include "coons/io/write_files.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/net_report.h"
 
@@ -46,6 +47,15 @@ void check_memory(const GlobalOptions& g, double bytes, const std::string& what,
     throw InputError(file, field,
                      fmt::format("{} needs about {} of memory, more than the limit of {} (--max-memory to change it)",
                                  what, format_bytes(bytes), format_bytes(limit)));
+}
+
+void check_export_options(int samples, bool mtx, bool solves_system, const std::string& prefix) {
+  if (samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  if (mtx && !solves_system)
+    throw InputError("command line", "--mtx",
+                     "Matrix Market export needs --method alpha (closed forms solve no system)");
+  if (!prefix.empty() && safe_file_stem(prefix) != prefix)
+    throw InputError("command line", "--prefix", "'" + prefix + "' is not a plain file name (letters, digits, - _ .)");
 }
 
 void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::SolverInfo* solver,

@@ -123,6 +123,11 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
 void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::SolverInfo* solver,
                       const std::string& file, int stencil_nonzeros = kMask3Nonzeros);
 
+//! The options of `export` every boundary kind checks alike (InputError on the command line):
+//! --samples at least 2, --mtx only where a system is solved (`solves_system`: --method alpha),
+//! --prefix a plain file name.
+void check_export_options(int samples, bool mtx, bool solves_system, const std::string& prefix);
+
 //! Prints a JSON document on standard output and flushes it; a failed write is an InputError
 //! ("<stdout>: write failed: REASON"). Invalid UTF-8 in names is replaced, never an exception.
 void print_json(const nlohmann::json& doc, int indent = 2);

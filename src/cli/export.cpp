@@ -57,14 +57,8 @@ int run_export(ExportRequest e) {
                      "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply/--vts)");
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
-  if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   if (!e.obj && !e.mtx && !e.cad.any()) e.obj = e.mtx = true;
-  if (e.mtx && r.method != Method::kAlpha)
-    throw InputError("command line", "--mtx",
-                     "Matrix Market export needs --method alpha (closed forms solve no system)");
-  if (!e.prefix.empty() && safe_file_stem(e.prefix) != e.prefix)
-    throw InputError("command line", "--prefix",
-                     "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
+  check_export_options(e.samples, e.mtx, r.method == Method::kAlpha, e.prefix);
   check_net_memory(e.global, b, r.solver, e.boundary);
   // Beyond the classical problem (two data rings, a free grid, a mask other than alpha): the
   // stencil solve of `coons solve`, checked here, before anything is written.

@@ -110,12 +110,9 @@ int run_tri_export(const TriExportArgs& e) {
   phases.start("read");
   const tri::TriBoundary b = read_tri_input(e.boundary, e.net->corner_tolerance);
   const TriRequest r = resolve_tri(*e.net);
-  if (e.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   const bool all = !e.obj && !e.mtx && !e.ply && !e.vtu;
   const bool obj = all || e.obj, mtx = all || e.mtx, ply = all || e.ply, vtu = all || e.vtu;
-  if (!e.prefix.empty() && safe_file_stem(e.prefix) != e.prefix)
-    throw InputError("command line", "--prefix",
-                     "'" + e.prefix + "' is not a plain file name (letters, digits, - _ .)");
+  check_export_options(e.samples, mtx, true, e.prefix);  // a triangle has --method alpha only
   const bool surface = obj || ply || vtu;
   check_tri_memory(*e.global, b.n, r.options.solver, e.boundary, surface ? samples_bytes(e.samples) / 2 : 0.0);
   const std::string prefix = e.prefix.empty() ? safe_file_stem(b.name) : e.prefix;

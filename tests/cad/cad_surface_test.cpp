@@ -22,12 +22,8 @@ namespace {
 
 // A surface with random non-uniform knots and random poles of mixed magnitudes.
 BSplineSurface random_surface(int p, int count_u, int q, int count_v, std::uint32_t seed) {
-  BSplineSurface s;
-  s.degree_u = p;
-  s.degree_v = q;
-  s.knots_u = test::make_random_knots(p, count_u, seed, -0.5, 2.0 / 3.0);
-  s.knots_v = test::make_random_knots(q, count_v, seed + 1, 0.1, 1.0 / 7.0 + 1.0);
-  s.net = ControlNet(count_u - 1, count_v - 1);
+  BSplineSurface s =
+      test::make_random_bspline_surface(p, count_u, q, count_v, seed, -0.5, 2.0 / 3.0, 0.1, 1.0 / 7.0 + 1.0);
   const BSplineCurve rows = test::make_random_bspline(1, count_u * count_v, seed + 2);
   s.net.points = rows.points;
   s.net.points.col(1) *= 1e3 / 7.0;

@@ -4,11 +4,10 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
-#include <iterator>
 #include <nlohmann/json.hpp>
 #include <set>
 
-#include "support/fixtures.h"
+#include "support/cli_support.h"
 
 using namespace coons::test;
 using nlohmann::json;
@@ -16,50 +15,24 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kCoons = COONS_BINARY;
-const std::string kFamily = " study --family random-smooth --count 4 --seed 3 --degrees 3 5";
-
-std::string quoted(const std::string& s) { return "'" + s + "'"; }
-
-std::string read_text(const std::string& path) {
-  std::ifstream in(path, std::ios::binary);
-  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
-}
-
-std::vector<json> read_lines(const std::string& path) {
-  std::vector<json> out;
-  std::ifstream in(path);
-  for (std::string line; std::getline(in, line);) out.push_back(json::parse(line));
-  return out;
-}
+const std::string kFamily = "study --family random-smooth --count 4 --seed 3 --degrees 3 5";
 
 }  // namespace
 
 TEST_CASE("coons study --shard: three shards merged equal the unsharded run", "[cli]") {
   TempDir dir;
-  const CommandResult whole = run_command(kCoons + kFamily + " --out " + quoted(dir.file("whole")));
-  INFO(whole.err);
-  REQUIRE(whole.status == 0);
+  const ShardedStudy run = run_sharded_study(kCoons + " " + kFamily, dir, 3);
   std::set<std::string> keys;
   size_t lines = 0;
-  for (int i = 0; i < 3; ++i) {
-    const CommandResult r =
-        run_command(kCoons + kFamily + " --shard " + std::to_string(i) + "/3 --out " + quoted(dir.file("shards")));
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-    for (const json& record : read_lines(dir.file("shards/shard-" + std::to_string(i) + "-of-3.jsonl"))) {
+  for (const std::vector<json>& shard : run.records)
+    for (const json& record : shard) {
       keys.insert(record["key"].get<std::string>());
       ++lines;
       CHECK(record["study"]["count"] == 4);
       CHECK(record["parameter"] == "alpha");
     }
-  }
   CHECK(lines == 4 * 2 * 2);  // boundaries × degrees × objectives
   CHECK(keys.size() == lines);
-  const CommandResult merged =
-      run_command(kCoons + " study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
-  INFO(merged.err);
-  REQUIRE(merged.status == 0);
   const json a = json::parse(read_text(dir.file("whole/results.json")));
   const json b = json::parse(read_text(dir.file("merged/results.json")));
   CHECK(a == b);
@@ -73,20 +46,20 @@ TEST_CASE("coons study --shard: three shards merged equal the unsharded run", "[
 TEST_CASE("coons study --shard: a rerun skips finished tasks and redoes a truncated last line", "[cli]") {
   TempDir dir;
   const std::string out = dir.file("shards");
-  const std::string command = kCoons + kFamily + " --shard 1/2 --out " + quoted(out);
-  REQUIRE(run_command(command).status == 0);
+  const std::string args = kFamily + " --shard 1/2 --out " + quoted(out);
+  REQUIRE(run_coons(args).status == 0);
   const std::string file = out + "/shard-1-of-2.jsonl";
-  const std::vector<json> first = read_lines(file);
+  const std::vector<json> first = read_json_lines(file);
   REQUIRE(first.size() == 8);
   // a job killed while writing its last record: half a line, no newline
   std::string text = read_text(file);
   text.resize(text.size() - 1 - first.back().dump().size() / 2);
   std::ofstream(file, std::ios::binary | std::ios::trunc) << text;
-  const CommandResult again = run_command(command);
+  const CommandResult again = run_coons(args);
   INFO(again.err);
   REQUIRE(again.status == 0);
   CHECK(again.out.find("7 already there, 1 run") != std::string::npos);
-  const std::vector<json> second = read_lines(file);
+  const std::vector<json> second = read_json_lines(file);
   REQUIRE(second.size() == first.size());
   for (size_t k = 0; k < first.size(); ++k) {
     json x = first[k], y = second[k];
@@ -94,19 +67,19 @@ TEST_CASE("coons study --shard: a rerun skips finished tasks and redoes a trunca
     y.erase("seconds");
     CHECK(x == y);
   }
-  CHECK(run_command(command).out.find("8 already there, 0 run") != std::string::npos);
+  CHECK(run_coons(args).out.find("8 already there, 0 run") != std::string::npos);
 }
 
 TEST_CASE("coons study --shard/--merge: bad input is one error line, exit 2, nothing written", "[cli]") {
   TempDir dir;
   const std::string out = dir.file("out");
-  REQUIRE(run_command(kCoons + kFamily + " --shard 0/2 --out " + quoted(dir.file("half"))).status == 0);
+  REQUIRE(run_coons(kFamily + " --shard 0/2 --out " + quoted(dir.file("half"))).status == 0);
   for (const std::string& args :
        {kFamily + " --shard 3/3", kFamily + " --shard 1/0", kFamily + " --shard -1/2", kFamily + " --shard 1",
-        kFamily + " --shard a/b", std::string(" study --shard 2/2 ") + quoted(COONS_DATA_DIR "/boundaries/pillow.json"),
-        " study --merge " + quoted(dir.file("none")), " study --merge " + quoted(dir.file("half")),
+        kFamily + " --shard a/b", std::string("study --shard 2/2 ") + quoted(kData + "/boundaries/pillow.json"),
+        "study --merge " + quoted(dir.file("none")), "study --merge " + quoted(dir.file("half")),
         kFamily + " --merge " + quoted(dir.file("half"))}) {
-    const CommandResult r = run_command(kCoons + args + " --out " + quoted(out));
+    const CommandResult r = run_coons(args + " --out " + quoted(out));
     INFO(args << "\n" << r.err);
     CHECK(r.status == 2);
     CHECK(r.out.empty());
@@ -120,21 +93,20 @@ TEST_CASE("coons study --shard/--merge: records of another study or with a wrong
   TempDir dir;
   const std::string shards = dir.file("shards");
   for (int i = 0; i < 2; ++i)
-    REQUIRE(run_command(kCoons + kFamily + " --shard " + std::to_string(i) + "/2 --out " + quoted(shards)).status == 0);
+    REQUIRE(run_coons(kFamily + " --shard " + std::to_string(i) + "/2 --out " + quoted(shards)).status == 0);
   // the same folder for a study with another seed: its shard file holds another study
-  const CommandResult other = run_command(
-      kCoons + " study --family random-smooth --count 4 --seed 4 --degrees 3 5 --shard 0/2 --out " + quoted(shards));
+  const CommandResult other =
+      run_coons("study --family random-smooth --count 4 --seed 4 --degrees 3 5 --shard 0/2 --out " + quoted(shards));
   CHECK(other.status == 2);
   CHECK(other.err.find("shard-0-of-2.jsonl: study: holds tasks of another study") != std::string::npos);
   // a record whose key is not its task's: the merge names the file and the field
   const std::string file = shards + "/shard-1-of-2.jsonl";
-  std::vector<json> records = read_lines(file);
+  std::vector<json> records = read_json_lines(file);
   records[2]["index"] = records[2]["index"].get<int>() + 2;
   std::ofstream out(file, std::ios::binary | std::ios::trunc);
   for (const json& r : records) out << r.dump() << '\n';
   out.close();
-  const CommandResult merged =
-      run_command(kCoons + " study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
   INFO(merged.err);
   CHECK(merged.status == 2);
   CHECK(merged.err.find("shard-1-of-2.jsonl: key: ") != std::string::npos);
@@ -148,24 +120,10 @@ TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, shar
   const std::string base = "cd " + quoted(COONS_DATA_DIR "/..") + " && " + kCoons +
                            " study --family perturbed:dome --count 3 --seed 2 "
                            "--degrees 3 4";
-  const std::string family = base + " --amplitude 0.2";
-  const CommandResult whole = run_command(family + " --out " + quoted(dir.file("w")));
-  INFO(whole.err);
-  REQUIRE(whole.status == 0);
-  for (int i = 0; i < 3; ++i) {
-    std::string command = family;
-    command += " --shard " + std::to_string(i) + "/3 --out " + quoted(dir.file("shards"));
-    const CommandResult r = run_command(command);
-    INFO(r.err);
-    REQUIRE(r.status == 0);
-  }
-  const CommandResult merged =
-      run_command(kCoons + " study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
-  INFO(merged.err);
-  REQUIRE(merged.status == 0);
-  const json a = json::parse(read_text(dir.file("w/results.json")));
+  run_sharded_study(base + " --amplitude 0.2", dir, 3);
+  const json a = json::parse(read_text(dir.file("whole/results.json")));
   CHECK(a == json::parse(read_text(dir.file("merged/results.json"))));
-  CHECK(read_text(dir.file("w/report.md")) == read_text(dir.file("merged/report.md")));
+  CHECK(read_text(dir.file("whole/report.md")) == read_text(dir.file("merged/report.md")));
   CHECK(a["family"] == "perturbed:dome");
   CHECK(a["amplitude"] == 0.2);
   CHECK(a["cells"][0]["alpha_star"].size() == 3);
@@ -174,10 +132,10 @@ TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, shar
   CHECK(other.status == 2);
   CHECK(other.err.find("study: holds tasks of another study") != std::string::npos);
   // an unknown shape is one error line
-  const CommandResult unknown = run_command(kCoons +
-                                            " study --family perturbed:no_such_shape --count 2 --degrees 3 4 "
-                                            "--out " +
-                                            quoted(dir.file("x")));
+  const CommandResult unknown = run_coons(
+      "study --family perturbed:no_such_shape --count 2 --degrees 3 4 "
+      "--out " +
+      quoted(dir.file("x")));
   CHECK(unknown.status == 2);
   CHECK(unknown.err.rfind("error: command line: --family: 'no_such_shape' is neither", 0) == 0);
   CHECK_FALSE(fs::exists(dir.file("x")));

@@ -32,8 +32,6 @@ InputError error_of(Read read) {
   return InputError("", "", "");
 }
 
-bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
-
 }  // namespace
 
 TEST_CASE("read_json_file: a 100,000-level nested target is refused, not recursed into", "[io]") {

@@ -220,3 +220,64 @@ TEST_CASE("difference_terms: sum to discrete_energy_form", "[metrics]") {
     }
   }
 }
+
+TEST_CASE("surface_energy: never below 0 where it is 0 in exact arithmetic (bilinear nets, the pillow's Coons net)",
+          "[metrics]") {
+  // Every E(a, b) with a ≥ 2 or b ≥ 2 of a bilinear net is 0; its points are rounded, so the
+  // computed energies are rounding noise of either sign before the clamp (−2.6e-32 for
+  // E(2,0) + E(0,2) at degree (4, 2), seed 1).
+  const std::vector<std::pair<int, int>> zero_pairs = {{2, 0}, {0, 2}, {3, 0}, {2, 1}, {1, 2}, {0, 3}};
+  for (int m = 2; m < 12; ++m)
+    for (int n = 2; n < 12; ++n)
+      for (std::uint32_t seed = 0; seed < 5; ++seed) {
+        const ControlNet net = make_bilinear_net(m, n, seed);
+        INFO("degree " << m << "x" << n << ", seed " << seed);
+        for (const auto& [a, b] : zero_pairs) {
+          const double e = surface_energy(net, a, b);
+          CHECK(e >= 0);
+          CHECK(e < 1e-20);
+        }
+        CHECK(e3_energy(net) >= 0);
+        CHECK(net_metrics(net, alpha_mask(-0.25)).e3_energy >= 0);
+      }
+  // The pillow's sides are cubic arcs of a quadratic surface: its Coons net has e3 = 0 (the study
+  // printed −5.5e-32 for it at α = −1/4 before the clamp).
+  const Boundary pillow = read_boundary_file(COONS_DATA_DIR "/boundaries/pillow.json").boundary;
+  for (const char* name : {"eigen-ldlt", "eigen-lu", "fast", "dst"}) {
+    if (!solvers::find_solver(name)) continue;
+    const ControlNet net = solve_mask_net(pillow, alpha_mask(-0.25), backend(name)).net;
+    INFO(name);
+    CHECK(e3_energy(net) >= 0);
+    CHECK(e3_energy(net) < 1e-20);
+    CHECK(combined_energy(net, e3_terms()) >= 0);
+  }
+}
+
+TEST_CASE("e3_energy: exactly 0 for a net with exact points and zero energy", "[metrics]") {
+  // A bilinear net over integer corners at degree (4, 8): every point is a dyadic rational.
+  ControlNet net(4, 8);
+  const Eigen::RowVector3d p00(0, 0, 0), p10(4, 0, 1), p01(0, 8, -2), p11(4, 8, 3);
+  for (int i = 0; i <= 4; ++i)
+    for (int j = 0; j <= 8; ++j) {
+      const double u = i / 4.0, v = j / 8.0;
+      net.at(i, j) = (1 - u) * (1 - v) * p00 + u * (1 - v) * p10 + (1 - u) * v * p01 + u * v * p11;
+    }
+  CHECK(e3_energy(net) == 0.0);
+  CHECK(surface_energy(net, 2, 0) == 0.0);
+  CHECK(surface_energy(net, 0, 2) == 0.0);
+  CHECK(twist_energy(net) > 0);  // the twist of a hyperbolic paraboloid is not
+}
+
+TEST_CASE("clamp_rounding_negative: zeroes only a negative value within the bound", "[metrics]") {
+  CHECK(clamp_rounding_negative(-1e-30, 1e-20) == 0.0);
+  CHECK(clamp_rounding_negative(-1e-20, 1e-20) == 0.0);
+  CHECK(clamp_rounding_negative(-1e-3, 1e-20) == -1e-3);  // a wrong sign still shows
+  CHECK(clamp_rounding_negative(-1e-30, 0) == -1e-30);
+  CHECK(clamp_rounding_negative(2.5, 1e-20) == 2.5);
+  CHECK(clamp_rounding_negative(1e-30, 1.0) == 1e-30);
+  // The clamp is applied to each E(a, b) of one net, not to a weighted sum: a negative weight shows.
+  const ControlNet net = make_random_net(5, 4, 3);
+  const double twist = twist_energy(net);
+  REQUIRE(twist > 1);
+  CHECK(combined_energy(net, {{1, 1, -1.0}}) == Approx(-twist).epsilon(1e-14));
+}

@@ -57,6 +57,17 @@ SolveSummary solve_grid(const char* name, const StencilOperator& op, const Eigen
   return make_solver(name, options)->compute_and_solve(lop, B, X);
 }
 
+// The hypre backends that take this stencil. Measured: AMG stalls near 1e-6 on c1-coons
+// (condition O(N⁸)); PFMG's two-point smoother does not reach α = −1/4 (not_applicable: the test
+// "at alpha = -1/4 SMG converges ..."); PFMG and SMG take 3×3 stencils only.
+std::vector<const char*> backends_for(const NamedStencil& stencil, const StencilOperator& op) {
+  std::vector<const char*> names;
+  if (stencil.name != "c1-coons") names.push_back("hypre-amg");
+  if (op.radius == 1) names.push_back("hypre-smg");
+  if (op.radius == 1 && stencil.name != "alpha -1/4") names.push_back("hypre-pfmg");
+  return names;
+}
+
 }  // namespace
 
 TEST_CASE("hypre backends: agree with a sparse direct solve on 3x3 and 5x5 stencils and free sets",
@@ -72,14 +83,7 @@ TEST_CASE("hypre backends: agree with a sparse direct solve on 3x3 and 5x5 stenc
         const Eigen::MatrixX3d B = boundary_rhs(op);
         const Eigen::MatrixX3d reference = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(A).solve(B);
         const double error_bound = op.radius == 2 || stencil.name == "alpha -1/4" ? 1e-6 : 1e-8;
-        std::vector<const char*> names;
-        // Measured: AMG stalls near 1e-6 on c1-coons (condition O(N⁸)); PFMG's two-point
-        // smoother does not reach α = −1/4 (not_applicable, see the next test); PFMG and SMG take
-        // 3×3 stencils only.
-        if (stencil.name != "c1-coons") names.push_back("hypre-amg");
-        if (op.radius == 1) names.push_back("hypre-smg");
-        if (op.radius == 1 && stencil.name != "alpha -1/4") names.push_back("hypre-pfmg");
-        for (const char* name : names) {
+        for (const char* name : backends_for(stencil, op)) {
           Eigen::MatrixX3d X;
           const SolveSummary s = solve_grid(name, op, &A, B, X, options);
           INFO(name << " on " << stencil.name << ", shape " << int(shape) << ", " << rows << "x" << cols << ": "
@@ -190,11 +194,7 @@ TEST_CASE("hypre backends: solve tiny and thin grids and report a grid without f
       const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
       const Eigen::MatrixX3d B = boundary_rhs(op);
       const Eigen::MatrixX3d reference = Eigen::SparseLU<Eigen::SparseMatrix<double>>(A).solve(B);
-      std::vector<const char*> names;  // as in the agreement test above
-      if (stencil.name != "c1-coons") names.push_back("hypre-amg");
-      if (op.radius == 1) names.push_back("hypre-smg");
-      if (op.radius == 1 && stencil.name != "alpha -1/4") names.push_back("hypre-pfmg");
-      for (const char* name : names) {
+      for (const char* name : backends_for(stencil, op)) {
         Eigen::MatrixX3d X;
         const SolveSummary s = solve_grid(name, op, &A, B, X, options);
         INFO(name << " on " << stencil.name << ", " << rows << "x" << cols << ": " << s.brief_report());

@@ -12,21 +12,12 @@
 using namespace coons;
 using namespace coons::test;
 
-namespace {
-
-Objective objective(const std::string& text) {
-  std::string why;
-  return *parse_objective(text, &why);
-}
-
-}  // namespace
-
 TEST_CASE("bspline_alpha_objective: the derivative from one extra solve matches central differences",
           "[study][bspline]") {
   const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 7, 2, 6, 5));
   auto solver = solvers::make_solver("eigen-lu");
   for (const char* name : {"thin_plate", "e3", "twist+0.5*dirichlet", "discrete_thin_plate"}) {
-    const Objective o = objective(name);
+    const Objective o = objective_named(name);
     const double alpha = -0.07, h = 1e-5;
     const auto at = bspline_alpha_objective(b, o, alpha, *solver);
     const auto plus = bspline_alpha_objective(b, o, alpha + h, *solver);
@@ -44,7 +35,7 @@ TEST_CASE("search_bspline_alpha: finds the minimum of a fine scan; twist has its
   const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 8, 2, 6, 9));
   auto solver = solvers::make_solver("eigen-lu");
   for (const char* name : {"thin_plate", "e3"}) {
-    const Objective o = objective(name);
+    const Objective o = objective_named(name);
     const AlphaSearchSummary s = search_bspline_alpha(b, o, "eigen-lu");
     REQUIRE(s.parameter);
     double best = HUGE_VAL;
@@ -54,11 +45,11 @@ TEST_CASE("search_bspline_alpha: finds the minimum of a fine scan; twist has its
     CHECK(s.value <= best * (1 + 1e-12));
     CHECK(s.value == Approx(bspline_alpha_objective(b, o, *s.parameter, *solver)->value).epsilon(1e-12));
   }
-  const AlphaSearchSummary twist = search_bspline_alpha(b, objective("twist"), "eigen-lu");
+  const AlphaSearchSummary twist = search_bspline_alpha(b, objective_named("twist"), "eigen-lu");
   REQUIRE(twist.parameter);
   CHECK(*twist.parameter == Approx(-0.25).margin(1e-8));
   CHECK(twist.at_bound);
-  const AlphaSearchSummary dirichlet = search_bspline_alpha(b, objective("dirichlet"), "eigen-lu");
+  const AlphaSearchSummary dirichlet = search_bspline_alpha(b, objective_named("dirichlet"), "eigen-lu");
   REQUIRE(dirichlet.parameter);
   CHECK(dirichlet.at_bound);
   CHECK(*dirichlet.parameter == 0.0);  // the default upper bound: [-1/4, 0] is where the system is definite
@@ -79,7 +70,7 @@ TEST_CASE("search_bspline_alpha: a boundary every alpha fills alike is flat, wit
     b.left.points.row(j) = f(0, grid.eta(j));
     b.right.points.row(j) = f(1, grid.eta(j));
   }
-  const AlphaSearchSummary s = search_bspline_alpha(b, objective("thin_plate"), "eigen-lu");
+  const AlphaSearchSummary s = search_bspline_alpha(b, objective_named("thin_plate"), "eigen-lu");
   CHECK(s.status == SearchStatus::kFlat);
   CHECK(s.flat);
   CHECK_FALSE(s.parameter);
@@ -92,7 +83,7 @@ TEST_CASE("run_bspline_study: one row per B-spline boundary with both energies a
   in.file = "random.json";
   in.sides.given = make_random_bspline_boundary(2, 6, 2, 5, 21);
   in.sides.compatible = compatible_boundary(in.sides.given, &in.sides.notes);
-  std::vector<Objective> objectives = {objective("thin_plate"), objective("e3")};
+  std::vector<Objective> objectives = {objective_named("thin_plate"), objective_named("e3")};
   const std::vector<BSplineStudyRow> rows = run_bspline_study({in}, objectives, "");
   REQUIRE(rows.size() == 1);
   CHECK(rows[0].searches.size() == 2);

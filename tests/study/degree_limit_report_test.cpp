@@ -5,7 +5,11 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
+#include "support/fixtures.h"
+
 using namespace coons;
+using coons::test::contains;
+using coons::test::joined_lines;
 
 namespace {
 
@@ -42,18 +46,10 @@ DegreeLimitEntry synthetic(double limit, double a, std::optional<double> mu_c) {
   return e;
 }
 
-std::string joined(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += x + "\n";
-  return s;
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 }  // namespace
 
 TEST_CASE("degree_limit_conclusions: a drifting mu* is never called degree-independent", "[study]") {
-  const std::string text = joined(degree_limit_conclusions(synthetic(5, 40, 5)));
+  const std::string text = joined_lines(degree_limit_conclusions(synthetic(5, 40, 5)));
   INFO(text);
   CHECK_FALSE(contains(text, "does not depend on the degree"));
   CHECK(contains(text, "μ* drifts with the degree"));
@@ -61,18 +57,18 @@ TEST_CASE("degree_limit_conclusions: a drifting mu* is never called degree-indep
 }
 
 TEST_CASE("degree_limit_conclusions: a nearly constant mu* is called degree-independent", "[study]") {
-  const std::string text = joined(degree_limit_conclusions(synthetic(5, 0.4, std::nullopt)));
+  const std::string text = joined_lines(degree_limit_conclusions(synthetic(5, 0.4, std::nullopt)));
   INFO(text);
   CHECK(contains(text, "does not depend on the degree"));
   CHECK_FALSE(contains(text, "drifts"));
 }
 
 TEST_CASE("degree_limit_conclusions: agreement with the continuum only when the numbers agree", "[study]") {
-  const std::string agree = joined(degree_limit_conclusions(synthetic(5, 40, 5.01)));
+  const std::string agree = joined_lines(degree_limit_conclusions(synthetic(5, 40, 5.01)));
   INFO(agree);
   CHECK(contains(agree, "tends to the continuum optimum"));
   // the same table against a continuum optimum 30 % away: the claim is replaced by the gap
-  const std::string apart = joined(degree_limit_conclusions(synthetic(5, 40, 6.5)));
+  const std::string apart = joined_lines(degree_limit_conclusions(synthetic(5, 40, 6.5)));
   INFO(apart);
   CHECK_FALSE(contains(apart, "tends to the continuum optimum"));
   CHECK(contains(apart, "differ by 23.1 %"));
@@ -84,7 +80,7 @@ TEST_CASE("degree_limit_conclusions: no convergence claimed when the tail turns"
   std::vector<std::pair<int, double>> mus;
   for (const auto& c : e.cells) mus.emplace_back(c.degree, *c.mu);
   e.limit = fit_degree_limit(mus);
-  const std::string text = joined(degree_limit_conclusions(e));
+  const std::string text = joined_lines(degree_limit_conclusions(e));
   INFO(text);
   CHECK_FALSE(contains(text, "converges"));
   CHECK_FALSE(contains(text, "tends to the continuum"));

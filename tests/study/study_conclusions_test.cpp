@@ -4,7 +4,11 @@
 
 #include <catch2/catch.hpp>
 
+#include "support/fixtures.h"
+
 using namespace coons;
+using coons::test::contains;
+using coons::test::joined_lines;
 
 namespace {
 
@@ -19,21 +23,13 @@ ShapeEntry shape_with(const std::string& name, std::optional<double> thin_plate_
   return s;
 }
 
-std::string joined(const std::vector<std::string>& v) {
-  std::string s;
-  for (const auto& x : v) s += x + "\n";
-  return s;
-}
-
-bool contains(const std::string& s, const std::string& part) { return s.find(part) != std::string::npos; }
-
 }  // namespace
 
 TEST_CASE("study_conclusions: no single alpha is claimed only when the optima differ", "[study]") {
   StudyResult differ;
   differ.objectives = {"thin_plate"};
   differ.shapes = {shape_with("a", -0.2), shape_with("b", 0.1), shape_with("c", std::nullopt)};
-  const std::string d = joined(study_conclusions(differ));
+  const std::string d = joined_lines(study_conclusions(differ));
   INFO(d);
   CHECK(contains(d, "no single α is best"));
   CHECK(contains(d, "from -0.2000 (a) to 0.1000 (b) over 2 shapes"));
@@ -42,7 +38,7 @@ TEST_CASE("study_conclusions: no single alpha is claimed only when the optima di
   StudyResult agree;
   agree.objectives = {"thin_plate"};
   agree.shapes = {shape_with("a", -0.2), shape_with("b", -0.19)};
-  const std::string a = joined(study_conclusions(agree));
+  const std::string a = joined_lines(study_conclusions(agree));
   INFO(a);
   CHECK_FALSE(contains(a, "no single α is best"));
   CHECK(contains(a, "agree within 0.0100"));
@@ -59,10 +55,10 @@ TEST_CASE("study_conclusions: mu* is said to stay put only when it does", "[stud
     law.cells.push_back(c);
   }
   r.laws.push_back(law);
-  const std::string drift = joined(study_conclusions(r));
+  const std::string drift = joined_lines(study_conclusions(r));
   INFO(drift);
   CHECK_FALSE(contains(drift, "stays put"));
   CHECK(contains(drift, "conoid, thin_plate: μ* drifts with the degree, 15.4 (n = 4) to 6 (n = 16)"));
   for (auto& c : r.laws[0].cells) c.mu.parameter = 6.0 + 0.01 * c.degree;
-  CHECK(contains(joined(study_conclusions(r)), "stays put"));
+  CHECK(contains(joined_lines(study_conclusions(r)), "stays put"));
 }

@@ -4,6 +4,8 @@
 #include <random>
 #include <vector>
 
+#include "support/fixtures.h"
+
 namespace coons::test {
 
 Eigen::VectorXd make_random_knots(int degree, int count, std::uint32_t seed, double a, double b) {
@@ -24,6 +26,17 @@ Eigen::VectorXd make_random_knots(int degree, int count, std::uint32_t seed, dou
   }
   for (int i = 0; i < interior; ++i) U(degree + 1 + i) = a + (b - a) * double(chosen[std::size_t(i)]) / steps;
   return U;
+}
+
+BSplineSurface make_random_bspline_surface(int p, int count_u, int q, int count_v, std::uint32_t seed, double u0,
+                                           double u1, double v0, double v1) {
+  BSplineSurface s;
+  s.degree_u = p;
+  s.degree_v = q;
+  s.knots_u = make_random_knots(p, count_u, seed, u0, u1);
+  s.knots_v = make_random_knots(q, count_v, seed + 1, v0, v1);
+  s.net = make_random_net(count_u - 1, count_v - 1, seed + 2);
+  return s;
 }
 
 BSplineCurve make_random_bspline(int degree, int count, std::uint32_t seed, double a, double b) {

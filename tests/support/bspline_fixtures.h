@@ -17,6 +17,11 @@ Eigen::VectorXd make_random_knots(int degree, int count, std::uint32_t seed, dou
 //! A curve on make_random_knots with random control points in [−1, 1]³.
 BSplineCurve make_random_bspline(int degree, int count, std::uint32_t seed, double a = 0.0, double b = 1.0);
 
+//! A surface of degree (p, q) on make_random_knots over [u0, u1] × [v0, v1] (seeds `seed`, `seed` + 1)
+//! with count_u × count_v random points in [−1, 1]³ (make_random_net, seed + 2).
+BSplineSurface make_random_bspline_surface(int p, int count_u, int q, int count_v, std::uint32_t seed, double u0 = 0.0,
+                                           double u1 = 1.0, double v0 = 0.0, double v1 = 1.0);
+
 //! The Bézier knot vector of degree p on [a, b]: p + 1 copies of a, then p + 1 copies of b.
 Eigen::VectorXd bezier_knots(int degree, double a = 0.0, double b = 1.0);
 

@@ -2,7 +2,9 @@
 // for the shell, running it with stdout, stderr and the exit status captured, reading a file back.
 #pragma once
 
+#include <nlohmann/json.hpp>
 #include <string>
+#include <vector>
 
 #include "support/fixtures.h"
 
@@ -19,5 +21,17 @@ CommandResult run_coons(const std::string& args);
 
 //! The whole of a file, byte for byte ("" when it cannot be read).
 std::string read_text(const std::string& path);
+
+//! The lines of a JSON Lines file, parsed.
+std::vector<nlohmann::json> read_json_lines(const std::string& path);
+
+//! A study run whole and in shards: `COMMAND --out DIR/whole`, `COMMAND --shard i/N --out DIR/shards`
+//! for i < N, then `coons study --merge DIR/shards --out DIR/merged`, each REQUIREd to exit 0.
+//! COMMAND is the whole `coons study …` command line (kCoons first, or after a `cd`).
+struct ShardedStudy {
+  std::vector<CommandResult> shards;                 //!< each `--shard i/N` run
+  std::vector<std::vector<nlohmann::json>> records;  //!< each shard file's records
+};
+ShardedStudy run_sharded_study(const std::string& command, const TempDir& dir, int count);
 
 }  // namespace coons::test

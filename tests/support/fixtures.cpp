@@ -177,4 +177,12 @@ const solvers::SolverInfo& backend(const std::string& name) {
   return *info;
 }
 
+bool contains(const std::string& text, const std::string& part) { return text.find(part) != std::string::npos; }
+
+std::string joined_lines(const std::vector<std::string>& lines) {
+  std::string s;
+  for (const std::string& line : lines) s += line + "\n";
+  return s;
+}
+
 }  // namespace coons::test

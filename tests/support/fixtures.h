@@ -5,6 +5,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "coons/net/control_net.h"
 #include "solvers/registry.h"
@@ -64,6 +65,11 @@ struct TempDir {
   //! Writes `text` to the file `name` in the folder and returns its path.
   std::string write(const std::string& name, const std::string& text) const;
 };
+
+//! Whether `text` holds `part`.
+bool contains(const std::string& text, const std::string& part);
+//! The lines, each ended by "\n".
+std::string joined_lines(const std::vector<std::string>& lines);
 
 //! Run a shell command; returns the exit status and fills stdout/stderr.
 struct CommandResult {

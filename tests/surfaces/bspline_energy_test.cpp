@@ -13,16 +13,6 @@ using namespace coons::test;
 
 namespace {
 
-BSplineSurface random_surface(int p, int count_u, int q, int count_v, std::uint32_t seed) {
-  BSplineSurface s;
-  s.degree_u = p;
-  s.degree_v = q;
-  s.knots_u = make_random_knots(p, count_u, seed, 0.0, 1.0);
-  s.knots_v = make_random_knots(q, count_v, seed + 1, 0.0, 1.0);
-  s.net = make_random_net(count_u - 1, count_v - 1, seed + 2);
-  return s;
-}
-
 // ∫∫ ‖∂^a_u ∂^b_v s‖² by Gauss–Legendre (coons/metrics/quadrature.h, `nodes` per knot span and
 // direction) of evaluate_derivative: independent of the Gram matrices.
 double quadrature_energy(const BSplineSurface& s, int a, int b, int nodes) {
@@ -68,7 +58,7 @@ TEST_CASE("bspline_energy: on Bézier knot vectors equals the Bernstein Gram ene
 TEST_CASE("bspline_energy: equals Gauss–Legendre quadrature on non-uniform knots", "[surfaces][bspline]") {
   for (int p = 1; p <= 5; ++p) {
     const int q = 6 - p;
-    const BSplineSurface s = random_surface(p, p + 4, q, q + 3, std::uint32_t(50 + p));
+    const BSplineSurface s = make_random_bspline_surface(p, p + 4, q, q + 3, std::uint32_t(50 + p));
     for (int a = 0; a <= 3; ++a)
       for (int b = 0; a + b <= 3; ++b) {
         INFO("p = " << p << ", q = " << q << ", E(" << a << ", " << b << ")");
@@ -94,7 +84,7 @@ TEST_CASE("bspline_gram: G^0 rows sum to the integrals (u_{i+p+1} - u_i)/(p+1) o
 }
 
 TEST_CASE("bspline_energy_form: polarises the energy", "[surfaces][bspline]") {
-  const BSplineSurface s = random_surface(3, 7, 2, 5, 81);
+  const BSplineSurface s = make_random_bspline_surface(3, 7, 2, 5, 81);
   const ControlNet Y = make_random_net(6, 4, 82);
   BSplineSurface moved = s;
   moved.net.points += 0.5 * Y.points;
@@ -106,7 +96,7 @@ TEST_CASE("bspline_energy_form: polarises the energy", "[surfaces][bspline]") {
 }
 
 TEST_CASE("sample_bspline_grid: points are the surface, derivatives match central differences", "[surfaces][bspline]") {
-  BSplineSurface s = random_surface(3, 6, 2, 5, 91);
+  BSplineSurface s = make_random_bspline_surface(3, 6, 2, 5, 91);
   s.knots_u = s.knots_u * 2.0 + Eigen::VectorXd::Constant(s.knots_u.size(), 1.0);  // domain [1, 3]
   const SurfaceSamples samples = sample_bspline_grid(s, 5);
   CHECK((samples.points.row(2 * 5 + 3) - evaluate(s, 1.0 + 2.0 * 0.5, 0.75)).norm() < 1e-14);

@@ -13,16 +13,6 @@ using namespace coons::test;
 
 namespace {
 
-BSplineSurface make_random_surface(int p, int count_u, int q, int count_v, std::uint32_t seed) {
-  BSplineSurface s;
-  s.degree_u = p;
-  s.degree_v = q;
-  s.knots_u = make_random_knots(p, count_u, seed, 0.0, 2.0);
-  s.knots_v = make_random_knots(q, count_v, seed + 1, -1.0, 1.0);
-  s.net = make_random_net(count_u - 1, count_v - 1, seed + 2);
-  return s;
-}
-
 // The largest distance, on a 41 × 41 grid of [0, 1]², between the surface (over its own domain)
 // and the continuous bilinearly blended Coons patch of the boundary.
 double distance_to_coons_patch(const BSplineSurface& s, const BSplineBoundary& b) {
@@ -43,7 +33,8 @@ double distance_to_coons_patch(const BSplineSurface& s, const BSplineBoundary& b
 TEST_CASE("evaluate (B-spline surface): equals the curve of curves", "[surfaces][bspline]") {
   for (int p = 1; p <= 4; ++p)
     for (int q = 1; q <= 4; ++q) {
-      const BSplineSurface s = make_random_surface(p, p + 3 + q, q, q + 2 + p, 4100U + 10U * p + q);
+      const BSplineSurface s =
+          make_random_bspline_surface(p, p + 3 + q, q, q + 2 + p, 4100U + 10U * p + q, 0.0, 2.0, -1.0, 1.0);
       REQUIRE(s.is_valid(nullptr));
       const int count_u = s.net.m + 1, count_v = s.net.n + 1;
       for (int k = 0; k <= 12; ++k)
@@ -81,7 +72,7 @@ TEST_CASE("evaluate (B-spline surface): on Bézier knot vectors equals the Bézi
 
 TEST_CASE("evaluate_derivative (B-spline surface): partial derivatives match finite differences",
           "[surfaces][bspline]") {
-  const BSplineSurface s = make_random_surface(3, 8, 2, 7, 4500U);
+  const BSplineSurface s = make_random_bspline_surface(3, 8, 2, 7, 4500U, 0.0, 2.0, -1.0, 1.0);
   const double h = 1e-5;
   std::mt19937 rng(4501U);
   std::uniform_real_distribution<double> U(0.05, 1.95), V(-0.95, 0.95);

@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <utility>
 
@@ -36,6 +37,14 @@ Eigen::MatrixXd column_differences(Eigen::MatrixXd P, int order) {  // Δ^order 
   return P;
 }
 
+constexpr double kEps = std::numeric_limits<double>::epsilon();
+
+// A first-order bound on the rounding error of fl(Δ^order P), given the error `in` of P: every
+// subtraction rounds to ε times its result, and ‖Δ^r P‖ ≤ 2^(r−1)‖ΔP‖ (Frobenius norms).
+double differences_error(double in, double first_difference_norm, int order) {
+  return std::ldexp(in, order) + kEps * order * std::ldexp(first_difference_norm, order - 1);
+}
+
 double falling_factorial(int k, int order) {
   double f = 1;
   for (int r = 0; r < order; ++r) f *= k - r;
@@ -48,9 +57,21 @@ double falling_factorial(int k, int order) {
 // so one product per order a (left) and one per order b (right) serve every pair: 8 banded
 // products for the 9 pairs of net_metrics instead of 18 dense ones, and the differences are taken
 // before each product, as the derivative nets would be.
-std::vector<double> pair_forms(const ControlNet& X, const ControlNet& Y, const std::vector<std::pair<int, int>>& pairs,
-                               GramCache& gram) {
-  std::vector<double> out(pairs.size(), 0.0);
+// When X is Y each form is an energy, a sum of squares, that rounding can still take below 0 where
+// it is 0 (−5.5e-32 for e3 of a quadratic net): a first-order bound on the rounding of the
+// differences, the Gram products (‖G^k‖ ≤ 1/(k+1), its row sum) and the final sum is kept alongside.
+struct PairForms {
+  std::vector<double> value, rounding;  //!< rounding: 0 unless `energies`
+  bool energies = false;                //!< X is Y
+};
+
+PairForms pair_forms(const ControlNet& X, const ControlNet& Y, const std::vector<std::pair<int, int>>& pairs,
+                     GramCache& gram) {
+  PairForms forms;
+  std::vector<double>& out = forms.value;
+  std::vector<double>& rounding = forms.rounding;
+  out.assign(pairs.size(), 0.0);
+  rounding.assign(pairs.size(), 0.0);
   std::vector<int> left_orders, right_orders;
   for (const auto& [a, b] : pairs)
     if (a <= X.m && b <= X.n) {
@@ -61,29 +82,63 @@ std::vector<double> pair_forms(const ControlNet& X, const ControlNet& Y, const s
     std::sort(orders->begin(), orders->end());
     orders->erase(std::unique(orders->begin(), orders->end()), orders->end());
   }
-  if (left_orders.empty()) return out;
   const bool same = &X == &Y;
+  forms.energies = same;
+  if (left_orders.empty()) return forms;
+  // a Gram product G^k·D of differences D: the product's error bound given that of D
+  auto product_error = [](int k, double differences_error, double differences_norm) {
+    return (differences_error + (k + 2) * kEps * differences_norm) / (k + 1);
+  };
   for (int c = 0; c < 3; ++c) {
     const Eigen::MatrixXd x = coordinate_grid(X, c);
     std::map<int, Eigen::MatrixXd> right;  // Y Δ^bᵀ G^{n−b}
+    std::map<int, double> right_error;     // its rounding bound, when X is Y
     {
       const Eigen::MatrixXd y = same ? Eigen::MatrixXd() : coordinate_grid(Y, c);
-      for (int b : right_orders) right[b] = gram(X.n - b).right(column_differences(same ? x : y, b));
+      const double dx = same && X.n > 0 ? column_differences(x, 1).norm() : 0;
+      for (int b : right_orders) {
+        const Eigen::MatrixXd d = column_differences(same ? x : y, b);
+        right[b] = gram(X.n - b).right(d);
+        if (same) right_error[b] = product_error(X.n - b, differences_error(0, dx, b), d.norm());
+      }
     }
+    const double dx = same && X.m > 0 ? row_differences(x, 1).norm() : 0;
     for (int a : left_orders) {
-      const Eigen::MatrixXd left = gram(X.m - a).left(row_differences(x, a));  // G^{m−a} Δ^a X
+      const Eigen::MatrixXd d = row_differences(x, a);
+      const Eigen::MatrixXd left = gram(X.m - a).left(d);  // G^{m−a} Δ^a X
+      const double left_error = same ? product_error(X.m - a, differences_error(0, dx, a), d.norm()) : 0;
       for (std::size_t p = 0; p < pairs.size(); ++p) {
         const auto [pa, pb] = pairs[p];
         if (pa != a || pb > X.n) continue;
-        out[p] += column_differences(left, pb).cwiseProduct(row_differences(right.at(pb), a)).sum();
+        const Eigen::MatrixXd l = column_differences(left, pb), r = row_differences(right.at(pb), a);
+        out[p] += l.cwiseProduct(r).sum();
+        if (!same) continue;
+        const double el = differences_error(left_error, 2 * left.norm(), pb);
+        const double er = differences_error(right_error.at(pb), 2 * right.at(pb).norm(), a);
+        rounding[p] += l.norm() * er + el * r.norm() + el * er + double(l.size() + 1) * kEps * l.norm() * r.norm();
       }
     }
   }
   for (std::size_t p = 0; p < pairs.size(); ++p) {
     const double factor = falling_factorial(X.m, pairs[p].first) * falling_factorial(X.n, pairs[p].second);
     out[p] *= factor * factor;
+    rounding[p] *= 2 * factor * factor;  // twice the first-order bound: the second-order terms, the factor
   }
-  return out;
+  return forms;
+}
+
+// Σ weight·value over (index, weight) in this order; an energy (`energies`, every weight ≥ 0: a sum
+// of squares) that rounding took below 0 is 0 (clamp_rounding_negative), a clearly negative one stays.
+double weighted_forms(const PairForms& f, const std::vector<std::pair<std::size_t, double>>& terms) {
+  double sum = 0, magnitude = 0, bound = 0;
+  bool nonnegative = f.energies;
+  for (const auto& [p, weight] : terms) {
+    sum += weight * f.value[p];
+    magnitude += std::abs(weight * f.value[p]);
+    bound += std::abs(weight) * f.rounding[p];
+    nonnegative = nonnegative && weight >= 0;
+  }
+  return nonnegative ? clamp_rounding_negative(sum, bound + double(terms.size()) * kEps * magnitude) : sum;
 }
 
 std::vector<std::pair<int, int>> pairs_of(const std::vector<EnergyTerm>& terms) {
@@ -93,22 +148,27 @@ std::vector<std::pair<int, int>> pairs_of(const std::vector<EnergyTerm>& terms) 
   return pairs;
 }
 
-double weighted_sum(const std::vector<EnergyTerm>& terms, const std::vector<double>& values) {
-  double e = 0;
-  for (std::size_t t = 0; t < terms.size(); ++t) e += terms[t].weight * values[t];
-  return e;
+std::vector<std::pair<std::size_t, double>> weights_of(const std::vector<EnergyTerm>& terms) {
+  std::vector<std::pair<std::size_t, double>> weights;
+  weights.reserve(terms.size());
+  for (std::size_t t = 0; t < terms.size(); ++t) weights.emplace_back(t, terms[t].weight);
+  return weights;
 }
 
 }  // namespace
 
+double clamp_rounding_negative(double value, double rounding_bound) {
+  return value < 0 && -value <= rounding_bound ? 0.0 : value;
+}
+
 double surface_energy(const ControlNet& net, int a, int b) {
   GramCache gram;
-  return pair_forms(net, net, {{a, b}}, gram)[0];
+  return weighted_forms(pair_forms(net, net, {{a, b}}, gram), {{0, 1.0}});
 }
 
 double surface_energy_form(const ControlNet& X, const ControlNet& Y, int a, int b) {
   GramCache gram;
-  return pair_forms(X, Y, {{a, b}}, gram)[0];
+  return pair_forms(X, Y, {{a, b}}, gram).value[0];
 }
 
 std::vector<EnergyTerm> twist_terms() { return {{1, 1, 1}}; }
@@ -122,7 +182,7 @@ double combined_energy(const ControlNet& net, const std::vector<EnergyTerm>& ter
 
 double combined_energy_form(const ControlNet& X, const ControlNet& Y, const std::vector<EnergyTerm>& terms) {
   GramCache gram;
-  return weighted_sum(terms, pair_forms(X, Y, pairs_of(terms), gram));
+  return weighted_forms(pair_forms(X, Y, pairs_of(terms), gram), weights_of(terms));
 }
 
 double twist_energy(const ControlNet& net) { return combined_energy(net, twist_terms()); }
@@ -266,12 +326,12 @@ NetMetrics net_energies(const ControlNet& net) {
   const std::vector<std::pair<int, int>> pairs = {{1, 1}, {1, 0}, {0, 1}, {2, 0}, {0, 2},
                                                   {3, 0}, {2, 1}, {1, 2}, {0, 3}};
   GramCache g;
-  const std::vector<double> e = pair_forms(net, net, pairs, g);
+  const PairForms e = pair_forms(net, net, pairs, g);
   NetMetrics out;
-  out.twist_energy = e[0];
-  out.dirichlet_energy = e[1] + e[2];
-  out.thin_plate_energy = e[3] + 2 * e[0] + e[4];
-  out.e3_energy = e[5] + 3 * e[6] + 3 * e[7] + e[8];
+  out.twist_energy = weighted_forms(e, {{0, 1.0}});
+  out.dirichlet_energy = weighted_forms(e, {{1, 1.0}, {2, 1.0}});
+  out.thin_plate_energy = weighted_forms(e, {{3, 1.0}, {0, 2.0}, {4, 1.0}});
+  out.e3_energy = weighted_forms(e, {{5, 1.0}, {6, 3.0}, {7, 3.0}, {8, 1.0}});
   out.discrete_twist_energy = discrete_twist_energy(net);
   out.discrete_dirichlet_energy = discrete_dirichlet_energy(net);
   return out;

@@ -15,8 +15,15 @@
 
 namespace coons {
 
-//! E(a, b); 0 when a > m or b > n.
+//! E(a, b); 0 when a > m or b > n. The energies of one net here (E(a, b) and every sum of them with
+//! weights ≥ 0) are never below 0 by rounding: a negative value within the rounding bound of its
+//! computation is returned as 0 (clamp_rounding_negative). The forms of two nets are not clamped.
 double surface_energy(const ControlNet& net, int a, int b);
+
+//! `value`, or 0 where it is negative by no more than `rounding_bound`: for a quantity that is ≥ 0
+//! in exact arithmetic (a sum of squares) which rounding took below 0. A value further below 0 is
+//! returned as it is, so that a wrong sign still shows.
+double clamp_rounding_negative(double value, double rounding_bound);
 
 //! The symmetric bilinear form of E(a, b): Σ_xyz tr(C_Xᵀ G C_Y G), so that
 //! E(X + hY) = E(X) + 2h·form(X, Y) + h²E(Y). X and Y must have the same degree.

@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <functional>
+#include <optional>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/objective.h"
@@ -57,6 +59,23 @@ std::vector<double> slider_values(double lower, double upper, int count, const s
   return values;
 }
 
+// One energy curve per objective name with the optimum and status of `search` (name ↦ the search's
+// summary, or nothing where the objective does not apply: not_applicable); the values come later.
+std::vector<ViewCurve> searched_curves(
+    const std::vector<std::string>& names,
+    const std::function<std::optional<AlphaSearchSummary>(const std::string& name)>& search) {
+  std::vector<ViewCurve> curves;
+  for (const std::string& name : names) {
+    ViewCurve c;
+    c.name = name;
+    const std::optional<AlphaSearchSummary> found = search(name);
+    c.status = found ? to_string(found->status) : "not_applicable";
+    if (found && found->status == SearchStatus::kSuccess) c.optimum = found->parameter;
+    curves.push_back(c);
+  }
+  return curves;
+}
+
 }  // namespace
 
 bool ViewOptions::is_valid(std::string* why) const {
@@ -93,24 +112,15 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
   slider.faces = grid_faces(options.samples);
 
   // the optima first: their α are frames too, so that the page shows each exactly
-  std::vector<ViewCurve> curves;
-  for (const std::string& name : options.objectives) {
-    ViewCurve c;
-    c.name = name;
-    std::string why;
-    const std::optional<Objective> objective = parse_objective(name, &why);
-    if (objective && boundary.m >= 2 && boundary.n >= 2) {
-      AlphaSearchOptions search;
-      search.lower = options.lower;
-      search.upper = options.upper;
-      const AlphaSearchSummary found = search_alpha(boundary, *objective, solver, search);
-      c.status = to_string(found.status);
-      if (found.status == SearchStatus::kSuccess) c.optimum = found.parameter;
-    } else {
-      c.status = "not_applicable";
-    }
-    curves.push_back(c);
-  }
+  AlphaSearchOptions search;
+  search.lower = options.lower;
+  search.upper = options.upper;
+  std::vector<ViewCurve> curves =
+      searched_curves(options.objectives, [&](const std::string& name) -> std::optional<AlphaSearchSummary> {
+        const std::optional<Objective> objective = parse_objective(name, nullptr);
+        if (!objective || boundary.m < 2 || boundary.n < 2) return std::nullopt;
+        return search_alpha(boundary, *objective, solver, search);
+      });
   const std::vector<double> values = slider_values(options.lower, options.upper, options.frames, curves, {-0.25, 0.0});
 
   std::vector<ControlNet> nets;
@@ -144,19 +154,12 @@ ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& 
   slider.initial = initial;
   slider.net_edges = grid_edges(problem.net.m + 1, problem.net.n + 1);
   slider.faces = grid_faces(options.samples);
-  std::vector<ViewCurve> curves;
-  for (const std::string& name : options.objectives) {
-    ViewCurve c;
-    c.name = name;
-    std::string why;
-    const std::optional<Objective> objective = parse_objective(name, &why);
-    if (objective) {
-      const AlphaSearchSummary found = search_weight(problem, *objective, solver);
-      c.status = to_string(found.status);
-      if (found.status == SearchStatus::kSuccess) c.optimum = found.parameter;
-    }
-    curves.push_back(c);
-  }
+  std::vector<ViewCurve> curves =
+      searched_curves(options.objectives, [&](const std::string& name) -> std::optional<AlphaSearchSummary> {
+        const std::optional<Objective> objective = parse_objective(name, nullptr);
+        if (!objective) return std::nullopt;
+        return search_weight(problem, *objective, solver);
+      });
   const std::vector<double> values = slider_values(0, 1, options.frames, curves, {0.0, 1.0});
   std::vector<Stencil> members;
   members.reserve(values.size());
@@ -199,24 +202,15 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
   slider.initial = initial;
   slider.net_edges = tri_net_edges(frame.n);
   for (const auto& t : tri::tri_grid_triangles(options.samples)) slider.faces.push_back(t);
-  std::vector<ViewCurve> curves;
-  for (const char* name : {"thin_plate", "dirichlet", "twist"}) {
-    ViewCurve c;
-    c.name = name;
-    std::string why;
-    const std::optional<TriObjective> objective = parse_tri_objective(name, &why);
-    if (objective && frame.n >= 3) {
-      AlphaSearchOptions search;
-      search.lower = slider.lower;
-      search.upper = slider.upper;
-      const AlphaSearchSummary found = search_tri_c(frame, *objective, solver, search);
-      c.status = to_string(found.status);
-      if (found.status == SearchStatus::kSuccess) c.optimum = found.parameter;
-    } else {
-      c.status = "not_applicable";
-    }
-    curves.push_back(c);
-  }
+  AlphaSearchOptions search;
+  search.lower = slider.lower;
+  search.upper = slider.upper;
+  std::vector<ViewCurve> curves = searched_curves(
+      {"thin_plate", "dirichlet", "twist"}, [&](const std::string& name) -> std::optional<AlphaSearchSummary> {
+        const std::optional<TriObjective> objective = parse_tri_objective(name, nullptr);
+        if (!objective || frame.n < 3) return std::nullopt;
+        return search_tri_c(frame, *objective, solver, search);
+      });
   const std::vector<double> values =
       slider_values(slider.lower, slider.upper, options.frames, curves, {-1.0 / 6.0, 0.0});
   for (double c : values) {
