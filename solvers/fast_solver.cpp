@@ -15,6 +15,10 @@
 #include <string>
 #include <vector>
 
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
 #include "capacitance.h"
 #include "kronecker_solver.h"
 #include "mode_pivots.h"
@@ -75,7 +79,19 @@ class FastSolver : public detail::StructuredSolver {
     extra_ = extra_columns(C_);
     L_ = C_ + extra_;
     const std::size_t L = std::size_t(L_);
-    sine_ = SineTransform(L_, detail::fft_planning(options_));
+#if defined(_OPENMP)
+    threads_ = std::max(1, std::min(resolved_threads(options_.threads), L_ / 64));
+#else
+    threads_ = 1;
+#endif
+    mode_start_.assign(std::size_t(threads_) + 1, L_);
+    for (int t = 0; t < threads_; ++t) mode_start_[std::size_t(t)] = int(long(t) * L_ / threads_) / 8 * 8;
+    sines_.clear();
+    rows_.clear();
+    for (int t = 0; t < threads_; ++t) {
+      sines_.emplace_back(L_, detail::fft_planning(options_));
+      rows_.emplace_back(L);
+    }
     if (extra_ > 0) capacitance_.prepare(R_, detail::fft_planning(options_));
     auto sine_column = [&](int j, std::vector<double>& v) {  // S·e_j, length L
       v.resize(L);
@@ -94,7 +110,6 @@ class FastSolver : public detail::StructuredSolver {
     unit_e1_.assign(std::size_t(C_), 0.0);
     unit_e0_[0] = 1;
     if (C_ >= 2) unit_e1_[std::size_t(C_ - 1)] = 1;
-    row_ = AlignedBuffer(L);
     for (auto& w : running_) w = AlignedBuffer(L);
     for (auto& y : forward_) y = AlignedBuffer();  // made by the first solve that needs them
     // Blocks of the back substitution: 3·K rows of L doubles, to stay in the L2 cache.
@@ -134,7 +149,7 @@ class FastSolver : public detail::StructuredSolver {
     }
     X.resize(B.rows(), 3);
     std::array<RowForm, 3> forms;
-    for (int c = 0; c < 3; ++c) forms[std::size_t(c)] = detail::split_rows(B.col(c).data(), R_, C_);
+    for (int c = 0; c < 3; ++c) forms[std::size_t(c)] = detail::split_rows(B.col(c).data(), R_, C_, threads_);
     if (path_ == Path::kKronecker) {
       for (int c = 0; c < 3; ++c) kronecker_.solve(forms[std::size_t(c)], B.col(c).data(), X.col(c).data());
     } else {
@@ -152,7 +167,7 @@ class FastSolver : public detail::StructuredSolver {
     if (f.width == L_) {
       for (std::size_t k = 0; k < f.dense_rows.size(); ++k) {
         double* row = f.values.data() + k * L;
-        sine_.apply(row, row, 1.0);
+        sines_[0].apply(row, row, 1.0);
       }
       return;
     }
@@ -160,79 +175,124 @@ class FastSolver : public detail::StructuredSolver {
     for (std::size_t k = 0; k < f.dense_rows.size(); ++k) {
       double* row = values.data() + k * L;
       std::copy(f.values.data() + k * C, f.values.data() + (k + 1) * C, row);
-      sine_.apply(row, row, 1.0);
+      sines_[0].apply(row, row, 1.0);
     }
     f.values = std::move(values);
     f.width = L_;
   }
 
   // For every mode q: X̂(:,q) = T_q⁻¹ (B̂(:,q) + sources on the extra columns), three columns at
-  // once, each X̂ row handed to finish(i, c, x̂) as soon as the back substitution makes it (so the
-  // inverse transform of a row runs while the row is in cache). Every loop runs over whole rows,
-  // vectorised across the modes. The forward elimination keeps only the last row of each block of
-  // K rows (in rows[c] + i·stride: X itself when L = C) and recomputes a block in cache before
-  // substituting back through it: two passes over memory fewer for a little more arithmetic.
+  // once, each X̂ row handed to finish(t, i, c, x̂) (t: the calling thread) once the back
+  // substitution has made its block (so that the inverse transform of a row runs while the row is
+  // in cache). Every loop runs over whole rows, vectorised across the modes. The forward
+  // elimination keeps only the last row of each block of K rows (in rows[c] + i·stride: X itself
+  // when L = C) and recomputes a block in cache before substituting back through it: two passes
+  // over memory fewer for a little more arithmetic. With several threads each one eliminates and
+  // substitutes its own range of modes (the same operations on the same numbers as one thread, so
+  // the result is the same bit for bit), writes its part of x̂ to rows, and the rows of a group
+  // of blocks are then finished in parallel.
   template <class Finish>
   void pipeline(const std::array<RowForm, 3>& forms, const std::array<const double*, 3>& sources,
                 const std::array<double*, 3>& rows, std::size_t stride, Finish&& finish) {
     const std::size_t L = std::size_t(L_);
-    const int K = block_rows_;
-    const double* o = modes_.off();
-    const double* l = modes_.multipliers();
-    const double* r = modes_.pivots();
-    auto saved = [&](int c, int i) { return rows[std::size_t(c)] + std::size_t(i) * stride; };
-    auto slot_row = [&](int c, int t) { return block_[std::size_t(c)].data() + std::size_t(t) * L; };
-    int at = -1;  // the row held by the running pivot row
-    auto pivots_for = [&](int i) {
-      if (at != i) modes_.load(at, i);
-      at = i;
-    };
-    // Row i of the forward elimination: y_i = B̂_i − l_i ∘ y_{i−1}, l_i = o ∘ r_{i−1}.
-    auto eliminate = [&](int i, int c, const double* p, double* y) {
-      const RowForm& f = forms[std::size_t(c)];
-      const int slot = f.slot[std::size_t(i)];
-      if (slot >= 0)
-        detail::eliminate_dense(f.values.data() + std::size_t(slot) * L, l, p, y, L_);
-      else
-        detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data(), sine_e1_.data(), l,
-                                 p, y, L_);
-      if (const double* u = sources[std::size_t(c)])
-        for (int m = 0; m < extra_; ++m)
-          detail::add_scaled(u[std::size_t(i) * std::size_t(extra_) + std::size_t(m)],
-                             sine_extra_[std::size_t(m)].data(), y, L_);
-    };
-    for (int i = 0; i < R_; ++i) {
-      if (i > 0) pivots_for(i - 1);
-      const int t = i % K;
-      for (int c = 0; c < 3; ++c) {
-        double* y = slot_row(c, t);
-        eliminate(i, c, i > 0 ? slot_row(c, (t + K - 1) % K) : nullptr, y);
-        if (t == K - 1 && i + 1 < R_) std::copy(y, y + L, saved(c, i));
-      }
-    }
-    // Back substitution, x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i, block by block from the last one
-    // (whose rows are still in the buffer).
-    for (auto& w : running_) std::fill(w.data(), w.data() + L, 0.0);
+    const int K = block_rows_, T = threads_;
     const int last_block = (R_ - 1) / K;
-    for (int b = last_block; b >= 0; --b) {
-      const int first = b * K, end = std::min(R_, first + K);
-      if (b != last_block)
-        for (int i = first; i < end; ++i) {
-          if (i > 0) pivots_for(i - 1);
+    const int group_blocks = std::max(1, (last_block + 8) / 8);  // about 8 groups
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(T) if (T > 1)
+#endif
+    {
+      const int t = thread_index();
+      const int q0 = mode_start_[std::size_t(t)], n = mode_start_[std::size_t(t) + 1] - q0;
+      const double* o = modes_.off() + q0;
+      const double* l = modes_.multipliers() + q0;
+      const double* r = modes_.pivots() + q0;
+      auto saved = [&](int c, int i) { return rows[std::size_t(c)] + std::size_t(i) * stride + std::size_t(q0); };
+      auto slot_row = [&](int c, int s) {
+        return block_[std::size_t(c)].data() + std::size_t(s) * L + std::size_t(q0);
+      };
+      int at = -1;  // the row held by the running pivot row (in this thread's modes)
+      auto pivots_for = [&](int i) {
+        if (at != i) modes_.load(at, i, q0, q0 + n);
+        at = i;
+      };
+      // Row i of the forward elimination: y_i = B̂_i − l_i ∘ y_{i−1}, l_i = o ∘ r_{i−1}.
+      auto eliminate = [&](int i, int c, const double* p, double* y) {
+        const RowForm& f = forms[std::size_t(c)];
+        const int slot = f.slot[std::size_t(i)];
+        if (slot >= 0)
+          detail::eliminate_dense(f.values.data() + std::size_t(slot) * L + std::size_t(q0), l, p, y, n);
+        else
+          detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data() + q0,
+                                   sine_e1_.data() + q0, l, p, y, n);
+        if (const double* u = sources[std::size_t(c)])
+          for (int m = 0; m < extra_; ++m)
+            detail::add_scaled(u[std::size_t(i) * std::size_t(extra_) + std::size_t(m)],
+                               sine_extra_[std::size_t(m)].data() + q0, y, n);
+      };
+      for (int i = 0; i < R_; ++i) {
+        if (i > 0) pivots_for(i - 1);
+        const int s = i % K;
+        for (int c = 0; c < 3; ++c) {
+          double* y = slot_row(c, s);
+          eliminate(i, c, i > 0 ? slot_row(c, (s + K - 1) % K) : nullptr, y);
+          if (s == K - 1 && i + 1 < R_) std::copy(y, y + n, saved(c, i));
+        }
+      }
+      // Back substitution, x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i in place of y_i, block by block from the
+      // last one (whose rows are still in the buffer); running_ holds x̂ of the block below.
+      for (auto& w : running_) std::fill(w.data() + q0, w.data() + q0 + n, 0.0);
+      for (int b = last_block; b >= 0; --b) {
+        const int first = b * K, end = std::min(R_, first + K);
+        if (b != last_block)
+          for (int i = first; i < end; ++i) {
+            if (i > 0) pivots_for(i - 1);
+            for (int c = 0; c < 3; ++c) {
+              const double* p = i == 0 ? nullptr : i == first ? saved(c, i - 1) : slot_row(c, i - first - 1);
+              eliminate(i, c, p, slot_row(c, i - first));
+            }
+          }
+        for (int i = end - 1; i >= first; --i) {
+          pivots_for(i);
           for (int c = 0; c < 3; ++c) {
-            const double* p = i == 0 ? nullptr : i == first ? saved(c, i - 1) : slot_row(c, i - first - 1);
-            eliminate(i, c, p, slot_row(c, i - first));
+            const double* next = i + 1 < end ? slot_row(c, i + 1 - first) : running_[std::size_t(c)].data() + q0;
+            detail::back_substitute_in_place(slot_row(c, i - first), o, r, next, n);
           }
         }
-      for (int i = end - 1; i >= first; --i) {
-        pivots_for(i);
-        for (int c = 0; c < 3; ++c) {
-          double* xh = running_[std::size_t(c)].data();
-          detail::back_substitute(slot_row(c, i - first), o, r, xh, L_);
-          finish(i, c, xh);
+        for (int c = 0; c < 3; ++c) std::copy(slot_row(c, 0), slot_row(c, 0) + n, running_[std::size_t(c)].data() + q0);
+        if (T == 1) {
+          for (int i = end - 1; i >= first; --i)
+            for (int c = 0; c < 3; ++c)
+              finish(t, i, c, static_cast<const double*>(block_[std::size_t(c)].data() + std::size_t(i - first) * L));
+          continue;
+        }
+        // Several threads: x̂ goes to rows (over the forward rows, which are no longer needed), and
+        // a group of G blocks is finished in parallel once every thread has made its modes of it
+        // (one barrier per group, so that a thread descheduled on a busy machine stalls few times).
+        for (int i = first; i < end; ++i)
+          for (int c = 0; c < 3; ++c) std::copy(slot_row(c, i - first), slot_row(c, i - first) + n, saved(c, i));
+        if (b % group_blocks != 0) continue;
+        const int group_end = std::min(R_, first + group_blocks * K);
+#if defined(_OPENMP)
+#pragma omp barrier
+#pragma omp for schedule(static) nowait
+#endif
+        for (int k = 0; k < 3 * (group_end - first); ++k) {
+          const int i = group_end - 1 - k / 3, c = k % 3;
+          finish(t, i, c, static_cast<const double*>(rows[std::size_t(c)] + std::size_t(i) * stride));
         }
       }
+      detail::stream_fence();
     }
+  }
+
+  // The calling thread's index in a parallel region of pipeline (0 outside one).
+  static int thread_index() {
+#if defined(_OPENMP)
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
   }
 
   // X = (2/(L+1)) S X̂, first C columns; with extra columns, the sources U are found first from a
@@ -257,7 +317,7 @@ class FastSolver : public detail::StructuredSolver {
       const std::size_t k = std::size_t(extra_), R = std::size_t(R_);
       std::array<std::vector<double>, 3> V;
       for (auto& v : V) v.assign(R * k, 0.0);
-      pipeline(forms, sources, rows, stride, [&](int i, int c, const double* xh) {
+      pipeline(forms, sources, rows, stride, [&](int /*t*/, int i, int c, const double* xh) {
         for (std::size_t m = 0; m < k; ++m)
           V[std::size_t(c)][std::size_t(i) * k + m] = scale * detail::dot(sine_extra_[m].data(), xh, L_);
       });
@@ -266,19 +326,23 @@ class FastSolver : public detail::StructuredSolver {
         sources[std::size_t(c)] = U[std::size_t(c)].data();
       }
     }
-    pipeline(forms, sources, rows, stride, [&](int i, int c, const double* xh) {
-      sine_.apply(xh, row_.data(), scale);
-      detail::stream_copy(row_.data(), X.col(c).data() + std::size_t(i) * C, C);
+    pipeline(forms, sources, rows, stride, [&](int t, int i, int c, const double* xh) {
+      double* row = rows_[std::size_t(t)].data();
+      sines_[std::size_t(t)].apply(xh, row, scale);
+      detail::stream_copy(row, X.col(c).data() + std::size_t(i) * C, C);
     });
-    detail::stream_fence();
   }
 
   int L_ = 0, extra_ = 0, block_rows_ = 16;
   Path path_ = Path::kTransform;
-  SineTransform sine_;
+  // The threads of a solve (SolverOptions::threads, at most one per 64 modes) and the modes each
+  // one owns: [mode_start_[t], mode_start_[t+1]), multiples of 8 (whole cache lines).
+  int threads_ = 1;
+  std::vector<int> mode_start_;
+  std::vector<SineTransform> sines_;  // one per thread (a transform has scratch)
+  std::vector<AlignedBuffer> rows_;   // one row of L per thread
   std::vector<double> y_, sine_e0_, sine_e1_, unit_e0_, unit_e1_;
   std::vector<std::vector<double>> sine_extra_;
-  AlignedBuffer row_;
   ModePivots modes_;          // the transform path's tridiagonal systems, one per mode
   Capacitance capacitance_;   // the widened grid's sources
   KroneckerSolve kronecker_;  // the Kronecker path

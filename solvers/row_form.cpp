@@ -8,18 +8,6 @@
 namespace coons::solvers::detail {
 namespace {
 
-// True when a value other than ±0 sits in row[1..C−2] (NaN included): an OR of the bits without
-// the sign, which vectorises, unlike a compare-and-break loop.
-COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
-  std::uint64_t bits = 0;
-  for (int j = 1; j + 1 < C; ++j) {
-    std::uint64_t b;
-    std::memcpy(&b, row + j, sizeof b);
-    bits |= b << 1;
-  }
-  return bits != 0;
-}
-
 // R rows of width C, every one sparse with zero ends.
 RowForm zero_form(int R, int C) {
   RowForm f;
@@ -32,11 +20,31 @@ RowForm zero_form(int R, int C) {
 
 }  // namespace
 
-RowForm split_rows(const double* b, int R, int C) {
+// An OR of the bits without the sign, which vectorises, unlike a compare-and-break loop.
+COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
+  std::uint64_t bits = 0;
+  for (int j = 1; j + 1 < C; ++j) {
+    std::uint64_t b;
+    std::memcpy(&b, row + j, sizeof b);
+    bits |= b << 1;
+  }
+  return bits != 0;
+}
+
+RowForm split_rows(const double* b, int R, int C) { return split_rows(b, R, C, 1); }
+
+RowForm split_rows(const double* b, int R, int C, int threads) {
   RowForm f = zero_form(R, C);
+  // The scan reads all of b: with threads, each one looks at its share of the rows first.
+  std::vector<char> dense(std::size_t(R), 0);
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
+#endif
+  for (int i = 0; i < R; ++i) dense[std::size_t(i)] = has_interior(b + std::size_t(i) * std::size_t(C), C) ? 1 : 0;
+  (void)threads;
   for (int i = 0; i < R; ++i) {
     const double* row = b + std::size_t(i) * std::size_t(C);
-    if (!has_interior(row, C)) {
+    if (!dense[std::size_t(i)]) {
       f.first[std::size_t(i)] = row[0];
       f.last[std::size_t(i)] = C >= 2 ? row[C - 1] : 0.0;
     } else {

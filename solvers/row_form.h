@@ -17,8 +17,14 @@ struct RowForm {
   std::vector<double> values;       // the full rows, width each (physical or sine-transformed)
 };
 
+//! True when a value other than ±0 (NaN included) sits in row[1..C−2].
+bool has_interior(const double* row, int C);
+
 //! The row form of b (rows × cols, row-major).
 RowForm split_rows(const double* b, int R, int C);
+//! The same with the scan for full rows split between `threads` threads (OpenMP; the result does
+//! not depend on it).
+RowForm split_rows(const double* b, int R, int C, int threads);
 
 //! Σ_r w_r · forms[r] (same rows and width). A sparse row expands as first·e0 + last·e1, where
 //! e0, e1 are the unit vectors (physical forms) or their sine transforms (transformed forms).

@@ -36,6 +36,12 @@ COONS_VECTOR_CLONES void back_substitute(const double* __restrict y, const doubl
   for (int q = 0; q < n; ++q) xh[q] = (y[q] - o[q] * xh[q]) * r[q];
 }
 
+// y = (y − o∘next)∘r.
+COONS_VECTOR_CLONES void back_substitute_in_place(double* __restrict y, const double* __restrict o,
+                                                  const double* __restrict r, const double* __restrict next, int n) {
+  for (int q = 0; q < n; ++q) y[q] = (y[q] - o[q] * next[q]) * r[q];
+}
+
 // x = Σ_k a_k v_k (K ≥ 1 terms).
 COONS_VECTOR_CLONES void rank_row(const double* a, const double* const* v, int K, double* __restrict x, int n) {
   int k = 0;

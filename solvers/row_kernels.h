@@ -20,6 +20,10 @@ void multiply(const double* __restrict o, const double* __restrict r, double* __
 void back_substitute(const double* __restrict y, const double* __restrict o, const double* __restrict r,
                      double* __restrict xh, int n);
 
+//! y = (y − o∘next)∘r: the back substitution in place of the eliminated row.
+void back_substitute_in_place(double* __restrict y, const double* __restrict o, const double* __restrict r,
+                              const double* __restrict next, int n);
+
 //! x = Σ_k a_k v_k (K ≥ 1 terms).
 void rank_row(const double* a, const double* const* v, int K, double* __restrict x, int n);
 
