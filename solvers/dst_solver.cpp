@@ -32,7 +32,7 @@ namespace {
 using detail::AlignedBuffer;
 using detail::SineTransform;
 
-constexpr int kStrip = 8;           // columns per strip: one cache line of a row
+constexpr int kStrip = 16;          // columns per strip: two cache lines of a row
 constexpr std::size_t kAhead = 16;  // rows to prefetch ahead in a strip
 
 // The transforms of a right-hand side next to the frame: B̂(p, q) = σ_p t̂_q + σ'_p b̂_q + τ_q l̂_p

@@ -149,7 +149,16 @@ class FastSolver : public detail::StructuredSolver {
     }
     X.resize(B.rows(), 3);
     std::array<RowForm, 3> forms;
-    for (int c = 0; c < 3; ++c) forms[std::size_t(c)] = detail::split_rows(B.col(c).data(), R_, C_, threads_);
+    // Which rows have a non-zero interior: one parallel scan of the three columns.
+    std::vector<char> dense(3 * std::size_t(R_));
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(threads_) if (threads_ > 1) schedule(static)
+#endif
+    for (int k = 0; k < 3 * R_; ++k)
+      dense[std::size_t(k)] = detail::has_interior(B.col(k / R_).data() + std::size_t(k % R_) * std::size_t(C_), C_);
+    for (int c = 0; c < 3; ++c)
+      forms[std::size_t(c)] =
+          detail::split_rows(B.col(c).data(), R_, C_, dense.data() + std::size_t(c) * std::size_t(R_));
     if (path_ == Path::kKronecker) {
       for (int c = 0; c < 3; ++c) kronecker_.solve(forms[std::size_t(c)], B.col(c).data(), X.col(c).data());
     } else {
@@ -197,7 +206,7 @@ class FastSolver : public detail::StructuredSolver {
     const std::size_t L = std::size_t(L_);
     const int K = block_rows_, T = threads_;
     const int last_block = (R_ - 1) / K;
-    const int group_blocks = std::max(1, (last_block + 8) / 8);  // about 8 groups
+    const int group_blocks = last_block + 1;  // one group: one barrier
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(T) if (T > 1)
 #endif
@@ -267,8 +276,10 @@ class FastSolver : public detail::StructuredSolver {
           continue;
         }
         // Several threads: x̂ goes to rows (over the forward rows, which are no longer needed), and
-        // a group of G blocks is finished in parallel once every thread has made its modes of it
-        // (one barrier per group, so that a thread descheduled on a busy machine stalls few times).
+        // a group of blocks is finished in parallel once every thread has made its modes of it.
+        // The group is the whole grid: one barrier in all, since on a busy machine every barrier
+        // can cost a time slice of the operating system (milliseconds) while a thread waits for
+        // the descheduled other.
         for (int i = first; i < end; ++i)
           for (int c = 0; c < 3; ++c) std::copy(slot_row(c, i - first), slot_row(c, i - first) + n, saved(c, i));
         if (b % group_blocks != 0) continue;

@@ -31,17 +31,14 @@ COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
   return bits != 0;
 }
 
-RowForm split_rows(const double* b, int R, int C) { return split_rows(b, R, C, 1); }
-
-RowForm split_rows(const double* b, int R, int C, int threads) {
-  RowForm f = zero_form(R, C);
-  // The scan reads all of b: with threads, each one looks at its share of the rows first.
+RowForm split_rows(const double* b, int R, int C) {
   std::vector<char> dense(std::size_t(R), 0);
-#if defined(_OPENMP)
-#pragma omp parallel for num_threads(threads) if (threads > 1) schedule(static)
-#endif
   for (int i = 0; i < R; ++i) dense[std::size_t(i)] = has_interior(b + std::size_t(i) * std::size_t(C), C) ? 1 : 0;
-  (void)threads;
+  return split_rows(b, R, C, dense.data());
+}
+
+RowForm split_rows(const double* b, int R, int C, const char* dense) {
+  RowForm f = zero_form(R, C);
   for (int i = 0; i < R; ++i) {
     const double* row = b + std::size_t(i) * std::size_t(C);
     if (!dense[std::size_t(i)]) {
