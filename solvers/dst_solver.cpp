@@ -259,7 +259,7 @@ void DstSolver::invert(const std::array<Spectrum, 3>& sources, Eigen::MatrixX3d&
     for (int strip = 0; strip < strips; ++strip) {
       const int q0 = strip * kStrip, width = std::min(kStrip, C_ - q0);
       for (int w = 0; w < width; ++w) {
-        inverse_column(norm, y_[std::size_t(q0 + w)], a_.data(), b_.data(), scratch.inv.data(), R_);
+        inverse_column(norm, y_[std::size_t(q0) + std::size_t(w)], a_.data(), b_.data(), scratch.inv.data(), R_);
         for (int c = 0; c < 3; ++c) {
           double* column = scratch.strip[std::size_t(c)].data() + std::size_t(w) * R;
           spectrum_column(sources[std::size_t(c)], q0 + w, scratch, column);
