@@ -239,14 +239,29 @@ class FastSolver : public detail::StructuredSolver {
             detail::add_scaled(u[std::size_t(i) * std::size_t(extra_) + std::size_t(m)],
                                sine_extra_[std::size_t(m)].data() + q0, y, n);
       };
+      // Row i of all three columns: one pass over s, t and l when every column's row is sparse
+      // and there are no sources (rows of mask data but two), else column by column.
+      auto eliminate3 = [&](int i, auto&& previous, auto&& target) {
+        const std::size_t k = std::size_t(i);
+        if (extra_ == 0 && forms[0].slot[k] < 0 && forms[1].slot[k] < 0 && forms[2].slot[k] < 0) {
+          const std::array<double, 3> a{forms[0].first[k], forms[1].first[k], forms[2].first[k]};
+          const std::array<double, 3> e{forms[0].last[k], forms[1].last[k], forms[2].last[k]};
+          const std::array<double*, 3> x{target(0), target(1), target(2)};
+          const std::array<const double*, 3> p{previous(0), previous(1), previous(2)};
+          detail::eliminate_sparse3(a.data(), e.data(), sine_e0_.data() + q0, sine_e1_.data() + q0, l,
+                                    i > 0 ? p.data() : nullptr, x.data(), n);
+          return;
+        }
+        for (int c = 0; c < 3; ++c) eliminate(i, c, previous(c), target(c));
+      };
       for (int i = 0; i < R_; ++i) {
         if (i > 0) pivots_for(i - 1);
         const int s = i % K;
-        for (int c = 0; c < 3; ++c) {
-          double* y = slot_row(c, s);
-          eliminate(i, c, i > 0 ? slot_row(c, (s + K - 1) % K) : nullptr, y);
-          if (s == K - 1 && i + 1 < R_) std::copy(y, y + n, saved(c, i));
-        }
+        eliminate3(
+            i, [&](int c) { return i > 0 ? slot_row(c, (s + K - 1) % K) : nullptr; },
+            [&](int c) { return slot_row(c, s); });
+        if (s == K - 1 && i + 1 < R_)
+          for (int c = 0; c < 3; ++c) std::copy(slot_row(c, s), slot_row(c, s) + n, saved(c, i));
       }
       // Back substitution, x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i in place of y_i, block by block from the
       // last one (whose rows are still in the buffer); running_ holds x̂ of the block below.
@@ -256,17 +271,22 @@ class FastSolver : public detail::StructuredSolver {
         if (b != last_block)
           for (int i = first; i < end; ++i) {
             if (i > 0) pivots_for(i - 1);
-            for (int c = 0; c < 3; ++c) {
-              const double* p = i == 0 ? nullptr : i == first ? saved(c, i - 1) : slot_row(c, i - first - 1);
-              eliminate(i, c, p, slot_row(c, i - first));
-            }
+            eliminate3(
+                i,
+                [&](int c) -> const double* {
+                  return i == 0 ? nullptr : i == first ? saved(c, i - 1) : slot_row(c, i - first - 1);
+                },
+                [&](int c) { return slot_row(c, i - first); });
           }
         for (int i = end - 1; i >= first; --i) {
           pivots_for(i);
+          std::array<double*, 3> y{};
+          std::array<const double*, 3> next{};
           for (int c = 0; c < 3; ++c) {
-            const double* next = i + 1 < end ? slot_row(c, i + 1 - first) : running_[std::size_t(c)].data() + q0;
-            detail::back_substitute_in_place(slot_row(c, i - first), o, r, next, n);
+            y[std::size_t(c)] = slot_row(c, i - first);
+            next[std::size_t(c)] = i + 1 < end ? slot_row(c, i + 1 - first) : running_[std::size_t(c)].data() + q0;
           }
+          detail::back_substitute_in_place3(y.data(), o, r, next.data(), n);
         }
         for (int c = 0; c < 3; ++c) std::copy(slot_row(c, 0), slot_row(c, 0) + n, running_[std::size_t(c)].data() + q0);
         if (T == 1) {
