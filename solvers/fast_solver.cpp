@@ -4,7 +4,9 @@
 // (mode_pivots.h), vectorised across the modes, on a grid widened to a fast transform length
 // when needed (capacitance.h); and the dst solver where elimination without pivoting would be
 // unsafe. Right-hand sides are read row by row (row_form.h): only full rows are transformed.
-// This file holds the orchestration and the pipeline of the transform path.
+// This file holds the orchestration and the pipeline of the transform path, which
+// SolverOptions::threads splits by modes (the tridiagonal sweeps) and by rows (the inverse
+// transforms) with OpenMP: bit for bit the one-thread result.
 // Sizes: #interior by 3 in and out; O(L) work arrays, 3 blocks of K·L for the pipeline.
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
 // J. ACM 12 (1965).

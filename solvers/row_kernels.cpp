@@ -71,18 +71,6 @@ COONS_VECTOR_CLONES void multiply(const double* __restrict o, const double* __re
   for (int q = 0; q < n; ++q) l[q] = o[q] * r[q];
 }
 
-// xh = (y − o∘xh)∘r.
-COONS_VECTOR_CLONES void back_substitute(const double* __restrict y, const double* __restrict o,
-                                         const double* __restrict r, double* __restrict xh, int n) {
-  for (int q = 0; q < n; ++q) xh[q] = (y[q] - o[q] * xh[q]) * r[q];
-}
-
-// y = (y − o∘next)∘r.
-COONS_VECTOR_CLONES void back_substitute_in_place(double* __restrict y, const double* __restrict o,
-                                                  const double* __restrict r, const double* __restrict next, int n) {
-  for (int q = 0; q < n; ++q) y[q] = (y[q] - o[q] * next[q]) * r[q];
-}
-
 // y_c = (y_c − o∘next_c)∘r for c = 0, 1, 2.
 void back_substitute_in_place3(double* const* y, const double* __restrict o, const double* __restrict r,
                                const double* const* next, int n) {

@@ -21,15 +21,8 @@ void eliminate_sparse3(const double* a, const double* b, const double* __restric
 //! l = o∘r.
 void multiply(const double* __restrict o, const double* __restrict r, double* __restrict l, int n);
 
-//! xh = (y − o∘xh)∘r.
-void back_substitute(const double* __restrict y, const double* __restrict o, const double* __restrict r,
-                     double* __restrict xh, int n);
-
-//! y = (y − o∘next)∘r: the back substitution in place of the eliminated row.
-void back_substitute_in_place(double* __restrict y, const double* __restrict o, const double* __restrict r,
-                              const double* __restrict next, int n);
-
-//! back_substitute_in_place for three right-hand sides at once: y_c = (y_c − o∘next_c)∘r.
+//! The back substitution of three right-hand sides in place of their eliminated rows:
+//! y_c = (y_c − o∘next_c)∘r, c = 0, 1, 2.
 void back_substitute_in_place3(double* const* y, const double* __restrict o, const double* __restrict r,
                                const double* const* next, int n);
 
