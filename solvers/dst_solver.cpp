@@ -4,8 +4,9 @@
 // division by λ (computed on the fly: no table of the grid's size) and both column transforms run
 // in cache. A right-hand side next to the frame only (every mask system) has a closed-form B̂ from
 // the 1-D transforms of its four sides, so it needs no forward transform at all.
-// Threads (SolverOptions::threads, OpenMP): the rows and the strips are split between them; each
-// row and strip is computed alike whatever the split, so results agree bit for bit.
+// Threads (SolverOptions::threads, OpenMP): the rows and the strips are shared out between them
+// in small chunks, dynamically (on a busy machine a running thread takes a descheduled one's
+// share); each row and strip is computed alike whoever takes it, so results agree bit for bit.
 // Sizes: #interior by 3 in and out (X holds the intermediate grids); per thread 4 strips of
 // 8·rows; a sweep keeps the transformed basis, #basis·3 grids.
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
@@ -243,7 +244,7 @@ void DstSolver::invert(const std::array<Spectrum, 3>& sources, Eigen::MatrixX3d&
     Scratch& scratch = scratch_[std::size_t(thread_index())];
     if (forward_rows_of) {  // X(:, c) = B(:, c) S_C row by row for the `rows` sources
 #if defined(_OPENMP)
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 32)
 #endif
       for (int k = 0; k < 3 * R_; ++k) {
         const int c = k / R_;
@@ -254,7 +255,7 @@ void DstSolver::invert(const std::array<Spectrum, 3>& sources, Eigen::MatrixX3d&
     }
     // Strips of columns: B̂ column, ./ λ, S_R, back into X.
 #if defined(_OPENMP)
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 2)
 #endif
     for (int strip = 0; strip < strips; ++strip) {
       const int q0 = strip * kStrip, width = std::min(kStrip, C_ - q0);
@@ -282,7 +283,7 @@ void DstSolver::invert(const std::array<Spectrum, 3>& sources, Eigen::MatrixX3d&
     }
     // Rows, in place: X = (S_R (B̂ ./ λ)) S_C.
 #if defined(_OPENMP)
-#pragma omp for schedule(static)
+#pragma omp for schedule(dynamic, 32)
 #endif
     for (int k = 0; k < 3 * R_; ++k) {
       double* row = X.col(k / R_).data() + std::size_t(k % R_) * C;

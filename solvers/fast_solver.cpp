@@ -86,8 +86,6 @@ class FastSolver : public detail::StructuredSolver {
 #else
     threads_ = 1;
 #endif
-    mode_start_.assign(std::size_t(threads_) + 1, L_);
-    for (int t = 0; t < threads_; ++t) mode_start_[std::size_t(t)] = int(long(t) * L_ / threads_) / 8 * 8;
     sines_.clear();
     rows_.clear();
     for (int t = 0; t < threads_; ++t) {
@@ -193,129 +191,135 @@ class FastSolver : public detail::StructuredSolver {
   }
 
   // For every mode q: X̂(:,q) = T_q⁻¹ (B̂(:,q) + sources on the extra columns), three columns at
-  // once, each X̂ row handed to finish(t, i, c, x̂) (t: the calling thread) once the back
-  // substitution has made its block (so that the inverse transform of a row runs while the row is
-  // in cache). Every loop runs over whole rows, vectorised across the modes. The forward
-  // elimination keeps only the last row of each block of K rows (in rows[c] + i·stride: X itself
-  // when L = C) and recomputes a block in cache before substituting back through it: two passes
-  // over memory fewer for a little more arithmetic. With several threads each one eliminates and
-  // substitutes its own range of modes (the same operations on the same numbers as one thread, so
-  // the result is the same bit for bit), writes its part of x̂ to rows, and the rows of a group
-  // of blocks are then finished in parallel.
+  // once, each X̂ row handed to finish(t, i, c, x̂) (t: the calling thread). Every loop runs over
+  // whole rows, vectorised across the modes. The forward elimination keeps only the last row of
+  // each block of K rows (in rows[c] + i·stride: X itself when L = C) and recomputes a block in
+  // cache before substituting back through it: two passes over memory fewer for a little more
+  // arithmetic. One thread hands each row to finish as soon as its block is done (so that the
+  // inverse transform runs while the row is in cache). Several threads take chunks of modes
+  // (about four per thread, dynamically: on a busy machine a running thread takes the chunks of a
+  // descheduled one), write x̂ to rows, and after one barrier finish the rows, again dynamically.
+  // Every chunk and row is computed alike whoever takes it: bit for bit the one-thread result.
   template <class Finish>
   void pipeline(const std::array<RowForm, 3>& forms, const std::array<const double*, 3>& sources,
                 const std::array<double*, 3>& rows, std::size_t stride, Finish&& finish) {
-    const std::size_t L = std::size_t(L_);
-    const int K = block_rows_, T = threads_;
-    const int last_block = (R_ - 1) / K;
-    const int group_blocks = last_block + 1;  // one group: one barrier
+    const int T = threads_;
+    if (T == 1) {
+      solve_modes(forms, sources, rows, stride, 0, L_, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
+      return;
+    }
+    const int chunks = std::max(1, std::min(4 * T, L_ / 64));
+    auto chunk_start = [&](int k) { return k == chunks ? L_ : int(long(k) * L_ / chunks) / 8 * 8; };
 #if defined(_OPENMP)
-#pragma omp parallel num_threads(T) if (T > 1)
+#pragma omp parallel num_threads(T)
 #endif
     {
-      const int t = thread_index();
-      const int q0 = mode_start_[std::size_t(t)], n = mode_start_[std::size_t(t) + 1] - q0;
-      const double* o = modes_.off() + q0;
-      const double* l = modes_.multipliers() + q0;
-      const double* r = modes_.pivots() + q0;
-      auto saved = [&](int c, int i) { return rows[std::size_t(c)] + std::size_t(i) * stride + std::size_t(q0); };
-      auto slot_row = [&](int c, int s) {
-        return block_[std::size_t(c)].data() + std::size_t(s) * L + std::size_t(q0);
-      };
-      int at = -1;  // the row held by the running pivot row (in this thread's modes)
-      auto pivots_for = [&](int i) {
-        if (at != i) modes_.load(at, i, q0, q0 + n);
-        at = i;
-      };
-      // Row i of the forward elimination: y_i = B̂_i − l_i ∘ y_{i−1}, l_i = o ∘ r_{i−1}.
-      auto eliminate = [&](int i, int c, const double* p, double* y) {
-        const RowForm& f = forms[std::size_t(c)];
-        const int slot = f.slot[std::size_t(i)];
-        if (slot >= 0)
-          detail::eliminate_dense(f.values.data() + std::size_t(slot) * L + std::size_t(q0), l, p, y, n);
-        else
-          detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data() + q0,
-                                   sine_e1_.data() + q0, l, p, y, n);
-        if (const double* u = sources[std::size_t(c)])
-          for (int m = 0; m < extra_; ++m)
-            detail::add_scaled(u[std::size_t(i) * std::size_t(extra_) + std::size_t(m)],
-                               sine_extra_[std::size_t(m)].data() + q0, y, n);
-      };
-      // Row i of all three columns: one pass over s, t and l when every column's row is sparse
-      // and there are no sources (rows of mask data but two), else column by column.
-      auto eliminate3 = [&](int i, auto&& previous, auto&& target) {
-        const std::size_t k = std::size_t(i);
-        if (extra_ == 0 && forms[0].slot[k] < 0 && forms[1].slot[k] < 0 && forms[2].slot[k] < 0) {
-          const std::array<double, 3> a{forms[0].first[k], forms[1].first[k], forms[2].first[k]};
-          const std::array<double, 3> e{forms[0].last[k], forms[1].last[k], forms[2].last[k]};
-          const std::array<double*, 3> x{target(0), target(1), target(2)};
-          const std::array<const double*, 3> p{previous(0), previous(1), previous(2)};
-          detail::eliminate_sparse3(a.data(), e.data(), sine_e0_.data() + q0, sine_e1_.data() + q0, l,
-                                    i > 0 ? p.data() : nullptr, x.data(), n);
-          return;
-        }
-        for (int c = 0; c < 3; ++c) eliminate(i, c, previous(c), target(c));
-      };
-      for (int i = 0; i < R_; ++i) {
-        if (i > 0) pivots_for(i - 1);
-        const int s = i % K;
-        eliminate3(
-            i, [&](int c) { return i > 0 ? slot_row(c, (s + K - 1) % K) : nullptr; },
-            [&](int c) { return slot_row(c, s); });
-        if (s == K - 1 && i + 1 < R_)
-          for (int c = 0; c < 3; ++c) std::copy(slot_row(c, s), slot_row(c, s) + n, saved(c, i));
-      }
-      // Back substitution, x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i in place of y_i, block by block from the
-      // last one (whose rows are still in the buffer); running_ holds x̂ of the block below.
-      for (auto& w : running_) std::fill(w.data() + q0, w.data() + q0 + n, 0.0);
-      for (int b = last_block; b >= 0; --b) {
-        const int first = b * K, end = std::min(R_, first + K);
-        if (b != last_block)
-          for (int i = first; i < end; ++i) {
-            if (i > 0) pivots_for(i - 1);
-            eliminate3(
-                i,
-                [&](int c) -> const double* {
-                  return i == 0 ? nullptr : i == first ? saved(c, i - 1) : slot_row(c, i - first - 1);
-                },
-                [&](int c) { return slot_row(c, i - first); });
-          }
-        for (int i = end - 1; i >= first; --i) {
-          pivots_for(i);
-          std::array<double*, 3> y{};
-          std::array<const double*, 3> next{};
-          for (int c = 0; c < 3; ++c) {
-            y[std::size_t(c)] = slot_row(c, i - first);
-            next[std::size_t(c)] = i + 1 < end ? slot_row(c, i + 1 - first) : running_[std::size_t(c)].data() + q0;
-          }
-          detail::back_substitute_in_place3(y.data(), o, r, next.data(), n);
-        }
-        for (int c = 0; c < 3; ++c) std::copy(slot_row(c, 0), slot_row(c, 0) + n, running_[std::size_t(c)].data() + q0);
-        if (T == 1) {
-          for (int i = end - 1; i >= first; --i)
-            for (int c = 0; c < 3; ++c)
-              finish(t, i, c, static_cast<const double*>(block_[std::size_t(c)].data() + std::size_t(i - first) * L));
-          continue;
-        }
-        // Several threads: x̂ goes to rows (over the forward rows, which are no longer needed), and
-        // a group of blocks is finished in parallel once every thread has made its modes of it.
-        // The group is the whole grid: one barrier in all, since on a busy machine every barrier
-        // can cost a time slice of the operating system (milliseconds) while a thread waits for
-        // the descheduled other.
-        for (int i = first; i < end; ++i)
-          for (int c = 0; c < 3; ++c) std::copy(slot_row(c, i - first), slot_row(c, i - first) + n, saved(c, i));
-        if (b % group_blocks != 0) continue;
-        const int group_end = std::min(R_, first + group_blocks * K);
 #if defined(_OPENMP)
-#pragma omp barrier
-#pragma omp for schedule(static) nowait
+#pragma omp for schedule(dynamic, 1)
 #endif
-        for (int k = 0; k < 3 * (group_end - first); ++k) {
-          const int i = group_end - 1 - k / 3, c = k % 3;
-          finish(t, i, c, static_cast<const double*>(rows[std::size_t(c)] + std::size_t(i) * stride));
-        }
+      for (int k = 0; k < chunks; ++k) {
+        const int q0 = chunk_start(k), q1 = chunk_start(k + 1);
+        solve_modes(forms, sources, rows, stride, q0, q1 - q0, [&](int i, int c, const double* xh) {
+          std::copy(xh, xh + (q1 - q0), rows[std::size_t(c)] + std::size_t(i) * stride + std::size_t(q0));
+        });
+      }  // (the implied barrier: every mode of x̂ is in rows)
+      const int t = thread_index();
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic, 16)
+#endif
+      for (int k = 0; k < 3 * R_; ++k) {
+        const int i = k / 3, c = k % 3;
+        finish(t, i, c, static_cast<const double*>(rows[std::size_t(c)] + std::size_t(i) * stride));
       }
       detail::stream_fence();
+    }
+  }
+
+  // The modes [q0, q0 + n) of every row: forward elimination and back substitution, handing each
+  // row of x̂ (those modes, from q0) to done(i, c, x̂) when its block is substituted. Only the
+  // modes [q0, q0 + n) of the pivots, the blocks, running_ and the saved rows are touched.
+  template <class Done>
+  void solve_modes(const std::array<RowForm, 3>& forms, const std::array<const double*, 3>& sources,
+                   const std::array<double*, 3>& rows, std::size_t stride, int q0, int n, Done&& done) {
+    const std::size_t L = std::size_t(L_);
+    const int K = block_rows_;
+    const int last_block = (R_ - 1) / K;
+    const double* o = modes_.off() + q0;
+    const double* l = modes_.multipliers() + q0;
+    const double* r = modes_.pivots() + q0;
+    auto saved = [&](int c, int i) { return rows[std::size_t(c)] + std::size_t(i) * stride + std::size_t(q0); };
+    auto slot_row = [&](int c, int s) { return block_[std::size_t(c)].data() + std::size_t(s) * L + std::size_t(q0); };
+    int at = -1;  // the row held by the running pivot row (in these modes)
+    auto pivots_for = [&](int i) {
+      if (at != i) modes_.load(at, i, q0, q0 + n);
+      at = i;
+    };
+    // Row i of the forward elimination: y_i = B̂_i − l_i ∘ y_{i−1}, l_i = o ∘ r_{i−1}.
+    auto eliminate = [&](int i, int c, const double* p, double* y) {
+      const RowForm& f = forms[std::size_t(c)];
+      const int slot = f.slot[std::size_t(i)];
+      if (slot >= 0)
+        detail::eliminate_dense(f.values.data() + std::size_t(slot) * L + std::size_t(q0), l, p, y, n);
+      else
+        detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data() + q0,
+                                 sine_e1_.data() + q0, l, p, y, n);
+      if (const double* u = sources[std::size_t(c)])
+        for (int m = 0; m < extra_; ++m)
+          detail::add_scaled(u[std::size_t(i) * std::size_t(extra_) + std::size_t(m)],
+                             sine_extra_[std::size_t(m)].data() + q0, y, n);
+    };
+    // Row i of all three columns: one pass over s, t and l when every column's row is sparse
+    // and there are no sources (rows of mask data but two), else column by column.
+    auto eliminate3 = [&](int i, auto&& previous, auto&& target) {
+      const std::size_t k = std::size_t(i);
+      if (extra_ == 0 && forms[0].slot[k] < 0 && forms[1].slot[k] < 0 && forms[2].slot[k] < 0) {
+        const std::array<double, 3> a{forms[0].first[k], forms[1].first[k], forms[2].first[k]};
+        const std::array<double, 3> e{forms[0].last[k], forms[1].last[k], forms[2].last[k]};
+        const std::array<double*, 3> x{target(0), target(1), target(2)};
+        const std::array<const double*, 3> p{previous(0), previous(1), previous(2)};
+        detail::eliminate_sparse3(a.data(), e.data(), sine_e0_.data() + q0, sine_e1_.data() + q0, l,
+                                  i > 0 ? p.data() : nullptr, x.data(), n);
+        return;
+      }
+      for (int c = 0; c < 3; ++c) eliminate(i, c, previous(c), target(c));
+    };
+    for (int i = 0; i < R_; ++i) {
+      if (i > 0) pivots_for(i - 1);
+      const int s = i % K;
+      eliminate3(
+          i, [&](int c) { return i > 0 ? slot_row(c, (s + K - 1) % K) : nullptr; },
+          [&](int c) { return slot_row(c, s); });
+      if (s == K - 1 && i + 1 < R_)
+        for (int c = 0; c < 3; ++c) std::copy(slot_row(c, s), slot_row(c, s) + n, saved(c, i));
+    }
+    // Back substitution, x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i in place of y_i, block by block from the
+    // last one (whose rows are still in the buffer); running_ holds x̂ of the block below.
+    for (auto& w : running_) std::fill(w.data() + q0, w.data() + q0 + n, 0.0);
+    for (int b = last_block; b >= 0; --b) {
+      const int first = b * K, end = std::min(R_, first + K);
+      if (b != last_block)
+        for (int i = first; i < end; ++i) {
+          if (i > 0) pivots_for(i - 1);
+          eliminate3(
+              i,
+              [&](int c) -> const double* {
+                return i == 0 ? nullptr : i == first ? saved(c, i - 1) : slot_row(c, i - first - 1);
+              },
+              [&](int c) { return slot_row(c, i - first); });
+        }
+      for (int i = end - 1; i >= first; --i) {
+        pivots_for(i);
+        std::array<double*, 3> y{};
+        std::array<const double*, 3> next{};
+        for (int c = 0; c < 3; ++c) {
+          y[std::size_t(c)] = slot_row(c, i - first);
+          next[std::size_t(c)] = i + 1 < end ? slot_row(c, i + 1 - first) : running_[std::size_t(c)].data() + q0;
+        }
+        detail::back_substitute_in_place3(y.data(), o, r, next.data(), n);
+      }
+      for (int c = 0; c < 3; ++c) std::copy(slot_row(c, 0), slot_row(c, 0) + n, running_[std::size_t(c)].data() + q0);
+      for (int i = end - 1; i >= first; --i)
+        for (int c = 0; c < 3; ++c) done(i, c, static_cast<const double*>(slot_row(c, i - first)));
     }
   }
 
@@ -368,10 +372,9 @@ class FastSolver : public detail::StructuredSolver {
 
   int L_ = 0, extra_ = 0, block_rows_ = 16;
   Path path_ = Path::kTransform;
-  // The threads of a solve (SolverOptions::threads, at most one per 64 modes) and the modes each
-  // one owns: [mode_start_[t], mode_start_[t+1]), multiples of 8 (whole cache lines).
+  // The threads of a solve (SolverOptions::threads, at most one per 64 modes); they take chunks
+  // of modes whose bounds are multiples of 8 (whole cache lines).
   int threads_ = 1;
-  std::vector<int> mode_start_;
   std::vector<SineTransform> sines_;  // one per thread (a transform has scratch)
   std::vector<AlignedBuffer> rows_;   // one row of L per thread
   std::vector<double> y_, sine_e0_, sine_e1_, unit_e0_, unit_e1_;
