@@ -149,16 +149,9 @@ class FastSolver : public detail::StructuredSolver {
     }
     X.resize(B.rows(), 3);
     std::array<RowForm, 3> forms;
-    // Which rows have a non-zero interior: one parallel scan of the three columns.
-    std::vector<char> dense(3 * std::size_t(R_));
-#if defined(_OPENMP)
-#pragma omp parallel for num_threads(threads_) if (threads_ > 1) schedule(static)
-#endif
-    for (int k = 0; k < 3 * R_; ++k)
-      dense[std::size_t(k)] = detail::has_interior(B.col(k / R_).data() + std::size_t(k % R_) * std::size_t(C_), C_);
-    for (int c = 0; c < 3; ++c)
-      forms[std::size_t(c)] =
-          detail::split_rows(B.col(c).data(), R_, C_, dense.data() + std::size_t(c) * std::size_t(R_));
+    // (Serial: a parallel region of its own would cost a second wait for a descheduled thread on
+    // a busy machine, more than the scan itself.)
+    for (int c = 0; c < 3; ++c) forms[std::size_t(c)] = detail::split_rows(B.col(c).data(), R_, C_);
     if (path_ == Path::kKronecker) {
       for (int c = 0; c < 3; ++c) kronecker_.solve(forms[std::size_t(c)], B.col(c).data(), X.col(c).data());
     } else {
@@ -196,9 +189,11 @@ class FastSolver : public detail::StructuredSolver {
   // each block of K rows (in rows[c] + i·stride: X itself when L = C) and recomputes a block in
   // cache before substituting back through it: two passes over memory fewer for a little more
   // arithmetic. One thread hands each row to finish as soon as its block is done (so that the
-  // inverse transform runs while the row is in cache). Several threads take chunks of modes
-  // (about four per thread, dynamically: on a busy machine a running thread takes the chunks of a
-  // descheduled one), write x̂ to rows, and after one barrier finish the rows, again dynamically.
+  // inverse transform runs while the row is in cache). Several threads take a chunk of modes each
+  // (dynamically: a thread that starts late on a busy machine may find none left), write x̂ to
+  // rows, and after one barrier finish the rows, again dynamically. (More, smaller chunks were
+  // slower: every row step has a fixed cost. The pass of x̂ through rows, a write and a read of the
+  // grid more than one thread does, is why two threads gain little over one.)
   // Every chunk and row is computed alike whoever takes it: bit for bit the one-thread result.
   template <class Finish>
   void pipeline(const std::array<RowForm, 3>& forms, const std::array<const double*, 3>& sources,
@@ -208,7 +203,7 @@ class FastSolver : public detail::StructuredSolver {
       solve_modes(forms, sources, rows, stride, 0, L_, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
       return;
     }
-    const int chunks = std::max(1, std::min(4 * T, L_ / 64));
+    const int chunks = std::max(1, std::min(T, L_ / 64));
     auto chunk_start = [&](int k) { return k == chunks ? L_ : int(long(k) * L_ / chunks) / 8 * 8; };
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(T)

@@ -32,16 +32,10 @@ COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
 }
 
 RowForm split_rows(const double* b, int R, int C) {
-  std::vector<char> dense(std::size_t(R), 0);
-  for (int i = 0; i < R; ++i) dense[std::size_t(i)] = has_interior(b + std::size_t(i) * std::size_t(C), C) ? 1 : 0;
-  return split_rows(b, R, C, dense.data());
-}
-
-RowForm split_rows(const double* b, int R, int C, const char* dense) {
   RowForm f = zero_form(R, C);
   for (int i = 0; i < R; ++i) {
     const double* row = b + std::size_t(i) * std::size_t(C);
-    if (!dense[std::size_t(i)]) {
+    if (!has_interior(row, C)) {
       f.first[std::size_t(i)] = row[0];
       f.last[std::size_t(i)] = C >= 2 ? row[C - 1] : 0.0;
     } else {

@@ -22,8 +22,6 @@ bool has_interior(const double* row, int C);
 
 //! The row form of b (rows × cols, row-major).
 RowForm split_rows(const double* b, int R, int C);
-//! The same with the full rows already found: dense[i] = has_interior(row i).
-RowForm split_rows(const double* b, int R, int C, const char* dense);
 
 //! Σ_r w_r · forms[r] (same rows and width). A sparse row expands as first·e0 + last·e1, where
 //! e0, e1 are the unit vectors (physical forms) or their sine transforms (transformed forms).
