@@ -1,55 +1,76 @@
-// dst: X = S (S B ./ λ) / (2(rows+1)·2(cols+1)), S the 2-D DST-I (FFTW RODFT00 × RODFT00).
+// dst: X = S_R (B̂ ./ λ) S_C · 4/((rows+1)(cols+1)), B̂ = S_R B S_C, where S_n is the DST-I of
+// length n (sine_transform.h, on a real FFT) and λ(p, q) the stencil's eigenvalues. The 2-D
+// transforms are done by rows (length cols) and by strips of 8 columns (length rows), whose
+// division by λ (computed on the fly: no table of the grid's size) and both column transforms run
+// in cache. A right-hand side next to the frame only (every mask system) has a closed-form B̂ from
+// the 1-D transforms of its four sides, so it needs no forward transform at all.
+// Threads (SolverOptions::threads, OpenMP): the rows and the strips are shared out between them
+// in small chunks, dynamically (on a busy machine a running thread takes a descheduled one's
+// share); each row and strip is computed alike whoever takes it, so results agree bit for bit.
+// Sizes: #interior by 3 in and out (X holds the intermediate grids); per thread 4 strips of
+// 8·rows; a sweep keeps the transformed basis, #basis·3 grids.
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
 // J. ACM 12 (1965); eigenvalues from G. Farin & D. Hansford, Discrete Coons patches, CAGD 16 (1999).
-#include <fftw3.h>
-
+#include <algorithm>
+#include <array>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+#include "row_form.h"
 #include "sine_transform.h"
 #include "structured_solvers.h"
+#include "vector_clones.h"
 
 namespace coons::solvers {
 namespace {
 
 using detail::AlignedBuffer;
+using detail::SineTransform;
 
-// o = σ·tb + l·τ + r·τ' (then ∘ inv when given): one row of the ring right-hand side's transform.
-COONS_VECTOR_CLONES void ring_row(double sigma, const double* __restrict tb, double l, const double* __restrict tau,
-                                  double r, const double* __restrict tau_signed, const double* __restrict inv,
-                                  double* __restrict o, int n) {
-  if (inv)
-    for (int q = 0; q < n; ++q) o[q] = (sigma * tb[q] + l * tau[q] + r * tau_signed[q]) * inv[q];
-  else
-    for (int q = 0; q < n; ++q) o[q] = sigma * tb[q] + l * tau[q] + r * tau_signed[q];
+constexpr int kStrip = 16;          // columns per strip: two cache lines of a row
+constexpr std::size_t kAhead = 16;  // rows to prefetch ahead in a strip
+
+// The transforms of a right-hand side next to the frame: B̂(p, q) = σ_p t̂_q + σ'_p b̂_q + τ_q l̂_p
+// + τ'_q r̂_p, with t̂, b̂ the transforms of the first and last rows, l̂, r̂ those of the first and
+// last columns without their corners, σ = S e_0, σ' = S e_{rows−1} (σ with signs (−1)^p), τ, τ'
+// the same along the rows.
+struct RingSides {
+  std::vector<double> top, bottom, left, right;
+};
+
+// out = σ·t + σ'·b + l·tau + r·tau' over p (one column q of B̂ of a ring right-hand side).
+COONS_VECTOR_CLONES void ring_column(double t, double b, double tau, double tau_signed, const double* __restrict sigma,
+                                     const double* __restrict sigma_signed, const double* __restrict l,
+                                     const double* __restrict r, double* __restrict out, int n) {
+  for (int p = 0; p < n; ++p) out[p] = t * sigma[p] + b * sigma_signed[p] + tau * l[p] + tau_signed * r[p];
 }
 
-class FftwPlan {
- public:
-  FftwPlan() = default;
-  explicit FftwPlan(fftw_plan plan) : plan_(plan) {}
-  ~FftwPlan() { reset(); }
-  FftwPlan(const FftwPlan&) = delete;
-  FftwPlan& operator=(const FftwPlan&) = delete;
-  FftwPlan& operator=(FftwPlan&& other) noexcept {
-    if (this != &other) {
-      reset();
-      plan_ = other.plan_;
-      other.plan_ = nullptr;
-    }
-    return *this;
-  }
-  void execute() const { fftw_execute(plan_); }
-  explicit operator bool() const { return plan_ != nullptr; }
+// inv = norm / (a + b·y) (the scaled inverse eigenvalues of one column of modes).
+COONS_VECTOR_CLONES void inverse_column(double norm, double y, const double* __restrict a, const double* __restrict b,
+                                        double* __restrict inv, int n) {
+  for (int p = 0; p < n; ++p) inv[p] = norm / (a[p] + b[p] * y);
+}
 
- private:
-  void reset() {
-    if (plan_) fftw_destroy_plan(plan_);
-    plan_ = nullptr;
+// x = x ∘ v.
+COONS_VECTOR_CLONES void scale_by(double* __restrict x, const double* __restrict v, int n) {
+  for (int p = 0; p < n; ++p) x[p] *= v[p];
+}
+
+// x = Σ_k w_k v_k.
+COONS_VECTOR_CLONES void combine_column(const std::vector<std::pair<double, const double*>>& terms,
+                                        double* __restrict x, int n) {
+  std::fill(x, x + n, 0.0);
+  for (const auto& [w, v] : terms) {
+    const double* __restrict column = v;
+    for (int p = 0; p < n; ++p) x[p] += w * column[p];
   }
-  fftw_plan plan_ = nullptr;
-};
+}
 
 class DstSolver : public detail::StructuredSolver {
  public:
@@ -57,176 +78,272 @@ class DstSolver : public detail::StructuredSolver {
   [[nodiscard]] std::string name() const override { return "dst"; }
 
  protected:
-  // A sweep transforms each basis right-hand side once (hat_[r][c], R×C) and combines the
-  // transforms per member.
+  // A sweep transforms each basis right-hand side once (hat_[r][c]: B̂ by columns, cols × rows)
+  // and combines the transforms per member.
   void do_begin_sweep() override { hat_.clear(); }
   SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                              Eigen::MatrixX3d& X, SolveSummary& summary) override;
 
-  SolveStatus analyze_grid(SolveSummary& summary) override {
-    const std::size_t n = std::size_t(R_) * std::size_t(C_);
-    grid_ = AlignedBuffer(n);
-    row_ = AlignedBuffer(std::size_t(C_));
-    col_ = AlignedBuffer(std::size_t(R_));
-    inverse_eigenvalues_.assign(n, 0.0);
-    const unsigned planning = detail::fft_planning(options_);
-    detail::fft_plan_threads(options_.threads);  // the 2-D transforms are the cost: only they get threads
-    plan_2d_ = FftwPlan(fftw_plan_r2r_2d(R_, C_, grid_.data(), grid_.data(), FFTW_RODFT00, FFTW_RODFT00, planning));
-    detail::fft_plan_threads(1);
-    plan_row_ = FftwPlan(fftw_plan_r2r_1d(C_, row_.data(), row_.data(), FFTW_RODFT00, planning));
-    plan_col_ = FftwPlan(fftw_plan_r2r_1d(R_, col_.data(), col_.data(), FFTW_RODFT00, planning));
-    if (!plan_2d_ || !plan_row_ || !plan_col_) {
-      summary.message = "FFTW could not make a plan";
-      return SolveStatus::kFailure;
-    }
-    // 2 sin(π(p+1)/(rows+1)): the RODFT00 of e_0 (and, with signs (−1)^p, of e_{rows−1}).
-    edge_i_.resize(std::size_t(R_));
-    edge_j_.resize(std::size_t(C_));
-    for (int p = 0; p < R_; ++p) edge_i_[std::size_t(p)] = 2 * std::sin(M_PI * (p + 1) / (R_ + 1));
-    for (int q = 0; q < C_; ++q) edge_j_[std::size_t(q)] = 2 * std::sin(M_PI * (q + 1) / (C_ + 1));
-    return SolveStatus::kSuccess;
-  }
-
-  SolveStatus factorize_grid(const LinearOperator& /*op*/, const GridStencil& s, SolveSummary& summary) override {
-    std::vector<double> x(static_cast<std::size_t>(R_)), y(static_cast<std::size_t>(C_));
-    for (int p = 0; p < R_; ++p) x[std::size_t(p)] = std::cos(M_PI * (p + 1) / (R_ + 1));
-    for (int q = 0; q < C_; ++q) y[std::size_t(q)] = std::cos(M_PI * (q + 1) / (C_ + 1));
-    // FFTW's RODFT00 applied twice multiplies by 2(n+1): fold that into 1/λ.
-    const double norm = 4.0 * (R_ + 1) * (C_ + 1);
-    double smallest = HUGE_VAL, largest = 0;
-    for (int p = 0; p < R_; ++p) {
-      const double xp = x[std::size_t(p)];
-      const double a = s.center + 2 * s.edge_i * xp, b = 2 * s.edge_j + 4 * s.diag * xp;
-      double* inv = inverse_eigenvalues_.data() + std::size_t(p) * std::size_t(C_);
-      for (int q = 0; q < C_; ++q) {
-        const double lambda = a + b * y[std::size_t(q)];
-        smallest = std::min(smallest, std::abs(lambda));
-        largest = std::max(largest, std::abs(lambda));
-        inv[q] = 1 / (lambda * norm);
-      }
-    }
-    if (!(smallest > kSingularEigenvalue * largest)) {
-      summary.message = "smallest |eigenvalue| " + std::to_string(smallest) + " of largest " + std::to_string(largest) +
-                        ": the stencil is singular";
-      return SolveStatus::kSingular;
-    }
-    return SolveStatus::kSuccess;
-  }
-
-  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    X.resize(B.rows(), 3);
-    for (int c = 0; c < 3; ++c) {
-      divide_and_invert(X.col(c).data(), forward(B.col(c).data(), true));
-    }
-    summary.iterations = 1;
-    return SolveStatus::kSuccess;
-  }
+  SolveStatus analyze_grid(SolveSummary& summary) override;
+  SolveStatus factorize_grid(const LinearOperator& op, const GridStencil& s, SolveSummary& summary) override;
+  SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override;
 
  private:
   static constexpr double kSingularEigenvalue = 1e-13;
 
-  // True when only the ring next to the frame can be non-zero: rows 1..R−2 are zero at 1..C−2.
-  bool on_ring(const double* b) const {
-    if (R_ < 3 || C_ < 3) return false;
-    for (int i = 1; i + 1 < R_; ++i) {
-      const double* row = b + std::size_t(i) * std::size_t(C_);
-      for (int j = 1; j + 1 < C_; ++j)
-        if (row[j] != 0) return false;
-    }
-    return true;
+  // Where column q of B̂ comes from: the closed form of a ring right-hand side; the row
+  // transforms of B (row-major R×C, S_R still to apply); or a sum of columns of stored B̂.
+  struct Spectrum {
+    const RingSides* ring = nullptr;
+    const double* rows = nullptr;
+    std::vector<std::pair<double, const std::vector<double>*>> terms;
+  };
+  // Per thread: the transforms (they have scratch) and the buffers of a strip.
+  struct Scratch {
+    SineTransform along_rows, along_cols;  // lengths C and R
+    std::array<AlignedBuffer, 3> strip;
+    AlignedBuffer inv;
+  };
+
+  [[nodiscard]] bool on_ring(const double* b) const;
+  void ring_sides(const double* b, RingSides& sides);
+  // out = column q of B̂ (length R).
+  void spectrum_column(const Spectrum& source, int q, Scratch& scratch, double* out) const;
+  // X = S_R (B̂ ./ λ) S_C·norm, column by column, for the three sources; B̂ from `rows` sources
+  // is read from X itself (the rows of B already transformed there).
+  void invert(const std::array<Spectrum, 3>& sources, Eigen::MatrixX3d& X, const Eigen::MatrixX3d* forward_rows_of);
+  static int thread_index() {
+#if defined(_OPENMP)
+    return omp_get_thread_num();
+#else
+    return 0;
+#endif
   }
 
-  // grid_ = 2-D RODFT00 of the grid b (R×C, row-major). A right-hand side on the ring transforms in
-  // closed form from the 1-D transforms of its four sides:
-  //   B̂(p,q) = σ_p (t̂_q + (−1)^p b̂_q) + τ_q (l̂_p + (−1)^q r̂_p),   σ, τ = edge_i_, edge_j_,
-  // and then, when `divide`, is divided by the eigenvalues in the same pass. Returns whether it
-  // divided.
-  bool forward(const double* b, bool divide) {
-    const std::size_t n = std::size_t(R_) * std::size_t(C_);
-    double* out = grid_.data();
-    if (!on_ring(b)) {
-      std::copy(b, b + n, out);
-      plan_2d_.execute();
-      return false;
-    }
-    const bool divided = divide;
-    auto row_transform = [&](int i, std::vector<double>& t) {
-      std::copy(b + std::size_t(i) * C_, b + std::size_t(i + 1) * C_, row_.data());
-      plan_row_.execute();
-      t.assign(row_.data(), row_.data() + C_);
-    };
-    auto col_transform = [&](int j, std::vector<double>& t) {
-      col_[0] = 0;
-      col_[std::size_t(R_ - 1)] = 0;
-      for (int i = 1; i + 1 < R_; ++i) col_[std::size_t(i)] = b[std::size_t(i) * C_ + j];
-      plan_col_.execute();
-      t.assign(col_.data(), col_.data() + R_);
-    };
-    row_transform(0, top_);
-    row_transform(R_ - 1, bottom_);
-    col_transform(0, left_);
-    col_transform(C_ - 1, right_);
-    const auto width = static_cast<std::size_t>(C_);
-    std::vector<double> plus(width), minus(width), signed_edge(width);
-    for (int q = 0; q < C_; ++q) {
-      plus[std::size_t(q)] = top_[std::size_t(q)] + bottom_[std::size_t(q)];
-      minus[std::size_t(q)] = top_[std::size_t(q)] - bottom_[std::size_t(q)];
-      signed_edge[std::size_t(q)] = q % 2 ? -edge_j_[std::size_t(q)] : edge_j_[std::size_t(q)];
-    }
-    for (int p = 0; p < R_; ++p) {
-      const double* tb = p % 2 ? minus.data() : plus.data();
-      const double* inv = divided ? inverse_eigenvalues_.data() + std::size_t(p) * C_ : nullptr;
-      ring_row(edge_i_[std::size_t(p)], tb, left_[std::size_t(p)], edge_j_.data(), right_[std::size_t(p)],
-               signed_edge.data(), inv, out + std::size_t(p) * C_, C_);
-    }
-    return divided;
-  }
-
-  // grid_ holds B̂ (divided: B̂ ./ λ): X = S (B̂ ./ λ) / norm, written to x.
-  void divide_and_invert(double* x, bool divided) {
-    const std::size_t n = std::size_t(R_) * std::size_t(C_);
-    double* g = grid_.data();
-    const double* inv = inverse_eigenvalues_.data();
-    if (!divided)
-      for (std::size_t k = 0; k < n; ++k) g[k] *= inv[k];
-    plan_2d_.execute();
-    detail::stream_copy(g, x, n);
-    detail::stream_fence();
-  }
-
-  AlignedBuffer grid_, row_, col_;
-  FftwPlan plan_2d_, plan_row_, plan_col_;
-  std::vector<double> inverse_eigenvalues_, edge_i_, edge_j_;
-  std::vector<double> top_, bottom_, left_, right_;
+  int threads_ = 1;
+  std::vector<Scratch> scratch_;
+  std::vector<double> a_, b_, y_;             // λ(p, q) = a_p + b_p·y_q
+  std::vector<double> sigma_, sigma_signed_;  // S e_0, S e_{R−1}
+  std::vector<double> tau_, tau_signed_;      // S e_0, S e_{C−1} along the rows
+  std::array<RingSides, 3> ring_;
   std::vector<std::vector<std::vector<double>>> hat_;  // a sweep's transformed basis
 };
+
+SolveStatus DstSolver::analyze_grid(SolveSummary& /*summary*/) {
+#if defined(_OPENMP)
+  threads_ = std::max(1, std::min(resolved_threads(options_.threads), std::max(R_, C_) / 32));
+#else
+  threads_ = 1;
+#endif
+  const unsigned planning = detail::fft_planning(options_);
+  scratch_.clear();
+  scratch_.resize(std::size_t(threads_));
+  for (Scratch& s : scratch_) {
+    s.along_rows = SineTransform(C_, planning);
+    s.along_cols = SineTransform(R_, planning);
+    for (AlignedBuffer& b : s.strip) b = AlignedBuffer(std::size_t(kStrip) * std::size_t(R_));
+    s.inv = AlignedBuffer(std::size_t(R_));
+  }
+  const double* sr = scratch_[0].along_cols.first_column();
+  const double* sc = scratch_[0].along_rows.first_column();
+  sigma_.assign(sr, sr + R_);
+  tau_.assign(sc, sc + C_);
+  sigma_signed_ = sigma_;
+  tau_signed_ = tau_;
+  for (int p = 1; p < R_; p += 2) sigma_signed_[std::size_t(p)] = -sigma_[std::size_t(p)];
+  for (int q = 1; q < C_; q += 2) tau_signed_[std::size_t(q)] = -tau_[std::size_t(q)];
+  return SolveStatus::kSuccess;
+}
+
+SolveStatus DstSolver::factorize_grid(const LinearOperator& /*op*/, const GridStencil& s, SolveSummary& summary) {
+  a_.resize(std::size_t(R_));
+  b_.resize(std::size_t(R_));
+  y_.resize(std::size_t(C_));
+  for (int q = 0; q < C_; ++q) y_[std::size_t(q)] = std::cos(M_PI * (q + 1) / (C_ + 1));
+  // λ(p, ·) is monotone in q (y_q decreases): |λ| is largest at an end and smallest at an end or
+  // where λ changes sign.
+  double smallest = HUGE_VAL, largest = 0;
+  for (int p = 0; p < R_; ++p) {
+    const double x = std::cos(M_PI * (p + 1) / (R_ + 1));
+    const double a = s.center + 2 * s.edge_i * x, b = 2 * s.edge_j + 4 * s.diag * x;
+    a_[std::size_t(p)] = a;
+    b_[std::size_t(p)] = b;
+    auto lambda = [&](int q) { return a + b * y_[std::size_t(q)]; };
+    const double first = lambda(0), last = lambda(C_ - 1);
+    largest = std::max({largest, std::abs(first), std::abs(last)});
+    smallest = std::min({smallest, std::abs(first), std::abs(last)});
+    if ((first > 0) != (last > 0)) {  // a sign change in (0, C−1]: find it by bisection
+      int lo = 0, hi = C_ - 1;
+      while (hi - lo > 1) {
+        const int mid = (lo + hi) / 2;
+        ((lambda(mid) > 0) == (first > 0) ? lo : hi) = mid;
+      }
+      smallest = std::min({smallest, std::abs(lambda(lo)), std::abs(lambda(hi))});
+    }
+  }
+  if (!(smallest > kSingularEigenvalue * largest)) {
+    summary.message = "smallest |eigenvalue| " + std::to_string(smallest) + " of largest " + std::to_string(largest) +
+                      ": the stencil is singular";
+    return SolveStatus::kSingular;
+  }
+  return SolveStatus::kSuccess;
+}
+
+// True when only the ring next to the frame can be non-zero: rows 1..R−2 are zero at 1..C−2.
+bool DstSolver::on_ring(const double* b) const {
+  if (R_ < 3 || C_ < 3) return false;
+  for (int i = 1; i + 1 < R_; ++i) {
+    if (detail::has_interior(b + std::size_t(i) * std::size_t(C_), C_)) return false;
+  }
+  return true;
+}
+
+void DstSolver::ring_sides(const double* b, RingSides& sides) {
+  Scratch& s = scratch_[0];
+  const auto C = std::size_t(C_);
+  sides.top.resize(C);
+  sides.bottom.resize(C);
+  sides.left.assign(std::size_t(R_), 0.0);
+  sides.right.assign(std::size_t(R_), 0.0);
+  s.along_rows.apply(b, sides.top.data());
+  s.along_rows.apply(b + std::size_t(R_ - 1) * C, sides.bottom.data());
+  for (int i = 1; i + 1 < R_; ++i) {
+    sides.left[std::size_t(i)] = b[std::size_t(i) * C];
+    sides.right[std::size_t(i)] = b[std::size_t(i) * C + C - 1];
+  }
+  s.along_cols.apply(sides.left.data(), sides.left.data());
+  s.along_cols.apply(sides.right.data(), sides.right.data());
+}
+
+void DstSolver::spectrum_column(const Spectrum& source, int q, Scratch& scratch, double* out) const {
+  const auto k = std::size_t(q);
+  if (source.ring) {
+    const RingSides& g = *source.ring;
+    ring_column(g.top[k], g.bottom[k], tau_[k], tau_signed_[k], sigma_.data(), sigma_signed_.data(), g.left.data(),
+                g.right.data(), out, R_);
+  } else if (source.rows) {
+    for (int p = 0; p < R_; ++p) out[p] = source.rows[std::size_t(p) * std::size_t(C_) + k];
+    scratch.along_cols.apply(out, out);
+  } else {
+    std::vector<std::pair<double, const double*>> terms;
+    terms.reserve(source.terms.size());
+    for (const auto& [w, hat] : source.terms) terms.emplace_back(w, hat->data() + k * std::size_t(R_));
+    combine_column(terms, out, R_);
+  }
+}
+
+void DstSolver::invert(const std::array<Spectrum, 3>& sources, Eigen::MatrixX3d& X,
+                       const Eigen::MatrixX3d* forward_rows_of) {
+  const auto C = std::size_t(C_), R = std::size_t(R_);
+  const double norm = 4.0 / ((R_ + 1.0) * (C_ + 1.0));
+  const int strips = (C_ + kStrip - 1) / kStrip;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(threads_) if (threads_ > 1)
+#endif
+  {
+    Scratch& scratch = scratch_[std::size_t(thread_index())];
+    if (forward_rows_of) {  // X(:, c) = B(:, c) S_C row by row for the `rows` sources
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic, 32)
+#endif
+      for (int k = 0; k < 3 * R_; ++k) {
+        const int c = k / R_;
+        const std::size_t i = std::size_t(k % R_);
+        if (sources[std::size_t(c)].rows)
+          scratch.along_rows.apply(forward_rows_of->col(c).data() + i * C, X.col(c).data() + i * C);
+      }
+    }
+    // Strips of columns: B̂ column, ./ λ, S_R, back into X.
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic, 2)
+#endif
+    for (int strip = 0; strip < strips; ++strip) {
+      const int q0 = strip * kStrip, width = std::min(kStrip, C_ - q0);
+      for (int w = 0; w < width; ++w) {
+        inverse_column(norm, y_[std::size_t(q0) + std::size_t(w)], a_.data(), b_.data(), scratch.inv.data(), R_);
+        for (int c = 0; c < 3; ++c) {
+          double* column = scratch.strip[std::size_t(c)].data() + std::size_t(w) * R;
+          spectrum_column(sources[std::size_t(c)], q0 + w, scratch, column);
+          scale_by(column, scratch.inv.data(), R_);
+          scratch.along_cols.apply(column, column);
+        }
+      }
+      for (int c = 0; c < 3; ++c) {
+        const double* s = scratch.strip[std::size_t(c)].data();
+        double* x = X.col(c).data() + q0;
+        for (std::size_t p = 0; p < R; ++p) {
+          // the rows ahead: a stride of a whole row defeats the hardware prefetcher
+          if (p + kAhead < R) {
+            __builtin_prefetch(x + (p + kAhead) * C, 1);
+            __builtin_prefetch(x + (p + kAhead) * C + std::size_t(width - 1), 1);
+          }
+          for (int w = 0; w < width; ++w) x[p * C + std::size_t(w)] = s[std::size_t(w) * R + p];
+        }
+      }
+    }
+    // Rows, in place: X = (S_R (B̂ ./ λ)) S_C.
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic, 32)
+#endif
+    for (int k = 0; k < 3 * R_; ++k) {
+      double* row = X.col(k / R_).data() + std::size_t(k % R_) * C;
+      scratch.along_rows.apply(row, row);
+    }
+  }
+}
+
+SolveStatus DstSolver::do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) {
+  X.resize(B.rows(), 3);
+  std::array<Spectrum, 3> sources;
+  bool any_rows = false;
+  for (int c = 0; c < 3; ++c) {
+    if (on_ring(B.col(c).data())) {
+      ring_sides(B.col(c).data(), ring_[std::size_t(c)]);
+      sources[std::size_t(c)].ring = &ring_[std::size_t(c)];
+    } else {
+      sources[std::size_t(c)].rows = X.col(c).data();
+      any_rows = true;
+    }
+  }
+  invert(sources, X, any_rows ? &B : nullptr);
+  summary.iterations = 1;
+  return SolveStatus::kSuccess;
+}
 
 SolveStatus DstSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                                       Eigen::MatrixX3d& X, SolveSummary& summary) {
   const Eigen::Index n = Eigen::Index(R_) * C_;
   const std::size_t used = weights.size();
   if (hat_.size() < used || (!hat_.empty() && hat_[0][0].size() != std::size_t(n))) {
-    hat_.assign(used, {});
-    for (std::size_t r = 0; r < used; ++r) {
-      hat_[r].resize(3);
+    // B̂ of each basis member by columns (cols × rows): the strip pass without division.
+    hat_.assign(used, std::vector<std::vector<double>>(3));
+    std::vector<double> rows(static_cast<std::size_t>(n));
+    Scratch& scratch = scratch_[0];
+    RingSides sides;
+    for (std::size_t r = 0; r < used; ++r)
       for (int c = 0; c < 3; ++c) {
-        forward(basis[r].col(c).data(), false);
-        hat_[r][std::size_t(c)].assign(grid_.data(), grid_.data() + n);
+        const double* b = basis[r].col(c).data();
+        Spectrum source;
+        if (on_ring(b)) {
+          ring_sides(b, sides);
+          source.ring = &sides;
+        } else {
+          for (int i = 0; i < R_; ++i)
+            scratch.along_rows.apply(b + std::size_t(i) * std::size_t(C_),
+                                     rows.data() + std::size_t(i) * std::size_t(C_));
+          source.rows = rows.data();
+        }
+        std::vector<double>& hat = hat_[r][std::size_t(c)];
+        hat.resize(std::size_t(n));
+        for (int q = 0; q < C_; ++q) spectrum_column(source, q, scratch, hat.data() + std::size_t(q) * std::size_t(R_));
       }
-    }
   }
   X.resize(n, 3);
-  for (int c = 0; c < 3; ++c) {
-    double* g = grid_.data();
-    std::fill(g, g + n, 0.0);
-    for (std::size_t r = 0; r < used; ++r) {
-      const double w = weights[r];
-      const double* h = hat_[r][std::size_t(c)].data();
-      if (w != 0)
-        for (Eigen::Index m = 0; m < n; ++m) g[m] += w * h[m];
-    }
-    divide_and_invert(X.col(c).data(), false);
-  }
+  std::array<Spectrum, 3> sources;
+  for (int c = 0; c < 3; ++c)
+    for (std::size_t r = 0; r < used; ++r)
+      if (weights[r] != 0) sources[std::size_t(c)].terms.emplace_back(weights[r], &hat_[r][std::size_t(c)]);
+  invert(sources, X, nullptr);
   summary.iterations = 1;
   return SolveStatus::kSuccess;
 }

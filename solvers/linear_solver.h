@@ -54,9 +54,9 @@ struct SolverOptions {
   //! process-wide wisdom, which later estimated plans of the same size reuse: a program that
   //! wants identical results should not mix the two modes.)
   bool measure_fft_plans = false;
-  //! threads for the backends that use them (dst: FFTW's 2-D transforms; mg, mg-cg, mg-gmres:
-  //! the multigrid level loops). 1 by default; 0 means every core of the machine. Results agree
-  //! across thread counts to rounding (mg: bit for bit). Without OpenMP in the build it is ignored.
+  //! threads for the backends that use them (dst: rows and column strips of its transforms; fast:
+  //! sine modes and rows; mg, mg-cg, mg-gmres: the level loops). 1 by default; 0 means every core.
+  //! dst, fast and mg give the same result bit for bit for every count. Ignored without OpenMP.
   int threads = 1;
   double sor_omega = 1.0;               //!< gauss-seidel: over-relaxation factor in (0, 2)
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering

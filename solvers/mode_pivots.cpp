@@ -88,7 +88,9 @@ bool ModePivots::factor(const GridStencil& s, const std::vector<double>& y) {
   return true;
 }
 
-void ModePivots::load(int from, int to) {
+void ModePivots::load(int from, int to) { load(from, to, 0, L_); }
+
+void ModePivots::load(int from, int to, int q0, int q1) {
   const double* o = off_.data();
   double* r = pivots_.data();
   double* l = multipliers_.data();
@@ -96,16 +98,17 @@ void ModePivots::load(int from, int to) {
   const int lo = pivot_lo_[std::size_t(to)], hi = pivot_hi_[std::size_t(to)];
   auto value = [&](int q) { return q < lo ? row[q] : q >= hi ? row[lo + q - hi] : pivot_limit_[std::size_t(q)]; };
   if (from < 0) {  // the whole row
-    for (int q = 0; q < L_; ++q) r[q] = value(q);
-    multiply(o, r, l, L_);
+    for (int q = q0; q < q1; ++q) r[q] = value(q);
+    multiply(o + q0, r + q0, l + q0, q1 - q0);
     return;
   }
-  const int a = std::max(lo, pivot_lo_[std::size_t(from)]);
-  const int b = std::max(a, std::min(hi, pivot_hi_[std::size_t(from)]));
-  for (int q = 0; q < a; ++q) r[q] = value(q);
-  for (int q = b; q < L_; ++q) r[q] = value(q);
-  multiply(o, r, l, a);
-  multiply(o + b, r + b, l + b, L_ - b);
+  // Modes in [a, b) are converged in both rows: they keep their values.
+  const int a = std::clamp(std::max(lo, pivot_lo_[std::size_t(from)]), q0, q1);
+  const int b = std::clamp(std::min(hi, pivot_hi_[std::size_t(from)]), a, q1);
+  for (int q = q0; q < a; ++q) r[q] = value(q);
+  for (int q = b; q < q1; ++q) r[q] = value(q);
+  multiply(o + q0, r + q0, l + q0, a - q0);
+  multiply(o + b, r + b, l + b, q1 - b);
 }
 
 }  // namespace coons::solvers::detail

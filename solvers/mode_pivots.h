@@ -27,6 +27,9 @@ class ModePivots {
   //! Makes pivots() the row r_to of inverse pivots and multipliers() = o∘r_to, updating only
   //! the modes stored in row `from` or `to` (from = −1: the whole row).
   void load(int from, int to);
+  //! The same restricted to the modes [q0, q1): threads that own disjoint mode ranges can share
+  //! pivots() and multipliers().
+  void load(int from, int to, int q0, int q1);
   //! o_q, the off-diagonal of every mode (L values).
   [[nodiscard]] const double* off() const { return off_.data(); }
   [[nodiscard]] const double* pivots() const { return pivots_.data(); }

@@ -65,7 +65,7 @@ const std::vector<Entry>& entries() {
      make_gauss_seidel},
 #if COONS_HAVE_FFTW
     {{"dst", SolverFamily::kStructured, false, false,
-      "2-D discrete sine transform (FFTW RODFT00), exact for any alpha on rectangular grids"},
+      "2-D discrete sine transform (DST-I on a real FFT), exact for any alpha on rectangular grids"},
      make_dst_solver},
     {{"fast", SolverFamily::kStructured, false, false,
       "sine transform along j + tridiagonal solves along i; Kronecker path for alpha = -1/4; exact for any alpha"},

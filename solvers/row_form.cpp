@@ -8,18 +8,6 @@
 namespace coons::solvers::detail {
 namespace {
 
-// True when a value other than ±0 sits in row[1..C−2] (NaN included): an OR of the bits without
-// the sign, which vectorises, unlike a compare-and-break loop.
-COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
-  std::uint64_t bits = 0;
-  for (int j = 1; j + 1 < C; ++j) {
-    std::uint64_t b;
-    std::memcpy(&b, row + j, sizeof b);
-    bits |= b << 1;
-  }
-  return bits != 0;
-}
-
 // R rows of width C, every one sparse with zero ends.
 RowForm zero_form(int R, int C) {
   RowForm f;
@@ -31,6 +19,17 @@ RowForm zero_form(int R, int C) {
 }
 
 }  // namespace
+
+// An OR of the bits without the sign, which vectorises, unlike a compare-and-break loop.
+COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
+  std::uint64_t bits = 0;
+  for (int j = 1; j + 1 < C; ++j) {
+    std::uint64_t b;
+    std::memcpy(&b, row + j, sizeof b);
+    bits |= b << 1;
+  }
+  return bits != 0;
+}
 
 RowForm split_rows(const double* b, int R, int C) {
   RowForm f = zero_form(R, C);

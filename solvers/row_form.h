@@ -17,6 +17,9 @@ struct RowForm {
   std::vector<double> values;       // the full rows, width each (physical or sine-transformed)
 };
 
+//! True when a value other than ±0 (NaN included) sits in row[1..C−2].
+bool has_interior(const double* row, int C);
+
 //! The row form of b (rows × cols, row-major).
 RowForm split_rows(const double* b, int R, int C);
 

@@ -13,12 +13,18 @@ void eliminate_dense(const double* __restrict h, const double* __restrict l, con
 void eliminate_sparse(double a, double b, const double* __restrict s, const double* __restrict t,
                       const double* __restrict l, const double* __restrict p, double* __restrict x, int n);
 
+//! The same for three right-hand sides at once (x_c = a_c·s + b_c·t − l∘p_c, p = nullptr: without
+//! the last term), reading s, t and l once.
+void eliminate_sparse3(const double* a, const double* b, const double* __restrict s, const double* __restrict t,
+                       const double* __restrict l, const double* const* p, double* const* x, int n);
+
 //! l = o∘r.
 void multiply(const double* __restrict o, const double* __restrict r, double* __restrict l, int n);
 
-//! xh = (y − o∘xh)∘r.
-void back_substitute(const double* __restrict y, const double* __restrict o, const double* __restrict r,
-                     double* __restrict xh, int n);
+//! The back substitution of three right-hand sides in place of their eliminated rows:
+//! y_c = (y_c − o∘next_c)∘r, c = 0, 1, 2.
+void back_substitute_in_place3(double* const* y, const double* __restrict o, const double* __restrict r,
+                               const double* const* next, int n);
 
 //! x = Σ_k a_k v_k (K ≥ 1 terms).
 void rank_row(const double* a, const double* const* v, int K, double* __restrict x, int n);

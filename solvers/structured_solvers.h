@@ -1,11 +1,14 @@
 // Structured (matrix-free, exact) solvers for a constant GridStencil on a rectangular grid: they
 // never look at the assembled matrix, only at op.stencil (kNotApplicable without one).
 //
-//   dst   The textbook eigen-solver: the 2-D discrete sine transform (FFTW RODFT00 in both
-//         directions) diagonalises every constant stencil, so X = S (S B ./ λ) / norm.
-//         analyze = FFTW plans, factorize = the eigenvalue table, solve = two 2-D transforms
-//         (one when B is non-zero only next to the frame, as for every mask system).
-//         Exact for every non-singular stencil, definite or not. Use it as the reference.
+//   dst   The textbook eigen-solver: the 2-D discrete sine transform (the real-FFT DST-I of
+//         sine_transform.h by rows and by strips of columns) diagonalises every constant
+//         stencil, so X = S (S B S ./ λ) S / norm. analyze = plans, factorize = the eigenvalues'
+//         factors (λ itself is formed on the fly), solve = two 2-D transforms (one when B is
+//         non-zero only next to the frame, as for every mask system: its transform has a closed
+//         form). Rows and strips are split between SolverOptions::threads threads (bit for bit
+//         the same result). Exact for every non-singular stencil, definite or not. Use it as the
+//         reference.
 //   fast  The fastest exact solver: a sine transform along j (built on a real FFT) and
 //         tridiagonal (Thomas) solves along i, vectorised across the modes; the right-hand side
 //         is read row by row and only rows with a non-zero interior are transformed (a mask
@@ -16,7 +19,9 @@
 //         frame. A transform length with a large prime factor (cols+1 = 1023 = 3·11·31) is
 //         avoided by widening the grid (capacitance matrix method). Where elimination without
 //         pivoting would be unsafe (indefinite stencils) it falls back to the dst path, so it is
-//         exact for every non-singular stencil; the default behind `auto`.
+//         exact for every non-singular stencil; the default behind `auto`. SolverOptions::threads
+//         splits the modes of the tridiagonal solves and the rows of the inverse transform
+//         between threads (bit for bit the same result).
 //
 // Both report kSingular when an eigenvalue is zero to working precision (|λ| ≤ 1e-13·max|λ|),
 // and both reuse the transformed basis right-hand sides across a sweep.

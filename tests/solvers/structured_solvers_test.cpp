@@ -164,22 +164,54 @@ TEST_CASE("structured solvers: equal the dense reference for every alpha", "[sol
       }
 }
 
-TEST_CASE("structured solvers: two threads give the one-thread solution to rounding", "[solvers]") {
-  // Large enough that FFTW splits the 2-D transforms between the threads.
-  const GridStencil s = alpha_stencil(127, 131, -0.1);
+TEST_CASE("structured solvers: two and three threads give the one-thread solution bit for bit", "[solvers]") {
+  // fast: each thread eliminates its own range of modes with the same operations on the same
+  // numbers, and the rows are transformed alike. dst: each row and each strip of columns is
+  // transformed alike whichever thread takes it. So the split cannot change a bit. 150 + 1
+  // columns is prime: fast widens that grid (the capacitance path), whose sources go through
+  // the threads too.
   for (const auto& [name, make] : structured())
-    for (const Eigen::MatrixX3d& B : {dense_rhs(s, 50), ring_rhs(s, 51)}) {
-      SolverOptions one, two;
-      two.threads = 2;
-      Eigen::MatrixX3d X1, X2;
-      const SolveSummary s1 = make(one)->compute_and_solve(stencil_operator(s), B, X1);
-      const SolveSummary s2 = make(two)->compute_and_solve(stencil_operator(s), B, X2);
-      INFO(name << ": " << s1.brief_report() << " / " << s2.brief_report());
-      REQUIRE(s1.ok());
-      REQUIRE(s2.ok());
-      CHECK(s2.relative_residual < 1e-11);
-      CHECK((X1 - X2).cwiseAbs().maxCoeff() <= 1e-12 * std::max(1.0, X1.cwiseAbs().maxCoeff()));
+    for (auto [rows, cols] : {std::pair{127, 131}, {70, 150}, {33, 255}}) {
+      const GridStencil s = alpha_stencil(rows, cols, -0.1);
+      for (const Eigen::MatrixX3d& B : {dense_rhs(s, 53), ring_rhs(s, 54)}) {
+        Eigen::MatrixX3d X1;
+        const SolveSummary s1 = make({})->compute_and_solve(stencil_operator(s), B, X1);
+        REQUIRE(s1.ok());
+        CHECK(s1.relative_residual < 1e-11);
+        for (int threads : {2, 3}) {
+          SolverOptions many;
+          many.threads = threads;
+          Eigen::MatrixX3d X;
+          const SolveSummary sk = make(many)->compute_and_solve(stencil_operator(s), B, X);
+          INFO(name << " " << rows << "x" << cols << ", " << threads << " threads: " << sk.brief_report());
+          REQUIRE(sk.ok());
+          CHECK(std::memcmp(X1.data(), X.data(), sizeof(double) * std::size_t(X1.size())) == 0);
+        }
+      }
     }
+}
+
+TEST_CASE("dst: a right-hand side next to the frame skips the forward transform and agrees with the full path",
+          "[solvers]") {
+  // The same ring right-hand side once as it is (closed-form transform from its four sides) and
+  // once with a tiny value inside (the full 2-D transform): the solutions differ by that value's
+  // contribution only, so their difference is bounded by it.
+  for (auto [rows, cols] : {std::pair{3, 3}, {9, 14}, {31, 40}}) {
+    const GridStencil s = alpha_stencil(rows, cols, -0.1);
+    const Eigen::MatrixX3d ring = ring_rhs(s, 56);
+    Eigen::MatrixX3d nudged = ring;
+    const Eigen::Index inner = Eigen::Index(rows / 2) * cols + cols / 2;
+    nudged.row(inner).setConstant(1e-300);  // below rounding of every solution value
+    Eigen::MatrixX3d X_ring, X_full;
+    const SolveSummary a = make_dst_solver({})->compute_and_solve(stencil_operator(s), ring, X_ring);
+    const SolveSummary b = make_dst_solver({})->compute_and_solve(stencil_operator(s), nudged, X_full);
+    INFO(rows << "x" << cols << ": " << a.brief_report() << "; " << b.brief_report());
+    REQUIRE(a.ok());
+    REQUIRE(b.ok());
+    CHECK((X_ring - X_full).cwiseAbs().maxCoeff() <= 1e-14 * std::max(1.0, X_ring.cwiseAbs().maxCoeff()));
+    CHECK((X_ring - dense_reference(s, ring)).cwiseAbs().maxCoeff() <=
+          1e-12 * std::max(1.0, X_ring.cwiseAbs().maxCoeff()));
+  }
 }
 
 TEST_CASE("structured solvers: equal the dense reference on anisotropic stencils", "[solvers]") {
