@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # Multigrid iteration counts (mg, mg-cg, hypre-smg, hypre-pfmg at 1e-10, N = 127..1023) and the
-# 1- and 2-thread solves of fast, dst and mg at N = 1023, α = −0.1 with the 101-value α sweep of
-# fast (the carried-over targets); rewrites the computed block of
+# 1- and 2-thread solves at N = 1023 of fast, dst and mg (α = 0, −0.1), of the 5×5 set (fast5,
+# separable-banded) and the 101-value α sweep of fast: every speed target of issues 11 and 14 in one
+# run, with its verdict; rewrites the computed block of
 # docs/solvers.md. About 10 minutes on the 2-core machine under load.
 #   bash scripts/bench_mg.sh [--report-only]
 set -euo pipefail
@@ -12,7 +13,8 @@ if [ "${1:-}" != "--report-only" ]; then
   rm -f "$out"/mg_iterations_*.json  # parts of earlier split runs (merged by --report-only)
   "$bench" --mg-iterations --sizes=127,255,511,1023 --benchmark_format=console \
     --benchmark_out="$out/mg_iterations.json" --benchmark_out_format=json
-  "$bench" --sizes=1023 --alphas=-0.1 --backends=fast,dst,mg --benchmark_filter='MemoryPass|BM_Solve/|BM_AlphaSweep/fast/' \
+  "$bench" --large --sizes=1023 --alphas=0,-0.1 --backends=fast,dst,mg,fast5,separable-banded \
+    --benchmark_filter='MemoryPass|BM_Solve/|BM_AlphaSweep(Threads)?/fast/|BM_Stencil5/(c1-coons|biharmonic|c1-family-0.5)/' \
     --benchmark_format=console --benchmark_out="$out/threads.json" --benchmark_out_format=json
 fi
 python3 scripts/mg_report.py --iterations "$out"/mg_iterations*.json --threads "$out/threads.json" --docs docs/solvers.md
