@@ -347,7 +347,9 @@ class Fast5Solver final : public LinearSolver {
         }
         norm2 += side[std::size_t(s)].col(c).squaredNorm();
       }
-      const double ratio = std::sqrt(norm2) / b_norms_[std::size_t(c)];
+      // A zero column has a zero solution and no boundary residual; 0/0 would make the ratio, and
+      // with it every column's correction tolerance, NaN (and every correction a no-op).
+      const double ratio = b_norms_[std::size_t(c)] > 0 ? std::sqrt(norm2) / b_norms_[std::size_t(c)] : 0.0;
       boundary_ratio_ = c == 0 ? ratio : std::max(boundary_ratio_, ratio);
       if (ratio > kBoundaryResidual) large = true;
     }
