@@ -36,6 +36,8 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
   std::vector<Vector> V(static_cast<std::size_t>(k) + 1), Z(static_cast<std::size_t>(k));
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(k + 1, k);
   Vector cs(k), sn(k), g(k + 1);
+  const auto& out_of_time = options.iteration.out_of_time;
+  bool timed_out = false;
   while (rel > tol && out.iterations < options.iteration.max_iterations) {
     const double beta = r.norm();
     V[0] = r / beta;
@@ -43,6 +45,10 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
     g[0] = beta;
     int j = 0;
     for (; j < k && out.iterations < options.iteration.max_iterations; ++j) {
+      if (out.iterations > 0 && out_of_time && out_of_time()) {
+        timed_out = true;
+        break;
+      }
       if (precondition)
         precondition(V[std::size_t(j)], Z[std::size_t(j)]);
       else
@@ -77,7 +83,14 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
       }
       V[std::size_t(j) + 1] = w / next;
     }
-    if (j == 0) break;
+    if (j == 0) {
+      if (timed_out) {
+        out.status = SolveStatus::kNotConverged;
+        out.message = "time limit reached at relative residual " + std::to_string(rel) + " after " +
+                      std::to_string(out.iterations) + " iterations";
+      }
+      break;
+    }
     // x += Z y with H(0:j, 0:j) y = g(0:j)
     Vector y = H.topLeftCorner(j, j).triangularView<Eigen::Upper>().solve(g.head(j));
     if (!y.allFinite()) {
@@ -95,6 +108,13 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
       x.setZero(n);
       r = b;
       rel = 1;
+      break;
+    }
+    if (timed_out && !(true_rel <= tol)) {
+      rel = true_rel;
+      out.status = SolveStatus::kNotConverged;
+      out.message = "time limit reached at relative residual " + std::to_string(rel) + " after " +
+                    std::to_string(out.iterations) + " iterations";
       break;
     }
     if (true_rel >= rel && !(true_rel <= tol)) {  // a whole cycle without progress: stagnation

@@ -23,8 +23,8 @@ namespace coons::solvers {
 using VectorMap = std::function<void(const Eigen::VectorXd& in, Eigen::VectorXd& out)>;
 
 struct GmresOptions {
-  int restart = 50;                              //!< k: Krylov vectors kept before a restart
-  IterationOptions iteration{1e-10, 1000, 1e8};  //!< tolerance and limit on total inner iterations
+  int restart = 50;                                  //!< k: Krylov vectors kept before a restart
+  IterationOptions iteration{1e-10, 1000, 1e8, {}};  //!< tolerance and limit on total inner iterations
 
   bool is_valid(std::string* why) const;
 };

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -19,6 +20,9 @@ struct IterationOptions {
   int max_iterations = 200;
   //! A residual this many times the starting one means the iteration diverges.
   double divergence = 1e8;
+  //! When set, asked after every iteration: true stops it (a time limit) with not_converged, the
+  //! best iterate and a message saying so. LinearSolver passes its SolverOptions::time_limit_seconds.
+  std::function<bool()> out_of_time;
 
   bool is_valid(std::string* why) const {
     auto fail = [&](const char* reason) {

@@ -263,6 +263,16 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
                                              " after " + std::to_string(out.iterations) + " cycles";
       break;
     }
+    if (rel > options.tolerance && options.out_of_time && options.out_of_time()) {
+      out.status = SolveStatus::kNotConverged;
+      if (rel > best) {
+        xg = x_best;
+        rel = best;
+      }
+      out.message = "time limit reached at relative residual " + std::to_string(rel) + " after " +
+                    std::to_string(out.iterations) + " cycles (the best iterate is returned)";
+      break;
+    }
   }
   out.relative_residual = rel;
   if (out.status == SolveStatus::kSuccess && rel > options.tolerance) {
@@ -309,6 +319,13 @@ IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x, c
   p = z;
   double rz = r.dot(z);
   while (rel > options.tolerance && out.iterations < options.max_iterations) {
+    if (out.iterations > 0 && options.out_of_time && options.out_of_time()) {
+      out.status = SolveStatus::kNotConverged;
+      if (rel > best) xg = x_best;
+      out.message =
+          "time limit reached after " + std::to_string(out.iterations) + " iterations (the best iterate is returned)";
+      break;
+    }
     if (!(rz > 0)) {
       out.status = SolveStatus::kNotPositiveDefinite;
       out.message = "the V-cycle preconditioner is not positive definite on this operator";

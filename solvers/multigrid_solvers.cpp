@@ -100,6 +100,7 @@ class MultigridBackend : public LinearSolver {
     X.setZero(n, 3);
     IterationOptions iteration;
     iteration.tolerance = options_.tolerance;
+    iteration.out_of_time = [this] { return out_of_time(); };  // SolverOptions::time_limit_seconds
     SolveStatus status = SolveStatus::kSuccess;
     int iterations = 0;
     for (int c = 0; c < 3; ++c) {

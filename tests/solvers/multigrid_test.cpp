@@ -126,6 +126,30 @@ TEST_CASE("multigrid backends: one and two threads give the same solution bit fo
     }
 }
 
+TEST_CASE("multigrid backends: stop at SolverOptions::time_limit_seconds with not_converged and their best iterate",
+          "[solvers][mg]") {
+  // A limit already passed after the first iteration: each column stops after one cycle or
+  // iteration (the time is checked after it), says so, and returns an iterate better than x = 0.
+  StencilOperator op = make_stencil_operator(63, 57, symmetric_stencils().front().weights);
+  const Eigen::MatrixX3d B = boundary_rhs(op);
+  const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
+  LinearOperator lop;
+  lop.grid = &op;
+  for (const char* name : {"mg", "mg-cg", "gmres"}) {
+    SolverOptions options;
+    options.tolerance = 1e-14;
+    options.time_limit_seconds = 1e-9;
+    Eigen::MatrixX3d X;
+    const SolveSummary s = make_solver(name, options)->compute_and_solve(lop, B, X);
+    INFO(name << ": " << s.brief_report() << " " << s.message);
+    CHECK(s.status == SolveStatus::kNotConverged);
+    CHECK(s.message.find("time limit") != std::string::npos);
+    CHECK(s.iterations >= 1);
+    CHECK(s.iterations <= 2);
+    CHECK((A * X - B).norm() < 0.5 * B.norm());
+  }
+}
+
 TEST_CASE("Multigrid::precondition: a V-cycle is a symmetric positive definite operator", "[solvers][mg]") {
   for (const NamedStencil& stencil : symmetric_stencils()) {
     StencilOperator op = make_stencil_operator(37, 29, stencil.weights);
