@@ -1,14 +1,14 @@
 // dst: X = S_R (B̂ ./ λ) S_C · 4/((rows+1)(cols+1)), B̂ = S_R B S_C, where S_n is the DST-I of
 // length n (sine_transform.h, on a real FFT) and λ(p, q) the stencil's eigenvalues. The 2-D
-// transforms are done by rows (length cols) and by strips of 8 columns (length rows), whose
+// transforms are done by rows (length cols) and by strips of 16 columns (length rows), whose
 // division by λ (computed on the fly: no table of the grid's size) and both column transforms run
 // in cache. A right-hand side next to the frame only (every mask system) has a closed-form B̂ from
 // the 1-D transforms of its four sides, so it needs no forward transform at all.
 // Threads (SolverOptions::threads, OpenMP): the rows and the strips are shared out between them
 // in small chunks, dynamically (on a busy machine a running thread takes a descheduled one's
 // share); each row and strip is computed alike whoever takes it, so results agree bit for bit.
-// Sizes: #interior by 3 in and out (X holds the intermediate grids); per thread 4 strips of
-// 8·rows; a sweep keeps the transformed basis, #basis·3 grids.
+// Sizes: #interior by 3 in and out (X holds the intermediate grids); per thread 3 strip buffers
+// of 16·rows and one inverse column; a sweep keeps the transformed basis, #basis·3 grids.
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
 // J. ACM 12 (1965); eigenvalues from G. Farin & D. Hansford, Discrete Coons patches, CAGD 16 (1999).
 #include <algorithm>

@@ -201,6 +201,7 @@ class FastSolver : public detail::StructuredSolver {
     const int T = threads_;
     if (T == 1) {
       solve_modes(forms, sources, rows, stride, 0, L_, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
+      detail::stream_fence();  // the non-temporal stores of finish, as on the threaded path
       return;
     }
     const int chunks = std::max(1, std::min(T, L_ / 64));
