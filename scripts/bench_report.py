@@ -35,6 +35,50 @@ def search_cost(label, seconds, one_solve):
     return (seconds + (one_solve if "sine basis" in label else 0)) / one_solve
 
 
+def summary(doc, memory, solve, exponents, sizes):
+    """Every backend at the largest N ≤ 1023 it reached, one row each, fastest first at α = −0.1:
+    the block bench.sh copies into docs/solvers.md."""
+    alphas = sorted({a for _, a in solve})
+    backends = sorted({b for b, _ in solve})
+
+    def reached(backend):
+        return max((n for (b, _), per_n in solve.items() if b == backend for n in per_n if n <= 1023), default=0)
+
+    def cell(backend, alpha, n):
+        hit = solve.get((backend, alpha), {}).get(n)
+        if not hit:
+            return "–"
+        t, b = hit
+        text = f"{t:.3g} s ({t / memory[n]:.1f}×)" if n in memory else f"{t:.3g} s"
+        if b.get("iterations", 1) > 1:
+            text += f", {int(b['iterations'])} it"
+        return text + ("" if b.get("ok", 1) else " ✗ " + b.get("label", "").split("status=")[-1])
+
+    def key(backend):
+        n = reached(backend)
+        hit = solve.get((backend, -0.1), {}).get(n)
+        return (-n, hit[0] if hit else float("inf"))
+
+    date = doc["context"].get("date", "")[:10]
+    lines = [f"Every backend at the largest N (at most 1023) it ran at, from E03's run of {date} "
+             f"({doc['context'].get('num_cpus', '?')} CPUs; wall-clock seconds of one fresh solve, 3 right-hand sides, "
+             "and in brackets the multiple of the memory pass of the same run; `it` iterations; ✗ the status when "
+             "not `success`; the exponent is the growth of the time with the unknowns at α = −1/4, or at the "
+             "first α the backend ran). Sorted by N, then by the time at α = −0.1.", "",
+             "| backend | N | " + " | ".join(f"α = {a:g}" for a in alphas) + " | exponent |",
+             "|---|---|" + "---|" * len(alphas) + "---|"]
+    for backend in sorted(backends, key=key):
+        n = reached(backend)
+        if not n:
+            continue
+        e = next((exponents.get((backend, a)) for a in alphas if exponents.get((backend, a)) is not None), None)
+        lines.append(f"| `{backend}` | {n} | " + " | ".join(cell(backend, a, n) for a in alphas) +
+                     f" | {e:.2f} |" if e is not None else f"| `{backend}` | {n} | " +
+                     " | ".join(cell(backend, a, n) for a in alphas) + " | – |")
+    mem = ", ".join(f"N = {n}: {memory[n] * 1e3:.3f} ms" for n in sizes if n in memory and n <= 1023)
+    return "\n".join(lines) + f"\n\nMemory pass of that run: {mem}.\n"
+
+
 def main():
     path, out = sys.argv[1], sys.argv[2]
     doc = json.load(open(path))
@@ -229,7 +273,7 @@ def main():
         for (b, a), per_n in solve.items():
             if b != "auto" or n not in per_n:
                 continue
-            fastest = min(t for (bb, aa), pn in solve.items() if aa == a and bb != "auto" and n in pn and pn[n][1].get("ok", 1)
+            fastest = min(t for (bb, aa), pn in solve.items() if aa == a and bb != "auto" and "threads)" not in bb and n in pn and pn[n][1].get("ok", 1)
                           for t in [pn[n][0]])
             r = per_n[n][0] / fastest
             auto_worst = r if auto_worst is None else max(auto_worst, r)
@@ -259,6 +303,7 @@ def main():
 
     table = "\n".join(lines) + "\n"
     open(os.path.join(out, "table.md"), "w").write(table)
+    open(os.path.join(out, "summary.md"), "w").write(summary(doc, memory, solve, exponents, sizes))
     print(table)
 
     if shutil.which("gnuplot") and not os.environ.get("COONS_NO_PLOTS"):
