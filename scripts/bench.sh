@@ -51,4 +51,13 @@ if [ "$out" = experiments/E03_solver_scaling/results ]; then
   # the conclusions, computed from the tables just written (and checked by ctest: e03_conclusions_*)
   python3 scripts/bench_conclusions.py --write "$readme"
   echo "wrote $readme"
+  # docs/solvers.md's summary of the run (every backend at its largest N), between its markers
+  python3 - "$out/summary.md" docs/solvers.md <<'PY'
+import sys
+summary, docs = open(sys.argv[1]).read(), open(sys.argv[2]).read()
+begin, end = "<!-- e03-summary:begin -->", "<!-- e03-summary:end -->"
+a, b = docs.index(begin) + len(begin), docs.index(end)
+open(sys.argv[2], "w").write(docs[:a] + "\n" + summary + docs[b:])
+PY
+  echo "wrote docs/solvers.md (E03 summary)"
 fi
