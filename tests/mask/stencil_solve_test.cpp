@@ -414,6 +414,29 @@ TEST_CASE("solve_stencil_net: c1-coons through the separable banded solver equal
                                     c1_coons_stencil()));
 }
 
+TEST_CASE("make_structured_stencil_solver: separable-banded for c1-coons, fast5 for the C1 family, none on free sets",
+          "[mask]") {
+  const StencilProblem full = make_problem(make_random_net(14, 11, 5), 2);
+  auto separable = make_structured_stencil_solver(full, c1_coons_stencil());
+  REQUIRE(separable);
+  CHECK(separable->name() == "separable-banded");
+  if (!solvers::find_solver("fast5")) {
+    WARN("skipped: fast5 needs FFTW");
+    return;
+  }
+  for (const Stencil& stencil : {biharmonic_stencil(), c1_family_stencil(0.35)}) {
+    auto fast5 = make_structured_stencil_solver(full, stencil);
+    REQUIRE(fast5);
+    CHECK(fast5->name() == "fast5");
+    const StencilSolveResult r = solve_stencil_net(full, stencil, *fast5);
+    REQUIRE(r.summary.ok());
+    CHECK(relative_difference(r.net, solve_with(full, stencil, "eigen-ldlt")) < 1e-11);
+  }
+  CHECK_FALSE(make_structured_stencil_solver(
+      make_problem(make_random_net(14, 11, 5), 2, random_free(14, 11, 2, 0.7, 3)), biharmonic_stencil()));
+  CHECK_FALSE(make_structured_stencil_solver(full, random_stencil(2, 17)));
+}
+
 TEST_CASE("solve_stencil_net: a problem that does not fit the mask is a status, not a crash", "[mask]") {
   auto solver = solvers::make_solver("eigen-lu");
   const StencilProblem p = make_problem(make_random_net(6, 6, 1), 1);

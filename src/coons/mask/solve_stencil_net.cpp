@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "solvers/registry.h"
 #include "solvers/separable_banded_solver.h"
 
 namespace coons {
@@ -99,6 +100,20 @@ std::unique_ptr<solvers::LinearSolver> make_separable_solver(const StencilProble
   const StencilSystem system = assemble_stencil_system(problem, stencil, assembly);
   if (!system.separable) return nullptr;
   return solvers::make_separable_banded_solver(*system.separable, options);
+}
+
+std::unique_ptr<solvers::LinearSolver> make_structured_stencil_solver(const StencilProblem& problem,
+                                                                      const Stencil& stencil,
+                                                                      const solvers::SolverOptions& options) {
+  if (auto separable = make_separable_solver(problem, stencil, options)) return separable;
+  if (!solvers::find_solver("fast5")) return nullptr;  // built without FFTW
+  StencilAssemblyOptions assembly;
+  assembly.with_matrix = false;
+  const StencilSystem system = assemble_stencil_system(problem, stencil, assembly);
+  if (system.numbering.size() == 0 || system.grid_operator.rows == 0) return nullptr;
+  auto fast5 = solvers::make_solver("fast5", options);
+  if (fast5->analyze(operator_of(system)) != solvers::SolveStatus::kSuccess) return nullptr;
+  return fast5;  // analyzed on a system that goes out of scope here: the solve analyzes again
 }
 
 }  // namespace coons
