@@ -13,6 +13,8 @@ if [ "${1:-}" != "--report-only" ]; then
   "$bench" --hard --benchmark_filter='MemoryPass|Hard' --benchmark_format=console \
     --benchmark_out="$dir/results/bench.json.tmp" --benchmark_out_format=json
   mv "$dir/results/bench.json.tmp" "$dir/results/bench.json"
-  rm -f "$dir/results/bench511.json" "$dir/results/bench_fast.json"  # parts of the earlier split runs
+  rm -f "$dir/results/bench1023.json"  # the second part of the committed two-run result
 fi
-python3 scripts/e04_report.py "$dir/results/bench.json" "$dir"
+parts=("$dir/results/bench.json")
+[ -f "$dir/results/bench1023.json" ] && parts+=("$dir/results/bench1023.json")
+python3 scripts/e04_report.py "${parts[@]}" "$dir"
