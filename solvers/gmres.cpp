@@ -86,7 +86,7 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
     if (j == 0) {
       if (timed_out) {
         out.status = SolveStatus::kNotConverged;
-        out.message = "time limit reached at relative residual " + std::to_string(rel) + " after " +
+        out.message = "time limit reached at relative residual " + format_g(rel) + " after " +
                       std::to_string(out.iterations) + " iterations";
       }
       break;
@@ -104,7 +104,7 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
     const double true_rel = r.norm() / bnorm;
     if (!std::isfinite(true_rel) || true_rel > options.iteration.divergence * out.history.front()) {
       out.status = SolveStatus::kDiverged;
-      out.message = "GMRES diverged (residual " + std::to_string(true_rel) + ")";
+      out.message = "GMRES diverged (residual " + format_g(true_rel) + ")";
       x.setZero(n);
       r = b;
       rel = 1;
@@ -113,14 +113,14 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
     if (timed_out && !(true_rel <= tol)) {
       rel = true_rel;
       out.status = SolveStatus::kNotConverged;
-      out.message = "time limit reached at relative residual " + std::to_string(rel) + " after " +
+      out.message = "time limit reached at relative residual " + format_g(rel) + " after " +
                     std::to_string(out.iterations) + " iterations";
       break;
     }
     if (true_rel >= rel && !(true_rel <= tol)) {  // a whole cycle without progress: stagnation
       rel = true_rel;
       out.status = SolveStatus::kNotConverged;
-      out.message = "GMRES stagnated at relative residual " + std::to_string(rel);
+      out.message = "GMRES stagnated at relative residual " + format_g(rel);
       break;
     }
     rel = true_rel;
@@ -128,8 +128,7 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
   out.relative_residual = rel;
   if (out.status == SolveStatus::kSuccess && rel > tol) {
     out.status = SolveStatus::kNotConverged;
-    out.message =
-        "relative residual " + std::to_string(rel) + " after " + std::to_string(out.iterations) + " iterations";
+    out.message = "relative residual " + format_g(rel) + " after " + std::to_string(out.iterations) + " iterations";
   }
   return out;
 }

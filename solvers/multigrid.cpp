@@ -240,8 +240,8 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
     out.history.push_back(rel);
     if (!std::isfinite(rel) || rel > options.divergence * out.history.front() || rel > 1e3 * best) {
       out.status = SolveStatus::kDiverged;
-      out.message = "the multigrid iteration diverged: residual grew from " + std::to_string(best) + " to " +
-                    std::to_string(rel) + " (the best iterate is returned)";
+      out.message = "the multigrid iteration diverged: residual grew from " + format_g(best) + " to " + format_g(rel) +
+                    " (the best iterate is returned)";
       xg = x_best;
       residual(L, bg, xg, r);
       rel = r.norm() / bnorm;
@@ -259,7 +259,7 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
       }
       const double floor = rounding_floor(L, xg, bnorm);
       out.message = rel <= 100 * floor ? floor_message("the multigrid iteration", rel, floor, out.iterations)
-                                       : "the multigrid iteration stalled at relative residual " + std::to_string(rel) +
+                                       : "the multigrid iteration stalled at relative residual " + format_g(rel) +
                                              " after " + std::to_string(out.iterations) + " cycles";
       break;
     }
@@ -269,7 +269,7 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
         xg = x_best;
         rel = best;
       }
-      out.message = "time limit reached at relative residual " + std::to_string(rel) + " after " +
+      out.message = "time limit reached at relative residual " + format_g(rel) + " after " +
                     std::to_string(out.iterations) + " cycles (the best iterate is returned)";
       break;
     }
@@ -277,7 +277,7 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
   out.relative_residual = rel;
   if (out.status == SolveStatus::kSuccess && rel > options.tolerance) {
     out.status = SolveStatus::kNotConverged;
-    out.message = "relative residual " + std::to_string(rel) + " after " + std::to_string(out.iterations) + " cycles";
+    out.message = "relative residual " + format_g(rel) + " after " + std::to_string(out.iterations) + " cycles";
   }
   from_grid(fine_number_, xg, size(), x);
   return out;
@@ -386,7 +386,7 @@ IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x, c
     }
     if (stagnated(out.history, 25)) {
       out.status = SolveStatus::kNotConverged;
-      out.message = "conjugate gradients stalled at relative residual " + std::to_string(rel) + " after " +
+      out.message = "conjugate gradients stalled at relative residual " + format_g(rel) + " after " +
                     std::to_string(out.iterations) + " iterations";
       break;
     }
@@ -406,7 +406,7 @@ IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x, c
     out.status = SolveStatus::kNotConverged;
     out.message = floor_reached ? floor_message("conjugate gradients", out.relative_residual,
                                                 rounding_floor(L, xg, bnorm), out.iterations)
-                                : "relative residual " + std::to_string(out.relative_residual) + " after " +
+                                : "relative residual " + format_g(out.relative_residual) + " after " +
                                       std::to_string(out.iterations) + " iterations";
   }
   from_grid(number, xg, mg.size(), x);
