@@ -18,10 +18,6 @@
 #include <utility>
 #include <vector>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
 #include "row_form.h"
 #include "sine_transform.h"
 #include "structured_solvers.h"
@@ -112,13 +108,6 @@ class DstSolver : public detail::StructuredSolver {
   // X = S_R (B̂ ./ λ) S_C·norm, column by column, for the three sources; B̂ from `rows` sources
   // is read from X itself (the rows of B already transformed there).
   void invert(const std::array<Spectrum, 3>& sources, Eigen::MatrixX3d& X, const Eigen::MatrixX3d* forward_rows_of);
-  static int thread_index() {
-#if defined(_OPENMP)
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
-  }
 
   int threads_ = 1;
   std::vector<Scratch> scratch_;

@@ -13,7 +13,6 @@
 #include "sine_transform.h"
 
 #if defined(_OPENMP)
-#include <omp.h>
 // A loop over independent units on `nt` threads (a local); each unit writes its own data.
 #define COONS_PARALLEL_FOR _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic)")
 #else
@@ -156,11 +155,9 @@ class Fast5Solver final : public LinearSolver {
 #pragma omp parallel num_threads(nt) if (nt > 1)
 #endif
     {
+      detail::SineTransform& along_j = along_j_[std::size_t(thread_index())];
 #if defined(_OPENMP)
-      detail::SineTransform& along_j = along_j_[std::size_t(omp_get_thread_num())];
 #pragma omp for schedule(static)
-#else
-      detail::SineTransform& along_j = along_j_[0];
 #endif
       for (int unit = 0; unit < count * R_; ++unit) {
         const int c = unit / R_, r = unit % R_;

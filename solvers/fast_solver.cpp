@@ -17,10 +17,6 @@
 #include <string>
 #include <vector>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
 #include "capacitance.h"
 #include "kronecker_solver.h"
 #include "mode_pivots.h"
@@ -317,15 +313,6 @@ class FastSolver : public detail::StructuredSolver {
       for (int i = end - 1; i >= first; --i)
         for (int c = 0; c < 3; ++c) done(i, c, static_cast<const double*>(slot_row(c, i - first)));
     }
-  }
-
-  // The calling thread's index in a parallel region of pipeline (0 outside one).
-  static int thread_index() {
-#if defined(_OPENMP)
-    return omp_get_thread_num();
-#else
-    return 0;
-#endif
   }
 
   // X = (2/(L+1)) S X̂, first C columns; with extra columns, the sources U are found first from a

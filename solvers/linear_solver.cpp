@@ -1,5 +1,8 @@
 #include "linear_solver.h"
 
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -71,6 +74,14 @@ int resolved_threads(int threads) {
   if (threads > 0) return std::min(threads, kMaxThreads);
   const auto cores = int(std::thread::hardware_concurrency());
   return std::clamp(cores, 1, kMaxThreads);
+}
+
+int thread_index() {
+#if defined(_OPENMP)
+  return omp_get_thread_num();
+#else
+  return 0;
+#endif
 }
 
 std::string SolveSummary::brief_report() const {

@@ -74,6 +74,10 @@ constexpr int kMaxThreads = 256;
 //! (at least 1, at most kMaxThreads).
 int resolved_threads(int threads);
 
+//! The calling thread's index in an OpenMP parallel region (0 outside one, or without OpenMP):
+//! the slot of its per-thread scratch in the threaded backends.
+int thread_index();
+
 struct SolveSummary {
   std::string solver;  //!< registry name of the backend
   SolveStatus status = SolveStatus::kSuccess;
