@@ -70,19 +70,24 @@ std::string metrics_table(const std::vector<Row>& rows) {
   return table;
 }
 
-// One --mask run of a boundary: the stencil solve of its whole problem, as `coons solve --mask`.
-void run_mask(const BatchRequest& b, const BoundaryFile& input, const std::string& file, const std::string& folder,
-              OutputSet& out, std::vector<Row>& rows, Phases& phases) {
-  const ResolvedRequest r = resolve(b.net, input.boundary, file);
-  const std::string tag = mask_tag(r);
+// One stencil solve of a boundary's whole problem (ribbons, rings, free grid), as `coons solve`
+// gives it for `request`: a --mask run (tag from the mask), or one α of a file that is not a
+// one-ring rectangle (tag alpha±A).
+void run_stencil(const BatchRequest& b, const NetRequest& request, const BoundaryFile& input, const std::string& file,
+                 const std::string& folder, OutputSet& out, std::vector<Row>& rows, Phases& phases) {
+  const ResolvedRequest r = resolve(request, input.boundary, file);
+  const bool by_mask = r.mask_kind != MaskKind::kAlpha;
+  const std::string tag = by_mask ? mask_tag(r) : alpha_tag(request.alpha);
   phases.start("solve", fmt::format("{} {}", input.boundary.name, tag));
-  const StencilRun run = solve_stencil_request(input, r, b.net, b.global, file);
+  const StencilRun run = solve_stencil_request(input, r, request, b.global, file);
   const bool ok = run.result.summary.ok();
   Row row{input.boundary.name,
           input.boundary.m,
           input.boundary.n,
           r.mask_name,
-          r.weight ? fmt::format("w={}", *r.weight) : std::string("-"),
+          r.weight  ? fmt::format("w={}", *r.weight)
+          : by_mask ? std::string("-")
+                    : fmt::format("{}", request.alpha),
           solvers::to_string(run.result.summary.status),
           {}};
   phases.start("metrics");
@@ -115,6 +120,8 @@ int run_batch(const BatchRequest& b) {
   }
   const solvers::SolverInfo* solver = solver_from_name(b.net.solver);
   const bool by_mask = b.net.mask != "alpha";
+  if (!by_mask && b.net.weight_option && b.net.weight_option->count() > 0)
+    throw InputError("command line", "--weight", "--weight is the weight of --mask c1-family; it needs that mask");
   if (by_mask && b.alphas_option && b.alphas_option->count() > 0)
     throw InputError("command line", "--alphas",
                      "--alphas are the 3x3 masks of --mask alpha; they do not apply to --mask " + b.net.mask);
@@ -124,8 +131,10 @@ int run_batch(const BatchRequest& b) {
   std::vector<BoundaryFile> boundaries;
   for (const auto& f : files) {
     boundaries.push_back(read_input(f, b.net.corner_tolerance));
-    check_net_memory(b.global, boundaries.back().boundary, solver, f);
-    if (by_mask) check_stencil_request(boundaries.back(), resolve(b.net, boundaries.back().boundary, f), f);
+    const bool stencil = by_mask || !is_classical(boundaries.back());
+    check_net_memory(b.global, boundaries.back().boundary, solver, f,
+                     stencil_nonzeros(resolve(b.net, boundaries.back().boundary, f)));
+    if (stencil) check_stencil_request(boundaries.back(), resolve(b.net, boundaries.back().boundary, f), f);
   }
 
   OutputSet out(b.out_dir);
@@ -139,7 +148,16 @@ int run_batch(const BatchRequest& b) {
       folder = fmt::format("{}-{}x{}-{}", safe_file_stem(boundary.name), boundary.m, boundary.n, copy);
     folders.push_back(folder);
     if (by_mask) {
-      run_mask(b, boundaries[k], files[k], folder, out, rows, phases);
+      run_stencil(b, b.net, boundaries[k], files[k], folder, out, rows, phases);
+      continue;
+    }
+    if (!is_classical(boundaries[k])) {
+      // two data rings or a free grid: every α over the whole problem; no closed-form Coons net
+      for (double a : b.alphas) {
+        NetRequest request = b.net;
+        request.alpha = a;
+        run_stencil(b, request, boundaries[k], files[k], folder, out, rows, phases);
+      }
       continue;
     }
     std::vector<std::pair<std::string, NetRequest>> runs;
@@ -184,7 +202,9 @@ int run_batch(const BatchRequest& b) {
     o << "# coons batch: metrics of every bundled boundary\n\n"
       << (by_mask ? "Every net is the stencil solve of the mask named in the method column (--mask " + b.net.mask +
                         ", over each file's whole problem: ribbons, rings, free grid). "
-                  : std::string("Coons = closed-form discrete Coons net; alpha = mask solve. "))
+                  : std::string("Coons = closed-form discrete Coons net; alpha = mask solve (for a file with two "
+                                "data rings or a free grid: over its whole problem, and no Coons row, the closed "
+                                "form needs one ring). "))
       << "Energies are exact integrals "
          "of the Bézier surface (docs/math.md §5); mask res. is the residual of the row's own mask.\n\n"
       << table;

@@ -202,6 +202,16 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   if (given(r.omega_option) && r.solver != "gauss-seidel")
     throw InputError("command line", "--omega",
                      "--omega is the over-relaxation of --solver gauss-seidel, not of " + r.solver);
+  if (r.solver != "auto")
+    for (auto [option, name] :
+         {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}})
+      if (given(option))
+        if (const solvers::SolverInfo* info = solvers::find_solver(r.solver);
+            info && info->family != solvers::SolverFamily::kIterative)
+          throw InputError("command line", name,
+                           fmt::format("{} is a stopping rule of the iterative solvers; {} is a {} solver and solves "
+                                       "exactly",
+                                       name, r.solver, solvers::to_string(info->family)));
 
   resolve_mask(r, out);
   if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");
@@ -253,6 +263,19 @@ bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r) {
 
 Stencil request_stencil(const ResolvedRequest& r) { return r.stencil ? *r.stencil : alpha_stencil(r.mask); }
 
+void require_one_ring(const BoundaryFile& input, const std::string& source, const std::string& what) {
+  if (is_classical(input)) return;
+  const bool rings = input.rings > 1;
+  throw InputError(source, rings ? "rings" : "free",
+                   fmt::format("{} works on the one-ring problem of a full rectangle, and this file has {}; solve "
+                               "it with `coons solve --alpha A` or `coons batch --alphas ...`",
+                               what, rings ? fmt::format("{} data rings", input.rings) : std::string("a free grid")));
+}
+
+int stencil_nonzeros(const ResolvedRequest& r) {
+  return r.stencil && r.stencil->radius == 2 ? kStencil5Nonzeros : kMask3Nonzeros;
+}
+
 StencilRun check_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source) {
   if (r.method != Method::kAlpha)
     throw InputError(
@@ -270,7 +293,7 @@ StencilRun check_stencil_request(const BoundaryFile& input, const ResolvedReques
 
 StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const NetRequest& request,
                                  const GlobalOptions& global, const std::string& source) {
-  check_net_memory(global, input.boundary, request.solver == "auto" ? nullptr : r.solver, source);
+  check_net_memory(global, input.boundary, request.solver == "auto" ? nullptr : r.solver, source, stencil_nonzeros(r));
   StencilRun run = check_stencil_request(input, r, source);
   std::unique_ptr<solvers::LinearSolver> solver;
   if (request.solver == "auto") {

@@ -89,6 +89,12 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r);
 
 //! True when the classical path applies: one data ring, no free grid, the alpha mask.
+//! Input error (field `rings` or `free`) when the file is not the one-ring problem of a full
+//! rectangle: for commands that solve only that problem (`what` names them in the message).
+void require_one_ring(const BoundaryFile& input, const std::string& source, const std::string& what);
+//! Non-zeros per matrix row of the request's stencil (9 for 3×3 masks, 25 for 5×5), for the
+//! memory estimates.
+int stencil_nonzeros(const ResolvedRequest& r);
 bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r);
 //! The stencil of a resolved request.
 Stencil request_stencil(const ResolvedRequest& r);

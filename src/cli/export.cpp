@@ -59,7 +59,7 @@ int run_export(ExportRequest e) {
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
   if (!e.obj && !e.mtx && !e.cad.any()) e.obj = e.mtx = true;
   check_export_options(e.samples, e.mtx, r.method == Method::kAlpha, e.prefix);
-  check_net_memory(e.global, b, r.solver, e.boundary);
+  check_net_memory(e.global, b, r.solver, e.boundary, stencil_nonzeros(r));
   // Beyond the classical problem (two data rings, a free grid, a mask other than alpha): the
   // stencil solve of `coons solve`, checked here, before anything is written.
   const bool classical = is_classical_request(input, r);

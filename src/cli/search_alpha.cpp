@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cctype>
+#include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
@@ -215,6 +216,8 @@ int run_search_alpha(const SearchRequest& r) {
   const BoundaryFile file = read_input(r.boundary, r.corner_tolerance, true);
   if (file.bspline) return run_bspline_search(r, file, phases);
   const Boundary& b = file.boundary;
+  if (r.parameter != Parameter::kWeight)
+    require_one_ring(file, r.boundary, "search-alpha --parameter alpha, mu or alpha-gamma");
   const SearchSetup setup = setup_search(r, b);
   // the C1 family's weight is searched on the 5×5 stencil's system
   check_net_memory(r.global, b, setup.solver, r.boundary,
@@ -234,9 +237,12 @@ int run_search_alpha(const SearchRequest& r) {
   phases.start("solve");
   if (r.parameter == Parameter::kAlphaGamma) {
     MaskObjective f(b, setup.objective, setup.family, *setup.solver);
+    const auto started = std::chrono::steady_clock::now();
     const AlphaGammaSummary g = search_alpha_gamma(f, setup.options);
+    const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     nlohmann::json out = alpha_gamma_report(b, objective, setup.options, g);
-    out["solver"] = search_solver_block(*setup.solver, setup.picked_automatically, g.status, g.solves, 0, g.message);
+    out["solver"] =
+        search_solver_block(*setup.solver, setup.picked_automatically, g.status, g.solves, seconds, g.message);
     return finish(out, phases, g.status, r, g.message);
   }
   // The α family is searched in the sine basis when it can be (search_alpha): no solve per evaluation.

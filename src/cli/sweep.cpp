@@ -49,7 +49,9 @@ int run_sweep_command(const SweepRequest& r) {
   if (is_triangle_file(r.boundary)) return run_tri_sweep(tri_sweep_args(r));
   Phases phases("sweep");
   phases.start("read");
-  const Boundary b = read_input(r.boundary, r.corner_tolerance).boundary;
+  const BoundaryFile file = read_input(r.boundary, r.corner_tolerance);
+  require_one_ring(file, r.boundary, "coons sweep");
+  const Boundary& b = file.boundary;
   if (r.count < 2 || r.count > 100000) throw InputError("command line", "--count", "must be between 2 and 100000");
   const double from = r.parameter == SweepParameter::kMu && r.from_option->count() == 0 ? 0.0 : r.from;
   const double to = r.parameter == SweepParameter::kMu && r.to_option->count() == 0 ? 100.0 : r.to;

@@ -169,6 +169,22 @@ TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on 
   CHECK(std::abs(t.gamma) < 0.25 + t.alpha);
 }
 
+TEST_CASE("search_alpha_gamma: at_bound says when the optimum sits on a bound of the interval", "[alpha]") {
+  // the twist energy of the dome is least at the Coons net, alpha = -1/4, the lower bound (it used
+  // to report at_bound = false there)
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective twist(dome, objective_named("twist"), alpha_only(), backend("eigen-ldlt"));
+  const AlphaGammaSummary s = search_alpha_gamma(twist);
+  REQUIRE(s.status == SearchStatus::kSuccess);
+  CHECK(s.alpha == Approx(-0.25).margin(1e-7));
+  CHECK(s.at_bound);
+  MaskObjective plate(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
+  const AlphaGammaSummary t = search_alpha_gamma(plate);
+  REQUIRE(t.status == SearchStatus::kSuccess);
+  CHECK(t.alpha > -0.25 + 1e-3);
+  CHECK_FALSE(t.at_bound);
+}
+
 TEST_CASE("discrete objectives: derivative equals finite differences; discrete twist is minimal at alpha = -1/4",
           "[alpha]") {
   const Boundary b = make_smooth_boundary(7, 6, 12);

@@ -355,3 +355,48 @@ TEST_CASE("coons refit: analytic sides at any degree, elevation otherwise, exit 
   CHECK(down.out.empty());
   CHECK_THAT(down.err, Catch::Contains("curves"));
 }
+
+TEST_CASE(
+    "coons search-alpha: a grid backend that does not solve the 3x3 family is bad input, not a success by "
+    "another evaluator",
+    "[cli][alpha]") {
+  // separable-banded takes only alpha = -1/4, fast5 only 5x5 stencils: the search used to answer
+  // through the sine basis and report them as the successful solver
+  for (const char* solver : {"separable-banded", "fast5"}) {
+    const CommandResult r = run_coons("search-alpha " + quoted(kData + "/boundaries/dome.json") +
+                                      " --objective thin_plate --solver " + solver);
+    INFO(solver << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind(std::string("error: command line: --solver: ") + solver, 0) == 0);
+  }
+  // the alpha-gamma search reports the seconds it took (it used to print 0)
+  const CommandResult g = run_coons("search-alpha " + quoted(kData + "/boundaries/dome.json") +
+                                    " --objective thin_plate --parameter alpha-gamma --solver eigen-ldlt");
+  REQUIRE(g.status == 0);
+  const json report = json::parse(g.out);
+  CHECK(report["solver"]["iterations"].get<int>() > 0);
+  CHECK(report["solver"]["seconds"]["search"].get<double>() > 0);
+}
+
+TEST_CASE("coons solve: --tolerance or --max-iterations with a direct or structured solver is bad input", "[cli]") {
+  // they used to be accepted and ignored
+  for (const char* args : {" --solver eigen-ldlt --tolerance 1e-3", " --solver dst --max-iterations 3"}) {
+    const CommandResult r = run_coons("solve " + quoted(kData + "/boundaries/dome.json") + args);
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::Contains("is a stopping rule of the iterative solvers"));
+  }
+  CHECK(run_coons("solve " + quoted(kData + "/boundaries/dome.json") + " --solver cg --tolerance 1e-8").status == 0);
+}
+
+TEST_CASE("coons solve --method hermite-coons: no mask, so no mask residual", "[cli]") {
+  // (it used to report the residual of the alpha = -1/4 mask under "mask": null)
+  const CommandResult r = run_coons("solve " + quoted(kData + "/boundaries/dome.json") + " --method hermite-coons");
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  CHECK(report["mask"].is_null());
+  CHECK(report["metrics"]["mask_residual"].is_null());
+  CHECK(report["metrics"]["thin_plate_energy"].get<double>() > 0);
+}

@@ -16,6 +16,7 @@
 #include "coons/mask/solve_stencil_net.h"
 #include "coons/mask/stencil.h"
 #include "coons/mask/stencil_system.h"
+#include "coons/study/memory_estimate.h"
 #include "solvers/registry.h"
 #include "support/cli_support.h"
 
@@ -221,4 +222,83 @@ TEST_CASE("coons batch --mask: every file's stencil solve as coons solve --mask 
     CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
     CHECK(!std::filesystem::exists(out.file("none")));
   }
+}
+
+TEST_CASE(
+    "coons batch: the alpha nets of a file with two rings or a free grid are coons solve --alpha of it, with no "
+    "Coons row",
+    "[cli]") {
+  // (it used to solve the outer ring's one-ring problem and report success)
+  TempDir out;
+  const std::string island = kData + "/free_sets/island.json";
+  const std::string dome = kData + "/boundaries/dome.json";
+  const CommandResult r = run_coons("batch " + quoted(island) + " " + quoted(dome) +
+                                    " --alphas -0.2 0 --samples 5 --out " + quoted(out.path.string()));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  for (const char* alpha : {"-0.2", "0"}) {
+    const json single = solve(quoted(island) + " --alpha " + alpha);
+    const json batch = json::parse(
+        read_text(out.file(std::string("island-10x10/alpha") + (alpha[0] == '-' ? "" : "+") + alpha + ".json")));
+    CHECK(batch["net"] == single["net"]);
+    CHECK(batch["metrics"] == single["metrics"]);
+    CHECK(batch["free_points"] == single["free_points"]);
+  }
+  CHECK(!std::filesystem::exists(out.file("island-10x10/coons.json")));
+  CHECK(std::filesystem::exists(out.file("dome-3x3/coons.json")));  // a one-ring file keeps its Coons row
+}
+
+TEST_CASE("coons sweep and search-alpha: a file with two rings or a free grid is bad input naming rings or free",
+          "[cli]") {
+  TempDir out;
+  for (const auto& [file, field] : {std::pair{kData + "/free_sets/island.json", std::string("rings")},
+                                    std::pair{kData + "/boundaries/sphere_cap_ribbons.json", std::string("rings")}}) {
+    for (const std::string& command : {"sweep " + quoted(file) + " --count 3 --out " + quoted(out.file("sweep")),
+                                       "search-alpha " + quoted(file) + " --objective thin_plate",
+                                       "search-alpha " + quoted(file) + " --objective twist --parameter alpha-gamma"}) {
+      const CommandResult e = run_coons(command);
+      INFO(command << "\n" << e.err);
+      CHECK(e.status == 2);
+      CHECK(e.out.empty());
+      std::string expected = "error: ";
+      expected.append(file).append(": ").append(field).append(": ");
+      CHECK(e.err.rfind(expected, 0) == 0);
+      CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
+    }
+  }
+  CHECK(!std::filesystem::exists(out.file("sweep")));
+  // the C1 family's weight is searched on the whole problem, and stays allowed
+  CHECK(run_coons("search-alpha " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") +
+                  " --objective thin_plate --parameter weight")
+            .status == 0);
+}
+
+TEST_CASE("coons batch: --weight without --mask c1-family is bad input", "[cli]") {
+  TempDir out;
+  const CommandResult e =
+      run_coons("batch " + quoted(kData + "/boundaries/dome.json") + " --weight 0.5 --out " + quoted(out.file("none")));
+  INFO(e.err);
+  CHECK(e.status == 2);
+  CHECK(e.out.empty());
+  CHECK(e.err.rfind("error: command line: --weight: ", 0) == 0);
+  CHECK(!std::filesystem::exists(out.file("none")));
+}
+
+TEST_CASE("coons solve --mask: the memory check counts 25 entries a row for a 5x5 mask", "[cli]") {
+  // a limit between the 9-entry and the 25-entry estimate of the same net is refused for c1-coons
+  // (it used to pass: the 3x3 count was used for every mask) and accepted for the 3x3 alpha mask
+  const std::string file = kData + "/boundaries/torus_patch_ribbons.json";
+  const solvers::SolverInfo* cholmod = solvers::find_solver("cholmod");
+  if (!cholmod) cholmod = solvers::find_solver("eigen-ldlt");
+  const std::string name = cholmod->name;
+  const double nine = net_solve_bytes(7, 5, cholmod, kMask3Nonzeros) + net_metrics_bytes(7, 5);
+  const double twenty_five = net_solve_bytes(7, 5, cholmod, kStencil5Nonzeros) + net_metrics_bytes(7, 5);
+  REQUIRE(twenty_five > 1.2 * nine);
+  const std::string limit = std::to_string(static_cast<long long>((nine + twenty_five) / 2));
+  const CommandResult five =
+      run_coons("solve " + quoted(file) + " --mask c1-coons --solver " + name + " --max-memory " + limit);
+  INFO(five.err);
+  CHECK(five.status == 2);
+  CHECK_THAT(five.err, Catch::Contains("needs about"));
+  CHECK(run_coons("solve " + quoted(file) + " --alpha -0.2 --solver " + name + " --max-memory " + limit).status == 0);
 }

@@ -97,10 +97,13 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
   out.alpha = alpha;
   out.gamma = gamma;
   out.value = e.value;
+  const double edge_tolerance = 1e-7 * (upper - lower);
+  out.at_bound = std::abs(alpha - lower) <= edge_tolerance || std::abs(alpha - upper) <= edge_tolerance;
   if (one.value < e.value) {  // never report a worse point than the symmetric optimum
     out.alpha = *one.parameter;
     out.gamma = 0;
     out.value = one.value;
+    out.at_bound = one.at_bound;
   }
   if (summary.termination_type == ceres::NO_CONVERGENCE) {
     out.status = SearchStatus::kNotConverged;

@@ -116,6 +116,7 @@ struct AlphaGammaSummary {
   double alpha = 0, gamma = 0, value = 0;
   double value_at_gamma0 = 0;  //!< the best of the symmetric family, for comparison
   bool flat = false;
+  bool at_bound = false;  //!< α* on a bound of the search interval (within 1e-7 of its length)
   int evaluations = 0, solves = 0;
   std::string ceres_report;
 };

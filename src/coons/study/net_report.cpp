@@ -90,6 +90,8 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
   else if (with_net)
     report["net"] = net_to_json(outcome.net);
   report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, mask)) : json(nullptr);
+  // the partially bicubic net belongs to no mask: no mask residual to report (not that of α = −1/4)
+  if (ok && method == NetMethod::kHermiteCoons) report["metrics"]["mask_residual"] = nullptr;
   return report;
 }
 

@@ -115,7 +115,7 @@ json alpha_gamma_report(const Boundary& b, const std::string& objective, const A
               {"value_at_gamma0", number_or_null(g.value_at_gamma0)},
               {"bounds", {options.lower, options.upper}},
               {"flat", g.flat},
-              {"at_bound", false},
+              {"at_bound", g.at_bound},
               {"evaluations", g.evaluations},
               {"solves", g.solves},
               {"status", to_string(g.status)}};
