@@ -171,7 +171,7 @@ SolveStatus DstSolver::factorize_grid(const LinearOperator& /*op*/, const GridSt
     }
   }
   if (!(smallest > kSingularEigenvalue * largest)) {
-    summary.message = "smallest |eigenvalue| " + std::to_string(smallest) + " of largest " + std::to_string(largest) +
+    summary.message = "smallest |eigenvalue| " + format_g(smallest) + " of largest " + format_g(largest) +
                       ": the stencil is singular";
     return SolveStatus::kSingular;
   }

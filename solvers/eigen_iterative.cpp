@@ -17,7 +17,7 @@ bool stencil_not_definite(const LinearOperator& op, SolveSummary& summary) {
   if (!op.stencil || op.stencil->size() == 0) return false;
   const double lo = stencil_eigenvalue_range(*op.stencil).first;
   if (lo > 0) return false;
-  summary.message = "smallest eigenvalue of the operator is " + std::to_string(lo) +
+  summary.message = "smallest eigenvalue of the operator is " + format_g(lo) +
                     ": conjugate gradients need a positive definite system";
   return true;
 }

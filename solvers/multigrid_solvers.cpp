@@ -65,7 +65,7 @@ class MultigridBackend : public LinearSolver {
     if (method_ == Method::kCg && !op.grid && op.stencil) {  // the exact spectrum is known
       const double lo = stencil_eigenvalue_range(*op.stencil).first;
       if (!(lo > 0)) {
-        summary.message = "smallest eigenvalue of the operator is " + std::to_string(lo) +
+        summary.message = "smallest eigenvalue of the operator is " + format_g(lo) +
                           ": conjugate gradients need a positive definite system";
         return SolveStatus::kNotPositiveDefinite;
       }
