@@ -9,10 +9,12 @@
 #include <memory>
 
 #include "coons/alpha/alpha_search.h"
-#include "coons/alpha/weight_search.h"
+#include "coons/alpha/family_search.h"
 #include "coons/io/input_error.h"
 #include "coons/io/tri_boundary_io.h"
+#include "coons/mask/mask9.h"
 #include "coons/mask/stencil.h"
+#include "coons/mask/stencil_problem.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/bspline_net.h"
 #include "coons/study/bspline_search.h"
@@ -209,6 +211,32 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
   return finish(out, phases, s.status, r, s.message);
 }
 
+// The α family on a file that is not the one-ring rectangle (two data rings, a free grid): the
+// stencil-problem search (family_search.h), every evaluation a factorisation from the matrix.
+int run_problem_alpha_search(const SearchRequest& r, const BoundaryFile& file, Phases& phases) {
+  const Boundary& b = file.boundary;
+  const solvers::SolverInfo* requested = solver_from_name(r.solver);
+  if (requested && !requested->needs_matrix)
+    throw InputError("command line", "--solver",
+                     requested->name +
+                         " solves the grid stencil of a full rectangle; the alpha search of a file with two data "
+                         "rings or a free grid needs a backend that works from the matrix");
+  SearchSetup setup = setup_search(r, b);
+  const solvers::SolverInfo& solver = weight_search_backend(requested, false);
+  StencilProblem problem = stencil_problem(file);
+  const std::vector<ProblemIssue> issues = check_stencil_problem(problem, alpha_stencil(alpha_mask(-0.1)));
+  if (!issues.empty()) throw InputError(r.boundary, issues.front().field, issues.front().reason);
+  check_net_memory(r.global, b, &solver, r.boundary);
+  phases.start("solve");
+  const AlphaSearchSummary s = search_alpha_on_problem(problem, setup.objective, solver, setup.options);
+  nlohmann::json out = search_report(b, objective_text(r.objective), r.parameter, setup.family, setup.options, s);
+  out["mu"] = nullptr;  // μ names the one-ring rectangle's anisotropic masks
+  out["rings"] = problem.rings;
+  out["free_points"] = free_points(problem).count();
+  out["solver"] = search_solver_block(solver, requested == nullptr, s.status, s.solves, s.seconds, s.message);
+  return finish(out, phases, s.status, r, s.message);
+}
+
 int run_search_alpha(const SearchRequest& r) {
   if (is_triangle_file(r.boundary)) return run_tri_search(tri_search_args(r));
   Phases phases("search-alpha");
@@ -216,8 +244,9 @@ int run_search_alpha(const SearchRequest& r) {
   const BoundaryFile file = read_input(r.boundary, r.corner_tolerance, true);
   if (file.bspline) return run_bspline_search(r, file, phases);
   const Boundary& b = file.boundary;
+  if (r.parameter == Parameter::kAlpha && !is_classical(file)) return run_problem_alpha_search(r, file, phases);
   if (r.parameter != Parameter::kWeight)
-    require_one_ring(file, r.boundary, "search-alpha --parameter alpha, mu or alpha-gamma");
+    require_one_ring(file, r.boundary, "search-alpha --parameter mu or alpha-gamma");
   const SearchSetup setup = setup_search(r, b);
   // the C1 family's weight is searched on the 5×5 stencil's system
   check_net_memory(r.global, b, setup.solver, r.boundary,

@@ -9,7 +9,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 
-#include "coons/alpha/weight_search.h"
+#include "coons/alpha/family_search.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/net_json.h"
 #include "coons/net/coons_net.h"

@@ -248,29 +248,56 @@ TEST_CASE(
   CHECK(std::filesystem::exists(out.file("dome-3x3/coons.json")));  // a one-ring file keeps its Coons row
 }
 
-TEST_CASE("coons sweep and search-alpha: a file with two rings or a free grid is bad input naming rings or free",
-          "[cli]") {
+TEST_CASE(
+    "coons sweep and search-alpha: a file with two rings or a free grid is bad input naming rings where the "
+    "one-ring problem is meant",
+    "[cli]") {
+  // (sweep and the mu / alpha-gamma searches used to solve the outer ring's problem and report success)
   TempDir out;
-  for (const auto& [file, field] : {std::pair{kData + "/free_sets/island.json", std::string("rings")},
-                                    std::pair{kData + "/boundaries/sphere_cap_ribbons.json", std::string("rings")}}) {
+  for (const std::string& file : {kData + "/free_sets/island.json", kData + "/boundaries/sphere_cap_ribbons.json"}) {
     for (const std::string& command : {"sweep " + quoted(file) + " --count 3 --out " + quoted(out.file("sweep")),
-                                       "search-alpha " + quoted(file) + " --objective thin_plate",
+                                       "search-alpha " + quoted(file) + " --objective thin_plate --parameter mu",
                                        "search-alpha " + quoted(file) + " --objective twist --parameter alpha-gamma"}) {
       const CommandResult e = run_coons(command);
       INFO(command << "\n" << e.err);
       CHECK(e.status == 2);
       CHECK(e.out.empty());
       std::string expected = "error: ";
-      expected.append(file).append(": ").append(field).append(": ");
+      expected.append(file).append(": rings: ");
       CHECK(e.err.rfind(expected, 0) == 0);
       CHECK(std::count(e.err.begin(), e.err.end(), '\n') == 1);
     }
   }
   CHECK(!std::filesystem::exists(out.file("sweep")));
-  // the C1 family's weight is searched on the whole problem, and stays allowed
-  CHECK(run_coons("search-alpha " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") +
-                  " --objective thin_plate --parameter weight")
-            .status == 0);
+}
+
+TEST_CASE("coons search-alpha: on a free set or two rings, alpha* of the whole problem, its value that of coons solve",
+          "[cli][alpha]") {
+  for (const std::string& file : {kData + "/free_sets/curve.json", kData + "/boundaries/torus_patch_ribbons.json"}) {
+    const CommandResult r = run_coons("search-alpha " + quoted(file) + " --objective thin_plate");
+    INFO(file << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    const json report = json::parse(r.out);
+    CHECK(report["status"] == "success");
+    CHECK(report["rings"].get<int>() >= 1);
+    CHECK(report["free_points"].get<int>() > 0);
+    CHECK(report["mu"].is_null());
+    CHECK(report["evaluator"] == "factorize and solve");
+    const double alpha = report["alpha"];
+    CHECK(alpha > -0.25);
+    CHECK(alpha < 0.25);
+    CHECK_FALSE(report["at_bound"].get<bool>());
+    const json single = solve(quoted(file) + " --alpha " + json(alpha).dump());
+    CHECK(single["metrics"]["thin_plate_energy"].get<double>() == Approx(report["value"].get<double>()).epsilon(1e-12));
+    // every scanned alpha is no better than the optimum
+    for (const auto& point : report["scan"])
+      CHECK(point[1].get<double>() >= report["value"].get<double>() * (1 - 1e-12));
+  }
+  // a backend of the grid stencil cannot take a free set: bad input naming --solver
+  const CommandResult e =
+      run_coons("search-alpha " + quoted(kData + "/free_sets/island.json") + " --objective thin_plate --solver mg");
+  CHECK(e.status == 2);
+  CHECK(e.err.rfind("error: command line: --solver: mg", 0) == 0);
 }
 
 TEST_CASE("coons batch: --weight without --mask c1-family is bad input", "[cli]") {

@@ -4,7 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "coons/alpha/weight_search.h"
+#include "coons/alpha/family_search.h"
 #include "coons/io/net_json.h"
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"

@@ -51,7 +51,7 @@ struct AlphaSearchOptions {
 //! kFailedRegion: some evaluations failed where the optimum (or the flatness) would rest on them
 //! — next to the lowest successful point, or anywhere when the rest is flat — so none is claimed;
 //! kNotApplicable: the problem does not fit the family (e.g. one data ring for the 5×5 C1
-//! family, weight_search.h); nothing was evaluated.
+//! family, family_search.h); nothing was evaluated.
 enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged, kFailedRegion, kNotApplicable };
 //! "success", "flat", "solver_failed", "not_converged", "failed_region", "not_applicable".
 const char* to_string(SearchStatus status);

@@ -1,7 +1,7 @@
-// Internal to the one-parameter mask searches (alpha_search.cpp, weight_search.cpp): the search
+// Internal to the one-parameter mask searches (alpha_search.cpp, family_search.cpp): the search
 // itself, for any evaluator with evaluate(p, with_derivative), unit_frame(), evaluations() and
 // solves() whose Evaluation has parameter, value, derivative, derivative_noise, has_derivative,
-// summary and ok() (MaskObjective, SpectralAlphaSearchObjective, WeightObjective):
+// summary and ok() (MaskObjective, SpectralAlphaSearchObjective, StencilFamilyObjective):
 //   InUnitFrame   the evaluator seen in its normalised frame (normalised_frame.h), every
 //                 evaluation logged as (parameter, succeeded);
 //   SearchRun     coarse scan, flat and bound verdicts, refinement of the best scan point;

@@ -14,7 +14,7 @@ namespace coons {
 
 //! What a search varies: α of the Farin–Hansford family, μ of the anisotropic masks (searched
 //! on the compressed scale μ/(μ + mn)), (α, γ), every symmetric affine-invariant 3×3 mask, or the
-//! weight w of the 5×5 C1 family (weight_search.h).
+//! weight w of the 5×5 C1 family (family_search.h).
 enum class SearchParameter { kAlpha, kMu, kAlphaGamma, kWeight };
 const char* to_string(SearchParameter parameter);
 

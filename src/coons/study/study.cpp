@@ -4,7 +4,7 @@
 
 #include <map>
 
-#include "coons/alpha/weight_search.h"
+#include "coons/alpha/family_search.h"
 #include "coons/io/boundary_curves.h"
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"

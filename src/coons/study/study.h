@@ -4,7 +4,7 @@
 // exactly) with the degree law α* + 1/4 ≈ c/n²; and, for every boundary that carries a target, a
 // reference table (S(½,½).z, thin plate, Dirichlet, rms distance at α = −1/4, −1/5, −1/10, 0) and
 // the α that fits the target best; for every boundary with two data rings ("ribbons", or a net
-// with "rings" ≥ 2) the best weight w* of the 5×5 C1 family beside α* (weight_search.h). Usable without the command
+// with "rings" ≥ 2) the best weight w* of the 5×5 C1 family beside α* (family_search.h). Usable without the command
 // line: run_study computes, the report functions (report_markdown.h) write. Based on: G. Farin, D. Hansford, Discrete
 // Coons patches, CAGD 16 (1999) 691–700.
 #pragma once

@@ -8,8 +8,8 @@
 #include <optional>
 
 #include "coons/alpha/alpha_search.h"
+#include "coons/alpha/family_search.h"
 #include "coons/alpha/objective.h"
-#include "coons/alpha/weight_search.h"
 #include "coons/mask/solve_stencil_net.h"
 #include "coons/metrics/energies.h"
 #include "coons/study/sweep.h"

@@ -3,7 +3,7 @@
 // backend needs one) plus the optima and α = −1/4, 0; per value the net, the Bézier surface
 // sampled on samples × samples points with its unit normals (sample_grid) and the exact energies
 // (net_metrics); per energy its optimum by the α search (search_alpha). For boundaries with two
-// data rings also the C1 family's weight w (weight_search.h), the same way. Sizes: frames · (#net +
+// data rings also the C1 family's weight w (family_search.h), the same way. Sizes: frames · (#net +
 // 2·samples²) points.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once

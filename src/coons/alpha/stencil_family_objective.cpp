@@ -1,26 +1,41 @@
-#include "weight_objective.h"
+#include "stencil_family_objective.h"
 
 #include <utility>
 
+#include "coons/mask/mask9.h"
 #include "coons/mask/stencil.h"
 
 namespace coons {
 
-WeightObjective::WeightObjective(const StencilProblem& problem, const Objective& objective,
-                                 const solvers::SolverInfo& solver, const solvers::SolverOptions& options)
-    : problem_(problem), unit_(normalised_frame(boundary_of(problem.net), objective)) {
+StencilFamily c1_weight_family() {
+  return {[](double w) { return c1_family_stencil(w); },
+          [](double w) { return Eigen::MatrixXd(c1_family_stencil_derivative(w)); }};
+}
+
+StencilFamily alpha_stencil_family() {
+  // W(±1, 0) = W(0, ±1) = −(1/4 − α), W(±1, ±1) = −α, centre 1: d/dα is +1 on the edges, −1 on
+  // the diagonals, 0 at the centre
+  Eigen::MatrixXd d(3, 3);
+  d << -1, 1, -1, 1, 0, 1, -1, 1, -1;
+  return {[](double a) { return alpha_stencil(alpha_mask(a)); }, [d](double) { return d; }};
+}
+
+StencilFamilyObjective::StencilFamilyObjective(const StencilProblem& problem, const Objective& objective,
+                                               const solvers::SolverInfo& solver, const solvers::SolverOptions& options,
+                                               StencilFamily family)
+    : problem_(problem), unit_(normalised_frame(boundary_of(problem.net), objective)), family_(std::move(family)) {
   // the whole net (both rings of data) moves into the frame of its outer boundary: exact, the
   // scale is a power of two
   problem_.net.points = (problem.net.points.rowwise() - unit_.centre) / unit_.scale;
   solver_ = solvers::make_solver(solver.name, options);
 }
 
-WeightObjective::~WeightObjective() = default;
+StencilFamilyObjective::~StencilFamilyObjective() = default;
 
-WeightObjective::Evaluation WeightObjective::evaluate(double w, bool with_derivative) {
+StencilFamilyObjective::Evaluation StencilFamilyObjective::evaluate(double t, bool with_derivative) {
   ++evaluations_;
   Evaluation e;
-  e.parameter = w;
+  e.parameter = t;
   e.net = problem_.net;
   if (!solver_) {
     e.summary.status = solvers::SolveStatus::kNotApplicable;
@@ -29,13 +44,13 @@ WeightObjective::Evaluation WeightObjective::evaluate(double w, bool with_deriva
     return e;
   }
   e.summary.solver = solver_->name();
-  const Stencil stencil = c1_family_stencil(w);
+  const Stencil stencil = family_.stencil(t);
   const ControlNet zero(problem_.net.m, problem_.net.n);  // a variation of the free points only
   const Objective& objective = unit_.objective;
   const double k = unit_.value_factor;  // a power of two: exact
   if (!system_) {
     StencilAssemblyOptions assembly;
-    assembly.box_pattern = true;  // one pattern, one analysis, for every w
+    assembly.box_pattern = true;  // one pattern, one analysis, for every t
     system_ = assemble_stencil_system(problem_, stencil, assembly);
   } else {
     refill_stencil_system(problem_, stencil, *system_);  // same radius, box pattern: cannot fail
@@ -73,7 +88,7 @@ WeightObjective::Evaluation WeightObjective::evaluate(double w, bool with_deriva
     if (numbering.size() > 0) {
       Eigen::MatrixX3d dX;
       const solvers::SolveSummary ds =
-          solver_->solve(stencil_sensitivity_rhs(net, numbering, c1_family_stencil_derivative(w)), dX);
+          solver_->solve(stencil_sensitivity_rhs(net, numbering, family_.derivative(t)), dX);
       ++solves_;
       if (!ds.ok()) {
         e.summary = ds;
