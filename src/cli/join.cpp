@@ -1,5 +1,6 @@
 // `coons join A.json SIDE B.json SIDE`: the C⁰ gap and the largest angle between the tangent
 // planes along the seam where side A of one surface meets side B of another (LN1, LN2).
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -33,7 +34,17 @@ int run_join(const JoinRequest& r) {
     throw InputError("command line", "--samples", "must be between 2 and 1000000");
   const SurfaceFile a = read_surface_file(r.first), b = read_surface_file(r.second);
   const SeamReport seam = compare_seam(a.surface, a_side, b.surface, b_side, r.reversed, r.samples);
-  const double size = std::max({a.size, b.size, 1e-300});
+  // the scale of the gap: the bounding-box diagonal of both patches sampled on a 9 × 9 grid (the
+  // files' own `size` is set only for the types whose reader checks corners with it)
+  Eigen::RowVector3d lo = a.surface.at(0, 0), hi = lo;
+  for (const Surface* s : {&a.surface, &b.surface})
+    for (int i = 0; i <= 8; ++i)
+      for (int j = 0; j <= 8; ++j) {
+        const Eigen::RowVector3d p = s->at(i / 8.0, j / 8.0);
+        lo = lo.cwiseMin(p);
+        hi = hi.cwiseMax(p);
+      }
+  const double size = std::max((hi - lo).norm(), 1e-300);
   nlohmann::json out = {{"first", a.name},
                         {"second", b.name},
                         {"samples", seam.samples},

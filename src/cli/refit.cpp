@@ -28,7 +28,15 @@ struct RefitRequest {
 };
 
 int run_refit(const RefitRequest& r) {
-  const Boundary b = read_input(r.boundary, r.corner_tolerance).boundary;
+  const BoundaryFile file = read_input(r.boundary, r.corner_tolerance);
+  if (!is_classical(file))  // it writes the four sides only: a second ring or a free grid would be lost
+    throw InputError(r.boundary,
+                     file.ribbons     ? "ribbons"
+                     : file.rings > 1 ? "rings"
+                                      : "free",
+                     "refit writes a boundary of one data ring; this file's second ring or free grid would be "
+                     "lost");
+  const Boundary& b = file.boundary;
   if (r.degree.size() != 2 || r.degree[0] < 1 || r.degree[1] < 1 || r.degree[0] > 1000 || r.degree[1] > 1000)
     throw InputError("command line", "--degree", "needs two degrees M N in [1, 1000]");
   const int m = r.degree[0], n = r.degree[1];

@@ -400,3 +400,62 @@ TEST_CASE("coons solve --method hermite-coons: no mask, so no mask residual", "[
   CHECK(report["metrics"]["mask_residual"].is_null());
   CHECK(report["metrics"]["thin_plate_energy"].get<double>() > 0);
 }
+
+TEST_CASE("coons refit: a file with ribbons or a free grid is bad input, not a boundary that lost its second ring",
+          "[cli]") {
+  for (const auto& [file, field] : {std::pair{kData + "/boundaries/sphere_cap_ribbons.json", std::string("ribbons")},
+                                    std::pair{kData + "/free_sets/island.json", std::string("rings")}}) {
+    const CommandResult r = run_coons("refit " + quoted(file) + " --degree 8 8");
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    std::string expected = "error: ";
+    expected.append(file).append(": ").append(field).append(": ");
+    CHECK(r.err.rfind(expected, 0) == 0);
+  }
+}
+
+TEST_CASE("coons degree-limit: an interior optimum at alpha* >= 0 is interior, with no mu", "[cli]") {
+  // the quarter cylinder's thin-plate optimum at degree 3 lies at alpha ≈ 0.03, inside the bounds
+  // (it used to be labelled at_bound because no mu exists for alpha >= 0)
+  const CommandResult r = run_coons("degree-limit " + quoted(kData + "/boundaries/quarter_cylinder.json") +
+                                    " --degrees 3 4 --continuum-degrees 4");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  const double alpha = report["alpha_star"][0];
+  REQUIRE(alpha > 0);
+  REQUIRE(alpha < 0.25);
+  CHECK(report["optimum"][0] == "interior");
+  CHECK(report["mu_star"][0].is_null());
+}
+
+TEST_CASE("coons study: a solve that fails gives 'failed' and null, never its zero-filled net's numbers", "[cli]") {
+  // Jacobi diverges at alpha = -1/4 (the Coons mask): that reference row, the value at Coons and the
+  // best-fit ratio used to be printed from the frame with a zero interior
+  TempDir dir;
+  const std::string out = dir.file("study");
+  const CommandResult r = run_coons("study " + quoted(kData + "/boundaries/dome.json") +
+                                    " --degrees 3 --solver jacobi --out " + quoted(out));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string md = read_text(out + "/report.md");
+  CHECK_THAT(md, Catch::Contains("| -0.25 | failed | failed | failed | failed |"));
+  CHECK_THAT(md, !Catch::Contains("× closer"));
+  const json results = json::parse(read_text(out + "/results.json"));
+  bool shape = false, reference = false;
+  for (const json& part : results) {
+    if (part["kind"] == "shape") {
+      shape = true;
+      CHECK(part["thin_plate"]["coons"].is_null());
+      CHECK(part["thin_plate"]["laplace"].get<double>() > 0);  // alpha = 0 converges
+    }
+    if (part["kind"] == "reference_table") {
+      reference = true;
+      CHECK(part["rows"][0]["thin_plate"].is_null());
+      CHECK(part["coons_over_best"].is_null());
+    }
+  }
+  CHECK(shape);
+  CHECK(reference);
+}

@@ -208,3 +208,27 @@ TEST_CASE("coons join: bicubic Coons patches over C1 transversal curves join G1,
   CHECK(bad.status == 2);
   CHECK_THAT(bad.err, Catch::Contains("FIRST_SIDE"));
 }
+
+TEST_CASE("coons join: patches of every type that share a side exactly meet C0 (the size is sampled)",
+          "[cli][surfaces]") {
+  // two `bilinear` patches sharing the side x = 1 with a rounding-level gap: the size used to be 0
+  // for this type, so any gap at all reported c0 false
+  TempDir dir;
+  const std::string a = dir.write("a.json", R"({"name": "a", "type": "bilinear",
+    "corners": [[0, 0, 0], [1, 0, 0.1], [0, 1, 0], [1, 1, 0.30000000000000004]]})");
+  const std::string b = dir.write("b.json", R"({"name": "b", "type": "bilinear",
+    "corners": [[1, 0, 0.1], [2, 0, 0], [1, 1, 0.3], [2, 1, 0.5]]})");
+  const CommandResult r = run_command(std::string(COONS_BINARY) + " join '" + a + "' right '" + b + "' left");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const nlohmann::json seam = nlohmann::json::parse(r.out);
+  CHECK(seam["c0_gap"].get<double>() > 0);  // not an exact match: rounding only
+  CHECK(seam["c0_gap"].get<double>() < 1e-15);
+  CHECK(seam["c0"] == true);
+  // a real gap stays one
+  const std::string c = dir.write("c.json", R"({"name": "c", "type": "bilinear",
+    "corners": [[1, 0, 0.1001], [2, 0, 0], [1, 1, 0.3], [2, 1, 0.5]]})");
+  const CommandResult g = run_command(std::string(COONS_BINARY) + " join '" + a + "' right '" + c + "' left");
+  REQUIRE(g.status == 0);
+  CHECK(nlohmann::json::parse(g.out)["c0"] == false);
+}

@@ -112,8 +112,9 @@ DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& obje
     } else if (!s.parameter || s.status != SearchStatus::kSuccess) {
       cell.kind = DegreeOptimum::kFailed;
     } else {
+      // interior unless on a bound; μ* only for −1/4 < α* < 0 (an interior α* ≥ 0 has none)
+      cell.kind = s.at_bound ? DegreeOptimum::kAtBound : DegreeOptimum::kInterior;
       cell.mu = s.at_bound ? std::nullopt : mu_of_alpha(d, *s.parameter);
-      cell.kind = cell.mu ? DegreeOptimum::kInterior : DegreeOptimum::kAtBound;
     }
     if (cell.mu) mus.emplace_back(d, *cell.mu);
     if (cell.kind == DegreeOptimum::kInterior && d <= options.exact_mu_max_degree) {

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <map>
 
 #include "coons/io/plot.h"
@@ -11,6 +12,11 @@
 namespace coons {
 
 namespace {
+
+// A value of the report, or "failed" where its solve failed (NaN).
+std::string value_or_failed(double x, const char* spec = "{:.6g}") {
+  return std::isfinite(x) ? fmt::format(fmt::runtime(spec), x) : std::string("failed");
+}
 
 std::string format_optimum(const AlphaSearchSummary& s, int digits = 4) {
   if (s.status == SearchStatus::kSolverFailed) return "failed";
@@ -141,10 +147,9 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
   for (const ShapeEntry& shape : r.shapes) {
     const Boundary& b = shape.boundary;
     for (const ShapeOptimum& o : shape.optima) {
-      std::string row =
-          fmt::format("| {} | {}×{} | {} | {} | {} | {:.6g} | {:.6g} | {} |", b.name, b.m, b.n, o.objective,
-                      format_optimum(o.alpha), o.alpha.flat ? "–" : fmt::format("{:.6g}", o.alpha.value), o.coons,
-                      o.laplace, format_optimum(o.mu, 3));
+      std::string row = fmt::format("| {} | {}×{} | {} | {} | {} | {} | {} | {} |", b.name, b.m, b.n, o.objective,
+                                    format_optimum(o.alpha), o.alpha.flat ? "–" : fmt::format("{:.6g}", o.alpha.value),
+                                    value_or_failed(o.coons), value_or_failed(o.laplace), format_optimum(o.mu, 3));
       if (c1_column)
         row += o.weight
                    ? fmt::format(" {} | {} |", format_optimum(*o.weight),
@@ -236,12 +241,16 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     line("| α | S(½,½).z | thin plate | Dirichlet | rms distance to the target |");
     line("|---|---|---|---|---|");
     for (const ReferenceRow& row : t.rows)
-      line(fmt::format("| {} | {:.6f} | {:.3f} | {:.3f} | {:.4f} |", row.alpha, row.center_z, row.thin_plate,
-                       row.dirichlet, row.rms_target));
+      line(fmt::format("| {} | {} | {} | {} | {} |", row.alpha, value_or_failed(row.center_z, "{:.6f}"),
+                       value_or_failed(row.thin_plate, "{:.3f}"), value_or_failed(row.dirichlet, "{:.3f}"),
+                       value_or_failed(row.rms_target, "{:.4f}")));
     line("");
-    line(fmt::format(
-        "The α that fits the target best: {} (rms {:.4g}, against {:.4g} for the Coons net: {:.0f}× closer).",
-        format_optimum(t.best), t.best.value, t.coons_rms, t.coons_rms / t.best.value));
+    if (t.best.status == SearchStatus::kSuccess && t.best.parameter && !t.best.flat && t.best.value > 0)
+      line(fmt::format(
+          "The α that fits the target best: {} (rms {:.4g}, against {:.4g} for the Coons net: {:.0f}× closer).",
+          format_optimum(t.best), t.best.value, t.coons_rms, t.coons_rms / t.best.value));
+    else
+      line(fmt::format("The α that fits the target best: {} (no distance is compared).", format_optimum(t.best)));
     line("");
   }
 

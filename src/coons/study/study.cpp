@@ -129,8 +129,13 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
       ShapeOptimum o;
       o.objective = objective.name;
       o.alpha = search_alpha(b, objective, solver);
-      o.coons = f.evaluate(-0.25).value;
-      o.laplace = f.evaluate(0.0).value;
+      // a value only where its solve succeeded (NaN: reported as failed / null, never as a number)
+      const auto value_at = [&](double a) {
+        const auto e = f.evaluate(a);
+        return e.ok() ? e.value : std::numeric_limits<double>::quiet_NaN();
+      };
+      o.coons = value_at(-0.25);
+      o.laplace = value_at(0.0);
       if (b.m > 1 && b.n > 1) o.mu = study_search_mu(b, objective, solver);
       if (in.two_rings) o.weight = search_weight(*in.two_rings, objective, weight_solver);
       if (objective.name == "thin_plate" && o.alpha.parameter && !o.alpha.flat) alpha_tp = o.alpha.parameter;
@@ -138,11 +143,13 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
     }
     shape.curves = run_sweep(
         b, linspace(-0.25, 0.25, options.curve_points), [](double a) { return alpha_family(a); }, solver, in.target);
-    shape.pictures = {{"Coons (α = −1/4)", discrete_coons_net(b)},
-                      {"Laplace (α = 0)", solve_mask_net(b, alpha_mask(0), solver).net}};
+    // a picture only of a net whose solve succeeded (a failed one is the frame with a zero inside)
+    shape.pictures = {{"Coons (α = −1/4)", discrete_coons_net(b)}};
+    if (MaskSolveResult laplace = solve_mask_net(b, alpha_mask(0), solver); laplace.summary.ok())
+      shape.pictures.emplace_back("Laplace (α = 0)", std::move(laplace.net));
     if (alpha_tp)
-      shape.pictures.emplace_back(fmt::format("thin-plate optimum (α = {:.3f})", *alpha_tp),
-                                  solve_mask_net(b, alpha_mask(*alpha_tp), solver).net);
+      if (MaskSolveResult best = solve_mask_net(b, alpha_mask(*alpha_tp), solver); best.summary.ok())
+        shape.pictures.emplace_back(fmt::format("thin-plate optimum (α = {:.3f})", *alpha_tp), std::move(best.net));
     result.shapes.push_back(std::move(shape));
     say(fmt::format("shape {} done", b.name));
   }
@@ -174,7 +181,13 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
     const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
     ReferenceTable table{b.name, b.m, b.n, {}, {}, 0};
     for (double a : options.reference_alphas) {
-      const ControlNet net = solve_mask_net(b, alpha_mask(a), solver).net;
+      const MaskSolveResult solved = solve_mask_net(b, alpha_mask(a), solver);
+      if (!solved.summary.ok()) {  // no numbers from a failed solve: the row says failed
+        const double failed = std::numeric_limits<double>::quiet_NaN();
+        table.rows.push_back({a, failed, failed, failed, failed});
+        continue;
+      }
+      const ControlNet& net = solved.net;
       table.rows.push_back({a, evaluate(net, 0.5, 0.5)(2), thin_plate_energy(net), dirichlet_energy(net),
                             rms_distance(net, *in.target)});
     }
@@ -281,7 +294,9 @@ json study_results_json(const StudyResult& r) {
                          {"local_minima", s.local_minima},
                          {"status", to_string(s.status)}}},
                        {"coons_rms_target", number_or_null(t.coons_rms)},
-                       {"coons_over_best", s.value > 0 ? number_or_null(t.coons_rms / s.value) : json(nullptr)}});
+                       {"coons_over_best", s.status == SearchStatus::kSuccess && s.parameter && s.value > 0
+                                               ? number_or_null(t.coons_rms / s.value)
+                                               : json(nullptr)}});
   }
   for (json& entry : tri_study_results_json(r.triangles)) results.push_back(std::move(entry));
   return results;

@@ -54,6 +54,11 @@ std::vector<std::string> study_conclusions(const StudyResult& r, double same_alp
   }
   // 3. The best fit to each target.
   for (const ReferenceTable& t : r.references) {
+    if (t.best.status != SearchStatus::kSuccess && t.best.status != SearchStatus::kFlat) {
+      out.push_back(fmt::format("{}: the search for the α closest to the target did not succeed ({})", t.boundary,
+                                to_string(t.best.status)));
+      continue;
+    }
     if (!t.best.parameter || t.best.flat || !(t.best.value > 0)) {
       out.push_back(fmt::format("{}: no α fits the target better than another", t.boundary));
       continue;

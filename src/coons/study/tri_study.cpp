@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include <cmath>
+#include <limits>
 #include <tuple>
 
 #include "coons/io/json_file.h"
@@ -49,8 +51,12 @@ TriStudyCell study_cell(const tri::TriBoundary& b, const TriObjective& objective
   cell.lower = options.lower;
   cell.upper = options.upper;
   cell.c = search_tri_c(frame, objective, solver, options);
-  cell.quadratic = evaluate_tri_objective(frame, objective, -1.0 / 6, solver, false).value;
-  cell.laplace = evaluate_tri_objective(frame, objective, 0.0, solver, false).value;
+  const auto value_at = [&](double c) {  // NaN (failed / null in the reports) where the solve failed
+    const TriEvaluation e = evaluate_tri_objective(frame, objective, c, solver, false);
+    return e.ok() ? e.value : std::numeric_limits<double>::quiet_NaN();
+  };
+  cell.quadratic = value_at(-1.0 / 6);
+  cell.laplace = value_at(0.0);
   return cell;
 }
 
@@ -143,8 +149,10 @@ std::string tri_study_markdown(const std::vector<TriStudyEntry>& entries, const 
     line("|---|---|---|---|---|---|");
     for (const TriStudyRow& row : e.rows)
       for (const TriStudyCell& c : row.cells)
-        line(fmt::format("| {} | {} | {} | {} | {:.6g} | {:.6g} |", row.objective, c.degree, format_c(c.c),
-                         c.c.flat || !c.c.parameter ? "–" : fmt::format("{:.6g}", c.c.value), c.quadratic, c.laplace));
+        line(fmt::format("| {} | {} | {} | {} | {} | {} |", row.objective, c.degree, format_c(c.c),
+                         c.c.flat || !c.c.parameter ? "–" : fmt::format("{:.6g}", c.c.value),
+                         std::isfinite(c.quadratic) ? fmt::format("{:.6g}", c.quadratic) : "failed",
+                         std::isfinite(c.laplace) ? fmt::format("{:.6g}", c.laplace) : "failed"));
     line("");
   }
   return md;
