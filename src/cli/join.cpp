@@ -45,15 +45,18 @@ int run_join(const JoinRequest& r) {
         hi = hi.cwiseMax(p);
       }
   const double size = std::max((hi - lo).norm(), 1e-300);
-  nlohmann::json out = {{"first", a.name},
-                        {"second", b.name},
-                        {"samples", seam.samples},
-                        {"c0_gap", seam.c0_gap},
-                        {"max_normal_angle_rad", seam.max_normal_angle},
-                        {"max_normal_angle_deg", seam.max_normal_angle * 180 / M_PI},
-                        {"at", seam.at},
-                        {"c0", seam.c0_gap <= 1e-9 * size},
-                        {"g1", seam.c0_gap <= 1e-9 * size && seam.max_normal_angle <= 1e-6}};
+  nlohmann::json out = {
+      {"first", a.name},
+      {"second", b.name},
+      {"samples", seam.samples},
+      {"c0_gap", seam.c0_gap},
+      {"max_normal_angle_rad", seam.max_normal_angle},
+      {"max_normal_angle_deg", seam.max_normal_angle * 180 / M_PI},
+      {"at", seam.at},
+      {"normals_compared", seam.normals_compared},
+      {"c0", seam.c0_gap <= 1e-9 * size},
+      // no G1 claim without a single pair of normals to compare
+      {"g1", seam.c0_gap <= 1e-9 * size && seam.normals_compared > 0 && seam.max_normal_angle <= 1e-6}};
   print_json(out);
   return kExitOk;
 }

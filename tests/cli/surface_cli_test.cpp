@@ -231,4 +231,16 @@ TEST_CASE("coons join: patches of every type that share a side exactly meet C0 (
   const CommandResult g = run_command(std::string(COONS_BINARY) + " join '" + a + "' right '" + c + "' left");
   REQUIRE(g.status == 0);
   CHECK(nlohmann::json::parse(g.out)["c0"] == false);
+  // sides collapsed to one point: no normal exists along them, so no G1 claim (it used to be true
+  // with an angle of 0 over no compared sample)
+  const std::string d = dir.write("d.json", R"({"name": "d", "type": "bilinear",
+    "corners": [[0, 0, 0], [0, 0, 0], [0, 1, 0], [1, 1, 0.5]]})");
+  const std::string e = dir.write("e.json", R"({"name": "e", "type": "bilinear",
+    "corners": [[0, 0, 0], [0, 0, 0], [0, -1, 0], [1, -1, -0.5]]})");
+  const CommandResult apex = run_command(std::string(COONS_BINARY) + " join '" + d + "' bottom '" + e + "' bottom");
+  REQUIRE(apex.status == 0);
+  const nlohmann::json point = nlohmann::json::parse(apex.out);
+  CHECK(point["c0"] == true);
+  CHECK(point["normals_compared"] == 0);
+  CHECK(point["g1"] == false);
 }

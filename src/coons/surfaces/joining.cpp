@@ -30,6 +30,7 @@ SeamReport compare_seam(const Surface& a, Side side_a, const Surface& b, Side si
     r.c0_gap = std::max(r.c0_gap, (pa.p - pb.p).norm());
     const Eigen::RowVector3d na = unit_normal(pa), nb = unit_normal(pb);
     if (!na.allFinite() || !nb.allFinite()) continue;
+    ++r.normals_compared;
     // The angle between unoriented normals, robustly: atan2(|na × nb|, |na · nb|).
     const double angle = std::atan2(na.cross(nb).norm(), std::abs(na.dot(nb)));
     if (angle > r.max_normal_angle) {

@@ -20,10 +20,11 @@ struct SeamReport {
   double max_normal_angle = 0;  //!< radians, angle between tangent planes, in [0, π/2]
   double at = 0;                //!< seam parameter of the largest angle
   int samples = 0;
+  int normals_compared = 0;  //!< samples where both normals exist (max_normal_angle is over these)
 };
 
 //! Compares side_a of a with side_b of b at `samples` ≥ 2 seam parameters t (b at 1 − t when
-//! reversed). Singular normals (NaN) are skipped.
+//! reversed). Singular normals (NaN) are skipped and not counted in normals_compared.
 SeamReport compare_seam(const Surface& a, Side side_a, const Surface& b, Side side_b, bool reversed = false,
                         int samples = 101);
 
