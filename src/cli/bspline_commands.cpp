@@ -94,7 +94,10 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   BSplineExportRequest e = given_request;
   const BSplineResolved r = resolve_bspline(request, input, e.file);
   const BSplineInput& in = *input.bspline;
-  if (!e.obj && !e.mtx && !e.ply && !e.vts && !e.cad.any()) e.obj = e.mtx = true;
+  if (!e.obj && !e.mtx && !e.ply && !e.vts && !e.cad.any()) {  // the defaults: OBJ, and the system when there is one
+    e.obj = true;
+    e.mtx = r.method == Method::kAlpha;
+  }
   check_export_options(e.samples, e.mtx, r.method == Method::kAlpha, e.prefix);
   check_bspline_memory(global, in, e.file);
   if (e.cad.any()) check_cad_export(e.cad, e.force);

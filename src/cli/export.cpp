@@ -57,7 +57,10 @@ int run_export(ExportRequest e) {
                      "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply/--vts)");
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
-  if (!e.obj && !e.mtx && !e.cad.any()) e.obj = e.mtx = true;
+  if (!e.obj && !e.mtx && !e.cad.any()) {  // the defaults: OBJ, and the system when there is one
+    e.obj = true;
+    e.mtx = r.method == Method::kAlpha;
+  }
   check_export_options(e.samples, e.mtx, r.method == Method::kAlpha, e.prefix);
   check_net_memory(e.global, b, r.solver, e.boundary, stencil_nonzeros(r));
   // Beyond the classical problem (two data rings, a free grid, a mask other than alpha): the

@@ -168,6 +168,13 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
         throw InputError(where, "key",
                          fmt::format("'{}' is not the key of its task ({})", r["key"].get<std::string>(),
                                      (*study)["files"][index].get<std::string>()));
+      // a task run twice over different contents (the file was edited between runs of its shard):
+      // neither record can be told to be the current one
+      if (const auto seen = by_index.find(index); seen != by_index.end() && seen->second["key"] != r["key"])
+        throw InputError(where, "key",
+                         fmt::format("task {} ({}) was run on two different contents of its file; remove the "
+                                     "shard files and run the shards again",
+                                     index, (*study)["files"][index].get<std::string>()));
       by_index.emplace(index, r);
     }
   }

@@ -17,6 +17,7 @@
 #include "coons/io/write_files.h"
 #include "coons/net/degree_elevation.h"
 #include "coons/study/backend_choice.h"
+#include "coons/study/tri_search.h"
 #include "coons/study/two_ring_problem.h"
 #include "coons/study/view_data.h"
 #include "coons/tri/tri_solve.h"
@@ -39,6 +40,7 @@ struct ViewRequest {
   std::string solver = "auto";
   double corner_tolerance = 1e-9;
   GlobalOptions global;
+  CLI::Option *from_option = nullptr, *to_option = nullptr;
 };
 
 }  // namespace
@@ -78,6 +80,10 @@ Boundary at_degree(const Boundary& b, const std::vector<int>& degree, const std:
 ViewSlider triangle_slider(const ViewRequest& r, const ViewOptions& options, std::string* solver_name,
                            std::string* title, nlohmann::json* degree) {
   if (!r.degree.empty()) throw InputError("command line", "--degree", "does not apply to a triangular boundary");
+  for (const auto& [option, name] : {std::pair{r.from_option, "--from"}, std::pair{r.to_option, "--to"}})
+    if (option && option->count() > 0)
+      throw InputError("command line", name,
+                       "does not apply to a triangular boundary (its c slider spans the search's default bounds)");
   TriBoundaryReadOptions read;
   read.corner_tolerance = r.corner_tolerance;
   const tri::TriBoundary t = read_tri_boundary_file(r.boundary, read);
@@ -92,6 +98,9 @@ ViewSlider triangle_slider(const ViewRequest& r, const ViewOptions& options, std
   *degree = t.n;
   ViewOptions tri_options = options;
   tri_options.lower = tri_options.upper = 0;  // the search's default bounds
+  if (const auto [lo, hi] = default_tri_bounds(t.n); r.alpha && !(*r.alpha >= lo && *r.alpha <= hi))
+    throw InputError("command line", "--alpha",
+                     fmt::format("must lie in [{}, {}], the c range of a triangle of degree {}", lo, hi, t.n));
   ViewSlider slider = tri_view_slider(t, tri_options, *solver, r.alpha.value_or(-1.0 / 6.0));
   if (!r.alpha)
     for (const ViewCurve& c : slider.curves)
@@ -190,8 +199,8 @@ void register_view(CLI::App& app, Registry& registry) {
   cmd->add_option("--out", r->out, "the HTML file to write")->required();
   cmd->add_option("--alphas", r->alphas, "alpha values on an even grid (the optima are added)")->capture_default_str();
   cmd->add_option("--samples", r->samples, "surface samples per direction")->capture_default_str();
-  cmd->add_option("--from", r->from, "smallest alpha")->capture_default_str();
-  cmd->add_option("--to", r->to, "largest alpha")->capture_default_str();
+  r->from_option = cmd->add_option("--from", r->from, "smallest alpha")->capture_default_str();
+  r->to_option = cmd->add_option("--to", r->to, "largest alpha")->capture_default_str();
   cmd->add_option("--alpha", r->alpha, "the alpha shown first (default: the thin-plate optimum, else -0.25)");
   cmd->add_option("--degree", r->degree, "M N: refit (or elevate) the boundary to this degree first")->expected(2);
   cmd->add_option("--three-js", r->three_js, "three.min.js to inline (Debian libjs-three)")->capture_default_str();

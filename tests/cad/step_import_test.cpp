@@ -177,7 +177,9 @@ TEST_CASE("import_step_boundary: the bundled samples of data/cad give the sample
   CHECK(free_edges.file_edges == 4);
   require_same_boundary(free_edges.boundary, {reversed(b.bottom), reversed(b.top), b.right, b.left}, 4e-16);
   CHECK(free_edges.edge_indices == std::vector<int>{1, 2, 3, 0});
-  CHECK(free_edges.edge_reversed == std::vector<bool>{false, false, true, true});
+  // every side is its edge's curve as stored (the file holds bottom and top already reversed), so
+  // none is reversed (it used to report top and left as reversed: against the loop, not the curve)
+  CHECK(free_edges.edge_reversed == std::vector<bool>{false, false, false, false});
 }
 
 TEST_CASE("import_step_boundary: bad files and choices are input errors naming the field", "[cad]") {

@@ -459,3 +459,22 @@ TEST_CASE("coons study: a solve that fails gives 'failed' and null, never its ze
   CHECK(shape);
   CHECK(reference);
 }
+
+TEST_CASE("coons export --method coons without output flags writes the OBJ files (no Matrix Market to refuse)",
+          "[cli]") {
+  // it used to turn on --mtx by default and then refuse it: "--mtx: Matrix Market export needs --method alpha"
+  TempDir dir;
+  for (const std::string& file : {kData + "/boundaries/dome.json", kData + "/boundaries/bspline_wave.json"}) {
+    const std::string out = dir.file(fs::path(file).stem().string());
+    const CommandResult r = run_coons("export " + quoted(file) + " --method coons --out " + quoted(out));
+    INFO(file << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    bool obj = false, mtx = false;
+    for (const auto& entry : fs::directory_iterator(out)) {
+      obj = obj || entry.path().extension() == ".obj";
+      mtx = mtx || entry.path().extension() == ".mtx";
+    }
+    CHECK(obj);
+    CHECK_FALSE(mtx);
+  }
+}

@@ -92,3 +92,25 @@ TEST_CASE("coons study FILES --shard: B-spline files and --html are refused with
     CHECK_FALSE(fs::exists(out));
   }
 }
+
+TEST_CASE("coons study FILES --merge: a file edited between two runs of its shard is refused, not merged stale",
+          "[cli]") {
+  // the rerun adds a record for the new content beside the old one; the merge used to keep the
+  // first (stale) one and exit 0
+  TempDir dir;
+  const std::string copy = dir.write("a.json", read_text(kData + "/boundaries/dome.json"));
+  const std::string shards = dir.file("shards");
+  const std::string args = "study " + quoted(copy) + " --degrees 3 --shard 0/1 --out " + quoted(shards);
+  REQUIRE(run_coons(args).status == 0);
+  json edited = json::parse(read_text(copy));
+  for (std::size_t k = 1; k + 1 < edited["top"].size(); ++k)  // inner points: the corners stay shared
+    edited["top"][k][2] = edited["top"][k][2].get<double>() + 1;
+  dir.write("a.json", edited.dump());
+  REQUIRE(run_coons(args).status == 0);
+  const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.out.empty());
+  CHECK(merged.err.find("was run on two different contents of its file") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.file("merged")));
+}

@@ -70,3 +70,21 @@ TEST_CASE("coons study --html: a page per shape in pages/, linked from the repor
     CHECK(fs::file_size(dir.path / "out" / page) > 100000);
   }
 }
+
+TEST_CASE("coons view: on a triangle --from/--to and an --alpha outside the c range are bad input", "[cli][view]") {
+  // --from/--to used to be ignored for triangles and --alpha taken unchecked as the first c
+  const TempDir dir;
+  const std::string page = dir.file("t.html");
+  for (const auto& [args, field] : {std::pair{std::string(" --from -0.1"), std::string("--from")},
+                                    std::pair{std::string(" --to 0.1"), std::string("--to")},
+                                    std::pair{std::string(" --alpha 5"), std::string("--alpha")}}) {
+    std::string command = "view " + quoted(kData + "/triangles/dome_half.json");
+    command.append(" --out ").append(quoted(page)).append(args);
+    const CommandResult r = run_coons(command);
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: command line: " + field + ": ", 0) == 0);
+    CHECK_FALSE(fs::exists(page));
+  }
+}

@@ -5,6 +5,7 @@
 #include <filesystem>
 #include <fstream>
 
+#include "coons/config.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/study/tri_search.h"
 #include "coons/tri/tri_solve.h"
@@ -121,4 +122,21 @@ TEST_CASE("read_tri_study_input: the sides and the target of a triangular file",
   REQUIRE(in.target);
   CHECK(in.target->kind == Target::Kind::kSphere);
   CHECK(in.target->radius == 2);
+}
+
+TEST_CASE("search_tri_c: an optimum the refinement leaves on a bound is reported at_bound", "[study][tri]") {
+  // the monkey saddle elevated to n = 8, Dirichlet energy: c* = 1/3, the upper bound, with a slope
+  // there that does not point outward; it used to be reported as an interior optimum
+  const tri::TriBoundary b = read_tri_boundary_file(std::string(COONS_DATA_DIR) + "/triangles/monkey_saddle.json");
+  const tri::TriNet elevated = elevate_degree(frame_net(b), 8 - b.n);
+  std::string why;
+  const TriObjective dirichlet = *parse_tri_objective("dirichlet", &why);
+  AlphaSearchOptions options;
+  std::tie(options.lower, options.upper) = default_tri_bounds(8);
+  const AlphaSearchSummary s = search_tri_c(frame_net(boundary_of(elevated)), dirichlet, lu(), options);
+  INFO(s.brief_report());
+  REQUIRE(s.status == SearchStatus::kSuccess);
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter == Approx(options.upper).margin(1e-9));
+  CHECK(s.at_bound);
 }

@@ -204,13 +204,14 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
     const int e = std::abs(chain[k]) - 1;
     walk[k] = chain[k] > 0 ? curves[e] : reversed(curves[e]);
     out.edge_indices.push_back(chosen[e]);
-    out.edge_reversed.push_back(chain[k] < 0);
   }
   std::array<BSplineCurve, 4> sides;  // bottom, right, top, left in their own directions
   for (int k = 0; k < 4; ++k) {
     const int e = std::abs(chain[k]) - 1;
     const bool against_loop = k >= 2;
-    sides[k] = (chain[k] < 0) != against_loop ? reversed(curves[e]) : curves[e];
+    const bool side_reversed = (chain[k] < 0) != against_loop;  // the side runs against the edge's curve
+    sides[k] = side_reversed ? reversed(curves[e]) : curves[e];
+    out.edge_reversed.push_back(side_reversed);
   }
 
   // Corner k joins the end of walk[k] to the start of walk[k + 1].

@@ -103,6 +103,12 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
   if (cs.mu && meets_continuum(e, t))
     out.push_back(fmt::format("μ*(n) tends to the continuum optimum μ_c = {} (Ritz, N = {}): |μ∞ − μ_c| = {:.2g}.",
                               num(*cs.mu), cs.degree, std::abs(*e.limit.limit - *cs.mu)));
+  else if (cs.mu && e.limit.limit && !has_reliable_limit(e, t))  // the reason is the limit, not the gap
+    out.push_back(
+        fmt::format("μ∞ = {} is not established (error ± {}), so no agreement with the continuum optimum "
+                    "μ_c = {} (Ritz, N = {}) is claimed; they differ by {:.1f} %.",
+                    num(*e.limit.limit), e.limit.limit_error ? num(*e.limit.limit_error) : "unknown", num(*cs.mu),
+                    cs.degree, 100 * std::abs(*e.limit.limit - *cs.mu) / *cs.mu));
   else if (cs.mu && e.limit.limit)
     out.push_back(
         fmt::format("μ∞ = {} and the continuum optimum μ_c = {} (Ritz, N = {}) differ by {:.1f} %: not "

@@ -311,6 +311,10 @@ class TriSearch {
     s_.parameter = best.parameter;
     s_.value = best.value;
     s_.status = SearchStatus::kSuccess;
+    // the refinement can end on a bound (the scan's best point there, its slope not pointing out)
+    const double edge = 1e-7 * (options_.upper - options_.lower);
+    if (std::abs(best.parameter - options_.lower) <= edge || std::abs(best.parameter - options_.upper) <= edge)
+      s_.at_bound = true;
   }
 
   const TriNet& frame_;
