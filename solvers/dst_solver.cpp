@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <memory>
 #include <string>
 #include <utility>
 #include <vector>
@@ -75,13 +74,11 @@ class DstSolver : public detail::StructuredSolver {
   [[nodiscard]] std::string name() const override { return "dst"; }
 
  protected:
-  // A sweep transforms each basis right-hand side once (SweepHat) and combines the transforms per
-  // member. Its workers (one per thread) share those transforms.
-  void do_begin_sweep() override { hat_.reset(); }
+  // A sweep transforms each basis right-hand side once (hat_[r][c]: B̂ by columns, cols × rows)
+  // and combines the transforms per member.
+  void do_begin_sweep() override { hat_.clear(); }
   SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                              Eigen::MatrixX3d& X, SolveSummary& summary) override;
-  std::unique_ptr<LinearSolver> make_sweep_worker(const std::vector<Eigen::MatrixX3d>& basis,
-                                                  const LinearOperator& op) override;
 
   SolveStatus analyze_grid(SolveSummary& summary) override;
   SolveStatus factorize_grid(const LinearOperator& op, const GridStencil& s, SolveSummary& summary) override;
@@ -118,17 +115,7 @@ class DstSolver : public detail::StructuredSolver {
   std::vector<double> sigma_, sigma_signed_;  // S e_0, S e_{R−1}
   std::vector<double> tau_, tau_signed_;      // S e_0, S e_{C−1} along the rows
   std::array<RingSides, 3> ring_;
-  // B̂ of every right-hand side of a sweep's basis (hat[r][c]: by columns, cols × rows) on an
-  // R × C grid.
-  struct SweepHat {
-    int rows = 0, cols = 0;
-    std::vector<std::array<std::vector<double>, 3>> hat;
-  };
-  [[nodiscard]] bool fits(const SweepHat* hat, const std::vector<Eigen::MatrixX3d>& basis) const {
-    return hat && hat->rows == R_ && hat->cols == C_ && hat->hat.size() == basis.size();
-  }
-  std::shared_ptr<const SweepHat> make_sweep_hat(const std::vector<Eigen::MatrixX3d>& basis);
-  std::shared_ptr<const SweepHat> hat_;  // read-only once made: a sweep's workers share it
+  std::vector<std::vector<std::vector<double>>> hat_;  // a sweep's transformed basis
 };
 
 SolveStatus DstSolver::analyze_grid(SolveSummary& /*summary*/) {
@@ -312,55 +299,39 @@ SolveStatus DstSolver::do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, 
   return SolveStatus::kSuccess;
 }
 
-std::shared_ptr<const DstSolver::SweepHat> DstSolver::make_sweep_hat(const std::vector<Eigen::MatrixX3d>& basis) {
-  // The strip pass without division, by columns.
-  const std::size_t n = std::size_t(R_) * std::size_t(C_);
-  auto made = std::make_shared<SweepHat>();
-  made->rows = R_;
-  made->cols = C_;
-  made->hat.resize(basis.size());
-  std::vector<double> rows(n);
-  Scratch& scratch = scratch_[0];
-  RingSides sides;
-  for (std::size_t r = 0; r < basis.size(); ++r)
-    for (int c = 0; c < 3; ++c) {
-      const double* b = basis[r].col(c).data();
-      Spectrum source;
-      if (on_ring(b)) {
-        ring_sides(b, sides);
-        source.ring = &sides;
-      } else {
-        for (int i = 0; i < R_; ++i)
-          scratch.along_rows.apply(b + std::size_t(i) * std::size_t(C_),
-                                   rows.data() + std::size_t(i) * std::size_t(C_));
-        source.rows = rows.data();
-      }
-      std::vector<double>& hat = made->hat[r][std::size_t(c)];
-      hat.resize(n);
-      for (int q = 0; q < C_; ++q) spectrum_column(source, q, scratch, hat.data() + std::size_t(q) * std::size_t(R_));
-    }
-  return made;
-}
-
-std::unique_ptr<LinearSolver> DstSolver::make_sweep_worker(const std::vector<Eigen::MatrixX3d>& basis,
-                                                           const LinearOperator& op) {
-  SolverOptions one = options_;
-  one.threads = 1;
-  auto worker = std::make_unique<DstSolver>(one);
-  if (worker->analyze(op) != SolveStatus::kSuccess) return nullptr;
-  if (!worker->fits(hat_.get(), basis)) hat_ = worker->make_sweep_hat(basis);
-  worker->hat_ = hat_;
-  return worker;
-}
-
 SolveStatus DstSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                                       Eigen::MatrixX3d& X, SolveSummary& summary) {
-  if (!fits(hat_.get(), basis)) hat_ = make_sweep_hat(basis);
-  X.resize(Eigen::Index(R_) * C_, 3);
+  const Eigen::Index n = Eigen::Index(R_) * C_;
+  const std::size_t used = weights.size();
+  if (hat_.size() < used || (!hat_.empty() && hat_[0][0].size() != std::size_t(n))) {
+    // B̂ of each basis member by columns (cols × rows): the strip pass without division.
+    hat_.assign(used, std::vector<std::vector<double>>(3));
+    std::vector<double> rows(static_cast<std::size_t>(n));
+    Scratch& scratch = scratch_[0];
+    RingSides sides;
+    for (std::size_t r = 0; r < used; ++r)
+      for (int c = 0; c < 3; ++c) {
+        const double* b = basis[r].col(c).data();
+        Spectrum source;
+        if (on_ring(b)) {
+          ring_sides(b, sides);
+          source.ring = &sides;
+        } else {
+          for (int i = 0; i < R_; ++i)
+            scratch.along_rows.apply(b + std::size_t(i) * std::size_t(C_),
+                                     rows.data() + std::size_t(i) * std::size_t(C_));
+          source.rows = rows.data();
+        }
+        std::vector<double>& hat = hat_[r][std::size_t(c)];
+        hat.resize(std::size_t(n));
+        for (int q = 0; q < C_; ++q) spectrum_column(source, q, scratch, hat.data() + std::size_t(q) * std::size_t(R_));
+      }
+  }
+  X.resize(n, 3);
   std::array<Spectrum, 3> sources;
   for (int c = 0; c < 3; ++c)
-    for (std::size_t r = 0; r < weights.size(); ++r)
-      if (weights[r] != 0) sources[std::size_t(c)].terms.emplace_back(weights[r], &hat_->hat[r][std::size_t(c)]);
+    for (std::size_t r = 0; r < used; ++r)
+      if (weights[r] != 0) sources[std::size_t(c)].terms.emplace_back(weights[r], &hat_[r][std::size_t(c)]);
   invert(sources, X, nullptr);
   summary.iterations = 1;
   return SolveStatus::kSuccess;

@@ -55,8 +55,8 @@ struct SolverOptions {
   //! wants identical results should not mix the two modes.)
   bool measure_fft_plans = false;
   //! threads for the backends that use them (dst: rows and column strips of its transforms; fast:
-  //! sine modes and rows; mg, mg-cg, mg-gmres: the level loops). 1 by default; 0 means every core.
-  //! dst, fast and mg give the same result bit for bit for every count. Ignored without OpenMP.
+  //! sine modes and rows, in a sweep whole members; mg, mg-cg, mg-gmres: the level loops). 1 by default; 0 means every
+  //! core. dst, fast and mg give the same result bit for bit for every count. Ignored without OpenMP.
   int threads = 1;
   double sor_omega = 1.0;               //!< gauss-seidel: over-relaxation factor in (0, 2)
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
@@ -139,7 +139,7 @@ class LinearSolver {
   //! sink(k, X_k, summary_k) is called for each member in order, from the calling thread, never
   //! concurrently. The one loop of every backend: per member factorize (a failure is passed on
   //! with X = 0), do_sweep_solve, and the same verdict on the true residual as solve().
-  //! With SolverOptions::threads ≥ 2 a backend that offers sweep workers (dst, fast) solves that
+  //! With SolverOptions::threads ≥ 2 a backend that offers sweep workers (fast) solves that
   //! many members side by side, one per thread with one-thread kernels, each through the same
   //! loop body; X_k and summary_k (but its timings) are those of the one-thread sweep, bit for bit.
   //! After such a sweep summary() is the last member's, and solve() needs a factorize() first.

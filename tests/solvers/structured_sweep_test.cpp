@@ -1,6 +1,7 @@
-// LinearSolver::sweep on several threads (dst, fast): members solved side by side on one-thread
-// workers must reach the sink in member order, from the calling thread, one at a time, with the
-// one-thread sweep's solution and verdict bit for bit.
+// LinearSolver::sweep on several threads: members solved side by side on one-thread workers
+// (fast) or one after another with threads inside each solve (dst) must reach the sink in member
+// order, from the calling thread, one at a time, with the one-thread sweep's solution and verdict
+// bit for bit.
 #include <catch2/catch.hpp>
 
 #include "coons/config.h"
