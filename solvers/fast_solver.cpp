@@ -64,14 +64,21 @@ class FastSolver : public detail::StructuredSolver {
   [[nodiscard]] std::string name() const override { return "fast"; }
 
  protected:
-  // A sweep splits the basis right-hand sides by rows once (physical_), sine-transforms them once
-  // when the transform path needs them (transformed_), and combines the forms per member.
-  void do_begin_sweep() override {
-    physical_.clear();
-    transformed_.clear();
-  }
+  // A sweep splits the basis right-hand sides by rows and sine-transforms them once (SweepForms),
+  // and combines the forms per member. Its workers (one per thread) share those forms.
+  void do_begin_sweep() override { sweep_forms_.reset(); }
   SolveStatus do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                              Eigen::MatrixX3d& X, SolveSummary& summary) override;
+  std::unique_ptr<LinearSolver> make_sweep_worker(const std::vector<Eigen::MatrixX3d>& basis,
+                                                  const LinearOperator& op) override {
+    SolverOptions one = options_;
+    one.threads = 1;
+    auto worker = std::make_unique<FastSolver>(one);
+    if (worker->analyze(op) != SolveStatus::kSuccess) return nullptr;
+    if (!worker->fits(sweep_forms_.get(), basis)) sweep_forms_ = worker->make_sweep_forms(basis);
+    worker->sweep_forms_ = sweep_forms_;
+    return worker;
+  }
 
   SolveStatus analyze_grid(SolveSummary& /*summary*/) override {
     extra_ = extra_columns(C_);
@@ -369,7 +376,30 @@ class FastSolver : public detail::StructuredSolver {
   // Rows of forward_ (used when L > C) start at multiples of 64 bytes.
   [[nodiscard]] std::size_t forward_stride() const { return (std::size_t(L_) + 7) / 8 * 8; }
   std::unique_ptr<LinearSolver> dst_;
-  std::vector<std::array<RowForm, 3>> physical_, transformed_;  // a sweep's basis, split by rows
+
+  // Every right-hand side of a sweep's basis split by rows (physical: the Kronecker path) and with
+  // its dense rows sine-transformed (transformed: the transform path), for an R × C grid.
+  struct SweepForms {
+    int rows = 0, cols = 0;
+    std::vector<std::array<RowForm, 3>> physical, transformed;
+  };
+  [[nodiscard]] bool fits(const SweepForms* forms, const std::vector<Eigen::MatrixX3d>& basis) const {
+    return forms && forms->rows == R_ && forms->cols == C_ && forms->physical.size() == basis.size();
+  }
+  std::shared_ptr<const SweepForms> make_sweep_forms(const std::vector<Eigen::MatrixX3d>& basis) {
+    auto forms = std::make_shared<SweepForms>();
+    forms->rows = R_;
+    forms->cols = C_;
+    forms->physical.resize(basis.size());
+    for (std::size_t r = 0; r < basis.size(); ++r)
+      for (int c = 0; c < 3; ++c)
+        forms->physical[r][std::size_t(c)] = detail::split_rows(basis[r].col(c).data(), R_, C_);
+    forms->transformed = forms->physical;
+    for (auto& f : forms->transformed)
+      for (RowForm& column : f) transform_rows(column);
+    return forms;
+  }
+  std::shared_ptr<const SweepForms> sweep_forms_;  // read-only once made: a sweep's workers share it
 };
 
 SolveStatus FastSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& w,
@@ -383,22 +413,9 @@ SolveStatus FastSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basi
     summary.message = inner.message;
     return inner.status;
   }
-  if (physical_.size() != used || (used > 0 && physical_[0][0].first.size() != std::size_t(R_))) {
-    physical_.assign(used, {});
-    transformed_.clear();
-    for (std::size_t r = 0; r < used; ++r)
-      for (int c = 0; c < 3; ++c) physical_[r][std::size_t(c)] = detail::split_rows(basis[r].col(c).data(), R_, C_);
-  }
+  if (!fits(sweep_forms_.get(), basis)) sweep_forms_ = make_sweep_forms(basis);
   const bool kron = path_ == Path::kKronecker;
-  if (!kron && transformed_.size() != used) {
-    transformed_ = std::vector<std::array<RowForm, 3>>(used);
-    for (std::size_t r = 0; r < used; ++r)
-      for (int c = 0; c < 3; ++c) {
-        transformed_[r][std::size_t(c)] = physical_[r][std::size_t(c)];
-        transform_rows(transformed_[r][std::size_t(c)]);
-      }
-  }
-  const auto& forms_of_basis = kron ? physical_ : transformed_;
+  const auto& forms_of_basis = kron ? sweep_forms_->physical : sweep_forms_->transformed;
   std::array<RowForm, 3> forms;
   for (int c = 0; c < 3; ++c) {
     std::vector<const RowForm*> parts;

@@ -55,8 +55,8 @@ struct SolverOptions {
   //! wants identical results should not mix the two modes.)
   bool measure_fft_plans = false;
   //! threads for the backends that use them (dst: rows and column strips of its transforms; fast:
-  //! sine modes and rows; mg, mg-cg, mg-gmres: the level loops). 1 by default; 0 means every core.
-  //! dst, fast and mg give the same result bit for bit for every count. Ignored without OpenMP.
+  //! sine modes and rows, in a sweep whole members; mg, mg-cg, mg-gmres: the level loops). 1 by default; 0 means every
+  //! core. dst, fast and mg give the same result bit for bit for every count. Ignored without OpenMP.
   int threads = 1;
   double sor_omega = 1.0;               //!< gauss-seidel: over-relaxation factor in (0, 2)
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
@@ -136,9 +136,13 @@ class LinearSolver {
   //! Solve a family of systems that share everything but the values (e.g. an α sweep, whose
   //! right-hand side is affine in α), reusing what does not depend on the values: the analysis
   //! for direct solvers, the transforms of the basis right-hand sides for structured ones.
-  //! sink(k, X_k, summary_k) is called for each member in order. The one loop of every backend:
-  //! per member factorize (a failure is passed on with X = 0), do_sweep_solve, and the same
-  //! verdict on the true residual as solve().
+  //! sink(k, X_k, summary_k) is called for each member in order, from the calling thread, never
+  //! concurrently. The one loop of every backend: per member factorize (a failure is passed on
+  //! with X = 0), do_sweep_solve, and the same verdict on the true residual as solve().
+  //! With SolverOptions::threads ≥ 2 a backend that offers sweep workers (fast) solves that
+  //! many members side by side, one per thread with one-thread kernels, each through the same
+  //! loop body; X_k and summary_k (but its timings) are those of the one-thread sweep, bit for bit.
+  //! After such a sweep summary() is the last member's, and solve() needs a factorize() first.
   void sweep(const std::vector<Eigen::MatrixX3d>& rhs_basis, const std::vector<SweepMember>& members,
              const SweepSink& sink);
 
@@ -160,6 +164,13 @@ class LinearSolver {
                                      Eigen::MatrixX3d& X, SolveSummary& summary);
   //! Called at the start of every sweep (to forget what a previous sweep cached).
   virtual void do_begin_sweep() {}
+  //! A backend that can solve several members of a sweep at once (SolverOptions::threads ≥ 2)
+  //! returns here a new solver of its kind for one thread (options.threads = 1), analyzed for op's
+  //! grid, that reads what this solver keeps of the sweep's basis (made once, shared read-only).
+  //! sweep() asks for one per thread before it starts, from the calling thread. nullptr (the
+  //! default, and on any failure) keeps the members one after another, threads inside each solve.
+  virtual std::unique_ptr<LinearSolver> make_sweep_worker(const std::vector<Eigen::MatrixX3d>& basis,
+                                                          const LinearOperator& op);
 
   //! True, with "needs the assembled matrix" in the summary, when op has no matrix (the caller
   //! returns kNotApplicable); lacks_stencil the same for the grid stencil.
@@ -195,6 +206,13 @@ class LinearSolver {
  private:
   // The verdict on X after do_solve or do_sweep_solve (see solve()).
   void judge_solution(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
+  // One member of a sweep on this solver: factorize, do_sweep_solve and the verdict, into X and
+  // summary_ (X = 0 when factorize fails).
+  void sweep_member(const std::vector<Eigen::MatrixX3d>& basis, const SweepMember& member, Eigen::MatrixX3d& X);
+  // The members side by side on `workers`, batch by batch, then the sink in member order.
+  void sweep_on_workers(const std::vector<std::unique_ptr<LinearSolver>>& workers,
+                        const std::vector<Eigen::MatrixX3d>& basis, const std::vector<SweepMember>& members,
+                        const SweepSink& sink);
 
   SolveSummary summary_;
   std::chrono::steady_clock::time_point solve_start_;

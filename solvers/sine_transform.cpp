@@ -38,8 +38,14 @@ AlignedBuffer& AlignedBuffer::operator=(AlignedBuffer&& other) noexcept {
 
 unsigned fft_planning(const SolverOptions& options) { return options.measure_fft_plans ? FFTW_MEASURE : FFTW_ESTIMATE; }
 
+std::mutex& fftw_planner_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 void fft_plan_threads(int threads) {
 #if defined(COONS_HAVE_FFTW_OMP)
+  const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
   static const bool initialised = fftw_init_threads() != 0;
   if (initialised) fftw_plan_with_nthreads(resolved_threads(threads));
 #else
@@ -51,7 +57,10 @@ SineTransform::SineTransform(int n, unsigned planning) : n_(n) {
   const int N = n + 1;
   y_ = AlignedBuffer(std::size_t(N));
   z_ = AlignedBuffer(2 * std::size_t(N / 2 + 1));
-  plan_ = fftw_plan_dft_r2c_1d(N, y_.data(), reinterpret_cast<fftw_complex*>(z_.data()), planning);
+  {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    plan_ = fftw_plan_dft_r2c_1d(N, y_.data(), reinterpret_cast<fftw_complex*>(z_.data()), planning);
+  }
   if (!plan_) throw std::bad_alloc();
   weight_.resize(std::size_t(N));
   for (int j = 0; j < N; ++j) weight_[std::size_t(j)] = std::sin(M_PI * j / N);
@@ -62,7 +71,10 @@ SineTransform::SineTransform(int n, unsigned planning) : n_(n) {
 SineTransform::~SineTransform() { release(); }
 
 void SineTransform::release() {
-  if (plan_) fftw_destroy_plan(static_cast<fftw_plan>(plan_));
+  if (plan_) {
+    const std::lock_guard<std::mutex> lock(fftw_planner_mutex());
+    fftw_destroy_plan(static_cast<fftw_plan>(plan_));
+  }
   plan_ = nullptr;
 }
 

@@ -11,6 +11,7 @@
 #pragma once
 
 #include <cstddef>
+#include <mutex>
 #include <vector>
 
 #include "linear_solver.h"
@@ -44,6 +45,11 @@ class AlignedBuffer {
 //! The FFTW planner flag for SolverOptions::measure_fft_plans: FFTW_MEASURE when asked,
 //! otherwise FFTW_ESTIMATE (no timing, so the same plan, and the same rounding, in every run).
 unsigned fft_planning(const SolverOptions& options);
+
+//! Held around every call of the FFTW planner (making or destroying a plan): FFTW allows only
+//! fftw_execute from several threads at once, and a threaded sweep may make plans (fast's dst
+//! fallback) while other members are being solved.
+std::mutex& fftw_planner_mutex();
 
 //! Makes the FFTW plans created next use `threads` threads (FFTW's OpenMP library; resolved as in
 //! resolved_threads). Without libfftw3_omp in the build it does nothing. Call it with 1 after
