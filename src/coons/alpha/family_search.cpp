@@ -1,5 +1,8 @@
 #include "family_search.h"
 
+#include <string>
+#include <utility>
+
 #include "coons/alpha/search_run.h"
 #include "coons/alpha/stencil_family_objective.h"
 #include "coons/mask/mask9.h"
@@ -16,44 +19,23 @@ bool WeightSearchOptions::is_valid(std::string* why) const {
   return true;
 }
 
-AlphaSearchSummary search_weight(const StencilProblem& problem, const Objective& objective,
-                                 const solvers::SolverInfo& solver, const WeightSearchOptions& options,
+namespace {
+
+// The one run of both searches: refused (kNotApplicable, nothing evaluated) on invalid options, a
+// problem the family's stencil does not fit (`representative` has every member's support and a
+// definite symbol, so one check covers the family) or a backend without the matrix.
+AlphaSearchSummary search_family(const StencilProblem& problem, const Objective& objective,
+                                 const solvers::SolverInfo& solver, const AlphaSearchOptions& options,
+                                 const std::string& options_error, const Stencil& representative, StencilFamily family,
                                  const solvers::SolverOptions& solver_options) {
   AlphaSearchSummary refused;
   refused.status = SearchStatus::kNotApplicable;
   refused.evaluator = "factorize and solve";
-  if (std::string why; !options.is_valid(&why)) {
-    refused.message = "options: " + why;
+  if (!options_error.empty()) {  // (is_valid always names its reason)
+    refused.message = "options: " + options_error;
     return refused;
   }
-  // every w has the same support and a symbol ≥ 0 (stencil.h), so one check covers the family
-  const std::vector<ProblemIssue> issues = check_stencil_problem(problem, c1_family_stencil(0.5));
-  if (!issues.empty()) {
-    refused.message = issues.front().field + ": " + issues.front().reason;
-    return refused;
-  }
-  if (!solver.needs_matrix) {
-    refused.message = "solver: " + solver.name + " does not solve from the matrix; the 5x5 stencil needs one";
-    return refused;
-  }
-  StencilFamilyObjective f(problem, objective, solver, solver_options);
-  AlphaSearchSummary s = detail::search_impl(f, options.search);
-  s.evaluator = "factorize and solve";
-  return s;
-}
-
-AlphaSearchSummary search_alpha_on_problem(const StencilProblem& problem, const Objective& objective,
-                                           const solvers::SolverInfo& solver, const AlphaSearchOptions& options,
-                                           const solvers::SolverOptions& solver_options) {
-  AlphaSearchSummary refused;
-  refused.status = SearchStatus::kNotApplicable;
-  refused.evaluator = "factorize and solve";
-  if (std::string why; !options.is_valid(&why)) {
-    refused.message = "options: " + why;
-    return refused;
-  }
-  // every α has the 3×3 support, so one check covers the family (and α = −0.1 is definite)
-  const std::vector<ProblemIssue> issues = check_stencil_problem(problem, alpha_stencil(alpha_mask(-0.1)));
+  const std::vector<ProblemIssue> issues = check_stencil_problem(problem, representative);
   if (!issues.empty()) {
     refused.message = issues.front().field + ": " + issues.front().reason;
     return refused;
@@ -62,10 +44,30 @@ AlphaSearchSummary search_alpha_on_problem(const StencilProblem& problem, const 
     refused.message = "solver: " + solver.name + " does not solve from the matrix; this search needs one";
     return refused;
   }
-  StencilFamilyObjective f(problem, objective, solver, solver_options, alpha_stencil_family());
+  StencilFamilyObjective f(problem, objective, solver, solver_options, std::move(family));
   AlphaSearchSummary s = detail::search_impl(f, options);
   s.evaluator = "factorize and solve";
   return s;
+}
+
+}  // namespace
+
+AlphaSearchSummary search_weight(const StencilProblem& problem, const Objective& objective,
+                                 const solvers::SolverInfo& solver, const WeightSearchOptions& options,
+                                 const solvers::SolverOptions& solver_options) {
+  std::string why;
+  if (options.is_valid(&why)) why.clear();
+  return search_family(problem, objective, solver, options.search, why, c1_family_stencil(0.5), c1_weight_family(),
+                       solver_options);
+}
+
+AlphaSearchSummary search_alpha_on_problem(const StencilProblem& problem, const Objective& objective,
+                                           const solvers::SolverInfo& solver, const AlphaSearchOptions& options,
+                                           const solvers::SolverOptions& solver_options) {
+  std::string why;
+  if (options.is_valid(&why)) why.clear();
+  return search_family(problem, objective, solver, options, why, alpha_stencil(alpha_mask(-0.1)),
+                       alpha_stencil_family(), solver_options);
 }
 
 }  // namespace coons
