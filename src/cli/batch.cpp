@@ -131,10 +131,9 @@ int run_batch(const BatchRequest& b) {
   std::vector<BoundaryFile> boundaries;
   for (const auto& f : files) {
     boundaries.push_back(read_input(f, b.net.corner_tolerance));
-    const bool stencil = by_mask || !is_classical(boundaries.back());
-    check_net_memory(b.global, boundaries.back().boundary, solver, f,
-                     stencil_nonzeros(resolve(b.net, boundaries.back().boundary, f)));
-    if (stencil) check_stencil_request(boundaries.back(), resolve(b.net, boundaries.back().boundary, f), f);
+    const ResolvedRequest r = resolve(b.net, boundaries.back().boundary, f);
+    check_net_memory(b.global, boundaries.back().boundary, solver, f, stencil_nonzeros(r));
+    if (by_mask || !is_classical(boundaries.back())) check_stencil_request(boundaries.back(), r, f);
   }
 
   OutputSet out(b.out_dir);

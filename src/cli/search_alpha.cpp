@@ -11,6 +11,7 @@
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/family_search.h"
 #include "coons/io/input_error.h"
+#include "coons/io/stencil_json.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/mask/mask9.h"
 #include "coons/mask/stencil.h"
@@ -130,13 +131,21 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   return s;
 }
 
+// The backend --solver names (nullptr for auto), refused when it works from a grid stencil only;
+// `needs` says what needs the assembled matrix.
+const solvers::SolverInfo* requested_matrix_backend(const SearchRequest& r, const std::string& needs) {
+  const solvers::SolverInfo* requested = solver_from_name(r.solver);
+  if (requested && !requested->needs_matrix)
+    throw InputError("command line", "--solver", requested->name + " works from a grid stencil; " + needs);
+  return requested;
+}
+
 // The two data rings the C1 family needs, from the file: bad input when it has one ring, or when
 // the 5×5 stencil does not fit its free points.
 StencilProblem weight_problem(const std::string& path, const BoundaryFile& file) {
   TwoRingProblem two = two_ring_problem(file);
   if (!two.problem) throw InputError(path, two.field, two.reason);
-  const std::vector<ProblemIssue> issues = check_stencil_problem(*two.problem, c1_family_stencil(0.5));
-  if (!issues.empty()) throw InputError(path, issues.front().field, issues.front().reason);
+  require_valid_problem(*two.problem, c1_family_stencil(0.5), path);
   return std::move(*two.problem);
 }
 
@@ -185,12 +194,8 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
                      "the non-uniform system of a B-spline boundary is definite for alpha in [-0.25, 0] only (it can "
                      "be singular above 0); add --allow-indefinite to search outside");
   if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
-  const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  if (requested && !requested->needs_matrix)
-    throw InputError("command line", "--solver",
-                     requested->name +
-                         " works from a grid stencil; a B-spline boundary needs a backend that takes "
-                         "an assembled matrix");
+  const solvers::SolverInfo* requested =
+      requested_matrix_backend(r, "a B-spline boundary needs a backend that takes an assembled matrix");
   const std::string solver =
       requested ? requested->name : auto_bspline_solver(options.upper <= 0 ? options.lower : options.upper);
   const BSplineInput& in = *file.bspline;
@@ -215,17 +220,12 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
 // stencil-problem search (family_search.h), every evaluation a factorisation from the matrix.
 int run_problem_alpha_search(const SearchRequest& r, const BoundaryFile& file, Phases& phases) {
   const Boundary& b = file.boundary;
-  const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  if (requested && !requested->needs_matrix)
-    throw InputError("command line", "--solver",
-                     requested->name +
-                         " solves the grid stencil of a full rectangle; the alpha search of a file with two data "
-                         "rings or a free grid needs a backend that works from the matrix");
+  const solvers::SolverInfo* requested = requested_matrix_backend(
+      r, "the alpha search of a file with two data rings or a free grid needs a backend that works from the matrix");
   SearchSetup setup = setup_search(r, b);
   const solvers::SolverInfo& solver = weight_search_backend(requested, false);
-  StencilProblem problem = stencil_problem(file);
-  const std::vector<ProblemIssue> issues = check_stencil_problem(problem, alpha_stencil(alpha_mask(-0.1)));
-  if (!issues.empty()) throw InputError(r.boundary, issues.front().field, issues.front().reason);
+  const StencilProblem problem = stencil_problem(file);
+  require_valid_problem(problem, alpha_stencil(alpha_mask(-0.1)), r.boundary);
   check_net_memory(r.global, b, &solver, r.boundary);
   phases.start("solve");
   const AlphaSearchSummary s = search_alpha_on_problem(problem, setup.objective, solver, setup.options);
