@@ -33,6 +33,8 @@ struct SweepFactors {
 constexpr int kLanes = 8;
 // Columns of the grid solved along i together (a strip of rows × kStrip stays in L2).
 constexpr int kStrip = 128;
+// How many rows ahead the forward sweep along i prefetches its strip.
+constexpr int kPrefetchRows = 6;
 
 // Q⁻¹ along j of kLanes grid rows at once: src[t] (length k) → dst[t], through the tile T
 // (k × kLanes, lane-contiguous), so that the recurrences run across the lanes (vectorised) and
@@ -85,6 +87,10 @@ COONS_VECTOR_CLONES void solve_strip_along_i(double* __restrict Y, std::ptrdiff_
     double* __restrict y = Y + r * stride;
     const double* __restrict y1 = y - stride;
     const double a = l1[r - 1];
+    // The rows of a strip are a page apart, so the hardware prefetcher starts afresh on each:
+    // ask for the row kPrefetchRows ahead (one line per 8 values) while this one is solved.
+    if (r + kPrefetchRows < rows)
+      for (int q = 0; q < w; q += 8) __builtin_prefetch(y + kPrefetchRows * stride + q, 1);
     if (r >= 2) {
       const double* __restrict y2 = y1 - stride;
       const double b = l2[r - 2];
