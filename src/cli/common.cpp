@@ -80,6 +80,22 @@ void add_solver_option(CLI::App& cmd, std::string& solver) {
   cmd.add_option("--solver", solver, "a name from `coons solvers`, or auto")->capture_default_str();
 }
 
+void add_threads_option(CLI::App& cmd, int& threads) {
+  cmd.add_option("--threads", threads,
+                 "threads of the backends that use them (dst, fast, fast5, separable-banded, mg, mg-cg, mg-gmres; "
+                 "a sweep on fast: whole members); 0: every core. The result is the same for every count")
+      ->capture_default_str();
+}
+
+solvers::SolverOptions threads_options(int threads) {
+  if (threads < 0 || threads > solvers::kMaxThreads)
+    throw InputError("command line", "--threads",
+                     fmt::format("must lie in 0 .. {} (0: every core), not {}", solvers::kMaxThreads, threads));
+  solvers::SolverOptions options;
+  options.threads = threads;
+  return options;
+}
+
 void add_net_options(CLI::App& cmd, NetRequest& r) {
   const std::map<std::string, Method> methods = {
       {"alpha", Method::kAlpha}, {"coons", Method::kCoons}, {"hermite-coons", Method::kHermiteCoons}};
@@ -107,6 +123,7 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
           ->capture_default_str();
   r.omega_option =
       cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
+  add_threads_option(cmd, r.threads);
 }
 
 void add_mask_options(CLI::App& cmd, NetRequest& r) {
@@ -219,6 +236,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
     throw InputError("command line", "--mu", "must be a finite number >= 0");
   out.mask = r.mu ? anisotropic_mask(boundary.m, boundary.n, *r.mu) : alpha_mask(r.alpha);
 
+  out.options = threads_options(r.threads);
   out.options.tolerance = r.tolerance;
   out.options.max_iterations = r.max_iterations;
   out.options.sor_omega = r.omega;

@@ -60,6 +60,7 @@ struct NetRequest {
   double omega = 1.0;
   std::string mask = "alpha";    //!< --mask (solve only)
   std::optional<double> weight;  //!< --weight (c1-family)
+  int threads = 1;               //!< --threads (SolverOptions::threads)
   // which options were given (for contradictions)
   CLI::Option *method_option = nullptr, *alpha_option = nullptr, *mu_option = nullptr, *solver_option = nullptr,
               *tolerance_option = nullptr, *max_iterations_option = nullptr, *omega_option = nullptr,
@@ -83,6 +84,10 @@ void add_net_options(CLI::App& cmd, NetRequest& r);
 void add_mask_options(CLI::App& cmd, NetRequest& r);
 //! --solver alone (search, sweep, batch, study).
 void add_solver_option(CLI::App& cmd, std::string& solver);
+//! --threads N (0: every core) for the backends that use threads (solve, export, batch, sweep).
+void add_threads_option(CLI::App& cmd, int& threads);
+//! The solver options of --threads: InputError (field --threads) outside 0 .. kMaxThreads.
+solvers::SolverOptions threads_options(int threads);
 //! Checks the request against the boundary; throws InputError naming the bad option (or both
 //! options of a contradiction).
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source);

@@ -30,6 +30,7 @@ struct SweepRequest {
   std::string target;
   int samples = 41;
   std::string solver = "auto";
+  int threads = 1;
   double corner_tolerance = 1e-9;
   GlobalOptions global;
   CLI::Option *from_option = nullptr, *to_option = nullptr;
@@ -62,6 +63,7 @@ int run_sweep_command(const SweepRequest& r) {
   if (r.parameter == SweepParameter::kMu && from < 0) throw InputError("command line", "--from", "mu must be >= 0");
   if (r.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   const std::optional<Target> target = resolve_target(r.target, r.boundary, b, r.samples);
+  const solvers::SolverOptions options = threads_options(r.threads);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
   const solvers::SolverInfo& solver = search_backend(requested, b, false);
   const double interior = std::max(0.0, b.m - 1.0) * std::max(0.0, b.n - 1.0);
@@ -71,9 +73,9 @@ int run_sweep_command(const SweepRequest& r) {
                fmt::format("a sweep of {} nets of degree ({}, {})", r.count, b.m, b.n), r.boundary, "degree");
 
   phases.start("solve");
-  const std::vector<SweepRow> rows =
-      run_sweep(b, linspace(from, to, r.count), sweep_family(r.parameter, b), solver, target,
-                [&](size_t done, size_t all) { phases.note(fmt::format("{}/{}", done, all)); });
+  const std::vector<SweepRow> rows = run_sweep(
+      b, linspace(from, to, r.count), sweep_family(r.parameter, b), solver, target,
+      [&](size_t done, size_t all) { phases.note(fmt::format("{}/{}", done, all)); }, nullptr, options);
 
   phases.start("write");
   OutputSet out(r.out_dir);
@@ -148,6 +150,7 @@ void register_sweep(CLI::App& app, Registry& registry) {
                   "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
   add_solver_option(*cmd, r->solver);
+  add_threads_option(*cmd, r->threads);
   add_memory_option(*cmd, r->global);
   set_example(*cmd, "coons sweep data/boundaries/dome.json --from -0.25 --to 0 --count 26 --out out/sweep");
   registry.add(cmd, [r] { return run_sweep_command(*r); });

@@ -478,3 +478,38 @@ TEST_CASE("coons export --method coons without output flags writes the OBJ files
     CHECK_FALSE(mtx);
   }
 }
+
+TEST_CASE("coons solve and sweep: --threads 2 gives the net and the sweep lines of one thread", "[cli]") {
+  const std::string dome = quoted(kData + "/boundaries/dome.json");
+  for (const char* solver : {"fast", "dst", "mg"}) {
+    const std::string args = std::string("solve ") + dome + " --alpha -0.1 --solver " + solver;
+    const CommandResult one = run_coons(args + " --threads 1"), two = run_coons(args + " --threads 2");
+    INFO(solver << "\n" << one.err << two.err);
+    REQUIRE(one.status == 0);
+    REQUIRE(two.status == 0);
+    CHECK(json::parse(two.out)["net"] == json::parse(one.out)["net"]);
+  }
+  TempDir dir;
+  std::array<std::vector<json>, 2> lines;
+  for (int threads : {1, 2}) {
+    const std::string out = (dir.path / std::to_string(threads)).string();
+    const CommandResult r = run_coons("sweep " + dome + " --solver fast --count 7 --threads " +
+                                      std::to_string(threads) + " --out " + quoted(out));
+    REQUIRE(r.status == 0);
+    std::ifstream in(fs::path(out) / "dome.sweep-alpha.jsonl");
+    for (std::string line; std::getline(in, line);) {
+      json j = json::parse(line);
+      j.erase("solver");  // its seconds differ
+      lines[std::size_t(threads - 1)].push_back(j);
+    }
+  }
+  CHECK(lines[0].size() == 7);
+  CHECK(lines[1] == lines[0]);
+  for (const char* bad : {" --threads -1", " --threads 257"}) {
+    const CommandResult r = run_coons("solve " + dome + bad);
+    INFO(bad << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::Contains("--threads: must lie in 0 .. 256"));
+  }
+}

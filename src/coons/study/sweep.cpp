@@ -35,7 +35,8 @@ std::optional<double> mu_of_alpha(const Boundary& b, std::optional<double> alpha
 
 std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& params, const MaskFamily& family,
                                 const solvers::SolverInfo& info, const std::optional<Target>& target,
-                                const std::function<void(size_t, size_t)>& progress, std::vector<ControlNet>* nets) {
+                                const std::function<void(size_t, size_t)>& progress, std::vector<ControlNet>* nets,
+                                const solvers::SolverOptions& options) {
   const ControlNet frame = frame_net(b);
   const int rows = std::max(b.m - 1, 0), cols = std::max(b.n - 1, 0);
   const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(frame, Mask9{1, 0, 0}), mask_rhs(frame, Mask9{0, 1, 0}),
@@ -67,7 +68,7 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
   if (rows * cols == 0) {
     for (size_t k = 0; k < params.size(); ++k) finish_row(k, frame);
   } else {
-    auto solver = solvers::make_solver(info.name);
+    auto solver = solvers::make_solver(info.name, options);
     solver->sweep(basis, members, [&](size_t k, const Eigen::MatrixX3d& X, const solvers::SolveSummary& s) {
       rows_out[k].summary = s;
       finish_row(k, s.ok() ? fill_interior(frame, X) : frame);

@@ -36,12 +36,13 @@ std::vector<double> linspace(double from, double to, int count);
 MaskFamily sweep_family(SweepParameter parameter, const Boundary& boundary);
 
 //! Solves the family at every parameter value; `nets` (when given) receives each net;
-//! `progress(k, count)` is called after each value.
+//! `progress(k, count)` is called after each value. `options` go to the solver (with threads ≥ 2 a
+//! backend with sweep workers, fast, solves whole members side by side; the rows are the same).
 std::vector<SweepRow> run_sweep(const Boundary& boundary, const std::vector<double>& parameters,
                                 const MaskFamily& family, const solvers::SolverInfo& solver,
                                 const std::optional<Target>& target,
                                 const std::function<void(size_t, size_t)>& progress = {},
-                                std::vector<ControlNet>* nets = nullptr);
+                                std::vector<ControlNet>* nets = nullptr, const solvers::SolverOptions& options = {});
 
 //! One JSON line of `coons sweep` (docs/formats.md): the parameter, α, β, μ, every metric, the
 //! solver block and, with a target, rms_target.
