@@ -208,12 +208,13 @@ int run_batch(const BatchRequest& b) {
          "of the Bézier surface (docs/math.md §5); mask res. is the residual of the row's own mask.\n\n"
       << table;
   });
-  print_text(table + '\n' +
-             fmt::format("{} boundaries, {} nets; results in {}/ (per boundary and degree a folder NAME-MxN/ with "
-                         "{} and their .surface.obj, .net.obj; the table in metrics.md)\n",
-                         boundaries.size(), rows.size(), b.out_dir,
-                         by_mask ? "a solve report named by the mask" : "coons.json and alpha±A.json reports"));
-  out.commit();
+  out.publish([&] {
+    print_text(table + '\n' +
+               fmt::format("{} boundaries, {} nets; results in {}/ (per boundary and degree a folder NAME-MxN/ with "
+                           "{} and their .surface.obj, .net.obj; the table in metrics.md)\n",
+                           boundaries.size(), rows.size(), b.out_dir,
+                           by_mask ? "a solve report named by the mask" : "coons.json and alpha±A.json reports"));
+  });
   for (const auto& r : rows)
     if (r.status != "success" && r.status != "closed-form") return kExitSolverFailed;
   return kExitOk;

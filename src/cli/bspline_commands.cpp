@@ -170,8 +170,7 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   }
   report["written"] = written;
   report["timing"] = phases.timing();
-  print_json(report);
-  out.commit();
+  out.publish([&] { print_json(report); });
   return kExitOk;
 }
 

@@ -46,8 +46,7 @@ int run_import_step(const ImportRequest& q) {
   out.write_path(q.out, [&](std::ostream& o) { o << doc.dump(2) << '\n'; });
   nlohmann::json report = {{"file", q.file}, {"boundary", name}, {"import", cad::import_note(import)}};
   report["written"] = {q.out};
-  print_json(report);
-  out.commit();
+  out.publish([&] { print_json(report); });
   return kExitOk;
 #else
   (void)q;

@@ -95,8 +95,7 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
   for (const DegreeLimitEntry& e : entries) results.push_back(degree_limit_json(e));
   out.write("results.json", [&](std::ostream& o) { o << dump(results, 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
-  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
-  out.commit();
+  out.publish([&] { print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + "")); });
   return kExitOk;
 }
 

@@ -154,8 +154,7 @@ int run_export(ExportRequest e) {
   }
   report["written"] = written;
   report["timing"] = phases.timing();
-  print_json(report);
-  out.commit();
+  out.publish([&] { print_json(report); });
   return kExitOk;
 }
 

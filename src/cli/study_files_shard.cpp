@@ -46,8 +46,7 @@ void write_study_report(const StudyResult& result, const std::string& out_dir, c
                          (extra ? extra(out) : std::string());
   out.write("results.json", [&](std::ostream& o) { o << dump(study_results_json(result), 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
-  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
-  out.commit();
+  out.publish([&] { print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + "")); });
 }
 
 namespace {

@@ -99,8 +99,7 @@ void write_family_report(const AlphaFamilyResult& result, const std::string& out
   const std::string md = alpha_family_markdown(result, figures);
   out.write("results.json", [&](std::ostream& o) { o << dump(alpha_family_json(result), 1) << '\n'; });
   out.write("report.md", [&](std::ostream& o) { o << md; });
-  print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + ""));
-  out.commit();
+  out.publish([&] { print_text(md + '\n' + fmt::format("report: {}\n", out.path_of("report.md") + "")); });
 }
 
 int run_family_shard(const AlphaFamilyOptions& options, int shard, int shards, const std::string& out_dir) {

@@ -119,8 +119,7 @@ int run_surface(const SurfaceRequest& r) {
   if (!written.empty()) report["written"] = std::move(written);
   report["net"] = std::move(made.net_block);
   report["points"] = std::move(made.points);
-  print_json(report);
-  out.commit();
+  out.publish([&] { print_json(report); });
   return kExitOk;
 }
 

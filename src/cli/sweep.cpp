@@ -116,8 +116,7 @@ int run_sweep_command(const SweepRequest& r) {
   }
   summary["timing"] = phases.timing();
   if (!plot_error.empty()) out.discard(stem + ".png");
-  print_json(summary);
-  out.commit();
+  out.publish([&] { print_json(summary); });
   if (failed) {
     print_solver_failure(r.boundary, failed->summary);
     return kExitSolverFailed;

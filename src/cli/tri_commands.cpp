@@ -167,8 +167,7 @@ int run_tri_export(const TriExportArgs& e) {
   }
   report["written"] = written;
   report["timing"] = phases.timing();
-  print_json(report);
-  out.commit();
+  out.publish([&] { print_json(report); });
   return kExitOk;
 }
 
@@ -265,8 +264,7 @@ int run_tri_sweep(const TriSweepArgs& a) {
     summary["failed_intervals"] = intervals;
   }
   summary["timing"] = phases.timing();
-  print_json(summary);
-  out.commit();
+  out.publish([&] { print_json(summary); });
   if (failed) {
     print_solver_failure(a.boundary, *failed);
     return kExitSolverFailed;

@@ -183,8 +183,7 @@ int run_view(const ViewRequest& r) {
   summary["sliders"] = nlohmann::json::array();
   for (const ViewSlider& s : page.sliders) summary["sliders"].push_back(s.parameter);
   summary["timing"] = phases.timing();
-  print_json(summary);
-  out.commit();
+  out.publish([&] { print_json(summary); });
   return kExitOk;
 }
 

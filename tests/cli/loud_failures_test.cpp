@@ -401,3 +401,17 @@ TEST_CASE("coons search-alpha: evaluations that fail are reported and no optimum
   CHECK(ok["failed_evaluations"] == 0);
   CHECK(ok["failed_intervals"].empty());
 }
+
+TEST_CASE("coons view, surface and export: an output that cannot be put in place prints nothing", "[cli][loud]") {
+  // the report used to be printed before the files were renamed into place
+  TempDir dir;
+  const std::string folder = dir.file("taken");
+  fs::create_directories(folder);
+  const CommandResult r =
+      run_coons("view " + quoted(dome()) + " --alphas 5 --samples 3 --force --out " + quoted(folder));
+  INFO(r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK_THAT(r.err, Catch::Contains("it is a folder"));
+  CHECK(fs::is_directory(folder));
+}

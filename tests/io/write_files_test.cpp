@@ -95,3 +95,50 @@ TEST_CASE("OutputSet: an exception inside a write removes what was started", "[i
   }
   CHECK(files_under(dir.path).empty());
 }
+
+namespace {
+std::string contents(const fs::path& p) {
+  std::ifstream in(p);
+  return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+}  // namespace
+
+TEST_CASE("OutputSet::commit: a target that is a folder leaves the output folder as it was", "[io]") {
+  TempDir dir;
+  const fs::path out_dir = dir.path / "out";
+  fs::create_directories(out_dir / "b.txt");  // a folder where a file is to go
+  std::ofstream(out_dir / "a.txt") << "old\n";
+  {
+    OutputSet out(out_dir.string());
+    out.write("a.txt", [](std::ostream& o) { o << "new\n"; });
+    out.write("b.txt", [](std::ostream& o) { o << "b\n"; });
+    CHECK_THROWS_AS(out.commit(), InputError);
+  }
+  CHECK(contents(out_dir / "a.txt") == "old\n");  // replaced, then put back
+  CHECK(files_under(out_dir) == std::vector<std::string>{"a.txt", "b.txt"});
+  CHECK(fs::is_directory(out_dir / "b.txt"));
+}
+
+TEST_CASE("OutputSet::publish: an announcement that fails undoes the commit", "[io]") {
+  TempDir dir;
+  const fs::path out_dir = dir.path / "out";
+  fs::create_directories(out_dir);
+  std::ofstream(out_dir / "a.txt") << "old\n";
+  {
+    OutputSet out(out_dir.string());
+    out.write("a.txt", [](std::ostream& o) { o << "new\n"; });
+    out.write("c.txt", [](std::ostream& o) { o << "c\n"; });
+    CHECK_THROWS_AS(out.publish([] { throw InputError("<stdout>", "", "write failed"); }), InputError);
+  }
+  CHECK(contents(out_dir / "a.txt") == "old\n");
+  CHECK(files_under(out_dir) == std::vector<std::string>{"a.txt"});
+  {
+    OutputSet out(out_dir.string());
+    out.write("a.txt", [](std::ostream& o) { o << "new\n"; });
+    bool announced = false;
+    CHECK(out.publish([&] { announced = true; }).size() == 1);
+    CHECK(announced);
+  }
+  CHECK(contents(out_dir / "a.txt") == "new\n");
+  CHECK(files_under(out_dir) == std::vector<std::string>{"a.txt"});  // the replaced file is gone
+}

@@ -102,6 +102,8 @@ OutputSet::OutputSet(std::string folder, std::string option) : folder_(std::move
 
 OutputSet::~OutputSet() {
   if (!committed_) rollback();
+  for (const Entry& e : entries_)
+    if (!e.aside.empty()) std::remove(e.aside.c_str());
 }
 
 std::string OutputSet::path_of(const std::string& relative) const {
@@ -137,14 +139,14 @@ std::string OutputSet::stage(const std::string& relative) {
   for (const Entry& e : entries_)
     if (e.final_path == path) throw InputError(path, option_, "two outputs of this command would have the same name");
   make_folders(fs::path(path).parent_path().string());
-  entries_.push_back({path, staging_path(path)});
+  entries_.push_back({path, staging_path(path), "", false});
   return entries_.back().staging;
 }
 
 std::string OutputSet::stage_path(const std::string& path) {
   for (const Entry& e : entries_)
     if (e.final_path == path) throw InputError(path, option_, "two outputs of this command would have the same name");
-  entries_.push_back({path, staging_path(path)});
+  entries_.push_back({path, staging_path(path), "", false});
   return entries_.back().staging;
 }
 
@@ -181,21 +183,49 @@ void OutputSet::discard(const std::string& relative) {
 
 std::vector<std::string> OutputSet::commit() {
   std::vector<std::string> published;
-  for (const Entry& e : entries_) {
+  const auto fail = [&](const Entry& e, const std::string& why) {
+    undo_commit();
+    throw InputError(e.final_path, "", why);
+  };
+  for (Entry& e : entries_) {
     std::error_code ec;
-    if (!fs::exists(e.staging, ec)) {
-      for (const auto& p : published) std::remove(p.c_str());
-      throw InputError(e.final_path, "", "was not written");
+    if (!fs::exists(e.staging, ec)) fail(e, "was not written");
+    if (fs::is_directory(e.final_path, ec)) fail(e, "cannot rename into place: it is a folder");
+    if (fs::exists(e.final_path, ec)) {
+      const std::string aside = e.staging + ".replaced";
+      fs::rename(e.final_path, aside, ec);
+      if (ec) fail(e, "cannot move the existing file aside: " + ec.message());
+      e.aside = aside;
     }
     fs::rename(e.staging, e.final_path, ec);
-    if (ec) {
-      for (const auto& p : published) std::remove(p.c_str());
-      throw InputError(e.final_path, "", "cannot rename into place: " + ec.message());
-    }
+    if (ec) fail(e, "cannot rename into place: " + ec.message());
+    e.published = true;
     published.push_back(e.final_path);
   }
   committed_ = true;
   return published;
+}
+
+std::vector<std::string> OutputSet::publish(const std::function<void()>& announce) {
+  std::vector<std::string> published = commit();
+  try {
+    announce();
+  } catch (...) {
+    undo_commit();
+    throw;
+  }
+  return published;
+}
+
+void OutputSet::undo_commit() noexcept {
+  for (auto it = entries_.rbegin(); it != entries_.rend(); ++it) {
+    std::error_code ec;
+    if (it->published) fs::remove(it->final_path, ec);
+    if (!it->aside.empty()) fs::rename(it->aside, it->final_path, ec);
+    it->aside.clear();
+    it->published = false;
+  }
+  committed_ = false;  // the destructor removes the staging files that remain and the new folders
 }
 
 void OutputSet::rollback() noexcept {

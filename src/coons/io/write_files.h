@@ -55,9 +55,16 @@ class OutputSet {
   //! Gives up one staged file (removes its staging file, if any).
   void discard(const std::string& relative);
 
-  //! Renames every staged file into place; returns the final paths in the order staged. On a
-  //! failure, removes what it had published and throws InputError.
+  //! Renames every staged file into place; returns the final paths in the order staged. A file
+  //! it replaces is first moved aside, so on a failure (a target that is a folder, say) it removes
+  //! what it had published, puts the replaced files back and throws InputError: the folder is as
+  //! before. The moved-aside files go when the set is destroyed.
   std::vector<std::string> commit();
+
+  //! commit(), then announce() (e.g. print the report); when announce throws (a failed write to
+  //! standard output), the commit is undone as above and the exception passes on. So a command
+  //! either publishes its files and prints its report, or does neither.
+  std::vector<std::string> publish(const std::function<void()>& announce);
 
   //! Removes what was staged (and created folders that are empty); the destructor does this.
   void rollback() noexcept;
@@ -65,6 +72,8 @@ class OutputSet {
  private:
   struct Entry {
     std::string final_path, staging;
+    std::string aside;  //!< where commit() moved the file it replaced (empty: none)
+    bool published = false;
   };
   std::string folder_, option_;
   std::vector<Entry> entries_;
@@ -72,6 +81,7 @@ class OutputSet {
   bool committed_ = false;
 
   void make_folders(const std::string& folder);
+  void undo_commit() noexcept;  // the published files removed, the replaced ones back
   static void write_staged(const std::string& path, const std::string& staging,
                            const std::function<void(std::ostream&)>& write);
 };
