@@ -513,3 +513,12 @@ TEST_CASE("coons solve and sweep: --threads 2 gives the net and the sweep lines 
     CHECK_THAT(r.err, Catch::Contains("--threads: must lie in 0 .. 256"));
   }
 }
+
+TEST_CASE("coons search-alpha: a search whose every solve failed prints value null, not 0", "[cli][alpha]") {
+  const CommandResult r = run_coons("search-alpha " + quoted(kData + "/boundaries/oscillating.json") +
+                                    " --objective thin_plate --solver jacobi --lower -0.25 --upper -0.1");
+  REQUIRE(r.status == 3);
+  const json j = json::parse(r.out);
+  CHECK(j["status"] == "solver_failed");
+  CHECK(j["value"].is_null());
+}

@@ -19,6 +19,7 @@
 #pragma once
 
 #include <functional>
+#include <limits>
 #include <memory>
 #include <optional>
 #include <string>
@@ -61,8 +62,9 @@ struct AlphaSearchSummary {
   std::string message;
   std::optional<double> parameter;  //!< the optimum (absent when flat or failed)
   //! The objective at the optimum; when flat, at the best scan point; with kFailedRegion, the
-  //! lowest successful evaluation (not an optimum); 0 when no evaluation succeeded.
-  double value = 0;
+  //! lowest successful evaluation (not an optimum); NaN (reported as null) when no evaluation
+  //! succeeded.
+  double value = std::numeric_limits<double>::quiet_NaN();
   bool flat = false, at_bound = false;
   int local_minima = 0;  //!< interior local minima seen by the scan
   int evaluations = 0, solves = 0;

@@ -148,13 +148,12 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     const Boundary& b = shape.boundary;
     for (const ShapeOptimum& o : shape.optima) {
       std::string row = fmt::format("| {} | {}×{} | {} | {} | {} | {} | {} | {} |", b.name, b.m, b.n, o.objective,
-                                    format_optimum(o.alpha), o.alpha.flat ? "–" : fmt::format("{:.6g}", o.alpha.value),
+                                    format_optimum(o.alpha), o.alpha.flat ? "–" : value_or_failed(o.alpha.value),
                                     value_or_failed(o.coons), value_or_failed(o.laplace), format_optimum(o.mu, 3));
       if (c1_column)
-        row += o.weight
-                   ? fmt::format(" {} | {} |", format_optimum(*o.weight),
-                                 o.weight->flat || !o.weight->parameter ? "–" : fmt::format("{:.6g}", o.weight->value))
-                   : fmt::format(" – ({}) | – |", shape.one_ring);
+        row += o.weight ? fmt::format(" {} | {} |", format_optimum(*o.weight),
+                                      o.weight->flat || !o.weight->parameter ? "–" : value_or_failed(o.weight->value))
+                        : fmt::format(" – ({}) | – |", shape.one_ring);
       line(row);
     }
   }
