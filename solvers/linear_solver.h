@@ -205,7 +205,9 @@ class LinearSolver {
 
  private:
   // The verdict on X after do_solve or do_sweep_solve (see solve()).
-  void judge_solution(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
+  void judge_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X);
+  // Corrections judge_solution tries when an iteration's true residual misses the tolerance.
+  static constexpr int kRefinementRounds = 2;
   // One member of a sweep on this solver: factorize, do_sweep_solve and the verdict, into X and
   // summary_ (X = 0 when factorize fails).
   void sweep_member(const std::vector<Eigen::MatrixX3d>& basis, const SweepMember& member, Eigen::MatrixX3d& X);
@@ -237,5 +239,7 @@ Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const s
 
 //! max over columns of ‖A x − b‖/‖b‖, with A from the matrix or, when absent, the stencil.
 double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
+//! AX = op·X through op's matrix, else its stencil, else its grid operator; false when it has none.
+bool apply_operator(const LinearOperator& op, const Eigen::MatrixX3d& X, Eigen::MatrixXd& AX);
 
 }  // namespace coons::solvers

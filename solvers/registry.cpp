@@ -48,8 +48,7 @@ const std::vector<Entry>& entries() {
     {{"eigen-lu", SolverFamily::kDirect, true, false, "Eigen SparseLU, COLAMD ordering (indefinite systems too)"},
      make_eigen_lu},
 #if COONS_HAVE_SUITESPARSE
-    {{"cholmod", SolverFamily::kDirect, true, true, "CHOLMOD supernodal LL^T, AMD ordering (--ordering to change)"},
-     make_cholmod_supernodal},
+    {{"cholmod", SolverFamily::kDirect, true, true, "CHOLMOD supernodal LL^T, AMD ordering"}, make_cholmod_supernodal},
     {{"cholmod-simplicial", SolverFamily::kDirect, true, true, "CHOLMOD simplicial LDL^T, AMD ordering"},
      make_cholmod_simplicial},
     {{"umfpack", SolverFamily::kDirect, true, false, "UMFPACK multifrontal LU (indefinite systems too)"}, make_umfpack},
@@ -136,6 +135,12 @@ std::string choose_auto_solver(const GridStencil& stencil) {
   const bool definite = lo > 0 && hi > 0;
   return definite ? "eigen-ldlt" : "eigen-lu";
 #endif
+}
+
+bool uses_threads(std::string_view name) {
+  for (std::string_view threaded : {"dst", "fast", "fast5", "separable-banded", "mg", "mg-cg", "gmres"})
+    if (name == threaded) return true;
+  return false;
 }
 
 std::unique_ptr<LinearSolver> make_solver(std::string_view name, const SolverOptions& options) {

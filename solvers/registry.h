@@ -28,6 +28,10 @@ const std::vector<SolverInfo>& available_solvers();
 //! Info of a backend, or nullptr when no backend of that name was built.
 const SolverInfo* find_solver(std::string_view name);
 
+//! True for the backends that use SolverOptions::threads (dst, fast, fast5, separable-banded, mg,
+//! mg-cg, gmres on its multigrid path); the others run on one thread whatever it says.
+bool uses_threads(std::string_view name);
+
 //! The backend that `auto` stands for on this operator: the fastest applicable one built in.
 std::string choose_auto_solver(const GridStencil& stencil);
 

@@ -80,17 +80,24 @@ void add_solver_option(CLI::App& cmd, std::string& solver) {
   cmd.add_option("--solver", solver, "a name from `coons solvers`, or auto")->capture_default_str();
 }
 
-void add_threads_option(CLI::App& cmd, int& threads) {
-  cmd.add_option("--threads", threads,
-                 "threads of the backends that use them (dst, fast, fast5, separable-banded, mg, mg-cg, mg-gmres; "
-                 "a sweep on fast: whole members); 0: every core. The result is the same for every count")
+CLI::Option* add_threads_option(CLI::App& cmd, int& threads) {
+  return cmd
+      .add_option("--threads", threads,
+                  "threads of the backends that use them (dst, fast, fast5, separable-banded, mg, mg-cg, gmres; "
+                  "a sweep on fast: whole members); 0: every core. The result is the same for every count")
       ->capture_default_str();
 }
 
-solvers::SolverOptions threads_options(int threads) {
+solvers::SolverOptions threads_options(int threads, const CLI::Option* option, const std::string& solver) {
   if (threads < 0 || threads > solvers::kMaxThreads)
     throw InputError("command line", "--threads",
                      fmt::format("must lie in 0 .. {} (0: every core), not {}", solvers::kMaxThreads, threads));
+  if (option && option->count() > 0 && solver != "auto" && solvers::find_solver(solver) &&
+      !solvers::uses_threads(solver))
+    throw InputError("command line", "--threads",
+                     solver +
+                         " runs on one thread; the backends that use threads are dst, fast, fast5, "
+                         "separable-banded, mg, mg-cg and gmres");
   solvers::SolverOptions options;
   options.threads = threads;
   return options;
@@ -123,7 +130,7 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
           ->capture_default_str();
   r.omega_option =
       cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
-  add_threads_option(cmd, r.threads);
+  r.threads_option = add_threads_option(cmd, r.threads);
 }
 
 void add_mask_options(CLI::App& cmd, NetRequest& r) {
@@ -219,16 +226,22 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   if (given(r.omega_option) && r.solver != "gauss-seidel")
     throw InputError("command line", "--omega",
                      "--omega is the over-relaxation of --solver gauss-seidel, not of " + r.solver);
-  if (r.solver != "auto")
-    for (auto [option, name] :
-         {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}})
-      if (given(option))
-        if (const solvers::SolverInfo* info = solvers::find_solver(r.solver);
-            info && info->family != solvers::SolverFamily::kIterative)
-          throw InputError("command line", name,
-                           fmt::format("{} is a stopping rule of the iterative solvers; {} is a {} solver and solves "
-                                       "exactly",
-                                       name, r.solver, solvers::to_string(info->family)));
+  for (auto [option, name] :
+       {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}}) {
+    if (!given(option)) continue;
+    if (r.solver == "auto")  // auto only ever picks a direct or structured backend
+      throw InputError(
+          "command line", name,
+          fmt::format("{} is a stopping rule of the iterative solvers; --solver auto picks one that solves "
+                      "exactly (name an iterative one with --solver)",
+                      name));
+    if (const solvers::SolverInfo* info = solvers::find_solver(r.solver);
+        info && info->family != solvers::SolverFamily::kIterative)
+      throw InputError("command line", name,
+                       fmt::format("{} is a stopping rule of the iterative solvers; {} is a {} solver and solves "
+                                   "exactly",
+                                   name, r.solver, solvers::to_string(info->family)));
+  }
 
   resolve_mask(r, out);
   if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");
@@ -236,7 +249,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
     throw InputError("command line", "--mu", "must be a finite number >= 0");
   out.mask = r.mu ? anisotropic_mask(boundary.m, boundary.n, *r.mu) : alpha_mask(r.alpha);
 
-  out.options = threads_options(r.threads);
+  out.options = threads_options(r.threads, r.threads_option, r.solver);
   out.options.tolerance = r.tolerance;
   out.options.max_iterations = r.max_iterations;
   out.options.sor_omega = r.omega;

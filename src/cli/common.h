@@ -61,6 +61,7 @@ struct NetRequest {
   std::string mask = "alpha";    //!< --mask (solve only)
   std::optional<double> weight;  //!< --weight (c1-family)
   int threads = 1;               //!< --threads (SolverOptions::threads)
+  CLI::Option* threads_option = nullptr;
   // which options were given (for contradictions)
   CLI::Option *method_option = nullptr, *alpha_option = nullptr, *mu_option = nullptr, *solver_option = nullptr,
               *tolerance_option = nullptr, *max_iterations_option = nullptr, *omega_option = nullptr,
@@ -85,9 +86,11 @@ void add_mask_options(CLI::App& cmd, NetRequest& r);
 //! --solver alone (search, sweep, batch, study).
 void add_solver_option(CLI::App& cmd, std::string& solver);
 //! --threads N (0: every core) for the backends that use threads (solve, export, batch, sweep).
-void add_threads_option(CLI::App& cmd, int& threads);
-//! The solver options of --threads: InputError (field --threads) outside 0 .. kMaxThreads.
-solvers::SolverOptions threads_options(int threads);
+CLI::Option* add_threads_option(CLI::App& cmd, int& threads);
+//! The solver options of --threads: InputError (field --threads) outside 0 .. kMaxThreads, or
+//! when --threads was given (`option`) with a backend `solver` names that does not use threads.
+solvers::SolverOptions threads_options(int threads, const CLI::Option* option = nullptr,
+                                       const std::string& solver = "auto");
 //! Checks the request against the boundary; throws InputError naming the bad option (or both
 //! options of a contradiction).
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source);

@@ -33,7 +33,7 @@ struct SweepRequest {
   int threads = 1;
   double corner_tolerance = 1e-9;
   GlobalOptions global;
-  CLI::Option *from_option = nullptr, *to_option = nullptr;
+  CLI::Option *from_option = nullptr, *to_option = nullptr, *threads_option = nullptr;
 };
 
 TriSweepArgs tri_sweep_args(const SweepRequest& r) {
@@ -63,7 +63,7 @@ int run_sweep_command(const SweepRequest& r) {
   if (r.parameter == SweepParameter::kMu && from < 0) throw InputError("command line", "--from", "mu must be >= 0");
   if (r.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   const std::optional<Target> target = resolve_target(r.target, r.boundary, b, r.samples);
-  const solvers::SolverOptions options = threads_options(r.threads);
+  const solvers::SolverOptions options = threads_options(r.threads, r.threads_option, r.solver);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
   const solvers::SolverInfo& solver = search_backend(requested, b, false);
   const double interior = std::max(0.0, b.m - 1.0) * std::max(0.0, b.n - 1.0);
@@ -149,7 +149,7 @@ void register_sweep(CLI::App& app, Registry& registry) {
                   "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();
   add_solver_option(*cmd, r->solver);
-  add_threads_option(*cmd, r->threads);
+  r->threads_option = add_threads_option(*cmd, r->threads);
   add_memory_option(*cmd, r->global);
   set_example(*cmd, "coons sweep data/boundaries/dome.json --from -0.25 --to 0 --count 26 --out out/sweep");
   registry.add(cmd, [r] { return run_sweep_command(*r); });

@@ -63,13 +63,20 @@ TriRequest resolve_tri(const NetRequest& r) {
     throw InputError("command line", "--method",
                      "a triangular boundary has only --method alpha (the mask family over c, --alpha c)");
   const std::pair<const CLI::Option*, const char*> not_triangular[] = {
-      {r.mu_option, "--mu"}, {r.omega_option, "--omega"}, {r.indefinite_option, "--allow-indefinite"}};
+      {r.mu_option, "--mu"},     {r.omega_option, "--omega"},   {r.indefinite_option, "--allow-indefinite"},
+      {r.mask_option, "--mask"}, {r.weight_option, "--weight"}, {r.threads_option, "--threads"}};
   for (const auto& [option, name] : not_triangular)
     if (given(option)) throw InputError("command line", name, "does not apply to a triangular boundary");
   TriRequest out;
   out.options.mask.c = given(r.alpha_option) ? r.alpha : -1.0 / 6;
   if (!std::isfinite(out.options.mask.c)) throw InputError("command line", "--alpha", "must be a finite number");
   out.options.solver = &tri_backend(r.solver, out.picked_automatically);
+  for (auto [option, name] :
+       {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}})
+    if (given(option) && out.options.solver->family != solvers::SolverFamily::kIterative)
+      throw InputError("command line", name,
+                       fmt::format("{} is a stopping rule of the iterative solvers; {} solves exactly", name,
+                                   out.options.solver->name));
   out.options.solver_options.tolerance = r.tolerance;
   out.options.solver_options.max_iterations = r.max_iterations;
   std::string why;

@@ -522,3 +522,23 @@ TEST_CASE("coons search-alpha: a search whose every solve failed prints value nu
   CHECK(j["status"] == "solver_failed");
   CHECK(j["value"].is_null());
 }
+
+TEST_CASE("coons solve: options that a request cannot use are bad input, not ignored", "[cli]") {
+  const std::string dome = quoted(kData + "/boundaries/dome.json");
+  const std::string triangle = quoted(kData + "/triangles/planar_bulge.json");
+  const std::pair<std::string, std::string> cases[] = {
+      {"solve " + dome + " --solver cg --threads 2", "command line: --threads: cg runs on one thread"},
+      {"solve " + dome + " --tolerance 1e-6", "--solver auto picks one that solves exactly"},
+      {"solve " + triangle + " --mask c1-coons --weight 0.5", "command line: --mask: does not apply to a triangular"},
+      {"export " + triangle + " --mask biharmonic --out unused", "command line: --mask: does not apply"},
+      {"solve " + triangle + " --threads 2", "command line: --threads: does not apply"},
+      {"solve " + triangle + " --tolerance 1e-3", "command line: --tolerance: --tolerance is a stopping rule"}};
+  for (const auto& [args, message] : cases) {
+    const CommandResult r = run_coons(args);
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::Contains(message));
+  }
+  CHECK(run_coons("solve " + dome + " --solver mg --threads 2").status == 0);
+}

@@ -88,7 +88,11 @@ void check_backends(const StencilOperator& op, const std::string& what) {
   lop.grid = &op;
   for (const SolverInfo& info : available_solvers()) {
     Eigen::MatrixX3d X;
-    const SolveSummary s = make_solver(info.name)->compute_and_solve(lop, B, X);
+    // the iterative backends to 1e-9: c1-coons (κ ≈ 1e9 at 20 × 20) ends near 1e-10 here, and a true
+    // residual above the tolerance is (rightly) not_converged
+    SolverOptions options;
+    options.tolerance = 1e-9;
+    const SolveSummary s = make_solver(info.name, options)->compute_and_solve(lop, B, X);
     INFO(what << ": " << s.brief_report());
     if (claims(info.name, op)) REQUIRE(s.ok());
     if (s.ok()) {
