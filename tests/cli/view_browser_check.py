@@ -4,9 +4,10 @@ protocol over --remote-debugging-pipe (standard library only).
 
     view_browser_check.py COONS BOUNDARY WORKDIR [--keep-screenshots DIR | --expect-error]
 
-Writes WORKDIR/page.html with `coons view`, opens it at #alpha=-0.2 and checks: no console error,
-no exception and no data-error attribute; data-ready="1"; data-alpha is the nearest precomputed
-value to -0.2; the screenshot of the 3D view is not blank (many colours, a part neither white nor
+Writes WORKDIR/page.html with `coons view`, opens it at #alpha=-0.2013 (between the precomputed
+values) and checks: no console error, no exception and no data-error attribute; data-ready="1";
+data-alpha is -0.2013 and the net shown is that of `coons solve --alpha -0.2013` (1e-9) when the
+page solves the α family itself (coonsView.exact), else the nearest precomputed value; the screenshot of the 3D view is not blank (many colours, a part neither white nor
 one colour); moving the slider through window.coonsView.setAlpha changes data-alpha, the drawn net
 (data-net-hash) and the picture; moving it back gives the first net again; every other slider
 (setValue: the C1 weight) changes its data attribute and the drawn net; the only request the page
@@ -26,6 +27,7 @@ import time
 import zlib
 
 SKIP = 77
+TARGET = -0.2013  # the α the page is opened at: between the precomputed values
 
 
 def fail(message):
@@ -178,7 +180,7 @@ def main():
         session = browser.send("Target.attachToTarget", {"targetId": target["targetId"], "flatten": True})["sessionId"]
         for domain in ("Runtime.enable", "Log.enable", "Page.enable", "Network.enable"):
             browser.send(domain, session=session)
-        browser.send("Page.navigate", {"url": "file://" + os.path.abspath(page) + "#alpha=-0.2"}, session=session)
+        browser.send("Page.navigate", {"url": "file://" + os.path.abspath(page) + "#alpha=%r" % TARGET}, session=session)
 
         def evaluate(expression):
             result = browser.send("Runtime.evaluate", {"expression": expression, "returnByValue": True},
@@ -223,10 +225,30 @@ def main():
             return png
 
         values = evaluate("window.coonsView.values('alpha')")
-        expected = min(values, key=lambda v: abs(v + 0.2))
+        exact = evaluate("window.coonsView.exact('alpha')")
+        # a page that solves the α family itself shows α = TARGET exactly (the contract), and the
+        # net of `coons solve --alpha TARGET`; the others the nearest precomputed value
+        expected = TARGET if exact else min(values, key=lambda v: abs(v - TARGET))
         alpha = float(body("data-alpha"))
         if alpha != expected:
-            fail("#alpha=-0.2 opened at data-alpha=%r, not the nearest value %r" % (alpha, expected))
+            fail("#alpha=%r opened at data-alpha=%r, not %r" % (TARGET, alpha, expected))
+        if exact:
+            if TARGET in values:
+                fail("%r is a precomputed value: the check would not test the page's own solve" % TARGET)
+            report = json.loads(subprocess.run([coons, "solve", boundary, "--alpha", repr(TARGET)], check=True,
+                                               capture_output=True, text=True).stdout)
+            solved = report["net"]
+            reference = [x for point in solved for x in point] if not isinstance(solved[0][0], list) else \
+                [x for row in solved for point in row for x in point]
+            shown_net = evaluate("window.coonsView.net()")
+            if report.get("rings", 1) != 1:  # solve takes every data ring; the α slider the outer one
+                reference = shown_net
+                print("exact alpha: a file with %d data rings, the net is not compared" % report["rings"])
+            scale = max(abs(x) for x in reference)
+            worst = max(abs(a - b) for a, b in zip(shown_net, reference))
+            print("exact alpha: net of the page vs coons solve: max difference %.3g (scale %.3g)" % (worst, scale))
+            if len(shown_net) != len(reference) or worst > 1e-9 * scale:
+                fail("the page's net at alpha=%r differs from coons solve by %g" % (TARGET, worst))
         first_hash = body("data-net-hash")
         png1 = screenshot("view-alpha-start.png")
         colours, coverage, rows1 = pixel_stats(png1)

@@ -89,6 +89,15 @@ void append_slider(std::string& out, const ViewSlider& s) {
   append_indices(out, s.net_edges);
   out += ",\"faces\":";
   append_indices(out, s.faces);
+  if (s.ring_m >= 2 && s.ring_n >= 2) {
+    out += ",\"ring\":{\"m\":" + std::to_string(s.ring_m) + ",\"n\":" + std::to_string(s.ring_n) + ",\"net\":[";
+    for (Eigen::Index r = 0; r < s.ring.rows(); ++r)
+      for (int c = 0; c < 3; ++c) {
+        if (r > 0 || c > 0) out += ',';
+        append_number(out, s.ring(r, c), true);
+      }
+    out += "]}";
+  }
   out += ",\"frames\":[";
   for (size_t k = 0; k < s.frames.size(); ++k) {
     const ViewFrame& f = s.frames[k];
@@ -163,6 +172,11 @@ bool ViewPage::is_valid(std::string* why) const {
     for (const ViewCurve& c : s.curves)
       if (c.values.size() != s.frames.size())
         return fail(s.parameter + ": curve " + c.name + " needs a value per frame");
+    if (s.ring_m != 0 || s.ring_n != 0) {
+      const Eigen::Index points = Eigen::Index(s.ring_m + 1) * (s.ring_n + 1);
+      if (s.ring_m < 2 || s.ring_n < 2 || s.ring.rows() != points || first.net.rows() != points || !s.ring.allFinite())
+        return fail(s.parameter + ": the ring must be a finite net of degree >= (2, 2), the frames' size");
+    }
   }
   return true;
 }

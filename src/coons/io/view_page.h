@@ -1,13 +1,16 @@
 // The page of `coons view` (docs/formats.md, "`coons view`"): one self-contained HTML file with
 // three.js inlined, the surface shaded with reflection lines, its control net, one slider per
-// parameter family and the energy curves with the current value and the optima marked. Every net
-// and surface the sliders can show is computed beforehand (view_data.h) and embedded as JSON:
+// parameter family and the energy curves with the current value and the optima marked. The nets
+// and surfaces of the sliders' values are computed beforehand (view_data.h) and embedded as JSON:
 // per frame the net (#net points by 3) and the sampled surface (#samples by 3, with unit
-// normals); per slider the net's edges and the surface's triangles, shared by its frames.
+// normals); per slider the net's edges and the surface's triangles, shared by its frames. A value
+// between the frames (#alpha=A, setValue) is solved by the page itself where the slider carries
+// its ring (the one-ring α family, ViewSlider::ring), else shown by the nearest frame.
 // The page sets on document.body: data-PARAMETER (the value shown, e.g. data-alpha; data-mu with
 // it where the frame has a μ), data-ready="1"
 // once drawn, data-net-hash (a hash of the drawn net's coordinates), data-error (the first script
-// error); window.coonsView.setValue(parameter, v) and setAlpha(v) move a slider (the browser test).
+// error); window.coonsView.setValue(parameter, v) and setAlpha(v) move a slider, exact(parameter)
+// says whether values between the frames are solved, net() gives the net shown (the browser test).
 #pragma once
 
 #include <Eigen/Core>
@@ -51,6 +54,13 @@ struct ViewSlider {
   std::vector<ViewFrame> frames;              //!< increasing parameter
   std::vector<ViewCurve> curves;
   std::vector<ViewMark> marks;
+  //! The 3×3 α family with one data ring on a rectangle of degree (ring_m, ring_n) ≥ (2, 2): the
+  //! page then solves the net of a value between the frames itself (in the sine basis, as the
+  //! `fast` backend does) and samples its Bézier surface, so that #alpha=A shows α = A exactly.
+  //! `ring` holds the net's points (#(ring_m+1)(ring_n+1) by 3; only the outer ring is read),
+  //! written in full precision. Empty (ring_m = 0) for the other sliders: they show the nearest frame.
+  Eigen::MatrixX3d ring;
+  int ring_m = 0, ring_n = 0;
 };
 
 struct ViewPage {

@@ -43,13 +43,127 @@ constexpr std::string_view kScript = R"JS(
   var sliders = data.sliders;
   var colours = ['#c0392b', '#2471a3', '#1e8449', '#7d3c98', '#b9770e', '#17202a'];
   var active = 0;
+  // current[si]: the frame shown, an index into frames, or -1 for extra[si] (a value between the
+  // frames that the page solved itself, see solvedFrame)
   var current = sliders.map(function (s) { return nearest(s, s.initial); });
+  var extra = sliders.map(function () { return null; });
 
   function nearest(s, value) {
     var best = 0;
     for (var k = 1; k < s.frames.length; ++k)
       if (Math.abs(s.frames[k].parameter - value) < Math.abs(s.frames[best].parameter - value)) best = k;
     return best;
+  }
+  function frameAt(si) { return current[si] < 0 ? extra[si] : sliders[si].frames[current[si]]; }
+
+  // --- a value between the frames (ViewSlider::ring): the one-ring α family solved here ---------
+  // The interior system (I − β E − α D) x = (the ring's terms) of the mask b_ij = α·(diagonal
+  // neighbours) + β·(edge neighbours), β = 1/4 − α, is diagonal in the sine basis:
+  // x = S_i ((S_i R S_j) ./ λ) S_j with λ_pq = 1 − β(c_p + c_q) − α c_p c_q, c_p = 2 cos(π p/(k+1)).
+  function sineMatrix(k) {  // the orthonormal DST-I, symmetric
+    var S = new Float64Array(k * k), f = Math.sqrt(2 / (k + 1));
+    for (var p = 0; p < k; ++p)
+      for (var q = 0; q < k; ++q) S[p * k + q] = f * Math.sin(Math.PI * (p + 1) * (q + 1) / (k + 1));
+    return S;
+  }
+  function multiply(A, B, C, rows, inner, cols) {  // C = A B (row-major)
+    for (var i = 0; i < rows; ++i)
+      for (var j = 0; j < cols; ++j) {
+        var sum = 0;
+        for (var k = 0; k < inner; ++k) sum += A[i * inner + k] * B[k * cols + j];
+        C[i * cols + j] = sum;
+      }
+  }
+  function ringNet(ring, alpha) {
+    var m = ring.m, n = ring.n, r = m - 1, c = n - 1, beta = 0.25 - alpha, N = n + 1;
+    var net = Float64Array.from(ring.net), Si = sineMatrix(r), Sj = sineMatrix(c);
+    var R = new Float64Array(r * c), T = new Float64Array(r * c), cp = [], cq = [];
+    for (var p = 0; p < r; ++p) cp.push(2 * Math.cos(Math.PI * (p + 1) / (r + 1)));
+    for (var q = 0; q < c; ++q) cq.push(2 * Math.cos(Math.PI * (q + 1) / (c + 1)));
+    function onRing(i, j) { return i === 0 || j === 0 || i === m || j === n; }
+    for (var d = 0; d < 3; ++d) {
+      for (var i = 1; i < m; ++i)
+        for (var j = 1; j < n; ++j) {
+          var sum = 0;
+          for (var di = -1; di <= 1; ++di)
+            for (var dj = -1; dj <= 1; ++dj)
+              if ((di || dj) && onRing(i + di, j + dj))
+                sum += (di && dj ? alpha : beta) * net[3 * ((i + di) * N + j + dj) + d];
+          R[(i - 1) * c + j - 1] = sum;
+        }
+      multiply(Si, R, T, r, r, c);
+      multiply(T, Sj, R, r, c, c);
+      for (p = 0; p < r; ++p)
+        for (q = 0; q < c; ++q) R[p * c + q] /= 1 - beta * (cp[p] + cq[q]) - alpha * cp[p] * cq[q];
+      multiply(Si, R, T, r, r, c);
+      multiply(T, Sj, R, r, c, c);
+      for (i = 1; i < m; ++i)
+        for (j = 1; j < n; ++j) net[3 * (i * N + j) + d] = R[(i - 1) * c + j - 1];
+    }
+    return net;
+  }
+  function bernstein(degree, t) {  // the basis and its derivative at t
+    var b = [], db = [], binomial = 1;
+    for (var k = 0; k <= degree; ++k) {
+      b.push(binomial * Math.pow(t, k) * Math.pow(1 - t, degree - k));
+      binomial = binomial * (degree - k) / (k + 1);
+    }
+    for (k = 0; k <= degree; ++k) {
+      var lower = function (i) {  // B_i of degree − 1
+        if (i < 0 || i > degree - 1) return 0;
+        var coefficient = 1;
+        for (var a = 0; a < i; ++a) coefficient = coefficient * (degree - 1 - a) / (a + 1);
+        return coefficient * Math.pow(t, i) * Math.pow(1 - t, degree - 1 - i);
+      };
+      db.push(degree * (lower(k - 1) - lower(k)));
+    }
+    return [b, db];
+  }
+  // the Bézier surface of the net on k × k samples (u = a/(k−1) along i, v = b/(k−1) along j),
+  // with unit normals du × dv (0 where it degenerates), in the order of the precomputed frames
+  function sampleNet(net, m, n, k) {
+    var points = new Float64Array(3 * k * k), normals = new Float64Array(3 * k * k), N = n + 1;
+    var along = [];
+    for (var b = 0; b < k; ++b) along.push(bernstein(n, b / (k - 1)));
+    for (var a = 0; a < k; ++a) {
+      var bu = bernstein(m, a / (k - 1));
+      for (b = 0; b < k; ++b) {
+        var bv = along[b], p = [0, 0, 0], du = [0, 0, 0], dv = [0, 0, 0];
+        for (var i = 0; i <= m; ++i)
+          for (var j = 0; j <= n; ++j)
+            for (var d = 0; d < 3; ++d) {
+              var x = net[3 * (i * N + j) + d];
+              p[d] += bu[0][i] * bv[0][j] * x;
+              du[d] += bu[1][i] * bv[0][j] * x;
+              dv[d] += bu[0][i] * bv[1][j] * x;
+            }
+        var nx = du[1] * dv[2] - du[2] * dv[1], ny = du[2] * dv[0] - du[0] * dv[2], nz = du[0] * dv[1] - du[1] * dv[0];
+        var length = Math.sqrt(nx * nx + ny * ny + nz * nz), scale = Math.hypot(du[0], du[1], du[2]) *
+                                                                     Math.hypot(dv[0], dv[1], dv[2]);
+        var unit = length > 1e-14 * scale && length > 0 ? 1 / length : 0;
+        var row = 3 * (a * k + b);
+        for (d = 0; d < 3; ++d) points[row + d] = p[d];
+        normals[row] = nx * unit; normals[row + 1] = ny * unit; normals[row + 2] = nz * unit;
+      }
+    }
+    return [points, normals];
+  }
+  function solvedFrame(s, alpha) {
+    var net = ringNet(s.ring, alpha), k = Math.round(Math.sqrt(s.frames[0].points.length / 3));
+    var sampled = sampleNet(net, s.ring.m, s.ring.n, k);
+    var frame = { parameter: alpha, ok: true, net: net, points: sampled[0], normals: sampled[1] };
+    if (s.ring.m === s.ring.n && alpha >= -0.25 && alpha < 0)  // mu_from_alpha
+      frame.mu = -s.ring.n * s.ring.n * (1 + 4 * alpha) / (4 * alpha);
+    return frame;
+  }
+  // the frame index that shows `value`: a frame, or (-1) the value solved here when it lies
+  // between the frames of a slider that can solve it
+  function locate(si, value) {
+    var s = sliders[si], k = nearest(s, value);
+    if (!s.ring || !(value >= s.lower && value <= s.upper) ||
+        Math.abs(s.frames[k].parameter - value) <= 1e-12 * (1 + Math.abs(value))) return k;
+    extra[si] = solvedFrame(s, value);
+    return -1;
   }
   function symbol(s) { return s.symbol || s.parameter; }
   function tick(x) { return String(Number(Number(x).toPrecision(3))); }
@@ -172,7 +286,7 @@ constexpr std::string_view kScript = R"JS(
   }
 
   function draw3d(si) {
-    var s = sliders[si], f = s.frames[current[si]];
+    var s = sliders[si], f = frameAt(si);
     var netCoords = new Float32Array(s.edges.length * 3);
     // s.edges holds index pairs, flattened: one line vertex per entry
     for (var k = 0; k < s.edges.length; ++k)
@@ -256,11 +370,11 @@ constexpr std::string_view kScript = R"JS(
       } else {
         text += 'no optimum (' + c.status + ')';
       }
-      text += ', shown: ' + fmt(c.values[current[si]]);
+      text += current[si] < 0 ? ', shown: – (between the precomputed values)' : ', shown: ' + fmt(c.values[current[si]]);
       line.appendChild(document.createTextNode(text));
       legend.appendChild(line);
     });
-    var p = s.frames[current[si]].parameter;
+    var p = frameAt(si).parameter;
     svg.appendChild(el('line', { x1: x(p), x2: x(p), y1: T, y2: B, stroke: '#e00', 'stroke-width': 2, id: 'current' }));
   }
 
@@ -284,7 +398,7 @@ constexpr std::string_view kScript = R"JS(
 
   // the slider's text and the body's attributes of its current value
   function describe(si) {
-    var s = sliders[si], f = s.frames[current[si]], mu = f.mu;
+    var s = sliders[si], f = frameAt(si), mu = f.mu;
     outputs[si].textContent = '= ' + fmt(f.parameter) + (mu === undefined ? '' : ' (\u03bc = ' + fmt(mu) + ')') +
                               (f.ok ? '' : ' (solve failed)');
     body.setAttribute('data-' + s.parameter, String(f.parameter));
@@ -297,7 +411,7 @@ constexpr std::string_view kScript = R"JS(
   function show(si, fi, moveInput) {
     active = si;
     current[si] = fi;
-    var s = sliders[si], p = s.frames[fi].parameter;
+    var s = sliders[si], p = frameAt(si).parameter;
     if (moveInput) inputs[si].value = p;
     describe(si);
     body.setAttribute('data-shown', s.parameter);
@@ -308,7 +422,7 @@ constexpr std::string_view kScript = R"JS(
 
   function setValue(parameter, value) {
     for (var si = 0; si < sliders.length; ++si)
-      if (sliders[si].parameter === parameter) return show(si, nearest(sliders[si], Number(value)), true);
+      if (sliders[si].parameter === parameter) return show(si, locate(si, Number(value)), true);
     throw new Error('no slider for ' + parameter);
   }
 
@@ -316,7 +430,7 @@ constexpr std::string_view kScript = R"JS(
     var shown = -1;
     sliders.forEach(function (s, si) {
       var m = new RegExp('[#&]' + s.parameter + '=([^&]+)').exec(window.location.hash);
-      if (m && isFinite(Number(m[1]))) { current[si] = nearest(s, Number(m[1])); shown = si; }
+      if (m && isFinite(Number(m[1]))) { current[si] = locate(si, Number(m[1])); shown = si; }
     });
     return shown;
   }
@@ -325,6 +439,11 @@ constexpr std::string_view kScript = R"JS(
     setValue: setValue,
     setAlpha: function (a) { return setValue(sliders[0].parameter, a); },
     parameters: function () { return sliders.map(function (s) { return s.parameter; }); },
+    exact: function (parameter) {  // true when values between the frames are solved, not rounded
+      for (var si = 0; si < sliders.length; ++si) if (sliders[si].parameter === parameter) return !!sliders[si].ring;
+      return false;
+    },
+    net: function () { return Array.prototype.slice.call(frameAt(active).net); },
     values: function (parameter) {
       for (var si = 0; si < sliders.length; ++si)
         if (sliders[si].parameter === parameter) return sliders[si].frames.map(function (f) { return f.parameter; });
@@ -339,7 +458,7 @@ constexpr std::string_view kScript = R"JS(
   }
   var first = fromHash();
   sliders.forEach(function (s, si) {
-    inputs[si].value = s.frames[current[si]].parameter;
+    inputs[si].value = frameAt(si).parameter;
     describe(si);
   });
   show(first >= 0 ? first : 0, current[first >= 0 ? first : 0], true);

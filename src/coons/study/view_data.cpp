@@ -121,7 +121,8 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
         if (!objective || boundary.m < 2 || boundary.n < 2) return std::nullopt;
         return search_alpha(boundary, *objective, solver, search);
       });
-  const std::vector<double> values = slider_values(options.lower, options.upper, options.frames, curves, {-0.25, 0.0});
+  const std::vector<double> values =
+      slider_values(options.lower, options.upper, options.frames, curves, {-0.25, 0.0, initial});
 
   std::vector<ControlNet> nets;
   const std::vector<SweepRow> rows =
@@ -140,6 +141,11 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
   }
   for (const auto& [name, alpha] : {std::pair<const char*, double>{"Coons", -0.25}, {"Laplace", 0.0}})
     if (alpha >= options.lower && alpha <= options.upper) slider.marks.push_back({name, alpha});
+  if (boundary.m >= 2 && boundary.n >= 2) {  // the page solves any α of the interval itself
+    slider.ring = frame_net(boundary).points;
+    slider.ring_m = boundary.m;
+    slider.ring_n = boundary.n;
+  }
   return slider;
 }
 
@@ -160,7 +166,7 @@ ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& 
         if (!objective) return std::nullopt;
         return search_weight(problem, *objective, solver);
       });
-  const std::vector<double> values = slider_values(0, 1, options.frames, curves, {0.0, 1.0});
+  const std::vector<double> values = slider_values(0, 1, options.frames, curves, {0.0, 1.0, initial});
   std::vector<Stencil> members;
   members.reserve(values.size());
   for (double w : values) members.push_back(c1_family_stencil(w));
@@ -212,7 +218,7 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
         return search_tri_c(frame, *objective, solver, search);
       });
   const std::vector<double> values =
-      slider_values(slider.lower, slider.upper, options.frames, curves, {-1.0 / 6.0, 0.0});
+      slider_values(slider.lower, slider.upper, options.frames, curves, {-1.0 / 6.0, 0.0, initial});
   for (double c : values) {
     tri::TriSolveOptions solve;
     solve.mask = tri::TriMask{c};
