@@ -210,9 +210,6 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   if (!r.shard.empty()) {
     const auto shard = parse_shard(r.shard, &why);
     if (!shard) throw InputError("command line", "--shard", why);
-    if (!bsplines.empty())
-      throw InputError(bsplines.front().file, "--shard",
-                       "B-spline boundaries are not sharded yet (study them unsharded)");
     if (r.html) throw InputError("command line", "--shard", "--html is not sharded yet (give it to an unsharded run)");
     return run_files_shard(files, options, r.corner_tolerance, shard->first, shard->second, r.out_dir);
   }
@@ -220,22 +217,34 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
   result.triangles =
       run_tri_study(triangles, options.degrees, options.solver, [&](const std::string& s) { phases.note(s); });
-  // A backend that works from a grid stencil cannot take the non-uniform system: auto there.
-  const std::vector<BSplineStudyRow> bspline_rows = run_bspline_study(
-      bsplines, default_study_objectives(),
-      options.solver != nullptr && options.solver->needs_matrix ? options.solver->name : std::string());
+  const std::vector<BSplineStudyRow> bspline_rows =
+      run_bspline_study(bsplines, default_study_objectives(), bspline_row_solver(options.solver));
 
   phases.start("write");
-  // B-spline rows and pages after the per-shape report (not carried by shards: see run_files_shard)
+  // B-spline rows and pages after the per-shape report (pages are not carried by shards)
   write_study_report(result, r.out_dir, command_line, [&](OutputSet& out) {
-    std::string tail = bspline_rows.empty() ? "" : "\n" + bspline_study_markdown(bspline_rows);
-    if (!bspline_rows.empty())
-      out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(bspline_rows), 1) << '\n'; });
+    std::string tail = write_bspline_rows(bspline_rows, out);
     if (r.html) tail += write_study_pages(result, inputs, out, three_js, options.solver);
     return tail;
   });
-  // a failed solve anywhere in the study: the report stands (it says "failed" where it happened),
-  // the exit status says so, with one line naming the first failure
+  return study_exit_status(result, bspline_rows);
+}
+
+}  // namespace
+
+std::string bspline_row_solver(const solvers::SolverInfo* solver) {
+  return solver != nullptr && solver->needs_matrix ? solver->name : std::string();
+}
+
+std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputSet& out) {
+  if (rows.empty()) return "";
+  out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(rows), 1) << '\n'; });
+  return "\n" + bspline_study_markdown(rows);
+}
+
+// A failed solve anywhere in the study: the report stands (it says "failed" where it happened), the
+// exit status says so, with one line naming the first failure.
+int study_exit_status(const StudyResult& result, const std::vector<BSplineStudyRow>& bspline_rows) {
   std::vector<StudyFailure> failures = study_failures(result);
   for (StudyFailure& f : bspline_study_failures(bspline_rows)) failures.push_back(std::move(f));
   if (failures.empty()) return kExitOk;
@@ -245,8 +254,6 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
                            failures.size() > 1 ? fmt::format(", and {} more failures", failures.size() - 1) : "");
   return kExitSolverFailed;
 }
-
-}  // namespace
 
 void register_study(CLI::App& app, Registry& registry) {
   auto r = std::make_shared<StudyRequest>();
