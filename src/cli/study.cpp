@@ -182,7 +182,8 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
       if (options.solver)
         if (const tri::TriBackendCheck check = tri::check_tri_backend(*options.solver, tri::TriMask{-1.0 / 6.0});
             !check.applicable)
-          throw InputError("command line", "--solver", fmt::format("{} ({} is a triangular boundary)", check.reason, f));
+          throw InputError("command line", "--solver",
+                           fmt::format("{} ({} is a triangular boundary)", check.reason, f));
       int largest = triangles.back().boundary.n;
       for (int d : options.degrees) largest = std::max(largest, d);
       check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),
@@ -263,18 +264,18 @@ void register_study(CLI::App& app, Registry& registry) {
                                  "self-contained report with PNG figures");
   cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them (or --family)");
   r->given.degrees = cmd->add_option("--degrees", r->degrees,
-                                  "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
-                      ->capture_default_str();
+                                     "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
+                         ->capture_default_str();
   cmd->add_option("--family", r->family,
                   "random-smooth, or perturbed:NAME (a bundled shape or a boundary file plus random smooth "
                   "perturbations): instead of files, the distribution of alpha* over a seeded family and the best "
                   "single alpha");
-  r->given.amplitude = cmd->add_option("--amplitude", r->amplitude,
-                  "with --family perturbed:NAME: the perturbation's size, a fraction of the shape's bounding-box "
-                  "diagonal, in [0, 1]")
-      ->capture_default_str();
-  r->given.count =
-      cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
+  r->given.amplitude =
+      cmd->add_option("--amplitude", r->amplitude,
+                      "with --family perturbed:NAME: the perturbation's size, a fraction of the shape's bounding-box "
+                      "diagonal, in [0, 1]")
+          ->capture_default_str();
+  r->given.count = cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
   r->given.seed = cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
   cmd->add_option(
       "--shard", r->shard,
@@ -282,19 +283,18 @@ void register_study(CLI::App& app, Registry& registry) {
       "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
   cmd->add_option("--merge", r->merge, "DIR: the report (to --out) from the shard files in DIR");
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
-  r->given.html = cmd->add_flag("--html", r->html, "also a coons view page per shape in pages/, linked from the report");
+  r->given.html =
+      cmd->add_flag("--html", r->html, "also a coons view page per shape in pages/, linked from the report");
   r->given.corner_tolerance =
       cmd->add_option("--corner-tolerance", r->corner_tolerance,
                       "corners must agree to this fraction of the bounding-box diagonal (boundary files and "
                       "--family perturbed:FILE)")
-      ->capture_default_str();
+          ->capture_default_str();
   add_solver_option(*cmd, r->solver);
   r->given.solver = cmd->get_option("--solver");
   add_memory_option(*cmd, r->global);
   set_example(*cmd, "coons study data/boundaries data/triangles --degrees 3 4 6 8 --out out/study");
-  registry.add(cmd, [r, &registry] {
-    return run_study_command(*r, registry.command_line);
-  });
+  registry.add(cmd, [r, &registry] { return run_study_command(*r, registry.command_line); });
 }
 
 }  // namespace coons::cli

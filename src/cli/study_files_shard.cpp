@@ -126,9 +126,8 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
         part = run_study({read_study_input(file, read_options)}, options);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    json record{{"key", key},         {"study", study},
-                {"index", t},         {"file", file},
-                {"content", content}, {"result", study_part_json(part)},
+    json record{{"key", key},        {"study", study},     {"index", t},
+                {"file", file},      {"content", content}, {"result", study_part_json(part)},
                 {"seconds", seconds}};
     if (!bspline.empty()) record["bspline"] = bspline_rows_json(bspline);
     o << dump(record) << '\n' << std::flush;

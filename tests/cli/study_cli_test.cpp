@@ -72,8 +72,7 @@ TEST_CASE("coons study: a failed solve anywhere in the study exits 3, the report
   const std::string out = dir.file("out");
   const std::string file = kData + "/boundaries/oscillating.json";
   // Jacobi diverges at α = −1/4 on the oscillating shape, and μ* rests on failed solves
-  const CommandResult r =
-      run_coons("study " + quoted(file) + " --degrees 6 --solver jacobi --out " + quoted(out));
+  const CommandResult r = run_coons("study " + quoted(file) + " --degrees 6 --solver jacobi --out " + quoted(out));
   INFO(r.err);
   CHECK(r.status == 3);
   CHECK(r.err.rfind("error: " + file + ": solver: oscillating: ", 0) == 0);

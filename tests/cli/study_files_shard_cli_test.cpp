@@ -92,7 +92,8 @@ TEST_CASE("coons study FILES --shard: --html is refused with one line, nothing w
 TEST_CASE("coons study FILES --shard: a B-spline file is one task, the merge equals the unsharded run", "[cli]") {
   TempDir dir;
   const std::string files = std::string("study '") + COONS_DATA_DIR + "/boundaries/dome.json' '" + COONS_DATA_DIR +
-                            "/boundaries/bspline_wave.json' '" + COONS_DATA_DIR + "/triangles/dome_half.json' --degrees 3";
+                            "/boundaries/bspline_wave.json' '" + COONS_DATA_DIR +
+                            "/triangles/dome_half.json' --degrees 3";
   const ShardedStudy run = run_sharded_study(kCoons + " " + files, dir, 2);
   // the B-spline file (index 1) is the task of shard 1, its row carried by the record
   REQUIRE(run.records[1].size() == 1);

@@ -137,11 +137,10 @@ std::string alpha_family_markdown(const AlphaFamilyResult& r, const std::vector<
     md += "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i]))
       md += fmt::format("| {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, g4(c->best_alpha),
-                        c->best_at_grid_end ? " (grid end)" : "",
-                        g4(c->best_mu), q(c->alpha_ratio, &Distribution::q10), q(c->alpha_ratio, &Distribution::median),
-                        q(c->alpha_ratio, &Distribution::q90), lq(c->losses, &Distribution::median),
-                        c->loss_mean ? percent(*c->loss_mean) : "–", lq(c->losses, &Distribution::q90),
-                        lq(c->losses, &Distribution::max));
+                        c->best_at_grid_end ? " (grid end)" : "", g4(c->best_mu), q(c->alpha_ratio, &Distribution::q10),
+                        q(c->alpha_ratio, &Distribution::median), q(c->alpha_ratio, &Distribution::q90),
+                        lq(c->losses, &Distribution::median), c->loss_mean ? percent(*c->loss_mean) : "–",
+                        lq(c->losses, &Distribution::q90), lq(c->losses, &Distribution::max));
     md += "\n" + figure(i, "α* of " + r.objectives[i]) + figure(n + i, "μ* of " + r.objectives[i]) +
           figure(2 * n + i, "excess at the best single α, " + r.objectives[i]);
   }

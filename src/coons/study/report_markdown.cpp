@@ -157,12 +157,11 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     const Boundary& b = shape.boundary;
     for (const ShapeOptimum& o : shape.optima) {
       std::string row = fmt::format("| {} | {}×{} | {} | {} | {} | {} | {} | {} |", b.name, b.m, b.n, o.objective,
-                                    format_optimum(o.alpha), value_at_optimum(o.alpha),
-                                    value_or_failed(o.coons), value_or_failed(o.laplace), format_optimum(o.mu, 3));
+                                    format_optimum(o.alpha), value_at_optimum(o.alpha), value_or_failed(o.coons),
+                                    value_or_failed(o.laplace), format_optimum(o.mu, 3));
       if (c1_column)
-        row += o.weight
-                   ? fmt::format(" {} | {} |", format_optimum(*o.weight), value_at_optimum(*o.weight))
-                   : fmt::format(" – ({}) | – |", shape.one_ring);
+        row += o.weight ? fmt::format(" {} | {} |", format_optimum(*o.weight), value_at_optimum(*o.weight))
+                        : fmt::format(" – ({}) | – |", shape.one_ring);
       line(row);
     }
   }

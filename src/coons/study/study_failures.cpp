@@ -50,15 +50,14 @@ std::vector<StudyFailure> study_failures(const StudyResult& r) {
     for (const DegreeCell& c : law.cells)
       for (const auto& [name, s] : {std::pair{"α*", &c.alpha}, std::pair{"μ*", &c.mu}})
         if (search_failed(*s))
-          out.push_back({file_of(r, law.boundary),
-                         search_phrase(fmt::format("{}: {} at degree {}: {}", law.boundary, law.objective, c.degree,
-                                                   name),
-                                       *s)});
+          out.push_back(
+              {file_of(r, law.boundary),
+               search_phrase(fmt::format("{}: {} at degree {}: {}", law.boundary, law.objective, c.degree, name), *s)});
   for (const ReferenceTable& t : r.references) {
     for (const ReferenceRow& row : t.rows)
       if (!std::isfinite(row.center_z))
-        out.push_back({file_of(r, t.boundary), fmt::format("{}: the reference row at α = {} failed", t.boundary,
-                                                           row.alpha)});
+        out.push_back(
+            {file_of(r, t.boundary), fmt::format("{}: the reference row at α = {} failed", t.boundary, row.alpha)});
     if (search_failed(t.best))
       out.push_back({file_of(r, t.boundary), search_phrase(t.boundary + ": the best fit to the target", t.best)});
   }
