@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <iterator>
 #include <memory>
 
@@ -21,6 +22,8 @@
 #include "coons/study/memory_estimate.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
+#include "coons/study/study_failures.h"
+#include "coons/tri/tri_solve.h"
 #include "registry.h"
 #include "study_shard.h"
 #include "view_command.h"
@@ -39,12 +42,52 @@ struct StudyRequest {
   double amplitude = 0.1;  // of the perturbed family
   int count = 200;
   std::uint64_t seed = 1;
-  bool degrees_given = false;
   std::string shard;  // --shard I/N: one part of the family study's tasks (study_shard.h)
   std::string merge;  // --merge DIR: the report from the shards in DIR
   bool html = false;  // --html: a `coons view` page per shape (study_pages.cpp)
   GlobalOptions global;
+  // the options as given on the command line: an option that does nothing in the mode is refused
+  struct Given {
+    CLI::Option *degrees = nullptr, *amplitude = nullptr, *count = nullptr, *seed = nullptr, *html = nullptr,
+                *corner_tolerance = nullptr, *solver = nullptr;
+  } given;
 };
+
+bool given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
+
+// An option that has no effect in the study's mode (files, --family, --merge) is an input error
+// naming it, rather than silently ignored.
+void refuse_inapplicable(const StudyRequest& r) {
+  const StudyRequest::Given& g = r.given;
+  auto refuse = [](const CLI::Option* option, const char* name, const std::string& why) {
+    if (given(option)) throw InputError("command line", name, why);
+  };
+  if (!r.merge.empty()) {
+    const std::string why = "does not apply to --merge (the shards carry the study's options)";
+    refuse(g.degrees, "--degrees", why);
+    refuse(g.html, "--html", why);
+    refuse(g.count, "--count", why);
+    refuse(g.seed, "--seed", why);
+    refuse(g.amplitude, "--amplitude", why);
+    refuse(g.corner_tolerance, "--corner-tolerance", why);
+    refuse(g.solver, "--solver", why);
+    return;
+  }
+  const bool perturbed = r.family.rfind("perturbed:", 0) == 0;
+  if (r.family.empty()) {
+    const std::string why = "applies to --family only, not to a study of boundary files";
+    refuse(g.count, "--count", why);
+    refuse(g.seed, "--seed", why);
+    refuse(g.amplitude, "--amplitude", "applies to --family perturbed:NAME only");
+    return;
+  }
+  refuse(g.html, "--html", "applies to a study of boundary files only, not to --family");
+  if (!perturbed) {
+    refuse(g.amplitude, "--amplitude", "applies to --family perturbed:NAME only, not to " + r.family);
+    refuse(g.corner_tolerance, "--corner-tolerance",
+           "applies to boundary files (and --family perturbed:FILE) only, not to " + r.family);
+  }
+}
 
 // perturbed:NAME: NAME is a boundary file, or a bundled shape's name (data/boundaries/NAME.json from
 // the current folder, the repository's root).
@@ -72,14 +115,19 @@ int run_family_command(const StudyRequest& r) {
   if (r.family.rfind("perturbed:", 0) == 0) {
     options.base_name = r.family.substr(10);
     const std::string file = perturbed_base_file(options.base_name);
-    options.base = read_boundary_file(file).boundary;
+    const BoundaryFile base = read_input(file, r.corner_tolerance, true);
+    if (base.bspline)  // the family perturbs and elevates Bézier sides; a B-spline's are not
+      throw InputError(file, "knots_u",
+                       "a B-spline boundary cannot be the base of --family perturbed: (its sides are not Bézier "
+                       "curves to perturb and elevate); give a Bézier boundary");
+    options.base = base.boundary;
     options.base_content = fnv1a_hex(read_file_text(file));
     options.amplitude = r.amplitude;
   } else if (r.family != "random-smooth") {
     throw InputError("command line", "--family",
                      fmt::format("unknown family '{}' (known: random-smooth, perturbed:NAME)", r.family));
   }
-  if (r.degrees_given) options.degrees = r.degrees;
+  if (given(r.given.degrees)) options.degrees = r.degrees;
   options.count = r.count;
   options.seed = r.seed;
   options.solver = solver_from_name(r.solver);
@@ -106,8 +154,10 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
     if (!r.inputs.empty() || !r.family.empty() || !r.shard.empty())
       throw InputError("command line", "--merge",
                        "takes the study from the shards: give no boundaries, --family or --shard");
+    refuse_inapplicable(r);
     return run_study_merge(r.merge, r.out_dir);
   }
+  refuse_inapplicable(r);
   if (!r.family.empty()) return run_family_command(r);
   Phases phases("study");
   phases.start("read");
@@ -127,6 +177,13 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   for (const auto& f : files) {
     if (is_triangle_file(f)) {
       triangles.push_back(read_tri_study_input(f, r.corner_tolerance));
+      // a backend the triangular systems cannot take is refused here, as `coons view` does, rather
+      // than turning every triangle row into "failed"
+      if (options.solver)
+        if (const tri::TriBackendCheck check = tri::check_tri_backend(*options.solver, tri::TriMask{-1.0 / 6.0});
+            !check.applicable)
+          throw InputError("command line", "--solver",
+                           fmt::format("{} ({} is a triangular boundary)", check.reason, f));
       int largest = triangles.back().boundary.n;
       for (int d : options.degrees) largest = std::max(largest, d);
       check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),
@@ -154,9 +211,6 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   if (!r.shard.empty()) {
     const auto shard = parse_shard(r.shard, &why);
     if (!shard) throw InputError("command line", "--shard", why);
-    if (!bsplines.empty())
-      throw InputError(bsplines.front().file, "--shard",
-                       "B-spline boundaries are not sharded yet (study them unsharded)");
     if (r.html) throw InputError("command line", "--shard", "--html is not sharded yet (give it to an unsharded run)");
     return run_files_shard(files, options, r.corner_tolerance, shard->first, shard->second, r.out_dir);
   }
@@ -164,24 +218,43 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   StudyResult result = run_study(inputs, options, [&](const std::string& s) { phases.note(s); });
   result.triangles =
       run_tri_study(triangles, options.degrees, options.solver, [&](const std::string& s) { phases.note(s); });
-  // A backend that works from a grid stencil cannot take the non-uniform system: auto there.
-  const std::vector<BSplineStudyRow> bspline_rows = run_bspline_study(
-      bsplines, default_study_objectives(),
-      options.solver != nullptr && options.solver->needs_matrix ? options.solver->name : std::string());
+  const std::vector<BSplineStudyRow> bspline_rows =
+      run_bspline_study(bsplines, default_study_objectives(), bspline_row_solver(options.solver));
 
   phases.start("write");
-  // B-spline rows and pages after the per-shape report (not carried by shards: see run_files_shard)
+  // B-spline rows and pages after the per-shape report (pages are not carried by shards)
   write_study_report(result, r.out_dir, command_line, [&](OutputSet& out) {
-    std::string tail = bspline_rows.empty() ? "" : "\n" + bspline_study_markdown(bspline_rows);
-    if (!bspline_rows.empty())
-      out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(bspline_rows), 1) << '\n'; });
+    std::string tail = write_bspline_rows(bspline_rows, out);
     if (r.html) tail += write_study_pages(result, inputs, out, three_js, options.solver);
     return tail;
   });
-  return kExitOk;
+  return study_exit_status(result, bspline_rows);
 }
 
 }  // namespace
+
+std::string bspline_row_solver(const solvers::SolverInfo* solver) {
+  return solver != nullptr && solver->needs_matrix ? solver->name : std::string();
+}
+
+std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputSet& out) {
+  if (rows.empty()) return "";
+  out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(rows), 1) << '\n'; });
+  return "\n" + bspline_study_markdown(rows);
+}
+
+// A failed solve anywhere in the study: the report stands (it says "failed" where it happened), the
+// exit status says so, with one line naming the first failure.
+int study_exit_status(const StudyResult& result, const std::vector<BSplineStudyRow>& bspline_rows) {
+  std::vector<StudyFailure> failures = study_failures(result);
+  for (StudyFailure& f : bspline_study_failures(bspline_rows)) failures.push_back(std::move(f));
+  if (failures.empty()) return kExitOk;
+  const StudyFailure& first = failures.front();
+  std::cerr << fmt::format("error: {}: solver: {}{} (the report is written; it says where)\n",
+                           first.file.empty() ? "study" : first.file, first.what,
+                           failures.size() > 1 ? fmt::format(", and {} more failures", failures.size() - 1) : "");
+  return kExitSolverFailed;
+}
 
 void register_study(CLI::App& app, Registry& registry) {
   auto r = std::make_shared<StudyRequest>();
@@ -190,36 +263,38 @@ void register_study(CLI::App& app, Registry& registry) {
                                  "table for every boundary with a target, the best c of every triangular boundary; a "
                                  "self-contained report with PNG figures");
   cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them (or --family)");
-  auto* degrees = cmd->add_option("--degrees", r->degrees,
-                                  "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
-                      ->capture_default_str();
+  r->given.degrees = cmd->add_option("--degrees", r->degrees,
+                                     "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
+                         ->capture_default_str();
   cmd->add_option("--family", r->family,
                   "random-smooth, or perturbed:NAME (a bundled shape or a boundary file plus random smooth "
                   "perturbations): instead of files, the distribution of alpha* over a seeded family and the best "
                   "single alpha");
-  cmd->add_option("--amplitude", r->amplitude,
-                  "with --family perturbed:NAME: the perturbation's size, a fraction of the shape's bounding-box "
-                  "diagonal, in [0, 1]")
-      ->capture_default_str();
-  cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
-  cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
+  r->given.amplitude =
+      cmd->add_option("--amplitude", r->amplitude,
+                      "with --family perturbed:NAME: the perturbation's size, a fraction of the shape's bounding-box "
+                      "diagonal, in [0, 1]")
+          ->capture_default_str();
+  r->given.count = cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
+  r->given.seed = cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
   cmd->add_option(
       "--shard", r->shard,
       "I/N: run the I-th of N disjoint parts of the task list (family tasks, or one per boundary file) into "
       "OUT/shard-I-of-N.jsonl (a rerun skips the tasks already there)");
   cmd->add_option("--merge", r->merge, "DIR: the report (to --out) from the shard files in DIR");
   cmd->add_option("--out", r->out_dir, "output folder: report.md, figures, results.json")->capture_default_str();
-  cmd->add_flag("--html", r->html, "also a coons view page per shape in pages/, linked from the report");
-  cmd->add_option("--corner-tolerance", r->corner_tolerance,
-                  "corners must agree to this fraction of the bounding-box diagonal")
-      ->capture_default_str();
+  r->given.html =
+      cmd->add_flag("--html", r->html, "also a coons view page per shape in pages/, linked from the report");
+  r->given.corner_tolerance =
+      cmd->add_option("--corner-tolerance", r->corner_tolerance,
+                      "corners must agree to this fraction of the bounding-box diagonal (boundary files and "
+                      "--family perturbed:FILE)")
+          ->capture_default_str();
   add_solver_option(*cmd, r->solver);
+  r->given.solver = cmd->get_option("--solver");
   add_memory_option(*cmd, r->global);
   set_example(*cmd, "coons study data/boundaries data/triangles --degrees 3 4 6 8 --out out/study");
-  registry.add(cmd, [r, degrees, &registry] {
-    r->degrees_given = degrees->count() > 0;
-    return run_study_command(*r, registry.command_line);
-  });
+  registry.add(cmd, [r, &registry] { return run_study_command(*r, registry.command_line); });
 }
 
 }  // namespace coons::cli

@@ -1,7 +1,7 @@
 // `coons study FILES --shard I/N` and the merge of its shards (study_shard.h): one task per
-// boundary file, whose record carries that file's part of the study (coons/study/study_json.h), so
-// that the merge rebuilds the unsharded run's StudyResult and writes its report with the same
-// writer (docs/formats.md, "Sharded studies").
+// boundary file, whose record carries that file's part of the study (coons/study/study_json.h; a
+// B-spline file's row in "bspline"), so that the merge rebuilds the unsharded run's StudyResult
+// and B-spline rows and writes its report with the same writer (docs/formats.md, "Sharded studies").
 #include <fmt/format.h>
 
 #include <fstream>
@@ -112,23 +112,24 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
     phases.note(file);
     const auto start = std::chrono::steady_clock::now();
     StudyResult part;
+    std::vector<BSplineStudyRow> bspline;  // a B-spline file's row (its own knots, no degrees)
     if (is_triangle_file(file)) {
       part.triangles = run_tri_study({read_tri_study_input(file, corner_tolerance)}, options.degrees, options.solver);
     } else {
       BoundaryReadOptions read_options;
       read_options.corner_tolerance = corner_tolerance;
-      part = run_study({read_study_input(file, read_options)}, options);
+      if (const BoundaryFile b = read_boundary_file(file, read_options); b.bspline)
+        bspline = run_bspline_study({{file, b.boundary.name, *b.bspline}}, default_study_objectives(),
+                                    bspline_row_solver(options.solver));
+      else
+        part = run_study({read_study_input(file, read_options)}, options);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
-    o << dump(json{{"key", key},
-                   {"study", study},
-                   {"index", t},
-                   {"file", file},
-                   {"content", content},
-                   {"result", study_part_json(part)},
-                   {"seconds", seconds}})
-      << '\n'
-      << std::flush;
+    json record{{"key", key},        {"study", study},     {"index", t},
+                {"file", file},      {"content", content}, {"result", study_part_json(part)},
+                {"seconds", seconds}};
+    if (!bspline.empty()) record["bspline"] = bspline_rows_json(bspline);
+    o << dump(record) << '\n' << std::flush;
     if (!o) throw InputError(path.string(), "--out", "cannot be written");
     done.insert(key);
     ++ran;
@@ -193,11 +194,16 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
   } catch (const json::exception&) {
     throw InputError(files.front().string(), "study", "degrees or objectives malformed");
   }
-  for (const auto& [index, record] : by_index) append_study_part(record["result"], files.front().string(), &result);
+  std::vector<BSplineStudyRow> bspline_rows;  // in the files' order, as the unsharded run has them
+  for (const auto& [index, record] : by_index) {
+    append_study_part(record["result"], files.front().string(), &result);
+    if (record.contains("bspline")) append_bspline_rows(record["bspline"], files.front().string(), &bspline_rows);
+  }
   phases.start("write");
-  write_study_report(result, out_dir, fmt::format("coons study --merge {} --out {}", merge_dir, out_dir));
+  write_study_report(result, out_dir, fmt::format("coons study --merge {} --out {}", merge_dir, out_dir),
+                     [&](OutputSet& out) { return write_bspline_rows(bspline_rows, out); });
   print_text(fmt::format("merged {} tasks from {} shard files\n", count, files.size()));
-  return kExitOk;
+  return study_exit_status(result, bspline_rows);
 }
 
 }  // namespace coons::cli

@@ -13,6 +13,7 @@
 
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
+#include "coons/study/bspline_study.h"
 #include "coons/study/study.h"
 
 namespace coons::cli {
@@ -52,6 +53,18 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir);
 //! `extra` (optional) writes more files to the same output set and returns Markdown to append.
 void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
                         const std::function<std::string(OutputSet&)>& extra = {});
+
+//! The B-spline rows' share of a per-shape study's output: `bspline.json` into `out` and the
+//! Markdown section to append to the report ("" without rows). The same for a run and a merge.
+std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputSet& out);
+
+//! The exit status of a per-shape study whose report is written: kExitSolverFailed with one
+//! `error:` line on standard error naming the first failed solve (study_failures.h), else kExitOk.
+int study_exit_status(const StudyResult& result, const std::vector<BSplineStudyRow>& bspline_rows);
+
+//! The backend of the B-spline rows for the study's --solver: a backend that works from a grid
+//! stencil cannot take the non-uniform system, so "" (auto, auto_bspline_solver) then.
+std::string bspline_row_solver(const solvers::SolverInfo* solver);
 
 //! `coons study FILES --shard I/N`: one task per input file (in the order given), task t in shard
 //! t mod N; every file is read and checked first.

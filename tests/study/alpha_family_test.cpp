@@ -81,3 +81,43 @@ TEST_CASE("AlphaFamilyOptions: degrees below the sides' degree are refused") {
   CHECK_FALSE(options.is_valid(&why));
   CHECK(why.find("degree 2") != std::string::npos);
 }
+
+TEST_CASE("best_single_alpha_on_grid: a mean loss falling to the grid's end gives alpha = 1/4 exactly, flagged") {
+  // two boundaries whose values fall all the way along the grid: the last node is the best
+  std::vector<std::vector<double>> values(2, std::vector<double>(81));
+  for (int k = 0; k < 81; ++k) {
+    values[0][k] = 2 + (80 - k) * 0.01;
+    values[1][k] = 3 + (80 - k) * (80 - k) * 1e-3;
+  }
+  const auto best = best_single_alpha_on_grid(values, {2, 3});
+  REQUIRE(best);
+  CHECK(best->alpha <= 0.25);
+  CHECK(best->alpha == Approx(0.25).margin(1e-8));
+  CHECK(best->at_grid_end);
+  // a minimum inside the grid is not flagged
+  for (int k = 0; k < 81; ++k) values[0][k] = values[1][k] = 1 + (k - 40) * (k - 40) * 1e-3;
+  const auto inside = best_single_alpha_on_grid(values, {1, 1});
+  REQUIRE(inside);
+  CHECK_FALSE(inside->at_grid_end);
+}
+
+TEST_CASE("alpha_family_conclusions: a best single α at the grid's end is said to be there") {
+  AlphaFamilyResult r;
+  r.options.count = 2;
+  r.objectives = {"thin_plate"};
+  AlphaFamilyCell c;
+  c.degree = 3;
+  c.objective = "thin_plate";
+  c.best_alpha = 0.25;
+  c.best_at_grid_end = true;
+  c.loss = {0.001, 0.002};
+  c.losses = distribution_of({0.001, 0.002});
+  c.loss_mean = 0.0015;
+  c.interior = 2;
+  r.cells = {c};
+  const std::string text = alpha_family_conclusions(r);
+  INFO(text);
+  CHECK(text.find("The best single α is at the end of its grid at 0.25 (n = 3)") != std::string::npos);
+  CHECK(alpha_family_json(r)["cells"][0]["best_alpha_at_grid_end"] == true);
+  CHECK(alpha_family_markdown(r, {}).find("| 3 | 0.25 (grid end) |") != std::string::npos);
+}

@@ -62,3 +62,15 @@ TEST_CASE("study_conclusions: mu* is said to stay put only when it does", "[stud
   for (auto& c : r.laws[0].cells) c.mu.parameter = 6.0 + 0.01 * c.degree;
   CHECK(contains(joined_lines(study_conclusions(r)), "stays put"));
 }
+
+TEST_CASE("study_conclusions: the optima that agree are named with their shapes, an optimum on the bound tagged",
+          "[study]") {
+  StudyResult r;
+  r.objectives = {"thin_plate"};
+  r.shapes = {shape_with("a", -0.25), shape_with("b", -0.24)};
+  r.shapes[0].optima[0].alpha.at_bound = true;
+  const std::string s = joined_lines(study_conclusions(r));
+  INFO(s);
+  CHECK(contains(s, "agree within 0.0100"));
+  CHECK(contains(s, "(α* from -0.2500 (a, on the bound) to -0.2400 (b))"));
+}

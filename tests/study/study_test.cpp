@@ -216,3 +216,78 @@ TEST_CASE("read_study_input: a net with rings 2 gives the two-ring problem, one 
   CHECK_FALSE(sides.two_rings);
   CHECK(sides.one_ring == "one data ring, no ribbons");
 }
+
+namespace {
+
+// A study result made in code: one 3×3 shape whose thin-plate searches found their optima.
+StudyResult one_shape_result() {
+  StudyResult r;
+  r.degrees = {3};
+  r.objectives = {"thin_plate"};
+  ShapeEntry shape;
+  shape.file = "bump.json";
+  shape.boundary = make_smooth_boundary(3, 3, 5);
+  shape.boundary.name = "bump";
+  shape.solver = "eigen-ldlt";
+  ShapeOptimum o;
+  o.objective = "thin_plate";
+  o.alpha.parameter = -0.1;
+  o.alpha.value = 2.5;
+  o.alpha.solves = 7;
+  o.mu.parameter = 20;
+  o.mu.value = 2.5;
+  o.mu.solves = 5;
+  o.coons = 3;
+  o.laplace = 4;
+  shape.optima.push_back(o);
+  r.shapes.push_back(shape);
+  return r;
+}
+
+}  // namespace
+
+TEST_CASE("study_results_json: a shape with a failed region or a failed solve says solver status failure", "[study]") {
+  StudyResult r = one_shape_result();
+  const json good = study_results_json(r)[0]["solver"];
+  CHECK(good["status"] == "success");
+  CHECK(good["iterations"] == 12);  // the linear solves of the α* and μ* searches
+  CHECK_FALSE(good.contains("message"));
+  // μ* rests on failed solves: no optimum claimed, and the block says so
+  r.shapes[0].optima[0].mu.status = SearchStatus::kFailedRegion;
+  r.shapes[0].optima[0].mu.parameter.reset();
+  const json region = study_results_json(r)[0]["solver"];
+  CHECK(region["status"] == "failure");
+  CHECK(region["message"] == "thin_plate: μ* failed_region");
+  // the solve at α = 0 failed (its value is null in the entry)
+  r = one_shape_result();
+  r.shapes[0].optima[0].laplace = std::numeric_limits<double>::quiet_NaN();
+  const json entry = study_results_json(r)[0];
+  CHECK(entry["thin_plate"]["laplace"].is_null());
+  CHECK(entry["solver"]["status"] == "failure");
+}
+
+TEST_CASE("study_report_markdown: the Coons-to-best ratio has three significant digits, not a rounded integer",
+          "[study]") {
+  StudyResult r = one_shape_result();
+  ReferenceTable t{"bump", 3, 3, {}, {}, 1.34};
+  t.best.parameter = -0.2;
+  t.best.value = 1.0;
+  r.references.push_back(t);
+  const std::string md = study_report_markdown(r, current_provenance("test"), figures_not_drawn(r));
+  CHECK_THAT(md, Catch::Contains("against 1.34 for the Coons net: 1.34× closer"));
+}
+
+TEST_CASE("study_report_markdown: a value beside a failed region is labelled as found outside it", "[study]") {
+  StudyResult r = one_shape_result();
+  AlphaSearchSummary& alpha = r.shapes[0].optima[0].alpha;
+  alpha.status = SearchStatus::kFailedRegion;
+  alpha.parameter.reset();
+  alpha.value = 2.75;
+  const std::string md = study_report_markdown(r, current_provenance("test"), figures_not_drawn(r));
+  CHECK_THAT(md, Catch::Contains("| bump | 3×3 | thin_plate | failed region | 2.75 (outside the failed region) |"));
+  // no evaluation succeeded: no value at all
+  alpha.status = SearchStatus::kSolverFailed;
+  alpha.value = 0;
+  const std::string none = study_report_markdown(r, current_provenance("test"), figures_not_drawn(r));
+  CHECK_THAT(none, Catch::Contains("| bump | 3×3 | thin_plate | failed | – |"));
+}

@@ -132,3 +132,19 @@ TEST_CASE("search_tri_c: a Cholesky-type backend fails the search instead of giv
   REQUIRE_FALSE(s.parameter);
   REQUIRE(s.failed_evaluations > 0);
 }
+
+TEST_CASE("search_tri_c: consecutive failed evaluations are reported as one failed interval", "[study][tri]") {
+  // a Cholesky-type backend takes only c = 0 (the symmetric member): the scan points below and above
+  // it fail, two runs of two points each
+  const TriNet frame = frame_net(boundary_of(random_tri_net(6, 77)));
+  AlphaSearchOptions options;
+  options.lower = -0.5;
+  options.upper = 0.5;
+  options.scan_points = 5;
+  const AlphaSearchSummary s =
+      search_tri_c(frame, objective("thin_plate"), *solvers::find_solver("eigen-ldlt"), options);
+  CHECK(s.status == SearchStatus::kFailedRegion);
+  CHECK(s.failed_evaluations == 4);
+  const std::vector<std::pair<double, double>> runs = {{-0.5, -0.25}, {0.25, 0.5}};
+  CHECK(s.failed_intervals == runs);
+}

@@ -139,7 +139,11 @@ std::optional<BestSingleAlpha> best_single_alpha_on_grid(const std::vector<std::
   }
   const double s = std::min(f1, f2) <= mean[at] ? (f1 <= f2 ? x1 : x2) : double(at);
   const double lo = std::log(1e-6), hi = std::log(0.5);
-  return BestSingleAlpha{std::exp(lo + (hi - lo) * s / (grid_points - 1)) - 0.25, s};
+  // exp(log ½) − 1/4 is 1/4 only up to rounding: clamped into the family's range [−1/4, 1/4]
+  const double alpha = std::clamp(std::exp(lo + (hi - lo) * s / (grid_points - 1)) - 0.25, -0.25, 0.25);
+  // the golden sections end within 0.618^40 (≈ 4e−9) of a node: closer than 1e−6 to an end is on it
+  const bool at_end = s <= 1e-6 || s >= grid_points - 1 - 1e-6;
+  return BestSingleAlpha{alpha, s, at_end};
 }
 
 std::optional<double> best_single_alpha(int count, const std::vector<double>& optimum,
@@ -205,6 +209,7 @@ json alpha_family_json(const AlphaFamilyResult& r) {
                      {"mu_quantiles", distribution_json(c.mu)},
                      {"best_alpha", optional_number(c.best_alpha)},
                      {"best_mu", optional_number(c.best_mu)},
+                     {"best_alpha_at_grid_end", c.best_at_grid_end},
                      {"loss", optional_list(c.loss)},
                      {"loss_quantiles", distribution_json(c.losses)},
                      {"loss_mean", optional_number(c.loss_mean)},

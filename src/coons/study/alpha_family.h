@@ -66,6 +66,7 @@ struct AlphaFamilyCell {
   std::optional<double> loss_mean;
   std::optional<double> best_alpha;  //!< the single α minimising the mean loss over the family
   std::optional<double> best_mu;     //!< its μ
+  bool best_at_grid_end = false;     //!< BestSingleAlpha::at_grid_end
   //! (α*_b + 1/4)/(best α + 1/4) over the boundaries with α* > −1/4: how far the best single α is
   //! from each boundary's own, as a factor on α + 1/4
   std::optional<Distribution> alpha_ratio;
@@ -91,8 +92,11 @@ std::vector<double> family_alpha_grid(int grid_points);
 double interpolate_on_grid(const std::vector<double>& values, double s);
 
 struct BestSingleAlpha {
-  double alpha = 0;  //!< the α minimising the mean relative loss
+  double alpha = 0;  //!< the α minimising the mean relative loss, in [−1/4, 1/4]
   double s = 0;      //!< its fractional grid index (for interpolate_on_grid)
+  //! on the grid's first or last node (α = −1/4 + 10⁻⁶ or 1/4): the mean loss still falls towards
+  //! the end of the grid, so α is where the grid stops, not an interior minimum
+  bool at_grid_end = false;
 };
 
 //! The α minimising mean_b (f_b(α) − f_b*)/f_b* where f_b is `values[b]` on family_alpha_grid

@@ -29,7 +29,7 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
   const int count = r.options.count;
   for (const std::string& objective : r.objectives) {
     const auto cells = cells_of(r, objective);
-    std::vector<std::string> above, within, losses, medians, spreads, bounds;
+    std::vector<std::string> above, within, losses, medians, spreads, bounds, grid_ends;
     std::vector<double> median_gap;
     for (const AlphaFamilyCell* c : cells) {
       if (c->losses && c->loss_mean) {
@@ -38,6 +38,8 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
                                      c->degree, g4(c->best_alpha), percent(*c->loss_mean), percent(c->losses->q90),
                                      percent(c->losses->max)));
       }
+      if (c->best_alpha && c->best_at_grid_end)
+        grid_ends.push_back(fmt::format("{} (n = {})", g4(c->best_alpha), c->degree));
       if (c->alpha) {
         medians.push_back(fmt::format("{:.3g}", c->alpha->median));
         median_gap.push_back(c->alpha->median + 0.25);
@@ -63,6 +65,11 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
           "1 % for every boundary at n = {}. ",
           fmt::join(above, ", "), fmt::join(within, ", "));
     if (!losses.empty()) out += fmt::format("The best single α: {}. ", fmt::join(losses, "; "));
+    if (!grid_ends.empty())
+      out += fmt::format(
+          "The best single α is at the end of its grid at {}: the family's mean loss still falls there, so it is "
+          "where the grid stops, not an interior minimum. ",
+          fmt::join(grid_ends, ", "));
     if (median_gap.size() >= 2) {
       const bool falling = std::is_sorted(median_gap.rbegin(), median_gap.rend()) && median_gap.back() < median_gap[0];
       out += falling
@@ -70,7 +77,7 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
                  : fmt::format("The median α* per degree: {} (not monotone towards −1/4). ", fmt::join(medians, ", "));
     }
     if (!spreads.empty()) out += fmt::format("μ*'s 90th over 10th percentile: {}. ", fmt::join(spreads, ", "));
-    out += bounds.empty() ? std::string("Every search found an interior optimum.")
+    out += bounds.empty() ? std::string("Every boundary's own search found an interior optimum.")
                           : fmt::format("Not interior: {}.", fmt::join(bounds, "; "));
     out += "\n";
   }
@@ -129,11 +136,11 @@ std::string alpha_family_markdown(const AlphaFamilyResult& r, const std::vector<
         "excess 90 % | excess max |\n";
     md += "|---|---|---|---|---|---|---|---|---|---|\n";
     for (const AlphaFamilyCell* c : cells_of(r, r.objectives[i]))
-      md += fmt::format("| {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, g4(c->best_alpha),
-                        g4(c->best_mu), q(c->alpha_ratio, &Distribution::q10), q(c->alpha_ratio, &Distribution::median),
-                        q(c->alpha_ratio, &Distribution::q90), lq(c->losses, &Distribution::median),
-                        c->loss_mean ? percent(*c->loss_mean) : "–", lq(c->losses, &Distribution::q90),
-                        lq(c->losses, &Distribution::max));
+      md += fmt::format("| {} | {}{} | {} | {} | {} | {} | {} | {} | {} | {} |\n", c->degree, g4(c->best_alpha),
+                        c->best_at_grid_end ? " (grid end)" : "", g4(c->best_mu), q(c->alpha_ratio, &Distribution::q10),
+                        q(c->alpha_ratio, &Distribution::median), q(c->alpha_ratio, &Distribution::q90),
+                        lq(c->losses, &Distribution::median), c->loss_mean ? percent(*c->loss_mean) : "–",
+                        lq(c->losses, &Distribution::q90), lq(c->losses, &Distribution::max));
     md += "\n" + figure(i, "α* of " + r.objectives[i]) + figure(n + i, "μ* of " + r.objectives[i]) +
           figure(2 * n + i, "excess at the best single α, " + r.objectives[i]);
   }

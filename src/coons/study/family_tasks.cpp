@@ -312,6 +312,7 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
       if (best) {
         cell.best_alpha = best->alpha;
         cell.best_mu = mu_of_alpha(degree, best->alpha);
+        cell.best_at_grid_end = best->at_grid_end;
         std::vector<double> losses, ratios;
         for (size_t u = 0; u < used.size(); ++u) {
           const double value = interpolate_on_grid(curves[u], best->s);

@@ -29,6 +29,15 @@ std::string format_optimum(const AlphaSearchSummary& s, int digits = 4) {
   return out;
 }
 
+// The value column beside format_optimum: the objective at the optimum; with a failed region the
+// lowest successful evaluation, which is no optimum, so labelled; nothing where no solve succeeded.
+std::string value_at_optimum(const AlphaSearchSummary& s) {
+  if (s.status == SearchStatus::kFailedRegion)
+    return std::isfinite(s.value) ? fmt::format("{:.6g} (outside the failed region)", s.value) : "–";
+  if (s.flat || !s.parameter || s.status == SearchStatus::kSolverFailed || !std::isfinite(s.value)) return "–";
+  return fmt::format("{:.6g}", s.value);
+}
+
 const DegreeCell* cell_at(const DegreeLawEntry& law, int degree) {
   for (const auto& c : law.cells)
     if (c.degree == degree) return &c;
@@ -148,11 +157,10 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     const Boundary& b = shape.boundary;
     for (const ShapeOptimum& o : shape.optima) {
       std::string row = fmt::format("| {} | {}×{} | {} | {} | {} | {} | {} | {} |", b.name, b.m, b.n, o.objective,
-                                    format_optimum(o.alpha), o.alpha.flat ? "–" : value_or_failed(o.alpha.value),
-                                    value_or_failed(o.coons), value_or_failed(o.laplace), format_optimum(o.mu, 3));
+                                    format_optimum(o.alpha), value_at_optimum(o.alpha), value_or_failed(o.coons),
+                                    value_or_failed(o.laplace), format_optimum(o.mu, 3));
       if (c1_column)
-        row += o.weight ? fmt::format(" {} | {} |", format_optimum(*o.weight),
-                                      o.weight->flat || !o.weight->parameter ? "–" : value_or_failed(o.weight->value))
+        row += o.weight ? fmt::format(" {} | {} |", format_optimum(*o.weight), value_at_optimum(*o.weight))
                         : fmt::format(" – ({}) | – |", shape.one_ring);
       line(row);
     }
@@ -246,7 +254,7 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     line("");
     if (t.best.status == SearchStatus::kSuccess && t.best.parameter && !t.best.flat && t.best.value > 0)
       line(fmt::format(
-          "The α that fits the target best: {} (rms {:.4g}, against {:.4g} for the Coons net: {:.0f}× closer).",
+          "The α that fits the target best: {} (rms {:.4g}, against {:.4g} for the Coons net: {:.3g}× closer).",
           format_optimum(t.best), t.best.value, t.coons_rms, t.coons_rms / t.best.value));
     else
       line(fmt::format("The α that fits the target best: {} (no distance is compared).", format_optimum(t.best)));

@@ -15,6 +15,7 @@
 #include "coons/net/coons_net.h"
 #include "coons/net/degree_elevation.h"
 #include "coons/study/backend_choice.h"
+#include "coons/study/study_failures.h"
 #include "coons/study/target.h"
 #include "coons/study/two_ring_problem.h"
 
@@ -208,17 +209,21 @@ json study_results_json(const StudyResult& r) {
   for (const ShapeEntry& shape : r.shapes) {
     const Boundary& b = shape.boundary;
     json entry = {{"kind", "shape"}, {"boundary", b.name}, {"degree", {b.m, b.n}}, {"file", shape.file}};
-    // the solver block of every report; its seconds are left out so that reruns compare equal
-    bool failed = false;
+    // the solver block of every report; its seconds are left out so that reruns compare equal. Its
+    // status is that of every solve of the shape at its own degree (study_failures.h); iterations
+    // counts the linear solves of the α* and μ* searches, as in search-alpha's report.
     int solves = 0;
-    for (const ShapeOptimum& o : shape.optima) {
-      failed = failed || o.alpha.status == SearchStatus::kSolverFailed || o.mu.status == SearchStatus::kSolverFailed;
-      solves += o.alpha.solves + o.mu.solves;
-    }
+    for (const ShapeOptimum& o : shape.optima) solves += o.alpha.solves + o.mu.solves;
+    const std::vector<std::string> failures = shape_failures(shape);
     entry["solver"] = {{"name", shape.solver},
-                       {"status", failed ? "failure" : "success"},
+                       {"status", failures.empty() ? "success" : "failure"},
                        {"iterations", solves},
                        {"relative_residual", nullptr}};
+    if (!failures.empty()) {
+      std::string message;
+      for (const std::string& f : failures) message += (message.empty() ? "" : "; ") + f;
+      entry["solver"]["message"] = message;
+    }
     if (shape.solver_picked_automatically) entry["solver"]["picked_by"] = "auto";
     for (const ShapeOptimum& o : shape.optima) {
       const AlphaSearchSummary& s = o.alpha;

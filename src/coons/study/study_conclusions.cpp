@@ -37,8 +37,8 @@ std::vector<std::string> study_conclusions(const StudyResult& r, double same_alp
                       "({}) to {:.4f} ({}) over {} shapes",
                       objective, lo, lo_shape, hi, hi_shape, count));
     else
-      out.push_back(fmt::format("{}: the optima of {} shapes agree within {:.4f} (α* from {:.4f} to {:.4f})", objective,
-                                count, hi - lo, lo, hi));
+      out.push_back(fmt::format("{}: the optima of {} shapes agree within {:.4f} (α* from {:.4f} ({}) to {:.4f} ({}))",
+                                objective, count, hi - lo, lo, lo_shape, hi, hi_shape));
   }
   // 2. Flat shapes.
   std::vector<std::string> flat;

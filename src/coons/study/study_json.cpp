@@ -346,4 +346,49 @@ void append_study_part(const json& part, const std::string& where, StudyResult* 
   }
 }
 
+json bspline_rows_json(const std::vector<BSplineStudyRow>& rows) {
+  json out = json::array();
+  for (const BSplineStudyRow& r : rows) {
+    json notes = json::array();
+    for (const CompatibilityNote& n : r.notes) notes.push_back({n.side, n.degree_raised_by, n.knots_inserted});
+    json searches = json::array();
+    for (const auto& [objective, s] : r.searches) searches.push_back({objective, summary(s)});
+    out.push_back({{"file", r.file},
+                   {"name", r.name},
+                   {"degrees", {r.degree_u, r.degree_v}},
+                   {"counts", {r.count_u, r.count_v}},
+                   {"notes", notes},
+                   {"solver", r.solver},
+                   {"thin_plate_coons", num(r.thin_plate_coons)},
+                   {"thin_plate_laplace", num(r.thin_plate_laplace)},
+                   {"searches", searches}});
+  }
+  return out;
+}
+
+void append_bspline_rows(const json& rows, const std::string& where, std::vector<BSplineStudyRow>* into) {
+  try {
+    for (const json& j : rows) {
+      BSplineStudyRow r;
+      r.file = j.at("file").get<std::string>();
+      r.name = j.at("name").get<std::string>();
+      r.degree_u = j.at("degrees").at(0).get<int>();
+      r.degree_v = j.at("degrees").at(1).get<int>();
+      r.count_u = j.at("counts").at(0).get<int>();
+      r.count_v = j.at("counts").at(1).get<int>();
+      for (const json& n : j.at("notes"))
+        r.notes.push_back({n.at(0).get<std::string>(), n.at(1).get<int>(), n.at(2).get<int>()});
+      r.solver = j.at("solver").get<std::string>();
+      r.thin_plate_coons = num_of(j.at("thin_plate_coons"));
+      r.thin_plate_laplace = num_of(j.at("thin_plate_laplace"));
+      for (const json& s : j.at("searches")) r.searches.emplace_back(s.at(0).get<std::string>(), summary_of(s.at(1)));
+      into->push_back(std::move(r));
+    }
+  } catch (const json::exception& e) {
+    throw InputError(where, "bspline", std::string("malformed: ") + e.what());
+  } catch (const std::invalid_argument& e) {
+    throw InputError(where, "bspline", std::string("malformed: ") + e.what());
+  }
+}
+
 }  // namespace coons

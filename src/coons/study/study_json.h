@@ -8,6 +8,7 @@
 #include <nlohmann/json.hpp>
 #include <string>
 
+#include "coons/study/bspline_study.h"
 #include "coons/study/study.h"
 
 namespace coons {
@@ -17,5 +18,11 @@ nlohmann::json study_part_json(const StudyResult& part);
 
 //! The part read back into `into` (appended to its lists); throws InputError(`where`, FIELD, …).
 void append_study_part(const nlohmann::json& part, const std::string& where, StudyResult* into);
+
+//! The B-spline rows of a study (bspline_study.h), losslessly: the record of a B-spline file's task.
+nlohmann::json bspline_rows_json(const std::vector<BSplineStudyRow>& rows);
+
+//! Those rows read back, appended to `into`; throws InputError(`where`, "bspline", …).
+void append_bspline_rows(const nlohmann::json& rows, const std::string& where, std::vector<BSplineStudyRow>* into);
 
 }  // namespace coons

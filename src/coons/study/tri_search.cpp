@@ -4,7 +4,10 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <utility>
+#include <vector>
 
+#include "coons/alpha/search_failures.h"
 #include "coons/tri/tri_energy.h"
 #include "coons/tri/tri_mask.h"
 #include "coons/tri/tri_sampling.h"
@@ -181,6 +184,7 @@ class TriSearch {
   AlphaSearchSummary run() {
     const auto start = std::chrono::steady_clock::now();
     if (!scan() && !flat() && !on_bound()) refine();
+    s_.failed_intervals = detail::failed_runs(log_);  // runs of failures, as the α searches give them
     s_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     s_.evaluator = "factorize and solve";
     return s_;
@@ -191,10 +195,8 @@ class TriSearch {
     TriEvaluation e = evaluate_tri_objective(frame_, objective_, c, solver_, with_derivative);
     ++s_.evaluations;
     s_.solves += with_derivative ? 2 : 1;
-    if (!e.ok()) {
-      if (s_.failed_evaluations++ == 0) s_.first_failure = e.summary.status;
-      s_.failed_intervals.emplace_back(c, c);
-    }
+    log_.emplace_back(c, e.ok());
+    if (!e.ok() && s_.failed_evaluations++ == 0) s_.first_failure = e.summary.status;
     return e;
   }
 
@@ -323,6 +325,7 @@ class TriSearch {
   AlphaSearchOptions options_;
   AlphaSearchSummary s_;
   std::vector<TriEvaluation> grid_;
+  std::vector<std::pair<double, bool>> log_;  //!< every evaluation: (c, succeeded)
   int best_ = 0;
 };
 
