@@ -75,9 +75,11 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
   for (auto& L : levels_) L.threads = L.points() >= kMinThreadedPoints ? resolved_threads(options.threads) : 1;
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l)
     if (!factor_lines(levels_[l])) {
-      if (message) *message = "a line block of level " + std::to_string(l) + " has a zero pivot";
+      if (message)
+        *message = "a line block of level " + std::to_string(l) +
+                   " has a zero pivot: the line smoother's elimination without pivoting cannot handle this stencil";
       levels_.clear();
-      return SolveStatus::kSingular;
+      return SolveStatus::kNotApplicable;
     }
   if (!setup_direct(levels_.back())) {
     if (message)

@@ -85,8 +85,9 @@ class Multigrid {
   Multigrid(Multigrid&&) noexcept;
   Multigrid& operator=(Multigrid&&) noexcept;
 
-  //! Builds the hierarchy. kSuccess; kFailure for invalid input (why in *message); kSingular when
-  //! a line block or the coarsest system has a zero pivot.
+  //! Builds the hierarchy. kSuccess; kFailure for invalid input (why in *message);
+  //! kNotApplicable when a line block has a zero pivot (the smoother's elimination without
+  //! pivoting fails, which says nothing of A); kSingular when the coarsest system is singular.
   SolveStatus setup(const StencilOperator& op, const MultigridOptions& options = {}, std::string* message = nullptr);
 
   [[nodiscard]] bool ready() const;

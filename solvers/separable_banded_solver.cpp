@@ -5,6 +5,7 @@
 #include <cmath>
 #include <optional>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include "stencil_operator.h"
@@ -175,10 +176,19 @@ class SeparableBandedSolver final : public LinearSolver {
 
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
     if (!describe(op, summary)) return SolveStatus::kNotApplicable;
-    if (banded_ldlt(op_.along_i, op_.rows, fi_) != SolveStatus::kSuccess ||
-        banded_ldlt(op_.along_j, op_.cols, fj_) != SolveStatus::kSuccess) {
-      summary.message = "a zero pivot in the banded LDL^T of a factor";
-      return SolveStatus::kSingular;
+    for (const auto& [diagonals, k, f, axis] :
+         {std::tuple{op_.along_i, op_.rows, &fi_, "i"}, std::tuple{op_.along_j, op_.cols, &fj_, "j"}}) {
+      const SolveStatus status = banded_ldlt(diagonals, k, *f);
+      if (status == SolveStatus::kSingular) {
+        summary.message = std::string("the factor along ") + axis + " is singular (a zero last pivot of its LDL^T)";
+        return status;
+      }
+      if (status != SolveStatus::kSuccess) {
+        summary.message = std::string("the factor along ") + axis +
+                          " is indefinite (pivots of both signs or a zero pivot): LDL^T without pivoting "
+                          "cannot solve it safely";
+        return status;
+      }
     }
     summary.factor_nnz = 3LL * (op_.rows + op_.cols);
     return SolveStatus::kSuccess;
@@ -228,7 +238,11 @@ SolveStatus banded_ldlt(const std::array<double, 3>& a, int k, BandedLdlt& f) {
     double d = a[0];
     if (r >= 1) d -= f.l1[r - 1] * f.l1[r - 1] * f.d[r - 1];
     if (r >= 2) d -= f.l2[r - 2] * f.l2[r - 2] * f.d[r - 2];
-    if (!(std::abs(d) > 1e-14 * scale)) return SolveStatus::kSingular;
+    // Pivots of one sign so far: the leading block is definite, and a zero last pivot makes the
+    // factor singular (semidefinite). Any other zero pivot, or a change of sign, says only that
+    // the factor is indefinite, where elimination without pivoting is unstable.
+    if (!(std::abs(d) > 1e-14 * scale)) return r + 1 == k ? SolveStatus::kSingular : SolveStatus::kNotApplicable;
+    if (r >= 1 && (d > 0) != (f.d[0] > 0)) return SolveStatus::kNotApplicable;
     f.d[r] = d;
     if (r + 1 < k) {
       double l = a[1];
@@ -274,9 +288,8 @@ SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eige
                                    int threads) {
   BandedLdlt fi, fj;
   if (B.rows() != op.size()) return SolveStatus::kNotApplicable;
-  if (banded_ldlt(op.along_i, op.rows, fi) != SolveStatus::kSuccess ||
-      banded_ldlt(op.along_j, op.cols, fj) != SolveStatus::kSuccess)
-    return SolveStatus::kSingular;
+  for (SolveStatus status : {banded_ldlt(op.along_i, op.rows, fi), banded_ldlt(op.along_j, op.cols, fj)})
+    if (status != SolveStatus::kSuccess) return status;
   solve_separable(fi, fj, op.rows, op.cols, B, X, threads);
   return SolveStatus::kSuccess;
 }

@@ -15,8 +15,10 @@
 // (O(rows + cols)); solve = O(rows·cols) per column of B, no fill, no memory beyond X. Exact up
 // to rounding, and on c1-coons data more accurate than a sparse LDLᵀ of A (whose κ grows like
 // k⁸, against k⁴ per factor here); LDLᵀ without pivoting is
-// backward stable for definite factors (e.g. the fourth difference 1, −4, 6, −4, 1), and a zero
-// pivot (|d_k| ≤ 1e-14·max|diagonal|) is reported as kSingular. The solver never reads the
+// backward stable for definite factors (e.g. the fourth difference 1, −4, 6, −4, 1), so only
+// those are solved: pivots of both signs, or a zero pivot (|d_k| ≤ 1e-14·max|diagonal|) before
+// the last, mean an indefinite factor and kNotApplicable (A is then indefinite: use a pivoting
+// solver); a zero last pivot after pivots of one sign is a singular factor, kSingular. The solver never reads the
 // assembled matrix: it is constructed with the operator, and uses op.matrix (when given) only for
 // the size check and the residual of the LinearSolver life cycle.
 // Based on: R. E. Lynch, J. R. Rice & D. H. Thomas, Direct solution of partial difference equations
@@ -54,11 +56,14 @@ struct BandedLdlt {
   Eigen::VectorXd d, l1, l2;
 };
 
-//! kSuccess, or kSingular on a zero pivot.
+//! kSuccess when the factor is definite (pivots of one sign); kSingular when it is semidefinite
+//! and singular (a zero last pivot); kNotApplicable when it is indefinite (LDLᵀ without pivoting
+//! is then unsafe: pivots of both signs, or a zero pivot before the last).
 SolveStatus banded_ldlt(const std::array<double, 3>& diagonals, int k, BandedLdlt& f);
 
 //! X = A⁻¹ B (#size by 3) in one call (factorize and solve) on `threads` threads (1 without
-//! OpenMP; the result does not depend on the count). B and X may not alias.
+//! OpenMP; the result does not depend on the count). B and X may not alias. A status of
+//! banded_ldlt() other than kSuccess is returned as it is.
 SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,
                                    int threads = 1);
 

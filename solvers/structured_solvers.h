@@ -17,7 +17,9 @@
 //         When the stencil is a Kronecker product (c·d = e_i·e_j, e.g. the Coons mask α = −1/4)
 //         it needs no transform: X = T_i⁻¹ B T_j⁻¹, a rank-4 product for a right-hand side on the
 //         frame. A transform length with a large prime factor (cols+1 = 1023 = 3·11·31) is
-//         avoided by widening the grid (capacitance matrix method). Where elimination without
+//         avoided by widening the grid (capacitance matrix method) when that costs no accuracy
+//         (a definite widened operator, conditioned like the real one: capacitance.h); otherwise
+//         such a grid takes the dst path. Where elimination without
 //         pivoting would be unsafe (indefinite stencils) it falls back to the dst path, so it is
 //         exact for every non-singular stencil; the default behind `auto`. SolverOptions::threads
 //         splits the modes of the tridiagonal solves and the rows of the inverse transform

@@ -437,6 +437,21 @@ TEST_CASE("make_structured_stencil_solver: separable-banded for c1-coons, fast5 
   CHECK_FALSE(make_structured_stencil_solver(full, random_stencil(2, 17)));
 }
 
+TEST_CASE("make_structured_stencil_solver: none when the symbol is negative somewhere", "[mask]") {
+  // (1, −2, 1) ⊗ (1, 1 + 1e-11, 1): separable, but the factor along j is indefinite; auto must
+  // leave it to a pivoting sparse LU (it picked separable-banded, which eliminates without pivoting).
+  const double e = 1 + 1e-11;
+  const Stencil indefinite = make_stencil((Eigen::Matrix3d() << 1, e, 1, -2, -2 * e, -2, 1, e, 1).finished());
+  REQUIRE(separable_factors(indefinite));
+  REQUIRE_FALSE(symbol_nonnegative(indefinite));
+  const StencilProblem full = make_problem(make_random_net(12, 7, 5), 1);
+  CHECK_FALSE(make_structured_stencil_solver(full, indefinite));
+  // The definite separable stencil (the α = −1/4 mask) still gets separable-banded.
+  auto coons = make_structured_stencil_solver(full, alpha_stencil(alpha_mask(-0.25)));
+  REQUIRE(coons);
+  CHECK(coons->name() == "separable-banded");
+}
+
 TEST_CASE("solve_stencil_net: a problem that does not fit the mask is a status, not a crash", "[mask]") {
   auto solver = solvers::make_solver("eigen-lu");
   const StencilProblem p = make_problem(make_random_net(6, 6, 1), 1);

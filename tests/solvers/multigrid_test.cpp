@@ -438,3 +438,22 @@ TEST_CASE("multigrid backends: solve tiny and thin grids and a grid without free
     CHECK(X.rows() == 0);
   }
 }
+
+TEST_CASE("Multigrid::setup: a line block with a zero pivot is not_applicable, not singular", "[solvers][mg]") {
+  // (1, −2, 1) ⊗ (1, 1, 1) on 11 × 6: the row lines are toeplitz(−2, −2), whose elimination
+  // without pivoting meets a zero pivot, though A is regular (it was reported singular).
+  const StencilOperator op = make_stencil_operator(11, 6, {1, 1, 1, -2, -2, -2, 1, 1, 1});
+  REQUIRE(op.is_valid(nullptr));
+  Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(stencil_operator_matrix(op));
+  REQUIRE(lu.info() == Eigen::Success);
+  Multigrid mg;
+  std::string message;
+  CHECK(mg.setup(op, {}, &message) == SolveStatus::kNotApplicable);
+  CHECK(message.find("zero pivot") != std::string::npos);
+  LinearOperator lin;
+  lin.grid = &op;
+  Eigen::MatrixX3d X;
+  const SolveSummary s = make_solver("mg")->compute_and_solve(lin, Eigen::MatrixX3d::Ones(op.size(), 3), X);
+  INFO(s.brief_report());
+  CHECK(s.status == SolveStatus::kNotApplicable);
+}

@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <random>
+#include <string>
 
 using namespace coons::solvers;
 
@@ -109,4 +110,33 @@ TEST_CASE("make_separable_banded_solver: the LinearSolver life cycle with its st
   lin.matrix = &Abad;
   CHECK(make_separable_banded_solver(bad)->compute_and_solve(lin, random_rhs(6, 2), Y).status ==
         SolveStatus::kSingular);
+}
+
+TEST_CASE("make_separable_banded_solver: an indefinite factor is refused, not solved inaccurately", "[solvers]") {
+  // (1, −2, 1) ⊗ (1, 1 + 1e-11, 1) on 11 × 6: Q = toeplitz(1 + 1e-11, 1) is indefinite and its
+  // LDLᵀ without pivoting meets a pivot of about 1e-11 (the solution came out with relative error
+  // 1e-6 and the status success); Q = toeplitz(1, 1) meets an exact zero pivot (it was called
+  // singular, though A is regular).
+  for (const double q0 : {1 + 1e-11, 1.0}) {
+    const SeparableBandedOperator op{11, 6, {-2, 1, 0}, {q0, 1, 0}};
+    const Eigen::SparseMatrix<double> A = separable_banded_matrix(op);
+    LinearOperator lin;
+    lin.matrix = &A;
+    Eigen::MatrixX3d X;
+    const SolveSummary s = make_separable_banded_solver(op)->compute_and_solve(lin, random_rhs(op.size(), 4), X);
+    INFO("q0 = " << q0 << ": " << s.brief_report());
+    CHECK(s.status == SolveStatus::kNotApplicable);
+    CHECK(s.message.find("indefinite") != std::string::npos);
+    CHECK(separable_banded_solve(op, random_rhs(op.size(), 4), X) == SolveStatus::kNotApplicable);
+    // The operator itself is regular: a pivoting LU solves it.
+    Eigen::SparseLU<Eigen::SparseMatrix<double>> lu(A);
+    CHECK(lu.info() == Eigen::Success);
+  }
+  // Definite factors of either sign are solved: (1, −2, 1) ⊗ (1, −2, 1) is positive definite.
+  const SeparableBandedOperator op{11, 6, {-2, 1, 0}, {-2, 1, 0}};
+  const Eigen::SparseMatrix<double> A = separable_banded_matrix(op);
+  const Eigen::MatrixX3d B = random_rhs(op.size(), 5);
+  Eigen::MatrixX3d X;
+  REQUIRE(separable_banded_solve(op, B, X) == SolveStatus::kSuccess);
+  CHECK((A * X - B).norm() / B.norm() < 1e-13);
 }

@@ -315,6 +315,30 @@ TEST_CASE("structured solvers: an indefinite stencil is solved exactly or report
     }
 }
 
+TEST_CASE("fast: a widened grid is as accurate as dst on indefinite stencils", "[solvers]") {
+  // cols + 1 = 17 and 19 are primes above 13, so fast would widen the grid (to 17 and 19
+  // columns). At these α the symbol changes sign and a mode of the widened grid lies next to its
+  // zero set: the capacitance solve lost up to 6 digits (29 × 16, α = −0.4240075: relative
+  // difference 9.6e-8 with success), or reported a regular operator singular (α = −0.4240077).
+  const std::vector<GridStencil> stencils = {
+      alpha_stencil(29, 16, -0.4240075442251117), alpha_stencil(29, 16, -0.4240077442251117),
+      alpha_stencil(19, 18, 1.5),
+      // (1, −2, 1) ⊗ (1, 1.0001, 1) as weights: centre −2.0002, e_i = 1.0001, e_j = −2, d = 1
+      GridStencil{29, 16, -2.0002, 1.0001, -2.0, 1.0}};
+  for (const GridStencil& s : stencils) {
+    const Eigen::MatrixX3d B = ring_rhs(s, 75);
+    Eigen::MatrixX3d X, Y;
+    const SolveSummary fast = make_fast_solver({})->compute_and_solve(stencil_operator(s), B, X);
+    const SolveSummary dst = make_dst_solver({})->compute_and_solve(stencil_operator(s), B, Y);
+    INFO(s.rows << "x" << s.cols << ", c = " << s.center << ", e_i = " << s.edge_i << ", d = " << s.diag << ": "
+                << fast.brief_report() << " / " << dst.brief_report());
+    REQUIRE(dst.ok());
+    REQUIRE(fast.ok());
+    CHECK(fast.relative_residual < 1e-13);
+    CHECK((X - Y).cwiseAbs().maxCoeff() <= 1e-12 * Y.cwiseAbs().maxCoeff());
+  }
+}
+
 TEST_CASE("structured solvers: need the grid stencil", "[solvers]") {
   const GridStencil s = alpha_stencil(4, 4, 0.0);
   const Eigen::SparseMatrix<double> A = stencil_matrix(s);

@@ -2,6 +2,7 @@
 
 #include <utility>
 
+#include "coons/mask/stencil.h"
 #include "solvers/registry.h"
 #include "solvers/separable_banded_solver.h"
 
@@ -105,6 +106,9 @@ std::unique_ptr<solvers::LinearSolver> make_separable_solver(const StencilProble
 std::unique_ptr<solvers::LinearSolver> make_structured_stencil_solver(const StencilProblem& problem,
                                                                       const Stencil& stencil,
                                                                       const solvers::SolverOptions& options) {
+  // The structured solvers eliminate without pivoting (separable-banded) or need a·C + b·T with
+  // a, b ≥ 0 (fast5): a symbol negative somewhere goes to a pivoting sparse LU.
+  if (!symbol_nonnegative(stencil)) return nullptr;
   if (auto separable = make_separable_solver(problem, stencil, options)) return separable;
   if (!solvers::find_solver("fast5")) return nullptr;  // built without FFTW
   StencilAssemblyOptions assembly;

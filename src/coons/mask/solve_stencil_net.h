@@ -10,7 +10,8 @@
 //   make_separable_solver  the exact structured solver when the free set is a full rectangle and
 //                          the stencil separable (c1-coons: Δ⁴_i Δ⁴_j, two batches of
 //                          pentadiagonal solves; the α = −1/4 mask: tridiagonal), else nullptr;
-//   make_structured_stencil_solver  that, or fast5 where it applies (the C1 family), else nullptr.
+//   make_structured_stencil_solver  for a symbol ≥ 0 (stencil.h: symbol_nonnegative): that, or
+//                          fast5 where it applies (the C1 family), else nullptr.
 // The backends get op.matrix when assembled, op.stencil (a GridStencil) when the stencil is
 // 3×3 on a full rectangle, so the transform backends ("dst", "fast") solve the α family with any
 // number of rings, and op.grid (the stencil on the free points' bounding rectangle with its free
@@ -61,10 +62,11 @@ void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stenci
 std::unique_ptr<solvers::LinearSolver> make_separable_solver(const StencilProblem& problem, const Stencil& stencil,
                                                              const solvers::SolverOptions& options = {});
 
-//! The exact structured solver of a 5×5 problem, for `--solver auto`: "separable-banded" when it
-//! applies, else "fast5" when it accepts the system (a full rectangle and a stencil a·C + b·T of
-//! the C1 family with a, b ≥ 0: biharmonic, c1-family), else nullptr (the caller picks a sparse
-//! direct solver).
+//! The exact structured solver of a 5×5 problem, for `--solver auto`: nullptr when the stencil's
+//! symbol is negative somewhere (neither eliminates with pivoting); else "separable-banded" when
+//! it applies, else "fast5" when it accepts the system (a full rectangle and a stencil a·C + b·T
+//! of the C1 family with a, b ≥ 0: biharmonic, c1-family), else nullptr (the caller picks a
+//! sparse direct solver).
 std::unique_ptr<solvers::LinearSolver> make_structured_stencil_solver(const StencilProblem& problem,
                                                                       const Stencil& stencil,
                                                                       const solvers::SolverOptions& options = {});
