@@ -49,6 +49,10 @@ class HypreAmgBackend : public hypre_detail::HypreBackend {
     bool definite_known_false = false;
     if (!op.grid && op.stencil) definite_known_false = !(stencil_eigenvalue_range(*op.stencil).first > 0);
     gmres_ = definite_known_false || !is_symmetric(*op.matrix);
+    if (std::string why = unusable_for_preconditioner(*op.matrix, true); !why.empty()) {
+      summary.message = why;
+      return why.find("empty") != std::string::npos ? SolveStatus::kSingular : SolveStatus::kNotApplicable;
+    }
     release();
     const HYPRE_Int error = build(*op.matrix);
     if (error != 0) {

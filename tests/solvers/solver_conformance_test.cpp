@@ -283,3 +283,32 @@ TEST_CASE("format_g: prints like %g, never 0.000000 for a small tolerance", "[so
   CHECK(format_g(0.25) == "0.25");
   CHECK(format_g(1.4e8) == "1.4e+08");
 }
+
+TEST_CASE("unusable_for_preconditioner: an empty row or a zero diagonal is refused before a library crashes on it",
+          "[solvers]") {
+  // a matrix with no entries made cg-ic segfault (Eigen's IncompleteCholesky) and hypre-amg abort
+  // the process; a matrix whose last row is empty made hypre-amg call MPI_Abort
+  Eigen::SparseMatrix<double> empty(3, 3), last_empty(3, 3);
+  last_empty.insert(0, 0) = 1;
+  last_empty.insert(1, 1) = 1;
+  last_empty.makeCompressed();
+  CHECK(unusable_for_preconditioner(empty, false) == "row 0 is empty: the matrix is singular");
+  CHECK(unusable_for_preconditioner(last_empty, false) == "row 2 is empty: the matrix is singular");
+  Eigen::SparseMatrix<double> off(2, 2);
+  off.insert(0, 1) = 1;
+  off.insert(1, 0) = 1;
+  CHECK(unusable_for_preconditioner(off, false).empty());
+  CHECK(unusable_for_preconditioner(off, true) == "the diagonal is zero at row 0: the preconditioner needs it");
+  const Eigen::MatrixX3d B = Eigen::MatrixX3d::Ones(3, 3);
+  for (const SolverInfo& info : available_solvers()) {
+    if (info.family != SolverFamily::kIterative || !info.needs_matrix) continue;
+    for (const Eigen::SparseMatrix<double>* A : {&empty, &last_empty}) {
+      LinearOperator op;
+      op.matrix = A;
+      Eigen::MatrixX3d X;
+      const SolveSummary s = make_solver(info.name)->compute_and_solve(op, B, X);
+      INFO(info.name << ": " << s.brief_report());
+      CHECK_FALSE(s.ok());
+    }
+  }
+}
