@@ -6,6 +6,8 @@
 #include <string>
 #include <type_traits>
 
+#include "matrix_checks.h"
+
 namespace coons::solvers {
 
 namespace {
@@ -44,10 +46,9 @@ class EigenIterative : public LinearSolver {
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
     if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
     if (definite_only_ && stencil_not_definite(op, summary)) return SolveStatus::kNotPositiveDefinite;
-    if (std::string why = unusable_for_preconditioner(*op.matrix, true); !why.empty()) {
-      summary.message = why;
-      return why.find("empty") != std::string::npos ? SolveStatus::kSingular : SolveStatus::kNotApplicable;
-    }
+    if (const SolveStatus usable = check_preconditioner_matrix(*op.matrix, true, &summary.message);
+        usable != SolveStatus::kSuccess)
+      return usable;
     krylov_.setTolerance(options_.tolerance);
     limit_ = iteration_limit(options_, op.matrix->rows(), 20, 2e10);
     if constexpr (kAnalyzeApart)

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "hypre_common.h"
+#include "matrix_checks.h"
 
 namespace coons::solvers {
 
@@ -49,10 +50,9 @@ class HypreAmgBackend : public hypre_detail::HypreBackend {
     bool definite_known_false = false;
     if (!op.grid && op.stencil) definite_known_false = !(stencil_eigenvalue_range(*op.stencil).first > 0);
     gmres_ = definite_known_false || !is_symmetric(*op.matrix);
-    if (std::string why = unusable_for_preconditioner(*op.matrix, true); !why.empty()) {
-      summary.message = why;
-      return why.find("empty") != std::string::npos ? SolveStatus::kSingular : SolveStatus::kNotApplicable;
-    }
+    if (const SolveStatus usable = check_preconditioner_matrix(*op.matrix, true, &summary.message);
+        usable != SolveStatus::kSuccess)
+      return usable;
     release();
     const HYPRE_Int error = build(*op.matrix);
     if (error != 0) {

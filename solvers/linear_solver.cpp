@@ -369,25 +369,6 @@ void LinearSolver::sweep_on_workers(const std::vector<std::unique_ptr<LinearSolv
   factorized_ = false;
 }
 
-std::string unusable_for_preconditioner(const Eigen::SparseMatrix<double>& A, bool need_diagonal) {
-  std::vector<char> row_used(std::size_t(A.rows()), 0), col_used(std::size_t(A.cols()), 0);
-  std::vector<char> diagonal(std::size_t(std::min(A.rows(), A.cols())), 0);
-  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
-    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
-      if (it.value() == 0) continue;
-      row_used[std::size_t(it.row())] = col_used[std::size_t(it.col())] = 1;
-      if (it.row() == it.col()) diagonal[std::size_t(it.row())] = 1;
-    }
-  for (std::size_t r = 0; r < row_used.size(); ++r)
-    if (!row_used[r]) return "row " + std::to_string(r) + " is empty: the matrix is singular";
-  for (std::size_t c = 0; c < col_used.size(); ++c)
-    if (!col_used[c]) return "column " + std::to_string(c) + " is empty: the matrix is singular";
-  if (need_diagonal)
-    for (std::size_t r = 0; r < diagonal.size(); ++r)
-      if (!diagonal[r]) return "the diagonal is zero at row " + std::to_string(r) + ": the preconditioner needs it";
-  return "";
-}
-
 bool apply_operator(const LinearOperator& op, const Eigen::MatrixX3d& X, Eigen::MatrixXd& AX) {
   if (op.matrix) {
     AX = (*op.matrix) * X;

@@ -239,11 +239,6 @@ Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const s
 
 //! max over columns of ‖A x − b‖/‖b‖, with A from the matrix or, when absent, the stencil.
 double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
-//! A reason the matrix cannot go to a library preconditioner, or "" when it can: an empty row or
-//! column ("row K is empty": the matrix is singular) or, with `need_diagonal`, a zero diagonal
-//! entry ("the diagonal is zero at row K"). Eigen's IncompleteCholesky and hypre's BoomerAMG
-//! crash or abort the process on such matrices instead of failing.
-std::string unusable_for_preconditioner(const Eigen::SparseMatrix<double>& A, bool need_diagonal);
 //! AX = op·X through op's matrix, else its stencil, else its grid operator; false when it has none.
 bool apply_operator(const LinearOperator& op, const Eigen::MatrixX3d& X, Eigen::MatrixXd& AX);
 

@@ -6,6 +6,7 @@
 #include <set>
 
 #include "coons/mask/assemble_mask_system.h"
+#include "solvers/matrix_checks.h"
 #include "solvers/registry.h"
 #include "support/fixtures.h"
 
@@ -284,7 +285,7 @@ TEST_CASE("format_g: prints like %g, never 0.000000 for a small tolerance", "[so
   CHECK(format_g(1.4e8) == "1.4e+08");
 }
 
-TEST_CASE("unusable_for_preconditioner: an empty row or a zero diagonal is refused before a library crashes on it",
+TEST_CASE("check_preconditioner_matrix: an empty row or a zero diagonal is refused before a library crashes on it",
           "[solvers]") {
   // a matrix with no entries made cg-ic segfault (Eigen's IncompleteCholesky) and hypre-amg abort
   // the process; a matrix whose last row is empty made hypre-amg call MPI_Abort
@@ -292,13 +293,18 @@ TEST_CASE("unusable_for_preconditioner: an empty row or a zero diagonal is refus
   last_empty.insert(0, 0) = 1;
   last_empty.insert(1, 1) = 1;
   last_empty.makeCompressed();
-  CHECK(unusable_for_preconditioner(empty, false) == "row 0 is empty: the matrix is singular");
-  CHECK(unusable_for_preconditioner(last_empty, false) == "row 2 is empty: the matrix is singular");
+  const auto reason = [](const Eigen::SparseMatrix<double>& A, bool need_diagonal, SolveStatus expected) {
+    std::string why;
+    CHECK(check_preconditioner_matrix(A, need_diagonal, &why) == expected);
+    return why;
+  };
+  CHECK(reason(empty, false, SolveStatus::kSingular) == "row 0 is empty: the matrix is singular");
+  CHECK(reason(last_empty, false, SolveStatus::kSingular) == "row 2 is empty: the matrix is singular");
   Eigen::SparseMatrix<double> off(2, 2);
   off.insert(0, 1) = 1;
   off.insert(1, 0) = 1;
-  CHECK(unusable_for_preconditioner(off, false).empty());
-  CHECK(unusable_for_preconditioner(off, true) == "the diagonal is zero at row 0: the preconditioner needs it");
+  CHECK(reason(off, false, SolveStatus::kSuccess).empty());
+  CHECK(reason(off, true, SolveStatus::kNotApplicable) == "the diagonal is zero at row 0: the preconditioner needs it");
   const Eigen::MatrixX3d B = Eigen::MatrixX3d::Ones(3, 3);
   for (const SolverInfo& info : available_solvers()) {
     if (info.family != SolverFamily::kIterative || !info.needs_matrix) continue;

@@ -1,0 +1,35 @@
+#include "matrix_checks.h"
+
+#include <algorithm>
+#include <vector>
+
+namespace coons::solvers {
+
+SolveStatus check_preconditioner_matrix(const Eigen::SparseMatrix<double>& A, bool need_diagonal, std::string* why) {
+  std::vector<char> row_used(std::size_t(A.rows()), 0), col_used(std::size_t(A.cols()), 0);
+  std::vector<char> diagonal(std::size_t(std::min(A.rows(), A.cols())), 0);
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, k); it; ++it) {
+      if (it.value() == 0) continue;
+      row_used[std::size_t(it.row())] = col_used[std::size_t(it.col())] = 1;
+      if (it.row() == it.col()) diagonal[std::size_t(it.row())] = 1;
+    }
+  const auto fail = [&](SolveStatus status, const std::string& reason) {
+    if (why) *why = reason;
+    return status;
+  };
+  for (std::size_t r = 0; r < row_used.size(); ++r)
+    if (!row_used[r])
+      return fail(SolveStatus::kSingular, "row " + std::to_string(r) + " is empty: the matrix is singular");
+  for (std::size_t c = 0; c < col_used.size(); ++c)
+    if (!col_used[c])
+      return fail(SolveStatus::kSingular, "column " + std::to_string(c) + " is empty: the matrix is singular");
+  if (need_diagonal)
+    for (std::size_t r = 0; r < diagonal.size(); ++r)
+      if (!diagonal[r])
+        return fail(SolveStatus::kNotApplicable,
+                    "the diagonal is zero at row " + std::to_string(r) + ": the preconditioner needs it");
+  return SolveStatus::kSuccess;
+}
+
+}  // namespace coons::solvers
