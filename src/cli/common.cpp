@@ -201,6 +201,24 @@ void resolve_mask(const NetRequest& r, ResolvedRequest& out) {
 
 }  // namespace
 
+void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solver) {
+  for (auto [option, name] :
+       {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}}) {
+    if (!given(option)) continue;
+    if (!solver)  // auto only ever picks a direct or structured backend
+      throw InputError(
+          "command line", name,
+          fmt::format("{} is a stopping rule of the iterative solvers; --solver auto picks one that solves "
+                      "exactly (name an iterative one with --solver)",
+                      name));
+    if (solver->family != solvers::SolverFamily::kIterative)
+      throw InputError("command line", name,
+                       fmt::format("{} is a stopping rule of the iterative solvers; {} is a {} solver and solves "
+                                   "exactly",
+                                   name, solver->name, solvers::to_string(solver->family)));
+  }
+}
+
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source) {
   ResolvedRequest out;
   out.method = r.method;
@@ -226,22 +244,10 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   if (given(r.omega_option) && r.solver != "gauss-seidel")
     throw InputError("command line", "--omega",
                      "--omega is the over-relaxation of --solver gauss-seidel, not of " + r.solver);
-  for (auto [option, name] :
-       {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}}) {
-    if (!given(option)) continue;
-    if (r.solver == "auto")  // auto only ever picks a direct or structured backend
-      throw InputError(
-          "command line", name,
-          fmt::format("{} is a stopping rule of the iterative solvers; --solver auto picks one that solves "
-                      "exactly (name an iterative one with --solver)",
-                      name));
-    if (const solvers::SolverInfo* info = solvers::find_solver(r.solver);
-        info && info->family != solvers::SolverFamily::kIterative)
-      throw InputError("command line", name,
-                       fmt::format("{} is a stopping rule of the iterative solvers; {} is a {} solver and solves "
-                                   "exactly",
-                                   name, r.solver, solvers::to_string(info->family)));
-  }
+  if (r.solver == "auto")
+    refuse_stopping_rules(r, nullptr);
+  else if (const solvers::SolverInfo* named = solvers::find_solver(r.solver))  // an unknown name is refused below
+    refuse_stopping_rules(r, named);
 
   resolve_mask(r, out);
   if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");

@@ -94,6 +94,9 @@ solvers::SolverOptions threads_options(int threads, const CLI::Option* option = 
 //! Checks the request against the boundary; throws InputError naming the bad option (or both
 //! options of a contradiction).
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source);
+//! --tolerance or --max-iterations given with a backend that solves exactly (`solver`; nullptr
+//! for auto, which only picks such backends): InputError naming the option.
+void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solver);
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r);
 
 //! True when the classical path applies: one data ring, no free grid, the alpha mask.

@@ -71,12 +71,7 @@ TriRequest resolve_tri(const NetRequest& r) {
   out.options.mask.c = given(r.alpha_option) ? r.alpha : -1.0 / 6;
   if (!std::isfinite(out.options.mask.c)) throw InputError("command line", "--alpha", "must be a finite number");
   out.options.solver = &tri_backend(r.solver, out.picked_automatically);
-  for (auto [option, name] :
-       {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}})
-    if (given(option) && out.options.solver->family != solvers::SolverFamily::kIterative)
-      throw InputError("command line", name,
-                       fmt::format("{} is a stopping rule of the iterative solvers; {} solves exactly", name,
-                                   out.options.solver->name));
+  refuse_stopping_rules(r, out.options.solver);
   out.options.solver_options.tolerance = r.tolerance;
   out.options.solver_options.max_iterations = r.max_iterations;
   std::string why;
