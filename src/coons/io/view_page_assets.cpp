@@ -102,21 +102,17 @@ constexpr std::string_view kScript = R"JS(
     }
     return net;
   }
-  function bernstein(degree, t) {  // the basis and its derivative at t
-    var b = [], db = [], binomial = 1;
+  function basis(degree, t) {  // the Bernstein polynomials of `degree` at t
+    var b = [], binomial = 1;
     for (var k = 0; k <= degree; ++k) {
       b.push(binomial * Math.pow(t, k) * Math.pow(1 - t, degree - k));
       binomial = binomial * (degree - k) / (k + 1);
     }
-    for (k = 0; k <= degree; ++k) {
-      var lower = function (i) {  // B_i of degree − 1
-        if (i < 0 || i > degree - 1) return 0;
-        var coefficient = 1;
-        for (var a = 0; a < i; ++a) coefficient = coefficient * (degree - 1 - a) / (a + 1);
-        return coefficient * Math.pow(t, i) * Math.pow(1 - t, degree - 1 - i);
-      };
-      db.push(degree * (lower(k - 1) - lower(k)));
-    }
+    return b;
+  }
+  function bernstein(degree, t) {  // the basis and its derivative at t: degree·(B_{k−1} − B_k) of degree − 1
+    var b = basis(degree, t), lower = degree > 0 ? basis(degree - 1, t) : [], db = [];
+    for (var k = 0; k <= degree; ++k) db.push(degree * ((k > 0 ? lower[k - 1] : 0) - (k < degree ? lower[k] : 0)));
     return [b, db];
   }
   // the Bézier surface of the net on k × k samples (u = a/(k−1) along i, v = b/(k−1) along j),
