@@ -146,7 +146,7 @@ int run_family_command(const StudyRequest& r) {
   const AlphaFamilyResult result = run_alpha_family(options, [&](const std::string& s) { phases.note(s); });
   phases.start("write");
   write_family_report(result, r.out_dir);
-  return kExitOk;
+  return failures_exit_status(family_failures(result));
 }
 
 int run_study_command(const StudyRequest& r, const std::string& command_line) {
@@ -248,6 +248,10 @@ std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputS
 int study_exit_status(const StudyResult& result, const std::vector<BSplineStudyRow>& bspline_rows) {
   std::vector<StudyFailure> failures = study_failures(result);
   for (StudyFailure& f : bspline_study_failures(bspline_rows)) failures.push_back(std::move(f));
+  return failures_exit_status(failures);
+}
+
+int failures_exit_status(const std::vector<StudyFailure>& failures) {
   if (failures.empty()) return kExitOk;
   const StudyFailure& first = failures.front();
   std::cerr << fmt::format("error: {}: solver: {}{} (the report is written; it says where)\n",
