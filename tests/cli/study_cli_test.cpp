@@ -112,6 +112,7 @@ TEST_CASE("coons study: an option that does nothing in the study's mode is refus
       {merge + " --count 3", "--count"},
       {merge + " --solver fast", "--solver"},
       {merge + " --corner-tolerance 1e-3", "--corner-tolerance"},
+      {merge + " --max-memory 1GB", "--max-memory"},
   };
   for (const auto& [args, option] : cases) {
     INFO(args);
