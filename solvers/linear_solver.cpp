@@ -118,6 +118,14 @@ namespace {
 double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
+
+// What a solve that could not run (no factorisation) returns: X = 0, and the relative residual of
+// that X, max over the columns of ‖A·0 − b‖/‖b‖ = 1 (‖A·0‖ = 0 for a zero column), as every report
+// promises for a failed solve (docs/formats.md, "The solver block").
+void return_zero_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) {
+  X.setZero(B.rows(), 3);
+  summary.relative_residual = B.isZero(0) ? 0 : 1;
+}
 }  // namespace
 
 SolveStatus LinearSolver::analyze(const LinearOperator& op) {
@@ -154,7 +162,7 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
       summary_.status = SolveStatus::kFailure;
       summary_.message = "solve() called before a successful factorize()";
     }
-    X.setZero(B.rows(), 3);
+    return_zero_solution(B, X, summary_);
     return summary_;
   }
   if (B.rows() != op_.size()) {
@@ -271,11 +279,8 @@ SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::Matri
 }
 
 SolveSummary LinearSolver::compute_and_solve(const LinearOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
-  if (analyze(op) != SolveStatus::kSuccess || factorize(op) != SolveStatus::kSuccess) {
-    X.setZero(B.rows(), 3);
-    return summary_;
-  }
-  return solve(B, X);
+  if (analyze(op) == SolveStatus::kSuccess) factorize(op);
+  return solve(B, X);  // without a factorisation: X = 0 and the status of the step that failed
 }
 
 Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
@@ -297,12 +302,12 @@ std::unique_ptr<LinearSolver> LinearSolver::make_sweep_worker(const std::vector<
 
 void LinearSolver::sweep_member(const std::vector<Eigen::MatrixX3d>& basis, const SweepMember& member,
                                 Eigen::MatrixX3d& X) {
-  if (factorize(member.op) != SolveStatus::kSuccess) {
-    X.setZero(member.op.size(), 3);
-    return;
-  }
   const std::size_t used = std::min(basis.size(), member.rhs_weights.size());
   const std::vector<double> weights(member.rhs_weights.begin(), member.rhs_weights.begin() + long(used));
+  if (factorize(member.op) != SolveStatus::kSuccess) {
+    return_zero_solution(combine_rhs(basis, weights, member.op.size()), X, summary_);
+    return;
+  }
   summary_.message.clear();
   summary_.relative_residual = 0;
   solve_start_ = std::chrono::steady_clock::now();

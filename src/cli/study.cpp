@@ -49,7 +49,7 @@ struct StudyRequest {
   // the options as given on the command line: an option that does nothing in the mode is refused
   struct Given {
     CLI::Option *degrees = nullptr, *amplitude = nullptr, *count = nullptr, *seed = nullptr, *html = nullptr,
-                *corner_tolerance = nullptr, *solver = nullptr;
+                *corner_tolerance = nullptr, *solver = nullptr, *max_memory = nullptr;
   } given;
 };
 
@@ -71,6 +71,7 @@ void refuse_inapplicable(const StudyRequest& r) {
     refuse(g.amplitude, "--amplitude", why);
     refuse(g.corner_tolerance, "--corner-tolerance", why);
     refuse(g.solver, "--solver", why);
+    refuse(g.max_memory, "--max-memory", "does not apply to --merge (it solves nothing)");
     return;
   }
   const bool perturbed = r.family.rfind("perturbed:", 0) == 0;
@@ -146,7 +147,7 @@ int run_family_command(const StudyRequest& r) {
   const AlphaFamilyResult result = run_alpha_family(options, [&](const std::string& s) { phases.note(s); });
   phases.start("write");
   write_family_report(result, r.out_dir);
-  return kExitOk;
+  return failures_exit_status(family_failures(result));
 }
 
 int run_study_command(const StudyRequest& r, const std::string& command_line) {
@@ -248,6 +249,10 @@ std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputS
 int study_exit_status(const StudyResult& result, const std::vector<BSplineStudyRow>& bspline_rows) {
   std::vector<StudyFailure> failures = study_failures(result);
   for (StudyFailure& f : bspline_study_failures(bspline_rows)) failures.push_back(std::move(f));
+  return failures_exit_status(failures);
+}
+
+int failures_exit_status(const std::vector<StudyFailure>& failures) {
   if (failures.empty()) return kExitOk;
   const StudyFailure& first = failures.front();
   std::cerr << fmt::format("error: {}: solver: {}{} (the report is written; it says where)\n",
@@ -293,6 +298,7 @@ void register_study(CLI::App& app, Registry& registry) {
   add_solver_option(*cmd, r->solver);
   r->given.solver = cmd->get_option("--solver");
   add_memory_option(*cmd, r->global);
+  r->given.max_memory = cmd->get_option("--max-memory");
   set_example(*cmd, "coons study data/boundaries data/triangles --degrees 3 4 6 8 --out out/study");
   registry.add(cmd, [r, &registry] { return run_study_command(*r, registry.command_line); });
 }

@@ -205,10 +205,11 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
     throw InputError(merge_dir, "--merge",
                      fmt::format("the shards hold {} tasks outside the study's list", by_task.size() - all.size()));
   phases.start("write");
-  write_family_report(assemble_alpha_family(options, objectives, results), out_dir);
+  const AlphaFamilyResult result = assemble_alpha_family(options, objectives, results);
+  write_family_report(result, out_dir);
   print_text(fmt::format("merged {} tasks from {} shard files: {:.4g} s of task time, {:.3g} s per task\n", all.size(),
                          files.size(), seconds, seconds / double(all.size())));
-  return kExitOk;
+  return failures_exit_status(family_failures(result));
 }
 
 }  // namespace coons::cli

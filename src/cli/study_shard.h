@@ -15,6 +15,7 @@
 #include "coons/study/alpha_family.h"
 #include "coons/study/bspline_study.h"
 #include "coons/study/study.h"
+#include "coons/study/study_failures.h"
 
 namespace coons::cli {
 
@@ -61,6 +62,10 @@ std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputS
 //! The exit status of a per-shape study whose report is written: kExitSolverFailed with one
 //! `error:` line on standard error naming the first failed solve (study_failures.h), else kExitOk.
 int study_exit_status(const StudyResult& result, const std::vector<BSplineStudyRow>& bspline_rows);
+
+//! The exit status of any study whose report is written: kExitSolverFailed with one `error:` line
+//! naming the first of `failures` (and how many more), else kExitOk.
+int failures_exit_status(const std::vector<StudyFailure>& failures);
 
 //! The backend of the B-spline rows for the study's --solver: a backend that works from a grid
 //! stencil cannot take the non-uniform system, so "" (auto, auto_bspline_solver) then.

@@ -277,6 +277,38 @@ TEST_CASE("coons solve: a failing solver prints its report and one error line (e
   CHECK(summary["failed_intervals"][0][0] == -0.25);
 }
 
+TEST_CASE("coons solve export and batch: a failed solve reports the relative residual of X = 0, which is 1",
+          "[cli][loud]") {
+  TempDir dir;
+  // α = −1/2 makes the dome's system singular: Cholesky stops at a non-positive pivot and X = 0
+  // (the report and the error line used to say "relative residual 0", as for a perfect solve)
+  const std::string args = quoted(dome()) + " --solver eigen-llt --alpha -0.5 --allow-indefinite";
+  for (const std::string& command : {"solve " + args, "export " + args + " --out " + quoted(dir.file("e"))}) {
+    const CommandResult r = run_coons(command);
+    INFO(command << "\n" << r.err);
+    CHECK(r.status == 3);
+    const json report = json::parse(r.out);
+    CHECK(report["solver"]["status"] == "not_positive_definite");
+    CHECK(report["solver"]["relative_residual"] == 1);
+    CHECK(report["net"].is_null());
+    CHECK(lines(r.err) == 1);
+    CHECK_THAT(r.err, Catch::Contains("not_positive_definite, relative residual 1 ("));
+  }
+  // a backend that cannot take the system: batch's report of that net, a triangle's solve
+  const CommandResult batch = run_coons("batch " + quoted(dome()) + " --solver separable-banded --alphas -0.1 " +
+                                        "--samples 3 --out " + quoted(dir.file("b")));
+  INFO(batch.err);
+  CHECK(batch.status == 3);
+  const json net = json::parse(read_text(dir.file("b") + "/dome-3x3/alpha-0.1.json"));
+  CHECK(net["solver"]["status"] == "not_applicable");
+  CHECK(net["solver"]["relative_residual"] == 1);
+  CHECK_THAT(batch.err, Catch::Contains("not_applicable, relative residual 1 ("));
+  const CommandResult tri = run_coons("solve " + quoted(kData + "/triangles/planar_bulge.json") + " --solver cholmod");
+  INFO(tri.err);
+  CHECK(tri.status == 3);
+  CHECK(json::parse(tri.out)["solver"]["relative_residual"] == 1);
+}
+
 TEST_CASE("coons: sizes are checked before memory is taken", "[cli][loud]") {
   TempDir dir;
   check_refused(run_coons("export " + quoted(dome()) + " --obj --samples 50000 --out " + quoted(dir.file("out"))),

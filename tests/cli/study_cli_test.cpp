@@ -112,9 +112,42 @@ TEST_CASE("coons study: an option that does nothing in the study's mode is refus
       {merge + " --count 3", "--count"},
       {merge + " --solver fast", "--solver"},
       {merge + " --corner-tolerance 1e-3", "--corner-tolerance"},
+      {merge + " --max-memory 1GB", "--max-memory"},
   };
   for (const auto& [args, option] : cases) {
     INFO(args);
     check_refused(run_coons(args + " --out " + quoted(out)), out, "error: command line: " + option + ": ");
   }
+}
+
+TEST_CASE("coons study --family: a failed search exits 3 with the report written, and so does the merge of its shards",
+          "[cli]") {
+  TempDir dir;
+  // Jacobi diverges for α < 0 on these nets: the α* searches rest on failed solves
+  const std::string family = "study --family random-smooth --count 2 --degrees 6 --solver jacobi";
+  const std::string start = "error: study: solver: random-smooth: thin_plate at degree 6: ";
+  const CommandResult r = run_coons(family + " --out " + quoted(dir.file("whole")));
+  INFO(r.err);
+  CHECK(r.status == 3);
+  CHECK(r.err.rfind(start, 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK(fs::exists(dir.file("whole") + "/report.md"));
+  const json results = json::parse(read_text(dir.file("whole") + "/results.json"));
+  CHECK(results["cells"][0]["failed"].get<int>() > 0);
+  // the shard writes records, not the report: exit 0; the merge writes the report: exit 3
+  const CommandResult shard = run_coons(family + " --shard 0/1 --out " + quoted(dir.file("shards")));
+  INFO(shard.err);
+  CHECK(shard.status == 0);
+  const CommandResult merged =
+      run_coons("study --merge " + quoted(dir.file("shards")) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 3);
+  CHECK(merged.err == r.err);
+  CHECK(read_text(dir.file("merged") + "/results.json") == read_text(dir.file("whole") + "/results.json"));
+  // the same family with a direct backend: every search succeeds, exit 0
+  const CommandResult ok = run_coons("study --family random-smooth --count 2 --degrees 6 --solver eigen-ldlt --out " +
+                                     quoted(dir.file("ok")));
+  INFO(ok.err);
+  CHECK(ok.status == 0);
+  CHECK(ok.err.find("error:") == std::string::npos);
 }

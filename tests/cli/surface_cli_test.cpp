@@ -244,3 +244,26 @@ TEST_CASE("coons join: patches of every type that share a side exactly meet C0 (
   CHECK(point["normals_compared"] == 0);
   CHECK(point["g1"] == false);
 }
+
+TEST_CASE("coons surface --reference: a B-spline net is refused naming its knots, not read as a Bezier net",
+          "[cli][surfaces]") {
+  TempDir dir;
+  const std::string spec = quoted(surface_data("seed000_hermite_coons_1.json"));
+  // the solve report of a B-spline boundary holds "net" (the B-spline control net) and "bspline"
+  const std::string wave = kData + "/boundaries/bspline_wave.json";
+  const CommandResult solved = run_coons("solve " + quoted(wave));
+  REQUIRE(solved.status == 0);
+  REQUIRE(json::parse(solved.out).contains("bspline"));
+  const std::string report = dir.write("wave.solve.json", solved.out);
+  const std::string why = "a B-spline net is not a Bézier net";
+  const std::pair<std::string, std::string> cases[] = {{report, "error: " + report + ": bspline: " + why},
+                                                       {wave, "error: " + wave + ": knots_u: " + why}};
+  for (const auto& [reference, start] : cases) {
+    const CommandResult r = run_coons("surface " + spec + " --sample 5 --reference " + quoted(reference));
+    INFO(r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind(start, 0) == 0);
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  }
+}

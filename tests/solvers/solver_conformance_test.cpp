@@ -134,6 +134,46 @@ TEST_CASE("every solver: reports indefinite and singular systems", "[solvers]") 
   }
 }
 
+TEST_CASE("every exact solver: a failed solve reports the residual of the X it returns, 1 for X = 0", "[solvers]") {
+  // docs/formats.md, "The solver block": a failed factorisation returns X = 0, whose relative
+  // residual ‖A·0 − B‖/‖B‖ is 1 (it used to say 0, the value of a perfect solve)
+  int zero_solutions = 0;
+  for (const SolverInfo& info : available_solvers()) {
+    if (info.family == SolverFamily::kIterative) continue;             // a diverged iteration names its own residual
+    for (const auto& [n, alpha] : {std::pair{3, -0.5}, {20, -0.4}}) {  // singular, indefinite
+      const MaskSystem s = assemble_mask_system(make_random_net(n, n, 7), alpha_mask(alpha));
+      Eigen::MatrixX3d X;
+      const SolveSummary summary = make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X);
+      INFO(info.name << ", alpha = " << alpha << ": " << summary.brief_report());
+      if (summary.ok()) continue;
+      REQUIRE(X.rows() == s.B.rows());
+      CHECK(summary.relative_residual == Approx(relative_residual(operator_of(s), s.B, X)).epsilon(1e-12));
+      if (X.isZero(0)) {
+        CHECK(summary.relative_residual == 1);
+        ++zero_solutions;
+      }
+    }
+  }
+  CHECK(zero_solutions > 0);  // eigen-llt, at least, cannot factorize them
+  // a failed member of a sweep likewise
+  const ControlNet net = make_random_net(20, 20, 7);
+  const MaskSystem good = assemble_mask_system(net, alpha_mask(-0.1)),
+                   bad = assemble_mask_system(net, alpha_mask(-0.4));
+  std::vector<SolveSummary> sunk;
+  make_solver("eigen-llt")
+      ->sweep({good.B, bad.B}, {{operator_of(good), {1, 0}}, {operator_of(bad), {0, 1}}},
+              [&](std::size_t, const Eigen::MatrixX3d& X, const SolveSummary& summary) {
+                sunk.push_back(summary);
+                CHECK(X.rows() == good.B.rows());
+                if (!summary.ok()) CHECK(X.isZero(0));
+              });
+  REQUIRE(sunk.size() == 2);
+  CHECK(sunk[0].ok());
+  CHECK(sunk[0].relative_residual < 1e-10);
+  CHECK(sunk[1].status == SolveStatus::kNotPositiveDefinite);
+  CHECK(sunk[1].relative_residual == 1);
+}
+
 TEST_CASE("registry: names are unique and make_solver knows every listed name", "[solvers]") {
   std::set<std::string> names;
   for (const SolverInfo& info : available_solvers()) {

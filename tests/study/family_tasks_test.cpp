@@ -94,3 +94,23 @@ TEST_CASE("family_task_record: a record read back is the same result") {
   broken["status"] = "maybe";
   CHECK_THROWS_AS(family_task_from_record(broken, "f"), InputError);
 }
+
+TEST_CASE("assemble_alpha_family: failed searches and failed grid evaluations are counted per cell") {
+  AlphaFamilyOptions options;
+  options.count = 3;
+  options.degrees = {3};
+  options.grid_points = 9;
+  std::vector<FamilyTaskResult> results;
+  results.reserve(3);
+  for (int k = 0; k < 3; ++k) results.push_back(run_family_task(options, {k, 3, "thin_plate"}));
+  for (const FamilyTaskResult& r : results) REQUIRE(r.alpha);
+  CHECK(assemble_alpha_family(options, {"thin_plate"}, results).cells.at(0).grid_failed == 0);
+  results[0].grid[4] = HUGE_VAL;  // an evaluation that failed (a null in a shard record)
+  FamilyTaskResult failed;        // a search that failed: no α*, no grid
+  failed.task = results[2].task;
+  results[2] = failed;
+  const AlphaFamilyCell cell = assemble_alpha_family(options, {"thin_plate"}, results).cells.at(0);
+  CHECK(cell.failed == 1);
+  CHECK(cell.grid_failed == 1);
+  CHECK(cell.interior + cell.at_bound == 2);
+}

@@ -114,3 +114,25 @@ TEST_CASE("bspline_study_failures: a failed net energy and a failed search are n
   CHECK(f[0].file == "wave.json");
   CHECK(contains(f[1].what, "e3: best α solver_failed"));
 }
+
+TEST_CASE("family_failures: a cell's failed searches and failed grid evaluations are named with the family",
+          "[study]") {
+  AlphaFamilyResult r;
+  r.options.count = 4;
+  AlphaFamilyCell cell;
+  cell.degree = 5;
+  cell.objective = "e3";
+  cell.alpha_star.resize(4);
+  r.cells = {cell, cell};
+  CHECK(family_failures(r).empty());
+  r.cells[0].failed = 2;
+  r.cells[1].objective = "thin_plate";
+  r.cells[1].grid_failed = 3;
+  const std::vector<StudyFailure> f = family_failures(r);
+  REQUIRE(f.size() == 2);
+  CHECK(f[0].file.empty());
+  CHECK(f[0].what == "random-smooth: e3 at degree 5: 2 of 4 α* searches failed");
+  CHECK(f[1].what == "random-smooth: thin_plate at degree 5: 3 evaluations on the best-single-α grid failed");
+  r.options.base_name = "dome";
+  CHECK(contains(family_failures(r)[0].what, "perturbed:dome: e3 at degree 5"));
+}

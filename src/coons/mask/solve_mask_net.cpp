@@ -18,6 +18,7 @@ MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, cons
     result.summary.solver = solver.name;
     result.summary.status = solvers::SolveStatus::kNotApplicable;
     result.summary.message = "no solver named '" + solver.name + "' is built in";
+    result.summary.relative_residual = 1;  // of X = 0, what a failed solve returns (docs/formats.md)
     return result;
   }
   const MaskSystem system = assemble_mask_system(frame, mask, info->needs_matrix);

@@ -34,6 +34,7 @@ StencilSolveResult not_applicable(const StencilProblem& problem, const solvers::
   result.summary.solver = solver.name();
   result.summary.status = solvers::SolveStatus::kNotApplicable;
   result.summary.message = std::move(message);
+  result.summary.relative_residual = 1;  // of X = 0, what a failed solve returns (docs/formats.md)
   return result;
 }
 
@@ -50,9 +51,8 @@ StencilSolveResult solve_assembled(const StencilProblem& problem, const StencilS
   Eigen::MatrixX3d X;
   if (analyze) {
     result.summary = solver.compute_and_solve(op, system.B, X);
-  } else if (solver.factorize(op) != solvers::SolveStatus::kSuccess) {
-    result.summary = solver.summary();
   } else {
+    solver.factorize(op);  // a failed one leaves solve() X = 0 and the status that says why
     result.summary = solver.solve(system.B, X);
   }
   result.net = result.summary.ok() ? fill_free_points(problem.net, system.numbering, X) : problem.net;

@@ -62,6 +62,8 @@ struct AlphaFamilyCell {
   //! and α* < 0 (μ = −n²(1 + 4α)/(4α)), the relative loss at the best single α
   std::vector<std::optional<double>> alpha_star, mu_star, loss;
   int interior = 0, flat = 0, at_bound = 0, failed = 0;
+  //! evaluations of f_b on the best-single-α grid that failed, over the boundaries with an α*
+  int grid_failed = 0;
   std::optional<Distribution> alpha, mu, losses;
   std::optional<double> loss_mean;
   std::optional<double> best_alpha;  //!< the single α minimising the mean loss over the family

@@ -300,6 +300,7 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
         used.push_back(k);
         optimum.push_back(t.value);
         curves.push_back(t.grid);
+        for (double v : t.grid) cell.grid_failed += std::isfinite(v) ? 0 : 1;
       }
       std::vector<double> alphas, mus;
       for (const auto& a : cell.alpha_star)

@@ -85,4 +85,17 @@ std::vector<StudyFailure> bspline_study_failures(const std::vector<BSplineStudyR
   return out;
 }
 
+std::vector<StudyFailure> family_failures(const AlphaFamilyResult& r) {
+  std::vector<StudyFailure> out;
+  const std::string family = r.options.family_name();
+  for (const AlphaFamilyCell& c : r.cells) {
+    const std::string where = fmt::format("{}: {} at degree {}", family, c.objective, c.degree);
+    if (c.failed > 0)
+      out.push_back({"", fmt::format("{}: {} of {} α* searches failed", where, c.failed, c.alpha_star.size())});
+    if (c.grid_failed > 0)
+      out.push_back({"", fmt::format("{}: {} evaluations on the best-single-α grid failed", where, c.grid_failed)});
+  }
+  return out;
+}
+
 }  // namespace coons

@@ -1,6 +1,6 @@
 // What failed in a study: every solve of the per-shape study (the α*, μ* and w* searches, the
 // objective at α = −1/4 and 0, the energy curves, the degree cells, the reference rows and best
-// fit), of the triangle rows and of the B-spline rows, one short phrase per failure. The shape
+// fit), of the triangle rows, of the B-spline rows and of a family study, one short phrase per failure. The shape
 // entries' solver status in results.json and the command's exit status (3 when anything failed)
 // are derived from these. Sizes: one entry per failure.
 #pragma once
@@ -9,6 +9,7 @@
 #include <vector>
 
 #include "coons/alpha/alpha_search.h"
+#include "coons/study/alpha_family.h"
 #include "coons/study/bspline_study.h"
 #include "coons/study/study.h"
 
@@ -33,5 +34,10 @@ std::vector<StudyFailure> study_failures(const StudyResult& r);
 
 //! The failures of the B-spline rows (the energies at α = −1/4 and 0, the searches).
 std::vector<StudyFailure> bspline_study_failures(const std::vector<BSplineStudyRow>& rows);
+
+//! The failures of a family study (`coons study --family`), one per cell (degree × objective) that
+//! has them: its α* searches that failed, its failed evaluations on the best-single-α grid. The
+//! file is "" (the boundaries are made, not read).
+std::vector<StudyFailure> family_failures(const AlphaFamilyResult& r);
 
 }  // namespace coons

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
+#include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
 #include "coons/io/net_json.h"
 #include "coons/metrics/energies.h"
@@ -41,6 +42,13 @@ double finite_max(const Eigen::VectorXd& x, bool absolute) {
 
 SurfaceFile read_surface_reference(const std::string& path, const SurfaceReadOptions& options) {
   const json doc = read_json_file(path);
+  // A B-spline net (a B-spline boundary file's knots, or the "bspline" block of its solve report)
+  // is no Bézier net: read as one, its points would be a different surface.
+  for (const char* field : {"knots_u", "knots_v", "degree_spline", "bspline"})
+    if (doc.is_object() && doc.contains(field))
+      throw InputError(path, field,
+                       "a B-spline net is not a Bézier net; --reference takes a surface description or a Bézier net "
+                       "(\"net\" without knots)");
   if (doc.is_object() && !doc.contains("type") && doc.contains("net"))
     return parse_surface(json{{"type", "bezier"}, {"net", doc["net"]}}, path, options);
   return parse_surface(doc, path, options);

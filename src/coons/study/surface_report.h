@@ -34,7 +34,9 @@ struct SurfaceReport {
 SurfaceReport surface_report(const SurfaceFile& input, const std::optional<SurfaceFile>& reference,
                              const SurfaceReportOptions& options);
 
-//! A reference: a surface description, or any file holding "net" (a boundary file, a solve report).
+//! A reference: a surface description, or any file holding "net" (a boundary file, a solve report)
+//! read as a Bézier net. A B-spline net (knots_u, knots_v, degree_spline or a "bspline" block) is
+//! an InputError naming that field.
 SurfaceFile read_surface_reference(const std::string& path, const SurfaceReadOptions& options);
 
 }  // namespace coons

@@ -61,12 +61,14 @@ TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options
   if (!options.is_valid(&why)) {
     result.summary.status = solvers::SolveStatus::kFailure;
     result.summary.message = why;
+    result.summary.relative_residual = 1;  // of X = 0, what a failed solve returns (docs/formats.md)
     return result;
   }
   const TriBackendCheck check = check_tri_backend(*options.solver, options.mask);
   if (!check.applicable) {
     result.summary.status = solvers::SolveStatus::kNotApplicable;
     result.summary.message = check.reason;
+    result.summary.relative_residual = 1;
     return result;
   }
   if (interior_size(frame.n) == 0) return result;  // nothing to solve (n < 3)
