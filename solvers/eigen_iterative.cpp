@@ -71,19 +71,27 @@ class EigenIterative : public LinearSolver {
     end.limit = limit_;
     end.converged = true;
     end.residual = 0;
+    bool stuck = false;  // Eigen returned before its first step on some column
     for (int c = 0; c < 3; ++c) {
       // A zero column has the solution zero. (Eigen's BiCGSTAB returns at once for it but leaves
       // its iteration count at the limit, which would be reported as the iterations of the solve.)
-      if (B.col(c).squaredNorm() == 0) continue;
+      if (B.col(c).isZero(0)) continue;  // (not squaredNorm() == 0, which a column of 1e-170s passes)
       int used = 0;
       double error = 0;
       Eigen::VectorXd x = Eigen::VectorXd::Zero(B.rows());
       for (;;) {
         krylov_.setMaxIterations(std::min(chunk, limit_ - used));
         x = krylov_.solveWithGuess(B.col(c), x);
-        used += int(krylov_.iterations());
+        const int done = int(krylov_.iterations());
+        used += done;
         error = krylov_.error();
+        // done == 0: Eigen returned before its first step (its start test under- or overflowed);
+        // calling it again would do the same forever.
         if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_) break;
+        if (done == 0) {
+          stuck = true;
+          break;
+        }
         if (out_of_time()) {
           end.timed_out = true;
           break;
@@ -95,7 +103,7 @@ class EigenIterative : public LinearSolver {
         end.diverged = true;
         end.residual = HUGE_VAL;
       } else {
-        end.residual = std::max(end.residual, error);
+        end.residual = std::max(end.residual, std::isnan(error) ? 1.0 : error);  // NaN: Eigen's 0/0 or inf/inf
       }
       if (krylov_.info() != Eigen::Success) end.converged = false;
       if (end.diverged || end.timed_out) {
@@ -103,7 +111,13 @@ class EigenIterative : public LinearSolver {
         break;
       }
     }
-    return finish_iteration(end, X, summary);
+    const SolveStatus status = finish_iteration(end, X, summary);
+    if (stuck && status == SolveStatus::kNotConverged)
+      summary.message =
+          "not converged: the iteration stopped before its first step (its start test under- or "
+          "overflows at this scale), residual " +
+          format_g(summary.relative_residual);
+    return status;
   }
 
  private:

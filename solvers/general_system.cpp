@@ -21,10 +21,12 @@ double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
   const Eigen::MatrixXd AX = A * X;
   double worst = 0;
-  for (Eigen::Index c = 0; c < B.cols(); ++c) {
-    const double b = B.col(c).norm();
-    const double r = (B.col(c) - AX.col(c)).norm();
-    worst = std::max(worst, b > 0 ? r / b : r);
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {  // stableNorm: see relative_residual in linear_solver.cpp
+    const double b = B.col(c).stableNorm();
+    const double r = (B.col(c) - AX.col(c)).stableNorm();
+    const double q = b > 0 ? r / b : r;
+    if (std::isnan(q)) return NAN;
+    worst = std::max(worst, q);
   }
   return worst;
 }

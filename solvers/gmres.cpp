@@ -32,6 +32,14 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
   apply(x, Ax);
   r = b - Ax;
   double rel = r.norm() / bnorm;
+  if (!std::isfinite(rel)) {  // squares that overflow: no Arnoldi step would be finite either
+    out.status = SolveStatus::kFailure;
+    out.message = "GMRES cannot start: the norm of the right-hand side or of the first residual overflows";
+    out.relative_residual = 1;
+    out.history = {1};
+    x.setZero(n);
+    return out;
+  }
   out.history.push_back(rel);
   std::vector<Vector> V(static_cast<std::size_t>(k) + 1), Z(static_cast<std::size_t>(k));
   Eigen::MatrixXd H = Eigen::MatrixXd::Zero(k + 1, k);

@@ -144,7 +144,9 @@ class HypreAmgBackend : public hypre_detail::HypreBackend {
       HYPRE_GMRESSetKDim(solver_, 50);
       HYPRE_GMRESSetTol(solver_, options_.tolerance);
       HYPRE_GMRESSetMaxIter(solver_, limit());
-      HYPRE_GMRESSetLogging(solver_, 1);
+      // Logging 0: with it, hypre prints an "ERROR detected by Hypre" banner on stdout (inside a
+      // JSON report) on overflowing input. Iterations and the final residual are kept without it.
+      HYPRE_GMRESSetLogging(solver_, 0);
       HYPRE_GMRESSetPrintLevel(solver_, 0);
       HYPRE_ParCSRGMRESSetPrecond(solver_, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, amg_);
       error = HYPRE_ParCSRGMRESSetup(solver_, parcsr_, par_b_, par_x_);
@@ -153,7 +155,9 @@ class HypreAmgBackend : public hypre_detail::HypreBackend {
       HYPRE_PCGSetTol(solver_, options_.tolerance);
       HYPRE_PCGSetTwoNorm(solver_, 1);  // stop at ‖r‖₂ ≤ tolerance·‖b‖₂
       HYPRE_PCGSetMaxIter(solver_, limit());
-      HYPRE_PCGSetLogging(solver_, 1);
+      // Logging 0: with it, hypre prints an "ERROR detected by Hypre" banner on stdout (inside a
+      // JSON report) on overflowing input. Iterations and the final residual are kept without it.
+      HYPRE_PCGSetLogging(solver_, 0);
       HYPRE_PCGSetPrintLevel(solver_, 0);
       HYPRE_ParCSRPCGSetPrecond(solver_, HYPRE_BoomerAMGSolve, HYPRE_BoomerAMGSetup, amg_);
       error = HYPRE_ParCSRPCGSetup(solver_, parcsr_, par_b_, par_x_);

@@ -220,7 +220,9 @@ class HypreStructBackend : public hypre_detail::HypreBackend {
     HYPRE_StructPCGSetTwoNorm(solver_, 1);  // stop at ‖r‖₂ ≤ tolerance·‖b‖₂
     HYPRE_StructPCGSetRelChange(solver_, 0);
     HYPRE_StructPCGSetMaxIter(solver_, limit());
-    HYPRE_StructPCGSetLogging(solver_, 1);
+    // Logging 0: with it, hypre prints an "ERROR detected by Hypre" banner on stdout (inside a
+    // JSON report) on overflowing input. Iterations and the final residual are kept without it.
+    HYPRE_StructPCGSetLogging(solver_, 0);
     HYPRE_StructPCGSetPrintLevel(solver_, 0);
     if (method_ == StructMethod::kPfmg) {
       HYPRE_StructPFMGCreate(comm, &precond_);

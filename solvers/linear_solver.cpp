@@ -391,11 +391,15 @@ double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B, co
   if (B.rows() == 0) return 0;
   Eigen::MatrixXd AX;
   if (!apply_operator(op, X, AX)) return NAN;
+  // stableNorm: a column of 1e-170s or 1e+170s has squares that underflow or overflow, and a plain
+  // norm() would call an unsolved X a perfect one (0/0 skipped, inf/inf = NaN lost in std::max).
   double worst = 0;
   for (int k = 0; k < 3; ++k) {
-    const double b = B.col(k).norm();
-    const double r = (AX.col(k) - B.col(k)).norm();
-    worst = std::max(worst, b > 0 ? r / b : r);
+    const double b = B.col(k).stableNorm();
+    const double r = (AX.col(k) - B.col(k)).stableNorm();
+    const double q = b > 0 ? r / b : r;
+    if (std::isnan(q)) return NAN;
+    worst = std::max(worst, q);
   }
   return worst;
 }
