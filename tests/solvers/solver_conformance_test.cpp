@@ -98,9 +98,12 @@ TEST_CASE("every solver: analyze once, factorize many equals fresh solves", "[so
       const MaskSystem s = assemble_mask_system(net, alpha_mask(alpha));
       REQUIRE(reused->factorize(operator_of(s)) == SolveStatus::kSuccess);
       Eigen::MatrixX3d X_reused, X_fresh;
-      reused->solve(s.B, X_reused);
-      make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X_fresh);
-      INFO(info.name << ", alpha = " << alpha);
+      const SolveSummary reused_summary = reused->solve(s.B, X_reused);
+      const SolveSummary fresh_summary = make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X_fresh);
+      INFO(info.name << ", alpha = " << alpha << ": " << reused_summary.brief_report() << " / "
+                     << fresh_summary.brief_report());
+      REQUIRE(reused_summary.ok());
+      REQUIRE(fresh_summary.ok());
       CHECK((X_reused - X_fresh).cwiseAbs().maxCoeff() < 1e-12);
     }
   }

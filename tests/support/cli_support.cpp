@@ -1,8 +1,10 @@
 #include "support/cli_support.h"
 
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <fstream>
 #include <iterator>
+#include <sstream>
 
 namespace coons::test {
 
@@ -16,6 +18,32 @@ CommandResult run_coons(const std::string& args) { return run_command(kCoons + "
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+const std::vector<std::string>& coons_commands() {
+  static const std::vector<std::string> commands = [] {
+    const CommandResult help = run_coons("--help");
+    std::vector<std::string> out;
+    std::istringstream lines(help.out);
+    bool in_block = false;
+    for (std::string line; std::getline(lines, line);) {
+      if (line.rfind("Subcommands:", 0) == 0 || line.rfind("SUBCOMMANDS:", 0) == 0) {
+        in_block = true;
+      } else if (in_block && line.empty()) {
+        break;
+      } else if (in_block && line.size() > 2 && line.compare(0, 2, "  ") == 0 && line[2] != ' ') {
+        std::istringstream words(line);
+        std::string name;
+        words >> name;
+        out.push_back(name);
+      }
+    }
+    return out;
+  }();
+  INFO("coons --help lists: " << commands.size() << " commands");
+  REQUIRE(commands.size() >= 14);  // the parse found the block: solve ... import-step
+  REQUIRE(std::find(commands.begin(), commands.end(), "solve") != commands.end());
+  return commands;
 }
 
 std::vector<nlohmann::json> read_json_lines(const std::string& path) {

@@ -22,6 +22,10 @@ CommandResult run_coons(const std::string& args);
 //! The whole of a file, byte for byte ("" when it cannot be read).
 std::string read_text(const std::string& path);
 
+//! The commands of `coons`, as `coons --help` lists them (its "Subcommands:" block), in that order:
+//! the one list the tests that cover every command iterate, so that a new command is not missed.
+const std::vector<std::string>& coons_commands();
+
 //! The lines of a JSON Lines file, parsed.
 std::vector<nlohmann::json> read_json_lines(const std::string& path);
 
