@@ -9,6 +9,7 @@
 #include <algorithm>
 #include <filesystem>
 #include <memory>
+#include <optional>
 
 #include "coons/io/input_error.h"
 #include "coons/io/obj_export.h"
@@ -49,7 +50,7 @@ struct Row {
   std::string method;
   std::string alpha;  // α, w= of c1-family, or - for the other masks
   std::string status;
-  NetMetrics metrics;
+  std::optional<NetMetrics> metrics;  // none when the solve failed: the table then says so
 };
 
 std::string metrics_table(const std::vector<Row>& rows) {
@@ -60,13 +61,21 @@ std::string metrics_table(const std::vector<Row>& rows) {
            std::string(8, '-') + "|" + std::string(13, '-') + "|" + std::string(14, '-') + "|" + std::string(14, '-') +
            "|" + std::string(14, '-') + "|" + std::string(14, '-') + "|" + std::string(11, '-') + "|" +
            std::string(13, '-') + "|\n";
-  for (const auto& r : rows)
+  for (const auto& r : rows) {
+    const std::string degree = fmt::format("{}x{}", r.m, r.n);
+    if (!r.metrics) {  // a failed solve has no net: no numbers, not zeros
+      table += fmt::format(
+          "| {:<22} | {:>7} | {:<10} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n",
+          r.boundary, degree, r.method, r.alpha, "-", "-", "-", "-", "-", "-", r.status);
+      continue;
+    }
+    const NetMetrics& k = *r.metrics;
     table += fmt::format(
         "| {:<22} | {:>7} | {:<10} | {:>6} | {:>11.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>9.2e} | "
         "{:<11} |\n",
-        r.boundary, fmt::format("{}x{}", r.m, r.n), r.method, r.alpha, r.metrics.twist_energy,
-        r.metrics.thin_plate_energy, r.metrics.dirichlet_energy, r.metrics.e3_energy, r.metrics.discrete_twist_energy,
-        r.metrics.mask_residual, r.status);
+        r.boundary, degree, r.method, r.alpha, k.twist_energy, k.thin_plate_energy, k.dirichlet_energy, k.e3_energy,
+        k.discrete_twist_energy, k.mask_residual, r.status);
+  }
   return table;
 }
 

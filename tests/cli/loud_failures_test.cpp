@@ -304,6 +304,16 @@ TEST_CASE("coons solve export and batch: a failed solve reports the relative res
   CHECK(net["solver"]["status"] == "not_applicable");
   CHECK(net["solver"]["relative_residual"] == 1);
   CHECK_THAT(batch.err, Catch::Contains("not_applicable, relative residual 1 ("));
+  // its table row: no numbers (it used to print energies and a mask residual of 0)
+  const std::string table = read_text(dir.file("b") + "/metrics.md");
+  const auto row = table.find("-0.1 |");
+  REQUIRE(row != std::string::npos);
+  const std::string line = table.substr(row, table.find('\n', row) - row);
+  INFO(line);
+  CHECK_THAT(line, Catch::Contains("|           - |            - |"));
+  CHECK_THAT(line, Catch::Contains("not_applicable"));
+  CHECK(line.find("e+") == std::string::npos);
+  CHECK(line.find("e-") == std::string::npos);
   const CommandResult tri = run_coons("solve " + quoted(kData + "/triangles/planar_bulge.json") + " --solver cholmod");
   INFO(tri.err);
   CHECK(tri.status == 3);
