@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "column_scaling.h"
+
 namespace coons::solvers {
 
 double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
@@ -21,11 +23,8 @@ double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
   const Eigen::MatrixXd AX = A * X;
   double worst = 0;
-  for (Eigen::Index c = 0; c < B.cols(); ++c) {
-    const double b = B.col(c).norm();
-    const double r = (B.col(c) - AX.col(c)).norm();
-    worst = std::max(worst, b > 0 ? r / b : r);
-  }
+  for (Eigen::Index c = 0; c < B.cols(); ++c)
+    worst = std::max(worst, relative_norm(B.col(c) - AX.col(c), B.col(c)));  // no underflow of ‖·‖²
   return worst;
 }
 
