@@ -25,6 +25,11 @@ bool stencil_not_definite(const LinearOperator& op, SolveSummary& summary) {
 }
 
 template <class Krylov>
+struct IsConjugateGradient : std::false_type {};
+template <class Matrix, int UpLo, class Preconditioner>
+struct IsConjugateGradient<Eigen::ConjugateGradient<Matrix, UpLo, Preconditioner>> : std::true_type {};
+
+template <class Krylov>
 class EigenIterative : public LinearSolver {
  public:
   EigenIterative(std::string name, bool definite_only, const SolverOptions& options)
@@ -79,9 +84,11 @@ class EigenIterative : public LinearSolver {
       double error = 0;
       Eigen::VectorXd x = Eigen::VectorXd::Zero(B.rows());
       for (;;) {
-        krylov_.setMaxIterations(std::min(chunk, limit_ - used));
+        const int allowed = std::min(chunk, limit_ - used);
+        krylov_.setMaxIterations(allowed);
+        const Eigen::VectorXd guess = x;
         x = krylov_.solveWithGuess(B.col(c), x);
-        used += int(krylov_.iterations());
+        used += updates_done(allowed, guess, x);
         error = krylov_.error();
         if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_) break;
         if (out_of_time()) {
@@ -107,6 +114,21 @@ class EigenIterative : public LinearSolver {
   }
 
  private:
+  // The iterations (updates of x, one product with A each) of the last Eigen solve. Eigen's
+  // conjugate_gradient leaves its loop by `break` right after the update that passes its test,
+  // before counting that update (Eigen 3.4, ConjugateGradient.h): a CG that converges reports one
+  // iteration fewer than it did — 0 for a solve that took one step — unless it returned before any
+  // update (a guess that already passes: x is then the guess, unchanged). BiCGSTAB counts
+  // each iteration it completes.
+  int updates_done(int allowed, const Eigen::VectorXd& guess, const Eigen::VectorXd& x) const {
+    const int counted = int(krylov_.iterations());
+    if constexpr (!kConjugateGradient) return counted;
+    const bool stopped_on_test = krylov_.info() == Eigen::Success && counted < allowed;
+    const bool returned_at_once = counted == 0 && guess == x;
+    return stopped_on_test && !returned_at_once ? counted + 1 : counted;
+  }
+
+  static constexpr bool kConjugateGradient = IsConjugateGradient<Krylov>::value;
   static constexpr bool kAnalyzeApart = !std::is_same_v<typename Krylov::Preconditioner, Eigen::IncompleteLUT<double>>;
   std::string name_;
   bool definite_only_;
