@@ -88,9 +88,12 @@ class EigenIterative : public LinearSolver {
         krylov_.setMaxIterations(allowed);
         const Eigen::VectorXd guess = x;
         x = krylov_.solveWithGuess(B.col(c), x);
-        used += updates_done(allowed, guess, x);
+        const int done = updates_done(allowed, guess, x);
+        used += done;
         error = krylov_.error();
-        if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_) break;
+        // (A call that did no update will not do one on the next call either: Eigen's BiCGSTAB
+        // returns at once, not converged, when ‖b‖² is not finite.)
+        if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_ || done == 0) break;
         if (out_of_time()) {
           end.timed_out = true;
           break;
@@ -98,7 +101,7 @@ class EigenIterative : public LinearSolver {
       }
       X.col(c) = x;
       end.iterations = std::max(end.iterations, used);
-      if (!x.allFinite()) {
+      if (!x.allFinite() || !std::isfinite(error)) {
         end.diverged = true;
         end.residual = HUGE_VAL;
       } else {
