@@ -65,7 +65,7 @@ TEST_CASE("every solver: right-hand sides scaled by 2^-600 2^500 or 2^540 give X
 
 TEST_CASE("every solver: a sweep member scaled by 2^-600 gives X scaled alike", "[solvers]") {
   const MaskSystem s = spd_system();
-  constexpr int e = -600;
+  const int e = -600;
   for (const SolverInfo& info : available_solvers()) {
     Eigen::MatrixX3d X;
     if (make_solver(info.name)->compute_and_solve(operator_of(s), s.B, X).status == SolveStatus::kNotApplicable)
