@@ -25,6 +25,11 @@ bool stencil_not_definite(const LinearOperator& op, SolveSummary& summary) {
 }
 
 template <class Krylov>
+struct IsConjugateGradient : std::false_type {};
+template <class Matrix, int UpLo, class Preconditioner>
+struct IsConjugateGradient<Eigen::ConjugateGradient<Matrix, UpLo, Preconditioner>> : std::true_type {};
+
+template <class Krylov>
 class EigenIterative : public LinearSolver {
  public:
   EigenIterative(std::string name, bool definite_only, const SolverOptions& options)
@@ -71,7 +76,6 @@ class EigenIterative : public LinearSolver {
     end.limit = limit_;
     end.converged = true;
     end.residual = 0;
-    bool stuck = false;  // Eigen returned before its first step on some column
     for (int c = 0; c < 3; ++c) {
       // A zero column has the solution zero. (Eigen's BiCGSTAB returns at once for it but leaves
       // its iteration count at the limit, which would be reported as the iterations of the solve.)
@@ -80,18 +84,16 @@ class EigenIterative : public LinearSolver {
       double error = 0;
       Eigen::VectorXd x = Eigen::VectorXd::Zero(B.rows());
       for (;;) {
-        krylov_.setMaxIterations(std::min(chunk, limit_ - used));
+        const int allowed = std::min(chunk, limit_ - used);
+        krylov_.setMaxIterations(allowed);
+        const Eigen::VectorXd guess = x;
         x = krylov_.solveWithGuess(B.col(c), x);
-        const int done = int(krylov_.iterations());
+        const int done = updates_done(allowed, guess, x);
         used += done;
         error = krylov_.error();
-        // done == 0: Eigen returned before its first step (its start test under- or overflowed);
-        // calling it again would do the same forever.
-        if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_) break;
-        if (done == 0) {
-          stuck = true;
-          break;
-        }
+        // (A call that did no update will not do one on the next call either: Eigen's BiCGSTAB
+        // returns at once, not converged, when ‖b‖² is not finite.)
+        if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_ || done == 0) break;
         if (out_of_time()) {
           end.timed_out = true;
           break;
@@ -99,11 +101,11 @@ class EigenIterative : public LinearSolver {
       }
       X.col(c) = x;
       end.iterations = std::max(end.iterations, used);
-      if (!x.allFinite()) {
+      if (!x.allFinite() || !std::isfinite(error)) {
         end.diverged = true;
         end.residual = HUGE_VAL;
       } else {
-        end.residual = std::max(end.residual, std::isnan(error) ? 1.0 : error);  // NaN: Eigen's 0/0 or inf/inf
+        end.residual = std::max(end.residual, error);
       }
       if (krylov_.info() != Eigen::Success) end.converged = false;
       if (end.diverged || end.timed_out) {
@@ -111,16 +113,25 @@ class EigenIterative : public LinearSolver {
         break;
       }
     }
-    const SolveStatus status = finish_iteration(end, X, summary);
-    if (stuck && status == SolveStatus::kNotConverged)
-      summary.message =
-          "not converged: the iteration stopped before its first step (its start test under- or "
-          "overflows at this scale), residual " +
-          format_g(summary.relative_residual);
-    return status;
+    return finish_iteration(end, X, summary);
   }
 
  private:
+  // The iterations (updates of x, one product with A each) of the last Eigen solve. Eigen's
+  // conjugate_gradient leaves its loop by `break` right after the update that passes its test,
+  // before counting that update (Eigen 3.4, ConjugateGradient.h): a CG that converges reports one
+  // iteration fewer than it did — 0 for a solve that took one step — unless it returned before any
+  // update (a guess that already passes: x is then the guess, unchanged). BiCGSTAB counts
+  // each iteration it completes.
+  int updates_done(int allowed, const Eigen::VectorXd& guess, const Eigen::VectorXd& x) const {
+    const int counted = int(krylov_.iterations());
+    if constexpr (!kConjugateGradient) return counted;
+    const bool stopped_on_test = krylov_.info() == Eigen::Success && counted < allowed;
+    const bool returned_at_once = counted == 0 && guess == x;
+    return stopped_on_test && !returned_at_once ? counted + 1 : counted;
+  }
+
+  static constexpr bool kConjugateGradient = IsConjugateGradient<Krylov>::value;
   static constexpr bool kAnalyzeApart = !std::is_same_v<typename Krylov::Preconditioner, Eigen::IncompleteLUT<double>>;
   std::string name_;
   bool definite_only_;

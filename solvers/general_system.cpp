@@ -3,6 +3,8 @@
 #include <algorithm>
 #include <cmath>
 
+#include "column_scaling.h"
+
 namespace coons::solvers {
 
 double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
@@ -21,11 +23,9 @@ double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
   const Eigen::MatrixXd AX = A * X;
   double worst = 0;
-  for (Eigen::Index c = 0; c < B.cols(); ++c) {  // stableNorm: see relative_residual in linear_solver.cpp
-    const double b = B.col(c).stableNorm();
-    const double r = (B.col(c) - AX.col(c)).stableNorm();
-    const double q = b > 0 ? r / b : r;
-    if (std::isnan(q)) return NAN;
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    const double q = relative_norm(B.col(c) - AX.col(c), B.col(c));  // no underflow of ‖·‖²
+    if (std::isnan(q)) return NAN;  // (std::max would drop it)
     worst = std::max(worst, q);
   }
   return worst;

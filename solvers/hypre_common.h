@@ -10,6 +10,7 @@
 #include <algorithm>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "linear_solver.h"
@@ -52,14 +53,18 @@ class HypreBackend : public LinearSolver {
   struct ColumnSolve {
     HYPRE_Int error = 0;  //!< the solve's error flag
     HYPRE_Int iterations = 0;
-    double residual = 0;  //!< hypre's final relative residual norm
+    double residual = 0;         //!< hypre's final relative residual norm
+    const char* method = "PCG";  //!< hypre's Krylov method, for messages
   };
 
   //! X column by column: solve(c) → ColumnSolve for each non-zero column c of B (a zero column
   //! has x = 0 exactly), then, hypre's error flags cleared, read(c) writes X.col(c). One verdict
   //! (finish_iteration): the most iterations and the largest residual over the columns, converged
-  //! by hypre's own test on each (any error flag, e.g. a breakdown, is no convergence), diverged
-  //! where X is not finite.
+  //! by hypre's own test on each (any error flag is no convergence), diverged where X is not
+  //! finite. A column that stopped on an error flag before the iteration limit (a breakdown: hypre's
+  //! PCG flags a zero or negative pᵀAp or rᵀCr, or a subnormal step, with the flag of the limit,
+  //! HYPRE_ERROR_CONV) makes the solve kFailure, its message naming the flag, the iterations and the
+  //! residual of that column, not the limit.
   template <class Solve, class Read>
   SolveStatus solve_columns(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary, Solve&& solve,
                             Read&& read) {
@@ -68,6 +73,7 @@ class HypreBackend : public LinearSolver {
     end.limit = limit();
     end.converged = true;
     end.residual = 0;
+    std::string breakdown;  // the message of the first column that broke down
     for (int c = 0; c < 3; ++c) {
       if (B.col(c).isZero(0)) continue;  // x = 0 exactly
       const ColumnSolve column = solve(c);
@@ -77,12 +83,40 @@ class HypreBackend : public LinearSolver {
       end.residual = std::max(end.residual, std::isfinite(column.residual) ? column.residual : HUGE_VAL);
       end.converged =
           end.converged && column.error == 0 && column.residual <= options_.tolerance && X.col(c).allFinite();
+      if (breakdown.empty() && broke_down(column, end.limit)) breakdown = breakdown_message(column, end.limit);
     }
     if (!X.allFinite()) {
       end.diverged = true;
       end.residual = HUGE_VAL;
     }
-    return finish_iteration(end, X, summary);
+    if (breakdown.empty() || end.diverged) return finish_iteration(end, X, summary);
+    summary.iterations = end.iterations;
+    summary.relative_residual = end.residual;
+    summary.message = breakdown;
+    return SolveStatus::kFailure;
+  }
+
+ private:
+  //! True when hypre flagged an error other than running into the iteration limit.
+  static bool broke_down(const ColumnSolve& column, int limit) {
+    return column.error != 0 && !(column.error == HYPRE_ERROR_CONV && column.iterations >= limit);
+  }
+
+  //! "breakdown: residual R after N iterations (hypre's PCG stopped with error flag 256, did not
+  //! converge, before the iteration limit L; tolerance T)".
+  [[nodiscard]] std::string breakdown_message(const ColumnSolve& column, int limit) const {
+    std::string flags;
+    for (const auto& [bit, what] : {std::pair{HYPRE_ERROR_GENERIC, "generic error"},
+                                    {HYPRE_ERROR_MEMORY, "out of memory"},
+                                    {HYPRE_ERROR_ARG, "bad argument"},
+                                    {HYPRE_ERROR_CONV, "did not converge"}})
+      if (column.error & bit) flags += std::string(flags.empty() ? "" : " and ") + what;
+    if (flags.empty()) flags = "unknown error";
+    const int n = int(column.iterations);
+    return "breakdown: residual " + format_g(column.residual) + " after " + std::to_string(n) + " iteration" +
+           (n == 1 ? "" : "s") + " (hypre's " + column.method + " stopped with error flag " +
+           std::to_string(column.error) + ", " + flags + ", before the iteration limit " + std::to_string(limit) +
+           "; tolerance " + format_g(options_.tolerance) + ")";
   }
 };
 

@@ -72,6 +72,7 @@ class HypreAmgBackend : public hypre_detail::HypreBackend {
       set_vector(x_, values);
       ColumnSolve out;
       if (gmres_) {
+        out.method = "GMRES";
         out.error = HYPRE_ParCSRGMRESSolve(solver_, parcsr_, par_b_, par_x_);
         HYPRE_GMRESGetNumIterations(solver_, &out.iterations);
         HYPRE_GMRESGetFinalRelativeResidualNorm(solver_, &out.residual);

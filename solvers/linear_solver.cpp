@@ -11,7 +11,9 @@
 #include <limits>
 #include <sstream>
 #include <thread>
+#include <utility>
 
+#include "column_scaling.h"
 #include "stencil_operator.h"
 
 namespace coons::solvers {
@@ -126,6 +128,18 @@ void return_zero_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveS
   X.setZero(B.rows(), 3);
   summary.relative_residual = B.isZero(0) ? 0 : 1;
 }
+
+// X = A⁻¹B by `solve` (a backend's do_solve), with each column of B whose largest magnitude is far
+// from 1 scaled by a power of two to one in [1/2, 1) and X scaled back: exact, and no backend's
+// squared norms underflow or overflow (column_scaling.h). A zero column stays zero.
+template <class Solve>
+SolveStatus solve_scaled(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, Solve&& solve) {
+  const ColumnExponents e = rhs_exponents(B);
+  if (is_identity(e)) return solve(B, X);
+  const SolveStatus status = solve(scaled_columns(B, e, -1), X);
+  if (X.rows() == B.rows()) X = scaled_columns(std::move(X), e, +1);
+  return status;
+}
 }  // namespace
 
 SolveStatus LinearSolver::analyze(const LinearOperator& op) {
@@ -174,7 +188,8 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
   summary_.message.clear();
   summary_.relative_residual = 0;
   solve_start_ = std::chrono::steady_clock::now();
-  summary_.status = do_solve(B, X, summary_);
+  summary_.status =
+      solve_scaled(B, X, [&](const Eigen::MatrixX3d& Bs, Eigen::MatrixX3d& Xs) { return do_solve(Bs, Xs, summary_); });
   summary_.solve_seconds = seconds_since(solve_start_);
   judge_solution(B, X);
   return summary_;
@@ -182,32 +197,47 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
 
 void LinearSolver::judge_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
   if (!options_.compute_residual || X.rows() != B.rows()) return;
+  // The verdict on the system as the backend saw it, B's columns scaled as solve_scaled scales
+  // them (the same relative residuals, without underflow or overflow); X itself is changed only
+  // by a refinement.
+  const ColumnExponents e = rhs_exponents(B);
+  const bool scaled = !is_identity(e);
+  Eigen::MatrixX3d B_scaled, X_scaled;
+  if (scaled) {
+    B_scaled = scaled_columns(B, e, -1);
+    X_scaled = scaled_columns(X, e, -1);
+  }
+  const Eigen::MatrixX3d& Bs = scaled ? B_scaled : B;
+  Eigen::MatrixX3d& Xs = scaled ? X_scaled : X;
   if (exact()) {
-    judge_exact_solve(op_, B, X, summary_);
+    judge_exact_solve(op_, Bs, Xs, summary_);
     return;
   }
   if (!summary_.ok()) return;  // keeps the residual its message names (finish_iteration set it)
   // An iteration that stopped on its own test (often a recursively updated residual, which drifts
   // from the true one near the rounding floor): the true residual decides. Above the tolerance,
   // up to kRefinementRounds corrections X += A⁻¹(B − A X) by the same backend, then not_converged.
-  double r = relative_residual(op_, B, X);
+  double r = relative_residual(op_, Bs, Xs);
   int rounds = 0;
   while (std::isfinite(r) && r > options_.tolerance && rounds < kRefinementRounds && !out_of_time()) {
     ++rounds;
     Eigen::MatrixXd AX;
-    if (!apply_operator(op_, X, AX)) break;
-    const Eigen::MatrixX3d R = B - AX;
+    if (!apply_operator(op_, Xs, AX)) break;
+    const Eigen::MatrixX3d R = Bs - AX;
     Eigen::MatrixX3d D;
     SolveSummary correction = summary_;
-    if (do_solve(R, D, correction) != SolveStatus::kSuccess || !D.allFinite()) break;
+    const SolveStatus status = solve_scaled(
+        R, D, [&](const Eigen::MatrixX3d& Rs, Eigen::MatrixX3d& Ds) { return do_solve(Rs, Ds, correction); });
+    if (status != SolveStatus::kSuccess || !D.allFinite()) break;
     summary_.iterations += correction.iterations;
-    const Eigen::MatrixX3d refined = X + D;
-    const double next = relative_residual(op_, B, refined);
+    const Eigen::MatrixX3d refined = Xs + D;
+    const double next = relative_residual(op_, Bs, refined);
     if (!(next < r)) break;
-    X = refined;
+    Xs = refined;
+    if (scaled) X = scaled_columns(refined, e, +1);
     r = next;
   }
-  if (!std::isfinite(r)) {
+  if (!std::isfinite(r) || (scaled && !X.allFinite())) {  // (X scaled back can overflow)
     summary_.relative_residual = std::numeric_limits<double>::max();
     summary_.status = SolveStatus::kFailure;
     summary_.message = "the solution is not finite (overflow)";
@@ -292,7 +322,8 @@ Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const s
 
 SolveStatus LinearSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                                          Eigen::MatrixX3d& X, SolveSummary& summary) {
-  return do_solve(combine_rhs(basis, weights, op_.size()), X, summary);
+  return solve_scaled(combine_rhs(basis, weights, op_.size()), X,
+                      [&](const Eigen::MatrixX3d& Bs, Eigen::MatrixX3d& Xs) { return do_solve(Bs, Xs, summary); });
 }
 
 std::unique_ptr<LinearSolver> LinearSolver::make_sweep_worker(const std::vector<Eigen::MatrixX3d>& /*basis*/,
@@ -391,15 +422,12 @@ double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B, co
   if (B.rows() == 0) return 0;
   Eigen::MatrixXd AX;
   if (!apply_operator(op, X, AX)) return NAN;
-  // stableNorm: a column of 1e-170s or 1e+170s has squares that underflow or overflow, and a plain
-  // norm() would call an unsolved X a perfect one (0/0 skipped, inf/inf = NaN lost in std::max).
   double worst = 0;
   for (int k = 0; k < 3; ++k) {
-    const double b = B.col(k).stableNorm();
-    const double r = (AX.col(k) - B.col(k)).stableNorm();
-    const double q = b > 0 ? r / b : r;
-    if (std::isnan(q)) return NAN;
-    worst = std::max(worst, q);
+    AX.col(k) -= B.col(k);
+    const double r = relative_norm(AX.col(k), B.col(k));  // no underflow or overflow of ‖·‖²
+    if (std::isnan(r)) return r;                          // (std::max would drop it)
+    worst = std::max(worst, r);
   }
   return worst;
 }

@@ -123,7 +123,7 @@ class Cholmod : public LinearSolver {
     cholmod_factorize(&A, factor_, &common_);
     summary.factor_nnz = static_cast<long long>(common_.lnz);
     if (common_.status == CHOLMOD_NOT_POSDEF) {
-      summary.message = "not positive definite at column " + std::to_string(factor_->minor);
+      summary.message = not_positive_definite_message();
       return SolveStatus::kNotPositiveDefinite;
     }
     if (common_.status < CHOLMOD_OK) {
@@ -148,6 +148,16 @@ class Cholmod : public LinearSolver {
   }
 
  private:
+  // "not positive definite at column K (pivot P of the amd ordering)": L->minor is the failed pivot
+  // P in CHOLMOD's fill-reducing order, L->Perm[P] the column K of the matrix it belongs to.
+  [[nodiscard]] std::string not_positive_definite_message() const {
+    const auto pivot = std::size_t(factor_->minor);
+    const auto* perm = static_cast<const int*>(factor_->Perm);
+    if (pivot >= factor_->n || !perm) return "not positive definite at pivot " + std::to_string(pivot);
+    return "not positive definite at column " + std::to_string(perm[pivot]) + " (pivot " + std::to_string(pivot) +
+           " of the " + cholmod_ordering_name(factor_->ordering) + " ordering)";
+  }
+
   // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does.
   SolveStatus judge_ldlt_diagonal(SolveSummary& summary) const {
     const auto* p = static_cast<const int*>(factor_->p);

@@ -55,6 +55,18 @@ TEST_CASE("backward_error: a perturbed solution has the Oettli-Prager value", "[
   CHECK(relative_residual(A, perturbed, B) == Approx(std::sqrt(0.05) / 5).epsilon(1e-14));
 }
 
+TEST_CASE("relative_residual: right-hand sides near underflow or overflow give the unscaled ratio", "[solvers]") {
+  const Eigen::SparseMatrix<double> A = random_nonsymmetric(40, 5);
+  const Eigen::MatrixXd X = Eigen::MatrixXd::Random(40, 2);
+  const Eigen::MatrixXd B = A * Eigen::MatrixXd::Random(40, 2);  // X is far from the solution
+  const double plain = relative_residual(A, X, B);
+  REQUIRE(plain > 0.1);
+  for (const int e : {-600, 540}) {  // squares of about 1e-361 and 1e+325
+    const double scale = std::ldexp(1.0, e);
+    CHECK(relative_residual(A, X * scale, B * scale) == Approx(plain).epsilon(1e-14));
+  }
+}
+
 TEST_CASE("symmetry_defect: zero for a symmetric matrix, the relative asymmetry otherwise", "[solvers]") {
   const Eigen::SparseMatrix<double> S = sparse_of((Eigen::MatrixXd(2, 2) << 4, -1, -1, 4).finished());
   const Eigen::SparseMatrix<double> N = sparse_of((Eigen::MatrixXd(2, 2) << 4, -1, -0.5, 4).finished());

@@ -6,6 +6,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <string>
 #include <vector>
 
@@ -168,6 +169,28 @@ TEST_CASE("hypre-amg: GMRES solves a nonsymmetric convection-diffusion matrix li
     CHECK(s.relative_residual < 1e-10);
     CHECK(relative_error(X, reference) < 1e-8);
   }
+}
+
+TEST_CASE("hypre-amg: a PCG breakdown is reported as one with the error flag not as the iteration limit",
+          "[solvers][hypre]") {
+  // The 5-point Laplacian shifted by −1 (diagonal 3) on 20×20: symmetric, so PCG, but indefinite,
+  // given without a stencil that would tell. Measured: hypre's PCG stops in its first iteration
+  // with HYPRE_ERROR_CONV (a non-positive step), far below the limit of 500.
+  const StencilOperator grid = make_stencil_operator(20, 20, {0, -1, 0, -1, 3, -1, 0, -1, 0});
+  const Eigen::SparseMatrix<double> A = stencil_operator_matrix(grid);
+  const Eigen::MatrixX3d B = Eigen::MatrixX3d::Ones(A.rows(), 3);
+  LinearOperator lop;
+  lop.matrix = &A;
+  Eigen::MatrixX3d X;
+  const SolveSummary s = make_solver("hypre-amg")->compute_and_solve(lop, B, X);
+  INFO(s.brief_report());
+  CHECK(s.status == SolveStatus::kFailure);
+  CHECK_THAT(s.message, Catch::StartsWith("breakdown: residual "));
+  CHECK_THAT(s.message, Catch::Contains("hypre's PCG stopped with error flag 256, did not converge, before the "
+                                        "iteration limit 500"));
+  CHECK_THAT(s.message, !Catch::Contains("limit 500 reached"));
+  CHECK(s.iterations < 500);
+  CHECK(std::isfinite(s.relative_residual));
 }
 
 TEST_CASE("hypre backends: a zero column is solved exactly and the others as alone", "[solvers][hypre]") {

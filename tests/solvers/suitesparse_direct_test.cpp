@@ -1,0 +1,34 @@
+// The SuiteSparse backends (solvers/suitesparse_direct.cpp; built with SuiteSparse only).
+#include <catch2/catch.hpp>
+#include <string>
+
+#include "coons/config.h"
+#include "coons/mask/assemble_mask_system.h"
+#include "solvers/registry.h"
+#include "support/fixtures.h"
+
+#if COONS_HAVE_SUITESPARSE
+
+using namespace coons;
+using namespace coons::solvers;
+using namespace coons::test;
+
+TEST_CASE("cholmod: not positive definite names the column of the matrix not the pivot", "[solvers]") {
+  // An SPD mask matrix with one negative diagonal entry: the factorisation fails at that column,
+  // wherever AMD has put it (a principal submatrix without it is still definite).
+  const MaskSystem s = assemble_mask_system(make_random_net(11, 13, 43), alpha_mask(0.1));
+  for (const int column : {0, 37, 71, int(s.A.rows()) - 1}) {
+    Eigen::SparseMatrix<double> A = s.A;
+    A.coeffRef(column, column) = -1;
+    LinearOperator op;
+    op.matrix = &A;
+    Eigen::MatrixX3d X;
+    const SolveSummary summary = make_solver("cholmod")->compute_and_solve(op, s.B, X);
+    INFO(summary.brief_report());
+    CHECK(summary.status == SolveStatus::kNotPositiveDefinite);
+    CHECK_THAT(summary.message, Catch::StartsWith("not positive definite at column " + std::to_string(column) + " ("));
+    CHECK_THAT(summary.message, Catch::Contains("of the amd ordering)"));
+  }
+}
+
+#endif  // COONS_HAVE_SUITESPARSE
