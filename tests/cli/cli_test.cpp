@@ -590,3 +590,21 @@ TEST_CASE("coons solve: a singular alpha mask system is refused by every backend
   // a near value is solved
   CHECK(run_coons("solve " + flat3 + " --alpha 0.49 --solver eigen-lu").status == 0);
 }
+
+TEST_CASE("coons refit: a curve with a pole between the reader's samples is bad input naming the curve", "[cli]") {
+  // z = 0.001/(t − 0.3) + a linear term that makes it vanish at both ends: finite at the reader's
+  // 65 samples t = k/64, infinite at t = 0.3, which the fit samples
+  TempDir dir;
+  const json doc = json::parse(R"json({
+    "bottom": [[0, 0, 0], [1, 0, 0]], "top": [[0, 1, 0], [1, 1, 0]],
+    "left": [[0, 0, 0], [0, 1, 0]], "right": [[1, 0, 0], [1, 1, 0]],
+    "curves": {"bottom": {"expr": ["t", "0", "0.001/(t-0.3)+0.001/0.3-t*(0.001/0.7+0.001/0.3)"]},
+               "top": {"expr": ["t", "1", "0"]}, "left": {"expr": ["0", "t", "0"]},
+               "right": {"expr": ["1", "t", "0"]}}})json");
+  const std::string file = dir.write("pole.json", doc.dump());
+  const CommandResult r = run_coons("refit " + quoted(file) + " --degree 3 3");
+  INFO(r.out << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(contains(r.err, "pole.json: curves.bottom: is not finite between the samples"));
+}
