@@ -298,6 +298,11 @@ bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r) {
   return is_classical(input) && r.mask_kind == MaskKind::kAlpha;
 }
 
+void check_classical_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source) {
+  if (r.method != Method::kAlpha) return;
+  require_valid_problem(stencil_problem(input), alpha_stencil(r.mask), source);
+}
+
 Stencil request_stencil(const ResolvedRequest& r) { return r.stencil ? *r.stencil : alpha_stencil(r.mask); }
 
 void require_one_ring(const BoundaryFile& input, const std::string& source, const std::string& what) {

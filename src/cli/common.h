@@ -107,6 +107,11 @@ void require_one_ring(const BoundaryFile& input, const std::string& source, cons
 //! memory estimates.
 int stencil_nonzeros(const ResolvedRequest& r);
 bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r);
+//! The stencil path's check (require_valid_problem) for a classical --method alpha request: a mask
+//! system that is singular on this grid (an α outside [−1/4, 1/4] at an eigenvalue of the mask
+//! operator) is an InputError naming the points that decouple, whatever the backend; nothing for
+//! the closed forms.
+void check_classical_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source);
 //! The stencil of a resolved request.
 Stencil request_stencil(const ResolvedRequest& r);
 

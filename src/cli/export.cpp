@@ -67,7 +67,10 @@ int run_export(ExportRequest e) {
   // stencil solve of `coons solve`, checked here, before anything is written.
   const bool classical = is_classical_request(input, r);
   std::optional<StencilRun> run;
-  if (!classical) run = check_stencil_request(input, r, e.boundary);
+  if (!classical)
+    run = check_stencil_request(input, r, e.boundary);
+  else
+    check_classical_request(input, r, e.boundary);
   if (e.cad.any()) check_cad_export(e.cad, e.global.force);
   const bool solve_net = e.obj || e.cad.any();
   if (e.obj)

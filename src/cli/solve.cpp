@@ -44,7 +44,8 @@ int run_solve(const SolveRequest& request) {
   const ResolvedRequest r = resolve(request.net, input.boundary, request.boundary);
   if (!is_classical_request(input, r)) return run_stencil_solve(request, input, r, phases);
   check_net_memory(request.global, input.boundary, r.solver, request.boundary);
-  phases.start("solve");  // assembling included
+  phases.start("solve");  // the singularity check and assembling included
+  check_classical_request(input, r, request.boundary);
   const NetOutcome outcome = make_net(input.boundary, r);
   phases.start("metrics");
   const nlohmann::json report =

@@ -79,6 +79,13 @@ int run_surface(const SurfaceRequest& r) {
 
   SurfaceReportOptions report_options{r.samples, r.fit_degree, r.corner_tolerance, r.derivative_tolerance, r.reference};
   SurfaceReport made = surface_report(input, reference, report_options);
+  // The reader checked 65 samples of each curve; a pole between them shows in the fits.
+  for (const CurveFitReport& fit : made.fitted.fits)
+    if (!std::isfinite(fit.max_deviation))
+      throw InputError(r.spec, fit.curve,
+                       fmt::format("is not finite between the samples the reader checks (a pole?): its Bezier fit "
+                                   "of degree {} is not finite",
+                                   fit.degree));
   nlohmann::ordered_json& report = made.report;
   const SurfaceSamples& samples = made.samples;
   const FittedNet& fitted = made.fitted;

@@ -253,3 +253,20 @@ TEST_CASE("search_alpha_on_problem: a grid backend or a problem the stencil leav
   CHECK(t.evaluations == 0);
   CHECK_THAT(t.message, Catch::StartsWith("free"));
 }
+
+TEST_CASE("search_weight: a constant net is flat for every objective (no rounding noise read as an optimum)",
+          "[alpha]") {
+  // every point (0.1, 0.2, 0.3): the net is the same for every w; its coordinates' rounding is
+  // no signal
+  StencilProblem p;
+  p.net = ControlNet(4, 4);
+  p.net.points.rowwise() = Eigen::RowVector3d(0.1, 0.2, 0.3);
+  p.rings = 2;
+  for (const char* name : {"thin_plate", "twist", "dirichlet", "e3", "discrete_thin_plate"}) {
+    const AlphaSearchSummary s = search_weight(p, objective_named(name), backend("eigen-ldlt"));
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kFlat);
+    CHECK_FALSE(s.at_bound);
+    CHECK(s.value == 0);
+  }
+}

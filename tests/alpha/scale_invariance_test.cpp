@@ -168,3 +168,18 @@ TEST_CASE("search_alpha_gamma: the optimum is invariant under scaling of the bou
     CHECK(moved.value == Approx(one.value * scale * scale).epsilon(1e-6));
   }
 }
+
+TEST_CASE("search_alpha: a constant boundary is flat for every objective, with value 0", "[alpha]") {
+  // every control point (0.5, 0.5, 0.5): the net is that point for every α
+  Boundary b;
+  b.m = b.n = 3;
+  for (Eigen::MatrixX3d* side : {&b.bottom, &b.top, &b.left, &b.right}) *side = Eigen::MatrixX3d::Constant(4, 3, 0.5);
+  for (const std::string& name : objectives()) {
+    if (name == "target") continue;  // (a sphere about the point: the distance is its radius for every α)
+    const AlphaSearchSummary s = search_alpha(b, objective_named(name, {}), backend("eigen-ldlt"));
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kFlat);
+    CHECK_FALSE(s.at_bound);
+    CHECK(s.value == 0);
+  }
+}

@@ -556,3 +556,67 @@ TEST_CASE("coons solve: options that a request cannot use are bad input, not ign
   }
   CHECK(run_coons("solve " + dome + " --solver mg --threads 2").status == 0);
 }
+
+namespace {
+
+// The JSON boundary of the flat grid (i/m, j/n, 0) of degree (m, n).
+std::string flat_grid_boundary(int m, int n) {
+  auto side = [](int k, const std::function<json(int)>& point) {
+    json s = json::array();
+    for (int i = 0; i <= k; ++i) s.push_back(point(i));
+    return s;
+  };
+  const double dm = m, dn = n;
+  json doc;
+  doc["bottom"] = side(m, [&](int i) { return json{i / dm, 0.0, 0.0}; });
+  doc["top"] = side(m, [&](int i) { return json{i / dm, 1.0, 0.0}; });
+  doc["left"] = side(n, [&](int j) { return json{0.0, j / dn, 0.0}; });
+  doc["right"] = side(n, [&](int j) { return json{1.0, j / dn, 0.0}; });
+  return doc.dump();
+}
+
+}  // namespace
+
+TEST_CASE("coons solve: a singular alpha mask system is refused by every backend as the stencil path refuses it",
+          "[cli]") {
+  // α = 1/2 at degree (3, 3) and α = −1/2 at degree (4, 4) are eigenvalues of the mask operator:
+  // the system is singular but consistent, so some backends return one of its many solutions.
+  TempDir dir;
+  const std::string flat3 = quoted(dir.write("flat3.json", flat_grid_boundary(3, 3)));
+  const std::string flat4 = quoted(dir.write("flat4.json", flat_grid_boundary(4, 4)));
+  for (const std::string solver : {"auto", "eigen-lu", "umfpack", "cholmod", "eigen-ldlt", "gmres", "mg", "bicgstab"}) {
+    if (solver != "auto" && !solvers::find_solver(solver)) continue;
+    for (const std::string& args : {flat3 + " --alpha 0.5", flat4 + " --alpha -0.5"}) {
+      const CommandResult r = run_coons("solve " + args + " --solver " + solver + " --allow-indefinite");
+      INFO(args << " --solver " << solver << "\n" << r.out << r.err);
+      CHECK(r.status == 2);
+      CHECK(r.out.empty());
+      CHECK(contains(r.err, ": the mask system is singular: the free points"));
+      CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+      const CommandResult e =
+          run_coons("export " + args + " --solver " + solver + " --allow-indefinite --out " + quoted(dir.file("out")));
+      CHECK(e.status == 2);
+      CHECK(contains(e.err, "the mask system is singular"));
+    }
+  }
+  // a near value is solved
+  CHECK(run_coons("solve " + flat3 + " --alpha 0.49 --solver eigen-lu").status == 0);
+}
+
+TEST_CASE("coons refit: a curve with a pole between the reader's samples is bad input naming the curve", "[cli]") {
+  // z = 0.001/(t − 0.3) + a linear term that makes it vanish at both ends: finite at the reader's
+  // 65 samples t = k/64, infinite at t = 0.3, which the fit samples
+  TempDir dir;
+  const json doc = json::parse(R"json({
+    "bottom": [[0, 0, 0], [1, 0, 0]], "top": [[0, 1, 0], [1, 1, 0]],
+    "left": [[0, 0, 0], [0, 1, 0]], "right": [[1, 0, 0], [1, 1, 0]],
+    "curves": {"bottom": {"expr": ["t", "0", "0.001/(t-0.3)+0.001/0.3-t*(0.001/0.7+0.001/0.3)"]},
+               "top": {"expr": ["t", "1", "0"]}, "left": {"expr": ["0", "t", "0"]},
+               "right": {"expr": ["1", "t", "0"]}}})json");
+  const std::string file = dir.write("pole.json", doc.dump());
+  const CommandResult r = run_coons("refit " + quoted(file) + " --degree 3 3");
+  INFO(r.out << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(contains(r.err, "pole.json: curves.bottom: is not finite between the samples"));
+}

@@ -267,3 +267,19 @@ TEST_CASE("coons surface --reference: a B-spline net is refused naming its knots
     CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
   }
 }
+
+TEST_CASE("coons surface: a curve with a pole between the reader's samples is bad input naming the curve",
+          "[cli][surfaces]") {
+  // z = 0.001/(t − 0.3) + a linear term that makes it vanish at both ends: finite at the reader's
+  // 65 samples t = k/64, infinite at t = 0.3, which the Bezier fit checks
+  TempDir dir;
+  const std::string spec = dir.write("spole.json",
+                                     R"json({"type": "bilinear-coons",
+          "bottom": {"expr": ["t", "0", "0.001/(t-0.3)+0.001/0.3-t*(0.001/0.7+0.001/0.3)"]},
+          "top": {"expr": ["t", "1", "0"]}, "left": {"expr": ["0", "t", "0"]}, "right": {"expr": ["1", "t", "0"]}})json");
+  const CommandResult r = run_coons("surface " + quoted(spec));
+  INFO(r.out << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(contains(r.err, "spole.json: bottom: is not finite between the samples"));
+}

@@ -107,3 +107,18 @@ TEST_CASE("read_boundary_file: missing files and malformed JSON are input errors
   CHECK_THROWS_AS(read_boundary_file("/nonexistent/boundary.json"), InputError);
   CHECK_THROWS_WITH(read_boundary_file(COONS_DATA_DIR "/README.md"), Catch::Contains("malformed JSON"));
 }
+
+TEST_CASE("parse_boundary: the corner check holds at every scale (no underflow at 1e-170)", "[io]") {
+  // a corner moved by half the boundary's size: refused at scale 1 and at 1e-170 alike, where
+  // norm() of the gap and of the diagonal underflows to 0
+  for (const double scale : {1.0, 1e-100, 1e-170, 1e-300}) {
+    const Boundary b =
+        transformed(make_random_boundary(3, 3, 7), scale * Eigen::Matrix3d::Identity(), Eigen::RowVector3d::Zero());
+    json doc = boundary_to_json(b);
+    INFO("scale " << scale);
+    CHECK_NOTHROW(parse_boundary(doc, "test.json"));
+    doc["bottom"][0][0] = doc["bottom"][0][0].get<double>() + 0.5 * scale;
+    CHECK(field_of_error(doc) == "bottom-left corner");
+    CHECK(bounding_box_diagonal(b) / scale == Approx(bounding_box_diagonal(make_random_boundary(3, 3, 7))));
+  }
+}

@@ -135,3 +135,12 @@ TEST_CASE("parse_surface: coordinates and analytic curves beyond the bound are r
   CHECK(f.field() == "curves[1].expr[2]");
   CHECK(contains(f.reason(), "beyond the bound"));
 }
+
+TEST_CASE("json_integer: an integral float is refused as written, not printed as the integer it equals", "[io]") {
+  // "degree": [3.0, 3] must not read "must be an integer in [1, 2147483647], not 3"
+  CHECK_THROWS_WITH(json_integer(json::parse("3.0"), "f", "degree[0]", 1, 2147483647),
+                    "f: degree[0]: must be an integer in [1, 2147483647], not 3.0 (a float)");
+  CHECK_THROWS_WITH(json_integer(json::parse("1e300"), "f", "k", 1, 10),
+                    "f: k: must be an integer in [1, 10], not 1e+300 (a float)");
+  CHECK_THROWS_WITH(json_integer(json::parse("0.1"), "f", "k", 1, 10), "f: k: must be an integer in [1, 10], not 0.1");
+}

@@ -156,3 +156,22 @@ TEST_CASE("read_market_matrix: a bad file names its line and the reason", "[io]"
   CHECK(error_of("%%MatrixMarket matrix array real general\n1 1\n1\n2\n") ==
         "line 4: more values than the size line says");
 }
+
+TEST_CASE("read_market_matrix: an integer beyond 64 bits is bad input naming its line, not clamped", "[io]") {
+  const TempDir dir;
+  const std::string integer = "%%MatrixMarket matrix coordinate integer general\n2 2 1\n";
+  for (const std::string value : {"99999999999999999999", "-99999999999999999999"}) {
+    const std::string path = dir.write("big.mtx", integer + "1 1 " + value + "\n");
+    try {
+      read_market_matrix(path);
+      FAIL("no error for " << value);
+    } catch (const InputError& e) {
+      CHECK(e.field() == "line 3");
+      CHECK(e.reason() == "the integer '" + value + "' is beyond the 64-bit range");
+    }
+  }
+  // the largest one reads (as the nearest double), and a real that underflows is a finite value
+  CHECK(read_market_matrix(dir.write("max.mtx", integer + "1 1 9223372036854775807\n")).matrix.coeff(0, 0) == 0x1p63);
+  CHECK(read_market_matrix(dir.write("tiny.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 1\n1 1 1e-400\n"))
+            .matrix.coeff(0, 0) == 0);
+}

@@ -90,3 +90,21 @@ TEST_CASE("free_grid_from_json: a 0/1 grid of the net's shape, errors at the ind
   CHECK(error("[[0,0],[0,0,0],[0,0]]") == "b.json: free[1]: must be an array of 2 values 0 or 1");
   CHECK(error("[[0,0],[0,2],[0,0]]") == "b.json: free[1][1]: must be 0 or 1");
 }
+
+TEST_CASE("stencil_from_json: weights near the largest double give their stencil without overflow", "[io]") {
+  // eight neighbours 1e308: their sum overflows, but the stencil is that of weights 1 (α = β = 1/8)
+  const Stencil big = stencil_from_json(
+      json::parse("{\"weights\": [[1e308, 1e308, 1e308], [1e308, null, 1e308], [1e308, 1e308, 1e308]]}"), "big.json");
+  const Stencil one = stencil_from_json(json::parse("{\"weights\": [[1, 1, 1], [1, null, 1], [1, 1, 1]]}"), "one.json");
+  REQUIRE(big.weights.allFinite());
+  CHECK((big.weights - one.weights).cwiseAbs().maxCoeff() == 0);
+  CHECK(big.weights(0, 0) == -0.125);
+  // the centre written out in the same units is accepted, a wrong one named with its implied value
+  CHECK(error_of("{\"weights\": [[1e300, 1e300, 1e300], [1e300, -8e300, 1e300], [1e300, 1e300, 1e300]]}").empty());
+  const std::string wrong =
+      error_of("{\"weights\": [[1e300, 1e300, 1e300], [1e300, 1, 1e300], [1e300, 1e300, 1e300]]}");
+  CHECK(wrong.rfind("s.json: weights[1][1]: the centre is implied by the others (the weights sum to 0): write null, "
+                    "0 or -8",
+                    0) == 0);
+  CHECK(wrong.find("e+300, not 1") != std::string::npos);
+}

@@ -2,7 +2,10 @@
 
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
 
+#include "coons/mask/mask_families.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -90,4 +93,22 @@ TEST_CASE("anisotropic_mask: affine invariant, and isotropic alpha(mu) when m = 
   for (int n : {3, 8, 16})
     for (double alpha : {-0.24, -0.2, -0.1, -0.01})
       CHECK(alpha_from_mu(n, mu_from_alpha(n, alpha)) == Approx(alpha).epsilon(1e-13));
+}
+
+TEST_CASE("anisotropic_mask: finite and affine invariant up to the largest double", "[mask]") {
+  // 4mn + 2μ(m/n + n/m) overflows above about 4.5e307 at degree (2, 3)
+  for (double mu : {1e307, 1e308, 1.7e308, std::numeric_limits<double>::max()}) {
+    const Mask9 mask = anisotropic_mask(2, 3, mu);
+    INFO("mu = " << mu);
+    CHECK(std::isfinite(mask.edge_i));
+    CHECK(std::isfinite(mask.diag));
+    CHECK(std::abs(mask.affine_defect()) < 1e-15);
+    // the limit μ → ∞: e_i = (m/n) / (2(m/n + n/m)), no diagonal weight
+    CHECK(mask.edge_i == Approx((2.0 / 3) / (2 * (2.0 / 3 + 1.5))).epsilon(1e-12));
+    CHECK(std::abs(mask.diag) < 1e-300);
+    const MaskPoint p = mu_family(2, 3, mu);
+    CHECK(std::isfinite(p.derivative.edge_i));
+    CHECK(std::isfinite(p.derivative.edge_j));
+    CHECK(std::isfinite(p.derivative.diag));
+  }
 }

@@ -36,11 +36,18 @@ NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& obje
   bounding_box(boundary, lo, hi);
   if (!lo.allFinite() || !hi.allFinite()) return f;
   const Eigen::RowVector3d half = 0.5 * hi - 0.5 * lo;
-  const double half_diagonal = half.norm();
-  if (!(half_diagonal > 0) || !std::isfinite(half_diagonal)) return f;
+  const double half_diagonal = half.stableNorm();  // norm() underflows to 0 below about 1e-154
+  if (!std::isfinite(half_diagonal)) return f;
   f.centre = 0.5 * lo + 0.5 * hi;
-  // s = 2^k nearest to the diagonal 2·|half|: scaling by it is exact.
-  f.scale = std::ldexp(1.0, int(std::lround(std::log2(half_diagonal))) + 1);
+  // s = 2^k nearest to the diagonal 2·|half|: scaling by it is exact. A one-point boundary keeps
+  // s = 1 but moves to the origin: its nets are then exactly 0, with no rounding noise of the
+  // size of its coordinates for the search to read as a signal.
+  // Below a diagonal of about 2^-537 the value factor s² is 0 and values could not be mapped into
+  // the frame: such a boundary keeps s = 1 (its energies underflow in the caller's units).
+  if (half_diagonal > 0) {
+    const long exponent = std::lround(std::log2(half_diagonal)) + 1;
+    if (2 * exponent >= -1074) f.scale = std::ldexp(1.0, int(exponent));
+  }
   const double inv = 1 / f.scale;
   for (Eigen::MatrixX3d* side : {&f.boundary.bottom, &f.boundary.top, &f.boundary.left, &f.boundary.right})
     *side = moved(*side, f.centre, inv);

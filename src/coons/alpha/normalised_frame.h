@@ -27,7 +27,8 @@ struct NormalisedFrame {
   [[nodiscard]] ControlNet to_original(ControlNet net) const;
 };
 
-//! The frame of `boundary` and `objective` (an empty or one-point boundary: scale 1, centre 0).
+//! The frame of `boundary` and `objective` (an empty boundary: scale 1, centre 0; a one-point
+//! boundary: scale 1, centre the point).
 NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& objective);
 
 }  // namespace coons

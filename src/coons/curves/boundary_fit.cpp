@@ -16,7 +16,7 @@ FittedBoundary fit_boundary(const std::vector<Curve>& sides, int m, int n, const
   for (int k = 0; k < 4; ++k) {
     const BezierFit fit = fit_bezier(sides[k], k < 2 ? m : n);
     *targets[k] = fit.curve.points;
-    out.max_deviation = std::max(out.max_deviation, fit.max_deviation);
+    if (!(fit.max_deviation <= out.max_deviation)) out.max_deviation = fit.max_deviation;  // NaN too
   }
   out.corner_gap = largest_corner_gap(b);
   const double size = std::max(bounding_box_diagonal(b), 1e-300);

@@ -15,8 +15,9 @@ namespace coons {
 //! curves as in docs/formats.md), or nullopt when the file has none. Bad curves throw InputError.
 std::optional<std::vector<Curve>> read_boundary_curves(const std::string& path);
 
-//! fit_boundary, and InputError (naming `source` and the corner) when the curves do not meet at
-//! the corners to 1e-9 of the boundary's size.
+//! fit_boundary, and InputError (naming `source` and the curve) when a fit is not finite (a pole
+//! between the reader's samples), or (naming the corner) when the curves do not meet at the corners
+//! to 1e-9 of the boundary's size.
 FittedBoundary fit_boundary_or_throw(const std::vector<Curve>& sides, int m, int n, const std::string& name,
                                      const std::string& source);
 

@@ -87,6 +87,15 @@ void check_free_inside_rings(const Parser& p, const FreeGrid& free, int rings) {
                            rings));
 }
 
+// |v| without underflow or overflow: v scaled by a power of two first, so that the result is
+// bit for bit norm()'s wherever norm() neither underflows nor overflows (coordinates of 1e-170).
+double scaled_norm(const Eigen::RowVector3d& v) {
+  const double top = v.cwiseAbs().maxCoeff();
+  if (!(top > 0) || !std::isfinite(top)) return v.norm();
+  const int e = std::ilogb(top);
+  return std::ldexp(v.unaryExpr([e](double x) { return std::ldexp(x, -e); }).norm(), e);
+}
+
 double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::RowVector3d hi = -lo;
@@ -95,7 +104,7 @@ double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {
       lo = lo.cwiseMin(list->colwise().minCoeff());
       hi = hi.cwiseMax(list->colwise().maxCoeff());
     }
-  return (hi.array() >= lo.array()).all() ? (hi - lo).norm() : 0.0;
+  return (hi.array() >= lo.array()).all() ? scaled_norm(hi - lo) : 0.0;
 }
 
 Ribbons parse_ribbons(const Parser& p, const json& doc, const Boundary& b, double corner_tolerance) {
@@ -148,7 +157,7 @@ Ribbons parse_ribbons(const Parser& p, const json& doc, const Boundary& b, doubl
       points_diagonal({&b.bottom, &b.top, &b.left, &b.right, &out.bottom, &out.top, &out.left, &out.right});
   const double tolerance = corner_tolerance * std::max(diagonal, 1e-300);
   for (const Shared& s : shared) {
-    const double gap = (s.value - s.other_value).norm();
+    const double gap = scaled_norm(s.value - s.other_value);
     if (!(gap <= tolerance))
       p.fail(s.field, fmt::format("is the same net point as {}, but they disagree by {:.3g} (tolerance {:.3g})",
                                   s.other, gap, tolerance));

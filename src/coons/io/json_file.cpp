@@ -20,7 +20,8 @@ struct TooDeep {};
 
 std::string describe(const nlohmann::json& j) {
   if (j.is_number_integer()) return j.dump();
-  if (j.is_number_float()) return fmt::format("{:.17g}", j.get<double>());
+  // as written (3.0 stays 3.0: a float, however integral, is not an integer here)
+  if (j.is_number_float()) return j.dump() + (j.get<double>() == std::trunc(j.get<double>()) ? " (a float)" : "");
   return fmt::format("a {}", j.type_name());
 }
 

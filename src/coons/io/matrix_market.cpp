@@ -241,11 +241,16 @@ std::optional<long long> parse_index(const std::string& token) {
 // One value of the file's field: a finite number (a whole token), integers for `integer`.
 double parse_value(const std::string& path, const std::string& where, const std::string& token, const Banner& b) {
   char* end = nullptr;
+  errno = 0;
   const double v =
       b.field == "integer" ? double(std::strtoll(token.c_str(), &end, 10)) : std::strtod(token.c_str(), &end);
   if (token.empty() || *end != '\0')
     throw InputError(path, where,
                      fmt::format("'{}' is not {}", token, b.field == "integer" ? "an integer" : "a number"));
+  // strtoll clamps an integer beyond 64 bits to its limit and says so only in errno (strtod's
+  // ERANGE on underflow is a finite value, and overflow is caught as not finite below)
+  if (b.field == "integer" && errno == ERANGE)
+    throw InputError(path, where, fmt::format("the integer '{}' is beyond the 64-bit range", token));
   if (!std::isfinite(v)) throw InputError(path, where, fmt::format("the value '{}' is not finite", token));
   return v;
 }

@@ -62,13 +62,17 @@ Stencil stencil_from_json(const nlohmann::json& doc, const std::string& file) {
                          "breaks the symmetry W(a, b) = W(-a, -b): " + number_text(a) + " here, " + number_text(b) +
                              " at " + index_field("weights", k - 1 - r, k - 1 - c));
     }
+  // Summed in units of the largest weight: weights near the largest double would overflow the
+  // sum (the stencil is the same whatever the units: make_stencil divides by the centre).
+  if (scale > 0) raw /= scale;
   const double centre = -raw.sum();
-  if (!(std::abs(centre) > 1e-12 * scale))
+  if (!(std::abs(centre) > 1e-12))
     throw InputError(file, "weights", "the weights around the centre sum to 0, so the implied centre is 0");
-  if (centre_given && given_centre != 0 && std::abs(given_centre - centre) > 1e-9 * std::max(scale, std::abs(centre)))
+  const double given = given_centre / scale;  // finite unless the centre dwarfs every other weight
+  if (centre_given && given_centre != 0 && !(std::abs(given - centre) <= 1e-9 * std::max(1.0, std::abs(centre))))
     throw InputError(file, index_field("weights", R, R),
                      "the centre is implied by the others (the weights sum to 0): write null, 0 or " +
-                         number_text(centre) + ", not " + number_text(given_centre));
+                         number_text(centre * scale) + ", not " + number_text(given_centre));
   raw(Eigen::Index(R), Eigen::Index(R)) = centre;
   return make_stencil(raw);
 }

@@ -1,5 +1,7 @@
 #include "mask_families.h"
 
+#include <cmath>
+
 namespace coons {
 
 MaskPoint alpha_family(double alpha) { return {alpha_mask(alpha), Mask9{-1, -1, 1}}; }
@@ -9,6 +11,10 @@ MaskPoint mu_family(int m, int n, double mu) {
   const double D = 4 * mn + 2 * mu * (r + s), dD = 2 * (r + s);
   MaskPoint p;
   p.mask = anisotropic_mask(m, n, mu);
+  if (!std::isfinite(D)) {  // μ near the largest double: d/dμ ~ 1/μ² underflows to 0
+    p.derivative = Mask9{0, 0, 0};
+    return p;
+  }
   p.derivative.diag = mn * dD / (D * D);
   p.derivative.edge_i = (r * D - (2 * mn + mu * r) * dD) / (D * D);
   p.derivative.edge_j = (s * D - (2 * mn + mu * s) * dD) / (D * D);

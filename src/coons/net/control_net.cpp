@@ -1,6 +1,21 @@
 #include "control_net.h"
 
+#include <cmath>
+
 namespace coons {
+
+namespace {
+
+// |v| without underflow or overflow: v scaled by a power of two first, so that the result is
+// bit for bit norm()'s wherever norm() neither underflows nor overflows (coordinates of 1e-170).
+double scaled_norm(const Eigen::RowVector3d& v) {
+  const double top = v.cwiseAbs().maxCoeff();
+  if (!(top > 0) || !std::isfinite(top)) return v.norm();
+  const int e = std::ilogb(top);
+  return std::ldexp(v.unaryExpr([e](double x) { return std::ldexp(x, -e); }).norm(), e);
+}
+
+}  // namespace
 
 Boundary boundary_of(const ControlNet& net, std::string name) {
   Boundary b;
@@ -37,10 +52,10 @@ ControlNet frame_net(const Boundary& b) {
 
 CornerGap largest_corner_gap(const Boundary& b) {
   const CornerGap gaps[] = {
-      {"bottom-left", (b.bottom.row(0) - b.left.row(0)).norm()},
-      {"bottom-right", (b.bottom.row(b.m) - b.right.row(0)).norm()},
-      {"top-left", (b.top.row(0) - b.left.row(b.n)).norm()},
-      {"top-right", (b.top.row(b.m) - b.right.row(b.n)).norm()},
+      {"bottom-left", scaled_norm(b.bottom.row(0) - b.left.row(0))},
+      {"bottom-right", scaled_norm(b.bottom.row(b.m) - b.right.row(0))},
+      {"top-left", scaled_norm(b.top.row(0) - b.left.row(b.n))},
+      {"top-right", scaled_norm(b.top.row(b.m) - b.right.row(b.n))},
   };
   CornerGap worst = gaps[0];
   for (const auto& g : gaps)
@@ -54,7 +69,7 @@ double bounding_box_diagonal(const Boundary& b) {
     lo = lo.cwiseMin(side->colwise().minCoeff());
     hi = hi.cwiseMax(side->colwise().maxCoeff());
   }
-  return (hi - lo).norm();
+  return scaled_norm(hi - lo);
 }
 
 }  // namespace coons

@@ -3,8 +3,8 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstdlib>
 #include <sstream>
-#include <stdexcept>
 #include <vector>
 
 #include "coons/io/boundary_io.h"
@@ -22,13 +22,17 @@ std::vector<double> numbers_after_colon(const std::string& spec, size_t count, c
   std::vector<double> out;
   std::stringstream in(spec.substr(spec.find(':') + 1));
   for (std::string item; std::getline(in, item, ',');) {
-    try {
-      size_t used = 0;
-      out.push_back(std::stod(item, &used));
-      if (used != item.size() || !std::isfinite(out.back())) throw std::invalid_argument(item);
-    } catch (const std::exception&) {
+    // strtod, not stod: stod refuses a value that underflows (1e-320, a subnormal) as out of range
+    char* end = nullptr;
+    const double x = std::strtod(item.c_str(), &end);
+    if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
       throw InputError("command line", field, "'" + item + "' is not a finite number");
-    }
+    if (std::abs(x) > kMaxCoordinate)
+      throw InputError("command line", field,
+                       fmt::format("'{}' is beyond the bound |x| <= {:g} of coordinates (distances and energies "
+                                   "scale with it and would overflow; scale the model down)",
+                                   item, kMaxCoordinate));
+    out.push_back(x);
   }
   if (out.size() != count)
     throw InputError("command line", field, fmt::format("'{}' needs {} numbers after the colon", spec, count));
@@ -48,7 +52,7 @@ Eigen::RowVector3d vec3(const json& j, const std::string& source, const std::str
   for (int k = 0; k < 3; ++k) {
     if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
       throw InputError(source, field, "must be [x, y, z] of finite numbers");
-    p(k) = j[k].get<double>();
+    p(k) = json_coordinate(j[k], source, field, fmt::format("coordinate {}", k));
   }
   return p;
 }
@@ -56,7 +60,7 @@ Eigen::RowVector3d vec3(const json& j, const std::string& source, const std::str
 double positive(const json& j, const std::string& source, const std::string& field) {
   if (!j.is_number() || !(j.get<double>() > 0) || !std::isfinite(j.get<double>()))
     throw InputError(source, field, "must be a positive finite number");
-  return j.get<double>();
+  return json_coordinate(j, source, field, "the radius");
 }
 
 }  // namespace

@@ -198,7 +198,7 @@ FittedNet fitted_net(const Surface& s, int fit_degree) {
       if (fit.max_deviation <= rounding) break;
     }
     out.fits.push_back({field, fit.curve.degree(), fit.max_deviation});
-    out.max_curve_deviation = std::max(out.max_curve_deviation, fit.max_deviation);
+    if (!(fit.max_deviation <= out.max_curve_deviation)) out.max_curve_deviation = fit.max_deviation;  // NaN too
     return fit.curve;
   });
   out.net = *approx.bezier_net();

@@ -1,0 +1,67 @@
+// Targets of the α search: --target specifications and a boundary file's "target", their numbers
+// bounded as coordinates are (json_file.h: kMaxCoordinate).
+#include "coons/study/target.h"
+
+#include <catch2/catch.hpp>
+#include <nlohmann/json.hpp>
+#include <string>
+
+#include "coons/io/input_error.h"
+#include "coons/net/control_net.h"
+
+using namespace coons;
+using nlohmann::json;
+
+namespace {
+
+// The message of the InputError that resolving `spec` throws ("" when it does not throw).
+std::string spec_error(const std::string& spec) {
+  try {
+    (void)resolve_target(spec, "b.json", Boundary{}, 41);
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+std::string file_error(const std::string& text) {
+  try {
+    (void)target_from_json(json::parse(text), "t.json");
+  } catch (const InputError& e) {
+    return e.what();
+  }
+  return "";
+}
+
+}  // namespace
+
+TEST_CASE("resolve_target: numbers beyond the coordinate bound are bad input naming --target", "[study]") {
+  for (const std::string spec :
+       {"sphere:0,0,0,1e200", "sphere:1e61,0,0,1", "plane:0,0,0,0,0,1e200", "cylinder:0,0,0,0,0,1,-1e200"}) {
+    INFO(spec);
+    CHECK(spec_error(spec).rfind("command line: --target: '", 0) == 0);
+    CHECK(spec_error(spec).find("beyond the bound |x| <= 1e+60") != std::string::npos);
+  }
+  CHECK(spec_error("sphere:0,0,0,1e60").empty());
+}
+
+TEST_CASE("resolve_target: a value that underflows is a finite number, not out of range", "[study]") {
+  CHECK(spec_error("sphere:0,0,0,1e-320").empty());
+  CHECK(resolve_target("sphere:0,0,0,1e-320", "b.json", Boundary{}, 41)->radius == 1e-320);
+  CHECK(resolve_target("sphere:1e-400,0,0,1", "b.json", Boundary{}, 41)->point.x() == 0);
+  // what stod also refused stays refused
+  for (const std::string spec : {"sphere:0,0,0,1e999", "sphere:0,0,0,x", "sphere:0,0,,1", "sphere:0,0,0,1 "})
+    CHECK(spec_error(spec).find("is not a finite number") != std::string::npos);
+}
+
+TEST_CASE("target_from_json: numbers beyond the coordinate bound are bad input naming the field", "[study]") {
+  const std::string radius = file_error(R"({"target": {"sphere": {"center": [0, 0, 0], "radius": 1e200}}})");
+  CHECK(radius.rfind("t.json: target.sphere.radius: the radius is ", 0) == 0);
+  CHECK(radius.find("e+199, beyond the bound |x| <= 1e+60") != std::string::npos);
+  const std::string centre = file_error(R"({"target": {"sphere": {"center": [0, 1e200, 0], "radius": 1}}})");
+  CHECK(centre.rfind("t.json: target.sphere.center: coordinate 1 is ", 0) == 0);
+  CHECK(centre.find("e+199, beyond the bound |x| <= 1e+60") != std::string::npos);
+  CHECK(file_error(R"({"target": {"plane": {"point": [0, 0, 0], "normal": [0, 0, 1e200]}}})")
+            .rfind("t.json: target.plane.normal: coordinate 2", 0) == 0);
+  CHECK(file_error(R"({"target": {"sphere": {"center": [0, 0, 0], "radius": 1e-320}}})").empty());
+}
