@@ -281,9 +281,10 @@ TEST_CASE("coons solve: a failing solver prints its report and one error line (e
 TEST_CASE("coons solve export and batch: a failed solve reports the relative residual of X = 0, which is 1",
           "[cli][loud]") {
   TempDir dir;
-  // α = −1/2 makes the dome's system singular: Cholesky stops at a non-positive pivot and X = 0
-  // (the report and the error line used to say "relative residual 0", as for a perfect solve)
-  const std::string args = quoted(dome()) + " --solver eigen-llt --alpha -0.5 --allow-indefinite";
+  // α = −0.6 makes the dome's 2×2 system indefinite (eigenvalues 1/2 + α, 1 + α, 3/2 − 3α):
+  // Cholesky stops at a non-positive pivot and X = 0 (the report and the error line used to say
+  // "relative residual 0", as for a perfect solve). (α = −1/2 is singular: refused as input.)
+  const std::string args = quoted(dome()) + " --solver eigen-llt --alpha -0.6 --allow-indefinite";
   for (const std::string& command : {"solve " + args, "export " + args + " --out " + quoted(dir.file("e"))}) {
     const CommandResult r = run_coons(command);
     INFO(command << "\n" << r.err);
