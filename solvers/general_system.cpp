@@ -25,7 +25,7 @@ double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::Matr
   double worst = 0;
   for (Eigen::Index c = 0; c < B.cols(); ++c) {
     const double q = relative_norm(B.col(c) - AX.col(c), B.col(c));  // no underflow of ‖·‖²
-    if (std::isnan(q)) return NAN;  // (std::max would drop it)
+    if (std::isnan(q)) return NAN;                                   // (std::max would drop it)
     worst = std::max(worst, q);
   }
   return worst;
