@@ -245,7 +245,7 @@ TEST_CASE("coons solve and export: the singular member c*_n of a triangle is ref
   for (const std::string solver : {"gmres", "bicgstab", "eigen-lu"}) {
     for (const std::string& command : {std::string("solve"), "export --out " + quoted(dir.file("e-" + solver))}) {
       const CommandResult r =
-          run_coons(command + " " + quoted(file) + " --alpha -0.6666666666666666 --solver " + solver);
+          run_coons(fmt::format("{} {} --alpha -0.6666666666666666 --solver {}", command, quoted(file), solver));
       INFO(command << " " << solver << ": " << r.err);
       CHECK(r.status == 2);
       CHECK(r.out.empty());
