@@ -19,11 +19,14 @@ using Lu = Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>>;
 constexpr double kSingularPivot = 1e-13;
 
 // LDLᵀ without pivoting is only stable on definite matrices: a negative entry of D is reported
-// as "not positive definite", a zero one as "singular".
+// as "not positive definite", a zero one as "singular". A pivot that is exactly zero during the
+// factorisation proves nothing more than "not definite": [[0, 1], [1, 0]] is regular.
 SolveStatus judge(const Ldlt& f, SolveSummary& summary) {
   if (f.info() != Eigen::Success) {
-    summary.message = "LDLT met a zero pivot";
-    return SolveStatus::kSingular;
+    summary.message =
+        "LDLT met a zero pivot: the matrix is not positive definite (singular, or indefinite: LDLT does "
+        "not pivot)";
+    return SolveStatus::kNotPositiveDefinite;
   }
   summary.factor_nnz = static_cast<long long>(f.matrixL().nestedExpression().nonZeros());
   const Eigen::VectorXd d = f.vectorD();

@@ -61,8 +61,17 @@ class EigenIterative : public LinearSolver {
     else
       krylov_.compute(*op.matrix);
     if (krylov_.info() != Eigen::Success) {
-      summary.message = "the preconditioner could not be computed";
-      return definite_only_ ? SolveStatus::kNotPositiveDefinite : SolveStatus::kSingular;
+      if (definite_only_) {  // incomplete Cholesky met a non-positive pivot
+        summary.message = "the preconditioner could not be computed";
+        return SolveStatus::kNotPositiveDefinite;
+      }
+      // Empty rows were refused above; IncompleteLUT fails only when a row's sum of squares is 0,
+      // which for nonzero entries is underflow (entries below about 1e-154), not singularity:
+      // diag(1e-200, 1e-200) is perfectly conditioned.
+      summary.message =
+          "the incomplete-LU preconditioner could not be computed (a row norm underflows: entries below "
+          "about 1e-154)";
+      return SolveStatus::kNotApplicable;
     }
     return SolveStatus::kSuccess;
   }

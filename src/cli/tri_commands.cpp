@@ -7,6 +7,7 @@
 #include <cmath>
 #include <filesystem>
 #include <iostream>
+#include <optional>
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
@@ -86,6 +87,20 @@ std::string without_spaces(const std::string& given) {
   return out;
 }
 
+// c*ₙ makes the system singular (the bubble i·j·k is a null vector): with a consistent right-hand
+// side an iterative backend then returns one of many nets and calls it a success, so every
+// backend is refused the same way, as for a singular rectangle. 1e-12: within it the condition
+// number exceeds 1e12.
+void refuse_singular_member(const tri::TriBoundary& b, double c, const std::string& path) {
+  const std::optional<double> star = tri::bubble_singular_c(b.n);
+  if (star && std::abs(c - *star) <= 1e-12 * std::abs(*star))
+    throw InputError(
+        path, "--alpha",
+        fmt::format("the mask system is singular: c = {} is the member c*_{} = -1/6 - 1/(2(n-3)) = {:.17g}, "
+                    "at which the bubble i*j*k is a null vector",
+                    c, b.n, *star));
+}
+
 }  // namespace
 
 int run_tri_solve(const std::string& path, const NetRequest& net, const GlobalOptions& global) {
@@ -94,6 +109,7 @@ int run_tri_solve(const std::string& path, const NetRequest& net, const GlobalOp
   const tri::TriBoundary b = read_tri_input(path, net.corner_tolerance);
   const TriRequest r = resolve_tri(net);
   check_tri_memory(global, b.n, r.options.solver, path);
+  refuse_singular_member(b, r.options.mask.c, path);
   phases.start("solve");
   const tri::TriSolveResult result = tri::solve_tri_net(b, r.options);
   phases.start("metrics");
@@ -117,6 +133,7 @@ int run_tri_export(const TriExportArgs& e) {
   check_export_options(e.samples, mtx, true, e.prefix);  // a triangle has --method alpha only
   const bool surface = obj || ply || vtu;
   check_tri_memory(*e.global, b.n, r.options.solver, e.boundary, surface ? samples_bytes(e.samples) / 2 : 0.0);
+  refuse_singular_member(b, r.options.mask.c, e.boundary);
   const std::string prefix = e.prefix.empty() ? safe_file_stem(b.name) : e.prefix;
 
   OutputSet out(e.out_dir);

@@ -232,3 +232,29 @@ TEST_CASE("coons study: a triangular file among the inputs gets its rows in resu
   CHECK(report.find("## 6. Triangular boundaries") != std::string::npos);
   CHECK(report.find("### sphere_octant (triangle, degree 6)") != std::string::npos);
 }
+
+TEST_CASE("coons solve and export: the singular member c*_n of a triangle is refused by every backend", "[cli][tri]") {
+  // A flat degree-4 triangle: its right-hand side is consistent at c*_4 = -2/3, so gmres used to
+  // return one of many nets as a success (a flat triangle must stay flat) while LU said singular.
+  TempDir dir;
+  const std::string file = dir.write("tflat4.json",
+                                     R"json({"name": "tflat4", "type": "triangle", "degree": 4, "sides": [
+        [[1, 0, 0], [0.75, 0.25, 0], [0.5, 0.5, 0], [0.25, 0.75, 0], [0, 1, 0]],
+        [[0, 1, 0], [0, 0.75, 0], [0, 0.5, 0], [0, 0.25, 0], [0, 0, 0]],
+        [[0, 0, 0], [0.25, 0, 0], [0.5, 0, 0], [0.75, 0, 0], [1, 0, 0]]]})json");
+  for (const std::string solver : {"gmres", "bicgstab", "eigen-lu"}) {
+    for (const std::string& command : {std::string("solve"), "export --out " + quoted(dir.file("e-" + solver))}) {
+      const CommandResult r =
+          run_coons(fmt::format("{} {} --alpha -0.6666666666666666 --solver {}", command, quoted(file), solver));
+      INFO(command << " " << solver << ": " << r.err);
+      CHECK(r.status == 2);
+      CHECK(r.out.empty());
+      CHECK(count_lines_starting(r.err, "error: " + file + ": --alpha: the mask system is singular: c = ") == 1);
+    }
+  }
+  // a regular member nearby solves, and the flat triangle stays flat
+  const CommandResult near = run_coons("solve " + quoted(file) + " --alpha -0.6 --solver gmres");
+  REQUIRE(near.status == 0);
+  for (const auto& row : json::parse(near.out)["net"])
+    for (const auto& p : row) CHECK(std::abs(p[2].get<double>()) < 1e-12);
+}

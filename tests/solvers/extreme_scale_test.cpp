@@ -31,3 +31,25 @@ TEST_CASE("iterative solvers: a huge mask weight ends every solve with a status 
     if (summary.ok()) CHECK(relative_residual(op, s.B, X) <= options.tolerance);
   }
 }
+
+TEST_CASE("bicgstab and eigen-ldlt: a regular matrix they cannot factor is not called singular", "[solvers]") {
+  // diag(1e-200, 1e-200) has condition number 1, but IncompleteLUT's row norms underflow;
+  // [[0, 1], [1, 0]] is regular, but LDLT without pivoting meets a zero pivot at once.
+  Eigen::SparseMatrix<double> tiny(2, 2), swap(2, 2);
+  tiny.insert(0, 0) = 1e-200;
+  tiny.insert(1, 1) = 1e-200;
+  swap.insert(0, 1) = 1;
+  swap.insert(1, 0) = 1;
+  const Eigen::MatrixX3d B = Eigen::MatrixX3d::Ones(2, 3);
+  const auto status_of = [&](const char* name, const Eigen::SparseMatrix<double>& A) {
+    LinearOperator op;
+    op.matrix = &A;
+    Eigen::MatrixX3d X;
+    const SolveSummary s = make_solver(name)->compute_and_solve(op, B, X);
+    INFO(name << ": " << s.brief_report());
+    CHECK_FALSE(s.ok());
+    return s.status;
+  };
+  CHECK(status_of("bicgstab", tiny) == SolveStatus::kNotApplicable);
+  CHECK(status_of("eigen-ldlt", swap) == SolveStatus::kNotPositiveDefinite);
+}

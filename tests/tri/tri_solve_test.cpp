@@ -166,6 +166,7 @@ TEST_CASE("assemble_tri_mask_system: the bubble ijk is a null vector at c = -1/6
       REQUIRE((Av.array() - (n / 3.0 + 2 * c * (n - 3))).abs().maxCoeff() < 1e-11 * n * n * n);
     }
     const double c_star = -1.0 / 6 - 1.0 / (2.0 * (n - 3));
+    REQUIRE(bubble_singular_c(n) == c_star);
     const Eigen::MatrixX3d Av = assemble_tri_mask_system(zero, TriMask{c_star}).A * v;
     REQUIRE(Av.cwiseAbs().maxCoeff() < 1e-11 * n * n * n);
     TriSolveOptions options;
@@ -173,6 +174,7 @@ TEST_CASE("assemble_tri_mask_system: the bubble ijk is a null vector at c = -1/6
     const TriSolveResult r = solve_tri_net(boundary_of(random_tri_net(n, 1350 + n)), options);
     REQUIRE_FALSE(r.summary.ok());  // reported, not a wrong answer
     REQUIRE(interior_of(r.net).isZero());
+    REQUIRE_FALSE(bubble_singular_c(3).has_value());
   }
 }
 

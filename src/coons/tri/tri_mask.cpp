@@ -7,6 +7,11 @@
 
 namespace coons::tri {
 
+std::optional<double> bubble_singular_c(int n) {
+  if (n < 4) return std::nullopt;
+  return -1.0 / 6.0 - 1.0 / (2.0 * (n - 3));
+}
+
 bool TriMask::is_valid(std::string* why) const {
   if (std::isfinite(c)) return true;
   if (why) *why = "c must be a finite number";

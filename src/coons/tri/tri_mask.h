@@ -11,6 +11,7 @@
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
 #include <array>
+#include <optional>
 #include <string>
 
 #include "coons/tri/tri_net.h"
@@ -45,6 +46,10 @@ struct TriMaskSystem {
 //! Assemble A and B for the boundary of `net` (its interior is ignored). The matrix is written
 //! column by column straight into compressed storage (no triplets). n < 3 gives an empty system.
 TriMaskSystem assemble_tri_mask_system(const TriNet& net, const TriMask& mask);
+
+//! The member c*ₙ = −1/6 − 1/(2(n − 3)) of degree n ≥ 4, at which the bubble b_ijk = i·j·k is a
+//! null vector of A (the system is singular there; docs/math.md, triangular nets); none for n < 4.
+std::optional<double> bubble_singular_c(int n);
 
 //! ∂B/∂c − (∂A/∂c) X for the solved net: the right-hand side of A·∂X/∂c (one extra solve gives the
 //! derivative of the interior with respect to c): −½·Σ neighbours + Σ far points, #interior by 3.
