@@ -173,3 +173,15 @@ TEST_CASE("parse_boundary: ribbon points that agree within the corner tolerance 
   strict.corner_tolerance = 1e-15;
   CHECK_THROWS_AS(parse_boundary(doc, "b.json", strict), InputError);
 }
+
+TEST_CASE("parse_boundary: a B-spline solve report is refused naming bspline and not read as a Bezier net", "[io]") {
+  // coons solve writes "net" (the B-spline control net) and a "bspline" block (knots, degrees) for
+  // a B-spline boundary; read back as a net file it used to be solved as a Bezier net.
+  const ControlNet net = make_random_net(7, 6, 4);
+  json report = {{"net", net_to_json(net)}, {"degree", {7, 6}}};
+  REQUIRE(error_of(report).empty());
+  report["bspline"] = {{"degree_spline", {3, 3}}, {"knots_u", {0, 0, 0, 0, 0.25, 0.5, 0.75, 1, 1, 1, 1}}};
+  CHECK_THAT(error_of(report), Catch::StartsWith("b.json: bspline: a B-spline solve report"));
+  json knots = {{"net", net_to_json(net)}, {"knots_u", {0, 1}}};
+  CHECK_THAT(error_of(knots), Catch::StartsWith("b.json: knots_u: belongs to the sides form"));
+}

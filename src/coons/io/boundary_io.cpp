@@ -195,6 +195,10 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
     for (const char* field : {"knots_u", "knots_v", "degree_spline"})
       if (doc.contains(field))
         p.fail(field, "belongs to the sides form (B-spline boundary curves); a \"net\" file has no knots");
+    if (doc.contains("bspline"))  // the solve report of a B-spline boundary: its net is not a Bézier net
+      p.fail("bspline",
+             "a B-spline solve report: its \"net\" is a B-spline control net, not a Bezier net; give the "
+             "B-spline boundary file itself");
     if (doc.contains("ribbons"))
       p.fail("ribbons", "belongs to the sides form; a \"net\" holds its data rings itself (use \"rings\")");
     out.rings = parse_rings(p, doc, m, n);
