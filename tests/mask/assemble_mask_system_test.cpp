@@ -112,3 +112,22 @@ TEST_CASE("anisotropic_mask: finite and affine invariant up to the largest doubl
     CHECK(std::isfinite(p.derivative.diag));
   }
 }
+
+TEST_CASE("mask9_eigenvalue_ratio: equals the dense eigenvalues of the mask system and is 0 at a singular alpha",
+          "[mask]") {
+  for (const auto& [m, n] : {std::pair{3, 3}, std::pair{5, 4}, std::pair{7, 11}, std::pair{2, 9}}) {
+    for (const Mask9& mask :
+         {alpha_mask(-0.25), alpha_mask(0.1), alpha_mask(-0.45), alpha_mask(0.6), anisotropic_mask(m, n, 2.5)}) {
+      const MaskSystem s = assemble_mask_system(make_random_net(m, n, 3), mask);
+      const Eigen::VectorXd lambda = Eigen::MatrixXd(s.A).eigenvalues().cwiseAbs();  // symmetric: real
+      INFO(m << "x" << n << " edge " << mask.edge_i << " " << mask.edge_j << " diag " << mask.diag);
+      CHECK(mask9_eigenvalue_ratio(mask, m, n) ==
+            Approx(lambda.minCoeff() / lambda.maxCoeff()).margin(1e-12).epsilon(1e-9));
+    }
+  }
+  // degree (3, 3): eigenvalues 1/2 + α, 1 + α, 3/2 − 3α, so α = ±1/2 are singular
+  CHECK(mask9_eigenvalue_ratio(alpha_mask(-0.5), 3, 3) < 1e-15);
+  CHECK(mask9_eigenvalue_ratio(alpha_mask(0.5), 3, 3) < 1e-15);
+  CHECK(mask9_eigenvalue_ratio(alpha_mask(0.3), 3, 3) > 0.1);
+  CHECK(mask9_eigenvalue_ratio(alpha_mask(0.3), 1, 5) == 1);  // no interior
+}

@@ -1,10 +1,28 @@
 #include "mask9.h"
 
+#include <algorithm>
 #include <cmath>
+#include <vector>
 
 namespace coons {
 
 Mask9 alpha_mask(double alpha) { return {0.25 - alpha, 0.25 - alpha, alpha}; }
+
+double mask9_eigenvalue_ratio(const Mask9& mask, int m, int n) {
+  if (m < 2 || n < 2) return 1;
+  std::vector<double> cq(std::size_t(n - 1));
+  for (int q = 1; q < n; ++q) cq[std::size_t(q - 1)] = std::cos(M_PI * q / n);
+  double smallest = HUGE_VAL, largest = 0;
+  for (int p = 1; p < m; ++p) {
+    const double cp = std::cos(M_PI * p / m);
+    for (const double c : cq) {
+      const double lambda = std::abs(1 - 2 * mask.edge_i * cp - 2 * mask.edge_j * c - 4 * mask.diag * cp * c);
+      smallest = std::min(smallest, lambda);
+      largest = std::max(largest, lambda);
+    }
+  }
+  return largest > 0 ? smallest / largest : 0;
+}
 
 Mask9 anisotropic_mask(int m, int n, double mu) {
   const double mn = double(m) * n, rm = double(m) / n, rn = double(n) / m;

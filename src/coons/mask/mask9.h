@@ -24,6 +24,11 @@ struct Mask9 {
 //! The Farin–Hansford one-parameter family.
 Mask9 alpha_mask(double alpha);
 
+//! min|λ| / max|λ| over the eigenvalues of the mask system on the full (m−1)×(n−1) interior with
+//! one fixed ring: λ_pq = 1 − 2e_i·cos(pπ/m) − 2e_j·cos(qπ/n) − 4d·cos(pπ/m)·cos(qπ/n) (the sine
+//! modes diagonalise it; docs/math.md §3). 0 for a singular system; 1 when there is no interior.
+double mask9_eigenvalue_ratio(const Mask9& mask, int m, int n);
+
 //! The anisotropic mask of the energy ∫‖p_uv‖² + μ∫‖∇p‖² at degree (m, n); μ ≥ 0.
 Mask9 anisotropic_mask(int m, int n, double mu);
 
