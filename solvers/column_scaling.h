@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <cmath>
 #include <cstdlib>
@@ -86,6 +87,20 @@ inline double relative_norm(const Eigen::Ref<const Eigen::VectorXd>& r, const Ei
   const double r_norm = rs.norm(), b_norm = bs.norm();
   if (b_norm > 0) return std::ldexp(r_norm / b_norm, er - eb);
   return std::ldexp(r_norm, er);
+}
+
+//! max over the columns of relative_norm(R.col(c), B.col(c)): the relative residual of both
+//! residual functions (LinearSolver's and bench-matrix's); NaN when any column gives NaN (which
+//! std::max would drop).
+inline double max_relative_norm(const Eigen::Ref<const Eigen::MatrixXd>& R,
+                                const Eigen::Ref<const Eigen::MatrixXd>& B) {
+  double worst = 0;
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    const double q = relative_norm(R.col(c), B.col(c));
+    if (std::isnan(q)) return q;
+    worst = std::max(worst, q);
+  }
+  return worst;
 }
 
 }  // namespace coons::solvers

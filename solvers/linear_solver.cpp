@@ -422,14 +422,8 @@ double relative_residual(const LinearOperator& op, const Eigen::MatrixX3d& B, co
   if (B.rows() == 0) return 0;
   Eigen::MatrixXd AX;
   if (!apply_operator(op, X, AX)) return NAN;
-  double worst = 0;
-  for (int k = 0; k < 3; ++k) {
-    AX.col(k) -= B.col(k);
-    const double r = relative_norm(AX.col(k), B.col(k));  // no underflow or overflow of ‖·‖²
-    if (std::isnan(r)) return r;                          // (std::max would drop it)
-    worst = std::max(worst, r);
-  }
-  return worst;
+  AX -= B;
+  return max_relative_norm(AX, B);  // no underflow or overflow of ‖·‖²
 }
 
 }  // namespace coons::solvers

@@ -87,15 +87,6 @@ void check_free_inside_rings(const Parser& p, const FreeGrid& free, int rings) {
                            rings));
 }
 
-// |v| without underflow or overflow: v scaled by a power of two first, so that the result is
-// bit for bit norm()'s wherever norm() neither underflows nor overflows (coordinates of 1e-170).
-double scaled_norm(const Eigen::RowVector3d& v) {
-  const double top = v.cwiseAbs().maxCoeff();
-  if (!(top > 0) || !std::isfinite(top)) return v.norm();
-  const int e = std::ilogb(top);
-  return std::ldexp(v.unaryExpr([e](double x) { return std::ldexp(x, -e); }).norm(), e);
-}
-
 double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::RowVector3d hi = -lo;

@@ -4,18 +4,12 @@
 
 namespace coons {
 
-namespace {
-
-// |v| without underflow or overflow: v scaled by a power of two first, so that the result is
-// bit for bit norm()'s wherever norm() neither underflows nor overflows (coordinates of 1e-170).
 double scaled_norm(const Eigen::RowVector3d& v) {
   const double top = v.cwiseAbs().maxCoeff();
   if (!(top > 0) || !std::isfinite(top)) return v.norm();
   const int e = std::ilogb(top);
   return std::ldexp(v.unaryExpr([e](double x) { return std::ldexp(x, -e); }).norm(), e);
 }
-
-}  // namespace
 
 Boundary boundary_of(const ControlNet& net, std::string name) {
   Boundary b;

@@ -47,4 +47,8 @@ CornerGap largest_corner_gap(const Boundary& boundary);
 //! Length of the diagonal of the bounding box of all boundary points.
 double bounding_box_diagonal(const Boundary& boundary);
 
+//! |v| without underflow or overflow: v scaled by a power of two first, so that the result is bit
+//! for bit norm()'s wherever norm() neither underflows nor overflows (coordinates of 1e-170).
+double scaled_norm(const Eigen::RowVector3d& v);
+
 }  // namespace coons
