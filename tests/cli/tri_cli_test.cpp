@@ -255,6 +255,7 @@ TEST_CASE("coons solve and export: the singular member c*_n of a triangle is ref
   // a regular member nearby solves, and the flat triangle stays flat
   const CommandResult near = run_coons("solve " + quoted(file) + " --alpha -0.6 --solver gmres");
   REQUIRE(near.status == 0);
-  for (const auto& row : json::parse(near.out)["net"])
+  const json report = json::parse(near.out);  // named: a range-for over a temporary's member dangles
+  for (const auto& row : report.at("net"))
     for (const auto& p : row) CHECK(std::abs(p[2].get<double>()) < 1e-12);
 }
