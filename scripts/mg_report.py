@@ -1,11 +1,13 @@
 #!/usr/bin/env python3
 """Tables of the multigrid iteration counts and of the 1- and 2-thread solves, from bench_solvers JSON.
 
-    python3 scripts/mg_report.py --iterations A.json [B.json ...] [--threads T.json] [--docs docs/solvers.md]
+    python3 scripts/mg_report.py --iterations A.json [B.json ...] [--threads T.json] [--e2e E.json]
+                                 [--docs docs/solvers.md]
 
 --iterations: `bench_solvers --mg-iterations --benchmark_out=...` runs (several files are merged, e.g.
 a run that was split by size); --threads: a BM_Solve run with the threaded backends
-(`--large --backends=fast,dst,mg,fast5,separable-banded`, scripts/bench_mg.sh). Prints Markdown; with --docs it replaces the text between the markers
+(`--large --backends=fast,dst,mg,fast5,separable-banded`, scripts/bench_mg.sh); --e2e: the JSON of
+experiments/benchmarks/bench_solve_e2e.py (one `coons solve` of a 1001x1001 net). Prints Markdown; with --docs it replaces the text between the markers
 <!-- mg-report:begin --> and <!-- mg-report:end --> of that file.
 """
 import argparse
@@ -131,10 +133,25 @@ def threads_table(data):
     return text
 
 
+def e2e_paragraph(e):
+    """Issue 14's end-to-end target: `coons solve` of a 1001×1001 net in at most 2 s."""
+    goal = 2.0
+    wall = e["wall_seconds"]
+    verdict = "met" if wall <= goal else f"missed by {wall / goal:.1f}×"
+    phases = ", ".join(f"{name} {seconds:.2f} s" for name, seconds in e["timing"].items())
+    loads = ", ".join(f"{x:.1f}" for x in e.get("load_avg", []))
+    return (f"End to end (`experiments/benchmarks/bench_solve_e2e.py`; run {e['date']}, load average at the start "
+            f"{loads}): `coons solve` of the dome at degree {e['degree']} ({e['degree'] + 1}×{e['degree'] + 1} net, "
+            f"`--solver {e['solver']}`, one thread) took {wall:.2f} s wall and {e['cpu_seconds']:.2f} s of CPU, "
+            f"{e['max_rss_mb']:.0f} MB at most, for a {e['report_mb']:.0f} MB report; its phases: {phases}. "
+            f"Goal ≤ {goal:g} s: {verdict}.")
+
+
 def main():
     parser = argparse.ArgumentParser(description="multigrid iteration and thread tables")
     parser.add_argument("--iterations", nargs="+", required=True)
     parser.add_argument("--threads")
+    parser.add_argument("--e2e")
     parser.add_argument("--docs")
     args = parser.parse_args()
     runs = [load(path) for path in args.iterations]
@@ -147,6 +164,8 @@ def main():
         th = load(args.threads)
         parts += ["", f"One and two threads (`SolverOptions::threads`; `bench_solvers --large --backends=fast,dst,mg,fast5,separable-banded`, the 5×5 problems in the α column; "
                       f"{load_note(th)}; tolerance 1e−12 for `mg`):", "", threads_table(th)]
+    if args.e2e:
+        parts += ["", e2e_paragraph(load(args.e2e))]
     text = "\n".join(parts) + "\n"
     if args.docs:
         with open(args.docs) as f:

@@ -2,12 +2,15 @@
 """End-to-end `coons solve` of a large net: wall seconds, CPU seconds, maximum resident memory and
 the report's per-phase seconds (its "timing" block), at degree N (default 1000: a 1001x1001 net).
 
-    experiments/benchmarks/bench_solve_e2e.py [--coons build/coons] [--degree 1000] [--solver fast]
+    experiments/benchmarks/bench_solve_e2e.py [--coons build/coons] [--degree 1000] [--solver fast] [--json OUT]
 
 The boundary is the dome of data/boundaries refitted to degree N (`coons refit`); the report goes
-to a temporary file. Needs /usr/bin/time (GNU time) for the memory figure.
+to a temporary file. Needs /usr/bin/time (GNU time) for the memory figure. --json also writes the
+figures as one JSON object (scripts/bench_mg.sh passes it to scripts/mg_report.py, which checks
+issue 14's end-to-end target).
 """
 import argparse
+import datetime
 import json
 import os
 import re
@@ -23,6 +26,7 @@ def main():
     p.add_argument("--coons", default=os.path.join(root, "build", "coons"))
     p.add_argument("--degree", type=int, default=1000)
     p.add_argument("--solver", default="fast")
+    p.add_argument("--json", help="also write the figures here as one JSON object")
     a = p.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
         boundary = os.path.join(tmp, "dome.json")
@@ -47,6 +51,14 @@ def main():
     for phase, seconds in report["timing"].items():
         print(f"  {phase:8s} {seconds:8.3f} s")
     print(f"  e3_energy {report['metrics']['e3_energy']!r}, thin_plate_energy {report['metrics']['thin_plate_energy']!r}")
+    if a.json:
+        figures = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
+                   "load_avg": list(os.getloadavg()), "num_cpus": os.cpu_count(), "degree": a.degree,
+                   "solver": a.solver, "wall_seconds": wall_s, "cpu_seconds": cpu, "max_rss_mb": rss_mb,
+                   "report_mb": size_mb, "timing": report["timing"]}
+        with open(a.json, "w") as f:
+            json.dump(figures, f, indent=1)
+            f.write("\n")
 
 
 if __name__ == "__main__":
