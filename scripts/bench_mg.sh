@@ -16,7 +16,10 @@ if [ "${1:-}" != "--report-only" ]; then
   "$bench" --large --sizes=1023 --alphas=0,-0.1 --backends=fast,dst,mg,fast5,separable-banded \
     --benchmark_filter='MemoryPass|BM_Solve/|BM_AlphaSweep(Threads)?/fast/|BM_Stencil5/(c1-coons|biharmonic|c1-family-0.5)/' \
     --benchmark_format=console --benchmark_out="$out/threads.json" --benchmark_out_format=json
-  python3 experiments/benchmarks/bench_solve_e2e.py --coons "${COONS_BUILD_DIR:-build}/coons" --json "$out/solve_e2e.json"
+  for threads in 1 2; do
+    python3 experiments/benchmarks/bench_solve_e2e.py --coons "${COONS_BUILD_DIR:-build}/coons" --threads $threads \
+      --json "$out/solve_e2e_threads$threads.json"
+  done
 fi
 python3 scripts/mg_report.py --iterations "$out"/mg_iterations*.json --threads "$out/threads.json" \
-  --e2e "$out/solve_e2e.json" --docs docs/solvers.md
+  --e2e "$out"/solve_e2e_threads*.json --docs docs/solvers.md

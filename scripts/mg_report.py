@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Tables of the multigrid iteration counts and of the 1- and 2-thread solves, from bench_solvers JSON.
 
-    python3 scripts/mg_report.py --iterations A.json [B.json ...] [--threads T.json] [--e2e E.json]
+    python3 scripts/mg_report.py --iterations A.json [B.json ...] [--threads T.json] [--e2e E.json ...]
                                  [--docs docs/solvers.md]
 
 --iterations: `bench_solvers --mg-iterations --benchmark_out=...` runs (several files are merged, e.g.
@@ -142,7 +142,7 @@ def e2e_paragraph(e):
     loads = ", ".join(f"{x:.1f}" for x in e.get("load_avg", []))
     return (f"End to end (`experiments/benchmarks/bench_solve_e2e.py`; run {e['date']}, load average at the start "
             f"{loads}): `coons solve` of the dome at degree {e['degree']} ({e['degree'] + 1}×{e['degree'] + 1} net, "
-            f"`--solver {e['solver']}`, one thread) took {wall:.2f} s wall and {e['cpu_seconds']:.2f} s of CPU, "
+            f"`--solver {e['solver']} --threads {e.get('threads', 1)}`) took {wall:.2f} s wall and {e['cpu_seconds']:.2f} s of CPU, "
             f"{e['max_rss_mb']:.0f} MB at most, for a {e['report_mb']:.0f} MB report; its phases: {phases}. "
             f"Goal ≤ {goal:g} s: {verdict}.")
 
@@ -151,7 +151,7 @@ def main():
     parser = argparse.ArgumentParser(description="multigrid iteration and thread tables")
     parser.add_argument("--iterations", nargs="+", required=True)
     parser.add_argument("--threads")
-    parser.add_argument("--e2e")
+    parser.add_argument("--e2e", nargs="+")
     parser.add_argument("--docs")
     args = parser.parse_args()
     runs = [load(path) for path in args.iterations]
@@ -165,7 +165,7 @@ def main():
         parts += ["", f"One and two threads (`SolverOptions::threads`; `bench_solvers --large --backends=fast,dst,mg,fast5,separable-banded`, the 5×5 problems in the α column; "
                       f"{load_note(th)}; tolerance 1e−12 for `mg`):", "", threads_table(th)]
     if args.e2e:
-        parts += ["", e2e_paragraph(load(args.e2e))]
+        parts += ["", " ".join(e2e_paragraph(load(path)) for path in args.e2e)]
     text = "\n".join(parts) + "\n"
     if args.docs:
         with open(args.docs) as f:

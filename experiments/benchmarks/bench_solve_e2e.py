@@ -2,7 +2,7 @@
 """End-to-end `coons solve` of a large net: wall seconds, CPU seconds, maximum resident memory and
 the report's per-phase seconds (its "timing" block), at degree N (default 1000: a 1001x1001 net).
 
-    experiments/benchmarks/bench_solve_e2e.py [--coons build/coons] [--degree 1000] [--solver fast] [--json OUT]
+    experiments/benchmarks/bench_solve_e2e.py [--coons build/coons] [--degree 1000] [--solver fast] [--threads 1] [--json OUT]
 
 The boundary is the dome of data/boundaries refitted to degree N (`coons refit`); the report goes
 to a temporary file. Needs /usr/bin/time (GNU time) for the memory figure. --json also writes the
@@ -26,6 +26,7 @@ def main():
     p.add_argument("--coons", default=os.path.join(root, "build", "coons"))
     p.add_argument("--degree", type=int, default=1000)
     p.add_argument("--solver", default="fast")
+    p.add_argument("--threads", type=int, default=1, help="coons solve --threads (the solver and the energies)")
     p.add_argument("--json", help="also write the figures here as one JSON object")
     a = p.parse_args()
     with tempfile.TemporaryDirectory() as tmp:
@@ -34,7 +35,8 @@ def main():
                         str(a.degree), str(a.degree), "--out", boundary], check=True, stdout=subprocess.DEVNULL)
         out = os.path.join(tmp, "report.json")
         with open(out, "w") as f:
-            r = subprocess.run(["/usr/bin/time", "-v", a.coons, "solve", boundary, "--solver", a.solver], stdout=f,
+            r = subprocess.run(["/usr/bin/time", "-v", a.coons, "solve", boundary, "--solver", a.solver,
+                                "--threads", str(a.threads)], stdout=f,
                                stderr=subprocess.PIPE, text=True)
         if r.returncode != 0:
             sys.exit(f"coons solve failed ({r.returncode}): {r.stderr}")
@@ -46,7 +48,7 @@ def main():
         size_mb = os.path.getsize(out) / 2**20
         with open(out) as f:
             report = json.load(f)
-    print(f"coons solve, degree {a.degree} ({a.degree + 1}x{a.degree + 1} net), --solver {a.solver}")
+    print(f"coons solve, degree {a.degree} ({a.degree + 1}x{a.degree + 1} net), --solver {a.solver} --threads {a.threads}")
     print(f"  wall {wall_s:.2f} s, CPU {cpu:.2f} s, max RSS {rss_mb:.0f} MB, report {size_mb:.0f} MB")
     for phase, seconds in report["timing"].items():
         print(f"  {phase:8s} {seconds:8.3f} s")
@@ -54,7 +56,7 @@ def main():
     if a.json:
         figures = {"date": datetime.datetime.now(datetime.timezone.utc).isoformat(timespec="seconds"),
                    "load_avg": list(os.getloadavg()), "num_cpus": os.cpu_count(), "degree": a.degree,
-                   "solver": a.solver, "wall_seconds": wall_s, "cpu_seconds": cpu, "max_rss_mb": rss_mb,
+                   "solver": a.solver, "threads": a.threads, "wall_seconds": wall_s, "cpu_seconds": cpu, "max_rss_mb": rss_mb,
                    "report_mb": size_mb, "timing": report["timing"]}
         with open(a.json, "w") as f:
             json.dump(figures, f, indent=1)

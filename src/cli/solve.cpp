@@ -48,8 +48,8 @@ int run_solve(const SolveRequest& request) {
   check_classical_request(input, r, request.boundary);
   const NetOutcome outcome = make_net(input.boundary, r);
   phases.start("metrics");
-  const nlohmann::json report =
-      net_report(input.boundary, r.method, r.mask, outcome, request.net.mu, r.picked_automatically, false);
+  const nlohmann::json report = net_report(input.boundary, r.method, r.mask, outcome, request.net.mu,
+                                           r.picked_automatically, false, r.options.threads);
   const bool ok = !outcome.summary || outcome.summary->ok();
   print_net_report(report, ok ? &outcome.net : nullptr, phases);  // the write phase, then timing
   if (outcome.summary && !outcome.summary->ok()) {

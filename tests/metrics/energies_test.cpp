@@ -76,6 +76,22 @@ TEST_CASE("net_metrics: the dense Gram products' energies to 1e-12", "[metrics]"
   }
 }
 
+TEST_CASE("net_metrics: the same metrics bit for bit on 1, 2 and 3 threads", "[metrics]") {
+  // 301 x 281 points: products big enough to be shared out (banded_gram.h)
+  const ControlNet net = make_random_net(300, 280, 5);
+  const NetMetrics one = net_metrics(net, alpha_mask(-0.1));
+  REQUIRE(one.e3_energy > 0);
+  for (int threads : {2, 3}) {
+    INFO("threads = " << threads);
+    const NetMetrics many = net_metrics(net, alpha_mask(-0.1), threads);
+    CHECK(many.twist_energy == one.twist_energy);
+    CHECK(many.dirichlet_energy == one.dirichlet_energy);
+    CHECK(many.thin_plate_energy == one.thin_plate_energy);
+    CHECK(many.e3_energy == one.e3_energy);
+    CHECK(many.mask_residual == one.mask_residual);
+  }
+}
+
 TEST_CASE("gauss_legendre: integrates polynomials of degree 2k-1 exactly", "[metrics]") {
   for (int k = 1; k <= 12; ++k) {
     const QuadratureRule q = gauss_legendre(k);

@@ -38,6 +38,22 @@ TEST_CASE("BandedGram: products equal those of the dense Gram matrix", "[net]") 
   }
 }
 
+TEST_CASE("BandedGram: products on several threads equal the one-thread ones bit for bit", "[net]") {
+  // large enough that 2 and 3 threads are used (a product of a few million multiply-adds stays on one)
+  const int k = 300;
+  const BandedGram banded(k);
+  const Eigen::MatrixXd G = bernstein_gram(k);
+  const Eigen::MatrixXd C = random_matrix(k + 1, k + 1, 7), D = random_matrix(k + 1, k + 1, 8);
+  const Eigen::MatrixXd left = banded.left(C), right = banded.right(D);
+  CHECK((left - G * C).cwiseAbs().maxCoeff() <= 1e-14 / (k + 1));
+  CHECK((right - D * G).cwiseAbs().maxCoeff() <= 1e-14 / (k + 1));
+  for (int threads : {2, 3, 0}) {
+    INFO("threads = " << threads);
+    CHECK(banded.left(C, threads) == left);
+    CHECK(banded.right(D, threads) == right);
+  }
+}
+
 TEST_CASE("BandedGram: holds a band that narrows relative to the degree", "[net]") {
   CHECK(BandedGram(40).stored_fraction() == 1.0);
   const double at_300 = BandedGram(300).stored_fraction(), at_1000 = BandedGram(1000).stored_fraction();

@@ -66,7 +66,7 @@ struct PairForms {
 };
 
 PairForms pair_forms(const ControlNet& X, const ControlNet& Y, const std::vector<std::pair<int, int>>& pairs,
-                     GramCache& gram) {
+                     GramCache& gram, int threads = 1) {
   PairForms forms;
   std::vector<double>& out = forms.value;
   std::vector<double>& rounding = forms.rounding;
@@ -98,14 +98,14 @@ PairForms pair_forms(const ControlNet& X, const ControlNet& Y, const std::vector
       const double dx = same && X.n > 0 ? column_differences(x, 1).norm() : 0;
       for (int b : right_orders) {
         const Eigen::MatrixXd d = column_differences(same ? x : y, b);
-        right[b] = gram(X.n - b).right(d);
+        right[b] = gram(X.n - b).right(d, threads);
         if (same) right_error[b] = product_error(X.n - b, differences_error(0, dx, b), d.norm());
       }
     }
     const double dx = same && X.m > 0 ? row_differences(x, 1).norm() : 0;
     for (int a : left_orders) {
       const Eigen::MatrixXd d = row_differences(x, a);
-      const Eigen::MatrixXd left = gram(X.m - a).left(d);  // G^{m−a} Δ^a X
+      const Eigen::MatrixXd left = gram(X.m - a).left(d, threads);  // G^{m−a} Δ^a X
       const double left_error = same ? product_error(X.m - a, differences_error(0, dx, a), d.norm()) : 0;
       for (std::size_t p = 0; p < pairs.size(); ++p) {
         const auto [pa, pb] = pairs[p];
@@ -321,12 +321,12 @@ double discrete_thin_plate_energy(const ControlNet& net) {
 
 namespace {
 
-NetMetrics net_energies(const ControlNet& net) {
-  // Every pair of the four energies in one pass (8 Gram products).
+NetMetrics net_energies(const ControlNet& net, int threads) {
+  // Every pair of the four energies in one pass (8 Gram products per coordinate).
   const std::vector<std::pair<int, int>> pairs = {{1, 1}, {1, 0}, {0, 1}, {2, 0}, {0, 2},
                                                   {3, 0}, {2, 1}, {1, 2}, {0, 3}};
   GramCache g;
-  const PairForms e = pair_forms(net, net, pairs, g);
+  const PairForms e = pair_forms(net, net, pairs, g, threads);
   NetMetrics out;
   out.twist_energy = weighted_forms(e, {{0, 1.0}});
   out.dirichlet_energy = weighted_forms(e, {{1, 1.0}, {2, 1.0}});
@@ -339,14 +339,14 @@ NetMetrics net_energies(const ControlNet& net) {
 
 }  // namespace
 
-NetMetrics net_metrics(const ControlNet& net, const Mask9& mask) {
-  NetMetrics out = net_energies(net);
+NetMetrics net_metrics(const ControlNet& net, const Mask9& mask, int threads) {
+  NetMetrics out = net_energies(net, threads);
   out.mask_residual = mask_residual(net, mask);
   return out;
 }
 
-NetMetrics net_metrics(const ControlNet& net, const FreeGrid& free, const Stencil& stencil) {
-  NetMetrics out = net_energies(net);
+NetMetrics net_metrics(const ControlNet& net, const FreeGrid& free, const Stencil& stencil, int threads) {
+  NetMetrics out = net_energies(net, threads);
   out.mask_residual = mask_residual(net, free, stencil);
   return out;
 }

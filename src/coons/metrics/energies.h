@@ -77,8 +77,10 @@ struct NetMetrics {
   double twist_energy = 0, thin_plate_energy = 0, dirichlet_energy = 0, e3_energy = 0;
   double discrete_twist_energy = 0, discrete_dirichlet_energy = 0, mask_residual = 0;
 };
-NetMetrics net_metrics(const ControlNet& net, const Mask9& mask);
+//! `threads` (0: every core) share out the Gram products of the exact energies (banded_gram.h):
+//! the metrics are the same bit for bit for every count.
+NetMetrics net_metrics(const ControlNet& net, const Mask9& mask, int threads = 1);
 //! The same energies; mask_residual of `stencil` over the free points (mask_residual.h).
-NetMetrics net_metrics(const ControlNet& net, const FreeGrid& free, const Stencil& stencil);
+NetMetrics net_metrics(const ControlNet& net, const FreeGrid& free, const Stencil& stencil, int threads = 1);
 
 }  // namespace coons

@@ -1,11 +1,40 @@
 #include "banded_gram.h"
 
 #include <algorithm>
+#include <atomic>
 #include <cassert>
+#include <thread>
+#include <vector>
 
 #include "coons/net/bernstein.h"
 
 namespace coons {
+
+namespace {
+
+// body(b) for every block b, on `threads` threads (0: every core) taking blocks in turn; the
+// calling thread is one of them. Small products stay on one thread (a thread costs more than them).
+template <class Body>
+void for_each_block(std::size_t blocks, std::size_t work, int threads, const Body& body) {
+  constexpr std::size_t kWorkPerThread = std::size_t(1) << 22;  // multiply-adds
+  std::size_t count = threads > 0 ? std::size_t(threads) : std::max(1U, std::thread::hardware_concurrency());
+  count = std::min({count, blocks, std::max<std::size_t>(1, work / kWorkPerThread)});
+  if (count <= 1) {
+    for (std::size_t b = 0; b < blocks; ++b) body(b);
+    return;
+  }
+  std::atomic<std::size_t> next{0};
+  auto worker = [&] {
+    for (std::size_t b = next++; b < blocks; b = next++) body(b);
+  };
+  std::vector<std::thread> pool;
+  pool.reserve(count - 1);
+  for (std::size_t t = 1; t < count; ++t) pool.emplace_back(worker);
+  worker();
+  for (std::thread& t : pool) t.join();
+}
+
+}  // namespace
 
 BandedGram::BandedGram(int k) : k_(k) {
   const BernsteinGramEntries entry(k);
@@ -32,19 +61,26 @@ BandedGram::BandedGram(int k) : k_(k) {
   }
 }
 
-Eigen::MatrixXd BandedGram::left(const Eigen::Ref<const Eigen::MatrixXd>& C) const {
+Eigen::MatrixXd BandedGram::left(const Eigen::Ref<const Eigen::MatrixXd>& C, int threads) const {
   assert(C.rows() == k_ + 1);
   Eigen::MatrixXd out(k_ + 1, C.cols());
-  for (const Block& b : blocks_)
-    out.middleRows(b.row, b.entries.rows()).noalias() = b.entries * C.middleRows(b.col, b.entries.cols());
+  for_each_block(
+      blocks_.size(), std::size_t(stored_fraction() * (k_ + 1.0) * (k_ + 1.0)) * C.cols(), threads, [&](std::size_t i) {
+        const Block& b = blocks_[i];
+        out.middleRows(b.row, b.entries.rows()).noalias() = b.entries * C.middleRows(b.col, b.entries.cols());
+      });
   return out;
 }
 
-Eigen::MatrixXd BandedGram::right(const Eigen::Ref<const Eigen::MatrixXd>& C) const {
+Eigen::MatrixXd BandedGram::right(const Eigen::Ref<const Eigen::MatrixXd>& C, int threads) const {
   assert(C.cols() == k_ + 1);
   Eigen::MatrixXd out(C.rows(), k_ + 1);
-  for (const Block& b : blocks_)
-    out.middleCols(b.row, b.entries.rows()).noalias() = C.middleCols(b.col, b.entries.cols()) * b.entries.transpose();
+  for_each_block(blocks_.size(), std::size_t(stored_fraction() * (k_ + 1.0) * (k_ + 1.0)) * C.rows(), threads,
+                 [&](std::size_t i) {
+                   const Block& b = blocks_[i];
+                   out.middleCols(b.row, b.entries.rows()).noalias() =
+                       C.middleCols(b.col, b.entries.cols()) * b.entries.transpose();
+                 });
   return out;
 }
 

@@ -67,7 +67,7 @@ json solver_block(const std::optional<solvers::SolveSummary>& summary, bool pick
 }
 
 json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
-                const std::optional<double>& mu, bool solver_picked_automatically, bool with_net) {
+                const std::optional<double>& mu, bool solver_picked_automatically, bool with_net, int threads) {
   json report;
   report["boundary"] = boundary.name;
   report["degree"] = {boundary.m, boundary.n};
@@ -89,7 +89,7 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
     report["net"] = nullptr;
   else if (with_net)
     report["net"] = net_to_json(outcome.net);
-  report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, mask)) : json(nullptr);
+  report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, mask, threads)) : json(nullptr);
   // the partially bicubic net belongs to no mask: no mask residual to report (not that of α = −1/4)
   if (ok && method == NetMethod::kHermiteCoons) report["metrics"]["mask_residual"] = nullptr;
   return report;

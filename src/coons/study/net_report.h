@@ -36,8 +36,10 @@ nlohmann::json solver_block(const std::optional<solvers::SolveSummary>& summary,
 
 //! The solve report without a timing block; `mu` as given on the command line, if it was. With
 //! `with_net` false a successful net is left out of it, for the caller to write (write_net_json).
+//! `threads` (0: every core) share out the exact energies (net_metrics).
 nlohmann::json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, const NetOutcome& outcome,
-                          const std::optional<double>& mu, bool solver_picked_automatically, bool with_net = true);
+                          const std::optional<double>& mu, bool solver_picked_automatically, bool with_net = true,
+                          int threads = 1);
 
 //! Which mask a stencil report names: `name` as the user gave it ("c1-family", "file:PATH"), the
 //! weight of the C1 family, the 3×3 mask when it is the alpha family (α, β, μ are reported then).
