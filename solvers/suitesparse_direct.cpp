@@ -148,36 +148,45 @@ class Cholmod : public LinearSolver {
   }
 
  private:
-  // "not positive definite at column K (pivot P of the amd ordering)": L->minor is the failed pivot
-  // P in CHOLMOD's fill-reducing order, L->Perm[P] the column K of the matrix it belongs to.
-  [[nodiscard]] std::string not_positive_definite_message() const {
-    const auto pivot = std::size_t(factor_->minor);
+  // "column K (pivot P of the amd ordering)": P is a pivot in CHOLMOD's fill-reducing order,
+  // L->Perm[P] the column K of the matrix it belongs to ("pivot P" when there is no Perm).
+  [[nodiscard]] std::string column_of_pivot(std::size_t pivot) const {
     const auto* perm = static_cast<const int*>(factor_->Perm);
-    if (pivot >= factor_->n || !perm) return "not positive definite at pivot " + std::to_string(pivot);
-    return "not positive definite at column " + std::to_string(perm[pivot]) + " (pivot " + std::to_string(pivot) +
-           " of the " + cholmod_ordering_name(factor_->ordering) + " ordering)";
+    if (pivot >= factor_->n || !perm) return "pivot " + std::to_string(pivot);
+    return "column " + std::to_string(perm[pivot]) + " (pivot " + std::to_string(pivot) + " of the " +
+           cholmod_ordering_name(factor_->ordering) + " ordering)";
   }
 
-  // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does.
+  // The supernodal LLᵀ stops at the failed pivot, L->minor.
+  [[nodiscard]] std::string not_positive_definite_message() const {
+    return "not positive definite at " + column_of_pivot(std::size_t(factor_->minor));
+  }
+
+  // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does, and name
+  // the first one's column as the supernodal message does (LLᵀ would have stopped there: the pivots
+  // before it are those of a definite leading block).
   SolveStatus judge_ldlt_diagonal(SolveSummary& summary) const {
     const auto* p = static_cast<const int*>(factor_->p);
     const auto* x = static_cast<const double*>(factor_->x);
     double scale = 0;
     for (size_t j = 0; j < factor_->n; ++j) scale = std::max(scale, std::abs(x[p[j]]));
     long zero = 0, negative = 0;
+    size_t first_zero = factor_->n, first_negative = factor_->n;
     for (size_t j = 0; j < factor_->n; ++j) {
       const double d = x[p[j]];
-      if (std::abs(d) <= 1e-13 * scale)
-        ++zero;
-      else if (d < 0)
-        ++negative;
+      if (std::abs(d) <= 1e-13 * scale) {
+        if (zero++ == 0) first_zero = j;
+      } else if (d < 0) {
+        if (negative++ == 0) first_negative = j;
+      }
     }
     if (zero) {
-      summary.message = std::to_string(zero) + " zero pivot(s) in D";
+      summary.message = std::to_string(zero) + " zero pivot(s) in D, the first at " + column_of_pivot(first_zero);
       return SolveStatus::kSingular;
     }
     if (negative) {
-      summary.message = std::to_string(negative) + " negative pivot(s) in D";
+      summary.message = "not positive definite at " + column_of_pivot(first_negative) + "; " +
+                        std::to_string(negative) + " negative pivot(s) in D";
       return SolveStatus::kNotPositiveDefinite;
     }
     return SolveStatus::kSuccess;

@@ -5,6 +5,7 @@
 
 #include "coons/config.h"
 #include "coons/io/boundary_io.h"
+#include "coons/mask/mask9.h"
 #include "coons/mask/solve_mask_net.h"
 #include "coons/net/coons_net.h"
 #include "coons/net/degree_elevation.h"
@@ -485,4 +486,41 @@ TEST_CASE("search_mask_parameter: a flat objective with failed points claims no 
   REQUIRE(s.failed_intervals.size() == 1);
   CHECK(s.failed_intervals[0] == std::pair{0.125, 0.1875});
   CHECK_THAT(s.message, Catch::Contains("flat"));
+}
+
+TEST_CASE(
+    "search_alpha: a near-singular alpha outside the definite interval is a failed evaluation and never the optimum",
+    "[alpha]") {
+  // α = 1/2 is singular at degree (3, 3) (λ = 3/2 − 3α for the mode p = q = 2), a mode the
+  // symmetric dome does not excite: its thin-plate energy rises smoothly through α = 1/2, so the
+  // lowest value over [1/2 + 1e−12, 0.7] is at the lower bound, where min|λ|/max|λ| ≈ 2e−12.
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  REQUIRE(mask9_eigenvalue_ratio(alpha_mask(0.5 + 1e-12), dome.m, dome.n) < 1e-11);
+  AlphaSearchOptions options;
+  options.lower = 0.5 + 1e-12;
+  options.upper = 0.7;
+  std::vector<std::string> backends = {"eigen-lu"};    // factorize and solve
+  if (COONS_HAVE_FFTW) backends.emplace_back("fast");  // the sine basis
+  for (const std::string& name : backends) {
+    const AlphaSearchSummary s = search_alpha(dome, objective_named("thin_plate"), backend(name), options);
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kFailedRegion);
+    CHECK_FALSE(s.parameter);
+    CHECK(s.first_failure == solvers::SolveStatus::kSingular);
+    CHECK(s.failed_evaluations >= 1);
+    REQUIRE_FALSE(s.failed_intervals.empty());
+    CHECK(s.failed_intervals.front().first == options.lower);
+    for (const auto& [lo, hi] : s.failed_intervals) CHECK(hi < 0.5 + 1e-6);
+    REQUIRE_FALSE(s.scan.empty());
+    CHECK(s.scan.front().second == HUGE_VAL);  // no value from the singular system
+    CHECK_THAT(s.message, Catch::Contains("no optimum is claimed"));
+  }
+  // Farther from the singular α, the system is regular enough and the bound is the optimum.
+  options.lower = 0.5 + 1e-3;
+  const AlphaSearchSummary s = search_alpha(dome, objective_named("thin_plate"), backend("eigen-lu"), options);
+  INFO(s.brief_report());
+  CHECK(s.status == SearchStatus::kSuccess);
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter == options.lower);
+  CHECK(s.failed_evaluations == 0);
 }

@@ -31,4 +31,22 @@ TEST_CASE("cholmod: not positive definite names the column of the matrix not the
   }
 }
 
+TEST_CASE("cholmod-simplicial: not positive definite names the column of its first negative pivot", "[solvers]") {
+  // The LDLᵀ goes on through a negative pivot; the first one is where the supernodal LLᵀ stops,
+  // at the column with the negative diagonal entry (the leading block before it is definite).
+  const MaskSystem s = assemble_mask_system(make_random_net(11, 13, 43), alpha_mask(0.1));
+  for (const int column : {0, 37, 71, int(s.A.rows()) - 1}) {
+    Eigen::SparseMatrix<double> A = s.A;
+    A.coeffRef(column, column) = -1;
+    LinearOperator op;
+    op.matrix = &A;
+    Eigen::MatrixX3d X;
+    const SolveSummary summary = make_solver("cholmod-simplicial")->compute_and_solve(op, s.B, X);
+    INFO(summary.brief_report());
+    CHECK(summary.status == SolveStatus::kNotPositiveDefinite);
+    CHECK_THAT(summary.message, Catch::StartsWith("not positive definite at column " + std::to_string(column) + " ("));
+    CHECK_THAT(summary.message, Catch::Contains("of the amd ordering); 1 negative pivot(s) in D"));
+  }
+}
+
 #endif  // COONS_HAVE_SUITESPARSE

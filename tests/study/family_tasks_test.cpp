@@ -5,6 +5,7 @@
 #include <set>
 
 #include "coons/io/input_error.h"
+#include "coons/study/study_failures.h"
 
 using namespace coons;
 
@@ -113,4 +114,24 @@ TEST_CASE("assemble_alpha_family: failed searches and failed grid evaluations ar
   CHECK(cell.failed == 1);
   CHECK(cell.grid_failed == 1);
   CHECK(cell.interior + cell.at_bound == 2);
+}
+
+TEST_CASE("family_task_status: the family fails exactly the searches the study of files fails") {
+  AlphaSearchSummary s;
+  s.parameter = -0.1;
+  s.value = 1;
+  for (SearchStatus status : {SearchStatus::kSuccess, SearchStatus::kSolverFailed, SearchStatus::kNotConverged,
+                              SearchStatus::kFailedRegion, SearchStatus::kNotApplicable}) {
+    s.status = status;
+    INFO(to_string(status));
+    CHECK((family_task_status(s) == FamilyTaskStatus::kFailed) == search_failed(s));
+  }
+  s.status = SearchStatus::kNotConverged;  // keeps its best α as α* (not a failure: exit 0)
+  CHECK(family_task_status(s) == FamilyTaskStatus::kInterior);
+  s.at_bound = true;
+  CHECK(family_task_status(s) == FamilyTaskStatus::kAtBound);
+  s.parameter.reset();  // no α* at all
+  CHECK(family_task_status(s) == FamilyTaskStatus::kFailed);
+  s.flat = true;
+  CHECK(family_task_status(s) == FamilyTaskStatus::kFlat);
 }

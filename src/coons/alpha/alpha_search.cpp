@@ -12,6 +12,7 @@
 
 #include "coons/alpha/search_run.h"
 #include "coons/config.h"
+#include "coons/mask/mask9.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
@@ -68,6 +69,53 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
 }
 
 namespace {
+
+// The threshold of solve's pre-filter (check_classical_request, src/cli/common.cpp): a mask
+// system whose closed-form eigenvalues have min|λ|/max|λ| at most this is taken as (near) singular.
+constexpr double kNearSingularRatio = 1e-6;
+
+// An α-family evaluator that does not evaluate at a (near-)singular α. Inside [−1/4, 1/4] the
+// system is positive definite and every α is evaluated; outside (--allow-indefinite), an α whose
+// mask system on the boundary's (m−1)×(n−1) interior has mask9_eigenvalue_ratio ≤
+// kNearSingularRatio is a failed evaluation (singular), never a value computed from that system,
+// so the search's failure machinery (failed_intervals, failed_region) reports it and no optimum is
+// claimed there.
+template <class Obj>
+class RegularAlphas {
+ public:
+  using Evaluation = typename Obj::Evaluation;
+  RegularAlphas(Obj& objective, const Boundary& boundary) : objective_(objective), m_(boundary.m), n_(boundary.n) {}
+  Evaluation evaluate(double alpha, bool with_derivative = true) {
+    const double ratio = alpha >= -0.25 && alpha <= 0.25 ? 1.0 : mask9_eigenvalue_ratio(alpha_mask(alpha), m_, n_);
+    if (ratio > kNearSingularRatio) return objective_.evaluate(alpha, with_derivative);
+    ++refused_;
+    Evaluation e;
+    e.parameter = alpha;
+    e.has_derivative = false;
+    e.summary.solver = "closed-form eigenvalues";
+    e.summary.status = solvers::SolveStatus::kSingular;
+    e.summary.message = "the mask system is singular or nearly so at this alpha: min|eigenvalue|/max|eigenvalue| = " +
+                        solvers::format_g(ratio) + " <= " + solvers::format_g(kNearSingularRatio);
+    return e;
+  }
+  [[nodiscard]] const NormalisedFrame& unit_frame() const { return objective_.unit_frame(); }
+  [[nodiscard]] int evaluations() const { return objective_.evaluations() + refused_; }
+  [[nodiscard]] int solves() const { return objective_.solves(); }
+  [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
+
+ private:
+  Obj& objective_;
+  int m_, n_;
+  int refused_ = 0;
+};
+
+// The search of the α family through RegularAlphas.
+template <class Obj>
+AlphaSearchSummary search_regular_alphas(Obj& objective, const Boundary& boundary, const AlphaSearchOptions& options) {
+  RegularAlphas<Obj> regular(objective, boundary);
+  return detail::search_impl(regular, options);
+}
+
 // The fallback of search_alpha and search_mu: a factorisation and solves per evaluation.
 AlphaSearchSummary search_by_solving(const Boundary& boundary, const Objective& objective, MaskFamily family,
                                      const solvers::SolverInfo& solver, const AlphaSearchOptions& options,
@@ -77,6 +125,7 @@ AlphaSearchSummary search_by_solving(const Boundary& boundary, const Objective& 
   s.evaluator = "factorize and solve";
   return s;
 }
+
 }  // namespace
 
 AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objective, const solvers::SolverInfo& solver,
@@ -86,13 +135,16 @@ AlphaSearchSummary search_alpha(const Boundary& boundary, const Objective& objec
   if (info && info->family == solvers::SolverFamily::kStructured && boundary.m >= 2 && boundary.n >= 2 &&
       SpectralAlphaObjective::supports(objective)) {
     SpectralAlphaSearchObjective f(boundary, objective);
-    AlphaSearchSummary s = detail::search_impl(f, options);
+    AlphaSearchSummary s = search_regular_alphas(f, boundary, options);
     s.evaluator = "sine basis";
     return s;
   }
 #endif
-  return search_by_solving(
-      boundary, objective, [](double a) { return alpha_family(a); }, solver, options, solver_options);
+  MaskObjective f(
+      boundary, objective, [](double a) { return alpha_family(a); }, solver, solver_options);
+  AlphaSearchSummary s = search_regular_alphas(f, boundary, options);
+  s.evaluator = "factorize and solve";
+  return s;
 }
 
 AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objective, const solvers::SolverInfo& solver,

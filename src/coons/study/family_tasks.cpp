@@ -16,6 +16,7 @@
 #include "coons/study/backend_choice.h"
 #include "coons/study/degree_limit_study.h"
 #include "coons/study/study.h"
+#include "coons/study/study_failures.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
@@ -107,6 +108,12 @@ json finite_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr
 
 }  // namespace
 
+FamilyTaskStatus family_task_status(const AlphaSearchSummary& s) {
+  if (s.flat) return FamilyTaskStatus::kFlat;
+  if (!s.parameter || search_failed(s)) return FamilyTaskStatus::kFailed;
+  return s.at_bound ? FamilyTaskStatus::kAtBound : FamilyTaskStatus::kInterior;
+}
+
 FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const FamilyTask& task) {
   const auto start = std::chrono::steady_clock::now();
   FamilyTaskResult r;
@@ -115,12 +122,8 @@ FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const Family
   const Boundary b = elevate_boundary(family_boundary(options, task.index), task.degree, task.degree);
   const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
   const AlphaSearchSummary s = search_alpha(b, objective, solver);
-  if (s.flat) {
-    r.status = FamilyTaskStatus::kFlat;
-  } else if (!s.parameter || s.status != SearchStatus::kSuccess) {
-    r.status = FamilyTaskStatus::kFailed;
-  } else {
-    r.status = s.at_bound ? FamilyTaskStatus::kAtBound : FamilyTaskStatus::kInterior;
+  r.status = family_task_status(s);
+  if (r.status == FamilyTaskStatus::kInterior || r.status == FamilyTaskStatus::kAtBound) {
     r.alpha = s.parameter;
     r.value = s.value;
     const auto curve = alpha_curve(b, objective, solver);

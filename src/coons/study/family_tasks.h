@@ -13,6 +13,7 @@
 #include <string>
 #include <vector>
 
+#include "coons/alpha/alpha_search.h"
 #include "coons/study/alpha_family.h"
 
 namespace coons {
@@ -43,6 +44,11 @@ struct FamilyTaskResult {
   std::vector<double> grid;     //!< the objective at the grid's α (∞ where it failed); empty without α*
   double seconds = 0;           //!< how long the task took (not part of any comparison)
 };
+
+//! How a task's α* search ended, as the study of files judges searches (search_failed): kFailed
+//! when it found no α* or its verdict rests on failed solves (solver_failed, failed_region,
+//! not_applicable); a search that did not converge (not_converged) keeps its best α as α*.
+FamilyTaskStatus family_task_status(const AlphaSearchSummary& s);
 
 //! Computes one task (the boundary made alone: random_smooth_boundary is per index).
 FamilyTaskResult run_family_task(const AlphaFamilyOptions& options, const FamilyTask& task);
