@@ -6,10 +6,12 @@
 
 #include <fstream>
 #include <iterator>
+#include <limits>
 #include <map>
 
 #include "common.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/provenance.h"
@@ -150,6 +152,7 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
   phases.start("read");
   std::optional<json> study;
   std::map<size_t, json> by_index;
+  std::map<size_t, std::string> file_of;  // the shard file each record came from, for its errors
   for (const fs::path& file : files) {
     const std::string where = file.string();
     for (const json& r : read_shard_file(file).records) {
@@ -175,7 +178,7 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
                          fmt::format("task {} ({}) was run on two different contents of its file; remove the "
                                      "shard files and run the shards again",
                                      index, (*study)["files"][index].get<std::string>()));
-      by_index.emplace(index, r);
+      if (by_index.emplace(index, r).second) file_of.emplace(index, where);
     }
   }
   if (!study) throw InputError(merge_dir, "--merge", "the shards hold no finished task");
@@ -188,16 +191,21 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
                                  count - by_index.size(), count, (*study)["files"][first].get<std::string>()));
   }
   StudyResult result;
+  const std::string first = file_of.begin()->second;
+  const json& degrees = (*study).contains("degrees") ? (*study)["degrees"] : json();
+  if (!degrees.is_array()) throw InputError(first, "study.degrees", "missing or not a list");
+  for (size_t k = 0; k < degrees.size(); ++k)  // json_integer, not get<int>: 1e300 is no int
+    result.degrees.push_back(
+        int(json_integer(degrees[k], first, fmt::format("study.degrees[{}]", k), 1, std::numeric_limits<int>::max())));
   try {
-    result.degrees = (*study).at("degrees").get<std::vector<int>>();
     result.objectives = (*study).at("objectives").get<std::vector<std::string>>();
   } catch (const json::exception&) {
-    throw InputError(files.front().string(), "study", "degrees or objectives malformed");
+    throw InputError(first, "study", "objectives malformed");
   }
   std::vector<BSplineStudyRow> bspline_rows;  // in the files' order, as the unsharded run has them
   for (const auto& [index, record] : by_index) {
-    append_study_part(record["result"], files.front().string(), &result);
-    if (record.contains("bspline")) append_bspline_rows(record["bspline"], files.front().string(), &bspline_rows);
+    append_study_part(record["result"], file_of[index], &result);
+    if (record.contains("bspline")) append_bspline_rows(record["bspline"], file_of[index], &bspline_rows);
   }
   phases.start("write");
   write_study_report(result, out_dir, fmt::format("coons study --merge {} --out {}", merge_dir, out_dir),

@@ -169,7 +169,7 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
       } else if (r["study"] != *study) {
         throw InputError(where, "study", "the shards hold tasks of different studies (options or coons revision)");
       }
-      FamilyTaskResult t = family_task_from_record(r, where);
+      FamilyTaskResult t = family_task_from_record(r, options, where);
       if (r["key"] != family_task_key(options, t.task, version, revision))
         throw InputError(where, "key",
                          fmt::format("'{}' is not the key of its task (boundary {}, degree {}, {})",

@@ -2,8 +2,11 @@
 // boundaries (one with ribbons, one triangle) at degrees 3 4: the merged results.json equals the
 // unsharded one, report.md too but for its provenance line (command line and date), the figures
 // are there; a rerun skips finished files; a missing shard is an input error on --merge.
+#include <algorithm>
 #include <catch2/catch.hpp>
+#include <cstdio>
 #include <filesystem>
+#include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
@@ -130,4 +133,71 @@ TEST_CASE("coons study FILES --merge: a file edited between two runs of its shar
   CHECK(merged.out.empty());
   CHECK(merged.err.find("was run on two different contents of its file") != std::string::npos);
   CHECK_FALSE(fs::exists(dir.file("merged")));
+}
+
+TEST_CASE("coons study FILES --merge: an integer field holding 1e300 is one error line naming its shard", "[cli]") {
+  // get<int> of a JSON float beyond int is undefined behaviour; the merge used to convert it
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  const std::string files = "study " + quoted(kData + "/boundaries/dome.json") + " " +
+                            quoted(kData + "/boundaries/pillow.json") + " --degrees 3";
+  for (int i = 0; i < 2; ++i)
+    REQUIRE(run_coons(files + " --shard " + std::to_string(i) + "/2 --out " + quoted(shards)).status == 0);
+  const std::string file = shards + "/shard-1-of-2.jsonl";
+  const std::vector<json> records = read_json_lines(file);
+  REQUIRE(records.size() == 1);
+  // the key hashes the study block (but its file list) with the file and its content
+  auto key_of = [](const json& record) {
+    json inputs = record["study"];
+    inputs.erase("files");
+    inputs["file"] = record["study"]["files"][record["index"].get<std::size_t>()];
+    inputs["content"] = record["content"];
+    std::uint64_t h = 14695981039346656037ULL;
+    for (const unsigned char c : inputs.dump()) {
+      h ^= c;
+      h *= 1099511628211ULL;
+    }
+    char hex[17];
+    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+    return std::string(hex);
+  };
+  REQUIRE(key_of(records[0]) == records[0]["key"]);
+  struct Edit {
+    json::json_pointer at;
+    json value;
+    std::string error;
+  };
+  const std::vector<Edit> edits = {
+      {json::json_pointer("/result/shapes/0/optima/0/alpha/evaluations"), 1e300,
+       "shard-1-of-2.jsonl: result: malformed: evaluations: must be an integer"},
+      {json::json_pointer("/result/shapes/0/pictures/0/m"), 1e10,
+       "shard-1-of-2.jsonl: result: malformed: m: must be an integer"},
+      {json::json_pointer("/result/shapes/0/pictures/0/m"), 2147483647,
+       "shard-1-of-2.jsonl: result: malformed: a picture's net has the wrong number of points"},
+      {json::json_pointer("/study/degrees/0"), 1e300, "study.degrees[0]: must be an integer"}};
+  for (const Edit& e : edits) {
+    json edited = records[0];
+    REQUIRE(edited.contains(e.at));
+    edited[e.at] = e.value;
+    if (e.at.to_string().rfind("/study", 0) == 0) edited["key"] = key_of(edited);
+    {
+      std::ofstream out(file, std::ios::binary | std::ios::trunc);
+      out << edited.dump() << '\n';
+    }
+    if (e.at.to_string().rfind("/study", 0) == 0) {  // both shards' records carry the study block
+      const std::string other = shards + "/shard-0-of-2.jsonl";
+      json first = read_json_lines(other).at(0);
+      first["study"] = edited["study"];
+      first["key"] = key_of(first);
+      std::ofstream(other, std::ios::binary | std::ios::trunc) << first.dump() << '\n';
+    }
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+    INFO(e.at.to_string() << " = " << e.value.dump() << "\n" << merged.err);
+    CHECK(merged.status == 2);
+    CHECK(merged.out.empty());
+    CHECK(merged.err.rfind("error: ", 0) == 0);
+    CHECK(merged.err.find(e.error) != std::string::npos);
+    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir.file("merged")));
+  }
 }

@@ -114,6 +114,37 @@ TEST_CASE("coons study --shard/--merge: records of another study or with a wrong
   CHECK_FALSE(fs::exists(dir.file("merged")));
 }
 
+TEST_CASE("coons study --merge: a record whose grid is not the study's length is refused, not read past", "[cli]") {
+  // the key covers the task's inputs, not its result: an edited grid passes it. An empty grid on
+  // the first optimum used to crash the merge, a shorter one on a later record to be read past its end
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons(kFamily + " --shard 0/1 --out " + quoted(shards)).status == 0);
+  const std::string file = shards + "/shard-0-of-1.jsonl";
+  const std::vector<json> records = read_json_lines(file);
+  std::vector<size_t> optima;  // the records with an α*, whose grid the merge aggregates
+  for (size_t k = 0; k < records.size(); ++k)
+    if (records[k]["status"] == "interior" || records[k]["status"] == "at_bound") optima.push_back(k);
+  REQUIRE(optima.size() >= 2);
+  for (const auto& [at, grid] :
+       {std::make_pair(optima.front(), json::array()), std::make_pair(optima[1], json::array({1.0, 2.0, 3.0}))}) {
+    std::vector<json> edited = records;
+    edited[at]["grid"] = grid;
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    for (const json& r : edited) out << r.dump() << '\n';
+    out.close();
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+    INFO(grid.dump() << "\n" << merged.err);
+    CHECK(merged.status == 2);
+    CHECK(merged.out.empty());
+    CHECK(merged.err.rfind("error: ", 0) == 0);
+    CHECK(merged.err.find("shard-0-of-1.jsonl: grid: has " + std::to_string(grid.size()) + " values") !=
+          std::string::npos);
+    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir.file("merged")));
+  }
+}
+
 TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, sharded and merged", "[cli]") {
   TempDir dir;
   // the bundled shape by name, from the repository's root as the README runs it

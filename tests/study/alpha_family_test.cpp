@@ -101,6 +101,22 @@ TEST_CASE("best_single_alpha_on_grid: a mean loss falling to the grid's end give
   CHECK_FALSE(inside->at_grid_end);
 }
 
+TEST_CASE("best_single_alpha_on_grid: curves of unequal or too few values give no alpha") {
+  // curves read back from shard files: every one must have the same grid, and one optimum each
+  std::vector<std::vector<double>> values(2, std::vector<double>(9));
+  for (int k = 0; k < 9; ++k) values[0][k] = values[1][k] = 1 + (k - 4) * (k - 4) * 1e-2;
+  REQUIRE(best_single_alpha_on_grid(values, {1, 1}));
+  CHECK_FALSE(best_single_alpha_on_grid({{}, {}}, {1, 1}));
+  CHECK_FALSE(best_single_alpha_on_grid({{1}, {1}}, {1, 1}));
+  CHECK_FALSE(best_single_alpha_on_grid(values, {1}));
+  std::vector<std::vector<double>> shorter = values;
+  shorter[1].resize(3);
+  CHECK_FALSE(best_single_alpha_on_grid(shorter, {1, 1}));
+  std::vector<std::vector<double>> longer = values;
+  longer[1].push_back(1);
+  CHECK_FALSE(best_single_alpha_on_grid(longer, {1, 1}));
+}
+
 TEST_CASE("alpha_family_conclusions: a best single α at the grid's end is said to be there") {
   AlphaFamilyResult r;
   r.options.count = 2;

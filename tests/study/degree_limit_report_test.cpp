@@ -118,3 +118,26 @@ TEST_CASE("degree_limit_conclusions: without an established limit, that is the r
   CHECK_FALSE(contains(text, "tends to the continuum optimum"));
   CHECK_FALSE(contains(text, "not claimed to agree"));
 }
+
+TEST_CASE("degree_limit_report_markdown: an entry fitted with fewer than two tolerances has none made up", "[study]") {
+  // DegreeLimitOptions::is_valid allows any number of tolerances; the report names the first two
+  // "within 5 %" and "within 1 %" and used to read both of every entry
+  for (const std::vector<double>& tolerances : {std::vector<double>{}, std::vector<double>{0.05}}) {
+    DegreeLimitEntry e = synthetic(5, 40, 5);
+    DegreeLimitOptions options;
+    options.tolerances = tolerances;
+    REQUIRE(options.is_valid(nullptr));
+    std::vector<std::pair<int, double>> mus;
+    for (const auto& c : e.cells) mus.emplace_back(c.degree, *c.mu);
+    e.limit = fit_degree_limit(mus, options);
+    REQUIRE(e.limit.within_from.size() == tolerances.size());
+    const std::string text = joined_lines(degree_limit_conclusions(e));
+    INFO(text);
+    CHECK(contains(text, "converges"));
+    CHECK(contains(text, "within 5 %") == !tolerances.empty());
+    CHECK_FALSE(contains(text, "within 1 %"));
+    const std::string md = degree_limit_report_markdown({e}, DegreeLimitStudyOptions{}, Provenance{}, {});
+    INFO(md);
+    CHECK(contains(md, "| synthetic | thin_plate |"));
+  }
+}

@@ -81,7 +81,7 @@ TEST_CASE("family_task_record: a record read back is the same result") {
   REQUIRE(r.grid.size() == 9);
   const auto study = family_study_json(options, {"thin_plate"}, "v", "r");
   const FamilyTaskResult back =
-      family_task_from_record(nlohmann::json::parse(family_task_record(study, "k", r).dump()), "f");
+      family_task_from_record(nlohmann::json::parse(family_task_record(study, "k", r).dump()), options, "f");
   CHECK(back.alpha == r.alpha);
   CHECK(back.value == r.value);
   CHECK(back.grid == r.grid);
@@ -93,7 +93,65 @@ TEST_CASE("family_task_record: a record read back is the same result") {
   CHECK(objectives == std::vector<std::string>{"thin_plate"});
   nlohmann::json broken = family_task_record(study, "k", r);
   broken["status"] = "maybe";
-  CHECK_THROWS_AS(family_task_from_record(broken, "f"), InputError);
+  CHECK_THROWS_AS(family_task_from_record(broken, options, "f"), InputError);
+}
+
+TEST_CASE("family_task_from_record: a grid of another length or a number that is no int is refused") {
+  // the fields a merge reads back from a shard file someone edited: the key covers the task's
+  // inputs, not its result, so the reader itself must refuse what the aggregation cannot use
+  AlphaFamilyOptions options;
+  options.count = 3;
+  options.degrees = {3};
+  options.grid_points = 9;
+  FamilyTaskResult r;
+  r.task = {1, 3, "thin_plate"};
+  r.status = FamilyTaskStatus::kInterior;
+  r.alpha = -0.1;
+  r.value = 2;
+  r.grid.assign(9, 3.0);
+  const auto study = family_study_json(options, {"thin_plate"}, "v", "r");
+  const nlohmann::json record = nlohmann::json::parse(family_task_record(study, "k", r).dump());
+  REQUIRE(family_task_from_record(record, options, "f").grid.size() == 9);
+  auto field_refused = [&](const nlohmann::json& edited) {
+    try {
+      family_task_from_record(edited, options, "f");
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return std::string("(accepted)");
+  };
+  for (const nlohmann::json& grid :
+       {nlohmann::json::array(), nlohmann::json({1, 2, 3}), nlohmann::json(std::vector<double>(10, 1.0))}) {
+    nlohmann::json edited = record;
+    edited["grid"] = grid;
+    CHECK(field_refused(edited) == "grid");
+  }
+  for (const char* name : {"index", "degree"})
+    for (const nlohmann::json& bad :
+         {nlohmann::json(1e300), nlohmann::json(1e10), nlohmann::json(-1), nlohmann::json(2.5)}) {
+      nlohmann::json edited = record;
+      edited[name] = bad;
+      INFO(name << " = " << bad.dump());
+      CHECK(field_refused(edited) == name);
+    }
+  // the study block: its integers too
+  std::vector<std::string> objectives;
+  for (const char* name : {"count", "grid_points"}) {
+    nlohmann::json edited = study;
+    edited[name] = 1e300;
+    INFO(name);
+    CHECK_THROWS_WITH(family_options_of(edited, &objectives, "f"),
+                      Catch::Contains(std::string("f: ") + name + ": must be an integer"));
+  }
+  nlohmann::json edited = study;
+  edited["degrees"] = {3, 1e10};
+  CHECK_THROWS_WITH(family_options_of(edited, &objectives, "f"), Catch::Contains("f: degrees[1]: must be an integer"));
+  edited = study;
+  edited["generator"]["side_degree"] = -1e300;
+  CHECK_THROWS_WITH(family_options_of(edited, &objectives, "f"), Catch::Contains("f: side_degree: must be an integer"));
+  edited = study;
+  edited["seed"] = 1e300;
+  CHECK_THROWS_WITH(family_options_of(edited, &objectives, "f"), Catch::Contains("f: seed: must be an integer"));
 }
 
 TEST_CASE("assemble_alpha_family: failed searches and failed grid evaluations are counted per cell") {

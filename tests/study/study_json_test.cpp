@@ -50,6 +50,51 @@ TEST_CASE("append_study_part: a malformed part is an input error naming the reco
                     Catch::Matchers::StartsWith("shard-0-of-1.jsonl: result: malformed"));
 }
 
+TEST_CASE("append_study_part: an integer field holding a float beyond int is refused not converted", "[study]") {
+  // get<int> of 1e300 is undefined behaviour: every integer of a part is read as json_integer
+  StudyInput in;
+  in.file = "smooth.json";
+  in.boundary = make_smooth_boundary(3, 3, 7);
+  in.boundary.name = "smooth";
+  in.one_ring = "one data ring";
+  StudyOptions options;
+  options.degrees = {3, 4};
+  options.curve_points = 5;
+  StudyResult result = run_study({in}, options);
+  TriStudyEntry triangle;  // a triangle's entry (no search run: only its integers matter here)
+  triangle.boundary.n = 3;
+  TriStudyCell cell;
+  cell.degree = 3;
+  triangle.rows.push_back({"thin_plate", {cell}});
+  result.triangles.push_back(triangle);
+  if (result.fit_deviations.empty()) result.fit_deviations.push_back({"smooth", {{3, 0.1}}});  // elevated, not refitted
+  if (result.references.empty()) result.references.push_back({"smooth", 3, 3, {}, {}, 0});     // no target given
+  const nlohmann::json part = nlohmann::json::parse(study_part_json(result).dump());
+  for (const char* at : {"/shapes/0/boundary/m", "/shapes/0/boundary/n", "/shapes/0/optima/0/alpha/local_minima",
+                         "/shapes/0/optima/0/alpha/evaluations", "/shapes/0/optima/0/alpha/solves",
+                         "/shapes/0/optima/0/alpha/failed_evaluations", "/shapes/0/curves/0/summary/iterations",
+                         "/shapes/0/curves/0/summary/factor_nnz", "/shapes/0/pictures/0/m", "/shapes/0/pictures/0/n",
+                         "/laws/0/cells/0/degree", "/fit_deviations/0/max_deviation/0/0", "/references/0/m",
+                         "/references/0/n", "/triangles/0/boundary/n", "/triangles/0/rows/0/cells/0/degree"})
+    for (const double bad : {1e300, -1e300, 1e10, 2.5}) {
+      INFO(at << " = " << bad);
+      nlohmann::json edited = part;
+      const nlohmann::json::json_pointer pointer(at);
+      REQUIRE(edited.contains(pointer));
+      edited[pointer] = bad;
+      StudyResult into;
+      CHECK_THROWS_WITH(
+          append_study_part(edited, "shard-0-of-1.jsonl", &into),
+          Catch::StartsWith("shard-0-of-1.jsonl: result: malformed: ") && Catch::Contains("must be an integer"));
+    }
+  // a picture of degree INT_MAX: its point count is computed without overflow, and does not match
+  nlohmann::json edited = part;
+  edited["/shapes/0/pictures/0/m"_json_pointer] = 2147483647;
+  StudyResult into;
+  CHECK_THROWS_WITH(append_study_part(edited, "shard-0-of-1.jsonl", &into),
+                    Catch::Contains("a picture's net has the wrong number of points"));
+}
+
 TEST_CASE("bspline_rows_json: rows read back write the same bspline.json and report section", "[study]") {
   BSplineStudyRow row;
   row.file = "wave.json";
@@ -87,4 +132,15 @@ TEST_CASE("bspline_rows_json: rows read back write the same bspline.json and rep
   nlohmann::json broken = j;
   broken[0].erase("solver");
   CHECK_THROWS_WITH(append_bspline_rows(broken, "record", &none), Catch::StartsWith("record: bspline: malformed"));
+  // an integer holding a float beyond int (get<int> of it is undefined behaviour) is malformed too
+  for (const char* at : {"/0/degrees/0", "/0/degrees/1", "/0/counts/0", "/0/counts/1", "/0/notes/0/1", "/0/notes/0/2",
+                         "/0/searches/0/1/evaluations"}) {
+    INFO(at);
+    broken = nlohmann::json::parse(j.dump());
+    const nlohmann::json::json_pointer pointer(at);
+    REQUIRE(broken.contains(pointer));
+    broken[pointer] = 1e300;
+    CHECK_THROWS_WITH(append_bspline_rows(broken, "record", &none),
+                      Catch::StartsWith("record: bspline: malformed: ") && Catch::Contains("must be an integer"));
+  }
 }

@@ -99,8 +99,13 @@ double interpolate_on_grid(const std::vector<double>& values, double s) {
 std::optional<BestSingleAlpha> best_single_alpha_on_grid(const std::vector<std::vector<double>>& values,
                                                          const std::vector<double>& optimum) {
   const auto count = int(values.size());
-  if (count == 0) return std::nullopt;
+  if (count == 0 || optimum.size() != values.size()) return std::nullopt;
+  // one grid for every curve, of at least two nodes (the refinement divides by grid_points − 1);
+  // curves read back from a shard can be anything, and nothing here may read past one of them
   const auto grid_points = int(values[0].size());
+  if (grid_points < 2) return std::nullopt;
+  for (const std::vector<double>& curve : values)
+    if (curve.size() != values[0].size()) return std::nullopt;
   std::vector<double> best(optimum);
   for (int b = 0; b < count; ++b)
     for (double v : values[b])

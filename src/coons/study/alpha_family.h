@@ -103,8 +103,9 @@ struct BestSingleAlpha {
 
 //! The α minimising mean_b (f_b(α) − f_b*)/f_b* where f_b is `values[b]` on family_alpha_grid
 //! (interpolated between nodes) and f_b* = min(optimum[b], least of values[b]): the best node,
-//! refined by golden sections between its neighbours. nullopt when there are no curves or no
-//! finite mean. Every family study (sharded or not) computes it from the same stored values.
+//! refined by golden sections between its neighbours. nullopt when there are no curves, no finite
+//! mean, curves of different lengths or of fewer than 2 values, or not one optimum per curve.
+//! Every family study (sharded or not) computes it from the same stored values.
 std::optional<BestSingleAlpha> best_single_alpha_on_grid(const std::vector<std::vector<double>>& values,
                                                          const std::vector<double>& optimum);
 

@@ -53,6 +53,22 @@ std::string within_text(const std::optional<int>& n, int last) {
   return n ? fmt::format("from n = {}", *n) : fmt::format("not yet at n = {}", last);
 }
 
+// The report names within_from[0] and [1] "within 5 %" and "within 1 %" (DegreeLimitOptions's
+// default tolerances), as the JSON writer does; an entry fitted with fewer tolerances (is_valid
+// allows any number) has no value there, which is not "not yet".
+std::optional<int> within_from(const DegreeLimitEntry& e, size_t k) {
+  return k < e.limit.within_from.size() ? e.limit.within_from[k] : std::nullopt;
+}
+
+// "; within 5 % from n = 10, within 1 % not yet at n = 32" over the tolerances the entry has.
+std::string within_clauses(const DegreeLimitEntry& e, int last) {
+  std::string out;
+  const char* labels[] = {"5 %", "1 %"};
+  for (size_t k = 0; k < 2 && k < e.limit.within_from.size(); ++k)
+    out += fmt::format("{} within {} {}", k == 0 ? ";" : ",", labels[k], within_text(e.limit.within_from[k], last));
+  return out;
+}
+
 }  // namespace
 
 std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, const ClaimThresholds& t) {
@@ -85,9 +101,8 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
   // 2. the limit
   const int last = mus.back().first;
   if (has_reliable_limit(e, t))
-    out.push_back(fmt::format("μ*(n) converges: μ∞ = {} ± {} (rate n^−{:.2f}); within 5 % {}, within 1 % {}.",
-                              num(*e.limit.limit), fmt::format("{:.2g}", *e.limit.limit_error), *e.limit.rate,
-                              within_text(e.limit.within_from[0], last), within_text(e.limit.within_from[1], last)));
+    out.push_back(fmt::format("μ*(n) converges: μ∞ = {} ± {} (rate n^−{:.2f}){}.", num(*e.limit.limit),
+                              fmt::format("{:.2g}", *e.limit.limit_error), *e.limit.rate, within_clauses(e, last)));
   else if (e.limit.limit)
     out.push_back(fmt::format(
         "no limit claimed: the extrapolation gives μ∞ = {} ± {}, an error above {:.0f} %.", num(*e.limit.limit),
@@ -303,8 +318,8 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
                                  (e.limit.limit_error ? fmt::format(" ± {:.2g}", *e.limit.limit_error) : std::string())
                            : none,
                        e.limit.rate ? fmt::format("{:.2f}", *e.limit.rate) : none,
-                       e.limit.within_from[0] ? std::to_string(*e.limit.within_from[0]) : none,
-                       e.limit.within_from[1] ? std::to_string(*e.limit.within_from[1]) : none,
+                       within_from(e, 0) ? std::to_string(*within_from(e, 0)) : none,
+                       within_from(e, 1) ? std::to_string(*within_from(e, 1)) : none,
                        cs.mu ? fmt::format("{} (N = {})", num(*cs.mu), cs.degree) : none, to_string(e.limit.status));
     line(row);
   }

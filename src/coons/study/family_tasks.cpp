@@ -5,11 +5,13 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <memory>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/net_json.h"
 #include "coons/mask/mask_families.h"
 #include "coons/net/degree_elevation.h"
@@ -201,6 +203,21 @@ T field(const json& j, const char* name, const std::string& where) {
   }
 }
 
+// Integers go through json_integer, never get<int>: a fraction or a number beyond the range
+// (1e300 converted to int is undefined behaviour) is an InputError naming the field.
+int int_field(const json& j, const char* name, const std::string& where, int lo = std::numeric_limits<int>::min()) {
+  if (!j.is_object() || !j.contains(name)) throw InputError(where, name, "missing");
+  return int(json_integer(j.at(name), where, name, lo, std::numeric_limits<int>::max()));
+}
+
+std::uint64_t seed_field(const json& j, const char* name, const std::string& where) {
+  if (!j.is_object() || !j.contains(name)) throw InputError(where, name, "missing");
+  const json& v = j.at(name);
+  if (v.is_number_unsigned()) return v.get<std::uint64_t>();
+  if (v.is_number_integer() && v.get<std::int64_t>() >= 0) return std::uint64_t(v.get<std::int64_t>());
+  throw InputError(where, name, fmt::format("must be an integer in [0, 2^64), not {}", v.dump()));
+}
+
 }  // namespace
 
 AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>* objectives,
@@ -214,14 +231,19 @@ AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>
   } else if (family != "random-smooth") {
     throw InputError(where, "study.family", "not a random-smooth or perturbed family study");
   }
-  o.seed = field<std::uint64_t>(study, "seed", where);
-  o.count = field<int>(study, "count", where);
+  o.seed = seed_field(study, "seed", where);
+  o.count = int_field(study, "count", where);
   const json generator = field<json>(study, "generator", where);
-  o.generator.side_degree = field<int>(generator, "side_degree", where);
+  o.generator.side_degree = int_field(generator, "side_degree", where);
   o.generator.height = field<double>(generator, "height", where);
   o.generator.wiggle = field<double>(generator, "wiggle", where);
-  o.degrees = field<std::vector<int>>(study, "degrees", where);
-  o.grid_points = field<int>(study, "grid_points", where);
+  const json degrees = field<json>(study, "degrees", where);
+  if (!degrees.is_array()) throw InputError(where, "degrees", "has the wrong type");
+  o.degrees.clear();  // not the default list
+  for (size_t k = 0; k < degrees.size(); ++k)
+    o.degrees.push_back(int(json_integer(degrees[k], where, fmt::format("degrees[{}]", k),
+                                         std::numeric_limits<int>::min(), std::numeric_limits<int>::max())));
+  o.grid_points = int_field(study, "grid_points", where);
   const auto solver = field<std::string>(study, "solver", where);
   if (solver != "auto") {
     o.solver = solvers::find_solver(solver);
@@ -237,10 +259,11 @@ AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>
   return o;
 }
 
-FamilyTaskResult family_task_from_record(const json& record, const std::string& where) {
+FamilyTaskResult family_task_from_record(const json& record, const AlphaFamilyOptions& options,
+                                         const std::string& where) {
   FamilyTaskResult r;
-  r.task.index = field<int>(record, "index", where);
-  r.task.degree = field<int>(record, "degree", where);
+  r.task.index = int_field(record, "index", where, 0);
+  r.task.degree = int_field(record, "degree", where, 0);
   r.task.objective = field<std::string>(record, "objective", where);
   const auto status = field<std::string>(record, "status", where);
   bool known = false;
@@ -259,6 +282,12 @@ FamilyTaskResult family_task_from_record(const json& record, const std::string& 
       if (!v.is_null() && !v.is_number()) throw InputError(where, "grid", "not a number or null");
       r.grid.push_back(v.is_null() ? HUGE_VAL : v.get<double>());
     }
+    // the task's key covers its inputs, not this result: an edited grid passes it, and the
+    // aggregation reads grid_points values of every curve
+    if (r.grid.size() != size_t(std::max(options.grid_points, 0)))
+      throw InputError(
+          where, "grid",
+          fmt::format("has {} values, not the study's grid_points = {}", r.grid.size(), options.grid_points));
   }
   if (record.contains("seconds") && record["seconds"].is_number()) r.seconds = record["seconds"].get<double>();
   return r;

@@ -70,8 +70,10 @@ nlohmann::json family_task_record(const nlohmann::json& study, const std::string
 AlphaFamilyOptions family_options_of(const nlohmann::json& study, std::vector<std::string>* objectives,
                                      const std::string& where);
 
-//! A record read back; throws InputError(`where`, FIELD, …) on a malformed one.
-FamilyTaskResult family_task_from_record(const nlohmann::json& record, const std::string& where);
+//! A record of the study `options` read back; throws InputError(`where`, FIELD, …) on a malformed
+//! one (among them a grid that has not options.grid_points values).
+FamilyTaskResult family_task_from_record(const nlohmann::json& record, const AlphaFamilyOptions& options,
+                                         const std::string& where);
 
 //! The family study from the results of all its tasks (in family_tasks order, one each).
 AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const std::vector<std::string>& objectives,

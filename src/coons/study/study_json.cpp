@@ -4,6 +4,7 @@
 #include <limits>
 
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 
 namespace coons {
 
@@ -26,6 +27,19 @@ double num_of(const json& j) {
   if (s == "-inf") return -std::numeric_limits<double>::infinity();
   if (s == "nan") return std::numeric_limits<double>::quiet_NaN();
   throw std::invalid_argument("'" + s + "' is not a number");
+}
+
+// Integers through json_integer, never get<int>: a float such as 1e300 converted to an int is
+// undefined behaviour. Anything but an integer in [lo, hi] is malformed, like every other error here.
+std::int64_t integer_of(const json& j, const char* what, std::int64_t lo, std::int64_t hi) {
+  try {
+    return json_integer(j, "", what, lo, hi);
+  } catch (const InputError& e) {
+    throw std::invalid_argument(e.field() + ": " + e.reason());
+  }
+}
+int int_of(const json& j, const char* what, int lo = 0) {
+  return int(integer_of(j, what, lo, std::numeric_limits<int>::max()));
 }
 
 json opt(const std::optional<double>& x) { return x ? num(*x) : json(nullptr); }
@@ -92,11 +106,11 @@ AlphaSearchSummary summary_of(const json& j) {
   s.value = num_of(j.at("value"));
   s.flat = j.at("flat").get<bool>();
   s.at_bound = j.at("at_bound").get<bool>();
-  s.local_minima = j.at("local_minima").get<int>();
-  s.evaluations = j.at("evaluations").get<int>();
-  s.solves = j.at("solves").get<int>();
+  s.local_minima = int_of(j.at("local_minima"), "local_minima");
+  s.evaluations = int_of(j.at("evaluations"), "evaluations");
+  s.solves = int_of(j.at("solves"), "solves");
   s.scan = pairs_of(j.at("scan"));
-  s.failed_evaluations = j.at("failed_evaluations").get<int>();
+  s.failed_evaluations = int_of(j.at("failed_evaluations"), "failed_evaluations");
   s.first_failure = enum_of(j.at("first_failure").get<std::string>(), solvers::SolveStatus::kFailure);
   s.failed_intervals = pairs_of(j.at("failed_intervals"));
   s.seconds = num_of(j.at("seconds"));
@@ -117,8 +131,8 @@ json boundary(const Boundary& b) {
 Boundary boundary_of_json(const json& j) {
   Boundary b;
   b.name = j.at("name").get<std::string>();
-  b.m = j.at("m").get<int>();
-  b.n = j.at("n").get<int>();
+  b.m = int_of(j.at("m"), "m", 1);
+  b.n = int_of(j.at("n"), "n", 1);
   b.bottom = matrix_of(j.at("bottom"));
   b.top = matrix_of(j.at("top"));
   b.left = matrix_of(j.at("left"));
@@ -154,13 +168,14 @@ SweepRow sweep_row_of(const json& j) {
   r.summary.solver = s.at("solver").get<std::string>();
   r.summary.status = enum_of(s.at("status").get<std::string>(), solvers::SolveStatus::kFailure);
   r.summary.message = s.at("message").get<std::string>();
-  r.summary.iterations = s.at("iterations").get<int>();
+  r.summary.iterations = int_of(s.at("iterations"), "iterations", std::numeric_limits<int>::min());
   r.summary.relative_residual = num_of(s.at("relative_residual"));
   r.summary.analyze_seconds = num_of(s.at("seconds").at(0));
   r.summary.factorize_seconds = num_of(s.at("seconds").at(1));
   r.summary.solve_seconds = num_of(s.at("seconds").at(2));
   r.summary.ordering = s.at("ordering").get<std::string>();
-  r.summary.factor_nnz = s.at("factor_nnz").get<long long>();
+  r.summary.factor_nnz = integer_of(s.at("factor_nnz"), "factor_nnz", std::numeric_limits<std::int64_t>::min(),
+                                    std::numeric_limits<std::int64_t>::max());
   const json& m = j.at("metrics");
   NetMetrics& x = r.metrics;
   double* fields[] = {&x.twist_energy,          &x.thin_plate_energy,         &x.dirichlet_energy, &x.e3_energy,
@@ -211,10 +226,10 @@ ShapeEntry shape_of(const json& j) {
   for (const json& r : j.at("curves")) s.curves.push_back(sweep_row_of(r));
   for (const json& p : j.at("pictures")) {
     ControlNet net;
-    net.m = p.at("m").get<int>();
-    net.n = p.at("n").get<int>();
+    net.m = int_of(p.at("m"), "m", 1);
+    net.n = int_of(p.at("n"), "n", 1);
     net.points = matrix_of(p.at("points"));
-    if (net.points.rows() != Eigen::Index(net.m + 1) * (net.n + 1))
+    if (net.points.rows() != (Eigen::Index(net.m) + 1) * (Eigen::Index(net.n) + 1))
       throw std::invalid_argument("a picture's net has the wrong number of points");
     s.pictures.emplace_back(p.at("title").get<std::string>(), std::move(net));
   }
@@ -236,8 +251,9 @@ DegreeLawEntry law_of(const json& j) {
   l.boundary = j.at("boundary").get<std::string>();
   l.objective = j.at("objective").get<std::string>();
   for (const json& c : j.at("cells"))
-    l.cells.push_back({c.at("degree").get<int>(), summary_of(c.at("alpha")), summary_of(c.at("mu"))});
-  for (const json& p : j.at("interior")) l.interior.emplace_back(p.at(0).get<int>(), num_of(p.at(1)));
+    l.cells.push_back({int_of(c.at("degree"), "degree", 1), summary_of(c.at("alpha")), summary_of(c.at("mu"))});
+  for (const json& p : j.at("interior"))
+    l.interior.emplace_back(int_of(p.at(0), "interior degree", 1), num_of(p.at(1)));
   if (!j.at("fit").is_null()) {
     DegreeLawFit fit;
     fit.c = num_of(j.at("fit").at("c"));
@@ -257,8 +273,8 @@ json reference(const ReferenceTable& t) {
 ReferenceTable reference_of(const json& j) {
   ReferenceTable t;
   t.boundary = j.at("boundary").get<std::string>();
-  t.m = j.at("m").get<int>();
-  t.n = j.at("n").get<int>();
+  t.m = int_of(j.at("m"), "m", 1);
+  t.n = int_of(j.at("n"), "n", 1);
   for (const json& r : j.at("rows"))
     t.rows.push_back({num_of(r.at(0)), num_of(r.at(1)), num_of(r.at(2)), num_of(r.at(3)), num_of(r.at(4))});
   t.best = summary_of(j.at("best"));
@@ -292,7 +308,7 @@ TriStudyEntry triangle_of(const json& j) {
   e.file = j.at("file").get<std::string>();
   const json& b = j.at("boundary");
   e.boundary.name = b.at("name").get<std::string>();
-  e.boundary.n = b.at("n").get<int>();
+  e.boundary.n = int_of(b.at("n"), "n", 1);
   for (size_t k = 0; k < 3; ++k) e.boundary.sides[k] = matrix_of(b.at("sides").at(k));
   e.solver = j.at("solver").get<std::string>();
   e.solver_picked_automatically = j.at("solver_picked_automatically").get<bool>();
@@ -300,7 +316,7 @@ TriStudyEntry triangle_of(const json& j) {
     TriStudyRow row;
     row.objective = r.at("objective").get<std::string>();
     for (const json& c : r.at("cells"))
-      row.cells.push_back({c.at("degree").get<int>(), num_of(c.at("lower")), num_of(c.at("upper")),
+      row.cells.push_back({int_of(c.at("degree"), "degree", 1), num_of(c.at("lower")), num_of(c.at("upper")),
                            summary_of(c.at("c")), num_of(c.at("quadratic")), num_of(c.at("laplace"))});
     e.rows.push_back(std::move(row));
   }
@@ -334,7 +350,8 @@ void append_study_part(const json& part, const std::string& where, StudyResult* 
     for (const json& l : part.at("laws")) into->laws.push_back(law_of(l));
     for (const json& f : part.at("fit_deviations")) {
       FitDeviationEntry e{f.at("boundary").get<std::string>(), {}};
-      for (const json& p : f.at("max_deviation")) e.max_deviation.emplace_back(p.at(0).get<int>(), num_of(p.at(1)));
+      for (const json& p : f.at("max_deviation"))
+        e.max_deviation.emplace_back(int_of(p.at(0), "max_deviation degree", 1), num_of(p.at(1)));
       into->fit_deviations.push_back(std::move(e));
     }
     for (const json& t : part.at("references")) into->references.push_back(reference_of(t));
@@ -372,12 +389,13 @@ void append_bspline_rows(const json& rows, const std::string& where, std::vector
       BSplineStudyRow r;
       r.file = j.at("file").get<std::string>();
       r.name = j.at("name").get<std::string>();
-      r.degree_u = j.at("degrees").at(0).get<int>();
-      r.degree_v = j.at("degrees").at(1).get<int>();
-      r.count_u = j.at("counts").at(0).get<int>();
-      r.count_v = j.at("counts").at(1).get<int>();
+      r.degree_u = int_of(j.at("degrees").at(0), "degrees[0]", 1);
+      r.degree_v = int_of(j.at("degrees").at(1), "degrees[1]", 1);
+      r.count_u = int_of(j.at("counts").at(0), "counts[0]");
+      r.count_v = int_of(j.at("counts").at(1), "counts[1]");
       for (const json& n : j.at("notes"))
-        r.notes.push_back({n.at(0).get<std::string>(), n.at(1).get<int>(), n.at(2).get<int>()});
+        r.notes.push_back(
+            {n.at(0).get<std::string>(), int_of(n.at(1), "degree_raised_by"), int_of(n.at(2), "knots_inserted")});
       r.solver = j.at("solver").get<std::string>();
       r.thin_plate_coons = num_of(j.at("thin_plate_coons"));
       r.thin_plate_laplace = num_of(j.at("thin_plate_laplace"));
