@@ -84,7 +84,8 @@ CLI::Option* add_threads_option(CLI::App& cmd, int& threads) {
   return cmd
       .add_option("--threads", threads,
                   "threads of the backends that use them (dst, fast, fast5, separable-banded, mg, mg-cg, gmres; "
-                  "a sweep on fast: whole members; solve: also the exact energies of its report); 0: every core. "
+                  "a sweep on fast: whole members; solve with one of them: also the exact energies of its report); "
+                  "0: every core. "
                   "The result is the same for every count")
       ->capture_default_str();
 }
