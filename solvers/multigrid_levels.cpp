@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "multigrid_kernels.h"
 
@@ -217,6 +218,38 @@ Level galerkin_coarse(const Level& F, int reach) {
     }
   }
   return Cl;
+}
+
+void find_common_stencil(Level& L) {
+  const int r = L.radius, ww = L.width() * L.width(), R = L.rows, C = L.cols;
+  L.common_lo.assign(std::size_t(R), 0);
+  L.common_hi.assign(std::size_t(R), 0);
+  L.common.clear();
+  if (L.constant || R < 2 * r + 1 || C < 2 * r + 1) return;
+  // The stencil of the middle point: on a rectangle (or away from holes) the Galerkin sums are
+  // the same at every interior point away from the boundary.
+  const double* mid = L.at(Eigen::Index(R / 2) * C + C / 2);
+  L.common.assign(mid, mid + ww);
+  for (int i = r; i + r < R; ++i) {
+    int best_lo = 0, best_hi = 0;
+    for (int j = r; j + r < C;) {
+      auto same = [&](int jj) {
+        return std::memcmp(L.at(Eigen::Index(i) * C + jj), L.common.data(), sizeof(double) * std::size_t(ww)) == 0;
+      };
+      if (!same(j)) {
+        ++j;
+        continue;
+      }
+      const int lo = j;
+      while (j + r < C && same(j)) ++j;
+      if (j - lo > best_hi - best_lo) {
+        best_lo = lo;
+        best_hi = j;
+      }
+    }
+    L.common_lo[std::size_t(i)] = best_lo;
+    L.common_hi[std::size_t(i)] = best_hi;
+  }
 }
 
 bool setup_direct(Level& L) {
