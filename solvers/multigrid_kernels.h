@@ -54,14 +54,13 @@ inline double apply_at_interior(const Level& L, const double* x, int i, int j) {
   return sum;
 }
 
-// out[j] = b[j] − (A x)(j) (kApply: (A x)(j)) at the free points, 0 at fixed ones, for
-// j = lo, lo + step, … < hi of one interior row, all of whose points have the stencil a (kR > 0):
-// the weights sit in registers and no point needs a bounds check. b, x, free, out: the row's start.
-// The products are added in the order of apply_at_interior, so the values are the same.
+// out[j] = b[j] − (A x)(j) (kApply: (A x)(j)) for j = lo, lo + step, … < hi of one interior row,
+// all of whose points are free and have the stencil a (kR > 0): the weights sit in registers and
+// no point needs a bounds or mask check (the unit-step loop vectorises). b, x, out: the row's
+// start. The products are added in the order of apply_at_interior, so the values are the same.
 template <int kR, bool kApply, bool kUnit>
-inline void eval_run(const double* a, const double* __restrict b, const double* __restrict x,
-                     const unsigned char* __restrict free, double* __restrict out, Eigen::Index C, int lo, int hi,
-                     int step) {
+inline void eval_run(const double* a, const double* __restrict b, const double* __restrict x, double* __restrict out,
+                     Eigen::Index C, int lo, int hi, int step) {
   constexpr int w = 2 * kR + 1;
   double c[w * w];
   for (int k = 0; k < w * w; ++k) c[k] = a[k];
@@ -71,8 +70,7 @@ inline void eval_run(const double* a, const double* __restrict b, const double* 
     double sum = 0;
     for (int u = 0; u < w; ++u)
       for (int v = 0; v < w; ++v) sum += c[u * w + v] * xr[u][j + v - kR];
-    const double value = kApply ? sum : b[j] - sum;
-    out[j] = free[j] ? value : 0.0;
+    out[j] = kApply ? sum : b[j] - sum;
   };
   if constexpr (kUnit) {
     for (int j = lo; j < hi; ++j) point(j);
@@ -83,8 +81,7 @@ inline void eval_run(const double* a, const double* __restrict b, const double* 
 
 // One row i: out[j] = b[p] − (A x)(p) (kApply: (A x)(p)) at the free points, 0 at fixed ones, for
 // j = first, first + step, … < end (out indexed like the grid row). On an inner row the stretch of
-// points that share the level's common stencil (every interior point of the constant finest level)
-// takes eval_run; the rest point by point.
+// free points that share the level's common stencil takes eval_run; the rest point by point.
 template <int kR, bool kConst, bool kApply>
 inline void eval_row(const Level& L, const double* b, const double* x, double* out, int i, int first, int end,
                      int step) {
@@ -104,9 +101,9 @@ inline void eval_row(const Level& L, const double* b, const double* x, double* o
   };
   int run_lo = 0, run_hi = 0;  // the stretch [run_lo, run_hi) of the common stencil on this row
   if constexpr (kR > 0) {
-    if (inner) {
-      run_lo = kConst ? r : L.common_lo[std::size_t(i)];
-      run_hi = kConst ? C - r : L.common_hi[std::size_t(i)];
+    if (inner && !L.common_lo.empty()) {
+      run_lo = L.common_lo[std::size_t(i)];
+      run_hi = L.common_hi[std::size_t(i)];
     }
   }
   // the first j of the sequence at or after run_lo, the end of the run, and the first j after it
@@ -119,12 +116,12 @@ inline void eval_row(const Level& L, const double* b, const double* x, double* o
   const int hi = lo + (stop - lo + step - 1) / step * step;
   for (int j = first; j < lo; j += step) one(j);
   if constexpr (kR > 0) {
-    const double* a = kConst ? L.coef.data() : L.common.data();
+    const double* a = L.common.data();
     const double* bb = kApply ? nullptr : b + base;
     if (step == 1)
-      eval_run<kR, kApply, true>(a, bb, x + base, free, out, C, lo, stop, 1);
+      eval_run<kR, kApply, true>(a, bb, x + base, out, C, lo, stop, 1);
     else
-      eval_run<kR, kApply, false>(a, bb, x + base, free, out, C, lo, stop, step);
+      eval_run<kR, kApply, false>(a, bb, x + base, out, C, lo, stop, step);
   }
   for (int j = hi; j < end; j += step) one(j);
 }

@@ -225,23 +225,26 @@ void find_common_stencil(Level& L) {
   L.common_lo.assign(std::size_t(R), 0);
   L.common_hi.assign(std::size_t(R), 0);
   L.common.clear();
-  if (L.constant || R < 2 * r + 1 || C < 2 * r + 1) return;
-  // The stencil of the middle point: on a rectangle (or away from holes) the Galerkin sums are
-  // the same at every interior point away from the boundary.
+  if (R < 2 * r + 1 || C < 2 * r + 1) return;
+  // The fine level's one stencil, or the one of the middle point of a Galerkin level: on a
+  // rectangle (or away from holes) the Galerkin sums are the same at every interior point away
+  // from the boundary.
   const double* mid = L.at(Eigen::Index(R / 2) * C + C / 2);
   L.common.assign(mid, mid + ww);
   for (int i = r; i + r < R; ++i) {
+    auto fits = [&](int j) {
+      const Eigen::Index p = Eigen::Index(i) * C + j;
+      return L.free[std::size_t(p)] &&
+             (L.constant || std::memcmp(L.at(p), L.common.data(), sizeof(double) * std::size_t(ww)) == 0);
+    };
     int best_lo = 0, best_hi = 0;
     for (int j = r; j + r < C;) {
-      auto same = [&](int jj) {
-        return std::memcmp(L.at(Eigen::Index(i) * C + jj), L.common.data(), sizeof(double) * std::size_t(ww)) == 0;
-      };
-      if (!same(j)) {
+      if (!fits(j)) {
         ++j;
         continue;
       }
       const int lo = j;
-      while (j + r < C && same(j)) ++j;
+      while (j + r < C && fits(j)) ++j;
       if (j - lo > best_hi - best_lo) {
         best_lo = lo;
         best_hi = j;

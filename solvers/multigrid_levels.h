@@ -19,9 +19,10 @@ struct Multigrid::Level {
   bool constant = false;            // one stencil for every point (the finest level)
   std::vector<double> coef;         // width² weights per point (or once when constant)
   std::vector<unsigned char> free;  // rows·cols
-  // The stencil most interior points of a Galerkin level share (computed by the same sums, so equal
-  // bit for bit), and per row the stretch [common_lo, common_hi) of interior points that have it:
-  // the kernels read it from registers there instead of each point's weights (multigrid_kernels.h).
+  // The stencil most interior points share (the fine level's one; on a Galerkin level the sums are
+  // the same, so equal bit for bit), and per row the longest stretch [common_lo, common_hi) of free
+  // interior points that have it: the kernels take the weights from registers there, without a
+  // bounds or mask check per point (multigrid_kernels.h).
   std::vector<double> common;
   std::vector<int> common_lo, common_hi;
   // Banded LU (no pivoting) of the row and column line blocks, stored once per distinct line (on
