@@ -73,10 +73,24 @@ static std::vector<Parents> parents_along(int len, int coarse_len, int offset, i
   return out;
 }
 
-// r_c = Pᵀ r (P: interpolation restricted to free points).
+// r_c = Pᵀ r (P: interpolation restricted to free points). At coarse points whose fine
+// neighbourhood lies inside the grid the weights come from a table of the same products, added
+// in the same order (the values do not change), without bounds checks.
 void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
-  const int h = Cl.reach;
+  const int h = Cl.reach, w = 2 * h + 1;
   rc.setZero(Cl.points());
+  std::vector<double> weight(std::size_t(w) * w);
+  for (int a = -h; a <= h; ++a)
+    for (int c = -h; c <= h; ++c) weight[std::size_t((a + h) * w + c + h)] = interp_weight(h, a) * interp_weight(h, c);
+  // coarse I with every 2I + offset_i + a inside the fine rows (likewise J)
+  auto inside = [h](int offset, int fine_len, int coarse_len, int& lo, int& hi) {
+    const int last = fine_len - 1 - h - offset;  // 2I may reach this
+    lo = std::max(0, (h - offset + 1) / 2);
+    hi = last < 0 ? 0 : std::min(coarse_len, last / 2 + 1);
+  };
+  int I_lo = 0, I_hi = 0, J_lo = 0, J_hi = 0;
+  inside(Cl.offset_i, F.rows, Cl.rows, I_lo, I_hi);
+  inside(Cl.offset_j, F.cols, Cl.cols, J_lo, J_hi);
   [[maybe_unused]] const int nt = F.threads;
   COONS_PARALLEL_ROWS
   for (int I = 0; I < Cl.rows; ++I)
@@ -84,6 +98,17 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
       const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
       if (!Cl.free[q]) continue;
       double sum = 0;
+      if (I >= I_lo && I < I_hi && J >= J_lo && J < J_hi) {
+        const double* centre = r.data() + Eigen::Index(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j;
+        for (int a = -h; a <= h; ++a) {
+          const double* wa = &weight[std::size_t((a + h) * w + h)];
+          if (interp_weight(h, a) == 0) continue;
+          const double* row = centre + Eigen::Index(a) * F.cols;
+          for (int c = -h; c <= h; ++c) sum += wa[c] * row[c];
+        }
+        rc[q] = sum;
+        continue;
+      }
       for (int a = -h; a <= h; ++a) {
         const int i = 2 * I + Cl.offset_i + a;
         const double wa = interp_weight(h, a);
