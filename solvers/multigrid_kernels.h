@@ -1,6 +1,8 @@
 // The stencil kernels of one multigrid level (internal to the solvers layer): (A x)(i, j) at one
 // point, specialised on the radius (1 … 5, or 0: the level's own) and on a constant stencil (the
-// finest level) so that the interior loops run without bounds checks over registers of weights.
+// finest level), and on each row's stretch of free interior points that share the level's common
+// stencil (every level), so that the interior loops run without bounds or mask checks over
+// registers of weights.
 // Every variant adds the products in the same order (stencil row by row), so results do not depend
 // on which path a point takes.
 #pragma once
@@ -61,15 +63,15 @@ inline double apply_at_interior(const Level& L, const double* x, int i, int j) {
 template <int kR, bool kApply, bool kUnit>
 inline void eval_run(const double* a, const double* __restrict b, const double* __restrict x, double* __restrict out,
                      Eigen::Index C, int lo, int hi, int step) {
-  constexpr int w = 2 * kR + 1;
-  double c[w * w];
-  for (int k = 0; k < w * w; ++k) c[k] = a[k];
-  const double* xr[w];
+  constexpr int kW = 2 * kR + 1;
+  double c[kW * kW];
+  for (int k = 0; k < kW * kW; ++k) c[k] = a[k];
+  const double* xr[kW];
   for (int di = -kR; di <= kR; ++di) xr[di + kR] = x + Eigen::Index(di) * C;
   auto point = [&](int j) {
     double sum = 0;
-    for (int u = 0; u < w; ++u)
-      for (int v = 0; v < w; ++v) sum += c[u * w + v] * xr[u][j + v - kR];
+    for (int u = 0; u < kW; ++u)
+      for (int v = 0; v < kW; ++v) sum += c[u * kW + v] * xr[u][j + v - kR];
     out[j] = kApply ? sum : b[j] - sum;
   };
   if constexpr (kUnit) {

@@ -81,7 +81,8 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
   rc.setZero(Cl.points());
   std::vector<double> weight(std::size_t(w) * w);
   for (int a = -h; a <= h; ++a)
-    for (int c = -h; c <= h; ++c) weight[std::size_t((a + h) * w + c + h)] = interp_weight(h, a) * interp_weight(h, c);
+    for (int c = -h; c <= h; ++c)
+      weight[std::size_t(a + h) * std::size_t(w) + std::size_t(c + h)] = interp_weight(h, a) * interp_weight(h, c);
   // coarse I with every 2I + offset_i + a inside the fine rows (likewise J)
   auto inside = [h](int offset, int fine_len, int coarse_len, int& lo, int& hi) {
     const int last = fine_len - 1 - h - offset;  // 2I may reach this
@@ -101,7 +102,7 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
       if (I >= I_lo && I < I_hi && J >= J_lo && J < J_hi) {
         const double* centre = r.data() + Eigen::Index(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j;
         for (int a = -h; a <= h; ++a) {
-          const double* wa = &weight[std::size_t((a + h) * w + h)];
+          const double* wa = &weight[std::size_t(a + h) * std::size_t(w) + std::size_t(h)];
           if (interp_weight(h, a) == 0) continue;
           const double* row = centre + Eigen::Index(a) * F.cols;
           for (int c = -h; c <= h; ++c) sum += wa[c] * row[c];
@@ -251,16 +252,28 @@ void find_common_stencil(Level& L) {
   L.common_hi.assign(std::size_t(R), 0);
   L.common.clear();
   if (R < 2 * r + 1 || C < 2 * r + 1) return;
-  // The fine level's one stencil, or the one of the middle point of a Galerkin level: on a
-  // rectangle (or away from holes) the Galerkin sums are the same at every interior point away
-  // from the boundary.
-  const double* mid = L.at(Eigen::Index(R / 2) * C + C / 2);
-  L.common.assign(mid, mid + ww);
+  // The fine level's one stencil, or on a Galerkin level the one of the longest run of free
+  // interior points with equal stencils along a row: on a rectangle (or away from holes) the
+  // Galerkin sums are the same at every interior point away from the boundary.
+  const std::size_t bytes = sizeof(double) * std::size_t(ww);
+  const double* best = L.at(Eigen::Index(R / 2) * C + C / 2);
+  if (!L.constant) {
+    int longest = 0;
+    for (int i = r; i + r < R; ++i)
+      for (int j = r, run = 0; j + r < C; ++j) {
+        const Eigen::Index p = Eigen::Index(i) * C + j;
+        run = !L.free[std::size_t(p)] ? 0 : run > 0 && std::memcmp(L.at(p), L.at(p - 1), bytes) == 0 ? run + 1 : 1;
+        if (run > longest) {
+          longest = run;
+          best = L.at(p);
+        }
+      }
+  }
+  L.common.assign(best, best + ww);
   for (int i = r; i + r < R; ++i) {
     auto fits = [&](int j) {
       const Eigen::Index p = Eigen::Index(i) * C + j;
-      return L.free[std::size_t(p)] &&
-             (L.constant || std::memcmp(L.at(p), L.common.data(), sizeof(double) * std::size_t(ww)) == 0);
+      return L.free[std::size_t(p)] && (L.constant || std::memcmp(L.at(p), L.common.data(), bytes) == 0);
     };
     int best_lo = 0, best_hi = 0;
     for (int j = r; j + r < C;) {

@@ -5,6 +5,7 @@
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
@@ -12,6 +13,8 @@
 #include <vector>
 
 #include "solvers/gmres.h"
+#include "solvers/multigrid_kernels.h"
+#include "solvers/multigrid_levels.h"
 #include "solvers/multigrid_solvers.h"
 #include "solvers/registry.h"
 #include "solvers/stencil_operator.h"
@@ -456,4 +459,48 @@ TEST_CASE("Multigrid::setup: a line block with a zero pivot is not_applicable, n
   const SolveSummary s = make_solver("mg")->compute_and_solve(lin, Eigen::MatrixX3d::Ones(op.size(), 3), X);
   INFO(s.brief_report());
   CHECK(s.status == SolveStatus::kNotApplicable);
+}
+
+TEST_CASE("mg_detail::residual: the common-stencil stretches give the point-by-point values on Galerkin levels",
+          "[solvers][mg]") {
+  // A hole and a 5×5 stencil: the Galerkin levels have many distinct stencils near the hole and the
+  // boundary; the rows' stretches of the common one must leave every value as the bounds-checked
+  // kernel computes it (same products, same order: equal bit for bit).
+  for (const bool cubic : {false, true}) {
+    const StencilOperator op =
+        cubic ? make_stencil_operator(93, 90, biharmonic()) : make_stencil_operator(93, 90, nine_point(1, -0.2, -0.05));
+    mg_detail::Level fine;
+    fine.rows = op.rows;
+    fine.cols = op.cols;
+    fine.radius = op.radius;
+    fine.constant = true;
+    fine.coef = op.weights;
+    fine.free = shape_mask(Shape::kHole, op.rows, op.cols);
+    fine.unknowns = std::count(fine.free.begin(), fine.free.end(), 1);
+    std::vector<mg_detail::Level> levels;
+    levels.push_back(std::move(fine));
+    for (int l = 0; l < 2; ++l) levels.push_back(mg_detail::galerkin_coarse(levels.back(), cubic ? 3 : 1));
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+      mg_detail::Level& L = levels[l];
+      mg_detail::find_common_stencil(L);
+      REQUIRE(mg_detail::factor_lines(L));
+      INFO("level " << L.rows << " x " << L.cols << ", radius " << L.radius);
+      int stretched = 0;
+      for (int i = 0; i < L.rows; ++i) stretched += L.common_hi[std::size_t(i)] - L.common_lo[std::size_t(i)];
+      if (l < 2) CHECK(stretched > L.points() / 4);                // the fast path is taken (not only at the coarsest)
+      CHECK(L.row_lu.inv_pivot.size() < std::size_t(L.points()));  // some rows share their factors
+      Eigen::VectorXd b = Eigen::VectorXd::Random(L.points()), x = Eigen::VectorXd::Random(L.points()), r;
+      for (Eigen::Index p = 0; p < L.points(); ++p)
+        if (!L.free[std::size_t(p)]) x[p] = 0;  // the invariant of the cycle
+      mg_detail::residual(L, b, x, r);
+      int differ = 0;
+      for (int i = 0; i < L.rows; ++i)
+        for (int j = 0; j < L.cols; ++j) {
+          const Eigen::Index p = Eigen::Index(i) * L.cols + j;
+          const double expected = L.free[std::size_t(p)] ? b[p] - mg_detail::apply_at_edge(L, x.data(), i, j) : 0.0;
+          differ += r[p] != expected;
+        }
+      CHECK(differ == 0);
+    }
+  }
 }
