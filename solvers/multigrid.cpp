@@ -72,7 +72,10 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
   }
   // Coarse levels run on one thread: below a few thousand points a parallel region costs more than
   // it saves (the results are the same for every count).
-  for (auto& L : levels_) L.threads = L.points() >= kMinThreadedPoints ? resolved_threads(options.threads) : 1;
+  for (auto& L : levels_) {
+    L.threads = L.points() >= kMinThreadedPoints ? resolved_threads(options.threads) : 1;
+    find_common_stencil(L);
+  }
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l)
     if (!factor_lines(levels_[l])) {
       if (message)

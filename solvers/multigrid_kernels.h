@@ -1,6 +1,8 @@
 // The stencil kernels of one multigrid level (internal to the solvers layer): (A x)(i, j) at one
 // point, specialised on the radius (1 … 5, or 0: the level's own) and on a constant stencil (the
-// finest level) so that the interior loops run without bounds checks over registers of weights.
+// finest level), and on each row's stretch of free interior points that share the level's common
+// stencil (every level), so that the interior loops run without bounds or mask checks over
+// registers of weights.
 // Every variant adds the products in the same order (stencil row by row), so results do not depend
 // on which path a point takes.
 #pragma once
@@ -54,8 +56,34 @@ inline double apply_at_interior(const Level& L, const double* x, int i, int j) {
   return sum;
 }
 
+// out[j] = b[j] − (A x)(j) (kApply: (A x)(j)) for j = lo, lo + step, … < hi of one interior row,
+// all of whose points are free and have the stencil a (kR > 0): the weights sit in registers and
+// no point needs a bounds or mask check (the unit-step loop vectorises). b, x, out: the row's
+// start. The products are added in the order of apply_at_interior, so the values are the same.
+template <int kR, bool kApply, bool kUnit>
+inline void eval_run(const double* a, const double* __restrict b, const double* __restrict x, double* __restrict out,
+                     Eigen::Index C, int lo, int hi, int step) {
+  constexpr int kW = 2 * kR + 1;
+  double c[kW * kW];
+  for (int k = 0; k < kW * kW; ++k) c[k] = a[k];
+  const double* xr[kW];
+  for (int di = -kR; di <= kR; ++di) xr[di + kR] = x + Eigen::Index(di) * C;
+  auto point = [&](int j) {
+    double sum = 0;
+    for (int u = 0; u < kW; ++u)
+      for (int v = 0; v < kW; ++v) sum += c[u * kW + v] * xr[u][j + v - kR];
+    out[j] = kApply ? sum : b[j] - sum;
+  };
+  if constexpr (kUnit) {
+    for (int j = lo; j < hi; ++j) point(j);
+  } else {
+    for (int j = lo; j < hi; j += step) point(j);
+  }
+}
+
 // One row i: out[j] = b[p] − (A x)(p) (kApply: (A x)(p)) at the free points, 0 at fixed ones, for
-// j = first, first + step, … < end (out indexed like the grid row).
+// j = first, first + step, … < end (out indexed like the grid row). On an inner row the stretch of
+// free points that share the level's common stencil takes eval_run; the rest point by point.
 template <int kR, bool kConst, bool kApply>
 inline void eval_row(const Level& L, const double* b, const double* x, double* out, int i, int first, int end,
                      int step) {
@@ -70,15 +98,34 @@ inline void eval_row(const Level& L, const double* b, const double* x, double* o
       out[j] = free[j] ? b[base + j] - s : 0.0;
     }
   };
-  if (step == 1 && inner) {
-    const int lo = std::clamp(r, first, end), hi = std::clamp(C - r, lo, end);
-    for (int j = first; j < lo; ++j) finish(j, apply_at_edge(L, x, i, j));
-    for (int j = lo; j < hi; ++j) finish(j, apply_at_interior<kR, kConst>(L, x, i, j));
-    for (int j = hi; j < end; ++j) finish(j, apply_at_edge(L, x, i, j));
+  auto one = [&](int j) {
+    finish(j, inner && j >= r && j + r < C ? apply_at_interior<kR, kConst>(L, x, i, j) : apply_at_edge(L, x, i, j));
+  };
+  int run_lo = 0, run_hi = 0;  // the stretch [run_lo, run_hi) of the common stencil on this row
+  if constexpr (kR > 0) {
+    if (inner && !L.common_lo.empty()) {
+      run_lo = L.common_lo[std::size_t(i)];
+      run_hi = L.common_hi[std::size_t(i)];
+    }
+  }
+  // the first j of the sequence at or after run_lo, the end of the run, and the first j after it
+  const int lo = run_lo <= first ? first : first + (run_lo - first + step - 1) / step * step;
+  const int stop = std::min(end, run_hi);
+  if (lo >= stop) {
+    for (int j = first; j < end; j += step) one(j);
     return;
   }
-  for (int j = first; j < end; j += step)
-    finish(j, inner && j >= r && j + r < C ? apply_at_interior<kR, kConst>(L, x, i, j) : apply_at_edge(L, x, i, j));
+  const int hi = lo + (stop - lo + step - 1) / step * step;
+  for (int j = first; j < lo; j += step) one(j);
+  if constexpr (kR > 0) {
+    const double* a = L.common.data();
+    const double* bb = kApply ? nullptr : b + base;
+    if (step == 1)
+      eval_run<kR, kApply, true>(a, bb, x + base, out, C, lo, stop, 1);
+    else
+      eval_run<kR, kApply, false>(a, bb, x + base, out, C, lo, stop, step);
+  }
+  for (int j = hi; j < end; j += step) one(j);
 }
 
 // Calls f(std::integral_constant<int, R>, std::bool_constant<constant>) with R = the level's radius

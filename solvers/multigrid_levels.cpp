@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "multigrid_kernels.h"
 
@@ -72,10 +73,25 @@ static std::vector<Parents> parents_along(int len, int coarse_len, int offset, i
   return out;
 }
 
-// r_c = Pᵀ r (P: interpolation restricted to free points).
+// r_c = Pᵀ r (P: interpolation restricted to free points). At coarse points whose fine
+// neighbourhood lies inside the grid the weights come from a table of the same products, added
+// in the same order (the values do not change), without bounds checks.
 void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
-  const int h = Cl.reach;
+  const int h = Cl.reach, w = 2 * h + 1;
   rc.setZero(Cl.points());
+  std::vector<double> weight(std::size_t(w) * w);
+  for (int a = -h; a <= h; ++a)
+    for (int c = -h; c <= h; ++c)
+      weight[std::size_t(a + h) * std::size_t(w) + std::size_t(c + h)] = interp_weight(h, a) * interp_weight(h, c);
+  // coarse I with every 2I + offset_i + a inside the fine rows (likewise J)
+  auto inside = [h](int offset, int fine_len, int coarse_len, int& lo, int& hi) {
+    const int last = fine_len - 1 - h - offset;  // 2I may reach this
+    lo = std::max(0, (h - offset + 1) / 2);
+    hi = last < 0 ? 0 : std::min(coarse_len, last / 2 + 1);
+  };
+  int I_lo = 0, I_hi = 0, J_lo = 0, J_hi = 0;
+  inside(Cl.offset_i, F.rows, Cl.rows, I_lo, I_hi);
+  inside(Cl.offset_j, F.cols, Cl.cols, J_lo, J_hi);
   [[maybe_unused]] const int nt = F.threads;
   COONS_PARALLEL_ROWS
   for (int I = 0; I < Cl.rows; ++I)
@@ -83,6 +99,17 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
       const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
       if (!Cl.free[q]) continue;
       double sum = 0;
+      if (I >= I_lo && I < I_hi && J >= J_lo && J < J_hi) {
+        const double* centre = r.data() + Eigen::Index(2 * I + Cl.offset_i) * F.cols + 2 * J + Cl.offset_j;
+        for (int a = -h; a <= h; ++a) {
+          const double* wa = &weight[std::size_t(a + h) * std::size_t(w) + std::size_t(h)];
+          if (interp_weight(h, a) == 0) continue;
+          const double* row = centre + Eigen::Index(a) * F.cols;
+          for (int c = -h; c <= h; ++c) sum += wa[c] * row[c];
+        }
+        rc[q] = sum;
+        continue;
+      }
       for (int a = -h; a <= h; ++a) {
         const int i = 2 * I + Cl.offset_i + a;
         const double wa = interp_weight(h, a);
@@ -217,6 +244,53 @@ Level galerkin_coarse(const Level& F, int reach) {
     }
   }
   return Cl;
+}
+
+void find_common_stencil(Level& L) {
+  const int r = L.radius, ww = L.width() * L.width(), R = L.rows, C = L.cols;
+  L.common_lo.assign(std::size_t(R), 0);
+  L.common_hi.assign(std::size_t(R), 0);
+  L.common.clear();
+  if (R < 2 * r + 1 || C < 2 * r + 1) return;
+  // The fine level's one stencil, or on a Galerkin level the one of the longest run of free
+  // interior points with equal stencils along a row: on a rectangle (or away from holes) the
+  // Galerkin sums are the same at every interior point away from the boundary.
+  const std::size_t bytes = sizeof(double) * std::size_t(ww);
+  const double* best = L.at(Eigen::Index(R / 2) * C + C / 2);
+  if (!L.constant) {
+    int longest = 0;
+    for (int i = r; i + r < R; ++i)
+      for (int j = r, run = 0; j + r < C; ++j) {
+        const Eigen::Index p = Eigen::Index(i) * C + j;
+        run = !L.free[std::size_t(p)] ? 0 : run > 0 && std::memcmp(L.at(p), L.at(p - 1), bytes) == 0 ? run + 1 : 1;
+        if (run > longest) {
+          longest = run;
+          best = L.at(p);
+        }
+      }
+  }
+  L.common.assign(best, best + ww);
+  for (int i = r; i + r < R; ++i) {
+    auto fits = [&](int j) {
+      const Eigen::Index p = Eigen::Index(i) * C + j;
+      return L.free[std::size_t(p)] && (L.constant || std::memcmp(L.at(p), L.common.data(), bytes) == 0);
+    };
+    int best_lo = 0, best_hi = 0;
+    for (int j = r; j + r < C;) {
+      if (!fits(j)) {
+        ++j;
+        continue;
+      }
+      const int lo = j;
+      while (j + r < C && fits(j)) ++j;
+      if (j - lo > best_hi - best_lo) {
+        best_lo = lo;
+        best_hi = j;
+      }
+    }
+    L.common_lo[std::size_t(i)] = best_lo;
+    L.common_hi[std::size_t(i)] = best_hi;
+  }
 }
 
 bool setup_direct(Level& L) {

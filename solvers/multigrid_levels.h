@@ -19,11 +19,19 @@ struct Multigrid::Level {
   bool constant = false;            // one stencil for every point (the finest level)
   std::vector<double> coef;         // width² weights per point (or once when constant)
   std::vector<unsigned char> free;  // rows·cols
-  // Banded LU (no pivoting) of the row and column line blocks, one entry per grid point p at line
-  // position t: lower[(k−1)·points + p] = L(t, t−k), upper[(k−1)·points + p] = U(t, t+k) for
-  // k = 1 … radius, inv_pivot[p] = 1 / U(t, t).
+  // The stencil most interior points share (the fine level's one; on a Galerkin level the sums are
+  // the same, so equal bit for bit), and per row the longest stretch [common_lo, common_hi) of free
+  // interior points that have it: the kernels take the weights from registers there, without a
+  // bounds or mask check per point (multigrid_kernels.h).
+  std::vector<double> common;
+  std::vector<int> common_lo, common_hi;
+  // Banded LU (no pivoting) of the row and column line blocks, stored once per distinct line (on
+  // a rectangle all lines but those near the boundary are equal, so the factors stay in cache):
+  // line[m] = the distinct line u of line m; at position t of u (length n), for k = 1 … radius,
+  // lower[(u·radius + k − 1)·n + t] = L(t, t−k), upper[…] = U(t, t+k), inv_pivot[u·n + t] = 1 / U(t, t).
   struct LineLU {
     std::vector<double> lower, upper, inv_pivot;
+    std::vector<int> line;
   };
   LineLU row_lu, col_lu;
   int first_i = 0, first_j = 0;  // the first row and column with a free point: line colours count from them
@@ -59,6 +67,8 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc);
 void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x);
 //! The next coarser level with the Galerkin operator Pᵀ A P (reach 1: bilinear, 3: bicubic).
 Level galerkin_coarse(const Level& F, int reach);
+//! L.common and the stretches of it on each row (empty stretches when no stencil repeats).
+void find_common_stencil(Level& L);
 //! The sparse LU of the coarsest level; false when it is singular.
 bool setup_direct(Level& L);
 void solve_direct(const Level& L, const Vector& b, Vector& x);

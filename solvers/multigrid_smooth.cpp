@@ -9,6 +9,9 @@
 // the row solves interleave several rows (independent recurrences instead of one latency chain).
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
+#include <cstring>
+#include <unordered_map>
 
 #include "multigrid_kernels.h"
 
@@ -53,24 +56,29 @@ int first_of_colour(int first_free, int colour, int colours) { return (first_fre
 template <int kR, bool kConst>
 void solve_row_group(const Level& L, const double* b, double* x, double* d, const int* rows, int count) {
   const int r = radius_of<kR>(L), C = L.cols;
-  const Eigen::Index P = L.points();
-  const double* lower = L.row_lu.lower.data();
-  const double* upper = L.row_lu.upper.data();
-  const double* inv = L.row_lu.inv_pivot.data();
+  const double* lower[kRowGroup];
+  const double* upper[kRowGroup];
+  const double* inv[kRowGroup];
+  for (int g = 0; g < count; ++g) {
+    const Eigen::Index u = L.row_lu.line[std::size_t(rows[g])];
+    lower[g] = L.row_lu.lower.data() + u * r * C;
+    upper[g] = L.row_lu.upper.data() + u * r * C;
+    inv[g] = L.row_lu.inv_pivot.data() + u * C;
+  }
   for (int g = 0; g < count; ++g) eval_row<kR, kConst, false>(L, b, x, d + Eigen::Index(rows[g]) * C, rows[g], 0, C, 1);
   for (int t = 0; t < C; ++t)
     for (int g = 0; g < count; ++g) {
       const Eigen::Index p = Eigen::Index(rows[g]) * C + t;
       double y = d[p];
-      for (int k = 1; k <= std::min(r, t); ++k) y -= lower[(k - 1) * P + p] * d[p - k];
+      for (int k = 1; k <= std::min(r, t); ++k) y -= lower[g][(k - 1) * C + t] * d[p - k];
       d[p] = y;
     }
   for (int t = C - 1; t >= 0; --t)
     for (int g = 0; g < count; ++g) {
       const Eigen::Index p = Eigen::Index(rows[g]) * C + t;
       double y = d[p];
-      for (int k = 1; k <= std::min(r, C - 1 - t); ++k) y -= upper[(k - 1) * P + p] * d[p + k];
-      d[p] = y * inv[p];
+      for (int k = 1; k <= std::min(r, C - 1 - t); ++k) y -= upper[g][(k - 1) * C + t] * d[p + k];
+      d[p] = y * inv[g][t];
     }
   for (int g = 0; g < count; ++g) {
     const Eigen::Index base = Eigen::Index(rows[g]) * C;
@@ -82,17 +90,18 @@ void solve_row_group(const Level& L, const double* b, double* x, double* d, cons
 template <int kR, bool kConst>
 void solve_column_block(const Level& L, const double* b, double* x, double* d, int first, int end, int step) {
   const int r = radius_of<kR>(L), R = L.rows, C = L.cols;
-  const Eigen::Index P = L.points();
   const double* lower = L.col_lu.lower.data();
   const double* upper = L.col_lu.upper.data();
   const double* inv = L.col_lu.inv_pivot.data();
+  const int* line = L.col_lu.line.data();
   for (int i = 0; i < R; ++i) {
     eval_row<kR, kConst, false>(L, b, x, d + Eigen::Index(i) * C, i, first, end, step);
     const int reach = std::min(r, i);
     for (int j = first; j < end; j += step) {
       const Eigen::Index p = Eigen::Index(i) * C + j;
+      const double* lo = lower + Eigen::Index(line[j]) * r * R + i;
       double y = d[p];
-      for (int k = 1; k <= reach; ++k) y -= lower[(k - 1) * P + p] * d[p - Eigen::Index(k) * C];
+      for (int k = 1; k <= reach; ++k) y -= lo[(k - 1) * R] * d[p - Eigen::Index(k) * C];
       d[p] = y;
     }
   }
@@ -100,9 +109,10 @@ void solve_column_block(const Level& L, const double* b, double* x, double* d, i
     const int reach = std::min(r, R - 1 - i);
     for (int j = first; j < end; j += step) {
       const Eigen::Index p = Eigen::Index(i) * C + j;
+      const double* up = upper + Eigen::Index(line[j]) * r * R + i;
       double y = d[p];
-      for (int k = 1; k <= reach; ++k) y -= upper[(k - 1) * P + p] * d[p + Eigen::Index(k) * C];
-      y *= inv[p];
+      for (int k = 1; k <= reach; ++k) y -= up[(k - 1) * R] * d[p + Eigen::Index(k) * C];
+      y *= inv[Eigen::Index(line[j]) * R + i];
       d[p] = y;
       x[p] += y;
     }
@@ -154,7 +164,6 @@ void sweep_columns(const Level& L, const Vector& b, Vector& x, Vector& d, int co
 // The line blocks: along a row (i fixed) or a column (j fixed); fixed points become identity rows.
 bool factor_lines(Level& L) {
   const int r = L.radius, w = L.width(), R = L.rows, C = L.cols;
-  const Eigen::Index P = L.points();
   L.first_i = R;
   L.first_j = C;
   for (int i = 0; i < R; ++i)
@@ -163,10 +172,20 @@ bool factor_lines(Level& L) {
         L.first_i = std::min(L.first_i, i);
         L.first_j = std::min(L.first_j, j);
       }
-  std::vector<double> band;
+  std::vector<double> band, lower, upper, inv;
   // One line: its n points p(t) = start + t·stride; along = offset of the neighbour k along it in
-  // the stencil (1 for a row, width for a column).
-  auto factor_line = [&](Level::LineLU& lu, Eigen::Index start, Eigen::Index stride, int n, int along) {
+  // the stencil (1 for a row, width for a column). Its factors go to lu as a new distinct line
+  // unless an earlier line has the same ones (found by a hash of their bytes).
+  std::unordered_map<std::uint64_t, int> seen;
+  auto hash = [](const std::vector<double>& v, std::uint64_t h) {
+    for (double value : v) {
+      std::uint64_t bits = 0;
+      std::memcpy(&bits, &value, sizeof bits);
+      h = (h ^ bits) * 1099511628211ULL;
+    }
+    return h;
+  };
+  auto factor_line = [&](Level::LineLU& lu, int m, Eigen::Index start, Eigen::Index stride, int n, int along) {
     band.assign(std::size_t(n) * w, 0.0);
     for (int t = 0; t < n; ++t) {
       const Eigen::Index p = start + t * stride;
@@ -180,25 +199,44 @@ bool factor_lines(Level& L) {
         if (t + k >= 0 && t + k < n && L.free[p + k * stride]) row[r + k] = a[k * along];
     }
     if (!band_factor(band.data(), n, r)) return false;
+    lower.assign(std::size_t(n) * r, 0.0);
+    upper.assign(std::size_t(n) * r, 0.0);
+    inv.assign(std::size_t(n), 0.0);
     for (int t = 0; t < n; ++t) {
-      const Eigen::Index p = start + t * stride;
       for (int k = 1; k <= r; ++k) {
-        lu.lower[(k - 1) * P + p] = band[std::size_t(t) * w + r - k];
-        lu.upper[(k - 1) * P + p] = band[std::size_t(t) * w + r + k];
+        lower[std::size_t(k - 1) * n + t] = band[std::size_t(t) * w + r - k];
+        upper[std::size_t(k - 1) * n + t] = band[std::size_t(t) * w + r + k];
       }
-      lu.inv_pivot[p] = 1.0 / band[std::size_t(t) * w + r];
+      inv[std::size_t(t)] = 1.0 / band[std::size_t(t) * w + r];
     }
+    const std::uint64_t key = hash(inv, hash(upper, hash(lower, 1469598103934665603ULL)));
+    const int distinct = int(lu.inv_pivot.size() / std::size_t(n));
+    auto [it, added] = seen.emplace(key, distinct);
+    if (!added) {
+      const std::size_t u = std::size_t(it->second);
+      const std::size_t block = std::size_t(n) * r;
+      if (std::equal(lower.begin(), lower.end(), lu.lower.begin() + std::ptrdiff_t(u * block)) &&
+          std::equal(upper.begin(), upper.end(), lu.upper.begin() + std::ptrdiff_t(u * block)) &&
+          std::equal(inv.begin(), inv.end(), lu.inv_pivot.begin() + std::ptrdiff_t(u * n))) {
+        lu.line[std::size_t(m)] = it->second;
+        return true;
+      }
+    }
+    lu.line[std::size_t(m)] = distinct;
+    lu.lower.insert(lu.lower.end(), lower.begin(), lower.end());
+    lu.upper.insert(lu.upper.end(), upper.begin(), upper.end());
+    lu.inv_pivot.insert(lu.inv_pivot.end(), inv.begin(), inv.end());
     return true;
   };
-  for (Level::LineLU* lu : {&L.row_lu, &L.col_lu}) {
-    lu->lower.assign(std::size_t(P) * r, 0.0);
-    lu->upper.assign(std::size_t(P) * r, 0.0);
-    lu->inv_pivot.assign(std::size_t(P), 1.0);
-  }
+  L.row_lu = {};
+  L.col_lu = {};
+  L.row_lu.line.assign(std::size_t(R), 0);
+  L.col_lu.line.assign(std::size_t(C), 0);
   for (int i = 0; i < R; ++i)
-    if (!factor_line(L.row_lu, Eigen::Index(i) * C, 1, C, 1)) return false;
+    if (!factor_line(L.row_lu, i, Eigen::Index(i) * C, 1, C, 1)) return false;
+  seen.clear();
   for (int j = 0; j < C; ++j)
-    if (!factor_line(L.col_lu, j, C, R, w)) return false;
+    if (!factor_line(L.col_lu, j, j, C, R, w)) return false;
   return true;
 }
 

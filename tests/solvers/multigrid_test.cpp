@@ -1,10 +1,13 @@
 // Multigrid, multigrid-preconditioned CG and GMRES on grid stencils (3×3 and 5×5, full rectangles
-// and free sets), against sparse direct solves; symmetry of the V-cycle; iteration counts.
+// and free sets), against sparse direct solves; symmetry of the V-cycle; iteration counts; the fast
+// paths of the levels (common-stencil stretches, shared line factors, restriction table) against
+// written-out references, bit for bit.
 #include "solvers/multigrid.h"
 
 #include <Eigen/Dense>
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
+#include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <functional>
@@ -12,6 +15,8 @@
 #include <vector>
 
 #include "solvers/gmres.h"
+#include "solvers/multigrid_kernels.h"
+#include "solvers/multigrid_levels.h"
 #include "solvers/multigrid_solvers.h"
 #include "solvers/registry.h"
 #include "solvers/stencil_operator.h"
@@ -456,4 +461,293 @@ TEST_CASE("Multigrid::setup: a line block with a zero pivot is not_applicable, n
   const SolveSummary s = make_solver("mg")->compute_and_solve(lin, Eigen::MatrixX3d::Ones(op.size(), 3), X);
   INFO(s.brief_report());
   CHECK(s.status == SolveStatus::kNotApplicable);
+}
+
+TEST_CASE("mg_detail::residual: the common-stencil stretches give the point-by-point values on Galerkin levels",
+          "[solvers][mg]") {
+  // A hole and a 5×5 stencil: the Galerkin levels have many distinct stencils near the hole and the
+  // boundary; the rows' stretches of the common one must leave every value as the bounds-checked
+  // kernel computes it (same products, same order: equal bit for bit).
+  for (const bool cubic : {false, true}) {
+    const StencilOperator op =
+        cubic ? make_stencil_operator(93, 90, biharmonic()) : make_stencil_operator(93, 90, nine_point(1, -0.2, -0.05));
+    mg_detail::Level fine;
+    fine.rows = op.rows;
+    fine.cols = op.cols;
+    fine.radius = op.radius;
+    fine.constant = true;
+    fine.coef = op.weights;
+    fine.free = shape_mask(Shape::kHole, op.rows, op.cols);
+    fine.unknowns = std::count(fine.free.begin(), fine.free.end(), 1);
+    std::vector<mg_detail::Level> levels;
+    levels.push_back(std::move(fine));
+    for (int l = 0; l < 2; ++l) levels.push_back(mg_detail::galerkin_coarse(levels.back(), cubic ? 3 : 1));
+    for (std::size_t l = 0; l < levels.size(); ++l) {
+      mg_detail::Level& L = levels[l];
+      mg_detail::find_common_stencil(L);
+      REQUIRE(mg_detail::factor_lines(L));
+      INFO("level " << L.rows << " x " << L.cols << ", radius " << L.radius);
+      int stretched = 0;
+      for (int i = 0; i < L.rows; ++i) stretched += L.common_hi[std::size_t(i)] - L.common_lo[std::size_t(i)];
+      if (l < 2) CHECK(stretched > L.points() / 4);                // the fast path is taken (not only at the coarsest)
+      CHECK(L.row_lu.inv_pivot.size() < std::size_t(L.points()));  // some rows share their factors
+      Eigen::VectorXd b = Eigen::VectorXd::Random(L.points()), x = Eigen::VectorXd::Random(L.points()), r;
+      for (Eigen::Index p = 0; p < L.points(); ++p)
+        if (!L.free[std::size_t(p)]) x[p] = 0;  // the invariant of the cycle
+      mg_detail::residual(L, b, x, r);
+      int differ = 0;
+      for (int i = 0; i < L.rows; ++i)
+        for (int j = 0; j < L.cols; ++j) {
+          const Eigen::Index p = Eigen::Index(i) * L.cols + j;
+          const double expected = L.free[std::size_t(p)] ? b[p] - mg_detail::apply_at_edge(L, x.data(), i, j) : 0.0;
+          differ += r[p] != expected;
+        }
+      CHECK(differ == 0);
+    }
+  }
+}
+
+namespace {
+
+// Fixtures of the fast-path tests: a fine level (3×3 or 5×5 stencil, on a rectangle or around a
+// central hole, constant or with the centre weight raised at every 9th point of every 16th row so
+// that the runs of equal stencils break there and, on the Galerkin levels, on the rows near them) and two Galerkin
+// levels under it, each with its common stencil and line factors as Multigrid::setup makes them.
+std::vector<mg_detail::Level> fast_path_levels(bool cubic, Shape shape, bool varying) {
+  const StencilOperator op =
+      cubic ? make_stencil_operator(61, 58, biharmonic()) : make_stencil_operator(61, 58, nine_point(1, -0.2, -0.05));
+  mg_detail::Level fine;
+  fine.rows = op.rows;
+  fine.cols = op.cols;
+  fine.radius = op.radius;
+  fine.free = shape_mask(shape, op.rows, op.cols);
+  if (fine.free.empty()) fine.free.assign(std::size_t(fine.points()), 1);
+  fine.unknowns = std::count(fine.free.begin(), fine.free.end(), 1);
+  const std::size_t ww = op.weights.size();
+  fine.constant = !varying;
+  fine.coef = op.weights;
+  if (varying) {
+    fine.coef.clear();
+    for (Eigen::Index p = 0; p < fine.points(); ++p) {
+      fine.coef.insert(fine.coef.end(), op.weights.begin(), op.weights.end());
+      if (p / op.cols % 16 == 5 && p % op.cols % 9 == 4)
+        fine.coef[std::size_t(p) * ww + ww / 2] *= 1.0 + double(p % 7 + 1) / 64;
+    }
+  }
+  std::vector<mg_detail::Level> levels;
+  levels.push_back(std::move(fine));
+  for (int l = 0; l < 2; ++l) levels.push_back(mg_detail::galerkin_coarse(levels.back(), cubic ? 3 : 1));
+  for (mg_detail::Level& L : levels) {
+    mg_detail::find_common_stencil(L);
+    REQUIRE(mg_detail::factor_lines(L));
+  }
+  return levels;
+}
+
+// A grid vector of values in [−1, 1] at the free points, 0 at fixed ones (the invariant of the cycle).
+Eigen::VectorXd random_on_free(const mg_detail::Level& L) {
+  Eigen::VectorXd v = Eigen::VectorXd::Random(L.points());
+  for (Eigen::Index p = 0; p < L.points(); ++p)
+    if (!L.free[std::size_t(p)]) v[p] = 0;
+  return v;
+}
+
+// The dense LU (no pivoting, Doolittle, eliminations in the order t, then k, then s) of one line
+// block of L: row i (column = false) or column j; fixed points are identity rows, and a free point
+// couples only to free points of the line. Entry (t, s) at lu[t·n + s]; the pivots on the diagonal.
+std::vector<double> reference_line_lu(const mg_detail::Level& L, bool column, int m) {
+  const int r = L.radius, w = L.width(), n = column ? L.rows : L.cols;
+  auto point = [&](int t) { return column ? Eigen::Index(t) * L.cols + m : Eigen::Index(m) * L.cols + t; };
+  std::vector<double> lu(std::size_t(n) * std::size_t(n), 0.0);
+  auto at = [&](int t, int s) -> double& { return lu[std::size_t(t) * std::size_t(n) + std::size_t(s)]; };
+  for (int t = 0; t < n; ++t) {
+    if (!L.free[std::size_t(point(t))]) {
+      at(t, t) = 1;
+      continue;
+    }
+    const double* centre = L.at(point(t)) + r * w + r;
+    for (int k = -r; k <= r; ++k)
+      if (t + k >= 0 && t + k < n && L.free[std::size_t(point(t + k))]) at(t, t + k) = centre[column ? k * w : k];
+  }
+  for (int t = 0; t < n; ++t)
+    for (int k = 1; k <= r && t + k < n; ++k) {
+      at(t + k, t) /= at(t, t);
+      for (int s = 1; s <= r && t + s < n; ++s) at(t + k, t + s) -= at(t + k, t) * at(t, t + s);
+    }
+  return lu;
+}
+
+// One colour step of the line smoother, written out: the residual b − A x at the free points of
+// the lines of that colour (point by point, with bounds checks), the solve of each line with its
+// own LU, then x += the correction on those lines.
+void reference_colour_step(const mg_detail::Level& L, const Eigen::VectorXd& b, Eigen::VectorXd& x, bool column,
+                           int colour) {
+  const int r = L.radius, colours = r + 1, n = column ? L.rows : L.cols, lines = column ? L.cols : L.rows;
+  int first_free = lines;
+  for (int i = 0; i < L.rows; ++i)
+    for (int j = 0; j < L.cols; ++j)
+      if (L.free[std::size_t(i) * std::size_t(L.cols) + std::size_t(j)])
+        first_free = std::min(first_free, column ? j : i);
+  const Eigen::VectorXd before = x;
+  for (int m = (first_free + 1 + colour) % colours; m < lines; m += colours) {
+    auto point = [&](int t) { return column ? Eigen::Index(t) * L.cols + m : Eigen::Index(m) * L.cols + t; };
+    const std::vector<double> lu = reference_line_lu(L, column, m);
+    auto at = [&](int t, int s) { return lu[std::size_t(t) * std::size_t(n) + std::size_t(s)]; };
+    Eigen::VectorXd d = Eigen::VectorXd::Zero(n);
+    for (int t = 0; t < n; ++t) {
+      const Eigen::Index p = point(t);
+      const int i = column ? t : m, j = column ? m : t;
+      if (L.free[std::size_t(p)]) d[t] = b[p] - mg_detail::apply_at_edge(L, before.data(), i, j);
+    }
+    for (int t = 0; t < n; ++t) {
+      double y = d[t];
+      for (int k = 1; k <= std::min(r, t); ++k) y -= at(t, t - k) * d[t - k];
+      d[t] = y;
+    }
+    for (int t = n - 1; t >= 0; --t) {
+      double y = d[t];
+      for (int k = 1; k <= std::min(r, n - 1 - t); ++k) y -= at(t, t + k) * d[t + k];
+      d[t] = y * (1.0 / at(t, t));
+    }
+    for (int t = 0; t < n; ++t) x[point(t)] += d[t];
+  }
+}
+
+// The fixtures of the fast-path tests, with a name for INFO.
+struct FastPathCase {
+  bool cubic;
+  Shape shape;
+  bool varying;
+};
+const FastPathCase kFastPathCases[] = {{false, Shape::kFull, false}, {false, Shape::kHole, false},
+                                       {false, Shape::kHole, true},  {true, Shape::kFull, false},
+                                       {true, Shape::kHole, false},  {true, Shape::kHole, true}};
+std::string name_of(const FastPathCase& c) {
+  return std::string(c.cubic ? "5x5" : "3x3") + (c.shape == Shape::kHole ? " hole" : " rectangle") +
+         (c.varying ? " varying stencils" : " one fine stencil");
+}
+
+}  // namespace
+
+TEST_CASE("mg_detail::factor_lines: the shared line factors equal each line's own LU bit for bit", "[solvers][mg]") {
+  for (const FastPathCase& c : kFastPathCases) {
+    const std::vector<mg_detail::Level> levels = fast_path_levels(c.cubic, c.shape, c.varying);
+    for (const mg_detail::Level& L : levels) {
+      INFO(name_of(c) << ": level " << L.rows << " x " << L.cols << ", radius " << L.radius);
+      const int r = L.radius;
+      for (const bool column : {false, true}) {
+        const mg_detail::Level::LineLU& lu = column ? L.col_lu : L.row_lu;
+        const int n = column ? L.rows : L.cols, lines = column ? L.cols : L.rows;
+        if (!c.varying && L.rows > 20) CHECK(lu.inv_pivot.size() < std::size_t(n) * std::size_t(lines));  // shared
+        int differ = 0;
+        for (int m = 0; m < lines; ++m) {
+          const std::vector<double> own = reference_line_lu(L, column, m);
+          const std::size_t u = std::size_t(lu.line[std::size_t(m)]);
+          for (int t = 0; t < n; ++t) {
+            const std::size_t nn = std::size_t(n), tt = std::size_t(t);
+            differ += lu.inv_pivot[u * nn + tt] != 1.0 / own[tt * nn + tt];
+            for (int k = 1; k <= r; ++k) {
+              const std::size_t at = (u * std::size_t(r) + std::size_t(k - 1)) * nn + tt;
+              if (t - k >= 0) differ += lu.lower[at] != own[tt * nn + tt - std::size_t(k)];
+              if (t + k < n) differ += lu.upper[at] != own[tt * nn + tt + std::size_t(k)];
+            }
+          }
+        }
+        CHECK(differ == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("mg_detail::smooth: both sweep directions equal a written-out line Gauss-Seidel bit for bit",
+          "[solvers][mg]") {
+  // The column steps evaluate the residual of every colours-th point of a row (step > 1), through
+  // the common-stencil stretch; the row steps with step 1. Both must give the values of the
+  // point-by-point kernel and each line's own factors.
+  for (const FastPathCase& c : kFastPathCases) {
+    const std::vector<mg_detail::Level> levels = fast_path_levels(c.cubic, c.shape, c.varying);
+    for (const mg_detail::Level& L : levels) {
+      INFO(name_of(c) << ": level " << L.rows << " x " << L.cols << ", radius " << L.radius);
+      int stretched = 0, broken = 0;  // points on the stretches; rows whose stretch stops short
+      for (int i = 0; i < L.rows; ++i) {
+        const int length = L.common_hi[std::size_t(i)] - L.common_lo[std::size_t(i)];
+        stretched += length;
+        broken += length > 0 && length < L.cols - 2 * L.radius;
+      }
+      if (L.rows > 20) CHECK(stretched > L.points() / 8);             // the fast path is taken
+      if (L.rows > 20 && c.shape == Shape::kHole) CHECK(broken > 0);  // and left for the point-by-point one
+      const Eigen::VectorXd b = random_on_free(L);
+      for (const bool forward : {true, false}) {
+        INFO((forward ? "forward" : "backward"));
+        Eigen::VectorXd x = random_on_free(L), expected = x, work;
+        mg_detail::smooth(L, b, x, work, forward);
+        const int colours = L.radius + 1;
+        for (int k = 0; k < 2 * colours; ++k) {
+          // forward: rows of colour 0 … radius, then columns; backward: the reverse sequence
+          const int step = forward ? k : 2 * colours - 1 - k;
+          reference_colour_step(L, b, expected, step >= colours, step % colours);
+        }
+        int differ = 0;
+        for (Eigen::Index p = 0; p < L.points(); ++p) differ += x[p] != expected[p];
+        CHECK(differ == 0);
+      }
+    }
+  }
+}
+
+TEST_CASE("mg_detail::restrict_to: the weight table gives the bounds-checked sums bit for bit", "[solvers][mg]") {
+  for (const FastPathCase& c : kFastPathCases) {
+    const std::vector<mg_detail::Level> levels = fast_path_levels(c.cubic, c.shape, c.varying);
+    for (std::size_t l = 0; l + 1 < levels.size(); ++l) {
+      const mg_detail::Level &F = levels[l], &Cl = levels[l + 1];
+      INFO(name_of(c) << ": fine level " << F.rows << " x " << F.cols << ", reach " << Cl.reach);
+      const int h = Cl.reach;
+      auto weight = [h](int a) {  // linear (1/2, 1, 1/2) or cubic (−1/16, 0, 9/16, 1, 9/16, 0, −1/16)
+        a = std::abs(a);
+        if (h == 1) return a == 0 ? 1.0 : a == 1 ? 0.5 : 0.0;
+        return a == 0 ? 1.0 : a == 1 ? 9.0 / 16 : a == 3 ? -1.0 / 16 : 0.0;
+      };
+      const Eigen::VectorXd r = random_on_free(F);
+      Eigen::VectorXd rc;
+      mg_detail::restrict_to(F, Cl, r, rc);
+      REQUIRE(rc.size() == Cl.points());
+      int differ = 0;
+      for (int I = 0; I < Cl.rows; ++I)
+        for (int J = 0; J < Cl.cols; ++J) {
+          const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
+          double sum = 0;
+          for (int a = -h; a <= h && Cl.free[std::size_t(q)]; ++a) {
+            const int i = 2 * I + Cl.offset_i + a;
+            if (i < 0 || i >= F.rows || weight(a) == 0) continue;
+            for (int b = -h; b <= h; ++b) {
+              const int j = 2 * J + Cl.offset_j + b;
+              if (j >= 0 && j < F.cols) sum += weight(a) * weight(b) * r[Eigen::Index(i) * F.cols + j];
+            }
+          }
+          differ += rc[q] != sum;
+        }
+      CHECK(differ == 0);
+    }
+  }
+}
+
+TEST_CASE("mg_detail::apply_level: the common-stencil stretches give the point-by-point products bit for bit",
+          "[solvers][mg]") {
+  for (const FastPathCase& c : kFastPathCases) {
+    const std::vector<mg_detail::Level> levels = fast_path_levels(c.cubic, c.shape, c.varying);
+    for (const mg_detail::Level& L : levels) {
+      INFO(name_of(c) << ": level " << L.rows << " x " << L.cols << ", radius " << L.radius);
+      const Eigen::VectorXd x = random_on_free(L);
+      Eigen::VectorXd y;
+      mg_detail::apply_level(L, x, y);
+      REQUIRE(y.size() == L.points());
+      int differ = 0;
+      for (int i = 0; i < L.rows; ++i)
+        for (int j = 0; j < L.cols; ++j) {
+          const Eigen::Index p = Eigen::Index(i) * L.cols + j;
+          differ += y[p] != (L.free[std::size_t(p)] ? mg_detail::apply_at_edge(L, x.data(), i, j) : 0.0);
+        }
+      CHECK(differ == 0);
+    }
+  }
 }
