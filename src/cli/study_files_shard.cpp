@@ -89,6 +89,46 @@ std::string files_task_key(const json& study, size_t index, const std::string& c
   return fnv1a_hex(inputs.dump());
 }
 
+std::string degree_list(const std::vector<int>& degrees) { return fmt::format("[{}]", fmt::join(degrees, ", ")); }
+
+// The degrees of a record's results must be the study's (the key covers the study block, not the
+// results, so an edited block passes it): a shape's degree law has the study's degrees from its
+// first on (the shape's own degree and above, every one for a shape given by curves), its fit
+// deviations every one, a triangle's rows its own degree and then the study's degrees above it.
+// Else the report's columns would be the block's degrees and every cell "–".
+void check_part_degrees(const StudyResult& part, const std::vector<int>& degrees, const std::string& where) {
+  const auto tail_from = [&](int lowest) {
+    std::vector<int> out;
+    for (int d : degrees)
+      if (d >= lowest) out.push_back(d);
+    return out;
+  };
+  const auto refuse = [&](const std::string& what, const std::vector<int>& has) {
+    throw InputError(where, "study.degrees",
+                     fmt::format("{} are not the degrees of the results: {} has {}", degree_list(degrees), what,
+                                 degree_list(has)));
+  };
+  for (const DegreeLawEntry& l : part.laws) {
+    std::vector<int> has;
+    for (const DegreeCell& c : l.cells) has.push_back(c.degree);
+    if (!has.empty() && has != tail_from(has.front())) refuse(l.boundary + " " + l.objective, has);
+  }
+  for (const FitDeviationEntry& f : part.fit_deviations) {
+    std::vector<int> has;
+    for (const auto& [d, deviation] : f.max_deviation) has.push_back(d);
+    if (has != degrees) refuse(f.boundary + " (fit deviations)", has);
+  }
+  for (const TriStudyEntry& t : part.triangles)
+    for (const TriStudyRow& r : t.rows) {
+      std::vector<int> has;
+      for (const TriStudyCell& c : r.cells) has.push_back(c.degree);
+      if (has.empty()) refuse(t.file + " " + r.objective, has);
+      std::vector<int> expected = tail_from(has.front() + 1);
+      expected.insert(expected.begin(), has.front());
+      if (has != expected) refuse(t.file + " " + r.objective, has);
+    }
+}
+
 }  // namespace
 
 int run_files_shard(const std::vector<std::string>& files, const StudyOptions& options, double corner_tolerance,
@@ -197,6 +237,11 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
   for (size_t k = 0; k < degrees.size(); ++k)  // json_integer, not get<int>: 1e300 is no int
     result.degrees.push_back(
         int(json_integer(degrees[k], first, fmt::format("study.degrees[{}]", k), 1, std::numeric_limits<int>::max())));
+  {
+    StudyOptions valid;  // the degrees as a study takes them: some, increasing, each once, in [2, 200]
+    valid.degrees = result.degrees;
+    if (std::string why; !valid.is_valid(&why)) throw InputError(first, "study.degrees", why);
+  }
   try {
     result.objectives = (*study).at("objectives").get<std::vector<std::string>>();
   } catch (const json::exception&) {
@@ -204,7 +249,15 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
   }
   std::vector<BSplineStudyRow> bspline_rows;  // in the files' order, as the unsharded run has them
   for (const auto& [index, record] : by_index) {
-    append_study_part(record["result"], file_of[index], &result);
+    StudyResult part;
+    append_study_part(record["result"], file_of[index], &part);
+    check_part_degrees(part, result.degrees, file_of[index]);
+    const auto append = [](auto& from, auto& to) { std::move(from.begin(), from.end(), std::back_inserter(to)); };
+    append(part.shapes, result.shapes);
+    append(part.laws, result.laws);
+    append(part.fit_deviations, result.fit_deviations);
+    append(part.references, result.references);
+    append(part.triangles, result.triangles);
     if (record.contains("bspline")) append_bspline_rows(record["bspline"], file_of[index], &bspline_rows);
   }
   phases.start("write");

@@ -32,6 +32,22 @@ std::string without_provenance(const std::string& md) {
   return out;
 }
 
+// The key of a record: the study block (but its file list) with the file and its content hashed.
+std::string key_of(const json& record) {
+  json inputs = record["study"];
+  inputs.erase("files");
+  inputs["file"] = record["study"]["files"][record["index"].get<std::size_t>()];
+  inputs["content"] = record["content"];
+  std::uint64_t h = 14695981039346656037ULL;
+  for (const unsigned char c : inputs.dump()) {
+    h ^= c;
+    h *= 1099511628211ULL;
+  }
+  char hex[17];
+  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
+  return std::string(hex);
+}
+
 }  // namespace
 
 TEST_CASE("coons study FILES --shard: three shards merged equal the unsharded run", "[cli]") {
@@ -147,20 +163,6 @@ TEST_CASE("coons study FILES --merge: an integer field holding 1e300 is one erro
   const std::vector<json> records = read_json_lines(file);
   REQUIRE(records.size() == 1);
   // the key hashes the study block (but its file list) with the file and its content
-  auto key_of = [](const json& record) {
-    json inputs = record["study"];
-    inputs.erase("files");
-    inputs["file"] = record["study"]["files"][record["index"].get<std::size_t>()];
-    inputs["content"] = record["content"];
-    std::uint64_t h = 14695981039346656037ULL;
-    for (const unsigned char c : inputs.dump()) {
-      h ^= c;
-      h *= 1099511628211ULL;
-    }
-    char hex[17];
-    std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-    return std::string(hex);
-  };
   REQUIRE(key_of(records[0]) == records[0]["key"]);
   struct Edit {
     json::json_pointer at;
@@ -197,6 +199,44 @@ TEST_CASE("coons study FILES --merge: an integer field holding 1e300 is one erro
     CHECK(merged.out.empty());
     CHECK(merged.err.rfind("error: ", 0) == 0);
     CHECK(merged.err.find(e.error) != std::string::npos);
+    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir.file("merged")));
+  }
+}
+
+TEST_CASE("coons study FILES --merge: study degrees that are not the results' degrees are one error line", "[cli]") {
+  // the key covers the study block, so an edited block with its keys recomputed passes it; the merge
+  // used to check only that each degree is an integer >= 1 and wrote a report of '–' cells, exit 0
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  const std::string args = "study " + quoted(kData + "/boundaries/dome.json") + " " +
+                           quoted(kData + "/triangles/dome_half.json") + " --degrees 3 4 --shard 0/1 --out " +
+                           quoted(shards);
+  REQUIRE(run_coons(args).status == 0);
+  const std::string file = shards + "/shard-0-of-1.jsonl";
+  const std::vector<json> records = read_json_lines(file);
+  REQUIRE(records.size() == 2);
+  REQUIRE(key_of(records[0]) == records[0]["key"]);
+  {  // the shards as they are merge
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("ok")));
+    INFO(merged.err);
+    REQUIRE(merged.status == 0);
+  }
+  for (const json& degrees : {json::array({7}), json::array(), json::array({3, 3}), json::array({4, 3}),
+                              json::array({3}), json::array({3, 4, 6})}) {
+    {
+      std::ofstream out(file, std::ios::binary | std::ios::trunc);
+      for (json r : records) {
+        r["study"]["degrees"] = degrees;
+        r["key"] = key_of(r);
+        out << r.dump() << '\n';
+      }
+    }
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+    INFO(degrees.dump() << "\n" << merged.err);
+    CHECK(merged.status == 2);
+    CHECK(merged.out.empty());
+    CHECK(merged.err.rfind("error: " + file + ": study.degrees: ", 0) == 0);
     CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
     CHECK_FALSE(fs::exists(dir.file("merged")));
   }
