@@ -6,7 +6,6 @@
 
 #include <fstream>
 #include <iterator>
-#include <limits>
 #include <map>
 
 #include "common.h"
@@ -18,21 +17,13 @@
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
 #include "coons/study/study_json.h"
+#include "coons/study/task_key.h"
 #include "study_shard.h"
 
 namespace coons::cli {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string fnv1a_hex(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ULL;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return fmt::format("{:016x}", h);
-}
 
 void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
                         const std::function<std::string(OutputSet&)>& extra) {
@@ -80,15 +71,6 @@ json files_study_json(const std::vector<std::string>& files, const StudyOptions&
           {"coons", {{"version", p.version}, {"git_revision", p.git_revision}}}};
 }
 
-// The task's inputs: the study block's options and the file's name and content.
-std::string files_task_key(const json& study, size_t index, const std::string& content_hash) {
-  json inputs = study;
-  inputs.erase("files");
-  inputs["file"] = study["files"][index];
-  inputs["content"] = content_hash;
-  return fnv1a_hex(inputs.dump());
-}
-
 std::string degree_list(const std::vector<int>& degrees) { return fmt::format("[{}]", fmt::join(degrees, ", ")); }
 
 // The degrees of a record's results must be the study's (the key covers the study block, not the
@@ -104,9 +86,9 @@ void check_part_degrees(const StudyResult& part, const std::vector<int>& degrees
     return out;
   };
   const auto refuse = [&](const std::string& what, const std::vector<int>& has) {
-    throw InputError(where, "study.degrees",
-                     fmt::format("{} are not the degrees of the results: {} has {}", degree_list(degrees), what,
-                                 degree_list(has)));
+    throw InputError(
+        where, "study.degrees",
+        fmt::format("{} are not the degrees of the results: {} has {}", degree_list(degrees), what, degree_list(has)));
   };
   for (const DegreeLawEntry& l : part.laws) {
     std::vector<int> has;
@@ -234,9 +216,8 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
   const std::string first = file_of.begin()->second;
   const json& degrees = (*study).contains("degrees") ? (*study)["degrees"] : json();
   if (!degrees.is_array()) throw InputError(first, "study.degrees", "missing or not a list");
-  for (size_t k = 0; k < degrees.size(); ++k)  // json_integer, not get<int>: 1e300 is no int
-    result.degrees.push_back(
-        int(json_integer(degrees[k], first, fmt::format("study.degrees[{}]", k), 1, std::numeric_limits<int>::max())));
+  for (size_t k = 0; k < degrees.size(); ++k)  // json_int, not get<int>: 1e300 is no int
+    result.degrees.push_back(json_int(degrees[k], first, fmt::format("study.degrees[{}]", k), 1));
   {
     StudyOptions valid;  // the degrees as a study takes them: some, increasing, each once, in [2, 200]
     valid.degrees = result.degrees;

@@ -4,13 +4,13 @@
 // are there; a rerun skips finished files; a missing shard is an input error on --merge.
 #include <algorithm>
 #include <catch2/catch.hpp>
-#include <cstdio>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 #include <set>
 #include <sstream>
 
+#include "coons/study/task_key.h"
 #include "support/cli_support.h"
 
 using namespace coons::test;
@@ -32,20 +32,10 @@ std::string without_provenance(const std::string& md) {
   return out;
 }
 
-// The key of a record: the study block (but its file list) with the file and its content hashed.
+// The key of a record, as the shards compute it (coons/study/task_key.h).
 std::string key_of(const json& record) {
-  json inputs = record["study"];
-  inputs.erase("files");
-  inputs["file"] = record["study"]["files"][record["index"].get<std::size_t>()];
-  inputs["content"] = record["content"];
-  std::uint64_t h = 14695981039346656037ULL;
-  for (const unsigned char c : inputs.dump()) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  char hex[17];
-  std::snprintf(hex, sizeof hex, "%016llx", static_cast<unsigned long long>(h));
-  return std::string(hex);
+  return coons::files_task_key(record["study"], record["index"].get<std::size_t>(),
+                               record["content"].get<std::string>());
 }
 
 }  // namespace

@@ -179,12 +179,11 @@ TEST_CASE("family_task_status: the family fails exactly the searches the study o
   s.parameter = -0.1;
   s.value = 1;
   // fixed expectations, not search_failed itself: a status moved in or out of either list fails here
-  const std::pair<SearchStatus, FamilyTaskStatus> cases[] = {
-      {SearchStatus::kSuccess, FamilyTaskStatus::kInterior},
-      {SearchStatus::kSolverFailed, FamilyTaskStatus::kFailed},
-      {SearchStatus::kNotConverged, FamilyTaskStatus::kInterior},
-      {SearchStatus::kFailedRegion, FamilyTaskStatus::kFailed},
-      {SearchStatus::kNotApplicable, FamilyTaskStatus::kFailed}};
+  const std::pair<SearchStatus, FamilyTaskStatus> cases[] = {{SearchStatus::kSuccess, FamilyTaskStatus::kInterior},
+                                                             {SearchStatus::kSolverFailed, FamilyTaskStatus::kFailed},
+                                                             {SearchStatus::kNotConverged, FamilyTaskStatus::kInterior},
+                                                             {SearchStatus::kFailedRegion, FamilyTaskStatus::kFailed},
+                                                             {SearchStatus::kNotApplicable, FamilyTaskStatus::kFailed}};
   for (const auto& [status, expected] : cases) {
     s.status = status;
     INFO(to_string(status));
