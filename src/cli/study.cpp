@@ -23,6 +23,7 @@
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
 #include "coons/study/study_failures.h"
+#include "coons/study/task_key.h"
 #include "coons/tri/tri_solve.h"
 #include "registry.h"
 #include "study_shard.h"

@@ -6,7 +6,6 @@
 
 #include <fstream>
 #include <iterator>
-#include <limits>
 #include <map>
 
 #include "common.h"
@@ -18,21 +17,13 @@
 #include "coons/study/report_markdown.h"
 #include "coons/study/study_conclusions.h"
 #include "coons/study/study_json.h"
+#include "coons/study/task_key.h"
 #include "study_shard.h"
 
 namespace coons::cli {
 
 namespace fs = std::filesystem;
 using nlohmann::json;
-
-std::string fnv1a_hex(const std::string& text) {
-  std::uint64_t h = 14695981039346656037ULL;
-  for (const unsigned char c : text) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return fmt::format("{:016x}", h);
-}
 
 void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
                         const std::function<std::string(OutputSet&)>& extra) {
@@ -80,13 +71,44 @@ json files_study_json(const std::vector<std::string>& files, const StudyOptions&
           {"coons", {{"version", p.version}, {"git_revision", p.git_revision}}}};
 }
 
-// The task's inputs: the study block's options and the file's name and content.
-std::string files_task_key(const json& study, size_t index, const std::string& content_hash) {
-  json inputs = study;
-  inputs.erase("files");
-  inputs["file"] = study["files"][index];
-  inputs["content"] = content_hash;
-  return fnv1a_hex(inputs.dump());
+std::string degree_list(const std::vector<int>& degrees) { return fmt::format("[{}]", fmt::join(degrees, ", ")); }
+
+// The degrees of a record's results must be the study's (the key covers the study block, not the
+// results, so an edited block passes it): a shape's degree law has the study's degrees from its
+// first on (the shape's own degree and above, every one for a shape given by curves), its fit
+// deviations every one, a triangle's rows its own degree and then the study's degrees above it.
+// Else the report's columns would be the block's degrees and every cell "–".
+void check_part_degrees(const StudyResult& part, const std::vector<int>& degrees, const std::string& where) {
+  const auto tail_from = [&](int lowest) {
+    std::vector<int> out;
+    for (int d : degrees)
+      if (d >= lowest) out.push_back(d);
+    return out;
+  };
+  const auto refuse = [&](const std::string& what, const std::vector<int>& has) {
+    throw InputError(
+        where, "study.degrees",
+        fmt::format("{} are not the degrees of the results: {} has {}", degree_list(degrees), what, degree_list(has)));
+  };
+  for (const DegreeLawEntry& l : part.laws) {
+    std::vector<int> has;
+    for (const DegreeCell& c : l.cells) has.push_back(c.degree);
+    if (!has.empty() && has != tail_from(has.front())) refuse(l.boundary + " " + l.objective, has);
+  }
+  for (const FitDeviationEntry& f : part.fit_deviations) {
+    std::vector<int> has;
+    for (const auto& [d, deviation] : f.max_deviation) has.push_back(d);
+    if (has != degrees) refuse(f.boundary + " (fit deviations)", has);
+  }
+  for (const TriStudyEntry& t : part.triangles)
+    for (const TriStudyRow& r : t.rows) {
+      std::vector<int> has;
+      for (const TriStudyCell& c : r.cells) has.push_back(c.degree);
+      if (has.empty()) refuse(t.file + " " + r.objective, has);
+      std::vector<int> expected = tail_from(has.front() + 1);
+      expected.insert(expected.begin(), has.front());
+      if (has != expected) refuse(t.file + " " + r.objective, has);
+    }
 }
 
 }  // namespace
@@ -194,9 +216,13 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
   const std::string first = file_of.begin()->second;
   const json& degrees = (*study).contains("degrees") ? (*study)["degrees"] : json();
   if (!degrees.is_array()) throw InputError(first, "study.degrees", "missing or not a list");
-  for (size_t k = 0; k < degrees.size(); ++k)  // json_integer, not get<int>: 1e300 is no int
-    result.degrees.push_back(
-        int(json_integer(degrees[k], first, fmt::format("study.degrees[{}]", k), 1, std::numeric_limits<int>::max())));
+  for (size_t k = 0; k < degrees.size(); ++k)  // json_int, not get<int>: 1e300 is no int
+    result.degrees.push_back(json_int(degrees[k], first, fmt::format("study.degrees[{}]", k), 1));
+  {
+    StudyOptions valid;  // the degrees as a study takes them: some, increasing, each once, in [2, 200]
+    valid.degrees = result.degrees;
+    if (std::string why; !valid.is_valid(&why)) throw InputError(first, "study.degrees", why);
+  }
   try {
     result.objectives = (*study).at("objectives").get<std::vector<std::string>>();
   } catch (const json::exception&) {
@@ -204,7 +230,15 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
   }
   std::vector<BSplineStudyRow> bspline_rows;  // in the files' order, as the unsharded run has them
   for (const auto& [index, record] : by_index) {
-    append_study_part(record["result"], file_of[index], &result);
+    StudyResult part;
+    append_study_part(record["result"], file_of[index], &part);
+    check_part_degrees(part, result.degrees, file_of[index]);
+    const auto append = [](auto& from, auto& to) { std::move(from.begin(), from.end(), std::back_inserter(to)); };
+    append(part.shapes, result.shapes);
+    append(part.laws, result.laws);
+    append(part.fit_deviations, result.fit_deviations);
+    append(part.references, result.references);
+    append(part.triangles, result.triangles);
     if (record.contains("bspline")) append_bspline_rows(record["bspline"], file_of[index], &bspline_rows);
   }
   phases.start("write");

@@ -16,6 +16,7 @@
 #include "coons/study/bspline_study.h"
 #include "coons/study/study.h"
 #include "coons/study/study_failures.h"
+#include "coons/study/task_key.h"
 
 namespace coons::cli {
 
@@ -32,9 +33,6 @@ ShardFile read_shard_file(const std::filesystem::path& path);
 //! unfinished last line is dropped; a file of another `study` is an input error.
 std::filesystem::path open_shard_file(const std::string& out_dir, int shard, int shards, const nlohmann::json& study,
                                       std::set<std::string>* done);
-
-//! FNV-1a (64 bit) of `text`, as 16 lowercase hex digits.
-std::string fnv1a_hex(const std::string& text);
 
 //! report.md, figures/ and results.json of a family study, staged and published together; the
 //! report is also printed.

@@ -120,8 +120,8 @@ TEST_CASE("degree_limit_conclusions: without an established limit, that is the r
 }
 
 TEST_CASE("degree_limit_report_markdown: an entry fitted with fewer than two tolerances has none made up", "[study]") {
-  // DegreeLimitOptions::is_valid allows any number of tolerances; the report names the first two
-  // "within 5 %" and "within 1 %" and used to read both of every entry
+  // DegreeLimitOptions::is_valid allows any number of tolerances; the report used to read the first
+  // two of every entry
   for (const std::vector<double>& tolerances : {std::vector<double>{}, std::vector<double>{0.05}}) {
     DegreeLimitEntry e = synthetic(5, 40, 5);
     DegreeLimitOptions options;
@@ -140,4 +140,29 @@ TEST_CASE("degree_limit_report_markdown: an entry fitted with fewer than two tol
     INFO(md);
     CHECK(contains(md, "| synthetic | thin_plate |"));
   }
+}
+
+TEST_CASE("degree_limit_report_markdown: the within labels are the tolerances' values", "[study]") {
+  // the conclusions and the table used to say "within 5 %" and "within 1 %" whatever the tolerances
+  DegreeLimitEntry e = synthetic(5, 40, 5);
+  DegreeLimitStudyOptions options;
+  options.limit.tolerances = {0.1, 0.02, 0.005};
+  REQUIRE(options.limit.is_valid(nullptr));
+  std::vector<std::pair<int, double>> mus;
+  for (const auto& c : e.cells) mus.emplace_back(c.degree, *c.mu);
+  e.limit = fit_degree_limit(mus, options.limit);
+  const std::string text = joined_lines(degree_limit_conclusions(e));
+  INFO(text);
+  CHECK(contains(text, "; within 10 % "));
+  CHECK(contains(text, ", within 2 % "));
+  CHECK(contains(text, ", within 0.5 % "));
+  CHECK_FALSE(contains(text, "within 5 %"));
+  CHECK_FALSE(contains(text, "within 1 %"));
+  const std::string md = degree_limit_report_markdown({e}, options, Provenance{}, {});
+  INFO(md);
+  CHECK(contains(md, "| within 10 % from | within 2 % from | within 0.5 % from | μ_c (Ritz) |"));
+  CHECK_FALSE(contains(md, "within 5 % from"));
+  // the default tolerances keep the labels they had
+  const std::string defaults = degree_limit_report_markdown({synthetic(5, 40, 5)}, {}, Provenance{}, {});
+  CHECK(contains(defaults, "| within 5 % from | within 1 % from | μ_c (Ritz) |"));
 }

@@ -99,6 +99,10 @@ std::int64_t json_integer(const nlohmann::json& j, const std::string& source, co
   throw InputError(source, field, fmt::format("must be {}, not {}", range, describe(j)));
 }
 
+int json_int(const nlohmann::json& j, const std::string& source, const std::string& field, int lo, int hi) {
+  return static_cast<int>(json_integer(j, source, field, lo, hi));  // within [lo, hi]: an int
+}
+
 double json_coordinate(const nlohmann::json& j, const std::string& source, const std::string& field,
                        const std::string& what) {
   if (!j.is_number()) throw InputError(source, field, fmt::format("{} is not a number", what));

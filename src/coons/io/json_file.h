@@ -7,6 +7,7 @@
 #pragma once
 
 #include <cstdint>
+#include <limits>
 #include <nlohmann/json.hpp>
 #include <string>
 
@@ -34,6 +35,10 @@ nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& op
 //! however large) is an InputError naming `field` and the bounds.
 std::int64_t json_integer(const nlohmann::json& j, const std::string& source, const std::string& field, std::int64_t lo,
                           std::int64_t hi);
+
+//! json_integer narrowed to int: the one reader of int fields (default bounds: every int).
+int json_int(const nlohmann::json& j, const std::string& source, const std::string& field,
+             int lo = std::numeric_limits<int>::min(), int hi = std::numeric_limits<int>::max());
 
 //! The largest coordinate magnitude the readers accept. Energies and squared residuals scale as
 //! s² for coordinates of size s, times constants up to ~1e5 (high degrees: products of m², n² and

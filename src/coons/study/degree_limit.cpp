@@ -89,6 +89,7 @@ DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& po
                                    const DegreeLimitOptions& options) {
   DegreeLimitResult r;
   r.within_from.assign(options.tolerances.size(), std::nullopt);
+  r.tolerances = options.tolerances;
   std::vector<std::pair<int, double>> tail;
   for (const auto& p : points)
     if (p.first >= options.fit_from_degree) tail.push_back(p);

@@ -50,6 +50,7 @@ struct DegreeLimitResult {
   //! per tolerance: the smallest n from which every point is within it of μ∞ (nullopt: not yet
   //! within at the largest n, or no limit)
   std::vector<std::optional<int>> within_from;
+  std::vector<double> tolerances;  //!< the relative tolerance of each within_from (DegreeLimitOptions)
 };
 
 //! The exponent p with (y3 − y2)/(y2 − y1) = (n3^−p − n2^−p)/(n2^−p − n1^−p) for n1 < n2 < n3, and

@@ -53,19 +53,22 @@ std::string within_text(const std::optional<int>& n, int last) {
   return n ? fmt::format("from n = {}", *n) : fmt::format("not yet at n = {}", last);
 }
 
-// The report names within_from[0] and [1] "within 5 %" and "within 1 %" (DegreeLimitOptions's
-// default tolerances), as the JSON writer does; an entry fitted with fewer tolerances (is_valid
-// allows any number) has no value there, which is not "not yet".
+// "5 %" for 0.05: the label of a tolerance, from its value (DegreeLimitOptions::tolerances).
+std::string tolerance_label(double tolerance) { return fmt::format("{:g} %", 100 * tolerance); }
+
+// An entry fitted with fewer tolerances than the report shows (is_valid allows any number) has no
+// value there, which is not "not yet".
 std::optional<int> within_from(const DegreeLimitEntry& e, size_t k) {
   return k < e.limit.within_from.size() ? e.limit.within_from[k] : std::nullopt;
 }
 
-// "; within 5 % from n = 10, within 1 % not yet at n = 32" over the tolerances the entry has.
+// "; within 5 % from n = 10, within 1 % not yet at n = 32" over the tolerances the entry has,
+// each labelled by its value.
 std::string within_clauses(const DegreeLimitEntry& e, int last) {
   std::string out;
-  const char* labels[] = {"5 %", "1 %"};
-  for (size_t k = 0; k < 2 && k < e.limit.within_from.size(); ++k)
-    out += fmt::format("{} within {} {}", k == 0 ? ";" : ",", labels[k], within_text(e.limit.within_from[k], last));
+  for (size_t k = 0; k < e.limit.within_from.size() && k < e.limit.tolerances.size(); ++k)
+    out += fmt::format("{} within {} {}", k == 0 ? ";" : ",", tolerance_label(e.limit.tolerances[k]),
+                       within_text(e.limit.within_from[k], last));
   return out;
 }
 
@@ -300,8 +303,14 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
     header += fmt::format(" μ* (n={}) |", d);
     rule += "---|";
   }
-  line(header + " μ∞ ± error | rate p | within 5 % from | within 1 % from | μ_c (Ritz) | status |");
-  line(rule + "---|---|---|---|---|---|");
+  header += " μ∞ ± error | rate p |";
+  rule += "---|---|";
+  for (double tolerance : options.limit.tolerances) {
+    header += fmt::format(" within {} from |", tolerance_label(tolerance));
+    rule += "---|";
+  }
+  line(header + " μ_c (Ritz) | status |");
+  line(rule + "---|---|");
   for (const DegreeLimitEntry& e : entries) {
     std::string row = fmt::format("| {} | {} |", e.boundary, e.objective);
     for (int d : shown) {
@@ -312,15 +321,16 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
     }
     const ContinuumSummary cs = continuum_summary(e);
     const std::string none = "–";
-    row += fmt::format(" {} | {} | {} | {} | {} | {} |",
+    row += fmt::format(" {} | {} |",
                        e.limit.limit
                            ? num(*e.limit.limit) +
                                  (e.limit.limit_error ? fmt::format(" ± {:.2g}", *e.limit.limit_error) : std::string())
                            : none,
-                       e.limit.rate ? fmt::format("{:.2f}", *e.limit.rate) : none,
-                       within_from(e, 0) ? std::to_string(*within_from(e, 0)) : none,
-                       within_from(e, 1) ? std::to_string(*within_from(e, 1)) : none,
-                       cs.mu ? fmt::format("{} (N = {})", num(*cs.mu), cs.degree) : none, to_string(e.limit.status));
+                       e.limit.rate ? fmt::format("{:.2f}", *e.limit.rate) : none);
+    for (size_t k = 0; k < options.limit.tolerances.size(); ++k)
+      row += " " + (within_from(e, k) ? std::to_string(*within_from(e, k)) : none) + " |";
+    row += fmt::format(" {} | {} |", cs.mu ? fmt::format("{} (N = {})", num(*cs.mu), cs.degree) : none,
+                       to_string(e.limit.status));
     line(row);
   }
   line("");

@@ -199,6 +199,7 @@ json degree_limit_json(const DegreeLimitEntry& e) {
               {"rate", optional_number(e.limit.rate)},
               {"rates", rates},
               {"fits", fits},
+              // names fixed by docs/formats.md for the default tolerances {0.05, 0.01}
               {"within_5_percent_from", e.limit.within_from.size() > 0 ? optional_int(e.limit.within_from[0]) : json()},
               {"within_1_percent_from", e.limit.within_from.size() > 1 ? optional_int(e.limit.within_from[1]) : json()},
               {"exact_mu", exact_mu},

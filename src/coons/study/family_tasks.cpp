@@ -19,6 +19,7 @@
 #include "coons/study/degree_limit_study.h"
 #include "coons/study/study.h"
 #include "coons/study/study_failures.h"
+#include "coons/study/task_key.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
@@ -167,12 +168,7 @@ std::string family_task_key(const AlphaFamilyOptions& o, const FamilyTask& task,
     inputs["amplitude"] = o.amplitude;
     inputs["base_content"] = o.base_content;
   }
-  std::uint64_t h = 14695981039346656037ULL;  // FNV-1a, 64 bit
-  for (const unsigned char c : inputs.dump()) {
-    h ^= c;
-    h *= 1099511628211ULL;
-  }
-  return fmt::format("{:016x}", h);
+  return task_key(inputs);
 }
 
 json family_task_record(const json& study, const std::string& key, const FamilyTaskResult& r) {
@@ -207,7 +203,7 @@ T field(const json& j, const char* name, const std::string& where) {
 // (1e300 converted to int is undefined behaviour) is an InputError naming the field.
 int int_field(const json& j, const char* name, const std::string& where, int lo = std::numeric_limits<int>::min()) {
   if (!j.is_object() || !j.contains(name)) throw InputError(where, name, "missing");
-  return int(json_integer(j.at(name), where, name, lo, std::numeric_limits<int>::max()));
+  return json_int(j.at(name), where, name, lo);
 }
 
 std::uint64_t seed_field(const json& j, const char* name, const std::string& where) {
@@ -241,8 +237,7 @@ AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>
   if (!degrees.is_array()) throw InputError(where, "degrees", "has the wrong type");
   o.degrees.clear();  // not the default list
   for (size_t k = 0; k < degrees.size(); ++k)
-    o.degrees.push_back(int(json_integer(degrees[k], where, fmt::format("degrees[{}]", k),
-                                         std::numeric_limits<int>::min(), std::numeric_limits<int>::max())));
+    o.degrees.push_back(json_int(degrees[k], where, fmt::format("degrees[{}]", k)));
   o.grid_points = int_field(study, "grid_points", where);
   const auto solver = field<std::string>(study, "solver", where);
   if (solver != "auto") {

@@ -39,7 +39,11 @@ std::int64_t integer_of(const json& j, const char* what, std::int64_t lo, std::i
   }
 }
 int int_of(const json& j, const char* what, int lo = 0) {
-  return int(integer_of(j, what, lo, std::numeric_limits<int>::max()));
+  try {
+    return json_int(j, "", what, lo);
+  } catch (const InputError& e) {
+    throw std::invalid_argument(e.field() + ": " + e.reason());
+  }
 }
 
 json opt(const std::optional<double>& x) { return x ? num(*x) : json(nullptr); }
