@@ -13,17 +13,26 @@ using namespace coons;
 using namespace coons::solvers;
 using namespace coons::test;
 
+namespace {
+
+// The SPD mask matrix of a random net with one negative diagonal entry at `column`: a Cholesky
+// factorisation fails at that column, wherever AMD has put it (a principal submatrix without it
+// is still definite). The summary of `backend` on it.
+SolveSummary negative_entry_summary(const std::string& backend, const MaskSystem& s, int column) {
+  Eigen::SparseMatrix<double> A = s.A;
+  A.coeffRef(column, column) = -1;
+  LinearOperator op;
+  op.matrix = &A;
+  Eigen::MatrixX3d X;
+  return make_solver(backend)->compute_and_solve(op, s.B, X);
+}
+
+}  // namespace
+
 TEST_CASE("cholmod: not positive definite names the column of the matrix not the pivot", "[solvers]") {
-  // An SPD mask matrix with one negative diagonal entry: the factorisation fails at that column,
-  // wherever AMD has put it (a principal submatrix without it is still definite).
   const MaskSystem s = assemble_mask_system(make_random_net(11, 13, 43), alpha_mask(0.1));
   for (const int column : {0, 37, 71, int(s.A.rows()) - 1}) {
-    Eigen::SparseMatrix<double> A = s.A;
-    A.coeffRef(column, column) = -1;
-    LinearOperator op;
-    op.matrix = &A;
-    Eigen::MatrixX3d X;
-    const SolveSummary summary = make_solver("cholmod")->compute_and_solve(op, s.B, X);
+    const SolveSummary summary = negative_entry_summary("cholmod", s, column);
     INFO(summary.brief_report());
     CHECK(summary.status == SolveStatus::kNotPositiveDefinite);
     CHECK_THAT(summary.message, Catch::StartsWith("not positive definite at column " + std::to_string(column) + " ("));
@@ -36,12 +45,7 @@ TEST_CASE("cholmod-simplicial: not positive definite names the column of its fir
   // at the column with the negative diagonal entry (the leading block before it is definite).
   const MaskSystem s = assemble_mask_system(make_random_net(11, 13, 43), alpha_mask(0.1));
   for (const int column : {0, 37, 71, int(s.A.rows()) - 1}) {
-    Eigen::SparseMatrix<double> A = s.A;
-    A.coeffRef(column, column) = -1;
-    LinearOperator op;
-    op.matrix = &A;
-    Eigen::MatrixX3d X;
-    const SolveSummary summary = make_solver("cholmod-simplicial")->compute_and_solve(op, s.B, X);
+    const SolveSummary summary = negative_entry_summary("cholmod-simplicial", s, column);
     INFO(summary.brief_report());
     CHECK(summary.status == SolveStatus::kNotPositiveDefinite);
     CHECK_THAT(summary.message, Catch::StartsWith("not positive definite at column " + std::to_string(column) + " ("));

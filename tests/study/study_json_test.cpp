@@ -10,7 +10,10 @@
 using namespace coons;
 using namespace coons::test;
 
-TEST_CASE("study_part_json: a study result read back writes the same JSON and results", "[study]") {
+namespace {
+
+// The study of one smooth boundary at degrees 3 and 4 (5 curve points).
+StudyResult smooth_study_result() {
   StudyInput in;
   in.file = "smooth.json";
   in.boundary = make_smooth_boundary(3, 3, 7);
@@ -19,7 +22,13 @@ TEST_CASE("study_part_json: a study result read back writes the same JSON and re
   StudyOptions options;
   options.degrees = {3, 4};
   options.curve_points = 5;
-  StudyResult result = run_study({in}, options);
+  return run_study({in}, options);
+}
+
+}  // namespace
+
+TEST_CASE("study_part_json: a study result read back writes the same JSON and results", "[study]") {
+  StudyResult result = smooth_study_result();
   REQUIRE(result.shapes.size() == 1);
   REQUIRE_FALSE(result.shapes[0].curves.empty());
   // a value no JSON number holds, and an odd one: both must come back bit for bit
@@ -52,15 +61,7 @@ TEST_CASE("append_study_part: a malformed part is an input error naming the reco
 
 TEST_CASE("append_study_part: an integer field holding a float beyond int is refused not converted", "[study]") {
   // get<int> of 1e300 is undefined behaviour: every integer of a part is read as json_integer
-  StudyInput in;
-  in.file = "smooth.json";
-  in.boundary = make_smooth_boundary(3, 3, 7);
-  in.boundary.name = "smooth";
-  in.one_ring = "one data ring";
-  StudyOptions options;
-  options.degrees = {3, 4};
-  options.curve_points = 5;
-  StudyResult result = run_study({in}, options);
+  StudyResult result = smooth_study_result();
   TriStudyEntry triangle;  // a triangle's entry (no search run: only its integers matter here)
   triangle.boundary.n = 3;
   TriStudyCell cell;
