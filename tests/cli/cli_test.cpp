@@ -1,4 +1,5 @@
 // The command-line contract of docs/formats.md, driven through the real binary.
+#include <fmt/format.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -587,14 +588,14 @@ TEST_CASE("coons solve: a singular alpha mask system is refused by every backend
   for (const std::string solver : {"auto", "eigen-lu", "umfpack", "cholmod", "eigen-ldlt", "gmres", "mg", "bicgstab"}) {
     if (solver != "auto" && !solvers::find_solver(solver)) continue;
     for (const std::string& args : {flat3 + " --alpha 0.5", flat4 + " --alpha -0.5"}) {
-      const CommandResult r = run_coons("solve " + args + " --solver " + solver + " --allow-indefinite");
+      const CommandResult r = run_coons(fmt::format("solve {} --solver {} --allow-indefinite", args, solver));
       INFO(args << " --solver " << solver << "\n" << r.out << r.err);
       CHECK(r.status == 2);
       CHECK(r.out.empty());
       CHECK(contains(r.err, ": the mask system is singular: the free points"));
       CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
-      const CommandResult e =
-          run_coons("export " + args + " --solver " + solver + " --allow-indefinite --out " + quoted(dir.file("out")));
+      const CommandResult e = run_coons(
+          fmt::format("export {} --solver {} --allow-indefinite --out {}", args, solver, quoted(dir.file("out"))));
       CHECK(e.status == 2);
       CHECK(contains(e.err, "the mask system is singular"));
     }

@@ -1,5 +1,7 @@
 #include "coons/io/matrix_market.h"
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 
@@ -161,7 +163,7 @@ TEST_CASE("read_market_matrix: an integer beyond 64 bits is bad input naming its
   const TempDir dir;
   const std::string integer = "%%MatrixMarket matrix coordinate integer general\n2 2 1\n";
   for (const std::string value : {"99999999999999999999", "-99999999999999999999"}) {
-    const std::string path = dir.write("big.mtx", integer + "1 1 " + value + "\n");
+    const std::string path = dir.write("big.mtx", fmt::format("{}1 1 {}\n", integer, value));
     try {
       read_market_matrix(path);
       FAIL("no error for " << value);
