@@ -304,9 +304,9 @@ void check_classical_request(const BoundaryFile& input, const ResolvedRequest& r
   if (r.method != Method::kAlpha) return;
   // The closed-form eigenvalues settle a clearly regular system in O(mn); only a near-singular one
   // pays for require_valid_problem's search (a sparse LU of the whole interior), which names the
-  // points that decouple. 1e-6 is far above that check's threshold (1e-10 of ‖A‖₁ ≥ max|λ|). The α
-  // search refuses to evaluate outside [−1/4, 1/4] below the same ratio (alpha_search.cpp).
-  if (mask9_eigenvalue_ratio(r.mask, input.boundary.m, input.boundary.n) > 1e-6) return;
+  // points that decouple. The ratio's threshold (1e-6) is far above that check's (1e-10 of
+  // ‖A‖₁ ≥ max|λ|). The α search refuses to evaluate outside [−1/4, 1/4] below the same ratio.
+  if (mask9_eigenvalue_ratio(r.mask, input.boundary.m, input.boundary.n) > kNearSingularEigenvalueRatio) return;
   require_valid_problem(stencil_problem(input), alpha_stencil(r.mask), source);
 }
 

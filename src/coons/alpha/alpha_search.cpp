@@ -70,14 +70,10 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
 
 namespace {
 
-// The threshold of solve's pre-filter (check_classical_request, src/cli/common.cpp): a mask
-// system whose closed-form eigenvalues have min|λ|/max|λ| at most this is taken as (near) singular.
-constexpr double kNearSingularRatio = 1e-6;
-
 // An α-family evaluator that does not evaluate at a (near-)singular α. Inside [−1/4, 1/4] the
 // system is positive definite and every α is evaluated; outside (--allow-indefinite), an α whose
 // mask system on the boundary's (m−1)×(n−1) interior has mask9_eigenvalue_ratio ≤
-// kNearSingularRatio is a failed evaluation (singular), never a value computed from that system,
+// kNearSingularEigenvalueRatio is a failed evaluation (singular), never a value computed from that system,
 // so the search's failure machinery (failed_intervals, failed_region) reports it and no optimum is
 // claimed there.
 template <class Obj>
@@ -87,7 +83,7 @@ class RegularAlphas {
   RegularAlphas(Obj& objective, const Boundary& boundary) : objective_(objective), m_(boundary.m), n_(boundary.n) {}
   Evaluation evaluate(double alpha, bool with_derivative = true) {
     const double ratio = alpha >= -0.25 && alpha <= 0.25 ? 1.0 : mask9_eigenvalue_ratio(alpha_mask(alpha), m_, n_);
-    if (ratio > kNearSingularRatio) return objective_.evaluate(alpha, with_derivative);
+    if (ratio > kNearSingularEigenvalueRatio) return objective_.evaluate(alpha, with_derivative);
     ++refused_;
     Evaluation e;
     e.parameter = alpha;
@@ -95,7 +91,7 @@ class RegularAlphas {
     e.summary.solver = "closed-form eigenvalues";
     e.summary.status = solvers::SolveStatus::kSingular;
     e.summary.message = "the mask system is singular or nearly so at this alpha: min|eigenvalue|/max|eigenvalue| = " +
-                        solvers::format_g(ratio) + " <= " + solvers::format_g(kNearSingularRatio);
+                        solvers::format_g(ratio) + " <= " + solvers::format_g(kNearSingularEigenvalueRatio);
     return e;
   }
   [[nodiscard]] const NormalisedFrame& unit_frame() const { return objective_.unit_frame(); }
@@ -116,7 +112,8 @@ AlphaSearchSummary search_regular_alphas(Obj& objective, const Boundary& boundar
   return detail::search_impl(regular, options);
 }
 
-// The fallback of search_alpha and search_mu: a factorisation and solves per evaluation.
+// The fallback of search_mu on a non-square net: a factorisation and solves per evaluation (the α
+// family's fallback, in search_alpha, goes through RegularAlphas).
 AlphaSearchSummary search_by_solving(const Boundary& boundary, const Objective& objective, MaskFamily family,
                                      const solvers::SolverInfo& solver, const AlphaSearchOptions& options,
                                      const solvers::SolverOptions& solver_options) {

@@ -28,6 +28,9 @@ Mask9 alpha_mask(double alpha);
 //! one fixed ring: λ_pq = 1 − 2e_i·cos(pπ/m) − 2e_j·cos(qπ/n) − 4d·cos(pπ/m)·cos(qπ/n) (the sine
 //! modes diagonalise it; docs/math.md §3). 0 for a singular system; 1 when there is no interior.
 double mask9_eigenvalue_ratio(const Mask9& mask, int m, int n);
+//! A mask system with mask9_eigenvalue_ratio at most this is taken as (near) singular: `solve`
+//! then looks for the points that decouple, and the α search does not evaluate there.
+constexpr double kNearSingularEigenvalueRatio = 1e-6;
 
 //! The anisotropic mask of the energy ∫‖p_uv‖² + μ∫‖∇p‖² at degree (m, n); μ ≥ 0.
 Mask9 anisotropic_mask(int m, int n, double mu);
