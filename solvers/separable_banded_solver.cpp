@@ -8,6 +8,7 @@
 #include <tuple>
 #include <vector>
 
+#include "separable_outer_products.h"
 #include "stencil_operator.h"
 #include "vector_clones.h"
 
@@ -128,6 +129,12 @@ void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int c
   X.resize(B.rows(), 3);
   if (rows == 0 || cols == 0) return;
   const SweepFactors si(fi), sj(fj);
+  std::vector<int> swept;  // the columns of B not solved by outer products
+  for (int c = 0; c < 3; ++c)
+    if (!detail::solve_outer_products(fi, fj, rows, cols, B.col(c).data(), X.col(c).data(), threads))
+      swept.push_back(c);
+  if (swept.empty()) return;
+  const int ncols = int(swept.size());
   const int blocks = (rows + kLanes - 1) / kLanes, strips = (cols + kStrip - 1) / kStrip;
   [[maybe_unused]] const int nt = std::max(1, threads);
 #if defined(_OPENMP)
@@ -141,8 +148,8 @@ void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int c
 #if defined(_OPENMP)
 #pragma omp for schedule(dynamic)
 #endif
-    for (int unit = 0; unit < 3 * blocks; ++unit) {
-      const int c = unit / blocks, r0 = (unit % blocks) * kLanes;
+    for (int unit = 0; unit < ncols * blocks; ++unit) {
+      const int c = swept[std::size_t(unit / blocks)], r0 = (unit % blocks) * kLanes;
       for (int t = 0; t < kLanes; ++t) {
         const bool inside = r0 + t < rows;
         const std::ptrdiff_t at = std::ptrdiff_t(r0 + t) * cols;
@@ -154,8 +161,8 @@ void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int c
 #if defined(_OPENMP)
 #pragma omp for schedule(dynamic)
 #endif
-    for (int unit = 0; unit < 3 * strips; ++unit) {
-      const int c = unit / strips, j0 = (unit % strips) * kStrip;
+    for (int unit = 0; unit < ncols * strips; ++unit) {
+      const int c = swept[std::size_t(unit / strips)], j0 = (unit % strips) * kStrip;
       solve_strip_along_i(X.col(c).data() + j0, cols, rows, std::min(kStrip, cols - j0), si.inv_d.data(), si.l1.data(),
                           si.l2.data());
     }

@@ -6,13 +6,15 @@
 //
 // symmetric banded Toeplitz factors with half-bandwidth 2 (pentadiagonal; p2 = 0 gives the
 // tridiagonal case). Since A⁻¹ = P⁻¹ ⊗ Q⁻¹, each column of B, viewed as a rows × cols matrix R,
-// is solved as X = P⁻¹ R Q⁻¹ in two sweeps over the grid: Q⁻¹ on blocks of 8 grid rows (read from
-// B into a cols × 8 tile whose recurrences run across the 8 rows, vectorised, and written to X: the
+// is solved as X = P⁻¹ R Q⁻¹. When R comes from data rings (zero between the two edge columns
+// but in at most 8 full rows), X is a sum of at most 12 outer products of 1-D solves, written in
+// one pass (separable_outer_products.h). Any other R takes two sweeps over the grid: Q⁻¹ on blocks of 8 grid rows
+// (read from B into a cols × 8 tile whose recurrences run across the 8 rows, vectorised, and written to X: the
 // transposes are fused into the forward and the backward sweep), then P⁻¹ in place on strips of
 // 128 columns (forward and back while the strip is in cache). Both sweeps' units (row blocks,
 // strips, of all three columns) are independent and shared among SolverOptions::threads (OpenMP;
 // the same result bit for bit on any count). factorize = banded LDLᵀ of P and Q without pivoting
-// (O(rows + cols)); solve = O(rows·cols) per column of B, no fill, no memory beyond X. Exact up
+// (O(rows + cols)); solve = O(rows·cols) per column of B, no fill, no memory beyond X and O(rows + cols). Exact up
 // to rounding, and on c1-coons data more accurate than a sparse LDLᵀ of A (whose κ grows like
 // k⁸, against k⁴ per factor here); LDLᵀ without pivoting is
 // backward stable for definite factors (e.g. the fourth difference 1, −4, 6, −4, 1), so only
