@@ -223,7 +223,11 @@ int run_problem_alpha_search(const SearchRequest& r, const BoundaryFile& file, P
   const solvers::SolverInfo* requested = requested_matrix_backend(
       r, "the alpha search of a file with two data rings or a free grid needs a backend that works from the matrix");
   SearchSetup setup = setup_search(r, b);
-  const solvers::SolverInfo& solver = weight_search_backend(requested, false);
+  // outside [−1/4, 1/4] the systems can be indefinite: auto is then a sparse LU, not a Cholesky
+  // that would fail at every indefinite α (a named definite-only backend is refused by setup_search)
+  const bool indefinite = setup.options.lower < -0.25 || setup.options.upper > 0.25;
+  const solvers::SolverInfo& solver =
+      requested != nullptr || !indefinite ? weight_search_backend(requested, false) : *solvers::find_solver("eigen-lu");
   const StencilProblem problem = stencil_problem(file);
   require_valid_problem(problem, alpha_stencil(alpha_mask(-0.1)), r.boundary);
   check_net_memory(r.global, b, &solver, r.boundary);

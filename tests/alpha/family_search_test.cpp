@@ -1,5 +1,6 @@
 #include "coons/alpha/family_search.h"
 
+#include <Eigen/Eigenvalues>
 #include <boost/math/tools/minima.hpp>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -9,6 +10,7 @@
 #include "coons/alpha/stencil_family_objective.h"
 #include "coons/mask/solve_stencil_net.h"
 #include "coons/mask/stencil.h"
+#include "coons/mask/stencil_system.h"
 #include "coons/net/coons_net.h"
 #include "support/fixtures.h"
 
@@ -268,5 +270,65 @@ TEST_CASE("search_weight: a constant net is flat for every objective (no roundin
     CHECK(s.status == SearchStatus::kFlat);
     CHECK_FALSE(s.at_bound);
     CHECK(s.value == 0);
+  }
+}
+
+namespace {
+
+// The α > 1/4 closest to 0.3 at which the α family's system on `p` is singular: A(α) = A₀ + α·A₁
+// (affine in α), so the singular α are the real eigenvalues of the pencil A₀ v = −α A₁ v.
+double singular_alpha(const StencilProblem& p) {
+  const Eigen::MatrixXd a0 = Eigen::MatrixXd(assemble_stencil_system(p, alpha_stencil(alpha_mask(0))).A);
+  const Eigen::MatrixXd a1 = Eigen::MatrixXd(assemble_stencil_system(p, alpha_stencil(alpha_mask(1))).A) - a0;
+  Eigen::GeneralizedEigenSolver<Eigen::MatrixXd> pencil(a0, -a1);
+  double best = HUGE_VAL;
+  for (Eigen::Index k = 0; k < a0.rows(); ++k) {
+    if (!(std::abs(pencil.betas()(k)) > 1e-12) || std::abs(pencil.alphas()(k).imag()) > 1e-9) continue;
+    const double alpha = pencil.alphas()(k).real() / pencil.betas()(k);
+    if (alpha > 0.26 && std::abs(alpha - 0.3) < std::abs(best - 0.3)) best = alpha;
+  }
+  return best;
+}
+
+}  // namespace
+
+TEST_CASE("StencilFamilyObjective: a near-singular alpha outside the definite interval is refused as singular",
+          "[alpha]") {
+  for (const StencilProblem& p : {ribbon_problem(8, 7, 5), hole_problem(9, 8, 6)}) {
+    const double star = singular_alpha(p);
+    REQUIRE(star < 1);
+    StencilFamilyObjective f(p, objective_named("thin_plate"), backend("eigen-lu"), {}, alpha_stencil_family());
+    INFO("rings " << p.rings << ", singular alpha " << star);
+    const auto near = f.evaluate(star + 1e-9);
+    CHECK_FALSE(near.ok());
+    CHECK(near.summary.status == solvers::SolveStatus::kSingular);
+    CHECK_THAT(near.summary.message, Catch::Contains("min|eigenvalue|/max|eigenvalue|"));
+    CHECK(f.evaluate(star + 1e-3).ok());  // a regular system nearby is evaluated
+  }
+}
+
+TEST_CASE(
+    "search_alpha_on_problem: a near-singular alpha outside the definite interval is a failed evaluation and never "
+    "the optimum",
+    "[alpha]") {
+  // two data rings and a free set with a hole: no closed form for the eigenvalues; the scan's
+  // lower bound lies 1e-9 above a singular α
+  for (const StencilProblem& p : {ribbon_problem(8, 7, 5), hole_problem(9, 8, 6)}) {
+    const double star = singular_alpha(p);
+    AlphaSearchOptions options;
+    options.lower = star + 1e-9;
+    options.upper = star + 0.05;
+    const AlphaSearchSummary s =
+        search_alpha_on_problem(p, objective_named("thin_plate"), backend("eigen-lu"), options);
+    INFO("rings " << p.rings << ", singular alpha " << star << ": " << s.brief_report());
+    CHECK(s.first_failure == solvers::SolveStatus::kSingular);
+    REQUIRE_FALSE(s.failed_intervals.empty());
+    CHECK(s.failed_intervals.front().first == options.lower);
+    for (const auto& [lo, hi] : s.failed_intervals) CHECK(hi < star + 1e-6);
+    REQUIRE_FALSE(s.scan.empty());
+    CHECK(s.scan.front().second == HUGE_VAL);  // no value from the near-singular system
+    if (s.parameter) CHECK(*s.parameter > star + 1e-6);
+    CHECK(std::isfinite(s.value));
+    if (s.status != SearchStatus::kSuccess) CHECK(s.status == SearchStatus::kFailedRegion);
   }
 }

@@ -304,6 +304,48 @@ TEST_CASE("coons search-alpha: on a free set or two rings, alpha* of the whole p
   CHECK(e.err.rfind("error: command line: --solver: mg", 0) == 0);
 }
 
+TEST_CASE(
+    "coons search-alpha --allow-indefinite: on two rings auto solves indefinite systems and a near-singular alpha is a "
+    "failed evaluation",
+    "[cli][alpha]") {
+  // sphere_cap_ribbons: degree (6, 6), two data rings, a 3×3 inside; its system is singular at
+  // α = −1/2 and 1/(2√2) (the sine modes of the one-ring system of degree (4, 4))
+  const std::string file = quoted(kData + "/boundaries/sphere_cap_ribbons.json");
+  const CommandResult wide =
+      run_coons("search-alpha " + file + " --objective thin_plate --allow-indefinite --lower=-0.5 --upper=0.5");
+  INFO(wide.err);
+  REQUIRE(wide.status == 0);
+  const json w = json::parse(wide.out);
+  CHECK(w["solver"]["name"] == "eigen-lu");
+  CHECK(w["status"] == "success");
+  CHECK(w["alpha"].get<double>() < -0.25);  // the optimum lies in the indefinite range
+  CHECK(w["first_failure"] == "singular");  // α = −1/2, exactly singular
+  // 1e-11 above 1/(2√2): min|λ|/max|λ| ≈ 1e-11, no value from that system; the lowest
+  // successful point lies next to it, so no optimum is claimed
+  const CommandResult near =
+      run_coons("search-alpha " + file + " --objective thin_plate --allow-indefinite --lower 0.3535533906 --upper 0.4");
+  INFO(near.err);
+  CHECK(near.status == 3);
+  const json n = json::parse(near.out);
+  CHECK(n["status"] == "failed_region");
+  CHECK(n["alpha"].is_null());
+  CHECK(n["first_failure"] == "singular");
+  CHECK(n["scan"][0][1].is_null());
+  CHECK_THAT(near.err, Catch::Contains("min|eigenvalue|/max|eigenvalue|"));
+  // 1e-10 above −1/2 (an LU solves it without complaint, to a thin-plate energy of 1e17): a failed
+  // evaluation away from the optimum, which is found as on the wide interval
+  const CommandResult away =
+      run_coons("search-alpha " + file + " --objective thin_plate --allow-indefinite --lower=-0.4999999999 --upper=0");
+  INFO(away.err);
+  REQUIRE(away.status == 0);
+  const json a = json::parse(away.out);
+  CHECK(a["status"] == "success");
+  CHECK(a["scan"][0][1].is_null());
+  CHECK(a["failed_evaluations"] == 1);
+  CHECK(a["first_failure"] == "singular");
+  CHECK(a["alpha"].get<double>() == Approx(w["alpha"].get<double>()).margin(1e-6));
+}
+
 TEST_CASE("coons batch: --weight without --mask c1-family is bad input", "[cli]") {
   TempDir out;
   const CommandResult e =

@@ -7,6 +7,7 @@
 #include "coons/surfaces/bspline_energy.h"
 #include "solvers/registry.h"
 #include "support/bspline_fixtures.h"
+#include "support/bspline_singular.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -100,4 +101,20 @@ TEST_CASE("bspline_net_report: names the knots, the degrees and what compatibili
   CHECK(r["metrics"]["thin_plate_energy"].get<double>() ==
         Approx(bspline_combined_energy(coons.surface, bspline_thin_plate_terms())));
   CHECK(r["metrics"]["mask_residual"].get<double>() < 1e-12);
+}
+
+TEST_CASE("make_bspline_net: a singular alpha is refused as singular and not solved into a net", "[study][bspline]") {
+  const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 8, 2, 6, 9));
+  const double star = bspline_singular_alpha(b);
+  REQUIRE(star < 0.25);
+  auto solver = solvers::make_solver("eigen-lu");
+  const BSplineNetOutcome at = make_bspline_net(b, NetMethod::kAlpha, star + 1e-12, solver.get());
+  REQUIRE(at.summary);
+  INFO("singular alpha " << star << ": " << at.summary->brief_report());
+  CHECK(at.summary->status == solvers::SolveStatus::kSingular);
+  CHECK_THAT(at.summary->message, Catch::Contains("min|eigenvalue|/max|eigenvalue|"));
+  // a little farther the system is regular (a ratio far above 1e-10) and is solved
+  const BSplineNetOutcome near = make_bspline_net(b, NetMethod::kAlpha, star + 1e-4, solver.get());
+  REQUIRE(near.summary);
+  CHECK(near.summary->ok());
 }

@@ -7,6 +7,7 @@
 #include "coons/surfaces/bspline_energy.h"
 #include "solvers/registry.h"
 #include "support/bspline_fixtures.h"
+#include "support/bspline_singular.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -92,4 +93,32 @@ TEST_CASE("run_bspline_study: one row per B-spline boundary with both energies a
   const std::string md = bspline_study_markdown(rows);
   CHECK(md.find("| random |") != std::string::npos);
   CHECK(bspline_study_json(rows)[0]["best_alpha"].contains("e3"));
+}
+
+TEST_CASE("search_bspline_alpha: a near-singular alpha is a failed evaluation and never the optimum",
+          "[study][bspline]") {
+  // random knots with repeated values: the non-uniform system is singular at some α in (0, 1/4];
+  // the scan's lower bound lies 1e-9 above it
+  const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 8, 2, 6, 9));
+  const double star = bspline_singular_alpha(b);
+  REQUIRE(star < 0.25);
+  AlphaSearchOptions options = default_bspline_search_options();
+  options.lower = star + 1e-9;
+  options.upper = star + 0.02;
+  const AlphaSearchSummary s = search_bspline_alpha(b, objective_named("thin_plate"), "eigen-lu", options);
+  INFO("singular alpha " << star << ": " << s.brief_report());
+  CHECK(s.first_failure == solvers::SolveStatus::kSingular);
+  REQUIRE_FALSE(s.failed_intervals.empty());
+  CHECK(s.failed_intervals.front().first == options.lower);
+  for (const auto& [lo, hi] : s.failed_intervals) CHECK(hi < star + 1e-6);
+  REQUIRE_FALSE(s.scan.empty());
+  CHECK(s.scan.front().second == HUGE_VAL);  // no value from the near-singular system
+  if (s.parameter) CHECK(*s.parameter > star + 1e-6);
+  CHECK(std::isfinite(s.value));
+  // the objective names the ratio
+  auto solver = solvers::make_solver("eigen-lu");
+  solvers::SolveStatus status = solvers::SolveStatus::kSuccess;
+  CHECK_FALSE(bspline_alpha_objective(b, objective_named("thin_plate"), star + 1e-9, *solver, &status));
+  CHECK(status == solvers::SolveStatus::kSingular);
+  CHECK(bspline_alpha_objective(b, objective_named("thin_plate"), star + 1e-3, *solver));
 }

@@ -13,6 +13,7 @@
 #include "coons/alpha/search_run.h"
 #include "coons/config.h"
 #include "coons/mask/mask9.h"
+#include "coons/mask/near_singular.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
@@ -75,7 +76,7 @@ namespace {
 // mask system on the boundary's (m−1)×(n−1) interior has mask9_eigenvalue_ratio ≤
 // kNearSingularEigenvalueRatio is a failed evaluation (singular), never a value computed from that system,
 // so the search's failure machinery (failed_intervals, failed_region) reports it and no optimum is
-// claimed there.
+// claimed there. (The same criterion on the other problems, estimated: near_singular.h.)
 template <class Obj>
 class RegularAlphas {
  public:
@@ -88,10 +89,7 @@ class RegularAlphas {
     Evaluation e;
     e.parameter = alpha;
     e.has_derivative = false;
-    e.summary.solver = "closed-form eigenvalues";
-    e.summary.status = solvers::SolveStatus::kSingular;
-    e.summary.message = "the mask system is singular or nearly so at this alpha: min|eigenvalue|/max|eigenvalue| = " +
-                        solvers::format_g(ratio) + " <= " + solvers::format_g(kNearSingularEigenvalueRatio);
+    e.summary = near_singular_summary(ratio, "closed-form eigenvalues");
     return e;
   }
   [[nodiscard]] const NormalisedFrame& unit_frame() const { return objective_.unit_frame(); }

@@ -43,8 +43,9 @@ AlphaSearchSummary search_weight(const StencilProblem& problem, const Objective&
                                  const solvers::SolverOptions& solver_options = {});
 
 //! α* of the 3×3 family on `problem` (summary.parameter), as search_weight reports w*; bounds from
-//! `options` (α ∈ [−1/4, 1/4] keeps every system positive definite). `solver` must work from the
-//! matrix.
+//! `options` (α ∈ [−1/4, 1/4] keeps every system positive definite; outside it an α whose system
+//! is near-singular is a failed evaluation, `singular`: near_singular.h). `solver` must work from
+//! the matrix.
 AlphaSearchSummary search_alpha_on_problem(const StencilProblem& problem, const Objective& objective,
                                            const solvers::SolverInfo& solver, const AlphaSearchOptions& options = {},
                                            const solvers::SolverOptions& solver_options = {});

@@ -3,13 +3,15 @@
 #include <utility>
 
 #include "coons/mask/mask9.h"
+#include "coons/mask/near_singular.h"
 #include "coons/mask/stencil.h"
 
 namespace coons {
 
 StencilFamily c1_weight_family() {
   return {[](double w) { return c1_family_stencil(w); },
-          [](double w) { return Eigen::MatrixXd(c1_family_stencil_derivative(w)); }};
+          [](double w) { return Eigen::MatrixXd(c1_family_stencil_derivative(w)); },
+          nullptr};  // definite for every w ∈ [0, 1]
 }
 
 StencilFamily alpha_stencil_family() {
@@ -17,7 +19,8 @@ StencilFamily alpha_stencil_family() {
   // the diagonals, 0 at the centre
   Eigen::MatrixXd d(3, 3);
   d << -1, 1, -1, 1, 0, 1, -1, 1, -1;
-  return {[](double a) { return alpha_stencil(alpha_mask(a)); }, [d](double) { return d; }};
+  return {[](double a) { return alpha_stencil(alpha_mask(a)); }, [d](double) { return d; },
+          [](double a) { return a >= -0.25 && a <= 0.25; }};
 }
 
 StencilFamilyObjective::StencilFamilyObjective(const StencilProblem& problem, const Objective& objective,
@@ -72,6 +75,16 @@ StencilFamilyObjective::Evaluation StencilFamilyObjective::evaluate(double t, bo
       e.summary = solver_->summary();
       e.net = unit_.to_original(std::move(e.net));
       return e;
+    }
+    if (family_.definite && !family_.definite(t)) {
+      const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(system_->A, *solver_);
+      solves_ += r.solves;
+      if (!r.failure.ok() || r.ratio <= kNearSingularEigenvalueRatio) {
+        e.summary =
+            r.failure.ok() ? near_singular_summary(r.ratio, solver_->name() + " and inverse iteration") : r.failure;
+        e.net = unit_.to_original(std::move(e.net));
+        return e;
+      }
     }
     Eigen::MatrixX3d X;
     e.summary = solver_->solve(system_->B, X);

@@ -7,6 +7,8 @@
 // with the box pattern (every t shares it): one symbolic analysis for every evaluation, then per t
 // a refill of the values, one factorisation and two solves. Evaluated in the normalised frame of
 // the net's outer boundary (normalised_frame.h), reported in the caller's units.
+// Outside the family's definite range (the α family beyond [−1/4, 1/4]) a near-singular system is
+// a failed evaluation, never a value (near_singular.h).
 // Sizes: the assembled matrix (#free by #free, 9 or 25 entries a row) and two #free by 3 solves.
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700 (masks as
 // energy minimisers); P. Salvi, quadfit (5×5 masks with two rings).
@@ -29,10 +31,13 @@
 
 namespace coons {
 
-//! A one-parameter family of stencils of one radius: W_t and dW_t/dt (centre 0).
+//! A one-parameter family of stencils of one radius: W_t and dW_t/dt (centre 0), and where its
+//! systems are positive definite on every free set (absent: everywhere). Outside that, an
+//! evaluation whose system is near-singular (near_singular.h) is refused.
 struct StencilFamily {
   std::function<Stencil(double)> stencil;
   std::function<Eigen::MatrixXd(double)> derivative;
+  std::function<bool(double)> definite;
 };
 //! The C1 family over its weight w ∈ [0, 1] (5×5).
 StencilFamily c1_weight_family();
@@ -62,7 +67,9 @@ class StencilFamilyObjective {
   StencilFamilyObjective& operator=(const StencilFamilyObjective&) = delete;
 
   //! One refill and factorisation; one solve for the value, one more for the derivative when
-  //! asked (otherwise `derivative` is left 0).
+  //! asked (otherwise `derivative` is left 0). Where the family is not definite at t, the
+  //! factorisation first estimates min|λ|/max|λ| (estimate_eigenvalue_ratio, a few more solves);
+  //! at or below kNearSingularEigenvalueRatio the evaluation fails (singular, near_singular_summary).
   Evaluation evaluate(double t, bool with_derivative = true);
 
   [[nodiscard]] int evaluations() const { return evaluations_; }

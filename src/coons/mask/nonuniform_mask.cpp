@@ -3,6 +3,8 @@
 #include <cmath>
 #include <vector>
 
+#include "coons/mask/near_singular.h"
+
 namespace coons {
 
 namespace {
@@ -96,7 +98,8 @@ NonUniformMaskSystem assemble_nonuniform_mask_system(const ControlNet& net, cons
 }
 
 NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const GrevilleGrid& grid, double alpha,
-                                                solvers::LinearSolver& solver, bool with_derivative) {
+                                                solvers::LinearSolver& solver, bool with_derivative,
+                                                double refused_ratio) {
   NonUniformSolveResult out;
   out.net = frame;
   const int rows = std::max(frame.m - 1, 0), cols = std::max(frame.n - 1, 0);
@@ -111,7 +114,25 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
   solvers::LinearOperator op;
   op.matrix = &system.A;
   Eigen::MatrixX3d X;
-  out.summary = solver.compute_and_solve(op, system.B, X);
+  if (refused_ratio > 0 && !(alpha >= -0.25 && alpha <= 0)) {
+    if (solver.analyze(op) != solvers::SolveStatus::kSuccess ||
+        solver.factorize(op) != solvers::SolveStatus::kSuccess) {
+      out.summary = solver.summary();
+      return out;
+    }
+    const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(system.A, solver);
+    if (!r.failure.ok()) {
+      out.summary = r.failure;
+      return out;
+    }
+    if (r.ratio <= refused_ratio) {
+      out.summary = near_singular_summary(r.ratio, solver.name() + " and inverse iteration", refused_ratio);
+      return out;
+    }
+    out.summary = solver.solve(system.B, X);
+  } else {
+    out.summary = solver.compute_and_solve(op, system.B, X);
+  }
   if (!out.summary.ok()) return out;
   const auto fill = [cols](ControlNet& net, const Eigen::MatrixX3d& values) {
     for (Eigen::Index k = 0; k < values.rows(); ++k) net.at(1 + int(k / cols), 1 + int(k % cols)) = values.row(k);

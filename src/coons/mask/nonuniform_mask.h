@@ -56,8 +56,12 @@ struct NonUniformSolveResult {
 };
 
 //! Solves L_α b = 0 for the interior with `solver` (any backend that takes an assembled matrix).
+//! Outside α ∈ [−1/4, 0], where the system need not be definite, a positive `refused_ratio` first
+//! estimates min|λ|/max|λ| with the factorisation (estimate_eigenvalue_ratio, near_singular.h);
+//! at or below `refused_ratio` nothing is solved: status singular, the ratio in the message.
 NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const GrevilleGrid& grid, double alpha,
-                                                solvers::LinearSolver& solver, bool with_derivative = false);
+                                                solvers::LinearSolver& solver, bool with_derivative = false,
+                                                double refused_ratio = 0);
 
 //! max over interior points of ‖L_α b_ij‖ (unscaled rows; on equal spacing the mask residual of
 //! mask_residual.h).

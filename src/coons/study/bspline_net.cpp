@@ -4,6 +4,7 @@
 #include <utility>
 
 #include "coons/io/net_json.h"
+#include "coons/mask/stencil_problem.h"
 #include "coons/study/net_report.h"
 #include "coons/surfaces/bspline_energy.h"
 #include "solvers/registry.h"
@@ -45,7 +46,10 @@ std::string auto_bspline_solver(double alpha) {
 BSplineNetOutcome make_bspline_net(const BSplineBoundary& b, NetMethod method, double alpha,
                                    solvers::LinearSolver* solver) {
   if (method != NetMethod::kAlpha || solver == nullptr) return {greville_coons_surface(b), std::nullopt};
-  NonUniformSolveResult result = solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, *solver);
+  // a singular system (the threshold of the stencil path's check at the input edge) is refused,
+  // not solved into a net of rounding noise
+  NonUniformSolveResult result = solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, *solver, false,
+                                                           ProblemCheckOptions{}.singular_tolerance);
   return {bspline_surface_on(b, std::move(result.net)), std::move(result.summary)};
 }
 

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <vector>
 
+#include "coons/mask/near_singular.h"
 #include "coons/mask/nonuniform_mask.h"
 #include "coons/study/bspline_net.h"
 #include "coons/surfaces/bspline_energy.h"
@@ -33,7 +34,9 @@ bool bspline_objective_supported(const Objective& objective, std::string* why) {
 std::optional<BSplineObjectiveValue> bspline_alpha_objective(const BSplineBoundary& b, const Objective& objective,
                                                              double alpha, solvers::LinearSolver& solver,
                                                              solvers::SolveStatus* status) {
-  const NonUniformSolveResult r = solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, solver, true);
+  // outside [−1/4, 0] a near-singular system is a failed evaluation, never a value (near_singular.h)
+  const NonUniformSolveResult r =
+      solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, solver, true, kNearSingularEigenvalueRatio);
   if (status) *status = r.summary.status;
   if (!r.summary.ok()) return std::nullopt;
   const BSplineSurface s = bspline_surface_on(b, r.net);

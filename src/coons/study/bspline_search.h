@@ -37,7 +37,9 @@ bool bspline_objective_supported(const Objective& objective, std::string* why);
 //! Flat below a relative range of 1e-9 (the energies' rounding on short knot spans is ~1e-11).
 AlphaSearchOptions default_bspline_search_options();
 
-//! The search; `solver_name` a backend of the registry that takes an assembled matrix.
+//! The search; `solver_name` a backend of the registry that takes an assembled matrix. Outside
+//! [−1/4, 0] an α whose system is near-singular (near_singular.h) is a failed evaluation, status
+//! singular (bspline_alpha_objective gives nullopt there).
 AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& compatible, const Objective& objective,
                                         const std::string& solver_name,
                                         const AlphaSearchOptions& options = default_bspline_search_options(),
