@@ -372,8 +372,9 @@ json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const S
   return stencil_net_report(input.boundary, run.problem, run.stencil, label, run.result, mu, run.picked_automatically);
 }
 
-BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline) {
+BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline, double min_model_size) {
   BoundaryReadOptions options;
+  options.min_model_size = min_model_size;
   if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
   options.corner_tolerance = corner_tolerance;

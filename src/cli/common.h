@@ -135,8 +135,10 @@ nlohmann::json stencil_report(const BoundaryFile& input, const ResolvedRequest& 
 nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                             const std::optional<double>& mu);
 //! A B-spline boundary (knots_u, knots_v) is an InputError unless `accept_bspline` (the commands
-//! that handle one: bspline_commands.h).
-BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline = false);
+//! that handle one: bspline_commands.h); so is a model smaller than `min_model_size` (the searches
+//! pass kMinModelSize, BoundaryReadOptions).
+BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline = false,
+                        double min_model_size = 0);
 //! Files as given, folders expanded to their *.json files (sorted); unreadable folders are InputErrors.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
 

@@ -8,6 +8,7 @@
 #include <numeric>
 
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/write_files.h"
 #include "coons/study/degree_limit_report.h"
 #include "coons/study/degree_limit_study.h"
@@ -59,6 +60,7 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
                      "several boundaries or objectives need a report folder (--out DIR); "
                      "one boundary and one objective print their JSON");
   BoundaryReadOptions read_options;
+  read_options.min_model_size = kMinModelSize;  // the searches
   read_options.corner_tolerance = r.corner_tolerance;
   std::vector<StudyInput> inputs;
   int largest = 0;

@@ -11,6 +11,7 @@
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/family_search.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/stencil_json.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/mask/mask9.h"
@@ -245,7 +246,7 @@ int run_search_alpha(const SearchRequest& r) {
   if (is_triangle_file(r.boundary)) return run_tri_search(tri_search_args(r));
   Phases phases("search-alpha");
   phases.start("read");
-  const BoundaryFile file = read_input(r.boundary, r.corner_tolerance, true);
+  const BoundaryFile file = read_input(r.boundary, r.corner_tolerance, true, kMinModelSize);
   if (file.bspline) return run_bspline_search(r, file, phases);
   const Boundary& b = file.boundary;
   if (r.parameter == Parameter::kAlpha && !is_classical(file)) return run_problem_alpha_search(r, file, phases);

@@ -14,6 +14,7 @@
 
 #include "coons/config.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
@@ -172,6 +173,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   if (!options.is_valid(&why)) throw InputError("command line", "--degrees", why);
   const std::string three_js = r.html ? read_three_js(COONS_THREE_JS_PATH) : "";
   BoundaryReadOptions read_options;
+  read_options.min_model_size = kMinModelSize;  // the searches
   read_options.corner_tolerance = r.corner_tolerance;
   std::vector<StudyInput> inputs;
   std::vector<TriStudyInput> triangles;

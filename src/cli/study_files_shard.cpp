@@ -141,6 +141,7 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
       part.triangles = run_tri_study({read_tri_study_input(file, corner_tolerance)}, options.degrees, options.solver);
     } else {
       BoundaryReadOptions read_options;
+      read_options.min_model_size = kMinModelSize;  // the searches
       read_options.corner_tolerance = corner_tolerance;
       if (const BoundaryFile b = read_boundary_file(file, read_options); b.bspline)
         bspline = run_bspline_study({{file, b.boundary.name, *b.bspline}}, default_study_objectives(),

@@ -621,3 +621,27 @@ TEST_CASE("coons refit: a curve with a pole between the reader's samples is bad 
   CHECK(r.out.empty());
   CHECK(contains(r.err, "pole.json: curves.bottom: is not finite between the samples"));
 }
+
+TEST_CASE("coons search-alpha and study: a model below 1e-60 is bad input; solve takes it", "[cli][alpha]") {
+  // the pillow scaled by 1e-170: its energies are zero in doubles, and the search called it flat
+  nlohmann::json doc = nlohmann::json::parse(read_text(kData + "/boundaries/pillow.json"));
+  for (const char* side : {"bottom", "top", "left", "right"})
+    for (nlohmann::json& point : doc[side])
+      for (nlohmann::json& c : point) c = c.get<double>() * 1e-170;
+  TempDir dir;
+  const std::string file = (dir.path / "tiny_pillow.json").string();
+  std::ofstream(file) << doc.dump();
+  for (const std::string& args :
+       {"search-alpha " + quoted(file) + " --objective thin_plate",
+        "study " + quoted(file) + " --degrees 3 --out " + quoted((dir.path / "s").string())}) {
+    INFO(args);
+    const CommandResult r = run_coons(args);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(r.err.rfind("error: " + file + ": ", 0) == 0);
+    CHECK_THAT(r.err, Catch::Contains("below 1e-60"));
+  }
+  CHECK_FALSE(std::filesystem::exists(dir.path / "s"));
+  const CommandResult solve = run_coons("solve " + quoted(file) + " --alpha -0.1");
+  CHECK(solve.status == 0);
+}

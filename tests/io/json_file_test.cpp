@@ -144,3 +144,45 @@ TEST_CASE("json_integer: an integral float is refused as written, not printed as
                     "f: k: must be an integer in [1, 10], not 1e+300 (a float)");
   CHECK_THROWS_WITH(json_integer(json::parse("0.1"), "f", "k", 1, 10), "f: k: must be an integer in [1, 10], not 0.1");
 }
+
+TEST_CASE("parse_boundary: with min_model_size a smaller model is refused at its largest point", "[io]") {
+  // the searches ask for kMinModelSize: energies scale as s^2, and below about 1e-150 they are
+  // subnormal or zero; without it (every other reader) a model of any size is read
+  const Boundary b = make_random_boundary(3, 4, 5);
+  const auto scaled = [&](double s) {
+    Boundary c = b;
+    for (Eigen::MatrixX3d* side : {&c.bottom, &c.top, &c.left, &c.right}) *side *= s;
+    return boundary_to_json(c);
+  };
+  BoundaryReadOptions search;
+  search.min_model_size = kMinModelSize;
+  double largest = 0;
+  for (const Eigen::MatrixX3d* side : {&b.bottom, &b.top, &b.left, &b.right})
+    largest = std::max(largest, side->cwiseAbs().maxCoeff());
+  const InputError e = error_of([&] { parse_boundary(scaled(1e-170), "tiny.json", search); });
+  CHECK(e.file() == "tiny.json");
+  CHECK(contains(e.reason(), "below 1e-60"));
+  CHECK(contains(e.reason(), "scale the model up"));
+  CHECK_NOTHROW(parse_boundary(scaled(1e-170), "tiny.json"));
+  // the field is the point of largest magnitude
+  const json doc = scaled(1e-170);
+  const std::string side = e.field().substr(0, e.field().find('['));
+  const int k = std::stoi(e.field().substr(e.field().find('[') + 1));
+  double at = 0;
+  for (const json& c : doc[side][std::size_t(k)]) at = std::max(at, std::abs(c.get<double>()));
+  CHECK(at == Approx(largest * 1e-170).epsilon(1e-12));
+  // the bound itself is accepted, and so is a model at the origin
+  CHECK_NOTHROW(parse_boundary(scaled(kMinModelSize / largest * (1 + 1e-12)), "b.json", search));
+  CHECK_THROWS(parse_boundary(scaled(kMinModelSize / largest * (1 - 1e-12)), "b.json", search));
+  CHECK_NOTHROW(parse_boundary(scaled(0.0), "zero.json", search));
+
+  const ControlNet net = make_random_net(2, 3, 7);
+  json small{{"net", net_to_json(net)}};
+  for (json& row : small["net"])
+    for (json& point : row)
+      for (json& c : point) c = c.get<double>() * 1e-100;
+  const InputError n = error_of([&] { parse_boundary(small, "n.json", search); });
+  CHECK(n.field().rfind("net[", 0) == 0);
+  CHECK(contains(n.reason(), "below 1e-60"));
+  CHECK_NOTHROW(parse_boundary(small, "n.json"));
+}

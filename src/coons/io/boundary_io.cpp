@@ -87,6 +87,28 @@ void check_free_inside_rings(const Parser& p, const FreeGrid& free, int rings) {
                            rings));
 }
 
+// The point of largest coordinate magnitude among the lists: its magnitude and "name[k]".
+struct LargestPoint {
+  double magnitude = 0;
+  std::string field;
+  void add(const std::string& name, const Eigen::MatrixX3d& list) {
+    for (Eigen::Index k = 0; k < list.rows(); ++k)
+      if (const double v = list.row(k).cwiseAbs().maxCoeff(); v > magnitude) {
+        magnitude = v;
+        field = fmt::format("{}[{}]", name, k);
+      }
+  }
+};
+
+// A model whose largest coordinate is below min_size (and not zero) is refused at that point.
+void check_model_size(const Parser& p, const LargestPoint& largest, double min_size) {
+  if (largest.magnitude > 0 && largest.magnitude < min_size)
+    p.fail(largest.field, fmt::format("the largest coordinate magnitude of the model is {:.3g}, below {:g}: the "
+                                      "search's energies scale as x^2 and would underflow; scale the model up (the "
+                                      "optimal parameters do not depend on the scale)",
+                                      largest.magnitude, min_size));
+}
+
 double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::RowVector3d hi = -lo;
@@ -183,6 +205,14 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
       for (int j = 0; j <= n; ++j) net.at(i, j) = p.point(rows[i][j], fmt::format("net[{}][{}]", i, j));
     }
     check_degree(p, doc, m, n);
+    LargestPoint largest;
+    for (int i = 0; i <= m; ++i)
+      for (int j = 0; j <= n; ++j)
+        if (const double v = net.at(i, j).cwiseAbs().maxCoeff(); v > largest.magnitude) {
+          largest.magnitude = v;
+          largest.field = fmt::format("net[{}][{}]", i, j);
+        }
+    check_model_size(p, largest, options.min_model_size);
     for (const char* field : {"knots_u", "knots_v", "degree_spline"})
       if (doc.contains(field))
         p.fail(field, "belongs to the sides form (B-spline boundary curves); a \"net\" file has no knots");
@@ -230,6 +260,17 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
     out.ribbons = parse_ribbons(p, doc, b, options.corner_tolerance);
     out.rings = 2;
   }
+  LargestPoint largest;
+  for (const auto& [side, list] :
+       {std::pair{"bottom", &b.bottom}, {"top", &b.top}, {"left", &b.left}, {"right", &b.right}})
+    largest.add(side, *list);
+  if (out.ribbons)
+    for (const auto& [side, list] : {std::pair{"ribbons.bottom", &out.ribbons->bottom},
+                                     {"ribbons.top", &out.ribbons->top},
+                                     {"ribbons.left", &out.ribbons->left},
+                                     {"ribbons.right", &out.ribbons->right}})
+      largest.add(side, *list);
+  check_model_size(p, largest, options.min_model_size);
   if (const auto knots = parse_bspline_knots(doc, source, b.m + 1, b.n + 1)) {
     if (out.ribbons) p.fail("ribbons", "B-spline boundaries (knots_u, knots_v) take one data ring; drop \"ribbons\"");
     out.bspline = bspline_input(b, *knots);

@@ -27,6 +27,9 @@ namespace coons {
 struct BoundaryReadOptions {
   //! Corners must agree to this fraction of the bounding-box diagonal (docs/formats.md: 1e-9).
   double corner_tolerance = 1e-9;
+  //! 0: a model of any size. The searches ask for kMinModelSize (json_file.h): a model whose largest
+  //! coordinate magnitude is below it (and not zero) is then an InputError at that point.
+  double min_model_size = 0;
 };
 
 //! The second ring of a net given with its sides: bottom = b[i][1], top = b[i][n−1] (#m+1 by 3),

@@ -48,6 +48,13 @@ int json_int(const nlohmann::json& j, const std::string& source, const std::stri
 //! 1e59 solves with every energy finite, thin-plate 2.5e119).
 inline constexpr double kMaxCoordinate = 1e60;
 
+//! The smallest size of a model the searches accept (BoundaryReadOptions::min_model_size): its
+//! largest coordinate magnitude is zero (every point at the origin) or at least this. Energies
+//! scale as s², and for s below about 1e-150 they fall into subnormal numbers or to zero, where the
+//! α search loses digits (the pillow scaled by 1e-160: α* = −0.0416679 for −0.0416667) or calls its
+//! objective flat (1e-170). 1e-60 mirrors kMaxCoordinate. Nets, and solves, hold at any scale.
+inline constexpr double kMinModelSize = 1e-60;
+
 //! A coordinate that is a finite number with |x| <= kMaxCoordinate; `what` says which one
 //! ("coordinate 2"), the InputError names `field`, the value and the bound.
 double json_coordinate(const nlohmann::json& j, const std::string& source, const std::string& field,
