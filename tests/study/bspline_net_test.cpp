@@ -113,6 +113,8 @@ TEST_CASE("make_bspline_net: a singular alpha is refused as singular and not sol
   INFO("singular alpha " << star << ": " << at.summary->brief_report());
   CHECK(at.summary->status == solvers::SolveStatus::kSingular);
   CHECK_THAT(at.summary->message, Catch::Contains("min|eigenvalue|/max|eigenvalue|"));
+  // not solved: the residual of X = 0 (1), never the 0 of a perfect solve
+  CHECK(at.summary->relative_residual == 1);
   // a little farther the system is regular (a ratio far above 1e-10) and is solved
   const BSplineNetOutcome near = make_bspline_net(b, NetMethod::kAlpha, star + 1e-4, solver.get());
   REQUIRE(near.summary);

@@ -127,6 +127,8 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
     }
     if (r.ratio <= refused_ratio) {
       out.summary = near_singular_summary(r.ratio, solver.name() + " and inverse iteration", refused_ratio);
+      // not solved: the relative residual of X = 0, as every failed solve reports it
+      out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;
       return out;
     }
     out.summary = solver.solve(system.B, X);
