@@ -87,14 +87,37 @@ void outer_product_rows(const double* a, const double* v, std::size_t C, int K, 
   outer_product_rows_plain(a, v, C, K, nrows, j0, j1, x);
 }
 
-// y = F⁻¹ y in place for one vector of length k: L, then D, then Lᵀ.
-void solve_vector(const BandedLdlt& f, double* y, int k) {
-  for (int r = 1; r < k; ++r) y[r] -= f.l1[r - 1] * y[r - 1] + (r >= 2 ? f.l2[r - 2] * y[r - 2] : 0);
+// Y = F⁻¹ Y in place for Y of k rows × count columns (row-major): L, then D, then Lᵀ, each step
+// across the count columns at once (independent recurrences: vectorised, no latency chain).
+void solve_columns(const BandedLdlt& f, double* __restrict y, std::size_t count, int k) {
+  const auto row = [&](int r) { return y + std::size_t(r) * count; };
+  for (int r = 1; r < k; ++r) {
+    double* __restrict yr = row(r);
+    const double* __restrict y1 = row(r - 1);
+    const double a = f.l1[r - 1];
+    if (r >= 2) {
+      const double* __restrict y2 = row(r - 2);
+      const double c = f.l2[r - 2];
+      for (std::size_t t = 0; t < count; ++t) yr[t] -= a * y1[t] + c * y2[t];
+    } else {
+      for (std::size_t t = 0; t < count; ++t) yr[t] -= a * y1[t];
+    }
+  }
   for (int r = k - 1; r >= 0; --r) {
-    double v = y[r] / f.d[r];
-    if (r + 1 < k) v -= f.l1[r] * y[r + 1];
-    if (r + 2 < k) v -= f.l2[r] * y[r + 2];
-    y[r] = v;
+    double* __restrict yr = row(r);
+    const double d = f.d[r];
+    if (r + 2 < k) {
+      const double* __restrict y1 = row(r + 1);
+      const double* __restrict y2 = row(r + 2);
+      const double a = f.l1[r], c = f.l2[r];
+      for (std::size_t t = 0; t < count; ++t) yr[t] = yr[t] / d - a * y1[t] - c * y2[t];
+    } else if (r + 1 < k) {
+      const double* __restrict y1 = row(r + 1);
+      const double a = f.l1[r];
+      for (std::size_t t = 0; t < count; ++t) yr[t] = yr[t] / d - a * y1[t];
+    } else {
+      for (std::size_t t = 0; t < count; ++t) yr[t] /= d;
+    }
   }
 }
 
@@ -116,28 +139,23 @@ bool detail::solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, in
   if (full_rows.size() > std::size_t(kMaxFullRows)) return false;
 
   const int K = 4 + int(full_rows.size());
+  const auto k_count = std::size_t(K);
   const std::array<int, 4> edges{0, 1, cols - 2, cols - 1};
-  std::vector<double> u(std::size_t(K) * R, 0.0), v(std::size_t(K) * C, 0.0);
-  for (std::size_t e = 0; e < 4; ++e) {
-    double* ue = u.data() + e * R;
-    for (std::size_t i = 0; i < R; ++i)
-      if (full[i] == 0) ue[i] = b[i * C + std::size_t(edges[e])];
-    solve_vector(fi, ue, rows);
-    double* ve = v.data() + e * C;
-    ve[edges[e]] = 1;
-    solve_vector(fj, ve, cols);
-  }
-  for (std::size_t f = 0; f < full_rows.size(); ++f) {
-    double* uf = u.data() + (4 + f) * R;
-    uf[full_rows[f]] = 1;
-    solve_vector(fi, uf, rows);
-    double* vf = v.data() + (4 + f) * C;
-    std::copy_n(b + std::size_t(full_rows[f]) * C, C, vf);
-    solve_vector(fj, vf, cols);
-  }
-  std::vector<double> a(std::size_t(K) * R);  // a[i·K + k] = u_k[i]: the K weights of row i together
+  // a (rows × K): row i holds u_k[i] for the K terms, the right-hand sides of P⁻¹ side by side
+  std::vector<double> a(R * k_count, 0.0);
   for (std::size_t i = 0; i < R; ++i)
-    for (std::size_t k = 0; k < std::size_t(K); ++k) a[i * std::size_t(K) + k] = u[k * R + i];
+    if (full[i] == 0)
+      for (std::size_t e = 0; e < 4; ++e) a[i * k_count + e] = b[i * C + std::size_t(edges[e])];
+  for (std::size_t f = 0; f < full_rows.size(); ++f) a[std::size_t(full_rows[f]) * k_count + 4 + f] = 1;
+  solve_columns(fi, a.data(), k_count, rows);
+  // w (cols × K) likewise for Q⁻¹, then v (K × cols): each v_k contiguous for the outer products
+  std::vector<double> w(C * k_count, 0.0), v(k_count * C);
+  for (std::size_t e = 0; e < 4; ++e) w[std::size_t(edges[e]) * k_count + e] = 1;
+  for (std::size_t f = 0; f < full_rows.size(); ++f)
+    for (std::size_t j = 0; j < C; ++j) w[j * k_count + 4 + f] = b[std::size_t(full_rows[f]) * C + j];
+  solve_columns(fj, w.data(), k_count, cols);
+  for (std::size_t j = 0; j < C; ++j)
+    for (std::size_t k = 0; k < k_count; ++k) v[k * C + j] = w[j * k_count + k];
   const int blocks = (rows + kOuterRows - 1) / kOuterRows;
 #if defined(_OPENMP)
 #pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
