@@ -13,6 +13,7 @@
 #include "coons/mask/stencil_system.h"
 #include "coons/net/coons_net.h"
 #include "support/fixtures.h"
+#include "support/near_singular_checks.h"
 
 using namespace coons;
 using namespace coons::test;
@@ -321,14 +322,7 @@ TEST_CASE(
     const AlphaSearchSummary s =
         search_alpha_on_problem(p, objective_named("thin_plate"), backend("eigen-lu"), options);
     INFO("rings " << p.rings << ", singular alpha " << star << ": " << s.brief_report());
-    CHECK(s.first_failure == solvers::SolveStatus::kSingular);
-    REQUIRE_FALSE(s.failed_intervals.empty());
-    CHECK(s.failed_intervals.front().first == options.lower);
-    for (const auto& [lo, hi] : s.failed_intervals) CHECK(hi < star + 1e-6);
-    REQUIRE_FALSE(s.scan.empty());
-    CHECK(s.scan.front().second == HUGE_VAL);  // no value from the near-singular system
-    if (s.parameter) CHECK(*s.parameter > star + 1e-6);
-    CHECK(std::isfinite(s.value));
+    test::check_refused_near_singular(s, options, star);
     if (s.status != SearchStatus::kSuccess) CHECK(s.status == SearchStatus::kFailedRegion);
   }
 }
