@@ -118,7 +118,7 @@ int run_family_command(const StudyRequest& r) {
   if (r.family.rfind("perturbed:", 0) == 0) {
     options.base_name = r.family.substr(10);
     const std::string file = perturbed_base_file(options.base_name);
-    const BoundaryFile base = read_input(file, r.corner_tolerance, true);
+    const BoundaryFile base = read_input(file, r.corner_tolerance, true, kMinModelSize);
     if (base.bspline)  // the family perturbs and elevates Bézier sides; a B-spline's are not
       throw InputError(file, "knots_u",
                        "a B-spline boundary cannot be the base of --family perturbed: (its sides are not Bézier "

@@ -30,11 +30,12 @@ namespace {
 
 bool given(const CLI::Option* o) { return o && o->count() > 0; }
 
-tri::TriBoundary read_tri_input(const std::string& path, double corner_tolerance) {
+tri::TriBoundary read_tri_input(const std::string& path, double corner_tolerance, double min_model_size = 0) {
   if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
   TriBoundaryReadOptions options;
   options.corner_tolerance = corner_tolerance;
+  options.min_model_size = min_model_size;
   return read_tri_boundary_file(path, options);
 }
 
@@ -193,7 +194,7 @@ int run_tri_export(const TriExportArgs& e) {
 int run_tri_search(const TriSearchArgs& a) {
   Phases phases("search-alpha");
   phases.start("read");
-  const tri::TriBoundary b = read_tri_input(a.boundary, a.corner_tolerance);
+  const tri::TriBoundary b = read_tri_input(a.boundary, a.corner_tolerance, kMinModelSize);
   if (!a.rejected.empty()) throw InputError("command line", a.rejected, "does not apply to a triangular boundary");
   const std::string text = without_spaces(a.objective);
   std::string why;

@@ -644,4 +644,22 @@ TEST_CASE("coons search-alpha and study: a model below 1e-60 is bad input; solve
   CHECK_FALSE(std::filesystem::exists(dir.path / "s"));
   const CommandResult solve = run_coons("solve " + quoted(file) + " --alpha -0.1");
   CHECK(solve.status == 0);
+  // the other readers of the searches: a triangle, and the base of a perturbed family
+  nlohmann::json tri = nlohmann::json::parse(read_text(kData + "/triangles/sphere_octant.json"));
+  for (nlohmann::json& side : tri["sides"])
+    for (nlohmann::json& point : side)
+      for (nlohmann::json& c : point) c = c.get<double>() * 1e-170;
+  tri.erase("target");
+  const std::string tri_file = (dir.path / "tiny_octant.json").string();
+  std::ofstream(tri_file) << tri.dump();
+  for (const std::string& args :
+       {"search-alpha " + quoted(tri_file) + " --objective thin_plate",
+        "study " + quoted(tri_file) + " --degrees 3 --out " + quoted((dir.path / "t").string()),
+        "study --family perturbed:" + file + " --count 2 --degrees 3 --out " + quoted((dir.path / "f").string())}) {
+    INFO(args);
+    const CommandResult r = run_coons(args);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::Contains("below 1e-60"));
+  }
+  CHECK(run_coons("solve " + quoted(tri_file)).status == 0);
 }

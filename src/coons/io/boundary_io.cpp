@@ -102,11 +102,7 @@ struct LargestPoint {
 
 // A model whose largest coordinate is below min_size (and not zero) is refused at that point.
 void check_model_size(const Parser& p, const LargestPoint& largest, double min_size) {
-  if (largest.magnitude > 0 && largest.magnitude < min_size)
-    p.fail(largest.field, fmt::format("the largest coordinate magnitude of the model is {:.3g}, below {:g}: the "
-                                      "search's energies scale as x^2 and would underflow; scale the model up (the "
-                                      "optimal parameters do not depend on the scale)",
-                                      largest.magnitude, min_size));
+  require_model_size(largest.magnitude, min_size, p.source(), largest.field);
 }
 
 double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {

@@ -116,4 +116,13 @@ double json_coordinate(const nlohmann::json& j, const std::string& source, const
   return x;
 }
 
+void require_model_size(double largest, double min_size, const std::string& source, const std::string& field) {
+  if (largest > 0 && largest < min_size)
+    throw InputError(source, field,
+                     fmt::format("the largest coordinate magnitude of the model is {:.3g}, below {:g}: the search's "
+                                 "energies scale as x^2 and would underflow; scale the model up (the optimal "
+                                 "parameters do not depend on the scale)",
+                                 largest, min_size));
+}
+
 }  // namespace coons

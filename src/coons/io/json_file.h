@@ -55,6 +55,9 @@ inline constexpr double kMaxCoordinate = 1e60;
 //! objective flat (1e-170). 1e-60 mirrors kMaxCoordinate. Nets, and solves, hold at any scale.
 inline constexpr double kMinModelSize = 1e-60;
 
+//! An InputError naming `field` (the point of largest magnitude) when 0 < largest < min_size.
+void require_model_size(double largest, double min_size, const std::string& source, const std::string& field);
+
 //! A coordinate that is a finite number with |x| <= kMaxCoordinate; `what` says which one
 //! ("coordinate 2"), the InputError names `field`, the value and the bound.
 double json_coordinate(const nlohmann::json& j, const std::string& source, const std::string& field,

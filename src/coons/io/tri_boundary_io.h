@@ -16,6 +16,8 @@ namespace coons {
 struct TriBoundaryReadOptions {
   //! The copies of a corner must agree to this fraction of the sides' bounding-box diagonal.
   double corner_tolerance = 1e-9;
+  //! 0: a model of any size; the searches ask for kMinModelSize (json_file.h).
+  double min_model_size = 0;
 };
 
 //! True when `doc` is an object with "type": "triangle" (the one test of which reader applies).

@@ -19,6 +19,7 @@ using nlohmann::json;
 
 TriStudyInput read_tri_study_input(const std::string& path, double corner_tolerance) {
   TriBoundaryReadOptions options;
+  options.min_model_size = kMinModelSize;  // a study searches
   options.corner_tolerance = corner_tolerance;
   TriStudyInput in;
   in.file = path;
