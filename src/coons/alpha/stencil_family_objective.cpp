@@ -80,8 +80,9 @@ StencilFamilyObjective::Evaluation StencilFamilyObjective::evaluate(double t, bo
       const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(system_->A, *solver_);
       solves_ += r.solves;
       if (!r.failure.ok() || r.ratio <= kNearSingularEigenvalueRatio) {
-        e.summary =
-            r.failure.ok() ? near_singular_summary(r.ratio, solver_->name() + " and inverse iteration") : r.failure;
+        e.summary = r.failure.ok() ? near_singular_summary(r.ratio, solver_->name() + " and inverse iteration",
+                                                           kNearSingularEigenvalueRatio, true)
+                                   : r.failure;
         e.net = unit_.to_original(std::move(e.net));
         return e;
       }

@@ -55,12 +55,14 @@ EigenvalueRatioEstimate estimate_eigenvalue_ratio(const Eigen::SparseMatrix<doub
   return out;
 }
 
-solvers::SolveSummary near_singular_summary(double ratio, const std::string& how, double threshold) {
+solvers::SolveSummary near_singular_summary(double ratio, const std::string& how, double threshold, bool estimated) {
   solvers::SolveSummary s;
   s.solver = how;
   s.status = solvers::SolveStatus::kSingular;
-  s.message = "the mask system is singular or nearly so at this alpha: min|eigenvalue|/max|eigenvalue| = " +
-              solvers::format_g(ratio) + " <= " + solvers::format_g(threshold);
+  s.relative_residual = 1;  // not solved: X = 0, whose residual ‖B‖/‖B‖ every failed solve reports
+  s.message = "the mask system is singular or nearly so at this alpha: min|eigenvalue|/max|eigenvalue| " +
+              std::string(estimated ? "~ " : "= ") + solvers::format_g(ratio) + " <= " + solvers::format_g(threshold) +
+              (estimated ? " (estimated by inverse iteration as min|eigenvalue|/||A||_1)" : "");
   return s;
 }
 

@@ -20,8 +20,9 @@ namespace coons {
 struct EigenvalueRatioEstimate {
   //! min|λ|/max|λ| estimated: 1/‖A⁻¹x‖ after inverse iteration from three fixed unit vectors x
   //! (the smallest over them; it is ≥ min|λ| and converges to it, within two or three steps
-  //! once min|λ| is far below the next |λ|), over ‖A‖₁ (≥ max|λ|). 0 when a solve gives a
-  //! non-finite or zero vector; 1 for an empty system.
+  //! once min|λ| is far below the next |λ|), over ‖A‖₁ (≥ max|λ|). 0 when a solve that the
+  //! backend accepts (success or singular) gives a non-finite or zero vector; 1 for an empty
+  //! system. A backend that reports a non-finite solution as a failure ends in `failure`.
   double ratio = 1;
   int solves = 0;  //!< solves made (each of three columns)
   //! The first solve that failed other than `singular` (status success when none did); a
@@ -36,8 +37,9 @@ EigenvalueRatioEstimate estimate_eigenvalue_ratio(const Eigen::SparseMatrix<doub
                                                   solvers::LinearSolver& factorized, int max_steps = 6);
 
 //! The summary of a system refused at `ratio` (≤ `threshold`): status singular, solver `how`
-//! (e.g. "closed-form eigenvalues"), the message naming the ratio and the threshold.
+//! (e.g. "closed-form eigenvalues"), relative residual 1 (not solved: that of X = 0), the message
+//! naming the ratio (`estimated`: an estimate_eigenvalue_ratio, said so) and the threshold.
 solvers::SolveSummary near_singular_summary(double ratio, const std::string& how,
-                                            double threshold = kNearSingularEigenvalueRatio);
+                                            double threshold = kNearSingularEigenvalueRatio, bool estimated = false);
 
 }  // namespace coons

@@ -118,6 +118,7 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
     if (solver.analyze(op) != solvers::SolveStatus::kSuccess ||
         solver.factorize(op) != solvers::SolveStatus::kSuccess) {
       out.summary = solver.summary();
+      out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;  // not solved: that of X = 0, as solve() says
       return out;
     }
     const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(system.A, solver);
@@ -126,9 +127,8 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
       return out;
     }
     if (r.ratio <= refused_ratio) {
-      out.summary = near_singular_summary(r.ratio, solver.name() + " and inverse iteration", refused_ratio);
-      // not solved: the relative residual of X = 0, as every failed solve reports it
-      out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;
+      out.summary = near_singular_summary(r.ratio, solver.name() + " and inverse iteration", refused_ratio, true);
+      out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;  // of X = 0 (near_singular_summary)
       return out;
     }
     out.summary = solver.solve(system.B, X);
