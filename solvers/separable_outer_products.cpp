@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <vector>
 
@@ -128,11 +129,21 @@ bool detail::solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, in
   if (cols < 5) return false;
   const auto R = std::size_t(rows), C = std::size_t(cols);
   std::vector<unsigned char> full(R, 0);
+  // Rows with interior values; once more than kMaxFullRows are found the answer is the sweeps,
+  // and the rest of B is not read (a general right-hand side stops within its first rows).
+  std::atomic<int> found{0};
   [[maybe_unused]] const int nt = std::max(1, threads);
 #if defined(_OPENMP)
 #pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
 #endif
-  for (int i = 0; i < rows; ++i) full[std::size_t(i)] = has_interior(b + std::size_t(i) * C + 1, cols - 2) ? 1 : 0;
+  for (int i = 0; i < rows; ++i) {
+    if (found.load(std::memory_order_relaxed) > kMaxFullRows) continue;
+    if (has_interior(b + std::size_t(i) * C + 1, cols - 2)) {
+      full[std::size_t(i)] = 1;
+      found.fetch_add(1, std::memory_order_relaxed);
+    }
+  }
+  if (found.load() > kMaxFullRows) return false;
   std::vector<int> full_rows;
   for (int i = 0; i < rows; ++i)
     if (full[std::size_t(i)] != 0) full_rows.push_back(i);
