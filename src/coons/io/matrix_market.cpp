@@ -122,6 +122,39 @@ std::vector<long long> size_line(const std::string& path, const std::string& lin
   return out;
 }
 
+// The column-major matrix of `entries` (rows × cols), duplicates summed in file order as
+// setFromTriplets sums them, in O(nnz log nnz + cols). setFromTriplets also builds a row-major
+// copy with an index per row: O(rows) for a tall matrix of few entries (a fuzzer's 49,672,948 × 2
+// matrix with one entry took 12 s under the sanitizers).
+Eigen::SparseMatrix<double> compressed_matrix(long long rows, long long cols,
+                                              std::vector<Eigen::Triplet<double>>& entries) {
+  std::stable_sort(entries.begin(), entries.end(), [](const auto& a, const auto& b) {
+    return a.col() != b.col() ? a.col() < b.col() : a.row() < b.row();
+  });
+  Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
+  Eigen::Index unique = 0;
+  for (std::size_t k = 0; k < entries.size(); ++k)
+    if (k == 0 || entries[k].col() != entries[k - 1].col() || entries[k].row() != entries[k - 1].row()) ++unique;
+  A.resizeNonZeros(unique);
+  int* outer = A.outerIndexPtr();
+  int* inner = A.innerIndexPtr();
+  double* value = A.valuePtr();
+  Eigen::Index at = -1;
+  for (std::size_t k = 0; k < entries.size(); ++k) {
+    const auto& e = entries[k];
+    if (k > 0 && e.col() == entries[k - 1].col() && e.row() == entries[k - 1].row()) {
+      value[at] += e.value();
+      continue;
+    }
+    ++at;
+    inner[at] = e.row();
+    value[at] = e.value();
+    ++outer[e.col() + 1];
+  }
+  for (long long c = 0; c < cols; ++c) outer[c + 1] += outer[c];
+  return A;
+}
+
 }  // namespace
 
 Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
@@ -155,9 +188,7 @@ Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
   }
   if (static_cast<long long>(entries.size()) != nnz)
     throw InputError(path, "size line", fmt::format("promises {} entries, the file holds {}", nnz, entries.size()));
-  Eigen::SparseMatrix<double> A(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
-  A.setFromTriplets(entries.begin(), entries.end());
-  return A;
+  return compressed_matrix(rows, cols, entries);
 }
 
 Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
@@ -366,8 +397,7 @@ MarketMatrix read_market_matrix(const std::string& path) {
     read_array_entries(path, where, lines, b, rows, cols, entries);
   }
   MarketMatrix out;
-  out.matrix.resize(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
-  out.matrix.setFromTriplets(entries.begin(), entries.end());
+  out.matrix = compressed_matrix(rows, cols, entries);
   out.format = b.format;
   out.field = b.field;
   out.symmetry = b.symmetry;
