@@ -87,24 +87,6 @@ void check_free_inside_rings(const Parser& p, const FreeGrid& free, int rings) {
                            rings));
 }
 
-// The point of largest coordinate magnitude among the lists: its magnitude and "name[k]".
-struct LargestPoint {
-  double magnitude = 0;
-  std::string field;
-  void add(const std::string& name, const Eigen::MatrixX3d& list) {
-    for (Eigen::Index k = 0; k < list.rows(); ++k)
-      if (const double v = list.row(k).cwiseAbs().maxCoeff(); v > magnitude) {
-        magnitude = v;
-        field = fmt::format("{}[{}]", name, k);
-      }
-  }
-};
-
-// A model whose largest coordinate is below min_size (and not zero) is refused at that point.
-void check_model_size(const Parser& p, const LargestPoint& largest, double min_size) {
-  require_model_size(largest.magnitude, min_size, p.source(), largest.field);
-}
-
 double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::RowVector3d hi = -lo;
@@ -176,6 +158,18 @@ Ribbons parse_ribbons(const Parser& p, const json& doc, const Boundary& b, doubl
 
 }  // namespace
 
+void LargestPoint::add(const std::string& name, const Eigen::Ref<const Eigen::MatrixX3d>& list) {
+  for (Eigen::Index k = 0; k < list.rows(); ++k)
+    if (const double v = list.row(k).cwiseAbs().maxCoeff(); v > magnitude) {
+      magnitude = v;
+      field = fmt::format("{}[{}]", name, k);
+    }
+}
+
+void LargestPoint::require(double min_size, const std::string& source) const {
+  require_model_size(magnitude, min_size, source, field);
+}
+
 BoundaryFile parse_boundary(const json& doc, const std::string& source, const BoundaryReadOptions& options) {
   Parser p(source);
   if (!doc.is_object()) p.fail("", "the top level must be a JSON object");
@@ -202,13 +196,8 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
     }
     check_degree(p, doc, m, n);
     LargestPoint largest;
-    for (int i = 0; i <= m; ++i)
-      for (int j = 0; j <= n; ++j)
-        if (const double v = net.at(i, j).cwiseAbs().maxCoeff(); v > largest.magnitude) {
-          largest.magnitude = v;
-          largest.field = fmt::format("net[{}][{}]", i, j);
-        }
-    check_model_size(p, largest, options.min_model_size);
+    for (int i = 0; i <= m; ++i) largest.add(fmt::format("net[{}]", i), net.points.middleRows(net.index(i, 0), n + 1));
+    largest.require(options.min_model_size, source);
     for (const char* field : {"knots_u", "knots_v", "degree_spline"})
       if (doc.contains(field))
         p.fail(field, "belongs to the sides form (B-spline boundary curves); a \"net\" file has no knots");
@@ -266,7 +255,7 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
                                      {"ribbons.left", &out.ribbons->left},
                                      {"ribbons.right", &out.ribbons->right}})
       largest.add(side, *list);
-  check_model_size(p, largest, options.min_model_size);
+  largest.require(options.min_model_size, source);
   if (const auto knots = parse_bspline_knots(doc, source, b.m + 1, b.n + 1)) {
     if (out.ribbons) p.fail("ribbons", "B-spline boundaries (knots_u, knots_v) take one data ring; drop \"ribbons\"");
     out.bspline = bspline_input(b, *knots);

@@ -32,6 +32,16 @@ struct BoundaryReadOptions {
   double min_model_size = 0;
 };
 
+//! The point of largest coordinate magnitude of a model (BoundaryReadOptions::min_model_size).
+struct LargestPoint {
+  double magnitude = 0;
+  std::string field;  //!< where it is: "name[k]"
+  //! The points of `list` (#points by 3), row k named "name[k]".
+  void add(const std::string& name, const Eigen::Ref<const Eigen::MatrixX3d>& list);
+  //! An InputError at `field` when 0 < magnitude < min_size (require_model_size, json_file.h).
+  void require(double min_size, const std::string& source) const;
+};
+
 //! The second ring of a net given with its sides: bottom = b[i][1], top = b[i][n−1] (#m+1 by 3),
 //! left = b[1][j], right = b[m−1][j] (#n+1 by 3).
 struct Ribbons {

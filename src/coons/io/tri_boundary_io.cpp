@@ -6,6 +6,7 @@
 #include <filesystem>
 #include <limits>
 
+#include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
 
@@ -73,15 +74,9 @@ tri::TriBoundary parse_tri_boundary(const json& doc, const std::string& source, 
     for (int q = 0; q <= b.n; ++q)
       b.sides[s].row(q) = read_point(sides[s][q], source, fmt::format("sides[{}][{}]", s, q));
   }
-  double largest = 0;
-  std::string largest_field;
-  for (int s = 0; s < 3; ++s)
-    for (int q = 0; q <= b.n; ++q)
-      if (const double v = b.sides[s].row(q).cwiseAbs().maxCoeff(); v > largest) {
-        largest = v;
-        largest_field = fmt::format("sides[{}][{}]", s, q);
-      }
-  require_model_size(largest, options.min_model_size, source, largest_field);
+  LargestPoint largest;
+  for (int s = 0; s < 3; ++s) largest.add(fmt::format("sides[{}]", s), b.sides[s]);
+  largest.require(options.min_model_size, source);
   // The corners: side s starts where side s − 1 ends.
   Eigen::RowVector3d lo = b.sides[0].colwise().minCoeff(), hi = b.sides[0].colwise().maxCoeff();
   for (int s = 1; s < 3; ++s) {
