@@ -76,17 +76,12 @@ StencilFamilyObjective::Evaluation StencilFamilyObjective::evaluate(double t, bo
       e.net = unit_.to_original(std::move(e.net));
       return e;
     }
-    if (family_.definite && !family_.definite(t)) {
-      const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(system_->A, *solver_);
-      solves_ += r.solves;
-      if (!r.failure.ok() || r.ratio <= kNearSingularEigenvalueRatio) {
-        e.summary = r.failure.ok() ? near_singular_summary(r.ratio, solver_->name() + " and inverse iteration",
-                                                           kNearSingularEigenvalueRatio, true)
-                                   : r.failure;
+    if (family_.definite && !family_.definite(t))
+      if (auto refused = near_singular_refusal(system_->A, *solver_, kNearSingularEigenvalueRatio, &solves_)) {
+        e.summary = std::move(*refused);
         e.net = unit_.to_original(std::move(e.net));
         return e;
       }
-    }
     Eigen::MatrixX3d X;
     e.summary = solver_->solve(system_->B, X);
     ++solves_;

@@ -66,4 +66,14 @@ solvers::SolveSummary near_singular_summary(double ratio, const std::string& how
   return s;
 }
 
+std::optional<solvers::SolveSummary> near_singular_refusal(const Eigen::SparseMatrix<double>& A,
+                                                           solvers::LinearSolver& factorized, double threshold,
+                                                           int* solves) {
+  const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(A, factorized);
+  if (solves) *solves += r.solves;
+  if (!r.failure.ok()) return r.failure;
+  if (r.ratio > threshold) return std::nullopt;
+  return near_singular_summary(r.ratio, factorized.name() + " and inverse iteration", threshold, true);
+}
+
 }  // namespace coons

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/SparseCore>
+#include <optional>
 #include <string>
 
 #include "coons/mask/mask9.h"
@@ -41,5 +42,13 @@ EigenvalueRatioEstimate estimate_eigenvalue_ratio(const Eigen::SparseMatrix<doub
 //! naming the ratio (`estimated`: an estimate_eigenvalue_ratio, said so) and the threshold.
 solvers::SolveSummary near_singular_summary(double ratio, const std::string& how,
                                             double threshold = kNearSingularEigenvalueRatio, bool estimated = false);
+
+//! The check of an evaluation outside the definite range, after factorize(A) has succeeded on
+//! `factorized`: nullopt when the estimated ratio is above `threshold`; otherwise the summary to
+//! fail with (the estimate's own failure, or near_singular_summary, estimated). The estimate's
+//! solves are added to *solves.
+std::optional<solvers::SolveSummary> near_singular_refusal(const Eigen::SparseMatrix<double>& A,
+                                                           solvers::LinearSolver& factorized, double threshold,
+                                                           int* solves = nullptr);
 
 }  // namespace coons

@@ -1,6 +1,7 @@
 #include "coons/mask/nonuniform_mask.h"
 
 #include <cmath>
+#include <utility>
 #include <vector>
 
 #include "coons/mask/near_singular.h"
@@ -121,14 +122,10 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
       out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;  // not solved: that of X = 0, as solve() says
       return out;
     }
-    const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(system.A, solver);
-    if (!r.failure.ok()) {
-      out.summary = r.failure;
-      return out;
-    }
-    if (r.ratio <= refused_ratio) {
-      out.summary = near_singular_summary(r.ratio, solver.name() + " and inverse iteration", refused_ratio, true);
-      out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;  // of X = 0 (near_singular_summary)
+    if (auto refused = near_singular_refusal(system.A, solver, refused_ratio)) {
+      out.summary = std::move(*refused);
+      if (out.summary.status == solvers::SolveStatus::kSingular)
+        out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;  // of X = 0 (near_singular_summary)
       return out;
     }
     out.summary = solver.solve(system.B, X);
