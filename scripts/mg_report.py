@@ -2,12 +2,13 @@
 """Tables of the multigrid iteration counts and of the 1- and 2-thread solves, from bench_solvers JSON.
 
     python3 scripts/mg_report.py --iterations A.json [B.json ...] [--threads T.json] [--e2e E.json ...]
-                                 [--docs docs/solvers.md]
+                                 [--sizes S.json] [--docs docs/solvers.md]
 
 --iterations: `bench_solvers --mg-iterations --benchmark_out=...` runs (several files are merged, e.g.
 a run that was split by size); --threads: a BM_Solve run with the threaded backends
 (`--large --backends=fast,dst,mg,fast5,separable-banded`, scripts/bench_mg.sh); --e2e: the JSON of
-experiments/benchmarks/bench_solve_e2e.py (one `coons solve` of a 1001x1001 net). Prints Markdown; with --docs it replaces the text between the markers
+experiments/benchmarks/bench_solve_e2e.py (one `coons solve` of a 1001x1001 net); --sizes: a BM_Solve run
+of fast and dst at N = 1000, 1023, 1024, 1030 (one thread). Prints Markdown; with --docs it replaces the text between the markers
 <!-- mg-report:begin --> and <!-- mg-report:end --> of that file.
 """
 import argparse
@@ -133,6 +134,28 @@ def threads_table(data):
     return text
 
 
+def sizes_table(data, reference=1023):
+    """One-thread solves at sizes around 2^k − 1 (N + 1 with large prime factors), as multiples of
+    the memory pass of the same N and, per unknown, of the solve at N = reference."""
+    memory, solves = {}, {}
+    for b in data["benchmarks"]:
+        t = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+        m = re.match(r"BM_MemoryPass/N:(\d+)", b["name"])
+        if m:
+            memory[int(m.group(1))] = t
+            continue
+        m = re.match(r"BM_Solve/([^/]+)/N:(\d+)/alpha:([^/]+)/min_time", b["name"])
+        if m:  # one thread only
+            solves[(m.group(1), int(m.group(2)))] = (t, m.group(3))
+    out = ["| backend | N | α | wall | / memory pass | per unknown, / N = %d |" % reference, "|---|---|---|---|---|---|"]
+    for (backend, n), (t, alpha) in sorted(solves.items()):
+        base = solves.get((backend, reference))
+        per = f"{(t / n**2) / (base[0] / reference**2):.2f}" if base else "–"
+        mem = f"{t / memory[n]:.1f}×" if n in memory else "–"
+        out.append(f"| `{backend}` | {n} | {alpha} | {t * 1e3:.1f} ms | {mem} | {per} |")
+    return "\n".join(out)
+
+
 def e2e_paragraph(e):
     """Issue 14's end-to-end target: `coons solve` of a 1001×1001 net in at most 2 s."""
     goal = 2.0
@@ -152,6 +175,7 @@ def main():
     parser.add_argument("--iterations", nargs="+", required=True)
     parser.add_argument("--threads")
     parser.add_argument("--e2e", nargs="+")
+    parser.add_argument("--sizes")
     parser.add_argument("--docs")
     args = parser.parse_args()
     runs = [load(path) for path in args.iterations]
@@ -164,6 +188,12 @@ def main():
         th = load(args.threads)
         parts += ["", f"One and two threads (`SolverOptions::threads`; `bench_solvers --large --backends=fast,dst,mg,fast5,separable-banded`, the 5×5 problems in the α column; "
                       f"{load_note(th)}; tolerance 1e−12 for `mg`):", "", threads_table(th)]
+    if args.sizes:
+        sz = load(args.sizes)
+        parts += ["", f"Sizes other than 2^k − 1, one thread (`bench_solvers --large --sizes=1000,1023,1024,1030 "
+                      f"--backends=fast,dst`; {load_note(sz)}): N + 1 = 1001 = 7·11·13, 1025 = 5²·41 and 1031 "
+                      f"(prime) are slow FFT lengths, which `fast` avoids by an interface of a few columns "
+                      f"(solvers/capacitance.h) and `dst` does not:", "", sizes_table(sz)]
     if args.e2e:
         parts += ["", " ".join(e2e_paragraph(load(path)) for path in args.e2e)]
     text = "\n".join(parts) + "\n"

@@ -1,15 +1,22 @@
-// The fast solver's widened grid: when cols+1 has a prime factor above 13 (FFTW is then several
-// times slower), the grid gets a few extra columns so that the transform length L is fast, and
-// the solution must vanish on them. Sources U on the extra columns enforce it (capacitance matrix
-// method): G U = −V, V the response there to B, G = Eᵀ A'⁻¹ E. The sine transform along i
-// block-diagonalises G: G_p(m, m') = 2/(L+1) Σ_q S(C+m, q) S(C+m', q) / λ'_pq.
-// Widening is declined (factor() is false, and the fast solver takes its exact fallback) unless
-// the widened operator is definite (every λ' of one sign: then G_p is definite too, and the sums
-// do not cancel) and its condition max|λ'|/min|λ'| is at most kMaxWideningLoss times the real
-// grid's. Where the symbol changes sign, a mode of the widened grid can fall next to its zero
-// set while none of the real grid does, and the capacitance solve then loses digits that the
-// transform of the real length does not (up to 6 at 29 × 16, α = −0.424).
-// Sizes: rows blocks of #extra × #extra (at most 4 × 4).
+// The fast solver's narrowed grid: when cols+1 is a slow FFT length (a prime factor above 13, or
+// odd on a wide grid: FFTW's real transform is then 2.5–10× slower than at a length 2^k), the
+// transform covers only the first L columns (L + 1 a fast length, the nearest below cols + 1) and
+// the k = cols − L columns on the right, the interface, are eliminated by their Schur complement
+// (capacitance matrix method). The sine transform along i diagonalises every block: for the mode
+// p along i the grid is one tridiagonal system along j, tridiag(c1_p, a_p, c1_p) with
+// a_p = c + 2e_i·x_p, c1_p = e_j + 2d·x_p, x_p = cos(pπ/(rows+1)), and the interface unknowns of
+// that mode solve the k × k system
+//   S_p = tridiag(c1_p, a_p, c1_p) − c1_p² g_p e₁e₁ᵀ,   g_p = (T_p⁻¹)_{L−1,L−1} = 2/(L+1) Σ_q S(L−1,q)²/λ_pq,
+// T_p the fast region's tridiagonal system and λ_pq = a_p + 2c1_p·cos(qπ/(L+1)) its eigenvalues.
+// A solve is then: the fast region with the interface at zero (its column L−1 is V), the
+// interface x_I from S_p x̃_I = b̃_I − c1_p Ṽ e₁ (all in the sine basis along i), and the fast
+// region again with the interface moved to its right-hand side (column L−1 only).
+// Narrowing is declined (factor() is false, and the fast solver takes its exact fallback) unless
+// the fast region's operator is definite (every λ of one sign: then S_p is definite too) and its
+// condition max|λ|/min|λ| is at most kMaxNarrowingLoss times the real grid's. Where the symbol
+// changes sign, a mode of the smaller grid can fall next to its zero set while none of the real
+// grid does (the widened grid this replaced lost up to 6 digits there, 29 × 16, α = −0.424).
+// Sizes: k pivots per mode along i (k ≤ kMaxInterface); 2k + 1 transforms of length rows per column.
 // Based on: B. L. Buzbee, F. W. Dorr, J. A. George & G. H. Golub, The direct solution of the
 // discrete Poisson equation on irregular regions, SIAM J. Numer. Anal. 8 (1971).
 #pragma once
@@ -22,25 +29,41 @@
 
 namespace coons::solvers::detail {
 
-//! The largest error growth of the widened grid over the real one that factor() accepts.
-constexpr double kMaxWideningLoss = 10;
+//! The largest error growth of the fast region over the real grid that factor() accepts.
+constexpr double kMaxNarrowingLoss = 10;
+//! The widest interface the fast solver makes (columns cut off the right of the grid).
+constexpr int kMaxInterface = 32;
+//! The smallest pivot of a Schur complement S_p, relative to |a_p| + 2|c1_p|, that factor() accepts.
+constexpr double kInterfacePivot = 1e-8;
+
+//! The number k of interface columns for a grid of `cols` columns: 0 when cols + 1 is a fast
+//! transform length (or the grid is narrow), else the smallest k ≤ kMaxInterface for which
+//! cols − k + 1 is one (0 if none is).
+int interface_columns(int cols);
 
 class Capacitance {
  public:
   //! Plans the transforms along i of `rows` rows with the FFTW planner flag `planning`
   //! (fft_planning()); called once per grid size, before factor().
   void prepare(int rows, unsigned planning);
-  //! The blocks G_p⁻¹ for the modes y_q = y[q] (L = y.size()) and the extra columns' sine
-  //! vectors sine_extra[m] = S·e_{C+m} (C = L − #extra, the real grid); false when a block or an
-  //! eigenvalue is singular, or when widening would lose accuracy (see above).
-  bool factor(const GridStencil& s, const std::vector<double>& y, const std::vector<std::vector<double>>& sine_extra);
-  //! U = −(2/(R+1)) S_R [G_p⁻¹ (S_R V)_p], both rows × #extra, row-major.
-  void sources(const std::vector<double>& V, std::vector<double>& U);
+  //! The blocks S_p (factored) of the grid s (s.cols columns), whose first L = y.size() columns are the
+  //! fast region with modes y_q = cos(qπ/(L+1)); false when a block or an eigenvalue is
+  //! singular, or when narrowing would lose accuracy (see above).
+  bool factor(const GridStencil& s, const std::vector<double>& y);
+  //! The interface values x_I (rows × k, row-major) from V (rows: column L−1 of the fast region's
+  //! solution with a zero interface) and b_I (rows × k, row-major: the right-hand side there).
+  void interface_values(const std::vector<double>& V, const std::vector<double>& bI, std::vector<double>& xI);
+  //! δ(i) = e_j·x_I(i, 0) + d·(x_I(i−1, 0) + x_I(i+1, 0)): what the interface contributes to the
+  //! equation of the point (i, L−1); the fast region's right-hand side there is b − δ.
+  void coupling(const std::vector<double>& xI, std::vector<double>& delta) const;
+  [[nodiscard]] int columns() const { return k_; }
 
  private:
-  int R_ = 0, L_ = 0, extra_ = 0;
+  int R_ = 0, L_ = 0, k_ = 0;
+  double edge_j_ = 0, diag_ = 0;
   SineTransform sine_rows_;
-  std::vector<Eigen::MatrixXd> inverse_;  // G_p⁻¹, extra × extra each
+  std::vector<double> c1_;      // c1_p per mode p
+  std::vector<double> pivots_;  // the pivots of S_p's LDLᵀ, k per mode p
 };
 
 }  // namespace coons::solvers::detail

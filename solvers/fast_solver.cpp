@@ -1,11 +1,11 @@
 // fast: the structured solver of structured_solvers.h. Per factorisation it picks one of three
 // paths: the Kronecker path (kronecker_solver.h) when c·d = e_i·e_j; otherwise a sine transform
 // along j (sine_transform.h) and the batch of tridiagonal solves along i of every mode
-// (mode_pivots.h), vectorised across the modes, on a grid widened to a fast transform length
-// when needed (capacitance.h); and the dst solver where elimination without pivoting would be
-// unsafe. Right-hand sides are read row by row (row_form.h): only full rows are transformed.
-// This file holds the orchestration and the pipeline of the transform path, which
-// SolverOptions::threads splits by modes (the tridiagonal sweeps) and by rows (the inverse
+// (mode_pivots.h), vectorised across the modes, on the first L columns, L + 1 a fast transform
+// length, the other columns eliminated by their Schur complement when cols + 1 is not one
+// (capacitance.h); and the dst solver where elimination without pivoting would be unsafe. Right-hand sides are read row
+// by row (row_form.h): only full rows are transformed. This file holds the orchestration and the pipeline of the
+// transform path, which SolverOptions::threads splits by modes (the tridiagonal sweeps) and by rows (the inverse
 // transforms) with OpenMP: bit for bit the one-thread result.
 // Sizes: #interior by 3 in and out; O(L) work arrays, 3 blocks of K·L for the pipeline.
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
@@ -35,27 +35,6 @@ using detail::ModePivots;
 using detail::RowForm;
 using detail::SineTransform;
 
-// Largest prime factor of n ≥ 1.
-int largest_prime_factor(int n) {
-  int largest = 1;
-  for (int f = 2; f * f <= n; ++f)
-    while (n % f == 0) {
-      largest = f;
-      n /= f;
-    }
-  return std::max(largest, n);
-}
-
-// Columns to add so that the sine transform has a fast length: FFTW has codelets for the factors
-// up to 13, and falls back to an O(p²) one for a larger prime p (a length of 1023 = 3·11·31 is 9×
-// slower than 1024). Up to four extra columns, 7-smooth; 0 keeps the length.
-int extra_columns(int cols) {
-  if (largest_prime_factor(cols + 1) <= 13) return 0;
-  for (int k = 1; k <= 4; ++k)
-    if (largest_prime_factor(cols + k + 1) <= 7) return k;
-  return 0;
-}
-
 // ------------------------------------------------------------------------------------------------
 
 class FastSolver : public detail::StructuredSolver {
@@ -81,8 +60,8 @@ class FastSolver : public detail::StructuredSolver {
   }
 
   SolveStatus analyze_grid(SolveSummary& /*summary*/) override {
-    extra_ = extra_columns(C_);
-    L_ = C_ + extra_;
+    interface_ = detail::interface_columns(C_);
+    L_ = C_ - interface_;
     const std::size_t L = std::size_t(L_);
 #if defined(_OPENMP)
     threads_ = std::max(1, std::min(resolved_threads(options_.threads), L_ / 64));
@@ -95,7 +74,7 @@ class FastSolver : public detail::StructuredSolver {
       sines_.emplace_back(L_, detail::fft_planning(options_));
       rows_.emplace_back(L);
     }
-    if (extra_ > 0) capacitance_.prepare(R_, detail::fft_planning(options_));
+    if (interface_ > 0) capacitance_.prepare(R_, detail::fft_planning(options_));
     auto sine_column = [&](int j, std::vector<double>& v) {  // S·e_j, length L
       v.resize(L);
       for (int q = 0; q < L_; ++q) v[std::size_t(q)] = std::sin(M_PI * double(j + 1) * (q + 1) / (L_ + 1));
@@ -103,18 +82,15 @@ class FastSolver : public detail::StructuredSolver {
     y_.resize(L);
     for (int q = 0; q < L_; ++q) y_[std::size_t(q)] = std::cos(M_PI * (q + 1) / (L_ + 1));
     sine_column(0, sine_e0_);
-    if (C_ >= 2)
-      sine_column(C_ - 1, sine_e1_);
+    if (L_ >= 2)
+      sine_column(L_ - 1, sine_e1_);  // the last column of the transformed region
     else
       sine_e1_.assign(L, 0.0);  // a row of one value has no second end
-    sine_extra_.assign(std::size_t(extra_), {});
-    for (int m = 0; m < extra_; ++m) sine_column(C_ + m, sine_extra_[std::size_t(m)]);
     unit_e0_.assign(std::size_t(C_), 0.0);
     unit_e1_.assign(std::size_t(C_), 0.0);
     unit_e0_[0] = 1;
     if (C_ >= 2) unit_e1_[std::size_t(C_ - 1)] = 1;
     for (auto& w : running_) w = AlignedBuffer(L);
-    for (auto& y : forward_) y = AlignedBuffer();  // made by the first solve that needs them
     // Blocks of the back substitution: 3·K rows of L doubles, to stay in the L2 cache.
     block_rows_ = std::max(2, std::min(R_, std::clamp(16384 / L_, 4, 32)));
     for (auto& b : block_) b = AlignedBuffer(std::size_t(block_rows_) * L);
@@ -127,7 +103,7 @@ class FastSolver : public detail::StructuredSolver {
       path_ = Path::kKronecker;
       return SolveStatus::kSuccess;
     }
-    if (modes_.factor(s, y_) && (extra_ == 0 || capacitance_.factor(s, y_, sine_extra_))) {
+    if (modes_.factor(s, y_) && (interface_ == 0 || capacitance_.factor(s, y_))) {
       path_ = Path::kTransform;
       return SolveStatus::kSuccess;
     }
@@ -154,56 +130,56 @@ class FastSolver : public detail::StructuredSolver {
     std::array<RowForm, 3> forms;
     // (Serial: a parallel region of its own would cost a second wait for a descheduled thread on
     // a busy machine, more than the scan itself.)
-    for (int c = 0; c < 3; ++c) forms[std::size_t(c)] = detail::split_rows(B.col(c).data(), R_, C_);
+    // (The transform path splits only the columns it transforms; the interface is read apart.)
+    const int width = path_ == Path::kKronecker ? C_ : L_;
+    for (int c = 0; c < 3; ++c) forms[std::size_t(c)] = detail::split_rows(B.col(c).data(), R_, width, C_);
     if (path_ == Path::kKronecker) {
       for (int c = 0; c < 3; ++c) kronecker_.solve(forms[std::size_t(c)], B.col(c).data(), X.col(c).data());
     } else {
       for (auto& f : forms) transform_rows(f);
-      solve_transform(forms, X);
+      std::array<std::vector<double>, 3> interface_rhs;
+      for (int c = 0; c < 3; ++c) interface_rhs[std::size_t(c)] = interface_part(B.col(c).data());
+      solve_transform(std::move(forms), interface_rhs, X);
     }
     return SolveStatus::kSuccess;
   }
 
  private:
   enum class Path { kKronecker, kTransform, kDst };
-  // Dense rows of a form → their sine transforms of length L (zero-padded).
+  // Dense rows of a form of width L → their sine transforms.
   void transform_rows(RowForm& f) {
-    const std::size_t C = std::size_t(f.width), L = std::size_t(L_);
-    if (f.width == L_) {
-      for (std::size_t k = 0; k < f.dense_rows.size(); ++k) {
-        double* row = f.values.data() + k * L;
-        sines_[0].apply(row, row, 1.0);
-      }
-      return;
-    }
-    std::vector<double> values(f.dense_rows.size() * L, 0.0);
+    const std::size_t L = std::size_t(L_);
     for (std::size_t k = 0; k < f.dense_rows.size(); ++k) {
-      double* row = values.data() + k * L;
-      std::copy(f.values.data() + k * C, f.values.data() + (k + 1) * C, row);
+      double* row = f.values.data() + k * L;
       sines_[0].apply(row, row, 1.0);
     }
-    f.values = std::move(values);
-    f.width = L_;
   }
 
-  // For every mode q: X̂(:,q) = T_q⁻¹ (B̂(:,q) + sources on the extra columns), three columns at
-  // once, each X̂ row handed to finish(t, i, c, x̂) (t: the calling thread). Every loop runs over
-  // whole rows, vectorised across the modes. The forward elimination keeps only the last row of
-  // each block of K rows (in rows[c] + i·stride: X itself when L = C) and recomputes a block in
-  // cache before substituting back through it: two passes over memory fewer for a little more
-  // arithmetic. One thread hands each row to finish as soon as its block is done (so that the
-  // inverse transform runs while the row is in cache). Several threads take a chunk of modes each
-  // (dynamically: a thread that starts late on a busy machine may find none left), write x̂ to
-  // rows, and after one barrier finish the rows, again dynamically. (More, smaller chunks were
-  // slower: every row step has a fixed cost. The pass of x̂ through rows, a write and a read of the
-  // grid more than one thread does, is why two threads gain little over one.)
-  // Every chunk and row is computed alike whoever takes it: bit for bit the one-thread result.
+  // The interface columns L..C−1 of one column of a right-hand side (rows × k, row-major).
+  [[nodiscard]] std::vector<double> interface_part(const double* b) const {
+    const std::size_t k = std::size_t(interface_), C = std::size_t(C_);
+    std::vector<double> part(std::size_t(R_) * k);
+    for (std::size_t i = 0; i < std::size_t(R_); ++i)
+      std::copy(b + i * C + std::size_t(L_), b + (i + 1) * C, part.begin() + std::ptrdiff_t(i * k));
+    return part;
+  }
+
+  // For every mode q: X̂(:,q) = T_q⁻¹ B̂(:,q), three columns at once, each X̂ row handed to finish(t, i, c, x̂) (t: the
+  // calling thread). Every loop runs over whole rows, vectorised across the modes. The forward elimination keeps only
+  // the last row of each block of K rows (in rows[c] + i·stride: X itself) and recomputes a block in cache before
+  // substituting back through it: two passes over memory fewer for a little more arithmetic. One thread hands each row
+  // to finish as soon as its block is done (so that the inverse transform runs while the row is in cache). Several
+  // threads take a chunk of modes each (dynamically: a thread that starts late on a busy machine may find none left),
+  // write x̂ to rows, and after one barrier finish the rows, again dynamically. (More, smaller chunks were slower: every
+  // row step has a fixed cost. The pass of x̂ through rows, a write and a read of the grid more than one thread does, is
+  // why two threads gain little over one.) Every chunk and row is computed alike whoever takes it: bit for bit the
+  // one-thread result.
   template <class Finish>
-  void pipeline(const std::array<RowForm, 3>& forms, const std::array<const double*, 3>& sources,
-                const std::array<double*, 3>& rows, std::size_t stride, Finish&& finish) {
+  void pipeline(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride,
+                Finish&& finish) {
     const int T = threads_;
     if (T == 1) {
-      solve_modes(forms, sources, rows, stride, 0, L_, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
+      solve_modes(forms, rows, stride, 0, L_, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
       detail::stream_fence();  // the non-temporal stores of finish, as on the threaded path
       return;
     }
@@ -218,7 +194,7 @@ class FastSolver : public detail::StructuredSolver {
 #endif
       for (int k = 0; k < chunks; ++k) {
         const int q0 = chunk_start(k), q1 = chunk_start(k + 1);
-        solve_modes(forms, sources, rows, stride, q0, q1 - q0, [&](int i, int c, const double* xh) {
+        solve_modes(forms, rows, stride, q0, q1 - q0, [&](int i, int c, const double* xh) {
           std::copy(xh, xh + (q1 - q0), rows[std::size_t(c)] + std::size_t(i) * stride + std::size_t(q0));
         });
       }  // (the implied barrier: every mode of x̂ is in rows)
@@ -238,8 +214,8 @@ class FastSolver : public detail::StructuredSolver {
   // row of x̂ (those modes, from q0) to done(i, c, x̂) when its block is substituted. Only the
   // modes [q0, q0 + n) of the pivots, the blocks, running_ and the saved rows are touched.
   template <class Done>
-  void solve_modes(const std::array<RowForm, 3>& forms, const std::array<const double*, 3>& sources,
-                   const std::array<double*, 3>& rows, std::size_t stride, int q0, int n, Done&& done) {
+  void solve_modes(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride, int q0,
+                   int n, Done&& done) {
     const std::size_t L = std::size_t(L_);
     const int K = block_rows_;
     const int last_block = (R_ - 1) / K;
@@ -262,16 +238,12 @@ class FastSolver : public detail::StructuredSolver {
       else
         detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data() + q0,
                                  sine_e1_.data() + q0, l, p, y, n);
-      if (const double* u = sources[std::size_t(c)])
-        for (int m = 0; m < extra_; ++m)
-          detail::add_scaled(u[std::size_t(i) * std::size_t(extra_) + std::size_t(m)],
-                             sine_extra_[std::size_t(m)].data() + q0, y, n);
     };
     // Row i of all three columns: one pass over s, t and l when every column's row is sparse
-    // and there are no sources (rows of mask data but two), else column by column.
+    // (rows of mask data but two), else column by column.
     auto eliminate3 = [&](int i, auto&& previous, auto&& target) {
       const std::size_t k = std::size_t(i);
-      if (extra_ == 0 && forms[0].slot[k] < 0 && forms[1].slot[k] < 0 && forms[2].slot[k] < 0) {
+      if (forms[0].slot[k] < 0 && forms[1].slot[k] < 0 && forms[2].slot[k] < 0) {
         const std::array<double, 3> a{forms[0].first[k], forms[1].first[k], forms[2].first[k]};
         const std::array<double, 3> e{forms[0].last[k], forms[1].last[k], forms[2].last[k]};
         const std::array<double*, 3> x{target(0), target(1), target(2)};
@@ -322,45 +294,52 @@ class FastSolver : public detail::StructuredSolver {
     }
   }
 
-  // X = (2/(L+1)) S X̂, first C columns; with extra columns, the sources U are found first from a
-  // pipeline that only records the solution on the extra columns.
-  void solve_transform(const std::array<RowForm, 3>& forms, Eigen::MatrixX3d& X) {
-    const std::size_t C = std::size_t(C_);
+  // X = (2/(L+1)) S X̂ on the first L columns. With an interface (L < C, capacitance.h): a first
+  // pass that only records the fast region's column L−1 (V) with the interface at zero, the
+  // interface values from V and the interface's right-hand side, and the pass that writes X with
+  // the interface moved to the right-hand side of column L−1 (the `last` values of the forms,
+  // and δ times S·e_{L−1} for their dense rows).
+  void solve_transform(std::array<RowForm, 3> forms, const std::array<std::vector<double>, 3>& interface_rhs,
+                       Eigen::MatrixX3d& X) {
+    const std::size_t C = std::size_t(C_), L = std::size_t(L_);
     const double scale = 2.0 / (L_ + 1);
-    std::array<const double*, 3> sources{nullptr, nullptr, nullptr};
-    std::array<std::vector<double>, 3> U;
-    // The forward rows: in X itself when they fit, else in buffers of the widened grid.
-    std::array<double*, 3> rows{X.col(0).data(), X.col(1).data(), X.col(2).data()};
-    std::size_t stride = C;
-    if (extra_ > 0) {
-      stride = forward_stride();
-      for (int c = 0; c < 3; ++c) {
-        AlignedBuffer& y = forward_[std::size_t(c)];
-        if (y.size() != std::size_t(R_) * stride) y = AlignedBuffer(std::size_t(R_) * stride);
-        rows[std::size_t(c)] = y.data();
-      }
-    }
-    if (extra_ > 0) {
-      const std::size_t k = std::size_t(extra_), R = std::size_t(R_);
+    const std::array<double*, 3> rows{X.col(0).data(), X.col(1).data(), X.col(2).data()};
+    std::array<std::vector<double>, 3> xI;
+    if (interface_ > 0) {
       std::array<std::vector<double>, 3> V;
-      for (auto& v : V) v.assign(R * k, 0.0);
-      pipeline(forms, sources, rows, stride, [&](int /*t*/, int i, int c, const double* xh) {
-        for (std::size_t m = 0; m < k; ++m)
-          V[std::size_t(c)][std::size_t(i) * k + m] = scale * detail::dot(sine_extra_[m].data(), xh, L_);
+      for (auto& v : V) v.assign(std::size_t(R_), 0.0);
+      pipeline(forms, rows, C, [&](int /*t*/, int i, int c, const double* xh) {
+        V[std::size_t(c)][std::size_t(i)] = scale * detail::dot(sine_e1_.data(), xh, L_);
       });
-      for (int c = 0; c < 3; ++c) {
-        capacitance_.sources(V[std::size_t(c)], U[std::size_t(c)]);
-        sources[std::size_t(c)] = U[std::size_t(c)].data();
+      std::vector<double> delta;
+      for (std::size_t c = 0; c < 3; ++c) {
+        capacitance_.interface_values(V[c], interface_rhs[c], xI[c]);
+        capacitance_.coupling(xI[c], delta);
+        RowForm& f = forms[c];
+        for (std::size_t i = 0; i < std::size_t(R_); ++i) {
+          const int slot = f.slot[i];
+          if (slot < 0)
+            f.last[i] -= delta[i];
+          else
+            detail::add_scaled(-delta[i], sine_e1_.data(), f.values.data() + std::size_t(slot) * L, L_);
+        }
       }
     }
-    pipeline(forms, sources, rows, stride, [&](int t, int i, int c, const double* xh) {
+    pipeline(forms, rows, C, [&](int t, int i, int c, const double* xh) {
       double* row = rows_[std::size_t(t)].data();
       sines_[std::size_t(t)].apply(xh, row, scale);
-      detail::stream_copy(row, X.col(c).data() + std::size_t(i) * C, C);
+      detail::stream_copy(row, X.col(c).data() + std::size_t(i) * C, L);
     });
+    if (interface_ > 0) {
+      const std::size_t k = std::size_t(interface_);
+      for (std::size_t c = 0; c < 3; ++c)
+        for (std::size_t i = 0; i < std::size_t(R_); ++i)
+          std::copy(xI[c].begin() + std::ptrdiff_t(i * k), xI[c].begin() + std::ptrdiff_t((i + 1) * k),
+                    X.col(Eigen::Index(c)).data() + i * C + L);
+    }
   }
 
-  int L_ = 0, extra_ = 0, block_rows_ = 16;
+  int L_ = 0, interface_ = 0, block_rows_ = 16;  // L_ = C_ − interface_: the transform length
   Path path_ = Path::kTransform;
   // The threads of a solve (SolverOptions::threads, at most one per 64 modes); they take chunks
   // of modes whose bounds are multiples of 8 (whole cache lines).
@@ -368,20 +347,19 @@ class FastSolver : public detail::StructuredSolver {
   std::vector<SineTransform> sines_;  // one per thread (a transform has scratch)
   std::vector<AlignedBuffer> rows_;   // one row of L per thread
   std::vector<double> y_, sine_e0_, sine_e1_, unit_e0_, unit_e1_;
-  std::vector<std::vector<double>> sine_extra_;
   ModePivots modes_;          // the transform path's tridiagonal systems, one per mode
-  Capacitance capacitance_;   // the widened grid's sources
+  Capacitance capacitance_;   // the interface columns (when L < C)
   KroneckerSolve kronecker_;  // the Kronecker path
-  std::array<AlignedBuffer, 3> running_, forward_, block_;
-  // Rows of forward_ (used when L > C) start at multiples of 64 bytes.
-  [[nodiscard]] std::size_t forward_stride() const { return (std::size_t(L_) + 7) / 8 * 8; }
+  std::array<AlignedBuffer, 3> running_, block_;
   std::unique_ptr<LinearSolver> dst_;
 
-  // Every right-hand side of a sweep's basis split by rows (physical: the Kronecker path) and with
-  // its dense rows sine-transformed (transformed: the transform path), for an R × C grid.
+  // Every right-hand side of a sweep's basis split by rows (physical: the Kronecker path) and, on
+  // the first L columns, with its dense rows sine-transformed (transformed: the transform path),
+  // for an R × C grid, and its interface columns (interface_part).
   struct SweepForms {
     int rows = 0, cols = 0;
     std::vector<std::array<RowForm, 3>> physical, transformed;
+    std::vector<std::array<std::vector<double>, 3>> interface;
   };
   [[nodiscard]] bool fits(const SweepForms* forms, const std::vector<Eigen::MatrixX3d>& basis) const {
     return forms && forms->rows == R_ && forms->cols == C_ && forms->physical.size() == basis.size();
@@ -391,12 +369,16 @@ class FastSolver : public detail::StructuredSolver {
     forms->rows = R_;
     forms->cols = C_;
     forms->physical.resize(basis.size());
+    forms->transformed.resize(basis.size());
+    forms->interface.resize(basis.size());
     for (std::size_t r = 0; r < basis.size(); ++r)
-      for (int c = 0; c < 3; ++c)
-        forms->physical[r][std::size_t(c)] = detail::split_rows(basis[r].col(c).data(), R_, C_);
-    forms->transformed = forms->physical;
-    for (auto& f : forms->transformed)
-      for (RowForm& column : f) transform_rows(column);
+      for (std::size_t c = 0; c < 3; ++c) {
+        const double* b = basis[r].col(Eigen::Index(c)).data();
+        forms->physical[r][c] = detail::split_rows(b, R_, C_);
+        forms->transformed[r][c] = detail::split_rows(b, R_, L_, C_);
+        transform_rows(forms->transformed[r][c]);
+        forms->interface[r][c] = interface_part(b);
+      }
     return forms;
   }
   std::shared_ptr<const SweepForms> sweep_forms_;  // read-only once made: a sweep's workers share it
@@ -424,7 +406,15 @@ SolveStatus FastSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basi
         kron ? detail::combine(parts, w, R_, unit_e0_, unit_e1_) : detail::combine(parts, w, R_, sine_e0_, sine_e1_);
   }
   if (!kron) {
-    solve_transform(forms, X);
+    std::array<std::vector<double>, 3> interface_rhs;
+    for (std::size_t c = 0; c < 3; ++c) {
+      interface_rhs[c].assign(std::size_t(R_) * std::size_t(interface_), 0.0);
+      for (std::size_t r = 0; r < used; ++r)
+        if (w[r] != 0)
+          for (std::size_t k = 0; k < interface_rhs[c].size(); ++k)
+            interface_rhs[c][k] += w[r] * sweep_forms_->interface[r][c][k];
+    }
+    solve_transform(std::move(forms), interface_rhs, X);
     return SolveStatus::kSuccess;
   }
   Eigen::MatrixX3d B;  // formed only for a column with too many full rows for the rank form

@@ -31,10 +31,10 @@ COONS_VECTOR_CLONES bool has_interior(const double* row, int C) {
   return bits != 0;
 }
 
-RowForm split_rows(const double* b, int R, int C) {
+RowForm split_rows(const double* b, int R, int C, int stride) {
   RowForm f = zero_form(R, C);
   for (int i = 0; i < R; ++i) {
-    const double* row = b + std::size_t(i) * std::size_t(C);
+    const double* row = b + std::size_t(i) * std::size_t(stride);
     if (!has_interior(row, C)) {
       f.first[std::size_t(i)] = row[0];
       f.last[std::size_t(i)] = C >= 2 ? row[C - 1] : 0.0;

@@ -20,8 +20,10 @@ struct RowForm {
 //! True when a value other than ±0 (NaN included) sits in row[1..C−2].
 bool has_interior(const double* row, int C);
 
-//! The row form of b (rows × cols, row-major).
-RowForm split_rows(const double* b, int R, int C);
+//! The row form of b (rows × cols, row-major; row i starts at b + i·stride, stride ≥ cols, so
+//! that the first cols columns of a wider grid can be split).
+RowForm split_rows(const double* b, int R, int C, int stride);
+inline RowForm split_rows(const double* b, int R, int C) { return split_rows(b, R, C, C); }
 
 //! Σ_r w_r · forms[r] (same rows and width). A sparse row expands as first·e0 + last·e1, where
 //! e0, e1 are the unit vectors (physical forms) or their sine transforms (transformed forms).

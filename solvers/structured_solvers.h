@@ -16,10 +16,12 @@
 //         factorize keeps only the pivots that have not yet converged (a few % of the table).
 //         When the stencil is a Kronecker product (c·d = e_i·e_j, e.g. the Coons mask α = −1/4)
 //         it needs no transform: X = T_i⁻¹ B T_j⁻¹, a rank-4 product for a right-hand side on the
-//         frame. A transform length with a large prime factor (cols+1 = 1023 = 3·11·31) is
-//         avoided by widening the grid (capacitance matrix method) when that costs no accuracy
-//         (a definite widened operator, conditioned like the real one: capacitance.h); otherwise
-//         such a grid takes the dst path. Where elimination without
+//         frame. A slow transform length (cols+1 with a prime factor above 13, or odd on a wide
+//         grid: 1031, 1025 = 5²·41, 1001 = 7·11·13) is avoided by transforming the first L
+//         columns only, L + 1 the nearest fast length below, and eliminating the other columns
+//         by their Schur complement (capacitance matrix method), when that costs no accuracy (a
+//         definite operator on the L columns, conditioned like the real one: capacitance.h);
+//         otherwise such a grid takes the dst path. Where elimination without
 //         pivoting would be unsafe (indefinite stencils) it falls back to the dst path, so it is
 //         exact for every non-singular stencil; the default behind `auto`. SolverOptions::threads
 //         splits the modes of the tridiagonal solves and the rows of the inverse transform
@@ -32,7 +34,7 @@
 // of the mask family); R. E. Lynch, J. R. Rice & D. H. Thomas, Direct solution of partial
 // difference equations by tensor product methods, Numer. Math. 6 (1964) (the Kronecker path);
 // B. L. Buzbee, F. W. Dorr, J. A. George & G. H. Golub, The direct solution of the discrete
-// Poisson equation on irregular regions, SIAM J. Numer. Anal. 8 (1971) (the widened grid).
+// Poisson equation on irregular regions, SIAM J. Numer. Anal. 8 (1971) (the interface columns).
 #pragma once
 
 #include <memory>

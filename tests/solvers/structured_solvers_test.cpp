@@ -100,11 +100,15 @@ const std::vector<std::pair<int, int>>& grids() {
       {9, 9},
       {12, 17},
       {16, 15},
-      // cols + 1 with a prime factor > 13: fast widens the grid by 1 (17, 23) or 3 (37) columns
+      // cols + 1 with a prime factor > 13: fast transforms the first L columns, L + 1 fast, and
+      // eliminates the k others (capacitance.h): k = 1 (17, 23, 37), 2 (38), 4 (95), 6 (188)
       {7, 16},
       {16, 22},
       {5, 36},
-      {1, 16}};
+      {1, 16},
+      {9, 37},
+      {6, 94},
+      {3, 187}};
   return list;
 }
 
@@ -168,8 +172,8 @@ TEST_CASE("structured solvers: two and three threads give the one-thread solutio
   // fast: each thread eliminates its own range of modes with the same operations on the same
   // numbers, and the rows are transformed alike. dst: each row and each strip of columns is
   // transformed alike whichever thread takes it. So the split cannot change a bit. 150 + 1
-  // columns is prime: fast widens that grid (the capacitance path), whose sources go through
-  // the threads too.
+  // columns is prime: fast eliminates two interface columns of that grid (the capacitance path),
+  // whose two passes go through the threads too.
   for (const auto& [name, make] : structured())
     for (auto [rows, cols] : {std::pair{127, 131}, {70, 150}, {33, 255}}) {
       const GridStencil s = alpha_stencil(rows, cols, -0.1);
@@ -315,11 +319,12 @@ TEST_CASE("structured solvers: an indefinite stencil is solved exactly or report
     }
 }
 
-TEST_CASE("fast: a widened grid is as accurate as dst on indefinite stencils", "[solvers]") {
-  // cols + 1 = 17 and 19 are primes above 13, so fast would widen the grid (to 17 and 19
-  // columns). At these α the symbol changes sign and a mode of the widened grid lies next to its
-  // zero set: the capacitance solve lost up to 6 digits (29 × 16, α = −0.4240075: relative
-  // difference 9.6e-8 with success), or reported a regular operator singular (α = −0.4240077).
+TEST_CASE("fast: an interface is as accurate as dst on indefinite stencils", "[solvers]") {
+  // cols + 1 = 17 and 19 are primes above 13, so fast transforms 15 and 17 columns and
+  // eliminates the last one. At these α the symbol changes sign and a mode of the smaller grid
+  // can lie next to its zero set: the widened grid this replaced lost up to 6 digits there
+  // (29 × 16, α = −0.4240075: relative difference 9.6e-8 with success), or reported a regular
+  // operator singular (α = −0.4240077).
   const std::vector<GridStencil> stencils = {
       alpha_stencil(29, 16, -0.4240075442251117), alpha_stencil(29, 16, -0.4240077442251117),
       alpha_stencil(19, 18, 1.5),

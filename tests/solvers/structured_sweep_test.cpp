@@ -77,7 +77,7 @@ bool same_bits(const Eigen::MatrixX3d& a, const Eigen::MatrixX3d& b) {
 
 TEST_CASE("LinearSolver::sweep: two and three threads give the one-thread members bit for bit, sunk in order",
           "[solvers]") {
-  // 36 + 1 columns is prime: fast widens the grid (the capacitance path). The members take every
+  // 36 + 1 columns is prime: fast eliminates the last column (the capacitance path). The members take every
   // path: Kronecker (α = −1/4), transform, indefinite (α = 0.4), a dense basis member, weights
   // shorter than the basis, and one that cannot be factorized (no stencil: X = 0 and its status).
   const int rows = 21, cols = 36;
