@@ -116,3 +116,25 @@ TEST_CASE("search_bspline_alpha: a near-singular alpha is a failed evaluation an
   CHECK(status == solvers::SolveStatus::kSingular);
   CHECK(bspline_alpha_objective(b, objective_named("thin_plate"), star + 1e-3, *solver));
 }
+
+TEST_CASE("search_bspline_alpha: failures away from the optimum are named, and the optimum stands",
+          "[study][bspline]") {
+  // the same boundary, searched from −1/4 up to 1e-9 above its singular α: only the top of the
+  // scan fails, far from the optimum
+  const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 8, 2, 6, 9));
+  const double star = bspline_singular_alpha(b);
+  AlphaSearchOptions options = default_bspline_search_options();
+  options.lower = -0.25;
+  options.upper = star + 1e-9;
+  const AlphaSearchSummary s = search_bspline_alpha(b, objective_named("thin_plate"), "eigen-lu", options);
+  INFO("singular alpha " << star << ": " << s.brief_report());
+  CHECK(s.status == SearchStatus::kSuccess);
+  REQUIRE(s.parameter);
+  CHECK(*s.parameter < star - 0.05);
+  CHECK(s.failed_evaluations == 1);
+  REQUIRE(s.failed_intervals.size() == 1);
+  CHECK(s.failed_intervals.front().first == options.upper);
+  CHECK(s.first_failure == solvers::SolveStatus::kSingular);
+  CHECK(s.message.find("1 evaluation(s) failed at") != std::string::npos);
+  CHECK(s.message.find("away from the optimum") != std::string::npos);
+}

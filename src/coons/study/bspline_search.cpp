@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <chrono>
 #include <cmath>
+#include <utility>
 #include <vector>
 
+#include "coons/alpha/search_failures.h"
 #include "coons/mask/near_singular.h"
 #include "coons/mask/nonuniform_mask.h"
 #include "coons/study/bspline_net.h"
@@ -72,11 +74,13 @@ class Evaluator {
     Point p{alpha, backend ? bspline_alpha_objective(b_, objective_, alpha, *backend, &status) : std::nullopt};
     ++summary_.evaluations;
     summary_.solves += 2;
-    if (!p.f) {
-      if (summary_.failed_evaluations++ == 0) summary_.first_failure = status;
-    }
+    if (!p.f && std::none_of(log_.begin(), log_.end(), [](const auto& e) { return !e.second; }))
+      summary_.first_failure = status;
+    log_.emplace_back(alpha, bool(p.f));
     return p;
   }
+  //! Every evaluation as (α, succeeded), for detail::judge_failures.
+  [[nodiscard]] const std::vector<std::pair<double, bool>>& log() const { return log_; }
 
  private:
   const BSplineBoundary& b_;
@@ -84,6 +88,7 @@ class Evaluator {
   std::string solver_;
   solvers::SolverOptions options_;
   AlphaSearchSummary& summary_;
+  std::vector<std::pair<double, bool>> log_;
 };
 
 // The root of f′ in [left, right] with f′(left) ≤ 0 ≤ f′(right): Illinois regula falsi, a
@@ -117,16 +122,6 @@ Point derivative_root(Evaluator& eval, Point left, Point right, const AlphaSearc
   return best;
 }
 
-void record_failed_intervals(AlphaSearchSummary& s, const std::vector<Point>& scan) {
-  for (std::size_t k = 0; k < scan.size(); ++k) {
-    if (scan[k].f) continue;
-    if (k > 0 && !scan[k - 1].f)
-      s.failed_intervals.back().second = scan[k].alpha;
-    else
-      s.failed_intervals.emplace_back(scan[k].alpha, scan[k].alpha);
-  }
-}
-
 }  // namespace
 
 AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objective& objective,
@@ -136,7 +131,10 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
   AlphaSearchSummary s;
   s.evaluator = "factorize and solve (non-uniform B-spline family)";
   Evaluator eval(b, objective, solver_name, solver_options, s);
+  // Failed evaluations are judged as in the Bézier search (search_failures.h): counted, grouped
+  // into intervals, and a verdict that rests on one becomes failed_region, with where in the message.
   const auto finish = [&]() -> AlphaSearchSummary {
+    detail::judge_failures(s, eval.log());
     s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
     return s;
   };
@@ -147,7 +145,6 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
     scan.push_back(eval(alpha));
     s.scan.emplace_back(alpha, scan.back().f ? scan.back().f->value : HUGE_VAL);
   }
-  record_failed_intervals(s, scan);
   int best = -1;
   double lowest = HUGE_VAL, highest = -HUGE_VAL;
   for (int k = 0; k < n; ++k)
@@ -173,16 +170,14 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
       (best > 0 && !scan[std::size_t(best) - 1].f) || (best + 1 < n && !scan[std::size_t(best) + 1].f);
   if (highest - lowest <= options.flat_tolerance * std::max({std::abs(highest), std::abs(lowest), 1e-300})) {
     s.flat = true;
-    s.status = s.failed_evaluations > 0 ? SearchStatus::kFailedRegion : SearchStatus::kFlat;
-    s.message = s.failed_evaluations > 0 ? "flat where evaluated, but some evaluations failed" : "";
-    return finish();
-  }
-  if (near_failure) {
-    s.status = SearchStatus::kFailedRegion;
-    s.message = "an evaluation next to the lowest scan point failed";
+    s.status = SearchStatus::kFlat;
     return finish();
   }
   const Point& at = scan[std::size_t(best)];
+  if (near_failure) {  // the lowest scan point, next to a failure: judge_failures claims nothing
+    s.parameter = at.alpha;
+    return finish();
+  }
   Point optimum = at;
   const double d = at.f->derivative;
   if ((best == 0 && d >= 0) || (best == n - 1 && d <= 0)) {
@@ -191,8 +186,7 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
     const bool go_left = d > 0;
     const Point& other = scan[go_left ? std::size_t(best) - 1 : std::size_t(best) + 1];
     if (!other.f) {
-      s.status = SearchStatus::kFailedRegion;
-      s.message = "an evaluation next to the lowest scan point failed";
+      s.parameter = at.alpha;
       return finish();
     }
     const Point left = go_left ? other : at, right = go_left ? at : other;
