@@ -24,6 +24,21 @@ def load(path):
         return json.load(f)
 
 
+def seconds_of(b, key="real_time"):
+    """A benchmark entry's time in seconds."""
+    return b[key] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+
+
+def memory_passes(data):
+    """N → seconds of BM_MemoryPass/N in a bench_solvers run."""
+    out = {}
+    for b in data["benchmarks"]:
+        m = re.match(r"BM_MemoryPass/N:(\d+)", b["name"])
+        if m:
+            out[int(m.group(1))] = seconds_of(b)
+    return out
+
+
 def load_note(data):
     ctx = data.get("context", {})
     loads = ctx.get("load_avg", [])
@@ -47,7 +62,7 @@ def iteration_table(data):
         status = label.split("status=")[-1] if "status=" in label else "?"
         it = int(b.get("iterations", -1))
         res = b.get("residual", float("nan"))
-        seconds = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+        seconds = seconds_of(b)
         if status == "success":
             cell = f"{it} ({seconds:.1f} s)"
         elif status == "not_applicable":
@@ -65,14 +80,10 @@ def iteration_table(data):
 
 
 def threads_table(data):
-    memory, solves = {}, {}
+    memory, solves = memory_passes(data), {}
     for b in data["benchmarks"]:
-        t = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
-        cpu = b["cpu_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
-        m = re.match(r"BM_MemoryPass/N:(\d+)", b["name"])
-        if m:
-            memory[int(m.group(1))] = t
-            continue
+        t = seconds_of(b)
+        cpu = seconds_of(b, "cpu_time")
         m = re.match(r"BM_Solve/([^/]+)/N:(\d+)/alpha:([^/]+)(/threads:(\d+))?", b["name"])
         if m:
             key = (m.group(1), int(m.group(2)), m.group(3))
@@ -100,7 +111,7 @@ def threads_table(data):
         m = re.match(r"BM_AlphaSweep(Threads)?/fast/N:(\d+)", b["name"])
         if m:
             sweeps[(int(m.group(2)), 2 if m.group(1) else 1)] = \
-                b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
+                seconds_of(b)
     goals = {("fast", "-0.1"): (4, "`fast` at α = −0.1"), ("dst", "-0.1"): (15, "`dst` at α = −0.1"),
              ("mg", "0.0"): (20, "`mg` at α = 0"), ("mg", "-0.1"): (20, "`mg` at α = −0.1"),
              ("separable-banded", "c1-coons"): (3, "`separable-banded` on c1-coons"),
@@ -137,13 +148,9 @@ def threads_table(data):
 def sizes_table(data, reference=1023):
     """One-thread solves at sizes around 2^k − 1 (N + 1 with large prime factors), as multiples of
     the memory pass of the same N and, per unknown, of the solve at N = reference."""
-    memory, solves = {}, {}
+    memory, solves = memory_passes(data), {}
     for b in data["benchmarks"]:
-        t = b["real_time"] * {"ns": 1e-9, "us": 1e-6, "ms": 1e-3, "s": 1.0}[b.get("time_unit", "ns")]
-        m = re.match(r"BM_MemoryPass/N:(\d+)", b["name"])
-        if m:
-            memory[int(m.group(1))] = t
-            continue
+        t = seconds_of(b)
         m = re.match(r"BM_Solve/([^/]+)/N:(\d+)/alpha:([^/]+)/min_time", b["name"])
         if m:  # one thread only
             solves[(m.group(1), int(m.group(2)))] = (t, m.group(3))

@@ -6,9 +6,6 @@
 
 namespace coons::solvers::detail {
 
-namespace {
-
-// Largest prime factor of n ≥ 1.
 int largest_prime_factor(int n) {
   int largest = 1;
   for (int f = 2; f * f <= n; ++f)
@@ -18,6 +15,8 @@ int largest_prime_factor(int n) {
     }
   return std::max(largest, n);
 }
+
+namespace {
 
 // A real FFT length m = n + 1 for which the sine transform of length n is fast: FFTW has codelets
 // for the factors up to 13 and falls back to slower generic ones above; an odd length is 2.5–4×

@@ -36,6 +36,9 @@ constexpr int kMaxInterface = 32;
 //! The smallest pivot of a Schur complement S_p, relative to |a_p| + 2|c1_p|, that factor() accepts.
 constexpr double kInterfacePivot = 1e-8;
 
+//! The largest prime factor of n ≥ 1 (1 for n = 1).
+int largest_prime_factor(int n);
+
 //! The number k of interface columns for a grid of `cols` columns: 0 when cols + 1 is a fast
 //! transform length (or the grid is narrow), else the smallest k ≤ kMaxInterface for which
 //! cols − k + 1 is one (0 if none is).

@@ -5,8 +5,8 @@
 // length, the other columns eliminated by their Schur complement when cols + 1 is not one
 // (capacitance.h); and the dst solver where elimination without pivoting would be unsafe. Right-hand sides are read row
 // by row (row_form.h): only full rows are transformed. This file holds the orchestration and the pipeline of the
-// transform path, which SolverOptions::threads splits by modes (the tridiagonal sweeps) and by rows (the inverse
-// transforms) with OpenMP: bit for bit the one-thread result.
+// transform path, which SolverOptions::threads runs on one thread that eliminates and others that take the inverse
+// transforms of the finished rows (pipeline()), with OpenMP: bit for bit the one-thread result.
 // Sizes: #interior by 3 in and out; O(L) work arrays, 3 blocks of K·L for the pipeline.
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
 // J. ACM 12 (1965).
@@ -357,8 +357,7 @@ class FastSolver : public detail::StructuredSolver {
 
   int L_ = 0, interface_ = 0, block_rows_ = 16;  // L_ = C_ − interface_: the transform length
   Path path_ = Path::kTransform;
-  // The threads of a solve (SolverOptions::threads, at most one per 64 modes); they take chunks
-  // of modes whose bounds are multiples of 8 (whole cache lines).
+  // The threads of a solve (SolverOptions::threads, at most one per 64 modes; see pipeline()).
   int threads_ = 1;
   std::vector<SineTransform> sines_;  // one per thread (a transform has scratch)
   std::vector<AlignedBuffer> rows_;   // one row of L per thread

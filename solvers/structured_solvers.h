@@ -23,9 +23,9 @@
 //         definite operator on the L columns, conditioned like the real one: capacitance.h);
 //         otherwise such a grid takes the dst path. Where elimination without
 //         pivoting would be unsafe (indefinite stencils) it falls back to the dst path, so it is
-//         exact for every non-singular stencil; the default behind `auto`. SolverOptions::threads
-//         splits the modes of the tridiagonal solves and the rows of the inverse transform
-//         between threads (bit for bit the same result).
+//         exact for every non-singular stencil; the default behind `auto`. With
+//         SolverOptions::threads one thread eliminates and the others take the inverse transforms
+//         of the rows it finishes (bit for bit the same result).
 //
 // Both report kSingular when an eigenvalue is zero to working precision (|λ| ≤ 1e-13·max|λ|),
 // and both reuse the transformed basis right-hand sides across a sweep.

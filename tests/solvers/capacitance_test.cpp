@@ -13,21 +13,24 @@ using namespace coons::solvers;
 
 namespace {
 
-int largest_prime_factor(int n) {
-  int largest = 1;
-  for (int f = 2; f * f <= n; ++f)
-    while (n % f == 0) {
-      largest = f;
-      n /= f;
-    }
-  return n > 1 ? n : largest;
-}
+using detail::largest_prime_factor;
 
 // The rule of interface_columns, as specified: a real FFT length m is fast when its prime
 // factors are at most 13 and it is even or below 256.
 bool fast_length(int m) { return largest_prime_factor(m) <= 13 && (m % 2 == 0 || m < 256); }
 
 }  // namespace
+
+TEST_CASE("largest_prime_factor: of primes, prime powers and products", "[solvers]") {
+  CHECK(largest_prime_factor(1) == 1);
+  CHECK(largest_prime_factor(2) == 2);
+  CHECK(largest_prime_factor(1024) == 2);
+  CHECK(largest_prime_factor(1031) == 1031);
+  CHECK(largest_prime_factor(1029) == 7);   // 3·7³
+  CHECK(largest_prime_factor(1023) == 31);  // 3·11·31
+  CHECK(largest_prime_factor(1014) == 13);  // 2·3·13²
+  CHECK(largest_prime_factor(2 * 1021) == 1021);
+}
 
 TEST_CASE("interface_columns: the transform length below cols + 1 is 13-smooth and even", "[solvers]") {
   // hand-checked: 1031 is prime and 1024 = 2^10; 1001 = 7·11·13 is odd; 1023 = 3·11·31 and

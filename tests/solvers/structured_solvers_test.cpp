@@ -169,11 +169,11 @@ TEST_CASE("structured solvers: equal the dense reference for every alpha", "[sol
 }
 
 TEST_CASE("structured solvers: two and three threads give the one-thread solution bit for bit", "[solvers]") {
-  // fast: each thread eliminates its own range of modes with the same operations on the same
-  // numbers, and the rows are transformed alike. dst: each row and each strip of columns is
-  // transformed alike whichever thread takes it. So the split cannot change a bit. 150 + 1
-  // columns is prime: fast eliminates two interface columns of that grid (the capacitance path),
-  // whose two passes go through the threads too.
+  // fast: one thread eliminates every mode with the same operations on the same numbers, and
+  // the rows are transformed alike whichever thread takes them. dst: each row and each strip of
+  // columns is transformed alike whichever thread takes it. So the split cannot change a bit.
+  // 150 + 1 columns is prime: fast eliminates the last column of that grid (the capacitance
+  // path), whose two passes go through the threads too.
   for (const auto& [name, make] : structured())
     for (auto [rows, cols] : {std::pair{127, 131}, {70, 150}, {33, 255}}) {
       const GridStencil s = alpha_stencil(rows, cols, -0.1);
