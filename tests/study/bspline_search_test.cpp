@@ -46,6 +46,7 @@ TEST_CASE("search_bspline_alpha: finds the minimum of a fine scan; twist has its
     INFO(name << ": alpha " << *s.parameter << ", status " << to_string(s.status));
     CHECK(s.value <= best * (1 + 1e-12));
     CHECK(s.value == Approx(bspline_alpha_objective(b, o, *s.parameter, *solver)->value).epsilon(1e-12));
+    CHECK(s.solves == 2 * s.evaluations);  // inside [-1/4, 0]: the net and its derivative, no estimate
   }
   const AlphaSearchSummary twist = search_bspline_alpha(b, objective_named("twist"), "eigen-lu");
   REQUIRE(twist.parameter);
@@ -109,6 +110,9 @@ TEST_CASE("search_bspline_alpha: a near-singular alpha is a failed evaluation an
   const AlphaSearchSummary s = search_bspline_alpha(b, objective_named("thin_plate"), "eigen-lu", options);
   INFO("singular alpha " << star << ": " << s.brief_report());
   test::check_refused_near_singular(s, options, star);
+  // every evaluation above 0 estimates its ratio first (three solves at least), and says so
+  CHECK(s.solves >= 3 * s.evaluations);
+  CHECK(s.solves > 2 * s.evaluations);
   // the objective names the ratio
   auto solver = solvers::make_solver("eigen-lu");
   solvers::SolveStatus status = solvers::SolveStatus::kSuccess;
@@ -137,4 +141,17 @@ TEST_CASE("search_bspline_alpha: failures away from the optimum are named, and t
   CHECK(s.first_failure == solvers::SolveStatus::kSingular);
   CHECK(s.message.find("1 evaluation(s) failed at") != std::string::npos);
   CHECK(s.message.find("away from the optimum") != std::string::npos);
+}
+
+TEST_CASE("search_bspline_alpha: the scan ends on the upper bound exactly", "[study][bspline]") {
+  // −0.25 + (−0.085 + 0.25)·10/10 = −0.08500000000000002 in doubles: the last scan point was an
+  // ulp off the bound (the Bézier search takes the bound itself)
+  const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 8, 2, 6, 9));
+  AlphaSearchOptions options = default_bspline_search_options();
+  options.upper = -0.085;
+  options.scan_points = 11;
+  const AlphaSearchSummary s = search_bspline_alpha(b, objective_named("thin_plate"), "eigen-lu", options);
+  REQUIRE(s.scan.size() == 11);
+  CHECK(s.scan.front().first == options.lower);
+  CHECK(s.scan.back().first == options.upper);
 }

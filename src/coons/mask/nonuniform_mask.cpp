@@ -122,7 +122,7 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
       out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;  // not solved: that of X = 0, as solve() says
       return out;
     }
-    if (auto refused = near_singular_refusal(system.A, solver, refused_ratio)) {
+    if (auto refused = near_singular_refusal(system.A, solver, refused_ratio, &out.solves)) {
       out.summary = std::move(*refused);
       if (out.summary.status == solvers::SolveStatus::kSingular)
         out.summary.relative_residual = system.B.isZero(0) ? 0 : 1;  // of X = 0 (near_singular_summary)
@@ -132,6 +132,7 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
   } else {
     out.summary = solver.compute_and_solve(op, system.B, X);
   }
+  ++out.solves;
   if (!out.summary.ok()) return out;
   const auto fill = [cols](ControlNet& net, const Eigen::MatrixX3d& values) {
     for (Eigen::Index k = 0; k < values.rows(); ++k) net.at(1 + int(k / cols), 1 + int(k % cols)) = values.row(k);
@@ -141,6 +142,7 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
     const Eigen::MatrixX3d rhs = system.dB - system.dA * X;
     Eigen::MatrixX3d dX;
     const solvers::SolveSummary second = solver.solve(rhs, dX);
+    ++out.solves;
     if (second.ok()) fill(out.derivative, dX);
   }
   return out;

@@ -53,6 +53,9 @@ struct NonUniformSolveResult {
   //! dnet/dα (zero frame), filled only when asked for and the solve succeeded (one more solve
   //! with the same factorisation).
   ControlNet derivative;
+  //! Linear solves made with the factorisation: the near-singular estimate's (outside
+  //! [−1/4, 0]), the net's and the derivative's.
+  int solves = 0;
 };
 
 //! Solves L_α b = 0 for the interior with `solver` (any backend that takes an assembled matrix).

@@ -35,11 +35,12 @@ bool bspline_objective_supported(const Objective& objective, std::string* why) {
 
 std::optional<BSplineObjectiveValue> bspline_alpha_objective(const BSplineBoundary& b, const Objective& objective,
                                                              double alpha, solvers::LinearSolver& solver,
-                                                             solvers::SolveStatus* status) {
+                                                             solvers::SolveStatus* status, int* solves) {
   // outside [−1/4, 0] a near-singular system is a failed evaluation, never a value (near_singular.h)
   const NonUniformSolveResult r =
       solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, solver, true, kNearSingularEigenvalueRatio);
   if (status) *status = r.summary.status;
+  if (solves) *solves = r.solves;
   if (!r.summary.ok()) return std::nullopt;
   const BSplineSurface s = bspline_surface_on(b, r.net);
   std::vector<BSplineEnergyTerm> terms;
@@ -71,9 +72,10 @@ class Evaluator {
   Point operator()(double alpha) {
     auto backend = solvers::make_solver(solver_, options_);
     solvers::SolveStatus status = solvers::SolveStatus::kFailure;
-    Point p{alpha, backend ? bspline_alpha_objective(b_, objective_, alpha, *backend, &status) : std::nullopt};
+    int solves = 0;
+    Point p{alpha, backend ? bspline_alpha_objective(b_, objective_, alpha, *backend, &status, &solves) : std::nullopt};
     ++summary_.evaluations;
-    summary_.solves += 2;
+    summary_.solves += solves;
     if (!p.f && std::none_of(log_.begin(), log_.end(), [](const auto& e) { return !e.second; }))
       summary_.first_failure = status;
     log_.emplace_back(alpha, bool(p.f));
@@ -141,7 +143,8 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
   std::vector<Point> scan;
   const int n = std::max(options.scan_points, 2);
   for (int k = 0; k < n; ++k) {
-    const double alpha = options.lower + (options.upper - options.lower) * k / (n - 1);
+    // the last point is the upper bound itself (lower + width·k/(n−1) can miss it by an ulp)
+    const double alpha = k + 1 == n ? options.upper : options.lower + (options.upper - options.lower) * k / (n - 1);
     scan.push_back(eval(alpha));
     s.scan.emplace_back(alpha, scan.back().f ? scan.back().f->value : HUGE_VAL);
   }

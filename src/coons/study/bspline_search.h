@@ -1,5 +1,6 @@
 // The α search on a B-spline boundary (docs/math.md §10): the non-uniform mask family, each α one
-// factorisation and two solves (the net N and dN/dα, nonuniform_mask.h), the objective's exact
+// factorisation and two solves (the net N and dN/dα, nonuniform_mask.h; outside [−1/4, 0] first
+// those of the near-singular estimate, near_singular.h, all counted in `solves`), the objective's exact
 // value and derivative from the B-spline energies (bspline_energy.h) and the discrete energies of
 // the net. A coarse scan over the bounds, then the root of the derivative inside the bracket of
 // the best scan point (Illinois regula falsi, bisection safeguard). Flat objectives, optima on a
@@ -19,14 +20,15 @@
 namespace coons {
 
 //! The objective's value and dvalue/dα at α, or nullopt when the solve failed (`status` then
-//! holds why).
+//! holds why); `solves` gets the linear solves made (NonUniformSolveResult::solves).
 struct BSplineObjectiveValue {
   double value = 0, derivative = 0;
 };
 std::optional<BSplineObjectiveValue> bspline_alpha_objective(const BSplineBoundary& compatible,
                                                              const Objective& objective, double alpha,
                                                              solvers::LinearSolver& solver,
-                                                             solvers::SolveStatus* status = nullptr);
+                                                             solvers::SolveStatus* status = nullptr,
+                                                             int* solves = nullptr);
 
 //! Objectives the B-spline search takes: energies and discrete energies (a target term is not:
 //! the targets compare Bézier nets). False with the reason in *why otherwise.
