@@ -96,13 +96,13 @@ bool Capacitance::factor(const GridStencil& s, const std::vector<double>& y) {
   return (largest / smallest) <= kMaxNarrowingLoss * (real_largest / real_smallest);
 }
 
-void Capacitance::interface_values(const std::vector<double>& V, const std::vector<double>& bI,
-                                   std::vector<double>& xI) {
+void Capacitance::interface_values(const std::vector<double>& V, const std::vector<double>& b_interface,
+                                   std::vector<double>& x_interface) {
   const std::size_t k = std::size_t(k_), R = std::size_t(R_);
   std::vector<double> column(R), v_hat(R), hat(R * k);
   sine_rows_.apply(V.data(), v_hat.data(), 1.0);
   for (std::size_t m = 0; m < k; ++m) {
-    for (std::size_t i = 0; i < R; ++i) column[i] = bI[i * k + m];
+    for (std::size_t i = 0; i < R; ++i) column[i] = b_interface[i * k + m];
     sine_rows_.apply(column.data(), column.data(), 1.0);
     for (std::size_t p = 0; p < R; ++p) hat[p * k + m] = column[p];
   }
@@ -115,20 +115,20 @@ void Capacitance::interface_values(const std::vector<double>& V, const std::vect
     x[k - 1] /= m[k - 1];
     for (std::size_t j = k - 1; j-- > 0;) x[j] = (x[j] - c1 * x[j + 1]) / m[j];
   }
-  xI.assign(R * k, 0.0);
+  x_interface.assign(R * k, 0.0);
   for (std::size_t m = 0; m < k; ++m) {
     for (std::size_t p = 0; p < R; ++p) column[p] = hat[p * k + m];
     sine_rows_.apply(column.data(), column.data(), 2.0 / (R_ + 1));
-    for (std::size_t i = 0; i < R; ++i) xI[i * k + m] = column[i];
+    for (std::size_t i = 0; i < R; ++i) x_interface[i * k + m] = column[i];
   }
 }
 
-void Capacitance::coupling(const std::vector<double>& xI, std::vector<double>& delta) const {
+void Capacitance::coupling(const std::vector<double>& x_interface, std::vector<double>& delta) const {
   const std::size_t k = std::size_t(k_), R = std::size_t(R_);
   delta.assign(R, 0.0);
   for (std::size_t i = 0; i < R; ++i) {
-    const double up = i > 0 ? xI[(i - 1) * k] : 0.0, down = i + 1 < R ? xI[(i + 1) * k] : 0.0;
-    delta[i] = edge_j_ * xI[i * k] + diag_ * (up + down);
+    const double up = i > 0 ? x_interface[(i - 1) * k] : 0.0, down = i + 1 < R ? x_interface[(i + 1) * k] : 0.0;
+    delta[i] = edge_j_ * x_interface[i * k] + diag_ * (up + down);
   }
 }
 

@@ -55,10 +55,11 @@ class Capacitance {
   bool factor(const GridStencil& s, const std::vector<double>& y);
   //! The interface values x_I (rows × k, row-major) from V (rows: column L−1 of the fast region's
   //! solution with a zero interface) and b_I (rows × k, row-major: the right-hand side there).
-  void interface_values(const std::vector<double>& V, const std::vector<double>& bI, std::vector<double>& xI);
+  void interface_values(const std::vector<double>& V, const std::vector<double>& b_interface,
+                        std::vector<double>& x_interface);
   //! δ(i) = e_j·x_I(i, 0) + d·(x_I(i−1, 0) + x_I(i+1, 0)): what the interface contributes to the
   //! equation of the point (i, L−1); the fast region's right-hand side there is b − δ.
-  void coupling(const std::vector<double>& xI, std::vector<double>& delta) const;
+  void coupling(const std::vector<double>& x_interface, std::vector<double>& delta) const;
   [[nodiscard]] int columns() const { return k_; }
 
  private:

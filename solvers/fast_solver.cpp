@@ -320,7 +320,7 @@ class FastSolver : public detail::StructuredSolver {
     const std::size_t C = std::size_t(C_), L = std::size_t(L_);
     const double scale = 2.0 / (L_ + 1);
     const std::array<double*, 3> rows{X.col(0).data(), X.col(1).data(), X.col(2).data()};
-    std::array<std::vector<double>, 3> xI;
+    std::array<std::vector<double>, 3> x_interface;
     if (interface_ > 0) {
       std::array<std::vector<double>, 3> V;
       for (auto& v : V) v.assign(std::size_t(R_), 0.0);
@@ -329,8 +329,8 @@ class FastSolver : public detail::StructuredSolver {
       });
       std::vector<double> delta;
       for (std::size_t c = 0; c < 3; ++c) {
-        capacitance_.interface_values(V[c], interface_rhs[c], xI[c]);
-        capacitance_.coupling(xI[c], delta);
+        capacitance_.interface_values(V[c], interface_rhs[c], x_interface[c]);
+        capacitance_.coupling(x_interface[c], delta);
         RowForm& f = forms[c];
         for (std::size_t i = 0; i < std::size_t(R_); ++i) {
           const int slot = f.slot[i];
@@ -350,8 +350,8 @@ class FastSolver : public detail::StructuredSolver {
       const std::size_t k = std::size_t(interface_);
       for (std::size_t c = 0; c < 3; ++c)
         for (std::size_t i = 0; i < std::size_t(R_); ++i)
-          std::copy(xI[c].begin() + std::ptrdiff_t(i * k), xI[c].begin() + std::ptrdiff_t((i + 1) * k),
-                    X.col(Eigen::Index(c)).data() + i * C + L);
+          std::copy(x_interface[c].begin() + std::ptrdiff_t(i * k),
+                    x_interface[c].begin() + std::ptrdiff_t((i + 1) * k), X.col(Eigen::Index(c)).data() + i * C + L);
     }
   }
 
