@@ -183,7 +183,7 @@ class FastSolver : public detail::StructuredSolver {
                 Finish&& finish) {
     const int T = threads_;
     if (T == 1) {
-      solve_modes(forms, rows, stride, 0, L_, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
+      solve_modes(forms, rows, stride, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
       detail::stream_fence();  // the non-temporal stores of finish, as on the threaded path
       return;
     }
@@ -199,7 +199,7 @@ class FastSolver : public detail::StructuredSolver {
       const int t = thread_index();
       if (t == 0) {
         int next = 0;
-        solve_modes(forms, rows, stride, 0, L_, [&](int i, int c, const double* xh) {
+        solve_modes(forms, rows, stride, [&](int i, int c, const double* xh) {
           if (next - claimed.load(std::memory_order_relaxed) >= backlog) {
             finish(0, i, c, xh);  // the others have enough to do: this row, still in cache, here
             return;
@@ -226,23 +226,23 @@ class FastSolver : public detail::StructuredSolver {
     }
   }
 
-  // The modes [q0, q0 + n) of every row: forward elimination and back substitution, handing each
-  // row of x̂ (those modes, from q0) to done(i, c, x̂) when its block is substituted. Only the
-  // modes [q0, q0 + n) of the pivots, the blocks, running_ and the saved rows are touched.
+  // Every mode of every row: forward elimination and back substitution, handing each row of x̂ to
+  // done(i, c, x̂) when its block is substituted (one thread: pipeline() shares out the rest).
   template <class Done>
-  void solve_modes(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride, int q0,
-                   int n, Done&& done) {
+  void solve_modes(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride,
+                   Done&& done) {
+    const int n = L_;
     const std::size_t L = std::size_t(L_);
     const int K = block_rows_;
     const int last_block = (R_ - 1) / K;
-    const double* o = modes_.off() + q0;
-    const double* l = modes_.multipliers() + q0;
-    const double* r = modes_.pivots() + q0;
-    auto saved = [&](int c, int i) { return rows[std::size_t(c)] + std::size_t(i) * stride + std::size_t(q0); };
-    auto slot_row = [&](int c, int s) { return block_[std::size_t(c)].data() + std::size_t(s) * L + std::size_t(q0); };
+    const double* o = modes_.off();
+    const double* l = modes_.multipliers();
+    const double* r = modes_.pivots();
+    auto saved = [&](int c, int i) { return rows[std::size_t(c)] + std::size_t(i) * stride; };
+    auto slot_row = [&](int c, int s) { return block_[std::size_t(c)].data() + std::size_t(s) * L; };
     int at = -1;  // the row held by the running pivot row (in these modes)
     auto pivots_for = [&](int i) {
-      if (at != i) modes_.load(at, i, q0, q0 + n);
+      if (at != i) modes_.load(at, i);
       at = i;
     };
     // Row i of the forward elimination: y_i = B̂_i − l_i ∘ y_{i−1}, l_i = o ∘ r_{i−1}.
@@ -250,10 +250,10 @@ class FastSolver : public detail::StructuredSolver {
       const RowForm& f = forms[std::size_t(c)];
       const int slot = f.slot[std::size_t(i)];
       if (slot >= 0)
-        detail::eliminate_dense(f.values.data() + std::size_t(slot) * L + std::size_t(q0), l, p, y, n);
+        detail::eliminate_dense(f.values.data() + std::size_t(slot) * L, l, p, y, n);
       else
-        detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data() + q0,
-                                 sine_e1_.data() + q0, l, p, y, n);
+        detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data(), sine_e1_.data(), l,
+                                 p, y, n);
     };
     // Row i of all three columns: one pass over s, t and l when every column's row is sparse
     // (rows of mask data but two), else column by column.
@@ -264,8 +264,8 @@ class FastSolver : public detail::StructuredSolver {
         const std::array<double, 3> e{forms[0].last[k], forms[1].last[k], forms[2].last[k]};
         const std::array<double*, 3> x{target(0), target(1), target(2)};
         const std::array<const double*, 3> p{previous(0), previous(1), previous(2)};
-        detail::eliminate_sparse3(a.data(), e.data(), sine_e0_.data() + q0, sine_e1_.data() + q0, l,
-                                  i > 0 ? p.data() : nullptr, x.data(), n);
+        detail::eliminate_sparse3(a.data(), e.data(), sine_e0_.data(), sine_e1_.data(), l, i > 0 ? p.data() : nullptr,
+                                  x.data(), n);
         return;
       }
       for (int c = 0; c < 3; ++c) eliminate(i, c, previous(c), target(c));
@@ -281,7 +281,7 @@ class FastSolver : public detail::StructuredSolver {
     }
     // Back substitution, x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i in place of y_i, block by block from the
     // last one (whose rows are still in the buffer); running_ holds x̂ of the block below.
-    for (auto& w : running_) std::fill(w.data() + q0, w.data() + q0 + n, 0.0);
+    for (auto& w : running_) std::fill(w.data(), w.data() + n, 0.0);
     for (int b = last_block; b >= 0; --b) {
       const int first = b * K, end = std::min(R_, first + K);
       if (b != last_block)
@@ -300,11 +300,11 @@ class FastSolver : public detail::StructuredSolver {
         std::array<const double*, 3> next{};
         for (int c = 0; c < 3; ++c) {
           y[std::size_t(c)] = slot_row(c, i - first);
-          next[std::size_t(c)] = i + 1 < end ? slot_row(c, i + 1 - first) : running_[std::size_t(c)].data() + q0;
+          next[std::size_t(c)] = i + 1 < end ? slot_row(c, i + 1 - first) : running_[std::size_t(c)].data();
         }
         detail::back_substitute_in_place3(y.data(), o, r, next.data(), n);
       }
-      for (int c = 0; c < 3; ++c) std::copy(slot_row(c, 0), slot_row(c, 0) + n, running_[std::size_t(c)].data() + q0);
+      for (int c = 0; c < 3; ++c) std::copy(slot_row(c, 0), slot_row(c, 0) + n, running_[std::size_t(c)].data());
       for (int i = end - 1; i >= first; --i)
         for (int c = 0; c < 3; ++c) done(i, c, static_cast<const double*>(slot_row(c, i - first)));
     }
