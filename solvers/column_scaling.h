@@ -21,14 +21,17 @@ namespace coons::solvers {
 //! solved as they are: their squared norms, times a tolerance², stay far from underflow and overflow.
 constexpr int kSafeExponent = 128;
 
-//! e with max|v| = m·2^e, m in [1/2, 1); 0 for a zero vector or one with a NaN or infinity.
-inline int magnitude_exponent(const Eigen::Ref<const Eigen::VectorXd>& v) {
-  if (v.size() == 0) return 0;
-  const double largest = v.cwiseAbs().maxCoeff();
+//! e with largest = m·2^e, m in [1/2, 1); 0 for zero, a NaN or an infinity.
+inline int exponent_of(double largest) {
   if (!(largest > 0) || !std::isfinite(largest)) return 0;
   int e = 0;
   std::frexp(largest, &e);
   return e;
+}
+
+//! e with max|v| = m·2^e, m in [1/2, 1); 0 for a zero vector or one with a NaN or infinity.
+inline int magnitude_exponent(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  return v.size() == 0 ? 0 : exponent_of(v.cwiseAbs().maxCoeff());
 }
 
 //! v ← v·2^e, entry by entry, exactly (rounded as std::ldexp rounds: only subnormal results lose bits).
@@ -46,12 +49,16 @@ inline void scale_by_power_of_two(Eigen::Ref<Eigen::VectorXd> v, int e) {
 //! 2^kSafeExponent), 0 for the others.
 using ColumnExponents = std::array<int, 3>;
 
+//! The exponent by which the common solve path scales a column whose largest magnitude is
+//! `largest` (a NaN or an infinity: 0).
+inline int scaling_exponent(double largest) {
+  const int e = exponent_of(largest);
+  return std::abs(e) > kSafeExponent ? e : 0;
+}
+
 inline ColumnExponents rhs_exponents(const Eigen::MatrixX3d& B) {
   ColumnExponents e{};
-  for (int k = 0; k < 3; ++k) {
-    const int ek = magnitude_exponent(B.col(k));
-    e[std::size_t(k)] = std::abs(ek) > kSafeExponent ? ek : 0;
-  }
+  for (int k = 0; k < 3; ++k) e[std::size_t(k)] = B.rows() == 0 ? 0 : scaling_exponent(B.col(k).cwiseAbs().maxCoeff());
   return e;
 }
 

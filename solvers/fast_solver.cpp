@@ -129,25 +129,57 @@ class FastSolver : public detail::StructuredSolver {
       return inner.status;
     }
     X.resize(B.rows(), 3);
-    std::array<RowForm, 3> forms;
-    // (Serial: a parallel region of its own would cost a second wait for a descheduled thread on
-    // a busy machine, more than the scan itself.)
-    // (The transform path splits only the columns it transforms; the interface is read apart.)
-    const int width = path_ == Path::kKronecker ? C_ : L_;
-    for (int c = 0; c < 3; ++c) forms[std::size_t(c)] = detail::split_rows(B.col(c).data(), R_, width, C_);
+    Scan scanned = scanned_.source == B.data() ? std::move(scanned_) : scan(B);
+    scanned_.source = nullptr;
     if (path_ == Path::kKronecker) {
-      for (int c = 0; c < 3; ++c) kronecker_.solve(forms[std::size_t(c)], B.col(c).data(), X.col(c).data());
+      for (int c = 0; c < 3; ++c) kronecker_.solve(scanned.forms[std::size_t(c)], B.col(c).data(), X.col(c).data());
     } else {
-      for (auto& f : forms) transform_rows(f);
-      std::array<std::vector<double>, 3> interface_rhs;
-      for (int c = 0; c < 3; ++c) interface_rhs[std::size_t(c)] = interface_part(B.col(c).data());
-      solve_transform(std::move(forms), interface_rhs, X);
+      for (auto& f : scanned.forms) transform_rows(f);
+      solve_transform(std::move(scanned.forms), scanned.interface, X);
     }
     return SolveStatus::kSuccess;
   }
 
+  // The transform and Kronecker paths read every value of B in their scan (scan()): the largest
+  // magnitude of each column comes from that pass, which do_solve() then takes over, instead of a
+  // pass of its own before it.
+  ColumnExponents rhs_scaling(const Eigen::MatrixX3d& B) override {
+    scanned_.source = nullptr;
+    if (path_ == Path::kDst) return LinearSolver::rhs_scaling(B);
+    scanned_ = scan(B);
+    ColumnExponents e{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double forms = detail::largest_magnitude(scanned_.forms[c]);
+      const double rest = detail::largest_magnitude(scanned_.interface[c].data(), scanned_.interface[c].size());
+      e[c] = scaling_exponent(std::isnan(forms) || std::isnan(rest) ? forms + rest : std::max(forms, rest));
+    }
+    scanned_.source = B.data();
+    return e;
+  }
+
  private:
   enum class Path { kKronecker, kTransform, kDst };
+
+  // A right-hand side split by rows (split_rows; on the transform path the first L columns, and
+  // its interface columns apart), not yet transformed; source: the B it was read from.
+  struct Scan {
+    const double* source = nullptr;
+    std::array<RowForm, 3> forms;
+    std::array<std::vector<double>, 3> interface;
+  };
+  // (Serial: a parallel region of its own would cost a second wait for a descheduled thread on a
+  // busy machine, more than the scan itself.)
+  [[nodiscard]] Scan scan(const Eigen::MatrixX3d& B) const {
+    Scan s;
+    const int width = path_ == Path::kKronecker ? C_ : L_;
+    for (int c = 0; c < 3; ++c) {
+      const double* b = B.col(c).data();
+      s.forms[std::size_t(c)] = detail::split_rows(b, R_, width, C_);
+      if (path_ == Path::kTransform) s.interface[std::size_t(c)] = interface_part(b);
+    }
+    return s;
+  }
+  Scan scanned_;  // the scan of rhs_scaling() for the do_solve() that follows
   // Dense rows of a form of width L → their sine transforms.
   void transform_rows(RowForm& f) {
     const std::size_t L = std::size_t(L_);

@@ -130,11 +130,11 @@ void return_zero_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveS
 }
 
 // X = A⁻¹B by `solve` (a backend's do_solve), with each column of B whose largest magnitude is far
-// from 1 scaled by a power of two to one in [1/2, 1) and X scaled back: exact, and no backend's
-// squared norms underflow or overflow (column_scaling.h). A zero column stays zero.
+// from 1 scaled by a power of two to one in [1/2, 1) (e: rhs_exponents(B)) and X scaled back:
+// exact, and no backend's squared norms underflow or overflow (column_scaling.h). A zero column
+// stays zero.
 template <class Solve>
-SolveStatus solve_scaled(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, Solve&& solve) {
-  const ColumnExponents e = rhs_exponents(B);
+SolveStatus solve_scaled(const ColumnExponents& e, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, Solve&& solve) {
   if (is_identity(e)) return solve(B, X);
   const SolveStatus status = solve(scaled_columns(B, e, -1), X);
   if (X.rows() == B.rows()) X = scaled_columns(std::move(X), e, +1);
@@ -188,8 +188,9 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
   summary_.message.clear();
   summary_.relative_residual = 0;
   solve_start_ = std::chrono::steady_clock::now();
-  summary_.status =
-      solve_scaled(B, X, [&](const Eigen::MatrixX3d& Bs, Eigen::MatrixX3d& Xs) { return do_solve(Bs, Xs, summary_); });
+  summary_.status = solve_scaled(rhs_scaling(B), B, X, [&](const Eigen::MatrixX3d& Bs, Eigen::MatrixX3d& Xs) {
+    return do_solve(Bs, Xs, summary_);
+  });
   summary_.solve_seconds = seconds_since(solve_start_);
   judge_solution(B, X);
   return summary_;
@@ -226,8 +227,9 @@ void LinearSolver::judge_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X
     const Eigen::MatrixX3d R = Bs - AX;
     Eigen::MatrixX3d D;
     SolveSummary correction = summary_;
-    const SolveStatus status = solve_scaled(
-        R, D, [&](const Eigen::MatrixX3d& Rs, Eigen::MatrixX3d& Ds) { return do_solve(Rs, Ds, correction); });
+    const SolveStatus status =
+        solve_scaled(rhs_scaling(R), R, D,
+                     [&](const Eigen::MatrixX3d& Rs, Eigen::MatrixX3d& Ds) { return do_solve(Rs, Ds, correction); });
     if (status != SolveStatus::kSuccess || !D.allFinite()) break;
     summary_.iterations += correction.iterations;
     const Eigen::MatrixX3d refined = Xs + D;
@@ -322,7 +324,8 @@ Eigen::MatrixX3d combine_rhs(const std::vector<Eigen::MatrixX3d>& basis, const s
 
 SolveStatus LinearSolver::do_sweep_solve(const std::vector<Eigen::MatrixX3d>& basis, const std::vector<double>& weights,
                                          Eigen::MatrixX3d& X, SolveSummary& summary) {
-  return solve_scaled(combine_rhs(basis, weights, op_.size()), X,
+  const Eigen::MatrixX3d B = combine_rhs(basis, weights, op_.size());
+  return solve_scaled(rhs_exponents(B), B, X,
                       [&](const Eigen::MatrixX3d& Bs, Eigen::MatrixX3d& Xs) { return do_solve(Bs, Xs, summary); });
 }
 

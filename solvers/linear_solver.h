@@ -17,6 +17,7 @@
 #include <string>
 #include <vector>
 
+#include "column_scaling.h"
 #include "grid_stencil.h"
 
 namespace coons::solvers {
@@ -156,6 +157,11 @@ class LinearSolver {
   //! Fills X; sets iterations (and may set the status). Iterative backends end with
   //! finish_iteration(), which gives every one the same verdict and message.
   virtual SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) = 0;
+  //! The exponents by which solve() scales the columns of B before do_solve(B) (column_scaling.h);
+  //! the default reads B once (rhs_exponents). A backend that reads all of B anyway may override
+  //! it to find them in that pass and keep what it read for the do_solve() on this B that comes
+  //! next (called just before it, with B itself when every exponent is 0).
+  virtual ColumnExponents rhs_scaling(const Eigen::MatrixX3d& B) { return rhs_exponents(B); }
 
   //! X for a factorized sweep member whose right-hand side is Σ_r weights[r]·basis[r] (weights
   //! cut to the basis size). The default forms it and calls do_solve(); structured backends

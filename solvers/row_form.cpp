@@ -1,7 +1,10 @@
 #include "row_form.h"
 
+#include <algorithm>
+#include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <limits>
 
 #include "vector_clones.h"
 
@@ -45,6 +48,25 @@ RowForm split_rows(const double* b, int R, int C, int stride) {
     }
   }
   return f;
+}
+
+double largest_magnitude(const double* v, std::size_t n) {
+  double m = 0, z = 0;
+  for (std::size_t k = 0; k < n; ++k) {
+    m = std::max(m, std::abs(v[k]));
+    z += 0 * v[k];  // 0 unless v[k] is a NaN or an infinity
+  }
+  return z == 0 ? m : std::numeric_limits<double>::quiet_NaN();
+}
+
+double largest_magnitude(const RowForm& f) {
+  double m = 0;
+  for (const std::vector<double>* v : {&f.first, &f.last, &f.values}) {
+    const double part = largest_magnitude(v->data(), v->size());
+    if (std::isnan(part)) return part;
+    m = std::max(m, part);
+  }
+  return m;
 }
 
 RowForm combine(const std::vector<const RowForm*>& forms, const std::vector<double>& w, int R,

@@ -5,6 +5,7 @@
 // Sizes: 2·rows end values + cols per full row.
 #pragma once
 
+#include <cstddef>
 #include <vector>
 
 namespace coons::solvers::detail {
@@ -24,6 +25,12 @@ bool has_interior(const double* row, int C);
 //! that the first cols columns of a wider grid can be split).
 RowForm split_rows(const double* b, int R, int C, int stride);
 inline RowForm split_rows(const double* b, int R, int C) { return split_rows(b, R, C, C); }
+
+//! max |v| over v[0..n); NaN when one of them is a NaN or an infinity.
+double largest_magnitude(const double* v, std::size_t n);
+//! The same over the values of a form that has not been transformed (its ends and full rows:
+//! every value of the rows it was split from).
+double largest_magnitude(const RowForm& f);
 
 //! Σ_r w_r · forms[r] (same rows and width). A sparse row expands as first·e0 + last·e1, where
 //! e0, e1 are the unit vectors (physical forms) or their sine transforms (transformed forms).

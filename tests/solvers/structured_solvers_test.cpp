@@ -12,6 +12,7 @@
 #include <cmath>
 #include <cstring>
 #include <functional>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -252,6 +253,36 @@ TEST_CASE("fast: the Kronecker path equals the transform path", "[solvers]") {
       check_against_reference("fast", make_fast_solver, s, B);
     }
   }
+}
+
+TEST_CASE("fast: one solver object scales each right-hand side by its own largest magnitude, on every path",
+          "[solvers]") {
+  // fast finds the scaling of B (solvers/column_scaling.h) in the scan its solve needs and keeps
+  // that scan for the solve: each B must get its own. 12 × 30: cols + 1 = 31 is prime, so the
+  // transform path has interface columns; 12 × 15: none; α = −1/4: the Kronecker path. Scaling by
+  // 2^e is exact here, so X(2^e B) = 2^e X(B) bit for bit; a NaN fails the solve.
+  for (const GridStencil& s : {alpha_stencil(12, 30, -0.1), alpha_stencil(12, 15, -0.1), alpha_stencil(12, 30, -0.25)})
+    for (const Eigen::MatrixX3d& B : {ring_rhs(s, 80), dense_rhs(s, 81)}) {
+      auto solver = make_fast_solver({});
+      Eigen::MatrixX3d X, Xe;
+      REQUIRE(solver->compute_and_solve(stencil_operator(s), B, X).ok());
+      for (const int e : {-600, 500, 0, 300}) {
+        const Eigen::MatrixX3d Be = B.unaryExpr([e](double v) { return std::ldexp(v, e); });
+        const SolveSummary summary = solver->solve(Be, Xe);
+        INFO(s.rows << "x" << s.cols << ", alpha " << -s.diag << ", B * 2^" << e << ": " << summary.brief_report());
+        REQUIRE(summary.ok());
+        CHECK(summary.relative_residual < 1e-12);
+        CHECK((Xe.unaryExpr([e](double v) { return std::ldexp(v, -e); }) - X).cwiseAbs().maxCoeff() == 0);
+      }
+      Eigen::MatrixX3d Bnan = B;
+      Bnan(Bnan.rows() - 1, 1) = std::numeric_limits<double>::quiet_NaN();
+      const SolveSummary failed = solver->solve(Bnan, Xe);
+      INFO(failed.brief_report());
+      CHECK(!failed.ok());
+      CHECK(std::isfinite(failed.relative_residual));
+      REQUIRE(solver->solve(B, Xe).ok());
+      CHECK((Xe - X).cwiseAbs().maxCoeff() == 0);
+    }
 }
 
 TEST_CASE("structured solvers: a sweep equals separate solves", "[solvers]") {
