@@ -5,8 +5,9 @@
 // length, the other columns eliminated by their Schur complement when cols + 1 is not one
 // (capacitance.h); and the dst solver where elimination without pivoting would be unsafe. Right-hand sides are read row
 // by row (row_form.h): only full rows are transformed. This file holds the orchestration and the pipeline of the
-// transform path, which SolverOptions::threads runs on one thread that eliminates and others that take the inverse
-// transforms of the finished rows (pipeline()), with OpenMP: bit for bit the one-thread result.
+// transform path, which SolverOptions::threads runs with OpenMP: the threads eliminate forward side by side, then one
+// substitutes back and the others take the inverse transforms of the finished rows (pipeline()): bit for bit the
+// one-thread result.
 // Sizes: #interior by 3 in and out; O(L) work arrays, 3 blocks of K·L for the pipeline.
 // Based on: R. W. Hockney, A fast direct solution of Poisson's equation using Fourier analysis,
 // J. ACM 12 (1965).
@@ -18,6 +19,10 @@
 #include <string>
 #include <thread>
 #include <vector>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #include "capacitance.h"
 #include "kronecker_solver.h"
@@ -95,7 +100,10 @@ class FastSolver : public detail::StructuredSolver {
     for (auto& w : running_) w = AlignedBuffer(L);
     // Blocks of the back substitution: 3·K rows of L doubles, to stay in the L2 cache.
     block_rows_ = std::max(2, std::min(R_, std::clamp(16384 / L_, 4, 32)));
-    for (auto& b : block_) b = AlignedBuffer(std::size_t(block_rows_) * L);
+    // (Each row of a block starts on a cache line: at L = 1023 the row kernels over unaligned rows
+    // took 1.7 times as long, measured 2026-11-24.)
+    block_stride_ = (L + 7) / 8 * 8;
+    for (auto& b : block_) b = AlignedBuffer(std::size_t(block_rows_) * block_stride_);
     dst_.reset();
     return SolveStatus::kSuccess;
   }
@@ -203,19 +211,25 @@ class FastSolver : public detail::StructuredSolver {
   // the last row of each block of K rows (in rows[c] + i·stride: X itself) and recomputes a block in cache before
   // substituting back through it: two passes over memory fewer for a little more arithmetic. One thread hands each row
   // to finish as soon as its block is done (so that the inverse transform runs while the row is in cache).
-  // Several threads: one (the producer) eliminates every mode and publishes each finished row of x̂ (copied to rows,
-  // in the order the blocks finish); the others finish published rows as they come, and the producer joins them when
-  // it is done. While a block's worth of published rows per other thread waits, the producer finishes its new rows
-  // itself, from cache. The eliminations cost about half what the transforms do, so at N = 1023 on 2 threads the
-  // producer finished about a third of the rows, and the pipeline took 6.6–7.5 ms against 8.4–9.5 ms when the
-  // threads split the modes and met at a barrier before the transforms (measured 2026-11-24, a scratch driver).
-  // Every row is eliminated by one thread and finished alike whoever takes it: bit for bit the one-thread result.
+  // Several threads: they first run the forward elimination side by side, each on its own range of modes (one thread
+  // did it alone before, 0.9 of the 7 ms of a solve at N = 1023, the others waiting; side by side 0.7 ms). Then one
+  // (the producer) substitutes back through every mode and publishes each finished row of x̂ (copied to rows, in the
+  // order the blocks finish); the others finish published rows as they come, and the producer joins them when it is
+  // done. While a block's worth of published rows per other thread waits, the producer finishes its new rows itself,
+  // from cache. The back substitution costs about half what the transforms do, so at N = 1023 on 2 threads the
+  // producer finished about a third of the rows. Measured 2026-11-24 with scratch drivers, 2 threads, N = 1023: this
+  // pipeline 6.3–6.5 ms per solve; the modes split for the back substitution too, the threads in lock step with a
+  // barrier per block, 7.1 ms; rows published through a ring buffer instead of X, 6.7 ms and some solves 14 ms; the
+  // threads splitting the modes and meeting at a barrier before all the transforms, 8.4–9.5 ms. Each mode is
+  // eliminated as on one thread (elementwise across modes) and every row is finished alike whoever takes it: bit for
+  // bit the one-thread result.
   template <class Finish>
   void pipeline(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride,
                 Finish&& finish) {
     const int T = threads_;
     if (T == 1) {
-      solve_modes(forms, rows, stride, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
+      eliminate_forward(forms, rows, stride, 0, L_);
+      substitute_back(forms, rows, stride, [&](int i, int c, const double* xh) { finish(0, i, c, xh); });
       detail::stream_fence();  // the non-temporal stores of finish, as on the threaded path
       return;
     }
@@ -229,9 +243,20 @@ class FastSolver : public detail::StructuredSolver {
 #endif
     {
       const int t = thread_index();
+#if defined(_OPENMP)
+      const int team = omp_get_num_threads();
+#else
+      const int team = 1;
+#endif
+      // Mode ranges cut at multiples of 8 (whole cache lines of every row).
+      auto cut = [&](int k) { return k == team ? L_ : (L_ * k / team) / 8 * 8; };
+      eliminate_forward(forms, rows, stride, cut(t), cut(t + 1));
+#if defined(_OPENMP)
+#pragma omp barrier
+#endif
       if (t == 0) {
         int next = 0;
-        solve_modes(forms, rows, stride, [&](int i, int c, const double* xh) {
+        substitute_back(forms, rows, stride, [&](int i, int c, const double* xh) {
           if (next - claimed.load(std::memory_order_relaxed) >= backlog) {
             finish(0, i, c, xh);  // the others have enough to do: this row, still in cache, here
             return;
@@ -258,69 +283,82 @@ class FastSolver : public detail::StructuredSolver {
     }
   }
 
-  // Every mode of every row: forward elimination and back substitution, handing each row of x̂ to
-  // done(i, c, x̂) when its block is substituted (one thread: pipeline() shares out the rest).
+  // Row i of the forward elimination of all three columns in the modes [q0, q0 + n):
+  // y_i = B̂_i − l_i ∘ y_{i−1}, l_i = o ∘ r_{i−1} (previous(c), target(c): rows of all L modes;
+  // previous nullptr at i = 0). One pass over s, t and l when every column's row is sparse (rows
+  // of mask data but two), else column by column.
+  template <class Previous, class Target>
+  void eliminate_row(const std::array<RowForm, 3>& forms, int i, int q0, int n, Previous&& previous,
+                     Target&& target) const {
+    const std::size_t k = std::size_t(i), L = std::size_t(L_), q = std::size_t(q0);
+    const double* l = modes_.multipliers() + q;
+    const double* e0 = sine_e0_.data() + q;
+    const double* e1 = sine_e1_.data() + q;
+    auto at = [&](auto* row) { return row ? row + q : row; };
+    if (forms[0].slot[k] < 0 && forms[1].slot[k] < 0 && forms[2].slot[k] < 0) {
+      const std::array<double, 3> a{forms[0].first[k], forms[1].first[k], forms[2].first[k]};
+      const std::array<double, 3> e{forms[0].last[k], forms[1].last[k], forms[2].last[k]};
+      const std::array<double*, 3> x{at(target(0)), at(target(1)), at(target(2))};
+      const std::array<const double*, 3> p{at(previous(0)), at(previous(1)), at(previous(2))};
+      detail::eliminate_sparse3(a.data(), e.data(), e0, e1, l, i > 0 ? p.data() : nullptr, x.data(), n);
+      return;
+    }
+    for (int c = 0; c < 3; ++c) {
+      const RowForm& f = forms[std::size_t(c)];
+      const int slot = f.slot[k];
+      if (slot >= 0)
+        detail::eliminate_dense(f.values.data() + std::size_t(slot) * L + q, l, at(previous(c)), at(target(c)), n);
+      else
+        detail::eliminate_sparse(f.first[k], f.last[k], e0, e1, l, at(previous(c)), at(target(c)), n);
+    }
+  }
+
+  // The forward elimination of the modes [q0, q1) through every row. It keeps only the last row of
+  // each block of K rows (in rows[c] + i·stride: X itself) and the rows of the last block (in
+  // block_), for substitute_back. Threads with disjoint mode ranges run it side by side: each loads
+  // its own modes of the pivot rows they share (ModePivots::load), and at the end every mode holds
+  // row R − 2.
+  void eliminate_forward(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride,
+                         int q0, int q1) {
+    const int K = block_rows_;
+    for (int i = 0; i < R_; ++i) {
+      if (i > 0) modes_.load(i >= 2 ? i - 2 : -1, i - 1, q0, q1);
+      const int s = i % K;
+      eliminate_row(
+          forms, i, q0, q1 - q0, [&](int c) { return i > 0 ? slot_row(c, (s + K - 1) % K) : nullptr; },
+          [&](int c) { return slot_row(c, s); });
+      if (s == K - 1 && i + 1 < R_)
+        for (int c = 0; c < 3; ++c)
+          std::copy(slot_row(c, s) + q0, slot_row(c, s) + q1, rows[std::size_t(c)] + std::size_t(i) * stride + q0);
+    }
+  }
+
+  // After eliminate_forward of every mode: the back substitution x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i,
+  // block by block from the last one (whose rows are still in the buffer; the others are
+  // eliminated again from their saved predecessor, in cache), handing each row of x̂ to
+  // done(i, c, x̂) when its block is done; running_ holds x̂ of the block below.
   template <class Done>
-  void solve_modes(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride,
-                   Done&& done) {
+  void substitute_back(const std::array<RowForm, 3>& forms, const std::array<double*, 3>& rows, std::size_t stride,
+                       Done&& done) {
     const int n = L_;
-    const std::size_t L = std::size_t(L_);
     const int K = block_rows_;
     const int last_block = (R_ - 1) / K;
     const double* o = modes_.off();
-    const double* l = modes_.multipliers();
     const double* r = modes_.pivots();
     auto saved = [&](int c, int i) { return rows[std::size_t(c)] + std::size_t(i) * stride; };
-    auto slot_row = [&](int c, int s) { return block_[std::size_t(c)].data() + std::size_t(s) * L; };
-    int at = -1;  // the row held by the running pivot row (in these modes)
+    int at = R_ >= 2 ? R_ - 2 : -1;  // the row the pivot rows hold (eliminate_forward's last)
     auto pivots_for = [&](int i) {
       if (at != i) modes_.load(at, i);
       at = i;
     };
-    // Row i of the forward elimination: y_i = B̂_i − l_i ∘ y_{i−1}, l_i = o ∘ r_{i−1}.
-    auto eliminate = [&](int i, int c, const double* p, double* y) {
-      const RowForm& f = forms[std::size_t(c)];
-      const int slot = f.slot[std::size_t(i)];
-      if (slot >= 0)
-        detail::eliminate_dense(f.values.data() + std::size_t(slot) * L, l, p, y, n);
-      else
-        detail::eliminate_sparse(f.first[std::size_t(i)], f.last[std::size_t(i)], sine_e0_.data(), sine_e1_.data(), l,
-                                 p, y, n);
-    };
-    // Row i of all three columns: one pass over s, t and l when every column's row is sparse
-    // (rows of mask data but two), else column by column.
-    auto eliminate3 = [&](int i, auto&& previous, auto&& target) {
-      const std::size_t k = std::size_t(i);
-      if (forms[0].slot[k] < 0 && forms[1].slot[k] < 0 && forms[2].slot[k] < 0) {
-        const std::array<double, 3> a{forms[0].first[k], forms[1].first[k], forms[2].first[k]};
-        const std::array<double, 3> e{forms[0].last[k], forms[1].last[k], forms[2].last[k]};
-        const std::array<double*, 3> x{target(0), target(1), target(2)};
-        const std::array<const double*, 3> p{previous(0), previous(1), previous(2)};
-        detail::eliminate_sparse3(a.data(), e.data(), sine_e0_.data(), sine_e1_.data(), l, i > 0 ? p.data() : nullptr,
-                                  x.data(), n);
-        return;
-      }
-      for (int c = 0; c < 3; ++c) eliminate(i, c, previous(c), target(c));
-    };
-    for (int i = 0; i < R_; ++i) {
-      if (i > 0) pivots_for(i - 1);
-      const int s = i % K;
-      eliminate3(
-          i, [&](int c) { return i > 0 ? slot_row(c, (s + K - 1) % K) : nullptr; },
-          [&](int c) { return slot_row(c, s); });
-      if (s == K - 1 && i + 1 < R_)
-        for (int c = 0; c < 3; ++c) std::copy(slot_row(c, s), slot_row(c, s) + n, saved(c, i));
-    }
-    // Back substitution, x̂_i = (y_i − o ∘ x̂_{i+1}) ∘ r_i in place of y_i, block by block from the
-    // last one (whose rows are still in the buffer); running_ holds x̂ of the block below.
     for (auto& w : running_) std::fill(w.data(), w.data() + n, 0.0);
     for (int b = last_block; b >= 0; --b) {
       const int first = b * K, end = std::min(R_, first + K);
       if (b != last_block)
         for (int i = first; i < end; ++i) {
           if (i > 0) pivots_for(i - 1);
-          eliminate3(
-              i,
+          eliminate_row(
+              forms, i, 0, n,
               [&](int c) -> const double* {
                 return i == 0 ? nullptr : i == first ? saved(c, i - 1) : slot_row(c, i - first - 1);
               },
@@ -340,6 +378,10 @@ class FastSolver : public detail::StructuredSolver {
       for (int i = end - 1; i >= first; --i)
         for (int c = 0; c < 3; ++c) done(i, c, static_cast<const double*>(slot_row(c, i - first)));
     }
+  }
+  // Row s of the back-substitution buffer of column c (L values).
+  [[nodiscard]] double* slot_row(int c, int s) {
+    return block_[std::size_t(c)].data() + std::size_t(s) * block_stride_;
   }
 
   // X = (2/(L+1)) S X̂ on the first L columns. With an interface (L < C, capacitance.h): a first
@@ -398,6 +440,7 @@ class FastSolver : public detail::StructuredSolver {
   Capacitance capacitance_;   // the interface columns (when L < C)
   KroneckerSolve kronecker_;  // the Kronecker path
   std::array<AlignedBuffer, 3> running_, block_;
+  std::size_t block_stride_ = 0;  // of the rows of block_: L rounded up to whole cache lines
   std::unique_ptr<LinearSolver> dst_;
 
   // Every right-hand side of a sweep's basis split by rows (physical: the Kronecker path) and, on
