@@ -15,6 +15,7 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <cstdint>
 #include <memory>
 #include <string>
 #include <thread>
@@ -175,15 +176,31 @@ class FastSolver : public detail::StructuredSolver {
     std::array<RowForm, 3> forms;
     std::array<std::vector<double>, 3> interface;
   };
-  // (Serial: a parallel region of its own would cost a second wait for a descheduled thread on a
-  // busy machine, more than the scan itself.)
+  // With several threads each splits a band of rows (join_rows puts them together): two threads read
+  // B, 24 MB at N = 1023, from memory or the L3 cache faster than one.
   [[nodiscard]] Scan scan(const Eigen::MatrixX3d& B) const {
     Scan s;
     const int width = path_ == Path::kKronecker ? C_ : L_;
-    for (int c = 0; c < 3; ++c) {
-      const double* b = B.col(c).data();
-      s.forms[std::size_t(c)] = detail::split_rows(b, R_, width, C_);
-      if (path_ == Path::kTransform) s.interface[std::size_t(c)] = interface_part(b);
+    const int bands = threads_;
+    std::array<std::vector<RowForm>, 3> pieces;
+    for (auto& p : pieces) p.resize(std::size_t(bands));
+    auto band = [&](int p) {
+      const int r0 = int(std::int64_t(R_) * p / bands), r1 = int(std::int64_t(R_) * (p + 1) / bands);
+      for (int c = 0; c < 3; ++c)
+        pieces[std::size_t(c)][std::size_t(p)] =
+            detail::split_rows(B.col(c).data() + std::size_t(r0) * std::size_t(C_), r1 - r0, width, C_);
+    };
+    if (bands == 1) {
+      band(0);
+    } else {
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(bands) schedule(static, 1)
+#endif
+      for (int p = 0; p < bands; ++p) band(p);
+    }
+    for (std::size_t c = 0; c < 3; ++c) {
+      s.forms[c] = bands == 1 ? std::move(pieces[c][0]) : detail::join_rows(pieces[c]);
+      if (path_ == Path::kTransform) s.interface[c] = interface_part(B.col(Eigen::Index(c)).data());
     }
     return s;
   }

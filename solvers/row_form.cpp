@@ -50,6 +50,23 @@ RowForm split_rows(const double* b, int R, int C, int stride) {
   return f;
 }
 
+RowForm join_rows(const std::vector<RowForm>& pieces) {
+  RowForm f;
+  if (pieces.empty()) return f;
+  f.width = pieces.front().width;
+  int rows = 0;
+  for (const RowForm& p : pieces) {
+    f.first.insert(f.first.end(), p.first.begin(), p.first.end());
+    f.last.insert(f.last.end(), p.last.begin(), p.last.end());
+    const int dense = int(f.dense_rows.size());
+    for (const int s : p.slot) f.slot.push_back(s < 0 ? s : s + dense);
+    for (const int i : p.dense_rows) f.dense_rows.push_back(i + rows);
+    f.values.insert(f.values.end(), p.values.begin(), p.values.end());
+    rows += int(p.slot.size());
+  }
+  return f;
+}
+
 double largest_magnitude(const double* v, std::size_t n) {
   double m = 0, z = 0;
   for (std::size_t k = 0; k < n; ++k) {

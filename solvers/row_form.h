@@ -26,6 +26,10 @@ bool has_interior(const double* row, int C);
 RowForm split_rows(const double* b, int R, int C, int stride);
 inline RowForm split_rows(const double* b, int R, int C) { return split_rows(b, R, C, C); }
 
+//! The form of a grid cut by rows into pieces (the forms of consecutive row ranges, top first, of
+//! one width) as one form: the form split_rows gives for the whole grid.
+RowForm join_rows(const std::vector<RowForm>& pieces);
+
 //! max |v| over v[0..n); NaN when one of them is a NaN or an infinity.
 double largest_magnitude(const double* v, std::size_t n);
 //! The same over the values of a form that has not been transformed (its ends and full rows:

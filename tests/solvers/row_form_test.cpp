@@ -70,3 +70,25 @@ TEST_CASE("largest_magnitude: NaN when a value is a NaN or an infinity", "[solve
   CHECK(largest_magnitude(zeros.data(), zeros.size()) == 0);
   CHECK(largest_magnitude(nullptr, 0) == 0);
 }
+
+TEST_CASE("join_rows: the forms of bands of rows, joined, are the form of the whole grid", "[solvers]") {
+  const int rows = 11, cols = 9;
+  for (const int dense : {0, 4, 5, 10})
+    for (const std::vector<int>& cuts : {std::vector<int>{0, 11}, {0, 5, 11}, {0, 4, 5, 11}, {0, 3, 7, 9, 11}}) {
+      std::vector<double> b = ring_grid(rows, cols, dense, std::uint32_t(dense + 20));
+      b[std::size_t(7 * cols + 3)] = 0.5;  // a second full row
+      const RowForm whole = split_rows(b.data(), rows, 7, cols);
+      std::vector<RowForm> pieces;
+      for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
+        pieces.push_back(split_rows(b.data() + std::size_t(cuts[k] * cols), cuts[k + 1] - cuts[k], 7, cols));
+      const RowForm joined = join_rows(pieces);
+      INFO("full row " << dense << ", " << cuts.size() - 1 << " bands");
+      CHECK(joined.width == whole.width);
+      CHECK(joined.first == whole.first);
+      CHECK(joined.last == whole.last);
+      CHECK(joined.dense_rows == whole.dense_rows);
+      CHECK(joined.slot == whole.slot);
+      CHECK(joined.values == whole.values);
+    }
+  CHECK(join_rows({}).slot.empty());
+}
