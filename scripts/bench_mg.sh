@@ -9,16 +9,19 @@ set -euo pipefail
 cd "$(dirname "$0")/.."
 out=experiments/E03_solver_scaling/results
 bench="${COONS_BUILD_DIR:-build}/bench_solvers"
+# Medians of 5 repetitions (the memory pass too): on the shared machine a solve now and then takes
+# several times its usual time, and one such in a repetition's mean moved a ratio by 20 %.
+repeat=(--benchmark_repetitions=5 --benchmark_report_aggregates_only=true)
 if [ "${1:-}" != "--report-only" ]; then
   rm -f "$out"/mg_iterations_*.json  # parts of earlier split runs (merged by --report-only)
   "$bench" --mg-iterations --sizes=127,255,511,1023 --benchmark_format=console \
     --benchmark_out="$out/mg_iterations.json" --benchmark_out_format=json
   "$bench" --large --sizes=1023 --alphas=0,-0.1 --backends=fast,dst,mg,fast5,separable-banded \
     --benchmark_filter='MemoryPass|BM_Solve/|BM_AlphaSweep(Threads)?/fast/|BM_Stencil5/(c1-coons|biharmonic|c1-family-0.5)/' \
-    --benchmark_format=console --benchmark_out="$out/threads.json" --benchmark_out_format=json
+    "${repeat[@]}" --benchmark_format=console --benchmark_out="$out/threads.json" --benchmark_out_format=json
   "$bench" --large --sizes=1000,1023,1024,1030 --backends=fast,dst \
     --benchmark_filter='MemoryPass|BM_Solve/(fast|dst)/N:[0-9]+/alpha:-0.100/min_time' \
-    --benchmark_format=console --benchmark_out="$out/sizes.json" --benchmark_out_format=json
+    "${repeat[@]}" --benchmark_format=console --benchmark_out="$out/sizes.json" --benchmark_out_format=json
   for threads in 1 2; do
     python3 experiments/benchmarks/bench_solve_e2e.py --coons "${COONS_BUILD_DIR:-build}/coons" --threads $threads \
       --json "$out/solve_e2e_threads$threads.json"

@@ -24,7 +24,8 @@
 //         otherwise such a grid takes the dst path. Where elimination without
 //         pivoting would be unsafe (indefinite stencils) it falls back to the dst path, so it is
 //         exact for every non-singular stencil; the default behind `auto`. With
-//         SolverOptions::threads one thread eliminates and the others take the inverse transforms
+//         SolverOptions::threads the threads split the rows of B and then the modes of the
+//         forward elimination; one substitutes back and the others take the inverse transforms
 //         of the rows it finishes (bit for bit the same result).
 //
 // Both report kSingular when an eigenvalue is zero to working precision (|λ| ≤ 1e-13·max|λ|),
