@@ -123,16 +123,24 @@ COONS_VECTOR_CLONES void solve_strip_along_i(double* __restrict Y, std::ptrdiff_
 // the grid: Q⁻¹ on blocks of kLanes rows (reading B, writing X), then P⁻¹ on strips of kStrip columns
 // (in place, forward and back within the cached strip). The units of each sweep (blocks, strips,
 // over the three columns) are independent and shared among `threads`; every unit does the same
-// operations whatever the thread count, so the result does not depend on it.
+// operations whatever the thread count, so the result does not depend on it. A column of B with
+// the form of separable_outer_products.h is solved as a sum of outer products instead; `forms`,
+// when given, holds the outer_form() of each column (read already), else it is read here.
+using ColumnForms = std::array<std::optional<detail::OuterForm>, 3>;
 void solve_separable(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const Eigen::MatrixX3d& B,
-                     Eigen::MatrixX3d& X, int threads) {
+                     Eigen::MatrixX3d& X, int threads, const ColumnForms* forms = nullptr) {
   X.resize(B.rows(), 3);
   if (rows == 0 || cols == 0) return;
   const SweepFactors si(fi), sj(fj);
   std::vector<int> swept;  // the columns of B not solved by outer products
-  for (int c = 0; c < 3; ++c)
-    if (!detail::solve_outer_products(fi, fj, rows, cols, B.col(c).data(), X.col(c).data(), threads))
+  for (int c = 0; c < 3; ++c) {
+    const std::optional<detail::OuterForm> form =
+        forms ? (*forms)[std::size_t(c)] : detail::outer_form(B.col(c).data(), rows, cols, threads);
+    if (form)
+      detail::solve_outer_products(fi, fj, rows, cols, *form, B.col(c).data(), X.col(c).data(), threads);
+    else
       swept.push_back(c);
+  }
   if (swept.empty()) return;
   const int ncols = int(swept.size());
   const int blocks = (rows + kLanes - 1) / kLanes, strips = (cols + kStrip - 1) / kStrip;
@@ -202,9 +210,29 @@ class SeparableBandedSolver final : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    solve_separable(fi_, fj_, op_.rows, op_.cols, B, X, resolved_threads(options_.threads));
+    const bool read = forms_source_ == B.data();
+    forms_source_ = nullptr;
+    solve_separable(fi_, fj_, op_.rows, op_.cols, B, X, resolved_threads(options_.threads), read ? &forms_ : nullptr);
     summary.iterations = 1;
     return SolveStatus::kSuccess;
+  }
+
+  // Each column's largest magnitude comes from the check of its form (outer_form), which do_solve
+  // then takes over, when every column has that form; otherwise (a column to be swept, whose check
+  // stopped early) from a pass of its own.
+  ColumnExponents rhs_scaling(const Eigen::MatrixX3d& B) override {
+    forms_source_ = nullptr;
+    const int threads = resolved_threads(options_.threads);
+    bool all = op_.rows > 0 && op_.cols > 0;
+    for (std::size_t c = 0; c < 3 && all; ++c) {
+      forms_[c] = detail::outer_form(B.col(Eigen::Index(c)).data(), op_.rows, op_.cols, threads);
+      all = forms_[c].has_value();
+    }
+    if (!all) return LinearSolver::rhs_scaling(B);
+    ColumnExponents e{};
+    for (std::size_t c = 0; c < 3; ++c) e[c] = scaling_exponent(forms_[c]->largest);
+    forms_source_ = B.data();
+    return e;
   }
 
  private:
@@ -232,6 +260,8 @@ class SeparableBandedSolver final : public LinearSolver {
   std::optional<SeparableBandedOperator> fixed_;
   SeparableBandedOperator op_;
   BandedLdlt fi_, fj_;
+  ColumnForms forms_;                     // of the B rhs_scaling() read, for the do_solve() that follows
+  const double* forms_source_ = nullptr;  // that B's data
 };
 
 }  // namespace

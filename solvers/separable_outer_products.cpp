@@ -4,6 +4,8 @@
 #include <array>
 #include <atomic>
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <vector>
 
 #if defined(__x86_64__)
@@ -16,6 +18,7 @@ namespace coons::solvers {
 namespace {
 
 using detail::has_interior;
+using detail::largest_magnitude;
 
 // The outer products are written in tiles of kOuterRows rows × kOuterCols columns, so that the
 // K pieces of the v_k (K·kOuterCols doubles, 16 KB for K = 8) stay in L1 across the rows.
@@ -124,9 +127,8 @@ void solve_columns(const BandedLdlt& f, double* __restrict y, std::size_t count,
 
 }  // namespace
 
-bool detail::solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const double* b,
-                                  double* x, int threads) {
-  if (cols < 5) return false;
+std::optional<detail::OuterForm> detail::outer_form(const double* b, int rows, int cols, int threads) {
+  if (cols < 5) return std::nullopt;
   const auto R = std::size_t(rows), C = std::size_t(cols);
   std::vector<unsigned char> full(R, 0);
   // Rows with interior values; once more than kMaxFullRows are found the answer is the sweeps,
@@ -143,12 +145,37 @@ bool detail::solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, in
       found.fetch_add(1, std::memory_order_relaxed);
     }
   }
-  if (found.load() > kMaxFullRows) return false;
-  std::vector<int> full_rows;
-  for (int i = 0; i < rows; ++i)
-    if (full[std::size_t(i)] != 0) full_rows.push_back(i);
-  if (full_rows.size() > std::size_t(kMaxFullRows)) return false;
+  if (found.load() > kMaxFullRows) return std::nullopt;
+  OuterForm form;
+  bool finite = true;
+  for (int i = 0; i < rows; ++i) {
+    const double* row = b + std::size_t(i) * C;
+    // a full row in full; any other is zero but in its first and last two columns
+    const bool whole = full[std::size_t(i)] != 0;
+    const double m0 = largest_magnitude(row, whole ? C : 2), m1 = whole ? 0.0 : largest_magnitude(row + C - 2, 2);
+    const double m = std::isnan(m0) ? m0 : std::isnan(m1) ? m1 : std::max(m0, m1);
+    if (whole) form.full_rows.push_back(i);
+    finite = finite && !std::isnan(m);
+    form.largest = std::max(form.largest, m);
+  }
+  if (!finite) form.largest = std::numeric_limits<double>::quiet_NaN();
+  return form;
+}
 
+bool detail::solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const double* b,
+                                  double* x, int threads) {
+  const std::optional<OuterForm> form = outer_form(b, rows, cols, threads);
+  if (form) solve_outer_products(fi, fj, rows, cols, *form, b, x, threads);
+  return form.has_value();
+}
+
+void detail::solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const OuterForm& form,
+                                  const double* b, double* x, int threads) {
+  const auto R = std::size_t(rows), C = std::size_t(cols);
+  const std::vector<int>& full_rows = form.full_rows;
+  std::vector<unsigned char> full(R, 0);
+  for (const int i : full_rows) full[std::size_t(i)] = 1;
+  [[maybe_unused]] const int nt = std::max(1, threads);
   const int K = 4 + int(full_rows.size());
   const auto k_count = std::size_t(K);
   const std::array<int, 4> edges{0, 1, cols - 2, cols - 1};
@@ -177,7 +204,6 @@ bool detail::solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, in
       outer_product_rows(a.data() + std::size_t(i0) * std::size_t(K), v.data(), C, K, i1 - i0, j0,
                          std::min(cols, j0 + kOuterCols), x + std::size_t(i0) * C);
   }
-  return true;
 }
 
 }  // namespace coons::solvers

@@ -17,6 +17,9 @@
 // equations by tensor product methods, Numer. Math. 6 (1964) 185–199.
 #pragma once
 
+#include <optional>
+#include <vector>
+
 #include "separable_banded_solver.h"
 
 namespace coons::solvers::detail {
@@ -25,9 +28,21 @@ namespace coons::solvers::detail {
 //! of separable_banded_solve() cost less).
 constexpr int kMaxFullRows = 8;
 
-//! x = P⁻¹ R Q⁻¹ for the column R = b when it has the form above (cols ≥ 5), on `threads` threads
-//! (OpenMP; the same bits on any count); false, writing nothing, otherwise. fi, fj: banded_ldlt()
-//! of P (rows) and Q (cols), both kSuccess.
+//! The form above of a column b (rows × cols, row-major): its full rows, ascending, and, from the
+//! same read, the largest magnitude of the column (NaN when a value is a NaN or an infinity).
+struct OuterForm {
+  std::vector<int> full_rows;
+  double largest = 0;
+};
+//! b's form, read on `threads` threads (OpenMP); nullopt when it has none (more than kMaxFullRows
+//! full rows: B is then not read to the end; or cols < 5).
+std::optional<OuterForm> outer_form(const double* b, int rows, int cols, int threads = 1);
+
+//! x = P⁻¹ R Q⁻¹ for the column R = b of form `form`, on `threads` threads (OpenMP; the same bits
+//! on any count). fi, fj: banded_ldlt() of P (rows) and Q (cols), both kSuccess.
+void solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const OuterForm& form,
+                          const double* b, double* x, int threads = 1);
+//! The same when b has the form above; false, writing nothing, otherwise.
 bool solve_outer_products(const BandedLdlt& fi, const BandedLdlt& fj, int rows, int cols, const double* b, double* x,
                           int threads = 1);
 

@@ -5,6 +5,8 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <limits>
 #include <random>
 #include <string>
 #include <vector>
@@ -200,6 +202,67 @@ TEST_CASE("solve_outer_products: the data-ring right-hand side equals the sparse
   const Eigen::MatrixX3d B = random_rhs(24, 5);
   Eigen::VectorXd x(24);
   CHECK_FALSE(detail::solve_outer_products(fi, fj, 6, 4, B.col(0).data(), x.data()));
+}
+
+TEST_CASE("outer_form: the full rows and the largest magnitude of a data-ring column, in one read", "[solvers]") {
+  const int rows = 12, cols = 9;
+  std::uint32_t seed = 30;
+  for (const std::vector<int>& full : {std::vector<int>{}, {0, 1, 10, 11}, {5}})
+    // the largest value at a sparse row's end columns (0, 1, 7, 8) or inside a full row
+    for (const auto& [i, j] : std::vector<std::pair<int, int>>{{3, 0}, {4, 1}, {6, 7}, {9, 8}, {0, 4}, {5, 3}}) {
+      if (j > 1 && j + 2 < cols && std::find(full.begin(), full.end(), i) == full.end()) continue;
+      for (const double big : {-9.5, 0x1p700}) {
+        Eigen::MatrixX3d B = ring_rhs(rows, cols, full, seed++);
+        B(Eigen::Index(i) * cols + j, 1) = big;
+        INFO(full.size() << " full rows, (" << i << ", " << j << ") = " << big);
+        const auto form = detail::outer_form(B.col(1).data(), rows, cols);
+        REQUIRE(form);
+        CHECK(form->full_rows == full);
+        CHECK(form->largest == B.col(1).cwiseAbs().maxCoeff());
+        CHECK(form->largest == std::abs(big));
+        B(Eigen::Index(i) * cols + j, 1) = std::numeric_limits<double>::infinity();
+        CHECK(std::isnan(detail::outer_form(B.col(1).data(), rows, cols)->largest));
+      }
+    }
+  CHECK_FALSE(detail::outer_form(ring_rhs(rows, cols, {0, 1, 2, 3, 4, 5, 6, 7, 8}, 3).col(0).data(), rows, cols));
+  CHECK_FALSE(detail::outer_form(ring_rhs(rows, 4, {}, 3).col(0).data(), rows, 4));
+}
+
+TEST_CASE("separable-banded: one solver object scales each right-hand side by its own largest magnitude", "[solvers]") {
+  // It takes the scaling of B (solvers/column_scaling.h) from its form check and keeps the forms
+  // for the solve: X is that of separable_banded_solve, which checks the forms itself, bit for bit.
+  // Scaling by 2^e is exact here, so X(2^e B) = 2^e X(B) bit for bit, with every column of
+  // outer-product form and with one to be swept; a NaN fails.
+  const SeparableBandedOperator op{14, 11, {6, -4, 1}, {6, -4, 1}};
+  const Eigen::SparseMatrix<double> A = separable_banded_matrix(op);
+  LinearOperator lin;
+  lin.matrix = &A;
+  for (const bool swept : {false, true}) {
+    Eigen::MatrixX3d B = ring_rhs(op.rows, op.cols, {0, 1, 12, 13}, 40);
+    if (swept) B.col(2) = random_rhs(B.rows(), 41).col(0);
+    auto solver = make_separable_banded_solver(op, {});
+    Eigen::MatrixX3d X, Xe;
+    REQUIRE(solver->compute_and_solve(lin, B, X).ok());
+    Eigen::MatrixX3d Y;
+    REQUIRE(separable_banded_solve(op, B, Y) == SolveStatus::kSuccess);
+    CHECK((X - Y).cwiseAbs().maxCoeff() == 0);
+    for (const int e : {-600, 500, 0, 300}) {
+      const Eigen::MatrixX3d Be = B.unaryExpr([e](double v) { return std::ldexp(v, e); });
+      const SolveSummary summary = solver->solve(Be, Xe);
+      INFO((swept ? "a swept column" : "outer products only") << ", B * 2^" << e << ": " << summary.brief_report());
+      REQUIRE(summary.ok());
+      CHECK(summary.relative_residual < 1e-10);
+      CHECK((Xe.unaryExpr([e](double v) { return std::ldexp(v, -e); }) - X).cwiseAbs().maxCoeff() == 0);
+    }
+    Eigen::MatrixX3d Bnan = B;
+    Bnan(5, 0) = std::numeric_limits<double>::quiet_NaN();
+    const SolveSummary failed = solver->solve(Bnan, Xe);
+    INFO(failed.brief_report());
+    CHECK(!failed.ok());
+    CHECK(std::isfinite(failed.relative_residual));
+    REQUIRE(solver->solve(B, Xe).ok());
+    CHECK((Xe - X).cwiseAbs().maxCoeff() == 0);
+  }
 }
 
 TEST_CASE("separable_banded_solve: columns of both forms in one call, the same bits on 1, 2 and 3 threads",
