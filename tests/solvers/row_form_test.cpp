@@ -12,6 +12,9 @@ using namespace coons::solvers::detail;
 
 namespace {
 
+// The place of (i, j) in a row-major grid of `cols` columns.
+std::size_t index(int i, int j, int cols) { return std::size_t(i) * std::size_t(cols) + std::size_t(j); }
+
 // rows × cols, row-major, non-zero only next to the frame but for one full row (`dense`).
 std::vector<double> ring_grid(int rows, int cols, int dense, std::uint32_t seed) {
   std::mt19937 rng(seed);
@@ -19,7 +22,7 @@ std::vector<double> ring_grid(int rows, int cols, int dense, std::uint32_t seed)
   std::vector<double> b(std::size_t(rows) * std::size_t(cols), 0.0);
   for (int i = 0; i < rows; ++i)
     for (int j = 0; j < cols; ++j)
-      if (i == 0 || j == 0 || i + 1 == rows || j + 1 == cols || i == dense) b[std::size_t(i * cols + j)] = u(rng);
+      if (i == 0 || j == 0 || i + 1 == rows || j + 1 == cols || i == dense) b[index(i, j, cols)] = u(rng);
   return b;
 }
 
@@ -28,7 +31,7 @@ std::vector<double> ring_grid(int rows, int cols, int dense, std::uint32_t seed)
 double largest_of_split(const std::vector<double>& b, int rows, int cols, int width) {
   std::vector<double> rest;
   for (int i = 0; i < rows; ++i)
-    for (int j = width; j < cols; ++j) rest.push_back(b[std::size_t(i * cols + j)]);
+    for (int j = width; j < cols; ++j) rest.push_back(b[index(i, j, cols)]);
   const double in_form = largest_magnitude(split_rows(b.data(), rows, width, cols));
   const double in_rest = largest_magnitude(rest.data(), rest.size());
   return std::isnan(in_form) || std::isnan(in_rest) ? in_form + in_rest : std::max(in_form, in_rest);
@@ -48,7 +51,7 @@ TEST_CASE("largest_magnitude: a split form holds the largest magnitude of the ro
         std::vector<double> b = ring_grid(rows, cols, 3, seed++);
         if (std::abs(big) < 1)
           for (double& v : b) v *= 0x1p-1000;  // the largest is then big, however small
-        b[std::size_t(i * cols + j)] = big;
+        b[index(i, j, cols)] = big;
         INFO("width " << width << ", (" << i << ", " << j << ") = " << big);
         double expected = 0;
         for (const double v : b) expected = std::max(expected, std::abs(v));
@@ -62,7 +65,7 @@ TEST_CASE("largest_magnitude: NaN when a value is a NaN or an infinity", "[solve
                            -std::numeric_limits<double>::infinity()})
     for (const auto& [i, j] : std::vector<std::pair<int, int>>{{0, 0}, {3, 6}, {5, 12}, {6, 4}}) {
       std::vector<double> b = ring_grid(9, 13, 3, 7);
-      b[std::size_t(i * 13 + j)] = bad;
+      b[index(i, j, 13)] = bad;
       INFO("(" << i << ", " << j << ") = " << bad);
       CHECK(std::isnan(largest_of_split(b, 9, 13, 10)));
     }
@@ -76,11 +79,11 @@ TEST_CASE("join_rows: the forms of bands of rows, joined, are the form of the wh
   for (const int dense : {0, 4, 5, 10})
     for (const std::vector<int>& cuts : {std::vector<int>{0, 11}, {0, 5, 11}, {0, 4, 5, 11}, {0, 3, 7, 9, 11}}) {
       std::vector<double> b = ring_grid(rows, cols, dense, std::uint32_t(dense + 20));
-      b[std::size_t(7 * cols + 3)] = 0.5;  // a second full row
+      b[index(7, 3, cols)] = 0.5;  // a second full row
       const RowForm whole = split_rows(b.data(), rows, 7, cols);
       std::vector<RowForm> pieces;
       for (std::size_t k = 0; k + 1 < cuts.size(); ++k)
-        pieces.push_back(split_rows(b.data() + std::size_t(cuts[k] * cols), cuts[k + 1] - cuts[k], 7, cols));
+        pieces.push_back(split_rows(b.data() + index(cuts[k], 0, cols), cuts[k + 1] - cuts[k], 7, cols));
       const RowForm joined = join_rows(pieces);
       INFO("full row " << dense << ", " << cuts.size() - 1 << " bands");
       CHECK(joined.width == whole.width);
