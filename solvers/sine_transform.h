@@ -19,8 +19,8 @@
 
 namespace coons::solvers::detail {
 
-//! A fixed-size array of doubles from fftw_malloc (SIMD-aligned), not initialised (so that
-//! making a large one costs nothing until it is written).
+//! A fixed-size array of doubles starting on a 64-byte cache line (SIMD-aligned for FFTW too),
+//! not initialised (so that making a large one costs nothing until it is written).
 class AlignedBuffer {
  public:
   AlignedBuffer() = default;
