@@ -31,7 +31,7 @@ inline int exponent_of(double largest) {
 
 //! e with max|v| = m·2^e, m in [1/2, 1); 0 for a zero vector or one with a NaN or infinity.
 inline int magnitude_exponent(const Eigen::Ref<const Eigen::VectorXd>& v) {
-  return v.size() == 0 ? 0 : exponent_of(v.cwiseAbs().maxCoeff());
+  return v.size() == 0 ? 0 : exponent_of(v.cwiseAbs().maxCoeff<Eigen::PropagateNaN>());
 }
 
 //! v ← v·2^e, entry by entry, exactly (rounded as std::ldexp rounds: only subnormal results lose bits).
@@ -58,7 +58,8 @@ inline int scaling_exponent(double largest) {
 
 inline ColumnExponents rhs_exponents(const Eigen::MatrixX3d& B) {
   ColumnExponents e{};
-  for (int k = 0; k < 3; ++k) e[std::size_t(k)] = B.rows() == 0 ? 0 : scaling_exponent(B.col(k).cwiseAbs().maxCoeff());
+  for (int k = 0; k < 3; ++k)
+    e[std::size_t(k)] = B.rows() == 0 ? 0 : scaling_exponent(B.col(k).cwiseAbs().maxCoeff<Eigen::PropagateNaN>());
   return e;
 }
 

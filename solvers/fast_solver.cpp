@@ -139,7 +139,7 @@ class FastSolver : public detail::StructuredSolver {
     }
     X.resize(B.rows(), 3);
     Scan scanned = scanned_.source == B.data() ? std::move(scanned_) : scan(B);
-    scanned_.source = nullptr;
+    scanned_ = Scan{};  // (not kept: a scan of a B that was scaled first would hold its full rows)
     if (path_ == Path::kKronecker) {
       for (int c = 0; c < 3; ++c) kronecker_.solve(scanned.forms[std::size_t(c)], B.col(c).data(), X.col(c).data());
     } else {

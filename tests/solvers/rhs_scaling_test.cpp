@@ -3,8 +3,10 @@
 #include <Eigen/Core>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <limits>
 
 #include "coons/mask/assemble_mask_system.h"
+#include "solvers/column_scaling.h"
 #include "solvers/registry.h"
 #include "support/fixtures.h"
 
@@ -96,4 +98,20 @@ TEST_CASE("relative_residual: tiny and huge columns give the residual of the uns
   REQUIRE(plain > 0.01);
   for (const int e : {-600, 540})
     CHECK(relative_residual(op, times_power_of_two(s.B, e), times_power_of_two(X, e)) == Approx(plain).epsilon(1e-14));
+}
+
+TEST_CASE("rhs_exponents: 0 for a column with a NaN or an infinity wherever it lies", "[solvers]") {
+  // A column whose largest finite value is 2^600 is scaled by 2^-601, unless it holds a NaN or an
+  // infinity (Eigen's maxCoeff alone dropped a NaN that did not come first: exponent 601).
+  for (const double bad : {std::numeric_limits<double>::quiet_NaN(), std::numeric_limits<double>::infinity()})
+    for (const Eigen::Index at : {Eigen::Index(0), Eigen::Index(1), Eigen::Index(4)}) {
+      Eigen::MatrixX3d B = Eigen::MatrixX3d::Constant(5, 3, 0x1p600);
+      B(at, 1) = bad;
+      INFO(bad << " at row " << at);
+      const ColumnExponents e = rhs_exponents(B);
+      CHECK(e[0] == 601);
+      CHECK(e[1] == 0);
+      CHECK(e[2] == 601);
+      CHECK(magnitude_exponent(B.col(1)) == 0);
+    }
 }
