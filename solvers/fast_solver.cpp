@@ -158,9 +158,9 @@ class FastSolver : public detail::StructuredSolver {
     scanned_ = scan(B);
     ColumnExponents e{};
     for (std::size_t c = 0; c < 3; ++c) {
-      const double forms = detail::largest_magnitude(scanned_.forms[c]);
-      const double rest = detail::largest_magnitude(scanned_.interface[c].data(), scanned_.interface[c].size());
-      e[c] = scaling_exponent(std::isnan(forms) || std::isnan(rest) ? forms + rest : std::max(forms, rest));
+      e[c] = scaling_exponent(detail::larger_magnitude(
+          detail::largest_magnitude(scanned_.forms[c]),
+          detail::largest_magnitude(scanned_.interface[c].data(), scanned_.interface[c].size())));
     }
     scanned_.source = B.data();
     return e;

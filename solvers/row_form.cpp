@@ -78,11 +78,8 @@ double largest_magnitude(const double* v, std::size_t n) {
 
 double largest_magnitude(const RowForm& f) {
   double m = 0;
-  for (const std::vector<double>* v : {&f.first, &f.last, &f.values}) {
-    const double part = largest_magnitude(v->data(), v->size());
-    if (std::isnan(part)) return part;
-    m = std::max(m, part);
-  }
+  for (const std::vector<double>* v : {&f.first, &f.last, &f.values})
+    m = larger_magnitude(m, largest_magnitude(v->data(), v->size()));
   return m;
 }
 

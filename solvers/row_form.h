@@ -5,6 +5,8 @@
 // Sizes: 2·rows end values + cols per full row.
 #pragma once
 
+#include <algorithm>
+#include <cmath>
 #include <cstddef>
 #include <vector>
 
@@ -29,6 +31,13 @@ inline RowForm split_rows(const double* b, int R, int C) { return split_rows(b, 
 //! The form of a grid cut by rows into pieces (the forms of consecutive row ranges, top first, of
 //! one width) as one form: the form split_rows gives for the whole grid.
 RowForm join_rows(const std::vector<RowForm>& pieces);
+
+//! The larger of two magnitudes from largest_magnitude; NaN when either is NaN (std::max keeps
+//! its first operand when the second is a NaN).
+inline double larger_magnitude(double a, double b) {
+  if (std::isnan(a) || std::isnan(b)) return std::isnan(a) ? a : b;
+  return std::max(a, b);
+}
 
 //! max |v| over v[0..n); NaN when one of them is a NaN or an infinity.
 double largest_magnitude(const double* v, std::size_t n);

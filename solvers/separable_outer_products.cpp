@@ -4,7 +4,6 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <limits>
 #include <optional>
 #include <vector>
 
@@ -18,6 +17,7 @@ namespace coons::solvers {
 namespace {
 
 using detail::has_interior;
+using detail::larger_magnitude;
 using detail::largest_magnitude;
 
 // The outer products are written in tiles of kOuterRows rows × kOuterCols columns, so that the
@@ -147,18 +147,15 @@ std::optional<detail::OuterForm> detail::outer_form(const double* b, int rows, i
   }
   if (found.load() > kMaxFullRows) return std::nullopt;
   OuterForm form;
-  bool finite = true;
   for (int i = 0; i < rows; ++i) {
     const double* row = b + std::size_t(i) * C;
     // a full row in full; any other is zero but in its first and last two columns
     const bool whole = full[std::size_t(i)] != 0;
-    const double m0 = largest_magnitude(row, whole ? C : 2), m1 = whole ? 0.0 : largest_magnitude(row + C - 2, 2);
-    const double m = std::isnan(m0) ? m0 : std::isnan(m1) ? m1 : std::max(m0, m1);
     if (whole) form.full_rows.push_back(i);
-    finite = finite && !std::isnan(m);
-    form.largest = std::max(form.largest, m);
+    form.largest = larger_magnitude(
+        form.largest, whole ? largest_magnitude(row, C)
+                            : larger_magnitude(largest_magnitude(row, 2), largest_magnitude(row + C - 2, 2)));
   }
-  if (!finite) form.largest = std::numeric_limits<double>::quiet_NaN();
   return form;
 }
 

@@ -34,7 +34,7 @@ double largest_of_split(const std::vector<double>& b, int rows, int cols, int wi
     for (int j = width; j < cols; ++j) rest.push_back(b[index(i, j, cols)]);
   const double in_form = largest_magnitude(split_rows(b.data(), rows, width, cols));
   const double in_rest = largest_magnitude(rest.data(), rest.size());
-  return std::isnan(in_form) || std::isnan(in_rest) ? in_form + in_rest : std::max(in_form, in_rest);
+  return larger_magnitude(in_form, in_rest);
 }
 
 }  // namespace
