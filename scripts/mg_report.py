@@ -90,7 +90,7 @@ def iteration_table(data):
 
 
 def threads_table(data):
-    memory, solves = memory_passes(data), {}
+    memory, solves, cycles = memory_passes(data), {}, {}
     for b in data["benchmarks"]:
         t = seconds_of(b)
         cpu = seconds_of(b, "cpu_time")
@@ -98,6 +98,7 @@ def threads_table(data):
         if m:
             key = (m.group(1), int(m.group(2)), m.group(3))
             solves.setdefault(key, {})[int(m.group(5) or 1)] = (t, cpu, b.get("label", ""))
+            cycles[(key, int(m.group(5) or 1))] = int(b.get("iterations", 0))
             continue
         m = re.match(r"BM_Stencil5/([^/]+)/([^/]+)/N:(\d+)(/threads:(\d+))?", b["name"])
         if m:  # the 5×5 set: the problem's name in the α column
@@ -152,6 +153,20 @@ def threads_table(data):
     if rows:
         text += ("\n\nThe speed targets of issues 11 and 14, same run (wall-clock; threads as in the table above):\n\n"
                  "| target | threads | measured | goal | |\n|---|---|---|---|---|\n" + "\n".join(rows))
+    # mg per V-cycle: the whole solve's time over its cycles (to the benchmark's tolerance), so a
+    # reader can tell the cost of a cycle from the number of cycles.
+    per_cycle = []
+    for (backend, n, alpha), by in sorted(solves.items()):
+        if backend != "mg" or n not in memory:
+            continue
+        for k in sorted(by):
+            c = cycles.get(((backend, n, alpha), k), 0)
+            if c > 0:
+                per_cycle.append(f"N = {n}, α = {alpha}, {k} thread{'s' if k > 1 else ''}: {c} cycles, "
+                                 f"{by[k][0] / c / memory[n]:.0f}× the memory pass per cycle")
+    if per_cycle:
+        text += ("\n\n`mg` per V-cycle, same run (three right-hand sides to relative residual 1e−12: the wall time "
+                 "of a fresh set-up and solve divided by its cycles, so the set-up is shared out among them): " + "; ".join(per_cycle) + ".")
     return text
 
 
