@@ -67,7 +67,8 @@ struct MultigridOptions {
   int max_levels = 20;
   //! threads of the smoother, residual, transfer and operator loops (1; 0: every core) on levels of
   //! at least 2048 points. They run over independent lines or points, so results are identical for
-  //! every count.
+  //! every count. Called inside a parallel region (the backends solve the columns of B side by
+  //! side), the loops run on the calling thread.
   int threads = 1;
 
   bool is_valid(std::string* why) const;

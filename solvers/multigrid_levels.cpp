@@ -6,7 +6,7 @@
 
 #include "multigrid_kernels.h"
 
-// The outer loop over rows on L.threads threads (a local `nt`); every iteration writes its own
+// The outer loop over rows on loop_threads(L) threads (a local `nt`); every iteration writes its own
 // points, so the result does not depend on the count.
 #if defined(_OPENMP)
 #define COONS_PARALLEL_ROWS _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(static)")
@@ -20,7 +20,7 @@ namespace coons::solvers::mg_detail {
 template <bool kApply>
 static void eval_grid(const Level& L, const Vector& b, const Vector& x, Vector& r) {
   r.resize(L.points());
-  [[maybe_unused]] const int nt = L.threads;
+  [[maybe_unused]] const int nt = loop_threads(L);
   dispatch(L, [&](auto radius, auto constant) {
     constexpr int kR = decltype(radius)::value;
     constexpr bool kConst = decltype(constant)::value;
@@ -92,7 +92,7 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
   int I_lo = 0, I_hi = 0, J_lo = 0, J_hi = 0;
   inside(Cl.offset_i, F.rows, Cl.rows, I_lo, I_hi);
   inside(Cl.offset_j, F.cols, Cl.cols, J_lo, J_hi);
-  [[maybe_unused]] const int nt = F.threads;
+  [[maybe_unused]] const int nt = loop_threads(F);
   COONS_PARALLEL_ROWS
   for (int I = 0; I < Cl.rows; ++I)
     for (int J = 0; J < Cl.cols; ++J) {
@@ -128,7 +128,7 @@ void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc) {
 void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x) {
   const std::vector<Parents> parents_i = parents_along(F.rows, Cl.rows, Cl.offset_i, Cl.reach);
   const std::vector<Parents> parents_j = parents_along(F.cols, Cl.cols, Cl.offset_j, Cl.reach);
-  [[maybe_unused]] const int nt = F.threads;
+  [[maybe_unused]] const int nt = loop_threads(F);
   COONS_PARALLEL_ROWS
   for (int i = 0; i < F.rows; ++i) {
     const Parents& pi = parents_i[std::size_t(i)];

@@ -8,6 +8,10 @@
 #include <memory>
 #include <vector>
 
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
+
 #include "multigrid.h"
 
 namespace coons::solvers {
@@ -52,6 +56,16 @@ namespace mg_detail {
 
 using Level = Multigrid::Level;
 using Vector = Eigen::VectorXd;
+
+//! The threads of a level loop: L.threads, but 1 inside a parallel region (a backend solving its
+//! right-hand-side columns side by side, one per thread), so that a nested team never
+//! oversubscribes the cores whatever OMP_MAX_ACTIVE_LEVELS says.
+inline int loop_threads(const Level& L) {
+#if defined(_OPENMP)
+  if (omp_in_parallel()) return 1;
+#endif
+  return L.threads;
+}
 
 //! r = b − A x on the free points (0 at fixed points).
 void residual(const Level& L, const Vector& b, const Vector& x, Vector& r);

@@ -15,7 +15,7 @@
 
 #include "multigrid_kernels.h"
 
-// The loop over independent line groups on L.threads threads (a local `nt`).
+// The loop over independent line groups on loop_threads(L) threads (a local `nt`).
 #if defined(_OPENMP)
 #define COONS_PARALLEL_LINES _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(static)")
 #else
@@ -124,7 +124,7 @@ void sweep_rows(const Level& L, const Vector& b, Vector& x, Vector& d, int colou
   const int first = first_of_colour(L.first_i, colour, colours);
   const int lines = first < L.rows ? (L.rows - 1 - first) / colours + 1 : 0;
   const int groups = (lines + kRowGroup - 1) / kRowGroup;
-  [[maybe_unused]] const int nt = L.threads;
+  [[maybe_unused]] const int nt = loop_threads(L);
   dispatch(L, [&](auto radius, auto constant) {
     constexpr int kR = decltype(radius)::value;
     constexpr bool kConst = decltype(constant)::value;
@@ -144,7 +144,7 @@ void sweep_columns(const Level& L, const Vector& b, Vector& x, Vector& d, int co
   const int lines = first < L.cols ? (L.cols - 1 - first) / colours + 1 : 0;
   // One block of columns per thread: long stretches of each grid row, which the hardware
   // prefetcher follows (narrow blocks jump to a new page at every row).
-  [[maybe_unused]] const int nt = L.threads;
+  [[maybe_unused]] const int nt = loop_threads(L);
   const int blocks = std::max(1, std::min(nt, lines / kMinColumnBlock));
   const int per_block = (lines + blocks - 1) / blocks;
   dispatch(L, [&](auto radius, auto constant) {

@@ -1,8 +1,14 @@
 #include "multigrid_solvers.h"
 
 #include <algorithm>
+#include <array>
+#include <exception>
 #include <optional>
 #include <string>
+
+#if defined(_OPENMP)
+#include <omp.h>
+#endif
 
 #include "eigen_iterative.h"
 #include "gmres.h"
@@ -97,55 +103,45 @@ class MultigridBackend : public LinearSolver {
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
     const Eigen::Index n = B.rows();
-    X.setZero(n, 3);
     IterationOptions iteration;
     iteration.tolerance = options_.tolerance;
     iteration.out_of_time = [this] { return out_of_time(); };  // SolverOptions::time_limit_seconds
+    std::array<Eigen::VectorXd, 3> x;
+    std::array<IterationSummary, 3> s;
+    std::array<std::exception_ptr, 3> errors;
+    auto run = [&](int c) {
+      try {  // (an exception must not leave a parallel region: it is rethrown below)
+        x[std::size_t(c)] = Eigen::VectorXd::Zero(n);
+        s[std::size_t(c)] = solve_column(B.col(c), x[std::size_t(c)], iteration);
+      } catch (...) {
+        errors[std::size_t(c)] = std::current_exception();
+      }
+    };
+    // With threads ≥ 2 the columns of B, independent systems, are solved side by side, each on one
+    // thread (the level loops inside a parallel region run on their thread: loop_threads in
+    // multigrid_levels.h): one parallel region per solve instead of several per level and cycle,
+    // whose waits stall when another program holds a core. Each column's solution does not depend
+    // on the threads, so X is that of one thread bit for bit.
+    const int threads = mg_.ready() ? std::min(resolved_threads(options_.threads), 3) : 1;
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(threads) if (threads > 1 && !omp_in_parallel()) schedule(static, 1)
+#endif
+    for (int c = 0; c < 3; ++c) run(c);
+    for (const std::exception_ptr& error : errors)
+      if (error) std::rethrow_exception(error);
+
+    X.setZero(n, 3);
     SolveStatus status = SolveStatus::kSuccess;
     int iterations = 0;
-    double worst = 0;  // the largest true relative residual over the columns
-    for (int c = 0; c < 3; ++c) {
-      const Eigen::VectorXd b = B.col(c);
-      Eigen::VectorXd x = Eigen::VectorXd::Zero(n);
-      IterationSummary s;
-      switch (method_) {
-        case Method::kStationary:
-          iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
-          s = mg_.solve(b, x, iteration);
-          break;
-        case Method::kCg:
-          iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
-          s = multigrid_cg(mg_, b, x, iteration);
-          break;
-        case Method::kGmres: {
-          GmresOptions g;
-          g.iteration = iteration;
-          VectorMap apply, precondition;
-          if (mg_.ready()) {
-            g.iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
-            apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.apply(in, out); };
-            precondition = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.precondition(in, out); };
-          } else {
-            g.iteration.max_iterations = iteration_limit(options_, n, 20, 2e10);
-            apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = (*matrix_) * in; };
-            precondition = ilu_;
-          }
-          s = gmres(apply, precondition, b, x, g);
-          break;
-        }
-      }
-      iterations = std::max(iterations, s.iterations);
-      if (!x.allFinite()) {
-        x.setZero();
-        s.status = SolveStatus::kDiverged;
-        s.message = "the iteration broke down (non-finite values)";
-        s.relative_residual = 1;  // x = 0
-      }
-      worst = std::max(worst, s.relative_residual);
-      X.col(c) = x;
-      if (!s.ok() && status == SolveStatus::kSuccess) {
-        status = s.status;
-        summary.message = s.message;
+    double worst = 0;              // the largest true relative residual over the columns
+    for (int c = 0; c < 3; ++c) {  // in column order: the first failing column names the status
+      IterationSummary& sc = s[std::size_t(c)];
+      iterations = std::max(iterations, sc.iterations);
+      worst = std::max(worst, sc.relative_residual);
+      X.col(c) = x[std::size_t(c)];
+      if (!sc.ok() && status == SolveStatus::kSuccess) {
+        status = sc.status;
+        summary.message = sc.message;
       }
     }
     summary.iterations = iterations;
@@ -153,6 +149,45 @@ class MultigridBackend : public LinearSolver {
     // (judge_solution replaces it by the recomputed true residual only on success).
     summary.relative_residual = worst;
     return status;
+  }
+
+  // One column: the backend's iteration on A x = b from x (zero), x set to 0 if it breaks down.
+  IterationSummary solve_column(const Eigen::VectorXd& b, Eigen::VectorXd& x, IterationOptions iteration) const {
+    const Eigen::Index n = b.size();
+    IterationSummary s;
+    switch (method_) {
+      case Method::kStationary:
+        iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
+        s = mg_.solve(b, x, iteration);
+        break;
+      case Method::kCg:
+        iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
+        s = multigrid_cg(mg_, b, x, iteration);
+        break;
+      case Method::kGmres: {
+        GmresOptions g;
+        g.iteration = iteration;
+        VectorMap apply, precondition;
+        if (mg_.ready()) {
+          g.iteration.max_iterations = options_.max_iterations > 0 ? options_.max_iterations : 500;
+          apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.apply(in, out); };
+          precondition = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { mg_.precondition(in, out); };
+        } else {
+          g.iteration.max_iterations = iteration_limit(options_, n, 20, 2e10);
+          apply = [this](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = (*matrix_) * in; };
+          precondition = ilu_;
+        }
+        s = gmres(apply, precondition, b, x, g);
+        break;
+      }
+    }
+    if (!x.allFinite()) {
+      x.setZero();
+      s.status = SolveStatus::kDiverged;
+      s.message = "the iteration broke down (non-finite values)";
+      s.relative_residual = 1;  // x = 0
+    }
+    return s;
   }
 
  private:
