@@ -29,10 +29,14 @@ inline int exponent_of(double largest) {
   return e;
 }
 
-//! e with max|v| = m·2^e, m in [1/2, 1); 0 for a zero vector or one with a NaN or infinity.
-inline int magnitude_exponent(const Eigen::Ref<const Eigen::VectorXd>& v) {
-  return v.size() == 0 ? 0 : exponent_of(v.cwiseAbs().maxCoeff<Eigen::PropagateNaN>());
+//! max|v|: NaN when v holds a NaN wherever it lies (plain maxCoeff drops one that is not first),
+//! +inf for an infinity, 0 for an empty v.
+inline double largest_abs(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  return v.size() == 0 ? 0.0 : v.cwiseAbs().maxCoeff<Eigen::PropagateNaN>();
 }
+
+//! e with max|v| = m·2^e, m in [1/2, 1); 0 for a zero vector or one with a NaN or infinity.
+inline int magnitude_exponent(const Eigen::Ref<const Eigen::VectorXd>& v) { return exponent_of(largest_abs(v)); }
 
 //! v ← v·2^e, entry by entry, exactly (rounded as std::ldexp rounds: only subnormal results lose bits).
 inline void scale_by_power_of_two(Eigen::Ref<Eigen::VectorXd> v, int e) {
@@ -58,8 +62,7 @@ inline int scaling_exponent(double largest) {
 
 inline ColumnExponents rhs_exponents(const Eigen::MatrixX3d& B) {
   ColumnExponents e{};
-  for (int k = 0; k < 3; ++k)
-    e[std::size_t(k)] = B.rows() == 0 ? 0 : scaling_exponent(B.col(k).cwiseAbs().maxCoeff<Eigen::PropagateNaN>());
+  for (int k = 0; k < 3; ++k) e[std::size_t(k)] = scaling_exponent(largest_abs(B.col(k)));
   return e;
 }
 
