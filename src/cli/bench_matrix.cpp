@@ -122,6 +122,11 @@ int run_bench_matrix(const BenchMatrixRequest& r) {
   if (r.rhs.empty()) {
     check_bench_memory(1, r.matrix, a.size_line);
     B = A * Eigen::VectorXd::Ones(n);
+    for (Eigen::Index i = 0; i < n; ++i)  // finite entries can sum beyond the doubles
+      if (!std::isfinite(B(i, 0)))
+        throw InputError(r.matrix, fmt::format("row {}", i + 1),
+                         "the default right-hand side A times ones is not finite there (the row sums beyond the "
+                         "doubles); give B.mtx");
   } else {
     const MarketMatrix b = read_market_matrix(r.rhs);
     if (b.matrix.rows() != n)

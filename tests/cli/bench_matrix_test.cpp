@@ -113,6 +113,10 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
       {dir.write("index.mtx", header + "2 2 1\n3 1 1\n"), "index.mtx: line 3: entry (3, 1) outside"},
       {dir.write("inf.mtx", header + "2 2 1\n1 1 inf\n"), "inf.mtx: line 3: the value 'inf' is not finite"},
       {dir.write("wide.mtx", header + "2 3 1\n1 1 1\n"), "wide.mtx: line 2: A must be square, not 2 by 3"},
+      // finite values that sum beyond the doubles: bad input, not a failure of every backend
+      {dir.write("sum.mtx", header + "2 2 3\n1 1 1e308\n2 2 1\n1 1 1e308\n"), "sum.mtx: entry (1, 1): the duplicate"},
+      {dir.write("ones.mtx", header + "2 2 3\n1 1 1e308\n2 2 1\n1 2 1e308\n"),
+       "ones.mtx: row 1: the default right-hand side A times ones is not finite"},
       {A + " " + dir.write("rows.mtx", "%%MatrixMarket matrix array real general\n2 1\n1\n1\n"),
        "rows.mtx: line 2: B has 2 rows"},
       {dir.file("missing.mtx"), "missing.mtx: cannot open the file"},
