@@ -60,8 +60,8 @@ class KeyTracker {
   [[nodiscard]] std::string path() const {
     std::string out;
     for (std::size_t k = 0; k + 1 < frames_.size(); ++k)
-      out += frames_[k].object ? (out.empty() ? "" : ".") + frames_[k].key
-                               : "[" + std::to_string(frames_[k].index) + "]";
+      out +=
+          frames_[k].object ? (out.empty() ? "" : ".") + frames_[k].key : "[" + std::to_string(frames_[k].index) + "]";
     return out;
   }
   std::vector<Frame> frames_;
@@ -98,12 +98,22 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
     using Event = nlohmann::json::parse_event_t;
     if ((event == Event::object_start || event == Event::array_start) && depth >= options.max_depth) throw TooDeep{};
     switch (event) {
-      case Event::object_start: keys.open(true); break;
-      case Event::array_start: keys.open(false); break;
+      case Event::object_start:
+        keys.open(true);
+        break;
+      case Event::array_start:
+        keys.open(false);
+        break;
       case Event::object_end:
-      case Event::array_end: keys.close(); break;
-      case Event::key: keys.key(parsed.get<std::string>()); break;
-      case Event::value: keys.value(); break;
+      case Event::array_end:
+        keys.close();
+        break;
+      case Event::key:
+        keys.key(parsed.get<std::string>());
+        break;
+      case Event::value:
+        keys.value();
+        break;
     }
     return true;
   };
