@@ -5,6 +5,9 @@
 #include <Eigen/SparseLU>
 #include <cmath>
 #include <string>
+#include <type_traits>
+
+#include "matrix_checks.h"
 
 namespace coons::solvers {
 namespace {
@@ -86,6 +89,12 @@ class EigenDirect : public LinearSolver {
 
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
     if (lacks_matrix(op, summary)) return SolveStatus::kNotApplicable;
+    // SparseLU sizes U from fillratio·(nnz + 1)/n, 0 when nnz + 1 < n/20, and then never returns
+    // from factorize (Eigen 3.4); such a matrix has an empty row or column, singular anyway.
+    if constexpr (std::is_same_v<Factor, Lu>)
+      if (const SolveStatus empty = check_preconditioner_matrix(*op.matrix, false, &summary.message);
+          empty != SolveStatus::kSuccess)
+        return empty;
     factor_.factorize(*op.matrix);
     return judge(factor_, summary);
   }

@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cmath>
 #include <iostream>
 #include <memory>
 #include <optional>
@@ -75,6 +76,27 @@ std::string table_row(const solvers::GeneralRun& run) {
                      cell(run.backward_error), run.factor_nnz ? std::to_string(*run.factor_nnz) : "–", note);
 }
 
+// What the largest of the runs needs beyond A (the backends run one at a time), an upper-bound
+// sketch as in memory_estimate.h: B and X (n by k) with the residual's temporaries (three more),
+// a block of three columns and its solution, and the backend's share: a direct factor of about
+// (nnz + n)·log2(n) entries (fill grows with n: the 8·log2(N) a row of net_solve_bytes for a 3×3
+// mask), an iterative one's vectors (GMRES(50) keeps 51 of n a column) and a preconditioner of
+// a few copies of A. A file of a few bytes can declare 2^26 rows: this comes before any of it
+// (before A·1 and the symmetry check's transposed copy too).
+double bench_bytes(Eigen::Index n, Eigen::Index nnz, Eigen::Index columns,
+                   const std::vector<const solvers::SolverInfo*>& backends) {
+  const double rows = double(n), entries = double(nnz);
+  double share = 0;
+  for (const solvers::SolverInfo* info : backends) {
+    if (!info->needs_matrix) continue;  // skipped (the symmetric-only ones counted: A is not checked yet)
+    if (info->family == solvers::SolverFamily::kDirect)
+      share = std::max(share, 16 * (entries + rows) * std::log2(std::max(rows, 2.0)));
+    else
+      share = std::max(share, 8 * rows * 64 + 16 * entries * 3);
+  }
+  return 8 * rows * (5 * double(columns) + 9) + share;
+}
+
 int run_bench_matrix(const BenchMatrixRequest& r) {
   solvers::SolverOptions options;
   options.tolerance = r.tolerance;
@@ -90,17 +112,28 @@ int run_bench_matrix(const BenchMatrixRequest& r) {
   if (A.rows() != A.cols())
     throw InputError(r.matrix, fmt::format("line {}", a.size_line),
                      fmt::format("A must be square, not {} by {}", A.rows(), A.cols()));
+  const auto check_bench_memory = [&](Eigen::Index columns, const std::string& file, int size_line) {
+    check_memory(r.global, bench_bytes(n, A.nonZeros(), columns, backends),
+                 fmt::format("a {} by {} system with {} right-hand side{} and the backends' work", n, n, columns,
+                             columns == 1 ? "" : "s"),
+                 file, fmt::format("line {}", size_line));
+  };
   Eigen::MatrixXd B;
   if (r.rhs.empty()) {
+    check_bench_memory(1, r.matrix, a.size_line);
     B = A * Eigen::VectorXd::Ones(n);
+    for (Eigen::Index i = 0; i < n; ++i)  // finite entries can sum beyond the doubles
+      if (!std::isfinite(B(i, 0)))
+        throw InputError(r.matrix, fmt::format("row {}", i + 1),
+                         "the default right-hand side A times ones is not finite there (the row sums beyond the "
+                         "doubles); give B.mtx");
   } else {
     const MarketMatrix b = read_market_matrix(r.rhs);
     if (b.matrix.rows() != n)
       throw InputError(r.rhs, fmt::format("line {}", b.size_line),
                        fmt::format("B has {} rows, A ({}) has {}", b.matrix.rows(), r.matrix, n));
-    check_memory(r.global, 2.0 * 8.0 * double(n) * double(b.matrix.cols()),
-                 fmt::format("a dense {} by {} right-hand side and its solution", n, b.matrix.cols()), r.rhs,
-                 fmt::format("line {}", b.size_line));
+    check_bench_memory(1, r.matrix, a.size_line);  // A's size alone is too much: A is at fault
+    check_bench_memory(b.matrix.cols(), r.rhs, b.size_line);
     B = Eigen::MatrixXd(b.matrix);
   }
   solvers::GeneralSystem system;

@@ -113,6 +113,10 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
       {dir.write("index.mtx", header + "2 2 1\n3 1 1\n"), "index.mtx: line 3: entry (3, 1) outside"},
       {dir.write("inf.mtx", header + "2 2 1\n1 1 inf\n"), "inf.mtx: line 3: the value 'inf' is not finite"},
       {dir.write("wide.mtx", header + "2 3 1\n1 1 1\n"), "wide.mtx: line 2: A must be square, not 2 by 3"},
+      // finite values that sum beyond the doubles: bad input, not a failure of every backend
+      {dir.write("sum.mtx", header + "2 2 3\n1 1 1e308\n2 2 1\n1 1 1e308\n"), "sum.mtx: entry (1, 1): the duplicate"},
+      {dir.write("ones.mtx", header + "2 2 3\n1 1 1e308\n2 2 1\n1 2 1e308\n"),
+       "ones.mtx: row 1: the default right-hand side A times ones is not finite"},
       {A + " " + dir.write("rows.mtx", "%%MatrixMarket matrix array real general\n2 1\n1\n1\n"),
        "rows.mtx: line 2: B has 2 rows"},
       {dir.file("missing.mtx"), "missing.mtx: cannot open the file"},
@@ -144,4 +148,37 @@ TEST_CASE("coons bench-matrix: a system no backend solves exits 3 with its statu
   CHECK(row["status"] != "skipped");
   CHECK(row["backward_error"].is_null());
   CHECK(row["relative_residual"].is_null());
+}
+
+TEST_CASE("coons bench-matrix: a large declared size is held to --max-memory before any work", "[cli][bad-input]") {
+  // A file of a few bytes can declare a 10^5 by 10^5 matrix of one entry: the dense right-hand
+  // side A·1, its solution and every backend's workspace grow with the declared size, so the
+  // estimate must come before them, also without B.mtx (2^26 rows took over 4.7 GB unchecked).
+  const TempDir dir;
+  const std::string a =
+      dir.write("large.mtx", "%%MatrixMarket matrix coordinate real general\n% one entry\n100000 100000 1\n1 1 1\n");
+  const std::string b = dir.write("b.mtx", "%%MatrixMarket matrix coordinate real general\n100000 1 1\n1 1 1\n");
+  for (const std::string& args : {a, a + " " + b}) {
+    const CommandResult r = run_coons("bench-matrix " + args + " --solvers bicgstab --max-memory 1MB");
+    INFO(args << "\n" << r.out << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(lines_of(r.err).size() == 1);
+    CHECK(r.err.find("large.mtx: line 3: ") != std::string::npos);
+    CHECK(r.err.find("--max-memory") != std::string::npos);
+  }
+  // B's columns can be the excess too: then B is named
+  const std::string small_a =
+      dir.write("small.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 1\n2 2 1\n");
+  const std::string wide_b =
+      dir.write("wide.mtx", "%%MatrixMarket matrix coordinate real general\n2 1000000 1\n1 1 1\n");
+  const CommandResult wide = run_coons("bench-matrix " + small_a + " " + wide_b + " --max-memory 1MB");
+  INFO(wide.out << wide.err);
+  CHECK(wide.status == 2);
+  CHECK(wide.err.find("wide.mtx: line 2: ") != std::string::npos);
+  // a small system stays well inside a small limit
+  const CommandResult small =
+      run_coons("bench-matrix " + kMatrices + "convection_diffusion.mtx --solvers eigen-lu,gmres --max-memory 64MB");
+  INFO(small.err);
+  CHECK(small.status == 0);
 }

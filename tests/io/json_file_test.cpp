@@ -186,3 +186,21 @@ TEST_CASE("parse_boundary: with min_model_size a smaller model is refused at its
   CHECK(contains(n.reason(), "below 1e-60"));
   CHECK_NOTHROW(parse_boundary(small, "n.json"));
 }
+
+TEST_CASE("parse_json_text: a key given twice in one object is bad input naming its path", "[io]") {
+  // nlohmann keeps the last copy silently: a boundary with two "net" fields was solved with one
+  const auto field_of = [](const std::string& text) -> std::string {
+    try {
+      parse_json_text(text, "B.json");
+    } catch (const InputError& e) {
+      return e.field();
+    }
+    return "(accepted)";
+  };
+  CHECK(field_of(R"({"net": [[1]], "name": "a", "net": [[2]]})") == "net");
+  CHECK(field_of(R"({"ribbons": {"left": [], "top": [], "left": []}})") == "ribbons.left");
+  CHECK(field_of(R"({"sides": [{"a": 1}, [0, {"b": 1, "b": 2}]]})") == "sides[1][1].b");
+  CHECK(field_of(R"([{"x": 1}, {"x": 1, "x": 1}])") == "[1].x");
+  // the same key in different objects, or a value equal to a key, is fine
+  CHECK(field_of(R"({"a": {"a": 1}, "b": [{"a": 1}, {"a": "a"}], "c": "a"})") == "(accepted)");
+}

@@ -6,7 +6,10 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <set>
 #include <sstream>
+#include <string>
+#include <vector>
 
 #include "coons/io/input_error.h"
 
@@ -17,6 +20,52 @@ namespace {
 // Thrown by the parser callback to stop at the first container beyond the limit (the parser is
 // iterative, so the depth is counted before anything deeper is built).
 struct TooDeep {};
+
+// Thrown by the parser callback at the second copy of a key in one object (the parser would keep
+// the last silently: a file with two "net" fields would be solved with one of them).
+struct DuplicateKey {
+  std::string field;
+};
+
+// The containers open around the parser: each object's keys so far, each array's element count;
+// enough to name a repeated key by its path (`ribbons.left`, `sides[1].name`).
+class KeyTracker {
+ public:
+  void open(bool object) {
+    count_element();
+    frames_.push_back(Frame{object, {}, {}, -1});
+  }
+  void close() {
+    if (!frames_.empty()) frames_.pop_back();
+  }
+  void value() { count_element(); }
+  void key(const std::string& name) {
+    if (frames_.empty()) return;
+    Frame& top = frames_.back();
+    if (!top.keys.insert(name).second) throw DuplicateKey{path() + (frames_.size() > 1 ? "." : "") + name};
+    top.key = name;
+  }
+
+ private:
+  struct Frame {
+    bool object;
+    std::set<std::string> keys;
+    std::string key;  // the key being read (objects)
+    long long index;  // the element being read (arrays)
+  };
+  void count_element() {
+    if (!frames_.empty() && !frames_.back().object) ++frames_.back().index;
+  }
+  // The path of the innermost object: its enclosing keys and indices.
+  [[nodiscard]] std::string path() const {
+    std::string out;
+    for (std::size_t k = 0; k + 1 < frames_.size(); ++k)
+      out +=
+          frames_[k].object ? (out.empty() ? "" : ".") + frames_[k].key : "[" + std::to_string(frames_[k].index) + "]";
+    return out;
+  }
+  std::vector<Frame> frames_;
+};
 
 std::string describe(const nlohmann::json& j) {
   if (j.is_number_integer()) return j.dump();
@@ -43,16 +92,38 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
     throw InputError(source, kDocumentField,
                      fmt::format("{} bytes, more than the limit of {} bytes", text.size(), options.max_bytes));
   // depth = the number of containers around the one being opened: the top level is depth 0.
-  const auto depth_guard = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json&) {
-    if ((event == nlohmann::json::parse_event_t::object_start || event == nlohmann::json::parse_event_t::array_start) &&
-        depth >= options.max_depth)
-      throw TooDeep{};
+  // Also refuses a key given twice in one object.
+  KeyTracker keys;
+  const auto depth_guard = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
+    using Event = nlohmann::json::parse_event_t;
+    if ((event == Event::object_start || event == Event::array_start) && depth >= options.max_depth) throw TooDeep{};
+    switch (event) {
+      case Event::object_start:
+        keys.open(true);
+        break;
+      case Event::array_start:
+        keys.open(false);
+        break;
+      case Event::object_end:
+      case Event::array_end:
+        keys.close();
+        break;
+      case Event::key:
+        keys.key(parsed.get<std::string>());
+        break;
+      case Event::value:
+        keys.value();
+        break;
+    }
     return true;
   };
   try {
     return nlohmann::json::parse(text, depth_guard);
   } catch (const TooDeep&) {
     throw InputError(source, kDocumentField, fmt::format("nesting deeper than {} levels", options.max_depth));
+  } catch (const DuplicateKey& d) {
+    throw InputError(source, d.field,
+                     "the key appears twice in its object; a reader would silently keep only one of the two");
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(source, kDocumentField, fmt::format("malformed JSON at byte {}", e.byte));
   } catch (const nlohmann::json::exception& e) {

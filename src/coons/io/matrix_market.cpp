@@ -381,12 +381,11 @@ MarketMatrix read_market_matrix(const std::string& path) {
     throw InputError(path, where, fmt::format("a {} matrix must be square, not {} by {}", b.symmetry, rows, cols));
   std::vector<Eigen::Triplet<double>> entries;
   if (coordinate) {
-    // An entry takes at least 4 bytes ("1 1\n"): a larger count cannot be in the file.
+    // An entry takes at least 4 bytes ("1 1\n"): a larger count cannot be in the file. (More
+    // entries than cells can: duplicates are summed.)
     const long long nnz = size[2];
-    if (nnz > rows * cols || nnz > static_cast<long long>(text.size() / 4))
-      throw InputError(
-          path, where,
-          fmt::format("{} entries do not fit a {} by {} matrix in a file of {} bytes", nnz, rows, cols, text.size()));
+    if (nnz > static_cast<long long>(text.size() / 4))
+      throw InputError(path, where, fmt::format("{} entries do not fit in a file of {} bytes", nnz, text.size()));
     entries.reserve(static_cast<std::size_t>(b.symmetry == "general" ? nnz : 2 * nnz));
     read_coordinate_entries(path, where, lines, b, rows, cols, nnz, entries);
   } else {
@@ -398,6 +397,12 @@ MarketMatrix read_market_matrix(const std::string& path) {
   }
   MarketMatrix out;
   out.matrix = compressed_matrix(rows, cols, entries);
+  // Every value was finite; duplicates summed (1e308 twice) need not be.
+  for (Eigen::Index c = 0; c < out.matrix.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(out.matrix, c); it; ++it)
+      if (!std::isfinite(it.value()))
+        throw InputError(path, fmt::format("entry ({}, {})", it.row() + 1, it.col() + 1),
+                         fmt::format("the duplicate entries sum to {}, beyond the doubles", it.value()));
   out.format = b.format;
   out.field = b.field;
   out.symmetry = b.symmetry;
