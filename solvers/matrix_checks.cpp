@@ -20,10 +20,12 @@ SolveStatus check_preconditioner_matrix(const Eigen::SparseMatrix<double>& A, bo
   };
   for (std::size_t r = 0; r < row_used.size(); ++r)
     if (!row_used[r])
-      return fail(SolveStatus::kSingular, "row " + std::to_string(r) + " is empty: the matrix is singular");
+      return fail(SolveStatus::kSingular,
+                  "row " + std::to_string(r) + " (counting from 0) is empty: the matrix is singular");
   for (std::size_t c = 0; c < col_used.size(); ++c)
     if (!col_used[c])
-      return fail(SolveStatus::kSingular, "column " + std::to_string(c) + " is empty: the matrix is singular");
+      return fail(SolveStatus::kSingular,
+                  "column " + std::to_string(c) + " (counting from 0) is empty: the matrix is singular");
   if (need_diagonal)
     for (std::size_t r = 0; r < diagonal.size(); ++r)
       if (!diagonal[r])

@@ -341,8 +341,9 @@ TEST_CASE("check_preconditioner_matrix: an empty row or a zero diagonal is refus
     CHECK(check_preconditioner_matrix(A, need_diagonal, &why) == expected);
     return why;
   };
-  CHECK(reason(empty, false, SolveStatus::kSingular) == "row 0 is empty: the matrix is singular");
-  CHECK(reason(last_empty, false, SolveStatus::kSingular) == "row 2 is empty: the matrix is singular");
+  CHECK(reason(empty, false, SolveStatus::kSingular) == "row 0 (counting from 0) is empty: the matrix is singular");
+  CHECK(reason(last_empty, false, SolveStatus::kSingular) ==
+        "row 2 (counting from 0) is empty: the matrix is singular");
   Eigen::SparseMatrix<double> off(2, 2);
   off.insert(0, 1) = 1;
   off.insert(1, 0) = 1;
