@@ -1,8 +1,8 @@
 // `coons join A.json SIDE B.json SIDE`: the C⁰ gap and the largest angle between the tangent
 // planes along the seam where side A of one surface meets side B of another (LN1, LN2).
-#include <Eigen/Core>
 #include <fmt/format.h>
 
+#include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
 #include <memory>
@@ -38,8 +38,7 @@ int run_join(const JoinRequest& r) {
   const SeamReport seam = compare_seam(a.surface, a_side, b.surface, b_side, r.reversed, r.samples);
   // The reader checks expressions at 65 samples; a pole or NaN between them may meet the seam.
   if (seam.not_finite != 0)
-    throw InputError(seam.not_finite == 1 ? r.first : r.second,
-                     seam.not_finite == 1 ? r.first_side : r.second_side,
+    throw InputError(seam.not_finite == 1 ? r.first : r.second, seam.not_finite == 1 ? r.first_side : r.second_side,
                      fmt::format("the surface is not finite on this side at t = {:.6g} (a pole, or a NaN between the "
                                  "samples the reader checks)",
                                  seam.not_finite_at));

@@ -194,13 +194,12 @@ TEST_CASE("search_alpha: the optimum is invariant under scaling of the objective
   solvers.push_back("fast");  // the sine-basis evaluator
 #endif
   for (const std::string& solver : solvers)
-    for (const std::string& name : {std::string("thin_plate"), std::string("e3"), std::string("discrete_twist"),
-                                    std::string("target")}) {
+    for (const std::string& name :
+         {std::string("thin_plate"), std::string("e3"), std::string("discrete_twist"), std::string("target")}) {
       const AlphaSearchSummary at_one = search_alpha(dome(), objective_named(name, {}), backend(solver));
       INFO(solver << ", " << name << " with weight 1: " << at_one.brief_report());
       REQUIRE(at_one.status == SearchStatus::kSuccess);
-      for (const auto& [weight, text] :
-           {std::pair{1e-60, "1e-60"}, {1e-30, "1e-30"}, {1e30, "1e30"}, {1e60, "1e60"}}) {
+      for (const auto& [weight, text] : {std::pair{1e-60, "1e-60"}, {1e-30, "1e-30"}, {1e30, "1e30"}, {1e60, "1e60"}}) {
         const std::string weighted = std::string(text) + "*" + name;
         const AlphaSearchSummary scaled = search_alpha(dome(), objective_named(weighted, {}), backend(solver));
         INFO(weighted << ": " << scaled.brief_report());

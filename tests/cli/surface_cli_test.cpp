@@ -252,12 +252,21 @@ TEST_CASE("coons join: a surface that is not finite on the seam is bad input nam
   // the report said c0 true with a gap of 0 (`coons surface` refuses either file).
   TempDir dir;
   const std::string z = "sqrt((t-0.505)*(t-0.515))-sqrt(0.495*0.485)*t-sqrt(0.505*0.515)*(1-t)";
-  const std::string a = dir.write("a.json", R"({"type": "bilinear-coons", "bottom": {"expr": ["t", "0", "0"]},
-    "top": {"expr": ["t", "1", "0"]}, "left": {"expr": ["0", "t", "0"]}, "right": {"expr": ["1", "t", ")" + z +
-                                                R"("]}})");
-  const std::string b = dir.write("b.json", R"({"type": "bilinear-coons", "bottom": {"expr": ["1+t", "0", "0"]},
-    "top": {"expr": ["1+t", "1", "0"]}, "left": {"expr": ["1", "t", ")" + z +
-                                                R"("]}, "right": {"expr": ["2", "t", "0"]}})");
+  auto expr = [](const std::string& cx, const std::string& cy, const std::string& cz) {
+    return json{{"expr", {cx, cy, cz}}};
+  };
+  const std::string a = dir.write("a.json", json{{"type", "bilinear-coons"},
+                                                 {"bottom", expr("t", "0", "0")},
+                                                 {"top", expr("t", "1", "0")},
+                                                 {"left", expr("0", "t", "0")},
+                                                 {"right", expr("1", "t", z)}}
+                                                .dump());
+  const std::string b = dir.write("b.json", json{{"type", "bilinear-coons"},
+                                                 {"bottom", expr("1+t", "0", "0")},
+                                                 {"top", expr("1+t", "1", "0")},
+                                                 {"left", expr("1", "t", z)},
+                                                 {"right", expr("2", "t", "0")}}
+                                                .dump());
   const CommandResult r = run_coons("join " + quoted(a) + " right " + quoted(b) + " left");
   INFO(r.out << r.err);
   CHECK(r.status == 2);
