@@ -1,5 +1,7 @@
 // `coons join A.json SIDE B.json SIDE`: the C⁰ gap and the largest angle between the tangent
 // planes along the seam where side A of one surface meets side B of another (LN1, LN2).
+#include <fmt/format.h>
+
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
@@ -34,6 +36,12 @@ int run_join(const JoinRequest& r) {
     throw InputError("command line", "--samples", "must be between 2 and 1000000");
   const SurfaceFile a = read_surface_file(r.first), b = read_surface_file(r.second);
   const SeamReport seam = compare_seam(a.surface, a_side, b.surface, b_side, r.reversed, r.samples);
+  // The reader checks expressions at 65 samples; a pole or NaN between them may meet the seam.
+  if (seam.not_finite != 0)
+    throw InputError(seam.not_finite == 1 ? r.first : r.second, seam.not_finite == 1 ? r.first_side : r.second_side,
+                     fmt::format("the surface is not finite on this side at t = {:.6g} (a pole, or a NaN between the "
+                                 "samples the reader checks)",
+                                 seam.not_finite_at));
   // the scale of the gap: the bounding-box diagonal of both patches sampled on a 9 × 9 grid (the
   // files' own `size` is set only for the types whose reader checks corners with it)
   Eigen::RowVector3d lo = a.surface.at(0, 0), hi = lo;

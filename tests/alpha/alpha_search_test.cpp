@@ -137,6 +137,18 @@ TEST_CASE("parse_objective: names, weighted sums and errors", "[alpha]") {
   CHECK(!parse_objective("x*twist", &why));
 }
 
+TEST_CASE("parse_objective: weights outside [1e-60, 1e60] are refused", "[alpha]") {
+  // As coordinates are bounded (kMaxCoordinate): a weight of 1e307 overflowed the values near the
+  // optimum and moved it (the dome's thin-plate alpha* read -0.0079 instead of -0.0185).
+  std::string why;
+  CHECK(parse_objective("1e-60*thin_plate+1e60*e3", &why));
+  for (const std::string& name : {"1e61*thin_plate", "thin_plate+1e307*e3", "1e-61*target", "1e-300*twist"}) {
+    INFO(name);
+    CHECK(!parse_objective(name, &why));
+    CHECK_THAT(why, Catch::Contains("[1e-60, 1e60]"));
+  }
+}
+
 TEST_CASE("MaskObjective::evaluate_mask: the gradient in (alpha, gamma) equals finite differences", "[alpha]") {
   const Boundary b = make_smooth_boundary(3, 7, 4);
   MaskObjective f(b, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));

@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "coons/alpha/alpha_search.h"
@@ -182,4 +183,27 @@ TEST_CASE("search_alpha: a constant boundary is flat for every objective, with v
     CHECK_FALSE(s.at_bound);
     CHECK(s.value == 0);
   }
+}
+
+TEST_CASE("search_alpha: the optimum is invariant under scaling of the objective's weights", "[alpha]") {
+  // w·f has the optimum of f, and w times its value, for every weight parse_objective takes. A
+  // small weight (1e-20 and below) read as a flat objective: the flatness floor is in units of the
+  // boundary, not of the weights. The frame now divides the weights by the largest.
+  std::vector<std::string> solvers = {"eigen-ldlt"};
+#if COONS_HAVE_FFTW
+  solvers.push_back("fast");  // the sine-basis evaluator
+#endif
+  for (const std::string& solver : solvers)
+    for (const std::string& name :
+         {std::string("thin_plate"), std::string("e3"), std::string("discrete_twist"), std::string("target")}) {
+      const AlphaSearchSummary at_one = search_alpha(dome(), objective_named(name, {}), backend(solver));
+      INFO(solver << ", " << name << " with weight 1: " << at_one.brief_report());
+      REQUIRE(at_one.status == SearchStatus::kSuccess);
+      for (const auto& [weight, text] : {std::pair{1e-60, "1e-60"}, {1e-30, "1e-30"}, {1e30, "1e30"}, {1e60, "1e60"}}) {
+        const std::string weighted = std::string(text) + "*" + name;
+        const AlphaSearchSummary scaled = search_alpha(dome(), objective_named(weighted, {}), backend(solver));
+        INFO(weighted << ": " << scaled.brief_report());
+        check_same_search(at_one, scaled, weight);
+      }
+    }
 }

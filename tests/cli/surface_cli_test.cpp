@@ -245,6 +245,43 @@ TEST_CASE("coons join: patches of every type that share a side exactly meet C0 (
   CHECK(point["g1"] == false);
 }
 
+TEST_CASE("coons join: a surface that is not finite on the seam is bad input naming the file and the side",
+          "[cli][surfaces]") {
+  // z of the shared side is NaN for t in (0.505, 0.515): between the reader's 65 samples t = k/64,
+  // on the seam sample t = 0.51. Both patches share that side, so the NaN sample was skipped and
+  // the report said c0 true with a gap of 0 (`coons surface` refuses either file).
+  TempDir dir;
+  const std::string z = "sqrt((t-0.505)*(t-0.515))-sqrt(0.495*0.485)*t-sqrt(0.505*0.515)*(1-t)";
+  auto expr = [](const std::string& cx, const std::string& cy, const std::string& cz) {
+    return json{{"expr", {cx, cy, cz}}};
+  };
+  const std::string a = dir.write("a.json", json{{"type", "bilinear-coons"},
+                                                 {"bottom", expr("t", "0", "0")},
+                                                 {"top", expr("t", "1", "0")},
+                                                 {"left", expr("0", "t", "0")},
+                                                 {"right", expr("1", "t", z)}}
+                                                .dump());
+  const std::string b = dir.write("b.json", json{{"type", "bilinear-coons"},
+                                                 {"bottom", expr("1+t", "0", "0")},
+                                                 {"top", expr("1+t", "1", "0")},
+                                                 {"left", expr("1", "t", z)},
+                                                 {"right", expr("2", "t", "0")}}
+                                                .dump());
+  const CommandResult r = run_coons("join " + quoted(a) + " right " + quoted(b) + " left");
+  INFO(r.out << r.err);
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK(r.err.rfind("error: " + a + ": right: the surface is not finite on this side at t = 0.51", 0) == 0);
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  // the second surface is named when the first is finite there
+  const std::string c = dir.write("c.json", R"({"type": "bilinear", "corners": [[0, 0, 0], [1, 0, 0], [0, 1, 0],
+    [1, 1, 0]]})");
+  const CommandResult second = run_coons("join " + quoted(c) + " right " + quoted(b) + " left --reversed");
+  INFO(second.out << second.err);
+  CHECK(second.status == 2);
+  CHECK(second.err.rfind("error: " + b + ": left: the surface is not finite on this side at t = 0.51", 0) == 0);
+}
+
 TEST_CASE("coons surface --reference: a B-spline net is refused naming its knots, not read as a Bezier net",
           "[cli][surfaces]") {
   TempDir dir;

@@ -99,6 +99,26 @@ TEST_CASE("continuum_optimum: the optimum is the least energy of a fine scan and
   CHECK(std::abs(optima[2] - optima[1]) < 1e-3 * optima[2]);
 }
 
+TEST_CASE("continuum_optimum: the weights of the energy do not change the optimum", "[study]") {
+  // w·E has the optimum of E, for every weight of an objective (1e-60 … 1e60): the flatness floor
+  // was in units of the boundary only, so 1e-20*thin_plate was called flat (degree-limit printed
+  // mu_continuum null for the dome).
+  const ControlNet net = polynomial_net(8, {{1, 1, 1.0}, {2, 1, -1.0}, {1, 2, -1.0}, {2, 2, 1.0}, {3, 3, 2.0}});
+  const ContinuumProblem problem(boundary_of(net));
+  const ContinuumOptimum one = continuum_optimum(problem, thin_plate_terms());
+  REQUIRE(one.status == ContinuumStatus::kSuccess);
+  for (const double w : {1e-60, 1e-20, 1e20, 1e60}) {
+    INFO("weight " << w);
+    std::vector<EnergyTerm> terms = thin_plate_terms();
+    for (EnergyTerm& t : terms) t.weight *= w;
+    const ContinuumOptimum o = continuum_optimum(problem, terms);
+    CHECK(o.status == ContinuumStatus::kSuccess);
+    REQUIRE(o.mu);
+    CHECK(*o.mu == Approx(*one.mu).epsilon(1e-6));
+    CHECK(o.value == Approx(one.value * w).epsilon(1e-12));
+  }
+}
+
 TEST_CASE("exact_energy_mu: agrees with the exact gradients of the energies' bilinear forms", "[study]") {
   const ControlNet net = make_random_net(5, 4, 11);
   const auto mu = exact_energy_mu(net);

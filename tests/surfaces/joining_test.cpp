@@ -88,3 +88,18 @@ TEST_CASE("compare_seam: Ferguson patches sharing their edge data join C1; a rev
   const SeamReport wrong = compare_seam(a, Side::kRight, b, Side::kLeft, true);
   CHECK(wrong.c0_gap > 0.1);
 }
+
+TEST_CASE("compare_seam: the verdict does not depend on the size of the patches", "[surfaces]") {
+  // Two pieces of z = xy (a bilinear surface), over [0,1]² and [1,2]×[0,1], scaled by s: one smooth
+  // surface. At s = 1e-150 the normals used to underflow, none was compared and no G1 was claimed.
+  for (const double s : {1.0, 1e-150, 1e150}) {
+    INFO("scale " << s);
+    const Surface a = make_bilinear({V(0, 0, 0) * s, V(1, 0, 0) * s, V(0, 1, 0) * s, V(1, 1, 1) * s});
+    const Surface b = make_bilinear({V(1, 0, 0) * s, V(2, 0, 0) * s, V(1, 1, 1) * s, V(2, 1, 2) * s});
+    const SeamReport r = compare_seam(a, Side::kRight, b, Side::kLeft);
+    CHECK(r.normals_compared == 101);
+    CHECK(r.max_normal_angle < 1e-12);
+    CHECK(r.c0_gap <= 1e-15 * s);
+    CHECK(r.not_finite == 0);
+  }
+}

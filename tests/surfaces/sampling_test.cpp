@@ -51,6 +51,24 @@ TEST_CASE("sample_grid: curvatures of a cylinder, a saddle and a plane", "[surfa
     }
 }
 
+TEST_CASE("sample_grid: normals and curvatures follow a scaling of the surface by 1e-150 and 1e150", "[surfaces]") {
+  // z = 2uv scaled by s: the same normals, H and K divided by s and s², the twist times s. At
+  // 1e-150 the cross product of the partials (1e-300) has a squared norm below the smallest double,
+  // so every normal and curvature was NaN and `coons surface` printed maxima of 0.
+  auto saddle = [](double s) { return make_bilinear({V(0, 0, 0), V(s, 0, 0), V(0, s, 0), V(s, s, 2 * s)}); };
+  const SurfaceSamples one = sample_grid(saddle(1), 5);
+  for (const double s : {1e-150, 1e150}) {
+    INFO("scale " << s);
+    const SurfaceSamples scaled = sample_grid(saddle(s), 5);
+    for (int r = 0; r < 25; ++r) {
+      CHECK((scaled.normals.row(r) - one.normals.row(r)).norm() < 1e-15);
+      CHECK(scaled.mean_curvature(r) * s == Approx(one.mean_curvature(r)).epsilon(1e-14));
+      CHECK(scaled.gaussian_curvature(r) * s * s == Approx(one.gaussian_curvature(r)).epsilon(1e-14));
+      CHECK(scaled.twist(r) / s == Approx(one.twist(r)).epsilon(1e-14));
+    }
+  }
+}
+
 TEST_CASE("add_reference_distance: the distance of the 16-vector bump to its plane is |z|", "[surfaces]") {
   const std::array<V, 4> corners = {V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)};
   const std::array<V, 4> du = {V(1, 0, 0), V(1, 0, 0), V(1, 0, 0), V(1, 0, 0)};

@@ -1,5 +1,6 @@
 #include "normalised_frame.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace coons {
@@ -55,6 +56,21 @@ NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& obje
   const bool energies = !objective.energy.empty() || !objective.discrete.empty();
   f.value_factor = energies ? f.scale * f.scale : f.scale;
   if (energies) f.objective.target_weight = objective.target_weight * inv;
+  // The weights: divided by W = 2^k nearest to the largest, so that the frame's objective is of
+  // order one for any weights (1e-300*thin_plate would read as flat against tolerances in units
+  // of the boundary, 1e300*e3 would overflow near the optimum); W joins the value factor.
+  double largest = f.objective.target_weight;
+  for (const EnergyTerm& t : f.objective.energy) largest = std::max(largest, t.weight);
+  for (const auto& [kind, weight] : f.objective.discrete) largest = std::max(largest, weight);
+  if (largest > 0 && std::isfinite(largest)) {
+    const double w = std::ldexp(1.0, int(std::lround(std::log2(largest))));
+    if (std::isnormal(f.value_factor * w)) {  // else values could not be mapped back: keep W = 1
+      f.value_factor *= w;
+      for (EnergyTerm& t : f.objective.energy) t.weight /= w;
+      for (auto& [kind, weight] : f.objective.discrete) weight /= w;
+      f.objective.target_weight /= w;
+    }
+  }
   if (f.objective.target) {
     Target& t = *f.objective.target;
     if (t.kind == Target::Kind::kNet) {

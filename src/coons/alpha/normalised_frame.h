@@ -3,9 +3,11 @@
 // with it. Every objective over α is invariant under translation and scales as s² (energies) or
 // s (the rms distance to a target), so the search's optimum, flatness and bound are the same in
 // this frame, and no tolerance of the search meets coordinates of size 1e−150 or 1e150 (issue 17).
-// Values map back exactly: f = value_factor · f_unit, where
-//   energies (and weighted sums with a target): value_factor = s², target weight w/s in the frame;
-//   the target alone:                             value_factor = s,  target weight unchanged.
+// The weights are divided by W, the power of two nearest to the largest (after the target's 1/s),
+// so that the frame's objective is of order one for any weights. Values map back exactly:
+// f = value_factor · f_unit, where
+//   energies (and weighted sums with a target): value_factor = s²·W, target weight w/(s·W) in the frame;
+//   the target alone:                             value_factor = s·W,  target weight w/W.
 // Sizes: a copy of the boundary (and of a target net).
 #pragma once
 

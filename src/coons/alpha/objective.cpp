@@ -97,6 +97,10 @@ std::optional<Objective> parse_objective(const std::string& text, std::string* w
       if (why) *why = "weights must be positive numbers ('" + term + "')";
       return std::nullopt;
     }
+    if (!(weight >= kMinObjectiveWeight && weight <= kMaxObjectiveWeight)) {
+      if (why) *why = "weights must lie in [1e-60, 1e60], so that the values stay finite ('" + term + "')";
+      return std::nullopt;
+    }
     std::vector<EnergyTerm> terms;
     if (name == "thin_plate")
       terms = thin_plate_terms();

@@ -44,6 +44,11 @@ struct Objective {
   std::optional<Target> target;
 };
 
+//! The range of a term's weight, as coordinates are bounded by 1e60: the search divides the
+//! weights by the largest (normalised_frame.h) but reports values in the caller's units, and
+//! 1e300·e3 would overflow them near the optimum.
+inline constexpr double kMinObjectiveWeight = 1e-60, kMaxObjectiveWeight = 1e60;
+
 //! The named objectives (thin_plate, twist, dirichlet, e3, target; and discrete_twist,
 //! discrete_dirichlet, discrete_thin_plate, which cost O(mn) for very large nets) and weighted sums:
 //! "thin_plate", "e3+0.5*twist", "2*target+thin_plate". Returns nullopt for an unknown name

@@ -169,7 +169,10 @@ ContinuumOptimum continuum_optimum(const ContinuumProblem& problem, const std::v
     hi = std::max(hi, out.scan[k].second);
   }
   out.value = out.scan[best].second;
-  if (hi - lo <= options.flat_tolerance * std::max(std::abs(hi), problem.energy_scale())) {
+  // the floor: an energy of order one of the boundary, times the terms' weights
+  double weight = 0;
+  for (const EnergyTerm& t : terms) weight = std::max(weight, std::abs(t.weight));
+  if (hi - lo <= options.flat_tolerance * std::max(std::abs(hi), weight * problem.energy_scale())) {
     out.status = ContinuumStatus::kFlat;
     return out;
   }

@@ -56,7 +56,8 @@ class ContinuumProblem {
 struct ContinuumOptions {
   double mu_lower = 1e-3, mu_upper = 1e6;  //!< searched on a log scale; μ = 0 is checked as well
   int scan_points = 37;                    //!< log grid before Brent
-  //! flat in μ when the energy's range is below this times max(|energy|, energy_scale())
+  //! flat in μ when the energy's range is below this times max(|energy|, w·energy_scale()), w the
+  //! largest weight of the terms
   double flat_tolerance = 1e-10;
 
   bool is_valid(std::string* why) const;

@@ -47,15 +47,21 @@ double energy_of(const ControlNet& net, const std::string& name) {
 // The grid of a slider with the optima (and the marks) added, increasing, without repeats.
 std::vector<double> slider_values(double lower, double upper, int count, const std::vector<ViewCurve>& curves,
                                   const std::vector<double>& marks) {
-  std::vector<double> values = linspace(lower, upper, count);
+  // The optima are frames exactly, then the marks, then the grid: a value within rounding of one
+  // already taken gives way to it (the twist optimum of a cubic triangle is 0 up to 1e-16, next to
+  // the mark and grid value 0).
+  std::vector<double> values;
+  const auto add = [&values](double x) {
+    if (std::none_of(values.begin(), values.end(),
+                     [x](double v) { return std::abs(x - v) <= 1e-12 * (1 + std::abs(v)); }))
+      values.push_back(x);
+  };
   for (const ViewCurve& c : curves)
-    if (c.optimum) values.push_back(*c.optimum);
+    if (c.optimum) add(*c.optimum);
   for (double mark : marks)
-    if (mark >= lower && mark <= upper) values.push_back(mark);
+    if (mark >= lower && mark <= upper) add(mark);
+  for (double g : linspace(lower, upper, count)) add(g);
   std::sort(values.begin(), values.end());
-  values.erase(std::unique(values.begin(), values.end(),
-                           [](double a, double b) { return std::abs(a - b) <= 1e-12 * (1 + std::abs(a)); }),
-               values.end());
   return values;
 }
 

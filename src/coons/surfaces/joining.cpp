@@ -26,7 +26,15 @@ SeamReport compare_seam(const Surface& a, Side side_a, const Surface& b, Side si
   r.samples = samples;
   for (int k = 0; k < samples; ++k) {
     const double t = double(k) / (samples - 1);
-    const SurfacePoint pa = on_side(a, side_a, t), pb = on_side(b, side_b, reversed ? 1 - t : t);
+    const double tb = reversed ? 1 - t : t;
+    const SurfacePoint pa = on_side(a, side_a, t), pb = on_side(b, side_b, tb);
+    if (!pa.p.allFinite() || !pb.p.allFinite()) {
+      if (r.not_finite == 0) {
+        r.not_finite = pa.p.allFinite() ? 2 : 1;
+        r.not_finite_at = pa.p.allFinite() ? tb : t;
+      }
+      continue;
+    }
     r.c0_gap = std::max(r.c0_gap, (pa.p - pb.p).norm());
     const Eigen::RowVector3d na = unit_normal(pa), nb = unit_normal(pb);
     if (!na.allFinite() || !nb.allFinite()) continue;

@@ -21,10 +21,14 @@ struct SeamReport {
   double at = 0;                //!< seam parameter of the largest angle
   int samples = 0;
   int normals_compared = 0;  //!< samples where both normals exist (max_normal_angle is over these)
+  int not_finite = 0;        //!< 1 (a) or 2 (b): the surface whose seam point is first not finite; 0: none
+  double not_finite_at = 0;  //!< that point's parameter on its own side (b's is 1 − t when reversed)
 };
 
 //! Compares side_a of a with side_b of b at `samples` ≥ 2 seam parameters t (b at 1 − t when
-//! reversed). Singular normals (NaN) are skipped and not counted in normals_compared.
+//! reversed). Singular normals (NaN) are skipped and not counted in normals_compared; a seam point
+//! that is not finite (a pole of an expression curve) is reported in not_finite and compared with
+//! nothing, so that c0_gap is the largest finite gap.
 SeamReport compare_seam(const Surface& a, Side side_a, const Surface& b, Side side_b, bool reversed = false,
                         int samples = 101);
 

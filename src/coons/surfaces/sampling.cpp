@@ -31,7 +31,7 @@ SurfaceSamples sample_grid(const std::function<SurfacePoint(double, double)>& po
       out.normals.row(row) = unit_normal(p);
       out.mean_curvature(row) = c.mean;
       out.gaussian_curvature(row) = c.gaussian;
-      out.twist(row) = p.duv.norm();
+      out.twist(row) = p.duv.stableNorm();  // (norm() underflows below about 1e-154)
     }
   return out;
 }

@@ -1,6 +1,7 @@
 #include "surface_point.h"
 
 #include <Eigen/Geometry>
+#include <algorithm>
 #include <cmath>
 #include <limits>
 
@@ -17,22 +18,28 @@ Eigen::RowVector3d SurfacePoint::derivative(int a, int b) const {
 }
 
 Eigen::RowVector3d unit_normal(const SurfacePoint& s) {
-  const Eigen::RowVector3d n = s.du.cross(s.dv);
+  // The partials are divided by their norms first: their cross product then neither underflows
+  // (a surface of size 1e-150: the squared norm of du × dv would be 1e-600) nor overflows.
+  const double lu = s.du.stableNorm(), lv = s.dv.stableNorm();
+  if (!(lu > 0) || !(lv > 0)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const Eigen::RowVector3d n = (s.du / lu).cross(s.dv / lv);
   const double len = n.norm();
-  const double scale = s.du.norm() * s.dv.norm();
-  if (!(len > 1e-14 * scale) || !(len > 0))
-    return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  if (!(len > 1e-14)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   return n / len;
 }
 
 Curvatures curvatures(const SurfacePoint& s) {
   const Eigen::RowVector3d n = unit_normal(s);
-  const double E = s.du.dot(s.du), F = s.du.dot(s.dv), G = s.dv.dot(s.dv);
-  const double L = s.duu.dot(n), M = s.duv.dot(n), N = s.dvv.dot(n);
+  // In units of the larger first partial σ, so that no product underflows or overflows at any
+  // size of the surface: E, F, G are then of order one, and H scales back by 1/σ, K by 1/σ².
+  const double sigma = std::max(s.du.stableNorm(), s.dv.stableNorm());
+  const Eigen::RowVector3d du = s.du / sigma, dv = s.dv / sigma;
+  const double E = du.dot(du), F = du.dot(dv), G = dv.dot(dv);
+  const double L = s.duu.dot(n) / sigma, M = s.duv.dot(n) / sigma, N = s.dvv.dot(n) / sigma;
   const double det = E * G - F * F;
   Curvatures c;
-  c.gaussian = (L * N - M * M) / det;
-  c.mean = (E * N - 2 * F * M + G * L) / (2 * det);
+  c.gaussian = (L * N - M * M) / det / sigma / sigma;
+  c.mean = (E * N - 2 * F * M + G * L) / (2 * det) / sigma;
   return c;
 }
 
