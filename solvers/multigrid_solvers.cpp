@@ -119,14 +119,24 @@ class MultigridBackend : public LinearSolver {
     };
     // With threads ≥ 2 the columns of B, independent systems, are solved side by side, each on one
     // thread (the level loops inside a parallel region run on their thread: loop_threads in
-    // multigrid_levels.h): one parallel region per solve instead of several per level and cycle,
-    // whose waits stall when another program holds a core. Each column's solution does not depend
-    // on the threads, so X is that of one thread bit for bit.
-    const int threads = mg_.ready() ? std::min(resolved_threads(options_.threads), 3) : 1;
+    // multigrid_levels.h), and a column left over (two threads: the third) alone, with the level
+    // loops on every thread. The level loops have several parallel regions per level and cycle,
+    // whose waits stall when another program holds a core; side by side a column has none. But
+    // two whole solves at once share the caches and the memory bus, and three columns on two
+    // threads leave one thread idle for a third of the time, so the last column keeps the level
+    // loops (measured 2026-11-24 at N = 1023, α = −0.1, on an idle machine: level loops only
+    // 0.97-1.13 s, all three columns side by side 1.32 s, this split 0.95-1.09 s; docs/solvers.md).
+    // Each column's solution does not depend on the threads, so X is that of one thread bit for bit.
+    const int threads = mg_.ready() ? resolved_threads(options_.threads) : 1;
+    int side_by_side = threads >= 2 ? std::min(threads, 3) : 1;
 #if defined(_OPENMP)
-#pragma omp parallel for num_threads(threads) if (threads > 1 && !omp_in_parallel()) schedule(static, 1)
+    if (omp_in_parallel()) side_by_side = 1;
+#pragma omp parallel for num_threads(side_by_side) if (side_by_side > 1) schedule(static, 1)
+#else
+    side_by_side = 1;
 #endif
-    for (int c = 0; c < 3; ++c) run(c);
+    for (int c = 0; c < side_by_side; ++c) run(c);
+    for (int c = side_by_side; c < 3; ++c) run(c);
     for (const std::exception_ptr& error : errors)
       if (error) std::rethrow_exception(error);
 

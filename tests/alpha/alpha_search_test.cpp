@@ -142,7 +142,7 @@ TEST_CASE("parse_objective: weights outside [1e-60, 1e60] are refused", "[alpha]
   // optimum and moved it (the dome's thin-plate alpha* read -0.0079 instead of -0.0185).
   std::string why;
   CHECK(parse_objective("1e-60*thin_plate+1e60*e3", &why));
-  for (const std::string& name : {"1e61*thin_plate", "thin_plate+1e307*e3", "1e-61*target", "1e-300*twist"}) {
+  for (const char* name : {"1e61*thin_plate", "thin_plate+1e307*e3", "1e-61*target", "1e-300*twist"}) {
     INFO(name);
     CHECK(!parse_objective(name, &why));
     CHECK_THAT(why, Catch::Contains("[1e-60, 1e60]"));
