@@ -19,7 +19,20 @@ const char* to_string(SweepParameter parameter) { return parameter == SweepParam
 
 std::vector<double> linspace(double from, double to, int count) {
   std::vector<double> out(count);
-  for (int k = 0; k < count; ++k) out[k] = count == 1 ? from : from + (to - from) * k / (count - 1);
+  // from + (to − from)·k/(count − 1), unless (to − from)·(count − 1) overflows (a range near the
+  // largest double: the products were infinite, a sweep to 1e308 evaluated μ = inf); then the
+  // weighted mean of the ends, which stays between them.
+  const bool overflows = !std::isfinite((to - from) * (count - 1));
+  for (int k = 0; k < count; ++k) {
+    if (count == 1) {
+      out[k] = from;
+    } else if (!overflows) {
+      out[k] = from + (to - from) * k / (count - 1);
+    } else {
+      const double t = double(k) / (count - 1);
+      out[k] = from * (1 - t) + to * t;
+    }
+  }
   return out;
 }
 
