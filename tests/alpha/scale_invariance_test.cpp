@@ -91,14 +91,19 @@ void check_same_search(const AlphaSearchSummary& at_one, const AlphaSearchSummar
   CHECK(moved.value == Approx(at_one.value * value_factor).epsilon(1e-9).margin(1e-12 * range * value_factor));
 }
 
-}  // namespace
-
-TEST_CASE("search_alpha: the optimum is invariant under translation and scaling of the boundary", "[alpha]") {
+// The evaluators the searches are checked with: a factorisation, and the sine basis with FFTW.
+std::vector<std::string> search_solvers() {
   std::vector<std::string> solvers = {"eigen-ldlt"};
 #if COONS_HAVE_FFTW
   solvers.push_back("fast");  // the sine-basis evaluator
 #endif
-  for (const std::string& solver : solvers)
+  return solvers;
+}
+
+}  // namespace
+
+TEST_CASE("search_alpha: the optimum is invariant under translation and scaling of the boundary", "[alpha]") {
+  for (const std::string& solver : search_solvers())
     for (const std::string& name : objectives()) {
       const AlphaSearchSummary at_one = search_alpha(dome(), objective_named(name, {}), backend(solver));
       INFO(solver << ", " << name << " at scale 1: " << at_one.brief_report());
@@ -189,11 +194,7 @@ TEST_CASE("search_alpha: the optimum is invariant under scaling of the objective
   // w·f has the optimum of f, and w times its value, for every weight parse_objective takes. A
   // small weight (1e-20 and below) read as a flat objective: the flatness floor is in units of the
   // boundary, not of the weights. The frame now divides the weights by the largest.
-  std::vector<std::string> solvers = {"eigen-ldlt"};
-#if COONS_HAVE_FFTW
-  solvers.push_back("fast");  // the sine-basis evaluator
-#endif
-  for (const std::string& solver : solvers)
+  for (const std::string& solver : search_solvers())
     for (const std::string& name :
          {std::string("thin_plate"), std::string("e3"), std::string("discrete_twist"), std::string("target")}) {
       const AlphaSearchSummary at_one = search_alpha(dome(), objective_named(name, {}), backend(solver));
