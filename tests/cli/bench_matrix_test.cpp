@@ -158,8 +158,10 @@ TEST_CASE("coons bench-matrix: a large declared size is held to --max-memory bef
   const std::string a =
       dir.write("large.mtx", "%%MatrixMarket matrix coordinate real general\n% one entry\n100000 100000 1\n1 1 1\n");
   const std::string b = dir.write("b.mtx", "%%MatrixMarket matrix coordinate real general\n100000 1 1\n1 1 1\n");
-  for (const std::string& args : {a, a + " " + b}) {
-    const CommandResult r = run_coons(std::string("bench-matrix ").append(args).append(" --solvers bicgstab --max-memory 1MB"));
+  const std::string a_and_b = a + " " + b;
+  for (const std::string& args : {a, a_and_b}) {
+    const CommandResult r =
+        run_coons(std::string("bench-matrix ").append(args).append(" --solvers bicgstab --max-memory 1MB"));
     INFO(args << "\n" << r.out << r.err);
     CHECK(r.status == 2);
     CHECK(r.out.empty());
