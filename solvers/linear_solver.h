@@ -56,8 +56,9 @@ struct SolverOptions {
   //! wants identical results should not mix the two modes.)
   bool measure_fft_plans = false;
   //! threads for the backends that use them (dst: rows and column strips of its transforms; fast:
-  //! sine modes and rows, in a sweep whole members; mg, mg-cg, gmres: the columns of B side by side). 1 by default; 0
-  //! means every core. dst, fast and mg give the same result bit for bit for every count. Ignored without OpenMP.
+  //! sine modes and rows, in a sweep whole members; mg, mg-cg, gmres: the columns of B side by side, and
+  //! with 2 threads the third column on the level loops). 1 by default; 0 means every core. dst, fast
+  //! and mg give the same result bit for bit for every count. Ignored without OpenMP.
   int threads = 1;
   double sor_omega = 1.0;               //!< gauss-seidel: over-relaxation factor in (0, 2)
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering

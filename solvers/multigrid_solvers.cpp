@@ -151,7 +151,8 @@ class MultigridBackend : public LinearSolver {
       X.col(c) = x[std::size_t(c)];
       if (!sc.ok() && status == SolveStatus::kSuccess) {
         status = sc.status;
-        summary.message = sc.message;
+        // This column's message; relative_residual (below) is the worst column's.
+        summary.message = "right-hand side " + std::to_string(c + 1) + " of 3: " + sc.message;
       }
     }
     summary.iterations = iterations;

@@ -158,6 +158,7 @@ TEST_CASE(
     INFO(name << ": " << s.brief_report() << " " << s.message);
     CHECK(s.status == SolveStatus::kNotConverged);
     CHECK(s.message.find("time limit") != std::string::npos);
+    CHECK_THAT(s.message, Catch::StartsWith("right-hand side 1 of 3: "));  // the column it speaks of
     CHECK(s.iterations >= 1);
     CHECK(s.iterations <= 2);
     CHECK((A * X - B).norm() < 0.5 * B.norm());
