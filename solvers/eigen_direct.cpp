@@ -31,7 +31,9 @@ SolveStatus judge(const Ldlt& f, SolveSummary& summary) {
         "not pivot)";
     return SolveStatus::kNotPositiveDefinite;
   }
-  summary.factor_nnz = static_cast<long long>(f.matrixL().nestedExpression().nonZeros());
+  // L's unit diagonal is implicit (only its strictly lower part is stored) and D is kept apart:
+  // its n entries count as the diagonal of the factor, as in LLᵀ (a 1×1 matrix has one, not 0).
+  summary.factor_nnz = static_cast<long long>(f.matrixL().nestedExpression().nonZeros()) + f.vectorD().size();
   const Eigen::VectorXd d = f.vectorD();
   const double scale = d.cwiseAbs().maxCoeff();
   const Eigen::Index zero = (d.array().abs() <= kSingularPivot * scale).count();

@@ -112,6 +112,30 @@ TEST_CASE("run_general_system: every backend either measures its solution or say
   CHECK(skipped >= 4);
 }
 
+TEST_CASE("run_general_system: every direct factor counts at least one entry per row, 1 by 1 and diagonal included",
+          "[solvers]") {
+  // LDLT keeps the unit diagonal of L implicit and D apart: counting only L's stored entries gave
+  // 0 (printed null) on a 1 by 1 or diagonal matrix.
+  for (const Eigen::Index n : {1, 5}) {
+    const Eigen::SparseMatrix<double> A = sparse_of(Eigen::VectorXd::LinSpaced(n, 2, 3).asDiagonal());
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(n, 1);
+    GeneralSystem system;
+    system.A = &A;
+    system.B = &B;
+    system.symmetric = true;
+    int direct = 0;
+    for (const SolverInfo& info : available_solvers()) {
+      if (info.family != SolverFamily::kDirect || !info.needs_matrix) continue;
+      const GeneralRun run = run_general_system(info, system, SolverOptions{});
+      INFO(n << " " << info.name << ": " << run.status_name() << " " << run.reason);
+      REQUIRE(run.ok());
+      ++direct;
+      CHECK(run.factor_nnz.value_or(0) >= n);
+    }
+    CHECK(direct >= 3);  // eigen-lu, eigen-ldlt, eigen-llt at least
+  }
+}
+
 TEST_CASE("run_general_system: a singular matrix fails with its status and no numbers", "[solvers]") {
   Eigen::MatrixXd dense = Eigen::MatrixXd::Identity(4, 4);
   dense(2, 2) = 0;  // a zero row and column
