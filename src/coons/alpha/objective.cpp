@@ -87,6 +87,9 @@ std::optional<Objective> parse_objective(const std::string& text, std::string* w
         size_t used = 0;
         weight = std::stod(term.substr(0, star), &used);
         if (used != star) throw std::invalid_argument("trailing");
+      } catch (const std::out_of_range&) {  // a number, beyond a double (1e400) or below its normal range (1e-320)
+        if (why) *why = "weights must lie in [1e-60, 1e60], so that the values stay finite ('" + term + "')";
+        return std::nullopt;
       } catch (const std::exception&) {
         if (why) *why = "'" + term + "' is not WEIGHT*NAME";
         return std::nullopt;
