@@ -162,6 +162,29 @@ TEST_CASE("read_market_matrix: a bad file names its line and the reason", "[io]"
         "line 4: more values than the size line says");
 }
 
+TEST_CASE("read_market_matrix: a file that is not Matrix Market is refused by its first line, whatever its size",
+          "[io][bad-input]") {
+  // A sparse file of 1 GiB + 1 byte (no disk used) past a first line that is no banner: the
+  // banner is checked on the first chunk, so the error is the header's, not the byte limit's
+  // (which, read whole, it met after reading a gigabyte).
+  const TempDir dir;
+  const std::string path = dir.write("big.bin", "not a matrix\n");
+  std::filesystem::resize_file(path, (std::uintmax_t{1} << 30) + 1);
+  auto error_of = [&](auto read) -> std::string {
+    try {
+      read(path);
+    } catch (const InputError& e) {
+      return e.field() + ": " + e.reason();
+    }
+    return "no error";
+  };
+  CHECK(error_of([](const std::string& p) { read_market_matrix(p); }).find("line 1: expected '%%MatrixMarket") == 0);
+  CHECK(error_of([](const std::string& p) { read_matrix_market(p); }) ==
+        "header: expected '%%MatrixMarket matrix coordinate real general'");
+  CHECK(error_of([](const std::string& p) { read_dense_matrix_market(p); }) ==
+        "header: expected '%%MatrixMarket matrix array real general'");
+}
+
 TEST_CASE("read_market_matrix: an integer beyond 64 bits is bad input naming its line, not clamped", "[io]") {
   const TempDir dir;
   const std::string integer = "%%MatrixMarket matrix coordinate integer general\n2 2 1\n";

@@ -11,6 +11,7 @@
 #include <cstdlib>
 #include <filesystem>
 #include <fstream>
+#include <functional>
 #include <optional>
 #include <sstream>
 #include <unsupported/Eigen/SparseExtra>
@@ -52,19 +53,31 @@ namespace {
 constexpr std::uintmax_t kMaxMarketBytes = std::uintmax_t{1} << 30;  // 1 GiB
 constexpr long long kMaxMarketDimension = 1LL << 26;                 // rows or columns
 
-// The whole file, refused above kMaxMarketBytes.
-std::string read_market_text(const std::string& path) {
+// Throws the reader's error for a first line that is not its banner.
+using BannerCheck = std::function<void(const std::string& first_line)>;
+
+// The whole file, refused above kMaxMarketBytes. The banner is checked on the first 64 KiB, before
+// the rest is read: a file that is not Matrix Market is refused at once, whatever its size.
+std::string read_market_text(const std::string& path, const BannerCheck& check_banner) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a file");
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the file");
   std::string text;
   char chunk[1 << 16];
+  bool checked = false;
   while (in.read(chunk, sizeof chunk) || in.gcount() > 0) {
     text.append(chunk, static_cast<std::size_t>(in.gcount()));
+    if (!checked) {
+      std::string first = text.substr(0, text.find('\n'));
+      if (!first.empty() && first.back() == '\r') first.pop_back();
+      check_banner(first);
+      checked = true;
+    }
     if (text.size() > kMaxMarketBytes)
       throw InputError(path, "", fmt::format("more than the limit of {} bytes", kMaxMarketBytes));
   }
+  if (!checked) check_banner("");
   return text;
 }
 
@@ -84,7 +97,11 @@ class MarketLines {
     if (!banner_.empty() && banner_.back() == '\r') banner_.pop_back();
   }
   MarketLines(const std::string& path, const std::string& text, const char* banner) : MarketLines(text) {
-    if (normalised_words(banner_) != banner) throw InputError(path, "header", fmt::format("expected '{}'", banner));
+    expect_banner(path, banner_, banner);
+  }
+  // The check of the constructor above, on a first line.
+  static void expect_banner(const std::string& path, const std::string& line, const char* banner) {
+    if (normalised_words(line) != banner) throw InputError(path, "header", fmt::format("expected '{}'", banner));
   }
   [[nodiscard]] const std::string& banner() const { return banner_; }
   bool next(std::string& line) {
@@ -158,8 +175,10 @@ Eigen::SparseMatrix<double> compressed_matrix(long long rows, long long cols,
 }  // namespace
 
 Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
-  const std::string text = read_market_text(path);
-  MarketLines lines(path, text, "%%MatrixMarket matrix coordinate real general");
+  const char* banner = "%%MatrixMarket matrix coordinate real general";
+  const std::string text =
+      read_market_text(path, [&](const std::string& first) { MarketLines::expect_banner(path, first, banner); });
+  MarketLines lines(path, text, banner);
   std::string line;
   if (!lines.next(line)) throw InputError(path, "size line", "missing");
   const std::vector<long long> size = size_line(path, line, 3);
@@ -192,8 +211,10 @@ Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
 }
 
 Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
-  const std::string text = read_market_text(path);
-  MarketLines lines(path, text, "%%MatrixMarket matrix array real general");
+  const char* banner = "%%MatrixMarket matrix array real general";
+  const std::string text =
+      read_market_text(path, [&](const std::string& first) { MarketLines::expect_banner(path, first, banner); });
+  MarketLines lines(path, text, banner);
   std::string line;
   if (!lines.next(line)) throw InputError(path, "size line", "missing");
   const std::vector<long long> size = size_line(path, line, 2);
@@ -366,7 +387,7 @@ void read_array_entries(const std::string& path, const std::string& size_field, 
 }  // namespace
 
 MarketMatrix read_market_matrix(const std::string& path) {
-  const std::string text = read_market_text(path);
+  const std::string text = read_market_text(path, [&](const std::string& first) { parse_banner(path, first); });
   MarketLines lines(text);
   const Banner b = parse_banner(path, lines.banner());
   std::string line;
