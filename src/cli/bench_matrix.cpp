@@ -24,6 +24,7 @@ struct BenchMatrixRequest {
   double tolerance = 1e-10;
   int max_iterations = 0;
   GlobalOptions global;
+  const CLI::Option *tolerance_option = nullptr, *max_iterations_option = nullptr;
 };
 
 std::vector<const solvers::SolverInfo*> chosen_backends(const std::vector<std::string>& names) {
@@ -105,6 +106,15 @@ int run_bench_matrix(const BenchMatrixRequest& r) {
   if (!(r.tolerance > 0 && r.tolerance < 1)) throw InputError("command line", "--tolerance", "must lie in (0, 1)");
   if (!options.is_valid(&why)) throw InputError("command line", "--max-iterations", why);
   const std::vector<const solvers::SolverInfo*> backends = chosen_backends(r.solvers);
+  // As in `coons solve`: a stopping rule that none of the chosen backends reads is an error.
+  if (std::none_of(backends.begin(), backends.end(),
+                   [](const solvers::SolverInfo* b) { return b->family == solvers::SolverFamily::kIterative; }))
+    for (const auto& [option, name] :
+         {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}})
+      if (given(option))
+        throw InputError("command line", name,
+                         fmt::format("{} is a stopping rule of the iterative solvers; none of --solvers {} is one",
+                                     name, fmt::join(r.solvers, ",")));
 
   const MarketMatrix a = read_market_matrix(r.matrix);
   const Eigen::SparseMatrix<double>& A = a.matrix;
@@ -182,11 +192,13 @@ void register_bench_matrix(CLI::App& app, Registry& registry) {
   cmd->add_option("--solvers", request->solvers, "only these backends, comma separated (see `coons solvers`)")
       ->delimiter(',');
   cmd->add_flag("--table", request->table, "print a Markdown table instead of JSON Lines");
-  cmd->add_option("--tolerance", request->tolerance, "relative residual at which every iterative backend stops")
-      ->capture_default_str();
-  cmd->add_option("--max-iterations", request->max_iterations,
-                  "iteration limit of the iterative backends (0: automatic, always finite)")
-      ->capture_default_str();
+  request->tolerance_option =
+      cmd->add_option("--tolerance", request->tolerance, "relative residual at which every iterative backend stops")
+          ->capture_default_str();
+  request->max_iterations_option =
+      cmd->add_option("--max-iterations", request->max_iterations,
+                      "iteration limit of the iterative backends (0: automatic, always finite)")
+          ->capture_default_str();
   add_memory_option(*cmd, request->global);
   set_example(*cmd, "coons bench-matrix data/matrices/anisotropic_diffusion.mtx --table");
   registry.add(cmd, [request] { return run_bench_matrix(*request); });

@@ -21,8 +21,6 @@ namespace coons::cli {
 
 namespace {
 
-bool given(const CLI::Option* o) { return o != nullptr && o->count() > 0; }
-
 // The memory of a B-spline solve: the sparse system (9 entries a row, twice for dA) and the dense
 // Gram matrices of the energies, estimated like a Bézier net of the compatible size.
 void check_bspline_memory(const GlobalOptions& global, const BSplineInput& in, const std::string& file) {

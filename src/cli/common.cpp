@@ -143,9 +143,9 @@ void add_mask_options(CLI::App& cmd, NetRequest& r) {
   r.weight_option = cmd.add_option("--weight", r.weight, "c1-family: w in [0, 1] (1: c1-coons, 0: biharmonic)");
 }
 
-namespace {
+bool given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
 
-bool given(const CLI::Option* o) { return o && o->count() > 0; }
+namespace {
 
 // --mask and --weight: the stencil of every mask but alpha, and their contradictions.
 void resolve_mask(const NetRequest& r, ResolvedRequest& out) {

@@ -85,6 +85,8 @@ void add_net_options(CLI::App& cmd, NetRequest& r);
 void add_mask_options(CLI::App& cmd, NetRequest& r);
 //! --solver alone (search, sweep, batch, study).
 void add_solver_option(CLI::App& cmd, std::string& solver);
+//! True when `option` exists and was given on the command line.
+bool given(const CLI::Option* option);
 //! --threads N (0: every core) for the backends that use threads (solve, export, batch, sweep).
 CLI::Option* add_threads_option(CLI::App& cmd, int& threads);
 //! The solver options of --threads: InputError (field --threads) outside 0 .. kMaxThreads, or

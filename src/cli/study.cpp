@@ -55,8 +55,6 @@ struct StudyRequest {
   } given;
 };
 
-bool given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
-
 // An option that has no effect in the study's mode (files, --family, --merge) is an input error
 // naming it, rather than silently ignored.
 void refuse_inapplicable(const StudyRequest& r) {

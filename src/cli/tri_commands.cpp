@@ -28,8 +28,6 @@ namespace coons::cli {
 
 namespace {
 
-bool given(const CLI::Option* o) { return o && o->count() > 0; }
-
 tri::TriBoundary read_tri_input(const std::string& path, double corner_tolerance, double min_model_size = 0) {
   if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");

@@ -67,7 +67,8 @@ TEST_CASE("coons bench-matrix: JSON Lines parse and carry every contract field",
 
 TEST_CASE("coons bench-matrix: --table prints one row per backend", "[cli]") {
   const CommandResult r =
-      run_coons("bench-matrix " + kMatrices + "anisotropic_diffusion.mtx --table --solvers eigen-ldlt,cg,jacobi,dst");
+      run_coons("bench-matrix " + kMatrices +
+                "anisotropic_diffusion.mtx --table --solvers eigen-ldlt,cg,jacobi,dst --tolerance 1e-10");
   INFO(r.err);
   REQUIRE(r.status == 0);
   int rows = 0;
@@ -122,6 +123,11 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
       {dir.file("missing.mtx"), "missing.mtx: cannot open the file"},
       {A + " --solvers eigen-lu,nosuch", "command line: --solvers: unknown solver 'nosuch' (built in: eigen-ldlt"},
       {A + " --tolerance 0", "command line: --tolerance"},
+      // a stopping rule that no chosen backend reads, as in `coons solve`
+      {A + " --solvers eigen-lu,eigen-ldlt --max-iterations 5",
+       "command line: --max-iterations: --max-iterations is a stopping rule of the iterative solvers; none of "
+       "--solvers eigen-lu,eigen-ldlt is one"},
+      {A + " --solvers eigen-lu --tolerance 1e-6", "command line: --tolerance: --tolerance is a stopping rule"},
   };
   for (const Case& c : cases) {
     const CommandResult r = run_coons("bench-matrix " + c.args);
