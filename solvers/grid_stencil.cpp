@@ -4,6 +4,8 @@
 #include <cassert>
 #include <cmath>
 
+#include "column_fill.h"
+
 namespace coons::solvers {
 
 double stencil_eigenvalue(const GridStencil& s, int p, int q) {
@@ -78,34 +80,14 @@ void for_each_in_column(const GridStencil& s, int i, int j, F&& f) {
 }  // namespace
 
 Eigen::SparseMatrix<double> stencil_matrix(const GridStencil& s) {
-  using SpMat = Eigen::SparseMatrix<double>;
-  using StorageIndex = SpMat::StorageIndex;
-  const Eigen::Index N = s.size();
   // Count the entries of each column (3×3 minus what falls off the grid).
   auto span = [](int k, int len) { return 1 + (k > 0) + (k + 1 < len); };
   Eigen::Index nnz = 0;
   for (int i = 0; i < s.rows; ++i)
     for (int j = 0; j < s.cols; ++j) nnz += span(i, s.rows) * span(j, s.cols);
-
-  SpMat A(N, N);
-  A.resizeNonZeros(nnz);
-  StorageIndex* outer = A.outerIndexPtr();
-  StorageIndex* inner = A.innerIndexPtr();
-  double* value = A.valuePtr();
-  Eigen::Index pos = 0;
-  outer[0] = 0;
-  for (int i = 0; i < s.rows; ++i) {
-    for (int j = 0; j < s.cols; ++j) {
-      for_each_in_column(s, i, j, [&](Eigen::Index row, double w) {
-        inner[pos] = StorageIndex(row);
-        value[pos] = w;
-        ++pos;
-      });
-      outer[Eigen::Index(i) * s.cols + j + 1] = StorageIndex(pos);
-    }
-  }
-  assert(pos == nnz);
-  return A;
+  return matrix_by_columns(s.size(), nnz, [&](Eigen::Index k, const auto& emit) {
+    for_each_in_column(s, int(k / s.cols), int(k % s.cols), emit);
+  });
 }
 
 void refill_stencil_matrix(const GridStencil& s, Eigen::SparseMatrix<double>& A) {

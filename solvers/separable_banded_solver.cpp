@@ -8,6 +8,7 @@
 #include <tuple>
 #include <vector>
 
+#include "column_fill.h"
 #include "separable_outer_products.h"
 #include "stencil_operator.h"
 #include "vector_clones.h"
@@ -292,33 +293,17 @@ SolveStatus banded_ldlt(const std::array<double, 3>& a, int k, BandedLdlt& f) {
 }
 
 Eigen::SparseMatrix<double> separable_banded_matrix(const SeparableBandedOperator& op) {
-  using SpMat = Eigen::SparseMatrix<double>;
-  using StorageIndex = SpMat::StorageIndex;
   const auto span = [](int k, int len) { return std::min(len - 1, k + 2) - std::max(0, k - 2) + 1; };
   Eigen::Index nnz = 0;
   for (int i = 0; i < op.rows; ++i)
     for (int j = 0; j < op.cols; ++j) nnz += Eigen::Index(span(i, op.rows)) * span(j, op.cols);
-  SpMat A(op.size(), op.size());
-  A.resizeNonZeros(nnz);
-  StorageIndex* outer = A.outerIndexPtr();
-  StorageIndex* inner = A.innerIndexPtr();
-  double* value = A.valuePtr();
-  Eigen::Index pos = 0;
-  outer[0] = 0;
-  for (int i = 0; i < op.rows; ++i)
-    for (int j = 0; j < op.cols; ++j) {
-      for (int a = -2; a <= 2; ++a) {
-        if (i + a < 0 || i + a >= op.rows) continue;
-        for (int b = -2; b <= 2; ++b) {
-          if (j + b < 0 || j + b >= op.cols) continue;
-          inner[pos] = StorageIndex(Eigen::Index(i + a) * op.cols + j + b);
-          value[pos] = op.along_i[std::size_t(std::abs(a))] * op.along_j[std::size_t(std::abs(b))];
-          ++pos;
-        }
-      }
-      outer[Eigen::Index(i) * op.cols + j + 1] = StorageIndex(pos);
-    }
-  return A;
+  return matrix_by_columns(op.size(), nnz, [&](Eigen::Index k, const auto& emit) {
+    const int i = int(k / op.cols), j = int(k % op.cols);
+    for (int a = std::max(-2, -i); a <= std::min(2, op.rows - 1 - i); ++a)
+      for (int b = std::max(-2, -j); b <= std::min(2, op.cols - 1 - j); ++b)
+        emit(Eigen::Index(i + a) * op.cols + j + b,
+             op.along_i[std::size_t(std::abs(a))] * op.along_j[std::size_t(std::abs(b))]);
+  });
 }
 
 SolveStatus separable_banded_solve(const SeparableBandedOperator& op, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X,

@@ -4,12 +4,11 @@
 #include <cassert>
 #include <utility>
 
+#include "solvers/column_fill.h"
+
 namespace coons {
 
 namespace {
-
-using SpMat = Eigen::SparseMatrix<double>;
-using StorageIndex = SpMat::StorageIndex;
 
 // Offsets of the stored pattern: the support of W (centre always), or the whole box.
 Eigen::Array<bool, Eigen::Dynamic, Eigen::Dynamic> pattern_of(const Stencil& s, bool box) {
@@ -122,29 +121,15 @@ StencilSystem assemble_stencil_system(const StencilProblem& problem, const Stenc
   system.pattern = pattern_of(stencil, options.box_pattern);
   const FreeNumbering& f = system.numbering;
   const int r = stencil.radius;
-  if (options.with_matrix && f.size() == 0) {
-    system.A.resize(0, 0);
-  } else if (options.with_matrix) {
+  if (options.with_matrix) {
     Eigen::Index nnz = 0;
     for (const auto& [i, j] : f.points) for_each_in_column(f, system.pattern, r, i, j, [&](int, int, int) { ++nnz; });
-    SpMat& A = system.A;
-    A.resize(f.size(), f.size());
-    A.resizeNonZeros(nnz);
-    StorageIndex* outer = A.outerIndexPtr();
-    StorageIndex* inner = A.innerIndexPtr();
-    double* value = A.valuePtr();
-    Eigen::Index pos = 0;
-    outer[0] = 0;
-    for (int p = 0; p < f.size(); ++p) {
+    system.A = solvers::matrix_by_columns(f.size(), nnz, [&](Eigen::Index p, const auto& emit) {
       const auto [i, j] = f.points[std::size_t(p)];
       for_each_in_column(f, system.pattern, r, i, j, [&](int q, int a, int b) {
-        inner[pos] = StorageIndex(q);
-        value[pos] = stencil.at(-a, -b);  // row q's weight of point p = q − (a, b)
-        ++pos;
+        emit(q, stencil.at(-a, -b));  // row q's weight of point p = q − (a, b)
       });
-      outer[p + 1] = StorageIndex(pos);
-    }
-    assert(pos == nnz);
+    });
   }
   system.B = stencil_rhs(problem.net, f, stencil);
   describe_structure(stencil, system);
