@@ -1,7 +1,11 @@
 #include "grid_fixtures.h"
 
+#include <Eigen/SparseCholesky>
+#include <algorithm>
 #include <cmath>
 #include <functional>
+#include <string>
+#include <utility>
 
 namespace coons::test {
 
@@ -75,6 +79,32 @@ Eigen::MatrixX3d boundary_rhs(const StencilOperator& op) {
         }
     }
   return B;
+}
+
+double max_relative_error(const Eigen::MatrixXd& X, const Eigen::MatrixXd& reference) {
+  return (X - reference).cwiseAbs().maxCoeff() / std::max(1.0, reference.cwiseAbs().maxCoeff());
+}
+
+std::string ReferenceProblem::label() const {
+  return stencil->name + ", shape " + std::to_string(int(shape)) + ", " + std::to_string(op.rows) + "x" +
+         std::to_string(op.cols);
+}
+
+void for_each_reference_problem(const std::function<void(const ReferenceProblem&)>& f) {
+  const std::vector<NamedStencil> stencils = symmetric_stencils();
+  for (const NamedStencil& stencil : stencils)
+    for (Shape shape : {Shape::kFull, Shape::kLShape, Shape::kHole})
+      for (auto [rows, cols] : {std::pair{23, 17}, {30, 41}}) {
+        ReferenceProblem p;
+        p.stencil = &stencil;
+        p.shape = shape;
+        p.op = solvers::make_stencil_operator(rows, cols, stencil.weights);
+        p.op.free = shape_mask(shape, rows, cols);
+        p.A = solvers::stencil_operator_matrix(p.op);
+        p.B = boundary_rhs(p.op);
+        p.reference = Eigen::SimplicialLDLT<Eigen::SparseMatrix<double>>(p.A).solve(p.B);
+        f(p);
+      }
 }
 
 }  // namespace coons::test

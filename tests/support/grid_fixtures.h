@@ -3,6 +3,8 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
+#include <functional>
 #include <string>
 #include <vector>
 
@@ -31,5 +33,24 @@ std::vector<unsigned char> shape_mask(Shape shape, int rows, int cols);
 //! Right-hand sides as in a boundary-value problem: a smooth function f on every fixed point (off
 //! the grid and in the mask), moved to the right-hand side: b = −Σ w(d) f(neighbour).
 Eigen::MatrixX3d boundary_rhs(const solvers::StencilOperator& op);
+
+//! max|X − reference| / max(1, max|reference|): the error of a solution against a reference.
+double max_relative_error(const Eigen::MatrixXd& X, const Eigen::MatrixXd& reference);
+
+//! One problem of the backends' sweep against a sparse direct reference.
+struct ReferenceProblem {
+  const NamedStencil* stencil = nullptr;
+  Shape shape = Shape::kFull;
+  solvers::StencilOperator op;  //!< the stencil on rows × cols with the shape's free mask
+  Eigen::SparseMatrix<double> A;
+  Eigen::MatrixX3d B;          //!< boundary_rhs(op)
+  Eigen::MatrixX3d reference;  //!< A⁻¹B by a simplicial LDLᵀ
+  //! "STENCIL, shape K, RxC" for a test's INFO.
+  [[nodiscard]] std::string label() const;
+};
+
+//! f(problem) for every symmetric stencil on the full, L-shaped and holed free sets of 23×17 and
+//! 30×41 grids (30 problems).
+void for_each_reference_problem(const std::function<void(const ReferenceProblem&)>& f);
 
 }  // namespace coons::test
