@@ -32,17 +32,8 @@ ROOT = HERE.parent.parent
 DEGREES = [6, 8, 12, 16]
 OBJECTIVES = ["thin_plate", "dirichlet", "twist", "discrete_thin_plate"]
 
-
-def elevate(points, times):
-    for _ in range(times):
-        n = len(points) - 1
-        new = [points[0]]
-        for i in range(1, n + 1):
-            a = i / (n + 1)
-            new.append([a * points[i - 1][c] + (1 - a) * points[i][c] for c in range(3)])
-        new.append(points[n])
-        points = new
-    return points
+sys.path.insert(0, str(ROOT / "scripts"))
+from make_triangles import elevate  # noqa: E402  (exact degree elevation of a Bézier side)
 
 
 def search(coons, path, objective):
@@ -194,7 +185,6 @@ def tampered(rows, claim):
 
 
 # ---- The square split along its diagonal: the rectangular α family against the triangular c family.
-sys.path.insert(0, str(ROOT / "scripts"))
 import split_square  # noqa: E402  (scripts/split_square.py: the boundaries, the sampling on T)
 
 SPLIT_SHAPES = ["dome", "monkey_saddle"]
