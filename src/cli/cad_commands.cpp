@@ -67,7 +67,8 @@ void check_cad_export(const CadExportRequest& r, bool force) {
   for (const std::string* path : {&r.step, &r.iges})
     if (!path->empty() && !force && std::filesystem::exists(*path))
       throw InputError(*path, "--force", "exists; give --force to overwrite it");
-  if (!r.step.empty() && r.step == r.iges) throw InputError("command line", "--iges", "is the same file as --step");
+  if (!r.step.empty() && !r.iges.empty() && same_file_path(r.step, r.iges))
+    throw InputError("command line", "--iges", "is the same file as --step");
 }
 
 BSplineSurface bezier_surface_for_cad(const ControlNet& net) {

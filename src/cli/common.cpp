@@ -372,11 +372,15 @@ json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const S
   return stencil_net_report(input.boundary, run.problem, run.stencil, label, run.result, mu, run.picked_automatically);
 }
 
+void check_corner_tolerance(double corner_tolerance) {
+  if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
+    throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
+}
+
 BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline, double min_model_size) {
   BoundaryReadOptions options;
   options.min_model_size = min_model_size;
-  if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
-    throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
+  check_corner_tolerance(corner_tolerance);
   options.corner_tolerance = corner_tolerance;
   BoundaryFile file = read_boundary_file(path, options);
   if (file.bspline && !accept_bspline)

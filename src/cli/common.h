@@ -139,6 +139,9 @@ nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, 
 //! A B-spline boundary (knots_u, knots_v) is an InputError unless `accept_bspline` (the commands
 //! that handle one: bspline_commands.h); so is a model smaller than `min_model_size` (the searches
 //! pass kMinModelSize, BoundaryReadOptions).
+//! An InputError unless --corner-tolerance is a finite number >= 0 (every command that reads
+//! boundaries checks it before reading them).
+void check_corner_tolerance(double corner_tolerance);
 BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline = false,
                         double min_model_size = 0);
 //! Files as given, folders expanded to their *.json files (sorted); unreadable folders are InputErrors.

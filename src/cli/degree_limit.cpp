@@ -37,6 +37,7 @@ struct DegreeLimitRequest {
 };
 
 int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& command_line) {
+  check_corner_tolerance(r.corner_tolerance);
   Phases phases("degree-limit");
   phases.start("read");
   const std::vector<std::string> files = expand_inputs(r.inputs);

@@ -38,6 +38,9 @@ struct ExportRequest {
 int run_export(ExportRequest e) {
   if (is_triangle_file(e.boundary) && e.vts)
     throw InputError("command line", "--vts", "is written for B-spline boundaries (triangles: --vtu)");
+  if (is_triangle_file(e.boundary) && e.cad.any())
+    throw InputError("command line", e.cad.step.empty() ? "--iges" : "--step",
+                     "is written for rectangular nets (STEP and IGES have no triangular Bézier surface)");
   if (is_triangle_file(e.boundary))
     return run_tri_export({e.boundary, &e.net, &e.global, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vtu});
   Phases phases("export");

@@ -160,6 +160,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   }
   refuse_inapplicable(r);
   if (!r.family.empty()) return run_family_command(r);
+  check_corner_tolerance(r.corner_tolerance);
   Phases phases("study");
   phases.start("read");
   const std::vector<std::string> files = expand_inputs(r.inputs);

@@ -63,8 +63,9 @@ int run_surface(const SurfaceRequest& r) {
                "command line", "--samples");
   if (r.fit_degree < 1 || r.fit_degree > 30)
     throw InputError("command line", "--fit-degree", fmt::format("must be in [1, 30], not {}", r.fit_degree));
-  if (!(r.corner_tolerance >= 0)) throw InputError("command line", "--corner-tolerance", "must be >= 0");
-  if (!(r.derivative_tolerance >= 0)) throw InputError("command line", "--derivative-tolerance", "must be >= 0");
+  check_corner_tolerance(r.corner_tolerance);
+  if (!(r.derivative_tolerance >= 0 && std::isfinite(r.derivative_tolerance)))
+    throw InputError("command line", "--derivative-tolerance", "must be a finite number >= 0");
   check_output(r.obj, "--obj", r.global.force);
   check_output(r.ply, "--ply", r.global.force);
   check_output(r.vts, "--vts", r.global.force);

@@ -29,8 +29,7 @@ namespace coons::cli {
 namespace {
 
 tri::TriBoundary read_tri_input(const std::string& path, double corner_tolerance, double min_model_size = 0) {
-  if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
-    throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
+  check_corner_tolerance(corner_tolerance);
   TriBoundaryReadOptions options;
   options.corner_tolerance = corner_tolerance;
   options.min_model_size = min_model_size;

@@ -278,6 +278,18 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"degree-limit {IN}/broken.json", "broken.json"},
       {"degree-limit " + good + " --degrees 8 4", "--degrees"},
       {"degree-limit " + good + " --objective target", "--objective"},
+      // --corner-tolerance is checked by every command that reads boundaries (nan and inf were
+      // taken by study, degree-limit and surface)
+      {"study " + good + " --degrees 3 --corner-tolerance nan --out {OUT}/s", "--corner-tolerance"},
+      {"degree-limit " + good + " --degrees 3 4 --corner-tolerance inf", "--corner-tolerance"},
+      {"surface " + surface + " --corner-tolerance inf", "--corner-tolerance"},
+      {"surface " + surface + " --derivative-tolerance inf", "--derivative-tolerance"},
+      // two outputs that are one file under two spellings (the second used to overwrite the first)
+      {"surface " + surface + " --obj {OUT}/x.obj --ply {OUT}/./x.obj", "same name"},
+      {"export " + good + " --out {OUT} --step {OUT}/d.step --iges {OUT}/../out/d.step",
+       COONS_HAVE_OCCT ? "same file" : "OpenCASCADE"},
+      // a triangle has no STEP/IGES surface (--step was ignored)
+      {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --out {OUT} --step {OUT}/t.step", "--step"},
       // view (checks of the command line come before three.js is read: the same errors without it)
       {"view " + good + " --out {OUT}/missing/page.html", "--out"},
       // bench-matrix

@@ -63,6 +63,18 @@ std::string safe_file_stem(std::string_view name) {
   return out;
 }
 
+bool same_file_path(const std::string& a, const std::string& b) {
+  if (a == b) return true;
+  const auto resolved = [](const std::string& p) {
+    std::error_code ec;
+    fs::path full = fs::absolute(p, ec);
+    if (ec) return fs::path(p).lexically_normal();
+    fs::path canonical = fs::weakly_canonical(full, ec);
+    return ec ? full.lexically_normal() : canonical;
+  };
+  return resolved(a) == resolved(b);
+}
+
 std::string staging_path(const std::string& path) {
   return fmt::format("{}.tmp-{}-{}", path, static_cast<long>(getpid()), staging_counter.fetch_add(1));
 }
@@ -137,7 +149,8 @@ void OutputSet::make_folders(const std::string& folder) {
 std::string OutputSet::stage(const std::string& relative) {
   const std::string path = path_of(relative);
   for (const Entry& e : entries_)
-    if (e.final_path == path) throw InputError(path, option_, "two outputs of this command would have the same name");
+    if (same_file_path(e.final_path, path))
+      throw InputError(path, option_, "two outputs of this command would have the same name");
   make_folders(fs::path(path).parent_path().string());
   entries_.push_back({path, staging_path(path), "", false});
   return entries_.back().staging;
@@ -145,7 +158,8 @@ std::string OutputSet::stage(const std::string& relative) {
 
 std::string OutputSet::stage_path(const std::string& path) {
   for (const Entry& e : entries_)
-    if (e.final_path == path) throw InputError(path, option_, "two outputs of this command would have the same name");
+    if (same_file_path(e.final_path, path))
+      throw InputError(path, option_, "two outputs of this command would have the same name");
   entries_.push_back({path, staging_path(path), "", false});
   return entries_.back().staging;
 }

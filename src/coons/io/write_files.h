@@ -19,6 +19,11 @@ namespace coons {
 //! '_', no leading '.', at most 80 bytes, "unnamed" when nothing is left.
 std::string safe_file_stem(std::string_view name);
 
+//! True when the two paths name one file: compared after making them absolute, resolving the part
+//! of each that exists (symbolic links included) and removing "." and "..", so that "x.obj",
+//! "./x.obj" and "d/../x.obj" are one file.
+bool same_file_path(const std::string& a, const std::string& b);
+
 //! The name under which `path` is staged: path + ".tmp-<pid>-<counter>" (unique per process).
 std::string staging_path(const std::string& path);
 
