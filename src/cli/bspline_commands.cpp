@@ -121,7 +121,9 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
                            {"method", to_string(r.method)}};
   report["bspline"] = bspline_block(frame_surface, in);
   BSplineNetOutcome outcome;
-  if (sampled || e.cad.any()) {
+  // The system is solved for --mtx too: a singular one is refused (exit 3, as without --mtx)
+  // rather than written.
+  if (sampled || e.cad.any() || e.mtx) {
     phases.start("solve");
     outcome = solve_bspline(in, r);
     if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);

@@ -156,6 +156,7 @@ TriSearchArgs tri_search_args(const SearchRequest& r) {
   if (r.parameter != Parameter::kAlpha) a.rejected = "--parameter";
   if (r.allow_indefinite) a.rejected = "--allow-indefinite";
   if (r.target_option->count() > 0) a.rejected = "--target";
+  a.samples_given = r.samples_option->count() > 0;
   return a;
 }
 

@@ -164,9 +164,10 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
   return kExitOk;
 }
 
-bool is_files_study_shard(const fs::path& file) {
+std::optional<bool> is_files_study_shard(const fs::path& file) {
   const ShardFile f = read_shard_file(file);
-  return !f.records.empty() && f.records.front().contains("study") && f.records.front()["study"].is_object() &&
+  if (f.records.empty()) return std::nullopt;
+  return f.records.front().contains("study") && f.records.front()["study"].is_object() &&
          f.records.front()["study"].value("inputs", "") == "files";
 }
 

@@ -149,7 +149,13 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
     if (e.is_regular_file() && std::regex_match(e.path().filename().string(), shard_name)) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw InputError(merge_dir, "--merge", "holds no shard-I-of-N.jsonl file");
-  if (is_files_study_shard(files.front())) return run_files_merge(files, merge_dir, out_dir);
+  // The kind of study, from the first shard that holds a complete record (the others are read as
+  // that kind; a shard stopped during its first task holds none and only adds missing tasks).
+  for (const fs::path& file : files)
+    if (const std::optional<bool> files_study = is_files_study_shard(file)) {
+      if (*files_study) return run_files_merge(files, merge_dir, out_dir);
+      break;
+    }
 
   std::optional<json> study;
   AlphaFamilyOptions options;

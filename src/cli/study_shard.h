@@ -5,6 +5,7 @@
 #pragma once
 
 #include <filesystem>
+#include <optional>
 #include <functional>
 #include <nlohmann/json.hpp>
 #include <set>
@@ -74,8 +75,9 @@ std::string bspline_row_solver(const solvers::SolverInfo* solver);
 int run_files_shard(const std::vector<std::string>& files, const StudyOptions& options, double corner_tolerance,
                     int shard, int shards, const std::string& out_dir);
 
-//! Whether the first record of this shard file belongs to a boundary-file study.
-bool is_files_study_shard(const std::filesystem::path& file);
+//! Whether the first record of this shard file belongs to a boundary-file study; nullopt when the
+//! file holds no complete record (a shard stopped during its first task).
+std::optional<bool> is_files_study_shard(const std::filesystem::path& file);
 
 //! The per-shape study's report from the shard files of a boundary-file study.
 int run_files_merge(const std::vector<std::filesystem::path>& files, const std::string& merge_dir,

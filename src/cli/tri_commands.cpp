@@ -202,6 +202,9 @@ int run_tri_search(const TriSearchArgs& a) {
     objective->target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
     if (!objective->target)
       throw InputError("command line", "--objective", "the objective uses 'target' but the file has no \"target\"");
+  } else if (a.samples_given) {
+    throw InputError("command line", "--samples",
+                     "--samples sets the target's sampling but --objective '" + a.objective + "' has no target term");
   }
   AlphaSearchOptions options;
   const auto [lower, upper] = default_tri_bounds(b.n);

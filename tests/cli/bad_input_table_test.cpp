@@ -288,6 +288,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"surface " + surface + " --obj {OUT}/x.obj --ply {OUT}/./x.obj", "same name"},
       {"export " + good + " --out {OUT} --step {OUT}/d.step --iges {OUT}/../out/d.step",
        COONS_HAVE_OCCT ? "same file" : "OpenCASCADE"},
+      // --samples without a target term, on a triangle as on a rectangle (it was ignored)
+      {"search-alpha " + quoted(kData + "/triangles/sphere_octant.json") + " --objective thin_plate --samples 5",
+       "--samples"},
       // a triangle has no STEP/IGES surface (--step was ignored)
       {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --out {OUT} --step {OUT}/t.step", "--step"},
       // view (checks of the command line come before three.js is read: the same errors without it)

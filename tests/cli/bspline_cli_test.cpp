@@ -1,11 +1,15 @@
 // `coons solve/export/search-alpha/study` on B-spline boundary files (docs/formats.md "B-spline
 // boundaries"): the reports, the files, and bad knot vectors (exit 2, one error line naming the
 // file, the field and the index, nothing on standard output).
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
 
+#include "coons/io/boundary_io.h"
+#include "support/bspline_singular.h"
 #include "support/fixtures.h"
 
 using namespace coons::test;
@@ -109,6 +113,29 @@ TEST_CASE("coons export: a B-spline boundary as sampled OBJ, PLY and VTS and its
   int vertices = 0;
   for (std::string line; std::getline(obj, line);) vertices += line.rfind("v ", 0) == 0 ? 1 : 0;
   CHECK(vertices == 81);
+}
+
+TEST_CASE("coons export: a B-spline system that is singular at the alpha asked for is refused, not written",
+          "[cli][bspline]") {
+  // The non-uniform system is solved for --mtx too (it was only for the sampled and CAD outputs),
+  // so --mtx alone at a singular alpha fails as the other outputs do: exit 3, nothing written.
+  const coons::BoundaryFile file = coons::read_boundary_file(kWave);
+  REQUIRE(file.bspline);
+  const double star = bspline_singular_alpha(file.bspline->compatible);
+  REQUIRE(star < 0.25);
+  TempDir out;
+  const std::string alpha = fmt::format("{}", star);  // shortest text that reads back as star
+  const CommandResult r = run_command(kCoons + " export " + q(kWave) + " --alpha " + alpha + " --mtx --out " +
+                                      q(out.path.string()));
+  INFO("alpha " << alpha << ": " << r.err);
+  CHECK(r.status == 3);
+  CHECK_THAT(r.err, Catch::Contains("singular"));
+  CHECK(fs::is_empty(out.path));
+  // at a regular alpha the same command writes the system
+  const CommandResult regular =
+      run_command(kCoons + " export " + q(kWave) + " --alpha -0.1 --mtx --out " + q(out.path.string()));
+  CHECK(regular.status == 0);
+  CHECK(fs::exists(out.path / "bspline_wave.A.mtx"));
 }
 
 TEST_CASE("coons search-alpha and study: a B-spline boundary is searched over the non-uniform family",

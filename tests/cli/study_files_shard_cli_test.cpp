@@ -85,6 +85,21 @@ TEST_CASE("coons study FILES --shard: a rerun skips finished files and a missing
   CHECK_FALSE(fs::exists(dir.file("merged")));
 }
 
+TEST_CASE("coons study FILES --merge: an empty first shard (stopped in its first task) is missing tasks", "[cli]") {
+  // The kind of study was taken from the first shard file alone, so an empty one made a
+  // boundary-file merge read as a family study ("family: missing").
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons(kFiles + " --shard 1/2 --out " + quoted(shards)).status == 0);
+  std::ofstream(dir.file("shards/shard-0-of-2.jsonl")).flush();  // the shard stopped before a record
+  const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.out.empty());
+  CHECK(merged.err.find("--merge: 2 of 3 tasks are missing (the first: ") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.file("merged")));
+}
+
 TEST_CASE("coons study FILES --shard: --html is refused with one line, nothing written", "[cli]") {
   TempDir dir;
   const std::string out = dir.file("shards");
