@@ -5,9 +5,9 @@
 #pragma once
 
 #include <filesystem>
-#include <optional>
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <set>
 #include <string>
 #include <vector>

@@ -32,7 +32,7 @@ struct TriSearchArgs {
   int scan_points = 9, samples = 41;
   double corner_tolerance = 1e-9;
   const GlobalOptions* global = nullptr;
-  std::string rejected;       //!< an option given that does not apply to triangles (empty: none)
+  std::string rejected;        //!< an option given that does not apply to triangles (empty: none)
   bool samples_given = false;  //!< --samples was given (it applies to a target term only)
 };
 //! `coons search-alpha T.json --objective NAME`: the search over c.

@@ -3,6 +3,7 @@
 // line"), the field and the reason, print nothing on standard output and leave no file in the
 // output folder.
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -105,6 +106,23 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   });
   inputs.write("stencil_asym.json", "{\"weights\": [[0, 1, 0], [2, null, 1], [0, 1, 0]]}");
   inputs.write("stencil_flat.json", "{\"weights\": [[0, 0, 0], [0, 1, 0], [0, 0, 0]]}");
+  // A file stencil whose symbol dips to −8e-9 between two of the samples symbol_nonnegative takes
+  // (σ = 1 + 2w₁cos θ + 2w₂cos 2θ, see stencil_family_test), on a net whose free points form one
+  // column of 300: the system is singular to rounding (it was solved into z ≈ 6e7, exit 0).
+  {
+    const double w1 = -0.6666907169580457, w2 = 0.16669071695804574;
+    json column =
+        json::array({json::array({0, 0, w2, 0, 0}), json::array({0, 0, w1, 0, 0}), json::array({0, 0, nullptr, 0, 0}),
+                     json::array({0, 0, w1, 0, 0}), json::array({0, 0, w2, 0, 0})});
+    inputs.write("stencil_dip.json", json{{"weights", column}}.dump());
+    json net = json::array();
+    for (int i = 0; i <= 303; ++i) {
+      json row = json::array();
+      for (int j = 0; j <= 4; ++j) row.push_back({i / 303.0, j / 4.0, std::sin(3 * i / 303.0)});
+      net.push_back(row);
+    }
+    inputs.write("tall.json", json{{"name", "tall"}, {"rings", 2}, {"net", net}}.dump());
+  }
   const std::string good = quoted(kData + "/boundaries/dome.json");
   const std::string pillow = quoted(kData + "/boundaries/pillow.json");
   const std::string surface = quoted(kData + "/surfaces/join_bilinear_a.json");
@@ -278,6 +296,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"degree-limit {IN}/broken.json", "broken.json"},
       {"degree-limit " + good + " --degrees 8 4", "--degrees"},
       {"degree-limit " + good + " --objective target", "--objective"},
+      {"solve {IN}/tall.json --mask file:{IN}/stencil_dip.json --solver eigen-lu", "singular"},
       // --corner-tolerance is checked by every command that reads boundaries (nan and inf were
       // taken by study, degree-limit and surface)
       {"study " + good + " --degrees 3 --corner-tolerance nan --out {OUT}/s", "--corner-tolerance"},

@@ -125,8 +125,8 @@ TEST_CASE("coons export: a B-spline system that is singular at the alpha asked f
   REQUIRE(star < 0.25);
   TempDir out;
   const std::string alpha = fmt::format("{}", star);  // shortest text that reads back as star
-  const CommandResult r = run_command(kCoons + " export " + q(kWave) + " --alpha " + alpha + " --mtx --out " +
-                                      q(out.path.string()));
+  const CommandResult r =
+      run_command(kCoons + " export " + q(kWave) + " --alpha " + alpha + " --mtx --out " + q(out.path.string()));
   INFO("alpha " << alpha << ": " << r.err);
   CHECK(r.status == 3);
   CHECK_THAT(r.err, Catch::Contains("singular"));

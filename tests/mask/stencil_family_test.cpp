@@ -121,6 +121,22 @@ TEST_CASE("symbol_nonnegative: exactly the definite alpha range and the whole C1
   CHECK(std::abs(stencil_symbol(c1_coons_stencil(), 0, 1.3)) < 1e-15);  // δ⁴ vanishes at θ = 0
 }
 
+TEST_CASE("symbol_nonnegative: a dip narrower than the sampling grid is found", "[mask]") {
+  // σ(θ) = 1 + 2w₁cos θ + 2w₂cos 2θ, w₁ = −2/3 − e, w₂ = 1/6 + e: σ(0) = 0, and for e > 0 σ dips to
+  // about −13.5e² at θ ≈ 3√e, between the samples 0 and 2π/256 where σ ≥ 0 (e = 2.4e-5: a file
+  // stencil whose singular system was solved into garbage). e = 0 gives σ = (2/3)(1 − cos θ)² ≥ 0.
+  for (double e : {0.0, 1e-5, 2.4e-5}) {
+    Eigen::MatrixXd raw = Eigen::MatrixXd::Zero(5, 5);
+    raw(2, 2) = 1;
+    raw(1, 2) = raw(3, 2) = -2.0 / 3 - e;
+    raw(0, 2) = raw(4, 2) = 1.0 / 6 + e;
+    const Stencil s = make_stencil(raw);
+    INFO("e = " << e);
+    CHECK(stencil_symbol(s, 2 * kPi / 256, 0) > 0);  // the samples around the dip are not negative
+    CHECK(symbol_nonnegative(s) == (e == 0));
+  }
+}
+
 TEST_CASE("separable_factors: c1-coons and the Coons mask are outer products, biharmonic is not", "[mask]") {
   for (const Stencil& s : {c1_coons_stencil(), alpha_stencil(alpha_mask(-0.25))}) {
     const auto uv = separable_factors(s);

@@ -1,9 +1,14 @@
 #include "stencil.h"
 
+#include <Eigen/Cholesky>
+#include <Eigen/Eigenvalues>
 #include <Eigen/SVD>
 #include <algorithm>
 #include <cassert>
 #include <cmath>
+#include <optional>
+#include <utility>
+#include <vector>
 
 namespace coons {
 
@@ -96,12 +101,84 @@ double stencil_symbol(const Stencil& s, double theta, double phi) {
   return sigma;
 }
 
+namespace {
+
+// σ at (θ, φ) with its gradient and Hessian.
+struct SymbolJet {
+  double value = 0;
+  Eigen::Vector2d gradient = Eigen::Vector2d::Zero();
+  Eigen::Matrix2d hessian = Eigen::Matrix2d::Zero();
+};
+
+SymbolJet symbol_jet(const Stencil& s, const Eigen::Vector2d& x) {
+  SymbolJet j;
+  for (int a = -s.radius; a <= s.radius; ++a)
+    for (int b = -s.radius; b <= s.radius; ++b) {
+      const double w = s.at(a, b);
+      if (w == 0) continue;
+      const double c = std::cos(a * x(0) + b * x(1)), sn = std::sin(a * x(0) + b * x(1));
+      const Eigen::Vector2d k(a, b);
+      j.value += w * c;
+      j.gradient -= w * sn * k;
+      j.hessian -= w * c * k * k.transpose();
+    }
+  return j;
+}
+
+// The smallest σ reached by a damped Newton descent from x (Levenberg shift where the Hessian is
+// not positive definite, steps halved until σ decreases). Where the Hessian has negative curvature
+// the eigenvector's direction (length `reach`) is tried too: a sample can sit exactly on a saddle
+// or maximum of σ (zero gradient, e.g. θ = 0 of an even symbol) with the dip beside it.
+double descend_symbol(const Stencil& s, Eigen::Vector2d x, double reach) {
+  SymbolJet j = symbol_jet(s, x);
+  for (int iteration = 0; iteration < 100; ++iteration) {
+    const Eigen::SelfAdjointEigenSolver<Eigen::Matrix2d> eig(j.hessian);
+    const double scale = 1 + j.hessian.cwiseAbs().maxCoeff();
+    const double lowest = eig.eigenvalues()(0);
+    const double shift = std::max(0.0, -lowest) + 1e-12 * scale;
+    std::vector<Eigen::Vector2d> directions = {
+        -(j.hessian + shift * Eigen::Matrix2d::Identity()).ldlt().solve(j.gradient)};
+    if (lowest < 0) {
+      directions.emplace_back(reach * eig.eigenvectors().col(0));
+      directions.emplace_back(-reach * eig.eigenvectors().col(0));
+    }
+    std::optional<std::pair<Eigen::Vector2d, SymbolJet>> best;
+    for (Eigen::Vector2d step : directions)
+      for (int halving = 0; halving < 40 && step.norm() > 1e-15; ++halving, step /= 2) {
+        const SymbolJet next = symbol_jet(s, x + step);
+        if (next.value < j.value) {
+          if (!best || next.value < best->second.value) best.emplace(step, next);
+          break;
+        }
+      }
+    if (!best) break;
+    x += best->first;
+    j = best->second;
+  }
+  return j.value;
+}
+
+}  // namespace
+
 bool symbol_nonnegative(const Stencil& s, double tolerance) {
   constexpr int kSamples = 256;  // a multiple of 2: 0 and π are sample points
   const double h = 2 * kPi / kSamples;
+  Eigen::MatrixXd sigma(kSamples, kSamples);
   for (int p = 0; p < kSamples; ++p)
-    for (int q = 0; q < kSamples; ++q)
-      if (stencil_symbol(s, p * h, q * h) < -tolerance) return false;
+    for (int q = 0; q < kSamples; ++q) {
+      sigma(p, q) = stencil_symbol(s, p * h, q * h);
+      if (sigma(p, q) < -tolerance) return false;
+    }
+  // A dip between samples lies next to a sampled local minimum: descend from each one (periodic
+  // neighbours; plateaus, as in a symbol of θ alone, give many starts, each a few evaluations).
+  const auto wrap = [](int k) { return (k + kSamples) % kSamples; };
+  for (int p = 0; p < kSamples; ++p)
+    for (int q = 0; q < kSamples; ++q) {
+      bool minimum = true;
+      for (int dp = -1; dp <= 1 && minimum; ++dp)
+        for (int dq = -1; dq <= 1 && minimum; ++dq) minimum = sigma(wrap(p + dp), wrap(q + dq)) >= sigma(p, q);
+      if (minimum && descend_symbol(s, Eigen::Vector2d(p * h, q * h), h / 2) < -tolerance) return false;
+    }
   return true;
 }
 

@@ -82,11 +82,14 @@ double symmetry_defect(const Stencil& s);
 //! the stencil on the infinite grid for the wave e^{i(aθ + bφ)}.
 double stencil_symbol(const Stencil& s, double theta, double phi);
 
-//! True when min σ ≥ −tolerance on a 256 × 256 grid of [0, 2π)² (plus the exact points 0 and π).
+//! True when min σ ≥ −tolerance: σ on a 256 × 256 grid of [0, 2π)² (0 and π among the points),
+//! then a damped Newton descent from each local minimum of those samples, which finds a dip
+//! narrower than the grid spacing (a file stencil whose σ dips to −8e-9 between two samples near
+//! θ = 0 was taken as ≥ 0, and its singular system solved into garbage).
 //! σ ≥ 0 means xᵀ A_F x = (2π)⁻² ∫ σ |x̂|² > 0 for every finite free set F and x ≠ 0 (x̂ a
 //! non-zero trigonometric polynomial; σ, with mean W(0,0) = 1, vanishes only on a null set), so
-//! every free set gives a positive definite system. The sampling is a check, not a proof, for
-//! arbitrary stencils; for the named ones σ ≥ 0 holds exactly (α ∈ [−1/4, 1/4] and the C1 family).
+//! every free set gives a positive definite system. For arbitrary stencils this is a search, not a
+//! proof; for the named ones σ ≥ 0 holds exactly (α ∈ [−1/4, 1/4] and the C1 family).
 bool symbol_nonnegative(const Stencil& s, double tolerance = 1e-12);
 
 //! W = u vᵀ (a separable stencil: c1-coons, the α = −1/4 Coons mask): the two symmetric factors
