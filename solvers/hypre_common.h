@@ -9,6 +9,7 @@
 #include <Eigen/Core>
 #include <algorithm>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -46,6 +47,9 @@ class HypreBackend : public LinearSolver {
   using LinearSolver::LinearSolver;
 
  protected:
+  //! The operator of the last factorize (do_factorize sets it), for the true residual of a breakdown.
+  LinearOperator solved_op_;
+
   //! options.max_iterations, or 500 when it is 0.
   [[nodiscard]] int limit() const { return options_.max_iterations > 0 ? options_.max_iterations : 500; }
 
@@ -73,7 +77,7 @@ class HypreBackend : public LinearSolver {
     end.limit = limit();
     end.converged = true;
     end.residual = 0;
-    std::string breakdown;  // the message of the first column that broke down
+    std::optional<std::pair<int, ColumnSolve>> broken;  // the first column that broke down
     for (int c = 0; c < 3; ++c) {
       if (B.col(c).isZero(0)) continue;  // x = 0 exactly
       const ColumnSolve column = solve(c);
@@ -83,16 +87,24 @@ class HypreBackend : public LinearSolver {
       end.residual = std::max(end.residual, std::isfinite(column.residual) ? column.residual : HUGE_VAL);
       end.converged =
           end.converged && column.error == 0 && column.residual <= options_.tolerance && X.col(c).allFinite();
-      if (breakdown.empty() && broke_down(column, end.limit)) breakdown = breakdown_message(column, end.limit);
+      if (!broken && broke_down(column, end.limit)) broken.emplace(c, column);
     }
     if (!X.allFinite()) {
       end.diverged = true;
       end.residual = HUGE_VAL;
     }
-    if (breakdown.empty() || end.diverged) return finish_iteration(end, X, summary);
+    if (!broken || end.diverged) return finish_iteration(end, X, summary);
+    // hypre's residual of a broken-down solve is not the iterate's (with logging off, PCG that
+    // stops in its first iteration reports 0 for an X that is still 0): the true one is reported.
+    Eigen::MatrixXd AX;
+    if (apply_operator(solved_op_, X, AX)) {
+      auto& [c, column] = *broken;
+      column.residual = relative_norm(AX.col(c) - B.col(c), B.col(c));
+      end.residual = max_relative_norm(AX - B, B);
+    }
     summary.iterations = end.iterations;
     summary.relative_residual = end.residual;
-    summary.message = breakdown;
+    summary.message = breakdown_message(broken->second, end.limit);
     return SolveStatus::kFailure;
   }
 

@@ -297,6 +297,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"degree-limit " + good + " --degrees 8 4", "--degrees"},
       {"degree-limit " + good + " --objective target", "--objective"},
       {"solve {IN}/tall.json --mask file:{IN}/stencil_dip.json --solver eigen-lu", "singular"},
+      // fast5 solves the C1 masks, so the reason is the search's need of a matrix, not "3x3 only"
+      {"search-alpha " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") +
+           " --parameter weight --objective e3 --solver fast5",
+       "works from the grid stencil; the weight search"},
       // --corner-tolerance is checked by every command that reads boundaries (nan and inf were
       // taken by study, degree-limit and surface)
       {"study " + good + " --degrees 3 --corner-tolerance nan --out {OUT}/s", "--corner-tolerance"},

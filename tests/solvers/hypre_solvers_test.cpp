@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "coons/config.h"
+#include "solvers/column_scaling.h"
 #include "solvers/mpi_runtime.h"
 #include "solvers/registry.h"
 #include "solvers/stencil_operator.h"
@@ -136,6 +137,25 @@ TEST_CASE("hypre backends: report not_applicable instead of a wrong answer", "[s
   const SolveSummary amg = make_solver("hypre-amg")->compute_and_solve(grid_only, B, X);
   CHECK(amg.status == SolveStatus::kNotApplicable);
   CHECK_THAT(amg.message, Catch::Contains("matrix"));
+}
+
+TEST_CASE("hypre-amg: a breakdown reports the true residual of the X it returns, not hypre's", "[solvers][hypre]") {
+  // The indefinite α = 0.4 mask on a 6x10 grid: hypre's PCG stops in its first iteration (a
+  // negative pᵀAp) with X still 0, and with logging off it reported the residual 0 for it.
+  const StencilOperator op = make_stencil_operator(6, 10, nine_point(1, 0.15, -0.4));
+  const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
+  const Eigen::MatrixX3d B = boundary_rhs(op);
+  Eigen::MatrixX3d X;
+  LinearOperator lop;
+  lop.matrix = &A;
+  lop.grid = &op;
+  const SolveSummary s = make_solver("hypre-amg")->compute_and_solve(lop, B, X);
+  INFO(s.brief_report());
+  REQUIRE(s.status == SolveStatus::kFailure);
+  REQUIRE_THAT(s.message, Catch::StartsWith("breakdown: residual "));
+  const double truth = max_relative_norm(A * X - B, B);
+  CHECK(s.relative_residual == Approx(truth).epsilon(1e-12));
+  CHECK(s.relative_residual > 0);
 }
 
 TEST_CASE("hypre-amg: GMRES solves a nonsymmetric convection-diffusion matrix like a sparse LU", "[solvers][hypre]") {

@@ -41,8 +41,8 @@ const solvers::SolverInfo& weight_search_backend(const solvers::SolverInfo* requ
     throw InputError(
         "command line", "--solver",
         requested->name +
-            " solves 3x3 grid stencils only; --parameter weight (a 5x5 stencil) needs a backend that works "
-            "from the matrix");
+            " works from the grid stencil; the weight search (--parameter weight) refills one assembled 5x5 "
+            "system per evaluation and needs a backend that works from that matrix (e.g. cholmod, eigen-ldlt)");
   const solvers::SolverInfo* cholmod = solvers::find_solver("cholmod");
   return cholmod ? *cholmod : *solvers::find_solver("eigen-ldlt");
 }
