@@ -130,7 +130,11 @@ int run_tri_export(const TriExportArgs& e) {
   const bool obj = all || e.obj, mtx = all || e.mtx, ply = all || e.ply, vtu = all || e.vtu;
   check_export_options(e.samples, mtx, true, e.prefix);  // a triangle has --method alpha only
   const bool surface = obj || ply || vtu;
-  check_tri_memory(*e.global, b.n, r.options.solver, e.boundary, surface ? samples_bytes(e.samples) / 2 : 0.0);
+  const double sample_bytes = surface ? samples_bytes(e.samples) / 2 : 0.0;  // a triangle holds half the grid
+  // samples that alone exceed the budget are --samples' fault, not the degree's
+  check_memory(*e.global, sample_bytes, fmt::format("{} x {} surface samples", e.samples, e.samples), "command line",
+               "--samples");
+  check_tri_memory(*e.global, b.n, r.options.solver, e.boundary, sample_bytes);
   refuse_singular_member(b, r.options.mask.c, e.boundary);
   const std::string prefix = e.prefix.empty() ? safe_file_stem(b.name) : e.prefix;
 

@@ -314,6 +314,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       // --samples without a target term, on a triangle as on a rectangle (it was ignored)
       {"search-alpha " + quoted(kData + "/triangles/sphere_octant.json") + " --objective thin_plate --samples 5",
        "--samples"},
+      // the option at fault is named: --samples, not the triangle's degree; --face, not --edges
+      {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --samples 1000000 --out {OUT}", "--samples"},
+      {"import-step {IN}/missing.step --face -2 --out {OUT}/b.json", COONS_HAVE_OCCT ? "--face" : "OpenCASCADE"},
       // a triangle has no STEP/IGES surface (--step was ignored)
       {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --out {OUT} --step {OUT}/t.step", "--step"},
       // view (checks of the command line come before three.js is read: the same errors without it)

@@ -41,8 +41,8 @@ bool StepImportOptions::is_valid(std::string* why) const {
     if (why) *why = reason;
     return false;
   };
+  if (face < -1) return fail("--face must be >= 0");  // (−1: not given)
   if ((face >= 0) == !edges.empty()) return fail("give exactly one of --face and --edges");
-  if (face < -1) return fail("--face must be >= 0");
   if (!edges.empty()) {
     if (edges.size() != 4) return fail(fmt::format("--edges needs 4 edge indices ({} given)", edges.size()));
     if (std::set<int>(edges.begin(), edges.end()).size() != 4) return fail("--edges: the 4 indices must differ");
