@@ -47,9 +47,6 @@ class HypreBackend : public LinearSolver {
   using LinearSolver::LinearSolver;
 
  protected:
-  //! The operator of the last factorize (do_factorize sets it), for the true residual of a breakdown.
-  LinearOperator solved_op_;
-
   //! options.max_iterations, or 500 when it is 0.
   [[nodiscard]] int limit() const { return options_.max_iterations > 0 ? options_.max_iterations : 500; }
 
@@ -97,7 +94,7 @@ class HypreBackend : public LinearSolver {
     // hypre's residual of a broken-down solve is not the iterate's (with logging off, PCG that
     // stops in its first iteration reports 0 for an X that is still 0): the true one is reported.
     Eigen::MatrixXd AX;
-    if (apply_operator(solved_op_, X, AX)) {
+    if (apply_operator(factorized_operator(), X, AX)) {
       auto& [c, column] = *broken;
       column.residual = relative_norm(AX.col(c) - B.col(c), B.col(c));
       end.residual = max_relative_norm(AX - B, B);

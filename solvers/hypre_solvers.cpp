@@ -46,7 +46,6 @@ class HypreAmgBackend : public hypre_detail::HypreBackend {
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
     const SolveStatus checked = do_analyze(op, summary);
     if (checked != SolveStatus::kSuccess) return checked;
-    solved_op_ = op;
     // PCG for symmetric matrices unless the stencil's exact spectrum says indefinite; else GMRES.
     bool definite_known_false = false;
     if (!op.grid && op.stencil) definite_known_false = !(stencil_eigenvalue_range(*op.stencil).first > 0);

@@ -92,7 +92,6 @@ class HypreStructBackend : public hypre_detail::HypreBackend {
   SolveStatus do_factorize(const LinearOperator& op, SolveSummary& summary) override {
     const SolveStatus checked = do_analyze(op, summary);
     if (checked != SolveStatus::kSuccess) return checked;
-    solved_op_ = op;
     if (!op.grid && op.stencil) {  // the exact spectrum is known
       const double lo = stencil_eigenvalue_range(*op.stencil).first;
       if (!(lo > 0)) {

@@ -208,6 +208,9 @@ class LinearSolver {
   void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X,
                          SolveSummary& summary) const;
 
+  //! The operator of the last factorize (set when do_factorize returns; do_solve may read it).
+  [[nodiscard]] const LinearOperator& factorized_operator() const { return op_; }
+
   SolverOptions options_;
 
  private:
