@@ -372,6 +372,11 @@ json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const S
   return stencil_net_report(input.boundary, run.problem, run.stencil, label, run.result, mu, run.picked_automatically);
 }
 
+InputError samples_without_target(const std::string& objective) {
+  return {"command line", "--samples",
+          "--samples sets the target's sampling but --objective '" + objective + "' has no target term"};
+}
+
 void check_corner_tolerance(double corner_tolerance) {
   if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");

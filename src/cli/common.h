@@ -10,6 +10,7 @@
 #include <vector>
 
 #include "coons/io/boundary_io.h"
+#include "coons/io/input_error.h"
 #include "coons/mask/mask9.h"
 #include "coons/mask/solve_stencil_net.h"
 #include "coons/mask/stencil.h"
@@ -136,12 +137,15 @@ nlohmann::json stencil_report(const BoundaryFile& input, const ResolvedRequest& 
 //! The solve report (docs/formats.md) without the timing block; metrics computed here.
 nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
                             const std::optional<double>& mu);
-//! A B-spline boundary (knots_u, knots_v) is an InputError unless `accept_bspline` (the commands
-//! that handle one: bspline_commands.h); so is a model smaller than `min_model_size` (the searches
-//! pass kMinModelSize, BoundaryReadOptions).
+//! The InputError of --samples given to a search whose objective has no target term (rectangles
+//! and triangles alike).
+InputError samples_without_target(const std::string& objective);
 //! An InputError unless --corner-tolerance is a finite number >= 0 (every command that reads
 //! boundaries checks it before reading them).
 void check_corner_tolerance(double corner_tolerance);
+//! A B-spline boundary (knots_u, knots_v) is an InputError unless `accept_bspline` (the commands
+//! that handle one: bspline_commands.h); so is a model smaller than `min_model_size` (the searches
+//! pass kMinModelSize, BoundaryReadOptions).
 BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline = false,
                         double min_model_size = 0);
 //! Files as given, folders expanded to their *.json files (sorted); unreadable folders are InputErrors.

@@ -80,8 +80,7 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
     throw InputError("command line", "--target",
                      "--target is given but --objective '" + r.objective + "' has no target term");
   } else if (r.samples_option->count() > 0) {
-    throw InputError("command line", "--samples",
-                     "--samples sets the target's sampling but --objective '" + r.objective + "' has no target term");
+    throw samples_without_target(r.objective);
   }
   bool indefinite = false;
   switch (r.parameter) {

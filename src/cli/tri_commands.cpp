@@ -207,8 +207,7 @@ int run_tri_search(const TriSearchArgs& a) {
     if (!objective->target)
       throw InputError("command line", "--objective", "the objective uses 'target' but the file has no \"target\"");
   } else if (a.samples_given) {
-    throw InputError("command line", "--samples",
-                     "--samples sets the target's sampling but --objective '" + a.objective + "' has no target term");
+    throw samples_without_target(a.objective);
   }
   AlphaSearchOptions options;
   const auto [lower, upper] = default_tri_bounds(b.n);
