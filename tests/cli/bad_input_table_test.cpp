@@ -123,6 +123,15 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
     }
     inputs.write("tall.json", json{{"name", "tall"}, {"rings", 2}, {"net", net}}.dump());
   }
+  // B-spline knots closer than kMinKnotSpan of the range: within one side (1e-15 after knot 3:
+  // the solve reported success with a mask residual of 0.17), and between two sides given apart.
+  const json wave = json::parse(std::ifstream(kData + "/boundaries/bspline_wave.json"));
+  const std::string knot_close = write_edit(wave, "knot_close.json", [](json& d) { d["knots_u"][4] = 1e-15; });
+  const std::string knots_apart = write_edit(wave, "knots_apart.json", [](json& d) {
+    json top = d["knots_u"];
+    top[5] = top[5].get<double>() + 1e-11;
+    d["knots_u"] = {{"bottom", d["knots_u"]}, {"top", top}};
+  });
   const std::string good = quoted(kData + "/boundaries/dome.json");
   const std::string pillow = quoted(kData + "/boundaries/pillow.json");
   const std::string surface = quoted(kData + "/surfaces/join_bilinear_a.json");
@@ -144,6 +153,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + degree, "degree"},
       {"solve " + string_point, "top"},
       {"solve " + name_number, "name"},
+      {"solve " + knot_close, "knots_u[4]"},
+      {"solve " + knots_apart, "knots_u"},
       {"solve " + write_variant("deep.json",
                                 [](json& d) {
                                   json t = 1;

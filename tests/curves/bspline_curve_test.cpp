@@ -84,6 +84,25 @@ TEST_CASE("knot_vector_problems: each violation is a reason naming the knot", "[
     U(4) = std::nan("");
     CHECK(names_index(knot_vector_problems(U, 3, 6), 4));
   }
+  SECTION("a span shorter than kMinKnotSpan of the range") {
+    for (const double scale : {1.0, 1e-6, 1e12}) {
+      INFO("knot range " << scale);
+      Eigen::VectorXd U = scale * valid;
+      U(4) = 1e-15 * scale;  // 1e-15 of the range after knot 3
+      CHECK(names_index(knot_vector_problems(U, 3, 6), 4));
+      U(4) = 0.3 * scale;
+      U(5) = U(4) + 0.5 * kMinKnotSpan * scale;  // the span before knot 5
+      CHECK(names_index(knot_vector_problems(U, 3, 6), 5));
+      U(5) = U(4) + 2 * kMinKnotSpan * scale;  // twice the shortest span accepted
+      CHECK(knot_vector_problems(U, 3, 6).empty());
+    }
+    // The denormal span of a helper's file: [0,0,0,1e-320,1,1,1] was read and gave null energies.
+    const Eigen::VectorXd tiny = (Eigen::VectorXd(7) << 0, 0, 0, 1e-320, 1, 1, 1).finished();
+    CHECK(names_index(knot_vector_problems(tiny, 2, 4), 3));
+    // Its mirror: 0.9999999999999999 made two Greville abscissae coincide.
+    const Eigen::VectorXd ulp = (Eigen::VectorXd(7) << 0, 0, 0, 0.9999999999999999, 1, 1, 1).finished();
+    CHECK(names_index(knot_vector_problems(ulp, 2, 4), 4));
+  }
   SECTION("degree 0 and too few points") {
     CHECK(knot_vector_problems(valid, 0, 9).size() == 1);
     CHECK_FALSE(knot_vector_problems(bezier_knots(3), 3, 3).empty());

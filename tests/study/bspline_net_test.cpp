@@ -67,7 +67,7 @@ TEST_CASE("make_bspline_net: on Bézier knot vectors the alpha family is the uni
   knots.degree_v = 3;
   knots.knots_u = bezier_knots(5);
   knots.knots_v = bezier_knots(3);
-  const BSplineInput in = bspline_input(b, knots);
+  const BSplineInput in = bspline_input(b, knots, "fixture");
   CHECK(in.notes.empty());
   auto solver = solvers::make_solver("eigen-lu");
   for (const double alpha : {-0.25, -0.1, 0.0, 0.2}) {

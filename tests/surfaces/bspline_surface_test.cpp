@@ -124,6 +124,45 @@ TEST_CASE("compatible_boundary: opposite sides share degree and knots and stay t
   for (const CompatibilityNote& n : notes) CHECK(n.knots_inserted > 0);
 }
 
+TEST_CASE("compatible_boundary: knots of opposite sides a rounding error apart are one knot", "[surfaces][bspline]") {
+  // bottom over [0, 0.3] with a knot at 0.1, top over [0, 1] with one at 1/3: reparametrised,
+  // 0.1 / 0.3 = 0.33333333333333337 is one ulp from 1/3 = 0.3333333333333333.
+  BSplineBoundary b = make_random_bspline_boundary(3, 6, 2, 4, 4800U);
+  b.bottom.knots = (Eigen::VectorXd(10) << 0, 0, 0, 0, 0.06, 0.1, 0.3, 0.3, 0.3, 0.3).finished();
+  b.top = BSplineCurve(3, (Eigen::VectorXd(10) << 0, 0, 0, 0, 0.2, 1.0 / 3.0, 1, 1, 1, 1).finished(),
+                       b.bottom.points.rowwise() + Eigen::RowVector3d(0, 1, 0));
+  REQUIRE(0.1 / 0.3 != 1.0 / 3.0);
+  std::vector<CompatibilityNote> notes;
+  const BSplineBoundary c = compatible_boundary(b, &notes);
+  CHECK(c.bottom.knots == c.top.knots);
+  CHECK(c.bottom.knots.size() == 10);  // nothing inserted: the knots were the same
+  for (const CompatibilityNote& n : notes) CHECK((n.side == "left" || n.side == "right"));
+  CHECK_FALSE(merged_span_problem(c, 0).has_value());
+  // The curves moved by the rounding error only.
+  for (int k = 0; k <= 100; ++k) {
+    const double s = k / 100.0;
+    CHECK((evaluate(b.bottom, 0.3 * s) - evaluate(c.bottom, s)).norm() < 1e-13);
+    CHECK((evaluate(b.top, s) - evaluate(c.top, s)).norm() < 1e-13);
+  }
+}
+
+TEST_CASE("merged_span_problem: two sides' knots closer than kMinKnotSpan but not the same are named",
+          "[surfaces][bspline]") {
+  BSplineBoundary b = make_random_bspline_boundary(3, 6, 2, 4, 4900U);
+  b.left.knots = (Eigen::VectorXd(7) << 0, 0, 0, 0.5, 1, 1, 1).finished();
+  for (const double gap : {1e-11, 1e-10}) {
+    INFO("gap " << gap);
+    b.right.knots = (Eigen::VectorXd(7) << 0, 0, 0, 0.5 + gap, 1, 1, 1).finished();
+    const BSplineBoundary c = compatible_boundary(b);
+    CHECK_FALSE(merged_span_problem(c, 0).has_value());
+    const auto why = merged_span_problem(c, 1);
+    REQUIRE(why.has_value());
+    CHECK(why->find("left and right") != std::string::npos);
+  }
+  b.right.knots = (Eigen::VectorXd(7) << 0, 0, 0, 0.5 + 1e-8, 1, 1, 1).finished();
+  CHECK_FALSE(merged_span_problem(compatible_boundary(b), 1).has_value());
+}
+
 TEST_CASE("greville_coons_surface: equals the continuous bilinearly blended Coons patch of its B-spline curves",
           "[surfaces][bspline]") {
   int cases = 0;

@@ -242,17 +242,15 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   close(raw.bottom.points.row(raw.bottom.count() - 1), raw.right.points.row(0));
   close(raw.top.points.row(0), raw.left.points.row(raw.left.count() - 1));
   close(raw.top.points.row(raw.top.count() - 1), raw.right.points.row(raw.right.count() - 1));
-  // Over [0, 1]; opposite knot vectors that differ by rounding only (a reversed curve's knots are
-  // a + b − u) are made equal, so that no knot is inserted twice a rounding error apart.
-  for (BSplineCurve* c : {&raw.bottom, &raw.top, &raw.left, &raw.right}) *c = reparametrised(*c, 0.0, 1.0);
-  auto snap = [](const BSplineCurve& from, BSplineCurve& to) {
-    if (from.degree == to.degree && from.knots.size() == to.knots.size() &&
-        (from.knots - to.knots).cwiseAbs().maxCoeff() <= 1e-12)
-      to.knots = from.knots;
-  };
-  snap(raw.bottom, raw.top);
-  snap(raw.left, raw.right);
+  // Opposite knots that differ by rounding only (a reversed curve's knots are a + b − u) become
+  // one knot in compatible_boundary (kSameKnot), so none is inserted twice a rounding error apart.
   out.boundary = compatible_boundary(raw, &out.notes);
+  for (const int direction : {0, 1})
+    if (const auto why = merged_span_problem(out.boundary, direction)) {
+      const int first = direction == 0 ? 0 : 3;  // bottom and top, left and right in `sides`
+      const int second = direction == 0 ? 2 : 1;
+      throw InputError(path, fmt::format("edges {} and {}", out.edge_indices[first], out.edge_indices[second]), *why);
+    }
   return out;
 }
 

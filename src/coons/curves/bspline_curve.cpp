@@ -44,6 +44,22 @@ bool BSplineCurve::is_valid(std::string* why) const {
   return false;
 }
 
+std::optional<KnotProblem> short_span_problem(const Eigen::VectorXd& knots) {
+  const Eigen::Index last = knots.size() - 1;
+  if (last < 1) return std::nullopt;
+  const double range = knots(last) - knots(0);
+  for (Eigen::Index i = 1; i <= last; ++i) {
+    const double span = knots(i) - knots(i - 1);
+    if (span > 0 && span < kMinKnotSpan * range)
+      return KnotProblem{int(i), fmt::format("knot {} ({}) is {} after knot {} ({}), closer than {:g} of the knot "
+                                             "range ({}): give the two knots one value (a repeated knot) or move "
+                                             "them apart",
+                                             i, fmt::format("{:.17g}", knots(i)), number(span), i - 1,
+                                             fmt::format("{:.17g}", knots(i - 1)), kMinKnotSpan, number(range))};
+  }
+  return std::nullopt;
+}
+
 std::vector<KnotProblem> knot_vector_problems(const Eigen::VectorXd& knots, int degree, int count) {
   std::vector<KnotProblem> out;
   const int p = degree;
@@ -101,6 +117,7 @@ std::vector<KnotProblem> knot_vector_problems(const Eigen::VectorXd& knots, int 
                                          "allowed",
                                          i, number(u), run, p)});
   }
+  if (auto problem = short_span_problem(knots)) out.push_back(std::move(*problem));
   return out;
 }
 

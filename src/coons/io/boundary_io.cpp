@@ -258,7 +258,7 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
   largest.require(options.min_model_size, source);
   if (const auto knots = parse_bspline_knots(doc, source, b.m + 1, b.n + 1)) {
     if (out.ribbons) p.fail("ribbons", "B-spline boundaries (knots_u, knots_v) take one data ring; drop \"ribbons\"");
-    out.bspline = bspline_input(b, *knots);
+    out.bspline = bspline_input(b, *knots, source);
   }
   return out;
 }

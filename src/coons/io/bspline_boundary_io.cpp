@@ -79,10 +79,13 @@ BSplineBoundary bspline_boundary(const Boundary& b, const BSplineKnots& k) {
           BSplineCurve(k.degree_v, k.knots_v, b.left), BSplineCurve(k.degree_v, right, b.right)};
 }
 
-BSplineInput bspline_input(const Boundary& b, const BSplineKnots& k) {
+BSplineInput bspline_input(const Boundary& b, const BSplineKnots& k, const std::string& source) {
   BSplineInput out;
   out.given = bspline_boundary(b, k);
   out.compatible = compatible_boundary(out.given, &out.notes);
+  for (const int direction : {0, 1})
+    if (const auto why = merged_span_problem(out.compatible, direction))
+      throw InputError(source, direction == 0 ? "knots_u" : "knots_v", *why);
   return out;
 }
 

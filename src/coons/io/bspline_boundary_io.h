@@ -44,7 +44,9 @@ std::optional<BSplineKnots> parse_bspline_knots(const nlohmann::json& doc, const
 //! left/right on knots_v).
 BSplineBoundary bspline_boundary(const Boundary& boundary, const BSplineKnots& knots);
 
-//! bspline_boundary, then compatible_boundary with its notes.
-BSplineInput bspline_input(const Boundary& boundary, const BSplineKnots& knots);
+//! bspline_boundary, then compatible_boundary with its notes. Throws InputError(source,
+//! "knots_u" or "knots_v", reason) when the per-side knots merge into a span shorter than
+//! kMinKnotSpan (merged_span_problem).
+BSplineInput bspline_input(const Boundary& boundary, const BSplineKnots& knots, const std::string& source);
 
 }  // namespace coons

@@ -54,6 +54,22 @@ BSplineBoundary boundary_of(const BSplineSurface& s) {
 
 namespace {
 
+// Each knot of b (over [0, 1]) within kSameKnot of one of a's takes a's value. Valid vectors keep
+// their distinct knots kMinKnotSpan apart, so no two of b's knots meet and their order holds.
+void snap_knots(const BSplineCurve& a, BSplineCurve& b) {
+  const double* first = a.knots.data();
+  const double* past = first + a.knots.size();
+  for (Eigen::Index i = 0; i < b.knots.size(); ++i) {
+    double& u = b.knots(i);
+    const double* above = std::lower_bound(first, past, u);
+    if (above != past && *above - u <= kSameKnot) {
+      u = *above;
+    } else if (above != first && u - *(above - 1) <= kSameKnot) {
+      u = *(above - 1);
+    }
+  }
+}
+
 // Both curves over [0, 1] at the higher degree, then with the union of their knots (each value at
 // its larger multiplicity).
 void make_pair_compatible(BSplineCurve& a, BSplineCurve& b, const char* name_a, const char* name_b,
@@ -62,6 +78,7 @@ void make_pair_compatible(BSplineCurve& a, BSplineCurve& b, const char* name_a, 
   const int degree_b = b.degree;
   a = reparametrised(a, 0.0, 1.0);
   b = reparametrised(b, 0.0, 1.0);
+  snap_knots(a, b);
   const int p = std::max(a.degree, b.degree);
   a = degree_elevated(a, p);
   b = degree_elevated(b, p);
@@ -94,6 +111,14 @@ BSplineBoundary compatible_boundary(const BSplineBoundary& b, std::vector<Compat
   make_pair_compatible(out.bottom, out.top, "bottom", "top", notes);
   make_pair_compatible(out.left, out.right, "left", "right", notes);
   return out;
+}
+
+std::optional<std::string> merged_span_problem(const BSplineBoundary& compatible, int direction) {
+  const bool u = direction == 0;
+  const auto problem = short_span_problem(u ? compatible.bottom.knots : compatible.left.knots);
+  if (!problem) return std::nullopt;
+  return std::string(u ? "the knots of bottom and top" : "the knots of left and right") +
+         " together, over [0, 1]: " + problem->reason;
 }
 
 BSplineSurface greville_coons_surface(const BSplineBoundary& b) {

@@ -10,6 +10,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -50,11 +51,23 @@ struct CompatibilityNote {
   int knots_inserted = 0;
 };
 
+//! Knot values of opposite sides over [0, 1] closer than this are one knot split by rounding (the
+//! reparametrised 0.1 of [0, 0.3] is 0.33333333333333337, 1/3 is 0.3333333333333333).
+inline constexpr double kSameKnot = 1e-12;
+
 //! Four sides over [0, 1] with equal degree and knots on opposite sides (bottom/top share p and
 //! the u knots, left/right q and the v knots), by exact degree elevation and knot insertion.
 //! Each side is first reparametrised onto [0, 1] (the Coons patch of the curves uses their
-//! normalised parameters). `notes` (when not null) receives one entry per side that changed.
+//! normalised parameters); a knot of top (right) within kSameKnot of one of bottom's (left's)
+//! takes its value, instead of being inserted as a second knot a rounding error away. `notes`
+//! (when not null) receives one entry per side that changed.
 BSplineBoundary compatible_boundary(const BSplineBoundary& b, std::vector<CompatibilityNote>* notes = nullptr);
+
+//! The first span of a compatible boundary's u knots (direction 0: bottom and top) or v knots
+//! (direction 1: left and right) shorter than kMinKnotSpan, as a reason naming the two sides;
+//! std::nullopt when there is none. Two valid sides whose knots are closer than kMinKnotSpan but
+//! more than kSameKnot apart merge into such a span.
+std::optional<std::string> merged_span_problem(const BSplineBoundary& compatible, int direction);
 
 //! The Greville-weighted discrete Coons net of a compatible boundary (as compatible_boundary
 //! returns): with ξ_i, η_j the Greville abscissae of the u and v knots on [0, 1],
