@@ -49,6 +49,12 @@ void check_memory(const GlobalOptions& g, double bytes, const std::string& what,
                                  what, format_bytes(bytes), format_bytes(limit)));
 }
 
+void check_target_samples(const GlobalOptions& g, int samples) {
+  if (samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  check_memory(g, target_samples_bytes(samples), fmt::format("{} x {} target samples", samples, samples),
+               "command line", "--samples");
+}
+
 void check_export_options(int samples, bool mtx, bool solves_system, const std::string& prefix) {
   if (samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   if (mtx && !solves_system)

@@ -46,6 +46,10 @@ void add_memory_option(CLI::App& cmd, GlobalOptions& g);
 void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
                   const std::string& field);
 
+//! `--samples` of a target objective: at least 2, and a k×k grid of target samples
+//! (target_samples_bytes) within the memory limit; else an InputError naming --samples.
+void check_target_samples(const GlobalOptions& g, int samples);
+
 //! `--solver NAME`: nullptr for auto; an unknown name is an InputError listing the built-in ones.
 const solvers::SolverInfo* solver_from_name(const std::string& name);
 

@@ -70,7 +70,7 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   auto objective = parse_objective(objective_text(r.objective), &why);
   if (!objective) throw InputError("command line", "--objective", why);
   s.objective = *objective;
-  if (r.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  check_target_samples(r.global, r.samples);
   if (s.objective.target_weight > 0) {
     s.objective.target = resolve_target(r.target, r.boundary, b, r.samples);
     if (!s.objective.target)

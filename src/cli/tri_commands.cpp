@@ -201,7 +201,7 @@ int run_tri_search(const TriSearchArgs& a) {
   std::string why;
   std::optional<TriObjective> objective = parse_tri_objective(text, &why);
   if (!objective) throw InputError("command line", "--objective", why);
-  if (a.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  check_target_samples(*a.global, a.samples);
   if (objective->uses_target()) {
     objective->target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
     if (!objective->target)
@@ -240,7 +240,7 @@ int run_tri_sweep(const TriSweepArgs& a) {
   const double from = a.from.value_or(lower), to = a.to.value_or(upper);
   if (!(std::isfinite(from) && std::isfinite(to) && from < to))
     throw InputError("command line", "--from/--to", "need finite values with from < to");
-  if (a.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
+  check_target_samples(*a.global, a.samples);
   TriObjective target_only;  // no terms: the evaluations only solve; the target gives rms_target
   target_only.target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
   bool picked = false;

@@ -89,4 +89,6 @@ double net_metrics_bytes(int m, int n) {
 
 double samples_bytes(long long k) { return double(k) * double(k) * 400; }
 
+double target_samples_bytes(long long k) { return double(k) * double(k) * 16 * 8; }
+
 }  // namespace coons

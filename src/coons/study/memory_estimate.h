@@ -49,4 +49,8 @@ double net_metrics_bytes(int m, int n);
 //! A k×k sampling of a surface with its normals and the text of an OBJ or JSON of it.
 double samples_bytes(long long k);
 
+//! The k×k samples of a target objective: per coordinate the Coons net's samples and S, S', S''
+//! (spectral_evaluation.cpp), 12 grids, and the products that make them: 16 k² doubles.
+double target_samples_bytes(long long k);
+
 }  // namespace coons
