@@ -325,6 +325,17 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       // --samples without a target term, on a triangle as on a rectangle (it was ignored)
       {"search-alpha " + quoted(kData + "/triangles/sphere_octant.json") + " --objective thin_plate --samples 5",
        "--samples"},
+      // a file of another kind names its "type" (it said "bottom: missing")
+      {"refit " + quoted(kData + "/triangles/sphere_octant.json") + " --degree 5 6", "type"},
+      {"degree-limit " + quoted(kData + "/triangles/sphere_octant.json"), "type"},
+      {"batch " + quoted(kData + "/triangles/sphere_octant.json") + " --out {OUT}", "type"},
+      {"solve " + surface, "type"},
+      // target samples beyond the memory limit (1e10 of them ran out of memory: exit 1)
+      {"search-alpha " + good + " --objective target --samples 100000", "--samples"},
+      {"sweep " + good + " --samples 100000 --out {OUT}", "--samples"},
+      {"search-alpha " + quoted(kData + "/triangles/sphere_octant.json") + " --objective target --samples 100000",
+       "--samples"},
+      {"sweep " + quoted(kData + "/triangles/sphere_octant.json") + " --samples 100000 --out {OUT}", "--samples"},
       // the option at fault is named: --samples, not the triangle's degree; --face, not --edges
       {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --samples 1000000 --out {OUT}", "--samples"},
       {"import-step {IN}/missing.step --face -2 --out {OUT}/b.json", COONS_HAVE_OCCT ? "--face" : "OpenCASCADE"},

@@ -178,6 +178,13 @@ TEST_CASE("parse_surface: an expression that does not parse, or is not finite, n
        {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"t", "1", "t"}}, {"interval", {2, 2}}}}}};
   std::tie(field, reason) = error_of(d);
   CHECK(field == "curves[1].interval");
+
+  // a width beyond a double made every t NaN, and the error blamed expr[0] "at t = -nan"
+  d = {{"type", "ruled"},
+       {"curves", {segment({0, 0, 0}, {1, 0, 0}), {{"expr", {"0", "1", "0"}}, {"interval", {-1e308, 1e308}}}}}};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "curves[1].interval");
+  CHECK(reason.find("overflows") != std::string::npos);
 }
 
 TEST_CASE("parse_surface: corners that disagree name the corner, the condition and the gap", "[surfaces]") {

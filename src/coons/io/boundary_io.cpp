@@ -12,6 +12,7 @@
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
 #include "coons/io/stencil_json.h"
+#include "coons/io/tri_boundary_io.h"
 #include "coons/net/coons_net.h"
 
 namespace coons {
@@ -173,6 +174,18 @@ void LargestPoint::require(double min_size, const std::string& source) const {
 BoundaryFile parse_boundary(const json& doc, const std::string& source, const BoundaryReadOptions& options) {
   Parser p(source);
   if (!doc.is_object()) p.fail("", "the top level must be a JSON object");
+  // A file of another kind would otherwise fail on its first missing side ("bottom: missing").
+  if (const auto type = doc.find("type"); type != doc.end()) {
+    if (is_triangle_document(doc))
+      p.fail("type",
+             "\"triangle\": a triangular boundary, which this command does not take (rectangular boundaries "
+             "only)");
+    const std::string what = type->is_string() ? "\"" + type->get<std::string>().substr(0, 40) + "\""
+                                               : std::string("a JSON ") + type->type_name();
+    p.fail("type", fmt::format("{}: a rectangular boundary file has no \"type\" (a triangular one has \"triangle\"; "
+                               "surface descriptions are read by `coons surface`)",
+                               what));
+  }
   BoundaryFile out;
   std::string name = std::filesystem::path(source).stem().string();
   if (doc.contains("name")) {

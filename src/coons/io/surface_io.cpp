@@ -137,6 +137,8 @@ class Reader {
       t1 = number(iv[0], f + "[0]");
       t2 = number(iv[1], f + "[1]");
       if (t1 == t2) fail(f, "t1 and t2 must differ");
+      // c(s) = x(t1 + s(t2 − t1)): an infinite width made every t NaN, blamed on the expression
+      if (!std::isfinite(t2 - t1)) fail(f, "t2 - t1 overflows a double; give a narrower interval");
     }
     try {
       AnalyticCurve c(expressions, t1, t2);
