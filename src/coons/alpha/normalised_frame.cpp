@@ -45,13 +45,18 @@ NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& obje
   // size of its coordinates for the search to read as a signal.
   // Below a diagonal of about 2^-537 the value factor s² is 0 and values could not be mapped into
   // the frame: such a boundary keeps s = 1 (its energies underflow in the caller's units).
-  if (half_diagonal > 0) {
+  // An extent within rounding of the position is one point too: the exact elevation of a constant
+  // side, computed in floating point, spreads 3 to 3.0000000000000004, and scaled up to unit size
+  // that spread read as a shape with interior optima.
+  const double position = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const bool one_point = half_diagonal <= kPointExtent * position;
+  if (half_diagonal > 0 && !one_point) {
     const long exponent = std::lround(std::log2(half_diagonal)) + 1;
     if (2 * exponent >= -1074) f.scale = std::ldexp(1.0, int(exponent));
   }
   const double inv = 1 / f.scale;
   for (Eigen::MatrixX3d* side : {&f.boundary.bottom, &f.boundary.top, &f.boundary.left, &f.boundary.right})
-    *side = moved(*side, f.centre, inv);
+    *side = one_point ? Eigen::MatrixX3d::Zero(side->rows(), 3) : moved(*side, f.centre, inv);
 
   const bool energies = !objective.energy.empty() || !objective.discrete.empty();
   f.value_factor = energies ? f.scale * f.scale : f.scale;

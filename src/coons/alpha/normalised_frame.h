@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <limits>
 
 #include "coons/alpha/objective.h"
 #include "coons/net/control_net.h"
@@ -29,8 +30,12 @@ struct NormalisedFrame {
   [[nodiscard]] ControlNet to_original(ControlNet net) const;
 };
 
+//! A boundary whose bounding-box half diagonal is at most this fraction of its largest coordinate
+//! magnitude is one point to within rounding (16 ε).
+inline constexpr double kPointExtent = 16 * std::numeric_limits<double>::epsilon();
+
 //! The frame of `boundary` and `objective` (an empty boundary: scale 1, centre 0; a one-point
-//! boundary: scale 1, centre the point).
+//! boundary, kPointExtent included: scale 1, centre the box centre, every frame point exactly 0).
 NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& objective);
 
 }  // namespace coons

@@ -162,18 +162,24 @@ class SearchRun {
   // 2. Flat: the range is at rounding level of the objective's natural scale. Rounding errors of
   //    size ε·diag in the net reach an energy of derivative order k amplified by degree^k, so the
   //    floor is diag²·degree^(2k)·1e-16 (far above (ε·diag·degree^k)², far below real signals).
-  //    Discrete energies of the net carry no degree factors (order 0).
+  //    Discrete energies of the net carry no degree factors (order 0). The rms distance to a
+  //    target is a length, not a square: it carries rounding errors of ε·diag itself, so its floor
+  //    is 1e-2·diag, a range of 1e-14·diag after flat_tolerance (1e-8·diag let a surface lying on
+  //    its target report an optimum picked from 5e-18 of noise).
   bool flat() {
     const Boundary& boundary = objective_.boundary();
     const double diag = bounding_box_diagonal(boundary);
+    const Objective& objective = objective_.objective();
     int order = 0;
-    for (const EnergyTerm& t : objective_.objective().energy) order = std::max(order, t.a + t.b);
+    for (const EnergyTerm& t : objective.energy) order = std::max(order, t.a + t.b);
     const double degree = std::max({boundary.m, boundary.n, 1});
-    const bool energies = !objective_.objective().energy.empty() || !objective_.objective().discrete.empty();
-    floor_ = energies ? 1e-16 * diag * diag * std::pow(degree, 2.0 * order) : 1e-8 * diag;
+    const bool energies = !objective.energy.empty() || !objective.discrete.empty();
+    floor_ = (energies ? 1e-16 * diag * diag * std::pow(degree, 2.0 * order) : 0.0) +
+             (objective.target_weight > 0 ? objective.target_weight * 1e-2 * diag : 0.0);
     if (hi_ - lo_ <= options_.flat_tolerance * std::max({std::abs(hi_), std::abs(lo_), floor_})) {
       s_.status = SearchStatus::kFlat;
       s_.flat = true;
+      s_.local_minima = 0;  // dips of rounding noise are no minima (their count changed with the last bit)
       s_.value = grid_[best_].value;
       s_.message = "the objective does not depend on the parameter over the bounds";
       return true;

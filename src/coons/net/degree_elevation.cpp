@@ -13,7 +13,9 @@ Eigen::MatrixX3d elevate_curve(const Eigen::MatrixX3d& P, int degree) {
     R.row(k + 1) = Q.row(k);
     for (int i = 1; i <= k; ++i) {
       const double a = double(i) / (k + 1);
-      R.row(i) = a * Q.row(i - 1) + (1 - a) * Q.row(i);
+      // Q_i + a (Q_{i−1} − Q_i) rather than a Q_{i−1} + (1 − a) Q_i: equal neighbours stay equal
+      // bit for bit (a constant side, a side in a coordinate plane).
+      R.row(i) = Q.row(i) + a * (Q.row(i - 1) - Q.row(i));
     }
     Q = std::move(R);
   }

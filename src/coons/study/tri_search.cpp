@@ -247,6 +247,7 @@ class TriSearch {
     if (hi - lo > options_.flat_tolerance * size && tri::interior_size(frame_.n) > 0) return false;
     s_.flat = true;
     s_.status = SearchStatus::kFlat;
+    s_.local_minima = 0;  // dips of rounding noise are no minima
     return true;
   }
 
