@@ -101,6 +101,13 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
       const double lower = r.lower.value_or(0.0), upper = r.upper.value_or(1000.0 * m * n);
       if (!(lower >= 0 && std::isfinite(upper) && upper > lower))
         throw InputError("command line", "--lower/--upper", "mu bounds need 0 <= lower < upper < infinity");
+      // μ = mn·s/(1 − s) loses ε·(μ + mn)/mn of μ: --upper 1e19 came back as null, 1e12 as
+      // 999997450094.85. Up to 1e9·mn it keeps 2e-7, and α(μ) is within 1e-9 of its μ → ∞ limit.
+      if (const double most = 1e9 * m * n; upper > most)
+        throw InputError("command line", "--upper",
+                         fmt::format("mu up to 1e9 * m * n = {:g}: beyond it mu/(mu + mn) cannot resolve mu (and the "
+                                     "family is within 1e-9 of its mu -> infinity limit, alpha = 0)",
+                                     most));
       s.options.lower = compressed_of_mu(m, n, lower);
       s.options.upper = compressed_of_mu(m, n, upper);
       break;
