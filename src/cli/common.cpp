@@ -383,6 +383,11 @@ InputError samples_without_target(const std::string& objective) {
           "--samples sets the target's sampling but --objective '" + objective + "' has no target term"};
 }
 
+InputError samples_without_sweep_target() {
+  return {"command line", "--samples",
+          "--samples sets the target's sampling but there is no target (neither --target nor the file's \"target\")"};
+}
+
 void check_corner_tolerance(double corner_tolerance) {
   if (!(corner_tolerance >= 0 && std::isfinite(corner_tolerance)))
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");

@@ -144,6 +144,9 @@ nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, 
 //! The InputError of --samples given to a search whose objective has no target term (rectangles
 //! and triangles alike).
 InputError samples_without_target(const std::string& objective);
+//! The InputError of --samples given to a sweep that has no target (neither --target nor the
+//! file's): it reports no rms_target, so the samples would be ignored.
+InputError samples_without_sweep_target();
 //! An InputError unless --corner-tolerance is a finite number >= 0 (every command that reads
 //! boundaries checks it before reading them).
 void check_corner_tolerance(double corner_tolerance);

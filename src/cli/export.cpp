@@ -52,12 +52,16 @@ int run_export(ExportRequest e) {
         {e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force, e.cad}, input, e.net,
         e.global, phases);
   }
-  if (e.ply || e.vtu || e.vts)
-    throw InputError("command line",
-                     e.ply   ? "--ply"
-                     : e.vtu ? "--vtu"
-                             : "--vts",
-                     "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply/--vts)");
+  // each flag names the boundaries that have it (--vtu: triangles only, --vts: B-splines only)
+  if (e.ply)
+    throw InputError("command line", "--ply",
+                     "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply)");
+  if (e.vtu)
+    throw InputError("command line", "--vtu",
+                     "is written for triangular boundaries (a Bézier one's surface as VTK: coons surface --vts)");
+  if (e.vts)
+    throw InputError("command line", "--vts",
+                     "is written for B-spline boundaries (for a Bézier one: coons surface --vts)");
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
   if (!e.obj && !e.mtx && !e.cad.any()) {  // the defaults: OBJ, and the system when there is one

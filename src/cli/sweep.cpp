@@ -33,12 +33,13 @@ struct SweepRequest {
   int threads = 1;
   double corner_tolerance = 1e-9;
   GlobalOptions global;
-  CLI::Option *from_option = nullptr, *to_option = nullptr, *threads_option = nullptr;
+  CLI::Option *from_option = nullptr, *to_option = nullptr, *threads_option = nullptr, *samples_option = nullptr;
 };
 
 TriSweepArgs tri_sweep_args(const SweepRequest& r) {
   TriSweepArgs a{r.boundary, r.solver,  r.out_dir,          std::nullopt, std::nullopt,
                  r.count,    r.samples, r.corner_tolerance, &r.global,    ""};
+  a.samples_given = r.samples_option->count() > 0;
   if (r.from_option->count() > 0) a.from = r.from;
   if (r.to_option->count() > 0) a.to = r.to;
   if (r.parameter != SweepParameter::kAlpha) a.rejected = "--parameter";
@@ -63,6 +64,7 @@ int run_sweep_command(const SweepRequest& r) {
   if (r.parameter == SweepParameter::kMu && from < 0) throw InputError("command line", "--from", "mu must be >= 0");
   check_target_samples(r.global, r.samples);
   const std::optional<Target> target = resolve_target(r.target, r.boundary, b, r.samples);
+  if (!target && r.samples_option->count() > 0) throw samples_without_sweep_target();
   const solvers::SolverOptions options = threads_options(r.threads, r.threads_option, r.solver);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
   const solvers::SolverInfo& solver = search_backend(requested, b, false);
@@ -144,7 +146,7 @@ void register_sweep(CLI::App& app, Registry& registry) {
   cmd->add_option("--target", r->target,
                   "also report the rms distance to a target (as in search-alpha; default: "
                   "the boundary file's \"target\")");
-  cmd->add_option("--samples", r->samples, "target: samples per direction")->capture_default_str();
+  r->samples_option = cmd->add_option("--samples", r->samples, "target: samples per direction")->capture_default_str();
   cmd->add_option("--corner-tolerance", r->corner_tolerance,
                   "corners must agree to this fraction of the bounding-box diagonal")
       ->capture_default_str();

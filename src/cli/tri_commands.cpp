@@ -243,6 +243,7 @@ int run_tri_sweep(const TriSweepArgs& a) {
   check_target_samples(*a.global, a.samples);
   TriObjective target_only;  // no terms: the evaluations only solve; the target gives rms_target
   target_only.target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
+  if (!target_only.target && a.samples_given) throw samples_without_sweep_target();
   bool picked = false;
   const solvers::SolverInfo& solver = tri_backend(a.solver, picked);
   check_tri_memory(*a.global, b.n, &solver, a.boundary);

@@ -44,7 +44,8 @@ struct TriSweepArgs {
   int count = 51, samples = 41;
   double corner_tolerance = 1e-9;
   const GlobalOptions* global = nullptr;
-  std::string rejected;  //!< an option given that does not apply to triangles (empty: none)
+  std::string rejected;        //!< an option given that does not apply to triangles (empty: none)
+  bool samples_given = false;  //!< --samples on the command line (refused when the file has no target)
 };
 //! `coons sweep T.json`: NAME.sweep-c.jsonl, one line per c.
 int run_tri_sweep(const TriSweepArgs& args);

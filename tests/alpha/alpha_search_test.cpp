@@ -135,6 +135,11 @@ TEST_CASE("parse_objective: names, weighted sums and errors", "[alpha]") {
   CHECK_THAT(why, Catch::Contains("curvature"));
   CHECK(!parse_objective("-1*twist", &why));
   CHECK(!parse_objective("x*twist", &why));
+  // a missing term is refused wherever it is ('thin_plate+' was read as thin_plate)
+  for (const char* text : {"thin_plate+", "+thin_plate", "thin_plate++e3", "+"}) {
+    INFO(text);
+    CHECK(!parse_objective(text, &why));
+  }
 }
 
 TEST_CASE("parse_objective: weights outside [1e-60, 1e60] are refused", "[alpha]") {

@@ -269,6 +269,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"sweep " + good + " --parameter mu --from -1 --out {OUT}", "--from"},
       {"sweep " + good + " --target sphere:1,2 --out {OUT}", "--target"},
       {"sweep " + good + " --samples 1 --out {OUT}", "--samples"},
+      {"sweep " + pillow + " --samples 5 --out {OUT}", "--samples"},  // no target: the samples were ignored
+      {"sweep " + quoted(kData + "/triangles/monkey_saddle.json") + " --samples 5 --out {OUT}", "--samples"},
       {"sweep " + sphere5 + " --out {OUT}", "target.sphere"},
       {"sweep " + good + " --solver nonesuch --out {OUT}", "--solver"},
       // study
@@ -330,6 +332,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"degree-limit " + quoted(kData + "/triangles/sphere_octant.json"), "type"},
       {"batch " + quoted(kData + "/triangles/sphere_octant.json") + " --out {OUT}", "type"},
       {"solve " + surface, "type"},
+      // a mu bound the compressed scale cannot resolve (1e19 came back as mu: null, success)
+      {"search-alpha " + good + " --objective dirichlet --parameter mu --upper 1e19", "--upper"},
       // target samples beyond the memory limit (1e10 of them ran out of memory: exit 1)
       {"search-alpha " + good + " --objective target --samples 100000", "--samples"},
       {"sweep " + good + " --samples 100000 --out {OUT}", "--samples"},

@@ -76,6 +76,10 @@ double rms_distance(const ControlNet& net, const Target& target) {
 std::optional<Objective> parse_objective(const std::string& text, std::string* why) {
   Objective out;
   out.name = text;
+  if (!text.empty() && text.back() == '+') {  // getline yields no empty last term for it
+    if (why) *why = "'" + text + "' ends with '+': a term is missing";
+    return std::nullopt;
+  }
   std::stringstream in(text);
   std::string term;
   bool any = false;
