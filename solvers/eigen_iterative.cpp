@@ -83,6 +83,7 @@ class EigenIterative : public LinearSolver {
     X.setZero(B.rows(), 3);
     IterationEnd end;
     end.limit = limit_;
+    end.krylov = true;
     end.converged = true;
     end.residual = 0;
     for (int c = 0; c < 3; ++c) {

@@ -72,6 +72,7 @@ class HypreBackend : public LinearSolver {
     X.setZero(B.rows(), 3);
     IterationEnd end;
     end.limit = limit();
+    end.krylov = true;  // hypre's PCG or GMRES, preconditioned by its multigrid
     end.converged = true;
     end.residual = 0;
     std::optional<std::pair<int, ColumnSolve>> broken;  // the first column that broke down

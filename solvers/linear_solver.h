@@ -193,9 +193,14 @@ class LinearSolver {
     bool converged = false;  //!< the backend's own test passed
     bool timed_out = false;  //!< stopped by options.time_limit_seconds
     bool diverged = false;   //!< stopped because the residual grew without bound
+    //! A residual that ends above its start is divergence for a stationary iteration (Jacobi,
+    //! Gauss–Seidel), not for a Krylov method, whose residual norm may rise before it falls (CG
+    //! after one step on a definite system: 2.28).
+    bool krylov = false;
   };
   //! The one verdict of every iterative backend: success when converged; kDiverged when the
-  //! residual grew (1e8-fold, to overflow, or ends above its start) — X is then set to zero;
+  //! residual grew (1e8-fold, to overflow, or, stationary iterations only, ends above its start) —
+  //! X is then set to zero;
   //! otherwise kNotConverged, naming the limit that stopped it. Sets iterations, the residual
   //! reached (finite: an overflowed one is reported as the largest double and said so) and a
   //! message that agrees with both.

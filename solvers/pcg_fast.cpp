@@ -74,6 +74,7 @@ class PcgFastSolver final : public LinearSolver {
     X.setZero(n, 3);
     IterationEnd end;
     end.limit = iteration_limit(options_, n, 20, 2e10);
+    end.krylov = true;
     const Eigen::Array3d norm_b = B.colwise().norm().transpose().array();
     std::array<bool, 3> active{};
     for (int c = 0; c < 3; ++c) active[std::size_t(c)] = norm_b[c] > 0;
