@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "matrix_checks.h"
+
 namespace coons::solvers {
 namespace {
 
@@ -106,6 +108,10 @@ class Cholmod : public LinearSolver {
     cholmod_sparse A = view_lower(*op.matrix);
     factor_ = cholmod_analyze(&A, &common_);
     if (!factor_ || common_.status < CHOLMOD_OK) {
+      // a matrix with no entries fails the analysis (status -4): say that it is singular, and where
+      if (const SolveStatus empty = check_preconditioner_matrix(*op.matrix, false, &summary.message);
+          empty != SolveStatus::kSuccess)
+        return empty;
       summary.message = "cholmod_analyze failed, status " + std::to_string(common_.status);
       return SolveStatus::kFailure;
     }
@@ -236,6 +242,10 @@ class Umfpack : public LinearSolver {
     const int status = umfpack_di_symbolic(int(A.rows()), int(A.cols()), A.outerIndexPtr(), A.innerIndexPtr(),
                                            A.valuePtr(), &symbolic_, control_, info_);
     if (status != UMFPACK_OK) {
+      // a matrix with no entries fails the analysis (status -5): say that it is singular, and where
+      if (const SolveStatus empty = check_preconditioner_matrix(A, false, &summary.message);
+          empty != SolveStatus::kSuccess)
+        return empty;
       summary.message = "umfpack_di_symbolic failed, status " + std::to_string(status);
       return SolveStatus::kFailure;
     }

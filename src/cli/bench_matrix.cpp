@@ -116,7 +116,20 @@ int run_bench_matrix(const BenchMatrixRequest& r) {
                          fmt::format("{} is a stopping rule of the iterative solvers; none of --solvers {} is one",
                                      name, fmt::join(r.solvers, ",")));
 
-  const MarketMatrix a = read_market_matrix(r.matrix);
+  // The sizes a file declares are checked before the reader allocates for them (a 72-byte file
+  // declaring 2^26 columns took 560 MB before --max-memory refused it).
+  // For A (is_a) the system is its own size; for B it is A's (n, nnz) with B's columns.
+  const auto check_declared = [&](const std::string& file, bool is_a, Eigen::Index n, Eigen::Index nnz) {
+    return [&, is_a, n, nnz](long long rows, long long cols, long long stored, int size_line) {
+      check_memory(r.global,
+                   market_matrix_bytes(cols, stored) + bench_bytes(is_a ? Eigen::Index(rows) : n,
+                                                                   is_a ? Eigen::Index(stored) : nnz,
+                                                                   is_a ? 1 : Eigen::Index(cols), backends),
+                   fmt::format("a {} by {} matrix of {} entries as declared", rows, cols, stored), file,
+                   fmt::format("line {}", size_line));
+    };
+  };
+  const MarketMatrix a = read_market_matrix(r.matrix, check_declared(r.matrix, true, 0, 0));
   const Eigen::SparseMatrix<double>& A = a.matrix;
   const Eigen::Index n = A.rows();
   if (A.rows() != A.cols())
@@ -138,7 +151,7 @@ int run_bench_matrix(const BenchMatrixRequest& r) {
                          "the default right-hand side A times ones is not finite there (the row sums beyond the "
                          "doubles); give B.mtx");
   } else {
-    const MarketMatrix b = read_market_matrix(r.rhs);
+    const MarketMatrix b = read_market_matrix(r.rhs, check_declared(r.rhs, false, n, A.nonZeros()));
     if (b.matrix.rows() != n)
       throw InputError(r.rhs, fmt::format("line {}", b.size_line),
                        fmt::format("B has {} rows, A ({}) has {}", b.matrix.rows(), r.matrix, n));

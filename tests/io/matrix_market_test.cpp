@@ -255,3 +255,24 @@ TEST_CASE("read_market_matrix: duplicates that sum beyond the doubles are bad in
       dir.write("many.mtx", "%%MatrixMarket matrix coordinate real general\n1 1 3\n1 1 1e308\n1 1 -1e308\n1 1 2\n"));
   CHECK(m.matrix.coeff(0, 0) == 2);
 }
+
+TEST_CASE("read_market_matrix: check_sizes sees the declared sizes before any entry is read or allocated", "[io]") {
+  // 72 bytes declaring 2^26 columns: bench-matrix took 560 MB for them before --max-memory refused
+  const TempDir dir;
+  const std::string path =
+      dir.write("wide.mtx", "%%MatrixMarket matrix coordinate real symmetric\n67108864 67108864 1\nnot an entry\n");
+  std::vector<long long> seen;
+  const auto refuse = [&](long long rows, long long cols, long long stored, int line) {
+    seen = {rows, cols, stored, line};
+    throw InputError(path, fmt::format("line {}", line), "too large");
+  };
+  try {
+    read_market_matrix(path, refuse);
+    FAIL("accepted");
+  } catch (const InputError& e) {
+    CHECK(e.reason() == "too large");  // not the entry's error: the check came first
+  }
+  CHECK(seen == std::vector<long long>{67108864, 67108864, 2, 2});  // a symmetric entry is stored twice
+  // the estimate counts the column pointers of the declared width
+  CHECK(market_matrix_bytes(67108864, 2) > 4.0 * 67108864);
+}

@@ -53,4 +53,21 @@ TEST_CASE("cholmod-simplicial: not positive definite names the column of its fir
   }
 }
 
+TEST_CASE("cholmod, umfpack: a matrix with no entries is singular, naming the empty row", "[solvers]") {
+  // A 3 by 3 Matrix Market file of no entries: cholmod_analyze (status -4) and umfpack_di_symbolic
+  // (status -5) fail on it, which was reported as a bare `failure` with SuiteSparse's status code.
+  Eigen::SparseMatrix<double> A(3, 3);
+  A.makeCompressed();
+  LinearOperator op;
+  op.matrix = &A;
+  const Eigen::MatrixX3d B = Eigen::MatrixX3d::Ones(3, 3);
+  for (const char* name : {"cholmod", "cholmod-simplicial", "umfpack"}) {
+    Eigen::MatrixX3d X;
+    const SolveSummary s = make_solver(name)->compute_and_solve(op, B, X);
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SolveStatus::kSingular);
+    CHECK_THAT(s.message, Catch::Contains("is empty"));
+  }
+}
+
 #endif  // COONS_HAVE_SUITESPARSE

@@ -386,7 +386,14 @@ void read_array_entries(const std::string& path, const std::string& size_field, 
 
 }  // namespace
 
-MarketMatrix read_market_matrix(const std::string& path) {
+double market_matrix_bytes(long long cols, long long stored) {
+  const double entries = double(stored), pointers = double(cols) + 1;
+  return 16 * entries + 2 * (12 * entries + 4 * pointers);
+}
+
+MarketMatrix read_market_matrix(
+    const std::string& path,
+    const std::function<void(long long rows, long long cols, long long stored, int size_line)>& check_sizes) {
   const std::string text = read_market_text(path, [&](const std::string& first) { parse_banner(path, first); });
   MarketLines lines(text);
   const Banner b = parse_banner(path, lines.banner());
@@ -400,6 +407,11 @@ MarketMatrix read_market_matrix(const std::string& path) {
   if (rows < 1 || cols < 1) throw InputError(path, where, "rows and columns must be at least 1");
   if (b.symmetry != "general" && rows != cols)
     throw InputError(path, where, fmt::format("a {} matrix must be square, not {} by {}", b.symmetry, rows, cols));
+  if (check_sizes) {
+    const bool mirrored = b.symmetry != "general";
+    const long long stored = coordinate ? (mirrored ? 2 : 1) * size[2] : rows * cols;
+    check_sizes(rows, cols, stored, size_line_number);
+  }
   std::vector<Eigen::Triplet<double>> entries;
   if (coordinate) {
     // An entry takes at least 4 bytes ("1 1\n"): a larger count cannot be in the file. (More

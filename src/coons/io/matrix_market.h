@@ -9,6 +9,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <functional>
 #include <ostream>
 #include <string>
 
@@ -39,6 +40,16 @@ struct MarketMatrix {
 //! triangle stored, mirrored here) or `skew-symmetric`. Duplicate coordinate entries are summed;
 //! zeros of an array file are not stored. Throws InputError "FILE: line N: reason" for a wrong
 //! banner, size line, entry, index out of range, entry in the wrong triangle or non-finite value.
-MarketMatrix read_market_matrix(const std::string& path);
+//! `check_sizes(rows, cols, stored, size_line)`, when given, is called once the size line is read
+//! and before anything is allocated for it (stored: the entries the file promises, a symmetric
+//! file's mirrored ones included; a file of 72 bytes can declare 2^26 columns, whose column
+//! pointers alone are 256 MB); it refuses them by throwing.
+MarketMatrix read_market_matrix(
+    const std::string& path,
+    const std::function<void(long long rows, long long cols, long long stored, int size_line)>& check_sizes = {});
+
+//! What read_market_matrix holds for a matrix of `cols` columns and `stored` entries, an upper-bound
+//! sketch as in memory_estimate.h: the triplets, the compressed matrix and one copy of it.
+double market_matrix_bytes(long long cols, long long stored);
 
 }  // namespace coons
