@@ -267,8 +267,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   out.options.tolerance = r.tolerance;
   out.options.max_iterations = r.max_iterations;
   out.options.sor_omega = r.omega;
-  std::string why;
-  if (!out.options.is_valid(&why)) throw InputError("command line", "solver options", why);
+  require_valid_solver_options(out.options);
 
   if (out.method == Method::kHermiteCoons && (boundary.m < 3 || boundary.n < 3))
     throw InputError(source, "degree",
@@ -381,6 +380,20 @@ json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const S
 InputError samples_without_target(const std::string& objective) {
   return {"command line", "--samples",
           "--samples sets the target's sampling but --objective '" + objective + "' has no target term"};
+}
+
+void require_valid_solver_options(const solvers::SolverOptions& options) {
+  std::string why;
+  if (options.is_valid(&why)) return;
+  // SolverOptions' reasons open with the field's name; the error names the option that set it
+  const std::pair<const char*, const char*> options_of_fields[] = {{"tolerance", "--tolerance"},
+                                                                   {"max_iterations", "--max-iterations"},
+                                                                   {"sor_omega", "--omega"},
+                                                                   {"threads", "--threads"}};
+  for (const auto& [field, option] : options_of_fields)
+    if (why.rfind(std::string(field) + " ", 0) == 0)
+      throw InputError("command line", option, why.substr(std::string(field).size() + 1));
+  throw InputError("command line", "solver options", why);
 }
 
 InputError samples_without_sweep_target() {

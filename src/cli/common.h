@@ -147,6 +147,9 @@ InputError samples_without_target(const std::string& objective);
 //! The InputError of --samples given to a sweep that has no target (neither --target nor the
 //! file's): it reports no rms_target, so the samples would be ignored.
 InputError samples_without_sweep_target();
+//! An InputError unless SolverOptions::is_valid, naming the option that set the field at fault
+//! (--tolerance, --max-iterations, --omega, --threads).
+void require_valid_solver_options(const solvers::SolverOptions& options);
 //! An InputError unless --corner-tolerance is a finite number >= 0 (every command that reads
 //! boundaries checks it before reading them).
 void check_corner_tolerance(double corner_tolerance);

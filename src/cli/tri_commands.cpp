@@ -73,8 +73,7 @@ TriRequest resolve_tri(const NetRequest& r) {
   refuse_stopping_rules(r, out.options.solver);
   out.options.solver_options.tolerance = r.tolerance;
   out.options.solver_options.max_iterations = r.max_iterations;
-  std::string why;
-  if (!out.options.solver_options.is_valid(&why)) throw InputError("command line", "solver options", why);
+  require_valid_solver_options(out.options.solver_options);
   return out;
 }
 

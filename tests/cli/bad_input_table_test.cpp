@@ -334,6 +334,11 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + surface, "type"},
       // a mu bound the compressed scale cannot resolve (1e19 came back as mu: null, success)
       {"search-alpha " + good + " --objective dirichlet --parameter mu --upper 1e19", "--upper"},
+      // solver options are blamed on their option (they said "solver options")
+      {"solve " + good + " --solver gauss-seidel --omega 0", "--omega"},
+      {"solve " + good + " --solver cg --tolerance 0", "--tolerance"},
+      {"solve " + good + " --solver cg --max-iterations -1", "--max-iterations"},
+      {"solve " + quoted(kData + "/triangles/sphere_octant.json") + " --solver cg --tolerance 2", "--tolerance"},
       // target samples beyond the memory limit (1e10 of them ran out of memory: exit 1)
       {"search-alpha " + good + " --objective target --samples 100000", "--samples"},
       {"sweep " + good + " --samples 100000 --out {OUT}", "--samples"},
