@@ -51,6 +51,25 @@ TEST_CASE("parse_boundary: the net form gives its frame and keeps the net", "[io
   CHECK(f.boundary.top == boundary_of(net).top);
 }
 
+TEST_CASE("parse_boundary: a file of another kind is blamed on its type, a net file with a type is still read",
+          "[io]") {
+  // refit and degree-limit of a triangle said "bottom: missing"
+  json doc = valid_boundary();
+  doc["type"] = "triangle";
+  CHECK(field_of_error(doc) == "type");
+  doc["type"] = "bilinear";  // a surface description
+  CHECK(field_of_error(doc) == "type");
+  doc["type"] = json::array({1, 2});
+  CHECK(field_of_error(doc) == "type");
+  // a net file whose other fields include a "type" is still a net file (formats.md: other fields
+  // of a net file are ignored)
+  const ControlNet net = make_random_net(3, 2, 4);
+  const BoundaryFile f =
+      parse_boundary(json{{"type", "bezier"}, {"net", json::parse(net_to_json(net).dump())}}, "report.json");
+  REQUIRE(f.net);
+  CHECK(f.net->points == net.points);
+}
+
 TEST_CASE("parse_boundary: every bad input names its field", "[io]") {
   json doc = valid_boundary();
   SECTION("missing side") {

@@ -175,7 +175,8 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
   Parser p(source);
   if (!doc.is_object()) p.fail("", "the top level must be a JSON object");
   // A file of another kind would otherwise fail on its first missing side ("bottom: missing").
-  if (const auto type = doc.find("type"); type != doc.end()) {
+  // One with a "net" is still a net file (its other fields are ignored, docs/formats.md).
+  if (const auto type = doc.find("type"); type != doc.end() && (is_triangle_document(doc) || !doc.contains("net"))) {
     if (is_triangle_document(doc))
       p.fail("type",
              "\"triangle\": a triangular boundary, which this command does not take (rectangular boundaries "
