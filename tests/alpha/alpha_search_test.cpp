@@ -173,7 +173,7 @@ TEST_CASE("MaskObjective::evaluate_mask: the gradient in (alpha, gamma) equals f
   CHECK(grad[1] == Approx(fg).epsilon(1e-6));
 }
 
-TEST_CASE("search_alpha_gamma: no worse than the symmetric family; gamma = 0 on a symmetric boundary", "[alpha]") {
+TEST_CASE("search_alpha_gamma: no worse than the symmetric family, gamma = 0 on a symmetric boundary", "[alpha]") {
   const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
   MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
   const AlphaGammaSummary s = search_alpha_gamma(f);
@@ -207,7 +207,7 @@ TEST_CASE("search_alpha_gamma: at_bound says when the optimum sits on a bound of
   CHECK_FALSE(t.at_bound);
 }
 
-TEST_CASE("discrete objectives: derivative equals finite differences; discrete twist is minimal at alpha = -1/4",
+TEST_CASE("discrete objectives: derivative equals finite differences, discrete twist is minimal at alpha = -1/4",
           "[alpha]") {
   const Boundary b = make_smooth_boundary(7, 6, 12);
   for (const char* name : {"discrete_twist", "discrete_dirichlet", "discrete_thin_plate"}) {

@@ -220,7 +220,7 @@ TEST_CASE("coons search-alpha: bad input gives exit 2 and one error line", "[cli
   CHECK(wide.status == 0);
 }
 
-TEST_CASE("coons search-alpha --parameter weight: the C1 family on two data rings; one ring is bad input",
+TEST_CASE("coons search-alpha --parameter weight: the C1 family on two data rings, one ring is bad input",
           "[cli][alpha]") {
   TempDir dir;
   const ControlNet net = make_random_net(7, 6, 12);
@@ -622,7 +622,7 @@ TEST_CASE("coons refit: a curve with a pole between the reader's samples is bad 
   CHECK(contains(r.err, "pole.json: curves.bottom: is not finite between the samples"));
 }
 
-TEST_CASE("coons search-alpha and study: a model below 1e-60 is bad input; solve takes it", "[cli][alpha]") {
+TEST_CASE("coons search-alpha and study: a model below 1e-60 is bad input, solve takes it", "[cli][alpha]") {
   // the pillow scaled by 1e-170: its energies are zero in doubles, and the search called it flat
   nlohmann::json doc = nlohmann::json::parse(read_text(kData + "/boundaries/pillow.json"));
   for (const char* side : {"bottom", "top", "left", "right"})

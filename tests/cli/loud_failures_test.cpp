@@ -368,7 +368,7 @@ TEST_CASE("coons solve: reruns are byte-identical apart from the timing block an
   }
 }
 
-TEST_CASE("coons: every command's --help ends with a worked example; an unknown command is named", "[cli]") {
+TEST_CASE("coons: every command's --help ends with a worked example, an unknown command is named", "[cli]") {
   std::vector<std::string> commands = {""};
   for (const std::string& name : coons_commands()) commands.push_back(" " + name);
   for (const std::string& cmd : commands) {

@@ -64,7 +64,7 @@ TEST_CASE("coons solve --mask c1-coons: a ribbon file gives the library's solve 
       if (std::min({i, j, 6 - i, 6 - j}) < 2) CHECK(solved.at(i, j) == data.at(i, j));
 }
 
-TEST_CASE("coons solve --mask: the report names the mask, weight, rings and free points; metrics for every mask",
+TEST_CASE("coons solve --mask: the report names the mask, weight, rings and free points, metrics for every mask",
           "[cli]") {
   const std::string file = kData + "/free_sets/island.json";
   const BoundaryFile f = read_boundary_file(file);
@@ -122,7 +122,7 @@ TEST_CASE("coons solve --mask file:PATH: a stencil file is the mask it spells, n
         Approx(named["metrics"]["thin_plate_energy"].get<double>()).epsilon(1e-12));
 }
 
-TEST_CASE("coons solve: the classical problem keeps its path and numbers; --mask alpha is the default", "[cli]") {
+TEST_CASE("coons solve: the classical problem keeps its path and numbers, --mask alpha is the default", "[cli]") {
   const std::string file = kData + "/boundaries/dome.json";
   json plain = solve(quoted(file) + " --alpha -0.2 --solver eigen-ldlt");
   json masked = solve(quoted(file) + " --mask alpha --alpha -0.2 --solver eigen-ldlt");

@@ -55,7 +55,7 @@ TEST_CASE("coons solve: a triangular file gives the triangle report, net in the 
   CHECK(report["metrics"]["mask_residual"].get<double>() < 1e-14);
 }
 
-TEST_CASE("coons solve: --solver auto on a triangle picks an LU backend; c defaults to -1/6", "[cli][tri]") {
+TEST_CASE("coons solve: --solver auto on a triangle picks an LU backend, c defaults to -1/6", "[cli][tri]") {
   const CommandResult r = run_coons("solve '" + kTriangles + "monkey_saddle.json'");
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);

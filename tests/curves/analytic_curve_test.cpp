@@ -107,7 +107,7 @@ TEST_CASE("AnalyticCurve: an infinite derivative is NaN, not a number", "[curves
   CHECK(std::abs(c.derivative(1, 0.25)(1) - 1.0) < 1e-9);
 }
 
-TEST_CASE("fit_bezier: interpolates the ends; exact for polynomials; deviation falls with the degree", "[curves]") {
+TEST_CASE("fit_bezier: interpolates the ends, exact for polynomials, deviation falls with the degree", "[curves]") {
   // A polynomial of degree 3 written as expressions: fitted exactly at degree ≥ 3.
   const Curve cubic = AnalyticCurve({"t", "t^3 - t", "2*t^2"});
   const BezierFit exact = fit_bezier(cubic, 4);

@@ -63,7 +63,7 @@ TEST_CASE("fit_boundary: at degree 1000 the control polygon stays on the dome's 
   }
 }
 
-TEST_CASE("read_boundary_curves: a file without curves has none; bad curves name the field", "[curves]") {
+TEST_CASE("read_boundary_curves: a file without curves has none, bad curves name the field", "[curves]") {
   CHECK(!read_boundary_curves(COONS_DATA_DIR "/boundaries/pillow.json"));
   const std::string bad = (std::filesystem::temp_directory_path() / "coons_bad_curves.json").string();
   std::ofstream(bad) << R"({"curves": {"bottom": {"expr": ["t", "sin(", "0"]}, "top": {"expr": ["t","1","0"]},

@@ -30,7 +30,7 @@ TEST_CASE("bspline_alpha_objective: the derivative from one extra solve matches 
   }
 }
 
-TEST_CASE("search_bspline_alpha: finds the minimum of a fine scan; twist has its minimum at the Coons net",
+TEST_CASE("search_bspline_alpha: finds the minimum of a fine scan, twist has its minimum at the Coons net",
           "[study][bspline]") {
   // Random control points on random knots (repeated ones included): strongly non-uniform Greville
   // spacing, where the family is singular at some alpha > 0; searched in [-1/4, 0].

@@ -23,7 +23,7 @@ TriObjective objective(const std::string& text) {
 
 }  // namespace
 
-TEST_CASE("parse_tri_objective: names and weighted sums; unknown names are refused", "[study][tri]") {
+TEST_CASE("parse_tri_objective: names and weighted sums, unknown names are refused", "[study][tri]") {
   const TriObjective o = objective("thin_plate+0.5*twist+2*discrete_dirichlet");
   REQUIRE(o.terms.size() == 3);
   REQUIRE(o.terms[1] == std::make_pair(TriTerm::kTwist, 0.5));

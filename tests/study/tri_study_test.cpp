@@ -45,7 +45,7 @@ TEST_CASE("tri_study_objectives: thin plate, Dirichlet and twist, and target onl
   }
 }
 
-TEST_CASE("run_tri_study: the own degree, then every higher study degree; each cell is search_tri_c there",
+TEST_CASE("run_tri_study: the own degree, then every higher study degree, each cell is search_tri_c there",
           "[study][tri]") {
   TriStudyInput in{"random.json", boundary_of(random_tri_net(5, 11), "random"), std::nullopt};
   const std::vector<TriStudyEntry> out = run_tri_study({in}, {3, 4, 5, 7}, &lu());

@@ -73,7 +73,7 @@ TEST_CASE("compare_seam: bilinear Coons patches over the same data meet only C0"
   CHECK(r.max_normal_angle > 1e-2);
 }
 
-TEST_CASE("compare_seam: Ferguson patches sharing their edge data join C1; a reversed seam is found", "[surfaces]") {
+TEST_CASE("compare_seam: Ferguson patches sharing their edge data join C1, a reversed seam is found", "[surfaces]") {
   const std::array<V, 4> ca = {V(0, 0, 0), V(1, 0, 0.2), V(0, 1, 0.1), V(1, 1, 0.5)};
   const std::array<V, 4> ua = {V(1, 0, 0.1), V(1, 0.2, -0.3), V(0.9, 0, 0.2), V(1.2, 0, 0.4)};
   const std::array<V, 4> va = {V(0, 1, 0), V(0.1, 1, 0.3), V(0, 1.1, -0.2), V(-0.1, 0.9, 0.2)};

@@ -82,7 +82,7 @@ TEST_CASE("fit_tri_mask: finds the c of a solved net and -1/6 for a quadratic ne
   REQUIRE_FALSE(fit_tri_mask(elevated_linear(6, 1)).determined);
 }
 
-TEST_CASE("minimize_tri_energy: equilateral cubic extremals are members c = 1/3, 1/12, 0; degree 4 and up are not",
+TEST_CASE("minimize_tri_energy: equilateral cubic extremals are members c = 1/3, 1/12, 0, degree 4 and up are not",
           "[tri]") {
   // On the equilateral domain the cubic's centre of the Dirichlet extremal is (1/3)Σ corners (c = 1/3),
   // of the thin-plate one (1/8)Σ edges + (1/12)Σ corners (c = 1/12), of the twist (1/6)Σ edges (c = 0,
