@@ -58,19 +58,43 @@ const char* to_string(Ordering ordering) {
   return "auto";
 }
 
+const char* to_string(SolverOptionsField field) {
+  switch (field) {
+    case SolverOptionsField::kNone:
+      return "";
+    case SolverOptionsField::kTolerance:
+      return "tolerance";
+    case SolverOptionsField::kMaxIterations:
+      return "max_iterations";
+    case SolverOptionsField::kTimeLimitSeconds:
+      return "time_limit_seconds";
+    case SolverOptionsField::kSorOmega:
+      return "sor_omega";
+    case SolverOptionsField::kSingularResidual:
+      return "singular_residual";
+    case SolverOptionsField::kThreads:
+      return "threads";
+  }
+  return "";
+}
+
+SolverOptionsProblem options_problem(const SolverOptions& o) {
+  using F = SolverOptionsField;
+  if (!(o.tolerance > 0 && o.tolerance < 1)) return {F::kTolerance, "must lie in (0, 1)"};
+  if (o.max_iterations < 0) return {F::kMaxIterations, "must be >= 0"};
+  if (!(o.time_limit_seconds >= 0) || !std::isfinite(o.time_limit_seconds))
+    return {F::kTimeLimitSeconds, "must be finite and >= 0"};
+  if (!(o.sor_omega > 0 && o.sor_omega < 2)) return {F::kSorOmega, "must lie in (0, 2)"};
+  if (!(o.singular_residual > 0)) return {F::kSingularResidual, "must be positive"};
+  if (o.threads < 0 || o.threads > kMaxThreads) return {F::kThreads, "must lie in 0 .. 256 (0: every core)"};
+  return {};
+}
+
 bool SolverOptions::is_valid(std::string* why) const {
-  auto fail = [&](const char* reason) {
-    if (why) *why = reason;
-    return false;
-  };
-  if (!(tolerance > 0 && tolerance < 1)) return fail("tolerance must lie in (0, 1)");
-  if (max_iterations < 0) return fail("max_iterations must be >= 0");
-  if (!(time_limit_seconds >= 0) || !std::isfinite(time_limit_seconds))
-    return fail("time_limit_seconds must be finite and >= 0");
-  if (!(sor_omega > 0 && sor_omega < 2)) return fail("sor_omega must lie in (0, 2)");
-  if (!(singular_residual > 0)) return fail("singular_residual must be positive");
-  if (threads < 0 || threads > kMaxThreads) return fail("threads must lie in 0 .. 256 (0: every core)");
-  return true;
+  const SolverOptionsProblem problem = options_problem(*this);
+  if (problem.field == SolverOptionsField::kNone) return true;
+  if (why) *why = std::string(to_string(problem.field)) + " " + problem.reason;
+  return false;
 }
 
 int resolved_threads(int threads) {

@@ -65,9 +65,30 @@ struct SolverOptions {
   bool compute_residual = true;         //!< compute the true residual after solve (costs one apply)
   double singular_residual = 1e-6;      //!< exact solvers: a larger true residual means "singular"
 
-  //! True when the options are usable; otherwise explains why in *why.
+  //! True when the options are usable; otherwise explains why in *why ("<field> <reason>").
   bool is_valid(std::string* why) const;
 };
+
+//! The fields of SolverOptions that can be unusable.
+enum class SolverOptionsField {
+  kNone,
+  kTolerance,
+  kMaxIterations,
+  kTimeLimitSeconds,
+  kSorOmega,
+  kSingularResidual,
+  kThreads
+};
+//! The field's name in SolverOptions ("tolerance", "max_iterations", ...; "" for kNone).
+const char* to_string(SolverOptionsField field);
+
+//! What makes solver options unusable: the first such field and why (reason without the field's
+//! name, e.g. "must lie in (0, 1)"); field kNone when they are usable.
+struct SolverOptionsProblem {
+  SolverOptionsField field = SolverOptionsField::kNone;
+  std::string reason;
+};
+SolverOptionsProblem options_problem(const SolverOptions& options);
 
 //! Upper bound of SolverOptions::threads.
 constexpr int kMaxThreads = 256;

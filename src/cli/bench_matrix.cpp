@@ -102,9 +102,7 @@ int run_bench_matrix(const BenchMatrixRequest& r) {
   solvers::SolverOptions options;
   options.tolerance = r.tolerance;
   options.max_iterations = r.max_iterations;
-  std::string why;
-  if (!(r.tolerance > 0 && r.tolerance < 1)) throw InputError("command line", "--tolerance", "must lie in (0, 1)");
-  if (!options.is_valid(&why)) throw InputError("command line", "--max-iterations", why);
+  require_valid_solver_options(options);
   const std::vector<const solvers::SolverInfo*> backends = chosen_backends(r.solvers);
   // As in `coons solve`: a stopping rule that none of the chosen backends reads is an error.
   if (std::none_of(backends.begin(), backends.end(),

@@ -383,17 +383,25 @@ InputError samples_without_target(const std::string& objective) {
 }
 
 void require_valid_solver_options(const solvers::SolverOptions& options) {
-  std::string why;
-  if (options.is_valid(&why)) return;
-  // SolverOptions' reasons open with the field's name; the error names the option that set it
-  const std::pair<const char*, const char*> options_of_fields[] = {{"tolerance", "--tolerance"},
-                                                                   {"max_iterations", "--max-iterations"},
-                                                                   {"sor_omega", "--omega"},
-                                                                   {"threads", "--threads"}};
-  for (const auto& [field, option] : options_of_fields)
-    if (why.rfind(std::string(field) + " ", 0) == 0)
-      throw InputError("command line", option, why.substr(std::string(field).size() + 1));
-  throw InputError("command line", "solver options", why);
+  using F = solvers::SolverOptionsField;
+  const solvers::SolverOptionsProblem problem = solvers::options_problem(options);
+  switch (problem.field) {
+    case F::kNone:
+      return;
+    case F::kTolerance:
+      throw InputError("command line", "--tolerance", problem.reason);
+    case F::kMaxIterations:
+      throw InputError("command line", "--max-iterations", problem.reason);
+    case F::kSorOmega:
+      throw InputError("command line", "--omega", problem.reason);
+    case F::kThreads:
+      throw InputError("command line", "--threads", problem.reason);
+    case F::kTimeLimitSeconds:
+    case F::kSingularResidual:
+      break;  // no option sets them
+  }
+  throw InputError("command line", "solver options",
+                   std::string(solvers::to_string(problem.field)) + " " + problem.reason);
 }
 
 InputError samples_without_sweep_target() {

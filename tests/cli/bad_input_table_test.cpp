@@ -54,6 +54,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
                "0],[1,1,0]]}");
   fs::create_directories(inputs.path / "emptyfolder");
   inputs.write("notafolder", "x");
+  inputs.write("a.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 2\n2 2 2\n");
   const std::string notop = write_variant("notop.json", [](json& d) { d.erase("top"); });
   const std::string longleft = write_variant("long.json", [](json& d) { d["left"].push_back({-1, 1, 0}); });
   const std::string four = write_variant("four.json", [](json& d) { d["bottom"][1] = {1, 2, 3, 4}; });
@@ -355,6 +356,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       // bench-matrix
       {"bench-matrix {IN}/missing.mtx", "missing.mtx"},
       {"bench-matrix {IN}/broken.json", "broken.json"},
+      // the shared check of solver options names the option (all but --tolerance were --max-iterations)
+      {"bench-matrix {IN}/a.mtx --tolerance 2", "--tolerance: must lie in (0, 1)"},
+      {"bench-matrix {IN}/a.mtx --max-iterations -1", "--max-iterations: must be >= 0"},
       // import-step (without OpenCASCADE every use says it is not built)
       {"import-step {IN}/missing.step --face 0 --out {OUT}/b.json", COONS_HAVE_OCCT ? "missing.step" : "OpenCASCADE"},
       // no command, unknown command

@@ -3,7 +3,10 @@
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <functional>
 #include <set>
+#include <utility>
+#include <vector>
 
 #include "coons/mask/assemble_mask_system.h"
 #include "solvers/matrix_checks.h"
@@ -320,6 +323,31 @@ TEST_CASE("SolverOptions: threads lie in 0 .. 256, and 0 means every core", "[so
   CHECK(resolved_threads(3) == 3);
   CHECK(resolved_threads(0) >= 1);
   CHECK(resolved_threads(0) <= kMaxThreads);
+}
+
+TEST_CASE("options_problem: names the first unusable field, and is_valid says the same", "[solvers]") {
+  using F = SolverOptionsField;
+  CHECK(options_problem(SolverOptions{}).field == F::kNone);
+  const std::vector<std::pair<F, std::function<void(SolverOptions&)>>> cases = {
+      {F::kTolerance, [](SolverOptions& o) { o.tolerance = 1; }},
+      {F::kTolerance, [](SolverOptions& o) { o.tolerance = std::nan(""); }},
+      {F::kMaxIterations, [](SolverOptions& o) { o.max_iterations = -1; }},
+      {F::kTimeLimitSeconds, [](SolverOptions& o) { o.time_limit_seconds = -1; }},
+      {F::kSorOmega, [](SolverOptions& o) { o.sor_omega = 2; }},
+      {F::kSingularResidual, [](SolverOptions& o) { o.singular_residual = 0; }},
+      {F::kThreads, [](SolverOptions& o) { o.threads = kMaxThreads + 1; }},
+  };
+  for (const auto& [field, spoil] : cases) {
+    SolverOptions options;
+    spoil(options);
+    const SolverOptionsProblem problem = options_problem(options);
+    INFO(to_string(field));
+    CHECK(problem.field == field);
+    CHECK_FALSE(problem.reason.empty());
+    std::string why;
+    CHECK_FALSE(options.is_valid(&why));
+    CHECK(why == std::string(to_string(field)) + " " + problem.reason);
+  }
 }
 
 TEST_CASE("format_g: prints like %g, never 0.000000 for a small tolerance", "[solvers]") {

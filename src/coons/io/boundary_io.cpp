@@ -176,8 +176,9 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
   if (!doc.is_object()) p.fail("", "the top level must be a JSON object");
   // A file of another kind would otherwise fail on its first missing side ("bottom: missing").
   // One with a "net" is still a net file (its other fields are ignored, docs/formats.md).
-  if (const auto type = doc.find("type"); type != doc.end() && (is_triangle_document(doc) || !doc.contains("net"))) {
-    if (is_triangle_document(doc))
+  const bool triangle = is_triangle_document(doc);
+  if (const auto type = doc.find("type"); type != doc.end() && (triangle || !doc.contains("net"))) {
+    if (triangle)
       p.fail("type",
              "\"triangle\": a triangular boundary, which this command does not take (rectangular boundaries "
              "only)");
