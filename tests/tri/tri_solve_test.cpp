@@ -3,6 +3,8 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
+#include <utility>
 
 #include "solvers/registry.h"
 #include "tri/tri_fixtures.h"
@@ -274,4 +276,53 @@ TEST_CASE("solve_tri_net: every applicable backend gives the LU solution", "[tri
       REQUIRE(tri_mask_residual(r.net, TriMask{c}) < 1e-9);
     }
   }
+}
+
+TEST_CASE("solve_tri_net: a singular member outside (c*_n, 1/3] is refused, on a flat triangle too", "[tri]") {
+  // n = 8, c = 1 and n = 6, c = 2/3 make A singular for every boundary. On a linear (flat) net the
+  // system is consistent: each backend used to return one of many nets with residual 1e-15 and
+  // call it a success (thin-plate energy 19 to 40,000 where the flat net has 0).
+  for (const auto& [n, c] : {std::pair{8, 1.0}, std::pair{6, 2.0 / 3}}) {
+    REQUIRE_FALSE(in_regular_c_range(n, TriMask{c}));
+    const TriNet flat = elevated_linear(n, 1500 + n);
+    for (const auto& name : tri_applicable_solvers(TriMask{c})) {
+      INFO(name << ", n = " << n << ", c = " << c);
+      TriSolveOptions options;
+      options.mask.c = c;
+      options.solver = coons::solvers::find_solver(name);
+      const TriSolveResult r = solve_tri_net(boundary_of(flat), options);
+      INFO(r.summary.brief_report());
+      REQUIRE_FALSE(r.summary.ok());
+      CHECK(r.summary.relative_residual == 1);  // X = 0, not solved
+      CHECK(r.net.at(1, 1, n - 2).isZero(0));   // the interior is left as the frame has it
+    }
+  }
+}
+
+TEST_CASE("solve_tri_net: a regular member outside (c*_n, 1/3] is still solved", "[tri]") {
+  // c = 0.9 at n = 8 lies between the singular members 0.50 and 1 (generalised eigenvalues of the
+  // pencil); c = -0.3 at n = 8 below c*_8 = -0.2667 and above the next singular member -0.7267.
+  for (const double c : {0.9, -0.3}) {
+    REQUIRE_FALSE(in_regular_c_range(8, TriMask{c}));
+    const TriNet l = elevated_linear(8, 1600);
+    for (const auto& name : tri_applicable_solvers(TriMask{c})) {
+      INFO(name << ", c = " << c);
+      TriSolveOptions options;
+      options.mask.c = c;
+      options.solver = coons::solvers::find_solver(name);
+      options.solver_options.tolerance = 1e-13;
+      const TriSolveResult r = solve_tri_net(boundary_of(l), options);
+      INFO(r.summary.brief_report());
+      REQUIRE(r.summary.ok());
+      CHECK(interior_error(r.net, l) < 1e-9);
+    }
+  }
+}
+
+TEST_CASE("in_regular_c_range: the interval (c*_n, 1/3], any c below 1/3 for n < 4", "[tri]") {
+  CHECK(in_regular_c_range(8, TriMask{1.0 / 3}));
+  CHECK_FALSE(in_regular_c_range(8, TriMask{std::nextafter(1.0 / 3, 1.0)}));
+  CHECK(in_regular_c_range(8, TriMask{-0.26}));
+  CHECK_FALSE(in_regular_c_range(8, TriMask{-1.0 / 6 - 1.0 / 10}));  // c*_8 itself
+  CHECK(in_regular_c_range(3, TriMask{-5}));
 }

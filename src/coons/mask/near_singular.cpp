@@ -71,7 +71,13 @@ std::optional<solvers::SolveSummary> near_singular_refusal(const Eigen::SparseMa
                                                            int* solves) {
   const EigenvalueRatioEstimate r = estimate_eigenvalue_ratio(A, factorized);
   if (solves) *solves += r.solves;
-  if (!r.failure.ok()) return r.failure;
+  if (!r.failure.ok()) {
+    // the failed solve was one of the check's own (an arbitrary unit right-hand side), not of B
+    solvers::SolveSummary failed = r.failure;
+    failed.message = "the check for a near-singular system could not solve by inverse iteration: " +
+                     (failed.message.empty() ? std::string(solvers::to_string(failed.status)) : failed.message);
+    return failed;
+  }
   if (r.ratio > threshold) return std::nullopt;
   return near_singular_summary(r.ratio, factorized.name() + " and inverse iteration", threshold, true);
 }

@@ -45,7 +45,8 @@ solvers::SolveSummary near_singular_summary(double ratio, const std::string& how
 
 //! The check of an evaluation outside the definite range, after factorize(A) has succeeded on
 //! `factorized`: nullopt when the estimated ratio is above `threshold`; otherwise the summary to
-//! fail with (the estimate's own failure, or near_singular_summary, estimated). The estimate's
+//! fail with (the estimate's own failure, its message saying that a solve of the check failed, or
+//! near_singular_summary, estimated). The estimate's
 //! solves are added to *solves.
 std::optional<solvers::SolveSummary> near_singular_refusal(const Eigen::SparseMatrix<double>& A,
                                                            solvers::LinearSolver& factorized, double threshold,

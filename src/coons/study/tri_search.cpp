@@ -146,10 +146,8 @@ TriEvaluation evaluate_tri_objective(const TriNet& frame, const TriObjective& ob
   if (tri::interior_size(frame.n) > 0) {
     const tri::TriMaskSystem sys = tri::assemble_tri_mask_system(frame, mask);
     auto backend = solvers::make_solver(solver.name);
-    solvers::LinearOperator op;
-    op.matrix = &sys.A;
-    Eigen::MatrixX3d X = Eigen::MatrixX3d::Zero(sys.B.rows(), 3);
-    e.summary = backend->compute_and_solve(op, sys.B, X);
+    Eigen::MatrixX3d X;
+    e.summary = tri::solve_tri_system(sys, frame.n, mask, *backend, X);
     if (!e.summary.ok()) return e;
     e.net = tri::fill_interior(frame, X);
     if (with_derivative) {

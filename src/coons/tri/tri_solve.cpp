@@ -3,6 +3,8 @@
 #include <Eigen/SparseCore>
 #include <utility>
 
+#include "coons/mask/near_singular.h"
+
 namespace coons::tri {
 
 namespace {
@@ -54,6 +56,30 @@ const solvers::SolverInfo& default_tri_solver() {
   return *info;  // eigen-lu is always built
 }
 
+bool in_regular_c_range(int n, const TriMask& mask) {
+  const std::optional<double> star = bubble_singular_c(n);
+  return (!star || mask.c > *star) && mask.c <= 1.0 / 3.0;
+}
+
+solvers::SolveSummary solve_tri_system(const TriMaskSystem& sys, int n, const TriMask& mask,
+                                       solvers::LinearSolver& solver, Eigen::MatrixX3d& X) {
+  solvers::LinearOperator op;
+  op.matrix = &sys.A;
+  X = Eigen::MatrixX3d::Zero(sys.B.rows(), 3);
+  if (in_regular_c_range(n, mask)) return solver.compute_and_solve(op, sys.B, X);
+  const double unsolved = sys.B.isZero(0) ? 0 : 1;  // the relative residual of X = 0
+  if (solver.analyze(op) != solvers::SolveStatus::kSuccess || solver.factorize(op) != solvers::SolveStatus::kSuccess) {
+    solvers::SolveSummary failed = solver.summary();
+    failed.relative_residual = unsolved;
+    return failed;
+  }
+  if (auto refused = near_singular_refusal(sys.A, solver, kNearSingularEigenvalueRatio)) {
+    refused->relative_residual = unsolved;
+    return *refused;
+  }
+  return solver.solve(sys.B, X);
+}
+
 TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options) {
   TriSolveResult result{frame, {}};
   result.summary.solver = options.solver ? options.solver->name : std::string();
@@ -74,10 +100,8 @@ TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options
   if (interior_size(frame.n) == 0) return result;  // nothing to solve (n < 3)
   const TriMaskSystem sys = assemble_tri_mask_system(frame, options.mask);
   auto solver = solvers::make_solver(options.solver->name, options.solver_options);
-  solvers::LinearOperator op;
-  op.matrix = &sys.A;
-  Eigen::MatrixX3d X = Eigen::MatrixX3d::Zero(sys.B.rows(), 3);
-  result.summary = solver->compute_and_solve(op, sys.B, X);
+  Eigen::MatrixX3d X;
+  result.summary = solve_tri_system(sys, frame.n, options.mask, *solver, X);
   if (result.summary.ok()) result.net = fill_interior(std::move(result.net), X);
   return result;
 }

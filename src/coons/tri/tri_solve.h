@@ -48,6 +48,21 @@ struct TriSolveResult {
   solvers::SolveSummary summary;  //!< status kNotApplicable for a backend that does not apply
 };
 
+//! Whether c lies in (c*ₙ, 1/3] (any c for n < 4), where no member of degree n is singular
+//! (checked for n = 4 … 20 in the tests, and to 40 by the generalised eigenvalues of the pencil).
+//! Outside it lie further singular members, for every boundary: c = 2/3 at n = 6, c = 1 at n = 8,
+//! c ≈ −0.62 at n = 10, and one just above 1/3 and one just below c*ₙ for every larger n.
+bool in_regular_c_range(int n, const TriMask& mask);
+
+//! Factorise sys.A with `solver` and solve A X = B (X: #interior by 3). For a member outside
+//! in_regular_c_range the factorisation is first checked by inverse iteration
+//! (coons/mask/near_singular.h): a system whose min|λ|/‖A‖₁ is at most
+//! kNearSingularEigenvalueRatio is refused with status singular and X = 0, because on boundary
+//! data that the singular system can still reproduce (a flat triangle) every backend returns one of
+//! many nets with a small residual and calls it a success.
+solvers::SolveSummary solve_tri_system(const TriMaskSystem& sys, int n, const TriMask& mask,
+                                       solvers::LinearSolver& solver, Eigen::MatrixX3d& X);
+
 //! Fill the interior of `frame` (its interior is ignored) by the mask system.
 TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options = {});
 //! The same from the three sides (frame_net(boundary)).
