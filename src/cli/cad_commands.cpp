@@ -21,7 +21,8 @@ constexpr const char* kNoOcct =
 
 struct ImportRequest {
   std::string file, out, name;
-  int face = -1;
+  int face = -1;  // −1: not given (StepImportOptions' convention)
+  bool face_given = false;
   std::vector<int> edges;
   double gap_tolerance = 1e-6;
   bool force = false;
@@ -30,6 +31,8 @@ struct ImportRequest {
 int run_import_step(const ImportRequest& q) {
 #if COONS_HAVE_OCCT
   if (q.out.empty()) throw InputError("command line", "--out", "is required (the boundary file to write)");
+  // a given -1 would read as "not given" below (and be blamed on --edges)
+  if (q.face_given && q.face < 0) throw InputError("command line", "--face", "must be >= 0 (faces count from 0)");
   if (!q.force && std::filesystem::exists(q.out))
     throw InputError(q.out, "--force", "exists; give --force to overwrite it");
   cad::StepImportOptions options;
@@ -116,7 +119,10 @@ void register_import_step(CLI::App& app, Registry& registry) {
       ->capture_default_str();
   cmd->add_flag("--force", q->force, "overwrite an existing --out file");
   set_example(*cmd, "coons import-step data/cad/bspline_patch.step --face 0 --out patch.json");
-  registry.add(cmd, [q] { return run_import_step(*q); });
+  registry.add(cmd, [q, face] {
+    q->face_given = face->count() > 0;
+    return run_import_step(*q);
+  });
 }
 
 }  // namespace coons::cli

@@ -349,6 +349,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       // the option at fault is named: --samples, not the triangle's degree; --face, not --edges
       {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --samples 1000000 --out {OUT}", "--samples"},
       {"import-step {IN}/missing.step --face -2 --out {OUT}/b.json", COONS_HAVE_OCCT ? "--face" : "OpenCASCADE"},
+      // -1 is also the "not given" of the import options: it was blamed on --edges
+      {"import-step {IN}/missing.step --face -1 --out {OUT}/b.json",
+       COONS_HAVE_OCCT ? "--face: must be >= 0" : "OpenCASCADE"},
       // a triangle has no STEP/IGES surface (--step was ignored)
       {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --out {OUT} --step {OUT}/t.step", "--step"},
       // view (checks of the command line come before three.js is read: the same errors without it)

@@ -237,3 +237,16 @@ TEST_CASE("plot_surface: a sampled surface with its control net renders to a PNG
   check_png(png, 800, 640);
   CHECK_FALSE(plot_surface(dir.file("bad.png"), sample_surface(net, 20, 20), 19, &net, "bad").empty());
 }
+
+TEST_CASE("plot_curves: an output gnuplot cannot open says so, not that gnuplot is missing", "[io][plot]") {
+  REQUIRE(have_gnuplot());
+  const TempDir dir;
+  const std::string png = dir.file("no_such_folder/plot.png");
+  const std::vector<PlotSeries> series = {PlotSeries{"line", {0, 1}, {0, 1}, false}};
+  const std::string why = plot_curves(png, series, PlotOptions{});
+  INFO(why);
+  // gnuplot's log opens with a blank line; its first line was taken as "no message" before
+  CHECK_THAT(why, Catch::Contains("cannot open file"));
+  CHECK_THAT(why, !Catch::Contains("installed"));
+  CHECK_FALSE(std::filesystem::exists(png));
+}

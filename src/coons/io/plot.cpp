@@ -1,6 +1,7 @@
 #include "plot.h"
 
 #include <fmt/format.h>
+#include <sys/wait.h>
 
 #include <algorithm>
 #include <array>
@@ -63,6 +64,23 @@ std::string quote(const std::string& s) {
 
 std::string partial_of(const std::string& png) { return png + ".part.png"; }
 
+// gnuplot's message in its log: it echoes the script line and a caret, then
+// `"plot.gp" line N: MESSAGE` and maybe `system error: WHY`; the message and the reason, else
+// the first line that is not blank.
+std::string gnuplot_error(const fs::path& log_file) {
+  std::ifstream log(log_file);
+  std::string first, message;
+  for (std::string line; std::getline(log, line);) {
+    if (first.empty() && line.find_first_not_of(" \t\r^") != std::string::npos) first = line;
+    if (const auto at = line.find("\" line "); message.empty() && at != std::string::npos) {
+      if (const auto colon = line.find(": ", at); colon != std::string::npos) message = line.substr(colon + 2);
+    } else if (!message.empty() && line.rfind("system error: ", 0) == 0) {
+      return message + " (" + line.substr(14) + ")";
+    }
+  }
+  return message.empty() ? first : message;
+}
+
 std::string run_gnuplot(const std::string& script, const std::string& png) {
   const Scratch scratch;
   if (scratch.dir.empty()) return "cannot create a temporary folder";
@@ -70,13 +88,16 @@ std::string run_gnuplot(const std::string& script, const std::string& png) {
   std::ofstream(gp) << script;
   const std::string partial = partial_of(png);
   const std::string command = "gnuplot " + quote(gp.string()) + " >" + quote((scratch.dir / "log").string()) + " 2>&1";
-  if (std::system(command.c_str()) != 0 || !fs::exists(partial)) {
-    std::ifstream log(scratch.dir / "log");
-    std::string first;
-    std::getline(log, first);
+  const int status = std::system(command.c_str());
+  if (status != 0 || !fs::exists(partial)) {
+    const std::string first = gnuplot_error(scratch.dir / "log");
     std::error_code ec;
     fs::remove(partial, ec);
-    return "gnuplot failed" + (first.empty() ? std::string(" (is gnuplot-nox installed?)") : ": " + first);
+    // the shell's 127: no gnuplot; 0 without the file: it could not write there (and may say nothing)
+    if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return "gnuplot was not found (is gnuplot-nox installed?)";
+    if (status == 0)
+      return "gnuplot could not write " + partial + (first.empty() ? " (is its folder writable?)" : ": " + first);
+    return "gnuplot failed" + (first.empty() ? fmt::format(" (status {}, no message)", status) : ": " + first);
   }
   std::error_code ec;
   fs::rename(partial, png, ec);
