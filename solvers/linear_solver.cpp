@@ -316,6 +316,15 @@ bool LinearSolver::lacks_matrix(const LinearOperator& op, SolveSummary& summary)
 
 bool LinearSolver::lacks_stencil(const LinearOperator& op, SolveSummary& summary) {
   if (op.stencil) return false;
+  if (op.grid) {
+    // a grid stencil it cannot take: say which part of it (the backend needs a GridStencil)
+    const bool full = Eigen::Index(op.grid->rows) * op.grid->cols == op.grid->size();
+    const std::string width = std::to_string(op.grid->width());
+    summary.message = "works on a 3x3 stencil of a full rectangle with one fixed ring only; this system is a " + width +
+                      "x" + width + " stencil" +
+                      (full ? std::string() : std::string(" on a free set (some interior points fixed)"));
+    return true;
+  }
   summary.message = "needs the grid stencil (matrix-free)";
   return true;
 }

@@ -240,6 +240,7 @@ void register_batch(CLI::App& app, Registry& registry) {
   cmd->add_option("--out", request->out_dir, "output folder")->capture_default_str();
   request->alphas_option =
       cmd->add_option("--alphas", request->alphas, "alpha values to solve at (each once; --mask alpha only)")
+          ->transform(fold_negative_zero())
           ->capture_default_str();
   cmd->add_option("--samples", request->samples, "surface samples per direction")->capture_default_str();
   add_solver_option(*cmd, request->net.solver);

@@ -120,10 +120,12 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
                         ->transform(CLI::CheckedTransformer(methods))
                         ->default_str("alpha");
   r.alpha_option = cmd.add_option("--alpha", r.alpha, "weight of the diagonal neighbours; beta = 1/4 - alpha")
+                       ->transform(fold_negative_zero())
                        ->capture_default_str();
   r.mu_option = cmd.add_option("--mu", r.mu,
                                "membrane weight of ∫‖p_uv‖² + μ∫‖∇p‖²: the anisotropic mask of "
-                               "docs/math.md §3 (instead of --alpha)");
+                               "docs/math.md §3 (instead of --alpha)")
+                    ->transform(fold_negative_zero());
   r.solver_option = cmd.add_option("--solver", r.solver, "a name from `coons solvers`, or auto")->capture_default_str();
   r.indefinite_option =
       cmd.add_flag("--allow-indefinite", r.allow_indefinite,
@@ -146,7 +148,8 @@ void add_mask_options(CLI::App& cmd, NetRequest& r) {
                                  "alpha (the 3x3 family, --alpha/--mu), c1-coons, biharmonic, c1-family "
                                  "(--weight), or file:PATH (a stencil file, docs/formats.md)")
                       ->capture_default_str();
-  r.weight_option = cmd.add_option("--weight", r.weight, "c1-family: w in [0, 1] (1: c1-coons, 0: biharmonic)");
+  r.weight_option = cmd.add_option("--weight", r.weight, "c1-family: w in [0, 1] (1: c1-coons, 0: biharmonic)")
+                        ->transform(fold_negative_zero());
 }
 
 bool given(const CLI::Option* option) { return option != nullptr && option->count() > 0; }
@@ -380,6 +383,18 @@ json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const S
 InputError samples_without_target(const std::string& objective) {
   return {"command line", "--samples",
           "--samples sets the target's sampling but --objective '" + objective + "' has no target term"};
+}
+
+const CLI::Validator& fold_negative_zero() {
+  static const CLI::Validator fold(
+      [](std::string& value) {
+        char* end = nullptr;
+        const double number = std::strtod(value.c_str(), &end);
+        if (end != value.c_str() && *end == '\0' && number == 0) value = "0";
+        return std::string();
+      },
+      "", "fold -0 to 0");
+  return fold;
 }
 
 void require_valid_solver_options(const solvers::SolverOptions& options) {

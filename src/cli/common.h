@@ -42,6 +42,11 @@ struct GlobalOptions {
 };
 void add_memory_option(CLI::App& cmd, GlobalOptions& g);
 
+//! A CLI11 transform for parameter options (--alpha, --mu, --weight, --lower, --upper, --from,
+//! --to, --alphas): a value that reads as zero becomes "0", so that -0 is the same parameter as 0
+//! in reports, file names ("c1-family-w0") and duplicate checks.
+const CLI::Validator& fold_negative_zero();
+
 //! Refuses (InputError naming `file` and `field`) when `bytes` exceeds the limit.
 void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
                   const std::string& field);

@@ -317,8 +317,9 @@ void register_search_alpha(CLI::App& app, Registry& registry) {
                   "alpha-gamma (every symmetric 3x3 mask) or weight (the 5x5 c1-family; needs two data rings)")
       ->transform(CLI::CheckedTransformer(parameters))
       ->default_str("alpha");
-  cmd->add_option("--lower", r->lower, "lower bound (alpha: -0.25, mu: 0, weight: 0)");
-  cmd->add_option("--upper", r->upper, "upper bound (alpha: 0.25, mu: 1000·m·n, weight: 1)");
+  cmd->add_option("--lower", r->lower, "lower bound (alpha: -0.25, mu: 0, weight: 0)")->transform(fold_negative_zero());
+  cmd->add_option("--upper", r->upper, "upper bound (alpha: 0.25, mu: 1000·m·n, weight: 1)")
+      ->transform(fold_negative_zero());
   cmd->add_flag("--allow-indefinite", r->allow_indefinite, "accept alpha bounds outside [-0.25, 0.25]");
   r->target_option = cmd->add_option("--target", r->target,
                                      "hermite-coons | coons | NET.json | sphere:cx,cy,cz,r | "

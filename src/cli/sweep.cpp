@@ -139,8 +139,12 @@ void register_sweep(CLI::App& app, Registry& registry) {
   cmd->add_option("--parameter", r->parameter, "alpha or mu")
       ->transform(CLI::CheckedTransformer(parameters))
       ->default_str("alpha");
-  r->from_option = cmd->add_option("--from", r->from, "first value (mu: default 0)")->capture_default_str();
-  r->to_option = cmd->add_option("--to", r->to, "last value (mu: default 100)")->capture_default_str();
+  r->from_option = cmd->add_option("--from", r->from, "first value (mu: default 0)")
+                       ->transform(fold_negative_zero())
+                       ->capture_default_str();
+  r->to_option = cmd->add_option("--to", r->to, "last value (mu: default 100)")
+                     ->transform(fold_negative_zero())
+                     ->capture_default_str();
   cmd->add_option("--count", r->count, "number of values")->capture_default_str();
   cmd->add_option("--out", r->out_dir, "output folder: NAME.sweep-PARAMETER.jsonl and .png")->capture_default_str();
   cmd->add_option("--target", r->target,

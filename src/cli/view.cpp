@@ -198,9 +198,12 @@ void register_view(CLI::App& app, Registry& registry) {
   cmd->add_option("--out", r->out, "the HTML file to write")->required();
   cmd->add_option("--alphas", r->alphas, "alpha values on an even grid (the optima are added)")->capture_default_str();
   cmd->add_option("--samples", r->samples, "surface samples per direction")->capture_default_str();
-  r->from_option = cmd->add_option("--from", r->from, "smallest alpha")->capture_default_str();
-  r->to_option = cmd->add_option("--to", r->to, "largest alpha")->capture_default_str();
-  cmd->add_option("--alpha", r->alpha, "the alpha shown first (default: the thin-plate optimum, else -0.25)");
+  r->from_option =
+      cmd->add_option("--from", r->from, "smallest alpha")->transform(fold_negative_zero())->capture_default_str();
+  r->to_option =
+      cmd->add_option("--to", r->to, "largest alpha")->transform(fold_negative_zero())->capture_default_str();
+  cmd->add_option("--alpha", r->alpha, "the alpha shown first (default: the thin-plate optimum, else -0.25)")
+      ->transform(fold_negative_zero());
   cmd->add_option("--degree", r->degree, "M N: refit (or elevate) the boundary to this degree first")->expected(2);
   cmd->add_option("--three-js", r->three_js, "three.min.js to inline (Debian libjs-three)")->capture_default_str();
   cmd->add_option("--corner-tolerance", r->corner_tolerance,

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -374,4 +375,28 @@ TEST_CASE("coons solve --mask: the memory check counts 25 entries a row for a 5x
   CHECK(five.status == 2);
   CHECK_THAT(five.err, Catch::Contains("needs about"));
   CHECK(run_coons("solve " + quoted(file) + " --alpha -0.2 --solver " + name + " --max-memory " + limit).status == 0);
+}
+
+TEST_CASE("coons solve, batch, search-alpha: -0 is the parameter 0, in reports and file names", "[cli]") {
+  // --weight -0 was reported as -0.0 and written as c1-family-w-0.json beside c1-family-w0.json
+  TempDir out;
+  const std::string cap = quoted(kData + "/boundaries/sphere_cap_ribbons.json");
+  const json minus = solve(cap + " --mask c1-family --weight -0");
+  const json plus = solve(cap + " --mask c1-family --weight 0");
+  CHECK_FALSE(std::signbit(minus["weight"].get<double>()));
+  CHECK(minus["net"] == plus["net"]);
+  const CommandResult batch =
+      run_coons("batch " + cap + " --mask c1-family --weight -0 --out " + quoted(out.path.string()));
+  INFO(batch.err);
+  REQUIRE(batch.status == 0);
+  CHECK(std::filesystem::exists(out.file("sphere_cap_ribbons-6x6/c1-family-w0.json")));
+  const CommandResult alphas = run_coons("batch " + cap + " --alphas -0 --out " + quoted(out.file("a")));
+  REQUIRE(alphas.status == 0);
+  CHECK(std::filesystem::exists(out.file("a/sphere_cap_ribbons-6x6/alpha+0.json")));
+  const CommandResult search =
+      run_coons("search-alpha " + cap + " --parameter weight --objective thin_plate --lower -0 --upper 0.5");
+  INFO(search.err);
+  REQUIRE(search.status == 0);
+  const json report = json::parse(search.out);
+  CHECK_FALSE(std::signbit(report["bounds"][0].get<double>()));
 }

@@ -310,3 +310,28 @@ TEST_CASE("fast5, separable-banded, pcg-fast: analyze once, factorize many equal
     CHECK(compared == 4);
   }
 }
+
+TEST_CASE("dst, fast, jacobi, gauss-seidel: a grid stencil they cannot take is declined naming what it is",
+          "[solvers]") {
+  // They said "needs the grid stencil (matrix-free)" of a system given as just that.
+  const StencilOperator five = make_problem(9, 8, c1_family(0.5), Shape::kFull);
+  const StencilOperator holed = make_problem(9, 8, alpha_stencil(-0.1), Shape::kHole);
+  int checked = 0;
+  for (const char* name : {"dst", "fast", "jacobi", "gauss-seidel"}) {
+    if (!find_solver(name)) continue;  // dst and fast need FFTW
+    for (const auto* op : {&five, &holed}) {
+      const Eigen::SparseMatrix<double> A = stencil_operator_matrix(*op);
+      LinearOperator lop;
+      lop.matrix = &A;
+      lop.grid = op;
+      Eigen::MatrixX3d X;
+      const SolveSummary s = make_solver(name)->compute_and_solve(lop, random_rhs(A.rows(), 3), X);
+      INFO(name << ": " << s.brief_report());
+      CHECK(s.status == SolveStatus::kNotApplicable);
+      CHECK_THAT(s.message, Catch::Contains("3x3 stencil of a full rectangle with one fixed ring only"));
+      CHECK_THAT(s.message, Catch::Contains(op == &five ? "a 5x5 stencil" : "a 3x3 stencil on a free set"));
+      ++checked;
+    }
+  }
+  CHECK(checked >= 4);  // jacobi and gauss-seidel are always built
+}
