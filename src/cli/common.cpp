@@ -466,6 +466,45 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
 
 std::string dump(const json& doc, int indent) { return doc.dump(indent, ' ', false, json::error_handler_t::replace); }
 
+namespace {
+
+void dump_points_inline(const json& v, int depth, std::string& out) {
+  const auto is_number = [](const json& e) { return e.is_number() || e.is_null(); };
+  const std::string indent(std::size_t(2 * (depth + 1)), ' '), close(std::size_t(2 * depth), ' ');
+  if (v.is_array() && !v.empty() && std::all_of(v.begin(), v.end(), is_number)) {
+    out += '[';
+    for (std::size_t k = 0; k < v.size(); ++k) out += (k ? ", " : "") + dump(v[k]);
+    out += ']';
+  } else if (v.is_array() && !v.empty()) {
+    out += "[\n";
+    for (std::size_t k = 0; k < v.size(); ++k) {
+      out += indent;
+      dump_points_inline(v[k], depth + 1, out);
+      out += k + 1 < v.size() ? ",\n" : "\n";
+    }
+    out += close + ']';
+  } else if (v.is_object() && !v.empty()) {
+    out += "{\n";
+    std::size_t k = 0;
+    for (const auto& [key, value] : v.items()) {
+      out += indent + dump(json(key)) + ": ";
+      dump_points_inline(value, depth + 1, out);
+      out += ++k < v.size() ? ",\n" : "\n";
+    }
+    out += close + '}';
+  } else {
+    out += dump(v);
+  }
+}
+
+}  // namespace
+
+std::string dump_points_inline(const json& doc) {
+  std::string out;
+  dump_points_inline(doc, 0, out);
+  return out;
+}
+
 void print_text(const std::string& text) {
   errno = 0;
   std::cout << text;

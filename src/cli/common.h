@@ -182,6 +182,10 @@ void print_json(const nlohmann::json& doc, int indent = 2);
 void print_json(const nlohmann::ordered_json& doc, int indent = 2);  //!< keeps the keys' order
 void print_text(const std::string& text);
 std::string dump(const nlohmann::json& doc, int indent = -1);
+//! dump(doc, 2), except that an array of numbers (a point [x, y, z]) stays on one line: the
+//! layout of the `net` of a solve report (docs/formats.md), for nets that write_net_json does not
+//! stream (the triangular one).
+std::string dump_points_inline(const nlohmann::json& doc);
 
 //! One `error:` line on standard error for a failed solve (exit 3 goes with it).
 void print_solver_failure(const std::string& file, const solvers::SolveSummary& summary);

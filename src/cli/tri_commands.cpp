@@ -112,7 +112,7 @@ int run_tri_solve(const std::string& path, const NetRequest& net, const GlobalOp
   phases.start("metrics");
   nlohmann::json report = tri_solve_report(b, r.options.mask, result, r.picked_automatically);
   report["timing"] = phases.timing();
-  print_json(report);
+  print_text(dump_points_inline(report) + '\n');  // one point per line, as the rectangle's net
   if (!result.summary.ok()) {
     print_solver_failure(path, result.summary);
     return kExitSolverFailed;

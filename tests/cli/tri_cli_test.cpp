@@ -53,6 +53,17 @@ TEST_CASE("coons solve: a triangular file gives the triangle report, net in the 
   const tri::TriNet expected = tri::solve_tri_net(read_tri_boundary_file(file), options).net;
   CHECK(report["net"] == tri_net_to_json(expected));
   CHECK(report["metrics"]["mask_residual"].get<double>() < 1e-14);
+  // one point [x, y, z] per line, as in the rectangle's report (each coordinate had a line)
+  int point_lines = 0;
+  std::istringstream text(r.out);
+  for (std::string line; std::getline(text, line);) {
+    const auto first = line.find_first_not_of(' ');
+    if (first != std::string::npos && line.size() > first + 1 && line[first] == '[' && line[first + 1] != '\n' &&
+        line.find(']') != std::string::npos && std::count(line.begin(), line.end(), ',') >= 2)
+      ++point_lines;
+  }
+  CHECK(point_lines == 28);  // (n + 1)(n + 2)/2 points of degree 6
+  CHECK(count_lines_starting(r.out, "        1.0") == 0);
 }
 
 TEST_CASE("coons solve: --solver auto on a triangle picks an LU backend, c defaults to -1/6", "[cli][tri]") {
