@@ -137,6 +137,16 @@ std::string choose_auto_solver(const GridStencil& stencil) {
 #endif
 }
 
+bool accepts_matrix(const SolverInfo& info) {
+  if (info.needs_matrix) return true;
+  Eigen::SparseMatrix<double> one(1, 1);
+  one.insert(0, 0) = 1.0;
+  LinearOperator op;
+  op.matrix = &one;
+  const auto solver = make_solver(info.name);
+  return solver && solver->analyze(op) != SolveStatus::kNotApplicable;
+}
+
 bool uses_threads(std::string_view name) {
   for (std::string_view threaded : {"dst", "fast", "fast5", "separable-banded", "mg", "mg-cg", "gmres"})
     if (name == threaded) return true;

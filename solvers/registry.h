@@ -28,6 +28,11 @@ const std::vector<SolverInfo>& available_solvers();
 //! Info of a backend, or nullptr when no backend of that name was built.
 const SolverInfo* find_solver(std::string_view name);
 
+//! Whether the backend solves an operator given only as an assembled matrix: every needs_matrix
+//! backend, and the grid-stencil ones that fall back to the matrix (gmres, with ILUT). Asked of the
+//! backend itself (analyze on a 1×1 matrix), so that no list of names is kept.
+bool accepts_matrix(const SolverInfo& info);
+
 //! True for the backends that use SolverOptions::threads (dst, fast, fast5, separable-banded, mg,
 //! mg-cg, gmres on its multigrid path); the others run on one thread whatever it says.
 bool uses_threads(std::string_view name);

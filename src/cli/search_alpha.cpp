@@ -142,8 +142,8 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
 // `needs` says what needs the assembled matrix.
 const solvers::SolverInfo* requested_matrix_backend(const SearchRequest& r, const std::string& needs) {
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  if (requested && !requested->needs_matrix)
-    throw InputError("command line", "--solver", requested->name + " works from a grid stencil; " + needs);
+  if (requested && !solvers::accepts_matrix(*requested))
+    throw InputError("command line", "--solver", requested->name + " works from a grid stencil only; " + needs);
   return requested;
 }
 

@@ -257,6 +257,30 @@ TEST_CASE("search_alpha_on_problem: a grid backend or a problem the stencil leav
   CHECK_THAT(t.message, Catch::StartsWith("free"));
 }
 
+TEST_CASE("search_weight, search_alpha_on_problem: gmres, which also takes a matrix, finds the direct optimum",
+          "[alpha]") {
+  // gmres is a grid-stencil backend that falls back to ILUT on a matrix: it was refused as one that
+  // cannot solve from the matrix, while mg (the grid only) still is (test above)
+  REQUIRE(coons::solvers::accepts_matrix(backend("gmres")));
+  REQUIRE_FALSE(coons::solvers::accepts_matrix(backend("mg")));
+  coons::solvers::SolverOptions tight;
+  tight.tolerance = 1e-13;
+  const StencilProblem ribbons = ribbon_problem(8, 7, 40);
+  const AlphaSearchSummary direct = search_weight(ribbons, objective_named("e3"), backend("eigen-ldlt"));
+  const AlphaSearchSummary krylov = search_weight(ribbons, objective_named("e3"), backend("gmres"), {}, tight);
+  INFO(direct.brief_report() << " / " << krylov.brief_report());
+  REQUIRE((krylov.status == SearchStatus::kSuccess));
+  REQUIRE((direct.status == SearchStatus::kSuccess));
+  CHECK(*krylov.parameter == Approx(*direct.parameter).margin(1e-6));
+  const StencilProblem hole = hole_problem(8, 8, 3);
+  const AlphaSearchSummary a = search_alpha_on_problem(hole, objective_named("thin_plate"), backend("eigen-ldlt"));
+  const AlphaSearchSummary b =
+      search_alpha_on_problem(hole, objective_named("thin_plate"), backend("gmres"), {}, tight);
+  INFO(a.brief_report() << " / " << b.brief_report());
+  REQUIRE((b.status == SearchStatus::kSuccess));
+  CHECK(*b.parameter == Approx(*a.parameter).margin(1e-6));
+}
+
 TEST_CASE("search_weight: a constant net is flat for every objective (no rounding noise read as an optimum)",
           "[alpha]") {
   // every point (0.1, 0.2, 0.3): the net is the same for every w; its coordinates' rounding is

@@ -314,7 +314,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       // fast5 solves the C1 masks, so the reason is the search's need of a matrix, not "3x3 only"
       {"search-alpha " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") +
            " --parameter weight --objective e3 --solver fast5",
-       "works from the grid stencil; the weight search"},
+       "works from the grid stencil only; the search refills"},
       // --corner-tolerance is checked by every command that reads boundaries (nan and inf were
       // taken by study, degree-limit and surface)
       {"study " + good + " --degrees 3 --corner-tolerance nan --out {OUT}/s", "--corner-tolerance"},

@@ -40,7 +40,7 @@ AlphaSearchSummary search_family(const StencilProblem& problem, const Objective&
     refused.message = issues.front().field + ": " + issues.front().reason;
     return refused;
   }
-  if (!solver.needs_matrix) {
+  if (!solvers::accepts_matrix(solver)) {
     refused.message = "solver: " + solver.name + " does not solve from the matrix; this search needs one";
     return refused;
   }

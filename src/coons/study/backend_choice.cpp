@@ -36,13 +36,13 @@ const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, 
 }
 
 const solvers::SolverInfo& weight_search_backend(const solvers::SolverInfo* requested, bool fallback) {
-  if (requested && requested->needs_matrix) return *requested;
+  if (requested && solvers::accepts_matrix(*requested)) return *requested;
   if (requested && !fallback)
     throw InputError(
         "command line", "--solver",
         requested->name +
-            " works from the grid stencil; the weight search (--parameter weight) refills one assembled 5x5 "
-            "system per evaluation and needs a backend that works from that matrix (e.g. cholmod, eigen-ldlt)");
+            " works from the grid stencil only; the search refills one assembled system per evaluation and "
+            "needs a backend that works from that matrix (e.g. cholmod, eigen-ldlt, gmres)");
   const solvers::SolverInfo* cholmod = solvers::find_solver("cholmod");
   return cholmod ? *cholmod : *solvers::find_solver("eigen-ldlt");
 }

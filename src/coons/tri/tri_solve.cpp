@@ -7,25 +7,8 @@
 
 namespace coons::tri {
 
-namespace {
-
-// Whether a backend accepts an operator given only as an assembled matrix: needs_matrix backends
-// do; of the grid-stencil ones some (gmres) fall back to the matrix. Asked of the backend itself
-// (analyze on a 1×1 matrix), so that no list of names has to be kept here.
-bool accepts_matrix(const solvers::SolverInfo& info) {
-  if (info.needs_matrix) return true;
-  Eigen::SparseMatrix<double> one(1, 1);
-  one.insert(0, 0) = 1.0;
-  solvers::LinearOperator op;
-  op.matrix = &one;
-  const auto solver = solvers::make_solver(info.name);
-  return solver && solver->analyze(op) != solvers::SolveStatus::kNotApplicable;
-}
-
-}  // namespace
-
 TriBackendCheck check_tri_backend(const solvers::SolverInfo& info, const TriMask& mask) {
-  if (!accepts_matrix(info))
+  if (!solvers::accepts_matrix(info))
     return {false, info.name + " works on the rectangular grid stencil only, not on triangular systems"};
   if (info.definite_only && mask.c != 0.0)
     return {false, info.name +
