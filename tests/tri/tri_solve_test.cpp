@@ -278,7 +278,7 @@ TEST_CASE("solve_tri_net: every applicable backend gives the LU solution", "[tri
   }
 }
 
-TEST_CASE("solve_tri_net: a singular member outside (c*_n, 1/3] is refused, on a flat triangle too", "[tri]") {
+TEST_CASE("solve_tri_net: a singular member outside c*_n < c <= 1/3 is refused, on a flat triangle too", "[tri]") {
   // n = 8, c = 1 and n = 6, c = 2/3 make A singular for every boundary. On a linear (flat) net the
   // system is consistent: each backend used to return one of many nets with residual 1e-15 and
   // call it a success (thin-plate energy 19 to 40,000 where the flat net has 0).
@@ -299,7 +299,7 @@ TEST_CASE("solve_tri_net: a singular member outside (c*_n, 1/3] is refused, on a
   }
 }
 
-TEST_CASE("solve_tri_net: a regular member outside (c*_n, 1/3] is still solved", "[tri]") {
+TEST_CASE("solve_tri_net: a regular member outside c*_n < c <= 1/3 is still solved", "[tri]") {
   // c = 0.9 at n = 8 lies between the singular members 0.50 and 1 (generalised eigenvalues of the
   // pencil); c = -0.3 at n = 8 below c*_8 = -0.2667 and above the next singular member -0.7267.
   for (const double c : {0.9, -0.3}) {
@@ -319,7 +319,7 @@ TEST_CASE("solve_tri_net: a regular member outside (c*_n, 1/3] is still solved",
   }
 }
 
-TEST_CASE("in_regular_c_range: the interval (c*_n, 1/3], any c below 1/3 for n < 4", "[tri]") {
+TEST_CASE("in_regular_c_range: c*_n < c <= 1/3, and any c up to 1/3 for n < 4", "[tri]") {
   CHECK(in_regular_c_range(8, TriMask{1.0 / 3}));
   CHECK_FALSE(in_regular_c_range(8, TriMask{std::nextafter(1.0 / 3, 1.0)}));
   CHECK(in_regular_c_range(8, TriMask{-0.26}));
