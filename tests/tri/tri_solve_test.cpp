@@ -4,6 +4,7 @@
 #include <algorithm>
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <string>
 #include <utility>
 
 #include "solvers/registry.h"
@@ -23,6 +24,16 @@ TriNet solve_with(const TriNet& net, double c, const std::string& solver = "eige
   const TriSolveResult r = solve_tri_net(boundary_of(net), options);
   REQUIRE(r.summary.ok());
   return r.net;
+}
+
+// The solve of `net`'s boundary by the backend `name`, whatever its status.
+TriSolveResult solve_by(const TriNet& net, double c, const std::string& name, double tolerance = 1e-12) {
+  TriSolveOptions options;
+  options.mask.c = c;
+  options.solver = coons::solvers::find_solver(name);
+  REQUIRE(options.solver);
+  options.solver_options.tolerance = tolerance;
+  return solve_tri_net(boundary_of(net), options);
 }
 
 // Relative size of the interior error (the boundary is the same by construction).
@@ -266,11 +277,7 @@ TEST_CASE("solve_tri_net: every applicable backend gives the LU solution", "[tri
     const TriNet reference = solve_with(net, c);
     for (const auto& name : tri_applicable_solvers(TriMask{c})) {
       INFO(name << " at c = " << c);
-      TriSolveOptions options;
-      options.mask.c = c;
-      options.solver = coons::solvers::find_solver(name);
-      options.solver_options.tolerance = 1e-13;
-      const TriSolveResult r = solve_tri_net(boundary_of(net), options);
+      const TriSolveResult r = solve_by(net, c, name, 1e-13);
       REQUIRE(r.summary.ok());
       REQUIRE(max_abs_difference(r.net, reference) < 1e-9);
       REQUIRE(tri_mask_residual(r.net, TriMask{c}) < 1e-9);
@@ -287,10 +294,7 @@ TEST_CASE("solve_tri_net: a singular member outside c*_n < c <= 1/3 is refused, 
     const TriNet flat = elevated_linear(n, 1500 + n);
     for (const auto& name : tri_applicable_solvers(TriMask{c})) {
       INFO(name << ", n = " << n << ", c = " << c);
-      TriSolveOptions options;
-      options.mask.c = c;
-      options.solver = coons::solvers::find_solver(name);
-      const TriSolveResult r = solve_tri_net(boundary_of(flat), options);
+      const TriSolveResult r = solve_by(flat, c, name);
       INFO(r.summary.brief_report());
       REQUIRE_FALSE(r.summary.ok());
       CHECK(r.summary.relative_residual == 1);  // X = 0, not solved
@@ -307,11 +311,7 @@ TEST_CASE("solve_tri_net: a regular member outside c*_n < c <= 1/3 is still solv
     const TriNet l = elevated_linear(8, 1600);
     for (const auto& name : tri_applicable_solvers(TriMask{c})) {
       INFO(name << ", c = " << c);
-      TriSolveOptions options;
-      options.mask.c = c;
-      options.solver = coons::solvers::find_solver(name);
-      options.solver_options.tolerance = 1e-13;
-      const TriSolveResult r = solve_tri_net(boundary_of(l), options);
+      const TriSolveResult r = solve_by(l, c, name, 1e-13);
       INFO(r.summary.brief_report());
       REQUIRE(r.summary.ok());
       CHECK(interior_error(r.net, l) < 1e-9);
