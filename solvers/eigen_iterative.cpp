@@ -98,12 +98,18 @@ class EigenIterative : public LinearSolver {
         krylov_.setMaxIterations(allowed);
         const Eigen::VectorXd guess = x;
         x = krylov_.solveWithGuess(B.col(c), x);
-        const int done = updates_done(allowed, guess, x);
+        int done = updates_done(allowed, guess, x);
+        const bool breakdown = !x.allFinite() && guess.allFinite() && B.col(c).allFinite();
+        if (breakdown) {
+          done = last_finite_iterate(B.col(c), guess, done, x);
+          end.breakdown = true;
+        }
         used += done;
         error = krylov_.error();
         // (A call that did no update will not do one on the next call either: Eigen's BiCGSTAB
-        // returns at once, not converged, when ‖b‖² is not finite.)
-        if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_ || done == 0) break;
+        // returns at once, not converged, when ‖b‖² is not finite. After a breakdown the next
+        // call would break down again.)
+        if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_ || done == 0 || breakdown) break;
         if (out_of_time()) {
           end.timed_out = true;
           break;
@@ -127,6 +133,31 @@ class EigenIterative : public LinearSolver {
   }
 
  private:
+  // After a breakdown (Eigen's BiCGSTAB divides by ρ = 0 once its residual vanishes, e.g. after one
+  // step with an exact preconditioner, and the NaN spreads to x): the last finite iterate from
+  // `guess`. Eigen's iterations are deterministic, so the largest count below `broken` whose
+  // iterate is finite is found by bisection; x is set to it through a call of 0 iterations, which
+  // leaves error() its true relative residual and info() Success when that passes the tolerance.
+  // Returns the count.
+  int last_finite_iterate(const Eigen::VectorXd& b, const Eigen::VectorXd& guess, int broken, Eigen::VectorXd& x) {
+    int finite = 0;
+    Eigen::VectorXd best = guess;
+    while (broken - finite > 1) {
+      const int mid = finite + (broken - finite) / 2;
+      krylov_.setMaxIterations(mid);
+      Eigen::VectorXd y = krylov_.solveWithGuess(b, guess);
+      if (y.allFinite()) {
+        finite = mid;
+        best = std::move(y);
+      } else {
+        broken = mid;
+      }
+    }
+    krylov_.setMaxIterations(0);
+    x = krylov_.solveWithGuess(b, best);
+    return finite;
+  }
+
   // The iterations (updates of x, one product with A each) of the last Eigen solve. Eigen's
   // conjugate_gradient leaves its loop by `break` right after the update that passes its test,
   // before counting that update (Eigen 3.4, ConjugateGradient.h): a CG that converges reports one

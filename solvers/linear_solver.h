@@ -218,6 +218,9 @@ class LinearSolver {
     //! Gauss–Seidel), not for a Krylov method, whose residual norm may rise before it falls (CG
     //! after one step on a definite system: 2.28).
     bool krylov = false;
+    //! stopped because the method broke down (a zero divisor in its recurrence); the residual is
+    //! that of the last finite iterate
+    bool breakdown = false;
   };
   //! The one verdict of every iterative backend: success when converged; kDiverged when the
   //! residual grew (1e8-fold, to overflow, or, stationary iterations only, ends above its start) —

@@ -84,6 +84,40 @@ TEST_CASE("bicgstab: a right-hand side that is not finite ends the solve at once
   CHECK(X.allFinite());
 }
 
+TEST_CASE("bicgstab: a breakdown keeps the last finite iterate, not NaN turned into a zero X", "[solvers]") {
+  // A tridiagonal matrix: its incomplete LU is exact, BiCGSTAB's residual vanishes within a few
+  // steps, and at a tolerance below rounding the next step divides by rho = 0. The NaN was
+  // reported as `diverged` ("grew from 1 to overflow") with X = 0, an exact solution thrown away.
+  const int n = 3;
+  Eigen::SparseMatrix<double> A(n, n);
+  for (int i = 0; i < n; ++i) {
+    A.insert(i, i) = 4;
+    if (i > 0) A.insert(i, i - 1) = -1;
+    if (i + 1 < n) A.insert(i, i + 1) = -1;
+  }
+  A.makeCompressed();
+  const Eigen::MatrixX3d X_true = Eigen::MatrixX3d::Ones(n, 3);  // (bench-matrix's default B = A·1)
+  const Eigen::MatrixX3d B = A * X_true;
+  LinearOperator op;
+  op.matrix = &A;
+  SolverOptions below_rounding;
+  below_rounding.tolerance = 1e-100;
+  Eigen::MatrixX3d X;
+  const SolveSummary s = make_solver("bicgstab", below_rounding)->compute_and_solve(op, B, X);
+  INFO(s.brief_report());
+  CHECK(s.status == SolveStatus::kNotConverged);
+  CHECK_THAT(s.message, Catch::Contains("broke down"));
+  CHECK(s.iterations >= 1);
+  REQUIRE(X.allFinite());
+  CHECK((X - X_true).cwiseAbs().maxCoeff() < 1e-13);
+  CHECK(s.relative_residual < 1e-14);
+  // at a reachable tolerance the same system is a success, as before
+  const SolveSummary t = make_solver("bicgstab")->compute_and_solve(op, B, X);
+  INFO(t.brief_report());
+  CHECK(t.ok());
+  CHECK((X - X_true).cwiseAbs().maxCoeff() < 1e-13);
+}
+
 TEST_CASE("eigen krylov backends: an iteration limit reached on a definite system is not_converged, not diverged",
           "[solvers]") {
   // CG's residual norm may rise before it falls: after one step on this α = −1/4 system it is 2.3
