@@ -60,7 +60,8 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
   fine_number_ = free_numbering(op);
   levels_.push_back(std::move(fine));
   while (true) {
-    const Level& L = levels_.back();
+    Level& L = levels_.back();
+    find_common_stencil(L);  // (galerkin_coarse copies the coarse stencil over L's common region)
     if (L.unknowns <= options.coarsest_unknowns || std::min(L.rows, L.cols) < 3 ||
         int(levels_.size()) >= options.max_levels)
       break;
@@ -72,10 +73,7 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
   }
   // Coarse levels run on one thread: below a few thousand points a parallel region costs more than
   // it saves (the results are the same for every count).
-  for (auto& L : levels_) {
-    L.threads = L.points() >= kMinThreadedPoints ? resolved_threads(options.threads) : 1;
-    find_common_stencil(L);
-  }
+  for (auto& L : levels_) L.threads = L.points() >= kMinThreadedPoints ? resolved_threads(options.threads) : 1;
   for (std::size_t l = 0; l + 1 < levels_.size(); ++l)
     if (!factor_lines(levels_[l])) {
       if (message)

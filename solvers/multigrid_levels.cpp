@@ -182,33 +182,107 @@ Level galerkin_coarse(const Level& F, int reach) {
     const int t = f - rf - reach - offset;
     return t >= 0 ? (t + 1) / 2 : -((-t) / 2);
   };
+  // B(p, ·) of the free fine point p = (i, j) into b (bw × bw, zero on entry).
+  auto compute_point = [&](int i, int j, double* b) {
+    const int lo_i = window_start(i, Cl.offset_i), lo_j = window_start(j, Cl.offset_j);
+    const double* A = F.at(Eigen::Index(i) * F.cols + j);
+    for (int di = -rf; di <= rf; ++di) {
+      const int k = i + di;
+      if (k < 0 || k >= F.rows) continue;
+      const Parents& pk = parents_i[std::size_t(k)];
+      for (int dj = -rf; dj <= rf; ++dj) {
+        const int l = j + dj;
+        if (l < 0 || l >= F.cols) continue;
+        const double aw = A[(di + rf) * wf + dj + rf];
+        if (aw == 0 || !F.free[Eigen::Index(k) * F.cols + l]) continue;
+        const Parents& pl = parents_j[std::size_t(l)];
+        for (int s = 0; s < pk.count; ++s)
+          for (int t = 0; t < pl.count; ++t)
+            b[(pk.index[s] - lo_i) * bw + pl.index[t] - lo_j] += aw * pk.weight[s] * pl.weight[t];
+      }
+    }
+  };
+  // A_c(I, J) into out (wc × wc, zero on entry) from B_at(i, j), the B of the fine point (i, j).
+  auto accumulate = [&](int I, int J, double* out, auto&& B_at) {
+    for (int a = -reach; a <= reach; ++a) {
+      const int i = 2 * I + Cl.offset_i + a;
+      const double wa = interp_weight(reach, a);
+      if (i < 0 || i >= F.rows || wa == 0) continue;
+      const int lo_i = window_start(i, Cl.offset_i);
+      for (int c = -reach; c <= reach; ++c) {
+        const int j = 2 * J + Cl.offset_j + c;
+        const double pw = wa * interp_weight(reach, c);
+        if (j < 0 || j >= F.cols || pw == 0 || !F.free[Eigen::Index(i) * F.cols + j]) continue;
+        const double* b = B_at(i, j);
+        const int lo_j = window_start(j, Cl.offset_j);
+        for (int u = 0; u < bw; ++u)
+          for (int v = 0; v < bw; ++v) {
+            const double value = b[u * bw + v];
+            if (value == 0) continue;
+            const int K1 = lo_i + u, K2 = lo_j + v;  // within the coarse radius of (I, J)
+            if (!Cl.free[std::size_t(K1) * Cl.cols + K2]) continue;
+            out[(K1 - I + rc) * wc + K2 - J + rc] += pw * value;
+          }
+      }
+    }
+  };
+  // The deep interior. A_c(I, J) depends only on the fine stencils and free flags within
+  // kDeep = 2·reach + rf of its fine point (2I + offset_i, 2J + offset_j), and on nothing else
+  // (the parents of a point away from the grid's edges are its neighbours' shifted by 2): where
+  // that window lies in the grid and every point of it is free with the level's common stencil,
+  // A_c is the same stencil, computed once (by the same sums, so equal bit for bit to what the
+  // point-by-point pass gives) and copied. Only the fine points a coarse point outside the deep
+  // interior needs get their B. On a rectangle this leaves O(rows + cols) points to the sums.
+  const int deep_radius = 2 * reach + rf;
+  std::vector<int> good_sum;  // summed-area table of the good fine points, (rows+1) × (cols+1)
+  if (!F.common.empty()) {
+    const std::size_t ww = std::size_t(wf) * wf, C1 = std::size_t(F.cols) + 1;
+    good_sum.assign((std::size_t(F.rows) + 1) * C1, 0);
+    for (int i = 0; i < F.rows; ++i)
+      for (int j = 0, row = 0; j < F.cols; ++j) {
+        const Eigen::Index p = Eigen::Index(i) * F.cols + j;
+        row += F.free[std::size_t(p)] && (F.constant || std::equal(F.at(p), F.at(p) + ww, F.common.begin()));
+        good_sum[(std::size_t(i) + 1) * C1 + std::size_t(j) + 1] =
+            good_sum[std::size_t(i) * C1 + std::size_t(j) + 1] + row;
+      }
+  }
+  // Every fine point within `radius` of (i, j) lies in the grid and is good.
+  auto all_good = [&](int i, int j, int radius) {
+    if (good_sum.empty() || i - radius < 0 || j - radius < 0 || i + radius >= F.rows || j + radius >= F.cols)
+      return false;
+    const std::size_t C1 = std::size_t(F.cols) + 1, i0 = std::size_t(i - radius), i1 = std::size_t(i + radius) + 1,
+                      j0 = std::size_t(j - radius), j1 = std::size_t(j + radius) + 1;
+    const int side = 2 * radius + 1;
+    return good_sum[i1 * C1 + j1] - good_sum[i0 * C1 + j1] - good_sum[i1 * C1 + j0] + good_sum[i0 * C1 + j0] ==
+           side * side;
+  };
+  auto deep = [&](int I, int J) { return all_good(2 * I + Cl.offset_i, 2 * J + Cl.offset_j, deep_radius); };
+  std::vector<double> deep_stencil;  // A_c of the deep interior, once one deep point is found
+  for (int I = 0; I < Cl.rows && deep_stencil.empty() && !good_sum.empty(); ++I)
+    for (int J = 0; J < Cl.cols; ++J) {
+      if (!deep(I, J)) continue;
+      // its fine neighbourhood's B, in a (2·reach + 1)² block of windows
+      const int side = 2 * reach + 1, fi = 2 * I + Cl.offset_i, fj = 2 * J + Cl.offset_j;
+      std::vector<double> local(std::size_t(side) * side * std::size_t(bw) * bw, 0.0);
+      auto local_at = [&](int i, int j) {
+        return &local[(std::size_t(i - fi + reach) * side + std::size_t(j - fj + reach)) * std::size_t(bw) * bw];
+      };
+      for (int a = -reach; a <= reach; ++a)
+        for (int c = -reach; c <= reach; ++c) compute_point(fi + a, fj + c, local_at(fi + a, fj + c));
+      deep_stencil.assign(std::size_t(wc) * wc, 0.0);
+      accumulate(I, J, deep_stencil.data(), [&](int i, int j) -> const double* { return local_at(i, j); });
+      break;
+    }
   const int ring = 2 * reach + 1;
   std::vector<std::vector<double>> B(std::size_t(ring), std::vector<double>(std::size_t(F.cols) * bw * bw, 0.0));
   auto compute_row = [&](int i) {
     std::vector<double>& row = B[std::size_t(i % ring)];
     std::fill(row.begin(), row.end(), 0.0);
-    const int lo_i = window_start(i, Cl.offset_i);
     for (int j = 0; j < F.cols; ++j) {
       const Eigen::Index p = Eigen::Index(i) * F.cols + j;
-      if (!F.free[p]) continue;
-      double* b = &row[std::size_t(j) * bw * bw];
-      const int lo_j = window_start(j, Cl.offset_j);
-      const double* A = F.at(p);
-      for (int di = -rf; di <= rf; ++di) {
-        const int k = i + di;
-        if (k < 0 || k >= F.rows) continue;
-        const Parents& pk = parents_i[std::size_t(k)];
-        for (int dj = -rf; dj <= rf; ++dj) {
-          const int l = j + dj;
-          if (l < 0 || l >= F.cols) continue;
-          const double aw = A[(di + rf) * wf + dj + rf];
-          if (aw == 0 || !F.free[Eigen::Index(k) * F.cols + l]) continue;
-          const Parents& pl = parents_j[std::size_t(l)];
-          for (int s = 0; s < pk.count; ++s)
-            for (int t = 0; t < pl.count; ++t)
-              b[(pk.index[s] - lo_i) * bw + pl.index[t] - lo_j] += aw * pk.weight[s] * pl.weight[t];
-        }
-      }
+      // (a point whose coarse neighbours within reach are all deep is needed by none)
+      if (!F.free[p] || (!deep_stencil.empty() && all_good(i, j, reach + deep_radius))) continue;
+      compute_point(i, j, &row[std::size_t(j) * bw * bw]);
     }
   };
   int next_row = 0;
@@ -219,28 +293,12 @@ Level galerkin_coarse(const Level& F, int reach) {
       const Eigen::Index q = Eigen::Index(I) * Cl.cols + J;
       if (!Cl.free[q]) continue;
       double* out = &Cl.coef[std::size_t(q) * wc * wc];
-      for (int a = -reach; a <= reach; ++a) {
-        const int i = 2 * I + Cl.offset_i + a;
-        const double wa = interp_weight(reach, a);
-        if (i < 0 || i >= F.rows || wa == 0) continue;
-        const std::vector<double>& row = B[std::size_t(i % ring)];
-        const int lo_i = window_start(i, Cl.offset_i);
-        for (int c = -reach; c <= reach; ++c) {
-          const int j = 2 * J + Cl.offset_j + c;
-          const double pw = wa * interp_weight(reach, c);
-          if (j < 0 || j >= F.cols || pw == 0 || !F.free[Eigen::Index(i) * F.cols + j]) continue;
-          const double* b = &row[std::size_t(j) * bw * bw];
-          const int lo_j = window_start(j, Cl.offset_j);
-          for (int u = 0; u < bw; ++u)
-            for (int v = 0; v < bw; ++v) {
-              const double value = b[u * bw + v];
-              if (value == 0) continue;
-              const int K1 = lo_i + u, K2 = lo_j + v;  // within the coarse radius of (I, J)
-              if (!Cl.free[std::size_t(K1) * Cl.cols + K2]) continue;
-              out[(K1 - I + rc) * wc + K2 - J + rc] += pw * value;
-            }
-        }
+      if (!deep_stencil.empty() && deep(I, J)) {
+        std::copy(deep_stencil.begin(), deep_stencil.end(), out);
+        continue;
       }
+      accumulate(I, J, out,
+                 [&](int i, int j) -> const double* { return &B[std::size_t(i % ring)][std::size_t(j) * bw * bw]; });
     }
   }
   return Cl;

@@ -80,6 +80,9 @@ void smooth(const Level& L, const Vector& b, Vector& x, Vector& work, bool forwa
 void restrict_to(const Level& F, const Level& Cl, const Vector& r, Vector& rc);
 void prolong_add(const Level& F, const Level& Cl, const Vector& xc, Vector& x);
 //! The next coarser level with the Galerkin operator Pᵀ A P (reach 1: bilinear, 3: bicubic).
+//! When F.common is set (find_common_stencil(F) first, as Multigrid::setup does), the stencil of
+//! the deep interior (coarse points whose fine neighbourhood lies in the grid, free, with F's
+//! common stencil) is summed once and copied there, equal bit for bit to the point-by-point sums.
 Level galerkin_coarse(const Level& F, int reach);
 //! L.common and the stretches of it on each row (empty stretches when no stencil repeats).
 void find_common_stencil(Level& L);

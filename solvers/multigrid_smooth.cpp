@@ -175,8 +175,10 @@ bool factor_lines(Level& L) {
   std::vector<double> band, lower, upper, inv;
   // One line: its n points p(t) = start + t·stride; along = offset of the neighbour k along it in
   // the stencil (1 for a row, width for a column). Its factors go to lu as a new distinct line
-  // unless an earlier line has the same ones (found by a hash of their bytes).
+  // unless an earlier line has the same block (found by a hash of its bytes; blocks[u] is the
+  // block of distinct line u), which is then not factored again.
   std::unordered_map<std::uint64_t, int> seen;
+  std::vector<std::vector<double>> blocks;
   auto hash = [](const std::vector<double>& v, std::uint64_t h) {
     for (double value : v) {
       std::uint64_t bits = 0;
@@ -198,6 +200,16 @@ bool factor_lines(Level& L) {
       for (int k = -r; k <= r; ++k)
         if (t + k >= 0 && t + k < n && L.free[p + k * stride]) row[r + k] = a[k * along];
     }
+    // A line whose block equals an earlier one's shares its factors (the hash picks the candidate,
+    // the comparison decides): on a rectangle all lines but those near the boundary.
+    const std::uint64_t key = hash(band, 1469598103934665603ULL);
+    if (const auto it = seen.find(key); it != seen.end() && blocks[std::size_t(it->second)] == band) {
+      lu.line[std::size_t(m)] = it->second;
+      return true;
+    }
+    const int distinct = int(blocks.size());
+    seen[key] = distinct;
+    blocks.push_back(band);
     if (!band_factor(band.data(), n, r)) return false;
     lower.assign(std::size_t(n) * r, 0.0);
     upper.assign(std::size_t(n) * r, 0.0);
@@ -208,19 +220,6 @@ bool factor_lines(Level& L) {
         upper[std::size_t(k - 1) * n + t] = band[std::size_t(t) * w + r + k];
       }
       inv[std::size_t(t)] = 1.0 / band[std::size_t(t) * w + r];
-    }
-    const std::uint64_t key = hash(inv, hash(upper, hash(lower, 1469598103934665603ULL)));
-    const int distinct = int(lu.inv_pivot.size() / std::size_t(n));
-    auto [it, added] = seen.emplace(key, distinct);
-    if (!added) {
-      const std::size_t u = std::size_t(it->second);
-      const std::size_t block = std::size_t(n) * r;
-      if (std::equal(lower.begin(), lower.end(), lu.lower.begin() + std::ptrdiff_t(u * block)) &&
-          std::equal(upper.begin(), upper.end(), lu.upper.begin() + std::ptrdiff_t(u * block)) &&
-          std::equal(inv.begin(), inv.end(), lu.inv_pivot.begin() + std::ptrdiff_t(u * n))) {
-        lu.line[std::size_t(m)] = it->second;
-        return true;
-      }
     }
     lu.line[std::size_t(m)] = distinct;
     lu.lower.insert(lu.lower.end(), lower.begin(), lower.end());
@@ -235,6 +234,7 @@ bool factor_lines(Level& L) {
   for (int i = 0; i < R; ++i)
     if (!factor_line(L.row_lu, i, Eigen::Index(i) * C, 1, C, 1)) return false;
   seen.clear();
+  blocks.clear();
   for (int j = 0; j < C; ++j)
     if (!factor_line(L.col_lu, j, j, C, R, w)) return false;
   return true;

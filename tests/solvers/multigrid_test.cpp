@@ -525,12 +525,30 @@ std::vector<mg_detail::Level> fast_path_levels(bool cubic, Shape shape, bool var
   }
   std::vector<mg_detail::Level> levels;
   levels.push_back(std::move(fine));
-  for (int l = 0; l < 2; ++l) levels.push_back(mg_detail::galerkin_coarse(levels.back(), cubic ? 3 : 1));
-  for (mg_detail::Level& L : levels) {
-    mg_detail::find_common_stencil(L);
-    REQUIRE(mg_detail::factor_lines(L));
+  for (int l = 0; l < 2; ++l) {  // (as Multigrid::setup: the common stencil before the next level)
+    mg_detail::find_common_stencil(levels.back());
+    levels.push_back(mg_detail::galerkin_coarse(levels.back(), cubic ? 3 : 1));
   }
+  mg_detail::find_common_stencil(levels.back());
+  for (mg_detail::Level& L : levels) REQUIRE(mg_detail::factor_lines(L));
   return levels;
+}
+
+// A copy of a level's grid, stencils and free mask, without its common stencil (galerkin_coarse
+// then takes no shortcut) and without line factors.
+mg_detail::Level bare_copy(const mg_detail::Level& L) {
+  mg_detail::Level out;
+  out.rows = L.rows;
+  out.cols = L.cols;
+  out.radius = L.radius;
+  out.offset_i = L.offset_i;
+  out.offset_j = L.offset_j;
+  out.reach = L.reach;
+  out.constant = L.constant;
+  out.coef = L.coef;
+  out.free = L.free;
+  out.unknowns = L.unknowns;
+  return out;
 }
 
 // A grid vector of values in [−1, 1] at the free points, 0 at fixed ones (the invariant of the cycle).
@@ -680,6 +698,32 @@ TEST_CASE("mg_detail::smooth: both sweep directions equal a written-out line Gau
         for (Eigen::Index p = 0; p < L.points(); ++p) differ += x[p] != expected[p];
         CHECK(differ == 0);
       }
+    }
+  }
+}
+
+TEST_CASE("mg_detail::galerkin_coarse: the deep interior's copied stencil equals the point-by-point sums bit for bit",
+          "[solvers][mg]") {
+  for (const FastPathCase& c : kFastPathCases) {
+    const std::vector<mg_detail::Level> levels = fast_path_levels(c.cubic, c.shape, c.varying);
+    for (std::size_t l = 0; l + 1 < levels.size(); ++l) {
+      const mg_detail::Level& Cl = levels[l + 1];
+      INFO(name_of(c) << ": coarse level " << Cl.rows << " x " << Cl.cols << ", radius " << Cl.radius);
+      REQUIRE_FALSE(levels[l].common.empty());  // the copy was possible
+      const mg_detail::Level generic = mg_detail::galerkin_coarse(bare_copy(levels[l]), Cl.reach);
+      REQUIRE(generic.rows == Cl.rows);
+      REQUIRE(generic.cols == Cl.cols);
+      REQUIRE(generic.radius == Cl.radius);
+      CHECK(generic.free == Cl.free);
+      REQUIRE(generic.coef.size() == Cl.coef.size());
+      std::size_t differ = 0;
+      for (std::size_t k = 0; k < Cl.coef.size(); ++k) differ += generic.coef[k] != Cl.coef[k];
+      CHECK(differ == 0);
+      // and the interior is uniform: the common stencil covers most points of the level's rows
+      std::size_t stretched = 0;
+      for (int i = 0; i < Cl.rows; ++i)
+        stretched += std::size_t(Cl.common_hi[std::size_t(i)] - Cl.common_lo[std::size_t(i)]);
+      if (Cl.rows > 20) CHECK(stretched > std::size_t(Cl.points()) / 8);
     }
   }
 }
