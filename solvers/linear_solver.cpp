@@ -347,17 +347,12 @@ SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::Matri
                       after;
     return SolveStatus::kDiverged;
   }
-  if (end.breakdown) {
-    summary.message = "not converged: residual " + format_g(end.residual) + after +
-                      " (the method broke down, a zero divisor in its recurrence; the last finite iterate is "
-                      "returned; tolerance " +
-                      format_g(options_.tolerance) + ")";
-    return SolveStatus::kNotConverged;
-  }
-  summary.message = "not converged: residual " + format_g(end.residual) + after + " (" +
-                    (end.timed_out ? "time limit " + format_g(options_.time_limit_seconds) + " s"
-                                   : "iteration limit " + std::to_string(end.limit)) +
-                    " reached; tolerance " + format_g(options_.tolerance) + ")";
+  const std::string why =
+      end.breakdown   ? "the method broke down, a zero divisor in its recurrence; the last finite iterate is returned"
+      : end.timed_out ? "time limit " + format_g(options_.time_limit_seconds) + " s reached"
+                      : "iteration limit " + std::to_string(end.limit) + " reached";
+  summary.message = "not converged: residual " + format_g(end.residual) + after + " (" + why + "; tolerance " +
+                    format_g(options_.tolerance) + ")";
   return SolveStatus::kNotConverged;
 }
 

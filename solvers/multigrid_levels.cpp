@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstdint>
 #include <cstring>
 
 #include "multigrid_kernels.h"
@@ -227,24 +228,26 @@ Level galerkin_coarse(const Level& F, int reach) {
     }
   };
   // The deep interior. A_c(I, J) depends only on the fine stencils and free flags within
-  // kDeep = 2·reach + rf of its fine point (2I + offset_i, 2J + offset_j), and on nothing else
+  // deep_radius = 2·reach + rf of its fine point (2I + offset_i, 2J + offset_j), and on nothing else
   // (the parents of a point away from the grid's edges are its neighbours' shifted by 2): where
   // that window lies in the grid and every point of it is free with the level's common stencil,
   // A_c is the same stencil, computed once (by the same sums, so equal bit for bit to what the
   // point-by-point pass gives) and copied. Only the fine points a coarse point outside the deep
   // interior needs get their B. On a rectangle this leaves O(rows + cols) points to the sums.
   const int deep_radius = 2 * reach + rf;
-  std::vector<int> good_sum;  // summed-area table of the good fine points, (rows+1) × (cols+1)
+  std::vector<std::int64_t> good_sum;  // summed-area table of the good fine points, (rows+1) × (cols+1)
   if (!F.common.empty()) {
     const std::size_t ww = std::size_t(wf) * wf, C1 = std::size_t(F.cols) + 1;
     good_sum.assign((std::size_t(F.rows) + 1) * C1, 0);
-    for (int i = 0; i < F.rows; ++i)
-      for (int j = 0, row = 0; j < F.cols; ++j) {
+    for (int i = 0; i < F.rows; ++i) {
+      std::int64_t row = 0;  // good points of row i up to j
+      for (int j = 0; j < F.cols; ++j) {
         const Eigen::Index p = Eigen::Index(i) * F.cols + j;
         row += F.free[std::size_t(p)] && (F.constant || std::equal(F.at(p), F.at(p) + ww, F.common.begin()));
         good_sum[(std::size_t(i) + 1) * C1 + std::size_t(j) + 1] =
             good_sum[std::size_t(i) * C1 + std::size_t(j) + 1] + row;
       }
+    }
   }
   // Every fine point within `radius` of (i, j) lies in the grid and is good.
   auto all_good = [&](int i, int j, int radius) {
@@ -252,7 +255,7 @@ Level galerkin_coarse(const Level& F, int reach) {
       return false;
     const std::size_t C1 = std::size_t(F.cols) + 1, i0 = std::size_t(i - radius), i1 = std::size_t(i + radius) + 1,
                       j0 = std::size_t(j - radius), j1 = std::size_t(j + radius) + 1;
-    const int side = 2 * radius + 1;
+    const std::int64_t side = 2 * radius + 1;
     return good_sum[i1 * C1 + j1] - good_sum[i0 * C1 + j1] - good_sum[i1 * C1 + j0] + good_sum[i0 * C1 + j0] ==
            side * side;
   };
