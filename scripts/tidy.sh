@@ -5,6 +5,15 @@
 # Eigen, Ceres or Catch2. Prints each warning once and a count per check; exit 1 on any warning.
 #   scripts/tidy.sh              every .cpp file in the compile database
 #   scripts/tidy.sh FILE...      only these files
+#   scripts/tidy.sh --since REF  only the .cpp files whose translation unit changed since commit REF:
+#                                the file itself or any header its compiler depfile (<object>.d, written
+#                                by the build) lists differs between REF and the working tree. Every
+#                                file when .clang-tidy changed, when REF is not in the history (a shallow
+#                                clone) or when a depfile is missing for that file. This is what .ci/run
+#                                does, from the commit in .ci/tidy-base: the last one whose whole tree
+#                                was checked clean (a whole run takes 25-45 min on 2 cores; see --record).
+#   scripts/tidy.sh --record     every file; if all are clean and the working tree has no changes,
+#                                write HEAD to .ci/tidy-base (commit that file afterwards).
 # Environment: COONS_BUILD_DIR (default build), TIDY_JOBS (default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -22,7 +31,70 @@ if [[ ! -f "$build/compile_commands.json" ]]; then
   exit 2
 fi
 
-if (($#)); then
+since=""
+record=0
+if [[ "${1:-}" == "--since" ]]; then
+  [[ $# -eq 2 ]] || { echo "error: tidy.sh: --since takes one commit" >&2; exit 2; }
+  since=$2
+  set --
+elif [[ "${1:-}" == "--record" ]]; then
+  [[ $# -eq 1 ]] || { echo "error: tidy.sh: --record takes no files" >&2; exit 2; }
+  record=1
+  set --
+fi
+
+if [[ -n "$since" ]]; then
+  picked=$(python3 - "$build/compile_commands.json" "$root" "$since" <<'PY'
+import json, os, shlex, subprocess, sys
+db, root, since = sys.argv[1], sys.argv[2], sys.argv[3]
+own_dirs = ("src/", "solvers/", "tests/", "experiments/benchmarks/")
+entries, seen = [], set()
+for entry in json.load(open(db)):
+    f = entry["file"]
+    if f.endswith(".cpp") and f not in seen and any(f.startswith(root + "/" + d) for d in own_dirs):
+        seen.add(f)
+        entries.append(entry)
+
+def git(*args):
+    return subprocess.run(["git", "-C", root, *args], capture_output=True, text=True)
+
+if git("rev-parse", "--verify", "--quiet", since + "^{commit}").returncode != 0:
+    print(f"tidy: {since} is not in this clone's history: checking every file", file=sys.stderr)
+    changed = None
+else:
+    names = git("diff", "--name-only", since).stdout.split()
+    names += git("ls-files", "--others", "--exclude-standard").stdout.split()
+    changed = {os.path.join(root, n) for n in names}
+    if os.path.join(root, ".clang-tidy") in changed:
+        print("tidy: .clang-tidy changed: checking every file", file=sys.stderr)
+        changed = None
+
+def depends_on_changed(entry):
+    args = shlex.split(entry["command"])
+    if "-o" not in args:
+        return True
+    depfile = os.path.join(entry["directory"], args[args.index("-o") + 1] + ".d")
+    if not os.path.exists(depfile):
+        return True
+    words = open(depfile).read().replace("\\\n", " ").split()
+    deps = {os.path.realpath(os.path.join(entry["directory"], w)) for w in words[1:] if w != "\\"}
+    deps.add(os.path.realpath(entry["file"]))
+    return not deps.isdisjoint(changed)
+
+picked = [e["file"] for e in entries if changed is None or depends_on_changed(e)]
+print(f"tidy: {len(picked)} of {len(entries)} files depend on what changed since {since[:12]}",
+      file=sys.stderr)
+for f in picked:
+    print(f)
+PY
+) || { echo "error: tidy.sh: could not choose the files changed since $since" >&2; exit 2; }
+  files=()
+  [[ -n "$picked" ]] && mapfile -t files <<<"$picked"
+  if ((${#files[@]} == 0)); then
+    echo "tidy: nothing to check" >&2
+    exit 0
+  fi
+elif (($#)); then
   files=()
   for f in "$@"; do files+=("$(realpath "$f")"); done
 else
@@ -65,6 +137,15 @@ if ((${#found[@]} == 0 && status != 0)); then
 fi
 if ((${#found[@]} == 0)); then
   echo "tidy: ${#files[@]} files clean (${seconds} s)" >&2
+  if ((record)); then
+    if [[ -n "$(git status --porcelain --untracked-files=no)" ]]; then
+      echo "tidy: not recorded: the working tree has changes (commit them, then rerun --record)" >&2
+      exit 1
+    fi
+    { echo "# The last commit whose whole tree scripts/tidy.sh checked clean (scripts/tidy.sh --record)."
+      git rev-parse HEAD; } >.ci/tidy-base
+    echo "tidy: recorded $(git rev-parse --short HEAD) in .ci/tidy-base" >&2
+  fi
   exit 0
 fi
 printf '%s\n' "${found[@]}" | sed "s|^$root/||"
