@@ -12,8 +12,8 @@
 #                                clone) or when a depfile is missing for that file. This is what .ci/run
 #                                does, from the commit in .ci/tidy-base: the last one whose whole tree
 #                                was checked clean (a whole run takes 25-45 min on 2 cores; see --record).
-#   scripts/tidy.sh --record     every file; if all are clean and the working tree has no changes,
-#                                write HEAD to .ci/tidy-base (commit that file afterwards).
+#   scripts/tidy.sh --record     every file (refused at once if the working tree has changes); if all
+#                                are clean, write HEAD to .ci/tidy-base (commit that file afterwards).
 # Environment: COONS_BUILD_DIR (default build), TIDY_JOBS (default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -43,7 +43,17 @@ elif [[ "${1:-}" == "--record" ]]; then
   set --
 fi
 
-if [[ -n "$since" ]]; then
+if ((record)) && [[ -n "$(git status --porcelain --untracked-files=no)" ]]; then
+  echo "error: tidy.sh: --record needs a working tree without changes (commit them first)" >&2
+  exit 2
+fi
+
+if (($#)); then
+  files=()
+  for f in "$@"; do files+=("$(realpath "$f")"); done
+else
+  # The project's own .cpp files in the compile database; with --since only those whose translation
+  # unit depends on a file changed since that commit.
   picked=$(python3 - "$build/compile_commands.json" "$root" "$since" <<'PY'
 import json, os, shlex, subprocess, sys
 db, root, since = sys.argv[1], sys.argv[2], sys.argv[3]
@@ -58,10 +68,10 @@ for entry in json.load(open(db)):
 def git(*args):
     return subprocess.run(["git", "-C", root, *args], capture_output=True, text=True)
 
-if git("rev-parse", "--verify", "--quiet", since + "^{commit}").returncode != 0:
+changed = None  # None: every file
+if since and git("rev-parse", "--verify", "--quiet", since + "^{commit}").returncode != 0:
     print(f"tidy: {since} is not in this clone's history: checking every file", file=sys.stderr)
-    changed = None
-else:
+elif since:
     names = git("diff", "--name-only", since).stdout.split()
     names += git("ls-files", "--others", "--exclude-standard").stdout.split()
     changed = {os.path.join(root, n) for n in names}
@@ -82,34 +92,19 @@ def depends_on_changed(entry):
     return not deps.isdisjoint(changed)
 
 picked = [e["file"] for e in entries if changed is None or depends_on_changed(e)]
-print(f"tidy: {len(picked)} of {len(entries)} files depend on what changed since {since[:12]}",
-      file=sys.stderr)
+if since:
+    print(f"tidy: {len(picked)} of {len(entries)} files depend on what changed since {since[:12]}",
+          file=sys.stderr)
 for f in picked:
     print(f)
 PY
-) || { echo "error: tidy.sh: could not choose the files changed since $since" >&2; exit 2; }
+) || { echo "error: tidy.sh: could not list the files to check" >&2; exit 2; }
   files=()
   [[ -n "$picked" ]] && mapfile -t files <<<"$picked"
   if ((${#files[@]} == 0)); then
     echo "tidy: nothing to check" >&2
     exit 0
   fi
-elif (($#)); then
-  files=()
-  for f in "$@"; do files+=("$(realpath "$f")"); done
-else
-  mapfile -t files < <(python3 - "$build/compile_commands.json" "$root" <<'PY'
-import json, sys
-root = sys.argv[2] + "/"
-seen = set()
-for entry in json.load(open(sys.argv[1])):
-    f = entry["file"]
-    own = any(f.startswith(root + d) for d in ("src/", "solvers/", "tests/", "experiments/benchmarks/"))
-    if own and f.endswith(".cpp") and f not in seen:
-        seen.add(f)
-        print(f)
-PY
-)
 fi
 
 escaped=$(printf '%s' "$root" | sed 's/[][\.*^$+?(){}|]/\\&/g')
@@ -138,10 +133,6 @@ fi
 if ((${#found[@]} == 0)); then
   echo "tidy: ${#files[@]} files clean (${seconds} s)" >&2
   if ((record)); then
-    if [[ -n "$(git status --porcelain --untracked-files=no)" ]]; then
-      echo "tidy: not recorded: the working tree has changes (commit them, then rerun --record)" >&2
-      exit 1
-    fi
     { echo "# The last commit whose whole tree scripts/tidy.sh checked clean (scripts/tidy.sh --record)."
       git rev-parse HEAD; } >.ci/tidy-base
     echo "tidy: recorded $(git rev-parse --short HEAD) in .ci/tidy-base" >&2
