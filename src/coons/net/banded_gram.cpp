@@ -7,6 +7,7 @@
 #include <vector>
 
 #include "coons/net/bernstein.h"
+#include "coons/net/block_product.h"
 
 namespace coons {
 
@@ -66,8 +67,10 @@ Eigen::MatrixXd BandedGram::left(const Eigen::Ref<const Eigen::MatrixXd>& C, int
   Eigen::MatrixXd out(k_ + 1, C.cols());
   for_each_block(
       blocks_.size(), std::size_t(stored_fraction() * (k_ + 1.0) * (k_ + 1.0)) * C.cols(), threads, [&](std::size_t i) {
-        const Block& b = blocks_[i];
-        out.middleRows(b.row, b.entries.rows()).noalias() = b.entries * C.middleRows(b.col, b.entries.cols());
+        const Block& b = blocks_[i];  // out.middleRows(b.row, ·) = b.entries · C.middleRows(b.col, ·)
+        const Eigen::Index rows = b.entries.rows(), width = b.entries.cols();
+        block_product({b.entries.data(), rows, width, rows}, {C.data() + b.col, width, C.cols(), C.outerStride()},
+                      false, {out.data() + b.row, rows, C.cols(), out.outerStride()});
       });
   return out;
 }
@@ -77,9 +80,11 @@ Eigen::MatrixXd BandedGram::right(const Eigen::Ref<const Eigen::MatrixXd>& C, in
   Eigen::MatrixXd out(C.rows(), k_ + 1);
   for_each_block(blocks_.size(), std::size_t(stored_fraction() * (k_ + 1.0) * (k_ + 1.0)) * C.rows(), threads,
                  [&](std::size_t i) {
-                   const Block& b = blocks_[i];
-                   out.middleCols(b.row, b.entries.rows()).noalias() =
-                       C.middleCols(b.col, b.entries.cols()) * b.entries.transpose();
+                   const Block& b = blocks_[i];  // out.middleCols(b.row, ·) = C.middleCols(b.col, ·) · b.entriesᵀ
+                   const Eigen::Index rows = b.entries.rows(), width = b.entries.cols();
+                   block_product({C.data() + b.col * C.outerStride(), C.rows(), width, C.outerStride()},
+                                 {b.entries.data(), rows, width, rows}, true,
+                                 {out.data() + b.row * out.outerStride(), C.rows(), rows, out.outerStride()});
                  });
   return out;
 }

@@ -2,7 +2,8 @@
 // entries. G[i][l] peaks at l = i and falls off like exp(−(i−l)²/(4k·t(1−t))), t = i/k, and every
 // row sums to ∫B_i^k = 1/(k+1); entries below 1e-20/(k+1) are dropped, which moves no product by
 // more than its rounding does. Rows are kept in blocks of 32 with the column range of their kept
-// entries, so G·C and C·G are dense products of those blocks (Eigen's GEMM): about 0.32 of the
+// entries, so G·C and C·G are dense products of those blocks (Eigen's GEMM on the widest instruction set
+// of the CPU: block_product.h): about 0.32 of the
 // full product's work at k = 1000 (the band grows like √k), all of it below k ≈ 60. With threads > 1
 // the blocks are shared out between that many threads (0: every core); each block is computed alike
 // whichever thread takes it, so the product is the same bit for bit for every count.
