@@ -1,6 +1,10 @@
 #include "stencil_operator.h"
 
+#include <algorithm>
 #include <cmath>
+#include <cstddef>
+
+#include "vector_clones.h"
 
 namespace coons::solvers {
 
@@ -83,12 +87,52 @@ void for_each_coupling(const StencilOperator& op, const std::vector<Eigen::Index
 
 }  // namespace
 
+namespace {
+
+// y[k] += w · x[k], k < n (no fused multiply-add: the products and sums of for_each_coupling's order).
+COONS_VECTOR_CLONES void add_scaled_row(double w, const double* __restrict x, double* __restrict y, std::ptrdiff_t n) {
+  for (std::ptrdiff_t k = 0; k < n; ++k) y[k] += w * x[k];
+}
+
+// y = A x on the whole grid (row-major, rows × cols, x = 0 at fixed points), row by row: for each
+// offset (di, dj) in the order of for_each_coupling one pass along the row, so every point sums
+// the same products in the same order as the coupling-by-coupling loop, bit for bit.
+void apply_on_grid(const StencilOperator& op, const double* x, double* y) {
+  const int r = op.radius;
+  const std::ptrdiff_t cols = op.cols;
+  std::fill(y, y + std::ptrdiff_t(op.rows) * cols, 0.0);
+  for (int i = 0; i < op.rows; ++i)
+    for (int di = -r; di <= r; ++di) {
+      const int ii = i + di;
+      if (ii < 0 || ii >= op.rows) continue;
+      for (int dj = -r; dj <= r; ++dj) {
+        const double w = op.weight(di, dj);
+        if (w == 0) continue;
+        const std::ptrdiff_t j0 = std::max(0, -dj), j1 = std::min<std::ptrdiff_t>(cols, cols - dj);
+        if (j1 > j0) add_scaled_row(w, x + ii * cols + j0 + dj, y + i * cols + j0, j1 - j0);
+      }
+    }
+}
+
+}  // namespace
+
 void apply_stencil_operator(const StencilOperator& op, const Eigen::MatrixXd& X, Eigen::MatrixXd& Y) {
+  Y.resize(X.rows(), X.cols());
+  const std::size_t points = std::size_t(op.rows) * std::size_t(op.cols);
+  if (Eigen::Index(points) == X.rows()) {  // every point free: X and Y are the grids themselves
+    for (Eigen::Index c = 0; c < X.cols(); ++c) apply_on_grid(op, X.col(c).data(), Y.col(c).data());
+    return;
+  }
+  // Fixed points: the free values scattered into a grid with zeros elsewhere (w·0 adds nothing,
+  // as the coupling loop's skipped terms), the product gathered back.
   const std::vector<Eigen::Index> number = free_numbering(op);
-  Y.setZero(X.rows(), X.cols());
-  for_each_coupling(op, number, [&](Eigen::Index row, Eigen::Index col, double w) {
-    if (w != 0) Y.row(row) += w * X.row(col);
-  });
+  std::vector<double> x(points), y(points);
+  for (Eigen::Index c = 0; c < X.cols(); ++c) {
+    for (std::size_t p = 0; p < points; ++p) x[p] = number[p] >= 0 ? X(number[p], c) : 0.0;
+    apply_on_grid(op, x.data(), y.data());
+    for (std::size_t p = 0; p < points; ++p)
+      if (number[p] >= 0) Y(number[p], c) = y[p];
+  }
 }
 
 Eigen::SparseMatrix<double> stencil_operator_matrix(const StencilOperator& op) {
