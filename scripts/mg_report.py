@@ -153,6 +153,30 @@ def threads_table(data):
     if rows:
         text += ("\n\nThe speed targets of issues 11 and 14, same run (wall-clock; threads as in the table above):\n\n"
                  "| target | threads | measured | goal | |\n|---|---|---|---|---|\n" + "\n".join(rows))
+    # The transform solvers' floor: the rows' inverse sine transform and the write of the result
+    # alone (BM_SineRows), beside a `fast` solve at α = −0.1 and its sweep's members.
+    floors = {}
+    for b in data["benchmarks"]:
+        m = re.match(r"BM_SineRows/N:(\d+)(/threads:(\d+))?", b["name"])
+        if m:
+            floors[(int(m.group(1)), int(m.group(3) or 1))] = seconds_of(b)
+    floor_notes = []
+    for (n, k), t in sorted(floors.items()):
+        if n not in memory:
+            continue
+        note = f"{k} thread{'s' if k > 1 else ''}: {t * 1e3:.1f} ms, {t / memory[n]:.1f}× the memory pass"
+        fast_key = next((key for key in solves if key[0] == "fast" and key[1] == n and same_alpha(key[2], "-0.1")),
+                        None)
+        solve = solves[fast_key].get(k) if fast_key else None
+        if solve:
+            note += f", {t / solve[0]:.2f} of a `fast` solve at α = −0.1"
+            if (n, k) in sweeps:
+                note += f" and {t / (sweeps[(n, k)] / 101):.2f} of a member of its 101-value sweep"
+        floor_notes.append(f"N = {n}, {note}")
+    if floor_notes:
+        text += ("\n\nThe floor of a solve that transforms rows, same run (`BM_SineRows`: the inverse sine transform of "
+                 "every row of the three columns and the write of the result, nothing else; `fast` does that and its "
+                 "eliminations, and so does each member of its sweep): " + "; ".join(floor_notes) + ".")
     # mg per V-cycle: the whole solve's time over its cycles (to the benchmark's tolerance), so a
     # reader can tell the cost of a cycle from the number of cycles.
     per_cycle = []

@@ -33,6 +33,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include "coons/alpha/alpha_search.h"
@@ -44,6 +45,7 @@
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
+#include "solvers/sine_transform.h"
 #include "solvers/stencil_operator.h"
 
 using namespace coons;
@@ -126,6 +128,43 @@ void BM_MemoryPass(benchmark::State& state, int N) {
   }
   set_common_counters(state, N);
 }
+
+#if COONS_HAVE_FFTW
+// A floor for the transform solvers: the inverse sine transform of every row of the three columns
+// of an N × N solution (solvers/sine_transform.h, the planner flag `fast` uses by default) and the
+// write of the result, nothing else, on `threads` threads taking rows in turn. A `fast` solve does
+// this and its eliminations; so does each member of its α sweep. scripts/mg_report.py sets it
+// beside their targets.
+void BM_SineRows(benchmark::State& state, int N, int threads) {
+  const Problem& p = problem(N, -0.25, false);
+  const Eigen::MatrixX3d& B = p.system.B;  // any values: the transform's cost does not depend on them
+  Eigen::MatrixX3d X(B.rows(), 3);
+  const std::size_t n = std::size_t(N);
+  std::vector<detail::SineTransform> transforms;
+  transforms.reserve(std::size_t(threads));
+  for (int t = 0; t < threads; ++t) transforms.emplace_back(N, detail::fft_planning(SolverOptions{}));
+  std::vector<std::vector<double>> rows(std::size_t(threads), std::vector<double>(n, 0.0));
+  auto work = [&](int t) {
+    for (int u = t; u < 3 * N; u += threads) {
+      const Eigen::Index c = u / N, i = u % N;
+      transforms[std::size_t(t)].apply(B.col(c).data() + i * N, rows[std::size_t(t)].data(), 1.0);
+      detail::stream_copy(rows[std::size_t(t)].data(), X.col(c).data() + i * N, n);
+    }
+    detail::stream_fence();
+  };
+  for (auto _ : state) {
+    std::vector<std::thread> others;
+    others.reserve(std::size_t(threads));
+    for (int t = 1; t < threads; ++t) others.emplace_back(work, t);
+    work(0);
+    for (std::thread& other : others) other.join();
+    benchmark::DoNotOptimize(X.data());
+    benchmark::ClobberMemory();
+  }
+  set_common_counters(state, N);
+  state.SetLabel("threads=" + std::to_string(threads));
+}
+#endif
 
 void BM_Assemble(benchmark::State& state, int N) {
   const ControlNet& frame = problem(N, -0.25, false).frame;
@@ -588,6 +627,14 @@ int main(int argc, char** argv) {
   if (config.mg_iterations) register_mg_iterations(config);
   for (int N : config.mg_iterations ? std::vector<int>{} : config.sizes) {
     benchmark::RegisterBenchmark(("BM_MemoryPass/N:" + std::to_string(N)).c_str(), BM_MemoryPass, N)->UseRealTime();
+#if COONS_HAVE_FFTW
+    if (wanted("fast") || wanted("dst"))
+      for (int threads : {1, 2})
+        benchmark::RegisterBenchmark(("BM_SineRows/N:" + std::to_string(N) + (threads > 1 ? "/threads:2" : "")).c_str(),
+                                     BM_SineRows, N, threads)
+            ->UseRealTime()
+            ->MinTime(min_time);
+#endif
     benchmark::RegisterBenchmark(("BM_ClosedFormCoons/N:" + std::to_string(N)).c_str(), BM_ClosedFormCoons, N)
         ->UseRealTime();
     if (N <= 1023) {
