@@ -1,14 +1,18 @@
 #include "coons/net/block_product.h"
 
+#include <array>
+#include <cstddef>
+
 #include "coons/net/block_product_kernel.h"
 
 namespace coons {
 
 namespace {
 
-bool cpu_runs(InstructionSet set) {
+// What the CPU reports, asked once per process.
+bool detect(InstructionSet set) {
 #if defined(COONS_HAVE_BLOCK_PRODUCT_AVX2) || defined(COONS_HAVE_BLOCK_PRODUCT_AVX512)
-  __builtin_cpu_init();  // idempotent; needed if this runs before libgcc's own constructor
+  __builtin_cpu_init();  // needed if this runs before libgcc's own constructor
 #endif
   switch (set) {
     case InstructionSet::kBaseline:
@@ -27,6 +31,12 @@ bool cpu_runs(InstructionSet set) {
 #endif
   }
   return false;
+}
+
+bool cpu_runs(InstructionSet set) {
+  static const std::array<bool, 3> runs{detect(InstructionSet::kBaseline), detect(InstructionSet::kAvx2),
+                                        detect(InstructionSet::kAvx512)};
+  return runs[static_cast<std::size_t>(set)];
 }
 
 }  // namespace
