@@ -468,7 +468,7 @@ TEST_CASE("coons study: a solve that fails gives 'failed' and null, never its ze
   CHECK(reference);
 }
 
-TEST_CASE("coons export --method coons without output flags writes the OBJ files (no Matrix Market to refuse)",
+TEST_CASE("coons export: --method coons without output flags writes the OBJ files (no Matrix Market to refuse)",
           "[cli]") {
   // it used to turn on --mtx by default and then refuse it: "--mtx: Matrix Market export needs --method alpha"
   TempDir dir;

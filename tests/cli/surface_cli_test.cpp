@@ -131,13 +131,16 @@ TEST_CASE("coons surface: meshes, PNG and a net file that coons solve reads", "[
 }
 
 TEST_CASE("coons surface: every data/surfaces file runs", "[cli][surfaces]") {
+  int files = 0;
   for (const auto& entry : fs::directory_iterator(std::string(COONS_DATA_DIR) + "/surfaces")) {
     if (entry.path().extension() != ".json") continue;
+    ++files;
     INFO(entry.path());
     const CommandResult r = run_coons("surface " + quoted(entry.path().string()) + " --sample 4");
     CHECK(r.status == 0);
     CHECK(r.err.empty());
   }
+  CHECK(files >= 15);  // as surfaces/seed_examples_test.cpp: the bundled examples are all there
 }
 
 TEST_CASE("coons surface: bad descriptions exit 2 with one error line naming the field, nothing written",

@@ -3,6 +3,7 @@
 protocol over --remote-debugging-pipe (standard library only).
 
     view_browser_check.py COONS BOUNDARY WORKDIR [--keep-screenshots DIR | --expect-error]
+                          [--expect-parameters alpha,weight]
 
 Writes WORKDIR/page.html with `coons view`, opens it at #alpha=-0.2013 (between the precomputed
 values) and checks: no console error, no exception and no data-error attribute; data-ready="1";
@@ -14,7 +15,9 @@ one colour); moving the slider through window.coonsView.setAlpha changes data-al
 (setValue: the C1 weight) changes its data attribute and the drawn net; the only request the page
 makes is the page itself (nothing fetched). Exit 77 (skipped) when
 chromium is not installed or coons was built without three.js. With --expect-error a failing
-script is added to the page and the check must see its error (the check's own test)."""
+script is added to the page and the check must see its error (the check's own test). With
+--expect-parameters the page's sliders (coonsView.parameters()) must be exactly those, in order
+(so that a page that lost its C1 weight slider fails instead of checking no other slider)."""
 import base64
 import json
 import os
@@ -152,8 +155,11 @@ def main():
         print(__doc__)
         return 2
     coons, boundary, work = sys.argv[1], sys.argv[2], sys.argv[3]
-    keep = sys.argv[5] if len(sys.argv) > 5 and sys.argv[4] == "--keep-screenshots" else None
-    expect_error = len(sys.argv) > 4 and sys.argv[4] == "--expect-error"
+    options = sys.argv[4:]
+    keep = options[options.index("--keep-screenshots") + 1] if "--keep-screenshots" in options else None
+    expect_error = "--expect-error" in options
+    expected_parameters = (options[options.index("--expect-parameters") + 1].split(",")
+                           if "--expect-parameters" in options else None)
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     if not chromium:
         print("skipped: chromium not found (apt-get install chromium)")
@@ -290,7 +296,11 @@ def main():
         if body("data-net-hash") != first_hash:
             fail("moving back to alpha=%r did not draw the first net again" % expected)
         # the other sliders (the C1 weight of a boundary with ribbons) move their nets too
-        for parameter in evaluate("window.coonsView.parameters()")[1:]:
+        parameters = evaluate("window.coonsView.parameters()")
+        print("sliders: %r" % parameters)
+        if expected_parameters is not None and parameters != expected_parameters:
+            fail("the page has the sliders %r, expected %r" % (parameters, expected_parameters))
+        for parameter in parameters[1:]:
             choices = evaluate("window.coonsView.values('%s')" % parameter)
             before = body("data-net-hash")
             for value in (choices[len(choices) // 3], choices[2 * len(choices) // 3]):

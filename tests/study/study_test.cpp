@@ -123,6 +123,8 @@ TEST_CASE(
   options.solver = &backend("mg");  // no matrix: the weight searches take a direct backend instead
   const StudyResult r = run_study({ribbons, plain}, options);
   REQUIRE(r.shapes.size() == 2);
+  REQUIRE(r.shapes[0].optima.size() == 2);  // thin_plate and e3, the default objectives
+  REQUIRE(r.shapes[1].optima.size() == 2);
   for (const ShapeOptimum& o : r.shapes[0].optima) {
     REQUIRE(o.weight);
     INFO(o.objective << ": " << o.weight->brief_report());
