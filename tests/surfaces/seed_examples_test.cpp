@@ -138,7 +138,8 @@ TEST_CASE("LN0, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's curv
         }) < 1e-15);
 }
 
-TEST_CASE("LN0, the right parabolic conoid: the file and make_conoid give x = u, y = y_P(1-v), z = z_P + v(z(u) - z_P)", "[surfaces][seeds]") {
+TEST_CASE("LN0, the right parabolic conoid: the file and make_conoid give x = u, y = y_P(1-v), z = z_P + v(z(u) - z_P)",
+          "[surfaces][seeds]") {
   // The data file: z(u) = 4u(1 - u) as a quadratic Bézier, y_P = 1, z_P = 0.5: an exact net of degree (2, 1).
   const Surface s = load("seed000_parabolic_conoid.json");
   auto closed = [](double yp, double zp, double u, double v) {
@@ -194,7 +195,8 @@ TEST_CASE("LN0, right circular and elliptic conoids, and an oblique (Kuepper-typ
   CHECK(net.n == 1);
 }
 
-TEST_CASE("LN2, the right helicoidal conoid: (u cos v, u sin v, v), its derivatives and curvatures", "[surfaces][seeds]") {
+TEST_CASE("LN2, the right helicoidal conoid: (u cos v, u sin v, v), its derivatives and curvatures",
+          "[surfaces][seeds]") {
   // r(s, w) = P(w, 2πs): the directrix is parameterised by s, the rulings by w.
   auto P = [](double u, double v) { return V(u * std::cos(v), u * std::sin(v), v); };
   const Surface s = load("seed002_helicoidal_conoid.json");
@@ -225,7 +227,8 @@ TEST_CASE("LN2, the right circular conoid: (v, u, u sqrt(2v - v^2))", "[surfaces
         }) < 1e-14);
 }
 
-TEST_CASE("LN4, the linear Coons surface of the domain bounded by ellipse arcs: its closed form and derivative", "[surfaces][seeds]") {
+TEST_CASE("LN4, the linear Coons surface of the domain bounded by ellipse arcs: its closed form and derivative",
+          "[surfaces][seeds]") {
   // r(u,v) = a(cos u + cos v − 1 + 2u(1 − cos v − sin v)/π + 2v(1 − cos u − sin u)/π) e1
   //        + b(sin u − sin v − 2u(1 − cos v − sin v)/π + 2v(1 − cos u − sin u)/π) e2,  u, v ∈ [0, π/2].
   auto closed = [](double a, double b, double u, double v) {
