@@ -165,10 +165,11 @@ int run_bench_matrix(const BenchMatrixRequest& r) {
 
   if (r.table) {
     print_text(fmt::format(
-        "{}: {} by {}, {} stored entries ({} {} {} in the file), {}; {} right-hand side{}; iterative tolerance {}\n\n"
+        "{}: {} by {}, {} non-zeros ({} values listed in the file, {} {} {}), {}; {} right-hand side{}; iterative "
+        "tolerance {}\n\n"
         "| solver | status | analyze [s] | factorize [s] | solve [s] | iterations | relative residual | backward "
         "error | factor nnz | note |\n|---|---|---|---|---|---|---|---|---|---|\n",
-        r.matrix, n, n, A.nonZeros(), a.format, a.field, a.symmetry,
+        r.matrix, n, n, A.nonZeros(), a.file_entries, a.format, a.field, a.symmetry,
         system.symmetric ? "symmetric" : fmt::format("not symmetric (defect {:.3g})", defect), B.cols(),
         B.cols() == 1 ? (r.rhs.empty() ? " (A times ones)" : "") : "s", solvers::format_g(r.tolerance)));
   }

@@ -181,7 +181,7 @@ void register_export(CLI::App& app, Registry& registry) {
   cmd->add_option("--samples", request->samples, "surface samples per direction")->capture_default_str();
   cmd->add_flag("--obj", request->obj, "write <prefix>.surface.obj and <prefix>.net.obj");
   cmd->add_flag("--mtx", request->mtx, "write <prefix>.A.mtx and <prefix>.B.mtx (Matrix Market)");
-  cmd->add_flag("--ply", request->ply, "triangles: write <prefix>.surface.ply");
+  cmd->add_flag("--ply", request->ply, "triangles and B-spline boundaries: write <prefix>.surface.ply");
   cmd->add_flag("--vtu", request->vtu, "triangles: write <prefix>.surface.vtu (VTK unstructured grid)");
   add_cad_export_options(*cmd, request->cad);
   cmd->add_flag("--vts", request->vts, "B-spline boundaries: write <prefix>.surface.vts (VTK structured grid)");

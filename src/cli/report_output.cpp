@@ -39,12 +39,12 @@ std::string top_level(const std::string& key, const std::string& value) { return
 
 }  // namespace
 
-void print_net_report(nlohmann::json report, const ControlNet* net, Phases& phases) {
+void print_net_report(nlohmann::json report, const ControlNet* net, Phases& phases, bool points_inline) {
   phases.start("write");
   const std::string placeholder = "\"coons-placeholder\"";
   if (net) report["net"] = "coons-placeholder";
   report["timing"] = "coons-placeholder";
-  const std::string text = dump(report, 2) + '\n';
+  const std::string text = (points_inline ? dump_points_inline(report) : dump(report, 2)) + '\n';
 
   enum class Part { kNet, kTiming };
   std::vector<std::pair<std::size_t, Part>> parts;  // where each placeholder starts

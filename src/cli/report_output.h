@@ -10,9 +10,10 @@
 
 namespace coons::cli {
 
-//! Prints `report` pretty-printed (2 spaces), with "net" = `net` unless `net` is null (then the
-//! report's own "net", if any) and "timing" = the phases' seconds, the "write" phase included.
+//! Prints `report` pretty-printed (2 spaces; with points_inline, each array of numbers on one
+//! line, as dump_points_inline), with "net" = `net` unless `net` is null (then the report's own
+//! "net", if any) and "timing" = the phases' seconds, the "write" phase included.
 //! A failed write is an InputError ("<stdout>: write failed: REASON"), as for print_json.
-void print_net_report(nlohmann::json report, const ControlNet* net, Phases& phases);
+void print_net_report(nlohmann::json report, const ControlNet* net, Phases& phases, bool points_inline = false);
 
 }  // namespace coons::cli

@@ -2,11 +2,13 @@
 // objective (Ceres, analytic derivative); one JSON report (docs/formats.md).
 #include <fmt/format.h>
 
+#include <array>
 #include <cctype>
 #include <chrono>
 #include <cmath>
 #include <iostream>
 #include <memory>
+#include <optional>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/family_search.h"
@@ -62,6 +64,9 @@ struct SearchSetup {
   AlphaSearchOptions options;
   const solvers::SolverInfo* solver = nullptr;
   bool picked_automatically = false;
+  //! μ's bounds as given (options holds them on the compressed scale, which does not read back
+  //! to the last digit: 9000 came back as 9000.000000000306)
+  std::optional<std::array<double, 2>> mu_bounds;
 };
 
 SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
@@ -110,6 +115,7 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
                                      most));
       s.options.lower = compressed_of_mu(m, n, lower);
       s.options.upper = compressed_of_mu(m, n, upper);
+      s.mu_bounds = std::array<double, 2>{lower, upper};
       break;
     }
     case Parameter::kAlphaGamma:
@@ -291,6 +297,7 @@ int run_search_alpha(const SearchRequest& r) {
                                    ? search_alpha(b, setup.objective, *setup.solver, setup.options)
                                    : search_mu(b, setup.objective, *setup.solver, setup.options);
   nlohmann::json out = search_report(b, objective, r.parameter, setup.family, setup.options, s);
+  if (setup.mu_bounds) out["bounds"] = *setup.mu_bounds;
   out["solver"] =
       search_solver_block(*setup.solver, setup.picked_automatically, s.status, s.solves, s.seconds, s.message);
   return finish(out, phases, s.status, r, s.message);

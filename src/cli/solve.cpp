@@ -24,14 +24,12 @@ int run_stencil_solve(const SolveRequest& request, const BoundaryFile& input, co
   phases.start("solve");  // checks and assembling included
   const StencilRun run = solve_stencil_request(input, r, request.net, request.global, request.boundary);
   phases.start("metrics");
-  nlohmann::json report = stencil_report(input, r, run, request.net.mu);
-  report["timing"] = phases.timing();
+  const nlohmann::json report = stencil_report(input, r, run, request.net.mu);
+  print_net_report(report, nullptr, phases);  // the write phase, then timing
   if (!run.result.summary.ok()) {
-    print_json(report);
     print_solver_failure(request.boundary, run.result.summary);
     return kExitSolverFailed;
   }
-  print_json(report);
   return kExitOk;
 }
 

@@ -23,6 +23,7 @@
 #include "coons/study/tri_report.h"
 #include "coons/study/tri_search.h"
 #include "coons/tri/tri_sampling.h"
+#include "report_output.h"
 
 namespace coons::cli {
 
@@ -110,9 +111,8 @@ int run_tri_solve(const std::string& path, const NetRequest& net, const GlobalOp
   phases.start("solve");
   const tri::TriSolveResult result = tri::solve_tri_net(b, r.options);
   phases.start("metrics");
-  nlohmann::json report = tri_solve_report(b, r.options.mask, result, r.picked_automatically);
-  report["timing"] = phases.timing();
-  print_text(dump_points_inline(report) + '\n');  // one point per line, as the rectangle's net
+  const nlohmann::json report = tri_solve_report(b, r.options.mask, result, r.picked_automatically);
+  print_net_report(report, nullptr, phases, true);  // one point per line, as the rectangle's net; timing last
   if (!result.summary.ok()) {
     print_solver_failure(path, result.summary);
     return kExitSolverFailed;

@@ -81,6 +81,9 @@ TEST_CASE("coons bench-matrix: --table prints one row per backend", "[cli]") {
   CHECK(rows == 4);
   CHECK(seen == "eigen-ldlt,cg,jacobi,dst,");
   CHECK(r.out.find("symmetric") != std::string::npos);  // the symmetric file is recognised as such
+  // the full matrix's non-zeros beside the values the file lists (its lower triangle: 1024 + 1984)
+  CHECK(r.out.find("1024 by 1024, 4992 non-zeros (3008 values listed in the file, coordinate real symmetric)") !=
+        std::string::npos);
   CHECK(r.out.find("| eigen-ldlt | success |") != std::string::npos);
   CHECK(r.out.find("| jacobi | skipped |") != std::string::npos);
 }

@@ -173,6 +173,24 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
     CHECK(fs::exists(fs::path(out) / f));
 }
 
+TEST_CASE("coons solve: every kind of boundary reports read, solve, metrics and write seconds", "[cli]") {
+  // the mask, free-set and triangle reports used to close their timing before printing: no "write"
+  for (const std::string& arguments :
+       {quoted(kData + "/boundaries/dome.json"), quoted(kData + "/boundaries/bspline_wave.json"),
+        quoted(kData + "/boundaries/sphere_cap_ribbons.json") + " --mask c1-family --weight 0.5",
+        quoted(kData + "/free_sets/l_hole.json"), quoted(kData + "/triangles/sphere_octant.json")}) {
+    const CommandResult r = run_coons("solve " + arguments);
+    INFO(arguments << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    const json report = json::parse(r.out);
+    for (const char* phase : {"read", "solve", "metrics", "write"}) {
+      INFO(phase);
+      REQUIRE(report["timing"].contains(phase));
+      CHECK(report["timing"][phase].get<double>() >= 0);
+    }
+  }
+}
+
 TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   const CommandResult r =
       run_coons("search-alpha " + quoted(kData + "/boundaries/dome.json") + " --objective thin_plate");
@@ -188,6 +206,15 @@ TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   // μ of α at degree n: α = −n²/(4(n² + μ))
   const double alpha = report["alpha"], mu = report["mu"];
   CHECK(alpha == Approx(-9.0 / (4 * (9 + mu))).epsilon(1e-12));
+  // μ is searched on a compressed scale; its bounds are reported as given, to the last digit
+  for (const auto& [options, bounds] :
+       {std::pair{std::string(), json::array({0.0, 9000.0})},
+        std::pair{std::string(" --lower 0.3 --upper 7777.7"), json::array({0.3, 7777.7})}}) {
+    const CommandResult by_mu = run_coons("search-alpha " + quoted(kData + "/boundaries/dome.json") +
+                                          " --objective thin_plate --parameter mu" + options);
+    REQUIRE(by_mu.status == 0);
+    CHECK(json::parse(by_mu.out)["bounds"] == bounds);  // the dome is 3 by 3: 1000·m·n = 9000
+  }
   const CommandResult flat = run_command(
       kCoons + " search-alpha " + quoted(kData + "/boundaries/sixteen_vector_twist.json").append(" --objective e3"));
   REQUIRE(flat.status == 0);

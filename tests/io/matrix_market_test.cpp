@@ -6,6 +6,7 @@
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <random>
+#include <tuple>
 #include <vector>
 
 #include "coons/io/input_error.h"
@@ -84,6 +85,7 @@ TEST_CASE("read_market_matrix: a symmetric file equals its expanded general copy
   const Eigen::SparseMatrix<double>& S = symmetric.matrix;
   REQUIRE(S.rows() == 1024);
   CHECK(S.nonZeros() == 2 * 3008 - 1024);  // off-diagonal entries mirrored, the diagonal once
+  CHECK(symmetric.file_entries == 3008);   // the size line's count: one triangle
   const std::string general = dir.file("general.mtx");
   write_matrix_market(general, S);
   const Eigen::SparseMatrix<double> G = read_matrix_market(general);
@@ -94,21 +96,23 @@ TEST_CASE("read_market_matrix: a symmetric file equals its expanded general copy
   // the same small matrix in every form the reader takes
   Eigen::MatrixXd full(3, 3);
   full << 4, -1, 0, -1, 4, -2, 0, -2, 5;
-  const std::vector<std::pair<std::string, std::string>> forms = {
-      {"coordinate real general", "3 3 7\n1 1 4\n2 1 -1\n1 2 -1\n2 2 4\n3 2 -2\n2 3 -2\n3 3 5\n"},
-      {"coordinate real symmetric", "3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n"},
-      {"coordinate integer symmetric", "3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n"},
-      {"array real general", "3 3\n4\n-1\n0\n-1\n4\n-2\n0\n-2\n5\n"},
-      {"array real symmetric", "3 3\n4\n-1\n0\n4\n-2\n5\n"},
-      {"  coordinate   REAL symmetric", "% a comment\n\n3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n"},
+  // (qualifiers, body, the values the file lists)
+  const std::vector<std::tuple<std::string, std::string, long long>> forms = {
+      {"coordinate real general", "3 3 7\n1 1 4\n2 1 -1\n1 2 -1\n2 2 4\n3 2 -2\n2 3 -2\n3 3 5\n", 7},
+      {"coordinate real symmetric", "3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n", 5},
+      {"coordinate integer symmetric", "3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n", 5},
+      {"array real general", "3 3\n4\n-1\n0\n-1\n4\n-2\n0\n-2\n5\n", 9},
+      {"array real symmetric", "3 3\n4\n-1\n0\n4\n-2\n5\n", 6},
+      {"  coordinate   REAL symmetric", "% a comment\n\n3 3 5\n1 1 4\n2 1 -1\n2 2 4\n3 2 -2\n3 3 5\n", 5},
   };
-  for (const auto& [qualifiers, body] : forms) {
+  for (const auto& [qualifiers, body, listed] : forms) {
     INFO(qualifiers);
     std::string text = "%%MatrixMarket matrix " + qualifiers + "\n";
     text += body;
     const MarketMatrix m = read_market_matrix(dir.write("m.mtx", text));
     REQUIRE(m.matrix.rows() == 3);
     CHECK((Eigen::MatrixXd(m.matrix) - full).cwiseAbs().maxCoeff() == 0);
+    CHECK(m.file_entries == listed);
   }
   const MarketMatrix pattern =
       read_market_matrix(dir.write("p.mtx", "%%MatrixMarket matrix coordinate pattern general\n2 3 2\n1 1\n2 3\n"));

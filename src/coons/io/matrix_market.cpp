@@ -440,6 +440,12 @@ MarketMatrix read_market_matrix(
   out.field = b.field;
   out.symmetry = b.symmetry;
   out.size_line = size_line_number;
+  // the values listed: the size line's count, or an array's cells (one triangle of a symmetric
+  // array, the strict one of a skew-symmetric array)
+  out.file_entries = coordinate                  ? size[2]
+                     : b.symmetry == "general"   ? rows * cols
+                     : b.symmetry == "symmetric" ? rows * (rows + 1) / 2
+                                                 : rows * (rows - 1) / 2;
   return out;
 }
 

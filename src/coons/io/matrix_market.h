@@ -33,6 +33,7 @@ struct MarketMatrix {
   std::string field;                   //!< "real", "integer" or "pattern" (every stored entry 1)
   std::string symmetry;                //!< "general", "symmetric" or "skew-symmetric"
   int size_line = 0;                   //!< the number of the size line (for errors about the sizes)
+  long long file_entries = 0;          //!< the values the file lists (a symmetric file: one triangle)
 };
 
 //! Any real Matrix Market matrix, as the NIST format and the SuiteSparse collection write them:
