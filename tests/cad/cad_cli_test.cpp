@@ -4,7 +4,10 @@
 #include <cmath>
 #include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <nlohmann/json.hpp>
+#include <string>
+#include <vector>
 
 #include "coons/cad/cad_surface.h"
 #include "coons/io/boundary_io.h"
@@ -88,7 +91,34 @@ TEST_CASE("coons import-step, export --step: bad input exits 2 with one line, no
       {"import-step " + kData + "cad/four_edges.step --edges 0,1,2,9 --out " + out, "--edges: edge 9 out of range"},
       {"export " + kData + "boundaries/pillow.json --method alpha --step " + dir.file("cad/x.step"), "x.step"},
   };
-  for (const auto& c : cases) {
+  // four_edges.step edited: a control point that is not there (OpenCASCADE's transfer dereferenced
+  // it: a segfault), and poles that are not a number or beyond |x| <= 1e60 (written out as null)
+  const test::TempDir edited;
+  std::ifstream in(kData + "cad/four_edges.step");
+  const std::string step((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  const std::string pole = "#49 = CARTESIAN_POINT('',(3.2500000000000000E+00,";
+  REQUIRE(step.find("(#48,#49,#50,#51)") != std::string::npos);
+  REQUIRE(step.find(pole) != std::string::npos);
+  const auto write_edited = [&](const std::string& name, const std::string& from, const std::string& to) {
+    std::string text = step;
+    text.replace(text.find(from), from.size(), to);
+    std::ofstream(edited.file(name)) << text;
+    return edited.file(name);
+  };
+  std::vector<Case> more = cases;
+  more.push_back({"import-step " + write_edited("dangling.step", "(#48,#49,#50,#51)", "(#48,#49,#50,#999)") +
+                      " --edges 0,1,2,3 --out " + out,
+                  "dangling.step: entity #47: OpenCASCADE cannot load it"});
+  more.push_back({"import-step " + write_edited("nan.step", pole, "#49 = CARTESIAN_POINT('',(NAN,") +
+                      " --edges 0,1,2,3 --out " + out,
+                  "nan.step: entity #49: OpenCASCADE cannot load it"});
+  for (const char* value : {"1.0E+400", "3.25E+70"})
+    more.push_back({"import-step " +
+                        write_edited(std::string("pole") + value + ".step", pole,
+                                     "#49 = CARTESIAN_POINT('',(" + std::string(value) + ",") +
+                        " --edges 0,1,2,3 --out " + out,
+                    "edge 0: control point 1 has coordinate 0 = "});
+  for (const auto& c : more) {
     const CommandResult r = run_command(kCoons + " " + c.args);
     INFO(c.args << "\n" << r.err);
     CHECK(r.status == 2);

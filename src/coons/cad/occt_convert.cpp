@@ -7,6 +7,9 @@
 #include <IGESData_IGESModel.hxx>
 #include <IGESData_IGESWriter.hxx>
 #include <IGESSelect_WorkLibrary.hxx>
+#include <Interface_Check.hxx>
+#include <Interface_CheckIterator.hxx>
+#include <Interface_InterfaceModel.hxx>
 #include <Interface_Static.hxx>
 #include <Message.hxx>
 #include <Message_Messenger.hxx>
@@ -159,6 +162,25 @@ void require_readable(const std::string& path) {
   if (!probe) throw InputError(path, kDocumentField, "cannot be read");
 }
 
+// The first failure OpenCASCADE's reader noted while loading the file (an unresolved reference
+// "#999", an entity of the wrong type, a parameter it could not read), named by its entity:
+// transferring such a model dereferences the missing entity (a segfault in StepToGeom for a
+// B-spline curve whose control point is #999). Warnings are let through.
+void require_no_load_failure(const std::string& path, XSControl_Reader& reader) {
+  Interface_CheckIterator checks = reader.WS()->ModelCheckList(Standard_False);
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check)& check = checks.Value();
+    if (check.IsNull() || !check->HasFailed()) continue;
+    const std::string what = check->NbFails() > 0 ? check->CFail(1, Standard_True) : "unreadable entity";
+    std::string where = "model";
+    if (!check->Entity().IsNull() && !reader.Model().IsNull()) {
+      const Handle(TCollection_HAsciiString) label = reader.Model()->StringLabel(check->Entity());
+      if (!label.IsNull()) where = std::string("entity ") + label->ToCString();
+    }
+    throw InputError(path, where, "OpenCASCADE cannot load it: " + what);
+  }
+}
+
 }  // namespace
 
 TopoDS_Shape read_step_shape(const std::string& path) {
@@ -167,6 +189,7 @@ TopoDS_Shape read_step_shape(const std::string& path) {
   STEPControl_Reader reader;
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
     throw InputError(path, kDocumentField, "OpenCASCADE cannot read it as a STEP file");
+  require_no_load_failure(path, reader);
   if (reader.TransferRoots() == 0) throw InputError(path, kDocumentField, "the STEP file holds no shape");
   TopoDS_Shape shape = reader.OneShape();
   if (shape.IsNull()) throw InputError(path, kDocumentField, "the STEP file holds no shape");
@@ -179,6 +202,7 @@ TopoDS_Shape read_iges_shape(const std::string& path) {
   IGESControl_Reader reader;
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
     throw InputError(path, kDocumentField, "OpenCASCADE cannot read it as an IGES file");
+  require_no_load_failure(path, reader);
   if (reader.TransferRoots() == 0) throw InputError(path, kDocumentField, "the IGES file holds no shape");
   TopoDS_Shape shape = reader.OneShape();
   if (shape.IsNull()) throw InputError(path, kDocumentField, "the IGES file holds no shape");

@@ -92,6 +92,17 @@ BSplineCurve edge_curve(const TopoDS_Edge& edge, int index, const std::string& p
                          " as a rational B-spline): rational boundaries are not supported");
   if (bspline->IsPeriodic()) bspline->SetNotPeriodic();
   BSplineCurve c = from_occt(*bspline);
+  // the bounds a boundary file's points and knots are held to (json_coordinate): a pole NAN or
+  // 1e400 in the STEP file was written out as null, a file coons itself then refused
+  for (Eigen::Index k = 0; k < c.points.rows(); ++k)
+    for (Eigen::Index d = 0; d < c.points.cols(); ++d)
+      if (!(std::abs(c.points(k, d)) <= kMaxCoordinate))
+        throw InputError(
+            path, field,
+            fmt::format("control point {} has coordinate {} = {:.6g}, not a finite number with |x| <= {:g}", k, d,
+                        c.points(k, d), kMaxCoordinate));
+  for (Eigen::Index k = 0; k < c.knots.size(); ++k)
+    if (!std::isfinite(c.knots(k))) throw InputError(path, field, fmt::format("knot {} is not finite", k));
   std::string why;
   if (!c.is_valid(&why)) throw InputError(path, field, "its B-spline form is not clamped: " + why);
   return c;
