@@ -24,6 +24,18 @@ int fail(int status, const std::string& message) {
   return status;
 }
 
+// Every option and positional that takes a value refuses an empty one: CLI11 converts "" to 0
+// for a number (`--alpha ''` solved the Laplace net, `--threads ''` used every core), and no
+// file name, folder or backend name is empty either.
+void refuse_empty_values(CLI::App& app) {
+  const CLI::Validator non_empty(
+      [](std::string& value) { return value.empty() ? std::string("an empty value is not allowed") : std::string(); },
+      "", "NON_EMPTY");
+  for (CLI::Option* option : app.get_options())
+    if (option->get_type_size_max() > 0) option->check(non_empty);
+  for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*sub);
+}
+
 }  // namespace
 
 int run(int argc, char** argv) {
@@ -53,6 +65,7 @@ int run(int argc, char** argv) {
   register_degree_limit(app, registry);
   register_view(app, registry);
   register_import_step(app, registry);
+  refuse_empty_values(app);
 
   // An unknown command is named (CLI11 would only say that an argument was not expected).
   if (argc > 1 && argv[1][0] != '-') {

@@ -188,6 +188,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --corner-tolerance -1", "--corner-tolerance"},
       {"solve " + good + " --mu -1", "--mu"},
       {"solve " + good + " --alpha nan", "--alpha"},
+      {"solve " + good + " --alpha ''", "--alpha: an empty value"},  // was alpha = 0, exit 0
+      {"solve " + good + " --threads '' --solver fast", "--threads: an empty value"},
+      {"solve " + good + " --max-memory ''", "--max-memory: an empty value"},
+      {"solve ''", "BOUNDARY: an empty value"},
       {"solve " + good + " --max-memory lots", "--max-memory"},
       {"solve " + good + " --method coons --alpha 0.1", "--alpha"},
       {"solve " + good + " --alpha 0.1 --mu 2", "--mu"},
@@ -242,6 +246,11 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"batch " + good + " --solver nonesuch --out {OUT}", "--solver"},
       {"batch " + good + " {IN}/missing.json --out {OUT}", "missing.json"},
       {"batch " + good + " --out {IN}/notafolder/out", "notafolder"},
+      // an empty value is refused, not read as 0 (every command: registry.cpp)
+      {"batch " + good + " --alphas '' --out {OUT}", "--alphas: an empty value"},
+      {"search-alpha " + good + " --objective thin_plate --lower ''", "--lower: an empty value"},
+      {"sweep " + good + " --count '' --out {OUT}", "--count: an empty value"},
+      {"study " + good + " --degrees 3 '' --out {OUT}", "--degrees: an empty value"},
       // search-alpha
       {"search-alpha " + good + " --objective curvature", "--objective"},
       {"search-alpha " + good + " --objective '-1*thin_plate'", "--objective"},
