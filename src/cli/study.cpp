@@ -5,6 +5,7 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cstdint>
 #include <filesystem>
 #include <fstream>
@@ -283,7 +284,17 @@ void register_study(CLI::App& app, Registry& registry) {
                       "diagonal, in [0, 1]")
           ->capture_default_str();
   r->given.count = cmd->add_option("--count", r->count, "with --family: how many boundaries")->capture_default_str();
-  r->given.seed = cmd->add_option("--seed", r->seed, "with --family: the family's seed")->capture_default_str();
+  // CLI11 turned -1, 2^64 and 1e23 alike into 2^64 - 1: three seeds, one family
+  const CLI::Validator seed_range(
+      [](std::string& text) {
+        const bool digits = !text.empty() && text.size() <= 20 &&
+                            std::all_of(text.begin(), text.end(), [](char c) { return c >= '0' && c <= '9'; });
+        if (digits && (text.size() < 20 || text <= "18446744073709551615")) return std::string();
+        return std::string("'") + text + "' is not an integer in [0, 18446744073709551615]";
+      },
+      "", "SEED");
+  r->given.seed =
+      cmd->add_option("--seed", r->seed, "with --family: the family's seed")->check(seed_range)->capture_default_str();
   cmd->add_option(
       "--shard", r->shard,
       "I/N: run the I-th of N disjoint parts of the task list (family tasks, or one per boundary file) into "

@@ -263,6 +263,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"search-alpha " + good + " --objective target --target plane:0,0,0,0,0,0", "--target"},
       {"search-alpha " + good + " --objective thin_plate --parameter beta", "--parameter"},
       {"search-alpha " + good + " --objective thin_plate --scan 1", "--scan"},
+      {"search-alpha " + good + " --objective e3 --scan 100000000", "--scan"},  // ran for minutes, 7 GB
       {"search-alpha " + good + " --objective thin_plate --parameter mu --lower 5 --upper 1", "--lower"},
       {"search-alpha " + sphere5 + " --objective target", "target.sphere"},
       {"search-alpha " + target_list + " --objective target", "target"},

@@ -113,6 +113,10 @@ TEST_CASE("coons study: an option that does nothing in the study's mode is refus
       {merge + " --solver fast", "--solver"},
       {merge + " --corner-tolerance 1e-3", "--corner-tolerance"},
       {merge + " --max-memory 1GB", "--max-memory"},
+      // a seed out of [0, 2^64 - 1] was wrapped or clamped to 2^64 - 1, silently
+      {family + " --seed -1", "--seed"},
+      {family + " --seed 18446744073709551616", "--seed"},
+      {family + " --seed 1e23", "--seed"},
   };
   for (const auto& [args, option] : cases) {
     INFO(args);

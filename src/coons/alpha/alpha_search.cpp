@@ -28,7 +28,8 @@ bool AlphaSearchOptions::is_valid(std::string* why) const {
   };
   if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper))
     return fail("bounds must be finite with lower < upper");
-  if (scan_points < 3) return fail("scan_points must be at least 3");
+  // a scan is a coarse grid before the refinement: --scan 1e8 ran for minutes and 7 GB
+  if (scan_points < 3 || scan_points > kMaxScanPoints) return fail("scan_points must be in [3, 10001]");
   if (!(flat_tolerance > 0)) return fail("flat_tolerance must be positive");
   if (!(parameter_tolerance > 0)) return fail("parameter_tolerance must be positive");
   if (max_iterations < 1) return fail("max_iterations must be at least 1");

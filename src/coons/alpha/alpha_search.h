@@ -36,9 +36,12 @@
 
 namespace coons {
 
+//! The most points a coarse scan may have (a grid before Ceres refines; not a sweep).
+inline constexpr int kMaxScanPoints = 10001;
+
 struct AlphaSearchOptions {
   double lower = -0.25, upper = 0.25;  //!< bounds of the parameter
-  int scan_points = 9;                 //!< coarse grid, bounds included
+  int scan_points = 9;                 //!< coarse grid, bounds included, in [3, kMaxScanPoints]
   double flat_tolerance = 1e-12;       //!< relative range below which the objective is flat
   double parameter_tolerance = 1e-10;  //!< Ceres: stop when the step is below this (in the bracket)
   int max_iterations = 100;            //!< Ceres iterations
