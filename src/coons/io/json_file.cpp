@@ -6,6 +6,8 @@
 #include <filesystem>
 #include <fstream>
 #include <limits>
+#include <map>
+#include <mutex>
 #include <set>
 #include <sstream>
 #include <string>
@@ -131,14 +133,40 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
   }
 }
 
+namespace {
+
+// The text of inputs that are not regular files (a pipe, /dev/stdin, a FIFO, `<(...)`), kept per
+// path for the rest of the process: a command may read its input twice (is_triangle_file, then
+// the reader), and the second read of a pipe found it empty ("malformed JSON at byte 1") or, for a
+// FIFO, waited for a writer that was gone (a hang).
+std::mutex& stream_texts_mutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+std::map<std::string, std::string>& stream_texts() {
+  static std::map<std::string, std::string> texts;
+  return texts;
+}
+
+}  // namespace
+
 nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& options) {
   std::error_code ec;
   if (std::filesystem::is_directory(path, ec)) throw InputError(path, "", "is a directory, not a file");
+  const bool regular = std::filesystem::is_regular_file(path, ec);
+  if (!regular) {
+    const std::lock_guard<std::mutex> lock(stream_texts_mutex());
+    if (const auto seen = stream_texts().find(path); seen != stream_texts().end()) {
+      if (seen->second.size() > options.max_bytes)
+        throw InputError(path, kDocumentField, fmt::format("more than the limit of {} bytes", options.max_bytes));
+      return parse_json_text(seen->second, path, options);
+    }
+  }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the file");
   // The size is checked before the contents are read: a regular file by its length, anything else
   // (a pipe, a device) by reading at most max_bytes + 1 bytes.
-  const std::uintmax_t size = std::filesystem::is_regular_file(path, ec) ? std::filesystem::file_size(path, ec) : 0;
+  const std::uintmax_t size = regular ? std::filesystem::file_size(path, ec) : 0;
   if (!ec && size > options.max_bytes)
     throw InputError(path, kDocumentField,
                      fmt::format("{} bytes, more than the limit of {} bytes", size, options.max_bytes));
@@ -150,6 +178,10 @@ nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& op
       throw InputError(path, kDocumentField, fmt::format("more than the limit of {} bytes", options.max_bytes));
   }
   if (in.bad()) throw InputError(path, "", "read error");
+  if (!regular) {
+    const std::lock_guard<std::mutex> lock(stream_texts_mutex());
+    stream_texts()[path] = text;
+  }
   return parse_json_text(text, path, options);
 }
 
