@@ -5,7 +5,9 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <set>
+#include <vector>
 
 #include "support/cli_support.h"
 
@@ -170,4 +172,28 @@ TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, shar
   CHECK(unknown.status == 2);
   CHECK(unknown.err.rfind("error: command line: --family: 'no_such_shape' is neither", 0) == 0);
   CHECK_FALSE(fs::exists(dir.file("x")));
+}
+
+TEST_CASE("coons study --merge: a record's grid of finite 1e308 values prints no inf and no NaN", "[cli]") {
+  // its losses (f(α) − f*)/f* overflowed: "| inf % |" in the table and "loses inf % on average"
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  for (const char* shard : {"0/2", "1/2"})
+    REQUIRE(run_coons(kFamily + " --shard " + shard + " --out " + quoted(shards)).status == 0);
+  const std::string file = shards + "/shard-0-of-2.jsonl";
+  std::vector<json> records = read_json_lines(file);
+  REQUIRE(!records.empty());
+  REQUIRE(records[0]["grid"].is_array());
+  records[0]["grid"] = json(std::vector<double>(records[0]["grid"].size(), 1e308));
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    for (const json& r : records) out << r.dump() << '\n';
+  }
+  const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("report")));
+  INFO(merged.err);
+  REQUIRE(merged.status == 0);
+  const std::string md = read_text(dir.file("report/report.md"));
+  const std::regex not_finite(R"(\b(inf|nan)\b)", std::regex::icase);
+  CHECK_FALSE(std::regex_search(md, not_finite));
+  CHECK_FALSE(std::regex_search(merged.out, not_finite));
 }

@@ -13,7 +13,7 @@ namespace coons {
 namespace {
 
 std::string g4(const std::optional<double>& x) { return x ? fmt::format("{:.4g}", *x) : "–"; }
-std::string percent(double x) { return fmt::format("{:.3g} %", 100 * x); }
+std::string percent(double x) { return std::isfinite(100 * x) ? fmt::format("{:.3g} %", 100 * x) : "–"; }
 
 std::vector<const AlphaFamilyCell*> cells_of(const AlphaFamilyResult& r, const std::string& objective) {
   std::vector<const AlphaFamilyCell*> out;

@@ -347,9 +347,10 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
           double own = std::min(optimum[u], value);
           for (double v : curves[u])
             if (std::isfinite(v)) own = std::min(own, v);
-          if (std::isfinite(value) && own > 0) {
-            cell.loss[used[u]] = (value - own) / own;
-            losses.push_back(*cell.loss[used[u]]);
+          // a loss beyond the doubles (a merged record's grid of 1e308) is no loss to print
+          if (const double loss = (value - own) / own; std::isfinite(value) && own > 0 && std::isfinite(loss)) {
+            cell.loss[used[u]] = loss;
+            losses.push_back(loss);
           }
           const double a = *cell.alpha_star[used[u]];
           if (a > -0.25 && best->alpha > -0.25) ratios.push_back((a + 0.25) / (best->alpha + 0.25));
@@ -357,9 +358,9 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
         cell.losses = distribution_of(losses);
         cell.alpha_ratio = distribution_of(ratios);
         if (!losses.empty()) {
-          double sum = 0;
-          for (double x : losses) sum += x;
-          cell.loss_mean = sum / double(losses.size());
+          double mean = 0;  // running: a sum of finite losses may overflow
+          for (std::size_t k = 0; k < losses.size(); ++k) mean += (losses[k] - mean) / double(k + 1);
+          cell.loss_mean = mean;
         }
       }
       r.cells.push_back(std::move(cell));
