@@ -60,8 +60,12 @@ void check_export_options(int samples, bool mtx, bool solves_system, const std::
   if (mtx && !solves_system)
     throw InputError("command line", "--mtx",
                      "Matrix Market export needs --method alpha (closed forms solve no system)");
-  if (!prefix.empty() && safe_file_stem(prefix) != prefix)
+  if (!prefix.empty() && safe_file_stem(prefix) != prefix) {
+    // safe_file_stem keeps 80 bytes: a longer name of letters was called "not a plain file name"
+    if (safe_file_stem(prefix) == prefix.substr(0, safe_file_stem(prefix).size()) && prefix.size() > 80)
+      throw InputError("command line", "--prefix", fmt::format("is {} bytes long, more than 80", prefix.size()));
     throw InputError("command line", "--prefix", "'" + prefix + "' is not a plain file name (letters, digits, - _ .)");
+  }
 }
 
 void check_net_memory(const GlobalOptions& g, const Boundary& b, const solvers::SolverInfo* solver,
@@ -117,7 +121,7 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
   r.method_option = cmd.add_option("--method", r.method,
                                    "alpha (solve the mask system), coons (closed form), "
                                    "hermite-coons (closed-form partially bicubic net, degree >= 3)")
-                        ->transform(CLI::CheckedTransformer(methods))
+                        ->transform(choice_of(methods))
                         ->default_str("alpha");
   r.alpha_option = cmd.add_option("--alpha", r.alpha, "weight of the diagonal neighbours; beta = 1/4 - alpha")
                        ->transform(fold_negative_zero())

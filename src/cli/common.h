@@ -4,6 +4,7 @@
 #pragma once
 
 #include <CLI/CLI.hpp>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -46,6 +47,24 @@ void add_memory_option(CLI::App& cmd, GlobalOptions& g);
 //! --to, --alphas): a value that reads as zero becomes "0", so that -0 is the same parameter as 0
 //! in reports, file names ("c1-family-w0") and duplicate checks.
 const CLI::Validator& fold_negative_zero();
+
+//! A CLI11 transform for an option naming one of `names` (--method, --parameter): the name becomes
+//! the enum, anything else (another word, or the enum's number) is "'foo' is not one of a, b, c".
+//! (CLI::CheckedTransformer said "Check foo value in {alpha->0,coons->1,...} OR {0,1,2} FAILED"
+//! and took the numbers too.)
+template <class Enum>
+CLI::Validator choice_of(const std::map<std::string, Enum>& names) {
+  std::string list;
+  for (const auto& entry : names) list += (list.empty() ? "" : ", ") + entry.first;
+  return CLI::Validator(
+      [names, list](std::string& text) {
+        const auto it = names.find(text);
+        if (it == names.end()) return "'" + text + "' is not one of " + list;
+        text = std::to_string(static_cast<long long>(it->second));
+        return std::string();
+      },
+      "{" + list + "}", "CHOICE");
+}
 
 //! Refuses (InputError naming `file` and `field`) when `bytes` exceeds the limit.
 void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,

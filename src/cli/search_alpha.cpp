@@ -322,7 +322,7 @@ void register_search_alpha(CLI::App& app, Registry& registry) {
   cmd->add_option("--parameter", r->parameter,
                   "alpha (the Farin-Hansford family), mu (the anisotropic mask), "
                   "alpha-gamma (every symmetric 3x3 mask) or weight (the 5x5 c1-family; needs two data rings)")
-      ->transform(CLI::CheckedTransformer(parameters))
+      ->transform(choice_of(parameters))
       ->default_str("alpha");
   cmd->add_option("--lower", r->lower, "lower bound (alpha: -0.25, mu: 0, weight: 0)")->transform(fold_negative_zero());
   cmd->add_option("--upper", r->upper, "upper bound (alpha: 0.25, mu: 1000·m·n, weight: 1)")

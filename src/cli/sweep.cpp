@@ -136,9 +136,7 @@ void register_sweep(CLI::App& app, Registry& registry) {
   cmd->add_option("BOUNDARY", r->boundary, "boundary JSON file (docs/formats.md)")->required();
   const std::map<std::string, SweepParameter> parameters = {{"alpha", SweepParameter::kAlpha},
                                                             {"mu", SweepParameter::kMu}};
-  cmd->add_option("--parameter", r->parameter, "alpha or mu")
-      ->transform(CLI::CheckedTransformer(parameters))
-      ->default_str("alpha");
+  cmd->add_option("--parameter", r->parameter, "alpha or mu")->transform(choice_of(parameters))->default_str("alpha");
   r->from_option = cmd->add_option("--from", r->from, "first value (mu: default 0)")
                        ->transform(fold_negative_zero())
                        ->capture_default_str();

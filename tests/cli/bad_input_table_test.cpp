@@ -232,6 +232,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"export " + free_ring + " --out {OUT}", "free[1][4]"},
       {"export " + free_pair + " --mask file:{IN}/stencil_pair.json --mtx --out {OUT}", "free[5][3]"},
       {"export " + good + " --prefix ../x --out {OUT}", "--prefix"},
+      {"export " + good + " --prefix " + std::string(81, 'x') + " --out {OUT}", "--prefix: is 81 bytes long"},
+      {"solve " + good + " --method foo", "--method: 'foo' is not one of alpha, coons, hermite-coons"},
+      {"solve " + good + " --method 1", "--method: '1' is not one of"},  // the enum's number was taken
+      {"sweep " + good + " --parameter beta --out {OUT}", "--parameter: 'beta' is not one of alpha, mu"},
       {"export " + corner + " --out {OUT}", "corner"},
       {"export " + good + " --solver nonesuch --out {OUT}", "--solver"},
       {"export " + good + " --obj --samples 50000 --out {OUT}", "--samples"},

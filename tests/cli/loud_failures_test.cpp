@@ -433,6 +433,19 @@ TEST_CASE("coons: progress with named phases on a terminal, nothing on standard 
                           Catch::Contains("coons solve: metrics"));
 }
 
+TEST_CASE("coons search-alpha: members whose eigenvalues overflow are failures named so, never '-nan'", "[cli][loud]") {
+  // --upper 1e308: the closed-form eigenvalue ratio was NaN, reported as "singular ... = -nan <= 1e-06"
+  const CommandResult r =
+      run_coons("search-alpha " + quoted(dome()) + " --objective e3 --upper 1e308 --allow-indefinite --lower -0.2");
+  INFO(r.err);
+  REQUIRE((r.status == 0 || r.status == 3));
+  CHECK(r.out.find("nan") == std::string::npos);
+  const json report = json::parse(r.out);
+  CHECK(report["failed_evaluations"].get<int>() > 0);
+  CHECK(report["first_failure"] == "failure");
+  CHECK(report["message"].get<std::string>().find("beyond the range of doubles (overflow)") != std::string::npos);
+}
+
 TEST_CASE("coons search-alpha: evaluations that fail are reported and no optimum is claimed on them", "[cli][loud]") {
   // Jacobi diverges for α < 0 on the helicoid: the search says where, claims nothing, exits 3
   const CommandResult r = run_coons("search-alpha " + quoted(kData + "/boundaries/helicoid.json") +

@@ -58,6 +58,18 @@ TEST_CASE("parse_json_text: the depth limit counts containers, the top level bei
                     "t.json: (document): nesting deeper than 3 levels");
 }
 
+TEST_CASE("parse_json_text: a number beyond the doubles names its field and the number", "[io]") {
+  // it was "(document): unreadable JSON ([json.exception.out_of_range.406] number overflow parsing '1e400')"
+  CHECK_THROWS_WITH(parse_json_text(R"({"bottom": [[1e400, 0, 0], [1, 0, 0]]})", "t.json"),
+                    "t.json: bottom[0][0]: the number '1e400' is beyond the range of doubles");
+  CHECK_THROWS_WITH(parse_json_text(R"({"bottom": [[0, 0, 0], [1, 0, -1e999]]})", "t.json"),
+                    "t.json: bottom[1][2]: the number '-1e999' is beyond the range of doubles");
+  CHECK_THROWS_WITH(parse_json_text(R"({"name": "x", "ribbons": {"left": 2e308}})", "t.json"),
+                    "t.json: ribbons.left: the number '2e308' is beyond the range of doubles");
+  CHECK_THROWS_WITH(parse_json_text("1e999", "t.json"),
+                    "t.json: (document): the number '1e999' is beyond the range of doubles");
+}
+
 TEST_CASE("read_json_file: a file above the size limit is refused before it is parsed", "[io]") {
   const TempDir dir;
   const std::string path = dir.write("b.json", boundary_to_json(make_random_boundary(3, 3, 1)).dump());

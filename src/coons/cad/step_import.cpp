@@ -146,7 +146,10 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   std::string why;
   if (!options.is_valid(&why)) {
     std::string field = options.face >= 0 ? "--face" : "--edges";
-    if (why.rfind("--", 0) == 0) field = why.substr(0, why.find_first_of(" :"));  // the option the rule names
+    if (why.rfind("--", 0) == 0) {  // the option the rule names, once: "--edges: the 4 indices must differ"
+      field = why.substr(0, why.find_first_of(" :"));
+      if (why.compare(field.size(), 2, ": ") == 0) why.erase(0, field.size() + 2);
+    }
     throw InputError("command line", field, why);
   }
   const TopoDS_Shape shape = read_step_shape(path);

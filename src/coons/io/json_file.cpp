@@ -47,6 +47,15 @@ class KeyTracker {
     if (!top.keys.insert(name).second) throw DuplicateKey{path() + (frames_.size() > 1 ? "." : "") + name};
     top.key = name;
   }
+  //! The path of the value the parser is reading now (`net[3][1][0]`, `sides.left`): where a
+  //! number it cannot hold stands.
+  [[nodiscard]] std::string next_value() const {
+    std::string out = path();
+    if (frames_.empty()) return out;
+    const Frame& top = frames_.back();
+    if (top.object) return out + (out.empty() ? "" : ".") + top.key;
+    return out + "[" + std::to_string(top.index + 1) + "]";
+  }
 
  private:
   struct Frame {
@@ -128,6 +137,17 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
                      "the key appears twice in its object; a reader would silently keep only one of the two");
   } catch (const nlohmann::json::parse_error& e) {
     throw InputError(source, kDocumentField, fmt::format("malformed JSON at byte {}", e.byte));
+  } catch (const nlohmann::json::out_of_range& e) {
+    // 406: a number beyond the doubles; name its field and the number, not the library's wording
+    if (e.id == 406) {
+      const std::string what = e.what();
+      const std::size_t open = what.find('\''), close = what.rfind('\'');
+      const std::string number = open != std::string::npos && close > open ? what.substr(open, close - open + 1) : "";
+      const std::string field = keys.next_value();
+      throw InputError(source, field.empty() ? kDocumentField : field,
+                       fmt::format("the number {} is beyond the range of doubles", number));
+    }
+    throw InputError(source, kDocumentField, fmt::format("unreadable JSON ({})", e.what()));
   } catch (const nlohmann::json::exception& e) {
     throw InputError(source, kDocumentField, fmt::format("unreadable JSON ({})", e.what()));
   }

@@ -59,7 +59,12 @@ solvers::SolveSummary near_singular_summary(double ratio, const std::string& how
   solvers::SolveSummary s;
   s.solver = how;
   s.status = solvers::SolveStatus::kSingular;
-  s.relative_residual = 1;  // not solved: X = 0, whose residual ‖B‖/‖B‖ every failed solve reports
+  s.relative_residual = 1;      // not solved: X = 0, whose residual ‖B‖/‖B‖ every failed solve reports
+  if (!std::isfinite(ratio)) {  // α = 1e308: the eigenvalues overflow, and their ratio is NaN
+    s.status = solvers::SolveStatus::kFailure;
+    s.message = "the mask system's eigenvalues at this alpha are beyond the range of doubles (overflow); not solved";
+    return s;
+  }
   s.message = "the mask system is singular or nearly so at this alpha: min|eigenvalue|/max|eigenvalue| " +
               std::string(estimated ? "~ " : "= ") + solvers::format_g(ratio) + " <= " + solvers::format_g(threshold) +
               (estimated ? " (estimated by inverse iteration as min|eigenvalue|/||A||_1)" : "");
