@@ -57,7 +57,7 @@ BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& i
     out.solver = auto_bspline_solver(out.alpha);
     out.picked_automatically = true;
   } else {
-    if (!r.solver->needs_matrix)
+    if (!solvers::accepts_matrix(*r.solver))  // gmres falls back to ILUT on a matrix
       throw InputError(
           "command line", "--solver",
           fmt::format("{} works from a grid stencil; the non-uniform mask system of a B-spline boundary "

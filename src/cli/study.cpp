@@ -238,7 +238,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
 }  // namespace
 
 std::string bspline_row_solver(const solvers::SolverInfo* solver) {
-  return solver != nullptr && solver->needs_matrix ? solver->name : std::string();
+  return solver != nullptr && solvers::accepts_matrix(*solver) ? solver->name : std::string();
 }
 
 std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputSet& out) {

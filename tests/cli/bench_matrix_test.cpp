@@ -131,6 +131,8 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
        "rows.mtx: line 2: B has 2 rows"},
       {dir.file("missing.mtx"), "missing.mtx: cannot open the file"},
       {A + " --solvers eigen-lu,nosuch", "command line: --solvers: unknown solver 'nosuch' (built in: eigen-ldlt"},
+      {A + " --solvers eigen-lu,", "command line: --solvers: an empty name in 'eigen-lu,'"},  // ran eigen-lu alone
+      {A + " --solvers eigen-lu,,cg", "command line: --solvers: an empty name in 'eigen-lu,,cg'"},
       {A + " --tolerance 0", "command line: --tolerance"},
       // a stopping rule that no chosen backend reads, as in `coons solve`
       {A + " --solvers eigen-lu,eigen-ldlt --max-iterations 5",
