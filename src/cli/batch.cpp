@@ -11,6 +11,7 @@
 #include <memory>
 #include <optional>
 
+#include "bspline_commands.h"
 #include "coons/io/input_error.h"
 #include "coons/io/obj_export.h"
 #include "coons/io/write_files.h"
@@ -114,6 +115,37 @@ void run_stencil(const BatchRequest& b, const NetRequest& request, const Boundar
   }
 }
 
+// A B-spline boundary (knots_u, knots_v): its Greville-weighted Coons net and the non-uniform
+// alpha family at each --alphas value, as `coons solve` and `coons export` give them.
+void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::string& file, const std::string& folder,
+                 OutputSet& out, std::vector<Row>& rows, Phases& phases) {
+  std::vector<std::pair<std::string, NetRequest>> runs;
+  NetRequest coons;
+  coons.method = Method::kCoons;
+  runs.emplace_back("coons", coons);
+  for (double a : b.alphas) {
+    NetRequest r = b.net;
+    r.alpha = a;
+    runs.emplace_back(alpha_tag(a), r);
+  }
+  for (const auto& [tag, request] : runs) {
+    phases.start("solve", fmt::format("{} {}", input.boundary.name, tag));
+    const BSplineBatchNet net = bspline_batch_net(file, input, request, b.global);
+    const BSplineNetOutcome& outcome = net.outcome;
+    rows.push_back(Row{input.boundary.name, outcome.surface.net.m, outcome.surface.net.n,
+                       std::string(to_string(net.resolved.method)) + " (B-spline)",
+                       fmt::format("{}", net.resolved.alpha),
+                       outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form", net.metrics});
+    phases.start("write");
+    const std::string stem = fmt::format("{}/{}", folder, tag);
+    out.write(stem + ".json", [&](std::ostream& o) { o << dump(net.report, 2) << '\n'; });
+    if (net.ok())
+      write_bspline_objs(out, stem, input.boundary.name, outcome, b.samples);
+    else
+      print_solver_failure(file, *outcome.summary);
+  }
+}
+
 int run_batch(const BatchRequest& b) {
   Phases phases("batch");
   phases.start("read");
@@ -139,7 +171,11 @@ int run_batch(const BatchRequest& b) {
   // Read and validate every input before anything is computed or written.
   std::vector<BoundaryFile> boundaries;
   for (const auto& f : files) {
-    boundaries.push_back(read_input(f, b.net.corner_tolerance));
+    boundaries.push_back(read_input(f, b.net.corner_tolerance, true));
+    if (boundaries.back().bspline) {  // the non-uniform family (bspline_commands.h): its own checks
+      (void)resolve_bspline(b.net, boundaries.back(), f);
+      continue;
+    }
     const ResolvedRequest r = resolve(b.net, boundaries.back().boundary, f);
     check_net_memory(b.global, boundaries.back().boundary, solver, f, stencil_nonzeros(r));
     if (by_mask || !is_classical(boundaries.back())) check_stencil_request(boundaries.back(), r, f);
@@ -150,11 +186,19 @@ int run_batch(const BatchRequest& b) {
   std::vector<std::string> folders;
   for (size_t k = 0; k < boundaries.size(); ++k) {
     const Boundary& boundary = boundaries[k].boundary;
-    // one folder per boundary and degree; a repeated one (same name and degree) gets a counter
-    std::string folder = fmt::format("{}-{}x{}", safe_file_stem(boundary.name), boundary.m, boundary.n);
+    // one folder per boundary and degree (a B-spline's: its net's, after the knots are made
+    // compatible); a repeated one (same name and degree) gets a counter
+    const BSplineInput* spline = boundaries[k].bspline ? &*boundaries[k].bspline : nullptr;
+    const int m = spline ? spline->compatible.bottom.count() - 1 : boundary.m;
+    const int n = spline ? spline->compatible.left.count() - 1 : boundary.n;
+    std::string folder = fmt::format("{}-{}x{}", safe_file_stem(boundary.name), m, n);
     for (int copy = 2; std::find(folders.begin(), folders.end(), folder) != folders.end(); ++copy)
-      folder = fmt::format("{}-{}x{}-{}", safe_file_stem(boundary.name), boundary.m, boundary.n, copy);
+      folder = fmt::format("{}-{}x{}-{}", safe_file_stem(boundary.name), m, n, copy);
     folders.push_back(folder);
+    if (boundaries[k].bspline) {
+      run_bspline(b, boundaries[k], files[k], folder, out, rows, phases);
+      continue;
+    }
     if (by_mask) {
       run_stencil(b, b.net, boundaries[k], files[k], folder, out, rows, phases);
       continue;
@@ -176,6 +220,8 @@ int run_batch(const BatchRequest& b) {
       NetRequest r;
       r.alpha = a;
       r.solver = b.net.solver;
+      r.threads = b.net.threads;
+      r.threads_option = b.net.threads_option;
       runs.emplace_back(alpha_tag(a), r);
     }
     for (const auto& [tag, request] : runs) {
@@ -245,6 +291,7 @@ void register_batch(CLI::App& app, Registry& registry) {
   cmd->add_option("--samples", request->samples, "surface samples per direction")->capture_default_str();
   add_solver_option(*cmd, request->net.solver);
   add_mask_options(*cmd, request->net);
+  request->net.threads_option = add_threads_option(*cmd, request->net.threads);
   add_memory_option(*cmd, request->global);
   set_example(*cmd,
               "coons batch data/boundaries --alphas -0.25 -0.1 0 --out out/batch\n"

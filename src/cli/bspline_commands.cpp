@@ -87,6 +87,27 @@ int run_bspline_solve(const std::string& file, const BoundaryFile& input, const 
   return kExitOk;
 }
 
+BSplineBatchNet bspline_batch_net(const std::string& file, const BoundaryFile& input, const NetRequest& request,
+                                  const GlobalOptions& global) {
+  BSplineBatchNet net;
+  net.resolved = resolve_bspline(request, input, file);
+  const BSplineResolved& r = net.resolved;
+  check_bspline_memory(global, *input.bspline, file);
+  net.outcome = solve_bspline(*input.bspline, r);
+  net.report =
+      bspline_net_report(input.boundary.name, *input.bspline, r.method, r.alpha, net.outcome, r.picked_automatically);
+  if (net.ok()) net.metrics = bspline_metrics(net.outcome.surface, r.method == Method::kAlpha ? r.alpha : -0.25);
+  return net;
+}
+
+void write_bspline_objs(OutputSet& out, const std::string& stem, const std::string& name,
+                        const BSplineNetOutcome& outcome, int samples) {
+  const SurfaceSamples grid = sample_bspline_grid(outcome.surface, samples);
+  const std::string comment = fmt::format("B-spline surface of {} ({} x {} samples)", name, samples, samples);
+  out.write(stem + ".surface.obj", [&](std::ostream& o) { write_grid_obj(o, grid, comment); });
+  out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.surface.net); });
+}
+
 int run_bspline_export(const BSplineExportRequest& given_request, const BoundaryFile& input, const NetRequest& request,
                        const GlobalOptions& global, Phases& phases) {
   BSplineExportRequest e = given_request;

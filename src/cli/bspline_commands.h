@@ -3,10 +3,15 @@
 // The non-uniform α family and the Greville-weighted Coons net (docs/math.md §10).
 #pragma once
 
+#include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "cad_commands.h"
 #include "common.h"
+#include "coons/io/write_files.h"
+#include "coons/metrics/energies.h"
+#include "coons/study/bspline_net.h"
 
 namespace coons::cli {
 
@@ -34,5 +39,20 @@ struct BSplineResolved {
   solvers::SolverOptions options;
 };
 BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& input, const std::string& source);
+
+//! One net of a B-spline boundary for `coons batch`: the report `coons solve` prints (without its
+//! timing), the surface, and, when the net was made, its metrics (bspline_metrics).
+struct BSplineBatchNet {
+  nlohmann::json report;
+  BSplineNetOutcome outcome;
+  BSplineResolved resolved;
+  std::optional<NetMetrics> metrics;
+  [[nodiscard]] bool ok() const { return !outcome.summary || outcome.summary->ok(); }
+};
+BSplineBatchNet bspline_batch_net(const std::string& file, const BoundaryFile& input, const NetRequest& request,
+                                  const GlobalOptions& global);
+//! The sampled surface and the control net of `outcome` as OBJ (what export writes by default).
+void write_bspline_objs(OutputSet& out, const std::string& stem, const std::string& name,
+                        const BSplineNetOutcome& outcome, int samples);
 
 }  // namespace coons::cli

@@ -440,8 +440,9 @@ BoundaryFile read_input(const std::string& path, double corner_tolerance, bool a
   options.corner_tolerance = corner_tolerance;
   BoundaryFile file = read_boundary_file(path, options);
   if (file.bspline && !accept_bspline)
-    throw InputError(path, "knots_u",
-                     "a B-spline boundary is read by solve, export, search-alpha and study only, not by this command");
+    throw InputError(
+        path, "knots_u",
+        "a B-spline boundary is read by solve, export, batch, search-alpha and study only, not by this command");
   return file;
 }
 

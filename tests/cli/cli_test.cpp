@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <functional>
+#include <iterator>
 #include <nlohmann/json.hpp>
 #include <sstream>
 
@@ -171,6 +172,37 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
   for (const char* f : {"dome-3x3/coons.json", "dome-3x3/alpha-0.25.json", "dome-3x3/alpha-0.1.json",
                         "dome-3x3/alpha+0.json", "saddle-3x3/coons.surface.obj", "saddle-3x3/alpha-0.1.net.obj"})
     CHECK(fs::exists(fs::path(out) / f));
+}
+
+TEST_CASE("coons batch: the bundled folder, its B-spline boundary included, as solve gives each net", "[cli]") {
+  // `coons batch data/boundaries` (the README's example) stopped at bspline_wave.json: "a B-spline
+  // boundary is read by solve, export, search-alpha and study only"; and --threads was refused
+  TempDir dir;
+  const std::string out = (dir.path / "out").string();
+  const CommandResult r =
+      run_coons("batch " + quoted(kData + "/boundaries") + " --samples 5 --threads 2 --out " + quoted(out));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  for (const char* f :
+       {"bspline_wave-7x6/coons.json", "bspline_wave-7x6/alpha-0.1.json", "bspline_wave-7x6/alpha-0.1.surface.obj",
+        "bspline_wave-7x6/coons.net.obj", "dome-3x3/alpha-0.1.json"})
+    CHECK(fs::exists(fs::path(out) / f));
+  for (const auto& [file, arguments] :
+       {std::pair{"bspline_wave-7x6/alpha-0.1.json", "/boundaries/bspline_wave.json --alpha -0.1"},
+        std::pair{"bspline_wave-7x6/coons.json", "/boundaries/bspline_wave.json --method coons"},
+        std::pair{"dome-3x3/alpha-0.1.json", "/boundaries/dome.json --alpha -0.1"}}) {
+    INFO(file);
+    std::ifstream in(fs::path(out) / file);
+    const json batched = json::parse(in);
+    const CommandResult solved = run_coons("solve " + kData + arguments);
+    REQUIRE(solved.status == 0);
+    const json single = json::parse(solved.out);
+    CHECK(batched["net"] == single["net"]);
+    CHECK(batched["metrics"] == single["metrics"]);
+  }
+  std::ifstream table(fs::path(out) / "metrics.md");
+  const std::string md((std::istreambuf_iterator<char>(table)), std::istreambuf_iterator<char>());
+  CHECK(md.find("| bspline_wave           |     7x6 | alpha (B-spline) |   -0.1 |") != std::string::npos);
 }
 
 TEST_CASE("coons solve: every kind of boundary reports read, solve, metrics and write seconds", "[cli]") {
