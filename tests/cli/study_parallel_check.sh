@@ -44,6 +44,13 @@ case "$mode" in
     SBATCH=$tmp/sbatch COONS=$coons "$src/scripts/slurm/study.sbatch" submit 3 "$tmp/sub" -- "${args[@]}" >/dev/null
     grep -q -- "--array=0-2 .*study.sbatch shard 3 $tmp/sub -- ${args[*]}" "$tmp/sbatch.log" || fail "array: $(cat "$tmp/sbatch.log")"
     grep -q -- "--dependency=afterok:4242 .*study.sbatch merge $tmp/sub" "$tmp/sbatch.log" || fail "merge: $(cat "$tmp/sbatch.log")"
+    # the README's dry run: two sbatch lines, the merge's dependency a placeholder, nothing made
+    dry=$(SBATCH=echo COONS=$coons "$src/scripts/slurm/study.sbatch" submit 3 "$tmp/dry" -- "${args[@]}")
+    [ "$(printf '%s\n' "$dry" | wc -l)" = 2 ] || fail "dry run: not two lines: $dry"
+    printf '%s\n' "$dry" | sed -n 1p | grep -q -- "^sbatch --parsable --array=0-2 " || fail "dry run, array: $dry"
+    printf '%s\n' "$dry" | sed -n 2p | grep -q -- "^sbatch --parsable --dependency=afterok:<array job id> " ||
+      fail "dry run, merge: $dry"
+    [ ! -e "$tmp/dry" ] || fail "the dry run made $tmp/dry"
     ;;
   *) fail "unknown mode $mode" ;;
 esac
