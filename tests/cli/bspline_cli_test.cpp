@@ -79,6 +79,11 @@ TEST_CASE("coons solve: bad knot vectors and options are one error line naming t
       {"no_degree", "degree_spline", [](json& d) { d.erase("degree_spline"); }},
       {"bad_degree", "degree_spline[1]", [](json& d) { d["degree_spline"][1] = 0; }},
       {"side", "knots_v.middle", [](json& d) { d["knots_v"]["middle"] = json::array(); }},
+      // every knot times 1e-309: valid by every other rule, but subnormal (the solve overflowed, exit 3)
+      {"subnormal_span", "knots_u",
+       [](json& d) {
+         for (json& k : d["knots_u"]) k = k.get<double>() * 1e-309;
+       }},
   };
   for (const Case& c : cases) {
     json doc = wave();

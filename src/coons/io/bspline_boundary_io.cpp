@@ -12,6 +12,8 @@ namespace coons {
 
 namespace {
 
+constexpr double kMinKnotRange = 1e-290;  // well above the subnormal doubles (below 2.2e-308)
+
 Eigen::VectorXd parse_knot_vector(const nlohmann::json& j, const std::string& source, const std::string& field,
                                   int degree, int count) {
   if (!j.is_array()) throw InputError(source, field, "must be an array of numbers (a clamped knot vector)");
@@ -23,6 +25,13 @@ Eigen::VectorXd parse_knot_vector(const nlohmann::json& j, const std::string& so
     const KnotProblem& first = problems.front();
     throw InputError(source, first.index < 0 ? field : fmt::format("{}[{}]", field, first.index), first.reason);
   }
+  // The net does not depend on the knots' scale, but a range of subnormal doubles (knots times
+  // 1e-309) left the Greville spacings without precision: the solve overflowed (exit 3).
+  if (const double range = knots(knots.size() - 1) - knots(0); knots.size() > 0 && range < kMinKnotRange)
+    throw InputError(source, field,
+                     fmt::format("the knots span {:.3g}, less than {:g}: rescale them (the net does not depend on "
+                                 "their scale)",
+                                 range, kMinKnotRange));
   return knots;
 }
 
