@@ -229,7 +229,7 @@ TEST_CASE("coons solve: a boundary from a pipe gives the net of the same file", 
   for (const char* file : {"/boundaries/dome.json", "/triangles/sphere_octant.json"}) {
     const std::string path = quoted(kData + file);
     const CommandResult direct = run_coons("solve " + path);
-    const CommandResult piped = run_command("(cat " + path + " | " + kCoons + " solve /dev/stdin)");
+    const CommandResult piped = run_command(fmt::format("(cat {} | {} solve /dev/stdin)", path, kCoons));
     INFO(file << "\n" << piped.err);
     REQUIRE(direct.status == 0);
     REQUIRE(piped.status == 0);
@@ -256,8 +256,8 @@ TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   for (const auto& [options, bounds] :
        {std::pair{std::string(), json::array({0.0, 9000.0})},
         std::pair{std::string(" --lower 0.3 --upper 7777.7"), json::array({0.3, 7777.7})}}) {
-    const CommandResult by_mu = run_coons("search-alpha " + quoted(kData + "/boundaries/dome.json") +
-                                          " --objective thin_plate --parameter mu" + options);
+    const CommandResult by_mu = run_coons(fmt::format("search-alpha {} --objective thin_plate --parameter mu{}",
+                                                      quoted(kData + "/boundaries/dome.json"), options));
     REQUIRE(by_mu.status == 0);
     CHECK(json::parse(by_mu.out)["bounds"] == bounds);  // the dome is 3 by 3: 1000·m·n = 9000
   }
