@@ -115,20 +115,29 @@ void run_stencil(const BatchRequest& b, const NetRequest& request, const Boundar
   }
 }
 
-// A B-spline boundary (knots_u, knots_v): its Greville-weighted Coons net and the non-uniform
-// alpha family at each --alphas value, as `coons solve` and `coons export` give them.
-void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::string& file, const std::string& folder,
-                 OutputSet& out, std::vector<Row>& rows, Phases& phases) {
+// The nets of a one-ring boundary, by file stem: the closed-form Coons net, then the mask solve
+// at each --alphas value with --solver and --threads.
+std::vector<std::pair<std::string, NetRequest>> coons_and_alpha_runs(const BatchRequest& b) {
   std::vector<std::pair<std::string, NetRequest>> runs;
   NetRequest coons;
   coons.method = Method::kCoons;
   runs.emplace_back("coons", coons);
   for (double a : b.alphas) {
-    NetRequest r = b.net;
+    NetRequest r;
     r.alpha = a;
+    r.solver = b.net.solver;
+    r.threads = b.net.threads;
+    r.threads_option = b.net.threads_option;
     runs.emplace_back(alpha_tag(a), r);
   }
-  for (const auto& [tag, request] : runs) {
+  return runs;
+}
+
+// A B-spline boundary (knots_u, knots_v): its Greville-weighted Coons net and the non-uniform
+// alpha family at each --alphas value, as `coons solve` and `coons export` give them.
+void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::string& file, const std::string& folder,
+                 OutputSet& out, std::vector<Row>& rows, Phases& phases) {
+  for (const auto& [tag, request] : coons_and_alpha_runs(b)) {
     phases.start("solve", fmt::format("{} {}", input.boundary.name, tag));
     const BSplineBatchNet net = bspline_batch_net(file, input, request, b.global);
     const BSplineNetOutcome& outcome = net.outcome;
@@ -212,19 +221,7 @@ int run_batch(const BatchRequest& b) {
       }
       continue;
     }
-    std::vector<std::pair<std::string, NetRequest>> runs;
-    NetRequest coons;
-    coons.method = Method::kCoons;
-    runs.emplace_back("coons", coons);
-    for (double a : b.alphas) {
-      NetRequest r;
-      r.alpha = a;
-      r.solver = b.net.solver;
-      r.threads = b.net.threads;
-      r.threads_option = b.net.threads_option;
-      runs.emplace_back(alpha_tag(a), r);
-    }
-    for (const auto& [tag, request] : runs) {
+    for (const auto& [tag, request] : coons_and_alpha_runs(b)) {
       phases.start("solve", fmt::format("{} {}", boundary.name, tag));
       const ResolvedRequest r = resolve(request, boundary, files[k]);
       const NetOutcome outcome = make_net(boundary, r);

@@ -94,9 +94,9 @@ BSplineBatchNet bspline_batch_net(const std::string& file, const BoundaryFile& i
   const BSplineResolved& r = net.resolved;
   check_bspline_memory(global, *input.bspline, file);
   net.outcome = solve_bspline(*input.bspline, r);
-  net.report =
-      bspline_net_report(input.boundary.name, *input.bspline, r.method, r.alpha, net.outcome, r.picked_automatically);
-  if (net.ok()) net.metrics = bspline_metrics(net.outcome.surface, r.method == Method::kAlpha ? r.alpha : -0.25);
+  if (net.ok()) net.metrics = bspline_metrics(net.outcome.surface, r.alpha);  // r.alpha: −1/4 for coons
+  net.report = bspline_net_report(input.boundary.name, *input.bspline, r.method, r.alpha, net.outcome,
+                                  r.picked_automatically, true, net.metrics ? &*net.metrics : nullptr);
   return net;
 }
 

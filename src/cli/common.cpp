@@ -60,10 +60,11 @@ void check_export_options(int samples, bool mtx, bool solves_system, const std::
   if (mtx && !solves_system)
     throw InputError("command line", "--mtx",
                      "Matrix Market export needs --method alpha (closed forms solve no system)");
-  if (!prefix.empty() && safe_file_stem(prefix) != prefix) {
-    // safe_file_stem keeps 80 bytes: a longer name of letters was called "not a plain file name"
-    if (safe_file_stem(prefix) == prefix.substr(0, safe_file_stem(prefix).size()) && prefix.size() > 80)
-      throw InputError("command line", "--prefix", fmt::format("is {} bytes long, more than 80", prefix.size()));
+  if (const std::string safe = safe_file_stem(prefix); !prefix.empty() && safe != prefix) {
+    // safe_file_stem keeps kMaxFileStemBytes: a longer name of letters was called "not a plain file name"
+    if (prefix.size() > kMaxFileStemBytes && prefix.compare(0, safe.size(), safe) == 0)
+      throw InputError("command line", "--prefix",
+                       fmt::format("is {} bytes long, more than {}", prefix.size(), kMaxFileStemBytes));
     throw InputError("command line", "--prefix", "'" + prefix + "' is not a plain file name (letters, digits, - _ .)");
   }
 }

@@ -27,7 +27,8 @@ Eigen::VectorXd parse_knot_vector(const nlohmann::json& j, const std::string& so
   }
   // The net does not depend on the knots' scale, but a range of subnormal doubles (knots times
   // 1e-309) left the Greville spacings without precision: the solve overflowed (exit 3).
-  if (const double range = knots(knots.size() - 1) - knots(0); knots.size() > 0 && range < kMinKnotRange)
+  // (the rules above hold, so the vector has at least 2(degree + 1) knots)
+  if (const double range = knots(knots.size() - 1) - knots(0); range < kMinKnotRange)
     throw InputError(source, field,
                      fmt::format("the knots span {:.3g}, less than {:g}: rescale them (the net does not depend on "
                                  "their scale)",

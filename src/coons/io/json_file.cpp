@@ -176,11 +176,8 @@ nlohmann::json read_json_file(const std::string& path, const JsonReadOptions& op
   const bool regular = std::filesystem::is_regular_file(path, ec);
   if (!regular) {
     const std::lock_guard<std::mutex> lock(stream_texts_mutex());
-    if (const auto seen = stream_texts().find(path); seen != stream_texts().end()) {
-      if (seen->second.size() > options.max_bytes)
-        throw InputError(path, kDocumentField, fmt::format("more than the limit of {} bytes", options.max_bytes));
-      return parse_json_text(seen->second, path, options);
-    }
+    if (const auto seen = stream_texts().find(path); seen != stream_texts().end())
+      return parse_json_text(seen->second, path, options);  // which holds it to options.max_bytes
   }
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "", "cannot open the file");

@@ -42,15 +42,14 @@ std::string os_reason(int error) { return error ? std::strerror(error) : "write 
 }  // namespace
 
 std::string safe_file_stem(std::string_view name) {
-  constexpr size_t kMaxBytes = 80;
   std::string out;
-  for (size_t i = 0; i < name.size() && out.size() < kMaxBytes;) {
+  for (size_t i = 0; i < name.size() && out.size() < kMaxFileStemBytes;) {
     const auto c = static_cast<unsigned char>(name[i]);
     if ((std::isalnum(c) && c < 0x80) || c == '-' || c == '_' || c == '.') {
       out += char(c);
       ++i;
     } else if (const size_t len = utf8_letter(name, i); len > 0) {
-      if (out.size() + len > kMaxBytes) break;
+      if (out.size() + len > kMaxFileStemBytes) break;
       out.append(name.substr(i, len));
       i += len;
     } else {

@@ -6,6 +6,7 @@
 // exceptions included.
 #pragma once
 
+#include <cstddef>
 #include <functional>
 #include <ostream>
 #include <string>
@@ -16,7 +17,8 @@ namespace coons {
 
 //! A name from an input file made safe as one component of a file name: letters, digits, '-',
 //! '_', '.' and UTF-8 letters kept, every other byte (separators, control characters, quotes) as
-//! '_', no leading '.', at most 80 bytes, "unnamed" when nothing is left.
+//! '_', no leading '.', at most kMaxFileStemBytes bytes, "unnamed" when nothing is left.
+inline constexpr std::size_t kMaxFileStemBytes = 80;
 std::string safe_file_stem(std::string_view name);
 
 //! True when the two paths name one file: compared after making them absolute, resolving the part

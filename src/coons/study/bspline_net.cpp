@@ -91,7 +91,8 @@ json bspline_block(const BSplineSurface& s, const BSplineInput& input) {
 }
 
 json bspline_net_report(const std::string& name, const BSplineInput& input, NetMethod method, double alpha,
-                        const BSplineNetOutcome& outcome, bool solver_picked_automatically, bool with_net) {
+                        const BSplineNetOutcome& outcome, bool solver_picked_automatically, bool with_net,
+                        const NetMetrics* metrics) {
   const BSplineSurface& s = outcome.surface;
   json report;
   report["boundary"] = name;
@@ -110,7 +111,7 @@ json bspline_net_report(const std::string& name, const BSplineInput& input, NetM
     report["net"] = nullptr;
   else if (with_net)
     report["net"] = net_to_json(s.net);
-  report["metrics"] = ok ? metrics_to_json(bspline_metrics(s, alpha)) : json(nullptr);
+  report["metrics"] = ok ? metrics_to_json(metrics ? *metrics : bspline_metrics(s, alpha)) : json(nullptr);
   return report;
 }
 

@@ -52,8 +52,9 @@ nlohmann::json bspline_block(const BSplineSurface& surface, const BSplineInput& 
 
 //! The solve report of a B-spline boundary (the fields of net_report plus "bspline"). `alpha` is
 //! −1/4 for kCoons. With `with_net` false a successful net is left out for the caller to write.
+//! `metrics`, when given, are bspline_metrics of the net, already computed by the caller.
 nlohmann::json bspline_net_report(const std::string& name, const BSplineInput& input, NetMethod method, double alpha,
                                   const BSplineNetOutcome& outcome, bool solver_picked_automatically,
-                                  bool with_net = true);
+                                  bool with_net = true, const NetMetrics* metrics = nullptr);
 
 }  // namespace coons

@@ -348,7 +348,7 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
           for (double v : curves[u])
             if (std::isfinite(v)) own = std::min(own, v);
           // a loss beyond the doubles (a merged record's grid of 1e308) is no loss to print
-          if (const double loss = (value - own) / own; std::isfinite(value) && own > 0 && std::isfinite(loss)) {
+          if (const double loss = (value - own) / own; own > 0 && std::isfinite(loss)) {
             cell.loss[used[u]] = loss;
             losses.push_back(loss);
           }
