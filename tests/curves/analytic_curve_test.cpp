@@ -10,9 +10,7 @@
 using namespace coons;
 using namespace coons::test;
 
-namespace {
-constexpr double kPi = 3.14159265358979323846;
-}
+namespace {}
 
 TEST_CASE("numerical_derivative: documented accuracy on smooth functions of unit scale", "[curves]") {
   // f(s) = (sin 3s, exp(s), s^5 - s^2): derivatives known in closed form.
@@ -44,12 +42,13 @@ TEST_CASE("numerical_derivative: documented accuracy on smooth functions of unit
 TEST_CASE("numerical_derivative: a first step too large for the function is not trusted", "[curves]") {
   // sin(ωs) for ω up to 50 (8 periods on [0, 1]): the first tableau, from h = 0.1, is wrong for the
   // fast ones; the smaller starts agree and win.
-  for (double w : {1.0, 2 * kPi, 6 * kPi, 50.0})
+  for (double w : {1.0, 2 * M_PI, 6 * M_PI, 50.0})
     for (int r = 1; r <= 3; ++r)
       for (double s : {0.0, 0.3, 0.55, 1.0}) {
         auto f = [w](double x) { return Eigen::RowVector3d(std::sin(w * x), std::cos(w * x), 0); };
         const double scale = std::pow(w, r);
-        const Eigen::RowVector3d exact(scale * std::sin(w * s + r * kPi / 2), scale * std::cos(w * s + r * kPi / 2), 0);
+        const Eigen::RowVector3d exact(scale * std::sin(w * s + r * M_PI / 2), scale * std::cos(w * s + r * M_PI / 2),
+                                       0);
         const NumericalDerivative d = numerical_derivative(f, r, s);
         INFO("w = " << w << ", order " << r << ", s = " << s);
         CHECK((d.value - exact).cwiseAbs().maxCoeff() / scale < (r == 3 ? 1e-9 : 1e-10));
@@ -80,7 +79,7 @@ TEST_CASE("AnalyticCurve: expressions in t on [t1, t2], reparametrised to [0, 1]
   }
   // The parameter may be called u, v or s too; pi and e are constants.
   const AnalyticCurve d({"u", "sin(pi/2*v)", "e^s"});
-  CHECK((d.at(0.5) - Eigen::RowVector3d(0.5, std::sin(kPi / 4), std::exp(0.5))).norm() < 1e-15);
+  CHECK((d.at(0.5) - Eigen::RowVector3d(0.5, std::sin(M_PI / 4), std::exp(0.5))).norm() < 1e-15);
   // Copies are independent.
   // NOLINTNEXTLINE(performance-unnecessary-copy-initialization): the copy constructor is what is tested here
   const AnalyticCurve copy = c;

@@ -12,8 +12,6 @@ using namespace coons::test;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 // The energy E of one scalar coordinate is a quadratic form xᵀHx; the Hessian row of the point
 // (c, c) of a (2c+1)² net, H(p, q) = E(e_p + e_q) − E(e_p) − E(e_q) (exact for a quadratic form),
 // divided by H(p, p): the stencil of the Euler–Lagrange equations at a point far from the edge.
@@ -117,7 +115,7 @@ TEST_CASE("symbol_nonnegative: exactly the definite alpha range and the whole C1
   for (double alpha : {-0.3, 0.3, 0.5}) CHECK_FALSE(symbol_nonnegative(alpha_stencil(alpha_mask(alpha))));
   for (double w : {0.0, 0.3, 0.7, 1.0}) CHECK(symbol_nonnegative(c1_family_stencil(w)));
   // σ is the eigenvalue of the wave: at (π, π) the α mask gives 1 + 4β − 4α = 2 − 8α.
-  CHECK(stencil_symbol(alpha_stencil(alpha_mask(0.1)), kPi, kPi) == Approx(2 - 0.8));
+  CHECK(stencil_symbol(alpha_stencil(alpha_mask(0.1)), M_PI, M_PI) == Approx(2 - 0.8));
   CHECK(std::abs(stencil_symbol(c1_coons_stencil(), 0, 1.3)) < 1e-15);  // δ⁴ vanishes at θ = 0
 }
 
@@ -132,7 +130,7 @@ TEST_CASE("symbol_nonnegative: a dip narrower than the sampling grid is found", 
     raw(0, 2) = raw(4, 2) = 1.0 / 6 + e;
     const Stencil s = make_stencil(raw);
     INFO("e = " << e);
-    CHECK(stencil_symbol(s, 2 * kPi / 256, 0) > 0);  // the samples around the dip are not negative
+    CHECK(stencil_symbol(s, 2 * M_PI / 256, 0) > 0);  // the samples around the dip are not negative
     CHECK(symbol_nonnegative(s) == (e == 0));
   }
 }

@@ -91,13 +91,13 @@ inline double difference_energy(const ControlNet& net, int p, int q) {
 }
 
 //! The discrete thin-plate energy Σ‖Δ^{2,0}b‖² + 2Σ‖Δ^{1,1}b‖² + Σ‖Δ^{0,2}b‖².
-inline double thin_plate_energy(const ControlNet& net) {
+inline double reference_thin_plate_energy(const ControlNet& net) {
   return difference_energy(net, 2, 0) + 2 * difference_energy(net, 1, 1) + difference_energy(net, 0, 2);
 }
 
 //! w·Σ‖Δ^{2,2}b‖² + (1 − w)·thin plate.
 inline double c1_family_energy(const ControlNet& net, double w) {
-  return w * difference_energy(net, 2, 2) + (1 - w) * thin_plate_energy(net);
+  return w * difference_energy(net, 2, 2) + (1 - w) * reference_thin_plate_energy(net);
 }
 
 }  // namespace coons::test

@@ -34,31 +34,31 @@ std::vector<double> alpha_stencil(double alpha) {  // centre 1, edges âˆ’(1/4 âˆ
   return {d, e, d, e, 1, e, d, e, d};
 }
 
-enum class Shape { kFull, kHole, kLShape, kLine };
-const char* name_of(Shape s) {
+enum class Region { kFull, kHole, kLShape, kLine };
+const char* region_name(Region s) {
   switch (s) {
-    case Shape::kFull:
+    case Region::kFull:
       return "full";
-    case Shape::kHole:
+    case Region::kHole:
       return "hole";
-    case Shape::kLShape:
+    case Region::kLShape:
       return "L-shape";
-    case Shape::kLine:
+    case Region::kLine:
       return "interior line";
   }
   return "";
 }
 
-StencilOperator make_problem(int rows, int cols, const std::vector<double>& weights, Shape shape) {
+StencilOperator make_problem(int rows, int cols, const std::vector<double>& weights, Region shape) {
   StencilOperator op = make_stencil_operator(rows, cols, weights);
-  if (shape == Shape::kFull) return op;
+  if (shape == Region::kFull) return op;
   op.free.assign(std::size_t(rows) * std::size_t(cols), 1);
   for (int i = 0; i < rows; ++i)
     for (int j = 0; j < cols; ++j) {
       bool fixed = false;
-      if (shape == Shape::kHole) fixed = i >= rows / 3 && i < rows / 3 + 4 && j >= cols / 3 && j < cols / 3 + 3;
-      if (shape == Shape::kLShape) fixed = i >= rows / 2 && j >= cols / 2;
-      if (shape == Shape::kLine) fixed = i == rows / 2 && j >= 2 && j < cols - 3;  // a fixed curve inside
+      if (shape == Region::kHole) fixed = i >= rows / 3 && i < rows / 3 + 4 && j >= cols / 3 && j < cols / 3 + 3;
+      if (shape == Region::kLShape) fixed = i >= rows / 2 && j >= cols / 2;
+      if (shape == Region::kLine) fixed = i == rows / 2 && j >= 2 && j < cols - 3;  // a fixed curve inside
       if (fixed) op.free[std::size_t(i) * std::size_t(cols) + std::size_t(j)] = 0;
     }
   return op;
@@ -116,15 +116,15 @@ void check_backends(const StencilOperator& op, const std::string& what) {
 TEST_CASE("every solver: the c1 family on full rectangles agrees with a dense reference or declines", "[solvers]") {
   for (double w : {0.0, 0.5, 1.0})
     for (auto [rows, cols] : {std::pair{9, 14}, {13, 6}, {20, 20}})
-      check_backends(make_problem(rows, cols, c1_family(w, 1 / (20 + 16 * w)), Shape::kFull),
+      check_backends(make_problem(rows, cols, c1_family(w, 1 / (20 + 16 * w)), Region::kFull),
                      "w = " + std::to_string(w) + ", " + std::to_string(rows) + " x " + std::to_string(cols));
 }
 
 TEST_CASE("every solver: free sets with a hole, an L-shape and a fixed line agree or decline", "[solvers]") {
-  for (Shape shape : {Shape::kHole, Shape::kLShape, Shape::kLine}) {
-    check_backends(make_problem(16, 21, c1_family(0.5), shape), std::string("c1-family 0.5, ") + name_of(shape));
-    check_backends(make_problem(17, 12, c1_family(0.0), shape), std::string("biharmonic, ") + name_of(shape));
-    check_backends(make_problem(19, 23, alpha_stencil(-0.1), shape), std::string("alpha -0.1, ") + name_of(shape));
+  for (Region shape : {Region::kHole, Region::kLShape, Region::kLine}) {
+    check_backends(make_problem(16, 21, c1_family(0.5), shape), std::string("c1-family 0.5, ") + region_name(shape));
+    check_backends(make_problem(17, 12, c1_family(0.0), shape), std::string("biharmonic, ") + region_name(shape));
+    check_backends(make_problem(19, 23, alpha_stencil(-0.1), shape), std::string("alpha -0.1, ") + region_name(shape));
   }
 }
 
@@ -132,7 +132,7 @@ TEST_CASE("every solver: free sets with a hole, an L-shape and a fixed line agre
 TEST_CASE("fast5: exact on a*C + b*T for any positive scale, one row or one column too", "[solvers]") {
   for (auto [rows, cols] : {std::pair{1, 7}, {6, 1}, {2, 3}, {11, 8}})
     for (double w : {0.0, 0.25, 0.9, 1.0}) {
-      const StencilOperator op = make_problem(rows, cols, c1_family(w, 3.5), Shape::kFull);
+      const StencilOperator op = make_problem(rows, cols, c1_family(w, 3.5), Region::kFull);
       const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
       const Eigen::MatrixX3d B = random_rhs(A.rows(), 3);
       LinearOperator lop;
@@ -151,7 +151,7 @@ TEST_CASE("fast5: the same solution bit for bit on 1 and 2 threads, dense and ma
   // rows and columns next to the frame only (those rows skip the forward transform)
   const int rows = 40, cols = 300;
   for (double w : {0.0, 0.5}) {
-    const StencilOperator op = make_problem(rows, cols, c1_family(w), Shape::kFull);
+    const StencilOperator op = make_problem(rows, cols, c1_family(w), Region::kFull);
     const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
     const Eigen::MatrixX3d dense = random_rhs(A.rows(), 5);
     Eigen::MatrixX3d mask = dense;
@@ -181,7 +181,7 @@ TEST_CASE("fast5: a zero right-hand-side column gives a zero solution and leaves
   // of every column (success with the first pass's accuracy).
   const int rows = 40, cols = 300;
   for (double w : {0.0, 0.5}) {
-    const StencilOperator op = make_problem(rows, cols, c1_family(w), Shape::kFull);
+    const StencilOperator op = make_problem(rows, cols, c1_family(w), Region::kFull);
     const Eigen::SparseMatrix<double> A = stencil_operator_matrix(op);
     Eigen::MatrixX3d with_zero = random_rhs(A.rows(), 9);
     Eigen::MatrixX3d without = with_zero;
@@ -206,12 +206,12 @@ TEST_CASE("fast5: a zero right-hand-side column gives a zero solution and leaves
 }
 
 TEST_CASE("fast5: declines 3x3 stencils, free masks, negative weights and other 5x5 stencils", "[solvers]") {
-  std::vector<StencilOperator> declined = {make_problem(8, 8, alpha_stencil(-0.1), Shape::kFull),
-                                           make_problem(12, 12, c1_family(0.5), Shape::kHole),
-                                           make_problem(8, 8, c1_family(1.5), Shape::kFull)};  // b < 0
+  std::vector<StencilOperator> declined = {make_problem(8, 8, alpha_stencil(-0.1), Region::kFull),
+                                           make_problem(12, 12, c1_family(0.5), Region::kHole),
+                                           make_problem(8, 8, c1_family(1.5), Region::kFull)};  // b < 0
   std::vector<double> other = c1_family(0.5);
   other[0] += 0.01;  // a corner weight off the family
-  declined.push_back(make_problem(8, 8, other, Shape::kFull));
+  declined.push_back(make_problem(8, 8, other, Region::kFull));
   for (const StencilOperator& op : declined) {
     LinearOperator lop;
     lop.grid = &op;
@@ -221,16 +221,16 @@ TEST_CASE("fast5: declines 3x3 stencils, free masks, negative weights and other 
     CHECK(s.status == SolveStatus::kNotApplicable);
     CHECK(!s.message.empty());
   }
-  CHECK(!c1_family_weights(make_problem(5, 5, c1_family(1.5), Shape::kFull)));
-  const auto w = c1_family_weights(make_problem(5, 5, c1_family(0.25, 2), Shape::kFull));
+  CHECK(!c1_family_weights(make_problem(5, 5, c1_family(1.5), Region::kFull)));
+  const auto w = c1_family_weights(make_problem(5, 5, c1_family(0.25, 2), Region::kFull));
   REQUIRE(w);
   CHECK(w->a == Approx(0.5));
   CHECK(w->b == Approx(1.5));
 }
 
 TEST_CASE("pcg-fast: a hole needs more iterations than the full rectangle, which needs one", "[solvers]") {
-  const StencilOperator full = make_problem(24, 24, c1_family(0.5), Shape::kFull);
-  const StencilOperator hole = make_problem(24, 24, c1_family(0.5), Shape::kHole);
+  const StencilOperator full = make_problem(24, 24, c1_family(0.5), Region::kFull);
+  const StencilOperator hole = make_problem(24, 24, c1_family(0.5), Region::kHole);
   int iterations[2] = {0, 0};
   int k = 0;
   for (const StencilOperator* op : {&full, &hole}) {
@@ -247,10 +247,10 @@ TEST_CASE("pcg-fast: a hole needs more iterations than the full rectangle, which
 }
 
 TEST_CASE("pcg-fast: indefinite 3x3 boxes and stencils without a structured solver are declined", "[solvers]") {
-  const StencilOperator indefinite = make_problem(20, 20, alpha_stencil(-0.4), Shape::kHole);
+  const StencilOperator indefinite = make_problem(20, 20, alpha_stencil(-0.4), Region::kHole);
   std::vector<double> other = c1_family(0.5);
   other[0] += 0.01;
-  const StencilOperator uncovered = make_problem(12, 12, other, Shape::kHole);
+  const StencilOperator uncovered = make_problem(12, 12, other, Region::kHole);
   for (const auto& [op, expected] :
        {std::pair{&indefinite, SolveStatus::kNotPositiveDefinite}, {&uncovered, SolveStatus::kNotApplicable}}) {
     LinearOperator lop;
@@ -264,16 +264,16 @@ TEST_CASE("pcg-fast: indefinite 3x3 boxes and stencils without a structured solv
 #endif
 
 TEST_CASE("separable_operator: finds P x Q for c1-coons and alpha = -1/4, not for the biharmonic", "[solvers]") {
-  const auto c1 = separable_operator(make_problem(6, 9, c1_family(1.0, 2), Shape::kFull));
+  const auto c1 = separable_operator(make_problem(6, 9, c1_family(1.0, 2), Region::kFull));
   REQUIRE(c1);
   const Eigen::SparseMatrix<double> A = separable_banded_matrix(*c1);
   CHECK((Eigen::MatrixXd(A) -
-         Eigen::MatrixXd(stencil_operator_matrix(make_problem(6, 9, c1_family(1.0, 2), Shape::kFull))))
+         Eigen::MatrixXd(stencil_operator_matrix(make_problem(6, 9, c1_family(1.0, 2), Region::kFull))))
             .cwiseAbs()
             .maxCoeff() < 1e-12);
-  CHECK(separable_operator(make_problem(6, 9, alpha_stencil(-0.25), Shape::kFull)));
-  CHECK(!separable_operator(make_problem(6, 9, c1_family(0.0), Shape::kFull)));
-  CHECK(!separable_operator(make_problem(6, 9, c1_family(1.0), Shape::kHole)));
+  CHECK(separable_operator(make_problem(6, 9, alpha_stencil(-0.25), Region::kFull)));
+  CHECK(!separable_operator(make_problem(6, 9, c1_family(0.0), Region::kFull)));
+  CHECK(!separable_operator(make_problem(6, 9, c1_family(1.0), Region::kHole)));
 }
 
 TEST_CASE("fast5, separable-banded, pcg-fast: analyze once, factorize many equals fresh solves", "[solvers]") {
@@ -283,7 +283,7 @@ TEST_CASE("fast5, separable-banded, pcg-fast: analyze once, factorize many equal
       continue;
     }
     const bool separable_only = std::string(name) == "separable-banded";
-    const Shape shape = std::string(name) == "pcg-fast" ? Shape::kLShape : Shape::kFull;
+    const Region shape = std::string(name) == "pcg-fast" ? Region::kLShape : Region::kFull;
     auto reused = make_solver(name);
     const StencilOperator first = make_problem(10, 13, c1_family(1.0), shape);
     LinearOperator lop;
@@ -317,8 +317,8 @@ TEST_CASE("fast5, separable-banded, pcg-fast: analyze once, factorize many equal
 TEST_CASE("dst, fast, jacobi, gauss-seidel: a grid stencil they cannot take is declined naming what it is",
           "[solvers]") {
   // They said "needs the grid stencil (matrix-free)" of a system given as just that.
-  const StencilOperator five = make_problem(9, 8, c1_family(0.5), Shape::kFull);
-  const StencilOperator holed = make_problem(9, 8, alpha_stencil(-0.1), Shape::kHole);
+  const StencilOperator five = make_problem(9, 8, c1_family(0.5), Region::kFull);
+  const StencilOperator holed = make_problem(9, 8, alpha_stencil(-0.1), Region::kHole);
   int checked = 0;
   for (const char* name : {"dst", "fast", "jacobi", "gauss-seidel"}) {
     if (!find_solver(name)) continue;  // dst and fast need FFTW

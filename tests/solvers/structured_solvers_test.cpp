@@ -20,9 +20,11 @@
 #include "solvers/sine_basis.h"
 #include "solvers/sine_transform.h"
 #include "solvers/structured_solvers.h"
+#include "support/grid_fixtures.h"
 #include "support/scaling_checks.h"
 
 using namespace coons::solvers;
+using coons::test::alpha_grid_stencil;
 
 namespace {
 
@@ -32,11 +34,6 @@ const std::vector<std::pair<const char*, Factory>>& structured() {
   static const std::vector<std::pair<const char*, Factory>> list = {{"dst", make_dst_solver},
                                                                     {"fast", make_fast_solver}};
   return list;
-}
-
-// The α mask on a rows × cols grid: centre 1, edges −(1/4 − α), diagonals −α.
-GridStencil alpha_stencil(int rows, int cols, double alpha) {
-  return {rows, cols, 1.0, -(0.25 - alpha), -(0.25 - alpha), -alpha};
 }
 
 // Anisotropic variant (docs/math.md §3): α = −mn/D, β_i = (2mn + μ m/n)/D, β_j = (2mn + μ n/m)/D.
@@ -66,7 +63,7 @@ Eigen::MatrixX3d dense_reference(const GridStencil& s, const Eigen::MatrixX3d& B
   return Eigen::MatrixXd(stencil_matrix(s)).fullPivLu().solve(Eigen::MatrixXd(B));
 }
 
-LinearOperator stencil_operator(const GridStencil& s) {
+LinearOperator grid_operator(const GridStencil& s) {
   LinearOperator op;
   op.stencil = s;
   return op;
@@ -77,7 +74,7 @@ void check_against_reference(const char* name, const Factory& make, const GridSt
   const Eigen::MatrixX3d B_copy = B;
   const Eigen::MatrixX3d reference = dense_reference(s, B);
   Eigen::MatrixX3d X;
-  const SolveSummary summary = make({})->compute_and_solve(stencil_operator(s), B, X);
+  const SolveSummary summary = make({})->compute_and_solve(grid_operator(s), B, X);
   INFO(name << ": " << s.rows << "x" << s.cols << ", c = " << s.center << ", e_i = " << s.edge_i
             << ", e_j = " << s.edge_j << ", d = " << s.diag << ": " << summary.brief_report());
   REQUIRE(summary.ok());
@@ -177,7 +174,7 @@ TEST_CASE("structured solvers: equal the dense reference for every alpha", "[sol
   for (const auto& [name, make] : structured())
     for (auto [rows, cols] : grids())
       for (double alpha : {-0.25, -0.1, 0.0, 0.2, 0.25}) {
-        const GridStencil s = alpha_stencil(rows, cols, alpha);
+        const GridStencil s = alpha_grid_stencil(rows, cols, alpha);
         check_against_reference(name, make, s, ring_rhs(s, seed++));
         check_against_reference(name, make, s, dense_rhs(s, seed++));
       }
@@ -191,17 +188,17 @@ TEST_CASE("structured solvers: two and three threads give the one-thread solutio
   // path), whose two passes go through the threads too.
   for (const auto& [name, make] : structured())
     for (auto [rows, cols] : {std::pair{127, 131}, {70, 150}, {33, 255}}) {
-      const GridStencil s = alpha_stencil(rows, cols, -0.1);
+      const GridStencil s = alpha_grid_stencil(rows, cols, -0.1);
       for (const Eigen::MatrixX3d& B : {dense_rhs(s, 53), ring_rhs(s, 54)}) {
         Eigen::MatrixX3d X1;
-        const SolveSummary s1 = make({})->compute_and_solve(stencil_operator(s), B, X1);
+        const SolveSummary s1 = make({})->compute_and_solve(grid_operator(s), B, X1);
         REQUIRE(s1.ok());
         CHECK(s1.relative_residual < 1e-11);
         for (int threads : {2, 3}) {
           SolverOptions many;
           many.threads = threads;
           Eigen::MatrixX3d X;
-          const SolveSummary sk = make(many)->compute_and_solve(stencil_operator(s), B, X);
+          const SolveSummary sk = make(many)->compute_and_solve(grid_operator(s), B, X);
           INFO(name << " " << rows << "x" << cols << ", " << threads << " threads: " << sk.brief_report());
           REQUIRE(sk.ok());
           CHECK(std::memcmp(X1.data(), X.data(), sizeof(double) * std::size_t(X1.size())) == 0);
@@ -216,14 +213,14 @@ TEST_CASE("dst: a right-hand side next to the frame skips the forward transform 
   // once with a tiny value inside (the full 2-D transform): the solutions differ by that value's
   // contribution only, so their difference is bounded by it.
   for (auto [rows, cols] : {std::pair{3, 3}, {9, 14}, {31, 40}}) {
-    const GridStencil s = alpha_stencil(rows, cols, -0.1);
+    const GridStencil s = alpha_grid_stencil(rows, cols, -0.1);
     const Eigen::MatrixX3d ring = ring_rhs(s, 56);
     Eigen::MatrixX3d nudged = ring;
     const Eigen::Index inner = Eigen::Index(rows / 2) * cols + cols / 2;
     nudged.row(inner).setConstant(1e-300);  // below rounding of every solution value
     Eigen::MatrixX3d X_ring, X_full;
-    const SolveSummary a = make_dst_solver({})->compute_and_solve(stencil_operator(s), ring, X_ring);
-    const SolveSummary b = make_dst_solver({})->compute_and_solve(stencil_operator(s), nudged, X_full);
+    const SolveSummary a = make_dst_solver({})->compute_and_solve(grid_operator(s), ring, X_ring);
+    const SolveSummary b = make_dst_solver({})->compute_and_solve(grid_operator(s), nudged, X_full);
     INFO(rows << "x" << cols << ": " << a.brief_report() << "; " << b.brief_report());
     REQUIRE(a.ok());
     REQUIRE(b.ok());
@@ -251,15 +248,15 @@ TEST_CASE("fast: the Kronecker path equals the transform path", "[solvers]") {
   // those with more than a few dense rows the two batches of tridiagonal solves.
   std::uint32_t seed = 40;
   const std::vector<GridStencil> kronecker = {
-      alpha_stencil(13, 10, -0.25),  {9, 14, 2.0, -0.6, -0.5, 0.15}, {10, 10, 1.0, -0.3, 0.0, 0.0},  // T_j = I
-      {1, 8, 1.0, -0.5, -0.5, 0.25}, {8, 1, 1.0, -0.5, -0.5, 0.25},
+      alpha_grid_stencil(13, 10, -0.25), {9, 14, 2.0, -0.6, -0.5, 0.15}, {10, 10, 1.0, -0.3, 0.0, 0.0},  // T_j = I
+      {1, 8, 1.0, -0.5, -0.5, 0.25},     {8, 1, 1.0, -0.5, -0.5, 0.25},
   };
   for (const GridStencil& s : kronecker) {
     REQUIRE(s.center * s.diag == Approx(s.edge_i * s.edge_j));
     for (const Eigen::MatrixX3d& B : {ring_rhs(s, seed++), dense_rhs(s, seed++)}) {
       Eigen::MatrixX3d X_fast, X_dst;
-      const SolveSummary f = make_fast_solver({})->compute_and_solve(stencil_operator(s), B, X_fast);
-      const SolveSummary d = make_dst_solver({})->compute_and_solve(stencil_operator(s), B, X_dst);
+      const SolveSummary f = make_fast_solver({})->compute_and_solve(grid_operator(s), B, X_fast);
+      const SolveSummary d = make_dst_solver({})->compute_and_solve(grid_operator(s), B, X_dst);
       INFO(s.rows << "x" << s.cols << ": " << f.brief_report() << "; " << d.brief_report());
       REQUIRE(f.ok());
       REQUIRE(d.ok());
@@ -275,24 +272,25 @@ TEST_CASE("fast: one solver object scales each right-hand side by its own larges
   // that scan for the solve: each B must get its own. 12 × 30: cols + 1 = 31 is prime, so the
   // transform path has interface columns; 12 × 15: none; α = −1/4: the Kronecker path. Scaling by
   // 2^e is exact here, so X(2^e B) = 2^e X(B) bit for bit; a NaN fails the solve.
-  for (const GridStencil& s : {alpha_stencil(12, 30, -0.1), alpha_stencil(12, 15, -0.1), alpha_stencil(12, 30, -0.25)})
+  for (const GridStencil& s :
+       {alpha_grid_stencil(12, 30, -0.1), alpha_grid_stencil(12, 15, -0.1), alpha_grid_stencil(12, 30, -0.25)})
     for (const Eigen::MatrixX3d& B : {ring_rhs(s, 80), dense_rhs(s, 81)}) {
       auto solver = make_fast_solver({});
       Eigen::MatrixX3d X;
-      REQUIRE(solver->compute_and_solve(stencil_operator(s), B, X).ok());
+      REQUIRE(solver->compute_and_solve(grid_operator(s), B, X).ok());
       INFO(s.rows << "x" << s.cols << ", alpha " << -s.diag);
       coons::test::check_scaled_solves(*solver, B, X, 1e-12, B.rows() - 1, 1);
     }
 }
 
 TEST_CASE("structured solvers: a sweep equals separate solves", "[solvers]") {
-  const GridStencil base = alpha_stencil(11, 9, 0.0);
+  const GridStencil base = alpha_grid_stencil(11, 9, 0.0);
   // An α sweep of a mask system: B(α) = B0 + α·B1 (ring), plus a dense basis member.
   const std::vector<Eigen::MatrixX3d> basis = {ring_rhs(base, 50), ring_rhs(base, 51), dense_rhs(base, 52)};
   std::vector<LinearSolver::SweepMember> members;
   for (double alpha : {-0.25, -0.1, 0.1, 0.25, -0.2}) {
     const double dense_weight = alpha == -0.2 ? 0.5 : 0.0;
-    members.push_back({stencil_operator(alpha_stencil(11, 9, alpha)), {1.0, alpha, dense_weight}});
+    members.push_back({grid_operator(alpha_grid_stencil(11, 9, alpha)), {1.0, alpha, dense_weight}});
   }
   for (const auto& [name, make] : structured()) {
     auto solver = make({});
@@ -320,10 +318,10 @@ TEST_CASE("structured solvers: a sweep equals separate solves", "[solvers]") {
 
 TEST_CASE("structured solvers: report a singular stencil", "[solvers]") {
   // The 3×3 net (rows = cols = 2) at α = −1/2: an eigenvalue is exactly zero.
-  const GridStencil s = alpha_stencil(2, 2, -0.5);
+  const GridStencil s = alpha_grid_stencil(2, 2, -0.5);
   for (const auto& [name, make] : structured()) {
     Eigen::MatrixX3d X;
-    const SolveSummary summary = make({})->compute_and_solve(stencil_operator(s), ring_rhs(s, 60), X);
+    const SolveSummary summary = make({})->compute_and_solve(grid_operator(s), ring_rhs(s, 60), X);
     INFO(name << ": " << summary.brief_report());
     CHECK(summary.status == SolveStatus::kSingular);
     CHECK(!summary.message.empty());
@@ -333,11 +331,11 @@ TEST_CASE("structured solvers: report a singular stencil", "[solvers]") {
 TEST_CASE("structured solvers: an indefinite stencil is solved exactly or reported, never NaN", "[solvers]") {
   for (double alpha : {-0.4, 0.4, -1.0})
     for (auto [rows, cols] : {std::pair{19, 19}, {17, 22}}) {
-      const GridStencil s = alpha_stencil(rows, cols, alpha);
+      const GridStencil s = alpha_grid_stencil(rows, cols, alpha);
       const Eigen::MatrixX3d B = ring_rhs(s, 70);
       for (const auto& [name, make] : structured()) {
         Eigen::MatrixX3d X;
-        const SolveSummary summary = make({})->compute_and_solve(stencil_operator(s), B, X);
+        const SolveSummary summary = make({})->compute_and_solve(grid_operator(s), B, X);
         INFO(name << ", " << rows << "x" << cols << ", alpha = " << alpha << ": " << summary.brief_report());
         CHECK(std::isfinite(summary.relative_residual));
         if (summary.ok()) {
@@ -357,15 +355,15 @@ TEST_CASE("fast: an interface is as accurate as dst on indefinite stencils", "[s
   // (29 × 16, α = −0.4240075: relative difference 9.6e-8 with success), or reported a regular
   // operator singular (α = −0.4240077).
   const std::vector<GridStencil> stencils = {
-      alpha_stencil(29, 16, -0.4240075442251117), alpha_stencil(29, 16, -0.4240077442251117),
-      alpha_stencil(19, 18, 1.5),
+      alpha_grid_stencil(29, 16, -0.4240075442251117), alpha_grid_stencil(29, 16, -0.4240077442251117),
+      alpha_grid_stencil(19, 18, 1.5),
       // (1, −2, 1) ⊗ (1, 1.0001, 1) as weights: centre −2.0002, e_i = 1.0001, e_j = −2, d = 1
       GridStencil{29, 16, -2.0002, 1.0001, -2.0, 1.0}};
   for (const GridStencil& s : stencils) {
     const Eigen::MatrixX3d B = ring_rhs(s, 75);
     Eigen::MatrixX3d X, Y;
-    const SolveSummary fast = make_fast_solver({})->compute_and_solve(stencil_operator(s), B, X);
-    const SolveSummary dst = make_dst_solver({})->compute_and_solve(stencil_operator(s), B, Y);
+    const SolveSummary fast = make_fast_solver({})->compute_and_solve(grid_operator(s), B, X);
+    const SolveSummary dst = make_dst_solver({})->compute_and_solve(grid_operator(s), B, Y);
     INFO(s.rows << "x" << s.cols << ", c = " << s.center << ", e_i = " << s.edge_i << ", d = " << s.diag << ": "
                 << fast.brief_report() << " / " << dst.brief_report());
     REQUIRE(dst.ok());
@@ -376,7 +374,7 @@ TEST_CASE("fast: an interface is as accurate as dst on indefinite stencils", "[s
 }
 
 TEST_CASE("structured solvers: need the grid stencil", "[solvers]") {
-  const GridStencil s = alpha_stencil(4, 4, 0.0);
+  const GridStencil s = alpha_grid_stencil(4, 4, 0.0);
   const Eigen::SparseMatrix<double> A = stencil_matrix(s);
   LinearOperator op;
   op.matrix = &A;
@@ -390,17 +388,17 @@ TEST_CASE("structured solvers: need the grid stencil", "[solvers]") {
 }
 
 TEST_CASE("fast: analyze once, factorize across the Kronecker and transform paths", "[solvers]") {
-  const GridStencil base = alpha_stencil(10, 13, 0.0);
+  const GridStencil base = alpha_grid_stencil(10, 13, 0.0);
   const Eigen::MatrixX3d B = ring_rhs(base, 90);
   auto solver = make_fast_solver({});
-  REQUIRE(solver->analyze(stencil_operator(base)) == SolveStatus::kSuccess);
+  REQUIRE(solver->analyze(grid_operator(base)) == SolveStatus::kSuccess);
   int compared = 0;
   for (double alpha : {-0.25, 0.1, -0.25, -0.4, 0.25, -0.25}) {
-    const GridStencil s = alpha_stencil(10, 13, alpha);
+    const GridStencil s = alpha_grid_stencil(10, 13, alpha);
     INFO("alpha = " << alpha);
     // α in [−1/4, 1/4] is definite: it must be solved; the indefinite −0.4 may be reported instead
     const bool definite = alpha >= -0.25 && alpha <= 0.25;
-    const SolveStatus factorized = solver->factorize(stencil_operator(s));
+    const SolveStatus factorized = solver->factorize(grid_operator(s));
     if (definite) REQUIRE(factorized == SolveStatus::kSuccess);
     if (factorized != SolveStatus::kSuccess) continue;
     Eigen::MatrixX3d X;
@@ -420,11 +418,11 @@ TEST_CASE("structured solvers: two solver objects give bitwise equal results", "
   // every object and every run (FFTW_MEASURE ones may differ in the last digits).
   for (const auto& [name, make] : structured()) {
     for (auto [rows, cols] : {std::pair{39, 39}, {60, 34}, {127, 100}}) {
-      const GridStencil s = alpha_stencil(rows, cols, -0.2);
+      const GridStencil s = alpha_grid_stencil(rows, cols, -0.2);
       const Eigen::MatrixX3d B = dense_rhs(s, 31);
       Eigen::MatrixX3d X1, X2;
-      const SolveSummary a = make({})->compute_and_solve(stencil_operator(s), B, X1);
-      const SolveSummary b = make({})->compute_and_solve(stencil_operator(s), B, X2);
+      const SolveSummary a = make({})->compute_and_solve(grid_operator(s), B, X1);
+      const SolveSummary b = make({})->compute_and_solve(grid_operator(s), B, X2);
       INFO(name << " " << rows << "x" << cols);
       REQUIRE(a.ok());
       REQUIRE(b.ok());

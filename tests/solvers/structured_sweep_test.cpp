@@ -17,15 +17,12 @@
 #include <vector>
 
 #include "solvers/structured_solvers.h"
+#include "support/grid_fixtures.h"
 
 using namespace coons::solvers;
+using coons::test::alpha_grid_stencil;
 
 namespace {
-
-// The α mask on a rows × cols grid: centre 1, edges −(1/4 − α), diagonals −α.
-GridStencil alpha_stencil(int rows, int cols, double alpha) {
-  return {rows, cols, 1.0, -(0.25 - alpha), -(0.25 - alpha), -alpha};
-}
 
 // Random values everywhere (dense) or only next to the frame (ring, as for a mask system).
 Eigen::MatrixX3d random_rhs(const GridStencil& s, std::uint32_t seed, bool ring) {
@@ -81,14 +78,14 @@ TEST_CASE("LinearSolver::sweep: two and three threads give the one-thread member
   // path: Kronecker (α = −1/4), transform, indefinite (α = 0.4), a dense basis member, weights
   // shorter than the basis, and one that cannot be factorized (no stencil: X = 0 and its status).
   const int rows = 21, cols = 36;
-  const GridStencil base = alpha_stencil(rows, cols, 0.0);
+  const GridStencil base = alpha_grid_stencil(rows, cols, 0.0);
   const std::vector<Eigen::MatrixX3d> basis = {random_rhs(base, 80, true), random_rhs(base, 81, true),
                                                random_rhs(base, 82, false)};
   const Eigen::SparseMatrix<double> A = stencil_matrix(base);
   std::vector<LinearSolver::SweepMember> members;
   auto add = [&](double alpha, std::vector<double> weights) {
     LinearOperator op;
-    op.stencil = alpha_stencil(rows, cols, alpha);
+    op.stencil = alpha_grid_stencil(rows, cols, alpha);
     members.push_back({op, std::move(weights)});
   };
   add(-0.25, {1.0, -0.25, 0.0});

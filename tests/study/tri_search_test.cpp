@@ -11,8 +11,6 @@ using namespace coons::tri::test;
 
 namespace {
 
-const solvers::SolverInfo& lu() { return *solvers::find_solver("eigen-lu"); }
-
 TriObjective objective(const std::string& text) {
   std::string why;
   const auto o = parse_tri_objective(text, &why);

@@ -17,8 +17,6 @@ using namespace coons::tri::test;
 
 namespace {
 
-const solvers::SolverInfo& lu() { return *solvers::find_solver("eigen-lu"); }
-
 // A planar triangle (z = 0) with a curved in-plane boundary and the plane z = 0 as its target:
 // every member of the family keeps the net in the plane, so the target objective is flat.
 TriStudyInput planar_input(int n) {

@@ -11,6 +11,10 @@ namespace coons::test {
 
 using solvers::StencilOperator;
 
+solvers::GridStencil alpha_grid_stencil(int rows, int cols, double alpha) {
+  return {rows, cols, 1.0, -(0.25 - alpha), -(0.25 - alpha), -alpha};
+}
+
 std::vector<double> nine_point(double center, double edge, double diag) {
   return {diag, edge, diag, edge, center, edge, diag, edge, diag};
 }

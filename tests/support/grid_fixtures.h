@@ -17,6 +17,9 @@ struct NamedStencil {
   std::vector<double> weights;
 };
 
+//! The α family on a rows × cols grid: centre 1, edges −(1/4 − α), diagonals −α.
+solvers::GridStencil alpha_grid_stencil(int rows, int cols, double alpha);
+
 //! The 3×3 weights {d, e, d, e, c, e, d, e, d}.
 std::vector<double> nine_point(double center, double edge, double diag);
 //! The outer product of (1, −4, 6, −4, 1) (5×5).

@@ -13,15 +13,14 @@ using namespace coons::test;
 using V = Eigen::RowVector3d;
 
 namespace {
-constexpr double kPi = 3.14159265358979323846;
 
 // A cylinder of radius R as the ruled surface of two circles (exact derivatives).
 Surface cylinder(double R) {
   auto circle = [R](double z) {
     return closed_form_curve(
-        [=](double s) { return V(R * std::cos(kPi * s), R * std::sin(kPi * s), z); },
-        [=](double s) { return V(-kPi * R * std::sin(kPi * s), kPi * R * std::cos(kPi * s), 0); },
-        [=](double s) { return V(-kPi * kPi * R * std::cos(kPi * s), -kPi * kPi * R * std::sin(kPi * s), 0); });
+        [=](double s) { return V(R * std::cos(M_PI * s), R * std::sin(M_PI * s), z); },
+        [=](double s) { return V(-M_PI * R * std::sin(M_PI * s), M_PI * R * std::cos(M_PI * s), 0); },
+        [=](double s) { return V(-M_PI * M_PI * R * std::cos(M_PI * s), -M_PI * M_PI * R * std::sin(M_PI * s), 0); });
   };
   return make_ruled(circle(0), circle(1));
 }

@@ -18,8 +18,6 @@ using V = Eigen::RowVector3d;
 
 namespace {
 
-constexpr double kPi = 3.14159265358979323846;
-
 std::string fmt_number(double x) {
   std::ostringstream out;
   out.precision(17);
@@ -122,11 +120,11 @@ TEST_CASE("LN0, the 16-vector example: z = T H13(u) H13(v) for several T", "[sur
 
 TEST_CASE("LN0, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's curves", "[surfaces][seeds]") {
   const Surface s1 = load("seed000_ruled_1.json");
-  auto c0 = [](double u) { return V(u, std::sin(kPi / 2 * u), std::cos(kPi / 2 * u)); };
+  auto c0 = [](double u) { return V(u, std::sin(M_PI / 2 * u), std::cos(M_PI / 2 * u)); };
   auto c1 = [](double u) { return V(u, u * u, -u / 2); };
   CHECK(gap(s1, [&](double u, double v) { return V((1 - v) * c0(u) + v * c1(u)); }) < 1e-15);
   CHECK(derivative_gap(s1, 1, 0, [&](double u, double v) {
-          return V((1 - v) * V(1, kPi / 2 * std::cos(kPi / 2 * u), -kPi / 2 * std::sin(kPi / 2 * u)) +
+          return V((1 - v) * V(1, M_PI / 2 * std::cos(M_PI / 2 * u), -M_PI / 2 * std::sin(M_PI / 2 * u)) +
                    v * V(1, 2 * u, -0.5));
         }) < 1e-9);
   CHECK(derivative_gap(s1, 0, 1, [&](double u, double) { return V(c1(u) - c0(u)); }) < 1e-15);
@@ -134,7 +132,7 @@ TEST_CASE("LN0, ruled examples: r = (1-v) r(u,0) + v r(u,1) with the seed's curv
 
   const Surface s2 = load("seed000_ruled_2.json");
   CHECK(gap(s2, [](double u, double v) {
-          return V((1 - v) * V(u, 0, 4 * u * (1 - u)) + v * V(u, 1, std::sin(2 * kPi * u)));
+          return V((1 - v) * V(u, 0, 4 * u * (1 - u)) + v * V(u, 1, std::sin(2 * M_PI * u)));
         }) < 1e-15);
 }
 
@@ -164,27 +162,27 @@ TEST_CASE("LN0, right circular and elliptic conoids, and an oblique (Kuepper-typ
   // z = z_P + v(z(u) − z_P); a = b is the circular conoid.
   for (auto [a_bound, b_bound] : {std::pair{1.0, 1.0}, {2.0, 0.7}}) {
     const double a = a_bound, b = b_bound;  // C++17 lambdas cannot capture structured bindings
-    const Curve profile = AnalyticCurve({fmt_number(a) + "*cos(t)", "0", fmt_number(b) + "*sin(t)"}, kPi, 0);
+    const Curve profile = AnalyticCurve({fmt_number(a) + "*cos(t)", "0", fmt_number(b) + "*sin(t)"}, M_PI, 0);
     const double yp = 3, zp = 0.25;
     const Surface s = make_conoid(right_conoid(profile, yp, zp));
     auto closed = [&](double u, double v) {
-      const double th = kPi * (1 - u);
+      const double th = M_PI * (1 - u);
       return V(a * std::cos(th), yp * (1 - v), zp + v * (b * std::sin(th) - zp));
     };
     CHECK(gap(s, closed) < 1e-14);
     CHECK(derivative_gap(s, 1, 0, [&](double u, double v) {
-            const double th = kPi * (1 - u);
-            return V(kPi * a * std::sin(th), 0, -v * kPi * b * std::cos(th));
+            const double th = M_PI * (1 - u);
+            return V(M_PI * a * std::sin(th), 0, -v * M_PI * b * std::cos(th));
           }) < 1e-9);
     // The rulings are parallel to the directing plane x = const.
     for (double u : {0.2, 0.7}) CHECK(std::abs(s.evaluate(u, 0.4).dv(0)) < 1e-15);
   }
   // Oblique: the line through the origin along (1, 0, 1) is not perpendicular to the planes x = const.
   // Directrix the circle (cos θ, 1, sin θ): q = (cos θ, 0, cos θ), r = (cos θ, v, (1 − v) cos θ + v sin θ).
-  Conoid oblique{AnalyticCurve({"cos(t)", "1", "sin(t)"}, 0, kPi), V(0, 0, 0), V(1, 0, 1), V(1, 0, 0)};
+  Conoid oblique{AnalyticCurve({"cos(t)", "1", "sin(t)"}, 0, M_PI), V(0, 0, 0), V(1, 0, 1), V(1, 0, 0)};
   const Surface o = make_conoid(oblique);
   CHECK(gap(o, [](double u, double v) {
-          const double th = kPi * u;
+          const double th = M_PI * u;
           return V(std::cos(th), v, (1 - v) * std::cos(th) + v * std::sin(th));
         }) < 1e-15);
   // A Bézier directrix makes it polynomial: an exact net of degree (deg c, 1).
@@ -200,15 +198,15 @@ TEST_CASE("LN2, the right helicoidal conoid: (u cos v, u sin v, v), its derivati
   // r(s, w) = P(w, 2πs): the directrix is parameterised by s, the rulings by w.
   auto P = [](double u, double v) { return V(u * std::cos(v), u * std::sin(v), v); };
   const Surface s = load("seed002_helicoidal_conoid.json");
-  CHECK(gap(s, [&](double a, double w) { return P(w, 2 * kPi * a); }) < 1e-14);
+  CHECK(gap(s, [&](double a, double w) { return P(w, 2 * M_PI * a); }) < 1e-14);
   // In code, with exact derivatives: r_s = (−2πw sin θ, 2πw cos θ, 2π), r_w = (cos θ, sin θ, 0).
-  const Surface h = make_conoid(right_helicoidal_conoid(1, 0, 2 * kPi));
-  CHECK(gap(h, [&](double a, double w) { return P(w, 2 * kPi * a); }) < 1e-14);
+  const Surface h = make_conoid(right_helicoidal_conoid(1, 0, 2 * M_PI));
+  CHECK(gap(h, [&](double a, double w) { return P(w, 2 * M_PI * a); }) < 1e-14);
   CHECK(derivative_gap(h, 1, 0, [](double a, double w) {
-          const double th = 2 * kPi * a;
-          return V(-2 * kPi * w * std::sin(th), 2 * kPi * w * std::cos(th), 2 * kPi);
+          const double th = 2 * M_PI * a;
+          return V(-2 * M_PI * w * std::sin(th), 2 * M_PI * w * std::cos(th), 2 * M_PI);
         }) < 1e-13);
-  CHECK(derivative_gap(h, 0, 1, [](double a, double) { return V(std::cos(2 * kPi * a), std::sin(2 * kPi * a), 0); }) <
+  CHECK(derivative_gap(h, 0, 1, [](double a, double) { return V(std::cos(2 * M_PI * a), std::sin(2 * M_PI * a), 0); }) <
         1e-14);
   // A minimal surface: H = 0; K = −1/(1 + w²)² in the (w, θ) metric.
   for (double a : {0.1, 0.6})
@@ -232,14 +230,14 @@ TEST_CASE("LN4, the linear Coons surface of the domain bounded by ellipse arcs: 
   // r(u,v) = a(cos u + cos v − 1 + 2u(1 − cos v − sin v)/π + 2v(1 − cos u − sin u)/π) e1
   //        + b(sin u − sin v − 2u(1 − cos v − sin v)/π + 2v(1 − cos u − sin u)/π) e2,  u, v ∈ [0, π/2].
   auto closed = [](double a, double b, double u, double v) {
-    const double p = 2 * u / kPi * (1 - std::cos(v) - std::sin(v)), q = 2 * v / kPi * (1 - std::cos(u) - std::sin(u));
+    const double p = 2 * u / M_PI * (1 - std::cos(v) - std::sin(v)), q = 2 * v / M_PI * (1 - std::cos(u) - std::sin(u));
     return V(a * (std::cos(u) + std::cos(v) - 1 + p + q), b * (std::sin(u) - std::sin(v) - p + q), 0);
   };
   auto closed_du = [](double a, double b, double u, double v) {  // ∂/∂u, u the seed's parameter
-    const double p = 2 / kPi * (1 - std::cos(v) - std::sin(v)), q = 2 * v / kPi * (std::sin(u) - std::cos(u));
+    const double p = 2 / M_PI * (1 - std::cos(v) - std::sin(v)), q = 2 * v / M_PI * (std::sin(u) - std::cos(u));
     return V(a * (-std::sin(u) + p + q), b * (std::cos(u) - p + q), 0);
   };
-  const double h = kPi / 2;  // s ∈ [0, 1] ↦ u = s·π/2
+  const double h = M_PI / 2;  // s ∈ [0, 1] ↦ u = s·π/2
   const Surface s = load("seed004_ellipse_coons.json");
   CHECK(gap(s, [&](double x, double y) { return closed(2, 1, h * x, h * y); }) < 1e-14);
   CHECK(derivative_gap(s, 1, 0, [&](double x, double y) { return V(h * closed_du(2, 1, h * x, h * y)); }) < 1e-8);
@@ -273,7 +271,7 @@ TEST_CASE("LN4, the sectorial surface: (1-v) rho(u) + v p", "[surfaces][seeds]")
   const Surface s = load("seed004_sectorial_cone.json");
   CHECK(s.type() == SurfaceType::kSectorial);
   CHECK(gap(s, [](double u, double v) {
-          const double t = kPi / 2 * u;
+          const double t = M_PI / 2 * u;
           return V((1 - v) * V(std::cos(t), std::sin(t), 0) + v * V(0, 0, 1));
         }) < 1e-15);
   // The apex row is a single point.

@@ -5,6 +5,7 @@
 #include <random>
 
 #include "coons/tri/tri_net.h"
+#include "solvers/registry.h"
 
 namespace coons::tri::test {
 
@@ -23,6 +24,9 @@ inline TriNet elevated_quadratic(int n, std::uint32_t seed) { return elevate_deg
 
 //! A random random-affine patch (degree 1) elevated to degree n ≥ 1.
 inline TriNet elevated_linear(int n, std::uint32_t seed) { return elevate_degree(random_tri_net(1, seed), n - 1); }
+
+//! The sparse LU backend (the triangular systems are nonsymmetric).
+inline const solvers::SolverInfo& lu() { return *solvers::find_solver("eigen-lu"); }
 
 //! max |a − b| over all coordinates.
 inline double max_abs_difference(const TriNet& a, const TriNet& b) {

@@ -25,11 +25,11 @@ struct Fields {
   }
 };
 
-double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
-
 std::string vtk_number(double x) { return fmt::format("{}", finite_or_zero(x)); }
 
 }  // namespace
+
+double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
 
 void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::string& comment) {
   const int k = s.k;

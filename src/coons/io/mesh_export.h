@@ -19,6 +19,10 @@
 
 namespace coons {
 
+//! x when finite, else 0: how the PLY and VTK writers print a sample without a value (the normal or
+//! curvature of a singular point, which the `singular` field marks).
+double finite_or_zero(double x);
+
 void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::string& comment = {});
 void write_grid_ply(std::ostream& out, const SurfaceSamples& s, const std::string& comment = {});
 void write_grid_vts(std::ostream& out, const SurfaceSamples& s);

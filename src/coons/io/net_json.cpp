@@ -13,6 +13,8 @@ using nlohmann::json;
 
 json number_or_null(double x) { return std::isfinite(x) ? json(x) : json(nullptr); }
 
+json optional_number(const std::optional<double>& x) { return x ? number_or_null(*x) : json(nullptr); }
+
 namespace {
 json point_json(const Eigen::RowVector3d& p) { return json::array({p(0), p(1), p(2)}); }
 json points_json(const Eigen::MatrixX3d& P) {

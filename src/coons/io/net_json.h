@@ -4,6 +4,7 @@
 
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string_view>
 
 #include "coons/metrics/energies.h"
@@ -31,5 +32,8 @@ nlohmann::json summary_to_json(const solvers::SolveSummary& summary);
 
 //! A finite double as a number, anything else as null (JSON has no NaN or infinity).
 nlohmann::json number_or_null(double x);
+
+//! number_or_null of the value, null when there is none.
+nlohmann::json optional_number(const std::optional<double>& x);
 
 }  // namespace coons

@@ -8,11 +8,11 @@
 #include <utility>
 #include <vector>
 
+#include "mesh_export.h"
+
 namespace coons {
 
 namespace {
-
-double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
 
 std::vector<std::pair<const char*, Eigen::VectorXd>> scalar_fields(const tri::TriSurfaceSamples& s) {
   return {{"mean_curvature", s.mean_curvature},

@@ -164,8 +164,6 @@ std::optional<double> best_single_alpha(int count, const std::vector<double>& op
 
 namespace {
 
-json optional_number(const std::optional<double>& x) { return x ? number_or_null(*x) : json(nullptr); }
-
 json distribution_json(const std::optional<Distribution>& d) {
   if (!d) return nullptr;
   return {{"size", d->size},

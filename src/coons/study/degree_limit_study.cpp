@@ -73,7 +73,6 @@ Spread spread_of(const std::vector<std::pair<int, double>>& values, const Degree
   return s;
 }
 
-json optional_number(const std::optional<double>& x) { return x ? number_or_null(*x) : json(nullptr); }
 json optional_int(const std::optional<int>& x) { return x ? json(*x) : json(nullptr); }
 
 }  // namespace

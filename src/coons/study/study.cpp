@@ -23,12 +23,6 @@ namespace coons {
 
 using nlohmann::json;
 
-namespace {
-
-json optional_number(const std::optional<double>& x) { return x ? number_or_null(*x) : json(nullptr); }
-
-}  // namespace
-
 StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& options) {
   StudyInput in;
   in.file = path;
