@@ -117,7 +117,7 @@ TEST_CASE("coons import-step, export --step: bad input exits 2 with one line, no
                         write_edited(std::string("pole") + value + ".step", pole,
                                      "#49 = CARTESIAN_POINT('',(" + std::string(value) + ",") +
                         " --edges 0,1,2,3 --out " + out,
-                    "edge 0: control point 1 has coordinate 0 = "});
+                    "edge 0: control point 1: coordinate 0 is "});
   for (const auto& c : more) {
     const CommandResult r = run_command(kCoons + " " + c.args);
     INFO(c.args << "\n" << r.err);

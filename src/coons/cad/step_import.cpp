@@ -96,11 +96,8 @@ BSplineCurve edge_curve(const TopoDS_Edge& edge, int index, const std::string& p
   // 1e400 in the STEP file was written out as null, a file coons itself then refused
   for (Eigen::Index k = 0; k < c.points.rows(); ++k)
     for (Eigen::Index d = 0; d < c.points.cols(); ++d)
-      if (!(std::abs(c.points(k, d)) <= kMaxCoordinate))
-        throw InputError(
-            path, field,
-            fmt::format("control point {} has coordinate {} = {:.6g}, not a finite number with |x| <= {:g}", k, d,
-                        c.points(k, d), kMaxCoordinate));
+      if (const std::string why = coordinate_problem(c.points(k, d)); !why.empty())
+        throw InputError(path, field, fmt::format("control point {}: coordinate {} {}", k, d, why));
   for (Eigen::Index k = 0; k < c.knots.size(); ++k)
     if (!std::isfinite(c.knots(k))) throw InputError(path, field, fmt::format("knot {} is not finite", k));
   std::string why;

@@ -227,13 +227,18 @@ double json_coordinate(const nlohmann::json& j, const std::string& source, const
                        const std::string& what) {
   if (!j.is_number()) throw InputError(source, field, fmt::format("{} is not a number", what));
   const double x = j.get<double>();
-  if (!std::isfinite(x)) throw InputError(source, field, fmt::format("{} is not finite", what));
-  if (std::abs(x) > kMaxCoordinate)
-    throw InputError(source, field,
-                     fmt::format("{} is {:.17g}, beyond the bound |x| <= {:g} (energies scale as x^2 and would "
-                                 "overflow; scale the model down)",
-                                 what, x, kMaxCoordinate));
+  if (const std::string why = coordinate_problem(x); !why.empty()) throw InputError(source, field, what + " " + why);
   return x;
+}
+
+std::string coordinate_problem(double x) {
+  if (!std::isfinite(x)) return "is not finite";
+  if (std::abs(x) > kMaxCoordinate)
+    return fmt::format(
+        "is {:.17g}, beyond the bound |x| <= {:g} (energies scale as x^2 and would overflow; scale the "
+        "model down)",
+        x, kMaxCoordinate);
+  return "";
 }
 
 void require_model_size(double largest, double min_size, const std::string& source, const std::string& field) {

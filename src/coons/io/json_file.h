@@ -58,8 +58,13 @@ inline constexpr double kMinModelSize = 1e-60;
 //! An InputError naming `field` (the point of largest magnitude) when 0 < largest < min_size.
 void require_model_size(double largest, double min_size, const std::string& source, const std::string& field);
 
+//! Why x cannot be a coordinate, or "" when it can: "is not finite", or "is <x>, beyond the bound
+//! |x| <= 1e+60 (...)". The one rule every reader holds coordinates to (boundary and surface files,
+//! analytic curves, targets, imported STEP poles); each puts its own subject in front.
+std::string coordinate_problem(double x);
+
 //! A coordinate that is a finite number with |x| <= kMaxCoordinate; `what` says which one
-//! ("coordinate 2"), the InputError names `field`, the value and the bound.
+//! ("coordinate 2"), the InputError names `field` and coordinate_problem's reason.
 double json_coordinate(const nlohmann::json& j, const std::string& source, const std::string& field,
                        const std::string& what);
 

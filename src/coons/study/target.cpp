@@ -27,11 +27,8 @@ std::vector<double> numbers_after_colon(const std::string& spec, size_t count, c
     const double x = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
       throw InputError("command line", field, "'" + item + "' is not a finite number");
-    if (std::abs(x) > kMaxCoordinate)
-      throw InputError("command line", field,
-                       fmt::format("'{}' is beyond the bound |x| <= {:g} of coordinates (distances and energies "
-                                   "scale with it and would overflow; scale the model down)",
-                                   item, kMaxCoordinate));
+    if (const std::string why = coordinate_problem(x); !why.empty())
+      throw InputError("command line", field, fmt::format("'{}' {}", item, why));
     out.push_back(x);
   }
   if (out.size() != count)
