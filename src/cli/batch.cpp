@@ -18,6 +18,7 @@
 #include "coons/mask/stencil_problem.h"
 #include "coons/metrics/energies.h"
 #include "coons/study/memory_estimate.h"
+#include "coons/surfaces/bspline_sampling.h"
 #include "registry.h"
 
 namespace coons::cli {
@@ -149,7 +150,8 @@ void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::st
     const std::string stem = fmt::format("{}/{}", folder, tag);
     out.write(stem + ".json", [&](std::ostream& o) { o << dump(net.report, 2) << '\n'; });
     if (net.ok())
-      write_bspline_objs(out, stem, input.boundary.name, outcome, b.samples);
+      write_bspline_objs(out, stem, sample_bspline_grid(outcome.surface, b.samples),
+                         bspline_samples_comment(input.boundary.name, b.samples), outcome.surface.net);
     else
       print_solver_failure(file, *outcome.summary);
   }

@@ -100,12 +100,15 @@ BSplineBatchNet bspline_batch_net(const std::string& file, const BoundaryFile& i
   return net;
 }
 
-void write_bspline_objs(OutputSet& out, const std::string& stem, const std::string& name,
-                        const BSplineNetOutcome& outcome, int samples) {
-  const SurfaceSamples grid = sample_bspline_grid(outcome.surface, samples);
-  const std::string comment = fmt::format("B-spline surface of {} ({} x {} samples)", name, samples, samples);
+std::string bspline_samples_comment(const std::string& name, int samples) {
+  return fmt::format("B-spline surface of {} ({} x {} samples)", name, samples, samples);
+}
+
+std::vector<std::string> write_bspline_objs(OutputSet& out, const std::string& stem, const SurfaceSamples& grid,
+                                            const std::string& comment, const ControlNet& net) {
   out.write(stem + ".surface.obj", [&](std::ostream& o) { write_grid_obj(o, grid, comment); });
-  out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.surface.net); });
+  out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, net); });
+  return {out.path_of(stem + ".surface.obj"), out.path_of(stem + ".net.obj")};
 }
 
 int run_bspline_export(const BSplineExportRequest& given_request, const BoundaryFile& input, const NetRequest& request,
@@ -165,12 +168,10 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   if (sampled) {
     phases.start("write");
     const SurfaceSamples samples = sample_bspline_grid(outcome.surface, e.samples);
-    const std::string comment =
-        fmt::format("B-spline surface of {} ({} x {} samples)", input.boundary.name, e.samples, e.samples);
-    if (e.obj) {
-      write(prefix + ".surface.obj", [&](std::ostream& o) { write_grid_obj(o, samples, comment); });
-      write(prefix + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.surface.net); });
-    }
+    const std::string comment = bspline_samples_comment(input.boundary.name, e.samples);
+    if (e.obj)
+      for (std::string& path : write_bspline_objs(out, prefix, samples, comment, outcome.surface.net))
+        written.push_back(std::move(path));
     if (e.ply) write(prefix + ".surface.ply", [&](std::ostream& o) { write_grid_ply(o, samples, comment); });
     if (e.vts) write(prefix + ".surface.vts", [&](std::ostream& o) { write_grid_vts(o, samples); });
   }

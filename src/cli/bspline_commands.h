@@ -6,12 +6,15 @@
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "cad_commands.h"
 #include "common.h"
 #include "coons/io/write_files.h"
 #include "coons/metrics/energies.h"
+#include "coons/net/control_net.h"
 #include "coons/study/bspline_net.h"
+#include "coons/surfaces/sampling.h"
 
 namespace coons::cli {
 
@@ -51,8 +54,11 @@ struct BSplineBatchNet {
 };
 BSplineBatchNet bspline_batch_net(const std::string& file, const BoundaryFile& input, const NetRequest& request,
                                   const GlobalOptions& global);
-//! The sampled surface and the control net of `outcome` as OBJ (what export writes by default).
-void write_bspline_objs(OutputSet& out, const std::string& stem, const std::string& name,
-                        const BSplineNetOutcome& outcome, int samples);
+//! The header comment of a B-spline surface's sampled files.
+std::string bspline_samples_comment(const std::string& name, int samples);
+//! <stem>.surface.obj (the sampled surface) and <stem>.net.obj (the control net), what export writes
+//! by default; returns their paths.
+std::vector<std::string> write_bspline_objs(OutputSet& out, const std::string& stem, const SurfaceSamples& grid,
+                                            const std::string& comment, const ControlNet& net);
 
 }  // namespace coons::cli
