@@ -266,7 +266,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
     refuse_stopping_rules(r, named);
 
   resolve_mask(r, out);
-  if (!std::isfinite(r.alpha)) throw InputError("command line", "--alpha", "must be a finite number");
+  require_alpha_value(r.alpha);
   if (r.mu && !(std::isfinite(*r.mu) && *r.mu >= 0))
     throw InputError("command line", "--mu", "must be a finite number >= 0");
   out.mask = r.mu ? anisotropic_mask(boundary.m, boundary.n, *r.mu) : alpha_mask(r.alpha);
@@ -298,6 +298,15 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
                                  "{} needs that (use eigen-lu, or --allow-indefinite to try anyway)",
                                  alpha_equiv, r.solver));
   return out;
+}
+
+void require_alpha_value(double alpha) {
+  if (!std::isfinite(alpha)) throw InputError("command line", "--alpha", "must be a finite number");
+  if (std::abs(alpha) > kMaxAlpha)
+    throw InputError("command line", "--alpha",
+                     fmt::format("{:g} is beyond the bound |alpha| <= {:g} (the mask's weights would overflow in "
+                                 "the solvers' products)",
+                                 alpha, kMaxAlpha));
 }
 
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r) {

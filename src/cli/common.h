@@ -128,6 +128,9 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
 //! --tolerance or --max-iterations given with a backend that solves exactly (`solver`; nullptr
 //! for auto, which only picks such backends): InputError naming the option.
 void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solver);
+//! An InputError on --alpha unless it is finite with |α| <= kMaxAlpha (mask9.h); the quad and the
+//! triangular mask families share the rule.
+void require_alpha_value(double alpha);
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r);
 
 //! True when the classical path applies: one data ring, no free grid, the alpha mask.

@@ -69,7 +69,7 @@ TriRequest resolve_tri(const NetRequest& r) {
     if (given(option)) throw InputError("command line", name, "does not apply to a triangular boundary");
   TriRequest out;
   out.options.mask.c = given(r.alpha_option) ? r.alpha : -1.0 / 6;
-  if (!std::isfinite(out.options.mask.c)) throw InputError("command line", "--alpha", "must be a finite number");
+  require_alpha_value(out.options.mask.c);
   out.options.solver = &tri_backend(r.solver, out.picked_automatically);
   refuse_stopping_rules(r, out.options.solver);
   out.options.solver_options.tolerance = r.tolerance;

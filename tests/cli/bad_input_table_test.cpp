@@ -188,6 +188,15 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --corner-tolerance -1", "--corner-tolerance"},
       {"solve " + good + " --mu -1", "--mu"},
       {"solve " + good + " --alpha nan", "--alpha"},
+      // beyond kMaxAlpha: `fast` called the dome singular at 1e160, and at 1e308 the singularity
+      // check named four points that do not decouple
+      {"solve " + good + " --alpha 1e308", "--alpha: 1e+308 is beyond the bound |alpha| <= 1e+60"},
+      {"solve " + good + " --alpha -1e61 --solver eigen-lu", "--alpha: -1e+61 is beyond the bound"},
+      {"solve " + quoted(kData + "/triangles/dome_half.json") + " --alpha 1e200", "--alpha: 1e+200 is beyond"},
+      {"search-alpha " + good + " --objective thin_plate --allow-indefinite --lower -1e308 --upper 1e308",
+       "bounds must lie in [-1e60, 1e60]"},
+      {"search-alpha " + quoted(kData + "/triangles/dome_half.json") + " --objective thin_plate --upper 1e61",
+       "bounds must lie in [-1e60, 1e60]"},
       {"solve " + good + " --alpha ''", "--alpha: an empty value"},  // was alpha = 0, exit 0
       {"solve " + good + " --threads '' --solver fast", "--threads: an empty value"},
       {"solve " + good + " --max-memory ''", "--max-memory: an empty value"},

@@ -10,6 +10,7 @@
 #include <nlohmann/json.hpp>
 #include <sstream>
 #include <thread>
+#include <vector>
 
 #include "solvers/registry.h"
 #include "support/cli_support.h"
@@ -278,6 +279,26 @@ TEST_CASE("coons solve: a failing solver prints its report and one error line (e
   CHECK(summary["failed_intervals"][0][0] == -0.25);
 }
 
+TEST_CASE("coons solve: alpha at the bound ±1e60 is solved alike by fast, dst and eigen-lu", "[cli][loud]") {
+  // fast's pivots square the weights: beyond about 1e154 they overflowed and it called the dome
+  // singular, while eigen-lu solved it; kMaxAlpha = 1e60 keeps every backend on this side
+  for (const char* alpha : {"1e60", "-1e60"}) {
+    std::vector<json> nets;
+    for (const char* solver : {"fast", "dst", "eigen-lu"}) {
+      const CommandResult r = run_coons("solve " + quoted(dome()) + " --alpha " + alpha + " --solver " + solver);
+      INFO(alpha << " " << solver << ": " << r.err);
+      REQUIRE(r.status == 0);
+      CHECK(r.out.find("nan") == std::string::npos);
+      nets.push_back(json::parse(r.out)["net"]);
+    }
+    for (std::size_t k = 1; k < nets.size(); ++k)
+      for (std::size_t i = 0; i < nets[0].size(); ++i)
+        for (std::size_t j = 0; j < nets[0][i].size(); ++j)
+          for (std::size_t c = 0; c < 3; ++c)
+            CHECK(nets[k][i][j][c].get<double>() == Approx(nets[0][i][j][c].get<double>()).margin(1e-12));
+  }
+}
+
 TEST_CASE("coons solve export and batch: a failed solve reports the relative residual of X = 0, which is 1",
           "[cli][loud]") {
   TempDir dir;
@@ -433,17 +454,23 @@ TEST_CASE("coons: progress with named phases on a terminal, nothing on standard 
                           Catch::Contains("coons solve: metrics"));
 }
 
-TEST_CASE("coons search-alpha: members whose eigenvalues overflow are failures named so, never '-nan'", "[cli][loud]") {
-  // --upper 1e308: the closed-form eigenvalue ratio was NaN, reported as "singular ... = -nan <= 1e-06"
-  const CommandResult r =
+TEST_CASE("coons search-alpha: bounds beyond 1e60 are refused, up to it no member is '-nan'", "[cli][loud]") {
+  // --upper 1e308 once made the closed-form eigenvalue ratio NaN ("singular ... = -nan <= 1e-06"),
+  // and ±1e308 made the scan's step overflow; kMaxAlpha (mask9.h) bounds every alpha now
+  const CommandResult refused =
       run_coons("search-alpha " + quoted(dome()) + " --objective e3 --upper 1e308 --allow-indefinite --lower -0.2");
+  CHECK(refused.status == 2);
+  CHECK(refused.out.empty());
+  CHECK(refused.err == "error: command line: --lower/--upper/--scan: bounds must lie in [-1e60, 1e60]\n");
+  const CommandResult r =
+      run_coons("search-alpha " + quoted(dome()) + " --objective e3 --upper 1e60 --allow-indefinite --lower -0.2");
   INFO(r.err);
-  REQUIRE((r.status == 0 || r.status == 3));
+  REQUIRE(r.status == 0);
   CHECK(r.out.find("nan") == std::string::npos);
   const json report = json::parse(r.out);
-  CHECK(report["failed_evaluations"].get<int>() > 0);
-  CHECK(report["first_failure"] == "failure");
-  CHECK(report["message"].get<std::string>().find("beyond the range of doubles (overflow)") != std::string::npos);
+  CHECK(report["failed_evaluations"].get<int>() == 0);
+  CHECK(report["alpha"].get<double>() == Approx(-0.2));
+  CHECK(report["at_bound"] == true);
 }
 
 TEST_CASE("coons search-alpha: evaluations that fail are reported and no optimum is claimed on them", "[cli][loud]") {

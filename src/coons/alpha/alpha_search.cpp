@@ -28,6 +28,8 @@ bool AlphaSearchOptions::is_valid(std::string* why) const {
   };
   if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper))
     return fail("bounds must be finite with lower < upper");
+  // (±1e308 passed the test above, and the scan's step (upper − lower)/k overflowed to a NaN α)
+  if (std::abs(lower) > kMaxAlpha || std::abs(upper) > kMaxAlpha) return fail("bounds must lie in [-1e60, 1e60]");
   // a scan is a coarse grid before the refinement: --scan 1e8 ran for minutes and 7 GB
   if (scan_points < 3 || scan_points > kMaxScanPoints) return fail("scan_points must be in [3, 10001]");
   if (!(flat_tolerance > 0)) return fail("flat_tolerance must be positive");

@@ -24,6 +24,15 @@ struct Mask9 {
 //! The Farin–Hansford one-parameter family.
 Mask9 alpha_mask(double alpha);
 
+//! The largest |α| (and |c| of the triangular family) that the command line and the searches
+//! accept. The weights α and 1/4 − α enter products of two weights (the pivots of the structured
+//! solvers, the closed-form eigenvalues) and squared residuals, which overflow from about 1e154 on:
+//! `fast` called the well-conditioned system of the dome singular at α = 1e160, and at 1e308 the
+//! singularity check named four points that do not decouple. 1e60, the bound of coordinates
+//! (io/json_file.h), keeps a weight times a coordinate, and its square, far from overflow; every
+//! backend that applies solves the dome at ±1e60 (the others report indefiniteness).
+inline constexpr double kMaxAlpha = 1e60;
+
 //! min|λ| / max|λ| over the eigenvalues of the mask system on the full (m−1)×(n−1) interior with
 //! one fixed ring: λ_pq = 1 − 2e_i·cos(pπ/m) − 2e_j·cos(qπ/n) − 4d·cos(pπ/m)·cos(qπ/n) (the sine
 //! modes diagonalise it; docs/math.md §3). 0 for a singular system; 1 when there is no interior.
