@@ -25,11 +25,24 @@ struct Fields {
   }
 };
 
-std::string vtk_number(double x) { return fmt::format("{}", finite_or_zero(x)); }
-
 }  // namespace
 
 double finite_or_zero(double x) { return std::isfinite(x) ? x : 0.0; }
+
+void write_vtk_scalars(std::ostream& out, const char* name, const Eigen::VectorXd& values) {
+  out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
+  for (Eigen::Index r = 0; r < values.size(); ++r)
+    out << (r % 8 ? " " : "          ") << fmt::format("{}", finite_or_zero(values(r))) << (r % 8 == 7 ? "\n" : "");
+  out << (values.size() % 8 ? "\n" : "") << "        </DataArray>\n";
+}
+
+void write_vtk_vectors(std::ostream& out, const char* name, const Eigen::MatrixX3d& v) {
+  out << "        <DataArray type=\"Float64\"" << (name[0] ? fmt::format(" Name=\"{}\"", name) : std::string())
+      << " NumberOfComponents=\"3\" format=\"ascii\">\n";
+  for (Eigen::Index r = 0; r < v.rows(); ++r)
+    fmt::print(out, "          {} {} {}\n", finite_or_zero(v(r, 0)), finite_or_zero(v(r, 1)), finite_or_zero(v(r, 2)));
+  out << "        </DataArray>\n";
+}
 
 void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::string& comment) {
   const int k = s.k;
@@ -81,22 +94,11 @@ void write_grid_vts(std::ostream& out, const SurfaceSamples& s) {
       << "    <Piece Extent=\"" << extent << "\">\n"
       << "      <PointData Scalars=\"mean_curvature\" Normals=\"Normals\">\n";
   const Fields fields(s);
-  for (const auto& [name, values] : fields.list) {
-    out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
-    for (int r = 0; r < k * k; ++r)
-      out << (r % 8 ? " " : "          ") << vtk_number((*values)(r)) << (r % 8 == 7 ? "\n" : "");
-    out << (k * k % 8 ? "\n" : "") << "        </DataArray>\n";
-  }
-  out << "        <DataArray type=\"Float64\" Name=\"Normals\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int r = 0; r < k * k; ++r)
-    out << "          " << vtk_number(s.normals(r, 0)) << ' ' << vtk_number(s.normals(r, 1)) << ' '
-        << vtk_number(s.normals(r, 2)) << '\n';
-  out << "        </DataArray>\n      </PointData>\n      <Points>\n"
-      << "        <DataArray type=\"Float64\" NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (int r = 0; r < k * k; ++r)
-    out << "          " << vtk_number(s.points(r, 0)) << ' ' << vtk_number(s.points(r, 1)) << ' '
-        << vtk_number(s.points(r, 2)) << '\n';
-  out << "        </DataArray>\n      </Points>\n    </Piece>\n  </StructuredGrid>\n</VTKFile>\n";
+  for (const auto& [name, values] : fields.list) write_vtk_scalars(out, name, *values);
+  write_vtk_vectors(out, "Normals", s.normals);
+  out << "      </PointData>\n      <Points>\n";
+  write_vtk_vectors(out, "", s.points);
+  out << "      </Points>\n    </Piece>\n  </StructuredGrid>\n</VTKFile>\n";
 }
 
 }  // namespace coons

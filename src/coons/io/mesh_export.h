@@ -23,6 +23,12 @@ namespace coons {
 //! curvature of a singular point, which the `singular` field marks).
 double finite_or_zero(double x);
 
+//! One VTK XML point-data array of the square and triangular VTS/VTU writers: scalars eight to a
+//! line, or three components per line (an empty `name` leaves the Name attribute out, as the
+//! Points array has none), each value through finite_or_zero.
+void write_vtk_scalars(std::ostream& out, const char* name, const Eigen::VectorXd& values);
+void write_vtk_vectors(std::ostream& out, const char* name, const Eigen::MatrixX3d& v);
+
 void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::string& comment = {});
 void write_grid_ply(std::ostream& out, const SurfaceSamples& s, const std::string& comment = {});
 void write_grid_vts(std::ostream& out, const SurfaceSamples& s);

@@ -20,21 +20,6 @@ std::vector<std::pair<const char*, Eigen::VectorXd>> scalar_fields(const tri::Tr
           {"singular", s.singular.cast<double>()}};
 }
 
-void write_vtk_array(std::ostream& out, const char* name, const Eigen::VectorXd& values) {
-  out << "        <DataArray type=\"Float64\" Name=\"" << name << "\" format=\"ascii\">\n";
-  for (Eigen::Index r = 0; r < values.size(); ++r)
-    out << (r % 8 ? " " : "          ") << fmt::format("{}", finite_or_zero(values(r))) << (r % 8 == 7 ? "\n" : "");
-  out << (values.size() % 8 ? "\n" : "") << "        </DataArray>\n";
-}
-
-void write_vtk_vectors(std::ostream& out, const char* name, const Eigen::MatrixX3d& v) {
-  out << "        <DataArray type=\"Float64\"" << (name[0] ? fmt::format(" Name=\"{}\"", name) : std::string())
-      << " NumberOfComponents=\"3\" format=\"ascii\">\n";
-  for (Eigen::Index r = 0; r < v.rows(); ++r)
-    fmt::print(out, "          {} {} {}\n", finite_or_zero(v(r, 0)), finite_or_zero(v(r, 1)), finite_or_zero(v(r, 2)));
-  out << "        </DataArray>\n";
-}
-
 }  // namespace
 
 void write_tri_surface_obj(std::ostream& out, const tri::TriSurfaceSamples& s, int degree) {
@@ -84,7 +69,7 @@ void write_tri_surface_vtu(std::ostream& out, const tri::TriSurfaceSamples& s) {
       << "  <UnstructuredGrid>\n"
       << "    <Piece NumberOfPoints=\"" << s.points.rows() << "\" NumberOfCells=\"" << s.triangles.size() << "\">\n"
       << "      <PointData Scalars=\"mean_curvature\" Normals=\"Normals\">\n";
-  for (const auto& field : scalar_fields(s)) write_vtk_array(out, field.first, field.second);
+  for (const auto& field : scalar_fields(s)) write_vtk_scalars(out, field.first, field.second);
   write_vtk_vectors(out, "Normals", s.normals);
   out << "      </PointData>\n      <Points>\n";
   write_vtk_vectors(out, "", s.points);
