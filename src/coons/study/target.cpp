@@ -46,18 +46,15 @@ const json& member(const json& object, const char* key, const std::string& sourc
 Eigen::RowVector3d vec3(const json& j, const std::string& source, const std::string& field) {
   if (!j.is_array() || j.size() != 3) throw InputError(source, field, "must be [x, y, z]");
   Eigen::RowVector3d p;
-  for (int k = 0; k < 3; ++k) {
-    if (!j[k].is_number() || !std::isfinite(j[k].get<double>()))
-      throw InputError(source, field, "must be [x, y, z] of finite numbers");
-    p(k) = json_coordinate(j[k], source, field, fmt::format("coordinate {}", k));
-  }
+  // (json_coordinate names the coordinate that is not a number, not finite or beyond the bound)
+  for (int k = 0; k < 3; ++k) p(k) = json_coordinate(j[k], source, field, fmt::format("coordinate {}", k));
   return p;
 }
 
 double positive(const json& j, const std::string& source, const std::string& field) {
-  if (!j.is_number() || !(j.get<double>() > 0) || !std::isfinite(j.get<double>()))
-    throw InputError(source, field, "must be a positive finite number");
-  return json_coordinate(j, source, field, "the radius");
+  const double r = json_coordinate(j, source, field, "the radius");
+  if (!(r > 0)) throw InputError(source, field, "must be a positive finite number");
+  return r;
 }
 
 }  // namespace
