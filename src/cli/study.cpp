@@ -190,6 +190,11 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
                            fmt::format("{} ({} is a triangular boundary)", check.reason, f));
       int largest = triangles.back().boundary.n;
       for (int d : options.degrees) largest = std::max(largest, d);
+      if (largest > tri::kMaxTriDegree)
+        throw InputError("command line", "--degrees",
+                         fmt::format("{} is above {}, the largest degree of a triangular boundary ({} is one); study "
+                                     "the triangles in a run of their own with smaller --degrees",
+                                     largest, tri::kMaxTriDegree, f));
       check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),
                    fmt::format("the study of {} at degree {}", triangles.back().boundary.name, largest), f, "degree");
       continue;

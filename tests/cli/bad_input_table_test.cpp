@@ -193,6 +193,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --alpha 1e308", "--alpha: 1e+308 is beyond the bound |alpha| <= 1e+60"},
       {"solve " + good + " --alpha -1e61 --solver eigen-lu", "--alpha: -1e+61 is beyond the bound"},
       {"solve " + quoted(kData + "/triangles/dome_half.json") + " --alpha 1e200", "--alpha: 1e+200 is beyond"},
+      // a triangle is studied up to tri::kMaxTriDegree (degree 400 ran out of memory, exit 1)
+      {"study " + quoted(kData + "/triangles/dome_half.json") + " --degrees 6 41 --out {OUT}",
+       "--degrees: 41 is above 40, the largest degree of a triangular boundary"},
       {"search-alpha " + good + " --objective thin_plate --allow-indefinite --lower -1e308 --upper 1e308",
        "bounds must lie in [-1e60, 1e60]"},
       {"search-alpha " + quoted(kData + "/triangles/dome_half.json") + " --objective thin_plate --upper 1e61",

@@ -81,6 +81,19 @@ TEST_CASE("parse_tri_boundary: side lengths, degree, points and type are checked
   }
 }
 
+TEST_CASE("parse_tri_boundary: degree kMaxTriDegree is read, one more is refused naming the bound", "[io][tri]") {
+  // Above it the dense Gram matrices of the exact energies took minutes (degree 100) or ran out of
+  // memory (400, exit 1) instead of a clear refusal
+  const json at_bound = tri_boundary_to_json(boundary_of(random_tri_net(kMaxTriDegree, 9)));
+  CHECK(error_of(at_bound).empty());
+  json above = tri_boundary_to_json(boundary_of(random_tri_net(kMaxTriDegree + 1, 10)));
+  CHECK(error_of(above) ==
+        "T.json: degree: degree 41 is above 40, the largest for a triangular boundary (its exact "
+        "energies use dense Gram matrices that grow as the degree^4)");
+  above.erase("degree");
+  CHECK(error_of(above).rfind("T.json: sides[0]: degree 41 is above 40", 0) == 0);
+}
+
 TEST_CASE("tri_net_to_json: net[k][j] is b[n-k-j][j][k]", "[io][tri]") {
   const TriNet net = random_tri_net(6, 11);
   const json rows = tri_net_to_json(net);

@@ -69,6 +69,11 @@ tri::TriBoundary parse_tri_boundary(const json& doc, const std::string& source, 
     if (degree != b.n)
       fail("degree", fmt::format("says {} but the sides have {} points (degree {})", degree, b.n + 1, b.n));
   }
+  if (b.n > tri::kMaxTriDegree)
+    fail(doc.contains("degree") ? "degree" : "sides[0]",
+         fmt::format("degree {} is above {}, the largest for a triangular boundary (its exact energies use dense "
+                     "Gram matrices that grow as the degree^4)",
+                     b.n, tri::kMaxTriDegree));
   for (int s = 0; s < 3; ++s) {
     b.sides[s].resize(b.n + 1, 3);
     for (int q = 0; q <= b.n; ++q)
