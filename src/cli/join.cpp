@@ -9,6 +9,7 @@
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/surface_io.h"
 #include "coons/surfaces/joining.h"
 #include "registry.h"
@@ -34,7 +35,9 @@ int run_join(const JoinRequest& r) {
   const Side a_side = side(r.first_side, "FIRST_SIDE"), b_side = side(r.second_side, "SECOND_SIDE");
   if (r.samples < 2 || r.samples > 1000000)
     throw InputError("command line", "--samples", "must be between 2 and 1000000");
-  const SurfaceFile a = read_surface_file(r.first), b = read_surface_file(r.second);
+  SurfaceReadOptions options;
+  options.min_model_size = kMinModelSize;  // the gap and angle of a model below it: surface_io.h
+  const SurfaceFile a = read_surface_file(r.first, options), b = read_surface_file(r.second, options);
   const SeamReport seam = compare_seam(a.surface, a_side, b.surface, b_side, r.reversed, r.samples);
   // The reader checks expressions at 65 samples; a pole or NaN between them may meet the seam.
   if (seam.not_finite != 0)

@@ -17,6 +17,7 @@
 #include <sstream>
 
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/mesh_export.h"
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
@@ -72,6 +73,7 @@ int run_surface(const SurfaceRequest& r) {
   check_output(r.png, "--png", r.global.force);
   check_output(r.net_out, "--net-out", r.global.force);
   SurfaceReadOptions options;
+  options.min_model_size = kMinModelSize;  // curvatures and distances: surface_io.h
   options.corner_tolerance = r.corner_tolerance;
   options.derivative_tolerance = r.derivative_tolerance;
   const SurfaceFile input = read_surface_file(r.spec, options);

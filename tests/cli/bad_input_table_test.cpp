@@ -139,6 +139,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   const std::string surface_b = quoted(kData + "/surfaces/join_bilinear_b.json");
   inputs.write("badtype.json", "{\"type\": \"teapot\"}");
   inputs.write("nocorners.json", "{\"type\": \"bilinear\"}");
+  // a bilinear patch 1e-170 across: join read its open seam (gap 1.4e-170) as closed, surface its
+  // Gaussian curvature 1e320 as 0
+  inputs.write("tiny.json", R"({"type": "bilinear", "corners": [[0, 0, 0], [1e-170, 0, 0], [0, 1e-170, 0],
+                                [1e-170, 1e-170, 1e-170]]})");
 
   const std::vector<Case> cases = {
       // solve: files
@@ -332,6 +336,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"join " + surface + " right " + surface_b + " left --samples 1", "--samples"},
       {"join {IN}/missing.json right " + surface_b + " left", "missing.json"},
       {"join {IN}/broken.json right " + surface_b + " left", "broken.json"},
+      {"join {IN}/tiny.json right {IN}/tiny.json left",
+       "tiny.json: corners[1]: the largest coordinate magnitude of the model is 1e-170, below 1e-60"},
+      {"surface {IN}/tiny.json --obj {OUT}/s.obj", "tiny.json: corners[1]: the largest coordinate magnitude"},
       // degree-limit
       {"degree-limit {IN}/broken.json", "broken.json"},
       {"degree-limit " + good + " --degrees 8 4", "--degrees"},

@@ -63,7 +63,26 @@ class Reader {
     if (p.size() != 3) fail(field, fmt::format("a point must have 3 coordinates, not {}", p.size()));
     Vec out;
     for (int c = 0; c < 3; ++c) out(c) = json_coordinate(p[c], source_, field, fmt::format("coordinate {}", c));
+    note_magnitude(out, field);
     return out;
+  }
+
+  //! The largest coordinate magnitude read so far and the field that holds it (require_size).
+  void note_magnitude(const Vec& p, const std::string& field) const {
+    const double m = p.cwiseAbs().maxCoeff();
+    if (m > largest_) {
+      largest_ = m;
+      largest_field_ = field;
+    }
+  }
+
+  //! An InputError at the field of the largest coordinate when 0 < largest < min_size.
+  void require_size(double min_size) const {
+    if (largest_ > 0 && largest_ < min_size)
+      fail(largest_field_,
+           fmt::format("the largest coordinate magnitude of the model is {:.3g}, below {:g}: its curvatures "
+                       "(1/x) and squared distances (x^2) would leave the range of doubles; scale the model up",
+                       largest_, min_size));
   }
 
   //! An array of exactly `count` points (count < 0: at least 1).
@@ -149,6 +168,7 @@ class Reader {
           if (const std::string why = coordinate_problem(p(comp)); !why.empty())
             fail(fmt::format("{}[{}]", sub, comp),
                  fmt::format("'{}' at t = {:.6g} {}", expressions[comp], t1 + s * (t2 - t1), why));
+        note_magnitude(p, sub);
       }
       return c;
     } catch (const ExpressionError& x) {
@@ -160,6 +180,8 @@ class Reader {
 
  private:
   std::string source_;
+  mutable double largest_ = 0;  // (note_magnitude: the reads are const)
+  mutable std::string largest_field_;
 };
 
 // The tolerance checks shared by the Coons types.
@@ -291,6 +313,7 @@ SurfaceFile parse_surface(const json& doc, const std::string& source, const Surf
       break;
     }
   }
+  r.require_size(options.min_model_size);
   return SurfaceFile{name, std::move(*surface), std::move(conditions), size};
 }
 

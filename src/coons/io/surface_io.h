@@ -27,6 +27,11 @@ struct SurfaceReadOptions {
   //! Tangent and twist conditions of general-coons: this fraction of max(size, ‖vectors‖)
   //! (analytic curves have numerical derivatives, accurate to ≈ 1e-10).
   double derivative_tolerance = 1e-7;
+  //! A model whose largest coordinate magnitude is below this (and not 0) is an InputError naming
+  //! the point; 0 accepts any. `surface` and `join` use kMinModelSize (json_file.h): below it the
+  //! curvatures and squared distances they report leave the doubles (a seam 1.4e-170 wide read as
+  //! closed, a Gaussian curvature of 1e320 as 0).
+  double min_model_size = 0;
 };
 
 struct SurfaceFile {
