@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <cctype>
 #include <cerrno>
 #include <cmath>
 #include <cstdio>
@@ -307,6 +308,13 @@ void require_alpha_value(double alpha) {
                      fmt::format("{:g} is beyond the bound |alpha| <= {:g} (the mask's weights would overflow in "
                                  "the solvers' products)",
                                  alpha, kMaxAlpha));
+}
+
+std::string objective_text(const std::string& given) {
+  std::string out;
+  for (char c : given)
+    if (!std::isspace(static_cast<unsigned char>(c))) out += c;
+  return out;
 }
 
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r) {

@@ -131,6 +131,9 @@ void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solve
 //! An InputError on --alpha unless it is finite with |α| <= kMaxAlpha (mask9.h); the quad and the
 //! triangular mask families share the rule.
 void require_alpha_value(double alpha);
+//! An --objective as given without its white space: weighted sums may be written with spaces,
+//! "thin_plate + 10*target" is "thin_plate+10*target" (search-alpha, degree-limit, triangles).
+std::string objective_text(const std::string& given);
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r);
 
 //! True when the classical path applies: one data ring, no free grid, the alpha mask.

@@ -50,7 +50,8 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
   if (!options.is_valid(&why))
     throw InputError("command line", why.rfind("continuum", 0) == 0 ? "--continuum-degrees" : "--degrees", why);
   std::vector<Objective> objectives;
-  for (const std::string& name : r.objectives) {
+  for (const std::string& given : r.objectives) {
+    const std::string name = objective_text(given);
     auto o = parse_objective(name, &why);
     if (!o) throw InputError("command line", "--objective", why);
     if (o->target_weight > 0) throw InputError("command line", "--objective", "'" + name + "' needs a target");

@@ -50,14 +50,6 @@ struct SearchRequest {
   CLI::Option *target_option = nullptr, *samples_option = nullptr;
 };
 
-// "thin_plate + 10*target" → "thin_plate+10*target": weighted sums may be written with spaces.
-std::string objective_text(const std::string& given) {
-  std::string out;
-  for (char c : given)
-    if (!std::isspace(static_cast<unsigned char>(c))) out += c;
-  return out;
-}
-
 struct SearchSetup {
   Objective objective;
   MaskFamily family;

@@ -78,13 +78,6 @@ TriRequest resolve_tri(const NetRequest& r) {
   return out;
 }
 
-std::string without_spaces(const std::string& given) {
-  std::string out;
-  for (char c : given)
-    if (!std::isspace(static_cast<unsigned char>(c))) out += c;
-  return out;
-}
-
 // c*ₙ makes the system singular (the bubble i·j·k is a null vector): with a consistent right-hand
 // side an iterative backend then returns one of many nets and calls it a success, so every
 // backend is refused the same way, as for a singular rectangle. 1e-12: within it the condition
@@ -196,7 +189,7 @@ int run_tri_search(const TriSearchArgs& a) {
   phases.start("read");
   const tri::TriBoundary b = read_tri_input(a.boundary, a.corner_tolerance, kMinModelSize);
   if (!a.rejected.empty()) throw InputError("command line", a.rejected, "does not apply to a triangular boundary");
-  const std::string text = without_spaces(a.objective);
+  const std::string text = objective_text(a.objective);
   std::string why;
   std::optional<TriObjective> objective = parse_tri_objective(text, &why);
   if (!objective) throw InputError("command line", "--objective", why);

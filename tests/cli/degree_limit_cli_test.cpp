@@ -87,3 +87,16 @@ TEST_CASE("coons degree-limit: --out writes the report with its generated conclu
   CHECK(r.out.find("## 2. Conclusions") != std::string::npos);
   CHECK(r.out.find("saddle, thin_plate.** flat at every degree") != std::string::npos);
 }
+
+TEST_CASE("coons degree-limit: a weighted sum written with spaces is the same objective", "[cli]") {
+  // "thin_plate + 0.1*e3" was refused as "unknown objective 'thin_plate '" while search-alpha took it
+  const std::string base = "degree-limit '" + kData + "/boundaries/dome.json' --degrees 3 4 5 --objective ";
+  const CommandResult spaced = run_coons(base + "'thin_plate + 0.1*e3'");
+  const CommandResult tight = run_coons(base + "thin_plate+0.1*e3");
+  INFO(spaced.err);
+  REQUIRE(spaced.status == 0);
+  REQUIRE(tight.status == 0);
+  const json a = json::parse(spaced.out), b = json::parse(tight.out);
+  CHECK(a["objective"] == "thin_plate+0.1*e3");
+  CHECK(a["alpha_star"] == b["alpha_star"]);
+}

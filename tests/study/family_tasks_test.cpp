@@ -20,6 +20,15 @@ TEST_CASE("parse_shard: I/N with 0 <= I < N, anything else is refused with a rea
     CHECK_FALSE(parse_shard(bad, &why));
     CHECK_FALSE(why.empty());
   }
+  // ten digits were called "not I/N (two whole numbers …)", which they are: the reason is the size
+  CHECK_FALSE(parse_shard("0/1000000000", &why));
+  CHECK(why == "'0/1000000000': I and N must be below 1000000000");
+  const auto zeros = parse_shard("0000000003/0000000004", &why);  // leading zeros count for nothing
+  REQUIRE(zeros);
+  CHECK(*zeros == std::make_pair(3, 4));
+  const auto largest = parse_shard("3/999999999", &why);
+  REQUIRE(largest);
+  CHECK(largest->second == 999999999);
 }
 
 TEST_CASE("shard_tasks: the shards partition the task list") {

@@ -50,15 +50,21 @@ std::optional<std::pair<int, int>> parse_shard(const std::string& text, std::str
     return std::nullopt;
   };
   const size_t slash = text.find('/');
+  enum class Whole { kNot, kTooLarge, kOk };
   auto whole = [](const std::string& s, int* out) {
-    if (s.empty() || s.size() > 9 || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; }))
-      return false;
-    *out = std::stoi(s);
-    return true;
+    if (s.empty() || !std::all_of(s.begin(), s.end(), [](char c) { return c >= '0' && c <= '9'; })) return Whole::kNot;
+    const size_t first = std::min(s.find_first_not_of('0'), s.size() - 1);  // leading zeros count for nothing
+    if (s.size() - first > 9) return Whole::kTooLarge;
+    *out = std::stoi(s.substr(first));
+    return Whole::kOk;
   };
   int shard = 0, shards = 0;
-  if (slash == std::string::npos || !whole(text.substr(0, slash), &shard) || !whole(text.substr(slash + 1), &shards))
+  const Whole i = slash == std::string::npos ? Whole::kNot : whole(text.substr(0, slash), &shard);
+  const Whole n = slash == std::string::npos ? Whole::kNot : whole(text.substr(slash + 1), &shards);
+  if (i == Whole::kNot || n == Whole::kNot)
     return fail(fmt::format("'{}' is not I/N (two whole numbers, e.g. 0/4)", text));
+  if (i == Whole::kTooLarge || n == Whole::kTooLarge)
+    return fail(fmt::format("'{}': I and N must be below 1000000000", text));
   if (shards < 1) return fail(fmt::format("N must be at least 1, not {}", shards));
   if (shard >= shards) return fail(fmt::format("I must be in [0, N) = [0, {}), not {}", shards, shard));
   return std::make_pair(shard, shards);
