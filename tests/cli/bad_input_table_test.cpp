@@ -209,6 +209,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --max-memory ''", "--max-memory: an empty value"},
       {"solve ''", "BOUNDARY: an empty value"},
       {"solve " + good + " --max-memory lots", "--max-memory"},
+      {"solve " + good + " --max-memory 0x10", "--max-memory"},  // was read as 16 bytes
+      {"solve " + good + " --max-memory ' 5MB'", "--max-memory"},
       {"solve " + good + " --method coons --alpha 0.1", "--alpha"},
       {"solve " + good + " --alpha 0.1 --mu 2", "--mu"},
       {"solve " + good + " --tolerance -1 --solver cg", "tolerance"},

@@ -152,7 +152,8 @@ TEST_CASE("read_market_matrix: a bad file names its line and the reason", "[io]"
   CHECK(error_of(coordinate + "2 2 1\n0 1 1\n") == "line 3: entry (0, 1) outside the 2 by 2 matrix");
   CHECK(error_of(coordinate + "2 2 1\n1 1 1e999\n") == "line 3: the value '1e999' is not finite");
   CHECK(error_of(coordinate + "2 2 1\n1 1 nan\n") == "line 3: the value 'nan' is not finite");
-  CHECK(error_of(coordinate + "2 2 1\n1 1 x\n") == "line 3: 'x' is not a number");
+  CHECK(error_of(coordinate + "2 2 1\n1 1 x\n") == "line 3: 'x' is not a decimal number");
+  CHECK(error_of(coordinate + "2 2 1\n1 1 0x10\n") == "line 3: '0x10' is not a decimal number");  // strtod read 16
   CHECK(error_of(coordinate + "2 2 1\n1 1\n") == "line 3: expected 'row column value'");
   CHECK(error_of(coordinate + "2 2 2\n1 1 1\n") == "line 2: promises 2 entries, the file holds 1");
   CHECK(error_of(coordinate + "2 2 1\n1 1 1\n2 2 1\n") == "line 4: more entries than the 1 of the size line");

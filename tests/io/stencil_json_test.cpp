@@ -88,7 +88,8 @@ TEST_CASE("free_grid_from_json: a 0/1 grid of the net's shape, errors at the ind
   };
   CHECK(error("[[0,0],[0,0]]") == "b.json: free: must be an array of 3 rows (the shape of net), got 2");
   CHECK(error("[[0,0],[0,0,0],[0,0]]") == "b.json: free[1]: must be an array of 2 values 0 or 1");
-  CHECK(error("[[0,0],[0,2],[0,0]]") == "b.json: free[1][1]: must be 0 or 1");
+  CHECK(error("[[0,0],[0,2],[0,0]]") == "b.json: free[1][1]: must be 0 or 1 (an integer, or true/false), not 2");
+  CHECK(error("[[0,0],[0,1.0],[0,0]]") == "b.json: free[1][1]: must be 0 or 1 (an integer, or true/false), not 1.0");
 }
 
 TEST_CASE("stencil_from_json: weights near the largest double give their stencil without overflow", "[io]") {

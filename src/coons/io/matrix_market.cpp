@@ -296,9 +296,10 @@ double parse_value(const std::string& path, const std::string& where, const std:
   errno = 0;
   const double v =
       b.field == "integer" ? double(std::strtoll(token.c_str(), &end, 10)) : std::strtod(token.c_str(), &end);
-  if (token.empty() || *end != '\0')
+  // (strtod also reads hexadecimal, '0x10' = 16; Matrix Market values are decimal)
+  if (token.empty() || *end != '\0' || token.find_first_of("xX") != std::string::npos)
     throw InputError(path, where,
-                     fmt::format("'{}' is not {}", token, b.field == "integer" ? "an integer" : "a number"));
+                     fmt::format("'{}' is not {}", token, b.field == "integer" ? "an integer" : "a decimal number"));
   // strtoll clamps an integer beyond 64 bits to its limit and says so only in errno (strtod's
   // ERANGE on underflow is a finite value, and overflow is caught as not finite below)
   if (b.field == "integer" && errno == ERANGE)

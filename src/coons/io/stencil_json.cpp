@@ -90,7 +90,9 @@ FreeGrid free_grid_from_json(const nlohmann::json& free, int m, int n, const std
     for (std::size_t j = 0; j < row.size(); ++j) {
       const nlohmann::json& x = row[j];
       const bool ok = x.is_boolean() || (x.is_number_integer() && (x.get<long long>() == 0 || x.get<long long>() == 1));
-      if (!ok) throw InputError(file, index_field("free", i, j), "must be 0 or 1");
+      if (!ok)
+        throw InputError(file, index_field("free", i, j),
+                         "must be 0 or 1 (an integer, or true/false), not " + x.dump());
       grid(Eigen::Index(i), Eigen::Index(j)) = x.is_boolean() ? x.get<bool>() : x.get<long long>() == 1;
     }
   }

@@ -35,6 +35,9 @@ std::optional<double> parse_memory_size(const std::string& text) {
   } catch (const std::exception&) {
     return std::nullopt;
   }
+  // decimal only: stod also reads "0x10" (16), leading spaces, "inf" and "nan"
+  if (!(std::isdigit(static_cast<unsigned char>(text[0])) || text[0] == '.') || text.find_first_of("xX") < used)
+    return std::nullopt;
   std::string unit = text.substr(used);
   for (char& c : unit) c = char(std::toupper(static_cast<unsigned char>(c)));
   double scale = 0;

@@ -84,7 +84,8 @@ std::optional<Target> target_from_json(const json& doc, const std::string& sourc
   } else {
     throw InputError(source, "target", "must hold sphere, cylinder or plane");
   }
-  if (out.direction.norm() == 0) throw InputError(source, "target", "axis/normal must not be zero");
+  if (out.direction.norm() == 0)
+    throw InputError(source, "target", "axis/normal must not be zero (nor so short that its length underflows to 0)");
   return out;
 }
 
@@ -120,7 +121,8 @@ std::optional<Target> resolve_target(const std::string& spec, const std::string&
   if (t) {
     t->samples = samples;
     if (t->kind != Target::Kind::kNet && t->direction.norm() == 0)
-      throw InputError("command line", "--target", "axis/normal must not be zero");
+      throw InputError("command line", "--target",
+                       "axis/normal must not be zero (nor so short that its length underflows to 0)");
     if ((t->kind == Target::Kind::kSphere || t->kind == Target::Kind::kCylinder) && !(t->radius > 0))
       throw InputError("command line", "--target", "radius must be positive");
   }

@@ -9,8 +9,9 @@ namespace coons {
 
 std::string conoid_problem(const Conoid& c) {
   const double d = c.line_direction.norm(), n = c.plane_normal.norm();
-  if (!(d > 0)) return "the line's direction is the zero vector";
-  if (!(n > 0)) return "the plane's normal is the zero vector";
+  // (a vector like [1e-320, 0, 0] is not zero, but its length underflows to 0 all the same)
+  if (!(d > 0)) return "the line's direction is the zero vector, or too short for its length to be a double";
+  if (!(n > 0)) return "the plane's normal is the zero vector, or too short for its length to be a double";
   const double cosine = std::abs(c.plane_normal.dot(c.line_direction)) / (d * n);
   if (!(cosine > 1e-9))
     return fmt::format("the line is parallel to the directing plane (|cos| between direction and normal = {:.3g})",
