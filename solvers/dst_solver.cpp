@@ -14,7 +14,6 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
-#include <cstdint>
 #include <string>
 #include <utility>
 #include <vector>
@@ -301,8 +300,7 @@ ColumnExponents DstSolver::rhs_scaling(const Eigen::MatrixX3d& B) {
   // per band and column: the largest magnitude, and whether a row 1..R−2 has a non-zero inside
   std::vector<std::array<double, 3>> largest(std::size_t(bands), {0.0, 0.0, 0.0});
   std::vector<std::array<bool, 3>> interior(std::size_t(bands), {false, false, false});
-  auto band = [&](int p) {
-    const int r0 = int(std::int64_t(R_) * p / bands), r1 = int(std::int64_t(R_) * (p + 1) / bands);
+  detail::for_each_row_band(R_, bands, [&](int p, int r0, int r1) {
     for (int c = 0; c < 3; ++c) {
       const double* b = B.col(c).data();
       double& m = largest[std::size_t(p)][std::size_t(c)];
@@ -314,15 +312,7 @@ ColumnExponents DstSolver::rhs_scaling(const Eigen::MatrixX3d& B) {
       }
       interior[std::size_t(p)][std::size_t(c)] = inside;
     }
-  };
-  if (bands == 1) {
-    band(0);
-  } else {
-#if defined(_OPENMP)
-#pragma omp parallel for num_threads(bands) schedule(static, 1)
-#endif
-    for (int p = 0; p < bands; ++p) band(p);
-  }
+  });
   ColumnExponents e{};
   for (std::size_t c = 0; c < 3; ++c) {
     double m = 0;

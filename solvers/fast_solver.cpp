@@ -15,7 +15,6 @@
 #include <array>
 #include <atomic>
 #include <cmath>
-#include <cstdint>
 #include <memory>
 #include <string>
 #include <thread>
@@ -184,20 +183,11 @@ class FastSolver : public detail::StructuredSolver {
     const int bands = threads_;
     std::array<std::vector<RowForm>, 3> pieces;
     for (auto& p : pieces) p.resize(std::size_t(bands));
-    auto band = [&](int p) {
-      const int r0 = int(std::int64_t(R_) * p / bands), r1 = int(std::int64_t(R_) * (p + 1) / bands);
+    detail::for_each_row_band(R_, bands, [&](int p, int r0, int r1) {
       for (int c = 0; c < 3; ++c)
         pieces[std::size_t(c)][std::size_t(p)] =
             detail::split_rows(B.col(c).data() + std::size_t(r0) * std::size_t(C_), r1 - r0, width, C_);
-    };
-    if (bands == 1) {
-      band(0);
-    } else {
-#if defined(_OPENMP)
-#pragma omp parallel for num_threads(bands) schedule(static, 1)
-#endif
-      for (int p = 0; p < bands; ++p) band(p);
-    }
+    });
     for (std::size_t c = 0; c < 3; ++c) {
       s.forms[c] = bands == 1 ? std::move(pieces[c][0]) : detail::join_rows(pieces[c]);
       if (path_ == Path::kTransform) s.interface[c] = interface_part(B.col(Eigen::Index(c)).data());

@@ -8,6 +8,7 @@
 #include <algorithm>
 #include <cmath>
 #include <cstddef>
+#include <cstdint>
 #include <vector>
 
 namespace coons::solvers::detail {
@@ -49,5 +50,21 @@ double largest_magnitude(const RowForm& f);
 //! e0, e1 are the unit vectors (physical forms) or their sine transforms (transformed forms).
 RowForm combine(const std::vector<const RowForm*>& forms, const std::vector<double>& w, int R,
                 const std::vector<double>& e0, const std::vector<double>& e1);
+
+//! f(p, r0, r1) for each band p = 0..bands−1 of the rows [r0, r1) that split `rows` evenly, one
+//! band per thread (OpenMP) when bands > 1: the structured solvers' parallel reads of B (fast's
+//! split_rows, dst's scaling and ring scan).
+template <class F>
+void for_each_row_band(int rows, int bands, F&& f) {
+  auto run = [&](int p) { f(p, int(std::int64_t(rows) * p / bands), int(std::int64_t(rows) * (p + 1) / bands)); };
+  if (bands == 1) {
+    run(0);
+    return;
+  }
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(bands) schedule(static, 1)
+#endif
+  for (int p = 0; p < bands; ++p) run(p);
+}
 
 }  // namespace coons::solvers::detail
