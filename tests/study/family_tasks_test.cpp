@@ -69,15 +69,39 @@ TEST_CASE("family_task_key: changes with every input of the task and with the co
   CHECK(family_task_key(other, task, "1.0", "abc") == key);
 }
 
-TEST_CASE("interpolate_on_grid: exact at the nodes and for cubics in the grid index") {
-  auto cubic = [](double s) { return 1 + s - 0.3 * s * s + 0.02 * s * s * s; };
+TEST_CASE("interpolate_on_grid: exact at the nodes and for quintics in the grid index") {
+  auto quintic = [](double s) {
+    return 1 + s - 0.3 * s * s + 0.02 * s * s * s + 1e-3 * std::pow(s, 4) - 1e-4 * std::pow(s, 5);
+  };
   std::vector<double> values(9);
-  for (int k = 0; k < 9; ++k) values[k] = cubic(k);
+  for (int k = 0; k < 9; ++k) values[k] = quintic(k);
   for (int k = 0; k < 9; ++k) CHECK(interpolate_on_grid(values, k) == values[k]);
-  for (double s : {0.25, 1.5, 4.7, 7.9}) CHECK(interpolate_on_grid(values, s) == Approx(cubic(s)).epsilon(1e-12));
+  for (double s : {0.25, 1.5, 4.7, 7.9}) CHECK(interpolate_on_grid(values, s) == Approx(quintic(s)).epsilon(1e-12));
+  // a sextic is not reproduced: the window really is six nodes
+  std::vector<double> sextic(9);
+  for (int k = 0; k < 9; ++k) sextic[k] = std::pow(k - 4.0, 6);
+  CHECK(std::abs(interpolate_on_grid(sextic, 4.5) - std::pow(0.5, 6)) > 1);
+  // fewer nodes than the window: the polynomial through all of them
+  CHECK(interpolate_on_grid({0, 1, 4}, 1.5) == Approx(2.25));
   values[6] = HUGE_VAL;  // a failed evaluation: linear between finite neighbours, ∞ next to it
   CHECK(interpolate_on_grid(values, 4.5) == Approx(0.5 * (values[4] + values[5])));
   CHECK(std::isinf(interpolate_on_grid(values, 5.5)));
+}
+
+TEST_CASE("family_alpha_grid: a logit grid from -1/4 + 1e-6 to 1/4 - 1e-6, symmetric about 0") {
+  const std::vector<double> grid = family_alpha_grid(161);
+  REQUIRE(grid.size() == 161);
+  CHECK(grid.front() == Approx(-0.25 + kFamilyGridEnd).epsilon(1e-9));
+  CHECK(grid.back() == Approx(0.25 - kFamilyGridEnd).epsilon(1e-12));
+  CHECK(std::abs(grid[80]) < 1e-15);
+  for (int k = 0; k < 161; ++k) {
+    CHECK(grid[k] == Approx(-grid[160 - k]).margin(1e-15));
+    if (k > 0) CHECK(grid[k] > grid[k - 1]);
+    CHECK(family_grid_alpha(k, 161) == grid[k]);
+  }
+  // uniform in u = log((α + 1/4)/(1/4 − α))
+  auto u = [](double a) { return std::log((a + 0.25) / (0.25 - a)); };
+  CHECK(u(grid[41]) - u(grid[40]) == Approx(u(grid[121]) - u(grid[120])).epsilon(1e-9));
 }
 
 TEST_CASE("family_task_record: a record read back is the same result") {
@@ -100,6 +124,12 @@ TEST_CASE("family_task_record: a record read back is the same result") {
   CHECK(again.degrees == options.degrees);
   CHECK(again.count == 3);
   CHECK(objectives == std::vector<std::string>{"thin_plate"});
+  // shards of an older coons (no grid named, or another) are refused, not merged on the wrong α
+  nlohmann::json older = study;
+  older.erase("grid");
+  CHECK_THROWS_WITH(family_options_of(older, &objectives, "f"), Catch::Contains("f: study.grid: not 'logit'"));
+  older["grid"] = "log";
+  CHECK_THROWS_WITH(family_options_of(older, &objectives, "f"), Catch::Contains("f: study.grid: not 'logit'"));
   nlohmann::json broken = family_task_record(study, "k", r);
   broken["status"] = "maybe";
   CHECK_THROWS_AS(family_task_from_record(broken, options, "f"), InputError);
@@ -143,6 +173,21 @@ TEST_CASE("family_task_from_record: a grid of another length or a number that is
       INFO(name << " = " << bad.dump());
       CHECK(field_refused(edited) == name);
     }
+  // the result itself: α* beyond the search's bounds, an energy below 0 or not finite
+  const std::vector<std::pair<const char*, nlohmann::json>> results = {
+      {"alpha", 5.0}, {"alpha", -0.2500001}, {"alpha", nullptr}, {"value", -1e-9}, {"value", HUGE_VAL}};
+  for (const auto& [name, bad] : results) {
+    nlohmann::json edited = record;
+    edited[name] = bad;
+    INFO(name << " = " << bad.dump());
+    CHECK(field_refused(edited) == name);
+  }
+  nlohmann::json negative = record;
+  negative["grid"][4] = -2.0;
+  CHECK(field_refused(negative) == "grid[4]");
+  nlohmann::json failed = record;  // a failed evaluation is null, and accepted
+  failed["grid"][4] = nullptr;
+  CHECK(std::isinf(family_task_from_record(failed, options, "f").grid[4]));
   // the study block: its integers too
   std::vector<std::string> objectives;
   for (const char* name : {"count", "grid_points"}) {

@@ -65,10 +65,17 @@ std::optional<Distribution> distribution_of(const std::vector<double>& values) {
   return d;
 }
 
+double family_grid_alpha(double s, int grid_points) {
+  // u = log((α + 1/4)/(1/4 − α)) from −u_end to u_end: the poles of f_b(α), just beyond α = −1/4
+  // and α = 1/4, lie π off the real u axis (docs/formats.md), so the nodes serve both ends alike
+  const double u_end = std::log((0.5 - kFamilyGridEnd) / kFamilyGridEnd);
+  const double u = -u_end + 2 * u_end * s / (grid_points - 1);
+  return std::clamp(-0.25 + 0.5 / (1 + std::exp(-u)), -0.25, 0.25);
+}
+
 std::vector<double> family_alpha_grid(int grid_points) {
-  const double lo = std::log(1e-6), hi = std::log(0.5);
   std::vector<double> grid(grid_points);
-  for (int k = 0; k < grid_points; ++k) grid[k] = std::exp(lo + (hi - lo) * k / (grid_points - 1)) - 0.25;
+  for (int k = 0; k < grid_points; ++k) grid[k] = family_grid_alpha(k, grid_points);
   return grid;
 }
 
@@ -78,11 +85,12 @@ double interpolate_on_grid(const std::vector<double>& values, double s) {
   if (size == 1) return values[0];
   s = std::clamp(s, 0.0, double(size - 1));
   const int k = std::min(int(std::floor(s)), size - 2);  // s in [k, k + 1]
-  const int first = std::clamp(k - 1, 0, std::max(size - 4, 0));
-  const int last = std::min(first + 3, size - 1);
+  const int points = std::min(kGridInterpolationPoints, size);
+  const int first = std::clamp(k - (points / 2 - 1), 0, size - points);
+  const int last = first + points - 1;
   bool finite = true;
   for (int j = first; j <= last; ++j) finite = finite && std::isfinite(values[j]);
-  if (!finite || last - first < 3) {
+  if (!finite) {
     if (!std::isfinite(values[k]) || !std::isfinite(values[k + 1])) return HUGE_VAL;
     return values[k] + (s - k) * (values[k + 1] - values[k]);
   }
@@ -143,9 +151,7 @@ std::optional<BestSingleAlpha> best_single_alpha_on_grid(const std::vector<std::
     }
   }
   const double s = std::min(f1, f2) <= mean[at] ? (f1 <= f2 ? x1 : x2) : double(at);
-  const double lo = std::log(1e-6), hi = std::log(0.5);
-  // exp(log ½) − 1/4 is 1/4 only up to rounding: clamped into the family's range [−1/4, 1/4]
-  const double alpha = std::clamp(std::exp(lo + (hi - lo) * s / (grid_points - 1)) - 0.25, -0.25, 0.25);
+  const double alpha = family_grid_alpha(s, grid_points);
   // the golden sections end within 0.618^40 (≈ 4e−9) of a node: closer than 1e−6 to an end is on it
   const bool at_end = s <= 1e-6 || s >= grid_points - 1 - 1e-6;
   return BestSingleAlpha{alpha, s, at_end};

@@ -148,6 +148,7 @@ json family_study_json(const AlphaFamilyOptions& o, const std::vector<std::strin
   study["objectives"] = objectives;
   study["parameter"] = "alpha";
   study["grid_points"] = o.grid_points;
+  study["grid"] = kFamilyGridName;
   study["solver"] = o.solver ? o.solver->name : std::string("auto");
   study["coons"] = {{"version", version}, {"git_revision", revision}};
   if (!o.base_name.empty()) study["base_content"] = o.base_content;
@@ -245,6 +246,13 @@ AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>
   for (size_t k = 0; k < degrees.size(); ++k)
     o.degrees.push_back(json_int(degrees[k], where, fmt::format("degrees[{}]", k)));
   o.grid_points = int_field(study, "grid_points", where);
+  // shards from a coons whose grid was another (a log grid of α + 1/4 until 2026-11) hold values
+  // at other α: a merge would place them wrongly
+  if (!study.contains("grid") || study["grid"] != kFamilyGridName)
+    throw InputError(where, "study.grid",
+                     fmt::format("not '{}': these shards come from an older coons, whose grid of alpha was "
+                                 "another; rerun them with this one",
+                                 kFamilyGridName));
   const auto solver = field<std::string>(study, "solver", where);
   if (solver != "auto") {
     o.solver = solvers::find_solver(solver);
@@ -277,10 +285,24 @@ FamilyTaskResult family_task_from_record(const json& record, const AlphaFamilyOp
   if (!known) throw InputError(where, "status", fmt::format("unknown status '{}'", status));
   const bool optimum = r.status == FamilyTaskStatus::kInterior || r.status == FamilyTaskStatus::kAtBound;
   if (optimum) {
+    // what run_family_task can have written: α* within the search's bounds, energies ≥ 0 (an
+    // edited record would otherwise move the quantiles and the best single α without a word)
+    const AlphaSearchOptions bounds;
     r.alpha = field<double>(record, "alpha", where);
+    if (!(*r.alpha >= bounds.lower && *r.alpha <= bounds.upper))
+      throw InputError(where, "alpha",
+                       fmt::format("{} is outside the search's bounds [{}, {}]", *r.alpha, bounds.lower, bounds.upper));
     r.value = field<double>(record, "value", where);
-    for (const json& v : field<json>(record, "grid", where)) {
+    if (!(std::isfinite(r.value) && r.value >= 0))
+      throw InputError(where, "value", fmt::format("{} is no energy (finite and at least 0)", r.value));
+    const json grid = field<json>(record, "grid", where);
+    if (!grid.is_array()) throw InputError(where, "grid", "not an array");
+    for (size_t k = 0; k < grid.size(); ++k) {
+      const json& v = grid[k];
       if (!v.is_null() && !v.is_number()) throw InputError(where, "grid", "not a number or null");
+      if (v.is_number() && !(v.get<double>() >= 0))
+        throw InputError(where, fmt::format("grid[{}]", k),
+                         fmt::format("{} is no energy (at least 0, or null)", v.get<double>()));
       r.grid.push_back(v.is_null() ? HUGE_VAL : v.get<double>());
     }
     // the task's key covers its inputs, not this result: an edited grid passes it, and the
