@@ -65,3 +65,16 @@ TEST_CASE("target_from_json: numbers beyond the coordinate bound are bad input n
             .rfind("t.json: target.plane.normal: coordinate 2", 0) == 0);
   CHECK(file_error(R"({"target": {"sphere": {"center": [0, 0, 0], "radius": 1e-320}}})").empty());
 }
+
+TEST_CASE("target_from_json: an axis or normal without a length is refused naming it, and so is --target's",
+          "[study]") {
+  const std::string reason = "axis/normal must not be zero (nor so short that its length underflows to 0)";
+  CHECK(file_error(R"({"target": {"plane": {"point": [0, 0, 0], "normal": [0, 0, 0]}}})") ==
+        "t.json: target.plane.normal: " + reason);
+  CHECK(file_error(R"({"target": {"cylinder": {"point": [0, 0, 0], "axis": [1e-320, 0, 0], "radius": 1}}})") ==
+        "t.json: target.cylinder.axis: " + reason);
+  CHECK(file_error(R"({"target": {"plane": {"point": [0, 0, 0], "normal": [1e-100, 0, 0]}}})").empty());
+  CHECK(spec_error("plane:0,0,0,0,0,0") == "command line: --target: " + reason);
+  CHECK(spec_error("cylinder:0,0,0,1e-320,0,0,1") == "command line: --target: " + reason);
+  CHECK(spec_error("cylinder:0,0,0,0,0,1,0") == "command line: --target: radius must be positive");
+}

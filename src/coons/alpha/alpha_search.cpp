@@ -1,6 +1,7 @@
 #include "alpha_search.h"
 
 #include <ceres/ceres.h>
+#include <fmt/format.h>
 
 #include <algorithm>
 #include <chrono>
@@ -22,16 +23,18 @@
 namespace coons {
 
 bool AlphaSearchOptions::is_valid(std::string* why) const {
-  auto fail = [&](const char* reason) {
-    if (why) *why = reason;
+  auto fail = [&](std::string reason) {
+    if (why) *why = std::move(reason);
     return false;
   };
   if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper))
     return fail("bounds must be finite with lower < upper");
   // (±1e308 passed the test above, and the scan's step (upper − lower)/k overflowed to a NaN α)
+  static_assert(kMaxAlpha == 1e60, "the message below names kMaxAlpha");
   if (std::abs(lower) > kMaxAlpha || std::abs(upper) > kMaxAlpha) return fail("bounds must lie in [-1e60, 1e60]");
   // a scan is a coarse grid before the refinement: --scan 1e8 ran for minutes and 7 GB
-  if (scan_points < 3 || scan_points > kMaxScanPoints) return fail("scan_points must be in [3, 10001]");
+  if (scan_points < 3 || scan_points > kMaxScanPoints)
+    return fail(fmt::format("scan_points must be in [3, {}]", kMaxScanPoints));
   if (!(flat_tolerance > 0)) return fail("flat_tolerance must be positive");
   if (!(parameter_tolerance > 0)) return fail("parameter_tolerance must be positive");
   if (max_iterations < 1) return fail("max_iterations must be at least 1");

@@ -57,6 +57,10 @@ double positive(const json& j, const std::string& source, const std::string& fie
   return r;
 }
 
+// The one check both kinds of target need after their numbers are read: an axis or normal of
+// length 0 (or one whose length underflows) has no direction.
+constexpr const char* kNoDirection = "axis/normal must not be zero (nor so short that its length underflows to 0)";
+
 }  // namespace
 
 std::optional<Target> target_from_json(const json& doc, const std::string& source, int samples) {
@@ -84,8 +88,9 @@ std::optional<Target> target_from_json(const json& doc, const std::string& sourc
   } else {
     throw InputError(source, "target", "must hold sphere, cylinder or plane");
   }
-  if (out.direction.norm() == 0)
-    throw InputError(source, "target", "axis/normal must not be zero (nor so short that its length underflows to 0)");
+  if (out.kind != Target::Kind::kSphere && out.direction.norm() == 0)
+    throw InputError(source, out.kind == Target::Kind::kPlane ? "target.plane.normal" : "target.cylinder.axis",
+                     kNoDirection);
   return out;
 }
 
@@ -118,14 +123,13 @@ std::optional<Target> resolve_target(const std::string& spec, const std::string&
     t = Target{};
     t->net = *f.net;
   }
-  if (t) {
-    t->samples = samples;
+  if (t && !spec.empty()) {  // the numbers of --target (a file's were checked as they were read)
     if (t->kind != Target::Kind::kNet && t->direction.norm() == 0)
-      throw InputError("command line", "--target",
-                       "axis/normal must not be zero (nor so short that its length underflows to 0)");
+      throw InputError("command line", "--target", kNoDirection);
     if ((t->kind == Target::Kind::kSphere || t->kind == Target::Kind::kCylinder) && !(t->radius > 0))
       throw InputError("command line", "--target", "radius must be positive");
   }
+  if (t) t->samples = samples;
   return t;
 }
 
