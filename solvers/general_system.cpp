@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <limits>
 
 #include "column_scaling.h"
 
@@ -32,6 +33,21 @@ double symmetry_defect(const Eigen::SparseMatrix<double>& A) {
   for (Eigen::Index k = 0; k < A.nonZeros(); ++k) largest = std::max(largest, std::abs(A.valuePtr()[k]));
   for (Eigen::Index k = 0; k < D.nonZeros(); ++k) defect = std::max(defect, std::abs(D.valuePtr()[k]));
   return largest > 0 ? defect / largest : 0.0;
+}
+
+int balancing_exponent(const Eigen::SparseMatrix<double>& A) {
+  int largest = std::numeric_limits<int>::min(), smallest = std::numeric_limits<int>::max();
+  for (Eigen::Index k = 0; k < A.nonZeros(); ++k) {
+    const double a = A.valuePtr()[k];
+    if (a == 0 || !std::isfinite(a)) continue;
+    const int e = std::ilogb(a);  // exact for subnormals too
+    largest = std::max(largest, e);
+    smallest = std::min(smallest, e);
+  }
+  if (largest == std::numeric_limits<int>::min()) return 0;
+  if (largest <= kBalancedExponent && smallest >= -kBalancedExponent) return 0;
+  // centred: the largest ends at 2^((largest − smallest)/2), the smallest as far below 1
+  return -static_cast<int>(std::floor((double(largest) + double(smallest)) / 2));
 }
 
 std::string GeneralRun::status_name() const { return skipped ? "skipped" : to_string(status); }
@@ -71,15 +87,27 @@ bool solve_blocks(LinearSolver& solver, const Eigen::MatrixXd& B, Eigen::MatrixX
 GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& system, const SolverOptions& options) {
   GeneralRun run;
   run.solver = info.name;
+  run.exponent = system.exponent;
   if (info.definite_only && !system.symmetric) {
     run.skipped = true;
     run.reason = "needs a symmetric positive definite matrix; A is not symmetric (max |A - A^T| / max |A| = " +
                  format_g(symmetry_defect(*system.A)) + ")";
     return run;
   }
-  const std::unique_ptr<LinearSolver> solver = make_solver(info.name, options);
+  // the backend's copy of the system, balanced by 2^exponent (general_system.h); A and B as given
+  // otherwise, without a copy
+  Eigen::SparseMatrix<double> scaled_a;
+  Eigen::MatrixXd scaled_b;
+  if (system.exponent != 0) {
+    scaled_a = *system.A;
+    for (Eigen::Index k = 0; k < scaled_a.nonZeros(); ++k)
+      scaled_a.valuePtr()[k] = std::ldexp(scaled_a.valuePtr()[k], system.exponent);
+    scaled_b = system.B->unaryExpr([&](double b) { return std::ldexp(b, system.exponent); });
+  }
+  const Eigen::MatrixXd& B = system.exponent != 0 ? scaled_b : *system.B;
+  const std::unique_ptr<LinearSolver> solver = make_solver(info.name, options);  // after what it borrows
   LinearOperator op;
-  op.matrix = system.A;
+  op.matrix = system.exponent != 0 ? &scaled_a : system.A;
   SolveStatus status = solver->analyze(op);
   if (status == SolveStatus::kNotApplicable) {
     run.skipped = true;
@@ -105,7 +133,7 @@ GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& syste
   }
   if (solver->summary().factor_nnz > 0) run.factor_nnz = solver->summary().factor_nnz;
   Eigen::MatrixXd X;
-  if (!solve_blocks(*solver, *system.B, X, run) || !X.allFinite()) return run;
+  if (!solve_blocks(*solver, B, X, run) || !X.allFinite()) return run;
   run.relative_residual = relative_residual(*system.A, X, *system.B);
   run.backward_error = backward_error(*system.A, X, *system.B);
   if (!std::isfinite(*run.relative_residual) || !std::isfinite(*run.backward_error)) {

@@ -79,6 +79,7 @@ nlohmann::ordered_json run_to_json(const solvers::GeneralRun& run, const solvers
   j["relative_residual"] = or_null(run.relative_residual);
   j["backward_error"] = or_null(run.backward_error);
   j["factor_nnz"] = run.factor_nnz ? nlohmann::json(*run.factor_nnz) : nlohmann::json(nullptr);
+  j["balancing_exponent"] = run.exponent;
   return j;
 }
 
@@ -179,16 +180,20 @@ int run_bench_matrix(BenchMatrixRequest r) {
   system.B = &B;
   const double defect = solvers::symmetry_defect(A);
   system.symmetric = defect <= solvers::kSymmetryDefectLimit;
+  system.exponent = solvers::balancing_exponent(A);
 
   if (r.table) {
     print_text(fmt::format(
         "{}: {} by {}, {} non-zeros ({} values listed in the file, {} {} {}), {}; {} right-hand side{}; iterative "
-        "tolerance {}\n\n"
+        "tolerance {}{}\n\n"
         "| solver | status | analyze [s] | factorize [s] | solve [s] | iterations | relative residual | backward "
         "error | factor nnz | note |\n|---|---|---|---|---|---|---|---|---|---|\n",
         r.matrix, n, n, A.nonZeros(), a.file_entries, a.format, a.field, a.symmetry,
         system.symmetric ? "symmetric" : fmt::format("not symmetric (defect {:.3g})", defect), B.cols(),
-        B.cols() == 1 ? (r.rhs.empty() ? " (A times ones)" : "") : "s", solvers::format_g(r.tolerance)));
+        B.cols() == 1 ? (r.rhs.empty() ? " (A times ones)" : "") : "s", solvers::format_g(r.tolerance),
+        system.exponent == 0 ? std::string()
+                             : fmt::format("; the backends see 2^{} A and 2^{} B (balanced, exactly; X is unchanged)",
+                                           system.exponent, system.exponent)));
   }
   int succeeded = 0, failed = 0;
   for (const solvers::SolverInfo* info : backends) {

@@ -167,6 +167,28 @@ TEST_CASE("coons bench-matrix: a system no backend solves exits 3 with its statu
   CHECK(row["relative_residual"].is_null());
 }
 
+TEST_CASE("coons bench-matrix: 1e-310 times the identity is solved by every backend, balanced by 2^1030", "[cli]") {
+  // subnormal entries: every direct backend reported "overflow" and the run exited 3
+  const TempDir dir;
+  const std::string tiny = dir.write(
+      "tiny.mtx", "%%MatrixMarket matrix coordinate real symmetric\n3 3 3\n1 1 1e-310\n2 2 1e-310\n3 3 1e-310\n");
+  const CommandResult r = run_coons("bench-matrix " + tiny);
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  int succeeded = 0;
+  for (const std::string& line : lines_of(r.out)) {
+    const json row = json::parse(line);
+    CHECK(row["balancing_exponent"] == 1030);
+    if (row["status"] == "skipped") continue;
+    CHECK(row["status"] == "success");
+    succeeded += row["status"] == "success" ? 1 : 0;
+    CHECK(row["backward_error"].get<double>() <= 1e-15);
+  }
+  CHECK(succeeded >= 8);
+  const CommandResult table = run_coons("bench-matrix " + tiny + " --table --solvers eigen-lu");
+  CHECK(table.out.find("the backends see 2^1030 A and 2^1030 B") != std::string::npos);
+}
+
 TEST_CASE("coons bench-matrix: a large declared size is held to --max-memory before any work", "[cli][bad-input]") {
   // A file of a few bytes can declare a 10^5 by 10^5 matrix of one entry: the dense right-hand
   // side A·1, its solution and every backend's workspace grow with the declared size, so the

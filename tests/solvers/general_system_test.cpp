@@ -136,6 +136,50 @@ TEST_CASE("run_general_system: every direct factor counts at least one entry per
   }
 }
 
+TEST_CASE("balancing_exponent: centres the extreme magnitudes of A, and leaves ordinary matrices alone", "[solvers]") {
+  auto diagonal = [](std::initializer_list<double> d) {
+    Eigen::VectorXd v(Eigen::Index(d.size()));
+    Eigen::Index k = 0;
+    for (double x : d) v(k++) = x;
+    return sparse_of(v.asDiagonal());
+  };
+  CHECK(balancing_exponent(diagonal({1e-30, 1e30})) == 0);  // 2^-100 ≈ 7.9e-31: inside
+  CHECK(balancing_exponent(diagonal({3, -7})) == 0);
+  CHECK(balancing_exponent(Eigen::SparseMatrix<double>(3, 3)) == 0);
+  CHECK(balancing_exponent(diagonal({std::ldexp(1.0, -700), std::ldexp(1.0, -700)})) == 700);
+  CHECK(balancing_exponent(diagonal({std::ldexp(1.0, 600), std::ldexp(1.0, 400)})) == -500);
+  CHECK(balancing_exponent(diagonal({1e-310, 1e-310})) == 1030);  // subnormal: ilogb is -1030
+  CHECK(balancing_exponent(diagonal({1e300, 1e-10})) == -481);    // 2^996 and 2^-34 become 2^515 and 2^-515
+}
+
+TEST_CASE("run_general_system: scaled identities of condition 1 are solved by every backend that applies",
+          "[solvers]") {
+  // 1e-200·I stopped gmres's incomplete LU ("singular": its row norms underflow) and 1e-310·I
+  // every direct backend ("overflow"); balanced by 2^exponent they are the identity's system
+  for (const double scale : {1e-310, 1e-200, 1e200, 1e300}) {
+    const Eigen::SparseMatrix<double> A = sparse_of(Eigen::MatrixXd::Identity(6, 6) * scale);
+    const Eigen::MatrixXd B = Eigen::VectorXd::LinSpaced(6, 1, 6) * scale;
+    GeneralSystem system;
+    system.A = &A;
+    system.B = &B;
+    system.symmetric = true;
+    system.exponent = balancing_exponent(A);
+    CHECK(system.exponent != 0);
+    int solved = 0;
+    for (const SolverInfo& info : available_solvers()) {
+      const GeneralRun run = run_general_system(info, system, SolverOptions{});
+      if (run.skipped) continue;
+      INFO(scale << " " << info.name << ": " << run.status_name() << " " << run.reason);
+      CHECK(run.exponent == system.exponent);
+      REQUIRE(run.ok());
+      ++solved;
+      REQUIRE(run.backward_error.has_value());
+      CHECK(*run.backward_error <= 1e-15);
+    }
+    CHECK(solved >= 8);
+  }
+}
+
 TEST_CASE("run_general_system: a singular matrix fails with its status and no numbers", "[solvers]") {
   Eigen::MatrixXd dense = Eigen::MatrixXd::Identity(4, 4);
   dense(2, 2) = 0;  // a zero row and column
