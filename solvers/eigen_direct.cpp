@@ -64,9 +64,20 @@ SolveStatus judge(const Llt& f, SolveSummary& summary) {
   return SolveStatus::kSuccess;
 }
 
+// Eigen's SparseLU says "THE MATRIX IS STRUCTURALLY SINGULAR ... ZERO COLUMN AT k" for any zero
+// pivot, also of a matrix whose pattern is regular ([[1, 1], [1, 1]]); k counts the elimination
+// steps of the COLAMD-permuted matrix, not a column of A. Said as what it is.
+std::string lu_failure(const std::string& eigen) {
+  const std::string zero_column = "THE MATRIX IS STRUCTURALLY SINGULAR ... ZERO COLUMN AT ";
+  if (eigen.rfind(zero_column, 0) == 0)
+    return "SparseLU: a zero pivot at elimination step " + eigen.substr(zero_column.size()) +
+           " (of the column-permuted matrix): singular, in its values or in its pattern";
+  return "SparseLU: " + eigen;
+}
+
 SolveStatus judge(const Lu& f, SolveSummary& summary) {
   if (f.info() != Eigen::Success) {
-    summary.message = "SparseLU: " + f.lastErrorMessage();
+    summary.message = lu_failure(f.lastErrorMessage());
     return SolveStatus::kSingular;
   }
   summary.factor_nnz = static_cast<long long>(f.nnzL()) + static_cast<long long>(f.nnzU());

@@ -198,6 +198,22 @@ TEST_CASE("run_general_system: a singular matrix fails with its status and no nu
   CHECK_FALSE(run.backward_error.has_value());
 }
 
+TEST_CASE("run_general_system: eigen-lu calls a zero pivot singular, not structurally singular", "[solvers]") {
+  // [[1, 1], [1, 1]]: its pattern is regular, its values are not; Eigen's own text said
+  // "THE MATRIX IS STRUCTURALLY SINGULAR ... ZERO COLUMN AT 2"
+  const Eigen::SparseMatrix<double> A = sparse_of(Eigen::MatrixXd::Ones(2, 2));
+  const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(2, 1);
+  GeneralSystem system;
+  system.A = &A;
+  system.B = &B;
+  system.symmetric = true;
+  const GeneralRun run = run_general_system(coons::test::backend("eigen-lu"), system, SolverOptions{});
+  CHECK(run.status == SolveStatus::kSingular);
+  CHECK(run.reason ==
+        "SparseLU: a zero pivot at elimination step 2 (of the column-permuted matrix): singular, in its "
+        "values or in its pattern");
+}
+
 TEST_CASE("Krylov backends: a zero right-hand-side column adds no iterations", "[solvers]") {
   // A symmetric positive definite matrix: the nonsymmetric one plus its transpose, shifted.
   const Eigen::SparseMatrix<double> N = random_nonsymmetric(60, 9);
