@@ -1,6 +1,8 @@
 #include "coons/curves/bezier_curve.h"
 
+#include <array>
 #include <catch2/catch.hpp>
+#include <vector>
 
 #include "coons/curves/curve.h"
 #include "support/fixtures.h"
@@ -93,5 +95,45 @@ TEST_CASE("Curve::hermite_cubic: the Ferguson cubic has the given ends and end t
   for (double t : kParameters) {
     const Eigen::RowVector3d h = hermite(0, t) * p0 + hermite(1, t) * p1 + hermite(2, t) * d0 + hermite(3, t) * d1;
     CHECK((c.at(t) - h).norm() < 1e-14);
+  }
+}
+
+namespace {
+
+// de Casteljau in long double: the reference for the O(k) sum at high degree
+Eigen::RowVector3d de_casteljau_long(const Eigen::MatrixX3d& P, double t) {
+  std::vector<std::array<long double, 3>> q(size_t(P.rows()));
+  for (Eigen::Index i = 0; i < P.rows(); ++i) q[size_t(i)] = {P(i, 0), P(i, 1), P(i, 2)};
+  const long double s = t;
+  for (size_t k = q.size() - 1; k >= 1; --k)
+    for (size_t i = 0; i < k; ++i)
+      for (int d = 0; d < 3; ++d) q[i][d] = (1 - s) * q[i][d] + s * q[i + 1][d];
+  return {double(q[0][0]), double(q[0][1]), double(q[0][2])};
+}
+
+}  // namespace
+
+TEST_CASE("bernstein_sum: agrees with de Casteljau in long double to 1e-13 up to degree 5000", "[curves]") {
+  for (const int k : {1, 7, 101, 1000, 5000}) {
+    const BezierCurve c = make_random_bezier(k, 11);
+    const double size = c.points.cwiseAbs().maxCoeff();
+    for (const double t : {0.0, 1e-300, 1e-9, 0.013, 0.25, 0.5, 0.61803, 0.999, 1.0 - 1e-12, 1.0}) {
+      INFO("degree " << k << ", t = " << t);
+      CHECK((bernstein_sum(c.points, t) - de_casteljau_long(c.points, t)).norm() <= 1e-13 * size);
+      if (k > kDeCasteljauMaxDegree) CHECK(evaluate(c, t) == bernstein_sum(c.points, t));
+    }
+  }
+}
+
+TEST_CASE("bernstein_sum: reproduces constants and lines at any degree", "[curves]") {
+  for (const int k : {150, 2000}) {
+    Eigen::MatrixX3d P(k + 1, 3);
+    for (int i = 0; i <= k; ++i) P.row(i) << 2.5, double(i) / k, 1 - 3.0 * i / k;
+    for (const double t : {0.0, 0.1, 0.5, 0.77, 1.0}) {
+      const Eigen::RowVector3d p = bernstein_sum(P, t);
+      CHECK(p(0) == Approx(2.5).epsilon(1e-15));
+      CHECK(p(1) == Approx(t).margin(1e-14));
+      CHECK(p(2) == Approx(1 - 3 * t).margin(1e-14));
+    }
   }
 }
