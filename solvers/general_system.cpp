@@ -94,17 +94,15 @@ GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& syste
                  format_g(symmetry_defect(*system.A)) + ")";
     return run;
   }
-  // the backend's copy of the system, balanced by 2^exponent (general_system.h); A and B as given
-  // otherwise, without a copy
+  // the backend's copy of A, balanced by 2^exponent (general_system.h); A as given otherwise,
+  // without a copy. B is not scaled (the backends scale each column themselves): the backend
+  // solves (2^k A) Y = B, and X = 2^k Y.
   Eigen::SparseMatrix<double> scaled_a;
-  Eigen::MatrixXd scaled_b;
   if (system.exponent != 0) {
     scaled_a = *system.A;
     for (Eigen::Index k = 0; k < scaled_a.nonZeros(); ++k)
       scaled_a.valuePtr()[k] = std::ldexp(scaled_a.valuePtr()[k], system.exponent);
-    scaled_b = system.B->unaryExpr([&](double b) { return std::ldexp(b, system.exponent); });
   }
-  const Eigen::MatrixXd& B = system.exponent != 0 ? scaled_b : *system.B;
   const std::unique_ptr<LinearSolver> solver = make_solver(info.name, options);  // after what it borrows
   LinearOperator op;
   op.matrix = system.exponent != 0 ? &scaled_a : system.A;
@@ -122,6 +120,7 @@ GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& syste
   if (status == SolveStatus::kNotApplicable) {  // found out only with the values
     GeneralRun skipped;
     skipped.solver = info.name;
+    skipped.exponent = system.exponent;
     skipped.skipped = true;
     skipped.reason = solver->summary().message;
     return skipped;
@@ -133,7 +132,9 @@ GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& syste
   }
   if (solver->summary().factor_nnz > 0) run.factor_nnz = solver->summary().factor_nnz;
   Eigen::MatrixXd X;
-  if (!solve_blocks(*solver, B, X, run) || !X.allFinite()) return run;
+  if (!solve_blocks(*solver, *system.B, X, run)) return run;
+  if (system.exponent != 0) X = X.unaryExpr([&](double y) { return std::ldexp(y, system.exponent); });
+  if (!X.allFinite()) return run;
   run.relative_residual = relative_residual(*system.A, X, *system.B);
   run.backward_error = backward_error(*system.A, X, *system.B);
   if (!std::isfinite(*run.relative_residual) || !std::isfinite(*run.backward_error)) {

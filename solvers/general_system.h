@@ -44,22 +44,23 @@ struct GeneralRun {
   std::optional<int> iterations;                                            //!< the most over the column blocks
   std::optional<double> relative_residual, backward_error;
   std::optional<long long> factor_nnz;  //!< non-zeros of the factor(s) or preconditioner, when there is one
-  int exponent = 0;                     //!< the backend saw 2^exponent A and 2^exponent B (GeneralSystem)
+  int exponent = 0;                     //!< the backend saw 2^exponent A (GeneralSystem)
 
   [[nodiscard]] bool ok() const { return !skipped && status == SolveStatus::kSuccess; }
   //! "skipped" or to_string(status).
   [[nodiscard]] std::string status_name() const;
 };
 
-//! Non-zeros of A within [2^-kBalancedExponent, 2^kBalancedExponent] in magnitude are left alone.
+//! A whose non-zeros have binary exponents (std::ilogb) in [-kBalancedExponent, kBalancedExponent],
+//! i.e. magnitudes in [2^-100, 2^101), is left alone.
 constexpr int kBalancedExponent = 100;
 
 //! The k for which 2^k A has the binary exponents of its largest and smallest non-zero magnitudes
 //! centred on 0, when either lies outside ±kBalancedExponent; else 0 (also for a zero matrix).
-//! Multiplying A and B by 2^k is exact (unless the range of A exceeds the doubles') and leaves X
-//! alone, but keeps the backends' squares and row norms away from under- and overflow: 1e-200·I,
-//! which has condition number 1, stopped an incomplete LU ("singular"), and 1e-310·I every direct
-//! backend ("overflow").
+//! The backends then solve (2^k A) Y = B and X = 2^k Y: exact (unless A's own range exceeds the
+//! doubles'), and it keeps the backends' squares and row norms away from under- and overflow:
+//! 1e-200·I, which has condition number 1, stopped an incomplete LU ("singular"), and 1e-310·I
+//! every direct backend ("overflow"). B is not scaled: 2^k B can overflow where X does not.
 int balancing_exponent(const Eigen::SparseMatrix<double>& A);
 
 //! The system and what is known of it, computed once for every backend.
@@ -67,8 +68,8 @@ struct GeneralSystem {
   const Eigen::SparseMatrix<double>* A = nullptr;  //!< square, borrowed
   const Eigen::MatrixXd* B = nullptr;              //!< A.rows() by k, borrowed
   bool symmetric = false;                          //!< symmetry_defect(A) ≤ kSymmetryDefectLimit
-  //! balancing_exponent(A): the backends see 2^exponent A and 2^exponent B; X and its
-  //! measurements (residual, backward error) are those of A and B as given
+  //! balancing_exponent(A): the backends see 2^exponent A (and B as given), X = 2^exponent Y;
+  //! X and its measurements (residual, backward error) are those of A and B as given
   int exponent = 0;
 };
 

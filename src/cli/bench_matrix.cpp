@@ -192,7 +192,8 @@ int run_bench_matrix(BenchMatrixRequest r) {
         system.symmetric ? "symmetric" : fmt::format("not symmetric (defect {:.3g})", defect), B.cols(),
         B.cols() == 1 ? (r.rhs.empty() ? " (A times ones)" : "") : "s", solvers::format_g(r.tolerance),
         system.exponent == 0 ? std::string()
-                             : fmt::format("; the backends see 2^{} A and 2^{} B (balanced, exactly; X is unchanged)",
+                             : fmt::format("; the backends see 2^{} A (balanced, exactly), and X is 2^{} times their "
+                                           "solution",
                                            system.exponent, system.exponent)));
   }
   int succeeded = 0, failed = 0;

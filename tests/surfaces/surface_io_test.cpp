@@ -230,6 +230,30 @@ TEST_CASE("parse_surface: a conoid whose line is parallel to its plane is reject
   d["line"] = {{0, 1, 0}, {0, 0, 0}};
   std::tie(field, reason) = error_of(d);
   CHECK(field == "line[1]");
+  CHECK(reason == "the line's direction is the zero vector");
+  d["line"] = {{0, 1, 0}, {0, 1, 0}};
+  d["plane_normal"] = {0, 0, 0};
+  std::tie(field, reason) = error_of(d);
+  CHECK(field == "plane_normal");
+  CHECK(reason == "the plane's normal is the zero vector");
+}
+
+TEST_CASE("parse_surface: a conoid's tiny direction and normal are the same conoid as ordinary ones", "[surfaces]") {
+  // norm() and n·d of [1e-200, 0, 0] underflow to 0: such a line was refused, or called parallel,
+  // though the conoid depends on the two vectors only through ratios
+  auto spec = [](double d, double n) {
+    return json{{"type", "conoid"},
+                {"directrix", segment({0, 0, 1}, {1, 0.5, 1})},
+                {"line", {{0, 1, 0}, {d, 0, 0.25 * d}}},
+                {"plane_normal", {n, 0, 0}}};
+  };
+  const Surface ordinary = parse_surface(spec(1, 1), "spec.json").surface;
+  for (const auto& [d, n] : {std::pair{1e-200, 1.0}, {1.0, 1e-320}, {1e-300, 1e-300}}) {
+    INFO(d << " " << n);
+    const Surface tiny = parse_surface(spec(d, n), "spec.json").surface;
+    for (const double u : {0.0, 0.3, 1.0})
+      for (const double v : {0.0, 0.6, 1.0}) CHECK((tiny.at(u, v) - ordinary.at(u, v)).norm() <= 1e-15);
+  }
 }
 
 TEST_CASE("read_surface_file: unreadable files and malformed JSON", "[surfaces]") {

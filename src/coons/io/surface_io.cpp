@@ -263,8 +263,7 @@ SurfaceFile parse_surface(const json& doc, const std::string& source, const Surf
       const Curve directrix = r.curve(r.require(doc, "directrix", "directrix"), "directrix");
       const std::vector<Vec> line = r.points(r.require(doc, "line", "line"), "line", 2);
       Conoid c{directrix, line[0], line[1], r.point(r.require(doc, "plane_normal", "plane_normal"), "plane_normal")};
-      if (!(line[1].norm() > 0))
-        r.fail("line[1]", "the line's direction is the zero vector, or too short for its length to be a double");
+      if (!(line[1].cwiseAbs().maxCoeff() > 0)) r.fail("line[1]", "the line's direction is the zero vector");
       if (const std::string why = conoid_problem(c); !why.empty()) r.fail("plane_normal", why);
       surface = make_conoid(std::move(c));
       break;

@@ -102,8 +102,8 @@ std::vector<double> family_alpha_grid(int grid_points);
 //! Values on that grid at the fractional index s ∈ [0, size − 1]: the Lagrange polynomial through
 //! the kGridInterpolationPoints nearest nodes (all of them when there are fewer); the line through
 //! the two bracketing nodes when one of those nodes is not finite (∞ when a bracketing one is not).
-//! Exact at the nodes. On the family's f_b with 161 nodes it is within 1e−7 of f_b, relative to
-//! its least value (test `run_alpha_family: each boundary's loss is its exact relative excess ...`).
+//! Exact at the nodes. On the family's f_b with 161 nodes it is within 2e−7 of f_b, relative to
+//! its least value (measured to degree 60; docs/formats.md, `coons study --family`).
 double interpolate_on_grid(const std::vector<double>& values, double s);
 
 struct BestSingleAlpha {

@@ -250,9 +250,9 @@ AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>
   // at other α: a merge would place them wrongly
   if (!study.contains("grid") || study["grid"] != kFamilyGridName)
     throw InputError(where, "study.grid",
-                     fmt::format("not '{}': these shards come from an older coons, whose grid of alpha was "
-                                 "another; rerun them with this one",
-                                 kFamilyGridName));
+                     fmt::format("not '{}' but {}: these shards were made on another grid of alpha (a coons "
+                                 "before 2026-11-29 wrote none); rerun them with this one",
+                                 kFamilyGridName, study.contains("grid") ? study["grid"].dump() : "missing"));
   const auto solver = field<std::string>(study, "solver", where);
   if (solver != "auto") {
     o.solver = solvers::find_solver(solver);

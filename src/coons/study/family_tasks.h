@@ -1,7 +1,7 @@
 // The random-smooth family study (alpha_family.h) as a list of independent tasks, so that it can
 // be split into shards, resumed and merged: one task is one boundary index × degree × objective ×
 // parameter (α); its result is α*, the optimum's value, how the search ended and the objective on
-// the family's log grid of α + 1/4 (grid_points values over [1e−6, 1/2]), everything the
+// the family's logit grid of α (grid_points values over [−1/4 + 1e−6, 1/4 − 1e−6]), everything the
 // aggregation (assemble_alpha_family) needs. A task's key is a hash of its inputs and of the coons
 // version and git revision: equal keys, equal results. Sizes: one search and grid_points
 // evaluations of one (n+1) × (n+1) net per task.

@@ -57,9 +57,19 @@ double positive(const json& j, const std::string& source, const std::string& fie
   return r;
 }
 
-// The one check both kinds of target need after their numbers are read: an axis or normal of
-// length 0 (or one whose length underflows) has no direction.
-constexpr const char* kNoDirection = "axis/normal must not be zero (nor so short that its length underflows to 0)";
+constexpr const char* kNoDirection = "axis/normal must not be the zero vector";
+
+// An axis or normal scaled by a power of two to a largest coordinate in [1, 2): the distances
+// normalise it with norm(), whose square underflows below about 1e-154 (a normal of 1e-161 came
+// out 1.006 long, and one of 1e-162 had length 0). A power of two changes no digit, so a direction
+// of ordinary size normalises to the same bits as before. false for the zero vector.
+bool rescale_direction(Eigen::RowVector3d& d) {
+  const double largest = d.cwiseAbs().maxCoeff();
+  if (!(largest > 0)) return false;
+  const int exponent = std::ilogb(largest);
+  for (int k = 0; k < 3; ++k) d(k) = std::ldexp(d(k), -exponent);
+  return true;
+}
 
 }  // namespace
 
@@ -88,7 +98,7 @@ std::optional<Target> target_from_json(const json& doc, const std::string& sourc
   } else {
     throw InputError(source, "target", "must hold sphere, cylinder or plane");
   }
-  if (out.kind != Target::Kind::kSphere && out.direction.norm() == 0)
+  if (out.kind != Target::Kind::kSphere && !rescale_direction(out.direction))
     throw InputError(source, out.kind == Target::Kind::kPlane ? "target.plane.normal" : "target.cylinder.axis",
                      kNoDirection);
   return out;
@@ -124,7 +134,7 @@ std::optional<Target> resolve_target(const std::string& spec, const std::string&
     t->net = *f.net;
   }
   if (t && !spec.empty()) {  // the numbers of --target (a file's were checked as they were read)
-    if (t->kind != Target::Kind::kNet && t->direction.norm() == 0)
+    if (t->kind != Target::Kind::kNet && !rescale_direction(t->direction))
       throw InputError("command line", "--target", kNoDirection);
     if ((t->kind == Target::Kind::kSphere || t->kind == Target::Kind::kCylinder) && !(t->radius > 0))
       throw InputError("command line", "--target", "radius must be positive");

@@ -7,12 +7,25 @@
 
 namespace coons {
 
+namespace {
+
+// v times the power of two that puts its largest coordinate in [1, 2) (v itself when it is zero):
+// the conoid depends on the direction and the normal only through ratios, which a power of two
+// leaves bit for bit, while norm() and n·d of a vector like [1e-200, 0, 0] underflow to 0.
+Eigen::RowVector3d balanced(const Eigen::RowVector3d& v) {
+  const double largest = v.cwiseAbs().maxCoeff();
+  if (!(largest > 0)) return v;
+  const int exponent = std::ilogb(largest);
+  return {std::ldexp(v(0), -exponent), std::ldexp(v(1), -exponent), std::ldexp(v(2), -exponent)};
+}
+
+}  // namespace
+
 std::string conoid_problem(const Conoid& c) {
-  const double d = c.line_direction.norm(), n = c.plane_normal.norm();
-  // (a vector like [1e-320, 0, 0] is not zero, but its length underflows to 0 all the same)
-  if (!(d > 0)) return "the line's direction is the zero vector, or too short for its length to be a double";
-  if (!(n > 0)) return "the plane's normal is the zero vector, or too short for its length to be a double";
-  const double cosine = std::abs(c.plane_normal.dot(c.line_direction)) / (d * n);
+  if (!(c.line_direction.cwiseAbs().maxCoeff() > 0)) return "the line's direction is the zero vector";
+  if (!(c.plane_normal.cwiseAbs().maxCoeff() > 0)) return "the plane's normal is the zero vector";
+  const Eigen::RowVector3d direction = balanced(c.line_direction), normal = balanced(c.plane_normal);
+  const double cosine = std::abs(normal.dot(direction)) / (direction.norm() * normal.norm());
   if (!(cosine > 1e-9))
     return fmt::format("the line is parallel to the directing plane (|cos| between direction and normal = {:.3g})",
                        cosine);
@@ -20,7 +33,7 @@ std::string conoid_problem(const Conoid& c) {
 }
 
 Curve conoid_line_curve(const Conoid& c) {
-  const Eigen::RowVector3d L0 = c.line_point, d = c.line_direction, n = c.plane_normal;
+  const Eigen::RowVector3d L0 = c.line_point, d = balanced(c.line_direction), n = balanced(c.plane_normal);
   const double nd = n.dot(d);
   if (const BezierCurve* b = c.directrix.bezier()) {
     Eigen::MatrixX3d Q(b->points.rows(), 3);
