@@ -12,6 +12,16 @@ namespace {
 
 Eigen::SparseMatrix<double> sparse_of(const Eigen::MatrixXd& dense) { return dense.sparseView(); }
 
+// The system run_general_system reads, borrowing A and B; balanced as bench-matrix balances it.
+GeneralSystem system_of(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& B, bool symmetric) {
+  GeneralSystem system;
+  system.A = &A;
+  system.B = &B;
+  system.symmetric = symmetric;
+  system.exponent = balancing_exponent(A);
+  return system;
+}
+
 // A diagonally dominant, nonsymmetric n by n matrix with a few off-diagonal entries per row.
 Eigen::SparseMatrix<double> random_nonsymmetric(int n, unsigned seed) {
   std::mt19937 rng(seed);
@@ -77,10 +87,7 @@ TEST_CASE("symmetry_defect: zero for a symmetric matrix, the relative asymmetry 
 TEST_CASE("run_general_system: every backend either measures its solution or says why not", "[solvers]") {
   const Eigen::SparseMatrix<double> A = random_nonsymmetric(40, 5);
   const Eigen::MatrixXd B = Eigen::MatrixXd::Random(40, 4);  // two blocks: 3 + 1 columns
-  GeneralSystem system;
-  system.A = &A;
-  system.B = &B;
-  system.symmetric = symmetry_defect(A) <= kSymmetryDefectLimit;
+  const GeneralSystem system = system_of(A, B, symmetry_defect(A) <= kSymmetryDefectLimit);
   REQUIRE_FALSE(system.symmetric);
   SolverOptions options;
   options.tolerance = 1e-10;
@@ -119,10 +126,7 @@ TEST_CASE("run_general_system: every direct factor counts at least one entry per
   for (const Eigen::Index n : {1, 5}) {
     const Eigen::SparseMatrix<double> A = sparse_of(Eigen::VectorXd::LinSpaced(n, 2, 3).asDiagonal());
     const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(n, 1);
-    GeneralSystem system;
-    system.A = &A;
-    system.B = &B;
-    system.symmetric = true;
+    const GeneralSystem system = system_of(A, B, true);
     int direct = 0;
     for (const SolverInfo& info : available_solvers()) {
       if (info.family != SolverFamily::kDirect || !info.needs_matrix) continue;
@@ -159,11 +163,7 @@ TEST_CASE("run_general_system: scaled identities of condition 1 are solved by ev
   for (const double scale : {1e-310, 1e-200, 1e200, 1e300}) {
     const Eigen::SparseMatrix<double> A = sparse_of(Eigen::MatrixXd::Identity(6, 6) * scale);
     const Eigen::MatrixXd B = Eigen::VectorXd::LinSpaced(6, 1, 6) * scale;
-    GeneralSystem system;
-    system.A = &A;
-    system.B = &B;
-    system.symmetric = true;
-    system.exponent = balancing_exponent(A);
+    const GeneralSystem system = system_of(A, B, true);
     CHECK(system.exponent != 0);
     int solved = 0;
     for (const SolverInfo& info : available_solvers()) {
@@ -185,10 +185,7 @@ TEST_CASE("run_general_system: a singular matrix fails with its status and no nu
   dense(2, 2) = 0;  // a zero row and column
   const Eigen::SparseMatrix<double> A = sparse_of(dense);
   const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(4, 1);
-  GeneralSystem system;
-  system.A = &A;
-  system.B = &B;
-  system.symmetric = true;
+  const GeneralSystem system = system_of(A, B, true);
   const GeneralRun run = run_general_system(coons::test::backend("eigen-lu"), system, SolverOptions{});
   CHECK_FALSE(run.ok());
   CHECK_FALSE(run.skipped);
@@ -209,11 +206,7 @@ TEST_CASE("run_general_system: balancing never scales B, which may lie far from 
                         Case{std::ldexp(1.0, 1000), 1, 1, 1.23 * std::ldexp(1.0, -560)}}) {
     const Eigen::SparseMatrix<double> A = sparse_of(Eigen::Vector2d(c.a0, c.a1).asDiagonal());
     const Eigen::MatrixXd B = Eigen::Vector2d(c.b0, c.b1);
-    GeneralSystem system;
-    system.A = &A;
-    system.B = &B;
-    system.symmetric = true;
-    system.exponent = balancing_exponent(A);
+    const GeneralSystem system = system_of(A, B, true);
     REQUIRE(std::abs(system.exponent) == 500);
     for (const char* name : {"eigen-lu", "umfpack", "cholmod"}) {
       const SolverInfo* info = find_solver(name);
@@ -231,10 +224,7 @@ TEST_CASE("run_general_system: eigen-lu calls a zero pivot singular, not structu
   // "THE MATRIX IS STRUCTURALLY SINGULAR ... ZERO COLUMN AT 2"
   const Eigen::SparseMatrix<double> A = sparse_of(Eigen::MatrixXd::Ones(2, 2));
   const Eigen::MatrixXd B = Eigen::MatrixXd::Ones(2, 1);
-  GeneralSystem system;
-  system.A = &A;
-  system.B = &B;
-  system.symmetric = true;
+  const GeneralSystem system = system_of(A, B, true);
   const GeneralRun run = run_general_system(coons::test::backend("eigen-lu"), system, SolverOptions{});
   CHECK(run.status == SolveStatus::kSingular);
   CHECK(run.reason ==
