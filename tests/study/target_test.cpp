@@ -66,7 +66,7 @@ TEST_CASE("target_from_json: numbers beyond the coordinate bound are bad input n
   CHECK(file_error(R"({"target": {"sphere": {"center": [0, 0, 0], "radius": 1e-320}}})").empty());
 }
 
-TEST_CASE("target_from_json: a zero axis or normal is refused naming it; a tiny one is a direction", "[study]") {
+TEST_CASE("target_from_json: a zero axis or normal is refused naming it, and a tiny one is a direction", "[study]") {
   const std::string reason = "axis/normal must not be the zero vector";
   CHECK(file_error(R"({"target": {"plane": {"point": [0, 0, 0], "normal": [0, 0, 0]}}})") ==
         "t.json: target.plane.normal: " + reason);
