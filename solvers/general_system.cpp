@@ -100,8 +100,7 @@ GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& syste
   Eigen::SparseMatrix<double> scaled_a;
   if (system.exponent != 0) {
     scaled_a = *system.A;
-    for (Eigen::Index k = 0; k < scaled_a.nonZeros(); ++k)
-      scaled_a.valuePtr()[k] = std::ldexp(scaled_a.valuePtr()[k], system.exponent);
+    scale_by_power_of_two(Eigen::Map<Eigen::VectorXd>(scaled_a.valuePtr(), scaled_a.nonZeros()), system.exponent);
   }
   const std::unique_ptr<LinearSolver> solver = make_solver(info.name, options);  // after what it borrows
   LinearOperator op;
@@ -133,7 +132,7 @@ GeneralRun run_general_system(const SolverInfo& info, const GeneralSystem& syste
   if (solver->summary().factor_nnz > 0) run.factor_nnz = solver->summary().factor_nnz;
   Eigen::MatrixXd X;
   if (!solve_blocks(*solver, *system.B, X, run)) return run;
-  if (system.exponent != 0) X = X.unaryExpr([&](double y) { return std::ldexp(y, system.exponent); });
+  scale_by_power_of_two(Eigen::Map<Eigen::VectorXd>(X.data(), X.size()), system.exponent);
   if (!X.allFinite()) return run;
   run.relative_residual = relative_residual(*system.A, X, *system.B);
   run.backward_error = backward_error(*system.A, X, *system.B);

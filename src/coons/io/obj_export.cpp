@@ -15,14 +15,6 @@ void write_vertex(std::ostream& out, const char* tag, const Eigen::RowVector3d& 
   fmt::print(out, "{} {} {} {}\n", tag, p(0), p(1), p(2));
 }
 
-// v scaled by the power of two nearest below its largest |coordinate| (exactly; v itself when 0 or
-// not finite): products of tangents of size 1e-90 would underflow.
-Eigen::Vector3d unit_scaled(const Eigen::RowVector3d& v) {
-  const double top = v.cwiseAbs().maxCoeff();
-  if (!(top > 0) || !std::isfinite(top)) return v.transpose();
-  const int e = std::ilogb(top);
-  return v.transpose().unaryExpr([e](double x) { return std::ldexp(x, -e); });
-}
 }  // namespace
 
 void write_surface_obj(std::ostream& out, const ControlNet& net, int k) {
@@ -33,8 +25,10 @@ void write_surface_obj(std::ostream& out, const ControlNet& net, int k) {
   for (int s = 0; s < k; ++s)
     for (int t = 0; t < k; ++t) {
       const double u = double(s) / (k - 1), v = double(t) / (k - 1);
-      // the direction only: each tangent scaled first (bit for bit the same where nothing underflows)
-      Eigen::Vector3d normal = unit_scaled(evaluate(du, u, v)).cross(unit_scaled(evaluate(dv, u, v)));
+      // the direction only: each tangent scaled first (bit for bit the same where nothing underflows;
+      // products of tangents of size 1e-90 would underflow)
+      Eigen::Vector3d normal =
+          unit_scaled(evaluate(du, u, v)).transpose().cross(unit_scaled(evaluate(dv, u, v)).transpose());
       const double len = normal.norm();
       normal = len > 0 ? Eigen::Vector3d(normal / len) : Eigen::Vector3d(0, 0, 1);
       write_vertex(out, "vn", normal.transpose());

@@ -4,11 +4,17 @@
 
 namespace coons {
 
+Eigen::RowVector3d unit_scaled(const Eigen::RowVector3d& v) {
+  const double top = v.cwiseAbs().maxCoeff();
+  if (!(top > 0) || !std::isfinite(top)) return v;
+  const int e = std::ilogb(top);
+  return v.unaryExpr([e](double x) { return std::ldexp(x, -e); });
+}
+
 double scaled_norm(const Eigen::RowVector3d& v) {
   const double top = v.cwiseAbs().maxCoeff();
   if (!(top > 0) || !std::isfinite(top)) return v.norm();
-  const int e = std::ilogb(top);
-  return std::ldexp(v.unaryExpr([e](double x) { return std::ldexp(x, -e); }).norm(), e);
+  return std::ldexp(unit_scaled(v).norm(), std::ilogb(top));
 }
 
 Boundary boundary_of(const ControlNet& net, std::string name) {

@@ -47,6 +47,11 @@ CornerGap largest_corner_gap(const Boundary& boundary);
 //! Length of the diagonal of the bounding box of all boundary points.
 double bounding_box_diagonal(const Boundary& boundary);
 
+//! v times the power of two that puts its largest |coordinate| in [1, 2), exactly (v itself when it
+//! is zero or not finite): a direction whose norm(), squares or cross products would underflow or
+//! overflow (coordinates of 1e-170), with the same digits.
+Eigen::RowVector3d unit_scaled(const Eigen::RowVector3d& v);
+
 //! |v| without underflow or overflow: v scaled by a power of two first, so that the result is bit
 //! for bit norm()'s wherever norm() neither underflows nor overflows (coordinates of 1e-170).
 double scaled_norm(const Eigen::RowVector3d& v);

@@ -10,6 +10,7 @@
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
+#include "coons/net/control_net.h"
 #include "coons/net/coons_net.h"
 
 namespace coons {
@@ -59,15 +60,13 @@ double positive(const json& j, const std::string& source, const std::string& fie
 
 constexpr const char* kNoDirection = "axis/normal must not be the zero vector";
 
-// An axis or normal scaled by a power of two to a largest coordinate in [1, 2): the distances
-// normalise it with norm(), whose square underflows below about 1e-154 (a normal of 1e-161 came
-// out 1.006 long, and one of 1e-162 had length 0). A power of two changes no digit, so a direction
-// of ordinary size normalises to the same bits as before. false for the zero vector.
+// An axis or normal as unit_scaled (control_net.h) makes it: the distances normalise it with
+// norm(), whose square underflows below about 1e-154 (a normal of 1e-161 came out 1.006 long, and
+// one of 1e-162 had length 0). A power of two changes no digit, so a direction of ordinary size
+// normalises to the same bits as before. false for the zero vector.
 bool rescale_direction(Eigen::RowVector3d& d) {
-  const double largest = d.cwiseAbs().maxCoeff();
-  if (!(largest > 0)) return false;
-  const int exponent = std::ilogb(largest);
-  for (int k = 0; k < 3; ++k) d(k) = std::ldexp(d(k), -exponent);
+  if (!(d.cwiseAbs().maxCoeff() > 0)) return false;
+  d = unit_scaled(d);
   return true;
 }
 

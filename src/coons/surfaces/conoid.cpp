@@ -5,26 +5,16 @@
 #include <cmath>
 #include <memory>
 
+#include "coons/net/control_net.h"
+
 namespace coons {
-
-namespace {
-
-// v times the power of two that puts its largest coordinate in [1, 2) (v itself when it is zero):
-// the conoid depends on the direction and the normal only through ratios, which a power of two
-// leaves bit for bit, while norm() and n·d of a vector like [1e-200, 0, 0] underflow to 0.
-Eigen::RowVector3d balanced(const Eigen::RowVector3d& v) {
-  const double largest = v.cwiseAbs().maxCoeff();
-  if (!(largest > 0)) return v;
-  const int exponent = std::ilogb(largest);
-  return {std::ldexp(v(0), -exponent), std::ldexp(v(1), -exponent), std::ldexp(v(2), -exponent)};
-}
-
-}  // namespace
 
 std::string conoid_problem(const Conoid& c) {
   if (!(c.line_direction.cwiseAbs().maxCoeff() > 0)) return "the line's direction is the zero vector";
   if (!(c.plane_normal.cwiseAbs().maxCoeff() > 0)) return "the plane's normal is the zero vector";
-  const Eigen::RowVector3d direction = balanced(c.line_direction), normal = balanced(c.plane_normal);
+  // the conoid depends on the direction and the normal only through ratios, which a power of two
+  // leaves bit for bit, while norm() and n·d of a vector like [1e-200, 0, 0] underflow to 0
+  const Eigen::RowVector3d direction = unit_scaled(c.line_direction), normal = unit_scaled(c.plane_normal);
   const double cosine = std::abs(normal.dot(direction)) / (direction.norm() * normal.norm());
   if (!(cosine > 1e-9))
     return fmt::format("the line is parallel to the directing plane (|cos| between direction and normal = {:.3g})",
@@ -33,7 +23,7 @@ std::string conoid_problem(const Conoid& c) {
 }
 
 Curve conoid_line_curve(const Conoid& c) {
-  const Eigen::RowVector3d L0 = c.line_point, d = balanced(c.line_direction), n = balanced(c.plane_normal);
+  const Eigen::RowVector3d L0 = c.line_point, d = unit_scaled(c.line_direction), n = unit_scaled(c.plane_normal);
   const double nd = n.dot(d);
   if (const BezierCurve* b = c.directrix.bezier()) {
     Eigen::MatrixX3d Q(b->points.rows(), 3);
