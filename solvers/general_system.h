@@ -27,7 +27,9 @@ double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
 //! max over columns of ‖B − A X‖₂ / ‖B‖₂ (a zero column of B: ‖A X‖₂).
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B);
 
-//! max |A − Aᵀ| / max |A| (0 for a zero matrix): 0 for an exactly symmetric matrix.
+//! max over the entries of |a_ij − a_ji| / max(|a_ij|, |a_ji|) (1 where only one of the pair is
+//! non-zero, 0 for an exactly symmetric or zero matrix): entry by entry, so that a large entry
+//! elsewhere hides no asymmetry.
 double symmetry_defect(const Eigen::SparseMatrix<double>& A);
 
 //! A is treated as symmetric when symmetry_defect(A) is at most this (rounding of written values).

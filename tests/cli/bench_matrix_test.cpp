@@ -167,6 +167,34 @@ TEST_CASE("coons bench-matrix: a system no backend solves exits 3 with its statu
   CHECK(row["relative_residual"].is_null());
 }
 
+TEST_CASE("coons bench-matrix: an asymmetric pair beside a large entry is not symmetric", "[cli]") {
+  // A(2,3) = 1, A(3,2) = 0 beside A(1,1) = 1e15: the global test took it for rounding, and cholmod,
+  // cg, cg-jacobi and cg-ic solved A's lower triangle and reported success, X(2) 2 instead of 1
+  const TempDir dir;
+  const std::string hidden = dir.write("hidden.mtx",
+                                       "%%MatrixMarket matrix coordinate real general\n3 3 4\n1 1 1e15\n2 2 1\n2 3 "
+                                       "1\n3 3 1\n");
+  const CommandResult r = run_coons("bench-matrix " + hidden);
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  int direct = 0;
+  for (const std::string& line : lines_of(r.out)) {
+    const json row = json::parse(line);
+    const coons::solvers::SolverInfo* info = coons::solvers::find_solver(row["solver"].get<std::string>());
+    REQUIRE(info != nullptr);
+    INFO(line);
+    if (info->definite_only) CHECK(row["status"] == "skipped");
+    if (row["solver"] == "eigen-lu" || row["solver"] == "umfpack") {
+      ++direct;
+      CHECK(row["status"] == "success");
+      CHECK(row["backward_error"].get<double>() <= 1e-15);
+    }
+  }
+  CHECK(direct >= 1);
+  const CommandResult table = run_coons("bench-matrix " + hidden + " --table --solvers eigen-lu");
+  CHECK(table.out.find("not symmetric (defect 1)") != std::string::npos);
+}
+
 TEST_CASE("coons bench-matrix: 1e-310 times the identity is solved by every backend, balanced by 2^1030", "[cli]") {
   // subnormal entries: every direct backend reported "overflow" and the run exited 3
   const TempDir dir;
