@@ -25,8 +25,9 @@ int run_stencil_solve(const SolveRequest& request, const BoundaryFile& input, co
   const StencilRun run = solve_stencil_request(input, r, request.net, request.global, request.boundary);
   phases.start("metrics");
   const nlohmann::json report = stencil_report(input, r, run, request.net.mu);
-  print_net_report(report, nullptr, phases);  // the write phase, then timing
-  if (!run.result.summary.ok()) {
+  const bool ok = run.result.summary.ok();
+  print_net_report(report, ok ? &run.result.net : nullptr, phases);  // one point per line; write, then timing
+  if (!ok) {
     print_solver_failure(request.boundary, run.result.summary);
     return kExitSolverFailed;
   }

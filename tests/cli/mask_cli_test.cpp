@@ -7,6 +7,7 @@
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
+#include <regex>
 #include <sstream>
 #include <string>
 
@@ -63,6 +64,22 @@ TEST_CASE("coons solve --mask c1-coons: a ribbon file gives the library's solve 
   for (int i = 0; i <= 6; ++i)
     for (int j = 0; j <= 6; ++j)
       if (std::min({i, j, 6 - i, 6 - j}) < 2) CHECK(solved.at(i, j) == data.at(i, j));
+}
+
+TEST_CASE("coons solve --mask: the net is printed one point [x, y, z] per line, as the classical report's", "[cli]") {
+  // (it went through the generic dump, one coordinate per line, unlike formats.md's layout)
+  const std::string file = kData + "/boundaries/sphere_cap_ribbons.json";
+  for (const std::string options : {"", " --mask c1-coons", " --mask biharmonic --solver eigen-ldlt"}) {
+    const CommandResult r = run_coons("solve " + quoted(file) + options);
+    INFO(options << ": " << r.err);
+    REQUIRE(r.status == 0);
+    const ControlNet net = net_of(json::parse(r.out));
+    int point_lines = 0;
+    std::istringstream text(r.out);
+    for (std::string line; std::getline(text, line);)
+      if (std::regex_match(line, std::regex(R"(\s*\[[^,\[\]]+, [^,\[\]]+, [^,\[\]]+\],?)"))) ++point_lines;
+    CHECK(point_lines == (net.m + 1) * (net.n + 1));
+  }
 }
 
 TEST_CASE("coons solve --mask: the report names the mask, weight, rings and free points, metrics for every mask",
