@@ -138,3 +138,21 @@ TEST_CASE("tri_net_metrics: the mask residual of a solved net is zero, of a rand
   REQUIRE(m.discrete_dirichlet_energy == Approx(tri_discrete_dirichlet_energy(solved)));
   REQUIRE(tri_net_metrics(net, options.mask).mask_residual > 1e-2);
 }
+
+TEST_CASE("tri energies: a model of 2^-532 (about 1e-160) or 2^400 has its energies times exactly 4^k", "[tri]") {
+  // the products of a model of 1e-160 are subnormal (scaled_energy.h)
+  const TriNet net = random_tri_net(5, 1601);
+  for (const int k : {-532, 400}) {
+    TriNet scaled = net;
+    for (Eigen::Index q = 0; q < scaled.points.size(); ++q)
+      scaled.points.data()[q] = std::ldexp(scaled.points.data()[q], k);
+    INFO("k = " << k);
+    CHECK(tri_dirichlet_energy(scaled) == std::ldexp(tri_dirichlet_energy(net), 2 * k));
+    CHECK(tri_thin_plate_energy(scaled) == std::ldexp(tri_thin_plate_energy(net), 2 * k));
+    CHECK(tri_twist_energy(scaled) == std::ldexp(tri_twist_energy(net), 2 * k));
+    CHECK(tri_discrete_dirichlet_energy(scaled) == std::ldexp(tri_discrete_dirichlet_energy(net), 2 * k));
+    CHECK(tri_discrete_thin_plate_energy(scaled) == std::ldexp(tri_discrete_thin_plate_energy(net), 2 * k));
+    CHECK(tri_discrete_twist_energy(scaled) == std::ldexp(tri_discrete_twist_energy(net), 2 * k));
+    CHECK(tri_inner_product(scaled, net) == std::ldexp(tri_inner_product(net, net), k));
+  }
+}

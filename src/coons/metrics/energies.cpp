@@ -7,42 +7,13 @@
 #include <utility>
 
 #include "coons/mask/mask_residual.h"
+#include "coons/metrics/scaled_energy.h"
 #include "coons/net/banded_gram.h"
 #include "coons/net/bernstein.h"
 
 namespace coons {
 
 namespace {
-
-// Every energy here is a quadratic form of the net (each form bilinear in its two nets), and a
-// power of two scales exactly. A net whose largest |coordinate| has a binary exponent k outside
-// [−kScaleFreeExponent, kScaleFreeExponent] is evaluated as net·2^−k, and the result multiplied by
-// 2^k per net; inside that range (|coordinate| within about 1e±90) no product of the evaluation
-// underflows or overflows, so scaling would give the same bits and the net is used as it is. (A
-// model of 1e−160 has subnormal products: its twist energy came out 1.6 % off, the others 0.1–0.2 %.)
-constexpr int kScaleFreeExponent = 300;
-
-int scale_exponent(const ControlNet& net) {
-  const double top = net.points.size() > 0 ? net.points.cwiseAbs().maxCoeff() : 0.0;
-  if (!(top > 0) || !std::isfinite(top)) return 0;
-  const int k = std::ilogb(top);
-  return std::abs(k) > kScaleFreeExponent ? k : 0;
-}
-
-ControlNet times_power_of_two(ControlNet net, int e) {
-  for (Eigen::Index k = 0; k < net.points.size(); ++k) net.points.data()[k] = std::ldexp(net.points.data()[k], e);
-  return net;
-}
-
-// f(X, Y) of two nets (the same object for an energy), evaluated on nets brought into range.
-template <class Form>
-double scaled_form(const ControlNet& X, const ControlNet& Y, Form&& form) {
-  const int kx = scale_exponent(X), ky = &X == &Y ? kx : scale_exponent(Y);
-  if (kx == 0 && ky == 0) return form(X, Y);
-  const ControlNet xs = times_power_of_two(X, -kx);
-  if (&X == &Y) return std::ldexp(form(xs, xs), 2 * kx);
-  return std::ldexp(form(xs, times_power_of_two(Y, -ky)), kx + ky);
-}
 
 // Banded Gram matrices, reused across the energies of one net.
 class GramCache {
@@ -227,7 +198,7 @@ double thin_plate_energy(const ControlNet& net) { return combined_energy(net, th
 double e3_energy(const ControlNet& net) { return combined_energy(net, e3_terms()); }
 
 double discrete_twist_energy(const ControlNet& given) {
-  return scaled_form(given, given, [](const ControlNet& net, const ControlNet& /*same*/) {
+  return scaled_energy(given, [](const ControlNet& net) {
     double e = 0;
     for (int i = 0; i < net.m; ++i)
       for (int j = 0; j < net.n; ++j)
@@ -237,7 +208,7 @@ double discrete_twist_energy(const ControlNet& given) {
 }
 
 double discrete_dirichlet_energy(const ControlNet& given) {
-  return scaled_form(given, given, [](const ControlNet& net, const ControlNet& /*same*/) {
+  return scaled_energy(given, [](const ControlNet& net) {
     double e = 0;
     for (int i = 0; i <= net.m; ++i)
       for (int j = 0; j <= net.n; ++j) {
@@ -370,9 +341,9 @@ namespace {
 
 NetMetrics net_energies_in_range(const ControlNet& net, int threads);
 
-// The energies of net_energies_in_range, of a net brought into range as scaled_form does.
+// The energies of net_energies_in_range, of a net brought into range (scaled_energy.h).
 NetMetrics net_energies(const ControlNet& net, int threads) {
-  const int k = scale_exponent(net);
+  const int k = energy_scale_exponent(net);
   if (k == 0) return net_energies_in_range(net, threads);
   NetMetrics out = net_energies_in_range(times_power_of_two(net, -k), threads);
   for (double* e : {&out.twist_energy, &out.thin_plate_energy, &out.dirichlet_energy, &out.e3_energy,

@@ -1,6 +1,7 @@
 #include "coons/tri/tri_energy.h"
 
 #include "coons/metrics/quadrature.h"
+#include "coons/metrics/scaled_energy.h"
 
 namespace coons::tri {
 
@@ -48,51 +49,65 @@ Eigen::MatrixXd tri_bernstein_gram(int n) {
 }
 
 double tri_inner_product(const TriNet& X, const TriNet& Y) {
-  const Eigen::MatrixXd G = tri_bernstein_gram(X.n);
-  return (X.points.transpose() * G * Y.points).trace();
+  return scaled_form(X, Y, [](const TriNet& x, const TriNet& y) {
+    const Eigen::MatrixXd G = tri_bernstein_gram(x.n);
+    return (x.points.transpose() * G * y.points).trace();
+  });
 }
 
-double tri_dirichlet_energy(const TriNet& net) {
-  if (net.n == 0) return 0;
-  const TriNet px = derivative_net(net, direction_x()), py = derivative_net(net, direction_y());
-  return tri_inner_product(px, px) + tri_inner_product(py, py);
+double tri_dirichlet_energy(const TriNet& given) {
+  return scaled_energy(given, [](const TriNet& net) -> double {
+    if (net.n == 0) return 0.0;
+    const TriNet px = derivative_net(net, direction_x()), py = derivative_net(net, direction_y());
+    return tri_inner_product(px, px) + tri_inner_product(py, py);
+  });
 }
 
-double tri_thin_plate_energy(const TriNet& net) {
-  if (net.n < 2) return 0;
-  const TriNet px = derivative_net(net, direction_x()), py = derivative_net(net, direction_y());
-  const TriNet pxx = derivative_net(px, direction_x()), pxy = derivative_net(px, direction_y()),
-               pyy = derivative_net(py, direction_y());
-  return tri_inner_product(pxx, pxx) + 2 * tri_inner_product(pxy, pxy) + tri_inner_product(pyy, pyy);
+double tri_thin_plate_energy(const TriNet& given) {
+  return scaled_energy(given, [](const TriNet& net) -> double {
+    if (net.n < 2) return 0.0;
+    const TriNet px = derivative_net(net, direction_x()), py = derivative_net(net, direction_y());
+    const TriNet pxx = derivative_net(px, direction_x()), pxy = derivative_net(px, direction_y()),
+                 pyy = derivative_net(py, direction_y());
+    return tri_inner_product(pxx, pxx) + 2 * tri_inner_product(pxy, pxy) + tri_inner_product(pyy, pyy);
+  });
 }
 
-double tri_twist_energy(const TriNet& net) {
-  if (net.n < 2) return 0;
-  double sum = 0;
-  for (const TriNet& q : mixed_nets(net)) sum += tri_inner_product(q, q);
-  return sum / 3;
+double tri_twist_energy(const TriNet& given) {
+  return scaled_energy(given, [](const TriNet& net) -> double {
+    if (net.n < 2) return 0.0;
+    double sum = 0;
+    for (const TriNet& q : mixed_nets(net)) sum += tri_inner_product(q, q);
+    return sum / 3;
+  });
 }
 
-double tri_discrete_dirichlet_energy(const TriNet& net) {
-  if (net.n == 0) return 0;
-  const double s = 1.0 / (double(net.n) * net.n);
-  return s * (squared_norm(derivative_net(net, direction_x())) + squared_norm(derivative_net(net, direction_y())));
+double tri_discrete_dirichlet_energy(const TriNet& given) {
+  return scaled_energy(given, [](const TriNet& net) -> double {
+    if (net.n == 0) return 0.0;
+    const double s = 1.0 / (double(net.n) * net.n);
+    return s * (squared_norm(derivative_net(net, direction_x())) + squared_norm(derivative_net(net, direction_y())));
+  });
 }
 
-double tri_discrete_thin_plate_energy(const TriNet& net) {
-  if (net.n < 2) return 0;
-  const double f = double(net.n) * (net.n - 1), s = 1.0 / (f * f);
-  const TriNet px = derivative_net(net, direction_x()), py = derivative_net(net, direction_y());
-  return s * (squared_norm(derivative_net(px, direction_x())) + 2 * squared_norm(derivative_net(px, direction_y())) +
-              squared_norm(derivative_net(py, direction_y())));
+double tri_discrete_thin_plate_energy(const TriNet& given) {
+  return scaled_energy(given, [](const TriNet& net) -> double {
+    if (net.n < 2) return 0.0;
+    const double f = double(net.n) * (net.n - 1), s = 1.0 / (f * f);
+    const TriNet px = derivative_net(net, direction_x()), py = derivative_net(net, direction_y());
+    return s * (squared_norm(derivative_net(px, direction_x())) + 2 * squared_norm(derivative_net(px, direction_y())) +
+                squared_norm(derivative_net(py, direction_y())));
+  });
 }
 
-double tri_discrete_twist_energy(const TriNet& net) {
-  if (net.n < 2) return 0;
-  const double f = double(net.n) * (net.n - 1), s = 1.0 / (f * f);
-  double sum = 0;
-  for (const TriNet& q : mixed_nets(net)) sum += squared_norm(q);
-  return s * sum / 3;
+double tri_discrete_twist_energy(const TriNet& given) {
+  return scaled_energy(given, [](const TriNet& net) -> double {
+    if (net.n < 2) return 0.0;
+    const double f = double(net.n) * (net.n - 1), s = 1.0 / (f * f);
+    double sum = 0;
+    for (const TriNet& q : mixed_nets(net)) sum += squared_norm(q);
+    return s * sum / 3;
+  });
 }
 
 TriQuadratureRule duffy_gauss_legendre(int k) {
