@@ -58,7 +58,7 @@ struct SearchSetup {
   bool picked_automatically = false;
   //! μ's bounds as given (options holds them on the compressed scale, which does not read back
   //! to the last digit: 9000 came back as 9000.000000000306)
-  std::optional<std::array<double, 2>> mu_bounds;
+  std::optional<MuScale> mu_scale;
 };
 
 SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
@@ -105,9 +105,9 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
                          fmt::format("mu up to 1e9 * m * n = {:g}: beyond it mu/(mu + mn) cannot resolve mu (and the "
                                      "family is within 1e-9 of its mu -> infinity limit, alpha = 0)",
                                      most));
-      s.options.lower = compressed_of_mu(m, n, lower);
-      s.options.upper = compressed_of_mu(m, n, upper);
-      s.mu_bounds = std::array<double, 2>{lower, upper};
+      s.mu_scale = MuScale{m, n, lower, upper};
+      s.options.lower = s.mu_scale->s_lower();
+      s.options.upper = s.mu_scale->s_upper();
       break;
     }
     case Parameter::kAlphaGamma:
@@ -288,8 +288,7 @@ int run_search_alpha(const SearchRequest& r) {
   const AlphaSearchSummary s = r.parameter == Parameter::kAlpha
                                    ? search_alpha(b, setup.objective, *setup.solver, setup.options)
                                    : search_mu(b, setup.objective, *setup.solver, setup.options);
-  nlohmann::json out = search_report(b, objective, r.parameter, setup.family, setup.options, s);
-  if (setup.mu_bounds) out["bounds"] = *setup.mu_bounds;
+  nlohmann::json out = search_report(b, objective, r.parameter, setup.family, setup.options, s, setup.mu_scale);
   out["solver"] =
       search_solver_block(*setup.solver, setup.picked_automatically, s.status, s.solves, s.seconds, s.message);
   return finish(out, phases, s.status, r, s.message);

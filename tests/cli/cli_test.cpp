@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <functional>
@@ -266,6 +267,43 @@ TEST_CASE("coons search-alpha: the report of docs/formats.md", "[cli][alpha]") {
   REQUIRE(flat.status == 0);
   CHECK(json::parse(flat.out)["flat"] == true);
   CHECK(json::parse(flat.out)["alpha"].is_null());
+}
+
+TEST_CASE("coons search-alpha --parameter mu: every mu printed lies within the bounds, which end the scan exactly",
+          "[cli][alpha]") {
+  // mn·s/(1 − s) of the compressed scale rounds: on a 3×7 net the upper bound 21000 came back as the
+  // optimum 21000.000000000713 and as the scan's last point, beyond the bounds printed beside them
+  TempDir dir;
+  json net = json::array();
+  for (int i = 0; i <= 3; ++i) {
+    json row = json::array();
+    for (int j = 0; j <= 7; ++j) {
+      const double u = i / 3.0, v = j / 7.0;
+      row.push_back({u + 0.1 * v * v, v - 0.2 * u * u, 0.3 * std::sin(3 * u + 1) * std::cos(2 * v) + 0.1 * u * v});
+    }
+    net.push_back(row);
+  }
+  const std::string file = quoted(dir.write("wide.json", json{{"name", "wide"}, {"net", net}}.dump()));
+  for (const std::string options : {"", " --upper 777.7", " --lower 0.3 --upper 5"}) {
+    for (const char* objective : {"thin_plate", "dirichlet", "twist"}) {
+      const CommandResult r =
+          run_coons(fmt::format("search-alpha {} --parameter mu --objective {}{}", file, objective, options));
+      INFO(objective << options << ": " << r.err);
+      REQUIRE(r.status == 0);
+      const json report = json::parse(r.out);
+      const double lower = report["bounds"][0], upper = report["bounds"][1];
+      CHECK(report["scan"].front()[0].get<double>() == lower);
+      CHECK(report["scan"].back()[0].get<double>() == upper);
+      for (const auto& point : report["scan"]) {
+        CHECK(point[0].get<double>() >= lower);
+        CHECK(point[0].get<double>() <= upper);
+      }
+      if (!report["mu"].is_null()) {
+        CHECK(report["mu"].get<double>() >= lower);
+        CHECK(report["mu"].get<double>() <= upper);
+      }
+    }
+  }
 }
 
 TEST_CASE("coons search-alpha: bad input gives exit 2 and one error line", "[cli][alpha]") {

@@ -1,5 +1,6 @@
 #include "mask_families.h"
 
+#include <algorithm>
 #include <cmath>
 
 namespace coons {
@@ -23,6 +24,12 @@ MaskPoint mu_family(int m, int n, double mu) {
 
 double mu_of_compressed(int m, int n, double s) { return double(m) * n * s / (1 - s); }
 double compressed_of_mu(int m, int n, double mu) { return mu / (mu + double(m) * n); }
+
+double MuScale::mu(double s) const {
+  if (s == s_lower()) return lower;
+  if (s == s_upper()) return upper;
+  return std::clamp(mu_of_compressed(m, n, s), lower, upper);
+}
 
 MaskPoint mu_family_compressed(int m, int n, double s) {
   MaskPoint p = mu_family(m, n, mu_of_compressed(m, n, s));

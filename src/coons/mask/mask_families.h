@@ -30,6 +30,17 @@ MaskPoint mu_family_compressed(int m, int n, double s);
 double mu_of_compressed(int m, int n, double s);
 double compressed_of_mu(int m, int n, double mu);
 
+//! The compressed scale of one μ search over [lower, upper] (μ). mu(s) is exact at the bounds' own
+//! compressed values and clamped into [lower, upper] elsewhere: mn·s/(1 − s) rounds, and the bound
+//! 1000·mn = 21000 of a 3×7 net came back as μ* = 21000.000000000713, beyond it.
+struct MuScale {
+  int m = 1, n = 1;
+  double lower = 0, upper = 0;
+  [[nodiscard]] double s_lower() const { return compressed_of_mu(m, n, lower); }
+  [[nodiscard]] double s_upper() const { return compressed_of_mu(m, n, upper); }
+  [[nodiscard]] double mu(double s) const;
+};
+
 //! Derivative with respect to γ at fixed α.
 MaskPoint gamma_family(double alpha, double gamma);
 

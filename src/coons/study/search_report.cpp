@@ -60,8 +60,11 @@ void add_search_fields(json& out, const AlphaSearchSummary& s, const std::functi
 }
 
 json search_report(const Boundary& b, const std::string& objective, SearchParameter parameter, const MaskFamily& family,
-                   const AlphaSearchOptions& options, const AlphaSearchSummary& s) {
+                   const AlphaSearchOptions& options, const AlphaSearchSummary& s,
+                   const std::optional<MuScale>& mu_scale) {
   const bool by_mu = parameter == SearchParameter::kMu;
+  const MuScale scale = mu_scale.value_or(
+      MuScale{b.m, b.n, mu_of_compressed(b.m, b.n, options.lower), mu_of_compressed(b.m, b.n, options.upper)});
   json out;
   out["boundary"] = b.name;
   out["degree"] = {b.m, b.n};
@@ -71,7 +74,7 @@ json search_report(const Boundary& b, const std::string& objective, SearchParame
   if (s.parameter) {
     const MaskPoint p = family(*s.parameter);
     alpha = p.mask.diag;
-    mu = by_mu ? std::optional<double>(mu_of_compressed(b.m, b.n, *s.parameter)) : mu_of_alpha(b, alpha);
+    mu = by_mu ? std::optional<double>(scale.mu(*s.parameter)) : mu_of_alpha(b, alpha);
     out["beta"] = p.mask.edge_i == p.mask.edge_j ? json(p.mask.edge_i) : json(nullptr);
     if (p.mask.edge_i != p.mask.edge_j) out["beta_ij"] = {p.mask.edge_i, p.mask.edge_j};
   }
@@ -79,10 +82,10 @@ json search_report(const Boundary& b, const std::string& objective, SearchParame
   out["mu"] = mu ? json(*mu) : json(nullptr);
   out["value"] = number_or_null(s.value);
   if (by_mu)
-    out["bounds"] = {mu_of_compressed(b.m, b.n, options.lower), mu_of_compressed(b.m, b.n, options.upper)};
+    out["bounds"] = {scale.lower, scale.upper};
   else
     out["bounds"] = {options.lower, options.upper};
-  add_search_fields(out, s, [&](double p) { return by_mu ? mu_of_compressed(b.m, b.n, p) : p; });
+  add_search_fields(out, s, [&](double p) { return by_mu ? scale.mu(p) : p; });
   return out;
 }
 

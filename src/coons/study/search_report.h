@@ -4,9 +4,11 @@
 
 #include <functional>
 #include <nlohmann/json.hpp>
+#include <optional>
 #include <string>
 
 #include "coons/alpha/alpha_search.h"
+#include "coons/mask/mask_families.h"
 #include "coons/net/control_net.h"
 #include "solvers/registry.h"
 
@@ -30,9 +32,11 @@ void add_search_fields(nlohmann::json& out, const AlphaSearchSummary& s, const s
                        const std::string& evaluator_when_unnamed = "factorize and solve");
 
 //! The report of a one-parameter search (α or μ; `family` maps the searched parameter to its
-//! mask, `options` holds the bounds it was searched in).
+//! mask, `options` holds the bounds it was searched in). A μ search reports μ and its bounds on
+//! `mu_scale` (default: the μ of options' compressed bounds), every μ within them.
 nlohmann::json search_report(const Boundary& boundary, const std::string& objective, SearchParameter parameter,
-                             const MaskFamily& family, const AlphaSearchOptions& options, const AlphaSearchSummary& s);
+                             const MaskFamily& family, const AlphaSearchOptions& options, const AlphaSearchSummary& s,
+                             const std::optional<MuScale>& mu_scale = std::nullopt);
 
 //! The report of the C1 family's weight search: "parameter": "weight", "mask": "c1-family",
 //! "weight" (w*, null without an optimum) and the fields of the α report other than alpha, beta, mu.

@@ -73,11 +73,12 @@ bool StudyOptions::is_valid(std::string* why) const {
 }
 
 AlphaSearchSummary study_search_mu(const Boundary& b, const Objective& objective, const solvers::SolverInfo& solver) {
+  const MuScale scale{b.m, b.n, 0.0, 1000.0 * b.m * b.n};
   AlphaSearchOptions options;
-  options.lower = 0;
-  options.upper = compressed_of_mu(b.m, b.n, 1000.0 * b.m * b.n);
+  options.lower = scale.s_lower();
+  options.upper = scale.s_upper();
   AlphaSearchSummary s = search_mu(b, objective, solver, options);
-  if (s.parameter) s.parameter = mu_of_compressed(b.m, b.n, *s.parameter);
+  if (s.parameter) s.parameter = scale.mu(*s.parameter);
   return s;
 }
 
