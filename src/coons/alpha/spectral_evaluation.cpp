@@ -16,6 +16,21 @@ using detail::ModeSums;
 
 namespace {
 
+// K̂_a U K̂_b for a term held by mode parity (spectral_objective.h): four products of half size.
+template <class Term>
+Eigen::MatrixXd kronecker_product_of(const Term& t, const Eigen::MatrixXd& U) {
+  Eigen::MatrixXd out(U.rows(), U.cols());
+  for (Eigen::Index pr = 0; pr < 2; ++pr)
+    for (Eigen::Index pc = 0; pc < 2; ++pc) {
+      const auto rows = Eigen::seq(pr, U.rows() - 1, 2);
+      const auto cols = Eigen::seq(pc, U.cols() - 1, 2);
+      if (rows.size() == 0 || cols.size() == 0) continue;
+      const Eigen::MatrixXd block = U(rows, cols);
+      out(rows, cols) = t.a[std::size_t(pr)] * block * t.b[std::size_t(pc)];
+    }
+  return out;
+}
+
 // q, q', q'' and the rounding error of q' of a quadratic at U[c][r] = u^(r)∘R̂_c (r = 0, 1, 2):
 //   q = constant + 2⟨ĉ, U⟩ + Σ w⟨U, K̂_a U K̂_b⟩,  q' = 2⟨ĉ, U'⟩ + 2Σ w⟨U', K̂_a U K̂_b⟩,
 //   q'' = 2⟨ĉ, U''⟩ + 2Σ w(⟨U'', K̂_a U K̂_b⟩ + ⟨U', K̂_a U' K̂_b⟩).
@@ -28,7 +43,7 @@ std::array<double, 4> quadratic_sums(const Quadratic& q, const Eigen::MatrixXd (
     r[2] += 2 * q.c_hat[c].cwiseProduct(U[c][2]).sum();
     r[3] += 2 * (q.c_hat[c].norm() + q.c_scale) * U[c][1].norm();
     for (const auto& t : q.terms) {
-      const Eigen::MatrixXd KU0 = t.a * U[c][0] * t.b, KU1 = t.a * U[c][1] * t.b;
+      const Eigen::MatrixXd KU0 = kronecker_product_of(t, U[c][0]), KU1 = kronecker_product_of(t, U[c][1]);
       r[0] += t.weight * U[c][0].cwiseProduct(KU0).sum();
       r[1] += 2 * t.weight * U[c][1].cwiseProduct(KU0).sum();
       r[2] += 2 * t.weight * (U[c][2].cwiseProduct(KU0).sum() + U[c][1].cwiseProduct(KU1).sum());

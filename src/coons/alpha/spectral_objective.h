@@ -65,8 +65,11 @@ class SpectralAlphaObjective {
   double e0_ = 0;
   Eigen::VectorXd xi_, eta_;   // 1 − cos(pπ/(rows+1)), 1 − cos(qπ/(cols+1))
   Eigen::ArrayXd quad_, lin_;  // per mode: symbol·Σ_xyz R̂², 2·Σ_xyz ĉ·R̂ (discrete terms)
+  //! S K_a S (rows × rows) and S K_b S (cols × cols) at the interior, held by the parity of the
+  //! modes: a[p] couples the modes p, p + 2, p + 4, … (K is persymmetric, so the entries between
+  //! the sine modes of different parity vanish; products of half size cost a quarter).
   struct KroneckerTerm {
-    Eigen::MatrixXd a, b;  // S K_a S (rows × rows) and S K_b S (cols × cols) at the interior
+    std::array<Eigen::MatrixXd, 2> a, b;
     double weight = 0;
   };
   //! q(N_C + δ) = constant + 2⟨ĉ, δ̂⟩ + Σ w⟨δ̂, K̂_a δ̂ K̂_b⟩, summed over x, y, z.

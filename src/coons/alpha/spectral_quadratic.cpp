@@ -30,10 +30,15 @@ Eigen::MatrixXd sine_2d(const Eigen::MatrixXd& G) {
   return solvers::sine_transform_1d(solvers::sine_transform_1d(G).transpose()).transpose();
 }
 
-// S·K·S of the interior block of K (S the orthonormal DST-I, its own transpose).
-Eigen::MatrixXd sine_both_sides(const Eigen::MatrixXd& K) {
+// S·K·S of the interior block of K (S the orthonormal DST-I, its own transpose), by mode parity:
+// the blocks of the modes 0, 2, 4, … and 1, 3, 5, … (a persymmetric K couples no mode of one
+// parity with one of the other: the sine mode k + 1 is symmetric for even k, antisymmetric for odd).
+std::array<Eigen::MatrixXd, 2> sine_both_sides(const Eigen::MatrixXd& K) {
   const Eigen::Index k = K.rows() - 2;
-  return sine_2d(K.block(1, 1, k, k));
+  const Eigen::MatrixXd full = sine_2d(K.block(1, 1, k, k));
+  std::array<Eigen::MatrixXd, 2> out;
+  for (Eigen::Index p = 0; p < 2; ++p) out[std::size_t(p)] = full(Eigen::seq(p, k - 1, 2), Eigen::seq(p, k - 1, 2));
+  return out;
 }
 
 }  // namespace
