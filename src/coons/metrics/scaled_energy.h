@@ -8,6 +8,7 @@
 // twist energy came out 1.6 % off.) Net: ControlNet or tri::TriNet (a `points` matrix).
 #pragma once
 
+#include <Eigen/Core>
 #include <cmath>
 #include <cstdlib>
 
