@@ -148,6 +148,11 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
 // What a solve that could not run (no factorisation) returns: X = 0, and the relative residual of
 // that X, max over the columns of ‖A·0 − b‖/‖b‖ = 1 (‖A·0‖ = 0 for a zero column), as every report
 // promises for a failed solve (docs/formats.md, "The solver block").
+// The relative residual a summary reports when analyze or factorize failed: that of X = 0 (what
+// solve() then returns) for a non-zero B. A search copied the summary of a failed factorisation and
+// printed "singular, 0 iterations, residual 0" although nothing was solved.
+constexpr double kUnsolvedResidual = 1;
+
 void return_zero_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) {
   X.setZero(B.rows(), 3);
   summary.relative_residual = B.isZero(0) ? 0 : 1;
@@ -174,6 +179,7 @@ SolveStatus LinearSolver::analyze(const LinearOperator& op) {
   summary_.status = do_analyze(op, summary_);
   summary_.analyze_seconds = seconds_since(start);
   analyzed_size_ = summary_.ok() ? op.size() : -1;
+  if (!summary_.ok()) summary_.relative_residual = kUnsolvedResidual;
   return summary_.status;
 }
 
@@ -190,6 +196,7 @@ SolveStatus LinearSolver::factorize(const LinearOperator& op) {
   summary_.status = do_factorize(op, summary_);
   summary_.factorize_seconds = seconds_since(start);
   factorized_ = summary_.ok();
+  if (!factorized_) summary_.relative_residual = kUnsolvedResidual;
   op_ = op;
   return summary_.status;
 }

@@ -40,3 +40,26 @@ TEST_CASE("eigen-lu: a regular matrix is still factorised and solved", "[solvers
   REQUIRE(s.status == SolveStatus::kSuccess);
   CHECK((A * X - B).cwiseAbs().maxCoeff() < 1e-15);
 }
+
+TEST_CASE("LinearSolver::factorize: a failed factorisation reports the residual of X = 0, not 0", "[solvers]") {
+  // The searches copy the summary of a failed factorize(): it read "singular, 0 iterations,
+  // residual 0" although nothing was solved (solve() then returns X = 0, residual 1).
+  Eigen::SparseMatrix<double> A(2, 2);
+  A.insert(0, 0) = 1;
+  A.insert(0, 1) = 1;
+  A.insert(1, 0) = 1;
+  A.insert(1, 1) = 1;
+  A.makeCompressed();
+  LinearOperator op;
+  op.matrix = &A;
+  for (const char* name : {"eigen-lu", "eigen-ldlt"}) {
+    auto solver = make_solver(name);
+    INFO(name);
+    REQUIRE(solver->factorize(op) != SolveStatus::kSuccess);
+    CHECK(solver->summary().relative_residual == 1);
+    Eigen::MatrixX3d X;
+    const SolveSummary s = solver->solve(Eigen::MatrixX3d::Ones(2, 3), X);
+    CHECK(s.relative_residual == 1);
+    CHECK(X.isZero(0));
+  }
+}
