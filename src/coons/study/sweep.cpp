@@ -32,7 +32,11 @@ std::vector<double> linspace(double from, double to, int count) {
       const double t = double(k) / (count - 1);
       out[k] = from * (1 - t) + to * t;
     }
+    // within [from, to] (either order) and ending on `to` itself: rounding took the last value of
+    // a sweep from −0.15 to 0.25 in 7 steps to 0.2500000000000001, beyond the α range, with β < 0
+    out[k] = from <= to ? std::clamp(out[k], from, to) : std::clamp(out[k], to, from);
   }
+  if (count > 1) out.back() = to;
   return out;
 }
 
@@ -123,7 +127,9 @@ std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter
                           {"twist", &NetMetrics::twist_energy},
                           {"Dirichlet", &NetMetrics::dirichlet_energy}};
   // Each curve divided by its largest value, its minimum marked in its own colour. Curves that
-  // are zero up to rounding (below 1e-12 of the largest curve) carry no shape and are left out.
+  // are zero up to rounding (below 1e-12 of the largest curve) carry no shape and are left out;
+  // when every curve is exactly 0 (a planar bilinear boundary) they are drawn at 0 (there was
+  // nothing to plot, and gnuplot failed: "all points y value undefined").
   std::vector<std::pair<std::string, std::vector<double>>> candidates;
   for (const Curve& c : curves) {
     std::vector<double> v;
@@ -147,8 +153,8 @@ std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter
   for (const auto& c : candidates) overall = std::max(overall, largest(c.second));
   std::vector<PlotSeries> series;
   for (const auto& [name, values] : candidates) {
-    const double top = largest(values);
-    if (!(top > 1e-12 * overall)) continue;
+    const double top = overall == 0 ? 1.0 : largest(values);
+    if (overall > 0 && !(top > 1e-12 * overall)) continue;
     PlotSeries s{name, {}, {}, false};
     std::optional<size_t> best;
     for (size_t k = 0; k < rows.size(); ++k) {
