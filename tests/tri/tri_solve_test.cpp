@@ -303,6 +303,25 @@ TEST_CASE("solve_tri_net: a singular member outside c*_n < c <= 1/3 is refused, 
   }
 }
 
+TEST_CASE("solve_tri_net: a member just above c*_n is as near singular as one just below, and refused alike", "[tri]") {
+  // Only members outside (c*_n, 1/3] were checked: c*_6 + 3.3e-10 (min|λ|/‖A‖₁ about 1e-10) came
+  // back a success with a net 4.7e-7 off and coordinates of 5e8, c*_6 − 1e-8 singular.
+  const int n = 6;
+  const double star = *bubble_singular_c(n);
+  const TriNet net = random_tri_net(n, 1700);
+  for (const double offset : {3.3e-10, 1e-8, -1e-8}) {
+    const double c = star + offset;
+    INFO("c = c*_6 + " << offset);
+    CHECK(in_regular_c_range(n, TriMask{c}) == (offset > 0));
+    const TriSolveResult r = solve_by(net, c, "eigen-lu");
+    CHECK(r.summary.status == SolveStatus::kSingular);
+    CHECK(r.summary.relative_residual == 1);
+  }
+  // well inside the interval the check passes and the member is solved
+  const TriSolveResult inside = solve_by(net, -0.1, "eigen-lu");
+  CHECK(inside.summary.ok());
+}
+
 TEST_CASE("solve_tri_net: a regular member outside c*_n < c <= 1/3 is still solved", "[tri]") {
   // c = 0.9 at n = 8 lies between the singular members 0.50 and 1 (generalised eigenvalues of the
   // pencil); c = -0.3 at n = 8 below c*_8 = -0.2667 and above the next singular member -0.7267.

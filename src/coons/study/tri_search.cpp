@@ -147,7 +147,7 @@ TriEvaluation evaluate_tri_objective(const TriNet& frame, const TriObjective& ob
     const tri::TriMaskSystem sys = tri::assemble_tri_mask_system(frame, mask);
     auto backend = solvers::make_solver(solver.name);
     Eigen::MatrixX3d X;
-    e.summary = tri::solve_tri_system(sys, frame.n, mask, *backend, X);
+    e.summary = tri::solve_tri_system(sys, *backend, X);
     if (!e.summary.ok()) return e;
     e.net = tri::fill_interior(frame, X);
     if (with_derivative) {

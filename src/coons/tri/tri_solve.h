@@ -54,14 +54,13 @@ struct TriSolveResult {
 //! c ≈ −0.62 at n = 10, and one just above 1/3 and one just below c*ₙ for every larger n.
 bool in_regular_c_range(int n, const TriMask& mask);
 
-//! Factorise sys.A with `solver` and solve A X = B (X: #interior by 3). For a member outside
-//! in_regular_c_range the factorisation is first checked by inverse iteration
-//! (coons/mask/near_singular.h): a system whose min|λ|/‖A‖₁ is at most
-//! kNearSingularEigenvalueRatio is refused with status singular and X = 0, because on boundary
-//! data that the singular system can still reproduce (a flat triangle) every backend returns one of
-//! many nets with a small residual and calls it a success.
-solvers::SolveSummary solve_tri_system(const TriMaskSystem& sys, int n, const TriMask& mask,
-                                       solvers::LinearSolver& solver, Eigen::MatrixX3d& X);
+//! Factorise sys.A with `solver` and solve A X = B (X: #interior by 3). The factorisation is
+//! first checked by inverse iteration (coons/mask/near_singular.h): a system whose min|λ|/‖A‖₁ is
+//! at most kNearSingularEigenvalueRatio is refused with status singular and X = 0, because on
+//! boundary data that the singular system can still reproduce (a flat triangle) every backend
+//! returns one of many nets with a small residual and calls it a success. Inside
+//! in_regular_c_range too: just above c*ₙ the system is as near singular as just below it.
+solvers::SolveSummary solve_tri_system(const TriMaskSystem& sys, solvers::LinearSolver& solver, Eigen::MatrixX3d& X);
 
 //! Fill the interior of `frame` (its interior is ignored) by the mask system.
 TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options = {});
