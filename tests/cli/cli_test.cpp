@@ -425,6 +425,22 @@ TEST_CASE("coons sweep: one JSON line per alpha with every metric, and a plot", 
   CHECK(r.err.empty());  // no progress indicator when stderr is not a terminal
 }
 
+TEST_CASE("coons sweep: a boundary whose energies are all 0 still gets its plot", "[cli][alpha]") {
+  // every curve was left out as zero and gnuplot failed ("all points y value undefined"): png_error
+  TempDir dir;
+  json side = json::array();
+  for (int k = 0; k <= 3; ++k) side.push_back({0.0, 0.0, 0.0});
+  const std::string file = dir.write(
+      "zero.json", json{{"name", "zero"}, {"bottom", side}, {"top", side}, {"left", side}, {"right", side}}.dump());
+  const std::string out = (dir.path / "sweep").string();
+  const CommandResult r = run_coons("sweep " + quoted(file) + " --count 3 --out " + quoted(out));
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);
+  const json summary = json::parse(r.out);
+  CHECK_FALSE(summary.contains("png_error"));
+  CHECK(fs::exists(fs::path(out) / "zero.sweep-alpha.png"));
+}
+
 TEST_CASE("coons study: a report with computed tables and figures", "[cli][alpha]") {
   TempDir dir;
   const std::string out = (dir.path / "study").string();
