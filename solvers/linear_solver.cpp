@@ -347,7 +347,7 @@ SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::Matri
   if (end.converged && !overflow) return SolveStatus::kSuccess;
   const std::string after =
       " after " + std::to_string(end.iterations) + " iteration" + (end.iterations == 1 ? "" : "s");
-  if (end.diverged || overflow || (!end.krylov && end.residual > end.initial)) {
+  if (end.diverged || overflow || (!end.krylov && !end.convergent && end.residual > end.initial)) {
     X.setZero();
     summary.message = "diverged: the residual grew from " + format_g(end.initial) + " to " +
                       (overflow ? std::string("overflow (reported as the largest double)") : format_g(end.residual)) +

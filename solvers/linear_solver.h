@@ -218,6 +218,10 @@ class LinearSolver {
     //! Gauss–Seidel), not for a Krylov method, whose residual norm may rise before it falls (CG
     //! after one step on a definite system: 2.28).
     bool krylov = false;
+    //! Convergence is guaranteed (SOR with 0 < ω < 2 on a positive definite system, Ostrowski–Reich):
+    //! its residual may also rise before it falls (ω = 1.9 at α = −1/4: 1.85 after one sweep, 2.2
+    //! after 5, 0.12 after 500), so a residual above its start at the limit is not divergence.
+    bool convergent = false;
     //! stopped because the method broke down (a zero divisor in its recurrence); the residual is
     //! that of the last finite iterate
     bool breakdown = false;

@@ -61,6 +61,8 @@ class MaskIteration : public LinearSolver {
     IterationEnd end;
     end.limit = iteration_limit(options_, stencil_.size(), 1000, 1e8);
     end.initial = end.residual = relative_residual(op, B, X);
+    end.convergent = scheme_ == Scheme::kGaussSeidel && options_.sor_omega > 0 && options_.sor_omega < 2 &&
+                     stencil_eigenvalue_range(stencil_).first > 0;
     while (end.iterations < end.limit && end.residual > options_.tolerance) {
       for (int k = 0; k < kCheckEvery && end.iterations < end.limit; ++k, ++end.iterations) sweep_once(B, X, next);
       end.residual = relative_residual(op, B, X);
