@@ -3,6 +3,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <set>
+#include <tuple>
 
 #include "coons/io/input_error.h"
 #include "coons/study/study_failures.h"
@@ -184,6 +185,26 @@ TEST_CASE("family_task_from_record: a grid of another length or a number that is
     INFO(name << " = " << bad.dump());
     CHECK(field_refused(edited) == name);
   }
+  // a status that contradicts the record (an edited "flat" beside a number moved the best single
+  // α), a parameter other than α, a duration that is no number: what run_family_task cannot write
+  const std::vector<std::tuple<const char*, nlohmann::json, const char*>> contradictions = {
+      {"status", "flat", "alpha"},      {"status", "failed", "alpha"}, {"status", "at_bound", "alpha"},
+      {"parameter", "mu", "parameter"}, {"seconds", "x", "seconds"},   {"seconds", -1.0, "seconds"}};
+  for (const auto& [name, bad, field] : contradictions) {
+    nlohmann::json edited = record;
+    edited[name] = bad;
+    INFO(name << " = " << bad.dump());
+    CHECK(field_refused(edited) == field);
+  }
+  nlohmann::json flat = record;  // a flat record as the study writes it: no optimum, accepted
+  flat["status"] = "flat";
+  flat["alpha"] = nullptr;
+  flat["value"] = nullptr;
+  CHECK(family_task_from_record(flat, options, "f").status == FamilyTaskStatus::kFlat);
+  nlohmann::json on_bound = record;  // at_bound on the bound itself: accepted
+  on_bound["status"] = "at_bound";
+  on_bound["alpha"] = 0.25;
+  CHECK(family_task_from_record(on_bound, options, "f").status == FamilyTaskStatus::kAtBound);
   nlohmann::json negative = record;
   negative["grid"][4] = -2.0;
   CHECK(field_refused(negative) == "grid[4]");

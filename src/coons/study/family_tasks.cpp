@@ -283,7 +283,21 @@ FamilyTaskResult family_task_from_record(const json& record, const AlphaFamilyOp
       known = true;
     }
   if (!known) throw InputError(where, "status", fmt::format("unknown status '{}'", status));
+  // what run_family_task writes beside the key: the searched parameter is α, and a record without
+  // an optimum has none (an edited "status": "flat" beside a number moved the best single α)
+  if (record.contains("parameter") && record["parameter"] != "alpha")
+    throw InputError(where, "parameter",
+                     fmt::format("{} is not \"alpha\", the parameter of the study", record["parameter"].dump()));
+  if (record.contains("seconds") && !(record["seconds"].is_number() && record["seconds"].get<double>() >= 0))
+    throw InputError(where, "seconds",
+                     fmt::format("{} is no duration (a number, at least 0)", record["seconds"].dump()));
   const bool optimum = r.status == FamilyTaskStatus::kInterior || r.status == FamilyTaskStatus::kAtBound;
+  if (!optimum)
+    for (const char* key : {"alpha", "value"})
+      if (record.contains(key) && !record[key].is_null())
+        throw InputError(where, key,
+                         fmt::format("a record with status '{}' has no optimum, so {} must be null, not {}", status,
+                                     key, record[key].dump()));
   if (optimum) {
     // what run_family_task can have written: α* within the search's bounds, energies ≥ 0 (an
     // edited record would otherwise move the quantiles and the best single α without a word)
@@ -292,6 +306,13 @@ FamilyTaskResult family_task_from_record(const json& record, const AlphaFamilyOp
     if (!(*r.alpha >= bounds.lower && *r.alpha <= bounds.upper))
       throw InputError(where, "alpha",
                        fmt::format("{} is outside the search's bounds [{}, {}]", *r.alpha, bounds.lower, bounds.upper));
+    // at_bound as the search decides it: within 1e-7 of the interval's length from a bound
+    const double edge = 1e-7 * (bounds.upper - bounds.lower);
+    const bool near_bound = *r.alpha - bounds.lower <= edge || bounds.upper - *r.alpha <= edge;
+    if (r.status == FamilyTaskStatus::kAtBound && !near_bound)
+      throw InputError(where, "alpha",
+                       fmt::format("{} is not on a bound of [{}, {}], as status 'at_bound' says", *r.alpha,
+                                   bounds.lower, bounds.upper));
     r.value = field<double>(record, "value", where);
     if (!(std::isfinite(r.value) && r.value >= 0))
       throw InputError(where, "value", fmt::format("{} is no energy (finite and at least 0)", r.value));
