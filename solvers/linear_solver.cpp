@@ -145,17 +145,17 @@ double seconds_since(std::chrono::steady_clock::time_point start) {
   return std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
 }
 
+// The relative residual of X = 0 for a non-zero B: what a summary reports when analyze or
+// factorize failed (a search copied such a summary and printed "singular, 0 iterations, residual
+// 0" although nothing was solved) and what return_zero_solution reports.
+constexpr double kUnsolvedResidual = 1;
+
 // What a solve that could not run (no factorisation) returns: X = 0, and the relative residual of
 // that X, max over the columns of ‖A·0 − b‖/‖b‖ = 1 (‖A·0‖ = 0 for a zero column), as every report
 // promises for a failed solve (docs/formats.md, "The solver block").
-// The relative residual a summary reports when analyze or factorize failed: that of X = 0 (what
-// solve() then returns) for a non-zero B. A search copied the summary of a failed factorisation and
-// printed "singular, 0 iterations, residual 0" although nothing was solved.
-constexpr double kUnsolvedResidual = 1;
-
 void return_zero_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) {
   X.setZero(B.rows(), 3);
-  summary.relative_residual = B.isZero(0) ? 0 : 1;
+  summary.relative_residual = B.isZero(0) ? 0 : kUnsolvedResidual;
 }
 
 // X = A⁻¹B by `solve` (a backend's do_solve), with each column of B whose largest magnitude is far
