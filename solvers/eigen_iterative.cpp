@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "iteration_summary.h"
 #include "matrix_checks.h"
 
 namespace coons::solvers {
@@ -56,6 +57,9 @@ class EigenIterative : public LinearSolver {
       return usable;
     krylov_.setTolerance(options_.tolerance);
     limit_ = iteration_limit(options_, op.matrix->rows(), 20, 2e10);
+    SolverOptions automatic = options_;
+    automatic.max_iterations = 0;
+    automatic_limit_ = iteration_limit(automatic, op.matrix->rows(), 20, 2e10);
     if constexpr (kAnalyzeApart)
       krylov_.factorize(*op.matrix);  // the preconditioner's numeric phase
     else
@@ -77,15 +81,23 @@ class EigenIterative : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    // Without a time limit one Eigen solve per column; with one, the columns are solved in chunks
-    // of iterations (each restarting from the last iterate) with the clock read between them.
-    const int chunk = options_.time_limit_seconds > 0 ? std::min(limit_, 1000) : limit_;
+    // Within the automatic iteration limit and without a time limit, one Eigen solve per column.
+    // Otherwise the columns are solved in chunks of iterations (each restarting from the last
+    // iterate; 1000 under a time limit, else the automatic limit) with the clock read and the true
+    // residual measured between them: a column whose true residual has set no new low for
+    // kStallChunks chunks has stalled at the rounding floor (a tolerance of 1e-300 with 2^31
+    // iterations would otherwise run for hours), and its lowest iterate is kept.
+    const int chunk = options_.time_limit_seconds > 0 ? std::min(limit_, 1000)
+                      : limit_ > automatic_limit_     ? std::max(automatic_limit_, 1000)
+                                                      : limit_;
+    const SpMat& A = *factorized_operator().matrix;
     X.setZero(B.rows(), 3);
     IterationEnd end;
     end.limit = limit_;
     end.krylov = true;
     end.converged = true;
     end.residual = 0;
+    int stalled = 0;  // the most iterations without a new low of a column that stagnated
     for (int c = 0; c < 3; ++c) {
       // A zero column has the solution zero. (Eigen's BiCGSTAB returns at once for it but leaves
       // its iteration count at the limit, which would be reported as the iterations of the solve.)
@@ -93,6 +105,10 @@ class EigenIterative : public LinearSolver {
       int used = 0;
       double error = 0;
       Eigen::VectorXd x = Eigen::VectorXd::Zero(B.rows());
+      Eigen::VectorXd lowest_x = x;
+      double lowest = HUGE_VAL;
+      int lowest_at = 0;
+      const double b_norm = B.col(c).stableNorm();  // (a column of 1e-170s: norm() underflows)
       for (;;) {
         const int allowed = std::min(chunk, limit_ - used);
         krylov_.setMaxIterations(allowed);
@@ -110,6 +126,18 @@ class EigenIterative : public LinearSolver {
         // returns at once, not converged, when ‖b‖² is not finite. After a breakdown the next
         // call would break down again.)
         if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_ || done == 0 || breakdown) break;
+        const double true_residual = (B.col(c) - A * x).stableNorm() / b_norm;
+        if (true_residual < lowest) {
+          lowest = true_residual;
+          lowest_x = x;
+          lowest_at = used;
+        } else if (used - lowest_at >= kStallChunks * chunk) {
+          x = lowest_x;
+          error = lowest;
+          stalled = std::max(stalled, used - lowest_at);
+          end.stagnation = no_new_low(stalled);
+          break;
+        }
         if (out_of_time()) {
           end.timed_out = true;
           break;
@@ -123,7 +151,7 @@ class EigenIterative : public LinearSolver {
       } else {
         end.residual = std::max(end.residual, error);
       }
-      if (krylov_.info() != Eigen::Success) end.converged = false;
+      if (krylov_.info() != Eigen::Success || !end.stagnation.empty()) end.converged = false;
       if (end.diverged || end.timed_out) {
         end.converged = false;
         break;
@@ -172,11 +200,13 @@ class EigenIterative : public LinearSolver {
     return stopped_on_test && !returned_at_once ? counted + 1 : counted;
   }
 
+  static constexpr int kStallChunks = 3;
   static constexpr bool kConjugateGradient = IsConjugateGradient<Krylov>::value;
   static constexpr bool kAnalyzeApart = !std::is_same_v<typename Krylov::Preconditioner, Eigen::IncompleteLUT<double>>;
   std::string name_;
   bool definite_only_;
   int limit_ = 0;
+  int automatic_limit_ = 0;  // the limit with max_iterations = 0 (iteration_limit)
   Krylov krylov_;
 };
 

@@ -65,7 +65,8 @@ class HypreBackend : public LinearSolver {
   //! finite. A column that stopped on an error flag before the iteration limit (a breakdown: hypre's
   //! PCG flags a zero or negative pᵀAp or rᵀCr, or a subnormal step, with the flag of the limit,
   //! HYPRE_ERROR_CONV) makes the solve kFailure, its message naming the flag, the iterations and the
-  //! residual of that column, not the limit.
+  //! residual of that column, not the limit; at a true residual of at most kRoundingFloor it is the
+  //! iteration stagnating under a tolerance below rounding: kNotConverged, "stagnated".
   template <class Solve, class Read>
   SolveStatus solve_columns(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary, Solve&& solve,
                             Read&& read) {
@@ -99,6 +100,14 @@ class HypreBackend : public LinearSolver {
       auto& [c, column] = *broken;
       column.residual = relative_norm(AX.col(c) - B.col(c), B.col(c));
       end.residual = max_relative_norm(AX - B, B);
+      // At the rounding floor (a tolerance of 1e-300, say) hypre's PCG flags a step too small to
+      // change x: that is the iteration stagnating, not a breakdown of the method.
+      if (end.residual <= kRoundingFloor) {
+        end.converged = false;
+        end.stagnation = "hypre's " + std::string(column.method) + " stopped with error flag " +
+                         std::to_string(column.error) + " at the rounding floor";
+        return finish_iteration(end, X, summary);
+      }
     }
     summary.iterations = end.iterations;
     summary.relative_residual = end.residual;
@@ -107,6 +116,10 @@ class HypreBackend : public LinearSolver {
   }
 
  private:
+  //! A true relative residual this small after hypre stopped on an error flag: rounding, where
+  //! the residual cannot fall further (7x7 nets end at 1e-16 to 6e-16).
+  static constexpr double kRoundingFloor = 1e-13;
+
   //! True when hypre flagged an error other than running into the iteration limit.
   static bool broke_down(const ColumnSolve& column, int limit) {
     return column.error != 0 && !(column.error == HYPRE_ERROR_CONV && column.iterations >= limit);

@@ -51,6 +51,11 @@ struct IterationSummary {
   [[nodiscard]] bool ok() const { return status == SolveStatus::kSuccess; }
 };
 
+//! How IterationEnd::stagnation words a residual that set no new low for `iterations` iterations.
+inline std::string no_new_low(int iterations) {
+  return "no smaller residual in the last " + std::to_string(iterations) + " iterations";
+}
+
 //! True when the last `window` entries of a residual history improved on the best before them by
 //! less than 10 %: the iteration has stalled (e.g. at the rounding floor of an ill-conditioned
 //! system) and further iterations are wasted.

@@ -357,7 +357,8 @@ SolveStatus LinearSolver::finish_iteration(const IterationEnd& end, Eigen::Matri
   const std::string why =
       end.breakdown   ? "the method broke down, a zero divisor in its recurrence; the last finite iterate is returned"
       : end.timed_out ? "time limit " + format_g(options_.time_limit_seconds) + " s reached"
-                      : "iteration limit " + std::to_string(end.limit) + " reached";
+      : !end.stagnation.empty() ? "stagnated: " + end.stagnation
+                                : "iteration limit " + std::to_string(end.limit) + " reached";
   summary.message = "not converged: residual " + format_g(end.residual) + after + " (" + why + "; tolerance " +
                     format_g(options_.tolerance) + ")";
   return SolveStatus::kNotConverged;

@@ -225,6 +225,10 @@ class LinearSolver {
     //! stopped because the method broke down (a zero divisor in its recurrence); the residual is
     //! that of the last finite iterate
     bool breakdown = false;
+    //! stopped because the residual stopped falling (at the rounding floor of the system, where a
+    //! tolerance such as 1e-300 cannot be met): kNotConverged, not hours spent on an iteration
+    //! limit of 2^31. Non-empty: how that showed ("no smaller residual in the last 3000 iterations").
+    std::string stagnation;
   };
   //! The one verdict of every iterative backend: success when converged; kDiverged when the
   //! residual grew (1e8-fold, to overflow, or, stationary iterations only, ends above its start) —
