@@ -100,3 +100,36 @@ TEST_CASE("coons degree-limit: a weighted sum written with spaces is the same ob
   CHECK(a["objective"] == "thin_plate+0.1*e3");
   CHECK(a["alpha_star"] == b["alpha_star"]);
 }
+
+TEST_CASE("coons degree-limit: degrees below a boundary without curves are listed as skipped and all of them refused",
+          "[cli]") {
+  // pillow is a 3x3 boundary without "curves": degree 2 cannot be made from it. It used to vanish
+  // from the result without a word, and --degrees 2 alone gave an empty result with exit 0.
+  const std::string pillow = "'" + kData + "/boundaries/pillow.json'";
+  const CommandResult some = run_coons("degree-limit " + pillow + " --degrees 2 4 --continuum-degrees 2");
+  INFO(some.err);
+  REQUIRE(some.status == 0);
+  const json j = json::parse(some.out);
+  CHECK(j["degrees"] == json({4}));
+  CHECK(j["skipped_degrees"] == json({2}));
+  CHECK(j["skipped_continuum_degrees"] == json({2}));
+  CHECK(j["skipped_reason"].get<std::string>().find("below the boundary's degree 3x3") != std::string::npos);
+  CHECK(j["continuum"].empty());
+  CHECK(j["continuum_unavailable"].get<std::string>().rfind("every continuum degree asked for is below", 0) == 0);
+
+  const CommandResult none = run_coons("degree-limit " + pillow + " --degrees 2");
+  INFO(none.err);
+  CHECK(none.status == 2);
+  CHECK(none.out.empty());
+  CHECK(none.err.find("pillow.json: --degrees: every degree asked for (2) is below") != std::string::npos);
+  CHECK(std::count(none.err.begin(), none.err.end(), '\n') == 1);
+
+  // a boundary with curves is refitted at any degree: nothing skipped, no field
+  const CommandResult fitted =
+      run_coons("degree-limit '" + kData + "/boundaries/dome.json' --degrees 2 4 --continuum-degrees 4");
+  INFO(fitted.err);
+  REQUIRE(fitted.status == 0);
+  const json f = json::parse(fitted.out);
+  CHECK(f["degrees"] == json({2, 4}));
+  CHECK_FALSE(f.contains("skipped_degrees"));
+}

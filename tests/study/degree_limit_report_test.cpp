@@ -166,3 +166,14 @@ TEST_CASE("degree_limit_report_markdown: the within labels are the tolerances' v
   const std::string defaults = degree_limit_report_markdown({synthetic(5, 40, 5)}, {}, Provenance{}, {});
   CHECK(contains(defaults, "| within 5 % from | within 1 % from | μ_c (Ritz) |"));
 }
+
+TEST_CASE("degree_limit_conclusions: skipped degrees are named with the reason", "[study]") {
+  DegreeLimitEntry e = synthetic(5, 40, 5);
+  CHECK_FALSE(contains(joined_lines(degree_limit_conclusions(e)), "not measured"));
+  e.skipped_degrees = {2, 3};
+  e.skipped_continuum_degrees = {2};
+  e.skipped_reason = "below the boundary's degree 4x4";
+  const std::string text = joined_lines(degree_limit_conclusions(e));
+  INFO(text);
+  CHECK(contains(text, "Degrees not measured: 2 3 (search); 2 (continuum), below the boundary's degree 4x4."));
+}

@@ -76,6 +76,13 @@ std::string within_clauses(const DegreeLimitEntry& e, int last) {
 
 std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, const ClaimThresholds& t) {
   std::vector<std::string> out;
+  if (e.skipped_reason) {
+    std::vector<std::string> parts;
+    if (!e.skipped_degrees.empty()) parts.push_back(fmt::format("{} (search)", fmt::join(e.skipped_degrees, " ")));
+    if (!e.skipped_continuum_degrees.empty())
+      parts.push_back(fmt::format("{} (continuum)", fmt::join(e.skipped_continuum_degrees, " ")));
+    out.push_back(fmt::format("Degrees not measured: {}, {}.", fmt::join(parts, "; "), *e.skipped_reason));
+  }
   const auto mus = interior_mus(e);
   if (mus.empty()) {
     int coons = 0, other = 0;

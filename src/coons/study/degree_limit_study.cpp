@@ -7,6 +7,7 @@
 #include <map>
 
 #include "coons/io/boundary_curves.h"
+#include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
 #include "coons/mask/mask9.h"
 #include "coons/mask/solve_mask_net.h"
@@ -95,6 +96,18 @@ DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& obje
   for (int d : options.degrees) boundary_at(d);
   for (int d : options.continuum_degrees)
     if (!at.count(d)) boundary_at(d);
+  for (int d : options.degrees)
+    if (!at.count(d)) e.skipped_degrees.push_back(d);
+  for (int d : options.continuum_degrees)
+    if (!at.count(d)) e.skipped_continuum_degrees.push_back(d);
+  if (!e.skipped_degrees.empty() || !e.skipped_continuum_degrees.empty())
+    e.skipped_reason = fmt::format(
+        "below the boundary's degree {}x{}, which has no \"curves\" to refit from (degree elevation only raises)",
+        input.boundary.m, input.boundary.n);
+  if (e.skipped_degrees.size() == options.degrees.size() && !options.degrees.empty())
+    throw InputError(
+        input.file, "--degrees",
+        fmt::format("every degree asked for ({}) is {}", fmt::join(options.degrees, " "), *e.skipped_reason));
 
   std::vector<std::pair<int, double>> mus, exact_mus, galerkin_mus;
   for (int d : options.degrees) {
@@ -132,6 +145,8 @@ DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& obje
     for (int d : options.continuum_degrees)
       if (at.count(d))
         e.continuum.push_back(continuum_optimum(ContinuumProblem(at.at(d).first), objective.energy, options.continuum));
+    if (e.continuum.empty() && !options.continuum_degrees.empty())
+      e.continuum_unavailable = "every continuum degree asked for is " + *e.skipped_reason;
   } else {
     e.continuum_unavailable = "the objective is not a sum of exact energies E(a, b)";
   }
@@ -211,6 +226,11 @@ json degree_limit_json(const DegreeLimitEntry& e) {
                 {"exact_mu", spread(e.exact_mu_spread)},
                 {"galerkin_mu", spread(e.galerkin_spread)}}}};
   if (e.continuum_unavailable) out["continuum_unavailable"] = *e.continuum_unavailable;
+  if (e.skipped_reason) {
+    out["skipped_degrees"] = e.skipped_degrees;
+    out["skipped_continuum_degrees"] = e.skipped_continuum_degrees;
+    out["skipped_reason"] = *e.skipped_reason;
+  }
   return out;
 }
 

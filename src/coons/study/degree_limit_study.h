@@ -59,10 +59,15 @@ struct DegreeLimitEntry {
   DegreeLimitResult limit;                           //!< of the interior μ*(n)
   std::vector<ContinuumOptimum> continuum;           //!< one per continuum degree
   std::optional<std::string> continuum_unavailable;  //!< why (objective not a sum of exact energies)
+  //! Degrees asked for (--degrees, --continuum-degrees) that the shape does not have: below its
+  //! own degree with no analytic curves to refit from (elevation only raises); `skipped_reason` why.
+  std::vector<int> skipped_degrees, skipped_continuum_degrees;
+  std::optional<std::string> skipped_reason;
   Spread mu_spread, exact_mu_spread, galerkin_spread;
 };
 
-//! One shape and objective. Input errors (a refit that fails) are thrown before any search.
+//! One shape and objective. Input errors (a refit that fails; not one of options.degrees usable:
+//! all below the degree of a boundary without curves) are thrown before any search.
 DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& objective,
                                   const DegreeLimitStudyOptions& options);
 
