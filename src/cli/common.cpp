@@ -144,6 +144,11 @@ void add_net_options(CLI::App& cmd, NetRequest& r) {
   r.max_iterations_option =
       cmd.add_option("--max-iterations", r.max_iterations, "iterative solvers: limit (0: automatic)")
           ->capture_default_str();
+  r.time_limit_option =
+      cmd.add_option("--time-limit", r.time_limit,
+                     "iterative solvers: stop a solve after this many seconds, not_converged "
+                     "with the iterate reached (0: none; not the hypre backends, which have no clock)")
+          ->capture_default_str();
   r.omega_option =
       cmd.add_option("--omega", r.omega, "gauss-seidel: over-relaxation factor in (0, 2)")->capture_default_str();
   r.threads_option = add_threads_option(cmd, r.threads);
@@ -219,8 +224,9 @@ void resolve_mask(const NetRequest& r, ResolvedRequest& out) {
 }  // namespace
 
 void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solver) {
-  for (auto [option, name] :
-       {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}}) {
+  for (auto [option, name] : {std::pair{r.tolerance_option, "--tolerance"},
+                              {r.max_iterations_option, "--max-iterations"},
+                              {r.time_limit_option, "--time-limit"}}) {
     if (!given(option)) continue;
     if (!solver)  // auto only ever picks a direct or structured backend
       throw InputError(
@@ -233,6 +239,11 @@ void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solve
                        fmt::format("{} is a stopping rule of the iterative solvers; {} is a {} solver and solves "
                                    "exactly",
                                    name, solver->name, solvers::to_string(solver->family)));
+    if (option == r.time_limit_option && solver->name.rfind("hypre-", 0) == 0)
+      throw InputError("command line", name,
+                       fmt::format("{} has no clock in its iterations: --time-limit would not stop it (use "
+                                   "--max-iterations)",
+                                   solver->name));
   }
 }
 
@@ -246,6 +257,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
                                                                      {r.solver_option, "--solver"},
                                                                      {r.tolerance_option, "--tolerance"},
                                                                      {r.max_iterations_option, "--max-iterations"},
+                                                                     {r.time_limit_option, "--time-limit"},
                                                                      {r.omega_option, "--omega"},
                                                                      {r.indefinite_option, "--allow-indefinite"},
                                                                      {r.mask_option, "--mask"},
@@ -275,6 +287,7 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   out.options = threads_options(r.threads, r.threads_option, r.solver);
   out.options.tolerance = r.tolerance;
   out.options.max_iterations = r.max_iterations;
+  out.options.time_limit_seconds = r.time_limit;
   out.options.sor_omega = r.omega;
   require_valid_solver_options(out.options);
 
@@ -434,8 +447,9 @@ void require_valid_solver_options(const solvers::SolverOptions& options) {
     case F::kThreads:
       throw InputError("command line", "--threads", problem.reason);
     case F::kTimeLimitSeconds:
+      throw InputError("command line", "--time-limit", problem.reason);
     case F::kSingularResidual:
-      break;  // no option sets them
+      break;  // no option sets it
   }
   throw InputError("command line", "solver options",
                    std::string(solvers::to_string(problem.field)) + " " + problem.reason);

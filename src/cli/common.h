@@ -86,6 +86,7 @@ struct NetRequest {
   double corner_tolerance = 1e-9;
   double tolerance = 1e-12;
   int max_iterations = 0;
+  double time_limit = 0;  //!< --time-limit, seconds (SolverOptions::time_limit_seconds)
   double omega = 1.0;
   std::string mask = "alpha";    //!< --mask (solve only)
   std::optional<double> weight;  //!< --weight (c1-family)
@@ -93,8 +94,8 @@ struct NetRequest {
   CLI::Option* threads_option = nullptr;
   // which options were given (for contradictions)
   CLI::Option *method_option = nullptr, *alpha_option = nullptr, *mu_option = nullptr, *solver_option = nullptr,
-              *tolerance_option = nullptr, *max_iterations_option = nullptr, *omega_option = nullptr,
-              *indefinite_option = nullptr, *mask_option = nullptr, *weight_option = nullptr;
+              *tolerance_option = nullptr, *max_iterations_option = nullptr, *time_limit_option = nullptr,
+              *omega_option = nullptr, *indefinite_option = nullptr, *mask_option = nullptr, *weight_option = nullptr;
 };
 
 struct ResolvedRequest {
@@ -125,8 +126,9 @@ solvers::SolverOptions threads_options(int threads, const CLI::Option* option = 
 //! Checks the request against the boundary; throws InputError naming the bad option (or both
 //! options of a contradiction).
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source);
-//! --tolerance or --max-iterations given with a backend that solves exactly (`solver`; nullptr
-//! for auto, which only picks such backends): InputError naming the option.
+//! --tolerance, --max-iterations or --time-limit given with a backend that solves exactly
+//! (`solver`; nullptr for auto, which only picks such backends), or --time-limit with a hypre
+//! backend (no clock in its iterations): InputError naming the option.
 void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solver);
 //! An InputError on --alpha unless it is finite with |α| <= kMaxAlpha (mask9.h); the quad and the
 //! triangular mask families share the rule.

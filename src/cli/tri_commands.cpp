@@ -74,6 +74,7 @@ TriRequest resolve_tri(const NetRequest& r) {
   refuse_stopping_rules(r, out.options.solver);
   out.options.solver_options.tolerance = r.tolerance;
   out.options.solver_options.max_iterations = r.max_iterations;
+  out.options.solver_options.time_limit_seconds = r.time_limit;
   require_valid_solver_options(out.options.solver_options);
   return out;
 }

@@ -374,6 +374,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --solver gauss-seidel --omega 0", "--omega"},
       {"solve " + good + " --solver cg --tolerance 0", "--tolerance"},
       {"solve " + good + " --solver cg --max-iterations -1", "--max-iterations"},
+      {"solve " + good + " --solver cg --time-limit -1", "--time-limit: must be finite and >= 0"},
+      {"solve " + good + " --solver cg --time-limit nan", "--time-limit: must be finite and >= 0"},
+      {"solve " + good + " --solver eigen-lu --time-limit 1", "--time-limit: --time-limit is a stopping rule"},
+      {"solve " + good + " --method coons --time-limit 1", "--time-limit does not apply"},
       {"solve " + quoted(kData + "/triangles/sphere_octant.json") + " --solver cg --tolerance 2", "--tolerance"},
       // target samples beyond the memory limit (1e10 of them ran out of memory: exit 1)
       {"search-alpha " + good + " --objective target --samples 100000", "--samples"},

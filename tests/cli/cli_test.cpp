@@ -525,6 +525,29 @@ TEST_CASE("coons solve: --tolerance or --max-iterations with a direct or structu
   CHECK(run_coons("solve " + quoted(kData + "/boundaries/dome.json") + " --solver cg --tolerance 1e-8").status == 0);
 }
 
+TEST_CASE("coons solve --time-limit: an iterative solve stops not_converged at the limit with its iterate", "[cli]") {
+  // Gauss-Seidel at degree 30 needs tens of thousands of sweeps to 1e-14 (seconds); 0.05 s stops it
+  // after a few hundred. The check is the status and the message, not a duration.
+  TempDir dir;
+  const std::string b = dir.file("dome30.json");
+  REQUIRE(run_coons("refit " + quoted(kData + "/boundaries/dome.json") + " --degree 30 30 --out " + quoted(b)).status ==
+          0);
+  const CommandResult r = run_coons("solve " + quoted(b) +
+                                    " --solver gauss-seidel --time-limit 0.05 --max-iterations 100000000 "
+                                    "--tolerance 1e-14");
+  INFO(r.err);
+  CHECK(r.status == 3);
+  const json report = json::parse(r.out);
+  CHECK(report["solver"]["status"] == "not_converged");
+  CHECK_THAT(report["solver"]["message"].get<std::string>(), Catch::Contains("time limit 0.05 s reached"));
+  CHECK(report["solver"]["relative_residual"].get<double>() < 1);  // the iterate is kept, not zeroed
+  if (solvers::find_solver("hypre-amg")) {
+    const CommandResult hypre = run_coons("solve " + quoted(b) + " --solver hypre-amg --time-limit 1");
+    CHECK(hypre.status == 2);
+    CHECK_THAT(hypre.err, Catch::Contains("hypre-amg has no clock in its iterations"));
+  }
+}
+
 TEST_CASE("coons solve --method hermite-coons: no mask, so no mask residual", "[cli]") {
   // (it used to report the residual of the alpha = -1/4 mask under "mask": null)
   const CommandResult r = run_coons("solve " + quoted(kData + "/boundaries/dome.json") + " --method hermite-coons");
