@@ -56,14 +56,16 @@ int run_join(const JoinRequest& r) {
         hi = hi.cwiseMax(p);
       }
   const double size = std::max((hi - lo).norm(), 1e-300);
+  const bool compared = seam.normals_compared > 0;
   nlohmann::json out = {
       {"first", a.name},
       {"second", b.name},
       {"samples", seam.samples},
       {"c0_gap", seam.c0_gap},
-      {"max_normal_angle_rad", seam.max_normal_angle},
-      {"max_normal_angle_deg", seam.max_normal_angle * 180 / M_PI},
-      {"at", seam.at},
+      // no angle, and no place of it, without a single pair of normals to compare
+      {"max_normal_angle_rad", compared ? nlohmann::json(seam.max_normal_angle) : nlohmann::json()},
+      {"max_normal_angle_deg", compared ? nlohmann::json(seam.max_normal_angle * 180 / M_PI) : nlohmann::json()},
+      {"at", compared ? nlohmann::json(seam.at) : nlohmann::json()},
       {"normals_compared", seam.normals_compared},
       {"c0", seam.c0_gap <= 1e-9 * size},
       // no G1 claim without a single pair of normals to compare

@@ -246,6 +246,10 @@ TEST_CASE("coons join: patches of every type that share a side exactly meet C0 (
   CHECK(point["c0"] == true);
   CHECK(point["normals_compared"] == 0);
   CHECK(point["g1"] == false);
+  // and no angle or place of it either (they were 0.0, a measurement that was never made)
+  CHECK(point["max_normal_angle_rad"].is_null());
+  CHECK(point["max_normal_angle_deg"].is_null());
+  CHECK(point["at"].is_null());
 }
 
 TEST_CASE("coons join: a surface that is not finite on the seam is bad input naming the file and the side",

@@ -103,3 +103,26 @@ TEST_CASE("compare_seam: the verdict does not depend on the size of the patches"
     CHECK(r.not_finite == 0);
   }
 }
+
+TEST_CASE("compare_seam: the angle is between oriented tangent planes, a 120 degree crease is 120 and a fold 180",
+          "[surfaces]") {
+  // The angle between unoriented normals never exceeds 90 degrees: it called this crease 60 and the
+  // fold (b lying back over a) G1 with angle 0.
+  const Surface a = make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)});
+  const double c = std::cos(M_PI / 3), s = std::sin(M_PI / 3);  // b leaves the seam at 120 degrees to a's plane
+  const Surface crease = make_bilinear({V(1, 0, 0), V(1 - c, 0, s), V(1, 1, 0), V(1 - c, 1, s)});
+  const Surface fold = make_bilinear({V(1, 0, 0), V(0, 0, 0), V(1, 1, 0), V(0, 1, 0)});
+  const SeamReport r120 = compare_seam(a, Side::kRight, crease, Side::kLeft);
+  CHECK(r120.c0_gap == 0);
+  CHECK(r120.normals_compared == 101);
+  CHECK(r120.max_normal_angle == Approx(2 * M_PI / 3).epsilon(1e-14));
+  const SeamReport r180 = compare_seam(a, Side::kRight, fold, Side::kLeft);
+  CHECK(r180.max_normal_angle == Approx(M_PI).epsilon(1e-14));
+  // A smooth continuation whose own normal r_u x r_v points the other way (u runs backwards, the
+  // seam is reversed) is still a smooth continuation: the orientation comes from the seam.
+  const Surface flipped = make_bilinear({V(1, 1, 0), V(0, 1, 0), V(1, 2, 0), V(0, 2, 0)});
+  const SeamReport smooth = compare_seam(a, Side::kTop, flipped, Side::kBottom, true);
+  CHECK(smooth.c0_gap < 1e-15);
+  CHECK(smooth.normals_compared == 101);
+  CHECK(smooth.max_normal_angle == 0);
+}
