@@ -16,6 +16,9 @@ using nlohmann::json;
 
 namespace {
 
+// The least grid (per direction) on which the net over fitted curves is compared with the surface.
+constexpr int kDeviationGrid = 65;
+
 json energies_json(const ControlNet& net) {
   return {{"twist_energy", twist_energy(net)},
           {"thin_plate_energy", thin_plate_energy(net)},
@@ -92,9 +95,15 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
       fits.push_back({{"curve", f.curve}, {"degree", f.degree}, {"max_deviation", number_or_null(f.max_deviation)}});
     net_block["max_curve_deviation"] = number_or_null(fitted.max_curve_deviation);
     net_block["curve_fits"] = fits;
-    double worst = 0;
-    const Eigen::MatrixX3d S = sample_surface(net, k, k);
-    for (int row = 0; row < k * k; ++row) worst = std::max(worst, (S.row(row) - samples.points.row(row)).norm());
+    // On a grid of at least kDeviationGrid² parameters, not only the --samples grid (2 × 2 saw the
+    // corners only and said 0), and never below the deviation on the sides, which are part of
+    // the surface: the true maximum over the patch is at least both.
+    const int g = std::max(k, kDeviationGrid);
+    const SurfaceSamples dense = g == k ? SurfaceSamples() : sample_grid(surface, g);
+    const Eigen::MatrixX3d& P = g == k ? samples.points : dense.points;
+    const Eigen::MatrixX3d S = sample_surface(net, g, g);
+    double worst = std::isfinite(fitted.max_curve_deviation) ? fitted.max_curve_deviation : 0;
+    for (int row = 0; row < g * g; ++row) worst = std::max(worst, (S.row(row) - P.row(row)).norm());
     net_block["max_surface_deviation"] = number_or_null(worst);
   }
   net_block["net"] = net_to_json(net);
