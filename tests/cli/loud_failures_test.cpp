@@ -166,6 +166,21 @@ TEST_CASE("coons export: eight concurrent exports to one folder and prefix publi
   CHECK(well_formed_obj(fs::path(out) / "same.net.obj", 16, 9));
 }
 
+TEST_CASE("coons export: a command stopped by SIGTERM while it writes leaves no staging file", "[cli][loud]") {
+  // Interrupted while writing a 700 x 700 OBJ (tens of MB), it left OUT/dome.surface.obj.tmp-PID-0.
+  // The shell waits until the staging file exists, so the signal is known to come mid-write.
+  TempDir dir;
+  const std::string out = dir.file("out");
+  const CommandResult r = run_command("( " + kCoons + " export " + quoted(dome()) + " --obj --samples 700 --out " +
+                                      quoted(out) + " & pid=$!; " + "for i in $(seq 1 3000); do ls " + quoted(out) +
+                                      " 2>/dev/null | grep -q tmp && break; sleep 0.01; done; " + "ls " + quoted(out) +
+                                      " | grep -c tmp; kill -TERM $pid; wait $pid; echo \"status $?\" )");
+  INFO(r.out << r.err);
+  CHECK(r.out.rfind("1\n", 0) == 0);                 // a staging file was there when the signal came
+  CHECK_THAT(r.out, Catch::Contains("status 143"));  // 128 + SIGTERM: it died of the signal
+  CHECK(files_under(out).empty());
+}
+
 TEST_CASE("coons export: an existing file is not overwritten without --force", "[cli][loud]") {
   TempDir dir;
   const std::string out = dir.file("out");

@@ -2,6 +2,8 @@
 // (coons/io/write_files.h).
 #include "coons/io/write_files.h"
 
+#include <sys/stat.h>
+
 #include <catch2/catch.hpp>
 #include <filesystem>
 #include <fstream>
@@ -141,4 +143,41 @@ TEST_CASE("OutputSet::publish: an announcement that fails undoes the commit", "[
   }
   CHECK(contents(out_dir / "a.txt") == "new\n");
   CHECK(files_under(out_dir) == std::vector<std::string>{"a.txt"});  // the replaced file is gone
+}
+
+TEST_CASE("write_file_atomically: a symbolic link is written through and a pipe or device is refused", "[io]") {
+  // The staged file used to be renamed over the path itself: over a link it replaced the link and
+  // left the file it named as it was; over /dev/full (with --force) it replaced the device.
+  TempDir dir;
+  const std::string target = dir.write("target.json", "old");
+  const std::string link = dir.file("link.json");
+  fs::create_symlink(target, link);
+  write_file_atomically(link, [](std::ostream& out) { out << "new"; });
+  CHECK(fs::is_symlink(link));
+  std::ifstream in(target);
+  std::string text;
+  in >> text;
+  CHECK(text == "new");
+  // the same through an OutputSet's command-line path
+  {
+    OutputSet set(dir.file("unused"));
+    set.write_path(link, [](std::ostream& out) { out << "newer"; });
+    set.commit();
+  }
+  CHECK(fs::is_symlink(link));
+  std::ifstream again(target);
+  again >> text;
+  CHECK(text == "newer");
+  // a named pipe stands for every file that is not regular (devices, sockets): refused, kept
+  const std::string pipe = dir.file("pipe");
+  REQUIRE(mkfifo(pipe.c_str(), 0600) == 0);
+  CHECK_THROWS_WITH(write_file_atomically(pipe, [](std::ostream& out) { out << "x"; }),
+                    Catch::Contains("not a regular file"));
+  OutputSet set(dir.file("unused"));
+  CHECK_THROWS_WITH(set.write_path(pipe, [](std::ostream& out) { out << "x"; }), Catch::Contains("not a regular file"));
+  CHECK(fs::is_fifo(pipe));
+  std::vector<std::string> names;  // (not files_under: fs::relative follows the link)
+  for (const auto& e : fs::directory_iterator(dir.path)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"link.json", "pipe", "target.json"});  // no staging file left
 }

@@ -3,13 +3,17 @@
 #include <fmt/format.h>
 #include <unistd.h>
 
+#include <array>
 #include <atomic>
 #include <cctype>
 #include <cerrno>
+#include <csignal>
 #include <cstdio>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
+#include <mutex>
 
 #include "coons/io/input_error.h"
 
@@ -38,6 +42,60 @@ size_t utf8_letter(std::string_view s, size_t i) {
 }
 
 std::string os_reason(int error) { return error ? std::strerror(error) : "write failed"; }
+
+// Staging files removed when the process is interrupted (SIGINT, SIGTERM, SIGHUP): a command
+// stopped with Ctrl-C while writing left its PATH.tmp-PID-N files (43 MB for an OBJ) behind. The
+// handler unlinks every staging name this process has made (a name already renamed into place or
+// removed is simply not found: names are never reused), then dies of the signal as before. The
+// names are kept in a fixed table of atomic pointers, which is all an async-signal handler may read.
+constexpr std::size_t kTrackedStagings = std::size_t(1) << 16;
+std::array<std::atomic<char*>, kTrackedStagings> tracked_stagings{};
+std::atomic<std::size_t> next_tracked{0};
+
+extern "C" void remove_stagings_and_die(int signal_number) {
+  for (std::atomic<char*>& slot : tracked_stagings)
+    if (const char* name = slot.load(std::memory_order_relaxed)) ::unlink(name);
+  std::signal(signal_number, SIG_DFL);
+  std::raise(signal_number);
+}
+
+void track_staging(const std::string& staging) {
+  static std::once_flag installed;
+  std::call_once(installed, [] {
+    for (const int signal_number : {SIGINT, SIGTERM, SIGHUP}) {
+      struct sigaction previous {};
+      if (sigaction(signal_number, nullptr, &previous) != 0 || previous.sa_handler != SIG_DFL)
+        continue;  // ignored (nohup) or handled by someone else: left alone
+      struct sigaction action {};
+      action.sa_handler = remove_stagings_and_die;
+      sigemptyset(&action.sa_mask);
+      sigaction(signal_number, &action, nullptr);
+    }
+  });
+  // (a name 65,536 stagings old, long renamed or removed, makes room; it is freed here, never in the handler)
+  char* old = tracked_stagings[next_tracked.fetch_add(1) % kTrackedStagings].exchange(strdup(staging.c_str()));
+  std::free(old);
+}
+
+// Where a file named on the command line is written: through a symbolic link to the file it names
+// (renaming the staged file over the link replaced the link and left its target as it was), and
+// never over something that is not a regular file: `--out /dev/full --force` replaced the device
+// with a regular file. A folder is left to the rename, which refuses it.
+std::string command_line_target(const std::string& path) {
+  std::error_code ec;
+  std::string target = path;
+  if (fs::is_symlink(fs::symlink_status(path, ec))) {
+    const fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+    if (ec) throw InputError(path, "", "cannot follow the symbolic link: " + ec.message());
+    target = resolved.string();
+  }
+  const fs::file_status status = fs::status(target, ec);
+  if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status))
+    throw InputError(path, "",
+                     "not a regular file (a device, pipe or socket): coons writes a whole file and renames it into "
+                     "place; give the path of a file");
+  return target;
+}
 
 }  // namespace
 
@@ -75,10 +133,13 @@ bool same_file_path(const std::string& a, const std::string& b) {
 }
 
 std::string staging_path(const std::string& path) {
-  return fmt::format("{}.tmp-{}-{}", path, static_cast<long>(getpid()), staging_counter.fetch_add(1));
+  std::string staging = fmt::format("{}.tmp-{}-{}", path, static_cast<long>(getpid()), staging_counter.fetch_add(1));
+  track_staging(staging);
+  return staging;
 }
 
-void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write) {
+void write_file_atomically(const std::string& given, const std::function<void(std::ostream&)>& write) {
+  const std::string path = command_line_target(given);
   const std::string temporary = staging_path(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
@@ -155,7 +216,8 @@ std::string OutputSet::stage(const std::string& relative) {
   return entries_.back().staging;
 }
 
-std::string OutputSet::stage_path(const std::string& path) {
+std::string OutputSet::stage_path(const std::string& given) {
+  const std::string path = command_line_target(given);
   for (const Entry& e : entries_)
     if (same_file_path(e.final_path, path))
       throw InputError(path, option_, "two outputs of this command would have the same name");
@@ -164,7 +226,8 @@ std::string OutputSet::stage_path(const std::string& path) {
 }
 
 void OutputSet::write_path(const std::string& path, const std::function<void(std::ostream&)>& write) {
-  write_staged(path, stage_path(path), write);
+  const std::string staging = stage_path(path);
+  write_staged(entries_.back().final_path, staging, write);
 }
 
 void OutputSet::write(const std::string& relative, const std::function<void(std::ostream&)>& write) {

@@ -3,7 +3,9 @@
 // target, every write is checked (a full disk is an error with the OS reason), and it is renamed
 // into place (atomically) when complete. An OutputSet stages the files of one command and
 // publishes them together, or removes every file and folder it started on any failure path,
-// exceptions included.
+// exceptions included. A process stopped by SIGINT, SIGTERM or SIGHUP removes its staging files
+// before it dies (a handler installed with the first staging name, unless the signal is ignored
+// or handled already); the folders it created may remain, empty.
 #pragma once
 
 #include <cstddef>
@@ -29,8 +31,9 @@ bool same_file_path(const std::string& a, const std::string& b);
 //! The name under which `path` is staged: path + ".tmp-<pid>-<counter>" (unique per process).
 std::string staging_path(const std::string& path);
 
-//! Calls write(stream) on a staging file, checks the stream, then renames it to `path`. Throws
-//! InputError (naming `path` and the OS reason) when the file cannot be written.
+//! Calls write(stream) on a staging file, checks the stream, then renames it to `path` (a
+//! symbolic link: to the file it names). Throws InputError (naming `path` and the OS reason) when
+//! the file cannot be written, and when `path` is a device, pipe or socket.
 void write_file_atomically(const std::string& path, const std::function<void(std::ostream&)>& write);
 
 //! The files of one command: staged, then published together (or all removed).
@@ -55,7 +58,8 @@ class OutputSet {
   void write(const std::string& relative, const std::function<void(std::ostream&)>& write);
 
   //! Stages a file at a path chosen on the command line (not from an input file's data): any
-  //! folder, which must exist. Returns the staging path.
+  //! folder, which must exist; through a symbolic link to its target; a device, pipe or socket is
+  //! an InputError. Returns the staging path.
   std::string stage_path(const std::string& path);
   void write_path(const std::string& path, const std::function<void(std::ostream&)>& write);
 
