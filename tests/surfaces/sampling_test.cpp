@@ -87,6 +87,22 @@ TEST_CASE("add_reference_distance: the distance of the 16-vector bump to its pla
   CHECK(cp.distance == Approx(0.05).epsilon(1e-9));
 }
 
+TEST_CASE("closest_point: on a side of the square the search goes on along it to the nearest point", "[surfaces]") {
+  // z = 2u(1 - u) + 2v(1 - v) over [0, 1]^2 (a quadratic Bezier net). From q = (0, 1/2, 0) the
+  // nearest points are on the side u = 0 at v = 1/2 +- 1/sqrt(8): with w = v - 1/2 the squared
+  // distance is w^2 + (1/2 - 2w^2)^2, least at w^2 = 1/8, where it is 3/16. The search stopped at
+  // (0, 0.34375), 0.433228: the full Newton step, clamped to u = 0, hardly moved v.
+  ControlNet net(2, 2);
+  const double z[3] = {0, 1, 0};
+  for (int i = 0; i <= 2; ++i)
+    for (int j = 0; j <= 2; ++j) net.at(i, j) = V(i / 2.0, j / 2.0, z[i] + z[j]);
+  const Surface paraboloid = make_bezier_surface(net);
+  const ClosestPoint cp = closest_point(paraboloid, V(0, 0.5, 0));
+  CHECK(cp.distance == Approx(std::sqrt(3.0) / 4).epsilon(1e-12));
+  CHECK(cp.u == Approx(0).margin(1e-12));
+  CHECK(std::abs(cp.v - 0.5) == Approx(1 / std::sqrt(8.0)).epsilon(1e-6));
+}
+
 TEST_CASE("write_grid_obj, write_grid_ply, write_grid_vts: sizes, fields and structure", "[surfaces]") {
   SurfaceSamples s = sample_grid(make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 2)}), 4);
   add_reference_distance(s, make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)}));

@@ -57,18 +57,37 @@ ClosestPoint closest_from(const Surface& s, const StartGrid& grid, const Eigen::
     const SurfacePoint x = s.evaluate(u, v);
     const Eigen::RowVector3d d = x.p - p;
     const Eigen::Vector2d g(x.du.dot(d), x.dv.dot(d));
-    Eigen::Matrix2d H;
+    Eigen::Matrix2d H;  // (positive diagonal either way, unless a partial derivative vanishes)
     H << x.du.dot(x.du) + x.duu.dot(d), x.du.dot(x.dv) + x.duv.dot(d), x.du.dot(x.dv) + x.duv.dot(d),
         x.dv.dot(x.dv) + x.dvv.dot(d);
     if (!(H.determinant() > 0 && H(0, 0) > 0)) {  // not convex here: Gauss–Newton
       H << x.du.dot(x.du), x.du.dot(x.dv), x.du.dot(x.dv), x.dv.dot(x.dv);
     }
-    Eigen::Vector2d step = -H.ldlt().solve(g);
+    // A parameter on its bound whose gradient points out of the square stays there, and Newton
+    // runs on the other one alone (projected Newton): the full step, clamped, moved the free one
+    // by almost nothing from (0, 0.34375) towards the nearest point (0, 0.1464) of the test.
+    const bool fix_u = (u <= 0 && g(0) > 0) || (u >= 1 && g(0) < 0);
+    const bool fix_v = (v <= 0 && g(1) > 0) || (v >= 1 && g(1) < 0);
+    if (fix_u && fix_v) break;  // a corner where both point out: a minimum on the square
+    Eigen::Vector2d step = Eigen::Vector2d::Zero();
+    if (fix_u)
+      step(1) = -g(1) / H(1, 1);
+    else if (fix_v)
+      step(0) = -g(0) / H(0, 0);
+    else
+      step = -H.ldlt().solve(g);
     if (!step.allFinite()) break;
-    const double nu = std::clamp(u + step(0), 0.0, 1.0), nv = std::clamp(v + step(1), 0.0, 1.0);
+    // Accept only steps that do not increase the distance, halving one that would (a full step
+    // that overshoots used to end the search there: 0.433228 for the exact sqrt(3)/4 = 0.433013).
+    double nu = u, nv = v;
+    bool accepted = false;
+    for (double t = 1; t > 1e-12 && !accepted; t /= 2) {
+      nu = std::clamp(u + t * step(0), 0.0, 1.0);
+      nv = std::clamp(v + t * step(1), 0.0, 1.0);
+      accepted = (s.at(nu, nv) - p).squaredNorm() <= d.squaredNorm();
+    }
+    if (!accepted) break;
     const bool small = std::abs(nu - u) < 1e-13 && std::abs(nv - v) < 1e-13;
-    // Accept only steps that do not increase the distance.
-    if ((s.at(nu, nv) - p).squaredNorm() > d.squaredNorm()) break;
     u = nu;
     v = nv;
     if (small) break;
