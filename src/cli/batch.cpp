@@ -8,8 +8,10 @@
 
 #include <algorithm>
 #include <filesystem>
+#include <map>
 #include <memory>
 #include <optional>
+#include <set>
 
 #include "bspline_commands.h"
 #include "coons/io/input_error.h"
@@ -53,31 +55,76 @@ struct Row {
   std::string alpha;  // α, w= of c1-family, or - for the other masks
   std::string status;
   std::optional<NetMetrics> metrics;  // none when the solve failed: the table then says so
+  std::string folder;                 // NAME-MxN[-K]: tells apart two files of one name
 };
 
-std::string metrics_table(const std::vector<Row>& rows) {
-  std::string table = fmt::format(
-      "| {:<22} | {:>7} | {:<10} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n", "boundary",
-      "degree", "method", "alpha", "twist", "thin plate", "Dirichlet", "E3", "disc. twist", "mask res.", "status");
-  table += "|" + std::string(24, '-') + "|" + std::string(9, '-') + "|" + std::string(12, '-') + "|" +
-           std::string(8, '-') + "|" + std::string(13, '-') + "|" + std::string(14, '-') + "|" + std::string(14, '-') +
-           "|" + std::string(14, '-') + "|" + std::string(14, '-') + "|" + std::string(11, '-') + "|" +
-           std::string(13, '-') + "|\n";
-  for (const auto& r : rows) {
-    const std::string degree = fmt::format("{}x{}", r.m, r.n);
-    if (!r.metrics) {  // a failed solve has no net: no numbers, not zeros
-      table += fmt::format(
-          "| {:<22} | {:>7} | {:<10} | {:>6} | {:>11} | {:>12} | {:>12} | {:>12} | {:>12} | {:>9} | {:<11} |\n",
-          r.boundary, degree, r.method, r.alpha, "-", "-", "-", "-", "-", "-", r.status);
-      continue;
-    }
-    const NetMetrics& k = *r.metrics;
-    table += fmt::format(
-        "| {:<22} | {:>7} | {:<10} | {:>6} | {:>11.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>12.6g} | {:>9.2e} | "
-        "{:<11} |\n",
-        r.boundary, degree, r.method, r.alpha, k.twist_energy, k.thin_plate_energy, k.dirichlet_energy, k.e3_energy,
-        k.discrete_twist_energy, k.mask_residual, r.status);
+// A table cell from a name in an input file: '|' escaped, control characters (a line break would
+// end the row) as spaces.
+std::string table_cell(const std::string& text) {
+  std::string out;
+  for (const char c : text) {
+    if (c == '|')
+      out += "\\|";
+    else
+      out += static_cast<unsigned char>(c) < 0x20 ? ' ' : c;
   }
+  return out;
+}
+
+// Characters as a terminal shows them (UTF-8 continuation bytes do not count).
+std::size_t display_width(const std::string& text) {
+  return std::size_t(
+      std::count_if(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+}
+
+std::string metrics_table(const std::vector<Row>& rows) {
+  struct Column {
+    const char* title;
+    std::size_t width;  // at least; a longer cell widens the column
+    bool left;
+  };
+  std::vector<Column> columns = {{"boundary", 22, true},   {"degree", 7, false}, {"method", 10, true},
+                                 {"alpha", 6, false},      {"twist", 11, false}, {"thin plate", 12, false},
+                                 {"Dirichlet", 12, false}, {"E3", 12, false},    {"disc. twist", 12, false},
+                                 {"mask res.", 9, false},  {"status", 11, true}};
+  // A name given by two files (two folders NAME-MxN and NAME-MxN-2) is told apart by its folder.
+  std::map<std::string, std::set<std::string>> folders_of;
+  for (const Row& r : rows) folders_of[r.boundary].insert(r.folder);
+  std::vector<std::vector<std::string>> cells;
+  for (const Row& r : rows) {
+    const std::string name =
+        folders_of[r.boundary].size() > 1 ? fmt::format("{} ({})", r.boundary, r.folder) : r.boundary;
+    std::vector<std::string> row = {table_cell(name), fmt::format("{}x{}", r.m, r.n), table_cell(r.method), r.alpha};
+    if (r.metrics) {
+      const NetMetrics& k = *r.metrics;
+      for (const double e :
+           {k.twist_energy, k.thin_plate_energy, k.dirichlet_energy, k.e3_energy, k.discrete_twist_energy})
+        row.push_back(fmt::format("{:.6g}", e));
+      row.push_back(fmt::format("{:.2e}", k.mask_residual));
+    } else {  // a failed solve has no net: no numbers, not zeros
+      row.insert(row.end(), 6, "-");
+    }
+    row.push_back(r.status);
+    cells.push_back(std::move(row));
+  }
+  for (const auto& row : cells)
+    for (std::size_t c = 0; c < columns.size(); ++c)
+      columns[c].width = std::max(columns[c].width, display_width(row[c]));
+  const auto line = [&](const std::vector<std::string>& row) {
+    std::string out = "|";
+    for (std::size_t c = 0; c < columns.size(); ++c) {
+      const std::string pad(columns[c].width - display_width(row[c]), ' ');
+      out += " " + (columns[c].left ? row[c] + pad : pad + row[c]) + " |";
+    }
+    return out + "\n";
+  };
+  std::vector<std::string> titles;
+  titles.reserve(columns.size());
+  for (const Column& c : columns) titles.emplace_back(c.title);
+  std::string table = line(titles) + "|";
+  for (const Column& c : columns) table += std::string(c.width + 2, '-') + "|";
+  table += "\n";
+  for (const auto& row : cells) table += line(row);
   return table;
 }
 
@@ -100,7 +147,8 @@ void run_stencil(const BatchRequest& b, const NetRequest& request, const Boundar
           : by_mask ? std::string("-")
                     : fmt::format("{}", request.alpha),
           solvers::to_string(run.result.summary.status),
-          {}};
+          {},
+          folder};
   phases.start("metrics");
   if (ok) row.metrics = net_metrics(run.result.net, free_points(run.problem), run.stencil);
   rows.push_back(row);
@@ -142,10 +190,10 @@ void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::st
     phases.start("solve", fmt::format("{} {}", input.boundary.name, tag));
     const BSplineBatchNet net = bspline_batch_net(file, input, request, b.global);
     const BSplineNetOutcome& outcome = net.outcome;
-    rows.push_back(Row{input.boundary.name, outcome.surface.net.m, outcome.surface.net.n,
-                       std::string(to_string(net.resolved.method)) + " (B-spline)",
-                       fmt::format("{}", net.resolved.alpha),
-                       outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form", net.metrics});
+    rows.push_back(
+        Row{input.boundary.name, outcome.surface.net.m, outcome.surface.net.n,
+            std::string(to_string(net.resolved.method)) + " (B-spline)", fmt::format("{}", net.resolved.alpha),
+            outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form", net.metrics, folder});
     phases.start("write");
     const std::string stem = fmt::format("{}/{}", folder, tag);
     out.write(stem + ".json", [&](std::ostream& o) { o << dump(net.report, 2) << '\n'; });
@@ -234,7 +282,8 @@ int run_batch(const BatchRequest& b) {
               to_string(r.method),
               fmt::format("{}", r.mask.diag),
               outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form",
-              {}};
+              {},
+              folder};
       phases.start("metrics");
       if (ok) row.metrics = net_metrics(outcome.net, r.mask);
       rows.push_back(row);
@@ -252,7 +301,7 @@ int run_batch(const BatchRequest& b) {
   }
   const std::string table = metrics_table(rows);
   out.write("metrics.md", [&](std::ostream& o) {
-    o << "# coons batch: metrics of every bundled boundary\n\n"
+    o << "# coons batch: metrics of every boundary given\n\n"
       << (by_mask ? "Every net is the stencil solve of the mask named in the method column (--mask " + b.net.mask +
                         ", over each file's whole problem: ribbons, rings, free grid). "
                   : std::string("Coons = closed-form discrete Coons net; alpha = mask solve (for a file with two "

@@ -175,6 +175,47 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
     CHECK(fs::exists(fs::path(out) / f));
 }
 
+TEST_CASE("coons batch: the table tells two files of one name apart and a name cannot break a row", "[cli]") {
+  // Two files named "dome" gave rows that could not be told apart, a '|' in a name added a column,
+  // an alpha of 7 characters pushed its row out of line, and the title said "bundled" of any file.
+  TempDir dir;
+  std::string text = read_text(kData + "/boundaries/dome.json");
+  const std::string a = dir.write("a.json", text);
+  const std::string b = dir.write("b.json", text);
+  const auto name_at = text.find("\"dome\"");
+  REQUIRE(name_at != std::string::npos);
+  text.replace(name_at, 6, "\"we|ird\"");
+  const std::string c = dir.write("c.json", text);
+  const std::string out = dir.file("out");
+  const CommandResult r = run_coons("batch " + quoted(a) + " " + quoted(b) + " " + quoted(c) +
+                                    " --alphas -0.25 -0.1004 --samples 3 --out " + quoted(out));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string table = read_text(out + "/metrics.md");
+  INFO(table);
+  CHECK_THAT(table, Catch::StartsWith("# coons batch: metrics of every boundary given"));
+  CHECK_THAT(table, Catch::Contains("| dome (dome-3x3) ") && Catch::Contains("| dome (dome-3x3-2) "));
+  CHECK_THAT(table, Catch::Contains("| we\\|ird "));
+  // every row has the header's 12 unescaped bars, at the same places
+  std::istringstream lines(table.substr(table.find("| boundary")));
+  std::string line, header;
+  std::getline(lines, header);
+  std::vector<std::size_t> bars;
+  for (std::size_t i = 0; i < header.size(); ++i)
+    if (header[i] == '|') bars.push_back(i);
+  CHECK(bars.size() == 12);
+  int rows = 0;
+  while (std::getline(lines, line)) {
+    INFO(line);
+    std::vector<std::size_t> at;
+    for (std::size_t i = 0; i < line.size(); ++i)
+      if (line[i] == '|' && (i == 0 || line[i - 1] != '\\')) at.push_back(i);
+    CHECK(at == bars);
+    ++rows;
+  }
+  CHECK(rows == 1 + 3 * 3);  // the separator and three nets of each file
+}
+
 TEST_CASE("coons batch: the bundled folder, its B-spline boundary included, as solve gives each net", "[cli]") {
   // `coons batch data/boundaries` (the README's example) stopped at bspline_wave.json: "a B-spline
   // boundary is read by solve, export, search-alpha and study only"; and --threads was refused
