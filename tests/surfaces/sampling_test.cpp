@@ -160,3 +160,31 @@ TEST_CASE("sample_grid: the apex of a sectorial surface is singular, and marked 
   CHECK(text.find("nan") == std::string::npos);
   CHECK(text.find("NaN") == std::string::npos);
 }
+
+TEST_CASE("write_grid_obj: a sample on a side collapsed to a point gets its neighbour's normal, not (0, 0, 1)",
+          "[surfaces]") {
+  // A planar fan in the tilted plane z = x with the side v = 0 collapsed to one point: every
+  // normal is the same +-(-1, 0, 1)/sqrt(2), and the apex's samples have none of their own.
+  ControlNet net(3, 3);
+  for (int i = 0; i <= 3; ++i)
+    for (int j = 0; j <= 3; ++j) {
+      const double r = j / 3.0, x = r * (i / 3.0 - 0.5);
+      net.at(i, j) = V(x, r, x);
+    }
+  const SurfaceSamples s = sample_grid(make_bezier_surface(net), 5);
+  REQUIRE_FALSE(s.normals.row(0).allFinite());  // the apex: a singular sample
+  std::stringstream obj;
+  write_grid_obj(obj, s, "fan");
+  std::vector<V> normals;
+  for (std::string line; std::getline(obj, line);)
+    if (line.rfind("vn ", 0) == 0) {
+      std::istringstream fields(line.substr(3));
+      double x = 0, y = 0, z = 0;
+      fields >> x >> y >> z;
+      normals.emplace_back(x, y, z);
+    }
+  REQUIRE(normals.size() == 25);
+  const V expected = s.normals.row(2 * 5 + 2);  // the centre's
+  CHECK(std::abs(expected(0)) == Approx(1 / std::sqrt(2.0)).epsilon(1e-12));
+  for (const V& n : normals) CHECK((n - expected).norm() < 1e-12);
+}

@@ -49,11 +49,22 @@ void write_grid_obj(std::ostream& out, const SurfaceSamples& s, const std::strin
   fmt::print(out, "# coons: surface sampled {}x{}{}\n", k, k, comment.empty() ? "" : " — " + comment);
   for (Eigen::Index r = 0; r < s.points.rows(); ++r)
     fmt::print(out, "v {} {} {}\n", s.points(r, 0), s.points(r, 1), s.points(r, 2));
-  for (Eigen::Index r = 0; r < s.normals.rows(); ++r) {
-    const bool ok = s.normals.row(r).allFinite();
-    fmt::print(out, "vn {} {} {}\n", ok ? s.normals(r, 0) : 0.0, ok ? s.normals(r, 1) : 0.0,
-               ok ? s.normals(r, 2) : 1.0);
-  }
+  // A sample without a normal (a side collapsed to a point, parallel tangents) gets that of the
+  // first sample with one on the way to the centre of the grid: the limit from inside, to the
+  // grid's resolution (it was a placeholder (0, 0, 1)). (0, 0, 1) only when no sample has one.
+  const auto normal_of = [&](int a, int b) -> Eigen::RowVector3d {
+    for (int step = 0; step < k; ++step) {
+      const int a2 = a + (a < k / 2 ? step : -step), b2 = b + (b < k / 2 ? step : -step);
+      if (a2 < 0 || a2 >= k || b2 < 0 || b2 >= k) break;
+      if (s.normals.row(a2 * k + b2).allFinite()) return s.normals.row(a2 * k + b2);
+    }
+    return Eigen::RowVector3d(0, 0, 1);
+  };
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b) {
+      const Eigen::RowVector3d n = normal_of(a, b);
+      fmt::print(out, "vn {} {} {}\n", n(0), n(1), n(2));
+    }
   auto id = [k](int a, int b) { return a * k + b + 1; };
   for (int a = 0; a + 1 < k; ++a)
     for (int b = 0; b + 1 < k; ++b) {

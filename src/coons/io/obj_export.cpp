@@ -22,13 +22,20 @@ void write_surface_obj(std::ostream& out, const ControlNet& net, int k) {
   const ControlNet du = derivative_net(net, 1, 0), dv = derivative_net(net, 0, 1);
   fmt::print(out, "# coons: Bezier surface of degree ({}, {}) sampled {}x{}\n", net.m, net.n, k, k);
   for (Eigen::Index r = 0; r < P.rows(); ++r) write_vertex(out, "v", P.row(r));
+  // the direction only: each tangent scaled first (bit for bit the same where nothing underflows;
+  // products of tangents of size 1e-90 would underflow)
+  const auto normal_at = [&](double u, double v) -> Eigen::Vector3d {
+    return unit_scaled(evaluate(du, u, v)).transpose().cross(unit_scaled(evaluate(dv, u, v)).transpose());
+  };
   for (int s = 0; s < k; ++s)
     for (int t = 0; t < k; ++t) {
       const double u = double(s) / (k - 1), v = double(t) / (k - 1);
-      // the direction only: each tangent scaled first (bit for bit the same where nothing underflows;
-      // products of tangents of size 1e-90 would underflow)
-      Eigen::Vector3d normal =
-          unit_scaled(evaluate(du, u, v)).transpose().cross(unit_scaled(evaluate(dv, u, v)).transpose());
+      Eigen::Vector3d normal = normal_at(u, v);
+      // Where a side collapses to a point (a tangent vanishes) or the tangents are parallel, the
+      // normal is the limit from inside: taken a little towards the centre of the parameter square.
+      // (It was a placeholder (0, 0, 1), whatever the surface did there.)
+      for (double step = 1e-7; !(normal.norm() > 1e-12) && step < 0.1; step *= 100)
+        normal = normal_at(u + (0.5 - u) * step, v + (0.5 - v) * step);
       const double len = normal.norm();
       normal = len > 0 ? Eigen::Vector3d(normal / len) : Eigen::Vector3d(0, 0, 1);
       write_vertex(out, "vn", normal.transpose());
