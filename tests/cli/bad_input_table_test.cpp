@@ -210,6 +210,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve ''", "BOUNDARY: an empty value"},
       {"solve " + good + " --max-memory lots", "--max-memory"},
       {"solve " + good + " --max-memory 0x10", "--max-memory"},  // was read as 16 bytes
+      {"solve " + good + " --max-memory 1e-3", "--max-memory"},  // was read as a thousandth of a byte
       {"solve " + good + " --max-memory ' 5MB'", "--max-memory"},
       {"solve " + good + " --method coons --alpha 0.1", "--alpha"},
       {"solve " + good + " --alpha 0.1 --mu 2", "--mu"},

@@ -51,7 +51,8 @@ std::optional<double> parse_memory_size(const std::string& text) {
     scale = 1024.0 * 1024 * 1024;
   else if (unit == "T" || unit == "TB" || unit == "TIB")
     scale = 1024.0 * 1024 * 1024 * 1024;
-  if (scale == 0 || !std::isfinite(value) || !(value > 0)) return std::nullopt;
+  // at least one byte: "1e-3" was taken for a thousandth of a byte
+  if (scale == 0 || !std::isfinite(value) || !(value * scale >= 1)) return std::nullopt;
   return value * scale;
 }
 

@@ -19,7 +19,7 @@ std::optional<double> available_memory_bytes();
 //! The default limit: half of the available memory (8 GiB where that is unknown).
 double default_memory_limit();
 
-//! "1000000", "512MB", "2GB", "1.5GiB", "64k": bytes; nullopt for anything else or ≤ 0.
+//! "1000000", "512MB", "2GB", "1.5GiB", "64k": bytes; nullopt for anything else or below one byte.
 std::optional<double> parse_memory_size(const std::string& text);
 
 //! "1.2 GB"-style text for messages.
