@@ -9,6 +9,7 @@
 #include <set>
 #include <sstream>
 
+#include "coons/curves/pole_scan.h"
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
 #include "coons/surfaces/coons_patch.h"
@@ -169,6 +170,14 @@ class Reader {
             fail(fmt::format("{}[{}]", sub, comp),
                  fmt::format("'{}' at t = {:.6g} {}", expressions[comp], t1 + s * (t2 - t1), why));
         note_magnitude(p, sub);
+      }
+      // between those samples: a pole (0.001 t(1 - t)/(t - 0.50390625) was accepted) or a NaN
+      if (const auto pole = find_singularity(c)) {
+        const double t = t1 + pole->s * (t2 - t1);
+        fail(fmt::format("{}[{}]", sub, pole->component),
+             fmt::format("'{}' has a pole or is not finite near t = {:.9g}, between the samples checked (value {:.3g} "
+                         "there)",
+                         expressions[std::size_t(pole->component)], t, pole->value));
       }
       return c;
     } catch (const ExpressionError& x) {

@@ -1,0 +1,36 @@
+// Poles between samples (coons/curves/pole_scan.h): found where they are, and smooth curves with
+// roots, steep ends and narrow bumps left alone.
+#include "coons/curves/pole_scan.h"
+
+#include <catch2/catch.hpp>
+#include <cmath>
+#include <string>
+
+using namespace coons;
+
+namespace {
+AnalyticCurve z_curve(const std::string& z) { return AnalyticCurve({"t", "0", z}); }
+}  // namespace
+
+TEST_CASE("find_singularity: a pole between the samples is found where it is", "[curves]") {
+  // 1/pi is on no sample grid; the residue 0.001 keeps the neighbouring samples small (about 1).
+  for (const char* z : {"0.001*t*(1-t)/(t-1/_pi)", "0.001/(t-1/_pi)^2", "-0.001/(t-1/_pi)^3"}) {
+    INFO(z);
+    std::string expr = z;
+    for (std::size_t at = expr.find("_pi"); at != std::string::npos; at = expr.find("_pi")) expr.replace(at, 3, "pi");
+    const auto found = find_singularity(z_curve(expr));
+    REQUIRE(found);
+    CHECK(found->component == 2);
+    CHECK(found->s == Approx(1 / M_PI).margin(1e-9));
+    CHECK_FALSE(std::abs(found->value) < 1e8);
+  }
+}
+
+TEST_CASE("find_singularity: roots, steep ends and narrow bumps are not poles", "[curves]") {
+  for (const char* z : {"sin(20*t)", "t-1/pi", "1/(t+0.01)", "exp(-1e5*(t-1/pi)^2)", "tan(1.5*t)", "(t-1/pi)^3", "0",
+                        "1e-300*sin(t)"}) {
+    INFO(z);
+    const auto found = find_singularity(z_curve(z));
+    CHECK_FALSE(found);
+  }
+}
