@@ -133,3 +133,22 @@ TEST_CASE("coons degree-limit: degrees below a boundary without curves are liste
   CHECK(f["degrees"] == json({2, 4}));
   CHECK_FALSE(f.contains("skipped_degrees"));
 }
+
+TEST_CASE("coons search-alpha and degree-limit: an optimum at alpha = 0 found with rounding has no mu", "[cli]") {
+  // The discrete Dirichlet energy is least at alpha = 0 exactly (its Euler-Lagrange equation is the
+  // alpha = 0 mask). The search returns 0 up to rounding (-6.4e-17), and mu = -n^2(1+4a)/(4a) was
+  // printed as 3.5e16, or null, by the sign of that rounding error.
+  const std::string dome = "'" + kData + "/boundaries/dome.json'";
+  const CommandResult s = run_coons("search-alpha " + dome + " --objective discrete_dirichlet");
+  INFO(s.err);
+  REQUIRE(s.status == 0);
+  const json search = json::parse(s.out);
+  CHECK(std::abs(search["alpha"].get<double>()) < 1e-12);
+  CHECK(search["mu"].is_null());
+  const CommandResult d = run_coons("degree-limit " + dome + " --objective discrete_dirichlet --degrees 3 4 5 6");
+  INFO(d.err);
+  REQUIRE(d.status == 0);
+  const json law = json::parse(d.out);
+  for (const json& a : law["alpha_star"]) CHECK(std::abs(a.get<double>()) < 1e-12);
+  CHECK(law["mu_star"] == json({nullptr, nullptr, nullptr, nullptr}));
+}

@@ -13,6 +13,7 @@
 #include "coons/mask/solve_mask_net.h"
 #include "coons/net/degree_elevation.h"
 #include "coons/study/backend_choice.h"
+#include "coons/study/sweep.h"
 
 namespace coons {
 
@@ -39,7 +40,7 @@ bool DegreeLimitStudyOptions::is_valid(std::string* why) const {
 }
 
 std::optional<double> mu_of_alpha(int n, double alpha) {
-  if (!(alpha > -0.25 && alpha < 0)) return std::nullopt;
+  if (!(alpha > -0.25 && alpha < -kAlphaZeroWithinRounding)) return std::nullopt;
   return -double(n) * n * (1 + 4 * alpha) / (4 * alpha);
 }
 

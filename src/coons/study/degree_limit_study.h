@@ -32,7 +32,7 @@ struct DegreeLimitStudyOptions {
   bool is_valid(std::string* why) const;
 };
 
-//! α ↦ μ for m = n: −n²(1 + 4α)/(4α); nullopt unless −1/4 < α < 0.
+//! α ↦ μ for m = n: −n²(1 + 4α)/(4α); nullopt unless −1/4 < α < −kAlphaZeroWithinRounding (sweep.h).
 std::optional<double> mu_of_alpha(int n, double alpha);
 
 enum class DegreeOptimum { kInterior, kFlat, kAtBound, kFailed };

@@ -46,7 +46,7 @@ MaskFamily sweep_family(SweepParameter parameter, const Boundary& b) {
 }
 
 std::optional<double> mu_of_alpha(const Boundary& b, std::optional<double> alpha) {
-  if (!alpha || b.m != b.n || *alpha < -0.25 || *alpha >= 0) return std::nullopt;
+  if (!alpha || b.m != b.n || *alpha < -0.25 || *alpha >= -kAlphaZeroWithinRounding) return std::nullopt;
   return mu_from_alpha(b.n, *alpha);
 }
 

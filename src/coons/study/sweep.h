@@ -53,7 +53,12 @@ nlohmann::json sweep_line(const Boundary& boundary, SweepParameter parameter, co
 std::string plot_sweep(const std::string& png, const Boundary& boundary, SweepParameter parameter,
                        const std::vector<SweepRow>& rows);
 
-//! μ of α at degree n when m = n and α ∈ [−1/4, 0) (docs/math.md §4), else nullopt.
+//! An α* this close to 0 is 0 found with rounding: the discrete Dirichlet optimum is α = 0 exactly,
+//! and the search returned −6.4e−17, which made μ = 3.5e16 out of a rounding error's sign.
+inline constexpr double kAlphaZeroWithinRounding = 1e-12;
+
+//! μ of α at degree n when m = n and α ∈ [−1/4, −kAlphaZeroWithinRounding) (docs/math.md §4),
+//! else nullopt (α = 0, the Laplace mask, has no μ).
 std::optional<double> mu_of_alpha(const Boundary& boundary, std::optional<double> alpha);
 
 }  // namespace coons
