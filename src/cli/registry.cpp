@@ -83,6 +83,24 @@ int run(int argc, char** argv) {
     return app.exit(e);
   } catch (const CLI::Success& e) {  // --version
     return app.exit(e);
+  } catch (const CLI::ConversionError& e) {
+    // CLI11 says "Could not convert: --max-iterations = 99999999999": the option as the field, as
+    // every other error line has it
+    const std::string what = e.what(), prefix = "Could not convert: ", separator = " = ";
+    const std::size_t at = what.find(separator);
+    if (what.rfind(prefix, 0) == 0 && at != std::string::npos) {
+      const std::string option = what.substr(prefix.size(), at - prefix.size());
+      std::string type;  // the option's type as its --help shows it (INT, FLOAT, ...)
+      for (const CLI::App* command : app.get_subcommands({})) {
+        if (const CLI::Option* o = command->get_option_no_throw(option); o && *command) type = o->get_type_name();
+      }
+      const std::string expected = type.rfind("INT", 0) == 0     ? "an integer from -2147483648 to 2147483647"
+                                   : type.rfind("FLOAT", 0) == 0 ? "a number"
+                                                                 : "a value this option takes";
+      return fail(kExitBadInput, "command line: " + option + ": '" + what.substr(at + separator.size()) + "' is not " +
+                                     expected + " (see coons --help)");
+    }
+    return fail(kExitBadInput, std::string("command line: ") + what + " (see coons --help)");
   } catch (const CLI::ParseError& e) {
     return fail(kExitBadInput, std::string("command line: ") + e.what() + " (see coons --help)");
   }

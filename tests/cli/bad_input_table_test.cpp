@@ -211,6 +211,12 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --max-memory lots", "--max-memory"},
       {"solve " + good + " --max-memory 0x10", "--max-memory"},  // was read as 16 bytes
       {"solve " + good + " --max-memory 1e-3", "--max-memory"},  // was read as a thousandth of a byte
+      // CLI11's own words put the option after "Could not convert:", not where every field goes
+      {"solve " + good + " --solver cg --max-iterations 99999999999",
+       "command line: --max-iterations: '99999999999' is not an integer from -2147483648 to 2147483647"},
+      {"solve " + good + " --solver cg --max-iterations 1.5",
+       "command line: --max-iterations: '1.5' is not an integer"},
+      {"solve " + good + " --alpha abc", "command line: --alpha: 'abc' is not a number"},
       {"solve " + good + " --max-memory ' 5MB'", "--max-memory"},
       {"solve " + good + " --method coons --alpha 0.1", "--alpha"},
       {"solve " + good + " --alpha 0.1 --mu 2", "--mu"},
