@@ -82,14 +82,17 @@ class EigenIterative : public LinearSolver {
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
     // Within the automatic iteration limit and without a time limit, one Eigen solve per column.
-    // Otherwise the columns are solved in chunks of iterations (each restarting from the last
-    // iterate; 1000 under a time limit, else the automatic limit) with the clock read and the true
-    // residual measured between them: a column whose true residual has set no new low for
-    // kStallChunks chunks has stalled at the rounding floor (a tolerance of 1e-300 with 2^31
-    // iterations would otherwise run for hours), and its lowest iterate is kept.
-    const int chunk = options_.time_limit_seconds > 0 ? std::min(limit_, 1000)
-                      : limit_ > automatic_limit_     ? std::max(automatic_limit_, 1000)
-                                                      : limit_;
+    // Otherwise the columns are solved in chunks of iterations, each restarting from the last
+    // iterate, with the true residual measured between them: under a time limit chunks from 1000
+    // that double (the clock is read between them, so a solve stops within about twice the limit,
+    // and restarts, which slow CG down, stay few), else chunks of the automatic limit. A column
+    // whose true residual is near the rounding floor (kStagnationFloor) and has not fallen by 10 %
+    // over kStallChunks first chunks has stalled there (a tolerance of 1e-300 with 2^31 iterations
+    // would otherwise run for hours), and its lowest iterate is kept.
+    const bool timed = options_.time_limit_seconds > 0;
+    const int first_chunk = timed                       ? std::min(limit_, 1000)
+                            : limit_ > automatic_limit_ ? std::max(automatic_limit_, 1000)
+                                                        : limit_;
     const SpMat& A = *factorized_operator().matrix;
     X.setZero(B.rows(), 3);
     IterationEnd end;
@@ -109,8 +112,10 @@ class EigenIterative : public LinearSolver {
       double lowest = HUGE_VAL;
       int lowest_at = 0;
       const double b_norm = B.col(c).stableNorm();  // (a column of 1e-170s: norm() underflows)
+      int chunk = first_chunk;
       for (;;) {
         const int allowed = std::min(chunk, limit_ - used);
+        if (timed) chunk = int(std::min<long long>(2LL * chunk, limit_));
         krylov_.setMaxIterations(allowed);
         const Eigen::VectorXd guess = x;
         x = krylov_.solveWithGuess(B.col(c), x);
@@ -128,14 +133,15 @@ class EigenIterative : public LinearSolver {
         if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_ || done == 0 || breakdown) break;
         const double true_residual = (B.col(c) - A * x).stableNorm() / b_norm;
         if (true_residual < lowest) {
+          if (true_residual < 0.9 * lowest) lowest_at = used;  // progress, not a hair at the floor
           lowest = true_residual;
           lowest_x = x;
-          lowest_at = used;
-        } else if (used - lowest_at >= kStallChunks * chunk) {
+        }
+        if (used - lowest_at >= kStallChunks * first_chunk && lowest <= kStagnationFloor) {
           x = lowest_x;
           error = lowest;
           stalled = std::max(stalled, used - lowest_at);
-          end.stagnation = no_new_low(stalled);
+          end.stagnation = "the residual fell by less than 10 % in the last " + std::to_string(stalled) + " iterations";
           break;
         }
         if (out_of_time()) {

@@ -14,6 +14,7 @@
 #include <utility>
 #include <vector>
 
+#include "iteration_summary.h"
 #include "linear_solver.h"
 #include "mpi_runtime.h"
 
@@ -65,8 +66,9 @@ class HypreBackend : public LinearSolver {
   //! finite. A column that stopped on an error flag before the iteration limit (a breakdown: hypre's
   //! PCG flags a zero or negative pᵀAp or rᵀCr, or a subnormal step, with the flag of the limit,
   //! HYPRE_ERROR_CONV) makes the solve kFailure, its message naming the flag, the iterations and the
-  //! residual of that column, not the limit; at a true residual of at most kRoundingFloor it is the
-  //! iteration stagnating under a tolerance below rounding: kNotConverged, "stagnated".
+  //! residual of that column, not the limit; at a true residual within the tolerance it is
+  //! kSuccess, at one of at most kStagnationFloor (iteration_summary.h) the iteration stagnating
+  //! under a tolerance below rounding: kNotConverged, "stagnated".
   template <class Solve, class Read>
   SolveStatus solve_columns(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary, Solve&& solve,
                             Read&& read) {
@@ -100,9 +102,14 @@ class HypreBackend : public LinearSolver {
       auto& [c, column] = *broken;
       column.residual = relative_norm(AX.col(c) - B.col(c), B.col(c));
       end.residual = max_relative_norm(AX - B, B);
-      // At the rounding floor (a tolerance of 1e-300, say) hypre's PCG flags a step too small to
-      // change x: that is the iteration stagnating, not a breakdown of the method.
-      if (end.residual <= kRoundingFloor) {
+      // hypre's PCG flags a step too small to change x: with the true residual within the
+      // tolerance that is a success, near the rounding floor (a tolerance of 1e-300, say) the
+      // iteration stagnating, and only above it a breakdown of the method.
+      if (end.residual <= options_.tolerance) {
+        end.converged = true;
+        return finish_iteration(end, X, summary);
+      }
+      if (end.residual <= kStagnationFloor) {
         end.converged = false;
         end.stagnation = "hypre's " + std::string(column.method) + " stopped with error flag " +
                          std::to_string(column.error) + " at the rounding floor";
@@ -116,10 +123,6 @@ class HypreBackend : public LinearSolver {
   }
 
  private:
-  //! A true relative residual this small after hypre stopped on an error flag: rounding, where
-  //! the residual cannot fall further (7x7 nets end at 1e-16 to 6e-16).
-  static constexpr double kRoundingFloor = 1e-13;
-
   //! True when hypre flagged an error other than running into the iteration limit.
   static bool broke_down(const ColumnSolve& column, int limit) {
     return column.error != 0 && !(column.error == HYPRE_ERROR_CONV && column.iterations >= limit);

@@ -51,6 +51,12 @@ struct IterationSummary {
   [[nodiscard]] bool ok() const { return status == SolveStatus::kSuccess; }
 };
 
+//! A relative residual at most this is near the rounding floor of the systems coons meets (1e-16 on
+//! small nets, 3e-12 at degree 40): only there does a residual that stops falling mean stagnation.
+//! Above it a residual may stay flat for thousands of iterations and fall again (SOR with ω = 1.99
+//! on a degree-20 net: flat at 0.028 for over 1000 sweeps, then steadily down to 1e-12).
+inline constexpr double kStagnationFloor = 1e-9;
+
 //! How IterationEnd::stagnation words a residual that set no new low for `iterations` iterations.
 inline std::string no_new_low(int iterations) {
   return "no smaller residual in the last " + std::to_string(iterations) + " iterations";

@@ -66,9 +66,10 @@ class MaskIteration : public LinearSolver {
     end.initial = end.residual = relative_residual(op, B, X);
     end.convergent = scheme_ == Scheme::kGaussSeidel && options_.sor_omega > 0 && options_.sor_omega < 2 &&
                      stencil_eigenvalue_range(stencil_).first > 0;
-    // A residual that has not reached a new low for this many sweeps has stalled at the rounding
-    // floor: a steady iteration, however slow (Jacobi at N = 1023 gains 5e-6 a sweep), keeps
-    // setting lows, and SOR's early rise (IterationEnd::convergent) is over long before.
+    // A residual near the rounding floor (kStagnationFloor) that has set no new low for this many
+    // sweeps has stalled there: a steady iteration, however slow (Jacobi at N = 1023 gains 5e-6 a
+    // sweep), keeps setting lows. Above the floor nothing is concluded (SOR may stay flat for
+    // thousands of sweeps and fall again).
     const int stall_window = std::max(1000, 10 * (stencil_.rows + stencil_.cols));
     double lowest = HUGE_VAL;
     int lowest_at = 0;
@@ -82,7 +83,8 @@ class MaskIteration : public LinearSolver {
       if (end.residual < lowest) {
         lowest = end.residual;
         lowest_at = end.iterations;
-      } else if (end.residual > options_.tolerance && end.iterations - lowest_at >= stall_window) {
+      } else if (end.residual > options_.tolerance && lowest <= kStagnationFloor &&
+                 end.iterations - lowest_at >= stall_window) {
         end.stagnation = no_new_low(end.iterations - lowest_at);
         break;
       }

@@ -8,8 +8,8 @@
 // system, slowly (O(N²) sweeps at α = −1/4). Both stop at iteration_limit(options, #unknowns,
 // 1000, 1e8) sweeps (64×64 net: 26,000) or at SolverOptions::time_limit_seconds (the clock is
 // read every 10 sweeps) with status `not_converged` and the residual reached, and earlier when the
-// residual has set no new low for max(1000, 10·(rows + cols)) sweeps (stagnated at the rounding
-// floor, e.g. under a tolerance of 1e-300).
+// residual, at most 1e-9, has set no new low for max(1000, 10·(rows + cols)) sweeps (stagnated at
+// the rounding floor, e.g. under a tolerance of 1e-300).
 // Based on: R. S. Varga, Matrix Iterative Analysis, Prentice-Hall (1962); G. Farin, D. Hansford,
 // Discrete Coons patches, CAGD 16 (1999).
 #pragma once

@@ -168,6 +168,16 @@ TEST_CASE("write_file_atomically: a symbolic link is written through and a pipe 
   std::ifstream again(target);
   again >> text;
   CHECK(text == "newer");
+  // a link to a file that does not exist yet, by a relative path: written through, the link kept
+  const std::string dangling = dir.file("dangling.json");
+  fs::create_symlink("later.json", dangling);
+  write_file_atomically(dangling, [](std::ostream& out) { out << "first"; });
+  CHECK(fs::is_symlink(dangling));
+  std::ifstream later(dir.file("later.json"));
+  later >> text;
+  CHECK(text == "first");
+  fs::remove(dangling);
+  fs::remove(dir.file("later.json"));
   // a named pipe stands for every file that is not regular (devices, sockets): refused, kept
   const std::string pipe = dir.file("pipe");
   REQUIRE(mkfifo(pipe.c_str(), 0600) == 0);

@@ -28,6 +28,12 @@ std::optional<Singularity> find_singularity(const AnalyticCurve& c, int samples,
     s[std::size_t(k)] = double(k) / (n - 1);
     p[std::size_t(k)] = c.at(s[std::size_t(k)]);
   }
+  // The limit is relative to the whole curve's size: a coordinate whose samples are rounding
+  // noise (0.01 sin(1024 pi t) at t = k/1024) must not make its own values of 0.01 a pole.
+  double size = 0;
+  for (const Eigen::RowVector3d& q : p)
+    for (int comp = 0; comp < 3; ++comp)
+      if (std::isfinite(q(comp))) size = std::max(size, std::abs(q(comp)));
   for (int comp = 0; comp < 3; ++comp) {
     const auto f = [&](double x) { return c.at(x)(comp); };
     const auto v = [&](int k) { return p[std::size_t(k)](comp); };
@@ -37,7 +43,7 @@ std::optional<Singularity> find_singularity(const AnalyticCurve& c, int samples,
       largest = std::max(largest, std::abs(v(k)));
     }
     if (largest == 0) continue;  // zero at every sample: nothing to climb
-    const double limit = growth * largest, notable = 0.1 * largest;
+    const double limit = growth * size, notable = 0.1 * largest;
     for (int k = 0; k + 1 < n; ++k) {
       // a change of sign next to large values: a root or a pole of odd order in between
       if (v(k) * v(k + 1) < 0 && std::max(std::abs(v(k)), std::abs(v(k + 1))) >= notable) {
@@ -53,11 +59,14 @@ std::optional<Singularity> find_singularity(const AnalyticCurve& c, int samples,
           }
         }
       }
-      // a peak of the magnitude: a pole of even order (or a bump) in [s_{k-1}, s_{k+1}]
-      if (k > 0 && std::abs(v(k)) >= notable && std::abs(v(k)) >= std::abs(v(k - 1)) &&
-          std::abs(v(k)) >= std::abs(v(k + 1))) {
+    }
+    for (int k = 0; k < n; ++k) {
+      // a peak of the magnitude: a pole of even order (or a bump) in [s_{k-1}, s_{k+1}], the
+      // end samples included (a pole at t = 0.0003 peaks at the first sample)
+      const int before = std::max(k - 1, 0), after = std::min(k + 1, n - 1);
+      if (std::abs(v(k)) >= notable && std::abs(v(k)) >= std::abs(v(before)) && std::abs(v(k)) >= std::abs(v(after))) {
         const double ratio = 0.5 * (std::sqrt(5.0) - 1);
-        double a = s[std::size_t(k) - 1], b = s[std::size_t(k) + 1];
+        double a = s[std::size_t(before)], b = s[std::size_t(after)];
         double x1 = b - ratio * (b - a), x2 = a + ratio * (b - a);
         double f1 = std::abs(f(x1)), f2 = std::abs(f(x2));
         for (int it = 0; it < kGoldenSteps; ++it) {

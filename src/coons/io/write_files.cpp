@@ -83,18 +83,21 @@ void track_staging(const std::string& staging) {
 // with a regular file. A folder is left to the rename, which refuses it.
 std::string command_line_target(const std::string& path) {
   std::error_code ec;
-  std::string target = path;
-  if (fs::is_symlink(fs::symlink_status(path, ec))) {
-    const fs::path resolved = fs::weakly_canonical(fs::absolute(path, ec), ec);
+  fs::path target = path;
+  // link by link, so that a link to a file that does not exist yet (dangling) is written through
+  // too: weakly_canonical stopped there and the link was replaced
+  for (int hops = 0; fs::is_symlink(fs::symlink_status(target, ec)); ++hops) {
+    if (hops == 40) throw InputError(path, "", "too many levels of symbolic links");
+    const fs::path next = fs::read_symlink(target, ec);
     if (ec) throw InputError(path, "", "cannot follow the symbolic link: " + ec.message());
-    target = resolved.string();
+    target = next.is_absolute() ? next : target.parent_path() / next;
   }
   const fs::file_status status = fs::status(target, ec);
   if (fs::exists(status) && !fs::is_regular_file(status) && !fs::is_directory(status))
     throw InputError(path, "",
                      "not a regular file (a device, pipe or socket): coons writes a whole file and renames it into "
                      "place; give the path of a file");
-  return target;
+  return target.string();
 }
 
 }  // namespace

@@ -103,7 +103,8 @@ DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& obje
     if (!at.count(d)) e.skipped_continuum_degrees.push_back(d);
   if (!e.skipped_degrees.empty() || !e.skipped_continuum_degrees.empty())
     e.skipped_reason = fmt::format(
-        "below the boundary's degree {}x{}, which has no \"curves\" to refit from (degree elevation only raises)",
+        "below the boundary's degree {}x{} in u or v, and it has no \"curves\" to refit from (degree elevation "
+        "only raises)",
         input.boundary.m, input.boundary.n);
   if (e.skipped_degrees.size() == options.degrees.size() && !options.degrees.empty())
     throw InputError(
