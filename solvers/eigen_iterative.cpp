@@ -187,10 +187,31 @@ class EigenIterative : public LinearSolver {
         broken = mid;
       }
     }
+    // Eigen's BiCGSTAB resets its iteration counter on its first restart (i = 0), so the count it
+    // reports after a breakdown can be 1 where the iterate after one step was finite, and the
+    // bisection above then ends on the guess: on the 4-unknown dome at tolerance 1e-300 (exact
+    // preconditioner, so w = 0 after one step and the restart divides by it) it returned x = 0,
+    // residual 1, beside the exact iterate after one step. The first limits are then tried one by
+    // one and the finite iterate of lowest residual kept.
+    if (finite == 0) {
+      const SpMat& A = *factorized_operator().matrix;
+      double lowest = (b - A * guess).stableNorm();
+      for (int limit = 1; limit <= kFirstLimitsTried; ++limit) {
+        krylov_.setMaxIterations(limit);
+        Eigen::VectorXd y = krylov_.solveWithGuess(b, guess);
+        if (!y.allFinite()) continue;
+        if (const double r = (b - A * y).stableNorm(); r < lowest) {
+          lowest = r;
+          best = std::move(y);
+          finite = limit;
+        }
+      }
+    }
     krylov_.setMaxIterations(0);
     x = krylov_.solveWithGuess(b, best);
     return finite;
   }
+  static constexpr int kFirstLimitsTried = 64;
 
   // The iterations (updates of x, one product with A each) of the last Eigen solve. Eigen's
   // conjugate_gradient leaves its loop by `break` right after the update that passes its test,
