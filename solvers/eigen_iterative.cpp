@@ -6,6 +6,7 @@
 #include <string>
 #include <type_traits>
 
+#include "column_scaling.h"
 #include "iteration_summary.h"
 #include "matrix_checks.h"
 
@@ -111,7 +112,6 @@ class EigenIterative : public LinearSolver {
       Eigen::VectorXd lowest_x = x;
       double lowest = HUGE_VAL;
       int lowest_at = 0;
-      const double b_norm = B.col(c).stableNorm();  // (a column of 1e-170s: norm() underflows)
       int chunk = first_chunk;
       for (;;) {
         const int allowed = std::min(chunk, limit_ - used);
@@ -131,7 +131,7 @@ class EigenIterative : public LinearSolver {
         // returns at once, not converged, when ‖b‖² is not finite. After a breakdown the next
         // call would break down again.)
         if (krylov_.info() != Eigen::NoConvergence || !x.allFinite() || used >= limit_ || done == 0 || breakdown) break;
-        const double true_residual = (B.col(c) - A * x).stableNorm() / b_norm;
+        const double true_residual = relative_norm(B.col(c) - A * x, B.col(c));
         if (true_residual < lowest) {
           if (true_residual < 0.9 * lowest) lowest_at = used;  // progress, not a hair at the floor
           lowest = true_residual;
@@ -195,12 +195,12 @@ class EigenIterative : public LinearSolver {
     // one and the finite iterate of lowest residual kept.
     if (finite == 0) {
       const SpMat& A = *factorized_operator().matrix;
-      double lowest = (b - A * guess).stableNorm();
+      double lowest = relative_norm(b - A * guess, b);
       for (int limit = 1; limit <= kFirstLimitsTried; ++limit) {
         krylov_.setMaxIterations(limit);
         Eigen::VectorXd y = krylov_.solveWithGuess(b, guess);
         if (!y.allFinite()) continue;
-        if (const double r = (b - A * y).stableNorm(); r < lowest) {
+        if (const double r = relative_norm(b - A * y, b); r < lowest) {
           lowest = r;
           best = std::move(y);
           finite = limit;

@@ -3,22 +3,12 @@
 #include <Eigen/Geometry>
 #include <algorithm>
 #include <cmath>
-#include <limits>
+
+#include "coons/surfaces/surface_point.h"
 
 namespace coons {
 
 namespace {
-// The unit vector of a × b with both divided by their norms first (no underflow or overflow at
-// any scale; cf. unit_normal); NaN when either vanishes or they are parallel.
-Eigen::RowVector3d unit_cross(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b) {
-  const double la = a.stableNorm(), lb = b.stableNorm();
-  if (!(la > 0) || !(lb > 0)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  const Eigen::RowVector3d n = (a / la).cross(b / lb);
-  const double len = n.norm();
-  if (!(len > 1e-14)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  return n / len;
-}
-
 // The derivative along the side (its own parameter) and the cross-boundary derivative pointing
 // away from the patch's interior (bottom: −r_v, top: r_v, left: −r_u, right: r_u).
 Eigen::RowVector3d along(const SurfacePoint& s, Side side) {

@@ -17,16 +17,18 @@ Eigen::RowVector3d SurfacePoint::derivative(int a, int b) const {
   return Eigen::RowVector3d::Zero();
 }
 
-Eigen::RowVector3d unit_normal(const SurfacePoint& s) {
-  // The partials are divided by their norms first: their cross product then neither underflows
-  // (a surface of size 1e-150: the squared norm of du × dv would be 1e-600) nor overflows.
-  const double lu = s.du.stableNorm(), lv = s.dv.stableNorm();
-  if (!(lu > 0) || !(lv > 0)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
-  const Eigen::RowVector3d n = (s.du / lu).cross(s.dv / lv);
+Eigen::RowVector3d unit_cross(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b) {
+  // Divided by their norms first: the cross product then neither underflows (a surface of size
+  // 1e-150: the squared norm of du × dv would be 1e-600) nor overflows.
+  const double la = a.stableNorm(), lb = b.stableNorm();
+  if (!(la > 0) || !(lb > 0)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
+  const Eigen::RowVector3d n = (a / la).cross(b / lb);
   const double len = n.norm();
   if (!(len > 1e-14)) return Eigen::RowVector3d::Constant(std::numeric_limits<double>::quiet_NaN());
   return n / len;
 }
+
+Eigen::RowVector3d unit_normal(const SurfacePoint& s) { return unit_cross(s.du, s.dv); }
 
 Curvatures curvatures(const SurfacePoint& s) {
   const Eigen::RowVector3d n = unit_normal(s);

@@ -18,7 +18,11 @@ struct SurfacePoint {
   [[nodiscard]] Eigen::RowVector3d derivative(int a, int b) const;
 };
 
-//! (r_u × r_v)/‖r_u × r_v‖; NaN where the surface is singular (r_u ∥ r_v).
+//! The unit vector of a × b, both divided by their norms first (no underflow or overflow of the
+//! product at any scale); NaN when either vanishes or they are parallel (|â × b̂| ≤ 1e-14).
+Eigen::RowVector3d unit_cross(const Eigen::RowVector3d& a, const Eigen::RowVector3d& b);
+
+//! unit_cross(r_u, r_v); NaN where the surface is singular (r_u ∥ r_v).
 Eigen::RowVector3d unit_normal(const SurfacePoint& s);
 
 struct Curvatures {
