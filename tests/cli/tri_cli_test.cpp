@@ -97,7 +97,7 @@ TEST_CASE("coons solve: a symmetric-only backend on a triangle reports not_appli
 
 TEST_CASE("coons solve: bad triangular inputs exit 2 naming the side and point", "[cli][tri]") {
   TempDir dir;
-  json doc = tri_boundary_to_json(tri::boundary_of(tri::test::random_tri_net(4, 5), "bad"));
+  json doc = tri_boundary_to_json(tri::boundary_of(tri_test::random_tri_net(4, 5), "bad"));
   json gap = doc;
   gap["sides"][1][0][0] = gap["sides"][1][0][0].get<double>() + 0.1;
   json short_side = doc;

@@ -7,7 +7,7 @@
 
 using namespace coons;
 using namespace coons::tri;
-using namespace coons::tri::test;
+using namespace coons::tri_test;
 
 namespace {
 

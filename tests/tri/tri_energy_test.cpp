@@ -7,11 +7,9 @@
 #include "tri/tri_fixtures.h"
 
 using namespace coons::tri;
-using namespace coons::tri::test;
+using namespace coons::tri_test;
 
 namespace {
-
-double factorial(int n) { return std::tgamma(n + 1.0); }
 
 double bernstein(int n, int i, int j, double x, double y) {
   const int k = n - i - j;

@@ -7,7 +7,7 @@
 #include "tri/tri_fixtures.h"
 
 using namespace coons::tri;
-using namespace coons::tri::test;
+using namespace coons::tri_test;
 
 namespace {
 

@@ -7,11 +7,10 @@
 #include "tri/tri_fixtures.h"
 
 using namespace coons::tri;
-using coons::tri::test::random_tri_net;
+using coons::tri_test::factorial;
+using coons::tri_test::random_tri_net;
 
 namespace {
-
-double factorial(int n) { return std::tgamma(n + 1.0); }
 
 // The Bernstein sum written out: Σ b_ijk n!/(i!j!k!) u^i v^j w^k.
 Eigen::RowVector3d bernstein_sum(const TriNet& net, const Eigen::Vector3d& uvw) {
@@ -137,7 +136,7 @@ TEST_CASE("subdivide_at: each of the three parts is the surface over its sub-tri
 
 TEST_CASE("permuted: the net of the surface with permuted barycentrics", "[tri]") {
   const TriNet net = random_tri_net(6, 17);
-  for (const auto& perm : coons::tri::test::all_permutations()) {
+  for (const auto& perm : coons::tri_test::all_permutations()) {
     const TriNet q = permuted(net, perm);
     for (const auto& uvw : kSamplePoints) {
       Eigen::Vector3d moved;

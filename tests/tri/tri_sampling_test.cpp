@@ -6,7 +6,7 @@
 #include "tri/tri_fixtures.h"
 
 using namespace coons::tri;
-using namespace coons::tri::test;
+using namespace coons::tri_test;
 
 TEST_CASE("tri_grid_triangles: (K-1)^2 counter-clockwise triangles covering the triangle once", "[tri]") {
   for (int k = 2; k <= 12; ++k) {

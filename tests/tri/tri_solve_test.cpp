@@ -11,7 +11,7 @@
 #include "tri/tri_fixtures.h"
 
 using namespace coons::tri;
-using namespace coons::tri::test;
+using namespace coons::tri_test;
 using coons::solvers::SolveStatus;
 
 namespace {
