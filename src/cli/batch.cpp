@@ -5,8 +5,11 @@
 // file:PATH) every boundary is solved once with that mask instead, over its whole problem
 // (ribbons, rings, free grid), the net named by the mask (c1-family-w0.5.json, ...).
 #include <fmt/format.h>
+#include <locale.h>
+#include <wchar.h>
 
 #include <algorithm>
+#include <cwchar>
 #include <filesystem>
 #include <map>
 #include <memory>
@@ -71,10 +74,36 @@ std::string table_cell(const std::string& text) {
   return out;
 }
 
-// Characters as a terminal shows them (UTF-8 continuation bytes do not count).
+// Columns as a terminal shows the text: glibc's wcwidth in the C.UTF-8 locale (a CJK character
+// takes two, a combining mark none); a byte that is not UTF-8, or a character wcwidth does not
+// know, takes one. Without that locale, one per code point.
 std::size_t display_width(const std::string& text) {
-  return std::size_t(
-      std::count_if(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  static const locale_t utf8 = newlocale(LC_CTYPE_MASK, "C.UTF-8", locale_t(nullptr));
+  if (utf8 == locale_t(nullptr))
+    return std::size_t(
+        std::count_if(text.begin(), text.end(), [](char c) { return (static_cast<unsigned char>(c) & 0xC0) != 0x80; }));
+  const locale_t previous = uselocale(utf8);
+  std::size_t width = 0;
+  std::mbstate_t state{};
+  const char* at = text.data();
+  std::size_t left = text.size();
+  while (left > 0) {
+    wchar_t c = 0;
+    std::size_t used = std::mbrtowc(&c, at, left, &state);
+    int columns = 1;
+    if (used == std::size_t(-1) || used == std::size_t(-2)) {  // not UTF-8: one byte, one column
+      used = 1;
+      state = std::mbstate_t{};
+    } else {
+      used = std::max<std::size_t>(used, 1);  // an embedded '\0' is one byte
+      columns = wcwidth(c) < 0 ? 1 : wcwidth(c);
+    }
+    width += std::size_t(columns);
+    at += used;
+    left -= used;
+  }
+  uselocale(previous);
+  return width;
 }
 
 std::string metrics_table(const std::vector<Row>& rows) {

@@ -216,6 +216,43 @@ TEST_CASE("coons batch: the table tells two files of one name apart and a name c
   CHECK(rows == 1 + 3 * 3);  // the separator and three nets of each file
 }
 
+TEST_CASE("coons batch: a name of wide characters keeps the table's columns in line", "[cli]") {
+  // The width of a cell was its number of code points, so a row named in CJK characters (two
+  // columns each on a terminal) pushed every bar after the name out of line.
+  TempDir dir;
+  std::string text = read_text(kData + "/boundaries/dome.json");
+  const auto name_at = text.find("\"dome\"");
+  REQUIRE(name_at != std::string::npos);
+  text.replace(name_at, 6, "\"\u5706\u9876\"");  // 圆顶: 6 bytes of UTF-8, 4 columns
+  const std::string wide = dir.write("wide.json", text);
+  const std::string out = dir.file("out");
+  const CommandResult r = run_coons("batch " + quoted(wide) + " --alphas -0.1 --samples 3 --out " + quoted(out));
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const std::string table = read_text(out + "/metrics.md");
+  INFO(table);
+  std::istringstream lines(table.substr(table.find("| boundary")));
+  std::string line, header;
+  std::getline(lines, header);
+  const auto bars_of = [](const std::string& l, std::size_t shift_after_name) {
+    std::vector<std::size_t> at;
+    for (std::size_t i = 0; i < l.size(); ++i)
+      if (l[i] == '|') at.push_back(at.empty() ? i : i - shift_after_name);
+    return at;
+  };
+  const std::vector<std::size_t> bars = bars_of(header, 0);
+  REQUIRE(bars.size() == 12);
+  int named = 0;
+  while (std::getline(lines, line)) {
+    INFO(line);
+    const bool is_wide = line.find("\u5706\u9876") != std::string::npos;
+    named += is_wide ? 1 : 0;
+    // in bytes, the bars after the name sit 2 further right than in columns
+    CHECK(bars_of(line, is_wide ? 2 : 0) == bars);
+  }
+  CHECK(named == 2);  // the Coons net and alpha = -0.1
+}
+
 TEST_CASE("coons batch: the bundled folder, its B-spline boundary included, as solve gives each net", "[cli]") {
   // `coons batch data/boundaries` (the README's example) stopped at bspline_wave.json: "a B-spline
   // boundary is read by solve, export, search-alpha and study only"; and --threads was refused
