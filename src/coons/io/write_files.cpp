@@ -271,9 +271,18 @@ std::vector<std::string> OutputSet::commit() {
     if (!fs::exists(e.staging, ec)) fail(e, "was not written");
     if (fs::is_directory(e.final_path, ec)) fail(e, "cannot rename into place: it is a folder");
     if (fs::exists(e.final_path, ec)) {
+      // The file it replaces is kept under a second name, a hard link, so that the final name
+      // always holds a whole file, the old one until the rename below. A signal in between
+      // (the handler removes the link, a tracked name) leaves the old file in place; moving it
+      // aside, as before, left the name missing and the old file under *.replaced. Where the
+      // file system has no hard links, it is moved aside.
       const std::string aside = e.staging + ".replaced";
-      fs::rename(e.final_path, aside, ec);
-      if (ec) fail(e, "cannot move the existing file aside: " + ec.message());
+      track_staging(aside);
+      if (::link(e.final_path.c_str(), aside.c_str()) != 0) {
+        fs::rename(e.final_path, aside, ec);
+        if (ec) fail(e, "cannot move the existing file aside: " + ec.message());
+        e.aside_moved = true;
+      }
       e.aside = aside;
     }
     fs::rename(e.staging, e.final_path, ec);
@@ -299,9 +308,15 @@ std::vector<std::string> OutputSet::publish(const std::function<void()>& announc
 void OutputSet::undo_commit() noexcept {
   for (auto it = entries_.rbegin(); it != entries_.rend(); ++it) {
     std::error_code ec;
-    if (it->published) fs::remove(it->final_path, ec);
-    if (!it->aside.empty()) fs::rename(it->aside, it->final_path, ec);
+    if (it->aside.empty()) {
+      if (it->published) fs::remove(it->final_path, ec);
+    } else if (it->published || it->aside_moved) {
+      fs::rename(it->aside, it->final_path, ec);  // the old file back, in one step
+    } else {
+      fs::remove(it->aside, ec);  // its final name still holds the old file
+    }
     it->aside.clear();
+    it->aside_moved = false;
     it->published = false;
   }
   committed_ = false;  // the destructor removes the staging files that remain and the new folders

@@ -67,9 +67,10 @@ class OutputSet {
   void discard(const std::string& relative);
 
   //! Renames every staged file into place; returns the final paths in the order staged. A file
-  //! it replaces is first moved aside, so on a failure (a target that is a folder, say) it removes
-  //! what it had published, puts the replaced files back and throws InputError: the folder is as
-  //! before. The moved-aside files go when the set is destroyed.
+  //! it replaces first gets a second name (a hard link; moved there where links are not
+  //! possible), so on a failure (a target that is a folder, say) it puts the replaced files back
+  //! and removes what it had published, throws InputError, and the folder is as before. The
+  //! second names go when the set is destroyed, or with the staging files on a signal.
   std::vector<std::string> commit();
 
   //! commit(), then announce() (e.g. print the report); when announce throws (a failed write to
@@ -83,7 +84,8 @@ class OutputSet {
  private:
   struct Entry {
     std::string final_path, staging;
-    std::string aside;  //!< where commit() moved the file it replaced (empty: none)
+    std::string aside;         //!< a second name commit() gave the file it replaced (empty: none)
+    bool aside_moved = false;  //!< the file was moved there (no hard links), not linked
     bool published = false;
   };
   std::string folder_, option_;
