@@ -18,13 +18,29 @@ using Ldlt = Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>
 using Llt = Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>;
 using Lu = Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>>;
 
-// Pivots below this fraction of the largest one count as zero (the operator is singular).
+// A pivot below this fraction of its own diagonal entry of A counts as zero (the operator is
+// singular): d_k = a_kk − (what the earlier rows explain of it) cancelled to 13 digits. Measured
+// against the diagonal, not the largest pivot, the test does not change under a diagonal scaling
+// D A D: diag(1, 1e-20) and a Laplacian scaled by 10^±8 row by row are regular, and were called
+// singular. (Where a_kk = 0, indefinite, against the largest pivot.)
 constexpr double kSingularPivot = 1e-13;
+
+using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
+
+// |a_kk| of the permuted matrix P A Pᵀ the factor holds (row i of A is row P(i) there); where
+// a_kk = 0, the largest |pivot|.
+Eigen::VectorXd pivot_scales(const SpMat& A, const Permutation& P, double largest_pivot) {
+  const Eigen::VectorXd a = A.diagonal().cwiseAbs();
+  Eigen::VectorXd scales(a.size());
+  for (Eigen::Index i = 0; i < a.size(); ++i)
+    scales(P.size() == a.size() ? P.indices()(i) : i) = a(i) > 0 ? a(i) : largest_pivot;
+  return scales;
+}
 
 // LDLᵀ without pivoting is only stable on definite matrices: a negative entry of D is reported
 // as "not positive definite", a zero one as "singular". A pivot that is exactly zero during the
 // factorisation proves nothing more than "not definite": [[0, 1], [1, 0]] is regular.
-SolveStatus judge(const Ldlt& f, SolveSummary& summary) {
+SolveStatus judge(const Ldlt& f, const SpMat& A, SolveSummary& summary) {
   if (f.info() != Eigen::Success) {
     summary.message =
         "LDLT met a zero pivot: the matrix is not positive definite (singular, or indefinite: LDLT does "
@@ -35,11 +51,11 @@ SolveStatus judge(const Ldlt& f, SolveSummary& summary) {
   // its n entries count as the diagonal of the factor, as in LLᵀ (a 1×1 matrix has one, not 0).
   summary.factor_nnz = static_cast<long long>(f.matrixL().nestedExpression().nonZeros()) + f.vectorD().size();
   const Eigen::VectorXd d = f.vectorD();
-  const double scale = d.cwiseAbs().maxCoeff();
-  const Eigen::Index zero = (d.array().abs() <= kSingularPivot * scale).count();
-  const Eigen::Index negative = (d.array() < -kSingularPivot * scale).count();
+  const Eigen::VectorXd scale = pivot_scales(A, f.permutationP(), d.cwiseAbs().maxCoeff());
+  const Eigen::Index zero = (d.array().abs() <= kSingularPivot * scale.array()).count();
+  const Eigen::Index negative = (d.array() < -kSingularPivot * scale.array()).count();
   if (zero > 0) {
-    summary.message = std::to_string(zero) + " zero pivot(s) in D";
+    summary.message = std::to_string(zero) + " zero pivot(s) in D (below 1e-13 of their diagonal entry)";
     return SolveStatus::kSingular;
   }
   if (negative > 0) {
@@ -49,16 +65,16 @@ SolveStatus judge(const Ldlt& f, SolveSummary& summary) {
   return SolveStatus::kSuccess;
 }
 
-SolveStatus judge(const Llt& f, SolveSummary& summary) {
+SolveStatus judge(const Llt& f, const SpMat& A, SolveSummary& summary) {
   if (f.info() != Eigen::Success) {
     summary.message = "Cholesky met a non-positive pivot";
     return SolveStatus::kNotPositiveDefinite;
   }
   const auto& L = f.matrixL().nestedExpression();
   summary.factor_nnz = static_cast<long long>(L.nonZeros());
-  const Eigen::VectorXd d = L.diagonal();
-  if ((d.array() <= std::sqrt(kSingularPivot) * d.maxCoeff()).any()) {
-    summary.message = "a pivot of L is (numerically) zero";
+  const Eigen::VectorXd d = L.diagonal().cwiseAbs2();  // the pivots of LDLᵀ
+  if ((d.array() <= kSingularPivot * pivot_scales(A, f.permutationP(), d.maxCoeff()).array()).any()) {
+    summary.message = "a pivot of L is (numerically) zero (its square below 1e-13 of its diagonal entry)";
     return SolveStatus::kSingular;
   }
   return SolveStatus::kSuccess;
@@ -75,7 +91,7 @@ std::string lu_failure(const std::string& eigen) {
   return "SparseLU: " + eigen;
 }
 
-SolveStatus judge(const Lu& f, SolveSummary& summary) {
+SolveStatus judge(const Lu& f, const SpMat& /*A*/, SolveSummary& summary) {
   if (f.info() != Eigen::Success) {
     summary.message = lu_failure(f.lastErrorMessage());
     return SolveStatus::kSingular;
@@ -109,7 +125,7 @@ class EigenDirect : public LinearSolver {
           empty != SolveStatus::kSuccess)
         return empty;
     factor_.factorize(*op.matrix);
-    return judge(factor_, summary);
+    return judge(factor_, *op.matrix, summary);
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {

@@ -234,65 +234,93 @@ void LinearSolver::judge_solution(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X
   // by a refinement.
   const ColumnExponents e = rhs_exponents(B);
   const bool scaled = !is_identity(e);
-  Eigen::MatrixX3d B_scaled, X_scaled;
-  if (scaled) {
-    B_scaled = scaled_columns(B, e, -1);
-    X_scaled = scaled_columns(X, e, -1);
-  }
-  const Eigen::MatrixX3d& Bs = scaled ? B_scaled : B;
-  Eigen::MatrixX3d& Xs = scaled ? X_scaled : X;
-  if (exact()) {
-    judge_exact_solve(op_, Bs, Xs, summary_);
-    return;
-  }
-  if (summary_.status == SolveStatus::kNotConverged) {
-    // The X returned is an iterate: its true residual is the one to report, not the backend's
-    // estimate (CG's recurrence reached 5.5e-127 for a tolerance of 1e-300, below any true one).
-    const double r = relative_residual(op_, Bs, Xs);
-    if (std::isfinite(r) && r != summary_.relative_residual) {
-      // (after a time limit the columns not reached are 0: a true residual of 1 for an estimate of 1e-4)
-      summary_.message += "; the X returned has the true relative residual " + format_g(r);
-      summary_.relative_residual = r;
+  const auto judge_scaled = [&] {
+    Eigen::MatrixX3d B_scaled, X_scaled;
+    if (scaled) {
+      B_scaled = scaled_columns(B, e, -1);
+      X_scaled = scaled_columns(X, e, -1);
     }
-    return;
-  }
-  if (!summary_.ok()) return;  // keeps the residual its message names (finish_iteration set it)
-  // An iteration that stopped on its own test (often a recursively updated residual, which drifts
-  // from the true one near the rounding floor): the true residual decides. Above the tolerance,
-  // up to kRefinementRounds corrections X += A⁻¹(B − A X) by the same backend, then not_converged.
-  double r = relative_residual(op_, Bs, Xs);
-  int rounds = 0;
-  while (std::isfinite(r) && r > options_.tolerance && rounds < kRefinementRounds && !out_of_time()) {
-    ++rounds;
-    Eigen::MatrixXd AX;
-    if (!apply_operator(op_, Xs, AX)) break;
-    const Eigen::MatrixX3d R = Bs - AX;
-    Eigen::MatrixX3d D;
-    SolveSummary correction = summary_;
-    const SolveStatus status =
-        solve_scaled(rhs_scaling(R), R, D,
-                     [&](const Eigen::MatrixX3d& Rs, Eigen::MatrixX3d& Ds) { return do_solve(Rs, Ds, correction); });
-    if (status != SolveStatus::kSuccess || !D.allFinite()) break;
-    summary_.iterations += correction.iterations;
-    const Eigen::MatrixX3d refined = Xs + D;
-    const double next = relative_residual(op_, Bs, refined);
-    if (!(next < r)) break;
-    Xs = refined;
-    if (scaled) X = scaled_columns(refined, e, +1);
-    r = next;
-  }
-  if (!std::isfinite(r) || (scaled && !X.allFinite())) {  // (X scaled back can overflow)
-    summary_.relative_residual = std::numeric_limits<double>::max();
+    const Eigen::MatrixX3d& Bs = scaled ? B_scaled : B;
+    Eigen::MatrixX3d& Xs = scaled ? X_scaled : X;
+    if (exact()) {
+      judge_exact_solve(op_, Bs, Xs, summary_);
+      return;
+    }
+    if (summary_.status == SolveStatus::kNotConverged) {
+      // The X returned is an iterate: its true residual is the one to report, not the backend's
+      // estimate (CG's recurrence reached 5.5e-127 for a tolerance of 1e-300, below any true one).
+      const double r = relative_residual(op_, Bs, Xs);
+      if (std::isfinite(r) && r != summary_.relative_residual) {
+        // (after a time limit the columns not reached are 0: a true residual of 1 for an estimate of 1e-4)
+        summary_.message += "; the X returned has the true relative residual " + format_g(r);
+        summary_.relative_residual = r;
+      }
+      return;
+    }
+    if (!summary_.ok()) return;  // keeps the residual its message names (finish_iteration set it)
+    // An iteration that stopped on its own test (often a recursively updated residual, which drifts
+    // from the true one near the rounding floor): the true residual decides. Above the tolerance,
+    // up to kRefinementRounds corrections X += A⁻¹(B − A X) by the same backend, then not_converged.
+    double r = relative_residual(op_, Bs, Xs);
+    int rounds = 0;
+    while (std::isfinite(r) && r > options_.tolerance && rounds < kRefinementRounds && !out_of_time()) {
+      ++rounds;
+      Eigen::MatrixXd AX;
+      if (!apply_operator(op_, Xs, AX)) break;
+      const Eigen::MatrixX3d R = Bs - AX;
+      Eigen::MatrixX3d D;
+      SolveSummary correction = summary_;
+      const SolveStatus status =
+          solve_scaled(rhs_scaling(R), R, D,
+                       [&](const Eigen::MatrixX3d& Rs, Eigen::MatrixX3d& Ds) { return do_solve(Rs, Ds, correction); });
+      if (status != SolveStatus::kSuccess || !D.allFinite()) break;
+      summary_.iterations += correction.iterations;
+      const Eigen::MatrixX3d refined = Xs + D;
+      const double next = relative_residual(op_, Bs, refined);
+      if (!(next < r)) break;
+      Xs = refined;
+      if (scaled) X = scaled_columns(refined, e, +1);
+      r = next;
+    }
+    if (!std::isfinite(r) || (scaled && !X.allFinite())) {  // (X scaled back can overflow)
+      summary_.relative_residual = std::numeric_limits<double>::max();
+      summary_.status = SolveStatus::kFailure;
+      summary_.message = "the solution is not finite (overflow)";
+      return;
+    }
+    summary_.relative_residual = r;
+    if (r > options_.tolerance) {
+      summary_.status = SolveStatus::kNotConverged;
+      summary_.message = "not converged: the backend's own test passed, but the true relative residual is " +
+                         format_g(r) + ", above the tolerance " + format_g(options_.tolerance) + " (after " +
+                         std::to_string(rounds) + " refinement round" + (rounds == 1 ? "" : "s") + ")";
+    }
+  };
+  // X scaled back can lose its bits below the normal doubles (a net of 1e-315: the scaled system
+  // was solved to 6.5e-16, the X returned has 1.8e-7; 1e30 x = 1e-300: x = 1e-330 is 0, and
+  // judged in scale as 0 it read "numerically singular"): then the residual reported and the
+  // verdict are those of the X returned, and the reason is said.
+  const auto underflowed = [&] {
+    for (Eigen::Index c = 0; c < 3; ++c) {
+      if (e[std::size_t(c)] == 0) continue;
+      const auto x = X.col(c).array().abs();
+      if ((x > 0 && x < std::numeric_limits<double>::min()).any()) return true;
+      if (x.maxCoeff() == 0 && !B.col(c).isZero(0)) return true;
+    }
+    return false;
+  };
+  if (!scaled || !X.allFinite() || !underflowed()) judge_scaled();
+  if (!scaled || !X.allFinite() || summary_.status == SolveStatus::kFailure) return;
+  const double returned = relative_residual(op_, B, X);
+  if (!std::isfinite(returned) || !(returned > summary_.relative_residual)) return;
+  summary_.relative_residual = returned;
+  const double accepted = exact() ? options_.singular_residual : options_.tolerance;
+  if (summary_.ok() && returned > accepted) {
     summary_.status = SolveStatus::kFailure;
-    summary_.message = "the solution is not finite (overflow)";
-    return;
-  }
-  summary_.relative_residual = r;
-  if (r > options_.tolerance) {
-    summary_.status = SolveStatus::kNotConverged;
-    summary_.message = "not converged: the backend's own test passed, but the true relative residual is " +
-                       format_g(r) + ", above the tolerance " + format_g(options_.tolerance) + " (after " +
-                       std::to_string(rounds) + " refinement round" + (rounds == 1 ? "" : "s") + ")";
+    summary_.message = "the X returned has the relative residual " + format_g(returned) + ", above " +
+                       format_g(accepted) +
+                       ", where the system scaled by powers of two met it: X lies below the range of the doubles "
+                       "(underflow)";
   }
 }
 

@@ -136,7 +136,7 @@ class Cholmod : public LinearSolver {
       summary.message = "cholmod_factorize failed, status " + std::to_string(common_.status);
       return SolveStatus::kFailure;
     }
-    if (!supernodal_) return judge_ldlt_diagonal(summary);
+    if (!supernodal_) return judge_ldlt_diagonal(*op.matrix, summary);
     return SolveStatus::kSuccess;
   }
 
@@ -171,23 +171,30 @@ class Cholmod : public LinearSolver {
   // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does, and name
   // the first one's column as the supernodal message does (LLᵀ would have stopped there: the pivots
   // before it are those of a definite leading block).
-  SolveStatus judge_ldlt_diagonal(SolveSummary& summary) const {
+  // A pivot is zero below 1e-13 of its own diagonal entry of A (of the largest pivot where that
+  // entry is 0), as in eigen-ldlt: a test a diagonal scaling D A D does not change.
+  SolveStatus judge_ldlt_diagonal(const Eigen::SparseMatrix<double>& A, SolveSummary& summary) const {
     const auto* p = static_cast<const int*>(factor_->p);
     const auto* x = static_cast<const double*>(factor_->x);
-    double scale = 0;
-    for (size_t j = 0; j < factor_->n; ++j) scale = std::max(scale, std::abs(x[p[j]]));
+    const auto* perm = static_cast<const int*>(factor_->Perm);
+    const Eigen::VectorXd diagonal = A.diagonal().cwiseAbs();
+    double largest = 0;
+    for (size_t j = 0; j < factor_->n; ++j) largest = std::max(largest, std::abs(x[p[j]]));
     long zero = 0, negative = 0;
     size_t first_zero = factor_->n, first_negative = factor_->n;
     for (size_t j = 0; j < factor_->n; ++j) {
       const double d = x[p[j]];
-      if (std::abs(d) <= 1e-13 * scale) {
+      const double a = diagonal(perm ? perm[j] : Eigen::Index(j));
+      if (std::abs(d) <= 1e-13 * (a > 0 ? a : largest)) {
         if (zero++ == 0) first_zero = j;
       } else if (d < 0) {
         if (negative++ == 0) first_negative = j;
       }
     }
     if (zero) {
-      summary.message = std::to_string(zero) + " zero pivot(s) in D, the first at " + column_of_pivot(first_zero);
+      summary.message = std::to_string(zero) +
+                        " zero pivot(s) in D (below 1e-13 of their diagonal entry), the first at " +
+                        column_of_pivot(first_zero);
       return SolveStatus::kSingular;
     }
     if (negative) {

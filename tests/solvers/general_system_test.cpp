@@ -1,6 +1,7 @@
 // Backends on general systems from outside coons (solvers/general_system.h).
 #include "solvers/general_system.h"
 
+#include <array>
 #include <catch2/catch.hpp>
 #include <random>
 
@@ -247,6 +248,94 @@ TEST_CASE("run_general_system: eigen-lu calls a zero pivot singular, not structu
   CHECK(run.reason ==
         "SparseLU: a zero pivot at elimination step 2 (of the column-permuted matrix): singular, in its "
         "values or in its pattern");
+}
+
+TEST_CASE("run_general_system: a solution beyond the doubles above or below is a failure with its reason",
+          "[solvers]") {
+  // 1e30 x = 1e-300 (x = 1e-330 is 0 in doubles) gave success with a relative residual of 1;
+  // 1e300 x = 1e-20 (balanced; x = 1e-320 is subnormal) success with 1.1e-5; 1e-300 x = 1e10
+  // (balanced; x = 1e310 overflows) success with no numbers at all.
+  struct Case {
+    double a, b;
+    const char* reason;
+  };
+  for (const Case& c :
+       {Case{1e30, 1e-300, "underflow"}, Case{1e300, 1e-20, "underflow"}, Case{1e-300, 1e10, "overflow"}}) {
+    const Eigen::SparseMatrix<double> A = sparse_of(Eigen::MatrixXd::Constant(1, 1, c.a));
+    const Eigen::MatrixXd B = Eigen::MatrixXd::Constant(1, 1, c.b);
+    const GeneralSystem system = system_of(A, B, true);
+    int failed = 0;
+    for (const SolverInfo& info : available_solvers()) {
+      const GeneralRun run = run_general_system(info, system, SolverOptions{});
+      INFO(c.a << " x = " << c.b << ", " << info.name << ": " << run.status_name() << " " << run.reason);
+      if (run.skipped) continue;
+      CHECK_FALSE(run.ok());
+      CHECK(run.reason.find(c.reason) != std::string::npos);
+      if (run.relative_residual) CHECK(*run.relative_residual > 1e-6);
+      ++failed;
+    }
+    CHECK(failed >= 8);
+  }
+}
+
+TEST_CASE("relative_residual: b is not lost to cancellation in b - A x", "[solvers]") {
+  // [[1, 1], [1, 1]] x = (1, 2) has no solution; CG's iterate x = (-c, c), c = 2^105, has A x = 0,
+  // so the residual is b itself. Formed as b, then minus x_j times column j, it was (1 + c) - c = 0.
+  const Eigen::SparseMatrix<double> A = sparse_of(Eigen::MatrixXd::Ones(2, 2));
+  const Eigen::MatrixXd B = Eigen::Vector2d(1, 2);
+  const double c = std::ldexp(1.0, 105);
+  const Eigen::MatrixXd X = Eigen::Vector2d(-c, c);
+  CHECK(relative_residual(A, X, B) == 1);
+  CHECK(backward_error(A, X, B) == Approx(2 / (2 * c + 2)).epsilon(1e-12));
+}
+
+TEST_CASE(
+    "run_general_system: a pivot is small against its own diagonal entry so a scaled regular matrix is not singular",
+    "[solvers]") {
+  // diag(1, 1e-20) and a grid Laplacian scaled by 10^(-8..8) row and column (D L D) were called
+  // singular by eigen-ldlt, eigen-llt and cholmod-simplicial: a pivot below 1e-13 of the largest
+  // one counted as zero. [[1, 1], [1, 1 + 1e-15]] is singular whatever the scaling.
+  const int k = 8, n = k * k;
+  std::vector<Eigen::Triplet<double>> t;
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> u(-8, 8);
+  Eigen::VectorXd d(n);
+  for (int i = 0; i < n; ++i) d(i) = std::pow(10.0, u(rng));
+  for (int i = 0; i < k; ++i)
+    for (int j = 0; j < k; ++j) {
+      const int p = i * k + j;
+      t.emplace_back(p, p, 4 * d(p) * d(p));
+      if (i > 0) t.emplace_back(p, p - k, -d(p) * d(p - k));
+      if (i + 1 < k) t.emplace_back(p, p + k, -d(p) * d(p + k));
+      if (j > 0) t.emplace_back(p, p - 1, -d(p) * d(p - 1));
+      if (j + 1 < k) t.emplace_back(p, p + 1, -d(p) * d(p + 1));
+    }
+  Eigen::SparseMatrix<double> dld(n, n);
+  dld.setFromTriplets(t.begin(), t.end());
+  const Eigen::SparseMatrix<double> diagonal = sparse_of(Eigen::Vector2d(1, 1e-20).asDiagonal());
+  for (const Eigen::SparseMatrix<double>* A : std::array<const Eigen::SparseMatrix<double>*, 2>{&diagonal, &dld}) {
+    const Eigen::MatrixXd B = *A * Eigen::VectorXd::Ones(A->rows());
+    const GeneralSystem system = system_of(*A, B, true);
+    for (const char* name : {"eigen-ldlt", "eigen-llt", "cholmod-simplicial", "cholmod"}) {
+      const SolverInfo* info = find_solver(name);
+      if (info == nullptr) continue;  // (a build without SuiteSparse)
+      const GeneralRun run = run_general_system(*info, system, SolverOptions{});
+      INFO(A->rows() << " rows, " << name << ": " << run.status_name() << " " << run.reason);
+      REQUIRE(run.ok());
+      // exact for the diagonal; for D L D, Cholesky's componentwise error is bounded by |Lᵀ||L|, not |A|
+      CHECK(*run.backward_error < (A->rows() == 2 ? 1e-15 : 1e-8));
+    }
+  }
+  // [[1, 1], [1, 1 + 1e-15]]: the second pivot is 1e-15 of its diagonal entry
+  const Eigen::SparseMatrix<double> ones = sparse_of((Eigen::MatrixXd(2, 2) << 1, 1, 1, 1 + 1e-15).finished());
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Ones(2, 1);
+  for (const char* name : {"eigen-ldlt", "cholmod-simplicial"}) {
+    const SolverInfo* info = find_solver(name);
+    if (info == nullptr) continue;
+    const GeneralRun run = run_general_system(*info, system_of(ones, b, true), SolverOptions{});
+    INFO(name << ": " << run.reason);
+    CHECK(run.status == SolveStatus::kSingular);
+  }
 }
 
 TEST_CASE("Krylov backends: a zero right-hand-side column adds no iterations", "[solvers]") {

@@ -107,6 +107,28 @@ TEST_CASE("every solver: a sweep member scaled by 2^-600 gives X scaled alike", 
   CHECK(checked + 2 >= available_solvers().size());  // all but fast5 and separable-banded
 }
 
+TEST_CASE("every solver: a solution below the normal doubles is a failure not success", "[solvers]") {
+  // A net scaled to 1e-315: the system scaled by powers of two was solved to 6.5e-16, but the X
+  // returned, whose entries are subnormal, has a relative residual of 1.8e-7, and cg said success.
+  // At 2^-1065 an entry of X keeps about 9 bits.
+  const MaskSystem s = spd_system();
+  const Eigen::MatrixX3d B = times_power_of_two(s.B, -1065);
+  std::size_t failed = 0;
+  for (const SolverInfo& info : available_solvers()) {
+    Eigen::MatrixX3d X;
+    const SolveSummary summary = make_solver(info.name)->compute_and_solve(operator_of(s), B, X);
+    INFO(info.name << ": " << summary.brief_report());
+    if (summary.status == SolveStatus::kNotApplicable) {
+      CHECK(may_decline(info.name));
+      continue;
+    }
+    CHECK(summary.status != SolveStatus::kSuccess);
+    CHECK(summary.relative_residual > 1e-6);  // that of the X returned
+    if (summary.status == SolveStatus::kFailure && summary.message.find("underflow") != std::string::npos) ++failed;
+  }
+  CHECK(failed >= 10);
+}
+
 TEST_CASE("relative_residual: tiny and huge columns give the residual of the unscaled system", "[solvers]") {
   const MaskSystem s = assemble_mask_system(make_random_net(9, 11, 31), alpha_mask(0.1));
   const LinearOperator op = operator_of(s);
