@@ -4,6 +4,8 @@
 #include <chrono>
 #include <cmath>
 #include <map>
+#include <optional>
+#include <string>
 #include <utility>
 #include <vector>
 
@@ -182,7 +184,8 @@ class TriSearch {
   AlphaSearchSummary run() {
     const auto start = std::chrono::steady_clock::now();
     if (!scan() && !flat() && !on_bound()) refine();
-    s_.failed_intervals = detail::failed_runs(log_);  // runs of failures, as the α searches give them
+    // failed evaluations, and a verdict resting on one (failed_region), as the α searches judge them
+    detail::judge_failures(s_, log_);
     s_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     s_.evaluator = "factorize and solve";
     return s_;
@@ -194,7 +197,10 @@ class TriSearch {
     ++s_.evaluations;
     s_.solves += with_derivative ? 2 : 1;
     log_.emplace_back(c, e.ok());
-    if (!e.ok() && s_.failed_evaluations++ == 0) s_.first_failure = e.summary.status;
+    if (!e.ok() && first_failure_.empty()) {
+      s_.first_failure = e.summary.status;
+      first_failure_ = "at " + solvers::format_g(c) + ": " + e.summary.brief_report();
+    }
     return e;
   }
 
@@ -221,31 +227,40 @@ class TriSearch {
           grid_[i].value <= grid_[i + 1].value)
         ++s_.local_minima;
     s_.value = grid_[best_].value;
-    if (s_.failed_evaluations > 0) {
-      s_.status = SearchStatus::kFailedRegion;
-      s_.message = std::to_string(s_.failed_evaluations) + " scan point(s) could not be solved; no optimum is claimed";
-      return true;
-    }
+    for (const auto& e : grid_)
+      if (e.ok()) lo_ = std::min(lo_, e.value), hi_ = std::max(hi_, e.value);
+    // A point that could not be solved (a singular member) is skipped, as in the α searches; only
+    // a verdict that rests on it is withheld (judge_failures). Every failure made it failed_region,
+    // also far from the optimum.
+    const int failed = int(std::count_if(grid_.begin(), grid_.end(), [](const auto& e) { return !e.ok(); }));
+    if (failed > 0)
+      s_.message =
+          std::to_string(failed) + " scan point(s) could not be solved and were skipped (first " + first_failure_ + ")";
     return false;
   }
 
-  // The objective's natural scale: its value on the frame filled with the boundary's centroid.
-  double scale() const {
-    TriNet filled = frame_;
-    const Eigen::RowVector3d centroid = frame_.points.colwise().mean();
-    for (int k = 1; k <= frame_.n - 2; ++k)
-      for (int j = 1; j <= frame_.n - 1 - k; ++j) filled.at(frame_.n - k - j, j, k) = centroid;
-    return std::abs(tri_objective_value(filled, objective_));
-  }
-
+  // Flat: the range is at rounding level, as the α searches judge it (search_run.h): rounding
+  // errors of ε·diag in the net reach an energy of derivative order k amplified by nᵏ, so the floor
+  // is 1e-16·diag²·n^(2k) (order 0 for the discrete energies); the mean squared distance to a
+  // target, 1e-2·diag² per unit weight. Measured against the frame filled with its centroid, whose
+  // energy is of the size of the boundary, a planar triangle with bumps of 5e-7 read as flat.
   bool flat() {
-    double lo = HUGE_VAL, hi = -HUGE_VAL;
-    for (const auto& e : grid_) lo = std::min(lo, e.value), hi = std::max(hi, e.value);
-    const double size = std::max({std::abs(lo), std::abs(hi), scale()});
-    if (hi - lo > options_.flat_tolerance * size && tri::interior_size(frame_.n) > 0) return false;
+    const Eigen::Vector3d box = (frame_.points.colwise().maxCoeff() - frame_.points.colwise().minCoeff()).transpose();
+    const double diag = box.norm(), n = std::max(frame_.n, 1);
+    floor_ = 0;
+    for (const auto& [term, weight] : objective_.terms) {
+      const int order = term == TriTerm::kDirichlet                              ? 1
+                        : term == TriTerm::kThinPlate || term == TriTerm::kTwist ? 2
+                                                                                 : 0;
+      floor_ +=
+          weight * (term == TriTerm::kTarget ? 1e-2 * diag * diag : 1e-16 * diag * diag * std::pow(n, 2.0 * order));
+    }
+    const double size = std::max({std::abs(lo_), std::abs(hi_), floor_});
+    if (hi_ - lo_ > options_.flat_tolerance * size && tri::interior_size(frame_.n) > 0) return false;
     s_.flat = true;
     s_.status = SearchStatus::kFlat;
     s_.local_minima = 0;  // dips of rounding noise are no minima
+    s_.message = "the objective does not depend on c over the bounds";
     return true;
   }
 
@@ -264,58 +279,63 @@ class TriSearch {
 
   bool fail(const TriEvaluation& e) {
     s_.status = SearchStatus::kFailedRegion;
-    s_.message = "an evaluation near the optimum failed: " + e.summary.brief_report();
+    s_.message = "an evaluation next to the lowest one failed, at " + solvers::format_g(e.parameter) + ": " +
+                 e.summary.brief_report() + "; no optimum is claimed";
     return true;
   }
 
-  // Secant steps on f′ = 0 in [a, b] with f′(a) < 0 < f′(b), a bisection whenever the previous step
-  // did not halve the bracket (so it halves at least every two steps); golden section on the
-  // values when the derivative does not change sign there.
+  // From the best scan point g downhill, inside its neighbours' bracket: where f′(g) < 0 a local
+  // minimum below f(g) lies in (g, b), since f(b) ≥ f(g), or f grows without bound at a singular
+  // member before b. The bracket [lo, hi] keeps f′(lo) < 0 with f(lo) ≤ f(g), and at hi f′ > 0,
+  // or f ≥ f(lo); each step is a secant on f′ where both ends have a slope of
+  // opposite signs, else a bisection (at least every other step). Mirrored where f′(g) > 0. At the
+  // end the slope decides: not_converged where it has not vanished. (Golden section on the values
+  // of [a, b], as before, crossed the singular members c*ₙ inside a wide bracket and reported a
+  // point 0.03 from the minimum as success.)
   void refine() {
     const int k = int(grid_.size());
-    double a = grid_[std::max(best_ - 1, 0)].parameter, b = grid_[std::min(best_ + 1, k - 1)].parameter;
-    TriEvaluation ea = evaluate(a, true), eb = evaluate(b, true);
-    if (!ea.ok()) return void(fail(ea));
-    if (!eb.ok()) return void(fail(eb));
+    const TriEvaluation& left = grid_[std::max(best_ - 1, 0)];
+    const TriEvaluation& right = grid_[std::min(best_ + 1, k - 1)];
+    const double a = left.parameter, b = right.parameter;
+    if (!left.ok() || !right.ok()) return void(fail(left.ok() ? right : left));  // the bracket rests on it
+    TriEvaluation g = evaluate(grid_[best_].parameter, true);
+    if (!g.ok()) return void(fail(g));
+    const double direction = g.derivative < 0 ? 1 : -1;  // downhill
     const double tolerance = options_.parameter_tolerance * (options_.upper - options_.lower);
-    TriEvaluation best = grid_[best_];
-    if (ea.derivative < 0 && eb.derivative > 0) {
-      bool bisect = false;
-      for (int it = 0; it < 2 * options_.max_iterations && eb.parameter - ea.parameter > tolerance; ++it) {
-        const double lo = ea.parameter, hi = eb.parameter;
-        double c = hi - eb.derivative * (hi - lo) / (eb.derivative - ea.derivative);
-        if (bisect || !(c > lo && c < hi)) c = (lo + hi) / 2;
-        const TriEvaluation e = evaluate(c, true);
-        if (!e.ok()) return void(fail(e));
-        if (e.value < best.value) best = e;
-        if (e.derivative == 0) break;
-        (e.derivative < 0 ? ea : eb) = e;
-        bisect = !bisect && eb.parameter - ea.parameter > (hi - lo) / 2;
+    TriEvaluation lo = g;
+    std::optional<TriEvaluation> hi;  // with its slope when it was solved
+    double hi_at = direction > 0 ? b : a;
+    bool bisect = false;
+    for (int it = 0;
+         it < 4 * options_.max_iterations && lo.derivative != 0 && std::abs(hi_at - lo.parameter) > tolerance; ++it) {
+      double c = 0.5 * (lo.parameter + hi_at);
+      if (!bisect && hi && hi->derivative * lo.derivative < 0) {
+        const double secant = hi_at - hi->derivative * (hi_at - lo.parameter) / (hi->derivative - lo.derivative);
+        if (secant > std::min(lo.parameter, hi_at) && secant < std::max(lo.parameter, hi_at)) c = secant;
       }
-    } else {
-      const double g = (std::sqrt(5.0) - 1) / 2;
-      for (int it = 0; it < options_.max_iterations && b - a > tolerance; ++it) {
-        const double x1 = b - g * (b - a), x2 = a + g * (b - a);
-        const TriEvaluation e1 = evaluate(x1, false), e2 = evaluate(x2, false);
-        if (!e1.ok()) return void(fail(e1));
-        if (!e2.ok()) return void(fail(e2));
-        if (e1.value < best.value) best = e1;
-        if (e2.value < best.value) best = e2;
-        if (e1.value < e2.value)
-          b = x2;
-        else
-          a = x1;
+      const double width = std::abs(hi_at - lo.parameter);
+      TriEvaluation e = evaluate(c, true);
+      if (!e.ok()) return void(fail(e));  // (judge_failures would withhold the optimum anyway)
+      if (e.value <= lo.value && e.derivative * direction < 0) {
+        lo = e;
+      } else {
+        hi_at = c;
+        hi = e;
+        if (e.derivative == 0 && e.value <= lo.value) lo = e;
       }
+      bisect = !bisect && std::abs(hi_at - lo.parameter) > width / 2;
     }
-    if (ea.ok() && ea.value < best.value) best = ea;
-    if (eb.ok() && eb.value < best.value) best = eb;
-    s_.parameter = best.parameter;
-    s_.value = best.value;
+    s_.parameter = lo.parameter;
+    s_.value = lo.value;
     s_.status = SearchStatus::kSuccess;
-    // the refinement can end on a bound (the scan's best point there, its slope not pointing out)
     const double edge = 1e-7 * (options_.upper - options_.lower);
-    if (std::abs(best.parameter - options_.lower) <= edge || std::abs(best.parameter - options_.upper) <= edge)
-      s_.at_bound = true;
+    s_.at_bound = std::abs(lo.parameter - options_.lower) <= edge || std::abs(lo.parameter - options_.upper) <= edge;
+    // a minimum: the slope vanishes on the scale of the scan's variation (as the α searches test it)
+    if (!s_.at_bound && std::abs(lo.derivative) * (b - a) > 1e-6 * std::max(hi_ - lo_, floor_)) {
+      s_.status = SearchStatus::kNotConverged;
+      s_.message += std::string(s_.message.empty() ? "" : "; ") + "the refinement stopped where the slope is " +
+                    solvers::format_g(lo.derivative) + ", not zero";
+    }
   }
 
   const TriNet& frame_;
@@ -325,6 +345,9 @@ class TriSearch {
   AlphaSearchSummary s_;
   std::vector<TriEvaluation> grid_;
   std::vector<std::pair<double, bool>> log_;  //!< every evaluation: (c, succeeded)
+  std::string first_failure_;                 //!< where the first failed evaluation was, and why
+  double lo_ = HUGE_VAL, hi_ = -HUGE_VAL;     //!< the lowest and highest value of the solved scan points
+  double floor_ = 0;                          //!< the objective's rounding floor (flat())
   int best_ = 0;
 };
 

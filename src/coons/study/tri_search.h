@@ -6,10 +6,11 @@
 // more with the same factorisation: A·∂X/∂c = tri_mask_sensitivity_rhs (one extra solve); the energies
 // are quadratic forms Q, so dQ(P)/dc = [Q(P + s·∂P) − Q(P − s·∂P)]/(2s) exactly (polarisation, any
 // s > 0), and the target term is differentiated by the chain rule through the sampled surface.
-// The search scans a grid, reports a flat objective (relative range ≤ flat_tolerance of the
-// objective's scale) or an optimum on a bound (the derivative points outward) as such, and refines
-// the best scan point by a safeguarded secant iteration on f′ = 0 inside the bracket of its
-// neighbours. Default bounds: [−1/6 − 1/(4(n−3)), 1/3] (n ≥ 4; for n = 3 the n = 4 value −5/12):
+// The search scans a grid (a singular member is a failed point, skipped unless the verdict rests
+// on it), reports a flat objective (range at the objective's rounding floor) or an optimum on a
+// bound (the derivative points outward) as such, and refines the best scan point downhill inside
+// the bracket of its neighbours by secant steps on f′ = 0 and bisections, to a vanishing slope.
+// Default bounds: [−1/6 − 1/(4(n−3)), 1/3] (n ≥ 4; for n = 3 the n = 4 value −5/12):
 // halfway between the singular member c*ₙ = −1/6 − 1/(2(n−3)) and the quadratic-precision member
 // −1/6, up to 1/3; no member in (c*ₙ, 1/3] is singular for n = 4 … 20 (tests/tri/tri_solve_test.cpp).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
