@@ -44,6 +44,7 @@ TriSweepArgs tri_sweep_args(const SweepRequest& r) {
   if (r.to_option->count() > 0) a.to = r.to;
   if (r.parameter != SweepParameter::kAlpha) a.rejected = "--parameter";
   if (!r.target.empty()) a.rejected = "--target";
+  if (r.threads_option->count() > 0) a.rejected = "--threads";  // (as solve and export refuse it)
   return a;
 }
 

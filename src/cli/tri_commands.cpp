@@ -233,6 +233,13 @@ int run_tri_sweep(const TriSweepArgs& a) {
   const double from = a.from.value_or(lower), to = a.to.value_or(upper);
   if (!(std::isfinite(from) && std::isfinite(to) && from < to))
     throw InputError("command line", "--from/--to", "need finite values with from < to");
+  // |c| ≤ 1e60, as solve and search-alpha require: beyond it the weights overflow in the solvers'
+  // products, and regular systems read "singular" (c = 1e200) or c itself overflowed (±1.7e308)
+  if (std::max(std::abs(from), std::abs(to)) > kMaxAlpha)
+    throw InputError("command line", "--from/--to",
+                     fmt::format("values must lie in [-{0:g}, {0:g}] (beyond, the mask's weights overflow in the "
+                                 "solvers' products)",
+                                 kMaxAlpha));
   check_target_samples(*a.global, a.samples);
   TriObjective target_only;  // no terms: the evaluations only solve; the target gives rms_target
   target_only.target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);

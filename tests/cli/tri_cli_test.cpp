@@ -223,6 +223,25 @@ TEST_CASE("coons sweep: a triangle gives NAME.sweep-c.jsonl, one line per c", "[
   CHECK(count == 5);
 }
 
+TEST_CASE("coons sweep: on a triangle --threads and values of c beyond 1e60 are refused as solve refuses them",
+          "[cli][tri]") {
+  // --threads was ignored with exit 0, and c = 1e200 gave "singular" lines for regular systems
+  // (the weights overflow), c = 1.7e308 a null c
+  TempDir dir;
+  const std::string file = kTriangles + "dome_half.json";
+  for (const char* options : {"--threads 2", "--from 1e200 --to 1e300", "--from -1.7e308 --to 1.7e308"}) {
+    const CommandResult r =
+        run_coons("sweep '" + file + "' --count 2 " + options + " --out '" + dir.path.string() + "'");
+    INFO(options << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::StartsWith("error: command line: --") && Catch::Contains("--"));
+  }
+  CHECK_FALSE(fs::exists(dir.file("dome_half.sweep-c.jsonl")));
+  CHECK(run_coons("sweep '" + file + "' --count 2 --from -1e60 --to 1e60 --out '" + dir.path.string() + "'").status !=
+        2);
+}
+
 TEST_CASE("coons study: a triangular file among the inputs gets its rows in results.json and report.md", "[cli][tri]") {
   const TempDir dir;
   const fs::path out = dir.path / "study";
