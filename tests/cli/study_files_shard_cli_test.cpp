@@ -247,3 +247,59 @@ TEST_CASE("coons study FILES --merge: study degrees that are not the results' de
     CHECK_FALSE(fs::exists(dir.file("merged")));
   }
 }
+
+TEST_CASE("coons study FILES --merge: a result no search can have written is one error line naming it", "[cli]") {
+  // The key covers a record's inputs, not its results: an edited c* of 5 (outside the bounds), a
+  // value "nan" or -3, flat beside a number, at_bound on an interior optimum and an alpha* of 7 were
+  // merged into the report as they stood, exit 0 (the family merge refused the same).
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons("study " + quoted(kData + "/boundaries/dome.json") + " " +
+                    quoted(kData + "/triangles/dome_half.json") + " --degrees 3 --shard 0/1 --out " + quoted(shards))
+              .status == 0);
+  const std::string file = shards + "/shard-0-of-1.jsonl";
+  const std::vector<json> records = read_json_lines(file);
+  REQUIRE(records.size() == 2);
+  const std::size_t tri = records[0]["result"]["triangles"].empty() ? 1 : 0;
+  const std::string cell = "/result/triangles/0/rows/0/cells/0/c/";
+  struct Edit {
+    std::size_t record;
+    std::string at;
+    json value;
+    std::string error;
+  };
+  const std::vector<Edit> edits = {
+      {1 - tri, "/result/shapes/0/optima/0/alpha/parameter", 7,
+       "dome, thin_plate, alpha: 7 is outside the search's bounds"},
+      {tri, cell + "parameter", 5, "dome_half, thin_plate, degree 6, c: 5 is outside the search's bounds"},
+      {tri, cell + "value", "nan", "c: the value at the optimum, nan, is no objective value"},
+      {tri, cell + "value", -3, "c: the value at the optimum, -3, is no objective value"},
+      {tri, cell + "flat", true, "c: flat is true but the status is 'success'"},
+      {tri, cell + "at_bound", true, "as at_bound says"}};
+  {  // as written, the records merge
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("ok")));
+    INFO(merged.err);
+    REQUIRE(merged.status == 0);
+  }
+  for (const Edit& e : edits) {
+    {
+      std::ofstream out(file, std::ios::binary | std::ios::trunc);
+      for (std::size_t k = 0; k < records.size(); ++k) {
+        json r = records[k];
+        if (k == e.record) {
+          REQUIRE(r.contains(json::json_pointer(e.at)));
+          r[json::json_pointer(e.at)] = e.value;
+        }
+        out << r.dump() << '\n';
+      }
+    }
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+    INFO(e.at << " = " << e.value.dump() << "\n" << merged.err);
+    CHECK(merged.status == 2);
+    CHECK(merged.out.empty());
+    CHECK(merged.err.find("shard-0-of-1.jsonl: result: malformed: ") != std::string::npos);
+    CHECK(merged.err.find(e.error) != std::string::npos);
+    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir.file("merged")));
+  }
+}

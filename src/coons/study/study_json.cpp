@@ -1,10 +1,13 @@
 #include "coons/study/study_json.h"
 
+#include <fmt/format.h>
+
 #include <cmath>
 #include <limits>
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
+#include "coons/study/tri_search.h"
 
 namespace coons {
 
@@ -123,6 +126,27 @@ AlphaSearchSummary summary_of(const json& j) {
   return s;
 }
 
+// What a search can have written (the shard key covers a part's inputs, not its results: an edited
+// c* of 5, a value "nan" or -3, "flat" beside a number and "at_bound" on an interior point were
+// merged into the report as they stood). `lower`, `upper`: the bounds the study searched.
+void check_search(const AlphaSearchSummary& s, double lower, double upper, const std::string& what) {
+  const auto bad = [&](const std::string& why) { throw std::invalid_argument(what + ": " + why); };
+  if (s.flat != (s.status == SearchStatus::kFlat))
+    bad(fmt::format("flat is {} but the status is '{}'", s.flat, to_string(s.status)));
+  if (!s.parameter) {
+    if (s.at_bound) bad("at_bound without an optimum");
+    return;
+  }
+  if (s.flat) bad(fmt::format("a flat objective has no optimum, yet one is given ({})", *s.parameter));
+  const double p = *s.parameter;
+  if (!(p >= lower && p <= upper)) bad(fmt::format("{} is outside the search's bounds [{}, {}]", p, lower, upper));
+  if (!(std::isfinite(s.value) && s.value >= 0))
+    bad(fmt::format("the value at the optimum, {}, is no objective value (finite and at least 0)", s.value));
+  const double edge = 1e-7 * (upper - lower);  // as the searches decide at_bound
+  if (s.at_bound && !(p - lower <= edge || upper - p <= edge))
+    bad(fmt::format("{} is not on a bound of [{}, {}], as at_bound says", p, lower, upper));
+}
+
 json boundary(const Boundary& b) {
   return {{"name", b.name},
           {"m", b.m},
@@ -223,6 +247,12 @@ ShapeEntry shape_of(const json& j) {
     x.coons = num_of(o.at("coons"));
     x.laplace = num_of(o.at("laplace"));
     if (!o.at("weight").is_null()) x.weight = summary_of(o.at("weight"));
+    const std::string what = s.boundary.name + ", " + x.objective;
+    const AlphaSearchOptions alpha_bounds;  // the study's α searches use the default bounds
+    check_search(x.alpha, alpha_bounds.lower, alpha_bounds.upper, what + ", alpha");
+    if (s.boundary.m > 1 && s.boundary.n > 1)
+      check_search(x.mu, 0, 1000.0 * s.boundary.m * s.boundary.n, what + ", mu");
+    if (x.weight) check_search(*x.weight, 0, 1, what + ", weight");
     s.optima.push_back(std::move(x));
   }
   s.weight_solver = j.at("weight_solver").get<std::string>();
@@ -254,8 +284,14 @@ DegreeLawEntry law_of(const json& j) {
   DegreeLawEntry l;
   l.boundary = j.at("boundary").get<std::string>();
   l.objective = j.at("objective").get<std::string>();
-  for (const json& c : j.at("cells"))
+  const AlphaSearchOptions alpha_bounds;
+  for (const json& c : j.at("cells")) {
     l.cells.push_back({int_of(c.at("degree"), "degree", 1), summary_of(c.at("alpha")), summary_of(c.at("mu"))});
+    const DegreeCell& cell = l.cells.back();
+    const std::string what = fmt::format("{}, {}, degree {}", l.boundary, l.objective, cell.degree);
+    check_search(cell.alpha, alpha_bounds.lower, alpha_bounds.upper, what + ", alpha");
+    check_search(cell.mu, 0, 1000.0 * cell.degree * cell.degree, what + ", mu");
+  }
   for (const json& p : j.at("interior"))
     l.interior.emplace_back(int_of(p.at(0), "interior degree", 1), num_of(p.at(1)));
   if (!j.at("fit").is_null()) {
@@ -319,9 +355,17 @@ TriStudyEntry triangle_of(const json& j) {
   for (const json& r : j.at("rows")) {
     TriStudyRow row;
     row.objective = r.at("objective").get<std::string>();
-    for (const json& c : r.at("cells"))
+    for (const json& c : r.at("cells")) {
       row.cells.push_back({int_of(c.at("degree"), "degree", 1), num_of(c.at("lower")), num_of(c.at("upper")),
                            summary_of(c.at("c")), num_of(c.at("quadratic")), num_of(c.at("laplace"))});
+      const TriStudyCell& cell = row.cells.back();
+      const std::string what = fmt::format("{}, {}, degree {}", e.boundary.name, row.objective, cell.degree);
+      const auto [lower, upper] = default_tri_bounds(cell.degree);
+      if (cell.lower != lower || cell.upper != upper)
+        throw std::invalid_argument(fmt::format("{}: the bounds [{}, {}] are not the study's, [{}, {}]", what,
+                                                cell.lower, cell.upper, lower, upper));
+      check_search(cell.c, lower, upper, what + ", c");
+    }
     e.rows.push_back(std::move(row));
   }
   return e;
