@@ -32,6 +32,9 @@ double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::Matr
 //! elsewhere hides no asymmetry.
 double symmetry_defect(const Eigen::SparseMatrix<double>& A);
 
+//! A success whose componentwise backward error is at least this gets a note (GeneralRun::reason).
+constexpr double kNotedBackwardError = 1e-6;
+
 //! A is treated as symmetric when symmetry_defect(A) is at most this (rounding of written values).
 constexpr double kSymmetryDefectLimit = 1e-14;
 
@@ -41,7 +44,8 @@ struct GeneralRun {
   std::string solver;
   bool skipped = false;  //!< the backend does not apply to this system (reason says why)
   SolveStatus status = SolveStatus::kSuccess;
-  std::string reason;  //!< why skipped, or the backend's message when it did not succeed
+  std::string reason;  //!< why skipped, the backend's message when it did not succeed, or a note on a
+                       //!< success (a componentwise backward error of at least kNotedBackwardError)
   std::optional<double> analyze_seconds, factorize_seconds, solve_seconds;  //!< solve: all blocks
   std::optional<int> iterations;                                            //!< the most over the column blocks
   std::optional<double> relative_residual, backward_error;

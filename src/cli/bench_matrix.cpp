@@ -72,6 +72,7 @@ nlohmann::ordered_json run_to_json(const solvers::GeneralRun& run, const solvers
   j["status"] = run.status_name();
   if (run.skipped) j["reason"] = run.reason;
   if (!run.skipped && !run.ok()) j["message"] = run.reason;
+  if (run.ok() && !run.reason.empty()) j["note"] = run.reason;
   j["seconds"] = {{"analyze", or_null(run.analyze_seconds)},
                   {"factorize", or_null(run.factorize_seconds)},
                   {"solve", or_null(run.solve_seconds)}};

@@ -338,6 +338,22 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("run_general_system: a success with a large componentwise backward error carries a note", "[solvers]") {
+  // cg on diag(1, 1e-20): x2 = 1e-20 for 1 meets the normwise target (residual 1e-20) with a
+  // componentwise backward error of 1, and said only "success"
+  const Eigen::SparseMatrix<double> A = sparse_of(Eigen::Vector2d(1, 1e-20).asDiagonal());
+  const Eigen::MatrixXd B = A * Eigen::VectorXd::Ones(2);
+  const GeneralRun cg = run_general_system(coons::test::backend("cg"), system_of(A, B, true), SolverOptions{});
+  INFO(cg.status_name() << " " << cg.reason);
+  REQUIRE(cg.ok());
+  REQUIRE(*cg.backward_error >= kNotedBackwardError);
+  CHECK(cg.reason.find("componentwise backward error") != std::string::npos);
+  const GeneralRun lu = run_general_system(coons::test::backend("eigen-lu"), system_of(A, B, true), SolverOptions{});
+  REQUIRE(lu.ok());
+  CHECK(*lu.backward_error < kNotedBackwardError);
+  CHECK(lu.reason.empty());  // an accurate success carries none
+}
+
 TEST_CASE("Krylov backends: a zero right-hand-side column adds no iterations", "[solvers]") {
   // A symmetric positive definite matrix: the nonsymmetric one plus its transpose, shifted.
   const Eigen::SparseMatrix<double> N = random_nonsymmetric(60, 9);
