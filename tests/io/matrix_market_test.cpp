@@ -165,6 +165,14 @@ TEST_CASE("read_market_matrix: a bad file names its line and the reason", "[io]"
         "line 2: promises a 2 by 1 general matrix, the file ends at entry (2, 1)");
   CHECK(error_of("%%MatrixMarket matrix array real general\n1 1\n1\n2\n") ==
         "line 4: more values than the size line says");
+  // a NUL byte ended a token where it stood ("3\0junk" read as 3), and a value below the smallest
+  // double read as an explicit 0 where one above the largest is refused; a subnormal value is read
+  CHECK(error_of(coordinate + "2 2 1\n1 1 3" + std::string(1, '\0') + "junk\n") ==
+        "line 3: '3\\0junk' is not a decimal number");
+  CHECK(error_of(coordinate + "2 2 1\n2" + std::string(1, '\0') + "9 1 1\n").find("line 3: expected") == 0);
+  CHECK(error_of(coordinate + "2 2 1\n1 1 1e-400\n") ==
+        "line 3: the value '1e-400' is below the smallest double (it would be read as 0)");
+  CHECK(error_of(coordinate + "2 2 1\n1 1 1e-320\n") == "no error");
 }
 
 TEST_CASE("read_market_matrix: a file that is not Matrix Market is refused by its first line, whatever its size",

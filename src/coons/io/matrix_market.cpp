@@ -286,7 +286,7 @@ std::optional<long long> parse_index(const std::string& token) {
   errno = 0;
   char* end = nullptr;
   const long long v = std::strtoll(token.c_str(), &end, 10);
-  if (token.empty() || *end != '\0' || errno == ERANGE) return std::nullopt;
+  if (token.empty() || *end != '\0' || errno == ERANGE || token.find('\0') != std::string::npos) return std::nullopt;
   return v;
 }
 
@@ -296,10 +296,18 @@ double parse_value(const std::string& path, const std::string& where, const std:
   errno = 0;
   const double v =
       b.field == "integer" ? double(std::strtoll(token.c_str(), &end, 10)) : std::strtod(token.c_str(), &end);
-  // (strtod also reads hexadecimal, '0x10' = 16; Matrix Market values are decimal)
-  if (token.empty() || *end != '\0' || token.find_first_of("xX") != std::string::npos)
+  // (strtod also reads hexadecimal, '0x10' = 16; Matrix Market values are decimal; a NUL byte
+  // ended the number there, "3\0junk" read as 3)
+  if (token.empty() || *end != '\0' || token.find_first_of(std::string("xX\0", 3)) != std::string::npos) {
+    std::string shown;
+    for (const char c : token) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
     throw InputError(path, where,
-                     fmt::format("'{}' is not {}", token, b.field == "integer" ? "an integer" : "a decimal number"));
+                     fmt::format("'{}' is not {}", shown, b.field == "integer" ? "an integer" : "a decimal number"));
+  }
+  // a non-zero value below the smallest double (1e-400) read as an explicit 0, where 1e400 is refused
+  if (b.field != "integer" && errno == ERANGE && v == 0)
+    throw InputError(path, where,
+                     fmt::format("the value '{}' is below the smallest double (it would be read as 0)", token));
   // strtoll clamps an integer beyond 64 bits to its limit and says so only in errno (strtod's
   // ERANGE on underflow is a finite value, and overflow is caught as not finite below)
   if (b.field == "integer" && errno == ERANGE)
