@@ -64,7 +64,8 @@ int run_export(ExportRequest e) {
                      "is written for B-spline boundaries (for a Bézier one: coons surface --vts)");
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
-  if (!e.obj && !e.mtx && !e.cad.any()) {  // the defaults: OBJ, and the system when there is one
+  const bool defaults = !e.obj && !e.mtx && !e.cad.any();
+  if (defaults) {  // the defaults: OBJ, and the system when there is one
     e.obj = true;
     e.mtx = r.method == Method::kAlpha;
   }
@@ -78,6 +79,18 @@ int run_export(ExportRequest e) {
     run = check_stencil_request(input, r, e.boundary);
   else
     check_classical_request(input, r, e.boundary);
+  // A system of no unknowns (degree 1, or a free grid with none) was written as "0 0 0", which no
+  // reader takes (bench-matrix: rows and columns must be at least 1): not by default, and asked
+  // for, bad input.
+  const long long unknowns =
+      run ? (long long)free_points(run->problem).count() : (long long)(b.m - 1) * (long long)(b.n - 1);
+  if (e.mtx && unknowns == 0) {
+    if (!defaults)
+      throw InputError(
+          e.boundary, "--mtx",
+          fmt::format("the {} by {} net has no point to solve for: there is no system to write", b.m + 1, b.n + 1));
+    e.mtx = false;
+  }
   if (e.cad.any()) check_cad_export(e.cad, e.global.force);
   const bool solve_net = e.obj || e.cad.any();
   if (e.obj)

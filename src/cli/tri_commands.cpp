@@ -120,7 +120,14 @@ int run_tri_export(const TriExportArgs& e) {
   const tri::TriBoundary b = read_tri_input(e.boundary, e.net->corner_tolerance);
   const TriRequest r = resolve_tri(*e.net);
   const bool all = !e.obj && !e.mtx && !e.ply && !e.vtu;
-  const bool obj = all || e.obj, mtx = all || e.mtx, ply = all || e.ply, vtu = all || e.vtu;
+  const bool obj = all || e.obj, ply = all || e.ply, vtu = all || e.vtu;
+  // a net of degree 2 or less has no interior: its system of no unknowns ("0 0 0", which no
+  // reader takes) is not written by default, and asked for, bad input
+  const bool unknowns = tri::interior_size(b.n) > 0;
+  if (e.mtx && !unknowns)
+    throw InputError(e.boundary, "--mtx",
+                     fmt::format("a triangle of degree {} has no interior point: there is no system to write", b.n));
+  const bool mtx = (all && unknowns) || e.mtx;
   check_export_options(e.samples, mtx, true, e.prefix);  // a triangle has --method alpha only
   const bool surface = obj || ply || vtu;
   const double sample_bytes = surface ? samples_bytes(e.samples) / 2 : 0.0;  // a triangle holds half the grid

@@ -731,6 +731,31 @@ TEST_CASE("coons export: --method coons without output flags writes the OBJ file
   }
 }
 
+TEST_CASE("coons export: a net with no point to solve for writes no Matrix Market system and refuses --mtx", "[cli]") {
+  // A 2 x 2 net and a triangle of degree 2 were written as "0 0 0", which bench-matrix refuses
+  TempDir dir;
+  const std::string square = dir.write("square.json",
+                                       R"({"name": "square", "bottom": [[0,0,0],[1,0,0]], "top": [[0,1,0],[1,1,0]],
+                    "left": [[0,0,0],[0,1,0]], "right": [[1,0,0],[1,1,0]]})");
+  const std::string triangle =
+      dir.write("triangle.json", R"({"name": "triangle", "type": "triangle", "sides": [[[0,0,0],[0.5,0,0.1],[1,0,0]],
+                          [[1,0,0],[0.5,0.5,0.1],[0,1,0]], [[0,1,0],[0,0.5,0.1],[0,0,0]]]})");
+  for (const std::string& file : {square, triangle}) {
+    const std::string out = dir.file(fs::path(file).stem().string());
+    const CommandResult plain = run_coons("export " + quoted(file) + " --out " + quoted(out));
+    INFO(file << "\n" << plain.err);
+    REQUIRE(plain.status == 0);
+    CHECK(fs::exists(fs::path(out) / (fs::path(file).stem().string() + ".net.obj")));
+    for (const auto& entry : fs::directory_iterator(out)) CHECK(entry.path().extension() != ".mtx");
+    CHECK(json::parse(plain.out).count("matrix_market") == 0);
+    const CommandResult asked = run_coons("export " + quoted(file) + " --mtx --out " + quoted(out + "-mtx"));
+    CHECK(asked.status == 2);
+    CHECK_THAT(asked.err,
+               Catch::StartsWith("error: " + file + ": --mtx: ") && Catch::Contains("there is no system to write"));
+    CHECK_FALSE(fs::exists(out + "-mtx"));
+  }
+}
+
 TEST_CASE("coons solve and sweep: --threads 2 gives the net and the sweep lines of one thread", "[cli]") {
   // Degree 140 (139 × 139 free points): large enough that two threads really run: dst takes
   // min(threads, 139/32), fast min(threads, 139/64) and mg threads levels of 2048 points or more.
