@@ -4,6 +4,7 @@
 // with ribbons also gets the C1 family's weight slider, a triangular boundary the slider of c.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <filesystem>
 #include <fstream>
 #include <memory>
@@ -149,7 +150,9 @@ int run_view(const ViewRequest& r) {
     const bool weight = two.problem && (b.m == file.boundary.m && b.n == file.boundary.n);
 
     phases.start("solve");
-    page.sliders.push_back(alpha_view_slider(b, options, solver, r.alpha.value_or(-0.25)));
+    // (without --alpha the Coons net's -0.25, or the nearest end of --from/--to: the page opened
+    // on a frame outside its slider)
+    page.sliders.push_back(alpha_view_slider(b, options, solver, r.alpha.value_or(std::clamp(-0.25, r.from, r.to))));
     if (!r.alpha)  // open at the thin-plate optimum when there is one
       for (const ViewCurve& c : page.sliders[0].curves)
         if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;

@@ -37,6 +37,22 @@ TEST_CASE("coons view: one page with the optima, refused without --force when it
   CHECK(again.err == "error: " + page + ": --force: exists; give --force to overwrite it\n");
 }
 
+TEST_CASE("coons view: without --alpha the page opens inside its slider's range", "[cli][view]") {
+  // the dome over [0, 0.1] (its thin-plate optimum, about -0.1, outside) opened at alpha = -0.25
+  if (!COONS_HAVE_THREE_JS) {
+    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
+    return;
+  }
+  const TempDir dir;
+  const CommandResult r = run_coons("view " + quoted(kData + "/boundaries/dome.json") + " --from 0 --to 0.1 --out " +
+                                    quoted(dir.file("dome.html")) + " --alphas 5 --samples 5");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const double initial = nlohmann::json::parse(r.out)["initial_alpha"].get<double>();
+  CHECK(initial >= 0);
+  CHECK(initial <= 0.1);
+}
+
 TEST_CASE("coons view: a missing three.js is bad input naming libjs-three, nothing written", "[cli][view]") {
   const TempDir dir;
   const std::string page = dir.file("p.html");

@@ -89,6 +89,15 @@ TEST_CASE("ViewOptions::is_valid: frames, samples, the interval and the curves",
   o.objectives = {"target"};
   CHECK_FALSE(o.is_valid(&why));
   CHECK(why.find("target") != std::string::npos);
+  // frames closer than rounding merge into one: [0, 1e-300] in 5 frames gave a page of 1
+  o = ViewOptions{};
+  o.lower = 0;
+  o.upper = 1e-300;
+  o.frames = 5;
+  CHECK_FALSE(o.is_valid(&why));
+  CHECK(why.find("too narrow for 5 distinct frames") != std::string::npos);
+  o.upper = 1e-6;
+  CHECK(o.is_valid(&why));
 }
 
 TEST_CASE("weight_view_slider: the C1 family keeps both data rings, energies and optima of its frames",

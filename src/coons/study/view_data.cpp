@@ -93,6 +93,11 @@ bool ViewOptions::is_valid(std::string* why) const {
   if (samples < 2 || samples > 257) return fail(fmt::format("samples must be in [2, 257], not {}", samples));
   if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper && lower >= -0.25 && upper <= 0.25))
     return fail("the interval must lie in [-0.25, 0.25] with lower < upper");
+  // frames closer than slider_values' rounding tolerance merge: [0, 1e-300] in 5 gave one frame
+  const double step = (upper - lower) / (frames - 1), merged = 2e-12 * (1 + std::max(std::abs(lower), std::abs(upper)));
+  if (!(step > merged))
+    return fail(fmt::format("the interval [{}, {}] is too narrow for {} distinct frames (their spacing must exceed {})",
+                            lower, upper, frames, merged));
   for (const std::string& name : objectives)
     if (std::isnan(metric_of(NetMetrics{}, name))) return fail(fmt::format("no energy curve for '{}'", name));
   return true;
