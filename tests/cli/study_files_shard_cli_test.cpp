@@ -303,3 +303,41 @@ TEST_CASE("coons study FILES --merge: a result no search can have written is one
     CHECK_FALSE(fs::exists(dir.file("merged")));
   }
 }
+
+TEST_CASE("coons study FILES --merge: a B-spline row no study can have written is one error line naming it", "[cli]") {
+  // The rows of B-spline files were not checked at all: an alpha* of 7, a thin plate of -1 and
+  // 1000 x 1000 control points were merged into report.md and bspline.json, exit 0.
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons("study " + quoted(kData + "/boundaries/bspline_wave.json") + " --degrees 3 --shard 0/1 --out " +
+                    quoted(shards))
+              .status == 0);
+  const std::string file = shards + "/shard-0-of-1.jsonl";
+  const json record = read_json_lines(file).at(0);
+  REQUIRE(record["bspline"].size() == 1);
+  REQUIRE(record["bspline"][0]["searches"][0][0] == "thin_plate");
+  struct Edit {
+    std::string at;
+    json value;
+    std::string error;
+  };
+  const std::vector<Edit> edits = {
+      {"/bspline/0/searches/0/1/parameter", 7, "bspline_wave, thin_plate: 7 is outside the search's bounds [-0.25, 0]"},
+      {"/bspline/0/searches/0/1/flat", true, "bspline_wave, thin_plate: flat is true but the status is"},
+      {"/bspline/0/thin_plate_coons", -1, "bspline_wave, thin_plate_coons: -1 is no energy"},
+      {"/bspline/0/counts/0", 2, "bspline_wave, counts: 2 by 7 control points cannot carry degrees 3 by 2"}};
+  for (const Edit& e : edits) {
+    json edited = record;
+    REQUIRE(edited.contains(json::json_pointer(e.at)));
+    edited[json::json_pointer(e.at)] = e.value;
+    std::ofstream(file, std::ios::binary | std::ios::trunc) << edited.dump() << '\n';
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+    INFO(e.at << " = " << e.value.dump() << "\n" << merged.err);
+    CHECK(merged.status == 2);
+    CHECK(merged.err.find("shard-0-of-1.jsonl: bspline: malformed: " + e.error) != std::string::npos);
+    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(dir.file("merged")));
+  }
+  std::ofstream(file, std::ios::binary | std::ios::trunc) << record.dump() << '\n';
+  CHECK(run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged"))).status == 0);
+}

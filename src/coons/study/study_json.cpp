@@ -7,6 +7,7 @@
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
+#include "coons/study/bspline_search.h"
 #include "coons/study/tri_search.h"
 
 namespace coons {
@@ -448,6 +449,20 @@ void append_bspline_rows(const json& rows, const std::string& where, std::vector
       r.thin_plate_coons = num_of(j.at("thin_plate_coons"));
       r.thin_plate_laplace = num_of(j.at("thin_plate_laplace"));
       for (const json& s : j.at("searches")) r.searches.emplace_back(s.at(0).get<std::string>(), summary_of(s.at(1)));
+      // what the study can have written (the key covers the file, not these): the searches within
+      // their bounds, energies finite and ≥ 0 (NaN where a solve failed), a net of at least
+      // degree + 1 points a side (an α* of 7, a thin plate of -1 and "flat" beside an α merged)
+      const AlphaSearchOptions bounds = default_bspline_search_options();
+      for (const auto& [objective, search] : r.searches)
+        check_search(search, bounds.lower, bounds.upper, r.name + ", " + objective);
+      for (const auto& [value, what] :
+           {std::pair{r.thin_plate_coons, "thin_plate_coons"}, std::pair{r.thin_plate_laplace, "thin_plate_laplace"}})
+        if (!std::isnan(value) && !(std::isfinite(value) && value >= 0))
+          throw std::invalid_argument(
+              fmt::format("{}, {}: {} is no energy (finite and at least 0)", r.name, what, value));
+      if (r.count_u < r.degree_u + 1 || r.count_v < r.degree_v + 1)
+        throw std::invalid_argument(fmt::format("{}, counts: {} by {} control points cannot carry degrees {} by {}",
+                                                r.name, r.count_u, r.count_v, r.degree_u, r.degree_v));
       into->push_back(std::move(r));
     }
   } catch (const json::exception& e) {
