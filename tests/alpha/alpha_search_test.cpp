@@ -288,6 +288,29 @@ TEST_CASE("search_mask_parameter: unsolvable scan points are skipped, not fatal"
   CHECK(*s.parameter == Approx(*search_mask_parameter(g).parameter).margin(1e-6));
 }
 
+TEST_CASE("search_mask_parameter: bounds holding singular alphas give the minimum inside not the upper bound",
+          "[alpha]") {
+  // Over [-1000, 0.25] the bracket of the best scan point (0.25) holds the singular alphas -1 and
+  // -1/2 of degree (3, 3): the line search crossed them and stalled, and the bound 0.25 was
+  // reported as the optimum (at_bound, success) where the objective still falls into the interval.
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  for (const char* name : {"e3", "thin_plate"}) {
+    MaskObjective f(dome, objective_named(name), alpha_only(), backend("eigen-lu"));
+    AlphaSearchOptions wide;
+    wide.lower = -1000;
+    wide.upper = 0.25;
+    const AlphaSearchSummary s = search_mask_parameter(f, wide);
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kSuccess);
+    CHECK_FALSE(s.at_bound);
+    REQUIRE(s.parameter);
+    MaskObjective g(dome, objective_named(name), alpha_only(), backend("eigen-ldlt"));
+    const AlphaSearchSummary reference = search_mask_parameter(g);
+    CHECK(*s.parameter == Approx(*reference.parameter).margin(1e-6));
+    CHECK(s.value == Approx(reference.value).epsilon(1e-9));
+  }
+}
+
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 

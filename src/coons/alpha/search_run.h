@@ -306,13 +306,68 @@ class SearchRun {
     if (no_convergence_) {
       s_.status = SearchStatus::kNotConverged;
       s_.message = "Ceres: " + ceres_message_;
-    } else if (stalled && !s_.at_bound) {
+    } else if (stalled) {
+      // The scan point Ceres could not improve on is an optimum only where its slope vanishes, or,
+      // on a bound, points out of the interval. Where the bracket holds a singular α (a pole of the
+      // objective, with --allow-indefinite bounds) the line search crossed it and stalled, and the
+      // bound α = 1/4 was reported as the optimum where the objective still falls into the interval.
       const auto at = with_derivative(grid_[best_]);
-      if (at.ok() && std::abs(at.derivative) * (b - a) > 1e-6 * std::max(hi_ - lo_, floor_)) {
-        s_.status = SearchStatus::kNotConverged;
-        append("the refinement stalled where the slope is " + solvers::format_g(at.derivative) + ", not zero");
+      const int k = int(grid_.size());
+      const bool outward = (best_ == 0 && at.derivative >= -at.derivative_noise) ||
+                           (best_ == k - 1 && at.derivative <= at.derivative_noise);
+      if (at.ok() && !(s_.at_bound && outward) && !vanishing(at, b - a)) {
+        if (const std::optional<Evaluation> d = refine_downhill(at, ia, ib)) {
+          s_.parameter = d->parameter;
+          s_.value = d->value;
+          s_.at_bound = std::abs(d->parameter - options_.lower) <= edge_tolerance ||
+                        std::abs(d->parameter - options_.upper) <= edge_tolerance;
+        } else {
+          s_.status = SearchStatus::kNotConverged;
+          append("the refinement stalled where the slope is " + solvers::format_g(at.derivative) + ", not zero");
+        }
       }
     }
+  }
+
+  // A slope that vanishes on the scale of the objective's variation over the scan.
+  bool vanishing(const Evaluation& e, double width) const {
+    return std::abs(e.derivative) * width <= 1e-6 * std::max(hi_ - lo_, floor_);
+  }
+
+  // From the scan point g downhill inside the bracket [grid ia, grid ib] to a point where the slope
+  // vanishes, below f(g): where f′(g) < 0, f(b) ≥ f(g) or f grows without bound at a singular α
+  // before b, so such a minimum lies in (g, b). The bracket [lo, hi] keeps f′ pointing downhill at
+  // lo with f(lo) ≤ f(g), and at hi f′ pointing back or f ≥ f(lo); secant steps on f′ where the ends'
+  // slopes differ in sign, else bisection (at least every other step), as the triangle search does.
+  std::optional<Evaluation> refine_downhill(Evaluation g, int ia, int ib) {
+    const double direction = g.derivative < 0 ? 1 : -1;
+    double hi_at = grid_[direction > 0 ? ib : ia].parameter;
+    if (hi_at == g.parameter) return std::nullopt;
+    const double tolerance = options_.parameter_tolerance * (options_.upper - options_.lower);
+    Evaluation lo = std::move(g);
+    std::optional<Evaluation> hi;
+    bool bisect = false;
+    for (int it = 0; it < 4 * options_.max_iterations && std::abs(hi_at - lo.parameter) > tolerance; ++it) {
+      double c = 0.5 * (lo.parameter + hi_at);
+      if (!bisect && hi && hi->derivative * lo.derivative < 0) {
+        const double secant = hi_at - hi->derivative * (hi_at - lo.parameter) / (hi->derivative - lo.derivative);
+        if (secant > std::min(lo.parameter, hi_at) && secant < std::max(lo.parameter, hi_at)) c = secant;
+      }
+      const double width = std::abs(hi_at - lo.parameter);
+      Evaluation e = objective_.evaluate(c);
+      if (!e.ok()) return std::nullopt;  // (judge_failures withholds a verdict that rests on it)
+      if (e.value <= lo.value &&
+          (e.derivative * direction < 0 || vanishing(e, grid_[ib].parameter - grid_[ia].parameter))) {
+        lo = std::move(e);
+      } else {
+        hi_at = c;
+        hi = std::move(e);
+      }
+      if (vanishing(lo, grid_[ib].parameter - grid_[ia].parameter)) break;
+      bisect = !bisect && std::abs(hi_at - lo.parameter) > width / 2;
+    }
+    if (!vanishing(lo, grid_[ib].parameter - grid_[ia].parameter)) return std::nullopt;
+    return lo;
   }
 
   Obj& objective_;
