@@ -251,6 +251,39 @@ TEST_CASE("assemble_alpha_family: failed searches and failed grid evaluations ar
   CHECK(cell.interior + cell.at_bound == 2);
 }
 
+TEST_CASE("assemble_alpha_family: a boundary whose own optimum is 0 has no relative loss and no say in the best alpha",
+          "[study]") {
+  // A family of one biquadratic repeated: its e3 is 5.7e-30 at alpha = -1/4 (rounding of 0), and
+  // the relative excess (f - f*)/f* at the grid end -0.249999 read 1.2e24 %.
+  AlphaFamilyOptions options;
+  options.count = 3;
+  options.degrees = {3};
+  options.grid_points = 9;
+  std::vector<FamilyTaskResult> results;
+  results.reserve(3);
+  for (int k = 0; k < 3; ++k) results.push_back(run_family_task(options, {k, 3, "thin_plate"}));
+  for (const FamilyTaskResult& r : results) REQUIRE(r.alpha);
+  const AlphaFamilyCell two = [&] {
+    std::vector<FamilyTaskResult> others(results.begin() + 1, results.end());
+    AlphaFamilyOptions o = options;
+    o.count = 2;
+    return assemble_alpha_family(o, {"thin_plate"}, others).cells.at(0);
+  }();
+  FamilyTaskResult& reproduced = results[0];
+  reproduced.value = 5.7e-30;
+  reproduced.grid.assign(reproduced.grid.size(), 1.0);
+  reproduced.grid[0] = 7.4e-8;  // near alpha = -1/4
+  const AlphaFamilyCell cell = assemble_alpha_family(options, {"thin_plate"}, results).cells.at(0);
+  CHECK(cell.zero_optimum == 1);
+  CHECK_FALSE(cell.loss[0].has_value());
+  REQUIRE(cell.best_alpha);
+  REQUIRE(two.best_alpha);
+  CHECK(*cell.best_alpha == Approx(*two.best_alpha).margin(1e-12));  // that of the other two
+  REQUIRE(cell.loss_mean);
+  CHECK(*cell.loss_mean == Approx(*two.loss_mean).margin(1e-15));
+  CHECK(cell.interior + cell.at_bound == 3);  // its alpha* still counts
+}
+
 TEST_CASE("family_task_status: the family fails exactly the searches the study of files fails") {
   AlphaSearchSummary s;
   s.parameter = -0.1;

@@ -212,6 +212,7 @@ json alpha_family_json(const AlphaFamilyResult& r) {
                      {"flat", c.flat},
                      {"at_bound", c.at_bound},
                      {"failed", c.failed},
+                     {"zero_optimum", c.zero_optimum},
                      {"alpha_star", optional_list(c.alpha_star)},
                      {"mu_star", optional_list(c.mu_star)},
                      {"alpha_quantiles", distribution_json(c.alpha)},

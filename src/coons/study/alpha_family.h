@@ -62,6 +62,11 @@ struct AlphaFamilyCell {
   //! and α* < 0 (μ = −n²(1 + 4α)/(4α)), the relative loss at the best single α
   std::vector<std::optional<double>> alpha_star, mu_star, loss;
   int interior = 0, flat = 0, at_bound = 0, failed = 0;
+  //! boundaries with an optimum whose own f* is 0 up to rounding (at most kZeroOptimum of the
+  //! largest value of their grid: the mask reproduces them): a relative loss (f − f*)/f* means
+  //! nothing for them (1.2e24 % for a family of one biquadratic), so they have none and the best
+  //! single α is that of the others
+  int zero_optimum = 0;
   //! evaluations of f_b on the best-single-α grid that failed, over the boundaries with an α*
   int grid_failed = 0;
   std::optional<Distribution> alpha, mu, losses;
@@ -83,6 +88,9 @@ struct AlphaFamilyResult {
 //! `progress` (may be empty) is told "degree n, objective" before each cell.
 AlphaFamilyResult run_alpha_family(const AlphaFamilyOptions& options,
                                    const std::function<void(const std::string&)>& progress = {});
+
+//! f* at most this fraction of the largest value of a boundary's grid counts as 0 (AlphaFamilyCell).
+inline constexpr double kZeroOptimum = 1e-12;
 
 //! How close the family grid comes to the ends of [−1/4, 1/4].
 inline constexpr double kFamilyGridEnd = 1e-6;

@@ -29,7 +29,7 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
   const int count = r.options.count;
   for (const std::string& objective : r.objectives) {
     const auto cells = cells_of(r, objective);
-    std::vector<std::string> above, within, losses, medians, spreads, bounds, grid_ends;
+    std::vector<std::string> above, within, losses, medians, spreads, bounds, grid_ends, zeros;
     std::vector<double> median_gap;
     for (const AlphaFamilyCell* c : cells) {
       if (c->losses && c->loss_mean) {
@@ -46,6 +46,7 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
       }
       if (c->mu && c->mu->q10 > 0)
         spreads.push_back(fmt::format("{:.3g} (n = {})", c->mu->q90 / c->mu->q10, c->degree));
+      if (c->zero_optimum > 0) zeros.push_back(fmt::format("{} at n = {}", c->zero_optimum, c->degree));
       if (c->flat + c->at_bound + c->failed > 0)
         bounds.push_back(
             fmt::format("n = {}: {} flat, {} on a bound, {} failed", c->degree, c->flat, c->at_bound, c->failed));
@@ -64,6 +65,11 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
           "The best single α loses more than 1 % for some boundary at n = {}, and stays within "
           "1 % for every boundary at n = {}. ",
           fmt::join(above, ", "), fmt::join(within, ", "));
+    if (!zeros.empty())
+      out += fmt::format(
+          "Boundaries whose own optimum is 0 up to rounding (the mask reproduces them; a relative loss means nothing "
+          "for them, and the best single α is that of the others): {}. ",
+          fmt::join(zeros, ", "));
     if (!losses.empty()) out += fmt::format("The best single α: {}. ", fmt::join(losses, "; "));
     if (!grid_ends.empty())
       out += fmt::format(

@@ -373,10 +373,17 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
         }
         cell.alpha_star[k] = t.alpha;
         if (t.status == FamilyTaskStatus::kInterior && t.alpha) cell.mu_star[k] = mu_of_alpha(degree, *t.alpha);
+        for (double v : t.grid) cell.grid_failed += std::isfinite(v) ? 0 : 1;
+        double own = t.value, largest = 0;
+        for (double v : t.grid)
+          if (std::isfinite(v)) own = std::min(own, v), largest = std::max(largest, v);
+        if (own <= kZeroOptimum * largest) {  // reproduced: no relative loss (AlphaFamilyCell)
+          ++cell.zero_optimum;
+          continue;
+        }
         used.push_back(k);
         optimum.push_back(t.value);
         curves.push_back(t.grid);
-        for (double v : t.grid) cell.grid_failed += std::isfinite(v) ? 0 : 1;
       }
       std::vector<double> alphas, mus;
       for (const auto& a : cell.alpha_star)
