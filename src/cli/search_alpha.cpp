@@ -67,8 +67,10 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   auto objective = parse_objective(objective_text(r.objective), &why);
   if (!objective) throw InputError("command line", "--objective", why);
   s.objective = *objective;
-  check_target_samples(r.global, r.samples);
   if (s.objective.target_weight > 0) {
+    // (the samples' memory only where they are taken: a search for e3 was refused naming
+    // --samples, which it neither uses nor was given)
+    check_target_samples(r.global, r.samples);
     s.objective.target = resolve_target(r.target, r.boundary, b, r.samples);
     if (!s.objective.target)
       throw InputError("command line", "--target",

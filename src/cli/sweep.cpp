@@ -63,9 +63,9 @@ int run_sweep_command(const SweepRequest& r) {
   if (r.parameter == SweepParameter::kAlpha && (from < -0.25 || to > 0.25))
     throw InputError("command line", "--from/--to", "alpha must stay in [-0.25, 0.25]");
   if (r.parameter == SweepParameter::kMu && from < 0) throw InputError("command line", "--from", "mu must be >= 0");
-  check_target_samples(r.global, r.samples);
   const std::optional<Target> target = resolve_target(r.target, r.boundary, b, r.samples);
   if (!target && r.samples_option->count() > 0) throw samples_without_sweep_target();
+  if (target) check_target_samples(r.global, r.samples);  // (only where they are taken)
   const solvers::SolverOptions options = threads_options(r.threads, r.threads_option, r.solver);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
   const solvers::SolverInfo& solver = search_backend(requested, b, false);

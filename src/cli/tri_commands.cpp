@@ -201,8 +201,8 @@ int run_tri_search(const TriSearchArgs& a) {
   std::string why;
   std::optional<TriObjective> objective = parse_tri_objective(text, &why);
   if (!objective) throw InputError("command line", "--objective", why);
-  check_target_samples(*a.global, a.samples);
-  if (objective->uses_target()) {
+  if (objective->uses_target()) {  // (the samples' memory only where they are taken)
+    check_target_samples(*a.global, a.samples);
     objective->target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
     if (!objective->target)
       throw InputError("command line", "--objective", "the objective uses 'target' but the file has no \"target\"");
@@ -247,10 +247,10 @@ int run_tri_sweep(const TriSweepArgs& a) {
                      fmt::format("values must lie in [-{0:g}, {0:g}] (beyond, the mask's weights overflow in the "
                                  "solvers' products)",
                                  kMaxAlpha));
-  check_target_samples(*a.global, a.samples);
   TriObjective target_only;  // no terms: the evaluations only solve; the target gives rms_target
   target_only.target = target_from_json(read_json_file(a.boundary), a.boundary, a.samples);
   if (!target_only.target && a.samples_given) throw samples_without_sweep_target();
+  if (target_only.target) check_target_samples(*a.global, a.samples);  // (only where they are taken)
   bool picked = false;
   const solvers::SolverInfo& solver = tri_backend(a.solver, picked);
   check_tri_memory(*a.global, b.n, &solver, a.boundary);

@@ -767,6 +767,23 @@ TEST_CASE("coons export: a net with no point to solve for writes no Matrix Marke
   }
 }
 
+TEST_CASE("coons search-alpha and sweep: without a target a memory refusal names the degree not --samples", "[cli]") {
+  // 41 x 41 target samples were counted for a search of e3 on a file without a target, and the
+  // refusal named --samples, which was neither given nor used
+  TempDir dir;
+  const std::string b = dir.file("dome40.json");
+  REQUIRE(run_coons("refit " + quoted(kData + "/boundaries/dome.json") + " --degree 40 30 --out " + quoted(b)).status ==
+          0);
+  for (const std::string& command :
+       {"search-alpha " + quoted(b) + " --objective e3 --max-memory 100K",
+        "sweep " + quoted(b) + " --count 3 --max-memory 100K --out " + quoted(dir.file("s"))}) {
+    const CommandResult r = run_coons(command);
+    INFO(command << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::StartsWith("error: " + b + ": degree: a net of degree (40, 30) needs about"));
+  }
+}
+
 TEST_CASE("coons solve and sweep: --threads 2 gives the net and the sweep lines of one thread", "[cli]") {
   // Degree 140 (139 × 139 free points): large enough that two threads really run: dst takes
   // min(threads, 139/32), fast min(threads, 139/64) and mg threads levels of 2048 points or more.
