@@ -774,13 +774,17 @@ TEST_CASE("coons search-alpha and sweep: without a target a memory refusal names
   const std::string b = dir.file("dome40.json");
   REQUIRE(run_coons("refit " + quoted(kData + "/boundaries/dome.json") + " --degree 40 30 --out " + quoted(b)).status ==
           0);
+  json refitted = json::parse(read_text(b));
+  refitted.erase("target");  // (with the dome's sphere the sweep does take the samples)
+  dir.write("dome40.json", refitted.dump());
   for (const std::string& command :
        {"search-alpha " + quoted(b) + " --objective e3 --max-memory 100K",
         "sweep " + quoted(b) + " --count 3 --max-memory 100K --out " + quoted(dir.file("s"))}) {
     const CommandResult r = run_coons(command);
     INFO(command << "\n" << r.err);
     CHECK(r.status == 2);
-    CHECK_THAT(r.err, Catch::StartsWith("error: " + b + ": degree: a net of degree (40, 30) needs about"));
+    CHECK_THAT(r.err,
+               Catch::StartsWith("error: " + b + ": degree: a ") && Catch::Contains("degree (40, 30) needs about"));
   }
 }
 
