@@ -177,3 +177,27 @@ TEST_CASE("degree_limit_conclusions: skipped degrees are named with the reason",
   INFO(text);
   CHECK(contains(text, "Degrees not measured: 2 3 (search); 2 (continuum), below the boundary's degree 4x4."));
 }
+
+TEST_CASE("degree_limit_conclusions: no form fits best where each passes through its points", "[study]") {
+  // Two points at n >= 8: both two-parameter forms interpolate them, and "mu_inf + a/n fits best"
+  // was decided by residuals of 0 and 1.8e-16 (their limits 5.25 and 7.26).
+  DegreeLimitEntry e = synthetic(5, 40, std::nullopt);
+  const auto fit = [](const char* form, std::vector<std::pair<std::string, double>> parameters, double residual,
+                      int points) {
+    LimitFit f;
+    f.form = form;
+    f.parameters = std::move(parameters);
+    f.residual = residual;
+    f.points = points;
+    return f;
+  };
+  e.limit.fits = {fit("mu_inf + a/n", {{"mu_inf", 5.25}, {"a", 1}}, 0, 2),
+                  fit("mu_inf + a/n^2", {{"mu_inf", 7.26}, {"a", 1}}, 1.8e-16, 2)};
+  std::string text = joined_lines(degree_limit_conclusions(e));
+  INFO(text);
+  CHECK_FALSE(contains(text, "fits best"));
+  CHECK(contains(text, "No candidate form is preferred"));
+  for (LimitFit& f : e.limit.fits) f.points = 3;  // one point more than parameters: compared
+  text = joined_lines(degree_limit_conclusions(e));
+  CHECK(contains(text, "mu_inf + a/n fits best"));
+}
