@@ -3,6 +3,8 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <iterator>
@@ -50,6 +52,9 @@ ShardFile read_shard_file(const fs::path& path) {
 namespace {
 
 std::string revision_of(const Provenance& p) { return p.git_revision; }
+
+// Equal, or both NaN (a value not measured).
+bool same_task_number(double a, double b) { return a == b || (std::isnan(a) && std::isnan(b)); }
 
 }  // namespace
 
@@ -180,7 +185,20 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
         throw InputError(where, "key",
                          fmt::format("'{}' is not the key of its task (boundary {}, degree {}, {})",
                                      r["key"].get<std::string>(), t.task.index, t.task.degree, t.task.objective));
-      by_task.emplace(std::make_tuple(t.task.objective, t.task.degree, t.task.index), std::move(t));
+      // A task run by two shard files (shards of different N mixed) has the same result in both: the
+      // searches are deterministic. Different results under one key mean an edited record, and
+      // the first one read silently won.
+      const auto [it, added] = by_task.emplace(std::make_tuple(t.task.objective, t.task.degree, t.task.index), t);
+      const FamilyTaskResult& kept = it->second;
+      if (!added && (kept.status != t.status || kept.alpha != t.alpha || !same_task_number(kept.value, t.value) ||
+                     kept.grid.size() != t.grid.size() ||
+                     !std::equal(kept.grid.begin(), kept.grid.end(), t.grid.begin(), same_task_number)))
+        throw InputError(where, "key",
+                         fmt::format("the task of boundary {}, degree {}, {} is in the shards twice with different "
+                                     "results (alpha* {} and {})",
+                                     t.task.index, t.task.degree, t.task.objective,
+                                     kept.alpha ? fmt::format("{}", *kept.alpha) : "null",
+                                     t.alpha ? fmt::format("{}", *t.alpha) : "null"));
     }
   }
   if (!study) throw InputError(merge_dir, "--merge", "the shards hold no finished task");

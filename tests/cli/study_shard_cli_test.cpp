@@ -197,3 +197,33 @@ TEST_CASE("coons study --merge: a record's grid of finite 1e308 values prints no
   CHECK_FALSE(std::regex_search(md, not_finite));
   CHECK_FALSE(std::regex_search(merged.out, not_finite));
 }
+
+TEST_CASE("coons study --merge: a task twice with the same result merges and with different results is refused",
+          "[cli]") {
+  // Shards of different N mixed hold some tasks twice, with equal results (the searches are
+  // deterministic); a second record of a task with another alpha* was accepted, the first read won.
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons(kFamily + " --shard 0/1 --out " + quoted(shards)).status == 0);
+  const std::string file = shards + "/shard-0-of-1.jsonl";
+  const std::vector<json> records = read_json_lines(file);
+  std::size_t optimum = 0;
+  while (optimum < records.size() && records[optimum]["status"] != "interior") ++optimum;
+  REQUIRE(optimum < records.size());
+  const std::string copy = shards + "/shard-0-of-2.jsonl";
+  std::ofstream(copy, std::ios::binary | std::ios::trunc) << records[optimum].dump() << '\n';
+  {
+    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("same")));
+    INFO(merged.err);
+    CHECK(merged.status == 0);
+  }
+  json edited = records[optimum];
+  edited["alpha"] = edited["alpha"].get<double>() + 1e-3;
+  std::ofstream(copy, std::ios::binary | std::ios::trunc) << edited.dump() << '\n';
+  const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.err.find("is in the shards twice with different results") != std::string::npos);
+  CHECK(merged.out.empty());
+  CHECK_FALSE(fs::exists(dir.file("merged")));
+}
