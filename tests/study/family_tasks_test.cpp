@@ -231,15 +231,29 @@ TEST_CASE("family_task_from_record: a grid of another length or a number that is
   CHECK_THROWS_WITH(family_options_of(edited, &objectives, "f"), Catch::Contains("f: seed: must be an integer"));
 }
 
-TEST_CASE("assemble_alpha_family: failed searches and failed grid evaluations are counted per cell") {
+namespace {
+
+// Three random-smooth boundaries at degree 3 on a grid of 9, and their thin-plate tasks run.
+AlphaFamilyOptions three_at_degree_3() {
   AlphaFamilyOptions options;
   options.count = 3;
   options.degrees = {3};
   options.grid_points = 9;
+  return options;
+}
+std::vector<FamilyTaskResult> thin_plate_tasks(const AlphaFamilyOptions& options) {
   std::vector<FamilyTaskResult> results;
-  results.reserve(3);
-  for (int k = 0; k < 3; ++k) results.push_back(run_family_task(options, {k, 3, "thin_plate"}));
+  results.reserve(std::size_t(options.count));
+  for (int k = 0; k < options.count; ++k) results.push_back(run_family_task(options, {k, 3, "thin_plate"}));
   for (const FamilyTaskResult& r : results) REQUIRE(r.alpha);
+  return results;
+}
+
+}  // namespace
+
+TEST_CASE("assemble_alpha_family: failed searches and failed grid evaluations are counted per cell") {
+  const AlphaFamilyOptions options = three_at_degree_3();
+  std::vector<FamilyTaskResult> results = thin_plate_tasks(options);
   CHECK(assemble_alpha_family(options, {"thin_plate"}, results).cells.at(0).grid_failed == 0);
   results[0].grid[4] = HUGE_VAL;  // an evaluation that failed (a null in a shard record)
   FamilyTaskResult failed;        // a search that failed: no α*, no grid
@@ -255,14 +269,8 @@ TEST_CASE("assemble_alpha_family: a boundary whose own optimum is 0 has no relat
           "[study]") {
   // A family of one biquadratic repeated: its e3 is 5.7e-30 at alpha = -1/4 (rounding of 0), and
   // the relative excess (f - f*)/f* at the grid end -0.249999 read 1.2e24 %.
-  AlphaFamilyOptions options;
-  options.count = 3;
-  options.degrees = {3};
-  options.grid_points = 9;
-  std::vector<FamilyTaskResult> results;
-  results.reserve(3);
-  for (int k = 0; k < 3; ++k) results.push_back(run_family_task(options, {k, 3, "thin_plate"}));
-  for (const FamilyTaskResult& r : results) REQUIRE(r.alpha);
+  const AlphaFamilyOptions options = three_at_degree_3();
+  std::vector<FamilyTaskResult> results = thin_plate_tasks(options);
   const AlphaFamilyCell two = [&] {
     std::vector<FamilyTaskResult> others(results.begin() + 1, results.end());
     AlphaFamilyOptions o = options;
