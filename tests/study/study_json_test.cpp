@@ -111,7 +111,7 @@ TEST_CASE("bspline_rows_json: rows read back write the same bspline.json and rep
   AlphaSearchSummary s;
   s.parameter = -0.0865913 + 1e-17;
   s.value = 7.25;
-  s.at_bound = true;
+  s.at_bound = false;  // (interior: on a bound the merge would refuse it)
   s.scan = {{-0.25, 9.0}, {0.0, HUGE_VAL}};
   AlphaSearchSummary failed;
   failed.status = SearchStatus::kSolverFailed;
