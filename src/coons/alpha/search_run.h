@@ -23,6 +23,7 @@
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/ceres_refinement.h"
+#include "coons/alpha/downhill.h"
 #include "coons/alpha/search_failures.h"
 #include "solvers/linear_solver.h"
 
@@ -334,40 +335,18 @@ class SearchRun {
     return std::abs(e.derivative) * width <= 1e-6 * std::max(hi_ - lo_, floor_);
   }
 
-  // From the scan point g downhill inside the bracket [grid ia, grid ib] to a point where the slope
-  // vanishes, below f(g): where f′(g) < 0, f(b) ≥ f(g) or f grows without bound at a singular α
-  // before b, so such a minimum lies in (g, b). The bracket [lo, hi] keeps f′ pointing downhill at
-  // lo with f(lo) ≤ f(g), and at hi f′ pointing back or f ≥ f(lo); secant steps on f′ where the ends'
-  // slopes differ in sign, else bisection (at least every other step), as the triangle search does.
+  // From the scan point g downhill inside the bracket [grid ia, grid ib] to a point below it where
+  // the slope vanishes (downhill.h), or nothing.
   std::optional<Evaluation> refine_downhill(Evaluation g, int ia, int ib) {
-    const double direction = g.derivative < 0 ? 1 : -1;
-    double hi_at = grid_[direction > 0 ? ib : ia].parameter;
-    if (hi_at == g.parameter) return std::nullopt;
-    const double tolerance = options_.parameter_tolerance * (options_.upper - options_.lower);
-    Evaluation lo = std::move(g);
-    std::optional<Evaluation> hi;
-    bool bisect = false;
-    for (int it = 0; it < 4 * options_.max_iterations && std::abs(hi_at - lo.parameter) > tolerance; ++it) {
-      double c = 0.5 * (lo.parameter + hi_at);
-      if (!bisect && hi && hi->derivative * lo.derivative < 0) {
-        const double secant = hi_at - hi->derivative * (hi_at - lo.parameter) / (hi->derivative - lo.derivative);
-        if (secant > std::min(lo.parameter, hi_at) && secant < std::max(lo.parameter, hi_at)) c = secant;
-      }
-      const double width = std::abs(hi_at - lo.parameter);
-      Evaluation e = objective_.evaluate(c);
-      if (!e.ok()) return std::nullopt;  // (judge_failures withholds a verdict that rests on it)
-      if (e.value <= lo.value &&
-          (e.derivative * direction < 0 || vanishing(e, grid_[ib].parameter - grid_[ia].parameter))) {
-        lo = std::move(e);
-      } else {
-        hi_at = c;
-        hi = std::move(e);
-      }
-      if (vanishing(lo, grid_[ib].parameter - grid_[ia].parameter)) break;
-      bisect = !bisect && std::abs(hi_at - lo.parameter) > width / 2;
-    }
-    if (!vanishing(lo, grid_[ib].parameter - grid_[ia].parameter)) return std::nullopt;
-    return lo;
+    const double end = grid_[g.derivative < 0 ? ib : ia].parameter, width = grid_[ib].parameter - grid_[ia].parameter;
+    if (end == g.parameter) return std::nullopt;
+    const auto vanishes = [&](const Evaluation& e) { return vanishing(e, width); };
+    Downhill<Evaluation> d = go_downhill([&](double c) { return objective_.evaluate(c); }, std::move(g), end,
+                                         options_.parameter_tolerance * (options_.upper - options_.lower),
+                                         4 * options_.max_iterations, vanishes);
+    // (a failed evaluation: judge_failures withholds a verdict that rests on it)
+    if (d.failed || !vanishes(d.lowest)) return std::nullopt;
+    return std::move(d.lowest);
   }
 
   Obj& objective_;

@@ -9,6 +9,7 @@
 #include <utility>
 #include <vector>
 
+#include "coons/alpha/downhill.h"
 #include "coons/alpha/search_failures.h"
 #include "coons/tri/tri_energy.h"
 #include "coons/tri/tri_mask.h"
@@ -284,14 +285,11 @@ class TriSearch {
     return true;
   }
 
-  // From the best scan point g downhill, inside its neighbours' bracket: where f′(g) < 0 a local
-  // minimum below f(g) lies in (g, b), since f(b) ≥ f(g), or f grows without bound at a singular
-  // member before b. The bracket [lo, hi] keeps f′(lo) < 0 with f(lo) ≤ f(g), and at hi f′ > 0,
-  // or f ≥ f(lo); each step is a secant on f′ where both ends have a slope of
-  // opposite signs, else a bisection (at least every other step). Mirrored where f′(g) > 0. At the
-  // end the slope decides: not_converged where it has not vanished. (Golden section on the values
-  // of [a, b], as before, crossed the singular members c*ₙ inside a wide bracket and reported a
-  // point 0.03 from the minimum as success.)
+  // From the best scan point downhill inside its neighbours' bracket to where the slope vanishes
+  // (coons/alpha/downhill.h), singular members c*ₙ inside it included; at the end the slope
+  // decides: not_converged where it has not vanished. (Golden section on the values of the
+  // bracket, as before, crossed the singular members inside a wide one and reported a point 0.03
+  // from the minimum as success.)
   void refine() {
     const int k = int(grid_.size());
     const TriEvaluation& left = grid_[std::max(best_ - 1, 0)];
@@ -300,31 +298,13 @@ class TriSearch {
     if (!left.ok() || !right.ok()) return void(fail(left.ok() ? right : left));  // the bracket rests on it
     TriEvaluation g = evaluate(grid_[best_].parameter, true);
     if (!g.ok()) return void(fail(g));
-    const double direction = g.derivative < 0 ? 1 : -1;  // downhill
-    const double tolerance = options_.parameter_tolerance * (options_.upper - options_.lower);
-    TriEvaluation lo = g;
-    std::optional<TriEvaluation> hi;  // with its slope when it was solved
-    double hi_at = direction > 0 ? b : a;
-    bool bisect = false;
-    for (int it = 0;
-         it < 4 * options_.max_iterations && lo.derivative != 0 && std::abs(hi_at - lo.parameter) > tolerance; ++it) {
-      double c = 0.5 * (lo.parameter + hi_at);
-      if (!bisect && hi && hi->derivative * lo.derivative < 0) {
-        const double secant = hi_at - hi->derivative * (hi_at - lo.parameter) / (hi->derivative - lo.derivative);
-        if (secant > std::min(lo.parameter, hi_at) && secant < std::max(lo.parameter, hi_at)) c = secant;
-      }
-      const double width = std::abs(hi_at - lo.parameter);
-      TriEvaluation e = evaluate(c, true);
-      if (!e.ok()) return void(fail(e));  // (judge_failures would withhold the optimum anyway)
-      if (e.value <= lo.value && e.derivative * direction < 0) {
-        lo = e;
-      } else {
-        hi_at = c;
-        hi = e;
-        if (e.derivative == 0 && e.value <= lo.value) lo = e;
-      }
-      bisect = !bisect && std::abs(hi_at - lo.parameter) > width / 2;
-    }
+    const double end = g.derivative < 0 ? b : a;  // the neighbour downhill
+    const detail::Downhill<TriEvaluation> d =
+        detail::go_downhill([&](double c) { return evaluate(c, true); }, std::move(g), end,
+                            options_.parameter_tolerance * (options_.upper - options_.lower),
+                            4 * options_.max_iterations, [](const TriEvaluation& e) { return e.derivative == 0; });
+    if (d.failed) return void(fail(*d.failed));  // (judge_failures would withhold the optimum anyway)
+    const TriEvaluation& lo = d.lowest;
     s_.parameter = lo.parameter;
     s_.value = lo.value;
     s_.status = SearchStatus::kSuccess;
