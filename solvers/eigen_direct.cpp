@@ -18,23 +18,15 @@ using Ldlt = Eigen::SimplicialLDLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>
 using Llt = Eigen::SimplicialLLT<SpMat, Eigen::Lower, Eigen::AMDOrdering<int>>;
 using Lu = Eigen::SparseLU<SpMat, Eigen::COLAMDOrdering<int>>;
 
-// A pivot below this fraction of its own diagonal entry of A counts as zero (the operator is
-// singular): d_k = a_kk − (what the earlier rows explain of it) cancelled to 13 digits. Measured
-// against the diagonal, not the largest pivot, the test does not change under a diagonal scaling
-// D A D: diag(1, 1e-20) and a Laplacian scaled by 10^±8 row by row are regular, and were called
-// singular. (Where a_kk = 0, indefinite, against the largest pivot.)
-constexpr double kSingularPivot = 1e-13;
-
 using Permutation = Eigen::PermutationMatrix<Eigen::Dynamic, Eigen::Dynamic, int>;
 
-// |a_kk| of the permuted matrix P A Pᵀ the factor holds (row i of A is row P(i) there); where
-// a_kk = 0, the largest |pivot|.
-Eigen::VectorXd pivot_scales(const SpMat& A, const Permutation& P, double largest_pivot) {
-  const Eigen::VectorXd a = A.diagonal().cwiseAbs();
-  Eigen::VectorXd scales(a.size());
-  for (Eigen::Index i = 0; i < a.size(); ++i)
-    scales(P.size() == a.size() ? P.indices()(i) : i) = a(i) > 0 ? a(i) : largest_pivot;
-  return scales;
+// a_kk of the permuted matrix P A Pᵀ the factor holds (row i of A is row P(i) there), for
+// is_zero_pivot (matrix_checks.h).
+Eigen::VectorXd permuted_diagonal(const SpMat& A, const Permutation& P) {
+  const Eigen::VectorXd a = A.diagonal();
+  Eigen::VectorXd out(a.size());
+  for (Eigen::Index i = 0; i < a.size(); ++i) out(P.size() == a.size() ? P.indices()(i) : i) = a(i);
+  return out;
 }
 
 // LDLᵀ without pivoting is only stable on definite matrices: a negative entry of D is reported
@@ -50,10 +42,15 @@ SolveStatus judge(const Ldlt& f, const SpMat& A, SolveSummary& summary) {
   // L's unit diagonal is implicit (only its strictly lower part is stored) and D is kept apart:
   // its n entries count as the diagonal of the factor, as in LLᵀ (a 1×1 matrix has one, not 0).
   summary.factor_nnz = static_cast<long long>(f.matrixL().nestedExpression().nonZeros()) + f.vectorD().size();
-  const Eigen::VectorXd d = f.vectorD();
-  const Eigen::VectorXd scale = pivot_scales(A, f.permutationP(), d.cwiseAbs().maxCoeff());
-  const Eigen::Index zero = (d.array().abs() <= kSingularPivot * scale.array()).count();
-  const Eigen::Index negative = (d.array() < -kSingularPivot * scale.array()).count();
+  const Eigen::VectorXd d = f.vectorD(), a = permuted_diagonal(A, f.permutationP());
+  const double largest = d.cwiseAbs().maxCoeff();
+  Eigen::Index zero = 0, negative = 0;
+  for (Eigen::Index k = 0; k < d.size(); ++k) {
+    if (is_zero_pivot(d(k), a(k), largest))
+      ++zero;
+    else if (d(k) < 0)
+      ++negative;
+  }
   if (zero > 0) {
     summary.message = std::to_string(zero) + " zero pivot(s) in D (below 1e-13 of their diagonal entry)";
     return SolveStatus::kSingular;
@@ -72,8 +69,11 @@ SolveStatus judge(const Llt& f, const SpMat& A, SolveSummary& summary) {
   }
   const auto& L = f.matrixL().nestedExpression();
   summary.factor_nnz = static_cast<long long>(L.nonZeros());
-  const Eigen::VectorXd d = L.diagonal().cwiseAbs2();  // the pivots of LDLᵀ
-  if ((d.array() <= kSingularPivot * pivot_scales(A, f.permutationP(), d.maxCoeff()).array()).any()) {
+  const Eigen::VectorXd d = L.diagonal().cwiseAbs2(), a = permuted_diagonal(A, f.permutationP());  // d: LDLᵀ's pivots
+  const double largest = d.maxCoeff();
+  bool zero = false;
+  for (Eigen::Index k = 0; k < d.size(); ++k) zero = zero || is_zero_pivot(d(k), a(k), largest);
+  if (zero) {
     summary.message = "a pivot of L is (numerically) zero (its square below 1e-13 of its diagonal entry)";
     return SolveStatus::kSingular;
   }

@@ -171,21 +171,19 @@ class Cholmod : public LinearSolver {
   // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does, and name
   // the first one's column as the supernodal message does (LLᵀ would have stopped there: the pivots
   // before it are those of a definite leading block).
-  // A pivot is zero below 1e-13 of its own diagonal entry of A (of the largest pivot where that
-  // entry is 0), as in eigen-ldlt: a test a diagonal scaling D A D does not change.
+  // A zero pivot as eigen-ldlt judges it (is_zero_pivot, matrix_checks.h).
   SolveStatus judge_ldlt_diagonal(const Eigen::SparseMatrix<double>& A, SolveSummary& summary) const {
     const auto* p = static_cast<const int*>(factor_->p);
     const auto* x = static_cast<const double*>(factor_->x);
     const auto* perm = static_cast<const int*>(factor_->Perm);
-    const Eigen::VectorXd diagonal = A.diagonal().cwiseAbs();
+    const Eigen::VectorXd diagonal = A.diagonal();
     double largest = 0;
     for (size_t j = 0; j < factor_->n; ++j) largest = std::max(largest, std::abs(x[p[j]]));
     long zero = 0, negative = 0;
     size_t first_zero = factor_->n, first_negative = factor_->n;
     for (size_t j = 0; j < factor_->n; ++j) {
       const double d = x[p[j]];
-      const double a = diagonal(perm ? perm[j] : Eigen::Index(j));
-      if (std::abs(d) <= 1e-13 * (a > 0 ? a : largest)) {
+      if (is_zero_pivot(d, diagonal(perm ? perm[j] : Eigen::Index(j)), largest)) {
         if (zero++ == 0) first_zero = j;
       } else if (d < 0) {
         if (negative++ == 0) first_negative = j;
