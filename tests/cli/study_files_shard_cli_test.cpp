@@ -38,6 +38,20 @@ std::string key_of(const json& record) {
                                record["content"].get<std::string>());
 }
 
+// `study --merge SHARDS` refused with one error line that holds each of `fragments`, nothing on
+// standard output and nothing written to OUT; `context` says which edit it was.
+void check_merge_refused(const std::string& shards, const std::string& out, const std::string& context,
+                         std::initializer_list<std::string> fragments) {
+  const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(out));
+  INFO(context << "\n" << merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.out.empty());
+  CHECK(merged.err.rfind("error: ", 0) == 0);
+  for (const std::string& fragment : fragments) CHECK(merged.err.find(fragment) != std::string::npos);
+  CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
+  CHECK_FALSE(fs::exists(out));
+}
+
 }  // namespace
 
 TEST_CASE("coons study FILES --shard: three shards merged equal the unsharded run", "[cli]") {
@@ -199,14 +213,7 @@ TEST_CASE("coons study FILES --merge: an integer field holding 1e300 is one erro
       first["key"] = key_of(first);
       std::ofstream(other, std::ios::binary | std::ios::trunc) << first.dump() << '\n';
     }
-    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
-    INFO(e.at.to_string() << " = " << e.value.dump() << "\n" << merged.err);
-    CHECK(merged.status == 2);
-    CHECK(merged.out.empty());
-    CHECK(merged.err.rfind("error: ", 0) == 0);
-    CHECK(merged.err.find(e.error) != std::string::npos);
-    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
-    CHECK_FALSE(fs::exists(dir.file("merged")));
+    check_merge_refused(shards, dir.file("merged"), e.at.to_string() + " = " + e.value.dump(), {e.error});
   }
 }
 
@@ -293,14 +300,8 @@ TEST_CASE("coons study FILES --merge: a result no search can have written is one
         out << r.dump() << '\n';
       }
     }
-    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
-    INFO(e.at << " = " << e.value.dump() << "\n" << merged.err);
-    CHECK(merged.status == 2);
-    CHECK(merged.out.empty());
-    CHECK(merged.err.find("shard-0-of-1.jsonl: result: malformed: ") != std::string::npos);
-    CHECK(merged.err.find(e.error) != std::string::npos);
-    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
-    CHECK_FALSE(fs::exists(dir.file("merged")));
+    check_merge_refused(shards, dir.file("merged"), e.at + " = " + e.value.dump(),
+                        {"shard-0-of-1.jsonl: result: malformed: ", e.error});
   }
 }
 
@@ -331,12 +332,8 @@ TEST_CASE("coons study FILES --merge: a B-spline row no study can have written i
     REQUIRE(edited.contains(json::json_pointer(e.at)));
     edited[json::json_pointer(e.at)] = e.value;
     std::ofstream(file, std::ios::binary | std::ios::trunc) << edited.dump() << '\n';
-    const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
-    INFO(e.at << " = " << e.value.dump() << "\n" << merged.err);
-    CHECK(merged.status == 2);
-    CHECK(merged.err.find("shard-0-of-1.jsonl: bspline: malformed: " + e.error) != std::string::npos);
-    CHECK(std::count(merged.err.begin(), merged.err.end(), '\n') == 1);
-    CHECK_FALSE(fs::exists(dir.file("merged")));
+    check_merge_refused(shards, dir.file("merged"), e.at + " = " + e.value.dump(),
+                        {"shard-0-of-1.jsonl: bspline: malformed: " + e.error});
   }
   std::ofstream(file, std::ios::binary | std::ios::trunc) << record.dump() << '\n';
   CHECK(run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged"))).status == 0);
