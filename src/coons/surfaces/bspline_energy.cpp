@@ -1,10 +1,35 @@
 #include "coons/surfaces/bspline_energy.h"
 
 #include <Eigen/Eigenvalues>
+#include <Eigen/SparseCore>
 #include <cmath>
+#include <utility>
+#include <vector>
 
 namespace coons {
 
+Eigen::MatrixXd bspline_derivative_points(const Eigen::VectorXd& knots, int degree, const Eigen::MatrixXd& X, int a) {
+  if (a > degree) return Eigen::MatrixXd(0, X.cols());
+  Eigen::MatrixXd P = X;
+  for (int k = 1; k <= a; ++k) {
+    const Eigen::Index rows = P.rows() - 1;
+    Eigen::MatrixXd next(rows, P.cols());
+    for (Eigen::Index i = 0; i < rows; ++i) {
+      const double span = knots(i + degree + 1) - knots(i + k);
+      if (span > 0)
+        next.row(i) = (double(degree - k + 1) / span) * (P.row(i + 1) - P.row(i));
+      else
+        next.row(i).setZero();  // N_{i+k,p−k} vanishes: its coefficient does not matter
+    }
+    P = std::move(next);
+  }
+  return P;
+}
+
+namespace {
+
+// Gauss–Legendre nodes and weights on [0, 1] with k nodes (Golub–Welsch). (coons/metrics has the
+// same rule; this layer may not include it.)
 std::pair<Eigen::VectorXd, Eigen::VectorXd> gauss_legendre_unit(int k) {
   // Jacobi matrix of the Legendre polynomials on [−1, 1]: off-diagonal i / sqrt(4i² − 1).
   Eigen::MatrixXd J = Eigen::MatrixXd::Zero(k, k);
@@ -23,26 +48,38 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> gauss_legendre_unit(int k) {
   return {nodes, weights};
 }
 
-Eigen::MatrixXd bspline_gram(const Eigen::VectorXd& knots, int degree, int order) {
-  const int count = int(knots.size()) - degree - 1;
-  Eigen::MatrixXd G = Eigen::MatrixXd::Zero(count, count);
-  if (order > degree) return G;
-  const auto [nodes, weights] = gauss_legendre_unit(degree + 1);
-  for (int span = degree; span < count; ++span) {
-    const double a = knots(span), b = knots(span + 1);
-    if (!(b > a)) continue;
+// The basis of degree p − a on knots(a … end − a), where the a-th derivative's control points
+// (bspline_derivative_points) live, at the Gauss–Legendre nodes of every non-empty span:
+// values(node, i) = N_{i+a,p−a}(node) (p − a + 1 per row), weights the nodes' weights times the
+// span's length.
+struct Sampling {
+  Eigen::SparseMatrix<double, Eigen::RowMajor> values;
+  Eigen::VectorXd weights;
+};
+
+Sampling derivative_sampling(const Eigen::VectorXd& knots, int degree, int a) {
+  const int q = degree - a;
+  const Eigen::VectorXd trimmed = knots.segment(a, knots.size() - 2 * a);
+  const int count = int(trimmed.size()) - q - 1;
+  const auto [nodes, node_weights] = gauss_legendre_unit(q + 1);
+  std::vector<Eigen::Triplet<double>> entries;
+  std::vector<double> weights;
+  for (int span = q; span < count; ++span) {
+    const double lo = trimmed(span), hi = trimmed(span + 1);
+    if (!(hi > lo)) continue;
     for (Eigen::Index g = 0; g < nodes.size(); ++g) {
-      const double t = a + (b - a) * nodes(g);
-      const Eigen::MatrixXd N = basis_derivatives(knots, degree, span, t, order);
-      const double w = (b - a) * weights(g);
-      for (int r = 0; r <= degree; ++r)
-        for (int c = 0; c <= degree; ++c) G(span - degree + r, span - degree + c) += w * N(order, r) * N(order, c);
+      const Eigen::MatrixXd N = basis_derivatives(trimmed, q, span, lo + (hi - lo) * nodes(g), 0);
+      const int row = int(weights.size());
+      for (int r = 0; r <= q; ++r) entries.emplace_back(row, span - q + r, N(0, r));
+      weights.push_back((hi - lo) * node_weights(g));
     }
   }
-  return G;
+  Sampling out;
+  out.values.resize(Eigen::Index(weights.size()), count);
+  out.values.setFromTriplets(entries.begin(), entries.end());
+  out.weights = Eigen::Map<const Eigen::VectorXd>(weights.data(), Eigen::Index(weights.size()));
+  return out;
 }
-
-namespace {
 
 // Coordinate c of a net as a #count_u by #count_v matrix.
 Eigen::MatrixXd coordinate(const ControlNet& net, int c) {
@@ -52,14 +89,29 @@ Eigen::MatrixXd coordinate(const ControlNet& net, int c) {
   return X;
 }
 
+// ∂^a_u ∂^b_v of coordinate X at the nodes (rows: u nodes, columns: v nodes).
+Eigen::MatrixXd derivative_at_nodes(const BSplineSurface& s, const Sampling& u, const Sampling& v,
+                                    const Eigen::MatrixXd& X, int a, int b) {
+  const Eigen::MatrixXd along_u = bspline_derivative_points(s.knots_u, s.degree_u, X, a);
+  const Eigen::MatrixXd both = bspline_derivative_points(s.knots_v, s.degree_v, along_u.transpose(), b).transpose();
+  const Eigen::MatrixXd at_u = u.values * both;      // u nodes × (count_v − b)
+  return (v.values * at_u.transpose()).transpose();  // u nodes × v nodes
+}
+
 }  // namespace
 
 double bspline_energy_form(const BSplineSurface& s, const ControlNet& X, const ControlNet& Y, int a, int b) {
   if (a > s.degree_u || b > s.degree_v) return 0.0;
-  const Eigen::MatrixXd Gu = bspline_gram(s.knots_u, s.degree_u, a);
-  const Eigen::MatrixXd Gv = bspline_gram(s.knots_v, s.degree_v, b);
+  const Sampling u = derivative_sampling(s.knots_u, s.degree_u, a);
+  const Sampling v = derivative_sampling(s.knots_v, s.degree_v, b);
+  const bool same = &X == &Y;
   double sum = 0;
-  for (int c = 0; c < 3; ++c) sum += (Gu * coordinate(X, c) * Gv).cwiseProduct(coordinate(Y, c)).sum();
+  for (int c = 0; c < 3; ++c) {
+    const Eigen::MatrixXd dx = derivative_at_nodes(s, u, v, coordinate(X, c), a, b);
+    const Eigen::MatrixXd dy = same ? Eigen::MatrixXd() : derivative_at_nodes(s, u, v, coordinate(Y, c), a, b);
+    const Eigen::MatrixXd& other = same ? dx : dy;
+    sum += (u.weights.asDiagonal() * dx.cwiseProduct(other) * v.weights.asDiagonal()).sum();
+  }
   return sum;
 }
 
