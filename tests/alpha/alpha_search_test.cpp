@@ -372,6 +372,33 @@ TEST_CASE("search_alpha: the sine basis on structured solvers, solves otherwise,
   }
 }
 
+TEST_CASE("search_alpha: a target net solved at some alpha is found there, its value that of the net reported",
+          "[alpha]") {
+  // The sine basis used to expand ‖D_C + Eδ‖² as ‖D_C‖² + 2⟨ĉ, δ̂⟩ + ⟨δ̂, Kδ̂⟩, which loses q below
+  // about ε‖D_C‖²: the rms distance was quantised to about 3e-8, so at α = 0.1 it was 3.3e-8, and
+  // a net of α = 0.2 came back at 0.19999998 with the value 0. The rms distance has a kink at an
+  // exact match (f'' = 0 on both sides), so the search ends within about 1e-7 of it; the value it
+  // reports is that of the parameter it reports.
+  const Boundary b = make_smooth_boundary(6, 3, 11);
+  for (const double alpha : {0.2, 0.1, -0.2}) {
+    Objective o = objective_named("target");
+    o.target = Target{};
+    o.target->net = solve_mask_net(b, alpha_mask(alpha), backend("eigen-ldlt")).net;
+    o.target->samples = 41;
+    INFO("alpha = " << alpha);
+    const SpectralAlphaObjective spectral(b, o);
+    CHECK(spectral.evaluate(alpha).value < 1e-14);
+    const AlphaSearchSummary s = search_alpha(b, o, backend("fast"));
+    INFO(s.brief_report());
+    CHECK(s.evaluator == "sine basis");
+    REQUIRE(s.parameter);
+    CHECK(std::abs(*s.parameter - alpha) < 1e-7);
+    const double direct =
+        rms_distance(solve_mask_net(b, alpha_mask(*s.parameter), backend("eigen-ldlt")).net, *o.target);
+    CHECK(s.value == Approx(direct).epsilon(1e-6).margin(1e-15));
+  }
+}
+
 TEST_CASE("search_mask_parameter: the spectral search is exact and needs few evaluations on a large net", "[alpha]") {
   // The Laplace net (α = 0) minimises the discrete Dirichlet energy and the Coons net (α = −1/4)
   // the discrete twist, for every boundary; thin plate sits near −1/4 (α* + 1/4 ≈ c/n²), where

@@ -1,6 +1,6 @@
 // The evaluation of the sine-basis objective (spectral_objective.h) at one α: f, f', f'' and the
 // rounding error of f', from the per-mode sums of the discrete terms (spectral_modes.h), the
-// Kronecker quadratics (spectral_quadratic.cpp) and the samples of an analytic target.
+// Kronecker quadratics (spectral_quadratic.cpp) and the samples of the target.
 // Sizes: one pass over the rows × cols modes, a few rows × cols products per quadratic term.
 #include <Eigen/Core>
 #include <array>
@@ -56,10 +56,13 @@ std::array<double, 4> quadratic_sums(const Quadratic& q, const Eigen::MatrixXd (
 
 }  // namespace
 
-std::array<double, 4> SpectralAlphaObjective::analytic_sums(const Eigen::MatrixXd (&U)[3][3]) const {
+std::array<double, 4> SpectralAlphaObjective::target_sums(const Eigen::MatrixXd (&U)[3][3]) const {
   // The samples S = S_C + P·U·Qᵀ and their derivatives S', S'' in α; per sample p with signed
   // distance d, gradient g and Hessian H: (d²)' = 2d·g·p', (d²)'' = 2(g·p')² + 2d(g·p'' + p'ᵀHp').
-  const int k = analytic_->samples;
+  // For a target net S holds the differences to its samples: d² = ‖p‖², (d²)' = 2p·p',
+  // (d²)'' = 2(‖p'‖² + p·p'').
+  const int k = target_->samples;
+  const bool net = target_->kind == Target::Kind::kNet;
   Eigen::MatrixXd S[3][3];
   for (int c = 0; c < 3; ++c)
     for (int r = 0; r < 3; ++r) {
@@ -71,9 +74,17 @@ std::array<double, 4> SpectralAlphaObjective::analytic_sums(const Eigen::MatrixX
     for (int t = 0; t < k; ++t) {
       const Eigen::RowVector3d p0(S[0][0](s, t), S[1][0](s, t), S[2][0](s, t)),
           p1(S[0][1](s, t), S[1][1](s, t), S[2][1](s, t)), p2(S[0][2](s, t), S[1][2](s, t), S[2][2](s, t));
+      if (net) {
+        const double pp1 = p0.dot(p1);
+        m[0] += p0.squaredNorm();
+        m[1] += 2 * pp1;
+        m[2] += 2 * (p1.squaredNorm() + p0.dot(p2));
+        m[3] += std::abs(2 * pp1);
+        continue;
+      }
       Eigen::RowVector3d g;
       Eigen::Matrix3d H;
-      const double d = target_distance(*analytic_, p0, &g, &H), gp1 = g.dot(p1);
+      const double d = target_distance(*target_, p0, &g, &H), gp1 = g.dot(p1);
       m[0] += d * d;
       m[1] += 2 * d * gp1;
       m[2] += 2 * (gp1 * gp1 + d * (g.dot(p2) + p1 * H * p1.transpose()));
@@ -118,7 +129,7 @@ SpectralAlphaObjective::Value SpectralAlphaObjective::evaluate(double alpha) con
       v.derivative_noise += q[3];
     }
     if (target_weight_ > 0) {  // w·√q, q the mean square distance and its derivatives
-      const auto q = analytic_ ? analytic_sums(U) : quadratic_sums(target_, U);
+      const auto q = target_sums(U);
       const double rms = std::sqrt(std::max(q[0], 0.0)), w = target_weight_;
       v.value += w * rms;
       if (rms > 0) {

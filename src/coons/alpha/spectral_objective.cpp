@@ -142,15 +142,16 @@ SpectralAlphaObjective::SpectralAlphaObjective(const Boundary& b, const Objectiv
     }
     if (objective.target_weight > 0) {
       target_weight_ = objective.target_weight;
-      if (objective.target->kind == Target::Kind::kNet) {
-        target_ = mean_square_distance(coons, objective.target->net, objective.target->samples);
-      } else {
-        analytic_ = objective.target;
-        const int k = analytic_->samples;
-        const Eigen::MatrixXd Bu = basis_at_samples(b.m, k), Bv = basis_at_samples(b.n, k);
-        p_ = solvers::sine_transform_1d(Bu.middleCols(1, rows_).transpose()).transpose();
-        q_ = solvers::sine_transform_1d(Bv.middleCols(1, cols_).transpose()).transpose();
-        for (int c = 0; c < 3; ++c) coons_samples_[c] = Bu * coordinate_grid(coons, c) * Bv.transpose();
+      target_ = objective.target;
+      const int k = target_->samples;
+      const Eigen::MatrixXd Bu = basis_at_samples(b.m, k), Bv = basis_at_samples(b.n, k);
+      p_ = solvers::sine_transform_1d(Bu.middleCols(1, rows_).transpose()).transpose();
+      q_ = solvers::sine_transform_1d(Bv.middleCols(1, cols_).transpose()).transpose();
+      for (int c = 0; c < 3; ++c) coons_samples_[c] = Bu * coordinate_grid(coons, c) * Bv.transpose();
+      if (target_->kind == Target::Kind::kNet) {  // the differences to its samples (objective.cpp)
+        using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
+        const Eigen::MatrixX3d T = sample_surface(target_->net, k, k);
+        for (int c = 0; c < 3; ++c) coons_samples_[c] -= Eigen::Map<const RowMajor>(T.col(c).data(), k, k);
       }
     }
   }

@@ -79,18 +79,20 @@ class SpectralAlphaObjective {
     double c_scale = 0;                    // ĉ's rounding error is about ε times this
     std::vector<KroneckerTerm> terms;
   };
-  Quadratic exact_, target_;  // the exact energies; the mean square distance to a target net
+  Quadratic exact_;  // the exact energies
   double target_weight_ = 0;
   Eigen::MatrixXd r_hat_[3];          // R̂ per coordinate (rows × cols), for the two above
-  std::optional<Target> analytic_;    // an analytic target, measured at its samples:
+  std::optional<Target> target_;      // the target, measured at its samples:
   Eigen::MatrixXd p_, q_;             //   B_u S (k × rows) and B_v S (k × cols)
-  Eigen::MatrixXd coons_samples_[3];  //   the Coons net's surface at the samples (k × k)
+  Eigen::MatrixXd coons_samples_[3];  //   the Coons net's surface at the samples (k × k), for a
+                                      //   target net minus the target's surface there
   Quadratic exact_energies(const ControlNet& coons, const std::vector<EnergyTerm>& exact, const Eigen::MatrixXd (&A)[3],
                            const Eigen::MatrixXd (&B)[3]) const;
-  Quadratic mean_square_distance(const ControlNet& coons, const ControlNet& target, int samples) const;
-  //! The mean square distance to analytic_ and its first two derivatives, and the rounding error
-  //! of the first, at U[c][r] = u^(r)∘R̂_c.
-  std::array<double, 4> analytic_sums(const Eigen::MatrixXd (&U)[3][3]) const;
+  //! The mean square distance to target_ and its first two derivatives, and the rounding error
+  //! of the first, at U[c][r] = u^(r)∘R̂_c, from the differences at the samples themselves (the
+  //! expansion ‖D_C‖² + 2⟨ĉ, δ̂⟩ + ⟨δ̂, Kδ̂⟩ of a target net lost q to cancellation below about
+  //! ε‖D_C‖²: α* recovered from a net came out 1.7e-8 off with the value 0).
+  std::array<double, 4> target_sums(const Eigen::MatrixXd (&U)[3][3]) const;
 };
 
 //! SpectralAlphaObjective with the interface search_mask_parameter expects (and no net).

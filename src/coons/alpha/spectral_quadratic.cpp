@@ -1,18 +1,15 @@
 // The quadratic terms of the sine-basis objective (spectral_objective.h) whose Hessians are dense
-// Kronecker products: the exact energies of the surface and the mean square distance to a target
-// net, each as constant + 2⟨ĉ, δ̂⟩ + Σ w⟨δ̂, K̂_a δ̂ K̂_b⟩ in the sine basis of the interior.
+// Kronecker products: the exact energies of the surface, as constant + 2⟨ĉ, δ̂⟩ + Σ w⟨δ̂, K̂_a δ̂ K̂_b⟩
+// in the sine basis of the interior.
 // Sizes: a rows × rows and a cols × cols matrix per term.
 #include <Eigen/Core>
 
 #include "coons/alpha/spectral_modes.h"
 #include "coons/alpha/spectral_objective.h"
 #include "coons/net/bernstein.h"
-#include "coons/net/coons_net.h"
 #include "solvers/sine_basis.h"
 
 namespace coons {
-
-using detail::basis_at_samples;
 
 namespace {
 
@@ -65,28 +62,6 @@ SpectralAlphaObjective::Quadratic SpectralAlphaObjective::exact_energies(const C
     }
     q.terms.push_back({sine_both_sides(Ka), sine_both_sides(Kb), t.weight});
   }
-  return q;
-}
-
-SpectralAlphaObjective::Quadratic SpectralAlphaObjective::mean_square_distance(const ControlNet& coons,
-                                                                               const ControlNet& target,
-                                                                               int samples) const {
-  // (1/k²) Σ_xyz ‖B_u N B_vᵀ − T‖², T the target sampled at the same (u, v) (objective.cpp).
-  const int m = rows_ + 1, n = cols_ + 1, k = samples;
-  const Eigen::MatrixXd Bu = basis_at_samples(m, k), Bv = basis_at_samples(n, k);
-  const Eigen::MatrixX3d T = sample_surface(target, k, k);
-  Quadratic q;
-  for (int c = 0; c < 3; ++c) {
-    using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-    const Eigen::MatrixXd Tc = Eigen::Map<const RowMajor>(T.col(c).data(), k, k);
-    const Eigen::MatrixXd D = (Bu * coordinate_grid(coons, c) * Bv.transpose() - Tc) / k;  // q = ‖D‖²
-    q.constant += D.squaredNorm();
-    const Eigen::MatrixXd G = Bu.transpose() * D * Bv / k;  // half the gradient
-    q.c_hat[c] = sine_2d(G.block(1, 1, rows_, cols_));
-    q.c_scale += Bu.norm() * Bv.norm() / k * (D.norm() + Tc.norm() / k);
-  }
-  q.terms.push_back(
-      {sine_both_sides(Bu.transpose() * Bu), sine_both_sides(Bv.transpose() * Bv / (double(k) * k)), 1.0});
   return q;
 }
 
