@@ -105,6 +105,36 @@ TEST_CASE("fit_degree_limit: with noise the error estimate covers the actual err
   CHECK(covered == 5);  // every trial of this seed claims a limit, and each is checked above
 }
 
+TEST_CASE("fit_degree_limit: with three points in the fit range the error is unknown, not one shift", "[study]") {
+  // μ* of the dome's e3 (coons degree-limit); the continuum optimum (Ritz, N = 24 … 40) is 0.224913.
+  // Up to n = 12 the last two triples agree to 0.00057, but their limit lies 0.0034 from it.
+  const std::vector<std::pair<int, double>> dome_e3 = {
+      {3, 0.3291395951939312},   {4, 0.36772715240866655},  {5, 0.3044792420683252},   {6, 0.2853102291107013},
+      {8, 0.26814680201340224},  {10, 0.2584438317919918},  {12, 0.2522977650015085},  {16, 0.24495091562557203},
+      {20, 0.24071190044517568}, {24, 0.23795311487463017}, {32, 0.23457768529329287}, {48, 0.2312808735107022}};
+  const double continuum = 0.224913;
+  const auto up_to = [&](int last) {
+    std::vector<std::pair<int, double>> points;
+    for (const auto& p : dome_e3)
+      if (p.first <= last) points.push_back(p);
+    return fit_degree_limit(points);
+  };
+  const auto r = up_to(12);
+  REQUIRE(r.status == DegreeLimitStatus::kSuccess);
+  REQUIRE(r.limit);
+  CHECK(std::abs(*r.limit - continuum) > 0.003);
+  CHECK(!r.limit_error);
+  CHECK(r.message.find("unknown: 3 points at n ≥ 8") != std::string::npos);
+  // from four points in the range on an error, and it covers the continuum's distance
+  for (const int last : {16, 20, 24, 32, 48}) {
+    const auto more = up_to(last);
+    INFO("n up to " << last);
+    REQUIRE(more.limit);
+    REQUIRE(more.limit_error);
+    CHECK(std::abs(*more.limit - continuum) <= *more.limit_error);
+  }
+}
+
 TEST_CASE("fit_degree_limit: too few points or a tail that turns give no limit", "[study]") {
   const auto two = fit_degree_limit({{4, 10.0}, {8, 7.0}});
   CHECK(two.status == DegreeLimitStatus::kTooFewPoints);

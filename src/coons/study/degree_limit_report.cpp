@@ -116,10 +116,12 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
   if (has_reliable_limit(e, t))
     out.push_back(fmt::format("μ*(n) converges: μ∞ = {} ± {} (rate n^−{:.2f}){}.", num(*e.limit.limit),
                               fmt::format("{:.2g}", *e.limit.limit_error), *e.limit.rate, within_clauses(e, last)));
+  else if (e.limit.limit && e.limit.limit_error)
+    out.push_back(fmt::format("no limit claimed: the extrapolation gives μ∞ = {} ± {:.2g}, an error above {:.0f} %.",
+                              num(*e.limit.limit), *e.limit.limit_error, 100 * t.limit_error));
   else if (e.limit.limit)
-    out.push_back(fmt::format(
-        "no limit claimed: the extrapolation gives μ∞ = {} ± {}, an error above {:.0f} %.", num(*e.limit.limit),
-        e.limit.limit_error ? fmt::format("{:.2g}", *e.limit.limit_error) : std::string("?"), 100 * t.limit_error));
+    out.push_back(fmt::format("no limit claimed: the extrapolation gives μ∞ = {}, but {}.", num(*e.limit.limit),
+                              e.limit.message));
   else
     out.push_back("no limit claimed: " + (e.limit.message.empty() ? std::string("no extrapolation") : e.limit.message) +
                   ".");
