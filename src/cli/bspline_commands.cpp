@@ -135,9 +135,7 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   if (e.ply) names.push_back(prefix + ".surface.ply");
   if (e.vts) names.push_back(prefix + ".surface.vts");
   if (e.mtx) names.insert(names.end(), {prefix + ".A.mtx", prefix + ".B.mtx"});
-  for (const auto& name : names)
-    if (!e.force && std::filesystem::exists(out.path_of(name)))
-      throw InputError(out.path_of(name), "--force", "exists; give --force to overwrite it");
+  for (const auto& name : names) require_new_output(out.path_of(name), e.force, "--out");
 
   const BSplineSurface frame_surface = bspline_surface_on(in.compatible, bspline_frame(in.compatible));
   nlohmann::json report = {{"boundary", input.boundary.name},

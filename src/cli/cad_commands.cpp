@@ -33,8 +33,7 @@ int run_import_step(const ImportRequest& q) {
   if (q.out.empty()) throw InputError("command line", "--out", "is required (the boundary file to write)");
   // a given -1 would read as "not given" below (and be blamed on --edges)
   if (q.face_given && q.face < 0) throw InputError("command line", "--face", "must be >= 0 (faces count from 0)");
-  if (!q.force && std::filesystem::exists(q.out))
-    throw InputError(q.out, "--force", "exists; give --force to overwrite it");
+  require_new_output(q.out, q.force, "--out");
   cad::StepImportOptions options;
   options.face = q.face;
   options.edges = q.edges;
@@ -68,8 +67,7 @@ void check_cad_export(const CadExportRequest& r, bool force) {
   const std::string option = r.step.empty() ? "--iges" : "--step";
   if (!COONS_HAVE_OCCT) throw InputError("command line", option, kNoOcct);
   for (const std::string* path : {&r.step, &r.iges})
-    if (!path->empty() && !force && std::filesystem::exists(*path))
-      throw InputError(*path, "--force", "exists; give --force to overwrite it");
+    if (!path->empty()) require_new_output(*path, force, path == &r.step ? "--step" : "--iges");
   if (!r.step.empty() && !r.iges.empty() && same_file_path(r.step, r.iges))
     throw InputError("command line", "--iges", "is the same file as --step");
 }

@@ -41,6 +41,13 @@ void add_memory_option(CLI::App& cmd, GlobalOptions& g) {
                  "(default: half of the available memory)");
 }
 
+void require_new_output(const std::string& path, bool force, const std::string& option) {
+  if (std::filesystem::is_directory(path))
+    throw InputError(path, option, "is a folder; name a file to write (--force does not replace a folder)");
+  if (!force && std::filesystem::exists(path))
+    throw InputError(path, "--force", "exists; give --force to overwrite it");
+}
+
 void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
                   const std::string& field) {
   const double limit = g.memory_limit();

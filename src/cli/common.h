@@ -66,6 +66,11 @@ CLI::Validator choice_of(const std::map<std::string, Enum>& names) {
       "{" + list + "}", "CHOICE");
 }
 
+//! An output file the command is about to write: a folder of that name is bad input naming
+//! `option` (--force cannot replace a folder by a file; it said "give --force"), and so is an
+//! existing file without --force.
+void require_new_output(const std::string& path, bool force, const std::string& option);
+
 //! Refuses (InputError naming `file` and `field`) when `bytes` exceeds the limit.
 void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
                   const std::string& field);

@@ -102,9 +102,7 @@ int run_export(ExportRequest e) {
   std::vector<std::string> names;
   if (e.obj) names.insert(names.end(), {prefix + ".surface.obj", prefix + ".net.obj"});
   if (e.mtx) names.insert(names.end(), {prefix + ".A.mtx", prefix + ".B.mtx"});
-  for (const auto& name : names)
-    if (!e.global.force && std::filesystem::exists(out.path_of(name)))
-      throw InputError(out.path_of(name), "--force", "exists; give --force to overwrite it");
+  for (const auto& name : names) require_new_output(out.path_of(name), e.global.force, "--out");
 
   nlohmann::json report = {{"boundary", b.name}, {"degree", {b.m, b.n}}, {"method", to_string(r.method)}};
   NetOutcome outcome;

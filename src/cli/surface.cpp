@@ -54,7 +54,7 @@ void check_output(const std::string& path, const char* option, bool force) {
   const fs::path parent = fs::path(path).parent_path();
   if (!parent.empty() && !fs::is_directory(parent))
     throw InputError("command line", option, fmt::format("the folder '{}' does not exist", parent.string()));
-  if (!force && fs::exists(path)) throw InputError(path, "--force", "exists; give --force to overwrite it");
+  require_new_output(path, force, option);
 }
 
 int run_surface(const SurfaceRequest& r) {

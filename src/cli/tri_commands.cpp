@@ -144,9 +144,7 @@ int run_tri_export(const TriExportArgs& e) {
   if (ply) names.push_back(prefix + ".surface.ply");
   if (vtu) names.push_back(prefix + ".surface.vtu");
   if (mtx) names.insert(names.end(), {prefix + ".A.mtx", prefix + ".B.mtx"});
-  for (const auto& name : names)
-    if (!e.global->force && std::filesystem::exists(out.path_of(name)))
-      throw InputError(out.path_of(name), "--force", "exists; give --force to overwrite it");
+  for (const auto& name : names) require_new_output(out.path_of(name), e.global->force, "--out");
 
   nlohmann::json report = {{"boundary", b.name}, {"type", "triangle"},        {"degree", b.n},
                            {"method", "alpha"},  {"alpha", r.options.mask.c}, {"a", r.options.mask.a()}};

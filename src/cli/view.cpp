@@ -112,8 +112,7 @@ ViewSlider triangle_slider(const ViewRequest& r, const ViewOptions& options, std
 int run_view(const ViewRequest& r) {
   Phases phases("view");
   phases.start("read");
-  if (!r.global.force && std::filesystem::exists(r.out))
-    throw InputError(r.out, "--force", "exists; give --force to overwrite it");
+  require_new_output(r.out, r.global.force, "--out");
   const std::filesystem::path parent = std::filesystem::path(r.out).parent_path();
   if (!parent.empty() && !std::filesystem::is_directory(parent))
     throw InputError("command line", "--out", fmt::format("the folder '{}' does not exist", parent.string()));

@@ -400,6 +400,11 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
        COONS_HAVE_OCCT ? "--face: must be >= 0" : "OpenCASCADE"},
       // a triangle has no STEP/IGES surface (--step was ignored)
       {"export " + quoted(kData + "/triangles/sphere_octant.json") + " --out {OUT} --step {OUT}/t.step", "--step"},
+      // an output named by the user that is a folder: --force cannot replace it (it said "give --force")
+      {"view " + good + " --out {OUT}", "--out: is a folder"},
+      {"refit " + good + " --degree 4 4 --out {OUT}", "--out: is a folder"},
+      {"surface " + surface + " --obj {OUT}", "--obj: is a folder"},
+      {"export " + good + " --out {OUT} --step {OUT}", COONS_HAVE_OCCT ? "--step: is a folder" : "OpenCASCADE"},
       // view (checks of the command line come before three.js is read: the same errors without it)
       {"view " + good + " --out {OUT}/missing/page.html", "--out"},
       // bench-matrix

@@ -68,6 +68,13 @@ TEST_CASE("knot_vector_problems: each violation is a reason naming the knot", "[
     U(7) = 0.9;
     CHECK(names_index(knot_vector_problems(U, 3, 6), 7));
   }
+  SECTION("not clamped at the end by one ulp: the two knots print differently") {
+    Eigen::VectorXd U = valid;
+    U(6) = std::nextafter(1.0, 0.0);  // "{:g}" printed both as 1: "knot 6 (1) differs from knot 9 (1)"
+    const auto problems = knot_vector_problems(U, 3, 6);
+    REQUIRE(names_index(problems, 6));
+    CHECK(problems[0].reason.find("knot 6 (0.9999999999999999) differs from knot 9 (1)") != std::string::npos);
+  }
   SECTION("first knot repeated too often") {
     Eigen::VectorXd U = valid;
     U(4) = 0;

@@ -101,7 +101,7 @@ BSplineCurve edge_curve(const TopoDS_Edge& edge, int index, const std::string& p
   for (Eigen::Index k = 0; k < c.knots.size(); ++k)
     if (!std::isfinite(c.knots(k))) throw InputError(path, field, fmt::format("knot {} is not finite", k));
   std::string why;
-  if (!c.is_valid(&why)) throw InputError(path, field, "its B-spline form is not clamped: " + why);
+  if (!c.is_valid(&why)) throw InputError(path, field, "its B-spline form cannot be used: " + why);
   return c;
 }
 

@@ -33,7 +33,9 @@ Eigen::RowVector3d de_boor(const BSplineCurve& c, int span, const std::vector<do
   return d[std::size_t(p)];
 }
 
-std::string number(double x) { return fmt::format("{:g}", x); }
+// the shortest text that reads back as x: two different knots never print alike ("{:g}" printed
+// knot 10 of 0.99999999999999989 as "1", beside the last knot 1)
+std::string number(double x) { return fmt::format("{}", x); }
 
 }  // namespace
 
