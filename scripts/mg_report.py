@@ -172,6 +172,16 @@ def threads_table(data):
             note += f", {t / solve[0]:.2f} of a `fast` solve at α = −0.1"
             if (n, k) in sweeps:
                 note += f" and {t / (sweeps[(n, k)] / 101):.2f} of a member of its 101-value sweep"
+                # the sweep goal allows 60/101 of a solve per member; a member that writes its net
+                # through the rows' transform costs at least the floor, and the rest is its eliminations
+                allowed, floor = 60 / 101, t / solve[0]
+                member = sweeps[(n, k)] / 101 / solve[0]
+                note += f"; the sweep goal (≤ 60× one solve) allows a member {allowed:.2f} of a solve, "
+                if floor >= allowed:
+                    note += f"less than this floor alone ({floor:.2f})"
+                else:
+                    note += (f"which leaves {allowed - floor:.2f} of a solve beside this floor for its eliminations "
+                             f"(they take {member - floor:.2f} now)")
         floor_notes.append(f"N = {n}, {note}")
     if floor_notes:
         text += ("\n\nThe floor of a solve that transforms rows, same run (`BM_SineRows`: the inverse sine transform of "
