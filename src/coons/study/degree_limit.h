@@ -43,9 +43,9 @@ struct DegreeLimitResult {
   std::string message;
   std::vector<LimitFit> fits;
   std::optional<double> limit;  //!< μ∞ from the last triple of points
-  //! 2·max |μ∞ − other| over the free-rate fit's μ∞, the μ∞ + a/n + b/n² fit's and μ∞(the triple
-  //! before): an estimate with a safety factor, not a bound; nullopt (and `message` says why) with
-  //! fewer than four points at n ≥ fit_from_degree, where those fits have no check of their own
+  //! max |μ∞ − other| over the free-rate fit's μ∞, the μ∞ + a/n + b/n² fit's and μ∞(the triple
+  //! before): an estimate, not a bound; nullopt (and `message` says why) with fewer than four
+  //! points at n ≥ fit_from_degree, where those fits have no check of their own
   std::optional<double> limit_error;
   std::optional<double> rate;  //!< p from the last triple
   //! (the largest n of the triple, p) for every triple of successive points that has a rate
