@@ -155,9 +155,18 @@ AlphaSearchSummary search_mu(const Boundary& boundary, const Objective& objectiv
     on_alpha.lower = (options.lower - 1) / 4;
     on_alpha.upper = (options.upper - 1) / 4;
     AlphaSearchSummary s = search_alpha(boundary, objective, solver, on_alpha, solver_options);
-    if (s.parameter) s.parameter = 1 + 4 * *s.parameter;
-    for (auto& point : s.scan) point.first = 1 + 4 * point.first;
-    for (auto& run : s.failed_intervals) run = {1 + 4 * run.first, 1 + 4 * run.second};
+    // back to s = 1 + 4α, the bounds exactly: (s − 1)/4 and back rounds (the scan of μ over [5, 6]
+    // began at 5.000000000000002, and one over [1e-300, 2e-300] ended at 1e-300)
+    const auto to_s = [&](double alpha) {
+      return alpha == on_alpha.lower ? options.lower : alpha == on_alpha.upper ? options.upper : 1 + 4 * alpha;
+    };
+    if (s.parameter) s.parameter = to_s(*s.parameter);
+    for (auto& point : s.scan) point.first = to_s(point.first);
+    if (!s.scan.empty()) {  // the scan holds both bounds, also where they are one α
+      s.scan.front().first = options.lower;
+      s.scan.back().first = options.upper;
+    }
+    for (auto& run : s.failed_intervals) run = {to_s(run.first), to_s(run.second)};
     if (!s.message.empty()) s.message += " (parameters in this message are alpha = (s - 1)/4)";
     return s;
   }
