@@ -52,6 +52,16 @@ TEST_CASE("search_bspline_alpha: finds the minimum of a fine scan, twist has its
   REQUIRE(twist.parameter);
   CHECK(*twist.parameter == Approx(-0.25).margin(1e-8));
   CHECK(twist.at_bound);
+  // higher degrees: the root of f' is found from inside, up to 1e-9 away, and is still the bound
+  // (at_bound was false under a tolerance of 1e-10)
+  for (std::uint32_t seed = 1; seed <= 6; ++seed) {
+    const BSplineBoundary high = compatible_boundary(make_random_bspline_boundary(5, 10, 6, 9, 40 + seed));
+    const AlphaSearchSummary t = search_bspline_alpha(high, objective_named("twist"), "eigen-lu");
+    INFO("seed " << seed << ": " << t.brief_report());
+    REQUIRE(t.parameter);
+    CHECK(std::abs(*t.parameter + 0.25) <= 1e-7 * 0.25);
+    CHECK(t.at_bound);
+  }
   const AlphaSearchSummary dirichlet = search_bspline_alpha(b, objective_named("dirichlet"), "eigen-lu");
   REQUIRE(dirichlet.parameter);
   CHECK(dirichlet.at_bound);

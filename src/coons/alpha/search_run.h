@@ -225,10 +225,14 @@ class SearchRun {
 
   // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards (a slope
   //    at rounding level, as at a minimum on the bound itself, counts as outwards).
+  //    Every objective is ≥ 0, so a bound whose value is 0 to rounding (the flat test's floor) is
+  //    a minimum whatever its slope: at the kink of an rms distance that vanishes there (a target
+  //    net solved at α = −1/4) the slope is noise, and it read as pointing inwards.
   bool on_bound() {
     const int k = int(grid_.size());
     if (best_ == 0 || best_ == k - 1) grid_[best_] = with_derivative(grid_[best_]);  // its slope decides
-    if ((best_ == 0 && grid_[0].derivative >= -grid_[0].derivative_noise) ||
+    const bool zero = (best_ == 0 || best_ == k - 1) && grid_[best_].value <= options_.flat_tolerance * floor_;
+    if (zero || (best_ == 0 && grid_[0].derivative >= -grid_[0].derivative_noise) ||
         (best_ == k - 1 && grid_[k - 1].derivative <= grid_[k - 1].derivative_noise)) {
       s_.parameter = grid_[best_].parameter;
       s_.value = grid_[best_].value;
