@@ -37,6 +37,8 @@ DegreeLimitEntry synthetic(double limit, double a, std::optional<double> mu_c) {
     }
   e.mu_spread.ratio = hi / lo;
   e.mu_spread.points = 6;
+  e.mu_spread.from = 4;
+  e.mu_spread.to = 32;
   if (mu_c) {
     ContinuumOptimum o;
     o.degree = 40;
@@ -54,6 +56,20 @@ TEST_CASE("degree_limit_conclusions: a drifting mu* is never called degree-indep
   CHECK_FALSE(contains(text, "does not depend on the degree"));
   CHECK(contains(text, "μ* drifts with the degree"));
   CHECK(contains(text, "μ*(4) = 15"));  // the measured drift is printed instead
+}
+
+TEST_CASE("degree_limit_conclusions: a small spread over degrees close together is not called constant", "[study]") {
+  // the dome's e3 at n = 30, 31, 32 has max/min 1.003, over 4 … 32 1.57: the report said "μ* does
+  // not depend on the degree: max/min = 1.003 over n = 4 … 32", a range it had not measured
+  DegreeLimitEntry e = synthetic(5, 0.4, std::nullopt);
+  e.mu_spread.from = 30;
+  const std::string text = joined_lines(degree_limit_conclusions(e));
+  INFO(text);
+  CHECK_FALSE(contains(text, "does not depend on the degree"));
+  CHECK(contains(text, "over n = 30 … 32, too narrow a range of degrees"));
+  const std::string headline = degree_limit_headline({e}, "thin_plate");
+  CHECK_FALSE(contains(headline, "does not depend"));
+  CHECK(contains(headline, "n = 30 … 32"));
 }
 
 TEST_CASE("degree_limit_conclusions: a nearly constant mu* is called degree-independent", "[study]") {

@@ -125,6 +125,15 @@ TEST_CASE("fit_degree_limit: with three points in the fit range the error is unk
   CHECK(std::abs(*r.limit - continuum) > 0.003);
   CHECK(!r.limit_error);
   CHECK(r.message.find("unknown: 3 points at n ≥ 8") != std::string::npos);
+  // degrees close together: no error either (n = 24 … 32 claimed ± 0.00035 where the limit lay 0.00039 off)
+  const auto narrow = fit_degree_limit({{24, 0.23795311487463017},
+                                        {26, 0.23690598548627514},
+                                        {28, 0.23601451438145424},
+                                        {30, 0.235246395899225},
+                                        {32, 0.23457768529329287}});
+  REQUIRE(narrow.limit);
+  CHECK(!narrow.limit_error);
+  CHECK(narrow.message.find("span too little") != std::string::npos);
   // from four points in the range on an error: an estimate, 1.2-1.25x short up to n = 16 and 20,
   // covering the continuum's distance from n = 24 on (the old one shift was 6x short at n = 12)
   for (const int last : {16, 20, 24, 32, 48}) {
@@ -134,6 +143,15 @@ TEST_CASE("fit_degree_limit: with three points in the fit range the error is unk
     REQUIRE(more.limit_error);
     CHECK(std::abs(*more.limit - continuum) <= (last < 24 ? 1.3 : 1.0) * *more.limit_error);
   }
+}
+
+TEST_CASE("fit_degree_limit: a monotone tail whose steps grow is told so, not that it turns", "[study]") {
+  // μ* of the dome's e3 at n = 3, 5, 7 falls strictly; the message said it did not approach monotonically
+  const auto r = fit_degree_limit({{3, 0.3291395951939312}, {5, 0.3044792420683252}, {7, 0.2754}});
+  CHECK(r.status == DegreeLimitStatus::kNotMonotone);
+  CHECK(r.message.find("do not shrink") != std::string::npos);
+  const auto turning = fit_degree_limit({{4, 10.0}, {8, 7.0}, {12, 6.0}, {16, 6.5}});
+  CHECK(turning.message.find("change sign") != std::string::npos);
 }
 
 TEST_CASE("fit_degree_limit: too few points or a tail that turns give no limit", "[study]") {

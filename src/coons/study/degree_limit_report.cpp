@@ -27,8 +27,16 @@ bool all_flat(const DegreeLimitEntry& e) {
                                          [](const DegreeLimitCell& c) { return c.kind == DegreeOptimum::kFlat; });
 }
 
+// "n = 4 … 32": the degrees a spread was taken over.
+std::string range_of(const Spread& s) { return fmt::format("n = {} … {}", s.from, s.to); }
+
+// A spread over less than a factor kConstantRange in n says nothing about how μ* depends on the
+// degree: over n = 30 … 32 the dome's e3 has max/min 1.003, over 4 … 32 1.57.
+constexpr int kConstantRange = 4;
+bool wide(const Spread& s) { return s.points >= 2 && s.to >= kConstantRange * s.from; }
+
 bool is_constant(const DegreeLimitEntry& e, const ClaimThresholds& t) {
-  return e.mu_spread.ratio && *e.mu_spread.ratio - 1 <= t.constant;
+  return e.mu_spread.ratio && *e.mu_spread.ratio - 1 <= t.constant && wide(e.mu_spread);
 }
 
 bool has_reliable_limit(const DegreeLimitEntry& e, const ClaimThresholds& t) {
@@ -104,13 +112,19 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
   }
   // 1. constant or drifting
   if (is_constant(e, t))
+    out.push_back(fmt::format("μ* does not depend on the degree: max/min = {:.3f} over {}.", *e.mu_spread.ratio,
+                              range_of(e.mu_spread)));
+  else if (e.mu_spread.ratio && *e.mu_spread.ratio - 1 <= t.constant)
     out.push_back(
-        fmt::format("μ* does not depend on the degree: max/min = {:.3f} over n = 4 … 32.", *e.mu_spread.ratio));
+        fmt::format("μ* varies by max/min = {:.3f} over {}, too narrow a range of degrees (less than a "
+                    "factor {}) to say whether it depends on the degree.",
+                    *e.mu_spread.ratio, range_of(e.mu_spread), kConstantRange));
   else
-    out.push_back(fmt::format(
-        "μ* drifts with the degree: μ*({}) = {}, μ*({}) = {}{}.", mus.front().first, num(mus.front().second),
-        mus.back().first, num(mus.back().second),
-        e.mu_spread.ratio ? fmt::format(" (max/min {:.3g} over n = 4 … 32)", *e.mu_spread.ratio) : std::string()));
+    out.push_back(fmt::format("μ* drifts with the degree: μ*({}) = {}, μ*({}) = {}{}.", mus.front().first,
+                              num(mus.front().second), mus.back().first, num(mus.back().second),
+                              e.mu_spread.ratio
+                                  ? fmt::format(" (max/min {:.3g} over {})", *e.mu_spread.ratio, range_of(e.mu_spread))
+                                  : std::string()));
   // 2. the limit
   const int last = mus.back().first;
   if (has_reliable_limit(e, t))
@@ -170,8 +184,8 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
     if (best == "μ*")
       out.push_back(fmt::format("No other parametrisation varies less than μ* (max/min {:.3g}).", r));
     else
-      out.push_back(fmt::format("Over n = 4 … 32, {} varies least: max/min {:.3g}, against {:.3g} for μ*.", best, r,
-                                *e.mu_spread.ratio));
+      out.push_back(fmt::format("Over {}, {} varies least: max/min {:.3g}, against {:.3g} for μ*.",
+                                range_of(e.mu_spread), best, r, *e.mu_spread.ratio));
   }
   return out;
 }
@@ -183,10 +197,14 @@ std::string degree_limit_headline(const std::vector<DegreeLimitEntry>& entries, 
     if (e.objective == objective && e.mu_spread.ratio) with.push_back(&e);
   if (with.empty()) return fmt::format("{}: no shape has interior optima at two degrees in n = 4 … 32", objective);
   double lo = HUGE_VAL, hi = 0, p_lo = HUGE_VAL, p_hi = 0;
+  Spread range;  // the union of the entries' ranges
+  range.from = with.front()->mu_spread.from;
   bool constant = true, limits = true, continuum = true;
   for (const DegreeLimitEntry* e : with) {
     lo = std::min(lo, *e->mu_spread.ratio);
     hi = std::max(hi, *e->mu_spread.ratio);
+    range.from = std::min(range.from, e->mu_spread.from);
+    range.to = std::max(range.to, e->mu_spread.to);
     constant = constant && is_constant(*e, t);
     limits = limits && has_reliable_limit(*e, t);
     continuum = continuum && meets_continuum(*e, t);
@@ -196,8 +214,11 @@ std::string degree_limit_headline(const std::vector<DegreeLimitEntry>& entries, 
     }
   }
   if (constant) return fmt::format("{}: μ* does not depend on the degree (max/min ≤ {:.3f})", objective, hi);
-  std::string s =
-      fmt::format("{}: μ* drifts with the degree (max/min {:.3g} to {:.3g} over n = 4 … 32)", objective, lo, hi);
+  if (hi - 1 <= t.constant)  // small spreads, but not all over a wide enough range of degrees
+    return fmt::format("{}: μ* varies by max/min ≤ {:.3f} over {}, too narrow a range of degrees to say more",
+                       objective, hi, range_of(range));
+  std::string s = fmt::format("{}: μ* drifts with the degree (max/min {:.3g} to {:.3g} over {})", objective, lo, hi,
+                              range_of(range));
   if (limits) {
     s += fmt::format(" and converges, as n^−p with p = {:.2f} … {:.2f}", p_lo, p_hi);
     if (continuum) s += ", to the optimum of the continuous problem";
@@ -292,7 +313,8 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
   line("");
   for (const std::string& o : objectives) line("- " + degree_limit_headline(entries, o) + ".");
   line("");
-  line("Each claim below is printed only when the numbers support it (μ* constant: max/min ≤ 1.05 over n = 4 … 32;");
+  line("Each claim below is printed only when the numbers support it (μ* constant: max/min ≤ 1.05 over degrees");
+  line("within n = 4 … 32 that span at least a factor 4;");
   line("a limit: extrapolation error ≤ 5 %; agreement with the continuum: |μ∞ − μ_c| ≤ max(5 % of μ_c, twice the");
   line("error plus the Ritz change between its last two degrees)); otherwise the measured value is printed instead.");
   line("μ* = −n²(1 + 4α*)/(4α*) (docs/math.md §4) from α* of `search_alpha` at each degree (the boundary refitted");

@@ -69,6 +69,8 @@ Spread spread_of(const std::vector<std::pair<int, double>>& values, const Degree
     if (n >= options.spread_from && n <= options.spread_to) {
       lo = std::min(lo, v);
       hi = std::max(hi, v);
+      s.from = s.points == 0 ? n : std::min(s.from, n);
+      s.to = std::max(s.to, n);
       ++s.points;
     }
   if (s.points >= 2 && lo > 0) s.ratio = hi / lo;
@@ -201,7 +203,12 @@ json degree_limit_json(const DegreeLimitEntry& e) {
                          {"status", to_string(c.status)},
                          {"value", number_or_null(c.value)}});
   const ContinuumSummary cs = continuum_summary(e);
-  auto spread = [](const Spread& s) { return json{{"max_over_min", optional_number(s.ratio)}, {"points", s.points}}; };
+  auto spread = [](const Spread& s) {
+    return json{{"max_over_min", optional_number(s.ratio)},
+                {"points", s.points},
+                {"from", s.points > 0 ? json(s.from) : json(nullptr)},
+                {"to", s.points > 0 ? json(s.to) : json(nullptr)}};
+  };
   json out = {{"boundary", e.boundary},
               {"objective", e.objective},
               {"degrees", degrees},

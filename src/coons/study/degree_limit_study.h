@@ -51,6 +51,7 @@ struct DegreeLimitCell {
 struct Spread {  //!< max/min of a parametrisation's optimum over [spread_from, spread_to]
   std::optional<double> ratio;
   int points = 0;
+  int from = 0, to = 0;  //!< the smallest and largest degree that counted (0 without points)
 };
 
 struct DegreeLimitEntry {
