@@ -355,3 +355,34 @@ TEST_CASE("coons surface: a curve with a pole between the reader's samples is ba
   CHECK(contains(r.err, "spole.json: bottom.expr[2]: '0.001/(t-0.3)"));
   CHECK(contains(r.err, "has a pole or is not finite near t = 0.3,"));
 }
+
+TEST_CASE("coons surface: curvatures of a model far from the origin, and none where no sample has one",
+          "[cli][surfaces]") {
+  // The bundled Hermite pair moved by 1e8 in x printed mean curvature 0 (its expression curves'
+  // second derivatives were NaN by rounding); a cylinder wound 1000 times, whose derivatives do
+  // not settle, printed 0 too, a flat surface.
+  TempDir dir;
+  const std::string moved = dir.write("moved.json", R"json({"type": "ruled",
+      "curves": [{"expr": ["1e8 + cos(t)", "sin(t)", "0"], "interval": [0, 3]},
+                 {"expr": ["1e8 + cos(t)", "sin(t)", "1"], "interval": [0, 3]}]})json");
+  const std::string near = dir.write("near.json", R"json({"type": "ruled",
+      "curves": [{"expr": ["cos(t)", "sin(t)", "0"], "interval": [0, 3]},
+                 {"expr": ["cos(t)", "sin(t)", "1"], "interval": [0, 3]}]})json");
+  const auto sampled = [](const std::string& file) {
+    const CommandResult r = run_coons("surface " + quoted(file) + " --samples 5");
+    INFO(r.err);
+    REQUIRE(r.status == 0);
+    return nlohmann::json::parse(r.out)["sampled"];
+  };
+  const nlohmann::json at_origin = sampled(near), far = sampled(moved);
+  CHECK(at_origin["singular_samples"] == 0);
+  CHECK(far["singular_samples"] == 0);
+  CHECK(at_origin["max_abs_mean_curvature"].get<double>() == Approx(0.5).epsilon(1e-6));  // a unit cylinder
+  CHECK(far["max_abs_mean_curvature"].get<double>() == Approx(0.5).epsilon(2e-2));
+  const std::string wound = dir.write("wound.json", R"json({"type": "ruled",
+      "curves": [{"expr": ["cos(t)", "sin(t)", "0"], "interval": [0, 6283.185307179586]},
+                 {"expr": ["cos(t)", "sin(t)", "1"], "interval": [0, 6283.185307179586]}]})json");
+  const nlohmann::json none = sampled(wound);
+  CHECK(none["singular_samples"] == 25);
+  CHECK(none["max_abs_mean_curvature"].is_null());
+}

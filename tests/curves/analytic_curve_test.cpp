@@ -106,6 +106,24 @@ TEST_CASE("AnalyticCurve: an infinite derivative is NaN, not a number", "[curves
   CHECK(std::abs(c.derivative(1, 0.25)(1) - 1.0) < 1e-9);
 }
 
+TEST_CASE("AnalyticCurve: a curve far from the origin keeps its derivatives, a singular one stays NaN", "[curves]") {
+  // Rounding of values near 1e8 disagrees by about 1 % in a second derivative: it was read as "no
+  // derivative", so the surface's curvatures came out 0 and join compared no normals.
+  for (const auto& [offset, accuracy] : {std::pair{1e6, 1e-4}, std::pair{1e8, 2e-2}}) {
+    const AnalyticCurve near({"cos(t)", "sin(t)", "t"}, 0.0, 2.0);
+    const AnalyticCurve far({std::to_string(offset) + " + cos(t)", "sin(t)", "t"}, 0.0, 2.0);
+    for (int r = 1; r <= 2; ++r)
+      for (const double s : {0.0, 0.3, 1.0}) {
+        INFO("offset " << offset << ", order " << r << ", s = " << s);
+        const Eigen::RowVector3d exact = near.derivative(r, s), d = far.derivative(r, s);
+        REQUIRE(d.allFinite());
+        CHECK((d - exact).cwiseAbs().maxCoeff() <= accuracy * exact.cwiseAbs().maxCoeff());
+      }
+    const AnalyticCurve root({std::to_string(offset) + " + t", "sqrt(t)", "0"});
+    CHECK(root.derivative(1, 0.0).hasNaN());
+  }
+}
+
 TEST_CASE("fit_bezier: interpolates the ends, exact for polynomials, deviation falls with the degree", "[curves]") {
   // A polynomial of degree 3 written as expressions: fitted exactly at degree ≥ 3.
   const Curve cubic = AnalyticCurve({"t", "t^3 - t", "2*t^2"});

@@ -66,6 +66,8 @@ NumericalDerivative tableau(D difference, double h0, double ratio, bool* broke_o
       if (err <= best.error_estimate) {
         best.error_estimate = err;
         best.value = T[i][k];
+        best.step = h;
+        best.column = k;
       }
     }
     if (i > 0 && (T[i][i] - T[i - 1][i - 1]).cwiseAbs().maxCoeff() >= kSafe * best.error_estimate) break;
@@ -102,26 +104,39 @@ NumericalDerivative consistent(D difference, double h0, double ratio, bool* nonf
 
 }  // namespace
 
-NumericalDerivative numerical_derivative(const std::function<Eigen::RowVector3d(double)>& f, int r, double s, double h0,
-                                         double domain_lo, double domain_hi) {
+NumericalDerivative numerical_derivative(const std::function<Eigen::RowVector3d(double)>& function, int r, double s,
+                                         double h0, double domain_lo, double domain_hi) {
   assert(r >= 1 && r <= 3);
   if (h0 <= 0) h0 = 0.1;
+  double largest = 0;  // max |f| over the finite samples
+  const std::function<Eigen::RowVector3d(double)> f = [&](double x) {
+    Eigen::RowVector3d v = function(x);
+    if (v.allFinite()) largest = std::max(largest, v.cwiseAbs().maxCoeff());
+    return v;
+  };
+  // the sum of |weights| of the differences above: central 1/h, 4/h², 3/h³; one-sided 2^r/h^r
+  auto with_rounding = [&](NumericalDerivative d, bool central_weights) {
+    static const double central_sum[4] = {0, 1, 4, 3};
+    const double weights = (central_weights ? central_sum[r] : std::pow(2.0, r)) / std::pow(d.step, r);
+    d.rounding = std::numeric_limits<double>::epsilon() * largest * weights * std::pow(3.0, d.column);
+    return d;
+  };
   bool nonfinite = false;
   auto centred = [&](double h) { return central(f, r, s, h); };
   NumericalDerivative d = consistent(centred, h0, kShrink * kShrink, &nonfinite);
-  if (!nonfinite) return d;
+  if (!nonfinite) return with_rounding(d, true);
   // The function may be undefined outside the domain: central differences that stay inside it.
   const double room = 0.9 * std::min(s - domain_lo, domain_hi - s) / (r == 3 ? 2 : 1);
   if (room >= 1e-3 && room < h0) {
     d = consistent(centred, room, kShrink * kShrink, &nonfinite);
-    if (!nonfinite) return d;
+    if (!nonfinite) return with_rounding(d, true);
   }
   // One-sided, pointing into the domain (towards its middle).
   const int dir = (s - domain_lo) <= (domain_hi - s) ? +1 : -1;
   d = consistent([&](double h) { return one_sided(f, r, s, h, dir); }, h0 / (r + 1), kShrink, &nonfinite);
   d.one_sided = true;
   if (nonfinite) d.value.setConstant(std::numeric_limits<double>::quiet_NaN());
-  return d;
+  return with_rounding(d, false);
 }
 
 }  // namespace coons

@@ -25,6 +25,13 @@ struct NumericalDerivative {
   Eigen::RowVector3d value = Eigen::RowVector3d::Zero();
   double error_estimate = 0;  //!< max-norm disagreement of the last two extrapolations
   bool one_sided = false;     //!< central differences were impossible (non-finite samples)
+  //! What rounding of the function's values alone makes of the returned entry: ε·max|f| over the
+  //! samples, times the difference's weights over h^r, times 3 per extrapolation column. A
+  //! function far from the origin (a curve at x = 1e8) has an error estimate of this size however
+  //! smooth it is; a singular derivative has one far above it.
+  double rounding = 0;
+  double step = 0;  //!< h of the returned entry's row
+  int column = 0;   //!< its extrapolation column
 };
 
 //! d^r f / ds^r at s, r = 1, 2 or 3, starting from step h0 (default 0.1).

@@ -41,6 +41,13 @@ double finite_max(const Eigen::VectorXd& x, bool absolute) {
   return m;
 }
 
+// finite_max, or null where no sample has a value (every one singular: a maximum of 0 read as a
+// flat surface, for a cylinder whose derivatives could not be taken)
+json finite_max_or_null(const Eigen::VectorXd& x, bool absolute) {
+  const bool any = std::any_of(x.data(), x.data() + x.size(), [](double v) { return std::isfinite(v); });
+  return any ? json(finite_max(x, absolute)) : json(nullptr);
+}
+
 }  // namespace
 
 SurfaceFile read_surface_reference(const std::string& path, const SurfaceReadOptions& options) {
@@ -128,9 +135,13 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
   for (auto [u, v] : {std::pair{0.0, 0.0}, {1.0, 0.0}, {0.0, 1.0}, {1.0, 1.0}})
     twists.push_back(point_json(surface.evaluate(u, v).duv));
   report["corner_twists"] = twists;
-  report["sampled"] = {{"max_abs_mean_curvature", finite_max(samples.mean_curvature, true)},
-                       {"max_abs_gaussian_curvature", finite_max(samples.gaussian_curvature, true)},
-                       {"max_twist", finite_max(samples.twist, false)}};
+  const auto singular =
+      std::count_if(samples.mean_curvature.data(), samples.mean_curvature.data() + samples.mean_curvature.size(),
+                    [](double v) { return !std::isfinite(v); });
+  report["sampled"] = {{"max_abs_mean_curvature", finite_max_or_null(samples.mean_curvature, true)},
+                       {"max_abs_gaussian_curvature", finite_max_or_null(samples.gaussian_curvature, true)},
+                       {"max_twist", finite_max_or_null(samples.twist, false)},
+                       {"singular_samples", singular}};
 
   if (!input.conditions.empty()) {
     json conditions = json::array();
