@@ -134,6 +134,12 @@ TEST_CASE("fit_degree_limit: with three points in the fit range the error is unk
   REQUIRE(narrow.limit);
   CHECK(!narrow.limit_error);
   CHECK(narrow.message.find("span too little") != std::string::npos);
+  // the default degrees 3 … 64 end on three close ones, 62, 63, 64: an error all the same
+  std::vector<std::pair<int, double>> dense;
+  for (int n = 3; n <= 64; ++n) dense.emplace_back(n, 6.0 + 30.0 / n + 40.0 / (double(n) * n));
+  const auto every = fit_degree_limit(dense);
+  REQUIRE(every.limit_error);
+  CHECK(std::abs(*every.limit - 6.0) <= *every.limit_error);
   // from four points in the range on an error: an estimate, 1.2-1.25x short up to n = 16 and 20,
   // covering the continuum's distance from n = 24 on (the old one shift was 6x short at n = 12)
   for (const int last : {16, 20, 24, 32, 48}) {
