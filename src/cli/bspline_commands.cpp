@@ -94,7 +94,7 @@ BSplineBatchNet bspline_batch_net(const std::string& file, const BoundaryFile& i
   const BSplineResolved& r = net.resolved;
   check_bspline_memory(global, *input.bspline, file);
   net.outcome = solve_bspline(*input.bspline, r);
-  if (net.ok()) net.metrics = bspline_metrics(net.outcome.surface, r.alpha);  // r.alpha: −1/4 for coons
+  if (net.ok()) net.metrics = bspline_metrics(net.outcome.local, r.alpha);  // r.alpha: −1/4 for coons
   net.report = bspline_net_report(input.boundary.name, *input.bspline, r.method, r.alpha, net.outcome,
                                   r.picked_automatically, true, net.metrics ? &*net.metrics : nullptr);
   return net;

@@ -43,14 +43,48 @@ std::string auto_bspline_solver(double alpha) {
   return solvers::find_solver("cholmod") != nullptr ? "cholmod" : "eigen-ldlt";
 }
 
+Eigen::RowVector3d bspline_centre(const BSplineBoundary& b) {
+  Eigen::RowVector3d lo = b.bottom.points.row(0), hi = lo;
+  for (const BSplineCurve* side : {&b.bottom, &b.top, &b.left, &b.right}) {
+    lo = lo.cwiseMin(side->points.colwise().minCoeff());
+    hi = hi.cwiseMax(side->points.colwise().maxCoeff());
+  }
+  return 0.5 * lo + 0.5 * hi;
+}
+
+BSplineBoundary bspline_translated(const BSplineBoundary& b, const Eigen::RowVector3d& by) {
+  BSplineBoundary out = b;
+  for (BSplineCurve* side : {&out.bottom, &out.top, &out.left, &out.right}) side->points.rowwise() += by;
+  return out;
+}
+
 BSplineNetOutcome make_bspline_net(const BSplineBoundary& b, NetMethod method, double alpha,
                                    solvers::LinearSolver* solver) {
-  if (method != NetMethod::kAlpha || solver == nullptr) return {greville_coons_surface(b), std::nullopt};
-  // a singular system (the threshold of the stencil path's check at the input edge) is refused,
-  // not solved into a net of rounding noise
-  NonUniformSolveResult result = solve_nonuniform_mask_net(bspline_frame(b), greville_grid(b), alpha, *solver, false,
-                                                           ProblemCheckOptions{}.singular_tolerance);
-  return {bspline_surface_on(b, std::move(result.net)), std::move(result.summary)};
+  // solved in the frame centred on the boundary (every mask row sums to 1: the net moves with it)
+  const Eigen::RowVector3d centre = bspline_centre(b);
+  const BSplineBoundary local = bspline_translated(b, -centre);
+  BSplineNetOutcome out;
+  if (method != NetMethod::kAlpha || solver == nullptr) {
+    out.local = greville_coons_surface(local);
+  } else {
+    // a singular system (the threshold of the stencil path's check at the input edge) is refused,
+    // not solved into a net of rounding noise
+    NonUniformSolveResult result = solve_nonuniform_mask_net(bspline_frame(local), greville_grid(local), alpha, *solver,
+                                                             false, ProblemCheckOptions{}.singular_tolerance);
+    out.local = bspline_surface_on(local, std::move(result.net));
+    out.summary = std::move(result.summary);
+  }
+  // in the boundary's coordinates: the closed form as it stands (its points there are as good as
+  // the local ones moved back), the solved net's interior moved back into its own frame
+  if (method != NetMethod::kAlpha || solver == nullptr) {
+    out.surface = greville_coons_surface(b);
+    return out;
+  }
+  out.surface = out.local;
+  out.surface.net = bspline_frame(b);
+  for (int i = 1; i < out.surface.net.m; ++i)
+    for (int j = 1; j < out.surface.net.n; ++j) out.surface.net.at(i, j) = out.local.net.at(i, j) + centre;
+  return out;
 }
 
 NetMetrics bspline_metrics(const BSplineSurface& s, double alpha) {
@@ -111,7 +145,7 @@ json bspline_net_report(const std::string& name, const BSplineInput& input, NetM
     report["net"] = nullptr;
   else if (with_net)
     report["net"] = net_to_json(s.net);
-  report["metrics"] = ok ? metrics_to_json(metrics ? *metrics : bspline_metrics(s, alpha)) : json(nullptr);
+  report["metrics"] = ok ? metrics_to_json(metrics ? *metrics : bspline_metrics(outcome.local, alpha)) : json(nullptr);
   return report;
 }
 

@@ -132,7 +132,10 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
   const auto started = std::chrono::steady_clock::now();
   AlphaSearchSummary s;
   s.evaluator = "factorize and solve (non-uniform B-spline family)";
-  Evaluator eval(b, objective, solver_name, solver_options, s);
+  // in the frame centred on the boundary (bspline_net.h): the energies do not move with it, and a
+  // boundary at 1e12 no longer loses the shape's digits to the offset
+  const BSplineBoundary local = bspline_translated(b, -bspline_centre(b));
+  Evaluator eval(local, objective, solver_name, solver_options, s);
   // Failed evaluations are judged as in the Bézier search (search_failures.h): counted, grouped
   // into intervals, and a verdict that rests on one becomes failed_region, with where in the message.
   const auto finish = [&]() -> AlphaSearchSummary {

@@ -5,7 +5,7 @@
 // the net. A coarse scan over the bounds, then the root of the derivative inside the bracket of
 // the best scan point (Illinois regula falsi, bisection safeguard). Flat objectives, optima on a
 // bound and failed evaluations next to the optimum are reported as such (the statuses of
-// alpha_search.h). Evaluated on the boundary as given (no normalised frame).
+// alpha_search.h). Evaluated on the boundary moved to its centre (bspline_centre, bspline_net.h).
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) (the α search).
 #pragma once
 

@@ -18,7 +18,7 @@ double thin_plate_at(const BSplineBoundary& b, double alpha, const std::string& 
   auto backend = solvers::make_solver(solver);
   const BSplineNetOutcome r = make_bspline_net(b, NetMethod::kAlpha, alpha, backend.get());
   if (!r.summary || !r.summary->ok()) return NAN;
-  return bspline_combined_energy(r.surface, bspline_thin_plate_terms());
+  return bspline_combined_energy(r.local, bspline_thin_plate_terms());
 }
 
 std::string number(double x) { return std::isfinite(x) ? fmt::format("{:.6g}", x) : std::string("—"); }
