@@ -197,7 +197,8 @@ FittedNet fitted_net(const Surface& s, int fit_degree) {
       fit = fit_bezier(c, degree);
       if (fit.max_deviation <= rounding) break;
     }
-    out.fits.push_back({field, fit.curve.degree(), fit.max_deviation});
+    const bool derivative = field.rfind("du_", 0) == 0 || field.rfind("dv_", 0) == 0;
+    out.fits.push_back({field, fit.curve.degree(), fit.max_deviation, !derivative});
     if (!(fit.max_deviation <= out.max_curve_deviation)) out.max_curve_deviation = fit.max_deviation;  // NaN too
     return fit.curve;
   });

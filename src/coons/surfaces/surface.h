@@ -92,6 +92,7 @@ struct CurveFitReport {
   std::string curve;         //!< field name
   int degree = 0;            //!< of the fit used
   double max_deviation = 0;  //!< of the Bézier fit
+  bool on_surface = true;    //!< a side of the surface; false for a cross-derivative (du_*, dv_*)
 };
 
 struct FittedNet {
