@@ -151,3 +151,22 @@ TEST_CASE("sample_bspline_grid: points are the surface, derivatives match centra
   CHECK((p.duv - duv).norm() < 1e-5);
   CHECK(samples.twist.allFinite());
 }
+
+TEST_CASE("bspline_energy: a span of 1e-9 far from 0 is integrated as exactly as one at 0", "[surfaces][bspline]") {
+  // The energies do not change when every knot moves by the same amount. Nodes placed at
+  // 0.7 + 1e-9·x round to ulp(0.7), 5e-8 of the span: the energies moved by 1e-7 (review, exact
+  // reference in Fractions); at 0 the nodes are exact.
+  BSplineSurface at_07;
+  at_07.degree_u = 3;
+  at_07.degree_v = 2;
+  at_07.knots_u = (Eigen::VectorXd(12) << 0, 0, 0, 0, 0.7, 0.7, 0.7, 0.70000000101, 1, 1, 1, 1).finished();
+  at_07.knots_v = (Eigen::VectorXd(7) << 0, 0, 0, 0.5, 1, 1, 1).finished();
+  at_07.net = make_random_net(7, 3, 5);
+  BSplineSurface at_0 = at_07;
+  at_0.knots_u = (at_07.knots_u.array() - 0.7).matrix();  // 0.70000000101 − 0.7 is exact (Sterbenz)
+  for (int a = 0; a <= 3; ++a)
+    for (int b = 0; a + b <= 3; ++b) {
+      INFO("E(" << a << ", " << b << ")");
+      CHECK(bspline_energy(at_07, a, b) == Approx(bspline_energy(at_0, a, b)).epsilon(1e-12));
+    }
+}

@@ -48,6 +48,26 @@ std::pair<Eigen::VectorXd, Eigen::VectorXd> gauss_legendre_unit(int k) {
   return {nodes, weights};
 }
 
+// The q + 1 basis functions of degree q that do not vanish on span k at knots(k) + delta (A2.2),
+// with the knot distances taken from delta: t = knots(k) + delta rounds to ulp(knots(k)), which on
+// a span of 1e-9 at 0.7 moved the nodes by 5e-8 of the span and the energies by 1e-7.
+Eigen::VectorXd basis_at_offset(const Eigen::VectorXd& knots, int q, int k, double delta) {
+  Eigen::VectorXd N = Eigen::VectorXd::Zero(q + 1), left(q + 1), right(q + 1);
+  N(0) = 1.0;
+  for (int j = 1; j <= q; ++j) {
+    left(j) = (knots(k) - knots(k + 1 - j)) + delta;
+    right(j) = (knots(k + j) - knots(k)) - delta;
+    double saved = 0.0;
+    for (int r = 0; r < j; ++r) {
+      const double temp = N(r) / (right(r + 1) + left(j - r));
+      N(r) = saved + right(r + 1) * temp;
+      saved = left(j - r) * temp;
+    }
+    N(j) = saved;
+  }
+  return N;
+}
+
 // The basis of degree p − a on knots(a … end − a), where the a-th derivative's control points
 // (bspline_derivative_points) live, at the Gauss–Legendre nodes of every non-empty span:
 // values(node, i) = N_{i+a,p−a}(node) (p − a + 1 per row), weights the nodes' weights times the
@@ -68,9 +88,9 @@ Sampling derivative_sampling(const Eigen::VectorXd& knots, int degree, int a) {
     const double lo = trimmed(span), hi = trimmed(span + 1);
     if (!(hi > lo)) continue;
     for (Eigen::Index g = 0; g < nodes.size(); ++g) {
-      const Eigen::MatrixXd N = basis_derivatives(trimmed, q, span, lo + (hi - lo) * nodes(g), 0);
+      const Eigen::VectorXd N = basis_at_offset(trimmed, q, span, (hi - lo) * nodes(g));
       const int row = int(weights.size());
-      for (int r = 0; r <= q; ++r) entries.emplace_back(row, span - q + r, N(0, r));
+      for (int r = 0; r <= q; ++r) entries.emplace_back(row, span - q + r, N(r));
       weights.push_back((hi - lo) * node_weights(g));
     }
   }
