@@ -207,6 +207,66 @@ TEST_CASE("search_alpha_gamma: at_bound says when the optimum sits on a bound of
   CHECK_FALSE(t.at_bound);
 }
 
+TEST_CASE("search_alpha_gamma: flat in alpha is not flat in gamma", "[alpha]") {
+  // b_ij = (i/3, j/5, (i² − j²)/10): every α reproduces it at γ = 0, the masks with γ ≠ 0 do not.
+  // The search said "flat in alpha; gamma not searched".
+  ControlNet net(3, 5);
+  for (int i = 0; i <= 3; ++i)
+    for (int j = 0; j <= 5; ++j) net.at(i, j) = Eigen::RowVector3d(i / 3.0, j / 5.0, (i * i - j * j) / 10.0);
+  MaskObjective f(boundary_of(net, "quadric"), objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
+  const AlphaGammaSummary s = search_alpha_gamma(f);
+  INFO(s.message);
+  CHECK_FALSE(s.flat);
+  CHECK(s.status == SearchStatus::kSuccess);
+  CHECK(s.value < s.value_at_gamma0 - 1.0);  // 15.443 at (1/4, −0.196) against 17.44 for every γ = 0 mask
+}
+
+TEST_CASE("search_alpha_gamma: no point of the searched triangle is lower than the optimum", "[alpha]") {
+  // Near the edge |γ| = 0.999(1/4 + α) the tanh map flattens the gradient: Ceres stopped there at
+  // (0.2036, 0.4532) with 2.57269 for the Dirichlet energy of this 6 × 2 boundary, where
+  // (0.25, 0.45303) has 2.56598. A brute-force grid over the triangle checks the result.
+  ControlNet r6x2(6, 2);
+  const double bottom[7][3] = {{0.0, 0.0, -0.3656357558875988},
+                               {0.16575368408505486, -0.01010178704225237, -0.0951978676940306},
+                               {0.391078003560436, -0.08122808264515302, -0.599598448423982},
+                               {0.5671530207839739, -0.013446586418989326, 0.25317907298275893},
+                               {0.5670878773368888, -0.010922561189039712, 0.33128393833640474},
+                               {0.7790857775874239, 0.08905413911078447, 0.630016279077911},
+                               {1.0, 0.0, 0.3474337369372327}};
+  const double top[7][3] = {{0.0, 1.0, 0.26377461897661403},
+                            {0.07278466327337736, 0.9050891721986921, 0.22040282623057855},
+                            {0.42116316588903546, 0.9762408475376425, -0.1891945149718367},
+                            {0.48442331511654346, 0.9058081575149736, -0.2688865113689471},
+                            {0.6542441853967811, 0.9991624482763701, -0.34227799292394157},
+                            {0.7795066416415303, 0.9437562074675377, -0.20054324298331266},
+                            {1.0, 1.0, -0.2449309742605783}};
+  for (int i = 0; i <= 6; ++i) {
+    r6x2.at(i, 0) = Eigen::RowVector3d(bottom[i][0], bottom[i][1], bottom[i][2]);
+    r6x2.at(i, 2) = Eigen::RowVector3d(top[i][0], top[i][1], top[i][2]);
+  }
+  r6x2.at(0, 1) = Eigen::RowVector3d(-0.04204367708190289, 0.4042979410531818, 0.2866474072070805);
+  r6x2.at(6, 1) = Eigen::RowVector3d(1.0112908645304868, 0.5284588725864892, -0.2628423527669551);
+  const std::vector<Boundary> boundaries = {boundary_of(r6x2, "r6x2"), make_smooth_boundary(3, 8, 6),
+                                            make_smooth_boundary(5, 2, 4)};
+  for (const Boundary& b : boundaries)
+    for (const char* name : {"dirichlet", "thin_plate", "e3"}) {
+      MaskObjective f(b, objective_named(name), alpha_only(), backend("eigen-ldlt"));
+      const AlphaGammaSummary s = search_alpha_gamma(f);
+      INFO(b.name << ", " << name << ": (" << s.alpha << ", " << s.gamma << ") " << s.value << ", " << s.message);
+      REQUIRE(s.status == SearchStatus::kSuccess);
+      double lowest = HUGE_VAL;
+      std::vector<double> unused;
+      for (int a = 0; a <= 20; ++a)
+        for (int r = -20; r <= 20; ++r) {
+          const double alpha = -0.25 + 0.5 * a / 20, gamma = (0.25 + alpha) * 0.999 * r / 20;
+          const auto e = f.evaluate_mask(Mask9{0.25 - alpha + gamma, 0.25 - alpha - gamma, alpha}, {}, unused);
+          if (e.ok()) lowest = std::min(lowest, e.value);
+        }
+      CHECK(s.value <= lowest * (1 + 1e-9));
+      CHECK(std::abs(s.gamma) <= 0.999 * (0.25 + s.alpha) * (1 + 1e-12));
+    }
+}
+
 TEST_CASE("discrete objectives: derivative equals finite differences, discrete twist is minimal at alpha = -1/4",
           "[alpha]") {
   const Boundary b = make_smooth_boundary(7, 6, 12);
