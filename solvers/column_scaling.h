@@ -50,7 +50,8 @@ inline void scale_by_power_of_two(Eigen::Ref<Eigen::VectorXd> v, int e) {
 
 //! The exponents by which the common solve path scales the columns of a right-hand side B
 //! (column k by 2^−e[k]): the magnitude exponent of a column outside [2^−kSafeExponent,
-//! 2^kSafeExponent), 0 for the others.
+//! 2^kSafeExponent), 0 for the others (rhs_exponents: less for a column whose small entries
+//! would underflow).
 using ColumnExponents = std::array<int, 3>;
 
 //! The exponent by which the common solve path scales a column whose largest magnitude is
@@ -60,9 +61,27 @@ inline int scaling_exponent(double largest) {
   return std::abs(e) > kSafeExponent ? e : 0;
 }
 
+//! e with smallest = m·2^e over the nonzero finite entries of v, m in [1/2, 1); 0 when none.
+inline int smallest_nonzero_exponent(const Eigen::Ref<const Eigen::VectorXd>& v) {
+  double smallest = HUGE_VAL;
+  for (Eigen::Index i = 0; i < v.size(); ++i)
+    if (const double a = std::abs(v(i)); a > 0 && a < smallest) smallest = a;
+  return smallest < HUGE_VAL ? exponent_of(smallest) : 0;
+}
+
+//! The scaling exponents of B's columns (scaling_exponent), except that a large column is scaled
+//! down no further than its smallest nonzero entry allows (to about 2^−1000), while its largest
+//! stays below about 2^500: B = (1e-200, 1e200) scaled to [1/2, 1) lost its 1e-200 to underflow,
+//! and every backend returned x = (0, 1e200) for the identity.
 inline ColumnExponents rhs_exponents(const Eigen::MatrixX3d& B) {
   ColumnExponents e{};
-  for (int k = 0; k < 3; ++k) e[std::size_t(k)] = scaling_exponent(largest_abs(B.col(k)));
+  for (int k = 0; k < 3; ++k) {
+    int& ek = e[std::size_t(k)];
+    ek = scaling_exponent(largest_abs(B.col(k)));
+    if (ek <= 0) continue;  // scaling up cannot underflow
+    const int smallest = smallest_nonzero_exponent(B.col(k));
+    if (smallest - ek < -1000) ek = std::max(ek - 500, smallest + 1000);
+  }
   return e;
 }
 
