@@ -79,6 +79,7 @@ class HypreBackend : public LinearSolver {
     end.converged = true;
     end.residual = 0;
     std::optional<std::pair<int, ColumnSolve>> broken;  // the first column that broke down
+    std::optional<ColumnSolve> early;                   // a column that stopped short, unflagged
     for (int c = 0; c < 3; ++c) {
       if (B.col(c).isZero(0)) continue;  // x = 0 exactly
       const ColumnSolve column = solve(c);
@@ -86,10 +87,17 @@ class HypreBackend : public LinearSolver {
       read(c);
       end.iterations = std::max(end.iterations, int(column.iterations));
       end.residual = std::max(end.residual, std::isfinite(column.residual) ? column.residual : HUGE_VAL);
-      end.converged =
-          end.converged && column.error == 0 && column.residual <= options_.tolerance && X.col(c).allFinite();
+      const bool met = column.error == 0 && column.residual <= options_.tolerance && X.col(c).allFinite();
+      end.converged = end.converged && met;
       if (!broken && broke_down(column, end.limit)) broken.emplace(c, column);
+      if (!met && column.error == 0 && column.iterations < end.limit && !early) early = column;
     }
+    // hypre stopped before the limit without a flag and above the tolerance (GMRES after 336 of
+    // 500 iterations on an indefinite system): not "iteration limit 500 reached"
+    if (early && !broken)
+      end.stagnation = "hypre's " + std::string(early->method) + " stopped after " + std::to_string(early->iterations) +
+                       " iterations, before the limit, with its own relative " + "residual " +
+                       format_g(early->residual);
     if (!X.allFinite()) {
       end.diverged = true;
       end.residual = HUGE_VAL;

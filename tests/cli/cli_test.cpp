@@ -13,6 +13,7 @@
 #include <sstream>
 
 #include "coons/alpha/family_search.h"
+#include "coons/config.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/net_json.h"
 #include "coons/net/coons_net.h"
@@ -965,3 +966,25 @@ TEST_CASE("coons search-alpha and study: a model below 1e-60 is bad input, solve
   }
   CHECK(run_coons("solve " + quoted(tri_file)).status == 0);
 }
+
+#if COONS_HAVE_HYPRE
+TEST_CASE("coons solve --solver hypre-amg: a stop before the iteration limit is not called the limit", "[cli][hypre]") {
+  // hypre's GMRES stopped after 336 of 500 iterations without a flag, its X with a true residual of
+  // 129, and the message said "iteration limit 500 reached" (the same for --max-iterations 1000)
+  TempDir dir;
+  const std::string file = dir.write(
+      "n9.json",
+      R"json({"name":"n9","bottom":[[-0.75,0.75,-0.75],[-0.75,-1.25,-2.0],[-0.25,-0.25,1.75],[-1.25,-0.25,-1.75],[1.25,1.5,2.25],[1.0,2.25,1.25],[-0.25,-0.5,-2.25],[-1.5,-2.25,-0.25],[-1.5,-0.75,-0.25],[1.75,-2.25,-2.0]],"top":[[-0.25,-0.75,-1.5],[-2.25,-0.25,-0.25],[1.25,-0.5,-1.25],[0.5,2.25,-1.5],[2.0,-1.25,-1.0],[-1.0,0.0,1.5],[0.25,1.5,-0.75],[2.0,-0.25,-1.75],[2.0,-1.5,-2.0],[2.25,1.0,-1.75]],"left":[[-0.75,0.75,-0.75],[-0.5,-2.25,0.0],[0.75,1.0,1.75],[1.5,-0.5,1.25],[1.0,2.0,-1.75],[0.75,-0.5,-1.25],[-1.25,1.75,-2.0],[-1.75,-2.25,2.25],[0.5,-1.25,-2.0],[-0.25,-0.75,-1.5]],"right":[[1.75,-2.25,-2.0],[-1.0,-1.25,-1.75],[-2.0,-0.5,0.25],[0.0,-1.75,-1.25],[-0.5,1.25,2.0],[1.75,-2.0,0.0],[-1.25,-0.5,-1.0],[0.0,-0.75,0.5],[-1.5,1.5,-0.75],[2.25,1.0,-1.75]]})json");
+  for (const int limit : {500, 1000}) {
+    const CommandResult r = run_coons("solve " + quoted(file) + " --alpha -0.6 --solver hypre-amg --max-iterations " +
+                                      std::to_string(limit));
+    INFO(r.out << r.err);
+    CHECK(r.status == 3);
+    const json solver = json::parse(r.out)["solver"];
+    REQUIRE(solver["status"] == "not_converged");
+    REQUIRE(solver["iterations"].get<int>() < limit);
+    CHECK(solver["message"].get<std::string>().find("iteration limit") == std::string::npos);
+    CHECK(solver["message"].get<std::string>().find("before the limit") != std::string::npos);
+  }
+}
+#endif
