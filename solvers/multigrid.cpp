@@ -147,8 +147,9 @@ IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOpt
     out.history.push_back(rel);
     if (!std::isfinite(rel) || rel > options.divergence * out.history.front() || rel > 1e3 * best) {
       out.status = SolveStatus::kDiverged;
+      // (the best may be the start, x = 0, with residual 1: the report's residual is the best's)
       out.message = "the multigrid iteration diverged: residual grew from " + format_g(best) + " to " + format_g(rel) +
-                    " (the best iterate is returned)";
+                    " (the best iterate, relative residual " + format_g(best) + ", is returned)";
       xg = x_best;
       residual(L, bg, xg, r);
       rel = r.norm() / bnorm;
