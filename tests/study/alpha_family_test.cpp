@@ -206,3 +206,29 @@ TEST_CASE("alpha_family_conclusions: a best single α at the grid's end is said 
   CHECK(alpha_family_json(r)["cells"][0]["best_alpha_at_grid_end"] == true);
   CHECK(alpha_family_markdown(r, {}).find("| 3 | 0.25 (grid end) |") != std::string::npos);
 }
+
+TEST_CASE("alpha_family_conclusions: medians on the bound, medians that do not move, a spread of one mu") {
+  // Every α* at −1/4 found from inside by 1e-9: "moves towards −1/4 as n grows (-0.25, -0.25, -0.25)";
+  // equal medians: "not monotone towards −1/4"; one μ* of 200: "μ*'s 90th over 10th percentile: 1".
+  AlphaFamilyResult r;
+  r.options.count = 3;
+  r.objectives = {"e3"};
+  for (int n : {3, 5, 8}) {
+    AlphaFamilyCell c;
+    c.degree = n;
+    c.objective = "e3";
+    c.alpha = distribution_of({-0.25 + 3e-9 / n, -0.25 + 2e-9 / n, -0.25 + 1e-9 / n});
+    c.at_bound = 3;
+    c.mu = distribution_of({7.0});
+    r.cells.push_back(c);
+  }
+  std::string text = alpha_family_conclusions(r);
+  INFO(text);
+  CHECK(text.find("The median α* is −1/4, the bound, at every degree") != std::string::npos);
+  CHECK(text.find("moves towards") == std::string::npos);
+  CHECK(text.find("90th over 10th") == std::string::npos);
+  for (AlphaFamilyCell& c : r.cells) c.alpha = distribution_of({-0.1, -0.1, -0.1});
+  text = alpha_family_conclusions(r);
+  CHECK(text.find("The median α* does not move with n") != std::string::npos);
+  CHECK(text.find("not monotone") == std::string::npos);
+}

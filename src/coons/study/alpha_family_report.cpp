@@ -44,8 +44,10 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
         medians.push_back(fmt::format("{:.3g}", c->alpha->median));
         median_gap.push_back(c->alpha->median + 0.25);
       }
-      if (c->mu && c->mu->q10 > 0)
-        spreads.push_back(fmt::format("{:.3g} (n = {})", c->mu->q90 / c->mu->q10, c->degree));
+      // a spread of one or two μ* is none (1 from a single boundary of 200 read as "the same μ*")
+      if (c->mu && c->mu->q10 > 0 && c->mu->size >= 3)
+        spreads.push_back(
+            fmt::format("{:.3g} (n = {}, {} boundaries)", c->mu->q90 / c->mu->q10, c->degree, c->mu->size));
       if (c->zero_optimum > 0) zeros.push_back(fmt::format("{} at n = {}", c->zero_optimum, c->degree));
       if (c->flat + c->at_bound + c->failed > 0)
         bounds.push_back(
@@ -77,8 +79,18 @@ std::string alpha_family_conclusions(const AlphaFamilyResult& r) {
           "where the grid stops, not an interior minimum. ",
           fmt::join(grid_ends, ", "));
     if (median_gap.size() >= 2) {
+      // a gap to −1/4 within the searches' edge tolerance (1e-7 of the interval) is the bound
+      // itself: medians of −0.25 found from inside by 1e-9 "moved towards −1/4"
+      for (double& gap : median_gap)
+        if (gap <= 1e-7 * 0.5) gap = 0;
+      const bool on_bound = std::all_of(median_gap.begin(), median_gap.end(), [](double g) { return g == 0; });
       const bool falling = std::is_sorted(median_gap.rbegin(), median_gap.rend()) && median_gap.back() < median_gap[0];
-      out += falling
+      const auto [lo, hi] = std::minmax_element(median_gap.begin(), median_gap.end());
+      const bool still = *hi - *lo <= 1e-9 * std::max(*hi, 1e-300);  // equal medians were "not monotone"
+      out += on_bound
+                 ? fmt::format("The median α* is −1/4, the bound, at every degree ({}). ", fmt::join(medians, ", "))
+             : still ? fmt::format("The median α* does not move with n ({}). ", fmt::join(medians, ", "))
+             : falling
                  ? fmt::format("The median α* moves towards −1/4 as n grows ({}). ", fmt::join(medians, ", "))
                  : fmt::format("The median α* per degree: {} (not monotone towards −1/4). ", fmt::join(medians, ", "));
     }

@@ -353,6 +353,7 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
       cell.mu_star.resize(count);
       cell.loss.resize(count);
       std::vector<int> used;
+      std::vector<bool> interior;  // of each used task: its α* lies inside the bounds
       std::vector<double> optimum;
       std::vector<std::vector<double>> curves;
       for (int k = 0; k < count && next < results.size(); ++k, ++next) {
@@ -382,6 +383,7 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
           continue;
         }
         used.push_back(k);
+        interior.push_back(t.status == FamilyTaskStatus::kInterior);
         optimum.push_back(t.value);
         curves.push_back(t.grid);
       }
@@ -408,8 +410,10 @@ AlphaFamilyResult assemble_alpha_family(const AlphaFamilyOptions& options, const
             cell.loss[used[u]] = loss;
             losses.push_back(loss);
           }
+          // interior optima only: one on the bound −1/4 is found from inside, a rounding of it
+          // (2e-9) over the best α's 1e-6 made factors of 0.003 out of nothing
           const double a = *cell.alpha_star[used[u]];
-          if (a > -0.25 && best->alpha > -0.25) ratios.push_back((a + 0.25) / (best->alpha + 0.25));
+          if (interior[u] && a > -0.25 && best->alpha > -0.25) ratios.push_back((a + 0.25) / (best->alpha + 0.25));
         }
         cell.losses = distribution_of(losses);
         cell.alpha_ratio = distribution_of(ratios);
