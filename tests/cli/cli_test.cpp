@@ -904,6 +904,14 @@ TEST_CASE("coons solve: a singular alpha mask system is refused by every backend
   }
   // a near value is solved
   CHECK(run_coons("solve " + flat3 + " --alpha 0.49 --solver eigen-lu").status == 0);
+  // singular to rounding, not exactly: −0.33333333333 beside the singular −1/3 of degree (6, 6) has
+  // an exact solution; the refusal says how near it is and what counts as singular
+  const std::string flat6 = quoted(dir.write("flat6.json", flat_grid_boundary(6, 6)));
+  const CommandResult near = run_coons("solve " + flat6 + " --alpha -0.33333333333 --solver eigen-lu");
+  INFO(near.err);
+  CHECK(near.status == 2);
+  CHECK(contains(near.err, "to within rounding: the smallest eigenvalue or singular value is "));
+  CHECK(contains(near.err, "and at most 1e-10 counts as singular"));
 }
 
 TEST_CASE("coons refit: a curve with a pole between the reader's samples is bad input naming the curve", "[cli]") {

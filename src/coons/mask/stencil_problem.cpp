@@ -1,5 +1,7 @@
 #include "stencil_problem.h"
 
+#include <fmt/format.h>
+
 #include <Eigen/Dense>
 #include <Eigen/SparseCore>
 #include <Eigen/SparseLU>
@@ -187,9 +189,18 @@ std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, c
       list += (k ? ", " : "") + point_name(named[k].first, named[k].second);
     if (int(named.size()) > options.max_named_points)
       list += " and " + std::to_string(named.size() - std::size_t(options.max_named_points)) + " more";
+    // singular to rounding, not exactly (α = −0.33333333333 beside the singular −1/3 of a 6 × 6
+    // net, whose exact solve exists): say how near, as the threshold decides it
+    const std::string how = ratio > 0
+                                ? fmt::format(
+                                      " to within rounding: the smallest eigenvalue or singular value is {:.2g} of the "
+                                      "largest, and at most {:.2g} counts as singular",
+                                      ratio, options.singular_tolerance)
+                                : std::string();
     issues.push_back({free_field(named.front().first, named.front().second), named.front().first, named.front().second,
-                      "the mask system is singular: the free points " + list +
-                          " decouple (they carry a null vector of the equations)"});
+                      fmt::format("the mask system is singular: the free points {} decouple (they carry a null vector "
+                                  "of the equations{})",
+                                  list, how)});
   }
   return issues;
 }
