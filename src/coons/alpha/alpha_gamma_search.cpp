@@ -17,6 +17,9 @@ namespace {
 
 using detail::ceres_options;
 
+// The symmetric 3×3 mask of (α, γ): β_i = 1/4 − α + γ, β_j = 1/4 − α − γ.
+Mask9 symmetric_mask(double alpha, double gamma) { return Mask9{0.25 - alpha + gamma, 0.25 - alpha - gamma, alpha}; }
+
 // (α, γ) = (c + h·tanh θ₀, (1/4 + α)·0.999·tanh θ₁): inside the definite triangle.
 class AlphaGammaFunction : public ceres::FirstOrderFunction {
  public:
@@ -30,7 +33,7 @@ class AlphaGammaFunction : public ceres::FirstOrderFunction {
   bool Evaluate(const double* t, double* cost, double* gradient) const override {
     const auto [alpha, gamma] = map(t);
     std::vector<double> g;
-    const Mask9 mask{0.25 - alpha + gamma, 0.25 - alpha - gamma, alpha};
+    const Mask9 mask = symmetric_mask(alpha, gamma);
     const auto e = objective_.evaluate_mask(mask, {Mask9{-1, -1, 1}, Mask9{1, -1, 0}}, g);
     if (!e.ok()) {
       failed_ = true;
@@ -78,7 +81,7 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
   const auto f = [&](double alpha, double r) -> std::optional<double> {
     const double gamma = (0.25 + alpha) * r;
     std::vector<double> g;
-    const auto e = objective.evaluate_mask(Mask9{0.25 - alpha + gamma, 0.25 - alpha - gamma, alpha}, {}, g);
+    const auto e = objective.evaluate_mask(symmetric_mask(alpha, gamma), {}, g);
     if (!e.ok()) {
       failed = true;
       return std::nullopt;
