@@ -7,9 +7,9 @@
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/mask_residual.h"
 #include "coons/mask/solve_mask_net.h"
-#include "coons/metrics/quadrature.h"
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
+#include "coons/net/quadrature.h"
 #include "support/fixtures.h"
 
 using namespace coons;

@@ -3,7 +3,7 @@
 #include <catch2/catch.hpp>
 
 #include "coons/metrics/energies.h"
-#include "coons/metrics/quadrature.h"
+#include "coons/net/quadrature.h"
 #include "coons/surfaces/bspline_sampling.h"
 #include "support/bspline_fixtures.h"
 #include "support/fixtures.h"
@@ -13,7 +13,7 @@ using namespace coons::test;
 
 namespace {
 
-// ∫∫ ‖∂^a_u ∂^b_v s‖² by Gauss–Legendre (coons/metrics/quadrature.h, `nodes` per knot span and
+// ∫∫ ‖∂^a_u ∂^b_v s‖² by Gauss–Legendre (coons/net/quadrature.h, `nodes` per knot span and
 // direction) of evaluate_derivative: independent of the Gram matrices.
 double quadrature_energy(const BSplineSurface& s, int a, int b, int nodes) {
   const QuadratureRule rule = gauss_legendre(nodes);

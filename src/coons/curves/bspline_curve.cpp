@@ -4,6 +4,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <tuple>
+#include <utility>
 
 namespace coons {
 
@@ -142,16 +144,20 @@ int find_span(const Eigen::VectorXd& knots, int degree, double t) {
   return k;
 }
 
-Eigen::MatrixXd basis_derivatives(const Eigen::VectorXd& knots, int degree, int span, double t, int order) {
+namespace {
+
+// A2.3 with the distances t − u_{span+1−j} and u_{span+j} − t given by distances(j) as a pair: the
+// one recurrence of basis_derivatives and basis_derivatives_at_offset, which differ only in how
+// they round those distances.
+template <class Distances>
+Eigen::MatrixXd basis_derivatives_from(int degree, int order, Distances distances) {
   const int p = degree;
-  const Eigen::VectorXd& U = knots;
   Eigen::MatrixXd ndu = Eigen::MatrixXd::Zero(p + 1, p + 1);
   Eigen::VectorXd left = Eigen::VectorXd::Zero(p + 1);
   Eigen::VectorXd right = Eigen::VectorXd::Zero(p + 1);
   ndu(0, 0) = 1.0;
   for (int j = 1; j <= p; ++j) {
-    left(j) = t - U(span + 1 - j);
-    right(j) = U(span + j) - t;
+    std::tie(left(j), right(j)) = distances(j);
     double saved = 0.0;
     for (int r = 0; r < j; ++r) {
       ndu(j, r) = right(r + 1) + left(j - r);  // a knot difference, positive on a non-empty span
@@ -198,6 +204,20 @@ Eigen::MatrixXd basis_derivatives(const Eigen::VectorXd& knots, int degree, int 
     factor *= p - k;
   }
   return ders;
+}
+
+}  // namespace
+
+Eigen::MatrixXd basis_derivatives(const Eigen::VectorXd& knots, int degree, int span, double t, int order) {
+  return basis_derivatives_from(degree, order,
+                                [&](int j) { return std::pair(t - knots(span + 1 - j), knots(span + j) - t); });
+}
+
+Eigen::MatrixXd basis_derivatives_at_offset(const Eigen::VectorXd& knots, int degree, int span, double delta,
+                                            int order) {
+  return basis_derivatives_from(degree, order, [&](int j) {
+    return std::pair((knots(span) - knots(span + 1 - j)) + delta, (knots(span + j) - knots(span)) - delta);
+  });
 }
 
 Eigen::VectorXd basis_functions(const Eigen::VectorXd& knots, int degree, int count, double t) {

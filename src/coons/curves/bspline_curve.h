@@ -65,6 +65,12 @@ int find_span(const Eigen::VectorXd& knots, int degree, double t);
 //! derivatives: row r holds the r-th derivatives, r = 0 … order (rows above p are zero) (A2.3).
 Eigen::MatrixXd basis_derivatives(const Eigen::VectorXd& knots, int degree, int span, double t, int order);
 
+//! basis_derivatives at t = knots(span) + delta, the knot distances computed from delta
+//! ((u_span − u_{span+1−j}) + delta), so a point keeps its relative position within a short span: t
+//! itself would round to ulp(u_span), 1e−7 of a span of 1e−9 at 0.7 (bspline_energy's nodes).
+Eigen::MatrixXd basis_derivatives_at_offset(const Eigen::VectorXd& knots, int degree, int span, double delta,
+                                            int order);
+
 //! All count basis functions at t (a dense vector; sums to 1 on the domain).
 Eigen::VectorXd basis_functions(const Eigen::VectorXd& knots, int degree, int count, double t);
 

@@ -7,9 +7,9 @@
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
 
-#include "coons/metrics/quadrature.h"
 #include "coons/net/bernstein.h"
 #include "coons/net/coons_net.h"
+#include "coons/net/quadrature.h"
 
 namespace coons {
 

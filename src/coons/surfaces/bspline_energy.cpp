@@ -1,10 +1,12 @@
 #include "coons/surfaces/bspline_energy.h"
 
-#include <Eigen/Eigenvalues>
 #include <Eigen/SparseCore>
 #include <cmath>
 #include <utility>
 #include <vector>
+
+#include "coons/curves/bspline_curve.h"
+#include "coons/net/quadrature.h"
 
 namespace coons {
 
@@ -28,46 +30,6 @@ Eigen::MatrixXd bspline_derivative_points(const Eigen::VectorXd& knots, int degr
 
 namespace {
 
-// Gauss–Legendre nodes and weights on [0, 1] with k nodes (Golub–Welsch). (coons/metrics has the
-// same rule; this layer may not include it.)
-std::pair<Eigen::VectorXd, Eigen::VectorXd> gauss_legendre_unit(int k) {
-  // Jacobi matrix of the Legendre polynomials on [−1, 1]: off-diagonal i / sqrt(4i² − 1).
-  Eigen::MatrixXd J = Eigen::MatrixXd::Zero(k, k);
-  for (int i = 1; i < k; ++i) {
-    const double b = i / std::sqrt(4.0 * i * i - 1.0);
-    J(i, i - 1) = b;
-    J(i - 1, i) = b;
-  }
-  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> eig(J);
-  Eigen::VectorXd nodes(k), weights(k);
-  for (int i = 0; i < k; ++i) {
-    nodes(i) = (eig.eigenvalues()(i) + 1.0) / 2.0;
-    const double v = eig.eigenvectors()(0, i);
-    weights(i) = v * v;  // 2 v² on [−1, 1], halved on [0, 1]
-  }
-  return {nodes, weights};
-}
-
-// The q + 1 basis functions of degree q that do not vanish on span k at knots(k) + delta (A2.2),
-// with the knot distances taken from delta: t = knots(k) + delta rounds to ulp(knots(k)), which on
-// a span of 1e-9 at 0.7 moved the nodes by 5e-8 of the span and the energies by 1e-7.
-Eigen::VectorXd basis_at_offset(const Eigen::VectorXd& knots, int q, int k, double delta) {
-  Eigen::VectorXd N = Eigen::VectorXd::Zero(q + 1), left(q + 1), right(q + 1);
-  N(0) = 1.0;
-  for (int j = 1; j <= q; ++j) {
-    left(j) = (knots(k) - knots(k + 1 - j)) + delta;
-    right(j) = (knots(k + j) - knots(k)) - delta;
-    double saved = 0.0;
-    for (int r = 0; r < j; ++r) {
-      const double temp = N(r) / (right(r + 1) + left(j - r));
-      N(r) = saved + right(r + 1) * temp;
-      saved = left(j - r) * temp;
-    }
-    N(j) = saved;
-  }
-  return N;
-}
-
 // The basis of degree p − a on knots(a … end − a), where the a-th derivative's control points
 // (bspline_derivative_points) live, at the Gauss–Legendre nodes of every non-empty span:
 // values(node, i) = N_{i+a,p−a}(node) (p − a + 1 per row), weights the nodes' weights times the
@@ -81,17 +43,17 @@ Sampling derivative_sampling(const Eigen::VectorXd& knots, int degree, int a) {
   const int q = degree - a;
   const Eigen::VectorXd trimmed = knots.segment(a, knots.size() - 2 * a);
   const int count = int(trimmed.size()) - q - 1;
-  const auto [nodes, node_weights] = gauss_legendre_unit(q + 1);
+  const QuadratureRule rule = gauss_legendre(q + 1);
   std::vector<Eigen::Triplet<double>> entries;
   std::vector<double> weights;
   for (int span = q; span < count; ++span) {
     const double lo = trimmed(span), hi = trimmed(span + 1);
     if (!(hi > lo)) continue;
-    for (Eigen::Index g = 0; g < nodes.size(); ++g) {
-      const Eigen::VectorXd N = basis_at_offset(trimmed, q, span, (hi - lo) * nodes(g));
+    for (Eigen::Index g = 0; g < rule.nodes.size(); ++g) {
+      const Eigen::MatrixXd N = basis_derivatives_at_offset(trimmed, q, span, (hi - lo) * rule.nodes(g), 0);
       const int row = int(weights.size());
-      for (int r = 0; r <= q; ++r) entries.emplace_back(row, span - q + r, N(r));
-      weights.push_back((hi - lo) * node_weights(g));
+      for (int r = 0; r <= q; ++r) entries.emplace_back(row, span - q + r, N(0, r));
+      weights.push_back((hi - lo) * rule.weights(g));
     }
   }
   Sampling out;

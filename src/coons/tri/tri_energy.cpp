@@ -1,7 +1,7 @@
 #include "coons/tri/tri_energy.h"
 
-#include "coons/metrics/quadrature.h"
 #include "coons/metrics/scaled_energy.h"
+#include "coons/net/quadrature.h"
 
 namespace coons::tri {
 
