@@ -189,6 +189,8 @@ void run_stencil(const BatchRequest& b, const NetRequest& request, const Boundar
     out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, run.result.net, b.samples); });
     out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, run.result.net); });
   } else {
+    out.remove_stale(stem + ".surface.obj");  // an earlier run's nets do not stand beside this failure
+    out.remove_stale(stem + ".net.obj");
     print_solver_failure(file, run.result.summary);
   }
 }
@@ -229,8 +231,11 @@ void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::st
     if (net.ok())
       write_bspline_objs(out, stem, sample_bspline_grid(outcome.surface, b.samples),
                          bspline_samples_comment(input.boundary.name, b.samples), outcome.surface.net);
-    else
+    else {
+      out.remove_stale(stem + ".surface.obj");
+      out.remove_stale(stem + ".net.obj");
       print_solver_failure(file, *outcome.summary);
+    }
   }
 }
 
@@ -324,6 +329,8 @@ int run_batch(const BatchRequest& b) {
         out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, outcome.net, b.samples); });
         out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.net); });
       } else {
+        out.remove_stale(stem + ".surface.obj");
+        out.remove_stale(stem + ".net.obj");
         print_solver_failure(files[k], *outcome.summary);
       }
     }

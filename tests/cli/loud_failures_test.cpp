@@ -357,6 +357,27 @@ TEST_CASE("coons solve export and batch: a failed solve reports the relative res
   CHECK(json::parse(tri.out)["solver"]["relative_residual"] == 1);
 }
 
+TEST_CASE("coons batch: a failed solve takes away the OBJ files an earlier run left under its name", "[cli][loud]") {
+  TempDir dir;
+  const std::string out = dir.file("b");
+  const std::string args = "batch " + quoted(dome()) + " --alphas -0.1 --samples 3 --out " + quoted(out);
+  const CommandResult first = run_coons(args + " --solver eigen-ldlt");
+  INFO(first.err);
+  REQUIRE(first.status == 0);
+  const std::string stem = out + "/dome-3x3/alpha-0.1";
+  REQUIRE(std::filesystem::exists(stem + ".surface.obj"));
+  REQUIRE(std::filesystem::exists(stem + ".net.obj"));
+  // the same net again with a backend that cannot take it: its report says so, and no OBJ file of
+  // the earlier solve stands beside it (they used to stay, an earlier run's surface unmarked)
+  const CommandResult second = run_coons(args + " --solver separable-banded");
+  INFO(second.err);
+  CHECK(second.status == 3);
+  CHECK(json::parse(read_text(stem + ".json"))["solver"]["status"] == "not_applicable");
+  CHECK_FALSE(std::filesystem::exists(stem + ".surface.obj"));
+  CHECK_FALSE(std::filesystem::exists(stem + ".net.obj"));
+  CHECK(std::filesystem::exists(out + "/dome-3x3/coons.surface.obj"));  // the closed form solved again
+}
+
 TEST_CASE("coons: sizes are checked before memory is taken", "[cli][loud]") {
   TempDir dir;
   check_refused(run_coons("export " + quoted(dome()) + " --obj --samples 50000 --out " + quoted(dir.file("out"))),

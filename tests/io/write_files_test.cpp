@@ -145,6 +145,37 @@ TEST_CASE("OutputSet::publish: an announcement that fails undoes the commit", "[
   CHECK(files_under(out_dir) == std::vector<std::string>{"a.txt"});  // the replaced file is gone
 }
 
+TEST_CASE(
+    "OutputSet::remove_stale: an earlier run's file of a name this run does not write goes, and comes back on undo",
+    "[io]") {
+  TempDir dir;
+  const fs::path out_dir = dir.path / "out";
+  fs::create_directories(out_dir);
+  std::ofstream(out_dir / "a.obj") << "earlier surface\n";
+  std::ofstream(out_dir / "a.png") << "earlier plot\n";
+  {  // an announcement that fails: both files as they were
+    OutputSet out(out_dir.string());
+    out.write("a.json", [](std::ostream& o) { o << "failed\n"; });
+    out.remove_stale("a.obj");
+    (void)out.stage("a.png");
+    out.discard("a.png");  // a plot that could not be drawn
+    CHECK_THROWS_AS(out.publish([] { throw InputError("<stdout>", "", "write failed"); }), InputError);
+  }
+  CHECK(contents(out_dir / "a.obj") == "earlier surface\n");
+  CHECK(contents(out_dir / "a.png") == "earlier plot\n");
+  CHECK(files_under(out_dir) == std::vector<std::string>{"a.obj", "a.png"});
+  {
+    OutputSet out(out_dir.string());
+    out.write("a.json", [](std::ostream& o) { o << "failed\n"; });
+    out.remove_stale("a.obj");
+    out.remove_stale("b.obj");  // nothing there: nothing to do
+    (void)out.stage("a.png");
+    out.discard("a.png");
+    CHECK(out.publish([] {}) == std::vector<std::string>{(out_dir / "a.json").string()});
+  }
+  CHECK(files_under(out_dir) == std::vector<std::string>{"a.json"});
+}
+
 TEST_CASE("write_file_atomically: a symbolic link is written through and a pipe or device is refused", "[io]") {
   // The staged file used to be renamed over the path itself: over a link it replaced the link and
   // left the file it named as it was; over /dev/full (with --force) it replaced the device.

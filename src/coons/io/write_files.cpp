@@ -252,12 +252,22 @@ void OutputSet::write_staged(const std::string& path, const std::string& staging
 
 void OutputSet::discard(const std::string& relative) {
   const std::string path = (fs::path(folder_) / relative).string();
-  for (auto it = entries_.begin(); it != entries_.end(); ++it)
-    if (it->final_path == path) {
-      std::remove(it->staging.c_str());
-      entries_.erase(it);
+  for (Entry& e : entries_)
+    if (e.final_path == path) {
+      std::remove(e.staging.c_str());
+      e.removal = true;  // an earlier run's file of that name does not belong beside this run's
       return;
     }
+}
+
+void OutputSet::remove_stale(const std::string& relative) {
+  const std::string path = path_of(relative);
+  for (const Entry& e : entries_)
+    if (same_file_path(e.final_path, path))
+      throw InputError(path, option_, "two outputs of this command would have the same name");
+  Entry e{path, staging_path(path), "", false};
+  e.removal = true;
+  entries_.push_back(e);
 }
 
 std::vector<std::string> OutputSet::commit() {
@@ -268,6 +278,18 @@ std::vector<std::string> OutputSet::commit() {
   };
   for (Entry& e : entries_) {
     std::error_code ec;
+    if (e.removal) {
+      // Moved aside (undo_commit() moves it back; the destructor removes the second name).
+      if (!fs::is_regular_file(e.final_path, ec)) continue;
+      const std::string aside = e.staging + ".replaced";
+      track_staging(aside);
+      fs::rename(e.final_path, aside, ec);
+      if (ec) fail(e, "cannot remove the file an earlier run left: " + ec.message());
+      e.aside = aside;
+      e.aside_moved = true;
+      e.published = true;
+      continue;
+    }
     if (!fs::exists(e.staging, ec)) fail(e, "was not written");
     if (fs::is_directory(e.final_path, ec)) fail(e, "cannot rename into place: it is a folder");
     if (fs::exists(e.final_path, ec)) {

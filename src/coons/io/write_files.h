@@ -63,8 +63,14 @@ class OutputSet {
   std::string stage_path(const std::string& path);
   void write_path(const std::string& path, const std::function<void(std::ostream&)>& write);
 
-  //! Gives up one staged file (removes its staging file, if any).
+  //! Gives up one staged file (removes its staging file, if any); commit() then removes a file an
+  //! earlier run left under that name, as remove_stale() does.
   void discard(const std::string& relative);
+
+  //! Marks `relative` as an output this run does not have: commit() removes a file an earlier run
+  //! left under that name (a failed solve's OBJ files, a plot that could not be drawn), so that
+  //! no earlier run's file stands beside this run's report; undone with the rest on a failure.
+  void remove_stale(const std::string& relative);
 
   //! Renames every staged file into place; returns the final paths in the order staged. A file
   //! it replaces first gets a second name (a hard link; moved there where links are not
@@ -87,6 +93,7 @@ class OutputSet {
     std::string aside;         //!< a second name commit() gave the file it replaced (empty: none)
     bool aside_moved = false;  //!< the file was moved there (no hard links), not linked
     bool published = false;
+    bool removal = false;  //!< remove_stale(): no staging file; commit() takes the old file away
   };
   std::string folder_, option_;
   std::vector<Entry> entries_;
