@@ -192,6 +192,7 @@ TEST_CASE("coons search-alpha: the best c of a triangle, with bounds that avoid 
   CHECK(report["status"] == "success");
   CHECK(report["flat"] == false);
   CHECK(report["at_bound"] == false);
+  CHECK(report.at("mu").is_null());  // a field of every search report; the triangular family has no μ
   const double c = report["alpha"].get<double>();
   CHECK(c > report["bounds"][0].get<double>());
   CHECK(c < report["bounds"][1].get<double>());

@@ -98,6 +98,8 @@ json weight_search_report(const Boundary& b, const std::string& objective, const
   out["parameter"] = to_string(SearchParameter::kWeight);
   out["mask"] = "c1-family";
   out["weight"] = s.parameter ? json(*s.parameter) : json(nullptr);
+  out["alpha"] = nullptr;  // the contract's fields of every search report: this one is not over α
+  out["mu"] = nullptr;
   out["value"] = number_or_null(s.value);
   out["bounds"] = {options.lower, options.upper};
   add_search_fields(out, s, [](double p) { return p; });

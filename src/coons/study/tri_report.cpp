@@ -47,6 +47,7 @@ json tri_search_report(const tri::TriBoundary& boundary, const std::string& obje
   out["parameter"] = "c";
   out["alpha"] = s.parameter ? json(*s.parameter) : json(nullptr);
   out["a"] = s.parameter ? json(tri::TriMask{*s.parameter}.a()) : json(nullptr);
+  out["mu"] = nullptr;  // a field of every search report; the triangular family has no μ
   out["value"] = number_or_null(s.value);
   out["bounds"] = {options.lower, options.upper};
   add_search_fields(
