@@ -244,6 +244,11 @@ class LinearSolver {
   //! backends that solve outside solve() too (structured sweeps).
   void judge_exact_solve(const LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X,
                          SolveSummary& summary) const;
+  //! After judge_exact_solve said kSingular on an assembled matrix: kSuccess, with a message that
+  //! says "ill-conditioned", when the solve is backward stable (normwise backward error ≤ 1e−12)
+  //! and a condition estimate (a lower bound from three more solves) lies below 0.1/ε; otherwise
+  //! the verdict stays and the message gains the estimate.
+  void judge_ill_conditioned(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
 
   //! The operator of the last factorize (set when do_factorize returns; do_solve may read it).
   [[nodiscard]] const LinearOperator& factorized_operator() const { return op_; }

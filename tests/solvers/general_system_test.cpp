@@ -213,6 +213,42 @@ TEST_CASE("run_general_system: a singular matrix fails with its status and no nu
   CHECK_FALSE(run.backward_error.has_value());
 }
 
+TEST_CASE("run_general_system: an ill-conditioned system solved backward stably is a success, a singular one is not",
+          "[solvers]") {
+  // The 10 × 10 Hilbert matrix, κ∞ = 3.5e13 < 1/ε, with b = e₁₀: no double x has a relative
+  // residual below 9.6e−6 (the exact x, up to 3.9e11, rounded), above the exact backends' 1e−6.
+  // Every exact backend used to call it "numerically singular".
+  Eigen::MatrixXd hilbert(10, 10);
+  for (int i = 0; i < 10; ++i)
+    for (int j = 0; j < 10; ++j) hilbert(i, j) = 1.0 / (i + j + 1);
+  // Rank 2 of 3, its entries rounded (0.1 … 0.9): a pivot of rounding, κ beyond 1/ε.
+  Eigen::MatrixXd rank_two(3, 3);
+  for (int i = 0; i < 3; ++i)
+    for (int j = 0; j < 3; ++j) rank_two(i, j) = (3 * i + j + 1) * 0.1;
+  const Eigen::SparseMatrix<double> H = sparse_of(hilbert), S = sparse_of(rank_two);
+  Eigen::MatrixXd e10 = Eigen::MatrixXd::Zero(10, 1), e1 = Eigen::MatrixXd::Zero(3, 1);
+  e10(9) = 1;
+  e1(0) = 1;
+  for (const char* name : {"eigen-lu", "umfpack", "eigen-ldlt", "cholmod"}) {  // (SuiteSparse is required)
+    const SolverInfo* info = find_solver(name);
+    REQUIRE(info);
+    const GeneralRun ill = run_general_system(*info, system_of(H, e10, true), SolverOptions{});
+    INFO(name << ": " << ill.status_name() << ", " << ill.reason);
+    CHECK(ill.ok());
+    REQUIRE(ill.relative_residual.has_value());
+    CHECK(*ill.relative_residual > 1e-6);  // above the limit, and still the best doubles allow
+    CHECK(*ill.backward_error < 1e-15);
+    CHECK_THAT(ill.reason, Catch::StartsWith("ill-conditioned: relative residual"));
+    CHECK_THAT(ill.reason, Catch::Contains("condition estimate 3.5"));  // κ∞ = 3.54e13
+    if (std::string(name) == "eigen-lu" || std::string(name) == "umfpack") {
+      const GeneralRun singular = run_general_system(*info, system_of(S, e1, false), SolverOptions{});
+      INFO(singular.reason);
+      CHECK(singular.status == SolveStatus::kSingular);
+      CHECK_THAT(singular.reason, Catch::Contains("(at least 1/(10 eps))"));
+    }
+  }
+}
+
 TEST_CASE("run_general_system: balancing never scales B, which may lie far from A's range", "[solvers]") {
   // A = diag(1, 2^-1000) gives k = 500: 2^k B would overflow in its first entry (2^1100), though
   // X = (2^600, 2^1000) is finite; A = diag(2^1000, 1) gives k = -500: 2^k B would make its second
