@@ -1,6 +1,7 @@
 #include "coons/study/tri_search.h"
 
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "coons/tri/tri_energy.h"
 #include "tri/tri_fixtures.h"
@@ -186,7 +187,44 @@ TriNet sphere_octant() {
   return frame_net(boundary);
 }
 
+// The degree-n triangle whose side points are f(u, v, w) = (u, v, sin(3u)·v + 2w² + 3uv) at the
+// barycentric points (i, j, k)/n of its sides.
+TriNet sine_bump_triangle(int n) {
+  const auto f = [n](int i, int j, int k) {
+    const double u = double(i) / n, v = double(j) / n, w = double(k) / n;
+    return Eigen::RowVector3d(u, v, std::sin(3 * u) * v + 2 * w * w + 3 * u * v);
+  };
+  TriBoundary boundary;
+  boundary.n = n;
+  for (auto& side : boundary.sides) side.resize(n + 1, 3);
+  for (int t = 0; t <= n; ++t) {
+    boundary.sides[0].row(t) = f(n - t, t, 0);
+    boundary.sides[1].row(t) = f(0, n - t, t);
+    boundary.sides[2].row(t) = f(t, 0, n - t);
+  }
+  return frame_net(boundary);
+}
+
 }  // namespace
+
+TEST_CASE("search_tri_c: every minimum of the scan is refined and the lowest result kept", "[study][tri]") {
+  // Over [-1, 1.5] the scan of the degree-8 bump has two minima: 1.1875 (the lowest point) and
+  // -0.0625, with c*_8 = -4/15 and c = 1, singular, around them. The lowest point alone led to
+  // c = 1.1737 (Dirichlet 3.4935) as success; the narrow basin of -0.0625 holds the minimum the
+  // bounds [-0.3, 0.3] find, c = -0.24444 (3.29925), which an exact rational solve confirms.
+  const TriNet frame = sine_bump_triangle(8);
+  const AlphaSearchSummary narrow = search_between(frame, "dirichlet", -0.3, 0.3);
+  REQUIRE(narrow.status == SearchStatus::kSuccess);
+  CHECK(*narrow.parameter == Approx(-0.24444104808).margin(1e-9));
+  const AlphaSearchSummary wide = search_between(frame, "dirichlet", -1, 1.5);
+  INFO(to_string(wide.status) << ": " << wide.message);
+  REQUIRE(wide.status == SearchStatus::kSuccess);
+  CHECK(wide.local_minima == 2);
+  CHECK(*wide.parameter == Approx(*narrow.parameter).margin(1e-9));
+  CHECK(wide.value == Approx(narrow.value).epsilon(1e-12));
+  CHECK(wide.value < 3.3);  // the other basin bottoms out at 3.4935
+  CHECK_THAT(wide.message, Catch::Contains("the scan saw 2 minima; each was refined and the lowest result kept"));
+}
 
 TEST_CASE("search_tri_c: bounds that hold singular members give the minimum the default bounds give", "[study][tri]") {
   // Over [-5, 5] the bracket of the lowest scan point held c*_6 = -1/3 and 2/3, where the energy
