@@ -97,9 +97,18 @@ TEST_CASE("view_page_json: valid JSON that reads back, with no '<' to end its sc
   CHECK(s["frames"][0]["mu"].get<double>() == 3.0);
   CHECK_FALSE(s["frames"][1].contains("mu"));
   CHECK(s["frames"][0]["net"].size() == 12);
-  // coordinates are written with 5 significant digits: exactly the value of that text (a relative
-  // 1e-5 failed for 0.1783133695, written 0.17831, when Random() gave that value)
-  const double written = std::stod(fmt::format("{:.5g}", page.sliders[0].frames[0].net(1, 1)));
+  // coordinates are offsets from the page's origin, the centre of the nets' box (exactly, in
+  // shortest round-trip form), written with 5 significant digits: exactly the value of that text
+  // (a relative 1e-5 failed for 0.1783133695, written 0.17831, when Random() gave that value)
+  Eigen::RowVector3d lo = page.sliders[0].frames[0].net.colwise().minCoeff(),
+                     hi = page.sliders[0].frames[0].net.colwise().maxCoeff();
+  for (const ViewFrame& f : page.sliders[0].frames) {
+    lo = lo.cwiseMin(f.net.colwise().minCoeff());
+    hi = hi.cwiseMax(f.net.colwise().maxCoeff());
+  }
+  const Eigen::RowVector3d origin = lo + 0.5 * (hi - lo);
+  for (int c = 0; c < 3; ++c) CHECK(doc["origin"][c].get<double>() == origin(c));
+  const double written = std::stod(fmt::format("{:.5g}", page.sliders[0].frames[0].net(1, 1) - origin(1)));
   CHECK(s["frames"][0]["net"][4].get<double>() == written);
   CHECK(s["frames"][0]["normals"][0].get<double>() == 0.0);  // the NaN normal
   CHECK(s["edges"].size() == 2 * page.sliders[0].net_edges.size());
@@ -107,6 +116,33 @@ TEST_CASE("view_page_json: valid JSON that reads back, with no '<' to end its sc
   CHECK(s["curves"][0]["values"][1].is_null());
   CHECK(s["curves"][0]["optimum"].get<double>() == -0.1);
   CHECK(s["marks"][0]["name"] == "Coons");
+}
+
+TEST_CASE("view_page_json: a patch far from the origin keeps its shape, written as offsets from its centre",
+          "[io][view]") {
+  // A patch of size 1 at 1e8: with 5 significant digits of the coordinates every point was
+  // 100000000.0 (one point drawn, the slider without effect); as offsets they keep 5 digits of the
+  // patch's own size.
+  ViewPage page = small_page();
+  for (ViewFrame& f : page.sliders[0].frames) {
+    f.net.rowwise() += Eigen::RowVector3d(1e8, -1e8, 1e8);
+    f.points.rowwise() += Eigen::RowVector3d(1e8, -1e8, 1e8);
+  }
+  const nlohmann::json doc = nlohmann::json::parse(view_page_json(page));
+  const Eigen::RowVector3d origin(doc["origin"][0].get<double>(), doc["origin"][1].get<double>(),
+                                  doc["origin"][2].get<double>());
+  const ViewFrame& f = page.sliders[0].frames[0];
+  const double size = (f.net.colwise().maxCoeff() - f.net.colwise().minCoeff()).maxCoeff();
+  REQUIRE(size > 0.1);
+  double worst = 0;
+  for (Eigen::Index r = 0; r < f.net.rows(); ++r)
+    for (int c = 0; c < 3; ++c) {
+      const double read = doc["sliders"][0]["frames"][0]["net"][3 * r + c].get<double>() + origin(c);
+      worst = std::max(worst, std::abs(read - f.net(r, c)));
+    }
+  CHECK(worst <= 1e-4 * size);  // 5 significant digits of offsets no larger than the size
+  const double normal = doc["sliders"][0]["frames"][0]["normals"][3].get<double>();
+  CHECK(std::abs(normal - f.normals(1, 0)) <= 1e-5);  // normals are not moved
 }
 
 TEST_CASE("view_page_html: three.js, the data and the page's script inlined, nothing fetched", "[io][view]") {

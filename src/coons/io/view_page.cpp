@@ -42,13 +42,15 @@ void append_number(std::string& out, double x, bool round_trip) {
   out += round_trip ? fmt::format("{}", x) : fmt::format("{:.5g}", x);
 }
 
-// A #rows by 3 matrix as one flat array [x0,y0,z0,x1,...].
-void append_flat(std::string& out, const Eigen::MatrixX3d& M) {
+// A #rows by 3 matrix as one flat array [x0,y0,z0,x1,...], each row minus `origin` (the page's
+// origin for points, zero for normals): 5 significant digits of the coordinates themselves lost
+// a patch of size 1 at 1e8 entirely (every sample 100000000.0), those of the offsets keep it.
+void append_flat(std::string& out, const Eigen::MatrixX3d& M, const Eigen::RowVector3d& origin) {
   out += '[';
   for (Eigen::Index r = 0; r < M.rows(); ++r)
     for (int c = 0; c < 3; ++c) {
       if (r > 0 || c > 0) out += ',';
-      append_number(out, M(r, c), false);
+      append_number(out, M(r, c) - origin(c), false);
     }
   out += ']';
 }
@@ -64,7 +66,7 @@ void append_indices(std::string& out, const std::vector<std::array<int, N>>& lis
   out += ']';
 }
 
-void append_slider(std::string& out, const ViewSlider& s) {
+void append_slider(std::string& out, const ViewSlider& s, const Eigen::RowVector3d& origin) {
   nlohmann::json head = {{"parameter", s.parameter},
                          {"symbol", s.symbol},
                          {"label", s.label},
@@ -94,7 +96,7 @@ void append_slider(std::string& out, const ViewSlider& s) {
     for (Eigen::Index r = 0; r < s.ring.rows(); ++r)
       for (int c = 0; c < 3; ++c) {
         if (r > 0 || c > 0) out += ',';
-        append_number(out, s.ring(r, c), true);
+        append_number(out, s.ring(r, c) - origin(c), true);  // the family reproduces translations
       }
     out += "]}";
   }
@@ -109,11 +111,11 @@ void append_slider(std::string& out, const ViewSlider& s) {
       append_number(out, *f.mu, true);
     }
     out += f.ok ? ",\"ok\":true,\"net\":" : ",\"ok\":false,\"net\":";
-    append_flat(out, f.net);
+    append_flat(out, f.net, origin);
     out += ",\"points\":";
-    append_flat(out, f.points);
+    append_flat(out, f.points, origin);
     out += ",\"normals\":";
-    append_flat(out, f.normals);
+    append_flat(out, f.normals, Eigen::RowVector3d::Zero());
     out += '}';
   }
   out += "]}";
@@ -202,17 +204,38 @@ std::vector<std::array<int, 3>> grid_faces(int k) {
   return faces;
 }
 
+// The centre of the box of every net point of every frame (finite ones): the page's coordinates
+// are offsets from it.
+Eigen::RowVector3d page_origin(const ViewPage& page) {
+  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(HUGE_VAL), hi = Eigen::RowVector3d::Constant(-HUGE_VAL);
+  for (const ViewSlider& s : page.sliders)
+    for (const ViewFrame& f : s.frames)
+      for (Eigen::Index r = 0; r < f.net.rows(); ++r)
+        if (f.net.row(r).allFinite()) {
+          lo = lo.cwiseMin(f.net.row(r));
+          hi = hi.cwiseMax(f.net.row(r));
+        }
+  if (!(lo.array() <= hi.array()).all()) return Eigen::RowVector3d::Zero();
+  return lo + 0.5 * (hi - lo);
+}
+
 std::string view_page_json(const ViewPage& page) {
+  const Eigen::RowVector3d origin = page_origin(page);
   std::string out = "{\"title\":";
   out += nlohmann::json(page.title).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   out += ",\"subtitle\":";
   out += nlohmann::json(page.subtitle).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
   out += ",\"generator\":";
   out += nlohmann::json(page.generator).dump(-1, ' ', false, nlohmann::json::error_handler_t::replace);
-  out += ",\"sliders\":[";
+  out += ",\"origin\":[";
+  for (int c = 0; c < 3; ++c) {
+    if (c > 0) out += ',';
+    append_number(out, origin(c), true);
+  }
+  out += "],\"sliders\":[";
   for (size_t k = 0; k < page.sliders.size(); ++k) {
     if (k > 0) out += ',';
-    append_slider(out, page.sliders[k]);
+    append_slider(out, page.sliders[k], origin);
   }
   out += "]}";
   return json_script_safe(out);

@@ -41,6 +41,9 @@ constexpr std::string_view kScript = R"JS(
   };
   var data = JSON.parse(document.getElementById('coons-data').textContent);
   var sliders = data.sliders;
+  // every coordinate on the page is an offset from data.origin (exactly, shortest round trip):
+  // drawn as it is, the origin added back for the test hook's net()
+  var origin = data.origin || [0, 0, 0];
   var colours = ['#c0392b', '#2471a3', '#1e8449', '#7d3c98', '#b9770e', '#17202a'];
   var active = 0;
   // current[si]: the frame shown, an index into frames, or -1 for extra[si] (a value between the
@@ -156,8 +159,9 @@ constexpr std::string_view kScript = R"JS(
   // between the frames of a slider that can solve it
   function locate(si, value) {
     var s = sliders[si], k = nearest(s, value);
-    if (!s.ring || !(value >= s.lower && value <= s.upper) ||
-        Math.abs(s.frames[k].parameter - value) <= 1e-12 * (1 + Math.abs(value))) return k;
+    // (only the frame of the value itself: 0.1 within 1e-12 of the frame 0.09999999999999998 showed
+    // data-alpha 0.09999999999999998, where #alpha=0.1 is to show α = 0.1)
+    if (!s.ring || !(value >= s.lower && value <= s.upper) || s.frames[k].parameter === value) return k;
     extra[si] = solvedFrame(s, value);
     return -1;
   }
@@ -439,7 +443,9 @@ constexpr std::string_view kScript = R"JS(
       for (var si = 0; si < sliders.length; ++si) if (sliders[si].parameter === parameter) return !!sliders[si].ring;
       return false;
     },
-    net: function () { return Array.prototype.slice.call(frameAt(active).net); },
+    net: function () {
+      return Array.prototype.map.call(frameAt(active).net, function (x, i) { return x + origin[i % 3]; });
+    },
     values: function (parameter) {
       for (var si = 0; si < sliders.length; ++si)
         if (sliders[si].parameter === parameter) return sliders[si].frames.map(function (f) { return f.parameter; });
