@@ -193,22 +193,29 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
   const auto objective = parse_objective(objective_text(r.objective), &why);
   if (!objective || !bspline_objective_supported(*objective, &why))
     throw InputError("command line", "--objective", why);
-  AlphaSearchOptions options = default_bspline_search_options();  // [-1/4, 0]: definite there
+  const BSplineInput& in = *file.bspline;
+  // [-1/4, U]: U ≤ 1/4, where the non-uniform system stops being definite (1/4 where it does not)
+  AlphaSearchOptions options = bspline_search_options(in.compatible);
+  const double definite_upper = options.upper;
   options.lower = r.lower.value_or(options.lower);
   options.upper = r.upper.value_or(options.upper);
   options.scan_points = r.scan_points;
-  if ((options.lower < -0.25 || options.upper > 0) && !r.allow_indefinite)
+  if ((options.lower < -0.25 || options.upper > definite_upper) && !r.allow_indefinite)
     throw InputError("command line", r.lower && *r.lower < -0.25 ? "--lower" : "--upper",
-                     "the non-uniform system of a B-spline boundary is definite for alpha in [-0.25, 0] only (it can "
-                     "be singular above 0); add --allow-indefinite to search outside");
+                     fmt::format("the non-uniform system of this B-spline boundary is definite for alpha in [-0.25, "
+                                 "{}] only (it can be singular above); add --allow-indefinite to search outside",
+                                 definite_upper));
   if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
   const solvers::SolverInfo* requested =
       requested_matrix_backend(r, "a B-spline boundary needs a backend that takes an assembled matrix");
-  const std::string solver =
-      requested ? requested->name : auto_bspline_solver(options.upper <= 0 ? options.lower : options.upper);
-  const BSplineInput& in = *file.bspline;
+  // a Cholesky-type backend wherever the system is definite
+  const std::string solver = requested                                                   ? requested->name
+                             : options.lower >= -0.25 && options.upper <= definite_upper ? auto_bspline_solver(0.0)
+                                                                                         : std::string("eigen-lu");
   phases.start("solve");
-  const AlphaSearchSummary s = search_bspline_alpha(in.compatible, *objective, solver, options);
+  AlphaSearchSummary s = search_bspline_alpha(in.compatible, *objective, solver, options);
+  if (const std::string note = bspline_pole_note(s, options, definite_upper); !note.empty())
+    s.message += (s.message.empty() ? "" : "; ") + note;
   const BSplineSurface frame = bspline_surface_on(in.compatible, bspline_frame(in.compatible));
   Boundary shape = file.boundary;
   shape.m = frame.net.m;

@@ -161,6 +161,25 @@ TEST_CASE("coons search-alpha and study: a B-spline boundary is searched over th
   CHECK(s["alpha"].get<double>() < 0.25);
   CHECK(s["beta"].is_null());
   CHECK(s["bspline"]["degree_spline"] == json({3, 2}));
+  // the default bounds: [-1/4, U], U the end of the definite range (a singular alpha lies above it)
+  const double upper = s["bounds"][1].get<double>();
+  CHECK(s["bounds"][0] == -0.25);
+  CHECK(upper > 0.1);
+  CHECK(upper < 0.25);
+  // the Dirichlet energy falls across [0, U]: its minimum against U is said to be the singular
+  // alpha's (with the old bounds [-1/4, 0] it read alpha = 0 "at a bound")
+  const CommandResult dirichlet = run_command(kCoons + " search-alpha " + q(kWave) + " --objective dirichlet");
+  REQUIRE(dirichlet.status == 0);
+  const json d = json::parse(dirichlet.out);
+  CHECK(d["alpha"].get<double>() > 0.1);
+  CHECK_THAT(d["message"].get<std::string>(), Catch::Contains("so this minimum is made by it"));
+  CHECK(json::parse(run_command(kCoons + " search-alpha " + q(kWave) + " --objective e3").out).value("message", "") ==
+        "");
+  // beyond U: bad input naming U
+  const CommandResult beyond =
+      run_command(kCoons + " search-alpha " + q(kWave) + " --objective e3 --upper " + fmt::format("{}", upper + 0.01));
+  CHECK(beyond.status == 2);
+  CHECK_THAT(beyond.err, Catch::Contains(fmt::format("definite for alpha in [-0.25, {}] only", upper)));
   const CommandResult target = run_command(kCoons + " search-alpha " + q(kWave) + " --objective target --target coons");
   CHECK(target.status == 2);
   CHECK(target.out.empty());

@@ -323,7 +323,8 @@ TEST_CASE("coons study FILES --merge: a B-spline row no study can have written i
     std::string error;
   };
   const std::vector<Edit> edits = {
-      {"/bspline/0/searches/0/1/parameter", 7, "bspline_wave, thin_plate: 7 is outside the search's bounds [-0.25, 0]"},
+      {"/bspline/0/searches/0/1/parameter", 7,
+       "bspline_wave, thin_plate: 7 is outside the search's bounds [-0.25, 0.25]"},
       {"/bspline/0/searches/0/1/flat", true, "bspline_wave, thin_plate: flat is true but the status is"},
       {"/bspline/0/thin_plate_coons", -1, "bspline_wave, thin_plate_coons: -1 is no energy"},
       {"/bspline/0/counts/0", 2, "bspline_wave, counts: 2 by 7 control points cannot carry degrees 3 by 2"}};

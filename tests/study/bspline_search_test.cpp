@@ -1,6 +1,8 @@
 #include "coons/study/bspline_search.h"
 
+#include <Eigen/Eigenvalues>
 #include <catch2/catch.hpp>
+#include <cmath>
 
 #include "coons/study/bspline_net.h"
 #include "coons/study/bspline_study.h"
@@ -105,6 +107,62 @@ TEST_CASE("run_bspline_study: one row per B-spline boundary with both energies a
   const std::string md = bspline_study_markdown(rows);
   CHECK(md.find("| random |") != std::string::npos);
   CHECK(bspline_study_json(rows)[0]["best_alpha"].contains("e3"));
+}
+
+TEST_CASE("bspline_definite_upper: the whole contract range on equal spacing, the definite end on repeated knots",
+          "[study][bspline]") {
+  // Bézier knots: equal Greville spacing, the α family of §3, definite on all of [−1/4, 1/4]
+  BSplineSurface bezier;
+  bezier.degree_u = 5;
+  bezier.degree_v = 4;
+  bezier.knots_u = bezier_knots(5);
+  bezier.knots_v = bezier_knots(4);
+  bezier.net = make_random_net(5, 4, 3);
+  CHECK(bspline_definite_upper(boundary_of(bezier)) == 0.25);
+  CHECK(bspline_search_options(boundary_of(bezier)).upper == 0.25);
+  CHECK(bspline_search_options(boundary_of(bezier)).lower == -0.25);
+  // random knots with repeated values: singular at some α in (0, 1/4]; the end lies just below the
+  // first of them, where the system is still definite
+  const BSplineBoundary b = compatible_boundary(make_random_bspline_boundary(3, 8, 2, 6, 9));
+  const NonUniformMaskSystem s = assemble_nonuniform_mask_system(bspline_frame(b), greville_grid(b), 0);
+  const Eigen::MatrixXd a0 = Eigen::MatrixXd(s.A), a1 = Eigen::MatrixXd(s.dA);
+  const Eigen::GeneralizedEigenSolver<Eigen::MatrixXd> pencil(a0, -a1);
+  double first = HUGE_VAL;  // the smallest singular α above 0
+  for (Eigen::Index k = 0; k < a0.rows(); ++k)
+    if (std::abs(pencil.betas()(k)) > 1e-12 && std::abs(pencil.alphas()(k).imag()) <= 1e-9) {
+      const double alpha = pencil.alphas()(k).real() / pencil.betas()(k);
+      if (alpha > 0) first = std::min(first, alpha);
+    }
+  REQUIRE(first < 0.25);
+  const double upper = bspline_definite_upper(b);
+  INFO("first singular alpha " << first << ", definite upper " << upper);
+  CHECK(upper < first);
+  CHECK(upper > first - 0.01);
+  const Eigen::SelfAdjointEigenSolver<Eigen::MatrixXd> at_upper(
+      Eigen::MatrixXd(assemble_nonuniform_mask_system(bspline_frame(b), greville_grid(b), upper).A));
+  CHECK(at_upper.eigenvalues().minCoeff() > 0);  // (symmetric: rows scaled, docs/math.md §10)
+  // the search's default bounds end there, and its optimum is a minimum of a fine scan up to it
+  const AlphaSearchSummary thin =
+      search_bspline_alpha(b, objective_named("thin_plate"), "eigen-lu", bspline_search_options(b));
+  REQUIRE(thin.parameter);
+  CHECK(*thin.parameter <= upper);
+}
+
+TEST_CASE("bspline_pole_note: an optimum against a definite end cut by a singular alpha is said to be its",
+          "[study][bspline]") {
+  AlphaSearchOptions options = default_bspline_search_options();
+  options.upper = 0.1164;
+  AlphaSearchSummary s;
+  s.parameter = 0.1149;  // bspline_wave's Dirichlet optimum, 0.0015 below its singular end
+  CHECK_THAT(bspline_pole_note(s, options, 0.1164), Catch::Contains("so this minimum is made by it"));
+  CHECK_THAT(bspline_pole_note(s, options, 0.1164), Catch::StartsWith("the optimum lies 0.0015 below 0.1164"));
+  s.parameter = -0.0866;  // its thin-plate optimum: far from the end
+  CHECK(bspline_pole_note(s, options, 0.1164).empty());
+  s.parameter = 0.249;  // an end at 1/4 is the contract's bound, not a singular alpha
+  options.upper = 0.25;
+  CHECK(bspline_pole_note(s, options, 0.25).empty());
+  s.parameter.reset();
+  CHECK(bspline_pole_note(s, options, 0.1164).empty());
 }
 
 TEST_CASE("search_bspline_alpha: a near-singular alpha is a failed evaluation and never the optimum",

@@ -1,5 +1,7 @@
 #include "coons/study/bspline_search.h"
 
+#include <fmt/format.h>
+
 #include <algorithm>
 #include <chrono>
 #include <cmath>
@@ -23,6 +25,40 @@ AlphaSearchOptions default_bspline_search_options() {
   // relative between equivalent solves, so flatness is judged at 1e-9.
   options.flat_tolerance = 1e-9;
   return options;
+}
+
+double bspline_definite_upper(const BSplineBoundary& compatible) {
+  const ControlNet frame = bspline_frame(compatible);
+  const GrevilleGrid grid = greville_grid(compatible);
+  const auto definite = [&](double alpha) {
+    const auto backend = solvers::make_solver("eigen-llt");
+    return backend && solve_nonuniform_mask_net(frame, grid, alpha, *backend, false, 10 * kNearSingularEigenvalueRatio)
+                          .summary.ok();
+  };
+  if (definite(0.25)) return 0.25;
+  double lo = 0.0, hi = 0.25;
+  while (hi - lo > 0.25e-6) {
+    const double mid = 0.5 * (lo + hi);
+    (definite(mid) ? lo : hi) = mid;
+  }
+  return lo;
+}
+
+AlphaSearchOptions bspline_search_options(const BSplineBoundary& compatible) {
+  AlphaSearchOptions options = default_bspline_search_options();
+  options.upper = bspline_definite_upper(compatible);
+  return options;
+}
+
+std::string bspline_pole_note(const AlphaSearchSummary& s, const AlphaSearchOptions& options, double definite_upper) {
+  if (!s.parameter || !(definite_upper < 0.25) || options.upper != definite_upper) return "";
+  const double gap = definite_upper - *s.parameter;
+  if (!(gap <= 0.02 * (options.upper - options.lower))) return "";
+  return fmt::format(
+      "the optimum lies {:.3g} below {}, the end of the range where the non-uniform system is definite (a singular "
+      "alpha lies just above it): the objective rises there because of that singular alpha, so this minimum is made "
+      "by it, not by the boundary",
+      gap, definite_upper);
 }
 
 bool bspline_objective_supported(const Objective& objective, std::string* why) {

@@ -39,6 +39,23 @@ bool bspline_objective_supported(const Objective& objective, std::string* why);
 //! Flat below a relative range of 1e-9 (the energies' rounding on short knot spans is ~1e-11).
 AlphaSearchOptions default_bspline_search_options();
 
+//! The largest α in [0, 1/4] up to which the non-uniform system of `compatible` is positive
+//! definite with min|λ|/max|λ| above 10 × kNearSingularEigenvalueRatio: 1/4 when α = 1/4 passes
+//! (Cholesky and the eigenvalue-ratio estimate), else bisection on [0, 1/4] to 1e−6 of it (the
+//! definite α form an interval holding [−1/4, 0]: the system is affine in α).
+double bspline_definite_upper(const BSplineBoundary& compatible);
+
+//! The bounds `search-alpha` and the study search a B-spline boundary over by default:
+//! default_bspline_search_options() up to bspline_definite_upper(compatible), the contract's
+//! [−1/4, 1/4] wherever the system is definite there.
+AlphaSearchOptions bspline_search_options(const BSplineBoundary& compatible);
+
+//! A note for a search whose optimum lies within 2 % of the bounds' width below `definite_upper`,
+//! the upper bound, where that end was cut short of 1/4 by a singular α: the objective rises there
+//! because of the singular α (bspline_wave's Dirichlet energy falls across [0, 0.1149] and has its
+//! "minimum" 0.0015 below the singular end 0.1164). Empty otherwise.
+std::string bspline_pole_note(const AlphaSearchSummary& s, const AlphaSearchOptions& options, double definite_upper);
+
 //! The search; `solver_name` a backend of the registry that takes an assembled matrix. Outside
 //! [−1/4, 0] an α whose system is near-singular (near_singular.h) is a failed evaluation, status
 //! singular (bspline_alpha_objective gives nullopt there).

@@ -38,14 +38,15 @@ std::vector<BSplineStudyRow> run_bspline_study(const std::vector<BSplineStudyInp
     row.count_u = b.bottom.count();
     row.count_v = b.left.count();
     row.notes = in.sides.notes;
-    // [−1/4, 0] is searched (default_bspline_search_options), where the system is definite.
+    // [−1/4, U] is searched (bspline_search_options), where the system is definite.
     row.solver = solver.empty() ? auto_bspline_solver(0.0) : solver;
+    const AlphaSearchOptions bounds = bspline_search_options(b);
     row.thin_plate_coons = thin_plate_at(b, -0.25, row.solver);
     row.thin_plate_laplace = thin_plate_at(b, 0.0, row.solver);
     for (const Objective& o : objectives) {
       std::string why;
       if (!bspline_objective_supported(o, &why)) continue;
-      row.searches.emplace_back(o.name, search_bspline_alpha(b, o, row.solver));
+      row.searches.emplace_back(o.name, search_bspline_alpha(b, o, row.solver, bounds));
     }
     rows.push_back(std::move(row));
   }
@@ -59,7 +60,8 @@ std::string bspline_study_markdown(const std::vector<BSplineStudyRow>& rows) {
       "A B-spline boundary is not studied over Bézier degrees (its net is not elevated); it gets one row at its own "
       "knots, after opposite sides were made compatible. Thin-plate energies of the Greville Coons net (α = −1/4) "
       "and of the non-uniform Laplace net (α = 0), and the best α of the non-uniform family (docs/math.md §10) for "
-      "each objective.\n\n"
+      "each objective, searched from α = −1/4 up to the end of the range where its system is positive definite (at "
+      "most 1/4).\n\n"
       "| boundary | degrees (p, q) | points | compatibility | thin plate α = −1/4 | thin plate α = 0 | best α |\n"
       "| --- | --- | --- | --- | --- | --- | --- |\n";
   for (const BSplineStudyRow& r : rows) {

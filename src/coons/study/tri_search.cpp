@@ -6,8 +6,8 @@
 #include <map>
 #include <optional>
 #include <string>
-#include <utility>
 #include <tuple>
+#include <utility>
 #include <vector>
 
 #include "coons/alpha/downhill.h"
