@@ -2,7 +2,10 @@
 // that names the field.
 #include "coons/io/surface_io.h"
 
+#include <fmt/format.h>
+
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <nlohmann/json.hpp>
 
 #include "coons/io/input_error.h"
@@ -217,6 +220,36 @@ TEST_CASE("parse_surface: incompatible general-Coons data name the corner and th
   SurfaceReadOptions loose;
   loose.derivative_tolerance = 0.2;
   CHECK_NOTHROW(parse_surface(d, "spec.json", loose));
+}
+
+TEST_CASE("parse_surface: far from the origin the tolerance of tangents grows by the numerical derivative's error",
+          "[surfaces]") {
+  // The pillow of LN1 (flat unit square, cross derivatives and twists of sin(pi u) sin(pi v)) at
+  // x = 1e8: the tangents of its expression sides are good to about 1e-5 there, and the exact data
+  // were refused "by 1.18e-05 (tolerance 1.41e-07)".
+  const auto pillow = [](const std::string& x0, double du) {
+    json d = {{"type", "general-coons"},
+              {"bottom", {{"expr", {x0 + "+t", "0", "0"}}}},
+              {"top", {{"expr", {x0 + "+t", "1", "0"}}}},
+              {"left", {{"expr", {x0, "t", "0"}}}},
+              {"right", {{"expr", {x0 + "+1", "t", "0"}}}},
+              {"du_left", {{"expr", {fmt::format("{}", du), "0", "pi*sin(pi*t)"}}}},
+              {"du_right", {{"expr", {"1", "0", "-pi*sin(pi*t)"}}}},
+              {"dv_bottom", {{"expr", {"0", "1", "pi*sin(pi*t)"}}}},
+              {"dv_top", {{"expr", {"0", "1", "-pi*sin(pi*t)"}}}}};
+    const double pi2 = M_PI * M_PI;
+    d["twist"] = json::array({{0, 0, pi2}, {0, 0, -pi2}, {0, 0, -pi2}, {0, 0, pi2}});
+    return d;
+  };
+  for (const char* x0 : {"0", "1e6", "1e8"}) {
+    INFO("x0 = " << x0);
+    CHECK_NOTHROW(parse_surface(pillow(x0, 1), "spec.json"));
+    // a cross derivative that is wrong by far more than that is still refused, the bound named
+    const auto [field, reason] = error_of(pillow(x0, 1.01));
+    CHECK(field == "du_left");
+    CHECK(reason.find("du_left(0) = bottom'(0) fails by 0.01") != std::string::npos);
+    CHECK(reason.find("the numerical derivative's error bound") != std::string::npos);
+  }
 }
 
 TEST_CASE("parse_surface: a conoid whose line is parallel to its plane is rejected", "[surfaces]") {

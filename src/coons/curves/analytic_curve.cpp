@@ -61,6 +61,26 @@ AnalyticCurve::~AnalyticCurve() = default;
 
 Eigen::RowVector3d AnalyticCurve::at(double s) const { return compiled_->at(t1_ + s * (t2_ - t1_)); }
 
+namespace {
+
+// derivative()'s test: an estimate that settled, or one whose disagreement is the rounding of the
+// curve's values and within 2 % of the derivative.
+bool usable(const NumericalDerivative& d) {
+  const double size = d.value.cwiseAbs().maxCoeff();
+  const bool settled = d.error_estimate <= 1e-5 * std::max(1.0, size);
+  const bool rounding_only = d.error_estimate <= 10 * d.rounding && d.error_estimate <= 2e-2 * size;
+  return settled || rounding_only;
+}
+
+}  // namespace
+
+double AnalyticCurve::derivative_error(int r, double s) const {
+  if (r == 0) return 0;
+  if (r > 3) return std::nan("");
+  const NumericalDerivative d = numerical_derivative([this](double x) { return at(x); }, r, s);
+  return usable(d) ? std::max(d.error_estimate, d.rounding) : std::nan("");
+}
+
 Eigen::RowVector3d AnalyticCurve::derivative(int r, double s) const {
   if (r == 0) return at(s);
   if (r > 3) return Eigen::RowVector3d::Constant(std::nan(""));
@@ -70,10 +90,7 @@ Eigen::RowVector3d AnalyticCurve::derivative(int r, double s) const {
   // rounding of the curve's values has settled as far as doubles let it: a curve at x = 1e8 has
   // second derivatives good to about 1 % (it was NaN, and the surface's curvature printed 0).
   // Beyond 2 % it is no derivative either.
-  const double size = d.value.cwiseAbs().maxCoeff();
-  const bool settled = d.error_estimate <= 1e-5 * std::max(1.0, size);
-  const bool rounding_only = d.error_estimate <= 10 * d.rounding && d.error_estimate <= 2e-2 * size;
-  if (!(settled || rounding_only)) return Eigen::RowVector3d::Constant(std::nan(""));
+  if (!usable(d)) return Eigen::RowVector3d::Constant(std::nan(""));
   return d.value;
 }
 

@@ -46,6 +46,9 @@ class AnalyticCurve {
   //! d^r c / ds^r (r = 0..3), numerically for r ≥ 1; NaN where it cannot be computed (the
   //! extrapolation does not settle to 1e-5 relative, e.g. an infinite derivative).
   [[nodiscard]] Eigen::RowVector3d derivative(int r, double s) const;
+  //! The error bound of derivative(r, s) (max-norm): the extrapolation's disagreement, at least
+  //! the rounding of the curve's values (numerical_derivative.h); NaN where derivative() is NaN.
+  [[nodiscard]] double derivative_error(int r, double s) const;
 
   [[nodiscard]] const std::array<std::string, 3>& expressions() const { return expressions_; }
   [[nodiscard]] double t1() const { return t1_; }

@@ -35,6 +35,11 @@ Eigen::RowVector3d Curve::derivative(int r, double s) const {
                     v_);
 }
 
+double Curve::derivative_error(int r, double s) const {
+  const AnalyticCurve* c = analytic();
+  return c ? c->derivative_error(r, s) : 0.0;
+}
+
 const char* Curve::kind() const {
   return std::visit(Overloaded{[](const BezierCurve&) { return "bezier"; }, [](const AnalyticCurve&) { return "expr"; },
                                [](const FunctionCurve&) { return "function"; }},

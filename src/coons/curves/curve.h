@@ -40,6 +40,9 @@ class Curve {
   [[nodiscard]] Eigen::RowVector3d at(double s) const;
   //! d^r c / ds^r, r ≥ 0 (exact for Bézier and function curves, numerical for analytic ones).
   [[nodiscard]] Eigen::RowVector3d derivative(int r, double s) const;
+  //! The error bound of derivative(r, s): 0 for Bézier and function curves (exact), the numerical
+  //! estimate's bound for analytic ones (AnalyticCurve::derivative_error).
+  [[nodiscard]] double derivative_error(int r, double s) const;
 
   //! The Bézier curve when this is one (the surface is then polynomial along it), else nullptr.
   [[nodiscard]] const BezierCurve* bezier() const { return std::get_if<BezierCurve>(&v_); }

@@ -46,6 +46,9 @@ struct CompatibilityCondition {
   double gap = 0;         //!< ‖lhs − rhs‖
   double scale = 0;       //!< max(‖lhs‖, ‖rhs‖): the tolerance is relative to max(scale, data size)
   int order = 0;          //!< 0: positions, 1: tangents, 2: twists
+  //! The error bound of a numerical derivative on either side (0 where both are exact): the
+  //! tolerance grows by it (a curve at x = 1e8 has tangents good to about 1e−5 only).
+  double uncertainty = 0;
 };
 
 //! The four corner conditions of a boundary (blaming the v-curves left/right).

@@ -1,6 +1,7 @@
 #include "general_coons.h"
 
 #include <algorithm>
+#include <cmath>
 #include <string>
 
 namespace coons {
@@ -29,8 +30,10 @@ std::vector<CompatibilityCondition> compatibility_conditions(const GeneralCoonsD
   const BoundaryCurves& b = g.boundary;
   std::vector<CompatibilityCondition> out = corner_conditions(b);
   auto add = [&](const std::string& field, int corner, const std::string& condition, const Eigen::RowVector3d& x,
-                 const Eigen::RowVector3d& y, int order) {
-    out.push_back({field, kCornerNames[corner], condition, (x - y).norm(), std::max(x.norm(), y.norm()), order});
+                 const Eigen::RowVector3d& y, int order, double uncertainty) {
+    // (max-norm bound of a 3-vector: its Euclidean norm is at most √3 times it)
+    out.push_back({field, kCornerNames[corner], condition, (x - y).norm(), std::max(x.norm(), y.norm()), order,
+                   std::sqrt(3.0) * uncertainty});
   };
   // Cross derivatives against the tangents of the transversal curves.
   const char* u_name[2] = {"bottom", "top"};
@@ -45,21 +48,21 @@ std::vector<CompatibilityCondition> compatibility_conditions(const GeneralCoonsD
     for (int i = 0; i < 2; ++i)
       add(du_name[i], i + 2 * j,
           std::string(du_name[i]) + "(" + std::to_string(j) + ") = " + u_name[j] + "'(" + std::to_string(i) + ")",
-          du[i]->at(j), u_curve[j]->derivative(1, i), 1);
+          du[i]->at(j), u_curve[j]->derivative(1, i), 1, u_curve[j]->derivative_error(1, i));
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i)
       add(dv_name[j], i + 2 * j,
           std::string(dv_name[j]) + "(" + std::to_string(i) + ") = " + v_name[i] + "'(" + std::to_string(j) + ")",
-          dv[j]->at(i), v_curve[i]->derivative(1, j), 1);
+          dv[j]->at(i), v_curve[i]->derivative(1, j), 1, v_curve[i]->derivative_error(1, j));
   // Twists against the derivatives of the cross derivatives.
   for (int j = 0; j < 2; ++j)
     for (int i = 0; i < 2; ++i) {
       const int c = i + 2 * j;
       const std::string field = "twist[" + std::to_string(c) + "]";
       add(field, c, field + " = " + du_name[i] + "'(" + std::to_string(j) + ")", g.twist[c], du[i]->derivative(1, j),
-          2);
+          2, du[i]->derivative_error(1, j));
       add(field, c, field + " = " + dv_name[j] + "'(" + std::to_string(i) + ")", g.twist[c], dv[j]->derivative(1, i),
-          2);
+          2, dv[j]->derivative_error(1, i));
     }
   return out;
 }
