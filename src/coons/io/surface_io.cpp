@@ -200,7 +200,7 @@ void check_conditions(const Reader& r, const std::vector<CompatibilityCondition>
     // (plus the numerical derivatives' own error bound: a curve at x = 1e8 has tangents good to
     // about 1e-5, and exact data were refused "by 1.18e-05 (tolerance 1.41e-07)")
     const double given = c.order == 0 ? o.corner_tolerance * std::max(size, 1e-300)
-                                       : o.derivative_tolerance * std::max({size, c.scale, 1e-300});
+                                      : o.derivative_tolerance * std::max({size, c.scale, 1e-300});
     const double tolerance = given + c.uncertainty;
     if (std::isnan(c.uncertainty) || std::isnan(c.gap))
       r.fail(c.field, fmt::format("{} cannot be checked at corner {}: a numerical derivative in it does not settle "
@@ -213,9 +213,9 @@ void check_conditions(const Reader& r, const std::vector<CompatibilityCondition>
       r.fail(c.field,
              fmt::format("{} at corner {}: {} fails by {:.3g} (tolerance {:.3g}{})", what, c.corner, c.condition, c.gap,
                          tolerance,
-                         c.uncertainty > 0 ? fmt::format(", of which {:.3g} the numerical derivative's error bound",
-                                                         c.uncertainty)
-                                           : std::string()));
+                         c.uncertainty > 0
+                             ? fmt::format(", of which {:.3g} the numerical derivative's error bound", c.uncertainty)
+                             : std::string()));
     }
   }
 }

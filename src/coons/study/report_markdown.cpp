@@ -65,7 +65,11 @@ StudyFigures plot_study_figures(const StudyResult& r, const std::function<std::s
   for (size_t k = 0; k < r.shapes.size(); ++k) {
     const ShapeEntry& shape = r.shapes[k];
     StudyFigure energies{"figures/" + stems[k] + "_energies.png", ""};
-    energies.error = plot_sweep(path_of(energies.file), shape.boundary, SweepParameter::kAlpha, shape.curves);
+    std::map<std::string, SweepOptimum> optima;  // α* of the table, not the sweep's lowest point
+    for (const ShapeOptimum& o : shape.optima)
+      if (o.alpha.parameter && !o.alpha.flat && o.alpha.status == SearchStatus::kSuccess)
+        optima[o.objective] = {*o.alpha.parameter, o.alpha.value};
+    energies.error = plot_sweep(path_of(energies.file), shape.boundary, SweepParameter::kAlpha, shape.curves, optima);
     StudyFigure nets{"figures/" + stems[k] + "_nets.png", ""};
     nets.error = plot_nets(path_of(nets.file), shape.pictures, 25, shape.boundary.name);
     figures.energies.push_back(energies);

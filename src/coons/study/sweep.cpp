@@ -116,32 +116,39 @@ json sweep_line(const Boundary& b, SweepParameter parameter, const SweepRow& row
   return line;
 }
 
-std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter parameter,
-                       const std::vector<SweepRow>& rows) {
+std::vector<PlotSeries> sweep_series(const std::vector<SweepRow>& rows,
+                                     const std::map<std::string, SweepOptimum>& optima) {
   struct Curve {
     const char* name;
+    const char* objective;
     double NetMetrics::*field;
   };
-  const Curve curves[] = {{"thin plate", &NetMetrics::thin_plate_energy},
-                          {"E3", &NetMetrics::e3_energy},
-                          {"twist", &NetMetrics::twist_energy},
-                          {"Dirichlet", &NetMetrics::dirichlet_energy}};
+  const Curve curves[] = {{"thin plate", "thin_plate", &NetMetrics::thin_plate_energy},
+                          {"E3", "e3", &NetMetrics::e3_energy},
+                          {"twist", "twist", &NetMetrics::twist_energy},
+                          {"Dirichlet", "dirichlet", &NetMetrics::dirichlet_energy}};
   // Each curve divided by its largest value, its minimum marked in its own colour. Curves that
   // are zero up to rounding (below 1e-12 of the largest curve) carry no shape and are left out;
   // when every curve is exactly 0 (a planar bilinear boundary) they are drawn at 0 (there was
   // nothing to plot, and gnuplot failed: "all points y value undefined").
-  std::vector<std::pair<std::string, std::vector<double>>> candidates;
+  struct Candidate {
+    std::string name;
+    std::vector<double> values;
+    const SweepOptimum* optimum = nullptr;  // the search's, where there is one
+  };
+  std::vector<Candidate> candidates;
   for (const Curve& c : curves) {
     std::vector<double> v;
     v.reserve(rows.size());
     for (const auto& r : rows) v.push_back(r.metrics.*(c.field));
-    candidates.emplace_back(c.name, std::move(v));
+    const auto found = optima.find(c.objective);
+    candidates.push_back({c.name, std::move(v), found == optima.end() ? nullptr : &found->second});
   }
   if (!rows.empty() && rows[0].rms_target) {
     std::vector<double> v;
     v.reserve(rows.size());
     for (const auto& r : rows) v.push_back(r.rms_target.value_or(0));
-    candidates.emplace_back("rms to target", std::move(v));
+    candidates.push_back({"rms to target", std::move(v), nullptr});
   }
   auto largest = [&](const std::vector<double>& values) {
     double top = 0;
@@ -150,29 +157,40 @@ std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter
     return top;
   };
   double overall = 0;
-  for (const auto& c : candidates) overall = std::max(overall, largest(c.second));
+  for (const auto& c : candidates) overall = std::max(overall, largest(c.values));
   std::vector<PlotSeries> series;
-  for (const auto& [name, values] : candidates) {
-    const double top = overall == 0 ? 1.0 : largest(values);
+  for (const Candidate& c : candidates) {
+    const double top = overall == 0 ? 1.0 : largest(c.values);
     if (overall > 0 && !(top > 1e-12 * overall)) continue;
-    PlotSeries s{name, {}, {}, false};
+    PlotSeries s{c.name, {}, {}, false};
     std::optional<size_t> best;
     for (size_t k = 0; k < rows.size(); ++k) {
       if (!rows[k].summary.ok()) continue;
       s.x.push_back(rows[k].parameter);
-      s.y.push_back(values[k] / top);
-      if (!best || values[k] < values[*best]) best = k;
+      s.y.push_back(c.values[k] / top);
+      if (!best || c.values[k] < c.values[*best]) best = k;
     }
     if (!best) continue;
-    s.marker_x = {rows[*best].parameter};
-    s.marker_y = {values[*best] / top};
+    if (c.optimum && std::isfinite(c.optimum->parameter) && std::isfinite(c.optimum->value)) {
+      s.marker_x = {c.optimum->parameter};
+      s.marker_y = {c.optimum->value / top};
+    } else {
+      s.marker_x = {rows[*best].parameter};
+      s.marker_y = {c.values[*best] / top};
+    }
     series.push_back(std::move(s));
   }
+  return series;
+}
+
+std::string plot_sweep(const std::string& png, const Boundary& b, SweepParameter parameter,
+                       const std::vector<SweepRow>& rows, const std::map<std::string, SweepOptimum>& optima) {
+  const std::vector<PlotSeries> series = sweep_series(rows, optima);
   PlotOptions o;
   o.title = fmt::format("{} ({}x{}): energies / their maximum", b.name, b.m, b.n);
   o.xlabel = to_string(parameter);
   o.ylabel = "normalised value";
-  o.marker_title = "minimum";
+  o.marker_title = optima.empty() ? "minimum" : "minimum (the search's optimum where searched)";
   return plot_curves(png, series, o);
 }
 

@@ -5,6 +5,7 @@
 #pragma once
 
 #include <functional>
+#include <map>
 #include <nlohmann/json.hpp>
 #include <optional>
 #include <string>
@@ -12,6 +13,7 @@
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/objective.h"
+#include "coons/io/plot.h"
 #include "coons/mask/mask9.h"
 #include "coons/metrics/energies.h"
 #include "solvers/registry.h"
@@ -48,10 +50,23 @@ std::vector<SweepRow> run_sweep(const Boundary& boundary, const std::vector<doub
 //! solver block and, with a target, rms_target.
 nlohmann::json sweep_line(const Boundary& boundary, SweepParameter parameter, const SweepRow& row);
 
-//! Energy curves, each divided by its largest value, with each curve's minimum marked; returns
-//! an empty string or why the plot could not be made.
+//! A searched optimum of one energy: where the plot of a sweep marks its minimum.
+struct SweepOptimum {
+  double parameter = 0, value = 0;
+};
+
+//! The curves of plot_sweep below (each energy, and the rms to a target, over the solved rows),
+//! each divided by its largest value, with its minimum as the marker.
+std::vector<PlotSeries> sweep_series(const std::vector<SweepRow>& rows,
+                                     const std::map<std::string, SweepOptimum>& optima = {});
+
+//! Energy curves, each divided by its largest value, with each curve's minimum marked: the
+//! searched optimum where `optima` has one for it (keys thin_plate, e3, twist, dirichlet; the
+//! study's α*, which lies between the sweep's values: the dome's E3 optimum −0.2447 was drawn at
+//! the grid point −0.25, on the bound), else the lowest value of the sweep. Returns an empty string
+//! or why the plot could not be made.
 std::string plot_sweep(const std::string& png, const Boundary& boundary, SweepParameter parameter,
-                       const std::vector<SweepRow>& rows);
+                       const std::vector<SweepRow>& rows, const std::map<std::string, SweepOptimum>& optima = {});
 
 //! An α* this close to 0 is 0 found with rounding: the discrete Dirichlet optimum is α = 0 exactly,
 //! and the search returned −6.4e−17, which made μ = 3.5e16 out of a rounding error's sign.

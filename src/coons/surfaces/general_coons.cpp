@@ -59,10 +59,10 @@ std::vector<CompatibilityCondition> compatibility_conditions(const GeneralCoonsD
     for (int i = 0; i < 2; ++i) {
       const int c = i + 2 * j;
       const std::string field = "twist[" + std::to_string(c) + "]";
-      add(field, c, field + " = " + du_name[i] + "'(" + std::to_string(j) + ")", g.twist[c], du[i]->derivative(1, j),
-          2, du[i]->derivative_error(1, j));
-      add(field, c, field + " = " + dv_name[j] + "'(" + std::to_string(i) + ")", g.twist[c], dv[j]->derivative(1, i),
-          2, dv[j]->derivative_error(1, i));
+      add(field, c, field + " = " + du_name[i] + "'(" + std::to_string(j) + ")", g.twist[c], du[i]->derivative(1, j), 2,
+          du[i]->derivative_error(1, j));
+      add(field, c, field + " = " + dv_name[j] + "'(" + std::to_string(i) + ")", g.twist[c], dv[j]->derivative(1, i), 2,
+          dv[j]->derivative_error(1, i));
     }
   return out;
 }
