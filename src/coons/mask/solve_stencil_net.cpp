@@ -1,5 +1,7 @@
 #include "solve_stencil_net.h"
 
+#include <algorithm>
+#include <cmath>
 #include <utility>
 
 #include "coons/mask/stencil.h"
@@ -38,8 +40,25 @@ StencilSolveResult not_applicable(const StencilProblem& problem, const solvers::
   return result;
 }
 
+// A stencil that reproduces constants (weights summing to 0 to rounding: every named mask) is
+// solved for the data moved to their centre, the solution moved back: the net does not depend on
+// where the data lie, its digits do (a 9 × 7 two-ring net at 1e12 came back 0.028 off from the
+// sparse direct solvers and 4.3 off from cg, both "success", in a shape of size 18).
+bool reproduces_constants(const Stencil& stencil) {
+  return std::abs(stencil.weights.sum()) <= 1e-14 * stencil.weights.cwiseAbs().sum();
+}
+
+Eigen::RowVector3d solve_centre(const StencilProblem& problem, const Stencil& stencil) {
+  return reproduces_constants(stencil) ? data_centre(problem) : Eigen::RowVector3d::Zero();
+}
+
+StencilProblem moved(StencilProblem problem, const Eigen::RowVector3d& centre) {
+  problem.net.points.rowwise() -= centre;
+  return problem;
+}
+
 StencilSolveResult solve_assembled(const StencilProblem& problem, const StencilSystem& system,
-                                   solvers::LinearSolver& solver, bool analyze) {
+                                   solvers::LinearSolver& solver, bool analyze, const Eigen::RowVector3d& centre) {
   StencilSolveResult result;
   result.unknowns = system.numbering.size();
   if (result.unknowns == 0) {  // nothing free: the data are the answer
@@ -55,6 +74,7 @@ StencilSolveResult solve_assembled(const StencilProblem& problem, const StencilS
     solver.factorize(op);  // a failed one leaves solve() X = 0 and the status that says why
     result.summary = solver.solve(system.B, X);
   }
+  if (result.summary.ok()) X.rowwise() += centre;
   result.net = result.summary.ok() ? fill_free_points(problem.net, system.numbering, X) : problem.net;
   return result;
 }
@@ -67,8 +87,9 @@ StencilSolveResult solve_stencil_net(const StencilProblem& problem, const Stenci
     if (std::string why = structural_issue(problem, stencil); !why.empty())
       return not_applicable(problem, solver, std::move(why));
   }
-  const StencilSystem system = assemble_stencil_system(problem, stencil, options.assembly);
-  return solve_assembled(problem, system, solver, true);
+  const Eigen::RowVector3d centre = solve_centre(problem, stencil);
+  const StencilSystem system = assemble_stencil_system(moved(problem, centre), stencil, options.assembly);
+  return solve_assembled(problem, system, solver, true, centre);
 }
 
 void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stencil>& members,
@@ -83,14 +104,18 @@ void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stenci
   }
   StencilAssemblyOptions assembly = options.assembly;
   assembly.box_pattern = true;  // one pattern for every member
-  StencilSystem system = assemble_stencil_system(problem, members.front(), assembly);
+  // (moved to the data's centre when every member reproduces constants)
+  const bool invariant = std::all_of(members.begin(), members.end(), reproduces_constants);
+  const Eigen::RowVector3d centre = invariant ? data_centre(problem) : Eigen::RowVector3d::Zero();
+  const StencilProblem centred = moved(problem, centre);
+  StencilSystem system = assemble_stencil_system(centred, members.front(), assembly);
   for (std::size_t k = 0; k < members.size(); ++k) {
-    if (k > 0 && !refill_stencil_system(problem, members[k], system)) {
+    if (k > 0 && !refill_stencil_system(centred, members[k], system)) {
       sink(k, not_applicable(problem, solver, "sweep members must share the radius of the first"));
       continue;
     }
     // Only the first member analyzes; factorize re-analyzes by itself if that analysis failed.
-    sink(k, solve_assembled(problem, system, solver, k == 0));
+    sink(k, solve_assembled(problem, system, solver, k == 0, centre));
   }
 }
 

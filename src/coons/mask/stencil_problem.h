@@ -44,6 +44,10 @@ struct StencilProblem {
 //! Precondition: `free` is empty or of the net's shape.
 FreeGrid free_points(const StencilProblem& problem);
 
+//! The centre of the bounding box of a problem's data points (those not free; zero when every
+//! point is free): the solvers solve for the net moved there (solve_stencil_net.h).
+Eigen::RowVector3d data_centre(const StencilProblem& problem);
+
 //! A problem with the whole frame of `rings` rings fixed and the inside free (the classical case).
 StencilProblem rings_problem(ControlNet net, int rings);
 

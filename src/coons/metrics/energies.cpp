@@ -341,8 +341,15 @@ namespace {
 
 NetMetrics net_energies_in_range(const ControlNet& net, int threads);
 
-// The energies of net_energies_in_range, of a net brought into range (scaled_energy.h).
-NetMetrics net_energies(const ControlNet& net, int threads) {
+// The energies of net_energies_in_range, of a net moved to the centre of its box (they are all of
+// differences: a net at 1e12 kept 6 digits of its thin plate) and brought into range
+// (scaled_energy.h).
+NetMetrics net_energies(const ControlNet& given, int threads) {
+  ControlNet net = given;
+  if (net.points.rows() > 0) {
+    const Eigen::RowVector3d lo = net.points.colwise().minCoeff(), hi = net.points.colwise().maxCoeff();
+    if (lo.allFinite() && hi.allFinite()) net.points.rowwise() -= lo + 0.5 * (hi - lo);
+  }
   const int k = energy_scale_exponent(net);
   if (k == 0) return net_energies_in_range(net, threads);
   NetMetrics out = net_energies_in_range(times_power_of_two(net, -k), threads);
