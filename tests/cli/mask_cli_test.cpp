@@ -418,3 +418,40 @@ TEST_CASE("coons solve, batch, search-alpha: -0 is the parameter 0, in reports a
   const json report = json::parse(search.out);
   CHECK_FALSE(std::signbit(report["bounds"][0].get<double>()));
 }
+
+TEST_CASE("coons search-alpha: a successful search writes nothing to standard error (Ceres's log is silenced)",
+          "[cli]") {
+  // A two-ring net with one held interior point: Ceres's line search met a constant polynomial and
+  // glog wrote "WARNING: Logging before InitGoogleLogging() ..." and the warning to standard error
+  // of a search that succeeded (exit 0), where the contract allows only progress on a terminal.
+  const double points[9][7][3] = {
+      {{2, 7, -1}, {4, 1, -3}, {-9, 7, 1}, {6, 9, -4}, {5, -9, -7}, {-3, -2, 0}, {-6, 1, 7}},
+      {{-8, -9, 3}, {-6, 3, -6}, {2, -1, 4}, {-2, 2, 8}, {5, -4, -4}, {-4, 2, 7}, {7, 6, 3}},
+      {{-8, -9, -9}, {3, -3, 5}, {8, 6, 6}, {-4, 1, -6}, {1, 5, -5}, {8, -5, -3}, {-4, 7, 7}},
+      {{-5, -4, 2}, {-9, 7, 1}, {-9, 0, 0}, {9, -9, -5}, {8, -6, -6}, {-7, 5, -2}, {9, -7, -4}},
+      {{5, 1, -4}, {6, 1, 4}, {-1, -5, -8}, {-3, 0, 2}, {-5, -1, 4}, {6, 7, -9}, {-9, -8, -4}},
+      {{7, 2, 1}, {3, 2, -6}, {1, -1, -6}, {5, -4, -5}, {8, 5, 0}, {-6, 2, -6}, {-7, -6, -5}},
+      {{3, -4, 5}, {-5, -4, 8}, {7, -4, 3}, {-6, -7, 7}, {4, -5, 1}, {5, -8, -6}, {3, -7, 7}},
+      {{-1, 0, -7}, {5, -4, 7}, {9, -1, 2}, {6, 4, 6}, {-6, 1, -2}, {7, 8, 8}, {1, 3, 8}},
+      {{-5, -7, 1}, {9, -5, -1}, {0, 7, -2}, {4, -3, -7}, {-5, -3, 0}, {6, -4, -7}, {7, 8, 9}}};
+  const char* free_rows[9] = {"0000000", "0000000", "0011100", "0011100", "0010100",
+                              "0011100", "0011100", "0000000", "0000000"};
+  json net = json::array(), free = json::array();
+  for (int i = 0; i < 9; ++i) {
+    json row = json::array(), flags = json::array();
+    for (int j = 0; j < 7; ++j) {
+      row.push_back({points[i][j][0], points[i][j][1], points[i][j][2]});
+      flags.push_back(free_rows[i][j] == '1' ? 1 : 0);
+    }
+    net.push_back(row);
+    free.push_back(flags);
+  }
+  TempDir dir;
+  const std::string file =
+      dir.write("hole.json", json{{"name", "t"}, {"net", net}, {"rings", 2}, {"free", free}}.dump());
+  const CommandResult r = run_coons("search-alpha " + quoted(file) +
+                                    " --parameter weight --objective discrete_twist --lower 0.46 --upper 0.47");
+  CHECK(r.status == 0);
+  CHECK(json::parse(r.out)["status"] == "success");
+  CHECK(r.err.empty());
+}

@@ -496,7 +496,8 @@ TEST_CASE("solve_stencil_net: every backend solves 5x5 masks on free sets or say
   }
 }
 
-TEST_CASE("solve_stencil_net and solve_mask_net: data far from the origin give the net at the origin, moved", "[mask]") {
+TEST_CASE("solve_stencil_net and solve_mask_net: data far from the origin give the net at the origin, moved",
+          "[mask]") {
   // The net does not depend on where the data lie; its digits did: a 9 × 7 two-ring c1-coons net
   // at 1e12 came back 0.028 off from the sparse direct solvers and 4.3 off from cg ("success"),
   // in a shape of size 18. The data are moved to their centre, solved, and moved back.
