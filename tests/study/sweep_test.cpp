@@ -83,3 +83,27 @@ TEST_CASE("sweep_series: the marker is the searched optimum where one is given, 
   CHECK(searched.marker_y[0] <= *std::min_element(searched.y.begin(), searched.y.end()) * (1 + 1e-12));
   CHECK(searched.marker_y[0] > 0);
 }
+
+TEST_CASE("run_sweep: a boundary far from the origin gives the nets of the boundary at the origin, moved", "[study]") {
+  // As solve_mask_net: the α family reproduces constants, so each member is solved for the boundary
+  // moved to its centre (at 1e12 the nets kept 4 digits of the shape).
+  using namespace coons;
+  const Eigen::RowVector3d offset(1e12, -3e12, 1e12);
+  ControlNet far = test::make_random_net(7, 5, 8);
+  far.points.rowwise() += offset;
+  ControlNet near = far;  // the data as stored at 3e12, moved back exactly
+  near.points.rowwise() -= offset;
+  for (const char* name : {"eigen-lu", "cg", "fast"}) {
+    INFO(name);
+    std::vector<ControlNet> at_origin, moved;
+    const auto family = [](double a) { return alpha_family(a); };
+    const auto params = linspace(-0.25, 0.2, 4);
+    run_sweep(boundary_of(near), params, family, test::backend(name), std::nullopt, {}, &at_origin);
+    run_sweep(boundary_of(far), params, family, test::backend(name), std::nullopt, {}, &moved);
+    REQUIRE(moved.size() == at_origin.size());
+    for (size_t k = 0; k < moved.size(); ++k) {
+      moved[k].points.rowwise() -= offset;
+      CHECK(test::max_difference(moved[k], at_origin[k]) <= 1e-3);  // the rounding of coordinates at 3e12
+    }
+  }
+}

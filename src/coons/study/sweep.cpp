@@ -56,8 +56,23 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
                                 const solvers::SolverOptions& options) {
   const ControlNet frame = frame_net(b);
   const int rows = std::max(b.m - 1, 0), cols = std::max(b.n - 1, 0);
-  const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(frame, Mask9{1, 0, 0}), mask_rhs(frame, Mask9{0, 1, 0}),
-                                               mask_rhs(frame, Mask9{0, 0, 1})};
+  // Masks that reproduce constants (the α and μ families) are solved for the boundary moved to its
+  // centre, the nets moved back, as solve_mask_net solves them.
+  bool invariant = true;
+  for (double p : params) invariant = invariant && std::abs(family(p).mask.affine_defect()) <= 1e-14;
+  Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
+  ControlNet centred = frame;
+  if (invariant && frame.points.rows() > 0) {
+    Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(HUGE_VAL), hi = -lo;
+    for (const Eigen::MatrixX3d* side : {&b.bottom, &b.top, &b.left, &b.right}) {
+      lo = lo.cwiseMin(side->colwise().minCoeff());
+      hi = hi.cwiseMax(side->colwise().maxCoeff());
+    }
+    if (lo.allFinite() && hi.allFinite()) centre = lo + 0.5 * (hi - lo);
+    centred.points.rowwise() -= centre;
+  }
+  const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(centred, Mask9{1, 0, 0}), mask_rhs(centred, Mask9{0, 1, 0}),
+                                               mask_rhs(centred, Mask9{0, 0, 1})};
   std::vector<SweepRow> rows_out(params.size());
   std::vector<Eigen::SparseMatrix<double>> matrices;
   std::vector<solvers::LinearSolver::SweepMember> members;
@@ -88,7 +103,10 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
     auto solver = solvers::make_solver(info.name, options);
     solver->sweep(basis, members, [&](size_t k, const Eigen::MatrixX3d& X, const solvers::SolveSummary& s) {
       rows_out[k].summary = s;
-      finish_row(k, s.ok() ? fill_interior(frame, X) : frame);
+      if (!s.ok()) return finish_row(k, frame);
+      Eigen::MatrixX3d moved_back = X;
+      moved_back.rowwise() += centre;
+      finish_row(k, fill_interior(frame, moved_back));
     });
   }
   return rows_out;
