@@ -8,22 +8,6 @@
 
 namespace coons {
 
-namespace {
-
-// The centre of the bounding box of the outer ring of a net.
-Eigen::RowVector3d boundary_centre(const ControlNet& net) {
-  Eigen::RowVector3d lo = net.at(0, 0), hi = lo;
-  for (int i = 0; i <= net.m; ++i)
-    for (int j = 0; j <= net.n; ++j)
-      if (i == 0 || i == net.m || j == 0 || j == net.n) {
-        lo = lo.cwiseMin(net.at(i, j));
-        hi = hi.cwiseMax(net.at(i, j));
-      }
-  return lo + 0.5 * (hi - lo);
-}
-
-}  // namespace
-
 MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, const solvers::SolverInfo& solver,
                                const solvers::SolverOptions& options) {
   MaskSolveResult result;
@@ -42,7 +26,7 @@ MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, cons
   // interior moved back: the net does not depend on where the boundary lies, its digits do (a net
   // at 1e12 kept 4 of them, and cg reported success 24 % of the shape off).
   const Eigen::RowVector3d centre =
-      std::abs(mask.affine_defect()) <= 1e-14 ? boundary_centre(frame) : Eigen::RowVector3d::Zero();
+      std::abs(mask.affine_defect()) <= 1e-14 ? bounding_box_centre(boundary) : Eigen::RowVector3d::Zero();
   ControlNet centred = frame;
   for (Eigen::Index k = 0; k < centred.points.rows(); ++k) centred.points.row(k) -= centre;
   const MaskSystem system = assemble_mask_system(centred, mask, info->needs_matrix);

@@ -346,10 +346,7 @@ NetMetrics net_energies_in_range(const ControlNet& net, int threads);
 // (scaled_energy.h).
 NetMetrics net_energies(const ControlNet& given, int threads) {
   ControlNet net = given;
-  if (net.points.rows() > 0) {
-    const Eigen::RowVector3d lo = net.points.colwise().minCoeff(), hi = net.points.colwise().maxCoeff();
-    if (lo.allFinite() && hi.allFinite()) net.points.rowwise() -= lo + 0.5 * (hi - lo);
-  }
+  net.points.rowwise() -= bounding_box_centre(net.points);
   const int k = energy_scale_exponent(net);
   if (k == 0) return net_energies_in_range(net, threads);
   NetMetrics out = net_energies_in_range(times_power_of_two(net, -k), threads);

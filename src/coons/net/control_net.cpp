@@ -63,6 +63,18 @@ CornerGap largest_corner_gap(const Boundary& b) {
   return worst;
 }
 
+Eigen::RowVector3d bounding_box_centre(const Eigen::MatrixX3d& points) {
+  if (points.rows() == 0 || !points.allFinite()) return Eigen::RowVector3d::Zero();
+  const Eigen::RowVector3d lo = points.colwise().minCoeff(), hi = points.colwise().maxCoeff();
+  return lo + 0.5 * (hi - lo);
+}
+
+Eigen::RowVector3d bounding_box_centre(const Boundary& b) {
+  Eigen::MatrixX3d all(b.bottom.rows() + b.top.rows() + b.left.rows() + b.right.rows(), 3);
+  all << b.bottom, b.top, b.left, b.right;
+  return bounding_box_centre(all);
+}
+
 double bounding_box_diagonal(const Boundary& b) {
   Eigen::RowVector3d lo = b.bottom.colwise().minCoeff(), hi = b.bottom.colwise().maxCoeff();
   for (const Eigen::MatrixX3d* side : {&b.top, &b.left, &b.right}) {

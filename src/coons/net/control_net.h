@@ -47,6 +47,13 @@ CornerGap largest_corner_gap(const Boundary& boundary);
 //! Length of the diagonal of the bounding box of all boundary points.
 double bounding_box_diagonal(const Boundary& boundary);
 
+//! The centre of the bounding box of the rows of `points` (zero when there are none or one is not
+//! finite): where a computation that only differences see (masks that reproduce constants,
+//! energies) moves its data to keep their digits.
+Eigen::RowVector3d bounding_box_centre(const Eigen::MatrixX3d& points);
+//! The same for the points of the four sides.
+Eigen::RowVector3d bounding_box_centre(const Boundary& boundary);
+
 //! v times the power of two that puts its largest |coordinate| in [1, 2), exactly (v itself when it
 //! is zero or not finite): a direction whose norm(), squares or cross products would underflow or
 //! overflow (coordinates of 1e-170), with the same digits.

@@ -62,13 +62,8 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
   for (double p : params) invariant = invariant && std::abs(family(p).mask.affine_defect()) <= 1e-14;
   Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
   ControlNet centred = frame;
-  if (invariant && frame.points.rows() > 0) {
-    Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(HUGE_VAL), hi = -lo;
-    for (const Eigen::MatrixX3d* side : {&b.bottom, &b.top, &b.left, &b.right}) {
-      lo = lo.cwiseMin(side->colwise().minCoeff());
-      hi = hi.cwiseMax(side->colwise().maxCoeff());
-    }
-    if (lo.allFinite() && hi.allFinite()) centre = lo + 0.5 * (hi - lo);
+  if (invariant) {
+    centre = bounding_box_centre(b);
     centred.points.rowwise() -= centre;
   }
   const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(centred, Mask9{1, 0, 0}), mask_rhs(centred, Mask9{0, 1, 0}),
