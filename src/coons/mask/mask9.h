@@ -8,6 +8,8 @@
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
+#include <cmath>
+
 #include "solvers/grid_stencil.h"
 
 namespace coons {
@@ -19,6 +21,9 @@ struct Mask9 {
 
   //! 2e_i + 2e_j + 4d − 1: zero for an affine-invariant mask.
   [[nodiscard]] double affine_defect() const { return 2 * edge_i + 2 * edge_j + 4 * diag - 1; }
+  //! The mask reproduces constants (to rounding): its net moves with its boundary, so it may be
+  //! solved for the boundary moved to its centre (solve_mask_net, run_sweep).
+  [[nodiscard]] bool reproduces_constants() const { return std::abs(affine_defect()) <= 1e-14; }
 };
 
 //! The Farin–Hansford one-parameter family.

@@ -26,7 +26,7 @@ MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, cons
   // interior moved back: the net does not depend on where the boundary lies, its digits do (a net
   // at 1e12 kept 4 of them, and cg reported success 24 % of the shape off).
   const Eigen::RowVector3d centre =
-      std::abs(mask.affine_defect()) <= 1e-14 ? bounding_box_centre(boundary) : Eigen::RowVector3d::Zero();
+      mask.reproduces_constants() ? bounding_box_centre(boundary) : Eigen::RowVector3d::Zero();
   ControlNet centred = frame;
   for (Eigen::Index k = 0; k < centred.points.rows(); ++k) centred.points.row(k) -= centre;
   const MaskSystem system = assemble_mask_system(centred, mask, info->needs_matrix);

@@ -128,15 +128,12 @@ FreeGrid free_points(const StencilProblem& problem) {
 Eigen::RowVector3d data_centre(const StencilProblem& problem) {
   const FreeGrid free = free_points(problem);
   const ControlNet& net = problem.net;
-  Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(HUGE_VAL), hi = -lo;
+  Eigen::MatrixX3d data(net.points.rows(), 3);
+  Eigen::Index count = 0;
   for (int i = 0; i <= net.m; ++i)
     for (int j = 0; j <= net.n; ++j)
-      if (!free(i, j)) {
-        lo = lo.cwiseMin(net.at(i, j));
-        hi = hi.cwiseMax(net.at(i, j));
-      }
-  if (!(lo.array() <= hi.array()).all()) return Eigen::RowVector3d::Zero();
-  return lo + 0.5 * (hi - lo);
+      if (!free(i, j)) data.row(count++) = net.at(i, j);
+  return bounding_box_centre(Eigen::MatrixX3d(data.topRows(count)));
 }
 
 StencilProblem rings_problem(ControlNet net, int rings) {

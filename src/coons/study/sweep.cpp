@@ -59,7 +59,7 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
   // Masks that reproduce constants (the α and μ families) are solved for the boundary moved to its
   // centre, the nets moved back, as solve_mask_net solves them.
   bool invariant = true;
-  for (double p : params) invariant = invariant && std::abs(family(p).mask.affine_defect()) <= 1e-14;
+  for (double p : params) invariant = invariant && family(p).mask.reproduces_constants();
   Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
   ControlNet centred = frame;
   if (invariant) {
