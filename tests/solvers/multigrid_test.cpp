@@ -402,6 +402,35 @@ TEST_CASE("gmres: solves a nonsymmetric convection-diffusion stencil like a dens
   }
 }
 
+TEST_CASE("gmres: an Arnoldi direction made of rounding is a breakdown, not a basis vector", "[solvers][mg]") {
+  // [[1, 1], [1, 1 + 1e-10]], b = (1, −1): x = (2e10, −2e10). The Krylov space of A M⁻¹ is the whole
+  // plane after two steps; what the third step orthogonalises is rounding of A z. Taken as a
+  // direction, it made the least-squares problem ill-posed: ten more steps near 1e-6, then a residual
+  // of 1e25 and `diverged`, with ILUT and without.
+  Eigen::SparseMatrix<double> A(2, 2);
+  A.insert(0, 0) = 1;
+  A.insert(0, 1) = 1;
+  A.insert(1, 0) = 1;
+  A.insert(1, 1) = 1 + 1e-10;
+  A.makeCompressed();
+  const Eigen::Vector2d b(1, -1);
+  const Eigen::Vector2d exact = Eigen::Matrix2d(A).fullPivLu().solve(b);
+  const VectorMap apply = [&](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = A * in; };
+  std::string message;
+  const VectorMap ilu = ilut_preconditioner(A, &message);
+  REQUIRE(ilu);
+  for (const VectorMap* precondition : {&ilu, static_cast<const VectorMap*>(nullptr)}) {
+    Eigen::VectorXd x;
+    const IterationSummary s = gmres(apply, precondition ? *precondition : VectorMap{}, b, x);
+    INFO(s.message);
+    CHECK(s.ok());
+    CHECK(s.iterations <= 2);
+    // κ∞ = 4e10: the forward error may be κε relative, the residual is at rounding.
+    CHECK((x - exact).cwiseAbs().maxCoeff() <= 1e-5 * exact.cwiseAbs().maxCoeff());
+    CHECK((b - A * x).norm() <= 1e-10 * b.norm());
+  }
+}
+
 TEST_CASE("multigrid backends: report not_applicable instead of a wrong answer", "[solvers][mg]") {
   const StencilOperator laplace = make_stencil_operator(12, 9, nine_point(1, -0.25, 0));
   const Eigen::SparseMatrix<double> A = stencil_operator_matrix(laplace);
