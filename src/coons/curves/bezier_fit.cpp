@@ -14,6 +14,7 @@ BezierFit least_squares_fit(const Curve& c, int degree, int samples) {
   if (samples <= 0) samples = std::max(10 * (degree + 1), 101);
   BezierFit fit;
   fit.samples = samples;
+  fit.fitted_degree = degree;
   const Eigen::RowVector3d first = c.at(0), last = c.at(1);
   Eigen::MatrixX3d P(degree + 1, 3);
   P.row(0) = first;
@@ -49,20 +50,27 @@ BezierFit fit_bezier(const Curve& c, int degree, int samples) {
   if (c.bezier() && c.bezier()->degree() <= degree) {
     BezierFit fit;
     fit.samples = std::max(samples, 0);
+    fit.fitted_degree = c.bezier()->degree();
     fit.curve = elevated(*c.bezier(), degree);  // exact: nothing to fit
     return fit;
   }
-  if (degree <= kLargestFitDegree) return least_squares_fit(c, degree, samples);
+  if (degree <= kDirectFitDegree) return least_squares_fit(c, degree, samples);
   // The Bernstein least-squares system is too ill-conditioned at high degree: at degree 1000 the
   // inner control points of a circle arc of size 2 oscillated up to 140 while the samples still
-  // fitted. Fit at the lowest of 8, 12, …, 24 whose deviation is at rounding level (else at 24)
-  // and elevate exactly: the same curve, with a control polygon that converges to it.
+  // fitted. Fit at 8, 12, …, up to kLargestFitDegree (condition number of the sample matrix about
+  // 1e16 there), take the first fit whose deviation is at rounding level, else the one of the
+  // smallest deviation, and elevate it exactly: the same curve, with a control polygon that
+  // converges to it. (The search stopped at 24 until 2026-11-30: 0.1·sin 12πt kept the degree-24
+  // deviation 1.6e-3 at every degree asked for, where degree 56 reaches 2e-15.)
   double size = 0;
   for (int k = 0; k <= 100; ++k) size = std::max(size, (c.at(k / 100.0) - c.at(0)).norm());
+  const int top = std::min(degree, kLargestFitDegree);
   BezierFit fit;
-  for (int d = 8; d <= kLargestFitDegree; d += 4) {
-    fit = least_squares_fit(c, d, samples);
-    if (fit.max_deviation <= 1e-14 * std::max(size, 1.0)) break;
+  for (int d = 8;; d = std::min(d + 4, top)) {
+    BezierFit next = least_squares_fit(c, d, samples);
+    if (d == 8 || next.max_deviation < fit.max_deviation || !(fit.max_deviation == fit.max_deviation))
+      fit = std::move(next);
+    if (fit.max_deviation <= 1e-14 * std::max(size, 1.0) || d == top) break;
   }
   fit.curve = elevated(fit.curve, degree);
   return fit;

@@ -16,14 +16,18 @@ struct BezierFit {
   double max_deviation = 0;  //!< max ‖b(s) − c(s)‖ over the check grid
   double at = 0;             //!< the s where it is reached
   int samples = 0;           //!< least-squares samples used
+  int fitted_degree = 0;     //!< the degree of the least-squares fit before its exact elevation
 };
 
-//! Above this degree the fit is made at a lower degree (≤ this) and elevated exactly.
-constexpr int kLargestFitDegree = 24;
+//! Up to this degree the fit is made at the degree asked for.
+constexpr int kDirectFitDegree = 24;
+//! Above kDirectFitDegree the fit is made at 8, 12, …, up to this degree (and the degree asked for,
+//! if lower): the first at rounding level, else the one of the smallest deviation, elevated exactly.
+constexpr int kLargestFitDegree = 64;
 
 //! degree ≥ 1 (degree 1: the chord). samples ≤ 0 picks max(10·(degree + 1), 101) at the degree
 //! fitted; the deviation is checked on 10·samples + 1 points. A Bézier input of degree ≤ `degree`
-//! is elevated exactly, and so is the fit when `degree` exceeds kLargestFitDegree.
+//! is elevated exactly, and so is the fit when `degree` exceeds kDirectFitDegree.
 BezierFit fit_bezier(const Curve& c, int degree, int samples = 0);
 
 }  // namespace coons

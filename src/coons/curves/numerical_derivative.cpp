@@ -77,29 +77,40 @@ NumericalDerivative tableau(D difference, double h0, double ratio, bool* broke_o
 
 // Ridders' tableau from h0, h0/4, h0/16, …: a first step too large for the function's scale can
 // give a confident but wrong value, so a result counts only when the tableau from the next
-// smaller start agrees with it (to 1e-7 relative). Returns the better of the agreeing pair (the
-// disagreement folded into its error estimate), or the last attempt when none agree.
+// smaller start agrees with it (to 1e-7 relative). Returns the better of the first agreeing pair
+// (the disagreement folded into its error estimate). When none of the first four (down to h0/64)
+// agree, the fourth with its disagreement folded in is the fallback, and starts go on to h0/4⁷: an
+// agreeing pair there counts if it lies within the fallback's error estimate (times 10) of the
+// fallback's value. With four starts sin(1000 t)/1000 had no agreeing pair and no derivative at
+// all (its fallback's estimate is large); the values of a curve at 1e8, quantised in steps of
+// 1.5e-8, give the smaller starts equal wrong second differences that agree, far from a fallback
+// that rounding spoils by about 1 % (derivative()'s test may accept that as rounding).
 template <class D>
 NumericalDerivative consistent(D difference, double h0, double ratio, bool* nonfinite) {
-  constexpr int kStarts = 4;
+  constexpr int kStarts = 8, kFallback = 4;
   NumericalDerivative previous = tableau(difference, h0, ratio, nonfinite);
   if (*nonfinite) return previous;
-  double disagreement = std::numeric_limits<double>::infinity();
+  NumericalDerivative fallback;
   for (int k = 1; k < kStarts; ++k) {
     h0 /= 4;
     NumericalDerivative current = tableau(difference, h0, ratio, nonfinite);
-    if (*nonfinite) return current;
-    disagreement = (current.value - previous.value).cwiseAbs().maxCoeff();
+    if (*nonfinite) return k < kFallback ? current : fallback;
+    const double disagreement = (current.value - previous.value).cwiseAbs().maxCoeff();
     const double scale = std::max(1.0, current.value.cwiseAbs().maxCoeff());
     if (disagreement <= 1e-7 * scale) {
       NumericalDerivative& best = current.error_estimate <= previous.error_estimate ? current : previous;
       best.error_estimate = std::max(best.error_estimate, disagreement);
+      if (k >= kFallback && !((best.value - fallback.value).cwiseAbs().maxCoeff() <= 10 * fallback.error_estimate))
+        return fallback;
       return best;
+    }
+    if (k == kFallback - 1) {
+      fallback = current;
+      fallback.error_estimate = std::max(fallback.error_estimate, disagreement);
     }
     previous = current;
   }
-  previous.error_estimate = std::max(previous.error_estimate, disagreement);
-  return previous;
+  return fallback;
 }
 
 }  // namespace

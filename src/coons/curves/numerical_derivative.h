@@ -3,7 +3,10 @@
 // error term, and the entry whose two neighbours agree best is returned with that disagreement as
 // its error estimate. A first step too large for the function's scale can give a confident but
 // wrong tableau, so the tableau is repeated from a 4× smaller first step until two agree (to 1e-7
-// relative; at most four starts, 0.1 … 0.1/64).
+// relative; at most eight starts, 0.1 … 0.1/4⁷, so that detail down to about 1e-3 of the
+// parameter, as in sin(1000 s), is resolved; an agreeing pair after the fourth start counts only
+// near the fourth's value, within its error estimate; when none agree, the fourth, 0.1/64, as
+// before, with its disagreement with the third folded in).
 // Based on: C. J. F. Ridders, Accurate computation of F'(x) and F'(x)F''(x), Adv. Eng. Software 4
 // (1982) 75–76; W. H. Press et al., Numerical Recipes, 3rd ed. (2007), §5.7 (dfridr).
 //

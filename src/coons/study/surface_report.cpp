@@ -99,7 +99,10 @@ SurfaceReport surface_report(const SurfaceFile& input, const std::optional<Surfa
     net_block["fit_degree"] = fitted.fit_degree;
     json fits = json::array();
     for (const auto& f : fitted.fits)
-      fits.push_back({{"curve", f.curve}, {"degree", f.degree}, {"max_deviation", number_or_null(f.max_deviation)}});
+      fits.push_back({{"curve", f.curve},
+                      {"degree", f.degree},
+                      {"fitted_degree", f.fitted_degree},
+                      {"max_deviation", number_or_null(f.max_deviation)}});
     net_block["max_curve_deviation"] = number_or_null(fitted.max_curve_deviation);
     net_block["curve_fits"] = fits;
     // On a grid of at least kDeviationGrid² parameters, not only the --samples grid (2 × 2 saw the

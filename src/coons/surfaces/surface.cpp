@@ -198,7 +198,7 @@ FittedNet fitted_net(const Surface& s, int fit_degree) {
       if (fit.max_deviation <= rounding) break;
     }
     const bool derivative = field.rfind("du_", 0) == 0 || field.rfind("dv_", 0) == 0;
-    out.fits.push_back({field, fit.curve.degree(), fit.max_deviation, !derivative});
+    out.fits.push_back({field, fit.curve.degree(), fit.fitted_degree, fit.max_deviation, !derivative});
     if (!(fit.max_deviation <= out.max_curve_deviation)) out.max_curve_deviation = fit.max_deviation;  // NaN too
     return fit.curve;
   });

@@ -91,6 +91,7 @@ Surface make_bezier_surface(ControlNet net);
 struct CurveFitReport {
   std::string curve;         //!< field name
   int degree = 0;            //!< of the fit used
+  int fitted_degree = 0;     //!< of its least-squares fit before the exact elevation (≤ degree)
   double max_deviation = 0;  //!< of the Bézier fit
   bool on_surface = true;    //!< a side of the surface; false for a cross-derivative (du_*, dv_*)
 };
