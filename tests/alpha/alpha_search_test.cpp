@@ -221,6 +221,25 @@ TEST_CASE("search_alpha_gamma: flat in alpha is not flat in gamma", "[alpha]") {
   CHECK(s.value < s.value_at_gamma0 - 1.0);  // 15.443 at (1/4, −0.196) against 17.44 for every γ = 0 mask
 }
 
+TEST_CASE("search_alpha_gamma: an objective that is 0 for every mask is flat, not an optimum of rounding", "[alpha]") {
+  // A planar net, slanted and not uniformly spaced along the sides: every symmetric 3 × 3 mask
+  // reproduces linear nets, so thin plate, twist and E3 are 0 for every (α, γ) and vary by
+  // rounding. The flat test measured that range against the values themselves (4e-32 against
+  // 1e-31): the bundled sixteen_vector_twist read as an optimum at α = 0.0152.
+  ControlNet net(3, 4);
+  for (int i = 0; i <= 3; ++i)
+    for (int j = 0; j <= 4; ++j) net.at(i, j) = Eigen::RowVector3d(0.7 * i, 0.3 * j + 0.1 * i, 0.2 * i - 0.5 * j);
+  for (const char* name : {"thin_plate", "twist", "e3"}) {
+    MaskObjective f(boundary_of(net, "plane"), objective_named(name), alpha_only(), backend("eigen-ldlt"));
+    const AlphaGammaSummary s = search_alpha_gamma(f);
+    INFO(name << ": " << s.message << ", value " << s.value);
+    CHECK(s.flat);
+    CHECK(s.status == SearchStatus::kFlat);
+    CHECK(s.value >= 0);
+    CHECK(s.value < 1e-20);
+  }
+}
+
 TEST_CASE("search_alpha_gamma: no point of the searched triangle is lower than the optimum", "[alpha]") {
   // Near the edge |γ| = 0.999(1/4 + α) the tanh map flattens the gradient: Ceres stopped there at
   // (0.2036, 0.4532) with 2.57269 for the Dirichlet energy of this 6 × 2 boundary, where

@@ -190,6 +190,29 @@ TEST_CASE("search_alpha: a constant boundary is flat for every objective, with v
   }
 }
 
+TEST_CASE("search_alpha: a value at rounding of 0 is reported as 0 or more, never below", "[alpha]") {
+  // z = x² − y² is reproduced by every α, so its twist-type energies are 0 to rounding. The sine
+  // basis expands them about the Coons net and the cancellation came out negative: −1.2e-32 for
+  // the bundled saddle, −6.6e49 for E3 of a saddle scaled by 1e40 and moved to 1e50.
+  for (const double scale : {1.0, 1e40}) {
+    ControlNet net(6, 6);
+    for (int i = 0; i <= 6; ++i)
+      for (int j = 0; j <= 6; ++j) {
+        const double x = i / 6.0, y = j / 6.0;
+        net.at(i, j) = scale * Eigen::RowVector3d(x, y, x * x - y * y) + Eigen::RowVector3d::Constant(1e10 * scale);
+      }
+    const Boundary b = boundary_of(net, "saddle");
+    for (const char* name : {"discrete_twist", "e3", "twist"}) {
+      for (const char* solver : {"fast", "eigen-ldlt"}) {
+        const AlphaSearchSummary s = search_alpha(b, objective_named(name, {}), backend(solver));
+        INFO(name << " with " << solver << " at scale " << scale << ": " << s.brief_report());
+        CHECK(s.value >= 0);
+        for (const auto& [alpha, value] : s.scan) CHECK(value >= 0);
+      }
+    }
+  }
+}
+
 TEST_CASE("search_alpha: a boundary that is one point to within rounding is flat for every objective", "[alpha]") {
   // (1, 2, 3) at degree 8 with one coordinate a few ulps off, the spread that floating-point
   // elevation of a constant side left: the frame scaled it to unit size, and the study reported

@@ -69,6 +69,9 @@ struct AlphaSearchSummary {
   //! succeeded.
   double value = std::numeric_limits<double>::quiet_NaN();
   bool flat = false, at_bound = false;
+  //! The objective's rounding scale, the floor of the flat test (a range below flat_tolerance
+  //! times the larger of it and the values is flat): 0 until the scan has run.
+  double rounding_floor = 0;
   int local_minima = 0;  //!< interior local minima seen by the scan
   int evaluations = 0, solves = 0;
   //! (parameter, value) of the coarse grid; a failed point's value is +∞ (HUGE_VAL)

@@ -1,5 +1,6 @@
 #include "objective.h"
 
+#include <algorithm>
 #include <cmath>
 #include <sstream>
 
@@ -161,6 +162,7 @@ ObjectiveValue evaluate_objective(const Objective& objective, const ControlNet& 
     v.value += objective.target_weight * rms;
     v.derivative += objective.target_weight * (rms > 0 ? dmsd / (2 * rms) : 0.0);
   }
+  v.value = std::max(v.value, 0.0);  // a sum of squares (positive weights): below 0 only by rounding
   return v;
 }
 

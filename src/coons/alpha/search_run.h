@@ -210,6 +210,7 @@ class SearchRun {
     const bool energies = !objective.energy.empty() || !objective.discrete.empty();
     floor_ = (energies ? 1e-16 * diag * diag * std::pow(degree, 2.0 * order) : 0.0) +
              (objective.target_weight > 0 ? objective.target_weight * 1e-2 * diag : 0.0);
+    s_.rounding_floor = floor_;
     if (hi_ - lo_ <= options_.flat_tolerance * std::max({std::abs(hi_), std::abs(lo_), floor_})) {
       s_.status = SearchStatus::kFlat;
       s_.flat = true;
