@@ -4,6 +4,9 @@
 #include <utility>
 
 #include "coons/mask/assemble_mask_system.h"
+#include "coons/mask/centred_solve.h"
+#include "coons/mask/stencil.h"
+#include "coons/mask/stencil_problem.h"
 #include "solvers/registry.h"
 
 namespace coons {
@@ -25,8 +28,10 @@ MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, cons
   // A mask that reproduces constants is solved for the boundary moved to its centre and the
   // interior moved back: the net does not depend on where the boundary lies, its digits do (a net
   // at 1e12 kept 4 of them, and cg reported success 24 % of the shape off).
-  const Eigen::RowVector3d centre =
-      mask.reproduces_constants() ? bounding_box_centre(boundary) : Eigen::RowVector3d::Zero();
+  // (the centre of the data the mask couples to the interior: stencil_problem.h)
+  const Eigen::RowVector3d centre = mask.reproduces_constants()
+                                        ? data_centre(rings_problem(frame, 1), {alpha_stencil(mask)})
+                                        : Eigen::RowVector3d::Zero();
   ControlNet centred = frame;
   for (Eigen::Index k = 0; k < centred.points.rows(); ++k) centred.points.row(k) -= centre;
   const MaskSystem system = assemble_mask_system(centred, mask, info->needs_matrix);
@@ -40,7 +45,8 @@ MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, cons
   op.stencil = system.stencil;
   Eigen::MatrixX3d X;
   result.summary = backend->compute_and_solve(op, system.B, X);
-  if (result.summary.ok()) X.rowwise() += centre;
+  finish_centred_solve(
+      *backend, op, [&] { return mask_rhs(frame, mask); }, centre, X, result.summary);
   result.net = result.summary.ok() ? fill_interior(std::move(frame), X) : std::move(frame);
   return result;
 }

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <utility>
 
+#include "coons/mask/centred_solve.h"
 #include "coons/mask/stencil.h"
 #include "solvers/registry.h"
 #include "solvers/separable_banded_solver.h"
@@ -49,7 +50,7 @@ bool reproduces_constants(const Stencil& stencil) {
 }
 
 Eigen::RowVector3d solve_centre(const StencilProblem& problem, const Stencil& stencil) {
-  return reproduces_constants(stencil) ? data_centre(problem) : Eigen::RowVector3d::Zero();
+  return reproduces_constants(stencil) ? data_centre(problem, {stencil}) : Eigen::RowVector3d::Zero();
 }
 
 StencilProblem moved(StencilProblem problem, const Eigen::RowVector3d& centre) {
@@ -57,7 +58,7 @@ StencilProblem moved(StencilProblem problem, const Eigen::RowVector3d& centre) {
   return problem;
 }
 
-StencilSolveResult solve_assembled(const StencilProblem& problem, const StencilSystem& system,
+StencilSolveResult solve_assembled(const StencilProblem& problem, const Stencil& stencil, const StencilSystem& system,
                                    solvers::LinearSolver& solver, bool analyze, const Eigen::RowVector3d& centre) {
   StencilSolveResult result;
   result.unknowns = system.numbering.size();
@@ -74,7 +75,8 @@ StencilSolveResult solve_assembled(const StencilProblem& problem, const StencilS
     solver.factorize(op);  // a failed one leaves solve() X = 0 and the status that says why
     result.summary = solver.solve(system.B, X);
   }
-  if (result.summary.ok()) X.rowwise() += centre;
+  finish_centred_solve(
+      solver, op, [&] { return stencil_rhs(problem.net, system.numbering, stencil); }, centre, X, result.summary);
   result.net = result.summary.ok() ? fill_free_points(problem.net, system.numbering, X) : problem.net;
   return result;
 }
@@ -89,7 +91,7 @@ StencilSolveResult solve_stencil_net(const StencilProblem& problem, const Stenci
   }
   const Eigen::RowVector3d centre = solve_centre(problem, stencil);
   const StencilSystem system = assemble_stencil_system(moved(problem, centre), stencil, options.assembly);
-  return solve_assembled(problem, system, solver, true, centre);
+  return solve_assembled(problem, stencil, system, solver, true, centre);
 }
 
 void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stencil>& members,
@@ -106,7 +108,7 @@ void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stenci
   assembly.box_pattern = true;  // one pattern for every member
   // (moved to the data's centre when every member reproduces constants)
   const bool invariant = std::all_of(members.begin(), members.end(), reproduces_constants);
-  const Eigen::RowVector3d centre = invariant ? data_centre(problem) : Eigen::RowVector3d::Zero();
+  const Eigen::RowVector3d centre = invariant ? data_centre(problem, members) : Eigen::RowVector3d::Zero();
   const StencilProblem centred = moved(problem, centre);
   StencilSystem system = assemble_stencil_system(centred, members.front(), assembly);
   for (std::size_t k = 0; k < members.size(); ++k) {
@@ -115,7 +117,7 @@ void solve_stencil_sweep(const StencilProblem& problem, const std::vector<Stenci
       continue;
     }
     // Only the first member analyzes; factorize re-analyzes by itself if that analysis failed.
-    sink(k, solve_assembled(problem, system, solver, k == 0, centre));
+    sink(k, solve_assembled(problem, members[k], system, solver, k == 0, centre));
   }
 }
 

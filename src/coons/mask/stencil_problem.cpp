@@ -125,15 +125,34 @@ FreeGrid free_points(const StencilProblem& problem) {
   return free;
 }
 
-Eigen::RowVector3d data_centre(const StencilProblem& problem) {
+Eigen::RowVector3d data_centre(const StencilProblem& problem, const std::vector<Stencil>& stencils) {
+  // the offsets with a non-zero weight in some stencil
+  int reach = 0;
+  for (const Stencil& s : stencils) reach = std::max(reach, s.radius);
+  FreeGrid pattern = FreeGrid::Constant(2 * reach + 1, 2 * reach + 1, false);
+  for (const Stencil& s : stencils)
+    for (int a = -s.radius; a <= s.radius; ++a)
+      for (int b = -s.radius; b <= s.radius; ++b)
+        if (s.at(a, b) != 0) pattern(reach + a, reach + b) = true;
   const FreeGrid free = free_points(problem);
   const ControlNet& net = problem.net;
-  Eigen::MatrixX3d data(net.points.rows(), 3);
+  FreeGrid coupled = FreeGrid::Constant(net.m + 1, net.n + 1, false);
+  for (int i = 0; i <= net.m; ++i)
+    for (int j = 0; j <= net.n; ++j) {
+      if (!free(i, j)) continue;
+      for (int a = -reach; a <= reach; ++a)
+        for (int b = -reach; b <= reach; ++b) {
+          const int p = i + a, q = j + b;
+          if (p >= 0 && q >= 0 && p <= net.m && q <= net.n && !free(p, q) && pattern(reach + a, reach + b))
+            coupled(p, q) = true;
+        }
+    }
+  Eigen::MatrixX3d data(coupled.count(), 3);
   Eigen::Index count = 0;
   for (int i = 0; i <= net.m; ++i)
     for (int j = 0; j <= net.n; ++j)
-      if (!free(i, j)) data.row(count++) = net.at(i, j);
-  return bounding_box_centre(Eigen::MatrixX3d(data.topRows(count)));
+      if (coupled(i, j)) data.row(count++) = net.at(i, j);
+  return count == 0 ? Eigen::RowVector3d::Zero() : bounding_box_centre(data);
 }
 
 StencilProblem rings_problem(ControlNet net, int rings) {

@@ -10,6 +10,8 @@
 #include "coons/io/plot.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/mask_families.h"
+#include "coons/mask/stencil.h"
+#include "coons/mask/stencil_problem.h"
 
 namespace coons {
 
@@ -63,7 +65,10 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
   Eigen::RowVector3d centre = Eigen::RowVector3d::Zero();
   ControlNet centred = frame;
   if (invariant) {
-    centre = bounding_box_centre(b);
+    std::vector<Stencil> stencils;  // (the data the members couple to the interior: stencil_problem.h)
+    stencils.reserve(params.size());
+    for (double p : params) stencils.push_back(alpha_stencil(family(p).mask));
+    centre = data_centre(rings_problem(frame, 1), stencils);
     centred.points.rowwise() -= centre;
   }
   const std::vector<Eigen::MatrixX3d> basis = {mask_rhs(centred, Mask9{1, 0, 0}), mask_rhs(centred, Mask9{0, 1, 0}),
