@@ -85,16 +85,19 @@ class EigenIterative : public LinearSolver {
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
     // Within the automatic iteration limit and without a time limit, one Eigen solve per column.
     // Otherwise the columns are solved in chunks of iterations, each restarting from the last
-    // iterate, with the true residual measured between them: under a time limit chunks from 1000
+    // iterate, with the true residual measured between them: under a time limit chunks from 16
     // that double (the clock is read between them, so a solve stops within about twice the limit,
-    // and restarts, which slow CG down, stay few), else chunks of the automatic limit. A column
+    // and restarts, which slow CG down, stay few; a first chunk of 1000 ran 70 s for a limit of
+    // 1 s where an iteration of bicgstab cost 23 ms), else chunks of the automatic limit. A column
     // whose true residual is near the rounding floor (kStagnationFloor) and has not fallen by 10 %
-    // over kStallChunks first chunks has stalled there (a tolerance of 1e-300 with 2^31 iterations
-    // would otherwise run for hours), and its lowest iterate is kept.
+    // over kStallChunks windows of min(limit, 1000) iterations has stalled there (a tolerance of
+    // 1e-300 with 2^31 iterations would otherwise run for hours), and its lowest iterate is kept.
+    // A Krylov residual that ends 1e8 times above its start has diverged (bicgstab reached 1e137).
     const bool timed = options_.time_limit_seconds > 0;
-    const int first_chunk = timed                       ? std::min(limit_, 1000)
+    const int first_chunk = timed                       ? std::min(limit_, 16)
                             : limit_ > automatic_limit_ ? std::max(automatic_limit_, 1000)
                                                         : limit_;
+    const int stall_window = timed ? std::min(limit_, 1000) : first_chunk;
     const SpMat& A = *factorized_operator().matrix;
     X.setZero(B.rows(), 3);
     IterationEnd end;
@@ -118,7 +121,7 @@ class EigenIterative : public LinearSolver {
       double error = 0;
       Eigen::VectorXd x = Eigen::VectorXd::Zero(B.rows());
       Eigen::VectorXd lowest_x = x;
-      double lowest = HUGE_VAL;
+      double lowest = 1;  // of x = 0
       int lowest_at = 0;
       int chunk = first_chunk;
       for (;;) {
@@ -145,7 +148,7 @@ class EigenIterative : public LinearSolver {
           lowest = true_residual;
           lowest_x = x;
         }
-        if (used - lowest_at >= kStallChunks * first_chunk && lowest <= kStagnationFloor) {
+        if (used - lowest_at >= kStallChunks * stall_window && lowest <= kStagnationFloor) {
           x = lowest_x;
           error = lowest;
           stalled = std::max(stalled, used - lowest_at);
@@ -154,11 +157,23 @@ class EigenIterative : public LinearSolver {
         }
         if (timed && std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count() >= deadline) {
           end.timed_out = true;
+          if (lowest < true_residual) {  // the best iterate seen, X = 0 (residual 1) included
+            x = lowest_x;
+            error = lowest;
+          }
           break;
         }
       }
       X.col(c) = x;
       end.iterations = std::max(end.iterations, used);
+      const IterationOptions defaults;
+      if (krylov_.info() != Eigen::Success && x.allFinite() && std::isfinite(error)) {
+        const double true_residual = relative_norm(B.col(c) - A * x, B.col(c));
+        if (!(true_residual < defaults.divergence)) {
+          end.diverged = true;
+          error = true_residual;
+        }
+      }
       if (!x.allFinite() || !std::isfinite(error)) {
         end.diverged = true;
         end.residual = HUGE_VAL;

@@ -604,3 +604,25 @@ TEST_CASE("solve_stencil_net and solve_mask_net: the residual reported is that o
     CHECK(r.summary.relative_residual == Approx(truth).epsilon(1e-3).margin(1e-15));
   }
 }
+
+TEST_CASE("bicgstab: a residual that grows 1e8-fold is diverged, not not_converged", "[mask]") {
+  // An indefinite 5 × 5 stencil (−1 at distance 1 and 1/2 at distance 2 along the axes, the centre
+  // 2 so that the weights sum to 0) on a 14 × 14 net with two data rings: regular (a sparse LU solves it), but
+  // BiCGSTAB's residual grew to 1e10 in 200 iterations and to 2e153 later, and that was not_converged.
+  Eigen::MatrixXd raw = Eigen::MatrixXd::Zero(5, 5);
+  raw(2, 2) = 2;
+  raw(1, 2) = raw(3, 2) = raw(2, 1) = raw(2, 3) = -1;
+  raw(0, 2) = raw(4, 2) = raw(2, 0) = raw(2, 4) = 0.5;
+  const Stencil indefinite = make_stencil(raw);
+  const StencilProblem p = make_problem(make_random_net(14, 14, 3), 2);
+  (void)solve_with(p, indefinite, "eigen-lu");  // regular
+  for (const int limit : {200, 2000}) {
+    solvers::SolverOptions options;
+    options.max_iterations = limit;
+    auto solver = solvers::make_solver("bicgstab", options);
+    const StencilSolveResult r = solve_stencil_net(p, indefinite, *solver);
+    INFO("limit " << limit << ": " << r.summary.brief_report());
+    CHECK(r.summary.status == solvers::SolveStatus::kDiverged);
+    CHECK_THAT(r.summary.message, Catch::Contains("grew"));
+  }
+}
