@@ -22,7 +22,7 @@ struct BezierFit {
 //! Up to this degree the fit is made at the degree asked for.
 constexpr int kDirectFitDegree = 24;
 //! Above kDirectFitDegree the fit is made at 8, 12, …, up to this degree (and the degree asked for,
-//! if lower): the first at rounding level, else the one of the smallest deviation, elevated exactly.
+//! if lower): the first at rounding level, else the one at kDirectFitDegree, elevated exactly.
 constexpr int kLargestFitDegree = 64;
 
 //! degree ≥ 1 (degree 1: the chord). samples ≤ 0 picks max(10·(degree + 1), 101) at the degree
