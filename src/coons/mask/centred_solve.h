@@ -10,10 +10,18 @@
 
 #include <Eigen/Core>
 #include <functional>
+#include <string>
 
 #include "solvers/linear_solver.h"
 
 namespace coons {
+
+//! The stencil's Σ|w| (≥ ‖A‖∞) and number of non-zero weights: the rounding floor of a residual.
+struct CentredStencilSize {
+  double absolute_sum = 1;
+  int weights = 1;
+};
+CentredStencilSize stencil_size(const Eigen::MatrixXd& weights);
 
 //! After solver solved op·Y = B_c (summary: its summary, Y in X): X = Y + 1·centre; when the
 //! centre is not zero, summary.relative_residual becomes the residual of the system as given
@@ -22,8 +30,17 @@ namespace coons {
 //! X += A⁻¹(B − A X) by the same solver while it is above the solver's tolerance, and
 //! not_converged, with the reason, if it stays above. A summary that is not ok is left as it is
 //! (X unchanged).
+//! A column whose residual is above the tolerance but within the rounding floor of b − A x (the
+//! size of its rounding, which smooth data make larger than a tolerance of 1e-12: the mask
+//! equations of a smooth net cancel) is not refined and keeps success, with a message.
 void finish_centred_solve(solvers::LinearSolver& solver, const solvers::LinearOperator& op,
-                          const std::function<Eigen::MatrixX3d()>& given_rhs, const Eigen::RowVector3d& centre,
-                          Eigen::MatrixX3d& X, solvers::SolveSummary& summary);
+                          const std::function<Eigen::MatrixX3d()>& given_rhs, const CentredStencilSize& stencil,
+                          const Eigen::RowVector3d& centre, Eigen::MatrixX3d& X, solvers::SolveSummary& summary);
+
+//! The same verdict for a member of a sweep, whose solver has moved on (no refinement): X is the
+//! solution moved back, given_rhs the member's right-hand side of the data where they lie.
+void judge_centred_member(const std::string& backend, double tolerance, const solvers::LinearOperator& op,
+                          const Eigen::MatrixX3d& given_rhs, const CentredStencilSize& stencil,
+                          const Eigen::MatrixX3d& X, solvers::SolveSummary& summary);
 
 }  // namespace coons

@@ -9,6 +9,7 @@
 #include "coons/io/net_json.h"
 #include "coons/io/plot.h"
 #include "coons/mask/assemble_mask_system.h"
+#include "coons/mask/centred_solve.h"
 #include "coons/mask/mask_families.h"
 #include "coons/mask/stencil.h"
 #include "coons/mask/stencil_problem.h"
@@ -106,6 +107,11 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
       if (!s.ok()) return finish_row(k, frame);
       Eigen::MatrixX3d moved_back = X;
       moved_back.rowwise() += centre;
+      // the residual and verdict of the member's system as given, as solve_mask_net reports them
+      if (!centre.isZero(0))
+        judge_centred_member(info.name, solver->options().tolerance, members[k].op, mask_rhs(frame, rows_out[k].mask),
+                             stencil_size(alpha_stencil(rows_out[k].mask).weights), moved_back, rows_out[k].summary);
+      if (!rows_out[k].summary.ok()) return finish_row(k, frame);
       finish_row(k, fill_interior(frame, moved_back));
     });
   }
