@@ -14,7 +14,7 @@ namespace {
 
 // Per column: ‖b − A x‖ / ‖b‖ (‖b‖ = 0: ‖A x‖), and the rounding floor of that ratio, an estimate
 // of the rounding of b − A x itself: 2ε·(W·‖x‖ + ‖b‖) / ‖b‖, W = Σ|w| ≥ ‖|A|‖₂ (the bound
-// (weights + 1)·ε instead of 2ε is about ten times what rounding does). A smooth net's mask
+// (non-zero weights + 1)·ε instead of 2ε is about ten times what rounding does). A smooth net's mask
 // equations cancel: the dome at degree 80 has ‖B_z‖ = 0.0022 and a floor of 3e-11, above the
 // default tolerance 1e-12, which the exact solvers' nets do not meet either (cholmod 2e-12).
 struct ColumnResiduals {
@@ -28,22 +28,18 @@ struct ColumnResiduals {
 };
 
 bool residuals(const solvers::LinearOperator& op, const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X,
-               const CentredStencilSize& stencil, ColumnResiduals& out) {
+               double weight_sum, ColumnResiduals& out) {
   Eigen::MatrixXd AX;
   if (!solvers::apply_operator(op, X, AX)) return false;
   const double eps = std::numeric_limits<double>::epsilon();
   for (int c = 0; c < 3; ++c) {
     const double r = (B.col(c) - AX.col(c)).stableNorm(), b = B.col(c).stableNorm();
-    const double rounding = 2 * eps * (stencil.absolute_sum * X.col(c).stableNorm() + b);
+    const double rounding = 2 * eps * (weight_sum * X.col(c).stableNorm() + b);
     out.relative[std::size_t(c)] = b > 0 ? r / b : r;
     out.floor[std::size_t(c)] = b > 0 ? rounding / b : rounding;
   }
   return std::isfinite(out.largest());
 }
-
-}  // namespace
-
-namespace {
 
 bool is_iterative(const std::string& backend) {
   const solvers::SolverInfo* info = solvers::find_solver(backend);
@@ -74,14 +70,14 @@ void settle(const ColumnResiduals& r, double tolerance, bool iterative, solvers:
 }  // namespace
 
 void finish_centred_solve(solvers::LinearSolver& solver, const solvers::LinearOperator& op,
-                          const std::function<Eigen::MatrixX3d()>& given_rhs, const CentredStencilSize& stencil,
+                          const std::function<Eigen::MatrixX3d()>& given_rhs, double weight_sum,
                           const Eigen::RowVector3d& centre, Eigen::MatrixX3d& X, solvers::SolveSummary& summary) {
   if (!summary.ok()) return;
   X.rowwise() += centre;
   if (centre.isZero(0) || X.rows() == 0) return;
   const Eigen::MatrixX3d B = given_rhs();
   ColumnResiduals r;
-  if (!residuals(op, B, X, stencil, r)) return;
+  if (!residuals(op, B, X, weight_sum, r)) return;
   const double tolerance = solver.options().tolerance;
   // Only the iterative backends stop at the tolerance; the exact ones' residuals (1e-10 for
   // c1-coons at N = 1023) stay as they are: refined, an ill-conditioned net lost digits.
@@ -97,7 +93,7 @@ void finish_centred_solve(solvers::LinearSolver& solver, const solvers::LinearOp
     if (!correction.ok() || !D.allFinite()) break;
     const Eigen::MatrixX3d refined = X + D;
     ColumnResiduals next;
-    if (!residuals(op, B, refined, stencil, next) || !(next.largest() < r.largest())) break;
+    if (!residuals(op, B, refined, weight_sum, next) || !(next.largest() < r.largest())) break;
     summary.iterations += correction.iterations;
     X = refined;
     r = next;
@@ -108,15 +104,13 @@ void finish_centred_solve(solvers::LinearSolver& solver, const solvers::LinearOp
 }
 
 void judge_centred_member(const std::string& backend, double tolerance, const solvers::LinearOperator& op,
-                          const Eigen::MatrixX3d& given_rhs, const CentredStencilSize& stencil,
-                          const Eigen::MatrixX3d& X, solvers::SolveSummary& summary) {
+                          const Eigen::MatrixX3d& given_rhs, double weight_sum, const Eigen::MatrixX3d& X,
+                          solvers::SolveSummary& summary) {
   if (!summary.ok() || X.rows() == 0) return;
   ColumnResiduals r;
-  if (residuals(op, given_rhs, X, stencil, r)) settle(r, tolerance, is_iterative(backend), summary);
+  if (residuals(op, given_rhs, X, weight_sum, r)) settle(r, tolerance, is_iterative(backend), summary);
 }
 
-CentredStencilSize stencil_size(const Eigen::MatrixXd& weights) {
-  return {weights.cwiseAbs().sum(), int((weights.array() != 0).count())};
-}
+double weight_sum(const Eigen::MatrixXd& weights) { return weights.cwiseAbs().sum(); }
 
 }  // namespace coons

@@ -16,12 +16,8 @@
 
 namespace coons {
 
-//! The stencil's Σ|w| (≥ ‖A‖∞) and number of non-zero weights: the rounding floor of a residual.
-struct CentredStencilSize {
-  double absolute_sum = 1;
-  int weights = 1;
-};
-CentredStencilSize stencil_size(const Eigen::MatrixXd& weights);
+//! The stencil's Σ|w| (≥ ‖A‖∞, ≥ ‖|A|‖₂): the scale of a residual's rounding floor.
+double weight_sum(const Eigen::MatrixXd& weights);
 
 //! After solver solved op·Y = B_c (summary: its summary, Y in X): X = Y + 1·centre; when the
 //! centre is not zero, summary.relative_residual becomes the residual of the system as given
@@ -34,13 +30,13 @@ CentredStencilSize stencil_size(const Eigen::MatrixXd& weights);
 //! size of its rounding, which smooth data make larger than a tolerance of 1e-12: the mask
 //! equations of a smooth net cancel) is not refined and keeps success, with a message.
 void finish_centred_solve(solvers::LinearSolver& solver, const solvers::LinearOperator& op,
-                          const std::function<Eigen::MatrixX3d()>& given_rhs, const CentredStencilSize& stencil,
+                          const std::function<Eigen::MatrixX3d()>& given_rhs, double weight_sum,
                           const Eigen::RowVector3d& centre, Eigen::MatrixX3d& X, solvers::SolveSummary& summary);
 
 //! The same verdict for a member of a sweep, whose solver has moved on (no refinement): X is the
 //! solution moved back, given_rhs the member's right-hand side of the data where they lie.
 void judge_centred_member(const std::string& backend, double tolerance, const solvers::LinearOperator& op,
-                          const Eigen::MatrixX3d& given_rhs, const CentredStencilSize& stencil,
-                          const Eigen::MatrixX3d& X, solvers::SolveSummary& summary);
+                          const Eigen::MatrixX3d& given_rhs, double weight_sum, const Eigen::MatrixX3d& X,
+                          solvers::SolveSummary& summary);
 
 }  // namespace coons

@@ -46,7 +46,7 @@ MaskSolveResult solve_mask_net(const Boundary& boundary, const Mask9& mask, cons
   Eigen::MatrixX3d X;
   result.summary = backend->compute_and_solve(op, system.B, X);
   finish_centred_solve(
-      *backend, op, [&] { return mask_rhs(frame, mask); }, stencil_size(alpha_stencil(mask).weights), centre, X,
+      *backend, op, [&] { return mask_rhs(frame, mask); }, weight_sum(alpha_stencil(mask).weights), centre, X,
       result.summary);
   result.net = result.summary.ok() ? fill_interior(std::move(frame), X) : std::move(frame);
   return result;

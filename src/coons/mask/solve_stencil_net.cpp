@@ -76,7 +76,7 @@ StencilSolveResult solve_assembled(const StencilProblem& problem, const Stencil&
     result.summary = solver.solve(system.B, X);
   }
   finish_centred_solve(
-      solver, op, [&] { return stencil_rhs(problem.net, system.numbering, stencil); }, stencil_size(stencil.weights),
+      solver, op, [&] { return stencil_rhs(problem.net, system.numbering, stencil); }, weight_sum(stencil.weights),
       centre, X, result.summary);
   result.net = result.summary.ok() ? fill_free_points(problem.net, system.numbering, X) : problem.net;
   return result;

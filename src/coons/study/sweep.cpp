@@ -110,7 +110,7 @@ std::vector<SweepRow> run_sweep(const Boundary& b, const std::vector<double>& pa
       // the residual and verdict of the member's system as given, as solve_mask_net reports them
       if (!centre.isZero(0))
         judge_centred_member(info.name, solver->options().tolerance, members[k].op, mask_rhs(frame, rows_out[k].mask),
-                             stencil_size(alpha_stencil(rows_out[k].mask).weights), moved_back, rows_out[k].summary);
+                             weight_sum(alpha_stencil(rows_out[k].mask).weights), moved_back, rows_out[k].summary);
       if (!rows_out[k].summary.ok()) return finish_row(k, frame);
       finish_row(k, fill_interior(frame, moved_back));
     });
