@@ -129,7 +129,6 @@ class EigenIterative : public LinearSolver {
       const double column_start = std::chrono::duration<double>(std::chrono::steady_clock::now() - started).count();
       for (;;) {
         const int allowed = std::min(chunk, limit_ - used);
-        if (!timed) chunk = first_chunk;
         krylov_.setMaxIterations(allowed);
         const Eigen::VectorXd guess = x;
         x = krylov_.solveWithGuess(B.col(c), x);
