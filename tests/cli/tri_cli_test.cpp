@@ -43,8 +43,9 @@ TEST_CASE("coons solve: a triangular file gives the triangle report, net in the 
   CHECK(report["a"].get<double>() == Approx((1 + 0.3) / 6));
   CHECK(report["solver"]["name"] == "eigen-lu");
   CHECK(report["solver"]["status"] == "success");
-  for (const char* key : {"dirichlet_energy", "thin_plate_energy", "twist_energy", "discrete_dirichlet_energy",
-                          "discrete_thin_plate_energy", "discrete_twist_energy", "mask_residual"})
+  for (const char* key :
+       {"dirichlet_energy", "thin_plate_energy", "twist_energy", "e3_energy", "discrete_dirichlet_energy",
+        "discrete_thin_plate_energy", "discrete_twist_energy", "mask_residual"})
     CHECK(report["metrics"][key].is_number());
   // the net equals the library's solve, row by row: net[k][j] = b[n-k-j][j][k]
   tri::TriSolveOptions options;
@@ -199,9 +200,12 @@ TEST_CASE("coons search-alpha: the best c of a triangle, with bounds that avoid 
   CHECK(report["bounds"][0].get<double>() == Approx(-1.0 / 6 - 1.0 / 12));
   // the target value is the mean squared distance to the sphere: small for the octant
   CHECK(report["value"].get<double>() < 1e-4);
-  const CommandResult rejected = run_coons("search-alpha '" + file + "' --objective e3");
+  const CommandResult e3 = run_coons("search-alpha '" + file + "' --objective e3");
+  CHECK(e3.status == 0);
+  CHECK(json::parse(e3.out)["objective"] == "e3");
+  const CommandResult rejected = run_coons("search-alpha '" + file + "' --objective e4");
   CHECK(rejected.status == 2);
-  CHECK(count_lines_starting(rejected.err, "error: command line: --objective: unknown objective 'e3'") == 1);
+  CHECK(count_lines_starting(rejected.err, "error: command line: --objective: unknown objective 'e4'") == 1);
 }
 
 TEST_CASE("coons sweep: a triangle gives NAME.sweep-c.jsonl, one line per c", "[cli][tri]") {

@@ -30,7 +30,8 @@ TEST_CASE("parse_tri_objective: names and weighted sums, unknown names are refus
   REQUIRE_FALSE(o.uses_target());
   REQUIRE(objective("target").uses_target());
   std::string why;
-  for (const char* bad : {"e3", "thin_plate+", "-1*twist", "x*twist", ""}) {
+  REQUIRE(objective("e3+2*thin_plate").terms[0] == std::make_pair(TriTerm::kE3, 1.0));
+  for (const char* bad : {"e4", "thin_plate+", "-1*twist", "x*twist", ""}) {
     INFO(bad);
     REQUIRE_FALSE(parse_tri_objective(bad, &why));
     REQUIRE_FALSE(why.empty());
@@ -44,7 +45,7 @@ TEST_CASE("evaluate_tri_objective: the derivative from one extra solve equals a 
   sphere.samples = 9;
   for (const int n : {3, 5, 8}) {
     const TriNet frame = frame_net(boundary_of(random_tri_net(n, 40 + n)));
-    for (const char* name : {"thin_plate", "dirichlet", "twist", "discrete_thin_plate", "discrete_dirichlet",
+    for (const char* name : {"thin_plate", "dirichlet", "twist", "e3", "discrete_thin_plate", "discrete_dirichlet",
                              "discrete_twist", "target", "thin_plate+3*target"}) {
       TriObjective o = objective(name);
       o.target = sphere;
@@ -76,10 +77,10 @@ TEST_CASE("evaluate_tri_objective: the derivative does not depend on where the b
 }
 
 TEST_CASE("search_tri_c: the optimum is the minimum of a fine scan, inside the bounds", "[study][tri]") {
-  for (const std::uint32_t seed : {1u, 2u, 3u}) {
-    const int n = 5 + int(seed);
+  for (const std::uint32_t seed : {1u, 2u, 3u, 4u}) {
+    const int n = 5 + int(seed % 3);
     const TriNet frame = frame_net(boundary_of(random_tri_net(n, 500 + seed)));
-    const TriObjective o = objective("thin_plate");
+    const TriObjective o = objective(seed == 4 ? "e3" : "thin_plate");
     AlphaSearchOptions options;
     std::tie(options.lower, options.upper) = default_tri_bounds(n);
     const AlphaSearchSummary s = search_tri_c(frame, o, lu(), options);
@@ -104,11 +105,26 @@ TEST_CASE("search_tri_c: an affine boundary is flat, no optimum is claimed", "[s
   const TriNet frame = frame_net(boundary_of(elevated_linear(7, 3)));
   AlphaSearchOptions options;
   std::tie(options.lower, options.upper) = default_tri_bounds(7);
-  for (const char* name : {"thin_plate", "dirichlet", "twist"}) {
+  for (const char* name : {"thin_plate", "dirichlet", "twist", "e3"}) {
     const AlphaSearchSummary s = search_tri_c(frame, objective(name), lu(), options);
     REQUIRE(s.status == SearchStatus::kFlat);
     REQUIRE(s.flat);
     REQUIRE_FALSE(s.parameter);
+  }
+}
+
+TEST_CASE("search_tri_c: e3 of a quadratic patch's boundary is least, 0, at c = -1/6", "[study][tri]") {
+  // c = −1/6 alone reproduces the quadratic (docs/math.md §9), whose third derivatives vanish
+  for (const int n : {4, 7}) {
+    const TriNet frame = frame_net(boundary_of(elevated_quadratic(n, 60 + n)));
+    AlphaSearchOptions options;
+    std::tie(options.lower, options.upper) = default_tri_bounds(n);
+    const AlphaSearchSummary s = search_tri_c(frame, objective("e3"), lu(), options);
+    INFO("n = " << n << ": c* = " << (s.parameter ? *s.parameter : NAN) << ", E3 " << s.value);
+    REQUIRE(s.status == SearchStatus::kSuccess);
+    REQUIRE(s.parameter);
+    REQUIRE(std::abs(*s.parameter + 1.0 / 6) < 1e-6);
+    REQUIRE(evaluate_tri_objective(frame, objective("e3"), 0.0, lu(), false).value > 1e-3);
   }
 }
 

@@ -31,11 +31,11 @@ TriStudyInput planar_input(int n) {
 
 }  // namespace
 
-TEST_CASE("tri_study_objectives: thin plate, Dirichlet and twist, and target only with a target", "[study][tri]") {
+TEST_CASE("tri_study_objectives: thin plate, E3, Dirichlet and twist, and target only with a target", "[study][tri]") {
   TriStudyInput in = planar_input(4);
-  CHECK(tri_study_objectives(in) == std::vector<std::string>{"thin_plate", "dirichlet", "twist", "target"});
+  CHECK(tri_study_objectives(in) == std::vector<std::string>{"thin_plate", "e3", "dirichlet", "twist", "target"});
   in.target.reset();
-  CHECK(tri_study_objectives(in) == std::vector<std::string>{"thin_plate", "dirichlet", "twist"});
+  CHECK(tri_study_objectives(in) == std::vector<std::string>{"thin_plate", "e3", "dirichlet", "twist"});
   for (const std::string& name : tri_study_objectives(planar_input(4))) {
     std::string why;
     INFO(name);
@@ -50,7 +50,7 @@ TEST_CASE("run_tri_study: the own degree, then every higher study degree, each c
   REQUIRE(out.size() == 1);
   CHECK(out[0].solver == "eigen-lu");
   CHECK_FALSE(out[0].solver_picked_automatically);
-  REQUIRE(out[0].rows.size() == 3);
+  REQUIRE(out[0].rows.size() == 4);
   for (const TriStudyRow& row : out[0].rows) {
     INFO(row.objective);
     REQUIRE(row.cells.size() == 2);  // degree 5 (its own) and 7; 3, 4 and a repeated 5 are left out

@@ -2,6 +2,9 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <random>
+#include <tuple>
+#include <vector>
 
 #include "coons/tri/tri_solve.h"
 #include "tri/tri_fixtures.h"
@@ -96,6 +99,54 @@ TEST_CASE("tri energies: Dirichlet, thin plate and twist equal quadrature to 1e-
   }
 }
 
+TEST_CASE("tri_e3_energy: equals the exact integral of a random polynomial's third derivatives", "[tri]") {
+  // p(x, y) = Σ_{a+b≤d} c_ab x^a y^b per coordinate, written at degree n ≥ d through the Bernstein
+  // coefficients of a monomial, x^a y^b = Σ_α i!/(i−a)! · j!/(j−b)! · (n−a−b)!/n! B^n_α (zero unless
+  // i ≥ a, j ≥ b), and E3 = ∫_T ‖p_xxx‖² + 3‖p_xxy‖² + 3‖p_xyy‖² + ‖p_yyy‖² from the monomials'
+  // derivatives and ∫_T x^p y^q = p! q! / (p + q + 2)!: no derivative net and no Gram matrix.
+  auto falling = [](int i, int a) { return a > i ? 0.0 : factorial(i) / factorial(i - a); };
+  std::mt19937 rng(2100);
+  std::uniform_real_distribution<double> dist(-1, 1);
+  for (int d = 0; d <= 7; ++d)
+    for (const int n : {std::max(d, 1), d + 2}) {
+      std::vector<std::array<int, 2>> exponents;
+      for (int a = 0; a <= d; ++a)
+        for (int b = 0; a + b <= d; ++b) exponents.push_back({a, b});
+      Eigen::MatrixX3d c(exponents.size(), 3);
+      for (Eigen::Index r = 0; r < c.rows(); ++r)
+        for (int q = 0; q < 3; ++q) c(r, q) = dist(rng);
+      TriNet net(n);
+      for (int k = 0; k <= n; ++k)
+        for (int j = 0; j <= n - k; ++j)
+          for (std::size_t e = 0; e < exponents.size(); ++e) {
+            const auto [a, b] = exponents[e];
+            const double w = falling(n - k - j, a) * falling(j, b) * factorial(n - a - b) / factorial(n);
+            net.points.row(net_index(n, j, k)) += w * c.row(Eigen::Index(e));
+          }
+      // ∂x^r ∂y^s of x^a y^b = falling(a, r) falling(b, s) x^(a−r) y^(b−s)
+      double exact = 0;
+      for (const auto& [r, s, weight] : {std::tuple{3, 0, 1.0}, {2, 1, 3.0}, {1, 2, 3.0}, {0, 3, 1.0}})
+        for (std::size_t e1 = 0; e1 < exponents.size(); ++e1)
+          for (std::size_t e2 = 0; e2 < exponents.size(); ++e2) {
+            const auto [a1, b1] = exponents[e1];
+            const auto [a2, b2] = exponents[e2];
+            const double f = falling(a1, r) * falling(b1, s) * falling(a2, r) * falling(b2, s);
+            if (f == 0) continue;
+            const int px = a1 + a2 - 2 * r, py = b1 + b2 - 2 * s;
+            exact += weight * f * factorial(px) * factorial(py) / factorial(px + py + 2) *
+                     c.row(Eigen::Index(e1)).dot(c.row(Eigen::Index(e2)));
+          }
+      INFO("polynomial degree " << d << ", net degree " << n);
+      if (d < 3) {
+        REQUIRE(exact == 0.0);
+        REQUIRE(std::abs(tri_e3_energy(net)) < 1e-20 + 1e-12 * n * n);
+      } else {
+        REQUIRE(exact > 1);
+        REQUIRE(tri_e3_energy(net) == Approx(exact).epsilon(1e-11));
+      }
+    }
+}
+
 TEST_CASE("tri_twist_energy: invariant under permutations of i, j, k (thin plate is not)", "[tri]") {
   const TriNet net = random_tri_net(6, 1600);
   bool thin_plate_changes = false;
@@ -148,6 +199,7 @@ TEST_CASE("tri energies: a model of 2^-532 (about 1e-160) or 2^400 has its energ
     CHECK(tri_dirichlet_energy(scaled) == std::ldexp(tri_dirichlet_energy(net), 2 * k));
     CHECK(tri_thin_plate_energy(scaled) == std::ldexp(tri_thin_plate_energy(net), 2 * k));
     CHECK(tri_twist_energy(scaled) == std::ldexp(tri_twist_energy(net), 2 * k));
+    CHECK(tri_e3_energy(scaled) == std::ldexp(tri_e3_energy(net), 2 * k));
     CHECK(tri_discrete_dirichlet_energy(scaled) == std::ldexp(tri_discrete_dirichlet_energy(net), 2 * k));
     CHECK(tri_discrete_thin_plate_energy(scaled) == std::ldexp(tri_discrete_thin_plate_energy(net), 2 * k));
     CHECK(tri_discrete_twist_energy(scaled) == std::ldexp(tri_discrete_twist_energy(net), 2 * k));

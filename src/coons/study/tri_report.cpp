@@ -14,6 +14,7 @@ json tri_metrics_to_json(const tri::TriNetMetrics& m) {
   return {{"dirichlet_energy", number_or_null(m.dirichlet_energy)},
           {"thin_plate_energy", number_or_null(m.thin_plate_energy)},
           {"twist_energy", number_or_null(m.twist_energy)},
+          {"e3_energy", number_or_null(m.e3_energy)},
           {"discrete_dirichlet_energy", number_or_null(m.discrete_dirichlet_energy)},
           {"discrete_thin_plate_energy", number_or_null(m.discrete_thin_plate_energy)},
           {"discrete_twist_energy", number_or_null(m.discrete_twist_energy)},

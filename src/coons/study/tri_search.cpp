@@ -28,6 +28,7 @@ std::optional<TriObjective> parse_tri_objective(const std::string& text, std::st
   static const std::map<std::string, TriTerm> names = {{"thin_plate", TriTerm::kThinPlate},
                                                        {"dirichlet", TriTerm::kDirichlet},
                                                        {"twist", TriTerm::kTwist},
+                                                       {"e3", TriTerm::kE3},
                                                        {"discrete_thin_plate", TriTerm::kDiscreteThinPlate},
                                                        {"discrete_dirichlet", TriTerm::kDiscreteDirichlet},
                                                        {"discrete_twist", TriTerm::kDiscreteTwist},
@@ -54,7 +55,7 @@ std::optional<TriObjective> parse_tri_objective(const std::string& text, std::st
     const auto it = names.find(term);
     if (it == names.end())
       return fail("unknown objective '" + term +
-                  "' for a triangle (thin_plate, dirichlet, twist, discrete_thin_plate, discrete_dirichlet, "
+                  "' for a triangle (thin_plate, dirichlet, twist, e3, discrete_thin_plate, discrete_dirichlet, "
                   "discrete_twist, target, or a weighted sum such as thin_plate+10*target)");
     out.terms.emplace_back(it->second, weight);
     start = plus + 1;
@@ -86,6 +87,8 @@ double term_value(const TriNet& net, TriTerm term, const std::optional<Target>& 
       return tri::tri_dirichlet_energy(net);
     case TriTerm::kTwist:
       return tri::tri_twist_energy(net);
+    case TriTerm::kE3:
+      return tri::tri_e3_energy(net);
     case TriTerm::kDiscreteThinPlate:
       return tri::tri_discrete_thin_plate_energy(net);
     case TriTerm::kDiscreteDirichlet:
@@ -256,6 +259,7 @@ class TriSearch {
     for (const auto& [term, weight] : objective_.terms) {
       const int order = term == TriTerm::kDirichlet                              ? 1
                         : term == TriTerm::kThinPlate || term == TriTerm::kTwist ? 2
+                        : term == TriTerm::kE3                                   ? 3
                                                                                  : 0;
       floor_ +=
           weight * (term == TriTerm::kTarget ? 1e-2 * diag * diag : 1e-16 * diag * diag * std::pow(n, 2.0 * order));

@@ -1,5 +1,5 @@
 // The search for the best member c of the triangular mask family (tri_mask.h) of one boundary for
-// an objective: exact energies of tri_energy.h (thin_plate, dirichlet, twist), their discrete forms
+// an objective: exact energies of tri_energy.h (thin_plate, dirichlet, twist, e3), their discrete forms
 // (discrete_thin_plate, discrete_dirichlet, discrete_twist), the mean squared distance to an analytic
 // target (target: sphere, cylinder or plane of the boundary file), or weighted sums of them
 // ("thin_plate+10*target"). Each evaluation solves A(c) X = B(c) once and, for the derivative, once
@@ -28,7 +28,16 @@
 
 namespace coons {
 
-enum class TriTerm { kThinPlate, kDirichlet, kTwist, kDiscreteThinPlate, kDiscreteDirichlet, kDiscreteTwist, kTarget };
+enum class TriTerm {
+  kThinPlate,
+  kDirichlet,
+  kTwist,
+  kE3,
+  kDiscreteThinPlate,
+  kDiscreteDirichlet,
+  kDiscreteTwist,
+  kTarget
+};
 
 struct TriObjective {
   std::string name;                               //!< as given (spaces removed)

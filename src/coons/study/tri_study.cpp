@@ -29,7 +29,7 @@ TriStudyInput read_tri_study_input(const std::string& path, double corner_tolera
 }
 
 std::vector<std::string> tri_study_objectives(const TriStudyInput& input) {
-  std::vector<std::string> out = {"thin_plate", "dirichlet", "twist"};
+  std::vector<std::string> out = {"thin_plate", "e3", "dirichlet", "twist"};
   if (input.target) out.emplace_back("target");
   return out;
 }

@@ -1,6 +1,6 @@
 // The triangles of the α study: for every triangular boundary (docs/formats.md, "Triangular
 // boundary files") the optimal member c of the triangular mask family (tri_mask.h) per objective
-// that exists for triangles (thin_plate, dirichlet, twist, and the fit to the file's target), at
+// that exists for triangles (thin_plate, e3, dirichlet, twist, and the fit to the file's target), at
 // the file's own degree and at every degree of the study at or above it (the sides elevated
 // exactly: a triangle's boundary curves do not change), with the objective at c = −1/6 (quadratic
 // precision) and c = 0 (the triangular Laplace mask) for comparison. Flat objectives and optima on
@@ -31,7 +31,7 @@ struct TriStudyInput {
 //! Reads a triangular boundary file with its target (InputError on any fault).
 TriStudyInput read_tri_study_input(const std::string& path, double corner_tolerance = 1e-9);
 
-//! The objectives every triangle is studied for: thin_plate, dirichlet, twist (and target when the
+//! The objectives every triangle is studied for: thin_plate, e3, dirichlet, twist (and target when the
 //! file has one).
 std::vector<std::string> tri_study_objectives(const TriStudyInput& input);
 

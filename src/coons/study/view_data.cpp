@@ -223,7 +223,7 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
   search.lower = slider.lower;
   search.upper = slider.upper;
   std::vector<ViewCurve> curves = searched_curves(
-      {"thin_plate", "dirichlet", "twist"}, [&](const std::string& name) -> std::optional<AlphaSearchSummary> {
+      {"thin_plate", "e3", "dirichlet", "twist"}, [&](const std::string& name) -> std::optional<AlphaSearchSummary> {
         const std::optional<TriObjective> objective = parse_tri_objective(name, nullptr);
         if (!objective || frame.n < 3) return std::nullopt;
         return search_tri_c(frame, *objective, solver, search);
@@ -243,8 +243,9 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
     f.points = samples.points;
     f.normals = samples.normals;
     curves[0].values.push_back(f.ok ? tri::tri_thin_plate_energy(result.net) : NAN);
-    curves[1].values.push_back(f.ok ? tri::tri_dirichlet_energy(result.net) : NAN);
-    curves[2].values.push_back(f.ok ? tri::tri_twist_energy(result.net) : NAN);
+    curves[1].values.push_back(f.ok ? tri::tri_e3_energy(result.net) : NAN);
+    curves[2].values.push_back(f.ok ? tri::tri_dirichlet_energy(result.net) : NAN);
+    curves[3].values.push_back(f.ok ? tri::tri_twist_energy(result.net) : NAN);
     slider.frames.push_back(std::move(f));
   }
   slider.curves = std::move(curves);

@@ -82,6 +82,18 @@ double tri_twist_energy(const TriNet& given) {
   });
 }
 
+double tri_e3_energy(const TriNet& given) {
+  return scaled_energy(given, [](const TriNet& net) -> double {
+    if (net.n < 3) return 0.0;
+    const TriNet px = derivative_net(net, direction_x()), py = derivative_net(net, direction_y());
+    const TriNet pxx = derivative_net(px, direction_x()), pyy = derivative_net(py, direction_y());
+    const TriNet pxxx = derivative_net(pxx, direction_x()), pxxy = derivative_net(pxx, direction_y()),
+                 pxyy = derivative_net(pyy, direction_x()), pyyy = derivative_net(pyy, direction_y());
+    return tri_inner_product(pxxx, pxxx) + 3 * tri_inner_product(pxxy, pxxy) + 3 * tri_inner_product(pxyy, pxyy) +
+           tri_inner_product(pyyy, pyyy);
+  });
+}
+
 double tri_discrete_dirichlet_energy(const TriNet& given) {
   return scaled_energy(given, [](const TriNet& net) -> double {
     if (net.n == 0) return 0.0;
@@ -131,6 +143,7 @@ TriNetMetrics tri_net_metrics(const TriNet& net, const TriMask& mask) {
   m.dirichlet_energy = tri_dirichlet_energy(net);
   m.thin_plate_energy = tri_thin_plate_energy(net);
   m.twist_energy = tri_twist_energy(net);
+  m.e3_energy = tri_e3_energy(net);
   m.discrete_dirichlet_energy = tri_discrete_dirichlet_energy(net);
   m.discrete_thin_plate_energy = tri_discrete_thin_plate_energy(net);
   m.discrete_twist_energy = tri_discrete_twist_energy(net);

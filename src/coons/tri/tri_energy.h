@@ -6,7 +6,10 @@
 //   twist       (1/3) Σ_m ∫_T ‖D_(e_a − e_m) D_(e_b − e_m) p‖², {a, b, m} = {1, 2, 3}: the mixed
 //               derivative ∫‖p_xy‖² of the rectangular case, averaged over the three choices of the
 //               corner at the right angle (m = 3 is ∫_T ‖p_xy‖²), so that it is symmetric under
-//               every permutation of i, j, k.
+//               every permutation of i, j, k,
+//   E3          ∫_T ‖p_xxx‖² + 3‖p_xxy‖² + 3‖p_xyy‖² + ‖p_yyy‖² (the squared Frobenius norm of the
+//               third-derivative tensor, as thin plate is that of the Hessian; the rectangle's E3 of
+//               docs/math.md §5 in the same form).
 // Each is Σ_xyz Cᵀ G C over derivative nets C, with the triangular Bernstein Gram matrix
 //   G^n_αβ = ∫_T B^n_α B^n_β = C(n,α)·C(n,β) / C(2n,α+β) / ((2n+1)(2n+2))  (C multinomial),
 // #(n+1)(n+2)/2 square in the row order of tri_net.h. Discrete energies: the same sums of squares of
@@ -36,6 +39,7 @@ double tri_inner_product(const TriNet& X, const TriNet& Y);
 double tri_dirichlet_energy(const TriNet& net);
 double tri_thin_plate_energy(const TriNet& net);
 double tri_twist_energy(const TriNet& net);
+double tri_e3_energy(const TriNet& net);
 
 //! Σ_{|β|=n−1} ‖b_{β+e1} − b_{β+e3}‖² + ‖b_{β+e2} − b_{β+e3}‖².
 double tri_discrete_dirichlet_energy(const TriNet& net);
@@ -54,7 +58,7 @@ TriQuadratureRule duffy_gauss_legendre(int k);
 
 //! Every metric of a triangular `solve` report, computed once.
 struct TriNetMetrics {
-  double dirichlet_energy = 0, thin_plate_energy = 0, twist_energy = 0;
+  double dirichlet_energy = 0, thin_plate_energy = 0, twist_energy = 0, e3_energy = 0;
   double discrete_dirichlet_energy = 0, discrete_thin_plate_energy = 0, discrete_twist_energy = 0;
   double mask_residual = 0;
 };
