@@ -1,5 +1,8 @@
 #include "coons/cad/occt_convert.h"
 
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
 #include <APIHeaderSection_MakeHeader.hxx>
 #include <IFSelect_ReturnStatus.hxx>
 #include <IGESControl_Reader.hxx>
@@ -22,13 +25,17 @@
 #include <StepData_StepWriter.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
+#include <TColStd_SequenceOfAsciiString.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TCollection_HAsciiString.hxx>
 #include <XSControl_WorkSession.hxx>
+#include <cctype>
 #include <filesystem>
 #include <fstream>
+#include <map>
 #include <mutex>
+#include <set>
 #include <utility>
 #include <vector>
 
@@ -183,14 +190,48 @@ void require_no_load_failure(const std::string& path, XSControl_Reader& reader) 
 
 }  // namespace
 
-TopoDS_Shape read_step_shape(const std::string& path) {
+namespace {
+
+// OpenCASCADE's name of a STEP length unit (STEPControl_Reader::FileUnits) as a value of its
+// "xstep.cascade.unit" parameter, the unit the transfer converts to; empty when it has none.
+std::string cascade_unit(std::string name) {
+  for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+  static const std::map<std::string, std::string> units = {
+      {"millimetre", "MM"}, {"millimeter", "MM"}, {"metre", "M"},      {"meter", "M"},       {"centimetre", "CM"},
+      {"centimeter", "CM"}, {"kilometre", "KM"},  {"kilometer", "KM"}, {"micrometre", "UM"}, {"micrometer", "UM"},
+      {"inch", "INCH"},     {"foot", "FT"},       {"mile", "MI"}};
+  const auto it = units.find(name);
+  return it == units.end() ? std::string() : it->second;
+}
+
+}  // namespace
+
+TopoDS_Shape read_step_shape(const std::string& path, std::string* unit) {
   silence_occt_messages();
   require_readable(path);
   STEPControl_Reader reader;
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
     throw InputError(path, kDocumentField, "OpenCASCADE cannot read it as a STEP file");
   require_no_load_failure(path, reader);
-  if (reader.TransferRoots() == 0) throw InputError(path, kDocumentField, "the STEP file holds no shape");
+  TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
+  reader.FileUnits(lengths, angles, solid_angles);
+  std::set<std::string> names;
+  for (int k = 1; k <= lengths.Length(); ++k) names.insert(lengths(k).ToCString());
+  const std::string file_unit = names.size() == 1 ? *names.begin() : std::string();
+  const std::string keep = cascade_unit(file_unit);
+  // A process-wide parameter of OpenCASCADE: set for this transfer only, and put back.
+  const std::string previous = Interface_Static::CVal("xstep.cascade.unit");
+  Interface_Static::SetCVal("xstep.cascade.unit", keep.empty() ? "MM" : keep.c_str());
+  const int transferred = reader.TransferRoots();
+  Interface_Static::SetCVal("xstep.cascade.unit", previous.c_str());
+  if (unit) {
+    if (!keep.empty())
+      *unit = file_unit;
+    else
+      *unit = names.empty() ? std::string("millimetre")
+                            : "millimetre (converted from " + fmt::format("{}", fmt::join(names, ", ")) + ")";
+  }
+  if (transferred == 0) throw InputError(path, kDocumentField, "the STEP file holds no shape");
   TopoDS_Shape shape = reader.OneShape();
   if (shape.IsNull()) throw InputError(path, kDocumentField, "the STEP file holds no shape");
   return shape;

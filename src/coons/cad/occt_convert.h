@@ -40,7 +40,12 @@ void write_iges_shape(std::ostream& out, const TopoDS_Shape& shape, const std::s
 
 //! Reads every root of a STEP or an IGES file into one shape. Throws InputError(path, "(document)",
 //! reason) when the file cannot be read or holds no shape.
-TopoDS_Shape read_step_shape(const std::string& path);
+//! STEP: the coordinates are the file's own numbers, in its length unit, which `unit` receives
+//! ("metre", "inch", …): OpenCASCADE would convert them to millimetres, and a file in metres came
+//! in 1000 times larger. A unit it cannot keep (several units in one file, or one without an
+//! OpenCASCADE name) is converted to millimetres as before, and `unit` says so ("millimetre
+//! (converted from X)"). IGES: converted to millimetres.
+TopoDS_Shape read_step_shape(const std::string& path, std::string* unit = nullptr);
 TopoDS_Shape read_iges_shape(const std::string& path);
 
 }  // namespace coons::cad

@@ -22,6 +22,8 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <initializer_list>
+#include <optional>
 #include <set>
 
 #include "coons/cad/occt_convert.h"
@@ -124,7 +126,96 @@ std::pair<int, bool> bottom_of_face(const TopoDS_Face& face, const TopoDS_Wire& 
   return {-1, false};
 }
 
+// For a face: which position in its wire holds each side (bottom, right, top, left: v = v_min,
+// u = u_max, v = v_max, u = u_min of the face's parameter rectangle) and whether the side runs
+// against the edge's curve (bottom and top run towards increasing u, left and right towards
+// increasing v); nullopt unless each side is exactly one edge on that line. The direction comes
+// from the edge's curve on the face, whose parameter is its 3D curve's, so a closed edge (the
+// circle of a tube, start = end) is oriented as surely as any other, and a seam that is both left
+// and right (its two curves on the face) is found twice.
+struct FaceSide {
+  int position = -1;
+  bool reversed = false;
+};
+std::optional<std::array<FaceSide, 4>> sides_of_face(const TopoDS_Face& face, const TopoDS_Wire& wire) {
+  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
+  BRepTools::UVBounds(face, u0, u1, v0, v1);
+  const double tol_u = 1e-9 * std::max(1.0, std::abs(u1 - u0)) + Precision::PConfusion();
+  const double tol_v = 1e-9 * std::max(1.0, std::abs(v1 - v0)) + Precision::PConfusion();
+  std::array<FaceSide, 4> sides;
+  int position = 0;
+  for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next(), ++position) {
+    double first = 0, last = 0;
+    const Handle(Geom2d_Curve) uv = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Current()), face, first, last);
+    if (uv.IsNull()) return std::nullopt;
+    const gp_Pnt2d a = uv->Value(first), b = uv->Value(last), m = uv->Value(0.5 * (first + last));
+    auto on = [](double line, double tol, std::initializer_list<double> values) {
+      return std::all_of(values.begin(), values.end(), [&](double x) { return std::abs(x - line) <= tol; });
+    };
+    int side = -1;
+    bool reversed = false;
+    if (std::abs(b.X() - a.X()) > tol_u) {  // along u: bottom or top
+      if (on(v0, tol_v, {a.Y(), b.Y(), m.Y()})) side = 0;
+      if (on(v1, tol_v, {a.Y(), b.Y(), m.Y()})) side = 2;
+      reversed = b.X() < a.X();
+    } else if (std::abs(b.Y() - a.Y()) > tol_v) {  // along v: left or right
+      if (on(u1, tol_u, {a.X(), b.X(), m.X()})) side = 1;
+      if (on(u0, tol_u, {a.X(), b.X(), m.X()})) side = 3;
+      reversed = b.Y() < a.Y();
+    }
+    if (side < 0 || sides[side].position >= 0) return std::nullopt;
+    sides[side] = {position, reversed};
+  }
+  if (position != 4) return std::nullopt;
+  return sides;
+}
+
 gp_XYZ xyz(const Eigen::RowVector3d& p) { return {p(0), p(1), p(2)}; }
+
+// The sides of four edges from their chain, as OpenCASCADE orders a wire's edges (3D mode),
+// starting at the bottom (`start_edge`, a position in `chosen`, in the direction `start_reversed`
+// says). A closed edge (its ends within `closed_within`) has no direction in a chain: refused.
+void chain_sides(const std::string& path, const std::vector<int>& chosen, const std::array<BSplineCurve, 4>& curves,
+                 int start_edge, bool start_reversed, double closed_within, std::array<BSplineCurve, 4>& walk,
+                 std::array<BSplineCurve, 4>& sides, StepImport& out) {
+  for (int k = 0; k < 4; ++k) {
+    const BSplineCurve& c = curves[k];
+    if ((c.points.row(0) - c.points.row(c.count() - 1)).norm() <= std::max(closed_within, Precision::Confusion()))
+      throw InputError(path, fmt::format("edge {}", chosen[k]),
+                       "is closed (its ends meet), so the chain of edges cannot tell which way it runs; import the "
+                       "face it bounds with --face, whose parameters orient it");
+  }
+  // The chain, as OpenCASCADE orders a wire's edges (3D mode).
+  ShapeAnalysis_WireOrder order(Standard_True, Precision::Confusion());
+  for (const auto& c : curves) order.Add(xyz(c.points.row(0)), xyz(c.points.row(c.count() - 1)));
+  order.Perform(Standard_True);
+  if (!order.IsDone()) throw InputError(path, "edges", "OpenCASCADE could not chain the four edges into a loop");
+  std::array<int, 4> signed_order{};
+  for (int k = 0; k < 4; ++k) signed_order[k] = order.Ordered(k + 1);  // 1-based, negative: reversed
+  // Start at the bottom edge (the first given, or the face's v = v_min edge) in its direction.
+  int start = 0;
+  while (std::abs(signed_order[start]) != start_edge + 1) ++start;
+  std::array<int, 4> chain{};
+  for (int k = 0; k < 4; ++k) chain[k] = signed_order[(start + k) % 4];
+  if ((chain[0] < 0) != start_reversed) {  // walk the loop the other way round
+    const std::array<int, 4> other{-chain[0], -chain[3], -chain[2], -chain[1]};
+    chain = other;
+  }
+  // The loop's sides head to tail. Each curve is reversed at most once (bottom and right run with
+  // the loop, top and left against it), so a curve stored in the side's direction is copied exactly.
+  for (int k = 0; k < 4; ++k) {
+    const int e = std::abs(chain[k]) - 1;
+    walk[k] = chain[k] > 0 ? curves[e] : reversed(curves[e]);
+    out.edge_indices.push_back(chosen[e]);
+  }
+  for (int k = 0; k < 4; ++k) {
+    const int e = std::abs(chain[k]) - 1;
+    const bool against_loop = k >= 2;
+    const bool side_reversed = (chain[k] < 0) != against_loop;  // the side runs against the edge's curve
+    sides[k] = side_reversed ? reversed(curves[e]) : curves[e];
+    out.edge_reversed.push_back(side_reversed);
+  }
+}
 
 double diagonal_of(const std::array<BSplineCurve, 4>& curves) {
   Eigen::RowVector3d lo = curves[0].points.row(0), hi = lo;
@@ -149,17 +240,18 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
     }
     throw InputError("command line", field, why);
   }
-  const TopoDS_Shape shape = read_step_shape(path);
+  StepImport out;
+  const TopoDS_Shape shape = read_step_shape(path, &out.unit);
   TopTools_IndexedMapOfShape faces, edges;
   TopExp::MapShapes(shape, TopAbs_FACE, faces);
   TopExp::MapShapes(shape, TopAbs_EDGE, edges);
-  StepImport out;
   out.file_faces = faces.Extent();
   out.file_edges = edges.Extent();
 
   std::vector<int> chosen;  // the file's edge indices, 0-based
   int start_edge = 0;       // position in `chosen` of the bottom side
   bool start_reversed = false;
+  std::optional<std::array<FaceSide, 4>> face_sides;  // each side from the face's own parameters
   if (options.face >= 0) {
     if (options.face >= faces.Extent())
       throw InputError(path, "--face",
@@ -174,6 +266,7 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
       throw InputError(
           path, "--face",
           fmt::format("face {} has {} edges in its outer wire; a Coons boundary needs 4", options.face, chosen.size()));
+    face_sides = sides_of_face(face, wire);
     const auto [bottom, reversed_bottom] = bottom_of_face(face, wire);
     if (bottom >= 0) {
       start_edge = bottom;
@@ -192,37 +285,19 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   for (int k = 0; k < 4; ++k) curves[k] = edge_curve(TopoDS::Edge(edges(chosen[k] + 1)), chosen[k], path);
   out.diagonal = diagonal_of(curves);
 
-  // The chain, as OpenCASCADE orders a wire's edges (3D mode).
-  ShapeAnalysis_WireOrder order(Standard_True, Precision::Confusion());
-  for (const auto& c : curves) order.Add(xyz(c.points.row(0)), xyz(c.points.row(c.count() - 1)));
-  order.Perform(Standard_True);
-  if (!order.IsDone()) throw InputError(path, "edges", "OpenCASCADE could not chain the four edges into a loop");
-  std::array<int, 4> signed_order{};
-  for (int k = 0; k < 4; ++k) signed_order[k] = order.Ordered(k + 1);  // 1-based, negative: reversed
-  // Start at the bottom edge (the first given, or the face's v = v_min edge) in its direction.
-  int start = 0;
-  while (std::abs(signed_order[start]) != start_edge + 1) ++start;
-  std::array<int, 4> chain{};
-  for (int k = 0; k < 4; ++k) chain[k] = signed_order[(start + k) % 4];
-  if ((chain[0] < 0) != start_reversed) {  // walk the loop the other way round
-    const std::array<int, 4> other{-chain[0], -chain[3], -chain[2], -chain[1]};
-    chain = other;
-  }
-  // The loop's sides head to tail. Each curve is reversed at most once (bottom and right run with
-  // the loop, top and left against it), so a curve stored in the side's direction is copied exactly.
-  std::array<BSplineCurve, 4> walk;
-  for (int k = 0; k < 4; ++k) {
-    const int e = std::abs(chain[k]) - 1;
-    walk[k] = chain[k] > 0 ? curves[e] : reversed(curves[e]);
-    out.edge_indices.push_back(chosen[e]);
-  }
+  std::array<BSplineCurve, 4> walk;   // the loop's sides head to tail
   std::array<BSplineCurve, 4> sides;  // bottom, right, top, left in their own directions
-  for (int k = 0; k < 4; ++k) {
-    const int e = std::abs(chain[k]) - 1;
-    const bool against_loop = k >= 2;
-    const bool side_reversed = (chain[k] < 0) != against_loop;  // the side runs against the edge's curve
-    sides[k] = side_reversed ? reversed(curves[e]) : curves[e];
-    out.edge_reversed.push_back(side_reversed);
+  if (face_sides) {
+    for (int k = 0; k < 4; ++k) {
+      const auto [e, side_reversed] = (*face_sides)[k];
+      sides[k] = side_reversed ? reversed(curves[e]) : curves[e];
+      walk[k] = k < 2 ? sides[k] : reversed(sides[k]);
+      out.edge_indices.push_back(chosen[e]);
+      out.edge_reversed.push_back(side_reversed);
+    }
+  } else {
+    chain_sides(path, chosen, curves, start_edge, start_reversed, options.gap_tolerance * out.diagonal, walk, sides,
+                out);
   }
 
   // Corner k joins the end of walk[k] to the start of walk[k + 1].
@@ -307,6 +382,7 @@ nlohmann::json import_note(const StepImport& import) {
           {"corner_gaps", gaps},
           {"max_gap", import.max_gap},
           {"diagonal", import.diagonal},
+          {"unit", import.unit},
           {"compatibility", notes},
           {"form", import.is_bezier() ? "bezier" : "bspline"}};
 }

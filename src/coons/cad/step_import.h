@@ -41,6 +41,7 @@ struct StepImport {
   std::vector<bool> edge_reversed;       //!< whether that side runs against the edge's curve
   std::vector<CompatibilityNote> notes;  //!< what compatible_boundary changed
   int file_faces = 0, file_edges = 0;
+  std::string unit;  //!< the file's length unit, in which the points are given (read_step_shape)
   //! Every side a single span (knots only at 0 and 1): the boundary is a Bézier boundary.
   [[nodiscard]] bool is_bezier() const;
 };
