@@ -126,3 +126,19 @@ TEST_CASE("compare_seam: the angle is between oriented tangent planes, a 120 deg
   CHECK(smooth.normals_compared == 101);
   CHECK(smooth.max_normal_angle == 0);
 }
+
+TEST_CASE("compare_seam: each normal takes its own surface's seam tangent, sides crossing at a point give 45 degrees",
+          "[surfaces]") {
+  // a: the plane z = 0; b: the plane z = y - 1/2, whose left side crosses a's right side only at
+  // (1, 1/2, 0). With a's tangent for both normals the angle read 0 there.
+  const Surface a = make_bilinear({V(0, 0, 0), V(1, 0, 0), V(0, 1, 0), V(1, 1, 0)});
+  const Surface b = make_bilinear({V(1, 0, -0.5), V(2, 0, -0.5), V(1, 1, 0.5), V(2, 1, 0.5)});
+  const SeamReport r = compare_seam(a, Side::kRight, b, Side::kLeft);
+  CHECK(r.c0_gap == Approx(0.5).epsilon(1e-14));
+  CHECK(r.normals_compared == 101);
+  CHECK(r.max_normal_angle == Approx(M_PI / 4).epsilon(1e-14));
+  // the same, b's side running the other way
+  const Surface b_reversed = make_bilinear({V(1, 1, 0.5), V(2, 1, 0.5), V(1, 0, -0.5), V(2, 0, -0.5)});
+  CHECK(compare_seam(a, Side::kRight, b_reversed, Side::kLeft, true).max_normal_angle ==
+        Approx(M_PI / 4).epsilon(1e-14));
+}

@@ -56,13 +56,16 @@ SeamReport compare_seam(const Surface& a, Side side_a, const Surface& b, Side si
       continue;
     }
     r.c0_gap = std::max(r.c0_gap, (pa.p - pb.p).norm());
-    // Normals oriented alike across the seam: T × (a's outward derivative) and T × (b's inward
-    // one), with T the seam's tangent on a. A smooth continuation gives the same normal, a crease
-    // of 120° the angle 120°, b folded back onto a 180°. (The angle between unoriented normals,
-    // used before, never exceeds 90°: it called a 120° crease 60° and a fold G1.)
-    const Eigen::RowVector3d tangent = along(pa, side_a);
-    const Eigen::RowVector3d na = unit_cross(tangent, outward(pa, side_a));
-    const Eigen::RowVector3d nb = unit_cross(tangent, -outward(pb, side_b));
+    // Normals oriented alike across the seam: Ta × (a's outward derivative) and Tb × (b's inward
+    // one), each T the seam's tangent on its own surface, running as t does on a. A smooth
+    // continuation gives the same normal, a crease of 120° the angle 120°, b folded back onto a
+    // 180°. (The angle between unoriented normals, used before, never exceeds 90°: it called a
+    // 120° crease 60° and a fold G1. Until 2026-11-30 both took a's tangent, and Ta × b's
+    // derivative is no normal of b where the sides do not coincide: two planes at 45° whose sides
+    // cross at one point read 0°.)
+    const Eigen::RowVector3d tangent_a = along(pa, side_a), tangent_b = (reversed ? -1.0 : 1.0) * along(pb, side_b);
+    const Eigen::RowVector3d na = unit_cross(tangent_a, outward(pa, side_a));
+    const Eigen::RowVector3d nb = unit_cross(tangent_b, -outward(pb, side_b));
     if (!na.allFinite() || !nb.allFinite()) continue;
     ++r.normals_compared;
     const double angle = std::atan2(na.cross(nb).norm(), na.dot(nb));
