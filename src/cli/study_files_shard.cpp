@@ -50,6 +50,23 @@ std::string file_bytes(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+// A task's result without its timings ("seconds" at any depth): two runs of one task may differ
+// there and nowhere else, the searches being deterministic.
+json without_seconds(const json& j) {
+  if (j.is_object()) {
+    json out = json::object();
+    for (const auto& [key, value] : j.items())
+      if (key != "seconds") out[key] = without_seconds(value);
+    return out;
+  }
+  if (j.is_array()) {
+    json out = json::array();
+    for (const json& value : j) out.push_back(without_seconds(value));
+    return out;
+  }
+  return j;
+}
+
 std::vector<std::string> objective_names(const StudyOptions& options) {
   std::vector<std::string> out;
   for (const Objective& o : options.objectives.empty() ? default_study_objectives() : options.objectives)
@@ -202,6 +219,19 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
                          fmt::format("task {} ({}) was run on two different contents of its file; remove the "
                                      "shard files and run the shards again",
                                      index, (*study)["files"][index].get<std::string>()));
+      // the same task twice (shards of different N mixed): the same result, or an edited record,
+      // and the first one read would silently win
+      if (const auto seen = by_index.find(index); seen != by_index.end()) {
+        const json kept = without_seconds(seen->second["result"]), now = without_seconds(r["result"]);
+        if (kept != now) {
+          const json patch = json::diff(kept, now);
+          throw InputError(where, "key",
+                           fmt::format("task {} ({}) is in the shards twice with different results (first at "
+                                       "result{}, also in {}); remove the shard files and run the shards again",
+                                       index, (*study)["files"][index].get<std::string>(),
+                                       patch.empty() ? std::string() : patch[0].value("path", ""), file_of[index]));
+        }
+      }
       if (by_index.emplace(index, r).second) file_of.emplace(index, where);
     }
   }

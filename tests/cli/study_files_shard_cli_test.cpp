@@ -4,6 +4,7 @@
 // are there; a rerun skips finished files; a missing shard is an input error on --merge.
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <fstream>
 #include <nlohmann/json.hpp>
@@ -169,6 +170,27 @@ TEST_CASE("coons study FILES --merge: a file edited between two runs of its shar
   CHECK(merged.out.empty());
   CHECK(merged.err.find("was run on two different contents of its file") != std::string::npos);
   CHECK_FALSE(fs::exists(dir.file("merged")));
+}
+
+TEST_CASE("coons study FILES --merge: a task twice with different results is refused, twice alike is merged", "[cli]") {
+  // shards of different N in one folder run a task twice; an edited record used to be merged
+  // silently, whichever was read first winning (formats.md, "Sharded studies")
+  TempDir dir;
+  const std::string copy = dir.write("a.json", read_text(kData + "/boundaries/dome.json"));
+  const std::string shards = dir.file("shards");
+  for (const char* shard : {"0/1", "0/2", "1/2"})
+    REQUIRE(run_coons("study " + quoted(copy) + " --degrees 3 --shard " + shard + " --out " + quoted(shards)).status ==
+            0);
+  // the same task in two files, alike but for their timings: merged
+  CHECK(run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("alike"))).status == 0);
+  const std::string edited_file = shards + "/shard-0-of-2.jsonl";
+  json record = json::parse(read_text(edited_file));
+  double& alpha = record["result"]["shapes"][0]["optima"][0]["alpha"]["parameter"].get_ref<double&>();
+  alpha = std::nextafter(alpha, 1.0);  // one unit in the last place
+  dir.write("shards/shard-0-of-2.jsonl", record.dump() + "\n");
+  check_merge_refused(shards, dir.file("merged"), "an optimum moved by one ulp",
+                      {"is in the shards twice with different results", "shards/shard-0-of-", ": key: task 0",
+                       "/shapes/0/optima/0/alpha/parameter"});
 }
 
 TEST_CASE("coons study FILES --merge: an integer field holding 1e300 is one error line naming its shard", "[cli]") {
