@@ -8,6 +8,7 @@
 #include <BRep_Builder.hxx>
 #include <GC_MakeArcOfCircle.hxx>
 #include <Geom_BSplineSurface.hxx>
+#include <Interface_Static.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColgp_Array2OfPnt.hxx>
@@ -23,6 +24,7 @@
 #include <cmath>
 #include <fstream>
 #include <sstream>
+#include <tuple>
 
 #include "cad_fixtures.h"
 #include "coons/cad/cad_surface.h"
@@ -314,6 +316,16 @@ TEST_CASE("import_step_boundary: a closed edge given by --edges is refused, the 
   const std::string loose = write_shape(dir, "edges.step", compound);
   CHECK_THROWS_WITH(cad::import_step_boundary(loose, edges({0, 1, 2, 3})),
                     Catch::Contains(": edge ") && Catch::Contains("is closed (its ends meet)"));
+  // a straight edge of length 1e-6 is short, not closed: its ends are its whole extent apart (a
+  // closed edge was one with ends within the gap tolerance, 1e-6 of the diagonal, at first)
+  const gp_Pnt p0(0, 0, 0), p1(1, 0, 0), p2(1, 1e-6, 0), p3(0, 1, 0.5);
+  BRep_Builder quad_builder;
+  TopoDS_Compound quad;
+  quad_builder.MakeCompound(quad);
+  for (const auto& [from, to] : {std::pair{p0, p1}, {p1, p2}, {p2, p3}, {p3, p0}})
+    quad_builder.Add(quad, BRepBuilderAPI_MakeEdge(from, to).Edge());
+  const std::string short_side = write_shape(dir, "short.step", quad);
+  CHECK(cad::import_step_boundary(short_side, edges({0, 1, 2, 3})).max_gap == 0);
 }
 
 TEST_CASE("import_step_boundary: a file in metres or centimetres gives its own numbers and names its unit", "[cad]") {
@@ -339,5 +351,19 @@ TEST_CASE("import_step_boundary: a file in metres or centimetres gives its own n
     CHECK(import.unit == unit);
     require_same_boundary(import.boundary, in_mm.boundary, 0.0);
     CHECK(cad::import_note(import)["unit"] == unit);
+  }
+  // conversion-based units, written by OpenCASCADE (which converts the millimetres it is given):
+  // the import keeps the file's numbers, 1/25.4 and 1/0.0254 of the millimetres, in lower case
+  const std::string previous = Interface_Static::CVal("write.step.unit");
+  for (const auto& [unit, name, per_mm] : {std::tuple{"INCH", "inch", 1 / 25.4}, {"MIL", "mil", 1 / 0.0254}}) {
+    Interface_Static::SetCVal("write.step.unit", unit);
+    const std::string path =
+        write_edges(dir, std::string(name) + ".step", {b.bottom, b.right, reversed(b.top), reversed(b.left)});
+    Interface_Static::SetCVal("write.step.unit", previous.c_str());
+    const cad::StepImport import = cad::import_step_boundary(path, edges({0, 1, 2, 3}));
+    INFO(name);
+    CHECK(import.unit == name);
+    const Eigen::MatrixX3d expected = per_mm * in_mm.boundary.bottom.points;
+    CHECK((import.boundary.bottom.points - expected).cwiseAbs().maxCoeff() <= 1e-12 * expected.cwiseAbs().maxCoeff());
   }
 }

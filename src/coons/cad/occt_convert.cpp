@@ -194,13 +194,20 @@ namespace {
 
 // OpenCASCADE's name of a STEP length unit (STEPControl_Reader::FileUnits) as a value of its
 // "xstep.cascade.unit" parameter, the unit the transfer converts to; empty when it has none.
-std::string cascade_unit(std::string name) {
+std::string lower_case(std::string name) {
   for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
+  return name;
+}
+
+// OpenCASCADE's name of a STEP length unit (STEPControl_Reader::FileUnits: SI units as
+// "millimetre", conversion-based ones as the file spells them, "INCH") as a value of its
+// "xstep.cascade.unit" parameter, the unit the transfer converts to; empty when it has none.
+std::string cascade_unit(const std::string& name) {
   static const std::map<std::string, std::string> units = {
       {"millimetre", "MM"}, {"millimeter", "MM"}, {"metre", "M"},      {"meter", "M"},       {"centimetre", "CM"},
       {"centimeter", "CM"}, {"kilometre", "KM"},  {"kilometer", "KM"}, {"micrometre", "UM"}, {"micrometer", "UM"},
-      {"inch", "INCH"},     {"foot", "FT"},       {"mile", "MI"}};
-  const auto it = units.find(name);
+      {"inch", "INCH"},     {"foot", "FT"},       {"mile", "MI"},      {"mil", "MIL"},       {"microinch", "UIN"}};
+  const auto it = units.find(lower_case(name));
   return it == units.end() ? std::string() : it->second;
 }
 
@@ -215,8 +222,9 @@ TopoDS_Shape read_step_shape(const std::string& path, std::string* unit) {
   require_no_load_failure(path, reader);
   TColStd_SequenceOfAsciiString lengths, angles, solid_angles;
   reader.FileUnits(lengths, angles, solid_angles);
-  std::set<std::string> names;
-  for (int k = 1; k <= lengths.Length(); ++k) names.insert(lengths(k).ToCString());
+  std::set<std::string> names;  // lower case; a context without a length unit gives an empty name
+  for (int k = 1; k <= lengths.Length(); ++k)
+    if (const std::string name = lower_case(lengths(k).ToCString()); !name.empty()) names.insert(name);
   const std::string file_unit = names.size() == 1 ? *names.begin() : std::string();
   const std::string keep = cascade_unit(file_unit);
   // A process-wide parameter of OpenCASCADE: set for this transfer only, and put back.

@@ -174,13 +174,16 @@ gp_XYZ xyz(const Eigen::RowVector3d& p) { return {p(0), p(1), p(2)}; }
 
 // The sides of four edges from their chain, as OpenCASCADE orders a wire's edges (3D mode),
 // starting at the bottom (`start_edge`, a position in `chosen`, in the direction `start_reversed`
-// says). A closed edge (its ends within `closed_within`) has no direction in a chain: refused.
+// says). A closed edge has no direction in a chain: refused. Closed means ends within 1e-9 of the
+// edge's own extent (the diagonal of its poles' box), so that a straight edge of length 1e-9 is not
+// closed while a circle is.
 void chain_sides(const std::string& path, const std::vector<int>& chosen, const std::array<BSplineCurve, 4>& curves,
-                 int start_edge, bool start_reversed, double closed_within, std::array<BSplineCurve, 4>& walk,
+                 int start_edge, bool start_reversed, std::array<BSplineCurve, 4>& walk,
                  std::array<BSplineCurve, 4>& sides, StepImport& out) {
   for (int k = 0; k < 4; ++k) {
     const BSplineCurve& c = curves[k];
-    if ((c.points.row(0) - c.points.row(c.count() - 1)).norm() <= std::max(closed_within, Precision::Confusion()))
+    const double extent = (c.points.colwise().maxCoeff() - c.points.colwise().minCoeff()).norm();
+    if (extent > 0 && (c.points.row(0) - c.points.row(c.count() - 1)).norm() <= 1e-9 * extent)
       throw InputError(path, fmt::format("edge {}", chosen[k]),
                        "is closed (its ends meet), so the chain of edges cannot tell which way it runs; import the "
                        "face it bounds with --face, whose parameters orient it");
@@ -296,8 +299,7 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
       out.edge_reversed.push_back(side_reversed);
     }
   } else {
-    chain_sides(path, chosen, curves, start_edge, start_reversed, options.gap_tolerance * out.diagonal, walk, sides,
-                out);
+    chain_sides(path, chosen, curves, start_edge, start_reversed, walk, sides, out);
   }
 
   // Corner k joins the end of walk[k] to the start of walk[k + 1].

@@ -138,7 +138,7 @@ std::string tri_study_markdown(const std::vector<TriStudyEntry>& entries, const 
   line("");
   line("The mask b = a·(6 neighbours) + c·(3 far points), 6a + 3c = 1 (docs/math.md §9): c = −1/6 is the");
   line("quadratic-precision member, c = 0 the triangular Laplace mask. Per triangle, the optimal c of each objective");
-  line("that exists for triangles (exact thin plate, Dirichlet and twist energies; `target` is the mean squared");
+  line("that exists for triangles (exact thin plate, E3, Dirichlet and twist energies; `target` is the mean squared");
   line("distance to the file's analytic surface) at its own degree and, sides elevated exactly, at each higher degree");
   line("of the study; the objective at c* against c = −1/6 and c = 0. `flat`: the objective does not depend on c;");
   line("`bound`: the optimum is on a search bound (given in results.json).");

@@ -42,7 +42,7 @@ ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& 
 
 //! The slider of a triangular boundary (n ≥ 1): the triangular mask family over c ∈ [lower,
 //! upper] (default_tri_bounds when lower ≥ upper) at `options.frames` values plus the optima of
-//! thin_plate, dirichlet and twist (search_tri_c) and c = −1/6, 0; samples per side
+//! thin_plate, e3, dirichlet and twist (search_tri_c) and c = −1/6, 0; samples per side
 //! `options.samples` (sample_tri_surface). The parameter is called "alpha" on the page, as
 //! `coons solve T.json --alpha c` calls it.
 ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& options,
