@@ -5,6 +5,8 @@
 #include <sys/stat.h>
 
 #include <catch2/catch.hpp>
+#include <cerrno>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 
@@ -221,4 +223,24 @@ TEST_CASE("write_file_atomically: a symbolic link is written through and a pipe 
   for (const auto& e : fs::directory_iterator(dir.path)) names.push_back(e.path().filename().string());
   std::sort(names.begin(), names.end());
   CHECK(names == std::vector<std::string>{"link.json", "pipe", "target.json"});  // no staging file left
+}
+
+TEST_CASE("write_file_atomically and OutputSet: a write that fails while the writer runs is named by its reason",
+          "[io]") {
+  // A full disk fails one of the buffered writes long before the flush; errno was read only
+  // around the flush, and the error read "write failed: write failed". The writer here fails as
+  // such a write does: errno set, the stream bad.
+  TempDir dir;
+  const auto fail_like_a_full_disk = [](std::ostream& o) {
+    o << "partial\n";
+    errno = ENOSPC;
+    o.setstate(std::ios::badbit);
+  };
+  const std::string file = (dir.path / "f.txt").string();
+  CHECK_THROWS_WITH(write_file_atomically(file, fail_like_a_full_disk),
+                    Catch::StartsWith(file) && Catch::EndsWith("write failed: " + std::string(std::strerror(ENOSPC))));
+  CHECK(files_under(dir.path).empty());
+  OutputSet out((dir.path / "out").string());
+  CHECK_THROWS_WITH(out.write("a.txt", fail_like_a_full_disk),
+                    Catch::EndsWith("write failed: " + std::string(std::strerror(ENOSPC))));
 }

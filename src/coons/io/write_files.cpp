@@ -43,6 +43,20 @@ size_t utf8_letter(std::string_view s, size_t i) {
 
 std::string os_reason(int error) { return error ? std::strerror(error) : "write failed"; }
 
+// Flushes and closes a stream written with errno cleared before, and returns the reason of its
+// first failure: the errno of the write that failed while the writer ran (a full disk fails one of
+// the buffered writes long before the flush; reading errno only around the flush printed "write
+// failed: write failed"), else of the flush or the close.
+int finish_stream(std::ofstream& out) {
+  int error = out ? 0 : errno;
+  if (error == 0) errno = 0;
+  out.flush();
+  if (error == 0 && !out) error = errno;
+  out.close();
+  if (error == 0 && !out) error = errno;
+  return error;
+}
+
 // Staging files removed when the process is interrupted (SIGINT, SIGTERM, SIGHUP): a command
 // stopped with Ctrl-C while writing left its PATH.tmp-PID-N files (43 MB for an OBJ) behind. The
 // handler unlinks every staging name this process has made (a name already renamed into place or
@@ -147,6 +161,7 @@ void write_file_atomically(const std::string& given, const std::function<void(st
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) throw InputError(path, "", "cannot create the file: " + os_reason(errno));
+    errno = 0;
     try {
       write(out);
     } catch (...) {
@@ -154,10 +169,7 @@ void write_file_atomically(const std::string& given, const std::function<void(st
       std::remove(temporary.c_str());
       throw;
     }
-    errno = 0;
-    out.flush();
-    const int error = errno;
-    out.close();
+    const int error = finish_stream(out);
     if (!out) {
       std::remove(temporary.c_str());
       throw InputError(path, "", "write failed: " + os_reason(error));
@@ -242,11 +254,9 @@ void OutputSet::write_staged(const std::string& path, const std::string& staging
                              const std::function<void(std::ostream&)>& write) {
   std::ofstream out(staging, std::ios::binary | std::ios::trunc);
   if (!out) throw InputError(path, "", "cannot create the file: " + os_reason(errno));
-  write(out);
   errno = 0;
-  out.flush();
-  const int error = errno;
-  out.close();
+  write(out);
+  const int error = finish_stream(out);
   if (!out) throw InputError(path, "", "write failed: " + os_reason(error));
 }
 
