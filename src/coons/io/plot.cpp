@@ -97,7 +97,10 @@ std::string run_gnuplot(const std::string& script, const std::string& png) {
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return "gnuplot was not found (is gnuplot-nox installed?)";
     if (status == 0)
       return "gnuplot could not write " + partial + (first.empty() ? " (is its folder writable?)" : ": " + first);
-    return "gnuplot failed" + (first.empty() ? fmt::format(" (status {}, no message)", status) : ": " + first);
+    const std::string how = WIFEXITED(status)     ? fmt::format("exit status {}", WEXITSTATUS(status))
+                            : WIFSIGNALED(status) ? fmt::format("killed by signal {}", WTERMSIG(status))
+                                                  : fmt::format("wait status {}", status);
+    return "gnuplot failed" + (first.empty() ? " (" + how + ", no message)" : ": " + first);
   }
   std::error_code ec;
   fs::rename(partial, png, ec);
