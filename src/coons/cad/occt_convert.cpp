@@ -192,8 +192,6 @@ void require_no_load_failure(const std::string& path, XSControl_Reader& reader) 
 
 namespace {
 
-// OpenCASCADE's name of a STEP length unit (STEPControl_Reader::FileUnits) as a value of its
-// "xstep.cascade.unit" parameter, the unit the transfer converts to; empty when it has none.
 std::string lower_case(std::string name) {
   for (char& c : name) c = char(std::tolower(static_cast<unsigned char>(c)));
   return name;

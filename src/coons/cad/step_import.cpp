@@ -107,66 +107,59 @@ BSplineCurve edge_curve(const TopoDS_Edge& edge, int index, const std::string& p
   return c;
 }
 
-// For a face: the position in its wire of the edge that runs along v = v_min of the face's
-// parameter rectangle, and whether it runs towards decreasing u; {-1, false} when there is none.
-std::pair<int, bool> bottom_of_face(const TopoDS_Face& face, const TopoDS_Wire& wire) {
-  double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
-  BRepTools::UVBounds(face, u0, u1, v0, v1);
-  const double tol = 1e-9 * std::max(1.0, std::abs(v1 - v0)) + Precision::PConfusion();
-  int k = 0;
-  for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next(), ++k) {
-    double first = 0, last = 0;
-    const Handle(Geom2d_Curve) uv = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Current()), face, first, last);
-    if (uv.IsNull()) continue;
-    const gp_Pnt2d a = uv->Value(first), b = uv->Value(last), m = uv->Value(0.5 * (first + last));
-    if (std::abs(a.Y() - v0) <= tol && std::abs(b.Y() - v0) <= tol && std::abs(m.Y() - v0) <= tol &&
-        std::abs(a.X() - b.X()) > tol)
-      return {k, b.X() < a.X()};
-  }
-  return {-1, false};
-}
-
 // For a face: which position in its wire holds each side (bottom, right, top, left: v = v_min,
 // u = u_max, v = v_max, u = u_min of the face's parameter rectangle) and whether the side runs
 // against the edge's curve (bottom and top run towards increasing u, left and right towards
-// increasing v); nullopt unless each side is exactly one edge on that line. The direction comes
-// from the edge's curve on the face, whose parameter is its 3D curve's, so a closed edge (the
-// circle of a tube, start = end) is oriented as surely as any other, and a seam that is both left
-// and right (its two curves on the face) is found twice.
+// increasing v). The direction comes from the edge's curve on the face, whose parameter is its 3D
+// curve's, so a closed edge (the circle of a tube, start = end) is oriented as surely as any
+// other, and a seam that is both left and right (its two curves on the face) is found twice.
 struct FaceSide {
-  int position = -1;
+  int side = -1;      //!< 0 bottom, 1 right, 2 top, 3 left; -1: on no side line
+  int position = -1;  //!< in the wire
   bool reversed = false;
 };
-std::optional<std::array<FaceSide, 4>> sides_of_face(const TopoDS_Face& face, const TopoDS_Wire& wire) {
+
+// Every edge of the wire classified, in wire order (an edge without a curve on the face: side -1).
+std::vector<FaceSide> classify_face_edges(const TopoDS_Face& face, const TopoDS_Wire& wire) {
   double u0 = 0, u1 = 0, v0 = 0, v1 = 0;
   BRepTools::UVBounds(face, u0, u1, v0, v1);
   const double tol_u = 1e-9 * std::max(1.0, std::abs(u1 - u0)) + Precision::PConfusion();
   const double tol_v = 1e-9 * std::max(1.0, std::abs(v1 - v0)) + Precision::PConfusion();
-  std::array<FaceSide, 4> sides;
+  auto on = [](double line, double tol, std::initializer_list<double> values) {
+    return std::all_of(values.begin(), values.end(), [&](double x) { return std::abs(x - line) <= tol; });
+  };
+  std::vector<FaceSide> out;
   int position = 0;
   for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next(), ++position) {
+    FaceSide f;
+    f.position = position;
     double first = 0, last = 0;
     const Handle(Geom2d_Curve) uv = BRep_Tool::CurveOnSurface(TopoDS::Edge(e.Current()), face, first, last);
-    if (uv.IsNull()) return std::nullopt;
-    const gp_Pnt2d a = uv->Value(first), b = uv->Value(last), m = uv->Value(0.5 * (first + last));
-    auto on = [](double line, double tol, std::initializer_list<double> values) {
-      return std::all_of(values.begin(), values.end(), [&](double x) { return std::abs(x - line) <= tol; });
-    };
-    int side = -1;
-    bool reversed = false;
-    if (std::abs(b.X() - a.X()) > tol_u) {  // along u: bottom or top
-      if (on(v0, tol_v, {a.Y(), b.Y(), m.Y()})) side = 0;
-      if (on(v1, tol_v, {a.Y(), b.Y(), m.Y()})) side = 2;
-      reversed = b.X() < a.X();
-    } else if (std::abs(b.Y() - a.Y()) > tol_v) {  // along v: left or right
-      if (on(u1, tol_u, {a.X(), b.X(), m.X()})) side = 1;
-      if (on(u0, tol_u, {a.X(), b.X(), m.X()})) side = 3;
-      reversed = b.Y() < a.Y();
+    if (!uv.IsNull()) {
+      const gp_Pnt2d a = uv->Value(first), b = uv->Value(last), m = uv->Value(0.5 * (first + last));
+      if (std::abs(b.X() - a.X()) > tol_u) {  // along u: bottom or top
+        if (on(v0, tol_v, {a.Y(), b.Y(), m.Y()})) f.side = 0;
+        if (on(v1, tol_v, {a.Y(), b.Y(), m.Y()})) f.side = 2;
+        f.reversed = b.X() < a.X();
+      } else if (std::abs(b.Y() - a.Y()) > tol_v) {  // along v: left or right
+        if (on(u1, tol_u, {a.X(), b.X(), m.X()})) f.side = 1;
+        if (on(u0, tol_u, {a.X(), b.X(), m.X()})) f.side = 3;
+        f.reversed = b.Y() < a.Y();
+      }
     }
-    if (side < 0 || sides[side].position >= 0) return std::nullopt;
-    sides[side] = {position, reversed};
+    out.push_back(f);
   }
-  if (position != 4) return std::nullopt;
+  return out;
+}
+
+// Each side exactly one edge of four on its line, indexed by side; else nullopt.
+std::optional<std::array<FaceSide, 4>> sides_of_face(const std::vector<FaceSide>& edges) {
+  if (edges.size() != 4) return std::nullopt;
+  std::array<FaceSide, 4> sides;
+  for (const FaceSide& f : edges) {
+    if (f.side < 0 || sides[std::size_t(f.side)].position >= 0) return std::nullopt;
+    sides[std::size_t(f.side)] = f;
+  }
   return sides;
 }
 
@@ -269,12 +262,15 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
       throw InputError(
           path, "--face",
           fmt::format("face {} has {} edges in its outer wire; a Coons boundary needs 4", options.face, chosen.size()));
-    face_sides = sides_of_face(face, wire);
-    const auto [bottom, reversed_bottom] = bottom_of_face(face, wire);
-    if (bottom >= 0) {
-      start_edge = bottom;
-      start_reversed = reversed_bottom;
-    }
+    const std::vector<FaceSide> classified = classify_face_edges(face, wire);
+    face_sides = sides_of_face(classified);
+    // otherwise the chain starts at the first edge along v = v_min, in +u
+    for (const FaceSide& f : classified)
+      if (f.side == 0) {
+        start_edge = f.position;
+        start_reversed = f.reversed;
+        break;
+      }
   } else {
     for (int e : options.edges)
       if (e >= edges.Extent())
@@ -292,7 +288,8 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   std::array<BSplineCurve, 4> sides;  // bottom, right, top, left in their own directions
   if (face_sides) {
     for (int k = 0; k < 4; ++k) {
-      const auto [e, side_reversed] = (*face_sides)[k];
+      const int e = (*face_sides)[std::size_t(k)].position;
+      const bool side_reversed = (*face_sides)[std::size_t(k)].reversed;
       sides[k] = side_reversed ? reversed(curves[e]) : curves[e];
       walk[k] = k < 2 ? sides[k] : reversed(sides[k]);
       out.edge_indices.push_back(chosen[e]);
