@@ -250,3 +250,20 @@ TEST_CASE("plot_curves: an output gnuplot cannot open says so, not that gnuplot 
   CHECK_THAT(why, !Catch::Contains("installed"));
   CHECK_FALSE(std::filesystem::exists(png));
 }
+
+TEST_CASE("run_gnuplot: a gnuplot that never finishes is stopped and named, and leaves no file", "[io][plot]") {
+  const TempDir dir;
+  const std::string fake = dir.file("gnuplot");
+  std::ofstream(fake) << "#!/bin/sh\nexec sleep 600\n";
+  std::filesystem::permissions(fake, std::filesystem::perms::owner_all);
+  const std::string old_path = std::getenv("PATH") != nullptr ? std::getenv("PATH") : "";
+  ::setenv("PATH", (dir.file("") + ":" + old_path).c_str(), 1);  // the fake is found first
+  const std::string png = dir.file("hung.png");
+  const std::string why = run_gnuplot("plot x\n", png, 0.5);
+  ::setenv("PATH", old_path.c_str(), 1);
+  INFO(why);
+  CHECK(why == "gnuplot did not finish within 0.5 s and was stopped");
+  CHECK_FALSE(std::filesystem::exists(png));
+  CHECK_FALSE(std::filesystem::exists(png + ".part.png"));
+  CHECK_THAT(run_gnuplot("plot x\n", png, 0), Catch::Contains("bad gnuplot time limit"));
+}

@@ -81,13 +81,19 @@ std::string gnuplot_error(const fs::path& log_file) {
   return message.empty() ? first : message;
 }
 
-std::string run_gnuplot(const std::string& script, const std::string& png) {
+}  // namespace
+
+std::string run_gnuplot(const std::string& script, const std::string& png, double seconds) {
+  if (!(seconds > 0) || !std::isfinite(seconds)) return fmt::format("bad gnuplot time limit {} s", seconds);
   const Scratch scratch;
   if (scratch.dir.empty()) return "cannot create a temporary folder";
   const fs::path gp = scratch.dir / "plot.gp";
   std::ofstream(gp) << script;
   const std::string partial = partial_of(png);
-  const std::string command = "gnuplot " + quote(gp.string()) + " >" + quote((scratch.dir / "log").string()) + " 2>&1";
+  // coreutils' timeout runs gnuplot in its own process group and ends the group: TERM after
+  // `seconds`, KILL 5 s later (exit status 124 or 137); gnuplot reads no terminal input.
+  const std::string command = fmt::format("timeout -k 5 {} gnuplot {} </dev/null >{} 2>&1", seconds, quote(gp.string()),
+                                          quote((scratch.dir / "log").string()));
   const int status = std::system(command.c_str());
   if (status != 0 || !fs::exists(partial)) {
     const std::string first = gnuplot_error(scratch.dir / "log");
@@ -95,6 +101,8 @@ std::string run_gnuplot(const std::string& script, const std::string& png) {
     fs::remove(partial, ec);
     // the shell's 127: no gnuplot; 0 without the file: it could not write there (and may say nothing)
     if (WIFEXITED(status) && WEXITSTATUS(status) == 127) return "gnuplot was not found (is gnuplot-nox installed?)";
+    if (WIFEXITED(status) && (WEXITSTATUS(status) == 124 || WEXITSTATUS(status) == 137))
+      return fmt::format("gnuplot did not finish within {} s and was stopped", seconds);
     if (status == 0)
       return "gnuplot could not write " + partial + (first.empty() ? " (is its folder writable?)" : ": " + first);
     const std::string how = WIFEXITED(status)     ? fmt::format("exit status {}", WEXITSTATUS(status))
@@ -106,6 +114,8 @@ std::string run_gnuplot(const std::string& script, const std::string& png) {
   fs::rename(partial, png, ec);
   return ec ? "cannot rename " + partial + ": " + ec.message() : "";
 }
+
+namespace {
 
 // Literal text everywhere, UTF-8, sans-serif.
 std::string terminal(int width, int height, int font_size, const std::string& output) {

@@ -38,6 +38,14 @@ struct PlotOptions {
   [[nodiscard]] bool is_valid(std::string* why = nullptr) const;
 };
 
+//! How long a figure's gnuplot may run before it is stopped (a figure of the study takes well under 1 s).
+inline constexpr double kGnuplotSeconds = 120;
+
+//! Runs `script`, which must write `png`.part.png; renames that to `png` when gnuplot succeeded.
+//! gnuplot is stopped after `seconds`. Returns an empty string, or why there is no PNG (gnuplot
+//! missing, failed, stopped; its own message when it gave one). Nothing is left behind on failure.
+std::string run_gnuplot(const std::string& script, const std::string& png, double seconds = kGnuplotSeconds);
+
 //! The axis scales plot_curves uses for these series and options: {x is log, y is log}.
 std::pair<bool, bool> plot_log_axes(const std::vector<PlotSeries>& series, const PlotOptions& options);
 
