@@ -64,6 +64,21 @@ TEST_CASE("fit_degree_limit: each candidate form recovers its own exact sequence
   const LimitFit& free = fit_named(r4, "mu_inf + a*n^-p");
   CHECK(parameter(free, "p") == Approx(1.5).epsilon(1e-4));
   CHECK(parameter(free, "mu_inf") == Approx(4.0).epsilon(1e-5));
+  CHECK_FALSE(free.at_bound);
+}
+
+TEST_CASE("fit_degree_limit: an exponent stopped at the end of its range says so", "[study]") {
+  // μ = 4 + 1e9·n^−10: the best p (10) lies beyond max_rate = 8, where Brent stops
+  const DegreeLimitResult fast = fit_degree_limit(sequence(4.0, 1e9, 10));
+  const LimitFit& beyond = fit_named(fast, "mu_inf + a*n^-p");
+  CHECK(parameter(beyond, "p") == Approx(8).epsilon(1e-6));
+  CHECK(beyond.at_bound);
+  // within the range it is not at the bound, and the other forms never are
+  const DegreeLimitResult inside = fit_degree_limit(sequence(4.0, 1e3, 6));
+  CHECK(parameter(fit_named(inside, "mu_inf + a*n^-p"), "p") == Approx(6).epsilon(1e-4));
+  CHECK_FALSE(fit_named(inside, "mu_inf + a*n^-p").at_bound);
+  for (const LimitFit& f : fast.fits)
+    if (f.form != "mu_inf + a*n^-p") CHECK_FALSE(f.at_bound);
 }
 
 TEST_CASE("fit_degree_limit: the extrapolated limit, its rate and the within-tolerance degrees", "[study]") {

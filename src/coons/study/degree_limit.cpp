@@ -103,6 +103,9 @@ DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& po
     LimitFit free = fit_inverse_powers(tail, {0, p}, "mu_inf + a*n^-p");
     free.parameters.emplace_back("p", p);
     free.residual = res;
+    // Brent stops within about 1e-8 of the range's width of an end when the minimum lies there or beyond
+    const double near = 1e-6 * (options.max_rate - options.min_rate);
+    free.at_bound = p - options.min_rate <= near || options.max_rate - p <= near;
     r.fits.push_back(std::move(free));
   }
 

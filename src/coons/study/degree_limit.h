@@ -29,6 +29,9 @@ struct LimitFit {
   std::vector<std::pair<std::string, double>> parameters;  //!< ("mu_inf", .), ("a", .), ("b" or "p", .)
   double residual = 0;  //!< root-mean-square relative residual |μ − fit|/|μ| over the points used
   int points = 0;
+  //! `mu_inf + a*n^-p` only: p stopped at an end of the range searched, [min_rate, max_rate], so
+  //! the residual may fall further beyond it (an oscillating sequence stopped at p = 8).
+  bool at_bound = false;
 };
 
 //! kSuccess: a limit with its error estimate; kTooFewPoints: fewer than three points (no

@@ -140,8 +140,12 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& e, con
     out.push_back("no limit claimed: " + (e.limit.message.empty() ? std::string("no extrapolation") : e.limit.message) +
                   ".");
   if (const LimitFit* f = best_fit(e))
-    out.push_back(fmt::format("Of the candidate forms, {} fits best (rms relative residual {:.2g} over n ≥ 8).",
-                              f->form, f->residual));
+    out.push_back(fmt::format("Of the candidate forms, {} fits best (rms relative residual {:.2g} over n ≥ 8){}.",
+                              f->form, f->residual,
+                              f->at_bound ? fmt::format(", with p = {} at an end of the range searched, so a p "
+                                                        "beyond it may fit better",
+                                                        num(f->parameters.back().second))
+                                          : std::string()));
   else if (!e.limit.fits.empty())
     out.push_back(
         fmt::format("No candidate form is preferred: each has as many parameters as the {} point(s) at "
@@ -383,6 +387,7 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
       std::string params;
       for (const auto& [name, value] : f.parameters)
         params += fmt::format("{}{} = {}", params.empty() ? "" : ", ", name, num(value));
+      if (f.at_bound) params += " (p at an end of the range searched)";
       line(fmt::format("| {} | {} | {} | {} | {:.2g} |", e.boundary, e.objective, f.form, params, f.residual));
     }
   line("");

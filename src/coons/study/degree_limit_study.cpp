@@ -191,8 +191,10 @@ json degree_limit_json(const DegreeLimitEntry& e) {
   for (const LimitFit& f : e.limit.fits) {
     json parameters = json::object();
     for (const auto& [name, value] : f.parameters) parameters[name] = number_or_null(value);
-    fits.push_back(
-        {{"form", f.form}, {"parameters", parameters}, {"residual", number_or_null(f.residual)}, {"points", f.points}});
+    json fit = {
+        {"form", f.form}, {"parameters", parameters}, {"residual", number_or_null(f.residual)}, {"points", f.points}};
+    if (f.parameters.size() == 2 && f.parameters.back().first == "p") fit["p_at_bound"] = f.at_bound;
+    fits.push_back(std::move(fit));
   }
   json rates = json::array();
   for (auto [n, p] : e.limit.rates) rates.push_back({{"degree", n}, {"rate", number_or_null(p)}});
