@@ -86,6 +86,23 @@ TEST_CASE("numerical_derivative: one-sided near a domain end where the function 
   CHECK(std::abs(e.value(0) - 0.5 / std::sqrt(1.05)) < 1e-10);
 }
 
+TEST_CASE("numerical_derivative: a function that is another one outside the domain is differentiated inside it",
+          "[curves]") {
+  // |sin πs| is sin πs on [0, 1] and has kinks at its ends: central differences there read the
+  // other branch (the derivative at 0 was 0, not π)
+  auto f = [](double s) { return Eigen::RowVector3d(std::abs(std::sin(M_PI * s)), 0.1 * s, 0); };
+  auto smooth = [](double s) { return Eigen::RowVector3d(std::sin(M_PI * s), 0.1 * s, 0); };
+  for (const double s : {0.0, 0.02, 0.97, 1.0}) {
+    INFO("s = " << s);
+    const Eigen::RowVector3d exact1(M_PI * std::cos(M_PI * s), 0.1, 0), exact2(-M_PI * M_PI * std::sin(M_PI * s), 0, 0);
+    CHECK((numerical_derivative(f, 1, s).value - exact1).cwiseAbs().maxCoeff() < 1e-6);
+    CHECK((numerical_derivative(f, 2, s).value - exact2).cwiseAbs().maxCoeff() < 1e-3);
+    // a function smooth across the end keeps the central estimate, to its accuracy
+    CHECK((numerical_derivative(smooth, 1, s).value - exact1).cwiseAbs().maxCoeff() < 1e-12);
+    CHECK_FALSE(numerical_derivative(smooth, 1, s).one_sided);
+  }
+}
+
 TEST_CASE("AnalyticCurve: expressions in t on [t1, t2], reparametrised to [0, 1] (LN1)", "[curves]") {
   const AnalyticCurve c({"cos(t)", "sin(t)", "t^2 + 1e-3"}, 0.5, 2.0);
   for (double s : {0.0, 0.25, 1.0}) {
@@ -116,6 +133,25 @@ TEST_CASE("AnalyticCurve: an expression that does not parse names its component"
   CHECK_THROWS_AS(AnalyticCurve({"x", "0", "0"}), ExpressionError);     // unknown variable
   CHECK_THROWS_AS(AnalyticCurve({"t, 2", "0", "0"}), ExpressionError);  // two values
   CHECK_THROWS_AS(AnalyticCurve({"", "0", "0"}), ExpressionError);
+}
+
+TEST_CASE("AnalyticCurve: an assignment is refused, and no component reaches another's variable", "[curves]") {
+  // "t=0.5" in y set the t that z then read: r(1) came out (1, 0.5, 0.5)
+  for (const char* y : {"t=0.5", "t+=1", "(t = 2) * 0", "t *= 2"}) {
+    INFO(y);
+    try {
+      AnalyticCurve c({"t", y, "t"});
+      FAIL("no exception");
+    } catch (const ExpressionError& e) {
+      CHECK(e.component() == 1);
+      CHECK_THAT(e.what(), Catch::Contains("assigns to a variable"));
+    }
+  }
+  // comparisons are not assignments
+  const AnalyticCurve c({"t", "t==1 ? 2 : (t<=0.5) + (t>=0.75) + (t!=0.25)", "t"});
+  CHECK(c.at(1.0) == Eigen::RowVector3d(1, 2, 1));
+  CHECK(c.at(0.25) == Eigen::RowVector3d(0.25, 1, 0.25));
+  CHECK(c.at(0.8) == Eigen::RowVector3d(0.8, 2, 0.8));
 }
 
 TEST_CASE("AnalyticCurve: an infinite derivative is NaN, not a number", "[curves]") {

@@ -10,15 +10,40 @@
 
 namespace coons {
 
+namespace {
+
+// muparser's assignments ("t=0.5", "t+=1") change the variable they name: the '=' of one, which
+// is not part of a comparison (==, <=, >=, !=). Returns its position, or npos.
+size_t assignment_at(const std::string& expression) {
+  for (size_t k = 0; k < expression.size(); ++k) {
+    if (expression[k] != '=') continue;
+    const char before = k > 0 ? expression[k - 1] : ' ', after = k + 1 < expression.size() ? expression[k + 1] : ' ';
+    if (after == '=') {  // "==": skip both
+      ++k;
+      continue;
+    }
+    if (before != '<' && before != '>' && before != '!') return k;
+  }
+  return std::string::npos;
+}
+
+}  // namespace
+
 struct AnalyticCurve::Compiled {
-  double t = 0;
+  // One variable per component, set before each evaluation: an expression cannot reach another's.
+  double t[3] = {0, 0, 0};
   mu::Parser parser[3];
 
   explicit Compiled(const std::array<std::string, 3>& expressions) {
     for (int c = 0; c < 3; ++c) {
       mu::Parser& p = parser[c];
+      // "t=0.5" in y was accepted and set the t that z then read: r(1, 0) came out (1, 0.5, 0.5)
+      if (assignment_at(expressions[c]) != std::string::npos)
+        throw ExpressionError(c, fmt::format("'{}' assigns to a variable ('=' at character {}); an expression in t "
+                                             "computes a value (compare with ==)",
+                                             expressions[c], assignment_at(expressions[c]) + 1));
       try {
-        for (const char* name : {"t", "u", "v", "s"}) p.DefineVar(name, &t);
+        for (const char* name : {"t", "u", "v", "s"}) p.DefineVar(name, &t[c]);
         p.DefineConst("pi", 3.14159265358979323846);
         p.DefineConst("e", 2.71828182845904523536);
         p.SetExpr(expressions[c]);
@@ -36,8 +61,12 @@ struct AnalyticCurve::Compiled {
   }
 
   Eigen::RowVector3d at(double value) {
-    t = value;
-    return {parser[0].Eval(), parser[1].Eval(), parser[2].Eval()};
+    Eigen::RowVector3d r;
+    for (int c = 0; c < 3; ++c) {
+      t[c] = value;
+      r[c] = parser[c].Eval();
+    }
+    return r;
   }
 };
 

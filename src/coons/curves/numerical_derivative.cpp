@@ -132,22 +132,39 @@ NumericalDerivative numerical_derivative(const std::function<Eigen::RowVector3d(
     d.rounding = std::numeric_limits<double>::epsilon() * largest * weights * std::pow(3.0, d.column);
     return d;
   };
-  bool nonfinite = false;
   auto centred = [&](double h) { return central(f, r, s, h); };
-  NumericalDerivative d = consistent(centred, h0, kShrink * kShrink, &nonfinite);
-  if (!nonfinite) return with_rounding(d, true);
-  // The function may be undefined outside the domain: central differences that stay inside it.
-  const double room = 0.9 * std::min(s - domain_lo, domain_hi - s) / (r == 3 ? 2 : 1);
-  if (room >= 1e-3 && room < h0) {
-    d = consistent(centred, room, kShrink * kShrink, &nonfinite);
-    if (!nonfinite) return with_rounding(d, true);
-  }
-  // One-sided, pointing into the domain (towards its middle).
-  const int dir = (s - domain_lo) <= (domain_hi - s) ? +1 : -1;
-  d = consistent([&](double h) { return one_sided(f, r, s, h, dir); }, h0 / (r + 1), kShrink, &nonfinite);
-  d.one_sided = true;
-  if (nonfinite) d.value.setConstant(std::numeric_limits<double>::quiet_NaN());
-  return with_rounding(d, false);
+  // Differences that stay in the domain: central ones from the room left inside it, else
+  // one-sided ones pointing into it (towards its middle); NaN when those meet non-finite values too.
+  auto inside = [&]() {
+    bool nonfinite = false;
+    const double room = 0.9 * std::min(s - domain_lo, domain_hi - s) / (r == 3 ? 2 : 1);
+    if (room >= 1e-3 && room < h0) {
+      const NumericalDerivative d = consistent(centred, room, kShrink * kShrink, &nonfinite);
+      if (!nonfinite) return with_rounding(d, true);
+    }
+    const int dir = (s - domain_lo) <= (domain_hi - s) ? +1 : -1;
+    NumericalDerivative d =
+        consistent([&](double h) { return one_sided(f, r, s, h, dir); }, h0 / (r + 1), kShrink, &nonfinite);
+    d.one_sided = true;
+    if (nonfinite) d.value.setConstant(std::numeric_limits<double>::quiet_NaN());
+    return with_rounding(d, false);
+  };
+  bool nonfinite = false;
+  const NumericalDerivative d = consistent(centred, h0, kShrink * kShrink, &nonfinite);
+  if (nonfinite) return inside();  // the function may be undefined outside the domain
+  NumericalDerivative across = with_rounding(d, true);
+  const double reach = (r == 3 ? 2 : 1) * h0;
+  if (s - reach >= domain_lo && s + reach <= domain_hi) return across;
+  // The first steps left the domain, where the function may be another one: abs(sin πt) is
+  // sin πt on [0, 1] only, and its derivative at 0 came out 0, not π. The central estimate stands
+  // when the one inside the domain agrees with it to that one's accuracy (it is the more accurate
+  // of the two); else the inside one does.
+  NumericalDerivative within = inside();
+  if (!within.value.allFinite()) return across;
+  const double disagreement = (across.value - within.value).cwiseAbs().maxCoeff();
+  const double allowed = std::max(100 * (within.error_estimate + within.rounding),
+                                  1e-6 * std::max(1.0, across.value.cwiseAbs().maxCoeff()));
+  return disagreement <= allowed ? across : within;
 }
 
 }  // namespace coons

@@ -14,7 +14,8 @@
 // tests/curves/analytic_curve_test.cpp): relative to the size of the derivative, ≈ 1e-13 for
 // order 1, ≈ 1e-12 for order 2, ≈ 1e-10 for order 3. Central differences are used (even error
 // expansion in h); when they hit a non-finite value (the function is undefined just outside its
-// domain, e.g. sqrt at 0) the step is first limited to the room left inside the domain, and at the
+// domain, e.g. sqrt at 0) or disagree with differences inside the domain (a function that is another
+// one outside it, such as |sin πs| on [0, 1]) the step is first limited to the room left inside the domain, and at the
 // domain's ends one-sided differences pointing into it are used, which are less accurate (≈ 1e-8
 // for order 1).
 #pragma once
@@ -38,7 +39,9 @@ struct NumericalDerivative {
 };
 
 //! d^r f / ds^r at s, r = 1, 2 or 3, starting from step h0 (default 0.1).
-//! `domain_lo`/`domain_hi` only choose the direction of one-sided differences.
+//! [domain_lo, domain_hi] is where f is the function meant: where the first steps leave it, an
+//! estimate from differences inside it (central from the room left, else one-sided) is made too,
+//! and replaces the central one unless they agree to its accuracy (|sin πs| at 0 gives π, not 0).
 NumericalDerivative numerical_derivative(const std::function<Eigen::RowVector3d(double)>& f, int r, double s,
                                          double h0 = 0, double domain_lo = 0, double domain_hi = 1);
 
