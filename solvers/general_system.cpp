@@ -67,8 +67,11 @@ int balancing_exponent(const Eigen::SparseMatrix<double>& A) {
   }
   if (largest == std::numeric_limits<int>::min()) return 0;
   if (largest <= kBalancedExponent && smallest >= -kBalancedExponent) return 0;
-  // centred: the largest ends at 2^((largest − smallest)/2), the smallest as far below 1
-  return -static_cast<int>(std::floor((double(largest) + double(smallest)) / 2));
+  // centred: the largest ends at 2^((largest − smallest)/2), the smallest as far below 1; but the
+  // largest stays below 2^1016, so that A stays finite (diag(1e-320, 1e300) was centred by 2^34:
+  // 1e300 became inf and every backend failed with a made-up reason)
+  const int centred = -static_cast<int>(std::floor((double(largest) + double(smallest)) / 2));
+  return std::min(centred, 1015 - largest);
 }
 
 std::string GeneralRun::status_name() const { return skipped ? "skipped" : to_string(status); }

@@ -174,6 +174,22 @@ TEST_CASE("balancing_exponent: centres the extreme magnitudes of A, and leaves o
   CHECK(balancing_exponent(diagonal({1e300, 1e-10})) == -481);    // 2^996 and 2^-34 become 2^515 and 2^-515
 }
 
+TEST_CASE("balancing_exponent: the largest entry stays finite when the magnitudes span more than the doubles",
+          "[solvers]") {
+  // diag(1e-320, 1e300): centring would scale by 2^34 and make 1e300 infinite, and every backend
+  // then failed with a made-up reason (singular, underflow, overflow)
+  const Eigen::SparseMatrix<double> A = sparse_of(Eigen::Vector2d(1e-320, 1e300).asDiagonal());
+  CHECK(balancing_exponent(A) == 1015 - std::ilogb(1e300));
+  const GeneralSystem system = system_of(A, Eigen::MatrixXd(Eigen::Vector2d(1e-320, 1e300)), true);
+  for (const char* name : {"eigen-lu", "umfpack"}) {
+    const GeneralRun run = run_general_system(coons::test::backend(name), system, SolverOptions{});
+    INFO(name << ": " << run.status_name() << " " << run.reason);
+    CHECK(run.ok());
+    REQUIRE(run.backward_error.has_value());
+    CHECK(*run.backward_error <= 1e-15);
+  }
+}
+
 TEST_CASE("run_general_system: scaled identities of condition 1 are solved by every backend that applies",
           "[solvers]") {
   // 1e-200·I stopped gmres's incomplete LU ("singular": its row norms underflow) and 1e-310·I
