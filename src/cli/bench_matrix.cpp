@@ -123,14 +123,17 @@ int run_bench_matrix(BenchMatrixRequest r) {
   options.max_iterations = r.max_iterations;
   require_valid_solver_options(options);
   const std::vector<const solvers::SolverInfo*> backends = chosen_backends(r.solvers);
-  // As in `coons solve`: a stopping rule that none of the chosen backends reads is an error.
-  if (std::none_of(backends.begin(), backends.end(),
-                   [](const solvers::SolverInfo* b) { return b->family == solvers::SolverFamily::kIterative; }))
+  // As in `coons solve`: a stopping rule that none of the chosen backends reads is an error (a
+  // backend that needs a grid stencil, mg say, is skipped here and reads none).
+  if (std::none_of(backends.begin(), backends.end(), [](const solvers::SolverInfo* b) {
+        return b->family == solvers::SolverFamily::kIterative && solvers::accepts_matrix(*b);
+      }))
     for (const auto& [option, name] :
          {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}})
       if (given(option))
         throw InputError("command line", name,
-                         fmt::format("{} is a stopping rule of the iterative solvers; none of --solvers {} is one",
+                         fmt::format("{} is a stopping rule of the iterative solvers; none of --solvers {} is one "
+                                     "that runs on a matrix",
                                      name, fmt::join(r.solvers, ",")));
 
   // The sizes a file declares are checked before the reader allocates for them (a 72-byte file

@@ -427,12 +427,19 @@ InputError samples_without_target(const std::string& objective) {
           "--samples sets the target's sampling but --objective '" + objective + "' has no target term"};
 }
 
+bool zero_digits(const std::string& number) {
+  const bool hex = number.find_first_of("xX") != std::string::npos;
+  const std::string digits = number.substr(0, number.find_first_of(hex ? "pP" : "eE"));
+  return digits.find_first_of(hex ? "123456789abcdefABCDEF" : "123456789") == std::string::npos;
+}
+
 const CLI::Validator& fold_negative_zero() {
   static const CLI::Validator fold(
       [](std::string& value) {
         char* end = nullptr;
         const double number = std::strtod(value.c_str(), &end);
-        if (end != value.c_str() && *end == '\0' && number == 0) value = "0";
+        // (1e-400 also reads as 0: it is left for the check that refuses it)
+        if (end != value.c_str() && *end == '\0' && number == 0 && zero_digits(value)) value = "0";
         return std::string();
       },
       "", "fold -0 to 0");

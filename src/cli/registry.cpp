@@ -1,5 +1,6 @@
 #include "registry.h"
 
+#include <cstdlib>
 #include <filesystem>
 #include <iostream>
 #include <new>
@@ -26,13 +27,25 @@ int fail(int status, const std::string& message) {
 
 // Every option and positional that takes a value refuses an empty one: CLI11 converts "" to 0
 // for a number (`--alpha ''` solved the Laplace net, `--threads ''` used every core), and no
-// file name, folder or backend name is empty either.
+// file name, folder or backend name is empty either. A number too small for a double is refused.
 void refuse_empty_values(CLI::App& app) {
   const CLI::Validator non_empty(
       [](std::string& value) { return value.empty() ? std::string("an empty value is not allowed") : std::string(); },
       "", "NON_EMPTY");
-  for (CLI::Option* option : app.get_options())
+  // strtod reads 1e-400 as 0 (with ERANGE, which CLI11 does not look at): --alpha 1e-400 solved at
+  // α = 0 without a word. A number whose digits are not all zero and that reads as 0 is refused.
+  const CLI::Validator representable(
+      [](std::string& value) {
+        char* end = nullptr;
+        if (std::strtod(value.c_str(), &end) != 0 || end != value.c_str() + value.size() || zero_digits(value))
+          return std::string();
+        return "'" + value + "' is below the smallest double and would be read as 0";
+      },
+      "", "REPRESENTABLE");
+  for (CLI::Option* option : app.get_options()) {
     if (option->get_type_size_max() > 0) option->check(non_empty);
+    if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(representable);
+  }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*sub);
 }
 

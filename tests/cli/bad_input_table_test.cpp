@@ -205,6 +205,11 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"search-alpha " + quoted(kData + "/triangles/dome_half.json") + " --objective thin_plate --upper 1e61",
        "bounds must lie in [-1e60, 1e60]"},
       {"solve " + good + " --alpha ''", "--alpha: an empty value"},  // was alpha = 0, exit 0
+      // strtod reads these as 0 (ERANGE): they solved at alpha = 0 and weight 0, exit 0
+      {"solve " + good + " --alpha 1e-400", "--alpha: '1e-400' is below the smallest double and would be read as 0"},
+      {"solve " + good + " --alpha=-0x1p-2000", "--alpha: '-0x1p-2000' is below the smallest double"},
+      {"sweep " + good + " --from 1e-999 --out {OUT}", "--from: '1e-999' is below the smallest double"},
+      {"batch " + good + " --alphas 0 1e-330 --out {OUT}", "--alphas: '1e-330' is below the smallest double"},
       {"solve " + good + " --threads '' --solver fast", "--threads: an empty value"},
       {"solve " + good + " --max-memory ''", "--max-memory: an empty value"},
       {"solve ''", "BOUNDARY: an empty value"},

@@ -139,6 +139,10 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
        "command line: --max-iterations: --max-iterations is a stopping rule of the iterative solvers; none of "
        "--solvers eigen-lu,eigen-ldlt is one"},
       {A + " --solvers eigen-lu --tolerance 1e-6", "command line: --tolerance: --tolerance is a stopping rule"},
+      // mg is iterative but needs a grid stencil: it is skipped here and reads no stopping rule
+      {A + " --solvers mg,eigen-lu --max-iterations 4",
+       "--max-iterations is a stopping rule of the iterative solvers; none of --solvers mg,eigen-lu is one that runs "
+       "on a matrix"},
   };
   for (const Case& c : cases) {
     const CommandResult r = run_coons("bench-matrix " + c.args);

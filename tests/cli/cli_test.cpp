@@ -999,3 +999,19 @@ TEST_CASE("coons solve --solver hypre-amg: a stop before the iteration limit is 
   }
 }
 #endif
+
+TEST_CASE("coons solve: numbers that are zero or subnormal as written are read, a smaller one is refused", "[cli]") {
+  const std::string file = quoted(kData + "/boundaries/dome.json");
+  for (const auto& [text, alpha] : {std::pair{"0.0e-5", 0.0}, std::pair{"-0", 0.0}, std::pair{"-0x0p3", 0.0},
+                                    std::pair{"4.9e-324", 4.9e-324}, std::pair{"-2e-310", -2e-310}}) {
+    const CommandResult r = run_coons("solve " + file + " --alpha=" + text);
+    INFO(text << ": " << r.err);
+    REQUIRE(r.status == 0);
+    const double read = nlohmann::json::parse(r.out)["alpha"].get<double>();
+    CHECK(read == alpha);
+    CHECK_FALSE(std::signbit(read) != std::signbit(alpha));  // -0 is folded to 0
+  }
+  const CommandResult tiny = run_coons("solve " + file + " --alpha=2e-324");  // rounds to 0
+  CHECK(tiny.status == 2);
+  CHECK_THAT(tiny.err, Catch::Contains("'2e-324' is below the smallest double"));
+}
