@@ -90,8 +90,7 @@ class EigenIterative : public LinearSolver {
     // measured so far (the clock is read between them, so a solve stops within about twice the
     // limit, and restarts, which slow CG down, stay few: doubling from 16 left CG at 2.7e-4 where
     // it had reached 1.1e-7 in 1 s; a first chunk of 1000 ran 70 s for a limit of
-    // 1 s where an iteration of bicgstab cost 23 ms), else a first chunk of the automatic limit and
-    // then chunks of 1000 (a system that converges within the automatic limit is not restarted). A column
+    // 1 s where an iteration of bicgstab cost 23 ms), else chunks of the automatic limit. A column
     // whose true residual is near the rounding floor (kStagnationFloor) and has not fallen by 10 %
     // over kStallChunks windows of min(limit, 1000) iterations has stalled there (a tolerance of
     // 1e-300 with 2^31 iterations would otherwise run for hours), and its lowest iterate is kept.
@@ -100,10 +99,7 @@ class EigenIterative : public LinearSolver {
     const int first_chunk = timed                       ? std::min(limit_, 16)
                             : limit_ > automatic_limit_ ? std::max(automatic_limit_, 1000)
                                                         : limit_;
-    // After the first chunk, chunks of the stall window: the stall test runs every 1000 iterations
-    // (it ran every automatic limit, 20 per unknown, and needed three of them without progress: a
-    // 45 × 45 net at tolerance 1e-300 took 154,880 iterations, 84 s, to stop)
-    const int stall_window = std::min(limit_, 1000);
+    const int stall_window = timed ? std::min(limit_, 1000) : first_chunk;
     const SpMat& A = *factorized_operator().matrix;
     X.setZero(B.rows(), 3);
     IterationEnd end;
@@ -170,7 +166,6 @@ class EigenIterative : public LinearSolver {
           }
           break;
         }
-        if (!timed) chunk = stall_window;
         if (timed) {  // the next chunk fills 0.9 of the time left, at the cost per iteration so far
           const double per_iteration = (now - column_start) / double(std::max(used, 1));
           const double fits = 0.9 * (deadline - now) / std::max(per_iteration, 1e-12);

@@ -71,7 +71,8 @@ int balancing_exponent(const Eigen::SparseMatrix<double>& A) {
   // largest stays below 2^1016, so that A stays finite (diag(1e-320, 1e300) was centred by 2^34:
   // 1e300 became inf and every backend failed with a made-up reason)
   const int centred = -static_cast<int>(std::floor((double(largest) + double(smallest)) / 2));
-  return std::min(centred, 1015 - largest);
+  if (centred <= 0) return centred;  // scaling down cannot overflow
+  return std::min(centred, std::max(0, 1015 - largest));
 }
 
 std::string GeneralRun::status_name() const { return skipped ? "skipped" : to_string(status); }
