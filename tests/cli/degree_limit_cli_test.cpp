@@ -36,6 +36,27 @@ TEST_CASE("coons degree-limit: the fields of the degree law, mu* from alpha*", "
   CHECK(j["fits"].size() == 3);  // three points from n = 8: the two-parameter forms and the a/n + b/n² form
 }
 
+TEST_CASE("coons degree-limit: the n^-p fit says whether p stopped at the end of its range", "[cli]") {
+  // (p_at_bound was never written: the form has three parameters, mu_inf, a and p)
+  const CommandResult r = run_coons("degree-limit '" + kData +
+                                    "/boundaries/pillow.json' --objective thin_plate --degrees 8 10 12 14 "
+                                    "--continuum-degrees 6");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json j = json::parse(r.out);
+  int with_p = 0;
+  for (const json& fit : j["fits"]) {
+    INFO(fit.dump());
+    const bool has_p = fit["parameters"].contains("p");
+    CHECK(fit.contains("p_at_bound") == has_p);
+    if (!has_p) continue;
+    ++with_p;
+    const double p = fit["parameters"]["p"];
+    CHECK(fit["p_at_bound"].get<bool>() == (std::abs(p - 8) < 1e-5 || std::abs(p - 0.05) < 1e-5));
+  }
+  CHECK(with_p == 1);
+}
+
 TEST_CASE("coons degree-limit: a flat objective gives nulls, not numbers", "[cli]") {
   const CommandResult r = run_coons("degree-limit '" + kData +
                                     "/boundaries/saddle.json' --objective thin_plate --degrees 4 6 "

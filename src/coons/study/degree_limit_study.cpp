@@ -193,7 +193,7 @@ json degree_limit_json(const DegreeLimitEntry& e) {
     for (const auto& [name, value] : f.parameters) parameters[name] = number_or_null(value);
     json fit = {
         {"form", f.form}, {"parameters", parameters}, {"residual", number_or_null(f.residual)}, {"points", f.points}};
-    if (f.parameters.size() == 2 && f.parameters.back().first == "p") fit["p_at_bound"] = f.at_bound;
+    if (!f.parameters.empty() && f.parameters.back().first == "p") fit["p_at_bound"] = f.at_bound;
     fits.push_back(std::move(fit));
   }
   json rates = json::array();
