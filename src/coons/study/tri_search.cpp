@@ -136,11 +136,22 @@ double tri_objective_value(const TriNet& net, const TriObjective& objective) {
   return value;
 }
 
-TriEvaluation evaluate_tri_objective(const TriNet& frame, const TriObjective& objective, double c,
+TriEvaluation evaluate_tri_objective(const TriNet& frame, const TriObjective& given, double c,
                                      const solvers::SolverInfo& solver, bool with_derivative) {
   TriEvaluation e;
   e.parameter = c;
   e.net = frame;
+  // Solved and measured about the boundary's centre (tri::boundary_centre), the target moved with
+  // it: every objective is invariant under translation, and far from the origin the rounding of
+  // the coordinates made the search call a boundary moved by 2^47 flat.
+  const Eigen::RowVector3d centre = tri::boundary_centre(frame);
+  TriNet centred = frame;
+  centred.points.rowwise() -= centre;
+  TriObjective objective = given;
+  if (objective.target) {
+    objective.target->point -= centre;
+    objective.target->net.points.rowwise() -= centre;
+  }
   const tri::TriMask mask{c};
   const tri::TriBackendCheck check = tri::check_tri_backend(solver, mask);
   e.summary.solver = solver.name;
@@ -149,31 +160,32 @@ TriEvaluation evaluate_tri_objective(const TriNet& frame, const TriObjective& ob
     e.summary.message = check.reason;
     return e;
   }
-  TriNet dnet(frame.n);
+  TriNet dnet(frame.n), solved = centred;
+  Eigen::MatrixX3d X;
   if (tri::interior_size(frame.n) > 0) {
-    const tri::TriMaskSystem sys = tri::assemble_tri_mask_system(frame, mask);
+    const tri::TriMaskSystem sys = tri::assemble_tri_mask_system(centred, mask);
     auto backend = solvers::make_solver(solver.name);
-    Eigen::MatrixX3d X;
     e.summary = tri::solve_tri_system(sys, *backend, X);
     if (!e.summary.ok()) return e;
-    e.net = tri::fill_interior(frame, X);
+    solved = tri::fill_interior(centred, X);
     if (with_derivative) {
       Eigen::MatrixX3d dX = Eigen::MatrixX3d::Zero(sys.B.rows(), 3);
-      const solvers::SolveSummary second = backend->solve(tri::tri_mask_sensitivity_rhs(e.net), dX);
+      const solvers::SolveSummary second = backend->solve(tri::tri_mask_sensitivity_rhs(solved), dX);
       if (!second.ok()) {
         e.summary = second;
         return e;
       }
       dnet = tri::fill_interior(dnet, dX);
     }
+    e.net = tri::fill_interior(frame, X.rowwise() + centre);  // the data kept bit for bit
   }
-  e.value = tri_objective_value(e.net, objective);
+  e.value = tri_objective_value(solved, objective);
   if (with_derivative) {
     e.has_derivative = true;
     for (const auto& [term, weight] : objective.terms)
       e.derivative += weight * (term == TriTerm::kTarget
-                                    ? (objective.target ? target_derivative(e.net, dnet, *objective.target) : 0.0)
-                                    : quadratic_derivative(e.net, dnet, term));
+                                    ? (objective.target ? target_derivative(solved, dnet, *objective.target) : 0.0)
+                                    : quadratic_derivative(solved, dnet, term));
   }
   return e;
 }
@@ -253,7 +265,10 @@ class TriSearch {
   // target, 1e-2·diag² per unit weight. Measured against the frame filled with its centroid, whose
   // energy is of the size of the boundary, a planar triangle with bumps of 5e-7 read as flat.
   bool flat() {
-    const Eigen::Vector3d box = (frame_.points.colwise().maxCoeff() - frame_.points.colwise().minCoeff()).transpose();
+    // the boundary's box: the frame's interior holds zeros, which for a boundary at x = 1e15 made
+    // the box 1e15 wide and the rounding floor of the energies larger than their spread
+    const auto [lo, hi] = tri::boundary_box(frame_);
+    const Eigen::Vector3d box = (hi - lo).transpose();
     const double diag = box.norm(), n = std::max(frame_.n, 1);
     floor_ = 0;
     for (const auto& [term, weight] : objective_.terms) {

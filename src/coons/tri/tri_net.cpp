@@ -36,6 +36,21 @@ TriBoundary boundary_of(const TriNet& net, std::string name) {
   return b;
 }
 
+std::pair<Eigen::RowVector3d, Eigen::RowVector3d> boundary_box(const TriNet& net) {
+  const TriBoundary b = boundary_of(net);
+  Eigen::RowVector3d lo = b.sides[0].colwise().minCoeff(), hi = b.sides[0].colwise().maxCoeff();
+  for (int s = 1; s < 3; ++s) {
+    lo = lo.cwiseMin(b.sides[s].colwise().minCoeff());
+    hi = hi.cwiseMax(b.sides[s].colwise().maxCoeff());
+  }
+  return {lo, hi};
+}
+
+Eigen::RowVector3d boundary_centre(const TriNet& net) {
+  const auto [lo, hi] = boundary_box(net);
+  return 0.5 * lo + 0.5 * hi;
+}
+
 TriNet frame_net(const TriBoundary& boundary) {
   const int n = boundary.n;
   TriNet net(n);

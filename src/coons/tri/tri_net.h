@@ -10,6 +10,7 @@
 #include <Eigen/Core>
 #include <array>
 #include <string>
+#include <utility>
 
 namespace coons::tri {
 
@@ -63,6 +64,14 @@ struct TriBoundary {
 
 //! The boundary of a net.
 TriBoundary boundary_of(const TriNet& net, std::string name = {});
+
+//! The centre of the bounding box of a net's boundary points (lo/2 + hi/2: no overflow). The mask
+//! family is affine (its weights sum to 1), so a net solved about this centre and moved back is the
+//! same net, without the rounding of coordinates far from the origin (a boundary moved by 2^45
+//! gave a thin plate energy of 11.8746 for 11.8125 at c = 0).
+Eigen::RowVector3d boundary_centre(const TriNet& net);
+//! The bounding box of a net's boundary points: {lo, hi}.
+std::pair<Eigen::RowVector3d, Eigen::RowVector3d> boundary_box(const TriNet& net);
 
 //! A net with the boundary on its sides and zeros inside. Each side is written in order 0, 1, 2,
 //! so a corner takes the value of the later side (corners are expected to agree; see corner_gap).

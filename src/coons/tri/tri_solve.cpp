@@ -82,11 +82,15 @@ TriSolveResult solve_tri_net(const TriNet& frame, const TriSolveOptions& options
     return result;
   }
   if (interior_size(frame.n) == 0) return result;  // nothing to solve (n < 3)
-  const TriMaskSystem sys = assemble_tri_mask_system(frame, options.mask);
+  // solved about the boundary's centre (boundary_centre), the data kept bit for bit
+  const Eigen::RowVector3d centre = boundary_centre(frame);
+  TriNet centred = frame;
+  centred.points.rowwise() -= centre;
+  const TriMaskSystem sys = assemble_tri_mask_system(centred, options.mask);
   auto solver = solvers::make_solver(options.solver->name, options.solver_options);
   Eigen::MatrixX3d X;
   result.summary = solve_tri_system(sys, *solver, X);
-  if (result.summary.ok()) result.net = fill_interior(std::move(result.net), X);
+  if (result.summary.ok()) result.net = fill_interior(std::move(result.net), X.rowwise() + centre);
   return result;
 }
 
