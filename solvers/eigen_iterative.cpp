@@ -92,7 +92,8 @@ class EigenIterative : public LinearSolver {
     // it had reached 1.1e-7 in 1 s; a first chunk of 1000 ran 70 s for a limit of
     // 1 s where an iteration of bicgstab cost 23 ms), else chunks of the automatic limit. A column
     // whose true residual is near the rounding floor (kStagnationFloor) and has not fallen by 10 %
-    // over kStallChunks windows of min(limit, 1000) iterations has stalled there (a tolerance of
+    // over kStallChunks windows (a chunk, or under a time limit min(limit, 1000) iterations) has
+    // stalled there (a tolerance of
     // 1e-300 with 2^31 iterations would otherwise run for hours), and its lowest iterate is kept.
     // A Krylov residual that ends 1e8 times above its start has diverged (bicgstab reached 1e137).
     const bool timed = options_.time_limit_seconds > 0;

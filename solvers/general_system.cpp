@@ -67,9 +67,10 @@ int balancing_exponent(const Eigen::SparseMatrix<double>& A) {
   }
   if (largest == std::numeric_limits<int>::min()) return 0;
   if (largest <= kBalancedExponent && smallest >= -kBalancedExponent) return 0;
-  // centred: the largest ends at 2^((largest − smallest)/2), the smallest as far below 1; but the
-  // largest stays below 2^1016, so that A stays finite (diag(1e-320, 1e300) was centred by 2^34:
-  // 1e300 became inf and every backend failed with a made-up reason)
+  // centred: the largest ends at 2^((largest − smallest)/2), the smallest as far below 1; but a
+  // scaling up stops where the largest would pass 2^1015, so that A stays finite (diag(1e-320,
+  // 1e300) was centred by 2^34: 1e300 became inf and every backend failed with a made-up reason),
+  // and a largest already beyond it is not scaled down instead (5e-324 would become 0)
   const int centred = -static_cast<int>(std::floor((double(largest) + double(smallest)) / 2));
   if (centred <= 0) return centred;  // scaling down cannot overflow
   return std::min(centred, std::max(0, 1015 - largest));

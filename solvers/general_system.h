@@ -62,8 +62,9 @@ struct GeneralRun {
 constexpr int kBalancedExponent = 100;
 
 //! The k for which 2^k A has the binary exponents of its largest and smallest non-zero magnitudes
-//! centred on 0, when either lies outside ±kBalancedExponent; else 0 (also for a zero matrix). The
-//! largest stays below 2^1016 (A's magnitudes may span more than the doubles: diag(1e-320, 1e300)).
+//! centred on 0, when either lies outside ±kBalancedExponent; else 0 (also for a zero matrix). A
+//! scaling up stops where the largest would pass 2^1015, and is none when it is already beyond (A's
+//! magnitudes may span more than the doubles: diag(1e-320, 1e300) is scaled by 2^19, not 2^34).
 //! The backends then solve (2^k A) Y = B and X = 2^k Y: exact (unless A's own range exceeds the
 //! doubles'), and it keeps the backends' squares and row norms away from under- and overflow:
 //! 1e-200·I, which has condition number 1, stopped an incomplete LU ("singular"), and 1e-310·I

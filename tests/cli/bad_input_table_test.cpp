@@ -210,6 +210,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --alpha=-0x1p-2000", "--alpha: '-0x1p-2000' is below the smallest double"},
       {"sweep " + good + " --from 1e-999 --out {OUT}", "--from: '1e-999' is below the smallest double"},
       {"batch " + good + " --alphas 0 1e-330 --out {OUT}", "--alphas: '1e-330' is below the smallest double"},
+      {"search-alpha " + good + " --objective target --target sphere:1e-400,0,-1,1.73",
+       "--target: '1e-400' is below the smallest double"},  // was a centre x of 0
       {"solve " + good + " --threads '' --solver fast", "--threads: an empty value"},
       {"solve " + good + " --max-memory ''", "--max-memory: an empty value"},
       {"solve ''", "BOUNDARY: an empty value"},

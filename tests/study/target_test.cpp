@@ -45,10 +45,13 @@ TEST_CASE("resolve_target: numbers beyond the coordinate bound are bad input nam
   CHECK(spec_error("sphere:0,0,0,1e60").empty());
 }
 
-TEST_CASE("resolve_target: a value that underflows is a finite number, not out of range", "[study]") {
+TEST_CASE("resolve_target: a subnormal value is a finite number, one below the doubles is refused", "[study]") {
   CHECK(spec_error("sphere:0,0,0,1e-320").empty());
   CHECK(resolve_target("sphere:0,0,0,1e-320", "b.json", Boundary{}, 41)->radius == 1e-320);
-  CHECK(resolve_target("sphere:1e-400,0,0,1", "b.json", Boundary{}, 41)->point.x() == 0);
+  // 1e-400 was read as 0, as every number of the command line was (the options now refuse it too)
+  CHECK(spec_error("sphere:1e-400,0,0,1").find("'1e-400' is below the smallest double and would be read as 0") !=
+        std::string::npos);
+  CHECK(resolve_target("sphere:0.0e-5,-0,0,1", "b.json", Boundary{}, 41)->point.x() == 0);
   // what stod also refused stays refused
   for (const std::string spec : {"sphere:0,0,0,1e999", "sphere:0,0,0,x", "sphere:0,0,,1", "sphere:0,0,0,1 "})
     CHECK(spec_error(spec).find("is not a finite number") != std::string::npos);

@@ -80,16 +80,16 @@ TEST_CASE("evaluate_tri_objective: the derivative does not depend on where the b
 
 TEST_CASE("search_tri_c: a boundary far from the origin has the optimum and values it has at the origin",
           "[study][tri]") {
-  // A random boundary with x on the grid of the doubles near 2^50 (steps of 1/4), moved there
+  // A random boundary with x on the grid of the doubles near 2^47 (steps of 1/32), moved there
   // exactly: it was solved where it lay, its energies were rounding noise, and the search called
   // it flat (monkey_saddle at 2^47; at 2^43 c* was -0.04636 for -0.04762), also because the
   // rounding floor of its flatness test measured the frame's zeros inside.
   TriNet net = random_tri_net(6, 77);
-  net.points.col(0) = (net.points.col(0) * 4).array().round() / 4;
+  net.points.col(0) = (net.points.col(0) * 32).array().round() / 32;
   const TriNet frame = frame_net(boundary_of(net));
   TriNet far = frame;
-  far.points.col(0).array() += std::ldexp(1.0, 50);
-  REQUIRE((far.points.col(0).array() - std::ldexp(1.0, 50)).matrix() == frame.points.col(0));
+  far.points.col(0).array() += std::ldexp(1.0, 47);
+  REQUIRE((far.points.col(0).array() - std::ldexp(1.0, 47)).matrix() == frame.points.col(0));
   AlphaSearchOptions options;
   std::tie(options.lower, options.upper) = default_tri_bounds(6);
   for (const char* name : {"thin_plate", "e3"}) {
@@ -102,15 +102,16 @@ TEST_CASE("search_tri_c: a boundary far from the origin has the optimum and valu
     CHECK(*there.parameter == Approx(*here.parameter).margin(1e-9));
     CHECK(there.value == Approx(here.value).epsilon(1e-9));
   }
-  // monkey_saddle's x values are multiples of 1/8 but for rounding: on that grid and moved by 1e15
-  // (the doubles there are eighths) it was flat with value 11.33, also once solved about its
-  // centre: the flatness test's rounding floor measured the frame's zeros inside, 1e15 away
+  // monkey_saddle with x on the grid of the doubles near 2^47 (steps of 1/32) and moved there: it
+  // was flat, also once solved about its centre, because the flatness test's rounding floor
+  // measured the frame's zeros inside, 2^47 away. (At 1e15 its extent, 1.6, is within 16 eps of
+  // its position: one point, and flat, as the rectangle's search has it.)
   tri::TriBoundary saddle = read_tri_boundary_file(COONS_DATA_DIR "/triangles/monkey_saddle.json");
-  for (Eigen::MatrixX3d& side : saddle.sides) side.col(0) = (side.col(0) * 8).array().round() / 8;
+  for (Eigen::MatrixX3d& side : saddle.sides) side.col(0) = (side.col(0) * 32).array().round() / 32;
   const TriNet saddle_here = frame_net(saddle);
   TriNet saddle_there = saddle_here;
-  saddle_there.points.col(0).array() += 1e15;
-  REQUIRE((boundary_of(saddle_there).sides[0].col(0).array() - 1e15).matrix() == saddle.sides[0].col(0));
+  saddle_there.points.col(0).array() += std::ldexp(1.0, 47);
+  REQUIRE((boundary_of(saddle_there).sides[0].col(0).array() - std::ldexp(1.0, 47)).matrix() == saddle.sides[0].col(0));
   const AlphaSearchSummary here = search_tri_c(saddle_here, objective("thin_plate"), lu(), options);
   const AlphaSearchSummary there = search_tri_c(saddle_there, objective("thin_plate"), lu(), options);
   INFO(there.brief_report());
@@ -122,10 +123,30 @@ TEST_CASE("search_tri_c: a boundary far from the origin has the optimum and valu
   const TriSolveResult at_origin = solve_tri_net(frame), moved = solve_tri_net(far);
   REQUIRE(moved.summary.ok());
   Eigen::MatrixX3d back = moved.net.points;
-  back.col(0).array() -= std::ldexp(1.0, 50);
-  CHECK((back - at_origin.net.points).cwiseAbs().maxCoeff() <= 1.0 / 8);  // half a step of x there
-  for (int side = 0; side < 3; ++side)                                    // the data bit for bit
+  back.col(0).array() -= std::ldexp(1.0, 47);
+  CHECK((back - at_origin.net.points).cwiseAbs().maxCoeff() <= 1.0 / 64);  // half a step of x there
+  for (int side = 0; side < 3; ++side)                                     // the data bit for bit
     CHECK(boundary_of(moved.net).sides[side] == boundary_of(far).sides[side]);
+}
+
+TEST_CASE("search_tri_c: a boundary that is one point to within rounding is flat", "[study][tri]") {
+  // (1, 2, 3) at degree 6 with z a few ulps off at four points, the spread of an elevated constant
+  // side: once the flatness floor was measured on the boundary alone, the search reported an
+  // optimum of noise (c = -0.118, value 2.8e-30)
+  TriNet net(6);
+  net.points.rowwise() = Eigen::RowVector3d(1, 2, 3);
+  const double off = std::nextafter(3.0, 4.0);
+  for (const auto& [j, k] : {std::pair{1, 0}, std::pair{6, 0}, std::pair{0, 2}, std::pair{0, 5}})
+    net.at(6 - j - k, j, k)(2) = off;
+  const TriNet frame = frame_net(boundary_of(net));
+  AlphaSearchOptions options;
+  std::tie(options.lower, options.upper) = default_tri_bounds(6);
+  for (const char* name : {"thin_plate", "e3", "dirichlet"}) {
+    const AlphaSearchSummary s = search_tri_c(frame, objective(name), lu(), options);
+    INFO(name << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kFlat);
+    CHECK_FALSE(s.parameter.has_value());
+  }
 }
 
 TEST_CASE("search_tri_c: the optimum is the minimum of a fine scan, inside the bounds", "[study][tri]") {

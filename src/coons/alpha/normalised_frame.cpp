@@ -48,11 +48,8 @@ NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& obje
   // An extent within rounding of the position is one point too: the exact elevation of a constant
   // side, computed in floating point, spreads 3 to 3.0000000000000004, and scaled up to unit size
   // that spread read as a shape with interior optima.
-  // Axis by axis: the dome moved by 1e15 in x alone has an x extent (2) within 16ε of its x
-  // position, but y and z keep every digit; measured against the largest coordinate, all of it
-  // read as one point, and the search called it flat with value 0.
-  const Eigen::RowVector3d position = lo.cwiseAbs().cwiseMax(hi.cwiseAbs());
-  const bool one_point = (half.array() <= kPointExtent * position.array()).all();
+  const double position = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+  const bool one_point = half_diagonal <= kPointExtent * position;
   if (half_diagonal > 0 && !one_point) {
     const long exponent = std::lround(std::log2(half_diagonal)) + 1;
     if (2 * exponent >= -1074) f.scale = std::ldexp(1.0, int(exponent));

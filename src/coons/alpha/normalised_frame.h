@@ -30,8 +30,8 @@ struct NormalisedFrame {
   [[nodiscard]] ControlNet to_original(ControlNet net) const;
 };
 
-//! A boundary whose bounding box has, on every axis, a half extent of at most this fraction of its
-//! largest magnitude on that axis is one point to within rounding (16 ε).
+//! A boundary whose bounding-box half diagonal is at most this fraction of its largest coordinate
+//! magnitude is one point to within rounding (16 ε).
 inline constexpr double kPointExtent = 16 * std::numeric_limits<double>::epsilon();
 
 //! The frame of `boundary` and `objective` (an empty boundary: scale 1, centre 0; a one-point

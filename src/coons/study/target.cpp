@@ -28,6 +28,11 @@ std::vector<double> numbers_after_colon(const std::string& spec, size_t count, c
     const double x = std::strtod(item.c_str(), &end);
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
       throw InputError("command line", field, "'" + item + "' is not a finite number");
+    // (but one that reads as 0 without being written as 0 lies below the smallest double)
+    const bool hex = item.find_first_of("xX") != std::string::npos;
+    if (x == 0 && item.substr(0, item.find_first_of(hex ? "pP" : "eE"))
+                          .find_first_of(hex ? "123456789abcdefABCDEF" : "123456789") != std::string::npos)
+      throw InputError("command line", field, "'" + item + "' is below the smallest double and would be read as 0");
     if (const std::string why = coordinate_problem(x); !why.empty())
       throw InputError("command line", field, fmt::format("'{}' {}", item, why));
     out.push_back(x);

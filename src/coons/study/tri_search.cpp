@@ -11,6 +11,7 @@
 #include <vector>
 
 #include "coons/alpha/downhill.h"
+#include "coons/alpha/normalised_frame.h"
 #include "coons/alpha/search_failures.h"
 #include "coons/tri/tri_energy.h"
 #include "coons/tri/tri_mask.h"
@@ -269,6 +270,10 @@ class TriSearch {
     // the box 1e15 wide and the rounding floor of the energies larger than their spread
     const auto [lo, hi] = tri::boundary_box(frame_);
     const Eigen::Vector3d box = (hi - lo).transpose();
+    // a boundary within rounding of one point (kPointExtent, as the rectangle's search) is flat:
+    // its energies are noise, and the floor below, measured on the boundary, is noise-sized too
+    const double position = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+    const bool one_point = 0.5 * box.norm() <= kPointExtent * position;
     const double diag = box.norm(), n = std::max(frame_.n, 1);
     floor_ = 0;
     for (const auto& [term, weight] : objective_.terms) {
@@ -280,7 +285,7 @@ class TriSearch {
           weight * (term == TriTerm::kTarget ? 1e-2 * diag * diag : 1e-16 * diag * diag * std::pow(n, 2.0 * order));
     }
     const double size = std::max({std::abs(lo_), std::abs(hi_), floor_});
-    if (hi_ - lo_ > options_.flat_tolerance * size && tri::interior_size(frame_.n) > 0) return false;
+    if (!one_point && hi_ - lo_ > options_.flat_tolerance * size && tri::interior_size(frame_.n) > 0) return false;
     s_.flat = true;
     s_.status = SearchStatus::kFlat;
     s_.local_minima = 0;  // dips of rounding noise are no minima
