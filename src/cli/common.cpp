@@ -427,12 +427,6 @@ InputError samples_without_target(const std::string& objective) {
           "--samples sets the target's sampling but --objective '" + objective + "' has no target term"};
 }
 
-bool zero_digits(const std::string& number) {
-  const bool hex = number.find_first_of("xX") != std::string::npos;
-  const std::string digits = number.substr(0, number.find_first_of(hex ? "pP" : "eE"));
-  return digits.find_first_of(hex ? "123456789abcdefABCDEF" : "123456789") == std::string::npos;
-}
-
 const CLI::Validator& fold_negative_zero() {
   static const CLI::Validator fold(
       [](std::string& value) {

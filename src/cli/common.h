@@ -48,10 +48,6 @@ void add_memory_option(CLI::App& cmd, GlobalOptions& g);
 //! in reports, file names ("c1-family-w0") and duplicate checks.
 const CLI::Validator& fold_negative_zero();
 
-//! Whether a number as written has only zero digits before its exponent (0, -0.0e5, 0x0p3): a
-//! number that reads as 0 without them (1e-400) lies below the smallest double.
-bool zero_digits(const std::string& number);
-
 //! A CLI11 transform for an option naming one of `names` (--method, --parameter): the name becomes
 //! the enum, anything else (another word, or the enum's number) is "'foo' is not one of a, b, c".
 //! (CLI::CheckedTransformer said "Check foo value in {alpha->0,coons->1,...} OR {0,1,2} FAILED"

@@ -9,6 +9,7 @@
 
 #include "coons/config.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 
 namespace coons::cli {
 

@@ -24,6 +24,12 @@ Eigen::MatrixX3d moved(const Eigen::MatrixX3d& points, const Eigen::RowVector3d&
 
 }  // namespace
 
+bool is_one_point(const Eigen::RowVector3d& lo, const Eigen::RowVector3d& hi) {
+  // halves and stableNorm: max − min may not fit, and norm() underflows to 0 below about 1e-154
+  const double half_diagonal = (0.5 * hi - 0.5 * lo).stableNorm();
+  return half_diagonal <= kPointExtent * std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
+}
+
 ControlNet NormalisedFrame::to_original(ControlNet net) const {
   net.points = (net.points * scale).rowwise() + centre;
   return net;
@@ -48,8 +54,7 @@ NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& obje
   // An extent within rounding of the position is one point too: the exact elevation of a constant
   // side, computed in floating point, spreads 3 to 3.0000000000000004, and scaled up to unit size
   // that spread read as a shape with interior optima.
-  const double position = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-  const bool one_point = half_diagonal <= kPointExtent * position;
+  const bool one_point = is_one_point(lo, hi);
   if (half_diagonal > 0 && !one_point) {
     const long exponent = std::lround(std::log2(half_diagonal)) + 1;
     if (2 * exponent >= -1074) f.scale = std::ldexp(1.0, int(exponent));

@@ -34,6 +34,10 @@ struct NormalisedFrame {
 //! magnitude is one point to within rounding (16 ε).
 inline constexpr double kPointExtent = 16 * std::numeric_limits<double>::epsilon();
 
+//! Whether the bounding box [lo, hi] (finite) is one point to within rounding (kPointExtent): the
+//! rule of this frame, and of the triangles' search.
+bool is_one_point(const Eigen::RowVector3d& lo, const Eigen::RowVector3d& hi);
+
 //! The frame of `boundary` and `objective` (an empty boundary: scale 1, centre 0; a one-point
 //! boundary, kPointExtent included: scale 1, centre the box centre, every frame point exactly 0).
 NormalisedFrame normalised_frame(const Boundary& boundary, const Objective& objective);

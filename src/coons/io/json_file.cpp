@@ -231,6 +231,12 @@ double json_coordinate(const nlohmann::json& j, const std::string& source, const
   return x;
 }
 
+bool zero_digits(const std::string& number) {
+  const bool hex = number.find_first_of("xX") != std::string::npos;
+  const std::string digits = number.substr(0, number.find_first_of(hex ? "pP" : "eE"));
+  return digits.find_first_of(hex ? "123456789abcdefABCDEF" : "123456789") == std::string::npos;
+}
+
 std::string coordinate_problem(double x) {
   if (!std::isfinite(x)) return "is not finite";
   if (std::abs(x) > kMaxCoordinate)

@@ -63,6 +63,11 @@ void require_model_size(double largest, double min_size, const std::string& sour
 //! analytic curves, targets, imported STEP poles); each puts its own subject in front.
 std::string coordinate_problem(double x);
 
+//! Whether a number as written has only zero digits before its exponent (0, -0.0e5, 0x0p3): a
+//! number that strtod reads as 0 without them (1e-400) lies below the smallest double. Used by
+//! every reader of numbers as text (command-line options, --target).
+bool zero_digits(const std::string& number);
+
 //! A coordinate that is a finite number with |x| <= kMaxCoordinate; `what` says which one
 //! ("coordinate 2"), the InputError names `field` and coordinate_problem's reason.
 double json_coordinate(const nlohmann::json& j, const std::string& source, const std::string& field,

@@ -29,9 +29,7 @@ std::vector<double> numbers_after_colon(const std::string& spec, size_t count, c
     if (item.empty() || end != item.c_str() + item.size() || !std::isfinite(x))
       throw InputError("command line", field, "'" + item + "' is not a finite number");
     // (but one that reads as 0 without being written as 0 lies below the smallest double)
-    const bool hex = item.find_first_of("xX") != std::string::npos;
-    if (x == 0 && item.substr(0, item.find_first_of(hex ? "pP" : "eE"))
-                          .find_first_of(hex ? "123456789abcdefABCDEF" : "123456789") != std::string::npos)
+    if (x == 0 && !zero_digits(item))
       throw InputError("command line", field, "'" + item + "' is below the smallest double and would be read as 0");
     if (const std::string why = coordinate_problem(x); !why.empty())
       throw InputError("command line", field, fmt::format("'{}' {}", item, why));

@@ -272,8 +272,7 @@ class TriSearch {
     const Eigen::Vector3d box = (hi - lo).transpose();
     // a boundary within rounding of one point (kPointExtent, as the rectangle's search) is flat:
     // its energies are noise, and the floor below, measured on the boundary, is noise-sized too
-    const double position = std::max(lo.cwiseAbs().maxCoeff(), hi.cwiseAbs().maxCoeff());
-    const bool one_point = 0.5 * box.norm() <= kPointExtent * position;
+    const bool one_point = is_one_point(lo, hi);
     const double diag = box.norm(), n = std::max(frame_.n, 1);
     floor_ = 0;
     for (const auto& [term, weight] : objective_.terms) {
