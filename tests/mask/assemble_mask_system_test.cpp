@@ -4,6 +4,7 @@
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <limits>
+#include <vector>
 
 #include "coons/mask/mask_families.h"
 #include "support/fixtures.h"
@@ -110,6 +111,29 @@ TEST_CASE("anisotropic_mask: finite and affine invariant up to the largest doubl
     CHECK(std::isfinite(p.derivative.edge_i));
     CHECK(std::isfinite(p.derivative.edge_j));
     CHECK(std::isfinite(p.derivative.diag));
+  }
+}
+
+TEST_CASE("alpha_family_singular_alphas: each one makes the system singular, once, and none is definite", "[mask]") {
+  // degree (3, 3): eigenvalues 1/2 + α, 1 + α, 3/2 − 3α
+  const std::vector<double> three = alpha_family_singular_alphas(3, 3, -2, 2);
+  REQUIRE(three.size() == 3);
+  CHECK(three[0] == Approx(-1).epsilon(1e-15));
+  CHECK(three[1] == Approx(-0.5).epsilon(1e-15));
+  CHECK(three[2] == Approx(0.5).epsilon(1e-15));
+  CHECK(alpha_family_singular_alphas(3, 3, -0.49, 0.49).empty());
+  for (const auto& [m, n] : {std::pair{5, 3}, std::pair{6, 6}, std::pair{4, 9}}) {
+    INFO(m << "x" << n);
+    CHECK(alpha_family_singular_alphas(m, n, -0.25, 0.25).empty());
+    const std::vector<double> alphas = alpha_family_singular_alphas(m, n, -10, 10);
+    REQUIRE(!alphas.empty());
+    for (std::size_t k = 0; k < alphas.size(); ++k) {
+      CHECK(mask9_eigenvalue_ratio(alpha_mask(alphas[k]), m, n) < 1e-14);
+      if (k > 0) {  // increasing, and regular between two of them: each pole is listed once
+        CHECK(alphas[k] > alphas[k - 1]);
+        CHECK(mask9_eigenvalue_ratio(alpha_mask(0.5 * (alphas[k - 1] + alphas[k])), m, n) > 1e-6);
+      }
+    }
   }
 }
 

@@ -102,6 +102,10 @@ class RegularAlphas {
   [[nodiscard]] int evaluations() const { return objective_.evaluations() + refused_; }
   [[nodiscard]] int solves() const { return objective_.solves(); }
   [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
+  //! The singular α inside the bounds (search_run.h searches between them one interval at a time).
+  [[nodiscard]] std::vector<double> singular_parameters(double lower, double upper) const {
+    return alpha_family_singular_alphas(m_, n_, lower, upper);
+  }
 
  private:
   Obj& objective_;

@@ -4,7 +4,8 @@
 // summary and ok() (MaskObjective, SpectralAlphaSearchObjective, StencilFamilyObjective):
 //   InUnitFrame   the evaluator seen in its normalised frame (normalised_frame.h), every
 //                 evaluation logged as (parameter, succeeded);
-//   SearchRun     coarse scan, flat and bound verdicts, refinement of the best scan point;
+//   SearchRun     coarse scan, flat and bound verdicts, refinement of the best scan point and of
+//                 the scan's other minima;
 //   search_impl   the run in the frame, values back in the caller's units, failures judged
 //                 (search_failures.h).
 // Sizes: the scan (scan_points evaluations) and the log, one entry per evaluation.
@@ -19,6 +20,7 @@
 #include <limits>
 #include <optional>
 #include <string>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
@@ -29,6 +31,12 @@
 #include "solvers/linear_solver.h"
 
 namespace coons::detail {
+
+template <class T, class = void>
+struct HasSingularParameters : std::false_type {};
+template <class T>
+struct HasSingularParameters<T, std::void_t<decltype(std::declval<const T&>().singular_parameters(0.0, 0.0))>>
+    : std::true_type {};
 
 // An evaluator seen in its normalised frame: values divided by the frame's value factor (a power
 // of two, so exactly), the frame's boundary and objective. Every tolerance of the search is then
@@ -54,6 +62,12 @@ class InUnitFrame {
   [[nodiscard]] int solves() const { return objective_.solves(); }
   [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
   [[nodiscard]] double value_factor() const { return k_; }
+  //! The parameters in (lower, upper) where the evaluator is singular, increasing, when it knows
+  //! them (the α family's RegularAlphas, alpha_search.cpp); else none.
+  [[nodiscard]] std::vector<double> singular_parameters(double lower, double upper) const {
+    if constexpr (HasSingularParameters<Obj>::value) return objective_.singular_parameters(lower, upper);
+    return {};
+  }
   //! Every evaluation made through this view: (parameter, succeeded), in order.
   [[nodiscard]] const std::vector<std::pair<double, bool>>& log() const { return log_; }
   [[nodiscard]] solvers::SolveStatus first_failure() const { return first_failure_; }
@@ -89,11 +103,26 @@ typename Obj::Evaluation polish_stationary(Obj& objective, typename Obj::Evaluat
   return at;
 }
 
+template <class Obj>
+AlphaSearchSummary search_intervals(Obj& objective, const AlphaSearchOptions& options,
+                                    const std::vector<double>& singular);
+
+//! The most singular parameters inside the bounds for which each interval between them is
+//! searched on its own (search_intervals); beyond it one search spans them.
+inline constexpr std::size_t kMaxSingularIntervals = 64;
+
 // The search in the evaluator's normalised frame, its values reported in the caller's units.
 template <class Obj>
 AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options) {
   InUnitFrame<Obj> unit(objective);
-  AlphaSearchSummary s = search_in_frame(unit, options);
+  const std::vector<double> singular = unit.singular_parameters(options.lower, options.upper);
+  AlphaSearchSummary s = singular.empty() || singular.size() > kMaxSingularIntervals
+                             ? search_in_frame(unit, options)
+                             : search_intervals(unit, options, singular);
+  if (singular.size() > kMaxSingularIntervals)
+    s.message += std::string(s.message.empty() ? "" : "; ") + "the bounds hold " + std::to_string(singular.size()) +
+                 " singular parameters, more than the " + std::to_string(kMaxSingularIntervals) +
+                 " whose intervals are searched one by one: minima between scan points may be missed";
   s.value *= unit.value_factor();
   for (auto& point : s.scan) point.second *= unit.value_factor();
   s.first_failure = unit.first_failure();
@@ -111,7 +140,10 @@ class SearchRun {
   SearchRun(Obj& objective, const AlphaSearchOptions& options) : objective_(objective), options_(options) {}
 
   AlphaSearchSummary run() {
-    if (!scan() && !flat() && !on_bound()) refine();
+    if (!scan() && !flat()) {
+      if (!on_bound()) refine(best_);
+      refine_other_minima();
+    }
     s_.evaluations = objective_.evaluations();
     s_.solves = objective_.solves();
     s_.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start_).count();
@@ -219,8 +251,6 @@ class SearchRun {
       s_.message = "the objective does not depend on the parameter over the bounds";
       return true;
     }
-    if (s_.local_minima > 1)
-      append("the scan saw " + std::to_string(s_.local_minima) + " local minima; the lowest was refined");
     return false;
   }
 
@@ -297,11 +327,12 @@ class SearchRun {
     return std::nullopt;
   }
 
-  // Ceres's line search on f(centre + half·tanh θ), then secant steps on f' = 0.
-  Evaluation refine_by_line_search(int ia, int ib) {
+  // Ceres's line search on f(centre + half·tanh θ) from the scan point `start`, then secant steps
+  // on f' = 0.
+  Evaluation refine_by_line_search(int ia, int ib, int start) {
     const double a = grid_[ia].parameter, b = grid_[ib].parameter;
     const double centre = 0.5 * (a + b), half = 0.5 * (b - a);
-    double theta = std::atanh(std::clamp((grid_[best_].parameter - centre) / half, -0.9, 0.9));
+    double theta = std::atanh(std::clamp((grid_[start].parameter - centre) / half, -0.9, 0.9));
     std::vector<Evaluation> latest;  // Ceres usually ends on its latest evaluation
     ceres::GradientProblem problem(new BracketedObjective<Obj>(objective_, centre, half, failed_, latest));
     ceres::GradientProblemSolver::Summary summary;
@@ -314,17 +345,18 @@ class SearchRun {
     return e;
   }
 
-  // 4. Refine in the bracket of the best point's neighbours, then the verdict on the result: a
-  //    grid point may still be lower if the line search stalled (never report a worse point), and
-  //    a scan point that Ceres could not improve on is an optimum only if its slope vanishes (on
-  //    the scale of the objective's variation over the scan).
-  void refine() {
+  // 4. Refine in the bracket of the scan point `start`'s neighbours (the best one first), then the
+  //    verdict on the result: a grid point may still be lower if the line search stalled (never
+  //    report a worse point), and a scan point that Ceres could not improve on is an optimum only
+  //    if its slope vanishes (on the scale of the objective's variation over the scan).
+  void refine(int start) {
     const int k = int(grid_.size());
-    const int ia = std::max(best_ - 1, 0), ib = std::min(best_ + 1, k - 1);
+    const int ia = std::max(start - 1, 0), ib = std::min(start + 1, k - 1);
     const double a = grid_[ia].parameter, b = grid_[ib].parameter;
+    failed_ = no_convergence_ = false;
     std::optional<Evaluation> refined;
     if constexpr (HasSecondDerivative<Obj>::value) refined = refine_by_newton(ia, ib);
-    const Evaluation e = refined ? *refined : refine_by_line_search(ia, ib);
+    const Evaluation e = refined ? *refined : refine_by_line_search(ia, ib, start);
     if (!e.ok()) {  // (a failed trial point inside the line search only makes Ceres step back)
       s_.status = SearchStatus::kSolverFailed;
       s_.message = "solver failed during refinement: " + e.summary.brief_report();
@@ -334,9 +366,9 @@ class SearchRun {
     s_.parameter = e.parameter;
     s_.value = e.value;
     bool stalled = false;
-    if (grid_[best_].value < e.value) {
-      s_.parameter = grid_[best_].parameter;
-      s_.value = grid_[best_].value;
+    if (grid_[start].value < e.value) {
+      s_.parameter = grid_[start].parameter;
+      s_.value = grid_[start].value;
       stalled = true;
     }
     const double edge_tolerance = 1e-7 * (options_.upper - options_.lower);
@@ -350,10 +382,9 @@ class SearchRun {
       // on a bound, points out of the interval. Where the bracket holds a singular α (a pole of the
       // objective, with --allow-indefinite bounds) the line search crossed it and stalled, and the
       // bound α = 1/4 was reported as the optimum where the objective still falls into the interval.
-      const auto at = with_derivative(grid_[best_]);
-      const int k = int(grid_.size());
-      const bool outward = (best_ == 0 && at.derivative >= -at.derivative_noise) ||
-                           (best_ == k - 1 && at.derivative <= at.derivative_noise);
+      const auto at = with_derivative(grid_[start]);
+      const bool outward = (start == 0 && at.derivative >= -at.derivative_noise) ||
+                           (start == k - 1 && at.derivative <= at.derivative_noise);
       if (at.ok() && !(s_.at_bound && outward) && !vanishing(at, b - a)) {
         if (const std::optional<Evaluation> d = refine_downhill(at, ia, ib)) {
           s_.parameter = d->parameter;
@@ -366,6 +397,41 @@ class SearchRun {
         }
       }
     }
+  }
+
+  // 5. The other interior minima of the scan, refined as the best point was, and the lowest
+  //    result kept: a dip between scan points can hold the minimum (a random 5 × 3 boundary over
+  //    [−1, 1] with --allow-indefinite: the best scan point, the bound 1, was reported at 13.38101
+  //    while the scan point 0.5 leads to 13.32405 at α = 0.3138). A scan point is a minimum where
+  //    it lies more than the scan's hysteresis (count_local_minima) below its left neighbour and
+  //    not above its right one; a refinement that fails leaves the verdict of the others.
+  void refine_other_minima() {
+    if (s_.status != SearchStatus::kSuccess && s_.status != SearchStatus::kNotConverged) return;
+    if (s_.value <= options_.flat_tolerance * floor_) return;  // 0 to rounding: nothing is lower
+    const double tolerance = 256 * std::numeric_limits<double>::epsilon() * std::max(std::abs(lo_), std::abs(hi_));
+    const int k = int(grid_.size());
+    const double first = *s_.parameter, first_value = s_.value;
+    int refined = 0;
+    for (int i = 1; i + 1 < k; ++i) {
+      if (i == best_ || !grid_[i - 1].ok() || !grid_[i].ok() || !grid_[i + 1].ok() ||
+          !(grid_[i].value < grid_[i - 1].value - tolerance && grid_[i].value <= grid_[i + 1].value))
+        continue;
+      ++refined;
+      const auto kept = std::make_tuple(s_.parameter, s_.value, s_.status, s_.at_bound, s_.message, s_.ceres_report);
+      s_.status = SearchStatus::kSuccess;
+      refine(i);
+      const bool better = (s_.status == SearchStatus::kSuccess || s_.status == SearchStatus::kNotConverged) &&
+                          s_.value < std::get<1>(kept);
+      if (!better) std::tie(s_.parameter, s_.value, s_.status, s_.at_bound, s_.message, s_.ceres_report) = kept;
+    }
+    if (refined == 0) return;
+    if (*s_.parameter != first)
+      append("the scan saw " + std::to_string(refined + 1) +
+             " minima; each was refined and the lowest result kept (the best scan point led to " +
+             solvers::format_g(first) + ", value " + solvers::format_g(first_value * objective_.value_factor()) + ")");
+    else
+      append("the scan saw " + std::to_string(refined + 1) +
+             " minima; each was refined, the best scan point's is lowest");
   }
 
   // A slope that vanishes on the scale of the objective's variation over the scan.
@@ -401,6 +467,73 @@ class SearchRun {
 template <class Obj>
 AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& options) {
   return SearchRun<Obj>(objective, options).run();
+}
+
+// Bounds that hold singular parameters (--allow-indefinite): at each the net, and so the
+// objective, has a pole and rises to +∞ on both sides, so every interval between two of them holds
+// a minimum of its own, which one scan across the poles sees only when a scan point falls into
+// it (a random 5 × 3 boundary over [−1, 1]: scan points 0.25 apart, a pole at 0.39, and the
+// minimum 13.324 at 0.314 was missed for 13.377 at 0.493). So each interval is searched on its
+// own, from half a scan cell off each pole, and the lowest result kept. An optimum on such an
+// end lies closer to the pole: that interval is searched again from a cell 16 times smaller,
+// up to 8 times.
+template <class Obj>
+AlphaSearchSummary search_intervals(Obj& objective, const AlphaSearchOptions& options,
+                                    const std::vector<double>& singular) {
+  std::vector<double> ends = {options.lower};
+  ends.insert(ends.end(), singular.begin(), singular.end());
+  ends.push_back(options.upper);
+  const std::size_t intervals = ends.size() - 1;
+  const auto start = std::chrono::steady_clock::now();
+  std::vector<AlphaSearchSummary> results;
+  for (std::size_t i = 0; i < intervals; ++i) {
+    const bool pole_below = i > 0, pole_above = i + 1 < intervals;
+    const double width = ends[i + 1] - ends[i];
+    double margin = width / (2 * (options.scan_points - 1));
+    AlphaSearchSummary r;
+    for (int level = 0; level < 8; ++level, margin /= 16) {
+      AlphaSearchOptions sub = options;
+      sub.lower = pole_below ? ends[i] + margin : ends[i];
+      sub.upper = pole_above ? ends[i + 1] - margin : ends[i + 1];
+      if (!(sub.lower < sub.upper)) break;
+      r = SearchRun<Obj>(objective, sub).run();
+      const double edge = 1e-7 * (sub.upper - sub.lower);
+      const bool at_pole =
+          r.at_bound && r.parameter &&
+          ((pole_below && *r.parameter - sub.lower <= edge) || (pole_above && sub.upper - *r.parameter <= edge));
+      if (!at_pole) break;
+    }
+    results.push_back(std::move(r));
+  }
+  // the lowest optimum; else (none found) the first interval's verdict
+  std::size_t best = intervals;
+  for (std::size_t i = 0; i < intervals; ++i) {
+    const AlphaSearchSummary& r = results[i];
+    const bool optimum = r.parameter && (r.status == SearchStatus::kSuccess || r.status == SearchStatus::kNotConverged);
+    if (optimum && (best == intervals || r.value < results[best].value)) best = i;
+  }
+  const bool all_flat = std::all_of(results.begin(), results.end(), [](const AlphaSearchSummary& r) { return r.flat; });
+  AlphaSearchSummary s = results[best == intervals ? 0 : best];
+  s.scan.clear();
+  s.local_minima = 0;
+  for (const AlphaSearchSummary& r : results) {
+    s.scan.insert(s.scan.end(), r.scan.begin(), r.scan.end());
+    s.local_minima += r.local_minima;
+  }
+  if (best == intervals && all_flat) s.value = results[0].value;
+  // on a bound of the search only where the bound is one of the caller's
+  const double edge = 1e-7 * (options.upper - options.lower);
+  s.at_bound =
+      s.parameter && (std::abs(*s.parameter - options.lower) <= edge || std::abs(*s.parameter - options.upper) <= edge);
+  std::string note = "the bounds hold " + std::to_string(singular.size()) + " singular parameter" +
+                     (singular.size() == 1 ? "" : "s") + " (poles of the objective); each of the " +
+                     std::to_string(intervals) + " intervals between them was searched on its own";
+  if (best != intervals) note += " and the lowest result kept";
+  s.message = note + (s.message.empty() ? "" : "; " + s.message);
+  s.evaluations = objective.evaluations();
+  s.solves = objective.solves();
+  s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return s;
 }
 
 }  // namespace coons::detail

@@ -24,6 +24,27 @@ double mask9_eigenvalue_ratio(const Mask9& mask, int m, int n) {
   return largest > 0 ? smallest / largest : 0;
 }
 
+std::vector<double> alpha_family_singular_alphas(int m, int n, double lower, double upper) {
+  // λ = 1 − 2(1/4 − α)s − 4α·cp·cq = 1 − s/2 + α(2s − 4cp·cq)
+  std::vector<double> alphas;
+  for (int p = 1; p < m; ++p) {
+    const double cp = std::cos(M_PI * p / m);
+    for (int q = 1; q < n; ++q) {
+      const double cq = std::cos(M_PI * q / n), s = cp + cq, slope = 2 * s - 4 * cp * cq;
+      if (slope == 0) continue;
+      const double alpha = (s / 2 - 1) / slope;
+      if (alpha > lower && alpha < upper) alphas.push_back(alpha);
+    }
+  }
+  std::sort(alphas.begin(), alphas.end());
+  // the modes (p, q) and (q, p) of a square net, or p and m − p against q and n − q, give one α
+  // whose two roundings can differ in the last bits
+  alphas.erase(std::unique(alphas.begin(), alphas.end(),
+                           [](double a, double b) { return b - a <= 1e-12 * std::max(std::abs(a), 1.0); }),
+               alphas.end());
+  return alphas;
+}
+
 Mask9 anisotropic_mask(int m, int n, double mu) {
   const double mn = double(m) * n, rm = double(m) / n, rn = double(n) / m;
   const double D = 4 * mn + 2 * mu * (rm + rn);
