@@ -726,3 +726,21 @@ TEST_CASE("search_alpha: bounds holding singular alphas give the lowest minimum 
     }
   }
 }
+
+TEST_CASE("search_alpha: a singular alpha the boundary does not excite is no pole and no failure", "[alpha]") {
+  // one_bump is symmetric: its thin plate is smooth through α = 0.309017 (mode (4, 4)), and its
+  // minimum lies just below it. Searched as a pole, the interval's end crept towards it into the
+  // near-singular evaluations, and the report became failed_region (exit 3).
+  const Boundary bump = read_boundary_file(COONS_DATA_DIR "/boundaries/one_bump.json").boundary;
+  AlphaSearchOptions options;
+  options.lower = -1;
+  options.upper = 1;
+  for (const char* solver : {"fast", "eigen-lu"}) {
+    const AlphaSearchSummary s = search_alpha(bump, objective_named("thin_plate"), backend(solver), options);
+    INFO(solver << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kSuccess);
+    CHECK(s.failed_evaluations == 0);
+    REQUIRE(s.parameter);
+    CHECK(*s.parameter == Approx(0.2677801488).margin(1e-8));
+  }
+}

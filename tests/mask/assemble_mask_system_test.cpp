@@ -122,6 +122,10 @@ TEST_CASE("alpha_family_singular_alphas: each one makes the system singular, onc
   CHECK(three[1] == Approx(-0.5).epsilon(1e-15));
   CHECK(three[2] == Approx(0.5).epsilon(1e-15));
   CHECK(alpha_family_singular_alphas(3, 3, -0.49, 0.49).empty());
+  // a singular bound is not inside, though its α is computed an ulp inside it
+  CHECK(alpha_family_singular_alphas(3, 3, -1, 0.5) == std::vector<double>{three[1]});
+  // a slope that is 0 but for rounding is no pole (2 × 2: λ = 1 for every α; it gave one at 8.8e14)
+  CHECK(alpha_family_singular_alphas(2, 2, -1e60, 1e60).empty());
   for (const auto& [m, n] : {std::pair{5, 3}, std::pair{6, 6}, std::pair{4, 9}}) {
     INFO(m << "x" << n);
     CHECK(alpha_family_singular_alphas(m, n, -0.25, 0.25).empty());

@@ -13,8 +13,10 @@
 
 #include "coons/alpha/search_run.h"
 #include "coons/config.h"
+#include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/mask9.h"
 #include "coons/mask/near_singular.h"
+#include "coons/net/control_net.h"
 #if COONS_HAVE_FFTW
 #include "coons/alpha/spectral_objective.h"
 #endif
@@ -77,6 +79,39 @@ AlphaSearchSummary search_mask_parameter(MaskObjective& objective, const AlphaSe
 
 namespace {
 
+// Whether the ring data of b excite a mode whose eigenvalue vanishes at the singular α: the
+// right-hand side b(α) has a sine coefficient there above rounding (1e-8 of its norm), so that the
+// net, and the objective, have a pole at α. A symmetric boundary leaves some modes alone (the
+// dome's thin plate is smooth through α = 1/2); searched as poles, the interval's optimum sat at
+// its end next to one, closer and closer, until the near-singular evaluations there made it a
+// failed_region.
+bool excites_pole(const Boundary& b, double alpha) {
+  const int m = b.m, n = b.n;
+  if (m < 2 || n < 2) return false;
+  const Eigen::MatrixX3d B = mask_rhs(frame_net(b), alpha_mask(alpha));
+  const double scale = B.norm();
+  if (!(scale > 0)) return false;
+  const Mask9 mask = alpha_mask(alpha);
+  for (int p = 1; p < m; ++p) {
+    const double cp = std::cos(M_PI * p / m);
+    for (int q = 1; q < n; ++q) {
+      const double cq = std::cos(M_PI * q / n);
+      const double lambda = 1 - 2 * mask.edge_i * cp - 2 * mask.edge_j * cq - 4 * mask.diag * cp * cq;
+      if (std::abs(lambda) > 1e-9) continue;  // not a mode that vanishes here
+      // the normalised sine coefficient Σ_ij B_ij s_i t_j (B is zero off the ring next to the frame)
+      Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
+      const double norm = 2 / std::sqrt(double(m) * n);
+      for (int i = 1; i < m; ++i)
+        for (int j = 1; j < n; ++j) {
+          if (i != 1 && i != m - 1 && j != 1 && j != n - 1) continue;
+          c += std::sin(M_PI * p * i / m) * std::sin(M_PI * q * j / n) * B.row(Eigen::Index(i - 1) * (n - 1) + (j - 1));
+        }
+      if ((norm * c).cwiseAbs().maxCoeff() > 1e-8 * scale) return true;
+    }
+  }
+  return false;
+}
+
 // An α-family evaluator that does not evaluate at a (near-)singular α. Inside [−1/4, 1/4] the
 // system is positive definite and every α is evaluated; outside (--allow-indefinite), an α whose
 // mask system on the boundary's (m−1)×(n−1) interior has mask9_eigenvalue_ratio ≤
@@ -102,9 +137,16 @@ class RegularAlphas {
   [[nodiscard]] int evaluations() const { return objective_.evaluations() + refused_; }
   [[nodiscard]] int solves() const { return objective_.solves(); }
   [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
-  //! The singular α inside the bounds (search_run.h searches between them one interval at a time).
+  //! The singular α inside the bounds where the boundary excites the vanishing mode, so that the
+  //! objective has a pole (search_run.h searches between them one interval at a time); all of
+  //! them, unchecked, when there are more than kMaxSingularIntervals.
   [[nodiscard]] std::vector<double> singular_parameters(double lower, double upper) const {
-    return alpha_family_singular_alphas(m_, n_, lower, upper);
+    std::vector<double> alphas = alpha_family_singular_alphas(m_, n_, lower, upper);
+    if (alphas.size() > detail::kMaxSingularIntervals) return alphas;
+    const Boundary& b = objective_.unit_frame().boundary;
+    alphas.erase(std::remove_if(alphas.begin(), alphas.end(), [&](double a) { return !excites_pole(b, a); }),
+                 alphas.end());
+    return alphas;
   }
 
  private:

@@ -426,12 +426,12 @@ class SearchRun {
     }
     if (refined == 0) return;
     if (*s_.parameter != first)
-      append("the scan saw " + std::to_string(refined + 1) +
-             " minima; each was refined and the lowest result kept (the best scan point led to " +
+      append("the best scan point and " + std::to_string(refined) +
+             " other minima of the scan were refined and the lowest result kept (the best scan point led to " +
              solvers::format_g(first) + ", value " + solvers::format_g(first_value * objective_.value_factor()) + ")");
     else
-      append("the scan saw " + std::to_string(refined + 1) +
-             " minima; each was refined, the best scan point's is lowest");
+      append("the best scan point and " + std::to_string(refined) +
+             " other minima of the scan were refined; the best scan point's result is lowest");
   }
 
   // A slope that vanishes on the scale of the objective's variation over the scan.
@@ -489,14 +489,20 @@ AlphaSearchSummary search_intervals(Obj& objective, const AlphaSearchOptions& op
   for (std::size_t i = 0; i < intervals; ++i) {
     const bool pole_below = i > 0, pole_above = i + 1 < intervals;
     const double width = ends[i + 1] - ends[i];
-    double margin = width / (2 * (options.scan_points - 1));
+    // the scan's points shared out by width (at least 5 each): --scan bounds the whole search
+    const int points = std::clamp(int(std::lround(options.scan_points * width / (options.upper - options.lower))), 5,
+                                  std::max(options.scan_points, 5));
+    double margin = width / (2 * (points - 1));
     AlphaSearchSummary r;
     for (int level = 0; level < 8; ++level, margin /= 16) {
       AlphaSearchOptions sub = options;
+      sub.scan_points = points;
       sub.lower = pole_below ? ends[i] + margin : ends[i];
       sub.upper = pole_above ? ends[i + 1] - margin : ends[i + 1];
       if (!(sub.lower < sub.upper)) break;
-      r = SearchRun<Obj>(objective, sub).run();
+      AlphaSearchSummary next = SearchRun<Obj>(objective, sub).run();
+      if (level > 0 && r.parameter && !(next.parameter && next.value < r.value)) break;  // keep the better level
+      r = std::move(next);
       const double edge = 1e-7 * (sub.upper - sub.lower);
       const bool at_pole =
           r.at_bound && r.parameter &&
@@ -512,15 +518,29 @@ AlphaSearchSummary search_intervals(Obj& objective, const AlphaSearchOptions& op
     const bool optimum = r.parameter && (r.status == SearchStatus::kSuccess || r.status == SearchStatus::kNotConverged);
     if (optimum && (best == intervals || r.value < results[best].value)) best = i;
   }
-  const bool all_flat = std::all_of(results.begin(), results.end(), [](const AlphaSearchSummary& r) { return r.flat; });
-  AlphaSearchSummary s = results[best == intervals ? 0 : best];
+  // no optimum: flat where every interval is flat or could not be solved at all, else the first
+  // interval's verdict that is neither
+  std::size_t shown = best;
+  if (best == intervals) {
+    shown = 0;
+    const auto flat_or_failed = [](const AlphaSearchSummary& r) {
+      return r.flat || r.status == SearchStatus::kSolverFailed;
+    };
+    const bool flat = std::all_of(results.begin(), results.end(), flat_or_failed) &&
+                      std::any_of(results.begin(), results.end(), [](const AlphaSearchSummary& r) { return r.flat; });
+    for (std::size_t i = 0; i < intervals; ++i)
+      if (flat ? results[i].flat : !flat_or_failed(results[i])) {
+        shown = i;
+        break;
+      }
+  }
+  AlphaSearchSummary s = results[shown];
   s.scan.clear();
   s.local_minima = 0;
   for (const AlphaSearchSummary& r : results) {
     s.scan.insert(s.scan.end(), r.scan.begin(), r.scan.end());
     s.local_minima += r.local_minima;
   }
-  if (best == intervals && all_flat) s.value = results[0].value;
   // on a bound of the search only where the bound is one of the caller's
   const double edge = 1e-7 * (options.upper - options.lower);
   s.at_bound =

@@ -31,9 +31,10 @@ std::vector<double> alpha_family_singular_alphas(int m, int n, double lower, dou
     const double cp = std::cos(M_PI * p / m);
     for (int q = 1; q < n; ++q) {
       const double cq = std::cos(M_PI * q / n), s = cp + cq, slope = 2 * s - 4 * cp * cq;
-      if (slope == 0) continue;
-      const double alpha = (s / 2 - 1) / slope;
-      if (alpha > lower && alpha < upper) alphas.push_back(alpha);
+      if (std::abs(slope) <= 1e-13) continue;  // zero but for rounding (2 x 2: λ = 1 for every α)
+      const double alpha = (s / 2 - 1) / slope, near = 1e-12 * std::max(std::abs(alpha), 1.0);
+      // (a bound that is singular, computed an ulp inside it, is not inside)
+      if (alpha > lower + near && alpha < upper - near) alphas.push_back(alpha);
     }
   }
   std::sort(alphas.begin(), alphas.end());

@@ -45,7 +45,8 @@ inline constexpr double kMaxAlpha = 1e60;
 double mask9_eigenvalue_ratio(const Mask9& mask, int m, int n);
 //! The α in (lower, upper) where the α family's system on the (m−1)×(n−1) interior is singular:
 //! where λ_pq of alpha_mask(α) vanishes, α = (s/2 − 1)/(2s − 4cp·cq), s = cp + cq, for some mode;
-//! increasing, each once (values within 1e-12 relative merged). None lies in [−1/4, 1/4].
+//! increasing, each once (values within 1e-12 relative merged, and of a bound: not inside). None
+//! lies in [−1/4, 1/4].
 std::vector<double> alpha_family_singular_alphas(int m, int n, double lower, double upper);
 //! A mask system with mask9_eigenvalue_ratio at most this is taken as (near) singular: `solve`
 //! then looks for the points that decouple, and the α search does not evaluate there.
