@@ -735,12 +735,20 @@ TEST_CASE("search_alpha: a singular alpha the boundary does not excite is no pol
   AlphaSearchOptions options;
   options.lower = -1;
   options.upper = 1;
-  for (const char* solver : {"fast", "eigen-lu"}) {
-    const AlphaSearchSummary s = search_alpha(bump, objective_named("thin_plate"), backend(solver), options);
-    INFO(solver << ": " << s.brief_report());
+  // moved by 1e10, its symmetry holds to rounding only: the unexcited modes' coefficients are about
+  // 1e-6 of the right-hand side, whose poles lie inside the refused near-singular zone
+  const Boundary moved = [&bump] {
+    Boundary b = bump;
+    for (auto* side : {&b.bottom, &b.top, &b.left, &b.right}) side->col(0).array() += 1e10;
+    return b;
+  }();
+  for (const auto& [b, solver] : {std::pair{&bump, "fast"}, std::pair{&bump, "eigen-lu"}, std::pair{&moved, "fast"},
+                                  std::pair{&moved, "eigen-lu"}}) {
+    const AlphaSearchSummary s = search_alpha(*b, objective_named("thin_plate"), backend(solver), options);
+    INFO(solver << (b == &moved ? " moved: " : ": ") << s.brief_report());
     CHECK(s.status == SearchStatus::kSuccess);
     CHECK(s.failed_evaluations == 0);
     REQUIRE(s.parameter);
-    CHECK(*s.parameter == Approx(0.2677801488).margin(1e-8));
+    CHECK(*s.parameter == Approx(0.2677801488).margin(1e-6));
   }
 }
