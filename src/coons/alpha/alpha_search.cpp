@@ -91,16 +91,15 @@ namespace {
 bool excites_pole(const Boundary& b, double alpha) {
   const int m = b.m, n = b.n;
   if (m < 2 || n < 2) return false;
-  const Eigen::MatrixX3d B = mask_rhs(frame_net(b), alpha_mask(alpha));
+  const Mask9 mask = alpha_mask(alpha);
+  const Eigen::MatrixX3d B = mask_rhs(frame_net(b), mask);
   const double scale = B.norm();
   if (!(scale > 0)) return false;
-  const Mask9 mask = alpha_mask(alpha);
   for (int p = 1; p < m; ++p) {
     const double cp = std::cos(M_PI * p / m);
     for (int q = 1; q < n; ++q) {
       const double cq = std::cos(M_PI * q / n);
-      const double lambda = 1 - 2 * mask.edge_i * cp - 2 * mask.edge_j * cq - 4 * mask.diag * cp * cq;
-      if (std::abs(lambda) > 1e-9) continue;  // not a mode that vanishes here
+      if (std::abs(mask9_eigenvalue(mask, cp, cq)) > 1e-9) continue;  // not a mode that vanishes here
       // the normalised sine coefficient Σ_ij B_ij s_i t_j (B is zero off the ring next to the frame)
       Eigen::RowVector3d c = Eigen::RowVector3d::Zero();
       const double norm = 2 / std::sqrt(double(m) * n);

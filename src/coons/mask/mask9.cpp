@@ -16,7 +16,7 @@ double mask9_eigenvalue_ratio(const Mask9& mask, int m, int n) {
   for (int p = 1; p < m; ++p) {
     const double cp = std::cos(M_PI * p / m);
     for (const double c : cq) {
-      const double lambda = std::abs(1 - 2 * mask.edge_i * cp - 2 * mask.edge_j * c - 4 * mask.diag * cp * c);
+      const double lambda = std::abs(mask9_eigenvalue(mask, cp, c));
       smallest = std::min(smallest, lambda);
       largest = std::max(largest, lambda);
     }

@@ -39,6 +39,12 @@ Mask9 alpha_mask(double alpha);
 //! backend that applies solves the dome at ±1e60 (the others report indefiniteness).
 inline constexpr double kMaxAlpha = 1e60;
 
+//! The eigenvalue of the mask system for the sine mode with cp = cos(pπ/m), cq = cos(qπ/n):
+//! λ = 1 − 2e_i·cp − 2e_j·cq − 4d·cp·cq.
+inline double mask9_eigenvalue(const Mask9& mask, double cp, double cq) {
+  return 1 - 2 * mask.edge_i * cp - 2 * mask.edge_j * cq - 4 * mask.diag * cp * cq;
+}
+
 //! min|λ| / max|λ| over the eigenvalues of the mask system on the full (m−1)×(n−1) interior with
 //! one fixed ring: λ_pq = 1 − 2e_i·cos(pπ/m) − 2e_j·cos(qπ/n) − 4d·cos(pπ/m)·cos(qπ/n) (the sine
 //! modes diagonalise it; docs/math.md §3). 0 for a singular system; 1 when there is no interior.
