@@ -56,3 +56,65 @@ TEST_CASE("search_impl: every minimum of the scan is refined and the lowest resu
       Catch::Contains("the best scan point and 1 other minima of the scan were refined and the lowest result kept"));
   CHECK_THAT(s.message, Catch::Contains("led to 1, value 1)"));  // in the caller's units
 }
+
+namespace {
+// A pole at 0, with evaluations refused within 1e-4 of it, and on one side (q = side·p > 0) a
+// narrow dip at q0 between the pole and the interval's first scan point, behind the basin at
+// q = 0.6: f = 1 + (q − 0.6)² − 0.8·exp(−((q − q0)/w)²) + 1e-9/p². The other side rises to 2.
+struct PoleWithDip {
+  using Evaluation = TwoBasins::Evaluation;
+  double side = 1, q0 = 0.03, w = 0.015;
+  NormalisedFrame frame = normalised_frame(make_random_boundary(3, 3, 1), objective_named("dirichlet"));
+  int count = 0;
+  Evaluation evaluate(double p, bool /*with_derivative*/ = true) {
+    ++count;
+    Evaluation e;
+    e.parameter = p;
+    if (std::abs(p) < 1e-4) {
+      e.summary.status = solvers::SolveStatus::kSingular;
+      return e;
+    }
+    const double q = side * p, pole = 1e-9 / (p * p), dpole = -2e-9 / (p * p * p);
+    if (q < 0) {
+      e.value = 2 + p * p + pole;
+      e.derivative = 2 * p + dpole;
+      return e;
+    }
+    const double z = (q - q0) / w, dip = 0.8 * std::exp(-z * z);
+    e.value = 1 + (q - 0.6) * (q - 0.6) - dip + pole;
+    e.derivative = side * (2 * (q - 0.6) + dip * 2 * z / w) + dpole;
+    return e;
+  }
+  [[nodiscard]] static std::vector<double> singular_parameters(double lower, double upper) {
+    return lower < 0 && 0 < upper ? std::vector<double>{0.0} : std::vector<double>{};
+  }
+  [[nodiscard]] const NormalisedFrame& unit_frame() const { return frame; }
+  [[nodiscard]] int evaluations() const { return count; }
+  [[nodiscard]] static int solves() { return 0; }
+  [[nodiscard]] static double scale_origin() { return -0.25; }
+};
+}  // namespace
+
+TEST_CASE("search_impl: a minimum between a pole and its interval's first scan point is found", "[alpha]") {
+  // Over [−1, 1] each interval's scan starts 1/8 off the pole. The dip at 0.03 lies in that margin
+  // behind a rise, so no slope there points to it; the dip at 0.004 lies within 1/128 of the pole,
+  // where the objective falls towards it. Before, the basin at 0.6 (value 1) was reported.
+  for (const double side : {1.0, -1.0}) {
+    for (const auto& [q0, w] : {std::pair{0.03, 0.015}, std::pair{0.004, 0.002}}) {
+      PoleWithDip f;
+      f.side = side;
+      f.q0 = q0;
+      f.w = w;
+      AlphaSearchOptions options;
+      options.lower = -1;
+      options.upper = 1;
+      const AlphaSearchSummary s = detail::search_impl(f, options);
+      INFO("side " << side << ", dip at " << q0 << ": " << s.brief_report());
+      REQUIRE(s.parameter);
+      CHECK(s.status == SearchStatus::kSuccess);
+      CHECK(side * *s.parameter == Approx(q0).margin(w / 4));
+      CHECK(s.value < 0.6);
+      CHECK(std::abs(f.evaluate(*s.parameter).derivative) < 1e-6);  // a stationary point, not a scan point
+    }
+  }
+}

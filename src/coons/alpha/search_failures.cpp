@@ -45,6 +45,12 @@ std::string describe(const std::vector<std::pair<double, double>>& runs) {
 // scan neighbours (the refinement stays between them); a flat verdict rests on every scan point.
 // Where a failed evaluation lies among them, nothing is claimed (kFailedRegion).
 void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, bool>>& log) {
+  const std::vector<std::pair<double, double>> scan = s.scan;
+  judge_failures(s, log, scan);
+}
+
+void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, bool>>& log,
+                    const std::vector<std::pair<double, double>>& evidence) {
   const std::vector<std::pair<double, double>> runs = failed_runs(log);
   s.failed_intervals = runs;
   s.failed_evaluations = int(std::count_if(log.begin(), log.end(), [](const auto& e) { return !e.second; }));
@@ -59,11 +65,11 @@ void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, b
   }
   if (!s.parameter) return;
   int best = -1;
-  for (int i = 0; i < int(s.scan.size()); ++i)
-    if (std::isfinite(s.scan[i].second) && (best < 0 || s.scan[i].second < s.scan[best].second)) best = i;
+  for (int i = 0; i < int(evidence.size()); ++i)
+    if (std::isfinite(evidence[i].second) && (best < 0 || evidence[i].second < evidence[best].second)) best = i;
   if (best < 0) return;
-  const double lo = s.scan[std::max(best - 1, 0)].first;
-  const double hi = s.scan[std::min(best + 1, int(s.scan.size()) - 1)].first;
+  const double lo = evidence[std::max(best - 1, 0)].first;
+  const double hi = evidence[std::min(best + 1, int(evidence.size()) - 1)].first;
   const bool touches = std::any_of(log.begin(), log.end(), [&](const auto& e) {
     return !e.second && e.first >= std::min(lo, *s.parameter) && e.first <= std::max(hi, *s.parameter);
   });

@@ -20,4 +20,10 @@ std::vector<std::pair<double, double>> failed_runs(std::vector<std::pair<double,
 //! on a failure, turns it into kFailedRegion (the message says where and why).
 void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, bool>>& log);
 
+//! The same, with the optimum's evidence taken from `evidence` (parameter, value), the scan its
+//! search ran on, in place of s.scan: a search between poles judges its optimum by its own
+//! interval's scan, not by a neighbour across a pole, where refused evaluations sit.
+void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, bool>>& log,
+                    const std::vector<std::pair<double, double>>& evidence);
+
 }  // namespace coons::detail
