@@ -486,7 +486,8 @@ AlphaSearchSummary search_in_frame(Obj& objective, const AlphaSearchOptions& opt
 // own, from half a scan cell off each pole, and the lowest result kept. Where the objective still
 // falls towards a pole at that end, a minimum lies between the end and the pole, whatever the
 // interval's own optimum is (t8x8_10, thin_plate over [−1, 1]: 108.729 there, 111.705 inside):
-// the gap is searched on its own, from a margin 16 times smaller, up to 8 times.
+// the gap is searched on its own, from a margin 16 times smaller, and again closer, up to 8
+// searches in all (the last from margin/16⁸ off the pole), while the objective falls towards it.
 template <class Obj>
 IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& options,
                                 const std::vector<double>& singular) {
@@ -513,7 +514,7 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
   };
   for (std::size_t i = 0; i < intervals; ++i) {
     const double width = ends[i + 1] - ends[i];
-    // the scan's points shared out by width (at least 5 each): --scan bounds the whole search
+    // the scan's points shared out by width (at least 5 each; each margin searched adds 5)
     const int points = std::clamp(int(std::lround(options.scan_points * width / (options.upper - options.lower))), 5,
                                   std::max(options.scan_points, 5));
     const double margin = width / (2 * (points - 1));
@@ -565,7 +566,9 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
   }
   IntervalSearch found{results[shown], results[shown].scan};
   AlphaSearchSummary& s = found.summary;
-  std::sort(scan.begin(), scan.end());
+  std::sort(scan.begin(), scan.end());  // (a margin's scan ends on its interval's first point: once)
+  scan.erase(std::unique(scan.begin(), scan.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
+             scan.end());
   s.scan = std::move(scan);
   s.local_minima = local_minima;
   // on a bound of the search only where the bound is one of the caller's
