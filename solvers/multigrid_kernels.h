@@ -59,8 +59,9 @@ inline double apply_at_interior(const Level& L, const double* x, int i, int j) {
 // out[j] = b[j] − (A x)(j) (kApply: (A x)(j)) for j = lo, lo + step, … < hi of one interior row,
 // all of whose points are free and have the stencil a (kR > 0): the weights sit in registers and
 // no point needs a bounds or mask check (the unit-step loop vectorises). b, x, out: the row's
-// start. The products are added in the order of apply_at_interior, so the values are the same.
-template <int kR, bool kApply, bool kUnit>
+// start; kPacked: out holds the values one after another, out[0] that of lo. The products are
+// added in the order of apply_at_interior, so the values are the same.
+template <int kR, bool kApply, bool kUnit, bool kPacked = false>
 inline void eval_run(const double* a, const double* __restrict b, const double* __restrict x, double* __restrict out,
                      Eigen::Index C, int lo, int hi, int step) {
   constexpr int kW = 2 * kR + 1;
@@ -68,23 +69,26 @@ inline void eval_run(const double* a, const double* __restrict b, const double* 
   for (int k = 0; k < kW * kW; ++k) c[k] = a[k];
   const double* xr[kW];
   for (int di = -kR; di <= kR; ++di) xr[di + kR] = x + Eigen::Index(di) * C;
-  auto point = [&](int j) {
+  auto point = [&](int j, double& o) {
     double sum = 0;
     for (int u = 0; u < kW; ++u)
       for (int v = 0; v < kW; ++v) sum += c[u * kW + v] * xr[u][j + v - kR];
-    out[j] = kApply ? sum : b[j] - sum;
+    o = kApply ? sum : b[j] - sum;
   };
-  if constexpr (kUnit) {
-    for (int j = lo; j < hi; ++j) point(j);
+  if constexpr (kPacked) {
+    for (int j = lo, t = 0; j < hi; j += step, ++t) point(j, out[t]);
+  } else if constexpr (kUnit) {
+    for (int j = lo; j < hi; ++j) point(j, out[j]);
   } else {
-    for (int j = lo; j < hi; j += step) point(j);
+    for (int j = lo; j < hi; j += step) point(j, out[j]);
   }
 }
 
 // One row i: out[j] = b[p] − (A x)(p) (kApply: (A x)(p)) at the free points, 0 at fixed ones, for
-// j = first, first + step, … < end (out indexed like the grid row). On an inner row the stretch of
-// free points that share the level's common stencil takes eval_run; the rest point by point.
-template <int kR, bool kConst, bool kApply>
+// j = first, first + step, … < end (out indexed like the grid row; kPacked: out[(j − first)/step]).
+// On an inner row the stretch of free points that share the level's common stencil takes
+// eval_run; the rest point by point.
+template <int kR, bool kConst, bool kApply, bool kPacked = false>
 inline void eval_row(const Level& L, const double* b, const double* x, double* out, int i, int first, int end,
                      int step) {
   const int r = radius_of<kR>(L), C = L.cols;
@@ -92,10 +96,11 @@ inline void eval_row(const Level& L, const double* b, const double* x, double* o
   const unsigned char* free = L.free.data() + base;
   const bool inner = i >= r && i + r < L.rows;
   auto finish = [&](int j, double s) {
+    double& o = kPacked ? out[(j - first) / step] : out[j];
     if constexpr (kApply) {
-      out[j] = free[j] ? s : 0.0;
+      o = free[j] ? s : 0.0;
     } else {
-      out[j] = free[j] ? b[base + j] - s : 0.0;
+      o = free[j] ? b[base + j] - s : 0.0;
     }
   };
   auto one = [&](int j) {
@@ -120,7 +125,9 @@ inline void eval_row(const Level& L, const double* b, const double* x, double* o
   if constexpr (kR > 0) {
     const double* a = L.common.data();
     const double* bb = kApply ? nullptr : b + base;
-    if (step == 1)
+    if constexpr (kPacked)
+      eval_run<kR, kApply, false, true>(a, bb, x + base, out + (lo - first) / step, C, lo, stop, step);
+    else if (step == 1)
       eval_run<kR, kApply, true>(a, bb, x + base, out, C, lo, stop, 1);
     else
       eval_run<kR, kApply, false>(a, bb, x + base, out, C, lo, stop, step);

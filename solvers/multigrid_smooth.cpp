@@ -12,6 +12,7 @@
 #include <cstdint>
 #include <cstring>
 #include <unordered_map>
+#include <vector>
 
 #include "multigrid_kernels.h"
 
@@ -26,7 +27,7 @@ namespace coons::solvers::mg_detail {
 
 namespace {
 
-constexpr int kRowGroup = 4;         // rows of one colour solved together (interleaved recurrences)
+constexpr int kRowGroup = 8;         // rows of one colour solved together (interleaved recurrences)
 constexpr int kMinColumnBlock = 32;  // columns of one colour per task of the column sweep, at least
 
 // Banded LU without pivoting of an n × n matrix of half-bandwidth r, stored by rows:
@@ -86,35 +87,55 @@ void solve_row_group(const Level& L, const double* b, double* x, double* d, cons
   }
 }
 
-// Columns first, first + step, … < end: residual, banded solve along i, update.
+// Columns first, first + step, … < end (K of them): residual, banded solve along i, update. d
+// holds the block's K columns side by side (row i at d + i·K), so the eliminations run over
+// contiguous values; a run of columns with the same line factors (all interior columns of a
+// rectangle) reads each factor once per row.
 template <int kR, bool kConst>
 void solve_column_block(const Level& L, const double* b, double* x, double* d, int first, int end, int step) {
   const int r = radius_of<kR>(L), R = L.rows, C = L.cols;
+  const int K = (end - first + step - 1) / step;
   const double* lower = L.col_lu.lower.data();
   const double* upper = L.col_lu.upper.data();
   const double* inv = L.col_lu.inv_pivot.data();
   const int* line = L.col_lu.line.data();
+  struct Run {
+    int begin, end;    // of the block's columns, k = (j − first)/step
+    Eigen::Index off;  // of the run's line factors: lower/upper + off·r·R, inv + off·R
+  };
+  std::vector<Run> runs;
+  for (int k = 0; k < K; ++k) {
+    const int u = line[first + k * step];
+    if (runs.empty() || runs.back().off != u) runs.push_back({k, k, u});
+    runs.back().end = k + 1;
+  }
   for (int i = 0; i < R; ++i) {
-    eval_row<kR, kConst, false>(L, b, x, d + Eigen::Index(i) * C, i, first, end, step);
+    double* di = d + Eigen::Index(i) * K;
+    eval_row<kR, kConst, false, true>(L, b, x, di, i, first, end, step);
     const int reach = std::min(r, i);
-    for (int j = first; j < end; j += step) {
-      const Eigen::Index p = Eigen::Index(i) * C + j;
-      const double* lo = lower + Eigen::Index(line[j]) * r * R + i;
-      double y = d[p];
-      for (int k = 1; k <= reach; ++k) y -= lo[(k - 1) * R] * d[p - Eigen::Index(k) * C];
-      d[p] = y;
+    for (const Run& run : runs) {
+      const double* lo = lower + run.off * r * R + i;
+      for (int k = run.begin; k < run.end; ++k) {
+        double y = di[k];
+        for (int s = 1; s <= reach; ++s) y -= lo[(s - 1) * R] * di[k - Eigen::Index(s) * K];
+        di[k] = y;
+      }
     }
   }
   for (int i = R - 1; i >= 0; --i) {
+    double* di = d + Eigen::Index(i) * K;
+    double* xi = x + Eigen::Index(i) * C + first;
     const int reach = std::min(r, R - 1 - i);
-    for (int j = first; j < end; j += step) {
-      const Eigen::Index p = Eigen::Index(i) * C + j;
-      const double* up = upper + Eigen::Index(line[j]) * r * R + i;
-      double y = d[p];
-      for (int k = 1; k <= reach; ++k) y -= up[(k - 1) * R] * d[p + Eigen::Index(k) * C];
-      y *= inv[Eigen::Index(line[j]) * R + i];
-      d[p] = y;
-      x[p] += y;
+    for (const Run& run : runs) {
+      const double* up = upper + run.off * r * R + i;
+      const double pivot = inv[run.off * R + i];
+      for (int k = run.begin; k < run.end; ++k) {
+        double y = di[k];
+        for (int s = 1; s <= reach; ++s) y -= up[(s - 1) * R] * di[k + Eigen::Index(s) * K];
+        y *= pivot;
+        di[k] = y;
+        xi[Eigen::Index(k) * step] += y;
+      }
     }
   }
 }
@@ -151,10 +172,11 @@ void sweep_columns(const Level& L, const Vector& b, Vector& x, Vector& d, int co
     constexpr int kR = decltype(radius)::value;
     constexpr bool kConst = decltype(constant)::value;
     COONS_PARALLEL_LINES
-    for (int k = 0; k < blocks; ++k) {
+    for (int k = 0; k < blocks; ++k) {  // block k's columns side by side at d + k·per_block·rows
       const int begin = first + k * per_block * colours;
       const int end = std::min(L.cols, begin + per_block * colours);
-      if (begin < end) solve_column_block<kR, kConst>(L, b.data(), x.data(), d.data(), begin, end, colours);
+      double* dk = d.data() + Eigen::Index(k) * per_block * L.rows;
+      if (begin < end) solve_column_block<kR, kConst>(L, b.data(), x.data(), dk, begin, end, colours);
     }
   });
 }
