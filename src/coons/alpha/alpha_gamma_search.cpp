@@ -170,9 +170,7 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
   out.alpha = alpha;
   out.gamma = gamma;
   out.value = *value;
-  const double edge_tolerance = 1e-7 * (upper - lower);
-  out.at_bound = std::abs(alpha - lower) <= edge_tolerance || std::abs(alpha - upper) <= edge_tolerance ||
-                 std::abs(r) >= kShrink * (1 - 1e-7);
+  out.at_bound = lies_on_bound(alpha, lower, upper) || std::abs(r) >= kShrink * (1 - 1e-7);
   if (!one.flat && one.value < *value) {  // never report a worse point than the symmetric optimum
     out.alpha = *one.parameter;
     out.gamma = 0;

@@ -380,9 +380,7 @@ class SearchRun {
       s_.value = grid_[start].value;
       stalled = true;
     }
-    const double edge_tolerance = 1e-7 * (options_.upper - options_.lower);
-    s_.at_bound = std::abs(*s_.parameter - options_.lower) <= edge_tolerance ||
-                  std::abs(*s_.parameter - options_.upper) <= edge_tolerance;
+    s_.at_bound = lies_on_bound(*s_.parameter, options_.lower, options_.upper);
     if (no_convergence_) {
       s_.status = SearchStatus::kNotConverged;
       s_.message = "Ceres: " + ceres_message_;
@@ -398,8 +396,7 @@ class SearchRun {
         if (const std::optional<Evaluation> d = refine_downhill(at, ia, ib)) {
           s_.parameter = d->parameter;
           s_.value = d->value;
-          s_.at_bound = std::abs(d->parameter - options_.lower) <= edge_tolerance ||
-                        std::abs(d->parameter - options_.upper) <= edge_tolerance;
+          s_.at_bound = lies_on_bound(d->parameter, options_.lower, options_.upper);
         } else {
           s_.status = SearchStatus::kNotConverged;
           append("the refinement stalled where the slope is " + solvers::format_g(at.derivative) + ", not zero");
@@ -572,9 +569,7 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
   s.scan = std::move(scan);
   s.local_minima = local_minima;
   // on a bound of the search only where the bound is one of the caller's
-  const double edge = 1e-7 * (options.upper - options.lower);
-  s.at_bound =
-      s.parameter && (std::abs(*s.parameter - options.lower) <= edge || std::abs(*s.parameter - options.upper) <= edge);
+  s.at_bound = s.parameter && lies_on_bound(*s.parameter, options.lower, options.upper);
   std::string note = "the bounds hold " + std::to_string(singular.size()) + " singular parameter" +
                      (singular.size() == 1 ? "" : "s") + " (poles of the objective); each of the " +
                      std::to_string(intervals) + " intervals between them was searched on its own";

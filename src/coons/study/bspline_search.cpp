@@ -247,12 +247,9 @@ AlphaSearchSummary search_bspline_alpha(const BSplineBoundary& b, const Objectiv
   if (optimum.f->value > lowest) optimum = at;  // never report worse than the scan
   s.parameter = optimum.alpha;
   s.value = optimum.f->value;
-  // Within 1e-7 of the interval's length from a bound counts as on it, as in the search of Bézier
-  // boundaries (search_run.h): the minimum of the twist energy is the Coons net at α = −1/4, found
-  // from inside (a degree-5 boundary came back at −0.24999999907, 9e-10 inside, and at_bound false
-  // under the old rule of the parameter tolerance, 1e-10).
-  const double edge = 1e-7 * (options.upper - options.lower);
-  s.at_bound = std::abs(optimum.alpha - options.lower) <= edge || std::abs(optimum.alpha - options.upper) <= edge;
+  // as in the search of Bézier boundaries (under the old rule of the parameter tolerance, 1e-10, a
+  // degree-5 boundary's twist minimum at −0.24999999907 had at_bound false)
+  s.at_bound = lies_on_bound(optimum.alpha, options.lower, options.upper);
   return finish();
 }
 

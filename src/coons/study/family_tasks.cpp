@@ -306,10 +306,7 @@ FamilyTaskResult family_task_from_record(const json& record, const AlphaFamilyOp
     if (!(*r.alpha >= bounds.lower && *r.alpha <= bounds.upper))
       throw InputError(where, "alpha",
                        fmt::format("{} is outside the search's bounds [{}, {}]", *r.alpha, bounds.lower, bounds.upper));
-    // at_bound as the search decides it: within 1e-7 of the interval's length from a bound
-    const double edge = 1e-7 * (bounds.upper - bounds.lower);
-    const bool near_bound = *r.alpha - bounds.lower <= edge || bounds.upper - *r.alpha <= edge;
-    if (r.status == FamilyTaskStatus::kAtBound && !near_bound)
+    if (r.status == FamilyTaskStatus::kAtBound && !lies_on_bound(*r.alpha, bounds.lower, bounds.upper))
       throw InputError(where, "alpha",
                        fmt::format("{} is not on a bound of [{}, {}], as status 'at_bound' says", *r.alpha,
                                    bounds.lower, bounds.upper));

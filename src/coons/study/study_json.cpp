@@ -143,8 +143,7 @@ void check_search(const AlphaSearchSummary& s, double lower, double upper, const
   if (!(p >= lower && p <= upper)) bad(fmt::format("{} is outside the search's bounds [{}, {}]", p, lower, upper));
   if (!(std::isfinite(s.value) && s.value >= 0))
     bad(fmt::format("the value at the optimum, {}, is no objective value (finite and at least 0)", s.value));
-  const double edge = 1e-7 * (upper - lower);  // as the searches decide at_bound
-  if (s.at_bound && !(p - lower <= edge || upper - p <= edge))
+  if (s.at_bound && !lies_on_bound(p, lower, upper))
     bad(fmt::format("{} is not on a bound of [{}, {}], as at_bound says", p, lower, upper));
 }
 

@@ -335,8 +335,7 @@ class TriSearch {
     s_.parameter = lo.parameter;
     s_.value = lo.value;
     s_.status = SearchStatus::kSuccess;
-    const double edge = 1e-7 * (options_.upper - options_.lower);
-    s_.at_bound = std::abs(lo.parameter - options_.lower) <= edge || std::abs(lo.parameter - options_.upper) <= edge;
+    s_.at_bound = lies_on_bound(lo.parameter, options_.lower, options_.upper);
     // a minimum: the slope vanishes on the scale of the scan's variation (as the α searches test it)
     if (!s_.at_bound && std::abs(lo.derivative) * (b - a) > 1e-6 * std::max(hi_ - lo_, floor_)) {
       s_.status = SearchStatus::kNotConverged;
