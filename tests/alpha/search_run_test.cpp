@@ -58,26 +58,34 @@ TEST_CASE("search_impl: every minimum of the scan is refined and the lowest resu
 }
 
 namespace {
-// A pole at 0, with evaluations refused within 1e-4 of it, and on one side (q = side·p > 0) a
+// A pole at 0, with evaluations refused within `refuse` of it, and on one side (q = side·p > 0) a
 // narrow dip at q0 between the pole and the interval's first scan point, behind the basin at
-// q = 0.6: f = 1 + (q − 0.6)² − 0.8·exp(−((q − q0)/w)²) + 1e-9/p². The other side rises to 2.
+// q = 0.6: f = 1 + (q − 0.6)² − 0.8·exp(−((q − q0)/w)²) + strength/p². The other side rises to 2.
+// With `root`, that side is f = 1 + 0.1·q^(1/8) + strength/p² instead: it falls towards the pole
+// down to q ≈ 1e-13 (strength 1e-30).
 struct PoleWithDip {
   using Evaluation = TwoBasins::Evaluation;
-  double side = 1, q0 = 0.03, w = 0.015;
+  double side = 1, q0 = 0.03, w = 0.015, refuse = 1e-4, strength = 1e-9;
+  bool root = false;
   NormalisedFrame frame = normalised_frame(make_random_boundary(3, 3, 1), objective_named("dirichlet"));
   int count = 0;
   Evaluation evaluate(double p, bool /*with_derivative*/ = true) {
     ++count;
     Evaluation e;
     e.parameter = p;
-    if (std::abs(p) < 1e-4) {
+    if (std::abs(p) < refuse) {
       e.summary.status = solvers::SolveStatus::kSingular;
       return e;
     }
-    const double q = side * p, pole = 1e-9 / (p * p), dpole = -2e-9 / (p * p * p);
+    const double q = side * p, pole = strength / (p * p), dpole = -2 * strength / (p * p * p);
     if (q < 0) {
       e.value = 2 + p * p + pole;
       e.derivative = 2 * p + dpole;
+      return e;
+    }
+    if (root) {
+      e.value = 1 + 0.1 * std::pow(q, 0.125) + pole;
+      e.derivative = side * 0.0125 * std::pow(q, -0.875) + dpole;
       return e;
     }
     const double z = (q - q0) / w, dip = 0.8 * std::exp(-z * z);
@@ -116,5 +124,28 @@ TEST_CASE("search_impl: a minimum between a pole and its interval's first scan p
       CHECK(s.value < 0.6);
       CHECK(std::abs(f.evaluate(*s.parameter).derivative) < 1e-6);  // a stationary point, not a scan point
     }
+  }
+}
+
+TEST_CASE("search_impl: a minimum closer to a pole than the margin searches go is no success", "[alpha]") {
+  // The objective falls towards the pole down to about 1e-13 off it; the margin searches stop at
+  // 1/16⁸ of the margin (1/8 here): 2.9e-11. The closest point searched was reported as a success
+  // with a slope of 1.7e9.
+  for (const double side : {1.0, -1.0}) {
+    PoleWithDip f;
+    f.side = side;
+    f.root = true;
+    f.refuse = 1e-15;
+    f.strength = 1e-30;
+    AlphaSearchOptions options;
+    options.lower = -1;
+    options.upper = 1;
+    const AlphaSearchSummary s = detail::search_impl(f, options);
+    INFO("side " << side << ": " << s.brief_report() << " " << s.message);
+    REQUIRE(s.parameter);
+    CHECK(s.status == SearchStatus::kNotConverged);
+    CHECK(side * *s.parameter == Approx(0.125 / std::pow(16.0, 8)).epsilon(1e-9));
+    CHECK_THAT(s.message, Catch::Contains("still falls towards the pole at 0 at the closest point searched"));
+    CHECK(s.failed_evaluations == 0);
   }
 }

@@ -117,6 +117,8 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
 //! The most singular parameters inside the bounds for which each interval between them is
 //! searched on its own (search_intervals); beyond it one search spans them.
 inline constexpr std::size_t kMaxSingularIntervals = 64;
+//! Searches of the margin beside a pole, each 16 times closer to it (search_intervals).
+inline constexpr int kMarginSearches = 8;
 
 // The search in the evaluator's normalised frame, its values reported in the caller's units.
 template <class Obj>
@@ -526,17 +528,32 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
     for (const int side : {-1, 1}) {  // the pole below (−1), then the pole above (+1)
       if ((side < 0 && i == 0) || (side > 0 && i + 1 == intervals)) continue;
       const double pole = side < 0 ? ends[i] : ends[i + 1];
-      double near = side < 0 ? lower : upper, gap = margin;
-      for (int level = 0; level < 8; ++level, gap /= 16) {
-        if (level > 0) {  // closer only while the objective falls towards the pole (f' of the sign opposite the side's)
-          const auto e = objective.evaluate(near);
-          if (!e.ok() || !(-side * e.derivative > e.derivative_noise)) break;
+      const auto falls_towards_pole = [&](double p) {  // f' of the sign opposite the side's
+        const auto e = objective.evaluate(p);
+        return e.ok() && -side * e.derivative > e.derivative_noise;
+      };
+      double near = side < 0 ? lower : upper, gap = margin, last = 0;  // last: the width of the last margin searched
+      bool closest = true;  // no search stopped because the objective rose towards the pole
+      for (int level = 0; level < kMarginSearches; ++level, gap /= 16) {
+        if (level > 0 && !falls_towards_pole(near)) {
+          closest = false;
+          break;
         }
         const double closer = pole - side * gap / 16;
         if (!(side < 0 ? closer < near : near < closer)) break;
         AlphaSearchSummary g = side < 0 ? run(closer, near, 5) : run(near, closer, 5);
         if (has_optimum(g) && (!has_optimum(r) || g.value < r.value)) r = std::move(g);
+        last = std::abs(near - closer);
         near = closer;
+      }
+      // The closest point searched is no minimum where the objective still falls towards the pole
+      // there: one lies closer than the search goes (it stops at margin/16⁸ off the pole).
+      if (closest && last > 0 && has_optimum(r) && std::abs(*r.parameter - near) <= 1e-7 * last &&
+          falls_towards_pole(near)) {
+        r.status = SearchStatus::kNotConverged;
+        r.message += std::string(r.message.empty() ? "" : "; ") + "the objective still falls towards the pole at " +
+                     solvers::format_g(pole) + " at the closest point searched, " + solvers::format_g(near) + " (" +
+                     solvers::format_g(std::abs(pole - near)) + " from it): a minimum lies closer than that";
       }
     }
     results.push_back(std::move(r));
