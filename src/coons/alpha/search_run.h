@@ -498,6 +498,7 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
   std::vector<AlphaSearchSummary> results;
   std::vector<std::pair<double, double>> scan;  // every scan point of every search, ascending at the end
   int local_minima = 0;
+  std::vector<std::string> unfinished;  // pole sides whose minimum no search reached
   const auto has_optimum = [](const AlphaSearchSummary& r) {
     return r.parameter && (r.status == SearchStatus::kSuccess || r.status == SearchStatus::kNotConverged);
   };
@@ -528,33 +529,43 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
     for (const int side : {-1, 1}) {  // the pole below (−1), then the pole above (+1)
       if ((side < 0 && i == 0) || (side > 0 && i + 1 == intervals)) continue;
       const double pole = side < 0 ? ends[i] : ends[i + 1];
-      const auto falls_towards_pole = [&](double p) {  // f' of the sign opposite the side's
+      enum class Slope {
+        kFalls,
+        kRises,
+        kFailed
+      };  // towards the pole: falls where f' has the sign opposite the side's
+      const auto slope_at = [&](double p) {
         const auto e = objective.evaluate(p);
-        return e.ok() && -side * e.derivative > e.derivative_noise;
+        if (!e.ok()) return Slope::kFailed;
+        return -side * e.derivative > e.derivative_noise ? Slope::kFalls : Slope::kRises;
       };
-      double near = side < 0 ? lower : upper, gap = margin, last = 0;  // last: the width of the last margin searched
-      bool closest = true;  // no search stopped because the objective rose towards the pole
+      double near = side < 0 ? lower : upper, gap = margin;
+      double solved = near;  // the scan point closest to the pole whose evaluation succeeded
+      bool rose = false;     // a search stopped where the objective rises towards the pole
       for (int level = 0; level < kMarginSearches; ++level, gap /= 16) {
-        if (level > 0 && !falls_towards_pole(near)) {
-          closest = false;
-          break;
+        if (level > 0) {
+          const Slope slope = slope_at(near);
+          if (slope != Slope::kFalls) {
+            rose = slope == Slope::kRises;
+            break;
+          }
         }
         const double closer = pole - side * gap / 16;
         if (!(side < 0 ? closer < near : near < closer)) break;
         AlphaSearchSummary g = side < 0 ? run(closer, near, 5) : run(near, closer, 5);
+        for (const auto& [p, value] : g.scan)
+          if (std::isfinite(value) && std::abs(p - pole) < std::abs(solved - pole)) solved = p;
         if (has_optimum(g) && (!has_optimum(r) || g.value < r.value)) r = std::move(g);
-        last = std::abs(near - closer);
         near = closer;
       }
-      // The closest point searched is no minimum where the objective still falls towards the pole
-      // there: one lies closer than the search goes (it stops at margin/16⁸ off the pole).
-      if (closest && last > 0 && has_optimum(r) && std::abs(*r.parameter - near) <= 1e-7 * last &&
-          falls_towards_pole(near)) {
-        r.status = SearchStatus::kNotConverged;
-        r.message += std::string(r.message.empty() ? "" : "; ") + "the objective still falls towards the pole at " +
-                     solvers::format_g(pole) + " at the closest point searched, " + solvers::format_g(near) + " (" +
-                     solvers::format_g(std::abs(pole - near)) + " from it): a minimum lies closer than that";
-      }
+      // Where the objective still falls towards the pole at the closest point solved (the searches
+      // stop at margin/16⁸ off it, and at evaluations refused next to it), a minimum lies between
+      // them that no search reached: whatever the lowest result is, it may not be the minimum.
+      if (!rose && slope_at(solved) == Slope::kFalls)
+        unfinished.push_back("the objective still falls towards the pole at " + solvers::format_g(pole) +
+                             " at the closest point solved, " + solvers::format_g(solved) + " (" +
+                             solvers::format_g(std::abs(pole - solved)) +
+                             " from it): a minimum lies between them that no search reached");
     }
     results.push_back(std::move(r));
   }
@@ -592,6 +603,10 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
                      std::to_string(intervals) + " intervals between them was searched on its own";
   if (best != intervals) note += " and the lowest result kept";
   s.message = note + (s.message.empty() ? "" : "; " + s.message);
+  if (best != intervals && !unfinished.empty()) {  // a lower minimum may lie where no search went
+    if (s.status == SearchStatus::kSuccess) s.status = SearchStatus::kNotConverged;
+    for (const std::string& text : unfinished) s.message += "; " + text;
+  }
   s.evaluations = objective.evaluations();
   s.solves = objective.solves();
   s.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
