@@ -575,9 +575,9 @@ namespace {
 // central hole, constant or with the centre weight raised at every 9th point of every 16th row so
 // that the runs of equal stencils break there and, on the Galerkin levels, on the rows near them) and two Galerkin
 // levels under it, each with its common stencil and line factors as Multigrid::setup makes them.
-std::vector<mg_detail::Level> fast_path_levels(bool cubic, Shape shape, bool varying) {
-  const StencilOperator op =
-      cubic ? make_stencil_operator(61, 58, biharmonic()) : make_stencil_operator(61, 58, nine_point(1, -0.2, -0.05));
+std::vector<mg_detail::Level> fast_path_levels(bool cubic, Shape shape, bool varying, int rows = 61, int cols = 58) {
+  const StencilOperator op = cubic ? make_stencil_operator(rows, cols, biharmonic())
+                                   : make_stencil_operator(rows, cols, nine_point(1, -0.2, -0.05));
   mg_detail::Level fine;
   fine.rows = op.rows;
   fine.cols = op.cols;
@@ -771,6 +771,31 @@ TEST_CASE("mg_detail::smooth: both sweep directions equal a written-out line Gau
         for (Eigen::Index p = 0; p < L.points(); ++p) differ += x[p] != expected[p];
         CHECK(differ == 0);
       }
+    }
+  }
+}
+
+TEST_CASE(
+    "mg_detail::smooth: column blocks side by side on one to three threads equal the written-out sweep bit for bit",
+    "[solvers][mg]") {
+  // 203 columns: each colour's columns split into two or three blocks (one per thread, at least
+  // 32 columns each), whose residuals lie side by side in slices of the work vector.
+  for (const FastPathCase& c : kFastPathCases) {
+    std::vector<mg_detail::Level> levels = fast_path_levels(c.cubic, c.shape, c.varying, 61, 203);
+    mg_detail::Level& L = levels.front();
+    REQUIRE(L.cols / (L.radius + 1) / 32 >= 2);  // two blocks at least from two threads on
+    const Eigen::VectorXd b = random_on_free(L), start = random_on_free(L);
+    Eigen::VectorXd expected = start;
+    for (int k = 0; k < 2 * (L.radius + 1); ++k)
+      reference_colour_step(L, b, expected, k > L.radius, k % (L.radius + 1));
+    for (const int threads : {1, 2, 3}) {
+      INFO(name_of(c) << ", " << threads << " thread(s)");
+      L.threads = threads;
+      Eigen::VectorXd x = start, work;
+      mg_detail::smooth(L, b, x, work, true);
+      int differ = 0;
+      for (Eigen::Index p = 0; p < L.points(); ++p) differ += x[p] != expected[p];
+      CHECK(differ == 0);
     }
   }
 }
