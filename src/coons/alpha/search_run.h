@@ -529,11 +529,8 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
     for (const int side : {-1, 1}) {  // the pole below (−1), then the pole above (+1)
       if ((side < 0 && i == 0) || (side > 0 && i + 1 == intervals)) continue;
       const double pole = side < 0 ? ends[i] : ends[i + 1];
-      enum class Slope {
-        kFalls,
-        kRises,
-        kFailed
-      };  // towards the pole: falls where f' has the sign opposite the side's
+      // The slope towards the pole: it falls where f' has the sign opposite the side's.
+      enum class Slope { kFalls, kRises, kFailed };
       const auto slope_at = [&](double p) {
         const auto e = objective.evaluate(p);
         if (!e.ok()) return Slope::kFailed;
