@@ -11,7 +11,7 @@
 #include <type_traits>
 #include <utility>
 
-#include "coons/alpha/search_run.h"
+#include "coons/alpha/search_impl.h"
 #include "coons/config.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/mask9.h"
@@ -140,7 +140,7 @@ class RegularAlphas {
   [[nodiscard]] int solves() const { return objective_.solves(); }
   [[nodiscard]] static double scale_origin() { return Obj::scale_origin(); }
   //! The singular α inside the bounds where the boundary excites the vanishing mode, so that the
-  //! objective has a pole (search_run.h searches between them one interval at a time); all of
+  //! objective has a pole (search_impl.h searches between them one interval at a time); all of
   //! them, unchecked, when there are more than kMaxSingularIntervals.
   [[nodiscard]] std::vector<double> singular_parameters(double lower, double upper) const {
     std::vector<double> alphas = alpha_family_singular_alphas(m_, n_, lower, upper);

@@ -3,7 +3,7 @@
 // refines the best grid point, and every other minimum of the scan, inside the bracket of its
 // neighbours and keeps the lowest result, and reports a flat objective and an optimum on a bound
 // as such. Bounds holding singular α of the α family (poles of the objective) are searched one
-// interval between poles at a time (search_run.h). Two evaluators:
+// interval between poles at a time (search_impl.h). Two evaluators:
 // - MaskObjective, any family and objective: for each parameter value one factorisation, two
 //   solves (the net N and its sensitivity dN/dp = A⁻¹·[dmask-weighted neighbour sums of N],
 //   docs/math.md §3) and the objective's exact value and derivative; refined by Ceres's line-search

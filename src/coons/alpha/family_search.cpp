@@ -3,7 +3,7 @@
 #include <string>
 #include <utility>
 
-#include "coons/alpha/search_run.h"
+#include "coons/alpha/search_impl.h"
 #include "coons/alpha/stencil_family_objective.h"
 #include "coons/mask/mask9.h"
 #include "coons/mask/stencil.h"

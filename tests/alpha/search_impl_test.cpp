@@ -1,5 +1,5 @@
-// search_run.h includes Ceres, whose glog defines CHECK as Catch does: Catch's is the one used.
-#include "coons/alpha/search_run.h"
+// search_impl.h includes Ceres, whose glog defines CHECK as Catch does: Catch's is the one used.
+#include "coons/alpha/search_impl.h"
 #undef CHECK
 
 #include <catch2/catch.hpp>
