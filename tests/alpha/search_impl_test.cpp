@@ -13,9 +13,9 @@ using namespace coons;
 using namespace coons::test;
 
 namespace {
-// f(p) = 1 + (p − 1)²(p + 1.25)² − 0.02(p − 1)²: the scan over [−2, 2] is lowest at its point 1
-// (f = 1), while its point −1 (1.17) leads to the lower minimum at −1.25882 (0.897).
-struct TwoBasins {
+// What the search asks of an evaluator besides evaluate(): its frame (that of a small random
+// boundary, for the flat test's scale), the evaluations counted, no solves.
+struct SyntheticObjective {
   struct Evaluation {
     double parameter = 0, value = 0, derivative = 0, derivative_noise = 0;
     bool has_derivative = true;
@@ -24,6 +24,15 @@ struct TwoBasins {
   };
   NormalisedFrame frame = normalised_frame(make_random_boundary(3, 3, 1), objective_named("dirichlet"));
   int count = 0;
+  [[nodiscard]] const NormalisedFrame& unit_frame() const { return frame; }
+  [[nodiscard]] int evaluations() const { return count; }
+  [[nodiscard]] static int solves() { return 0; }
+  [[nodiscard]] static double scale_origin() { return -0.25; }
+};
+
+// f(p) = 1 + (p − 1)²(p + 1.25)² − 0.02(p − 1)²: the scan over [−2, 2] is lowest at its point 1
+// (f = 1), while its point −1 (1.17) leads to the lower minimum at −1.25882 (0.897).
+struct TwoBasins : SyntheticObjective {
   Evaluation evaluate(double p, bool /*with_derivative*/ = true) {
     ++count;
     const double u = p - 1, v = p + 1.25;
@@ -33,10 +42,6 @@ struct TwoBasins {
     e.derivative = 2 * u * v * v + 2 * u * u * v - 0.04 * u;
     return e;
   }
-  [[nodiscard]] const NormalisedFrame& unit_frame() const { return frame; }
-  [[nodiscard]] int evaluations() const { return count; }
-  [[nodiscard]] static int solves() { return 0; }
-  [[nodiscard]] static double scale_origin() { return -0.25; }
 };
 }  // namespace
 
@@ -63,12 +68,9 @@ namespace {
 // q = 0.6: f = 1 + (q − 0.6)² − 0.8·exp(−((q − q0)/w)²) + strength/p². The other side rises to 2.
 // With `root`, that side is f = 1 + 0.1·q^(1/8) + strength/p² instead: it falls towards the pole
 // down to q ≈ 1e-13 (strength 1e-30).
-struct PoleWithDip {
-  using Evaluation = TwoBasins::Evaluation;
+struct PoleWithDip : SyntheticObjective {
   double side = 1, q0 = 0.03, w = 0.015, refuse = 1e-4, strength = 1e-9;
   bool root = false;
-  NormalisedFrame frame = normalised_frame(make_random_boundary(3, 3, 1), objective_named("dirichlet"));
-  int count = 0;
   Evaluation evaluate(double p, bool /*with_derivative*/ = true) {
     ++count;
     Evaluation e;
@@ -96,10 +98,6 @@ struct PoleWithDip {
   [[nodiscard]] static std::vector<double> singular_parameters(double lower, double upper) {
     return lower < 0 && 0 < upper ? std::vector<double>{0.0} : std::vector<double>{};
   }
-  [[nodiscard]] const NormalisedFrame& unit_frame() const { return frame; }
-  [[nodiscard]] int evaluations() const { return count; }
-  [[nodiscard]] static int solves() { return 0; }
-  [[nodiscard]] static double scale_origin() { return -0.25; }
 };
 }  // namespace
 

@@ -45,8 +45,7 @@ std::string describe(const std::vector<std::pair<double, double>>& runs) {
 // scan neighbours (the refinement stays between them); a flat verdict rests on every scan point.
 // Where a failed evaluation lies among them, nothing is claimed (kFailedRegion).
 void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, bool>>& log) {
-  const std::vector<std::pair<double, double>> scan = s.scan;
-  judge_failures(s, log, scan);
+  judge_failures(s, log, s.scan);  // (it changes no scan)
 }
 
 void judge_failures(AlphaSearchSummary& s, const std::vector<std::pair<double, bool>>& log,

@@ -145,8 +145,9 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
         break;
       }
   }
-  IntervalSearch found{results[shown], results[shown].scan};
+  IntervalSearch found{std::move(results[shown]), {}};
   AlphaSearchSummary& s = found.summary;
+  found.evidence = std::move(s.scan);   // the optimum's own interval's scan
   std::sort(scan.begin(), scan.end());  // (a margin's scan ends on its interval's first point: once)
   scan.erase(std::unique(scan.begin(), scan.end(), [](const auto& a, const auto& b) { return a.first == b.first; }),
              scan.end());
@@ -178,7 +179,6 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
                              ? IntervalSearch{search_in_frame(unit, options), {}}
                              : search_intervals(unit, options, singular);
   AlphaSearchSummary& s = found.summary;
-  if (found.evidence.empty()) found.evidence = s.scan;
   if (singular.size() > kMaxSingularIntervals)
     s.message += std::string(s.message.empty() ? "" : "; ") + "the bounds hold " + std::to_string(singular.size()) +
                  " singular parameters, more than the " + std::to_string(kMaxSingularIntervals) +
@@ -186,7 +186,7 @@ AlphaSearchSummary search_impl(Obj& objective, const AlphaSearchOptions& options
   s.value *= unit.value_factor();
   for (auto& point : s.scan) point.second *= unit.value_factor();
   s.first_failure = unit.first_failure();
-  judge_failures(s, unit.log(), found.evidence);
+  judge_failures(s, unit.log(), found.evidence.empty() ? s.scan : found.evidence);
   return std::move(found.summary);
 }
 
