@@ -2,6 +2,7 @@
 
 #include <boost/math/tools/minima.hpp>
 #include <catch2/catch.hpp>
+#include <optional>
 
 #include "coons/config.h"
 #include "coons/io/boundary_io.h"
@@ -729,8 +730,8 @@ TEST_CASE("search_alpha: bounds holding singular alphas give the lowest minimum 
 
 TEST_CASE("search_alpha: a singular alpha the boundary does not excite is no pole and no failure", "[alpha]") {
   // one_bump is symmetric: its thin plate is smooth through α = 0.309017 (mode (4, 4)), and its
-  // minimum lies just below it. Searched as a pole, the interval's end crept towards it into the
-  // near-singular evaluations, and the report became failed_region (exit 3).
+  // minimum lies below it (about 0.268). Searched as a pole, the interval's end crept towards it
+  // into the near-singular evaluations, and the report became failed_region (exit 3).
   const Boundary bump = read_boundary_file(COONS_DATA_DIR "/boundaries/one_bump.json").boundary;
   AlphaSearchOptions options;
   options.lower = -1;
@@ -742,6 +743,12 @@ TEST_CASE("search_alpha: a singular alpha the boundary does not excite is no pol
     for (auto* side : {&b.bottom, &b.top, &b.left, &b.right}) side->col(0).array() += 1e10;
     return b;
   }();
+  // the reference: the lowest point of a scan 1e-3 apart, and the derivative, by factorize and solve
+  MaskObjective f(bump, objective_named("thin_plate"), alpha_only(), backend("eigen-lu"));
+  double lowest = HUGE_VAL;
+  for (int i = 0; i <= 2000; ++i)
+    if (const auto e = f.evaluate(-1 + i * 1e-3, false); e.ok()) lowest = std::min(lowest, e.value);
+  std::optional<double> at_origin;
   for (const auto& [b, solver] : {std::pair{&bump, "fast"}, std::pair{&bump, "eigen-lu"}, std::pair{&moved, "fast"},
                                   std::pair{&moved, "eigen-lu"}}) {
     const AlphaSearchSummary s = search_alpha(*b, objective_named("thin_plate"), backend(solver), options);
@@ -749,7 +756,13 @@ TEST_CASE("search_alpha: a singular alpha the boundary does not excite is no pol
     CHECK(s.status == SearchStatus::kSuccess);
     CHECK(s.failed_evaluations == 0);
     REQUIRE(s.parameter);
-    CHECK(*s.parameter == Approx(0.2677801488).margin(1e-6));
+    CHECK(std::abs(*s.parameter - 0.309017) > 0.01);  // not crept to the unexcited singular α
+    const auto e = f.evaluate(*s.parameter);
+    REQUIRE(e.ok());
+    CHECK(e.derivative == Approx(0).margin(1e-7));
+    CHECK(e.value <= lowest * (1 + 1e-12));
+    if (!at_origin) at_origin = *s.parameter;
+    CHECK(*s.parameter == Approx(*at_origin).margin(1e-6));  // moved: the same optimum
   }
 }
 

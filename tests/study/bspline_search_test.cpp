@@ -146,6 +146,16 @@ TEST_CASE("bspline_definite_upper: the whole contract range on equal spacing, th
       search_bspline_alpha(b, objective_named("thin_plate"), "eigen-lu", bspline_search_options(b));
   REQUIRE(thin.parameter);
   CHECK(*thin.parameter <= upper);
+  auto solver = solvers::make_solver("eigen-lu");
+  const AlphaSearchOptions bounds = bspline_search_options(b);
+  double lowest = HUGE_VAL;  // a scan 1/400 of the bounds apart, up to the definite end
+  for (int i = 0; i <= 400; ++i) {
+    const double alpha = bounds.lower + (bounds.upper - bounds.lower) * i / 400;
+    if (const auto v = bspline_alpha_objective(b, objective_named("thin_plate"), alpha, *solver))
+      lowest = std::min(lowest, v->value);
+  }
+  REQUIRE(lowest < HUGE_VAL);
+  CHECK(thin.value <= lowest * (1 + 1e-12));
 }
 
 TEST_CASE("bspline_pole_note: an optimum against a definite end cut by a singular alpha is said to be its",

@@ -171,6 +171,7 @@ TEST_CASE("fit_degree_limit: a monotone tail whose steps grow is told so, not th
   const auto r = fit_degree_limit({{3, 0.3291395951939312}, {5, 0.3044792420683252}, {7, 0.2754}});
   CHECK(r.status == DegreeLimitStatus::kNotMonotone);
   CHECK(r.message.find("do not shrink") != std::string::npos);
+  CHECK(r.message.find("change sign") == std::string::npos);  // not that it turns
   const auto turning = fit_degree_limit({{4, 10.0}, {8, 7.0}, {12, 6.0}, {16, 6.5}});
   CHECK(turning.message.find("change sign") != std::string::npos);
 }

@@ -113,6 +113,7 @@ TEST_CASE("run_sweep: a member's residual and status are those of its system as 
   // Each member is solved for the data moved to their centre; its residual was that moved
   // system's, whose right-hand side can be larger: gauss-seidel's member at α = −1/4 of a 3 × 200
   // net said success, 9.99e-13, where `solve` (the system as given) said not_converged, 2.5e-12.
+  // cg at the tolerance 1e-8 shows the same on the net below (2.4e-8 as given).
   using namespace coons;
   ControlNet net = test::make_random_net(3, 200, 13);
   net.points.col(2).setZero();  // z = 0 but on the side i = 3, z = 10: moved to z = 5, every side
@@ -125,14 +126,31 @@ TEST_CASE("run_sweep: a member's residual and status are those of its system as 
   const std::vector<SweepRow> rows =
       run_sweep(b, {-0.25, -0.1}, family, test::backend("cg"), std::nullopt, {}, &nets, options);
   REQUIRE(nets.size() == 2);
+  REQUIRE(rows.size() == 2);
+  // cg on this net meets the tolerance for the moved system at both α, but for the system as
+  // given only at α = −0.1: the α = −1/4 member is the case above, and it must say so (its net is
+  // then the frame, X = 0: its residual is the one its message names).
+  int met = 0, missed = 0;
   for (size_t k = 0; k < rows.size(); ++k) {
     INFO("alpha " << rows[k].parameter << ": " << rows[k].summary.brief_report());
-    if (!rows[k].summary.ok()) continue;  // (then said so, with the residual as given)
+    if (!rows[k].summary.ok()) {
+      ++missed;
+      CHECK(rows[k].summary.status == solvers::SolveStatus::kNotConverged);
+      CHECK_THAT(rows[k].summary.message, Catch::Contains("the system as given has relative residual " +
+                                                          solvers::format_g(rows[k].summary.relative_residual)));
+      CHECK(rows[k].summary.relative_residual > options.tolerance);
+      continue;
+    }
+    ++met;
     const MaskSystem as_given = assemble_mask_system(frame_net(b), rows[k].mask, true);
     const Eigen::MatrixX3d X = interior_of(nets[k]);
     solvers::LinearOperator op;
     op.matrix = &as_given.A;
     const double truth = solvers::relative_residual(op, as_given.B, X);
     CHECK(rows[k].summary.relative_residual == Approx(truth).epsilon(1e-3).margin(1e-15));
+    CHECK(truth <= options.tolerance);  // a success meets the tolerance as given
   }
+  CHECK(met == 1);  // the fixture holds both kinds of member
+  CHECK(missed == 1);
+  CHECK_FALSE(rows[0].summary.ok());  // α = −1/4
 }
