@@ -1,8 +1,9 @@
 #!/usr/bin/env bash
 # Pages of `coons view` and their screenshots in headless Chromium (software WebGL, SwiftShader):
 # the dome at α = −1/4 (the Coons net) and at α = 0.2, the sphere cap with ribbons on its C1-weight
-# slider, and a triangular boundary. Pages go to build/view-pages (7–12 MB each, not committed),
-# the PNGs here. Usage: experiments/view/run.sh [BUILD_DIR]
+# slider, and a triangular boundary. Pages go to build/view-pages (not committed), the PNGs and
+# figures.md (the pages' sizes and the energies the README quotes, computed) here.
+# Usage: experiments/view/run.sh [BUILD_DIR]
 set -euo pipefail
 here=$(cd "$(dirname "$0")" && pwd)
 root=$(cd "$here/../.." && pwd)
@@ -13,6 +14,7 @@ coons=$build/coons
 "$coons" view "$root/data/boundaries/dome.json" --out "$pages/dome.html" --force > "$pages/dome.json"
 "$coons" view "$root/data/boundaries/sphere_cap_ribbons.json" --out "$pages/cap.html" --force > "$pages/cap.json"
 "$coons" view "$root/data/triangles/dome_half.json" --out "$pages/dome_half.html" --force > "$pages/dome_half.json"
+python3 "$here/figures.py" "$coons" "$pages" "$here/figures.md"
 shot() {  # PAGE#FRAGMENT OUT.png
   chromium --headless=new --no-sandbox --disable-gpu --use-angle=swiftshader --enable-unsafe-swiftshader \
     --window-size=1200,660 --virtual-time-budget=5000 --screenshot="$2" "file://$1" > /dev/null 2>&1
