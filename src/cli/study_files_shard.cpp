@@ -4,6 +4,7 @@
 // and B-spline rows and writes its report with the same writer (docs/formats.md, "Sharded studies").
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <fstream>
 #include <iterator>
 #include <map>
@@ -198,10 +199,16 @@ int run_files_merge(const std::vector<fs::path>& files, const std::string& merge
     const std::string where = file.string();
     for (const json& r : read_shard_file(file).records) {
       if (!r.contains("study")) throw InputError(where, "study", "missing");
-      if (!study)
+      if (!study) {
         study = r["study"];
-      else if (r["study"] != *study)
+        // the names are read for the messages below: a list of anything else is no study of coons's
+        const json* names = study->contains("files") ? &(*study)["files"] : nullptr;
+        if (!names || !names->is_array() ||
+            !std::all_of(names->begin(), names->end(), [](const json& f) { return f.is_string(); }))
+          throw InputError(where, "study.files", "missing or not a list of file names");
+      } else if (r["study"] != *study) {
         throw InputError(where, "study", "the shards hold tasks of different studies (options or coons revision)");
+      }
       if (!r.contains("index") || !r["index"].is_number_unsigned() || !r.contains("content") ||
           !r["content"].is_string() || !r.contains("result"))
         throw InputError(where, "index", "a record without index, content or result");

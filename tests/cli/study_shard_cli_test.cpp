@@ -147,6 +147,55 @@ TEST_CASE("coons study --merge: a record whose grid is not the study's length is
   }
 }
 
+TEST_CASE("coons study --merge: a line nested 140,000 deep is skipped, not a crash", "[cli]") {
+  // read unbounded, the merge's copy of such a line recursed once per level: exit 139, no message
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons(kFamily + " --shard 0/1 --out " + quoted(shards)).status == 0);
+  {
+    std::ofstream out(shards + "/shard-0-of-1.jsonl", std::ios::binary | std::ios::app);
+    out << R"({"key":"k","study":)" << std::string(140000, '[') << std::string(140000, ']') << "}\n";
+  }
+  const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 0);  // the line is no record (as a malformed one is not): the 16 tasks merge
+  CHECK(merged.out.find("merged 16 tasks") != std::string::npos);
+}
+
+TEST_CASE("coons study --merge: an edited study block is refused before its task list is built", "[cli]") {
+  // The task key does not cover count, degrees or objectives. A count of 100000 made the merge
+  // build every task (1.6 GB for degrees 3 … 200) before it said that tasks were missing, and a
+  // list naming an objective twice said "18446744073709551615 tasks outside the study's list".
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons(kFamily + " --shard 0/1 --out " + quoted(shards)).status == 0);
+  const std::string file = shards + "/shard-0-of-1.jsonl";
+  const std::vector<json> records = read_json_lines(file);
+  REQUIRE(records.size() == 16);  // 4 boundaries × 2 degrees × 2 objectives
+  const auto edit_all = [&](const std::string& field, const json& value) {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    for (json r : records) {
+      r["study"][field] = value;
+      out << r.dump() << '\n';
+    }
+  };
+  edit_all("count", 100000);
+  const std::size_t total = 100000 * 2 * records[0]["study"]["objectives"].size();
+  CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.err.find("--merge: " + std::to_string(total - 16) + " of " + std::to_string(total) +
+                        " tasks are missing (the first: boundary 4, degree 3,") != std::string::npos);
+  edit_all("count", 4);
+  const std::string objective = records[0]["study"]["objectives"][0];
+  edit_all("objectives", json::array({objective, objective}));
+  merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.err.find("study.objectives: names '" + objective + "' twice") != std::string::npos);
+  CHECK_FALSE(fs::exists(dir.file("merged")));
+}
+
 TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, sharded and merged", "[cli]") {
   TempDir dir;
   // the bundled shape by name, from the repository's root as the README runs it

@@ -64,6 +64,7 @@ TEST_CASE("append_study_part: an integer field holding a float beyond int is ref
   StudyResult result = smooth_study_result();
   TriStudyEntry triangle;  // a triangle's entry (no search run: only its integers matter here)
   triangle.boundary.n = 3;
+  for (auto& side : triangle.boundary.sides) side = Eigen::MatrixX3d::Zero(4, 3);  // n + 1 points each
   TriStudyCell cell;
   cell.degree = 3;
   triangle.rows.push_back({"thin_plate", {cell}});

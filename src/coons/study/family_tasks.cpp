@@ -259,9 +259,13 @@ AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>
     if (!o.solver) throw InputError(where, "study.solver", fmt::format("'{}' is not built into this coons", solver));
   }
   *objectives = field<std::vector<std::string>>(study, "objectives", where);
-  for (const std::string& name : *objectives) {
+  for (size_t k = 0; k < objectives->size(); ++k) {
+    const std::string& name = (*objectives)[k];
     std::string why;
     if (!parse_objective(name, &why)) throw InputError(where, "study.objectives", why);
+    if (std::find(objectives->begin(), objectives->begin() + std::ptrdiff_t(k), name) !=
+        objectives->begin() + std::ptrdiff_t(k))
+      throw InputError(where, "study.objectives", fmt::format("names '{}' twice", name));
   }
   std::string why;
   if (!o.is_valid(&why)) throw InputError(where, "study", why);

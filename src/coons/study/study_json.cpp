@@ -62,9 +62,12 @@ json matrix(const Eigen::MatrixX3d& M) {
   return rows;
 }
 Eigen::MatrixX3d matrix_of(const json& j) {
+  if (!j.is_array()) throw std::invalid_argument("a list of points is not a list");
   Eigen::MatrixX3d M(Eigen::Index(j.size()), 3);
-  for (size_t r = 0; r < j.size(); ++r)
-    for (int c = 0; c < 3; ++c) M(Eigen::Index(r), c) = num_of(j.at(r).at(size_t(c)));
+  for (size_t r = 0; r < j.size(); ++r) {
+    if (!j[r].is_array() || j[r].size() != 3) throw std::invalid_argument("a point has not 3 coordinates");
+    for (int c = 0; c < 3; ++c) M(Eigen::Index(r), c) = num_of(j[r][size_t(c)]);
+  }
   return M;
 }
 
@@ -165,6 +168,12 @@ Boundary boundary_of_json(const json& j) {
   b.top = matrix_of(j.at("top"));
   b.left = matrix_of(j.at("left"));
   b.right = matrix_of(j.at("right"));
+  // (a record edited to m = 40 over sides of 4 points, or with no bottom, merged with exit 0)
+  if (b.bottom.rows() != b.m + 1 || b.top.rows() != b.m + 1 || b.left.rows() != b.n + 1 || b.right.rows() != b.n + 1)
+    throw std::invalid_argument(
+        fmt::format("the boundary {}: its sides have {}, {}, {} and {} points where m = {} and "
+                    "n = {} need {} (bottom, top) and {} (left, right)",
+                    b.name, b.bottom.rows(), b.top.rows(), b.left.rows(), b.right.rows(), b.m, b.n, b.m + 1, b.n + 1));
   return b;
 }
 
@@ -349,7 +358,15 @@ TriStudyEntry triangle_of(const json& j) {
   const json& b = j.at("boundary");
   e.boundary.name = b.at("name").get<std::string>();
   e.boundary.n = int_of(b.at("n"), "n", 1);
-  for (size_t k = 0; k < 3; ++k) e.boundary.sides[k] = matrix_of(b.at("sides").at(k));
+  if (!b.at("sides").is_array() || b.at("sides").size() != 3)
+    throw std::invalid_argument("the triangle " + e.boundary.name + " has not three sides");
+  for (size_t k = 0; k < 3; ++k) {
+    e.boundary.sides[k] = matrix_of(b.at("sides").at(k));
+    if (e.boundary.sides[k].rows() != e.boundary.n + 1)
+      throw std::invalid_argument(fmt::format("the triangle {}: side {} has {} points where n = {} needs {}",
+                                              e.boundary.name, k, e.boundary.sides[k].rows(), e.boundary.n,
+                                              e.boundary.n + 1));
+  }
   e.solver = j.at("solver").get<std::string>();
   e.solver_picked_automatically = j.at("solver_picked_automatically").get<bool>();
   for (const json& r : j.at("rows")) {
