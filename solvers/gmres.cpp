@@ -3,6 +3,7 @@
 #include <Eigen/IterativeLinearSolvers>
 #include <cmath>
 #include <limits>
+#include <string>
 #include <vector>
 
 namespace coons::solvers {
@@ -25,6 +26,11 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
   IterationSummary out;
   const Eigen::Index n = b.size();
   if (x.size() != n) x.setZero(n);
+  if (std::string why; !options.is_valid(&why)) {
+    out.status = SolveStatus::kFailure;
+    out.message = "invalid options: " + why;
+    return out;
+  }
   const double bnorm = b.norm();
   if (bnorm == 0) {
     x.setZero(n);

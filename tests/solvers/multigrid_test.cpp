@@ -431,6 +431,26 @@ TEST_CASE("gmres: an Arnoldi direction made of rounding is a breakdown, not a ba
   }
 }
 
+TEST_CASE("gmres: unusable options are a failure that says why, before any iteration", "[solvers][mg]") {
+  // GmresOptions::is_valid was never called: a restart of 0, which it rejects, was used as given
+  const Eigen::Vector2d b(1, 2);
+  const VectorMap identity = [](const Eigen::VectorXd& in, Eigen::VectorXd& out) { out = in; };
+  for (const int restart : {0, -3}) {
+    GmresOptions options;
+    options.restart = restart;
+    Eigen::VectorXd x;
+    const IterationSummary s = gmres(identity, VectorMap{}, b, x, options);
+    INFO(s.message);
+    CHECK(s.status == SolveStatus::kFailure);
+    CHECK(s.message == "invalid options: restart must be >= 1");
+    CHECK(s.iterations == 0);
+  }
+  GmresOptions usable;
+  Eigen::VectorXd x;
+  CHECK(gmres(identity, VectorMap{}, b, x, usable).ok());
+  CHECK(x.isApprox(Eigen::VectorXd(b)));
+}
+
 TEST_CASE("multigrid backends: report not_applicable instead of a wrong answer", "[solvers][mg]") {
   const StencilOperator laplace = make_stencil_operator(12, 9, nine_point(1, -0.25, 0));
   const Eigen::SparseMatrix<double> A = stencil_operator_matrix(laplace);

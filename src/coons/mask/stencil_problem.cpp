@@ -176,6 +176,10 @@ bool ProblemCheckOptions::is_valid(std::string* why) const {
 std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, const Stencil& stencil,
                                                 const ProblemCheckOptions& options) {
   std::vector<ProblemIssue> issues;
+  if (std::string why; !options.is_valid(&why)) {
+    issues.push_back({"options", -1, -1, why});
+    return issues;
+  }
   const int m = problem.net.m, n = problem.net.n, r = stencil.radius, rings = problem.rings;
   if (problem.free.size() > 0 && (problem.free.rows() != m + 1 || problem.free.cols() != n + 1)) {
     issues.push_back({"free", -1, -1,

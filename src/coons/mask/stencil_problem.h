@@ -55,7 +55,7 @@ Eigen::RowVector3d data_centre(const StencilProblem& problem, const std::vector<
 StencilProblem rings_problem(ControlNet net, int rings);
 
 struct ProblemIssue {
-  std::string field;   //!< "rings", "free" or "free[i][j]"
+  std::string field;   //!< "rings", "free", "free[i][j]" or "options" (ProblemCheckOptions unusable)
   int i = -1, j = -1;  //!< the point, when the issue is about one
   std::string reason;  //!< one line, no trailing period
 };
