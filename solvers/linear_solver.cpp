@@ -151,7 +151,14 @@ SolveStatus LinearSolver::analyze(const LinearOperator& op) {
   summary_.solver = name();
   factorized_ = false;
   const auto start = std::chrono::steady_clock::now();
-  summary_.status = do_analyze(op, summary_);
+  // Options no backend can use (the CLI refuses them as bad input; a library caller gets the
+  // reason here, where every backend starts, instead of an iteration with a tolerance of 2)
+  if (std::string why; !options_.is_valid(&why)) {
+    summary_.status = SolveStatus::kFailure;
+    summary_.message = "invalid solver options: " + why;
+  } else {
+    summary_.status = do_analyze(op, summary_);
+  }
   summary_.analyze_seconds = seconds_since(start);
   analyzed_size_ = summary_.ok() ? op.size() : -1;
   if (!summary_.ok()) summary_.relative_residual = kUnsolvedResidual;

@@ -375,6 +375,22 @@ TEST_CASE("SolverOptions: a negative or non-finite time limit is invalid", "[sol
   CHECK_FALSE(options.is_valid(&why));
 }
 
+TEST_CASE("LinearSolver::analyze: unusable options are a failure naming the option, on every backend", "[solvers]") {
+  // is_valid was the CLI's to call: a library caller's tolerance of 2 reached the iterations
+  const MaskSystem s = assemble_mask_system(make_random_net(6, 5, 4), alpha_mask(-0.1));
+  SolverOptions options;
+  options.tolerance = 2;
+  for (const SolverInfo& info : available_solvers()) {
+    Eigen::MatrixX3d X;
+    const SolveSummary summary = make_solver(info.name, options)->compute_and_solve(operator_of(s), s.B, X);
+    INFO(info.name << ": " << summary.brief_report());
+    CHECK(summary.status == SolveStatus::kFailure);
+    CHECK(summary.message == "invalid solver options: tolerance must lie in (0, 1)");
+    CHECK(X.isZero(0));
+    CHECK(summary.relative_residual == 1);  // of X = 0
+  }
+}
+
 TEST_CASE("SolverOptions: threads lie in 0 .. 256, and 0 means every core", "[solvers]") {
   std::string why;
   SolverOptions options;
