@@ -108,7 +108,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   inputs.write("stencil_asym.json", "{\"weights\": [[0, 1, 0], [2, null, 1], [0, 1, 0]]}");
   inputs.write("stencil_flat.json", "{\"weights\": [[0, 0, 0], [0, 1, 0], [0, 0, 0]]}");
   // A file stencil whose symbol dips to −8e-9 between two of the samples symbol_nonnegative takes
-  // (σ = 1 + 2w₁cos θ + 2w₂cos 2θ, see stencil_family_test), on a net whose free points form one
+  // (σ = 1 + 2w₁cos θ + 2w₂cos 2θ, see stencil_test.cpp), on a net whose free points form one
   // column of 300: the system is singular to rounding (it was solved into z ≈ 6e7, exit 0).
   {
     const double w1 = -0.6666907169580457, w2 = 0.16669071695804574;

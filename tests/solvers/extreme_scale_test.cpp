@@ -1,5 +1,5 @@
 // Systems at the ends of the double range: no backend may loop on a start test that Eigen cannot
-// pass, and a success must be a true one (tiny and huge right-hand sides: rhs_scaling_test.cpp).
+// pass, and a success must be a true one (tiny and huge right-hand sides: column_scaling_test.cpp).
 #include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cmath>
