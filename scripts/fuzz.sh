@@ -5,13 +5,14 @@
 # regression inputs. Prints one line per target with its executions; a finding (crash, sanitizer
 # report, escaping exception, timeout) is saved under build-fuzz/findings/<target>/ and makes the
 # script fail: copy it to tests/fuzz/regressions/<target>/ with the fix.
-# Usage: scripts/fuzz.sh [target ...]   (default: all three)
+# Usage: scripts/fuzz.sh [target ...]   (default: all six)
 set -euo pipefail
 cd "$(dirname "$0")/.."
 seconds=${COONS_FUZZ_SECONDS:-20}
 build=build-fuzz
 targets=("$@")
-[ ${#targets[@]} -eq 0 ] && targets=(fuzz_boundary_reader fuzz_surface_reader fuzz_matrix_market)
+[ ${#targets[@]} -eq 0 ] && targets=(fuzz_boundary_reader fuzz_surface_reader fuzz_matrix_market fuzz_tri_boundary_reader
+                                      fuzz_stencil_problem fuzz_study_shard)
 
 command -v clang++ >/dev/null || { echo "error: fuzz: clang++ not found (apt-get install clang libclang-rt-14-dev)" >&2; exit 1; }
 mkdir -p "$build"
@@ -25,6 +26,8 @@ seed_dir() {
   case "$1" in
     fuzz_boundary_reader) echo data/boundaries ;;
     fuzz_surface_reader) echo data/surfaces ;;
+    fuzz_tri_boundary_reader) echo data/triangles ;;
+    fuzz_stencil_problem) echo data/boundaries ;;
     *) echo "" ;;
   esac
 }
@@ -44,10 +47,13 @@ for t in "${targets[@]}"; do
     printf '%%%%MatrixMarket matrix array real general\n% a comment\n3 2\n1\n2\n3\n4\n5\n6.5e-3\n' >"$corpus/seed_dense.mtx"
     printf '%%%%MatrixMarket matrix coordinate real symmetric\n3 3 4\n1 1 4\n2 1 -1\n2 2 4\n3 3 4\n' >"$corpus/seed_symmetric.mtx"
   fi
+  # a shard record of a boundary-file study is about 30 kB
+  max_len=16384
+  [ "$t" = fuzz_study_shard ] && max_len=65536
   log=$build/$t.log
   status=0
   # -timeout: one input taking 10 s is a finding; -rss_limit_mb: so is using 2 GB.
-  "$build/fuzz/$t" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len=16384 \
+  "$build/fuzz/$t" "$corpus" -max_total_time="$seconds" -timeout=10 -rss_limit_mb=2048 -max_len="$max_len" \
       -dict="$(dict_of "$t")" -artifact_prefix="$findings/" -print_final_stats=1 >"$log" 2>&1 || status=$?
   runs=$(grep -o 'stat::number_of_executed_units: *[0-9]*' "$log" | grep -o '[0-9]*$' || echo "?")
   found=$(find "$findings" -type f | wc -l)
