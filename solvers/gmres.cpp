@@ -26,9 +26,11 @@ IterationSummary gmres(const VectorMap& apply, const VectorMap& precondition, co
   IterationSummary out;
   const Eigen::Index n = b.size();
   if (x.size() != n) x.setZero(n);
-  if (std::string why; !options.is_valid(&why)) {
+  if (std::string why; !options.is_valid(&why)) {  // x = 0, and the residual of that x
+    x.setZero(n);
     out.status = SolveStatus::kFailure;
     out.message = "invalid options: " + why;
+    out.relative_residual = b.isZero(0) ? 0 : 1;
     return out;
   }
   const double bnorm = b.norm();

@@ -185,8 +185,10 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
 std::optional<bool> is_files_study_shard(const fs::path& file) {
   const ShardFile f = read_shard_file(file);
   if (f.records.empty()) return std::nullopt;
-  return f.records.front().contains("study") && f.records.front()["study"].is_object() &&
-         f.records.front()["study"].value("inputs", "") == "files";
+  // (value("inputs", "") of a number threw a JSON type_error that named no field: a comparison does not)
+  const json& first = f.records.front();
+  return first.contains("study") && first["study"].is_object() && first["study"].contains("inputs") &&
+         first["study"]["inputs"] == "files";
 }
 
 int run_files_merge(const std::vector<fs::path>& files, const std::string& merge_dir, const std::string& out_dir) {

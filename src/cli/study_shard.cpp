@@ -26,40 +26,6 @@ namespace coons::cli {
 namespace fs = std::filesystem;
 using nlohmann::json;
 
-ShardFile read_shard_file(const fs::path& path) {
-  ShardFile out;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) throw InputError(path.string(), "", "cannot be read");
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  size_t pos = 0;
-  while (pos < text.size()) {
-    const size_t end = text.find('\n', pos);
-    if (end == std::string::npos) {  // no newline: the line a killed run was writing
-      out.clean = false;
-      break;
-    }
-    std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    // parse_json_text: a line nested beyond its depth limit (64) is refused, not parsed: a line of
-    // 140,000 nested arrays overflowed the stack when the merge copied it (exit 139, no message).
-    // Such a line, like a malformed one, is no record of coons's.
-    json j;
-    try {
-      j = parse_json_text(line, path.string(), {});
-    } catch (const InputError&) {
-      out.clean = false;
-      continue;
-    }
-    if (!j.is_object() || !j.contains("key") || !j["key"].is_string()) {
-      out.clean = false;
-      continue;
-    }
-    out.records.push_back(std::move(j));
-    out.lines.push_back(std::move(line));
-  }
-  return out;
-}
-
 namespace {
 
 std::string revision_of(const Provenance& p) { return p.git_revision; }
@@ -185,9 +151,16 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
       if (!study) {
         study = r["study"];
         options = family_options_of(*study, &objectives, where);
-        const json coons = study->value("coons", json::object());
-        version = coons.value("version", "");
-        revision = coons.value("git_revision", "");
+        // (value() of a number where a string belongs threw a JSON type_error that named no field)
+        const json coons = study->contains("coons") ? (*study)["coons"] : json::object();
+        const auto text = [&](const char* name) {
+          if (!coons.is_object()) throw InputError(where, "study.coons", "is not an object");
+          if (!coons.contains(name)) return std::string();
+          if (!coons[name].is_string()) throw InputError(where, std::string("study.coons.") + name, "is not a string");
+          return coons[name].get<std::string>();
+        };
+        version = text("version");
+        revision = text("git_revision");
       } else if (r["study"] != *study) {
         throw InputError(where, "study", "the shards hold tasks of different studies (options or coons revision)");
       }
@@ -214,15 +187,15 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
   }
   if (!study) throw InputError(merge_dir, "--merge", "the shards hold no finished task");
 
-  // The study's list has objectives × degrees × count tasks, up to 200 million for a study block
-  // that passes its checks. It is built only once every task of it is known to be here: an edited
-  // block of 4 kB (count 100000, degrees 3 … 200) made the merge allocate 1.6 GB before it said
-  // that tasks were missing.
+  // The study's list has objectives × degrees × count tasks (count up to 100000, 199 degrees, and
+  // as many objectives as a block names). It is built only once every task of it is known to be
+  // here: an edited block of 4 kB (count 100000, degrees 3 … 200) made the merge allocate 1.6 GB
+  // before it said that tasks were missing.
+  const std::set<int> degrees(options.degrees.begin(), options.degrees.end());
+  const std::set<std::string> named(objectives.begin(), objectives.end());
   const auto in_list = [&](const std::tuple<std::string, int, int>& t) {
     const auto& [objective, degree, index] = t;
-    return index >= 0 && index < options.count &&
-           std::find(options.degrees.begin(), options.degrees.end(), degree) != options.degrees.end() &&
-           std::find(objectives.begin(), objectives.end(), objective) != objectives.end();
+    return index >= 0 && index < options.count && degrees.count(degree) > 0 && named.count(objective) > 0;
   };
   size_t inside = 0;
   for (const auto& [task, result] : by_task) inside += in_list(task) ? 1 : 0;

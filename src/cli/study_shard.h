@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include "coons/io/shard_file.h"
 #include "coons/io/write_files.h"
 #include "coons/study/alpha_family.h"
 #include "coons/study/bspline_study.h"
@@ -20,15 +21,6 @@
 #include "coons/study/task_key.h"
 
 namespace coons::cli {
-
-//! The complete, parsable lines of a JSON Lines file (objects with a string "key"); `clean` is
-//! false when something else was there (a truncated last line of a killed run, a broken line).
-struct ShardFile {
-  std::vector<nlohmann::json> records;
-  std::vector<std::string> lines;
-  bool clean = true;
-};
-ShardFile read_shard_file(const std::filesystem::path& path);
 
 //! OUT/shard-I-of-N.jsonl made ready for appending: `done` receives the keys already there, an
 //! unfinished last line is dropped; a file of another `study` is an input error.

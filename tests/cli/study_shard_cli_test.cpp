@@ -196,6 +196,37 @@ TEST_CASE("coons study --merge: an edited study block is refused before its task
   CHECK_FALSE(fs::exists(dir.file("merged")));
 }
 
+TEST_CASE("coons study --merge: a study block's strings that are numbers are errors naming the field", "[cli]") {
+  // value() of a number where a string belongs threw a JSON type_error naming no field
+  TempDir dir;
+  const std::string shards = dir.file("shards");
+  REQUIRE(run_coons(kFamily + " --shard 0/1 --out " + quoted(shards)).status == 0);
+  const std::string file = shards + "/shard-0-of-1.jsonl";
+  const std::vector<json> records = read_json_lines(file);
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    for (json r : records) {
+      r["study"]["coons"]["version"] = 5;
+      out << r.dump() << '\n';
+    }
+  }
+  CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.err.find("shard-0-of-1.jsonl: study.coons.version: is not a string") != std::string::npos);
+  // "inputs", which tells a boundary-file study's shards, a number (a 33-byte line of the fuzzer's)
+  {
+    std::ofstream out(file, std::ios::binary | std::ios::trunc);
+    out << R"({"key":"k","study":{"inputs":5}})" << '\n';
+  }
+  merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
+  INFO(merged.err);
+  CHECK(merged.status == 2);
+  CHECK(merged.err.find("shard-0-of-1.jsonl: family: missing") != std::string::npos);
+  CHECK(merged.err.find("json.exception") == std::string::npos);
+  CHECK_FALSE(fs::exists(dir.file("merged")));
+}
+
 TEST_CASE("coons study --family perturbed: a bundled shape's perturbations, sharded and merged", "[cli]") {
   TempDir dir;
   // the bundled shape by name, from the repository's root as the README runs it

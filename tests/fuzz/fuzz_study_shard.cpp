@@ -1,7 +1,7 @@
 // libFuzzer target: the records of the shard files `coons study --merge DIR` reads
-// (docs/formats.md "Sharded studies"). The bytes are split into lines exactly as read_shard_file
-// (src/cli/study_shard.cpp) does -- parse_json_text (depth at most 64), a line it refuses or that
-// is not an object with a string "key" skipped -- and every record is then read as the merge reads it
+// (docs/formats.md "Sharded studies"). The bytes are split into records by parse_shard_lines
+// (coons/io/shard_file.h), which read_shard_file calls for the merge, and every record is then
+// read as the merge reads it
 // (the key check left out: a fuzzer cannot forge the hashes):
 //   a boundary-file study ("study": {"inputs": "files", ...}): study.degrees through json_int and
 //   StudyOptions::is_valid, study.objectives, then append_study_part("result") and
@@ -18,6 +18,7 @@
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
+#include "coons/io/shard_file.h"
 #include "coons/study/bspline_study.h"
 #include "coons/study/family_tasks.h"
 #include "coons/study/provenance.h"
@@ -80,25 +81,14 @@ void family_record(const json& r) {
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::string text(reinterpret_cast<const char*>(data), size);
-  std::size_t pos = 0;
-  while (pos < text.size()) {
-    const std::size_t end = text.find('\n', pos);
-    if (end == std::string::npos) break;
-    const std::string line = text.substr(pos, end - pos);
-    pos = end + 1;
-    json j;
-    try {
-      j = coons::parse_json_text(line, "fuzz", {});
-    } catch (const coons::InputError&) {
-      continue;
-    }
-    if (!j.is_object() || !j.contains("key") || !j["key"].is_string()) continue;
+  for (const json& j : coons::parse_shard_lines(text, "fuzz").records) {
     if (!j.contains("study")) continue;  // the merge: InputError "study: missing"
     try {
       // the merge keeps the first record's study block by value and compares every later one to it
       const json study = j["study"];
       if (study != j["study"]) return 0;
-      if (study.is_object() && study.value("inputs", "") == "files")
+      // (as is_files_study_shard tests it: a comparison, which no type of "inputs" makes throw)
+      if (study.is_object() && study.contains("inputs") && study["inputs"] == "files")
         files_record(j);
       else
         family_record(j);

@@ -2,13 +2,14 @@
 // issue 11: the bicubic (general) Coons equivalence of c1-coons, reproduction of index-cubic nets,
 // the thin-plate Euler–Lagrange property of the biharmonic mask, the C1 family, the α family on
 // any free set and any number of rings, and non-rectangular free sets.
+#include "coons/mask/solve_stencil_net.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 #include <random>
 
 #include "coons/mask/mask_families.h"
 #include "coons/mask/solve_mask_net.h"
-#include "coons/mask/solve_stencil_net.h"
 #include "coons/mask/stencil_system.h"
 #include "coons/surfaces/surface.h"
 #include "mask/stencil_reference.h"

@@ -1,9 +1,10 @@
 // The named stencils: their weights, the C1 family as the Euler–Lagrange operator of its energy
 // (from the exact Hessian of the energy, not from the header's algebra), symbols and factors.
+#include "coons/mask/stencil.h"
+
 #include <catch2/catch.hpp>
 #include <cmath>
 
-#include "coons/mask/stencil.h"
 #include "mask/stencil_reference.h"
 #include "support/fixtures.h"
 

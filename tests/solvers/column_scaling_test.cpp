@@ -1,5 +1,7 @@
 // The common solve path scales each right-hand-side column by a power of two (solvers/column_scaling.h):
 // tiny and huge right-hand sides, whose squared norms underflow or overflow, solve like ordinary ones.
+#include "solvers/column_scaling.h"
+
 #include <Eigen/Core>
 #include <catch2/catch.hpp>
 #include <cmath>
@@ -8,7 +10,6 @@
 #include <string>
 
 #include "coons/mask/assemble_mask_system.h"
-#include "solvers/column_scaling.h"
 #include "solvers/registry.h"
 #include "support/fixtures.h"
 

@@ -438,12 +438,14 @@ TEST_CASE("gmres: unusable options are a failure that says why, before any itera
   for (const int restart : {0, -3}) {
     GmresOptions options;
     options.restart = restart;
-    Eigen::VectorXd x;
+    Eigen::VectorXd x = Eigen::VectorXd::Ones(2);  // an initial guess of the right size
     const IterationSummary s = gmres(identity, VectorMap{}, b, x, options);
     INFO(s.message);
     CHECK(s.status == SolveStatus::kFailure);
     CHECK(s.message == "invalid options: restart must be >= 1");
     CHECK(s.iterations == 0);
+    CHECK(x.isZero(0));               // x = 0 is returned,
+    CHECK(s.relative_residual == 1);  // with its residual
   }
   GmresOptions usable;
   Eigen::VectorXd x;

@@ -7,6 +7,7 @@
 #include <Eigen/SparseLU>
 #include <algorithm>
 #include <cmath>
+#include <stdexcept>
 #include <string>
 #include <utility>
 
@@ -176,10 +177,8 @@ bool ProblemCheckOptions::is_valid(std::string* why) const {
 std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, const Stencil& stencil,
                                                 const ProblemCheckOptions& options) {
   std::vector<ProblemIssue> issues;
-  if (std::string why; !options.is_valid(&why)) {
-    issues.push_back({"options", -1, -1, why});
-    return issues;
-  }
+  // the options are the caller's, not the input's: unusable ones are a programming error
+  if (std::string why; !options.is_valid(&why)) throw std::invalid_argument("check_stencil_problem: " + why);
   const int m = problem.net.m, n = problem.net.n, r = stencil.radius, rings = problem.rings;
   if (problem.free.size() > 0 && (problem.free.rows() != m + 1 || problem.free.cols() != n + 1)) {
     issues.push_back({"free", -1, -1,

@@ -55,7 +55,7 @@ Eigen::RowVector3d data_centre(const StencilProblem& problem, const std::vector<
 StencilProblem rings_problem(ControlNet net, int rings);
 
 struct ProblemIssue {
-  std::string field;   //!< "rings", "free", "free[i][j]" or "options" (ProblemCheckOptions unusable)
+  std::string field;   //!< "rings", "free" or "free[i][j]"
   int i = -1, j = -1;  //!< the point, when the issue is about one
   std::string reason;  //!< one line, no trailing period
 };
@@ -70,7 +70,8 @@ struct ProblemCheckOptions {
 };
 
 //! Every issue, structural ones first (shape, rings, points); the singularity check runs only
-//! when there is no structural issue. Empty: the problem can be assembled and solved.
+//! when there is no structural issue. Empty: the problem can be assembled and solved. Options
+//! that ProblemCheckOptions::is_valid rejects throw std::invalid_argument (the caller's error).
 std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, const Stencil& stencil,
                                                 const ProblemCheckOptions& options = {});
 

@@ -8,6 +8,7 @@
 #include <limits>
 #include <map>
 #include <memory>
+#include <set>
 
 #include "coons/alpha/alpha_search.h"
 #include "coons/io/input_error.h"
@@ -259,13 +260,11 @@ AlphaFamilyOptions family_options_of(const json& study, std::vector<std::string>
     if (!o.solver) throw InputError(where, "study.solver", fmt::format("'{}' is not built into this coons", solver));
   }
   *objectives = field<std::vector<std::string>>(study, "objectives", where);
-  for (size_t k = 0; k < objectives->size(); ++k) {
-    const std::string& name = (*objectives)[k];
+  std::set<std::string> named;
+  for (const std::string& name : *objectives) {
     std::string why;
     if (!parse_objective(name, &why)) throw InputError(where, "study.objectives", why);
-    if (std::find(objectives->begin(), objectives->begin() + std::ptrdiff_t(k), name) !=
-        objectives->begin() + std::ptrdiff_t(k))
-      throw InputError(where, "study.objectives", fmt::format("names '{}' twice", name));
+    if (!named.insert(name).second) throw InputError(where, "study.objectives", fmt::format("names '{}' twice", name));
   }
   std::string why;
   if (!o.is_valid(&why)) throw InputError(where, "study", why);
