@@ -224,10 +224,7 @@ TEST_CASE("coons study FILES --merge: an integer field holding 1e300 is one erro
     REQUIRE(edited.contains(e.at));
     edited[e.at] = e.value;
     if (e.at.to_string().rfind("/study", 0) == 0) edited["key"] = key_of(edited);
-    {
-      std::ofstream out(file, std::ios::binary | std::ios::trunc);
-      out << edited.dump() << '\n';
-    }
+    write_json_lines(file, {edited});
     if (e.at.to_string().rfind("/study", 0) == 0) {  // both shards' records carry the study block
       const std::string other = shards + "/shard-0-of-2.jsonl";
       json first = read_json_lines(other).at(0);
@@ -259,14 +256,10 @@ TEST_CASE("coons study FILES --merge: study degrees that are not the results' de
   }
   for (const json& degrees : {json::array({7}), json::array(), json::array({3, 3}), json::array({4, 3}),
                               json::array({3}), json::array({3, 4, 6})}) {
-    {
-      std::ofstream out(file, std::ios::binary | std::ios::trunc);
-      for (json r : records) {
-        r["study"]["degrees"] = degrees;
-        r["key"] = key_of(r);
-        out << r.dump() << '\n';
-      }
-    }
+    write_json_lines(file, records, [&](json& r) {
+      r["study"]["degrees"] = degrees;
+      r["key"] = key_of(r);
+    });
     const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
     INFO(degrees.dump() << "\n" << merged.err);
     CHECK(merged.status == 2);
@@ -317,17 +310,10 @@ TEST_CASE("coons study FILES --merge: a result no search can have written is one
     REQUIRE(merged.status == 0);
   }
   for (const Edit& e : edits) {
-    {
-      std::ofstream out(file, std::ios::binary | std::ios::trunc);
-      for (std::size_t k = 0; k < records.size(); ++k) {
-        json r = records[k];
-        if (k == e.record) {
-          REQUIRE(r.contains(json::json_pointer(e.at)));
-          r[json::json_pointer(e.at)] = e.value;
-        }
-        out << r.dump() << '\n';
-      }
-    }
+    std::vector<json> edited = records;
+    REQUIRE(edited[e.record].contains(json::json_pointer(e.at)));
+    edited[e.record][json::json_pointer(e.at)] = e.value;
+    write_json_lines(file, edited);
     check_merge_refused(shards, dir.file("merged"), e.at + " = " + e.value.dump(),
                         {"shard-0-of-1.jsonl: result: malformed: ", e.error});
   }
@@ -344,13 +330,7 @@ TEST_CASE("coons study FILES --merge: a study whose file list holds no names is 
   const std::string file = shards + "/shard-0-of-1.jsonl";
   const std::vector<json> records = read_json_lines(file);
   REQUIRE(records.size() == 2);
-  {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    for (json r : records) {
-      r["study"]["files"][1] = 7;
-      out << r.dump() << '\n';
-    }
-  }
+  write_json_lines(file, records, [](json& r) { r["study"]["files"][1] = 7; });
   check_merge_refused(shards, dir.file("merged"), "files[1] = 7",
                       {"shard-0-of-1.jsonl: study.files: missing or not a list of file names"});
 }

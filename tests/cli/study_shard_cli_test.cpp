@@ -105,9 +105,7 @@ TEST_CASE("coons study --shard/--merge: records of another study or with a wrong
   const std::string file = shards + "/shard-1-of-2.jsonl";
   std::vector<json> records = read_json_lines(file);
   records[2]["index"] = records[2]["index"].get<int>() + 2;
-  std::ofstream out(file, std::ios::binary | std::ios::trunc);
-  for (const json& r : records) out << r.dump() << '\n';
-  out.close();
+  write_json_lines(file, records);
   const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
   INFO(merged.err);
   CHECK(merged.status == 2);
@@ -132,9 +130,7 @@ TEST_CASE("coons study --merge: a record whose grid is not the study's length is
        {std::make_pair(optima.front(), json::array()), std::make_pair(optima[1], json::array({1.0, 2.0, 3.0}))}) {
     std::vector<json> edited = records;
     edited[at]["grid"] = grid;
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    for (const json& r : edited) out << r.dump() << '\n';
-    out.close();
+    write_json_lines(file, edited);
     const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
     INFO(grid.dump() << "\n" << merged.err);
     CHECK(merged.status == 2);
@@ -173,11 +169,7 @@ TEST_CASE("coons study --merge: an edited study block is refused before its task
   const std::vector<json> records = read_json_lines(file);
   REQUIRE(records.size() == 16);  // 4 boundaries × 2 degrees × 2 objectives
   const auto edit_all = [&](const std::string& field, const json& value) {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    for (json r : records) {
-      r["study"][field] = value;
-      out << r.dump() << '\n';
-    }
+    write_json_lines(file, records, [&](json& r) { r["study"][field] = value; });
   };
   edit_all("count", 100000);
   const std::size_t total = 100000 * 2 * records[0]["study"]["objectives"].size();
@@ -203,22 +195,13 @@ TEST_CASE("coons study --merge: a study block's strings that are numbers are err
   REQUIRE(run_coons(kFamily + " --shard 0/1 --out " + quoted(shards)).status == 0);
   const std::string file = shards + "/shard-0-of-1.jsonl";
   const std::vector<json> records = read_json_lines(file);
-  {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    for (json r : records) {
-      r["study"]["coons"]["version"] = 5;
-      out << r.dump() << '\n';
-    }
-  }
+  write_json_lines(file, records, [](json& r) { r["study"]["coons"]["version"] = 5; });
   CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
   INFO(merged.err);
   CHECK(merged.status == 2);
   CHECK(merged.err.find("shard-0-of-1.jsonl: study.coons.version: is not a string") != std::string::npos);
   // "inputs", which tells a boundary-file study's shards, a number (a 33-byte line of the fuzzer's)
-  {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    out << R"({"key":"k","study":{"inputs":5}})" << '\n';
-  }
+  write_json_lines(file, {json::parse(R"({"key":"k","study":{"inputs":5}})")});
   merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("merged")));
   INFO(merged.err);
   CHECK(merged.status == 2);
@@ -265,10 +248,7 @@ TEST_CASE("coons study --merge: a record's grid of finite 1e308 values prints no
   REQUIRE(!records.empty());
   REQUIRE(records[0]["grid"].is_array());
   records[0]["grid"] = json(std::vector<double>(records[0]["grid"].size(), 1e308));
-  {
-    std::ofstream out(file, std::ios::binary | std::ios::trunc);
-    for (const json& r : records) out << r.dump() << '\n';
-  }
+  write_json_lines(file, records);
   const CommandResult merged = run_coons("study --merge " + quoted(shards) + " --out " + quoted(dir.file("report")));
   INFO(merged.err);
   REQUIRE(merged.status == 0);

@@ -53,6 +53,16 @@ std::vector<nlohmann::json> read_json_lines(const std::string& path) {
   return out;
 }
 
+void write_json_lines(const std::string& path, const std::vector<nlohmann::json>& records,
+                      const std::function<void(nlohmann::json&)>& edit) {
+  std::ofstream out(path, std::ios::binary | std::ios::trunc);
+  for (nlohmann::json r : records) {
+    if (edit) edit(r);
+    out << r.dump() << '\n';
+  }
+  REQUIRE(out.good());
+}
+
 ShardedStudy run_sharded_study(const std::string& command, const TempDir& dir, int count) {
   const CommandResult whole = run_command(command + " --out " + quoted(dir.file("whole")));
   INFO(whole.err);

@@ -2,6 +2,7 @@
 // for the shell, running it with stdout, stderr and the exit status captured, reading a file back.
 #pragma once
 
+#include <functional>
 #include <nlohmann/json.hpp>
 #include <string>
 #include <vector>
@@ -28,6 +29,9 @@ const std::vector<std::string>& coons_commands();
 
 //! The lines of a JSON Lines file, parsed.
 std::vector<nlohmann::json> read_json_lines(const std::string& path);
+//! `records` written to `path` as JSON Lines (replacing it), each after `edit` when one is given.
+void write_json_lines(const std::string& path, const std::vector<nlohmann::json>& records,
+                      const std::function<void(nlohmann::json&)>& edit = {});
 
 //! A study run whole and in shards: `COMMAND --out DIR/whole`, `COMMAND --shard i/N --out DIR/shards`
 //! for i < N, then `coons study --merge DIR/shards --out DIR/merged`, each REQUIREd to exit 0.
