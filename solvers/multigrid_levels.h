@@ -1,5 +1,7 @@
 // The levels of Multigrid (multigrid.h) and the operations on one level: internal to the
 // solvers layer. Vectors are grid vectors (rows·cols, zero at fixed points) of one level.
+// Based on: U. Trottenberg, C. W. Oosterlee, A. Schüller, Multigrid, Academic Press (2001)
+// (Galerkin coarse operators PᵀAP, line relaxation), as multigrid.h.
 #pragma once
 
 #include <Eigen/Core>

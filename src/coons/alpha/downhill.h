@@ -6,6 +6,8 @@
 // at hi f′ pointing back or f ≥ f(lo); each step is a secant on f′ where the ends' slopes differ
 // in sign, else a bisection (at least every other step). Mirrored where f′(g) > 0.
 // Sizes: two evaluations kept, besides those the caller's evaluator makes.
+// Based on: R. P. Brent, Algorithms for Minimization without Derivatives, Prentice-Hall (1973),
+// ch. 4 (a bracket kept by bisection while secant steps converge: Dekker's safeguard).
 #pragma once
 
 #include <algorithm>

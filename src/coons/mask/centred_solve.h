@@ -6,6 +6,8 @@
 // tolerance 1e-12, where the system as given had 2.65e-12). finish_centred_solve measures the
 // system as given, refines against it when it misses the tolerance, and reports that.
 // Sizes: op of n unknowns; B, X: n × 3.
+// Based on: N. J. Higham, Accuracy and Stability of Numerical Algorithms, 2nd ed., SIAM (2002),
+// ch. 12 (iterative refinement, the residual of the system as given).
 #pragma once
 
 #include <Eigen/Core>
