@@ -14,6 +14,7 @@
 #include "coons/study/degree_limit_study.h"
 #include "coons/study/memory_estimate.h"
 #include "registry.h"
+#include "search_inputs.h"
 
 namespace coons::cli {
 
@@ -71,6 +72,7 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
   for (const auto& f : files) {
     inputs.push_back(read_study_input(f, read_options));
     const Boundary& b = inputs.back().boundary;
+    require_search_backend(options.solver, b, false, f);
     const int n = std::max({largest, b.m, b.n});
     check_memory(r.global, net_solve_bytes(n, n, options.solver) + net_metrics_bytes(n, n),
                  fmt::format("the degree law of {} at degree {}", b.name, n), f, "degree");

@@ -24,9 +24,9 @@
 #include "coons/study/bspline_search.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/search_report.h"
-#include "coons/study/target.h"
 #include "coons/study/two_ring_problem.h"
 #include "registry.h"
+#include "search_inputs.h"
 #include "tri_commands.h"
 
 namespace coons::cli {
@@ -132,8 +132,12 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   s.options.scan_points = r.scan_points;
   if (!s.options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  s.solver = r.parameter == Parameter::kWeight ? &weight_search_backend(requested, false)
-                                               : &search_backend(requested, b, indefinite);
+  if (r.parameter == Parameter::kWeight)
+    require_weight_search_backend(requested);
+  else
+    require_search_backend(requested, b, indefinite);
+  s.solver =
+      r.parameter == Parameter::kWeight ? &weight_search_backend(requested) : &search_backend(requested, b, indefinite);
   s.picked_automatically = requested == nullptr;
   return s;
 }
@@ -242,7 +246,7 @@ int run_problem_alpha_search(const SearchRequest& r, const BoundaryFile& file, P
   // that would fail at every indefinite α (a named definite-only backend is refused by setup_search)
   const bool indefinite = setup.options.lower < -0.25 || setup.options.upper > 0.25;
   const solvers::SolverInfo& solver =
-      requested != nullptr || !indefinite ? weight_search_backend(requested, false) : *solvers::find_solver("eigen-lu");
+      requested != nullptr || !indefinite ? weight_search_backend(requested) : *solvers::find_solver("eigen-lu");
   const StencilProblem problem = stencil_problem(file);
   require_valid_problem(problem, alpha_stencil(alpha_mask(-0.1)), r.boundary);
   check_net_memory(r.global, b, &solver, r.boundary);

@@ -28,6 +28,7 @@
 #include "coons/study/task_key.h"
 #include "coons/tri/tri_solve.h"
 #include "registry.h"
+#include "search_inputs.h"
 #include "study_shard.h"
 #include "view_command.h"
 
@@ -135,6 +136,11 @@ int run_family_command(const StudyRequest& r) {
   options.solver = solver_from_name(r.solver);
   std::string why;
   if (!options.is_valid(&why)) throw InputError("command line", "--family", why);
+  for (int d : options.degrees) {  // the family's boundaries at degree d are d × d
+    Boundary at_degree;
+    at_degree.m = at_degree.n = d;
+    require_search_backend(options.solver, at_degree, false);
+  }
   check_memory(r.global,
                net_solve_bytes(options.degrees.back(), options.degrees.back(), options.solver) +
                    net_metrics_bytes(options.degrees.back(), options.degrees.back()),
@@ -211,6 +217,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
     }
     inputs.push_back(read_study_input(f, read_options));
     const Boundary& b = inputs.back().boundary;
+    require_search_backend(options.solver, b, false, f);
     int largest = std::max(b.m, b.n);
     for (int d : options.degrees) largest = std::max(largest, d);
     check_memory(r.global, net_solve_bytes(largest, largest, options.solver) + net_metrics_bytes(largest, largest),

@@ -38,7 +38,7 @@ std::string write_study_pages(const StudyResult& result, const std::vector<Study
     for (const StudyInput& in : inputs)
       if (in.file == shape.file && in.two_rings && in.two_rings->net.m == shape.boundary.m &&
           in.two_rings->net.n == shape.boundary.n)
-        page.sliders.push_back(weight_view_slider(*in.two_rings, options, weight_search_backend(solver, true), 1.0));
+        page.sliders.push_back(weight_view_slider(*in.two_rings, options, weight_search_backend(solver), 1.0));
     for (ViewSlider& s : page.sliders)
       for (const ViewCurve& c : s.curves)
         if (c.name == "thin_plate" && c.optimum) s.initial = *c.optimum;

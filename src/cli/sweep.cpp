@@ -13,8 +13,8 @@
 #include "coons/io/write_files.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
-#include "coons/study/target.h"
 #include "registry.h"
+#include "search_inputs.h"
 #include "tri_commands.h"
 
 namespace coons::cli {
@@ -68,6 +68,7 @@ int run_sweep_command(const SweepRequest& r) {
   if (target) check_target_samples(r.global, r.samples);  // (only where they are taken)
   const solvers::SolverOptions options = threads_options(r.threads, r.threads_option, r.solver);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
+  require_search_backend(requested, b, false);
   const solvers::SolverInfo& solver = search_backend(requested, b, false);
   const double interior = std::max(0.0, b.m - 1.0) * std::max(0.0, b.n - 1.0);
   check_memory(r.global,

@@ -23,6 +23,7 @@
 #include "coons/study/view_data.h"
 #include "coons/tri/tri_solve.h"
 #include "registry.h"
+#include "search_inputs.h"
 #include "view_command.h"
 
 namespace coons::cli {
@@ -139,6 +140,7 @@ int run_view(const ViewRequest& r) {
     degree = {b.m, b.n};
     if (r.alpha && !(*r.alpha >= r.from && *r.alpha <= r.to))
       throw InputError("command line", "--alpha", fmt::format("must lie in [{}, {}]", r.from, r.to));
+    require_search_backend(solver_from_name(r.solver), b, false);
     const solvers::SolverInfo& solver = search_backend(solver_from_name(r.solver), b, false);
     solver_name = solver.name;
     const double points = (b.m + 1.0) * (b.n + 1.0) + 2.0 * r.samples * r.samples;
@@ -156,7 +158,7 @@ int run_view(const ViewRequest& r) {
       for (const ViewCurve& c : page.sliders[0].curves)
         if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
     if (weight) {
-      const solvers::SolverInfo& weight_solver = weight_search_backend(solver_from_name(r.solver), true);
+      const solvers::SolverInfo& weight_solver = weight_search_backend(solver_from_name(r.solver));
       page.sliders.push_back(weight_view_slider(*two.problem, options, weight_solver, 1.0));
       for (const ViewCurve& c : page.sliders[1].curves)
         if (c.name == "thin_plate" && c.optimum) page.sliders[1].initial = *c.optimum;

@@ -3,7 +3,7 @@
 // "rings" and "free", sides with "ribbons", B-spline knots), then the problem check the CLI runs
 // with the two together (stencil_problem + require_valid_problem), and the file's "target" block
 // (target_from_json) plus a "--target" string taken from the document's "spec" field
-// (resolve_target, for the sphere:/cylinder:/plane: forms). One document carries all of them: the
+// (cli/search_inputs.h: resolve_target, for the sphere:/cylinder:/plane: forms). One document carries all of them: the
 // boundary reader ignores "weights" and "spec". An InputError is the expected answer to bad bytes;
 // anything else escaping (another exception, a crash, UB) is a finding.
 #include <cstddef>
@@ -11,6 +11,7 @@
 #include <optional>
 #include <string>
 
+#include "cli/search_inputs.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
@@ -44,7 +45,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     if (doc.is_object() && doc.contains("spec") && doc["spec"].is_string()) {
       const std::string spec = doc["spec"].get<std::string>();
       if (spec.rfind("sphere:", 0) == 0 || spec.rfind("cylinder:", 0) == 0 || spec.rfind("plane:", 0) == 0)
-        (void)coons::resolve_target(spec, "fuzz.json", file->boundary, 5);
+        (void)coons::cli::resolve_target(spec, "fuzz.json", file->boundary, 5);
     }
   } catch (const coons::InputError&) {
   }

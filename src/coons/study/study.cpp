@@ -115,7 +115,7 @@ StudyResult run_study(const std::vector<StudyInput>& inputs, const StudyOptions&
     const Boundary& b = in.boundary;
     const solvers::SolverInfo& solver = search_backend(options.solver, b, false);
     ShapeEntry shape{in.file, b, solver.name, options.solver == nullptr, {}, {}, in.one_ring, {}, {}};
-    const solvers::SolverInfo& weight_solver = weight_search_backend(options.solver, true);
+    const solvers::SolverInfo& weight_solver = weight_search_backend(options.solver);
     if (in.two_rings) shape.weight_solver = weight_solver.name;
     if (!in.two_rings && shape.one_ring.empty()) shape.one_ring = "one data ring";
     std::optional<double> alpha_tp;

@@ -1,7 +1,6 @@
 // What a surface should be close to: the `target` of a boundary file ({"sphere": {"center",
-// "radius"}} | {"cylinder": {"point", "axis", "radius"}} | {"plane": {"point", "normal"}}) and the
-// `--target` specification of the commands (hermite-coons | coons | NET.json | sphere:cx,cy,cz,r |
-// cylinder:px,py,pz,dx,dy,dz,r | plane:px,py,pz,nx,ny,nz), both checked field by field.
+// "radius"}} | {"cylinder": {"point", "axis", "radius"}} | {"plane": {"point", "normal"}}), checked
+// field by field. (The commands' `--target` specification is read by the CLI: cli/search_inputs.h.)
 #pragma once
 
 #include <nlohmann/json.hpp>
@@ -20,8 +19,12 @@ std::optional<Target> target_from_json(const nlohmann::json& doc, const std::str
 //! The "target" of a boundary file (read again; bad files throw InputError).
 std::optional<Target> read_boundary_target(const std::string& path, int samples = 41);
 
-//! A --target specification; an empty one means the boundary file's own target (or none).
-std::optional<Target> resolve_target(const std::string& spec, const std::string& boundary_path,
-                                     const Boundary& boundary, int samples);
+//! Scales a cylinder's axis or a plane's normal as unit_scaled (control_net.h) does: the distances
+//! normalise it with norm(), whose square underflows below about 1e-154, and a power of two changes
+//! no digit. false for the zero vector (no direction); true, unchanged, for a sphere or a net.
+bool normalise_target_direction(Target& target);
+
+//! The reason a target without a direction is refused.
+inline constexpr const char* kNoTargetDirection = "axis/normal must not be the zero vector";
 
 }  // namespace coons
