@@ -35,6 +35,7 @@ TEST_CASE("write_matrix_market: the system reads back bit-exactly", "[io]") {
 }
 
 TEST_CASE("read_matrix_market: sizes, indices and counts are checked before use", "[io]") {
+  // (read_market_matrix's checks, behind a banner check of its own)
   const TempDir dir;
   const std::string banner = "%%MatrixMarket matrix coordinate real general\n";
   auto error_of = [&](const std::string& body) -> std::string {
@@ -49,13 +50,14 @@ TEST_CASE("read_matrix_market: sizes, indices and counts are checked before use"
   };
   CHECK(error_of("2 2 2\n1 1 1\n2 2 3\n") == "no error");
   // a size that would take gigabytes: refused by the size of the file, not by bad_alloc
-  CHECK(error_of("2 2 4000000000\n1 1 1\n").find("size line: 4000000000 entries do not fit") == 0);
-  CHECK(error_of("99999999999 2 1\n1 1 1\n").find("size line: 99999999999 by 2 is beyond the limit") == 0);
-  CHECK(error_of("99999999999999999999 2 1\n1 1 1\n").find("size line: expected 3 integers") == 0);
+  CHECK(error_of("2 2 4000000000\n1 1 1\n").find("line 2: 4000000000 entries do not fit") == 0);
+  CHECK(error_of("99999999999 2 1\n1 1 1\n").find("line 2: 99999999999 by 2 is beyond the limit") == 0);
+  CHECK(error_of("99999999999999999999 2 1\n1 1 1\n").find("line 2: expected 3 integers") == 0);
   CHECK(error_of("2 2 1\n3 1 1\n") == "line 3: entry (3, 1) outside the 2 by 2 matrix");
-  CHECK(error_of("2 2 2\n1 1 1\n") == "size line: promises 2 entries, the file holds 1");
+  CHECK(error_of("2 2 2\n1 1 1\n") == "line 2: promises 2 entries, the file holds 1");
   CHECK(error_of("2 2 1\n1 1 1\n2 2 1\n") == "line 4: more entries than the 1 of the size line");
-  CHECK(error_of("2 2 1\n1 1 x\n") == "line 3: expected 'row column value'");
+  CHECK(error_of("2 2 1\n1 1 x\n") == "line 3: 'x' is not a decimal number");
+  CHECK(error_of("2 2 1\n1 1\n") == "line 3: expected 'row column value'");
 }
 
 TEST_CASE("read_dense_matrix_market: the size must fit the file and every value be a finite number", "[io]") {
@@ -70,10 +72,39 @@ TEST_CASE("read_dense_matrix_market: the size must fit the file and every value 
     return "no error";
   };
   CHECK(error_of("2 1\n1\n2\n") == "no error");
-  CHECK(error_of("100000 100000\n1\n").find("size line: a 100000 by 100000 matrix does not fit") == 0);
-  CHECK(error_of("2 1\n1\n") == "entry (2, 1): missing");
-  CHECK(error_of("2 1\n1\nnan\n") == "entry (2, 1): not a number");
+  CHECK(error_of("100000 100000\n1\n").find("line 2: a 100000 by 100000 matrix does not fit") == 0);
+  CHECK(error_of("2 1\n1\n") == "line 2: promises a 2 by 1 general matrix, the file ends at entry (2, 1)");
+  CHECK(error_of("2 1\n1\nnan\n") == "line 4: the value 'nan' is not finite");
   CHECK(error_of("1 1\n1\n2\n") == "line 4: more values than the size line says");
+}
+
+TEST_CASE("read_matrix_market: each strict reader refuses the other kinds by their banner, zeros included", "[io]") {
+  const TempDir dir;
+  const std::string symmetric =
+      dir.write("S.mtx", "%%MatrixMarket matrix coordinate real symmetric\n2 2 2\n1 1 4\n2 1 -1\n");
+  const std::string array = dir.write("B.mtx", "%%MatrixMarket  matrix array REAL general\n3 1\n1.5\n0\n-2\n");
+  const auto header_error = [](auto read, const std::string& path) -> std::string {
+    try {
+      read(path);
+    } catch (const InputError& e) {
+      return e.field() + ": " + e.reason();
+    }
+    return "no error";
+  };
+  CHECK(header_error([](const std::string& p) { (void)read_matrix_market(p); }, symmetric) ==
+        "header: expected '%%MatrixMarket matrix coordinate real general'");
+  CHECK(header_error([](const std::string& p) { (void)read_dense_matrix_market(p); }, symmetric) ==
+        "header: expected '%%MatrixMarket matrix array real general'");
+  CHECK(read_market_matrix(symmetric).matrix.coeff(0, 1) == -1);  // (the general reader mirrors it)
+  // the banner's words in any spacing, but not in another case (the strict readers read what coons writes)
+  CHECK(header_error([](const std::string& p) { (void)read_dense_matrix_market(p); }, array) ==
+        "header: expected '%%MatrixMarket matrix array real general'");
+  const std::string spaced = dir.write("C.mtx", "%%MatrixMarket  matrix array real general\n3 1\n1.5\n0\n-2\n");
+  const Eigen::MatrixXd B = read_dense_matrix_market(spaced);
+  REQUIRE(B.rows() == 3);
+  CHECK(B(0, 0) == 1.5);
+  CHECK(B(1, 0) == 0);
+  CHECK(B(2, 0) == -2);
 }
 
 TEST_CASE("read_market_matrix: a symmetric file equals its expanded general copy", "[io]") {

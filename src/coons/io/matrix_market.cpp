@@ -96,13 +96,6 @@ class MarketLines {
     std::getline(in_, banner_);
     if (!banner_.empty() && banner_.back() == '\r') banner_.pop_back();
   }
-  MarketLines(const std::string& path, const std::string& text, const char* banner) : MarketLines(text) {
-    expect_banner(path, banner_, banner);
-  }
-  // The check of the constructor above, on a first line.
-  static void expect_banner(const std::string& path, const std::string& line, const char* banner) {
-    if (normalised_words(line) != banner) throw InputError(path, "header", fmt::format("expected '{}'", banner));
-  }
   [[nodiscard]] const std::string& banner() const { return banner_; }
   bool next(std::string& line) {
     while (std::getline(in_, line)) {
@@ -173,79 +166,6 @@ Eigen::SparseMatrix<double> compressed_matrix(long long rows, long long cols,
 }
 
 }  // namespace
-
-Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
-  const char* banner = "%%MatrixMarket matrix coordinate real general";
-  const std::string text =
-      read_market_text(path, [&](const std::string& first) { MarketLines::expect_banner(path, first, banner); });
-  MarketLines lines(path, text, banner);
-  std::string line;
-  if (!lines.next(line)) throw InputError(path, "size line", "missing");
-  const std::vector<long long> size = size_line(path, line, 3);
-  const long long rows = size[0], cols = size[1], nnz = size[2];
-  if (rows < 1 || cols < 1) throw InputError(path, "size line", "rows and columns must be at least 1");
-  // An entry takes at least 6 bytes ("1 1 1\n"): a larger count cannot be in the file.
-  if (nnz > rows * cols || nnz > static_cast<long long>(text.size() / 6))
-    throw InputError(
-        path, "size line",
-        fmt::format("{} entries do not fit a {} by {} matrix in a file of {} bytes", nnz, rows, cols, text.size()));
-  std::vector<Eigen::Triplet<double>> entries;
-  entries.reserve(static_cast<std::size_t>(nnz));
-  while (lines.next(line)) {
-    const std::string field = fmt::format("line {}", lines.number());
-    if (static_cast<long long>(entries.size()) == nnz)
-      throw InputError(path, field, fmt::format("more entries than the {} of the size line", nnz));
-    std::istringstream words(line);
-    long long i = 0, j = 0;
-    double value = 0;
-    std::string rest;
-    if (!(words >> i >> j >> value) || (words >> rest)) throw InputError(path, field, "expected 'row column value'");
-    if (i < 1 || i > rows || j < 1 || j > cols)
-      throw InputError(path, field, fmt::format("entry ({}, {}) outside the {} by {} matrix", i, j, rows, cols));
-    if (!std::isfinite(value)) throw InputError(path, field, "the value is not finite");
-    entries.emplace_back(static_cast<int>(i - 1), static_cast<int>(j - 1), value);
-  }
-  if (static_cast<long long>(entries.size()) != nnz)
-    throw InputError(path, "size line", fmt::format("promises {} entries, the file holds {}", nnz, entries.size()));
-  return compressed_matrix(rows, cols, entries);
-}
-
-Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
-  const char* banner = "%%MatrixMarket matrix array real general";
-  const std::string text =
-      read_market_text(path, [&](const std::string& first) { MarketLines::expect_banner(path, first, banner); });
-  MarketLines lines(path, text, banner);
-  std::string line;
-  if (!lines.next(line)) throw InputError(path, "size line", "missing");
-  const std::vector<long long> size = size_line(path, line, 2);
-  const long long rows = size[0], cols = size[1];
-  // A value takes at least 2 bytes ("1\n"): a larger matrix cannot be in the file.
-  if (rows * cols > static_cast<long long>(text.size() / 2))
-    throw InputError(path, "size line",
-                     fmt::format("a {} by {} matrix does not fit in a file of {} bytes", rows, cols, text.size()));
-  Eigen::MatrixXd B(static_cast<Eigen::Index>(rows), static_cast<Eigen::Index>(cols));
-  Eigen::Index k = 0;
-  while (lines.next(line)) {
-    std::istringstream words(line);
-    std::string word;
-    while (words >> word) {
-      if (k == B.size())
-        throw InputError(path, fmt::format("line {}", lines.number()), "more values than the size line says");
-      const std::string field = fmt::format("entry ({}, {})", k % rows + 1, k / rows + 1);
-      std::istringstream number(word);
-      double v = 0;
-      std::string rest;
-      if (!(number >> v) || (number >> rest)) throw InputError(path, field, "not a number");
-      if (!std::isfinite(v)) throw InputError(path, field, "not finite");
-      B(k % rows, k / rows) = v;
-      ++k;
-    }
-  }
-  if (k != B.size())
-    throw InputError(path, fmt::format("entry ({}, {})", k % std::max(rows, 1LL) + 1, k / std::max(rows, 1LL) + 1),
-                     "missing");
-  return B;
-}
 
 namespace {
 
@@ -400,10 +320,11 @@ double market_matrix_bytes(long long cols, long long stored) {
   return 16 * entries + 2 * (12 * entries + 4 * pointers);
 }
 
-MarketMatrix read_market_matrix(
-    const std::string& path,
-    const std::function<void(long long rows, long long cols, long long stored, int size_line)>& check_sizes) {
-  const std::string text = read_market_text(path, [&](const std::string& first) { parse_banner(path, first); });
+namespace {
+
+// The reader of every kind; `check_banner` refuses a first line (read_market_text).
+MarketMatrix read_market_file(const std::string& path, const BannerCheck& check_banner, const SizeCheck& check_sizes) {
+  const std::string text = read_market_text(path, check_banner);
   MarketLines lines(text);
   const Banner b = parse_banner(path, lines.banner());
   std::string line;
@@ -456,6 +377,29 @@ MarketMatrix read_market_matrix(
                      : b.symmetry == "symmetric" ? rows * (rows + 1) / 2
                                                  : rows * (rows - 1) / 2;
   return out;
+}
+
+// A banner check for one kind of file: `banner`'s words, in any spacing.
+BannerCheck expect_banner(const std::string& path, const char* banner) {
+  return [&path, banner](const std::string& line) {
+    if (normalised_words(line) != banner) throw InputError(path, "header", fmt::format("expected '{}'", banner));
+  };
+}
+
+}  // namespace
+
+MarketMatrix read_market_matrix(const std::string& path, const SizeCheck& check_sizes) {
+  return read_market_file(
+      path, [&](const std::string& first) { parse_banner(path, first); }, check_sizes);
+}
+
+Eigen::SparseMatrix<double> read_matrix_market(const std::string& path) {
+  return read_market_file(path, expect_banner(path, "%%MatrixMarket matrix coordinate real general"), {}).matrix;
+}
+
+Eigen::MatrixXd read_dense_matrix_market(const std::string& path) {
+  return Eigen::MatrixXd(
+      read_market_file(path, expect_banner(path, "%%MatrixMarket matrix array real general"), {}).matrix);
 }
 
 }  // namespace coons

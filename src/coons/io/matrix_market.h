@@ -21,9 +21,11 @@ void write_dense_matrix_market(const std::string& path, const Eigen::MatrixXd& B
 void write_matrix_market(std::ostream& out, const Eigen::SparseMatrix<double>& A);
 void write_dense_matrix_market(std::ostream& out, const Eigen::MatrixXd& B);
 
-//! Throws InputError when the file is missing or not a real general coordinate matrix.
+//! What write_matrix_market writes: read_market_matrix refusing any banner but `coordinate real
+//! general` (InputError "FILE: header: expected ...", checked on the first line).
 Eigen::SparseMatrix<double> read_matrix_market(const std::string& path);
-//! Throws InputError when the file is missing or not a real general array.
+//! What write_dense_matrix_market writes: read_market_matrix refusing any banner but `array real
+//! general`.
 Eigen::MatrixXd read_dense_matrix_market(const std::string& path);
 
 //! A matrix as read by read_market_matrix(): the full matrix, whatever the file stored.
@@ -36,6 +38,9 @@ struct MarketMatrix {
   long long file_entries = 0;          //!< the values the file lists (a symmetric file: one triangle)
 };
 
+//! A check of the sizes a file declares (read_market_matrix).
+using SizeCheck = std::function<void(long long rows, long long cols, long long stored, int size_line)>;
+
 //! Any real Matrix Market matrix, as the NIST format and the SuiteSparse collection write them:
 //! `coordinate` or `array`; `real`, `integer` or `pattern`; `general`, `symmetric` (the lower
 //! triangle stored, mirrored here) or `skew-symmetric`. Duplicate coordinate entries are summed;
@@ -45,9 +50,7 @@ struct MarketMatrix {
 //! and before anything is allocated for it (stored: the entries the file promises, a symmetric
 //! file's mirrored ones included; a file of 72 bytes can declare 2^26 columns, whose column
 //! pointers alone are 256 MB); it refuses them by throwing.
-MarketMatrix read_market_matrix(
-    const std::string& path,
-    const std::function<void(long long rows, long long cols, long long stored, int size_line)>& check_sizes = {});
+MarketMatrix read_market_matrix(const std::string& path, const SizeCheck& check_sizes = {});
 
 //! What read_market_matrix holds for a matrix of `cols` columns and `stored` entries, an upper-bound
 //! sketch as in memory_estimate.h: the triplets, the compressed matrix and one copy of it.
