@@ -43,65 +43,68 @@ struct Entry {
 
 const std::vector<Entry>& entries() {
   static const std::vector<Entry> list = {
-    {{"eigen-ldlt", SolverFamily::kDirect, true, true, "Eigen SimplicialLDLT, AMD ordering"}, make_eigen_ldlt},
-    {{"eigen-llt", SolverFamily::kDirect, true, true, "Eigen SimplicialLLT, AMD ordering"}, make_eigen_llt},
-    {{"eigen-lu", SolverFamily::kDirect, true, false, "Eigen SparseLU, COLAMD ordering (indefinite systems too)"},
+    {{"eigen-ldlt", SolverFamily::kDirect, true, true, false, "Eigen SimplicialLDLT, AMD ordering"}, make_eigen_ldlt},
+    {{"eigen-llt", SolverFamily::kDirect, true, true, false, "Eigen SimplicialLLT, AMD ordering"}, make_eigen_llt},
+    {{"eigen-lu", SolverFamily::kDirect, true, false, false,
+      "Eigen SparseLU, COLAMD ordering (indefinite systems too)"},
      make_eigen_lu},
 #if COONS_HAVE_SUITESPARSE
-    {{"cholmod", SolverFamily::kDirect, true, true, "CHOLMOD supernodal LL^T, AMD ordering"}, make_cholmod_supernodal},
-    {{"cholmod-simplicial", SolverFamily::kDirect, true, true, "CHOLMOD simplicial LDL^T, AMD ordering"},
+    {{"cholmod", SolverFamily::kDirect, true, true, false, "CHOLMOD supernodal LL^T, AMD ordering"},
+     make_cholmod_supernodal},
+    {{"cholmod-simplicial", SolverFamily::kDirect, true, true, false, "CHOLMOD simplicial LDL^T, AMD ordering"},
      make_cholmod_simplicial},
-    {{"umfpack", SolverFamily::kDirect, true, false, "UMFPACK multifrontal LU (indefinite systems too)"}, make_umfpack},
+    {{"umfpack", SolverFamily::kDirect, true, false, false, "UMFPACK multifrontal LU (indefinite systems too)"},
+     make_umfpack},
 #endif
-    {{"cg", SolverFamily::kIterative, true, true, "conjugate gradients, no preconditioner"}, make_cg},
-    {{"cg-jacobi", SolverFamily::kIterative, true, true, "conjugate gradients, diagonal preconditioner"},
+    {{"cg", SolverFamily::kIterative, true, true, false, "conjugate gradients, no preconditioner"}, make_cg},
+    {{"cg-jacobi", SolverFamily::kIterative, true, true, false, "conjugate gradients, diagonal preconditioner"},
      make_cg_jacobi},
-    {{"cg-ic", SolverFamily::kIterative, true, true, "conjugate gradients, incomplete Cholesky"}, make_cg_ic},
-    {{"bicgstab", SolverFamily::kIterative, true, false, "BiCGSTAB with incomplete LU (ILUT)"}, make_bicgstab},
-    {{"jacobi", SolverFamily::kIterative, false, false, "the Jacobi mask iteration (diverges for alpha < 0)"},
+    {{"cg-ic", SolverFamily::kIterative, true, true, false, "conjugate gradients, incomplete Cholesky"}, make_cg_ic},
+    {{"bicgstab", SolverFamily::kIterative, true, false, false, "BiCGSTAB with incomplete LU (ILUT)"}, make_bicgstab},
+    {{"jacobi", SolverFamily::kIterative, false, false, false, "the Jacobi mask iteration (diverges for alpha < 0)"},
      make_jacobi},
-    {{"gauss-seidel", SolverFamily::kIterative, false, false, "the Gauss-Seidel / SOR mask iteration (--omega)"},
+    {{"gauss-seidel", SolverFamily::kIterative, false, false, false, "the Gauss-Seidel / SOR mask iteration (--omega)"},
      make_gauss_seidel},
 #if COONS_HAVE_FFTW
-    {{"dst", SolverFamily::kStructured, false, false,
+    {{"dst", SolverFamily::kStructured, false, false, true,
       "2-D discrete sine transform (DST-I on a real FFT), exact for any alpha on rectangular grids"},
      make_dst_solver},
-    {{"fast", SolverFamily::kStructured, false, false,
+    {{"fast", SolverFamily::kStructured, false, false, true,
       "sine transform along j + tridiagonal solves along i; Kronecker path for alpha = -1/4; exact for any alpha"},
      make_fast_solver},
-    {{"fast5", SolverFamily::kStructured, false, false,
+    {{"fast5", SolverFamily::kStructured, false, false, true,
       "5x5 a*C + b*T stencils (c1-coons, c1-family, biharmonic) on a full rectangle: sine transform along j, "
       "banded solves along i, capacitance CG on the first and last column; exact"},
      make_fast5_solver},
 #endif
-    {{"separable-banded", SolverFamily::kStructured, false, false,
+    {{"separable-banded", SolverFamily::kStructured, false, false, true,
       "separable stencils u(a) v(b) (c1-coons, alpha = -1/4) on a full rectangle: two batches of banded LDL^T "
       "solves; exact"},
      make_separable_banded},
-    {{"mg", SolverFamily::kIterative, false, false,
+    {{"mg", SolverFamily::kIterative, false, false, true,
       "geometric multigrid V-cycles, alternating line Gauss-Seidel, Galerkin coarse grids (3x3/5x5 stencils, free "
       "sets)"},
      make_mg},
-    {{"mg-cg", SolverFamily::kIterative, false, true,
+    {{"mg-cg", SolverFamily::kIterative, false, true, true,
       "conjugate gradients preconditioned by one symmetric multigrid V-cycle"},
      make_mg_cg},
-    {{"gmres", SolverFamily::kIterative, false, false,
+    {{"gmres", SolverFamily::kIterative, false, false, true,
       "restarted GMRES(50), multigrid-preconditioned on a grid stencil, else ILUT (nonsymmetric systems)"},
      make_gmres},
 #if COONS_HAVE_FFTW
-    {{"pcg-fast", SolverFamily::kIterative, false, true,
+    {{"pcg-fast", SolverFamily::kIterative, false, true, false,
       "conjugate gradients preconditioned by the exact structured solve of the bounding rectangle (free sets with "
       "holes, L-shapes, fixed curves)"},
      make_pcg_fast_solver},
 #endif
 #if COONS_HAVE_HYPRE
-    {{"hypre-amg", SolverFamily::kIterative, true, false,
+    {{"hypre-amg", SolverFamily::kIterative, true, false, false,
       "hypre BoomerAMG preconditioning PCG (symmetric) or GMRES (otherwise), on the matrix; MPI-distributed"},
      make_hypre_amg},
-    {{"hypre-pfmg", SolverFamily::kIterative, false, true,
+    {{"hypre-pfmg", SolverFamily::kIterative, false, true, false,
       "hypre PFMG V-cycle preconditioning PCG on the grid stencil (Struct interface); MPI-distributed"},
      make_hypre_pfmg},
-    {{"hypre-smg", SolverFamily::kIterative, false, true,
+    {{"hypre-smg", SolverFamily::kIterative, false, true, false,
       "hypre SMG V-cycle preconditioning PCG on the grid stencil (Struct interface); MPI-distributed"},
      make_hypre_smg},
 #endif
@@ -148,9 +151,14 @@ bool accepts_matrix(const SolverInfo& info) {
 }
 
 bool uses_threads(std::string_view name) {
-  for (std::string_view threaded : {"dst", "fast", "fast5", "separable-banded", "mg", "mg-cg", "gmres"})
-    if (name == threaded) return true;
-  return false;
+  const SolverInfo* info = find_solver(name);
+  return info != nullptr && info->uses_threads;
+}
+
+const SolverInfo& default_matrix_solver(bool definite) {
+  const SolverInfo* pick = definite ? find_solver("cholmod") : nullptr;
+  if (!pick) pick = find_solver(definite ? "eigen-ldlt" : "eigen-lu");
+  return *pick;  // (the Eigen backends are always built)
 }
 
 std::unique_ptr<LinearSolver> make_solver(std::string_view name, const SolverOptions& options) {

@@ -19,6 +19,7 @@ struct SolverInfo {
   SolverFamily family;
   bool needs_matrix;        //!< works from the assembled matrix (else from the grid stencil)
   bool definite_only;       //!< only for positive definite operators (Cholesky-type)
+  bool uses_threads;        //!< uses SolverOptions::threads (FFTW threads or OpenMP); else one thread
   std::string description;  //!< one line for `coons solvers`
 };
 
@@ -33,9 +34,13 @@ const SolverInfo* find_solver(std::string_view name);
 //! backend itself (analyze on a 1×1 matrix), so that no list of names is kept.
 bool accepts_matrix(const SolverInfo& info);
 
-//! True for the backends that use SolverOptions::threads (dst, fast, fast5, separable-banded, mg,
-//! mg-cg, gmres on its multigrid path); the others run on one thread whatever it says.
+//! SolverInfo::uses_threads of the backend of that name (false for a name not built): dst, fast,
+//! fast5, separable-banded, mg, mg-cg and gmres on its multigrid path use the threads.
 bool uses_threads(std::string_view name);
+
+//! The sparse direct backend of an assembled matrix where no structure is used: cholmod (when
+//! built, else eigen-ldlt) for a definite system, eigen-lu otherwise.
+const SolverInfo& default_matrix_solver(bool definite);
 
 //! The backend that `auto` stands for on this operator: the fastest applicable one built in.
 std::string choose_auto_solver(const GridStencil& stencil);

@@ -1,6 +1,7 @@
 #include "common.h"
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <cctype>
@@ -99,13 +100,29 @@ void add_solver_option(CLI::App& cmd, std::string& solver) {
   cmd.add_option("--solver", solver, "a name from `coons solvers`, or auto")->capture_default_str();
 }
 
+namespace {
+
+// The backends built in that use SolverOptions::threads, "a, b and c" (SolverInfo::uses_threads).
+std::string threaded_backend_names() {
+  std::vector<std::string> names;
+  for (const solvers::SolverInfo& info : solvers::available_solvers())
+    if (info.uses_threads) names.push_back(info.name);
+  if (names.size() < 2) return fmt::format("{}", fmt::join(names, ""));
+  const std::string last = names.back();
+  names.pop_back();
+  return fmt::format("{} and {}", fmt::join(names, ", "), last);
+}
+
+}  // namespace
+
 CLI::Option* add_threads_option(CLI::App& cmd, int& threads) {
   return cmd
       .add_option("--threads", threads,
-                  "threads of the backends that use them (dst, fast, fast5, separable-banded, mg, mg-cg, gmres; "
-                  "a sweep on fast: whole members; solve with one of them: also the exact energies of its report); "
-                  "0: every core. "
-                  "The result is the same for every count")
+                  "threads of the backends that use them (" + threaded_backend_names() +
+                      "; a sweep on fast: whole members; solve with one of them: also the exact energies of its "
+                      "report); "
+                      "0: every core. "
+                      "The result is the same for every count")
       ->capture_default_str();
 }
 
@@ -116,9 +133,7 @@ solvers::SolverOptions threads_options(int threads, const CLI::Option* option, c
   if (option && option->count() > 0 && solver != "auto" && solvers::find_solver(solver) &&
       !solvers::uses_threads(solver))
     throw InputError("command line", "--threads",
-                     solver +
-                         " runs on one thread; the backends that use threads are dst, fast, fast5, "
-                         "separable-banded, mg, mg-cg and gmres");
+                     solver + " runs on one thread; the backends that use threads are " + threaded_backend_names());
   solvers::SolverOptions options;
   options.threads = threads;
   return options;
@@ -401,10 +416,7 @@ StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedReques
     if (!solver) {
       // Positive definite systems (the symbol is >= 0: every named mask, alpha in [-1/4, 1/4]):
       // sparse Cholesky; others a sparse LU.
-      const char* name = !symbol_nonnegative(run.stencil)  ? "eigen-lu"
-                         : solvers::find_solver("cholmod") ? "cholmod"
-                                                           : "eigen-ldlt";
-      solver = solvers::make_solver(name, r.options);
+      solver = solvers::make_solver(solvers::default_matrix_solver(symbol_nonnegative(run.stencil)).name, r.options);
     }
   } else {
     solver = solvers::make_solver(r.solver->name, r.options);

@@ -213,9 +213,9 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
   const solvers::SolverInfo* requested =
       requested_matrix_backend(r, "a B-spline boundary needs a backend that takes an assembled matrix");
   // a Cholesky-type backend wherever the system is definite
-  const std::string solver = requested                                                   ? requested->name
-                             : options.lower >= -0.25 && options.upper <= definite_upper ? auto_bspline_solver(0.0)
-                                                                                         : std::string("eigen-lu");
+  const std::string solver =
+      requested ? requested->name
+                : solvers::default_matrix_solver(options.lower >= -0.25 && options.upper <= definite_upper).name;
   phases.start("solve");
   AlphaSearchSummary s = search_bspline_alpha(in.compatible, *objective, solver, options);
   if (const std::string note = bspline_pole_note(s, options, definite_upper); !note.empty())
@@ -246,7 +246,7 @@ int run_problem_alpha_search(const SearchRequest& r, const BoundaryFile& file, P
   // that would fail at every indefinite α (a named definite-only backend is refused by setup_search)
   const bool indefinite = setup.options.lower < -0.25 || setup.options.upper > 0.25;
   const solvers::SolverInfo& solver =
-      requested != nullptr || !indefinite ? weight_search_backend(requested) : *solvers::find_solver("eigen-lu");
+      requested != nullptr || !indefinite ? weight_search_backend(requested) : solvers::default_matrix_solver(false);
   const StencilProblem problem = stencil_problem(file);
   require_valid_problem(problem, alpha_stencil(alpha_mask(-0.1)), r.boundary);
   check_net_memory(r.global, b, &solver, r.boundary);

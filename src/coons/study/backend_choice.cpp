@@ -37,7 +37,7 @@ const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, 
   if (requested) return *requested;
   const solvers::SolverInfo* pick = solvers::find_solver(solvers::choose_auto_solver(alpha_family_stencil(b)));
   if (pick && (!indefinite || !pick->definite_only)) return *pick;
-  return *solvers::find_solver("eigen-lu");
+  return solvers::default_matrix_solver(false);
 }
 
 SearchBackendCheck check_weight_search_backend(const solvers::SolverInfo& requested) {
@@ -49,8 +49,7 @@ SearchBackendCheck check_weight_search_backend(const solvers::SolverInfo& reques
 
 const solvers::SolverInfo& weight_search_backend(const solvers::SolverInfo* requested) {
   if (requested && solvers::accepts_matrix(*requested)) return *requested;
-  const solvers::SolverInfo* cholmod = solvers::find_solver("cholmod");
-  return cholmod ? *cholmod : *solvers::find_solver("eigen-ldlt");
+  return solvers::default_matrix_solver(true);
 }
 
 }  // namespace coons

@@ -39,8 +39,7 @@ ControlNet bspline_frame(const BSplineBoundary& b) {
 }
 
 std::string auto_bspline_solver(double alpha) {
-  if (!(alpha >= -0.25 && alpha <= 0.0)) return "eigen-lu";
-  return solvers::find_solver("cholmod") != nullptr ? "cholmod" : "eigen-ldlt";
+  return solvers::default_matrix_solver(alpha >= -0.25 && alpha <= 0.0).name;
 }
 
 Eigen::RowVector3d bspline_centre(const BSplineBoundary& b) {
