@@ -364,6 +364,19 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"search-alpha " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") +
            " --parameter weight --objective e3 --solver fast5",
        "works from the grid stencil only; the search refills"},
+      // a backend that does not solve the 3x3 alpha family, refused by every search command before
+      // any search (separable-banded takes alpha = -1/4 only; the sine-basis evaluator would answer
+      // under its name)
+      {"sweep " + good + " --solver separable-banded --out {OUT}/w", "separable-banded does not solve the 3x3 alpha"},
+      {"view " + good + " --solver separable-banded --out {OUT}/v.html", "separable-banded does not solve the 3x3"},
+      {"study " + good + " --degrees 3 --solver separable-banded --out {OUT}/s",
+       "separable-banded does not solve the 3x3 alpha family"},
+      {"study " + good + " --degrees 3 --solver separable-banded --shard 1/2 --out {OUT}/s",
+       "separable-banded does not solve the 3x3 alpha family"},
+      {"study --family random-smooth --count 2 --degrees 3 --solver separable-banded --out {OUT}/s",
+       "separable-banded does not solve the 3x3 alpha family"},
+      {"degree-limit " + good + " --degrees 3 4 --solver separable-banded",
+       "separable-banded does not solve the 3x3 alpha family"},
       // --corner-tolerance is checked by every command that reads boundaries (nan and inf were
       // taken by study, degree-limit and surface)
       {"study " + good + " --degrees 3 --corner-tolerance nan --out {OUT}/s", "--corner-tolerance"},

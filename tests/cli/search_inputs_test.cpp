@@ -84,6 +84,7 @@ TEST_CASE("require_search_backend: a backend that cannot serve the alpha search 
   // fast5 solves 5x5 stencils only, separable-banded alpha = -1/4 only: the search would fail at
   // every evaluation
   for (const char* name : {"fast5", "separable-banded"}) {
+    if (!solvers::find_solver(name)) continue;  // (fast5: FFTW builds)
     INFO(name);
     const std::string message = error_of([&] { cli::require_search_backend(solvers::find_solver(name), b, false); });
     CHECK(message.rfind(std::string("command line: --solver: ") + name + " does not solve the 3x3 alpha family (", 0) ==
@@ -98,15 +99,16 @@ TEST_CASE("require_search_backend: a backend that cannot serve the alpha search 
         "another solver");
   // what serves passes, auto (nullptr) always
   for (const char* name : {"eigen-ldlt", "eigen-lu", "fast", "mg"})
-    CHECK(error_of([&] { cli::require_search_backend(solvers::find_solver(name), b, false); }).empty());
+    if (const solvers::SolverInfo* info = solvers::find_solver(name))  // (fast: FFTW builds)
+      CHECK(error_of([&] { cli::require_search_backend(info, b, false); }).empty());
   CHECK(error_of([&] { cli::require_search_backend(solvers::find_solver("eigen-lu"), b, true); }).empty());
   CHECK(error_of([&] { cli::require_search_backend(nullptr, b, true); }).empty());
 }
 
 TEST_CASE("require_weight_search_backend: a grid-stencil backend is bad input naming --solver", "[cli]") {
   CHECK(error_of([] {
-          cli::require_weight_search_backend(solvers::find_solver("fast"));
-        }).rfind("command line: --solver: fast works from the grid stencil only; ", 0) == 0);
+          cli::require_weight_search_backend(solvers::find_solver("mg"));
+        }).rfind("command line: --solver: mg works from the grid stencil only; ", 0) == 0);
   CHECK(error_of([] { cli::require_weight_search_backend(solvers::find_solver("eigen-ldlt")); }).empty());
   CHECK(error_of([] { cli::require_weight_search_backend(nullptr); }).empty());
 }

@@ -30,7 +30,7 @@ struct AlphaFamilyOptions {
   std::uint64_t seed = 1;
   RandomSmoothOptions generator;
   int grid_points = 161;                        //!< nodes of family_alpha_grid for the best single α
-  const solvers::SolverInfo* solver = nullptr;  //!< nullptr: auto
+  const solvers::SolverInfo* solver = nullptr;  //!< nullptr: auto; else one check_search_backend accepts
   //! The perturbed family (`--family perturbed:NAME`) when not empty: boundary k is
   //! perturbed_boundary(base, amplitude, seed, k, generator) (random_boundary.h).
   std::string base_name;

@@ -1,6 +1,7 @@
 #include "backend_choice.h"
 
 #include <algorithm>
+#include <stdexcept>
 
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/mask9.h"
@@ -34,7 +35,11 @@ SearchBackendCheck check_search_backend(const solvers::SolverInfo& requested, co
 }
 
 const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, const Boundary& b, bool indefinite) {
-  if (requested) return *requested;
+  if (requested) {
+    if (const SearchBackendCheck check = check_search_backend(*requested, b, indefinite); !check.applicable)
+      throw std::invalid_argument("search_backend: " + check.reason + " (check_search_backend before searching)");
+    return *requested;
+  }
   const solvers::SolverInfo* pick = solvers::find_solver(solvers::choose_auto_solver(alpha_family_stencil(b)));
   if (pick && (!indefinite || !pick->definite_only)) return *pick;
   return solvers::default_matrix_solver(false);

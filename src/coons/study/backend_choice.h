@@ -25,7 +25,9 @@ SearchBackendCheck check_search_backend(const solvers::SolverInfo& requested, co
 
 //! `requested` as given, or (nullptr: auto) the fastest applicable backend on the α family of
 //! `boundary`, eigen-lu where that one needs a definite system and `indefinite` says it may not be.
-//! (A requested backend that check_search_backend refuses fails its solves, and says why.)
+//! Precondition: check_search_backend accepts `requested` (the CLI checks --solver before any
+//! search); a refused one is the caller's error, std::invalid_argument with the reason. (Through
+//! the sine-basis evaluator a search would otherwise answer under its name without solving with it.)
 const solvers::SolverInfo& search_backend(const solvers::SolverInfo* requested, const Boundary& boundary,
                                           bool indefinite);
 

@@ -25,7 +25,7 @@ struct DegreeLimitStudyOptions {
   std::vector<int> continuum_degrees = {24, 32, 40};  //!< N of the Ritz spaces, increasing
   int spread_from = 4, spread_to = 32;                //!< degrees over which spreads are taken
   int exact_mu_max_degree = 32;                       //!< μ_exact and ν* up to this degree
-  const solvers::SolverInfo* solver = nullptr;        //!< nullptr: auto
+  const solvers::SolverInfo* solver = nullptr;        //!< nullptr: auto; else one check_search_backend accepts
   DegreeLimitOptions limit;
   ContinuumOptions continuum;
 

@@ -44,8 +44,9 @@ StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& 
 struct StudyOptions {
   std::vector<int> degrees = {3, 4, 6, 8, 12, 16};  //!< each in [2, 200], increasing
   std::vector<Objective> objectives;                //!< empty: thin_plate and e3
-  const solvers::SolverInfo* solver = nullptr;      //!< nullptr: auto, per boundary and degree
-  int curve_points = 41;                            //!< α values of the energy curves
+  const solvers::SolverInfo* solver =
+      nullptr;            //!< nullptr: auto, per boundary and degree; else one check_search_backend accepts
+  int curve_points = 41;  //!< α values of the energy curves
   std::vector<double> reference_alphas = {-0.25, -0.2, -0.1, 0.0};
   //! The weight searches' backend: `solver` when it works from the matrix, else cholmod or
   //! eigen-ldlt (backend_choice.h: weight_search_backend).
