@@ -4,6 +4,7 @@
 
 #include <algorithm>
 #include <catch2/catch.hpp>
+#include <cmath>
 #include <filesystem>
 #include <random>
 #include <tuple>
@@ -105,6 +106,14 @@ TEST_CASE("read_matrix_market: each strict reader refuses the other kinds by the
   CHECK(B(0, 0) == 1.5);
   CHECK(B(1, 0) == 0);
   CHECK(B(2, 0) == -2);
+  // a −0 (α·0 with α < 0 in a right-hand side) keeps its sign through write and read
+  Eigen::MatrixXd signed_zero(2, 1);
+  signed_zero << -0.0, 0.0;
+  const std::string path = dir.file("Z.mtx");
+  write_dense_matrix_market(path, signed_zero);
+  const Eigen::MatrixXd Z = read_dense_matrix_market(path);
+  CHECK(std::signbit(Z(0, 0)));
+  CHECK_FALSE(std::signbit(Z(1, 0)));
 }
 
 TEST_CASE("read_market_matrix: a symmetric file equals its expanded general copy", "[io]") {

@@ -303,7 +303,7 @@ void read_array_entries(const std::string& path, const std::string& size_field, 
     for (const std::string& token : tokens_of(line)) {
       if (done()) throw InputError(path, where, "more values than the size line says");
       const double v = parse_value(path, where, token, b);
-      if (v != 0) add_entry(entries, i, j, v, b);
+      if (v != 0 || std::signbit(v)) add_entry(entries, i, j, v, b);  // (a −0 is kept: B reads back bit for bit)
       advance();
     }
   }

@@ -44,12 +44,12 @@ using SizeCheck = std::function<void(long long rows, long long cols, long long s
 //! Any real Matrix Market matrix, as the NIST format and the SuiteSparse collection write them:
 //! `coordinate` or `array`; `real`, `integer` or `pattern`; `general`, `symmetric` (the lower
 //! triangle stored, mirrored here) or `skew-symmetric`. Duplicate coordinate entries are summed;
-//! zeros of an array file are not stored. Throws InputError "FILE: line N: reason" for a wrong
-//! banner, size line, entry, index out of range, entry in the wrong triangle or non-finite value.
-//! `check_sizes(rows, cols, stored, size_line)`, when given, is called once the size line is read
-//! and before anything is allocated for it (stored: the entries the file promises, a symmetric
-//! file's mirrored ones included; a file of 72 bytes can declare 2^26 columns, whose column
-//! pointers alone are 256 MB); it refuses them by throwing.
+//! zeros of an array file are not stored (but a −0 is, so that a written B reads back bit for bit). Throws InputError
+//! "FILE: line N: reason" for a wrong banner, size line, entry, index out of range, entry in the wrong triangle or
+//! non-finite value. `check_sizes(rows, cols, stored, size_line)`, when given, is called once the size line is read and
+//! before anything is allocated for it (stored: the entries the file promises, a symmetric file's mirrored ones
+//! included; a file of 72 bytes can declare 2^26 columns, whose column pointers alone are 256 MB); it refuses them by
+//! throwing.
 MarketMatrix read_market_matrix(const std::string& path, const SizeCheck& check_sizes = {});
 
 //! What read_market_matrix holds for a matrix of `cols` columns and `stored` entries, an upper-bound
