@@ -24,6 +24,7 @@
 #include "coons/metrics/energies.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/surfaces/bspline_sampling.h"
+#include "net_request.h"
 #include "registry.h"
 
 namespace coons::cli {

@@ -15,6 +15,7 @@
 #include "coons/net/control_net.h"
 #include "coons/study/bspline_net.h"
 #include "coons/surfaces/sampling.h"
+#include "net_request.h"
 
 namespace coons::cli {
 

@@ -1,6 +1,6 @@
-// What the commands of the `coons` CLI share: exit codes, the options that request a net (parsed
-// into enums and backend objects here, once), the memory limit, the progress and timing of the
-// phases, and the checked printing of a report.
+// What the commands of the `coons` CLI share: exit codes, --solver and --threads, the memory
+// limit, the input files, the progress and timing of the phases, and the checked printing of a
+// report. (The options that request a net: net_request.h.)
 #pragma once
 
 #include <CLI/CLI.hpp>
@@ -30,9 +30,6 @@ constexpr int kExitBadInput = 2;
 constexpr int kExitSolverFailed = 3;
 
 using Method = NetMethod;
-
-//! `--mask NAME` (docs/formats.md, Masks): the strings become this here, nowhere else.
-enum class MaskKind { kAlpha, kC1Coons, kBiharmonic, kC1Family, kFile };
 
 //! The options of every command (registered on each subcommand).
 struct GlobalOptions {
@@ -82,42 +79,6 @@ void check_target_samples(const GlobalOptions& g, int samples);
 //! `--solver NAME`: nullptr for auto; an unknown name is an InputError listing the built-in ones.
 const solvers::SolverInfo* solver_from_name(const std::string& name);
 
-struct NetRequest {
-  Method method = Method::kAlpha;
-  double alpha = -0.25;
-  std::optional<double> mu;
-  std::string solver = "auto";
-  bool allow_indefinite = false;
-  double corner_tolerance = 1e-9;
-  double tolerance = 1e-12;
-  int max_iterations = 0;
-  double time_limit = 0;  //!< --time-limit, seconds (SolverOptions::time_limit_seconds)
-  double omega = 1.0;
-  std::string mask = "alpha";    //!< --mask (solve only)
-  std::optional<double> weight;  //!< --weight (c1-family)
-  int threads = 1;               //!< --threads (SolverOptions::threads)
-  CLI::Option* threads_option = nullptr;
-  // which options were given (for contradictions)
-  CLI::Option *method_option = nullptr, *alpha_option = nullptr, *mu_option = nullptr, *solver_option = nullptr,
-              *tolerance_option = nullptr, *max_iterations_option = nullptr, *time_limit_option = nullptr,
-              *omega_option = nullptr, *indefinite_option = nullptr, *mask_option = nullptr, *weight_option = nullptr;
-};
-
-struct ResolvedRequest {
-  Method method = Method::kAlpha;
-  Mask9 mask;
-  const solvers::SolverInfo* solver = nullptr;  //!< concrete backend (alpha method only)
-  bool picked_automatically = false;            //!< --solver auto chose it
-  solvers::SolverOptions options;
-  MaskKind mask_kind = MaskKind::kAlpha;
-  std::string mask_name = "alpha";  //!< as given ("file:PATH" included)
-  std::optional<double> weight;     //!< c1-family
-  std::optional<Stencil> stencil;   //!< every mask but alpha (whose stencil is alpha_stencil(mask))
-};
-
-void add_net_options(CLI::App& cmd, NetRequest& r);
-//! --mask and --weight (solve).
-void add_mask_options(CLI::App& cmd, NetRequest& r);
 //! --solver alone (search, sweep, batch, study).
 void add_solver_option(CLI::App& cmd, std::string& solver);
 //! True when `option` exists and was given on the command line.
@@ -128,56 +89,13 @@ CLI::Option* add_threads_option(CLI::App& cmd, int& threads);
 //! when --threads was given (`option`) with a backend `solver` names that does not use threads.
 solvers::SolverOptions threads_options(int threads, const CLI::Option* option = nullptr,
                                        const std::string& solver = "auto");
-//! Checks the request against the boundary; throws InputError naming the bad option (or both
-//! options of a contradiction).
-ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source);
-//! --tolerance, --max-iterations or --time-limit given with a backend that solves exactly
-//! (`solver`; nullptr for auto, which only picks such backends), or --time-limit with a hypre
-//! backend (no clock in its iterations): InputError naming the option.
-void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solver);
 //! An InputError on --alpha unless it is finite with |α| <= kMaxAlpha (mask9.h); the quad and the
 //! triangular mask families share the rule.
 void require_alpha_value(double alpha);
 //! An --objective as given without its white space: weighted sums may be written with spaces,
 //! "thin_plate + 10*target" is "thin_plate+10*target" (search-alpha, degree-limit, triangles).
 std::string objective_text(const std::string& given);
-NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r);
 
-//! True when the classical path applies: one data ring, no free grid, the alpha mask.
-//! Input error (field `rings` or `free`) when the file is not the one-ring problem of a full
-//! rectangle: for commands that solve only that problem (`what` names them in the message).
-void require_one_ring(const BoundaryFile& input, const std::string& source, const std::string& what);
-//! Non-zeros per matrix row of the request's stencil (9 for 3×3 masks, 25 for 5×5), for the
-//! memory estimates.
-int stencil_nonzeros(const ResolvedRequest& r);
-bool is_classical_request(const BoundaryFile& input, const ResolvedRequest& r);
-//! The stencil path's check (require_valid_problem) for a classical --method alpha request: a mask
-//! system that is singular on this grid (an α outside [−1/4, 1/4] at an eigenvalue of the mask
-//! operator) is an InputError naming the points that decouple, whatever the backend; nothing for
-//! the closed forms.
-void check_classical_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source);
-//! The stencil of a resolved request.
-Stencil request_stencil(const ResolvedRequest& r);
-
-//! A stencil solve of a file beyond the classical problem, checked at the input edge first.
-struct StencilRun {
-  StencilProblem problem;
-  Stencil stencil;
-  StencilSolveResult result;
-  bool picked_automatically = false;
-};
-//! Refuses closed-form methods beyond one ring and checks the problem (require_valid_problem:
-//! InputError naming the field and the point); result is left empty.
-StencilRun check_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const std::string& source);
-//! check_stencil_request, then picks the solver (auto: the separable one when it applies, else a
-//! sparse direct backend) and solves. The solve's trouble is in result.summary.
-StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedRequest& r, const NetRequest& request,
-                                 const GlobalOptions& global, const std::string& source);
-nlohmann::json stencil_report(const BoundaryFile& input, const ResolvedRequest& r, const StencilRun& run,
-                              const std::optional<double>& mu);
-//! The solve report (docs/formats.md) without the timing block; metrics computed here.
-nlohmann::json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
-                            const std::optional<double>& mu);
 //! The InputError of --samples given to a search whose objective has no target term (rectangles
 //! and triangles alike).
 InputError samples_without_target(const std::string& objective);

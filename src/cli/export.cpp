@@ -17,6 +17,7 @@
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/stencil_system.h"
 #include "coons/study/memory_estimate.h"
+#include "net_request.h"
 #include "registry.h"
 #include "tri_commands.h"
 
@@ -35,6 +36,43 @@ struct ExportRequest {
   CadExportRequest cad;  // --step, --iges (cad_commands.h)
 };
 
+// Each flag names the boundaries that have it (--ply: triangles and B-splines, --vtu: triangles
+// only, --vts: B-splines only): on a Bézier boundary they are bad input.
+void refuse_flags_of_other_boundaries(const ExportRequest& e) {
+  if (e.ply)
+    throw InputError("command line", "--ply",
+                     "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply)");
+  if (e.vtu)
+    throw InputError("command line", "--vtu",
+                     "is written for triangular boundaries (a Bézier one's surface as VTK: coons surface --vts)");
+  if (e.vts)
+    throw InputError("command line", "--vts",
+                     "is written for B-spline boundaries (for a Bézier one: coons surface --vts)");
+}
+
+// A failed solve: its report (with the timing) on standard output, the error line, exit 3.
+int report_failed_solve(nlohmann::json failed, Phases& phases, const std::string& file,
+                        const solvers::SolveSummary& summary) {
+  failed["timing"] = phases.timing();
+  print_json(failed);
+  print_solver_failure(file, summary);
+  return kExitSolverFailed;
+}
+
+// The system --mtx writes: the stencil problem's (`run`) or the classical one's of `b`.
+void assemble_export_system(const StencilRun* run, const Boundary& b, const ResolvedRequest& r,
+                            Eigen::SparseMatrix<double>& A, Eigen::MatrixX3d& B) {
+  if (run) {
+    StencilSystem system = assemble_stencil_system(run->problem, run->stencil);
+    A.swap(system.A);  // Eigen::SparseMatrix has no move assignment
+    B = std::move(system.B);
+  } else {
+    MaskSystem system = assemble_mask_system(frame_net(b), r.mask, true);
+    A.swap(system.A);
+    B = std::move(system.B);
+  }
+}
+
 int run_export(ExportRequest e) {
   if (is_triangle_file(e.boundary) && e.vts)
     throw InputError("command line", "--vts", "is written for B-spline boundaries (triangles: --vtu)");
@@ -52,16 +90,7 @@ int run_export(ExportRequest e) {
         {e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force, e.cad}, input, e.net,
         e.global, phases);
   }
-  // each flag names the boundaries that have it (--vtu: triangles only, --vts: B-splines only)
-  if (e.ply)
-    throw InputError("command line", "--ply",
-                     "is written for triangular and B-spline boundaries (for a Bézier one: coons surface --ply)");
-  if (e.vtu)
-    throw InputError("command line", "--vtu",
-                     "is written for triangular boundaries (a Bézier one's surface as VTK: coons surface --vts)");
-  if (e.vts)
-    throw InputError("command line", "--vts",
-                     "is written for B-spline boundaries (for a Bézier one: coons surface --vts)");
+  refuse_flags_of_other_boundaries(e);
   const Boundary& b = input.boundary;
   const ResolvedRequest r = resolve(e.net, b, e.boundary);
   const bool defaults = !e.obj && !e.mtx && !e.cad.any();
@@ -117,11 +146,7 @@ int run_export(ExportRequest e) {
     *run = solve_stencil_request(input, r, e.net, e.global, e.boundary);
     report["solver"] = summary_to_json(run->result.summary);
     if (!run->result.summary.ok()) {
-      nlohmann::json failed = stencil_report(input, r, *run, e.net.mu);
-      failed["timing"] = phases.timing();
-      print_json(failed);
-      print_solver_failure(e.boundary, run->result.summary);
-      return kExitSolverFailed;
+      return report_failed_solve(stencil_report(input, r, *run, e.net.mu), phases, e.boundary, run->result.summary);
     }
     outcome.net = run->result.net;
   } else if (solve_net) {
@@ -129,11 +154,7 @@ int run_export(ExportRequest e) {
     outcome = make_net(b, r);
     if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
     if (outcome.summary && !outcome.summary->ok()) {
-      nlohmann::json failed = solve_report(b, r, outcome, e.net.mu);
-      failed["timing"] = phases.timing();
-      print_json(failed);
-      print_solver_failure(e.boundary, *outcome.summary);
-      return kExitSolverFailed;
+      return report_failed_solve(solve_report(b, r, outcome, e.net.mu), phases, e.boundary, *outcome.summary);
     }
   }
   std::vector<std::string> written;
@@ -148,15 +169,7 @@ int run_export(ExportRequest e) {
     phases.start("assemble");
     Eigen::SparseMatrix<double> A;
     Eigen::MatrixX3d B;
-    if (run) {
-      StencilSystem system = assemble_stencil_system(run->problem, run->stencil);
-      A.swap(system.A);  // Eigen::SparseMatrix has no move assignment
-      B = std::move(system.B);
-    } else {
-      MaskSystem system = assemble_mask_system(frame_net(b), r.mask, true);
-      A.swap(system.A);
-      B = std::move(system.B);
-    }
+    assemble_export_system(run ? &*run : nullptr, b, r, A, B);
     phases.start("write");
     const std::string& a = names[e.obj ? 2 : 0];
     const std::string& rhs = names[e.obj ? 3 : 1];

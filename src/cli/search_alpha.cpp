@@ -25,6 +25,7 @@
 #include "coons/study/memory_estimate.h"
 #include "coons/study/search_report.h"
 #include "coons/study/two_ring_problem.h"
+#include "net_request.h"
 #include "registry.h"
 #include "search_inputs.h"
 #include "tri_commands.h"

@@ -4,6 +4,7 @@
 #include "bspline_commands.h"
 #include "coons/io/input_error.h"
 #include "coons/io/tri_boundary_io.h"
+#include "net_request.h"
 #include "registry.h"
 #include "report_output.h"
 #include "tri_commands.h"

@@ -13,6 +13,7 @@
 #include "coons/io/write_files.h"
 #include "coons/study/backend_choice.h"
 #include "coons/study/memory_estimate.h"
+#include "net_request.h"
 #include "registry.h"
 #include "search_inputs.h"
 #include "tri_commands.h"

@@ -8,6 +8,7 @@
 #include <string>
 
 #include "common.h"
+#include "net_request.h"
 
 namespace coons::cli {
 
