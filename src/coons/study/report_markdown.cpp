@@ -121,7 +121,10 @@ StudyFigures plot_study_figures(const StudyResult& r, const std::function<std::s
   return figures;
 }
 
-std::string study_report_markdown(const StudyResult& r, const Provenance& p, const StudyFigures& figures) {
+namespace {
+
+// The title, the provenance and what α, μ and the optima's marks mean.
+std::string study_introduction_markdown(const Provenance& p) {
   std::string md;
   auto line = [&](const std::string& s) { md += s + "\n"; };
   line("# The α study: which mask gives the best surface?");
@@ -137,7 +140,13 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
   line("evaluation); `flat` means the objective does not depend on α, `bound` that the optimum is on a bound,");
   line("`multi` that the scan saw several local minima.");
   line("");
+  return md;
+}
 
+// §1: each shape's optima at its own degree (with the C1 family's column where a shape has two data rings).
+std::string study_optima_markdown(const StudyResult& r) {
+  std::string md;
+  auto line = [&](const std::string& s) { md += s + "\n"; };
   line("## 1. Coons, Laplace and optimal nets at each shape's own degree");
   line("");
   // the C1 family's column only when some input has two data rings (the report is otherwise unchanged)
@@ -170,7 +179,13 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     }
   }
   line("");
+  return md;
+}
 
+// §2: the optimum against the degree, the fit of the degree law, the refits' deviations and the two plots.
+std::string study_degrees_markdown(const StudyResult& r, const StudyFigures& figures) {
+  std::string md;
+  auto line = [&](const std::string& s) { md += s + "\n"; };
   line("## 2. How the optimum moves with the degree");
   line("");
   line("A boundary given by curves (analytic sides) is refitted at each degree (d, d); any other boundary is");
@@ -237,8 +252,13 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
   const StudyFigure& mu = figures.mu_vs_degree;
   line(mu.error.empty() ? fmt::format("![μ* against degree]({})", mu.file) : "(μ* plot: " + mu.error + ")");
   line("");
+  return md;
+}
 
-  // 3. Reference tables: every boundary with a target.
+// §3: a reference table for every boundary with a target (nothing without one).
+std::string study_references_markdown(const StudyResult& r) {
+  std::string md;
+  auto line = [&](const std::string& s) { md += s + "\n"; };
   if (!r.references.empty()) {
     line("## 3. Reference tables: every boundary with a target");
     line("");
@@ -264,7 +284,13 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
       line(fmt::format("The α that fits the target best: {} (no distance is compared).", format_optimum(t.best)));
     line("");
   }
+  return md;
+}
 
+// §4: the energy curves and nets of each shape.
+std::string study_pictures_markdown(const StudyResult& r, const StudyFigures& figures) {
+  std::string md;
+  auto line = [&](const std::string& s) { md += s + "\n"; };
   line("## 4. Energy curves and nets, shape by shape");
   line("");
   for (size_t k = 0; k < r.shapes.size(); ++k) {
@@ -277,6 +303,13 @@ std::string study_report_markdown(const StudyResult& r, const Provenance& p, con
     line(n.error.empty() ? fmt::format("![nets of {}]({})\n", name, n.file) : "(picture failed: " + n.error + ")\n");
   }
   return md;
+}
+
+}  // namespace
+
+std::string study_report_markdown(const StudyResult& r, const Provenance& p, const StudyFigures& figures) {
+  return study_introduction_markdown(p) + study_optima_markdown(r) + study_degrees_markdown(r, figures) +
+         study_references_markdown(r) + study_pictures_markdown(r, figures);
 }
 
 }  // namespace coons

@@ -24,24 +24,37 @@ namespace coons {
 
 namespace {
 
+// The energies a curve can show, by objective name: their field of NetMetrics (what a sweep row
+// holds) and the function that computes one alone (for a single net).
+struct CurveEnergy {
+  const char* name;
+  double NetMetrics::*field;
+  double (*of)(const ControlNet&);
+};
+constexpr CurveEnergy kCurveEnergies[] = {
+    {"thin_plate", &NetMetrics::thin_plate_energy, thin_plate_energy},
+    {"e3", &NetMetrics::e3_energy, e3_energy},
+    {"dirichlet", &NetMetrics::dirichlet_energy, dirichlet_energy},
+    {"twist", &NetMetrics::twist_energy, twist_energy},
+    {"discrete_twist", &NetMetrics::discrete_twist_energy, discrete_twist_energy},
+    {"discrete_dirichlet", &NetMetrics::discrete_dirichlet_energy, discrete_dirichlet_energy},
+};
+
+const CurveEnergy* curve_energy(const std::string& name) {
+  for (const CurveEnergy& e : kCurveEnergies)
+    if (name == e.name) return &e;
+  return nullptr;
+}
+
+// NaN for a name that is no curve's.
 double metric_of(const NetMetrics& m, const std::string& name) {
-  if (name == "thin_plate") return m.thin_plate_energy;
-  if (name == "e3") return m.e3_energy;
-  if (name == "dirichlet") return m.dirichlet_energy;
-  if (name == "twist") return m.twist_energy;
-  if (name == "discrete_twist") return m.discrete_twist_energy;
-  if (name == "discrete_dirichlet") return m.discrete_dirichlet_energy;
-  return NAN;
+  const CurveEnergy* e = curve_energy(name);
+  return e ? m.*(e->field) : NAN;
 }
 
 double energy_of(const ControlNet& net, const std::string& name) {
-  if (name == "thin_plate") return thin_plate_energy(net);
-  if (name == "e3") return e3_energy(net);
-  if (name == "dirichlet") return dirichlet_energy(net);
-  if (name == "twist") return twist_energy(net);
-  if (name == "discrete_twist") return discrete_twist_energy(net);
-  if (name == "discrete_dirichlet") return discrete_dirichlet_energy(net);
-  return NAN;
+  const CurveEnergy* e = curve_energy(name);
+  return e ? e->of(net) : NAN;
 }
 
 // The grid of a slider with the optima (and the marks) added, increasing, without repeats.
@@ -99,7 +112,7 @@ bool ViewOptions::is_valid(std::string* why) const {
     return fail(fmt::format("the interval [{}, {}] is too narrow for {} distinct frames (their spacing must exceed {})",
                             lower, upper, frames, merged));
   for (const std::string& name : objectives)
-    if (std::isnan(metric_of(NetMetrics{}, name))) return fail(fmt::format("no energy curve for '{}'", name));
+    if (!curve_energy(name)) return fail(fmt::format("no energy curve for '{}'", name));
   return true;
 }
 
