@@ -8,6 +8,7 @@
 #include "coons/io/input_error.h"
 #include "coons/net/control_net.h"
 #include "solvers/registry.h"
+#include "support/fixtures.h"
 
 using namespace coons;
 using coons::cli::resolve_target;
@@ -33,13 +34,6 @@ std::string error_of(Check check) {
     return e.what();
   }
   return "";
-}
-
-Boundary sized(int m, int n) {
-  Boundary b;
-  b.m = m;
-  b.n = n;
-  return b;
 }
 
 }  // namespace
@@ -80,7 +74,7 @@ TEST_CASE("resolve_target: a zero direction or radius is refused naming --target
 
 TEST_CASE("require_search_backend: a backend that cannot serve the alpha search is bad input naming --solver",
           "[cli]") {
-  const Boundary b = sized(6, 5);
+  const Boundary b = test::make_random_boundary(6, 5, 1);
   // fast5 solves 5x5 stencils only, separable-banded alpha = -1/4 only: the search would fail at
   // every evaluation
   for (const char* name : {"fast5", "separable-banded"}) {

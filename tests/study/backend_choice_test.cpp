@@ -10,25 +10,15 @@
 #include "coons/mask/mask9.h"
 #include "coons/net/control_net.h"
 #include "solvers/registry.h"
+#include "support/fixtures.h"
 
 using namespace coons;
-
-namespace {
-
-Boundary sized(int m, int n) {
-  Boundary b;
-  b.m = m;
-  b.n = n;
-  return b;
-}
-
-}  // namespace
 
 TEST_CASE(
     "search_backend: auto is the registry's pick on the alpha family, never a definite-only one where "
     "indefinite",
     "[study]") {
-  const Boundary b = sized(9, 7);
+  const Boundary b = test::make_random_boundary(9, 7, 1);
   const std::string pick = solvers::choose_auto_solver(mask_stencil(alpha_mask(-0.1), 8, 6));
   CHECK(search_backend(nullptr, b, false).name == pick);
   CHECK_FALSE(search_backend(nullptr, b, true).definite_only);
@@ -44,7 +34,7 @@ TEST_CASE(
 
 TEST_CASE("check_search_backend: refuses what cannot solve the alpha family, and definite-only where indefinite",
           "[study]") {
-  const Boundary b = sized(9, 7);
+  const Boundary b = test::make_random_boundary(9, 7, 1);
   // separable-banded takes alpha = -1/4 only, fast5 (FFTW builds) 5x5 stencils only
   for (const char* name : {"separable-banded", "fast5"}) {
     const solvers::SolverInfo* info = solvers::find_solver(name);
