@@ -24,8 +24,9 @@ struct BenchMatrixRequest {
   bool table = false;
   double tolerance = 1e-10;
   int max_iterations = 0;
+  double time_limit = 60;  //!< --time-limit, seconds per solve of an iterative backend (0: none)
   GlobalOptions global;
-  const CLI::Option *tolerance_option = nullptr, *max_iterations_option = nullptr;
+  const CLI::Option *tolerance_option = nullptr, *max_iterations_option = nullptr, *time_limit_option = nullptr;
 };
 
 std::vector<const solvers::SolverInfo*> chosen_backends(const std::vector<std::string>& names) {
@@ -121,6 +122,9 @@ int run_bench_matrix(BenchMatrixRequest r) {
   solvers::SolverOptions options;
   options.tolerance = r.tolerance;
   options.max_iterations = r.max_iterations;
+  if (!(std::isfinite(r.time_limit) && r.time_limit >= 0))
+    throw InputError("command line", "--time-limit", "must be a finite number of seconds >= 0 (0: none)");
+  options.time_limit_seconds = r.time_limit;
   require_valid_solver_options(options);
   const std::vector<const solvers::SolverInfo*> backends = chosen_backends(r.solvers);
   // As in `coons solve`: a stopping rule that none of the chosen backends reads is an error (a
@@ -128,12 +132,13 @@ int run_bench_matrix(BenchMatrixRequest r) {
   if (std::none_of(backends.begin(), backends.end(), [](const solvers::SolverInfo* b) {
         return b->family == solvers::SolverFamily::kIterative && solvers::accepts_matrix(*b);
       }))
-    for (const auto& [option, name] :
-         {std::pair{r.tolerance_option, "--tolerance"}, {r.max_iterations_option, "--max-iterations"}})
+    for (const auto& [option, name] : {std::pair{r.tolerance_option, "--tolerance"},
+                                       {r.max_iterations_option, "--max-iterations"},
+                                       {r.time_limit_option, "--time-limit"}})
       if (given(option))
         throw InputError("command line", name,
-                         fmt::format("{} is a stopping rule of the iterative solvers; none of --solvers {} is one "
-                                     "that runs on a matrix",
+                         fmt::format("{} is a stopping rule of the iterative solvers; none of --solvers {} is an "
+                                     "iterative backend that runs on a matrix",
                                      name, fmt::join(r.solvers, ",")));
 
   // The sizes a file declares are checked before the reader allocates for them (a 72-byte file
@@ -237,6 +242,11 @@ void register_bench_matrix(CLI::App& app, Registry& registry) {
   request->max_iterations_option =
       cmd->add_option("--max-iterations", request->max_iterations,
                       "iteration limit of the iterative backends (0: automatic, always finite)")
+          ->capture_default_str();
+  request->time_limit_option =
+      cmd->add_option("--time-limit", request->time_limit,
+                      "seconds after which an iterative backend's solve stops, not_converged with the iterate "
+                      "reached (0: none; not hypre-amg, which has no clock)")
           ->capture_default_str();
   add_memory_option(*cmd, request->global);
   set_example(*cmd, "coons bench-matrix data/matrices/anisotropic_diffusion.mtx --table");

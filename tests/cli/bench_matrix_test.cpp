@@ -137,12 +137,15 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
       // a stopping rule that no chosen backend reads, as in `coons solve`
       {A + " --solvers eigen-lu,eigen-ldlt --max-iterations 5",
        "command line: --max-iterations: --max-iterations is a stopping rule of the iterative solvers; none of "
-       "--solvers eigen-lu,eigen-ldlt is one"},
+       "--solvers eigen-lu,eigen-ldlt is an iterative backend"},
+      {A + " --solvers eigen-lu --time-limit 5", "command line: --time-limit: --time-limit is a stopping rule"},
+      {A + " --time-limit -1", "command line: --time-limit: must be a finite number of seconds >= 0"},
+      {A + " --time-limit nan", "command line: --time-limit"},
       {A + " --solvers eigen-lu --tolerance 1e-6", "command line: --tolerance: --tolerance is a stopping rule"},
       // mg is iterative but needs a grid stencil: it is skipped here and reads no stopping rule
       {A + " --solvers mg,eigen-lu --max-iterations 4",
-       "--max-iterations is a stopping rule of the iterative solvers; none of --solvers mg,eigen-lu is one that runs "
-       "on a matrix"},
+       "--max-iterations is a stopping rule of the iterative solvers; none of --solvers mg,eigen-lu is an iterative "
+       "backend that runs on a matrix"},
   };
   for (const Case& c : cases) {
     const CommandResult r = run_coons("bench-matrix " + c.args);
@@ -153,6 +156,37 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
     CHECK(r.err.rfind("error: ", 0) == 0);
     CHECK(r.err.find(c.mention) != std::string::npos);
   }
+}
+
+TEST_CASE("coons bench-matrix: --time-limit stops an iterative backend, not_converged with its iterate", "[cli]") {
+  // an indefinite five-point operator (diagonal 3.5) on a 100 x 100 grid: gmres(50) stagnates and
+  // would run to its automatic limit of 20 n = 200,000 iterations
+  const TempDir dir;
+  const int k = 100, n = k * k;
+  std::string text = "%%MatrixMarket matrix coordinate real symmetric\n";
+  std::string entries;
+  int count = 0;
+  for (int j = 0; j < k; ++j)
+    for (int i = 0; i < k; ++i) {
+      const int row = j * k + i + 1;
+      entries += std::to_string(row) + " " + std::to_string(row) + " 3.5\n";
+      ++count;
+      if (i + 1 < k) entries += std::to_string(row + 1) + " " + std::to_string(row) + " -1\n", ++count;
+      if (j + 1 < k) entries += std::to_string(row + k) + " " + std::to_string(row) + " -1\n", ++count;
+    }
+  text += std::to_string(n) + " " + std::to_string(n) + " " + std::to_string(count) + "\n" + entries;
+  const std::string helmholtz = dir.write("helmholtz.mtx", text);
+  const CommandResult r = run_coons("bench-matrix " + helmholtz + " --solvers gmres,eigen-lu --time-limit 0.3");
+  INFO(r.out << r.err);
+  REQUIRE(r.status == 0);  // eigen-lu solves it
+  const std::vector<std::string> rows = lines_of(r.out);
+  REQUIRE(rows.size() == 2);
+  const json gmres = json::parse(rows[0]);
+  CHECK(gmres["status"] == "not_converged");
+  CHECK(gmres["message"].get<std::string>().find("time limit") != std::string::npos);
+  CHECK(gmres["seconds"]["solve"].get<double>() < 30);
+  CHECK(gmres["relative_residual"].is_number());  // the iterate reached is measured
+  CHECK(json::parse(rows[1])["status"] == "success");
 }
 
 TEST_CASE("coons bench-matrix: a system no backend solves exits 3 with its statuses", "[cli]") {
