@@ -231,7 +231,14 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
       if (ec) throw InputError(in, "", "cannot read the folder: " + ec.message());
       for (; it != fs::directory_iterator(); it.increment(ec)) {
         if (ec) throw InputError(in, "", "cannot read the folder: " + ec.message());
-        if (it->path().extension() == ".json") found.push_back(it->path().string());
+        if (it->path().extension() != ".json") continue;
+        // a FIFO named *.json blocked the run forever waiting for a writer: a folder is read for
+        // its regular files (symbolic links to them included), and anything else is named
+        std::error_code kind;
+        if (!it->is_regular_file(kind))
+          throw InputError(it->path().string(), "",
+                           "is not a regular file (a folder given as input is read for its regular *.json files)");
+        found.push_back(it->path().string());
       }
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());

@@ -113,7 +113,8 @@ void check_corner_tolerance(double corner_tolerance);
 //! pass kMinModelSize, BoundaryReadOptions).
 BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline = false,
                         double min_model_size = 0);
-//! Files as given, folders expanded to their *.json files (sorted); unreadable folders are InputErrors.
+//! Files as given, folders expanded to their *.json files (sorted); unreadable folders, and an
+//! entry *.json of a folder that is no regular file (a FIFO would block the run), are InputErrors.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
 
 //! The memory of solving and measuring an (m+1)×(n+1) net, checked against the limit;

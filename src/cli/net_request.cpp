@@ -229,7 +229,14 @@ void check_classical_request(const BoundaryFile& input, const ResolvedRequest& r
   // points that decouple. The ratio's threshold (1e-6) is far above that check's (1e-10 of
   // ‖A‖₁ ≥ max|λ|). The α search refuses to evaluate outside [−1/4, 1/4] below the same ratio.
   if (mask9_eigenvalue_ratio(r.mask, input.boundary.m, input.boundary.n) > kNearSingularEigenvalueRatio) return;
-  require_valid_problem(stencil_problem(input), alpha_stencil(r.mask), source);
+  // The file of a classical request has no free grid: what makes its system singular is the α of
+  // --alpha (--mu's masks are definite), which the error names (it named "free[1][1]" of a file
+  // that has no "free").
+  const std::vector<ProblemIssue> issues = check_stencil_problem(stencil_problem(input), alpha_stencil(r.mask));
+  if (!issues.empty())
+    throw InputError("command line", "--alpha",
+                     fmt::format("alpha = {} on the {} by {} net of {}: {}", r.mask.diag, input.boundary.m + 1,
+                                 input.boundary.n + 1, source, issues.front().reason));
 }
 
 Stencil request_stencil(const ResolvedRequest& r) { return r.stencil ? *r.stencil : alpha_stencil(r.mask); }

@@ -192,6 +192,12 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --corner-tolerance -1", "--corner-tolerance"},
       {"solve " + good + " --mu -1", "--mu"},
       {"solve " + good + " --alpha nan", "--alpha"},
+      // a singular member of the 3x3 family on a file without a free grid names --alpha (it named
+      // "free[1][1]" of a file that has no "free")
+      {"export " + good + " --alpha 0.5 --out {OUT}/e",
+       "command line: --alpha: alpha = 0.5 on the 4 by 4 net of " + kData +
+           "/boundaries/dome.json: the mask system is singular: the free points (1, 1)"},
+      {"solve " + good + " --alpha 0.5 --solver eigen-lu", "command line: --alpha: alpha = 0.5 on the 4 by 4 net"},
       // beyond kMaxAlpha: `fast` called the dome singular at 1e160, and at 1e308 the singularity
       // check named four points that do not decouple
       {"solve " + good + " --alpha 1e308", "--alpha: 1e+308 is beyond the bound |alpha| <= 1e+60"},

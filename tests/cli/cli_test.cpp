@@ -1,5 +1,6 @@
 // The command-line contract of docs/formats.md, driven through the real binary.
 #include <fmt/format.h>
+#include <sys/stat.h>
 #include <unistd.h>
 
 #include <algorithm>
@@ -174,6 +175,23 @@ TEST_CASE("coons batch: nets, OBJ files and a metrics table for every boundary",
   for (const char* f : {"dome-3x3/coons.json", "dome-3x3/alpha-0.25.json", "dome-3x3/alpha-0.1.json",
                         "dome-3x3/alpha+0.json", "saddle-3x3/coons.surface.obj", "saddle-3x3/alpha-0.1.net.obj"})
     CHECK(fs::exists(fs::path(out) / f));
+}
+
+TEST_CASE("coons batch: a folder entry *.json that is no regular file is named, not waited on", "[cli][bad-input]") {
+  // a FIFO named incoming.json beside a boundary blocked the run forever waiting for a writer
+  // (`timeout 10` makes a regression fail instead of hang)
+  const TempDir dir;
+  const std::filesystem::path folder = dir.path / "in";
+  std::filesystem::create_directories(folder);
+  std::filesystem::copy_file(kData + "/boundaries/dome.json", folder / "dome.json");
+  REQUIRE(mkfifo((folder / "incoming.json").c_str(), 0600) == 0);
+  const CommandResult r =
+      run_command("timeout 10 " + kCoons + " batch " + quoted(folder.string()) + " --out " + quoted(dir.file("out")));
+  INFO(r.err);
+  CHECK(r.status == 2);
+  CHECK(r.err == "error: " + (folder / "incoming.json").string() +
+                     ": is not a regular file (a folder given as input is read for its regular *.json files)\n");
+  CHECK_FALSE(std::filesystem::exists(dir.file("out")));
 }
 
 TEST_CASE("coons batch: the table tells two files of one name apart and a name cannot break a row", "[cli]") {
