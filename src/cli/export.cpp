@@ -9,6 +9,7 @@
 #include "bspline_commands.h"
 #include "cad_commands.h"
 #include "coons/io/input_error.h"
+#include "coons/io/json_file.h"
 #include "coons/io/matrix_market.h"
 #include "coons/io/net_json.h"
 #include "coons/io/obj_export.h"
@@ -83,7 +84,9 @@ int run_export(ExportRequest e) {
     return run_tri_export({e.boundary, &e.net, &e.global, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vtu});
   Phases phases("export");
   phases.start("read");
-  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true);
+  // the curvatures of --ply and --vts (B-spline boundaries) leave the doubles below kMinModelSize:
+  // a model of 1e-160 wrote a Gaussian curvature of 0 (it is about 1e319), unflagged
+  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true, e.ply || e.vts ? kMinModelSize : 0.0);
   if (input.bspline) {  // every output, --step/--iges included, from the B-spline path (its knots)
     if (e.vtu) throw InputError("command line", "--vtu", "is written for triangular boundaries (B-spline: --vts)");
     return run_bspline_export(

@@ -117,7 +117,8 @@ int run_tri_solve(const std::string& path, const NetRequest& net, const GlobalOp
 int run_tri_export(const TriExportArgs& e) {
   Phases phases("export");
   phases.start("read");
-  const tri::TriBoundary b = read_tri_input(e.boundary, e.net->corner_tolerance);
+  // the curvatures of --ply and --vtu leave the doubles below kMinModelSize (Gaussian ~ 1/size²)
+  const tri::TriBoundary b = read_tri_input(e.boundary, e.net->corner_tolerance, e.ply || e.vtu ? kMinModelSize : 0.0);
   const TriRequest r = resolve_tri(*e.net);
   const bool all = !e.obj && !e.mtx && !e.ply && !e.vtu;
   const bool obj = all || e.obj, ply = all || e.ply, vtu = all || e.vtu;

@@ -141,6 +141,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   inputs.write("nocorners.json", "{\"type\": \"bilinear\"}");
   // a bilinear patch 1e-170 across: join read its open seam (gap 1.4e-170) as closed, surface its
   // Gaussian curvature 1e320 as 0
+  // a triangle 1e-100 across: its Gaussian curvature (about 1e200) is fine, but at 1e-160 it leaves
+  // the doubles; --ply and --vtu refuse a model below 1e-60 as surface does
+  inputs.write("tiny_triangle.json", R"({"type": "triangle", "degree": 1, "sides": [[[0, 0, 0], [1e-100, 0, 0]],
+                                [[1e-100, 0, 0], [0, 1e-100, 0]], [[0, 1e-100, 0], [0, 0, 0]]]})");
   inputs.write("tiny.json", R"({"type": "bilinear", "corners": [[0, 0, 0], [1e-170, 0, 0], [0, 1e-170, 0],
                                 [1e-170, 1e-170, 1e-170]]})");
 
@@ -192,6 +196,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --corner-tolerance -1", "--corner-tolerance"},
       {"solve " + good + " --mu -1", "--mu"},
       {"solve " + good + " --alpha nan", "--alpha"},
+      // curvatures (--ply of a triangle) of a model below 1e-60 would leave the doubles
+      {"export {IN}/tiny_triangle.json --ply --out {OUT}/t",
+       "tiny_triangle.json: sides[0][1]: the largest coordinate magnitude of the model is 1e-100, below 1e-60"},
       // a singular member of the 3x3 family on a file without a free grid names --alpha (it named
       // "free[1][1]" of a file that has no "free")
       {"export " + good + " --alpha 0.5 --out {OUT}/e",

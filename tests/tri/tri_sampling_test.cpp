@@ -69,3 +69,24 @@ TEST_CASE("sample_tri_surface: a collapsed corner is marked singular, with zero 
   REQUIRE(s.normals.row(corner).isZero());
   REQUIRE(s.singular.sum() == 1);
 }
+
+TEST_CASE("sample_tri_surface: normals and curvatures of a model of any size, scaled as they should", "[tri]") {
+  // at a model size of 1e-100 the cross product of the derivatives underflowed: every normal came
+  // out 0 (singular) or (0, 0, 1) and every curvature 0
+  const TriNet net = random_tri_net(4, 9);
+  const TriSurfaceSamples one = sample_tri_surface(net, 7);
+  for (const double scale : {1e-100, 1e-150, 1e100}) {
+    INFO("scale " << scale);
+    TriNet small = net;
+    small.points *= scale;
+    const TriSurfaceSamples s = sample_tri_surface(small, 7);
+    CHECK(s.singular == one.singular);
+    CHECK((s.normals - one.normals).cwiseAbs().maxCoeff() < 1e-13);
+    for (Eigen::Index row = 0; row < s.points.rows(); ++row) {
+      if (one.singular(row)) continue;
+      CHECK(s.mean_curvature(row) * scale == Approx(one.mean_curvature(row)).epsilon(1e-11).margin(1e-300));
+      CHECK(s.gaussian_curvature(row) * scale * scale ==
+            Approx(one.gaussian_curvature(row)).epsilon(1e-11).margin(1e-300));
+    }
+  }
+}

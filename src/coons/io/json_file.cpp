@@ -250,9 +250,9 @@ std::string coordinate_problem(double x) {
 void require_model_size(double largest, double min_size, const std::string& source, const std::string& field) {
   if (largest > 0 && largest < min_size)
     throw InputError(source, field,
-                     fmt::format("the largest coordinate magnitude of the model is {:.3g}, below {:g}: the search's "
-                                 "energies scale as x^2 and would underflow; scale the model up (the optimal "
-                                 "parameters do not depend on the scale)",
+                     fmt::format("the largest coordinate magnitude of the model is {:.3g}, below {:g}: energies "
+                                 "(which scale as x^2) and curvatures (as 1/x and 1/x^2) would leave the doubles; "
+                                 "scale the model up (optimal parameters and shapes do not depend on the scale)",
                                  largest, min_size));
 }
 

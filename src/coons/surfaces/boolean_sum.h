@@ -20,7 +20,7 @@
 
 #include "coons/curves/curve.h"
 #include "coons/net/control_net.h"
-#include "coons/surfaces/surface_point.h"
+#include "coons/net/surface_point.h"
 
 namespace coons {
 

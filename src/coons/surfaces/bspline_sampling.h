@@ -5,9 +5,9 @@
 // Based on: L. Piegl, W. Tiller, The NURBS Book (1997), A3.6 (surface derivatives).
 #pragma once
 
+#include "coons/net/surface_point.h"
 #include "coons/surfaces/bspline_surface.h"
 #include "coons/surfaces/sampling.h"
-#include "coons/surfaces/surface_point.h"
 
 namespace coons {
 

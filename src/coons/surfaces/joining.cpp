@@ -4,7 +4,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include "coons/surfaces/surface_point.h"
+#include "coons/net/surface_point.h"
 
 namespace coons {
 

@@ -3,6 +3,7 @@
 #include <Eigen/Dense>
 #include <cmath>
 
+#include "coons/net/surface_point.h"
 #include "coons/tri/tri_energy.h"
 
 namespace coons::tri {
@@ -39,22 +40,23 @@ TriSurfaceSamples sample_tri_surface(const TriNet& net, int k) {
       const Eigen::Index row = net_index(k - 1, s, r);
       const Eigen::Vector3d uvw = tri_sample_uvw(k, r, s);
       out.points.row(row) = evaluate(net, uvw);
-      const Eigen::RowVector3d px = directional_derivative(net, uvw, dx), py = directional_derivative(net, uvw, dy);
-      const Eigen::RowVector3d cross = px.cross(py);
-      const double length = cross.norm(), scale = std::max(px.norm() * py.norm(), 1e-300);
-      if (!(length > 1e-12 * scale)) {
+      SurfacePoint point;
+      point.du = directional_derivative(net, uvw, dx);
+      point.dv = directional_derivative(net, uvw, dy);
+      // (unit_cross and curvatures work in units of the derivatives: at a model size of 1e-100 the
+      // cross product of the derivatives underflowed, and every normal came out 0 or (0, 0, 1))
+      const Eigen::RowVector3d normal = unit_normal(point);
+      if (!normal.allFinite()) {
         out.singular(row) = 1;
         continue;
       }
-      const Eigen::RowVector3d normal = cross / length;
       out.normals.row(row) = normal;
-      const double e = px.dot(px), f = px.dot(py), g = py.dot(py);
-      const double l = second_directional_derivative(net, uvw, dx, dx).dot(normal);
-      const double m = second_directional_derivative(net, uvw, dx, dy).dot(normal);
-      const double nn = second_directional_derivative(net, uvw, dy, dy).dot(normal);
-      const double det = e * g - f * f;
-      out.gaussian_curvature(row) = (l * nn - m * m) / det;
-      out.mean_curvature(row) = (e * nn - 2 * f * m + g * l) / (2 * det);
+      point.duu = second_directional_derivative(net, uvw, dx, dx);
+      point.duv = second_directional_derivative(net, uvw, dx, dy);
+      point.dvv = second_directional_derivative(net, uvw, dy, dy);
+      const Curvatures c = curvatures(point);
+      out.gaussian_curvature(row) = c.gaussian;
+      out.mean_curvature(row) = c.mean;
     }
   out.triangles = tri_grid_triangles(k);
   return out;
