@@ -251,6 +251,18 @@ TEST_CASE("plot_curves: an output gnuplot cannot open says so, not that gnuplot 
   CHECK_FALSE(std::filesystem::exists(png));
 }
 
+TEST_CASE("plot_curves: a name with a line break is refused, and nothing is left in its folder", "[io][plot]") {
+  // gnuplot wrote "a b.png.part.png" (the break made a space), which was left behind
+  REQUIRE(have_gnuplot());
+  const TempDir dir;
+  const std::vector<PlotSeries> series = {PlotSeries{"line", {0, 1}, {0, 1}, false}};
+  for (const char* name : {"a\nb.png", "a\rb.png"}) {
+    const std::string why = plot_curves(dir.file(name), series, PlotOptions{});
+    CHECK(why == "gnuplot cannot write a file whose name holds a line break; choose another name");
+  }
+  CHECK(std::filesystem::is_empty(dir.path));
+}
+
 TEST_CASE("run_gnuplot: a gnuplot that never finishes is stopped and named, and leaves no file", "[io][plot]") {
   const TempDir dir;
   const std::string fake = dir.file("gnuplot");

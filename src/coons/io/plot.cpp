@@ -85,6 +85,10 @@ std::string gnuplot_error(const fs::path& log_file) {
 
 std::string run_gnuplot(const std::string& script, const std::string& png, double seconds) {
   if (!(seconds > 0) || !std::isfinite(seconds)) return fmt::format("bad gnuplot time limit {} s", seconds);
+  // gnuplot's commands are lines: a line break in the name cannot be written (quote() makes it a
+  // space, gnuplot wrote "a b.png…", and the file it wrote was left behind under that name)
+  if (png.find_first_of("\n\r") != std::string::npos)
+    return "gnuplot cannot write a file whose name holds a line break; choose another name";
   const Scratch scratch;
   if (scratch.dir.empty()) return "cannot create a temporary folder";
   const fs::path gp = scratch.dir / "plot.gp";
