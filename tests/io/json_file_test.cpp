@@ -70,6 +70,22 @@ TEST_CASE("parse_json_text: a number beyond the doubles names its field and the 
                     "t.json: (document): the number '1e999' is beyond the range of doubles");
 }
 
+TEST_CASE("parse_json_text: a number below the smallest double names its field, zeros and subnormals do not", "[io]") {
+  // 1e-5000 was read as 0 without a word (the command line and Matrix Market refuse it)
+  const std::string reason =
+      "a number below the smallest double, which would be read as 0 (write 0, or a value of at least about 5e-324)";
+  CHECK_THROWS_WITH(parse_json_text(R"({"bottom": [[0, 0, 0], [1, 0, 1e-5000]]})", "t.json"),
+                    "t.json: bottom[1][2]: " + reason);
+  CHECK_THROWS_WITH(parse_json_text(R"({"a": [0.5, -0.0, 0e7], "b": {"c": -2.5e-400}})", "t.json"),
+                    "t.json: b.c: " + reason);
+  // zeros in any spelling, subnormals, and such text inside strings are numbers or text as written
+  const nlohmann::json ok = parse_json_text(
+      R"({"z": [0.0, -0e-5000, 0.000e+12, 1e-320], "s": "1e-5000 \" 2e-999", "i": [0, -0, 12]})", "t.json");
+  CHECK(ok["z"][0] == 0.0);
+  CHECK(ok["z"][3].get<double>() > 0);
+  CHECK(ok["s"] == "1e-5000 \" 2e-999");
+}
+
 TEST_CASE("read_json_file: a file above the size limit is refused before it is parsed", "[io]") {
   const TempDir dir;
   const std::string path = dir.write("b.json", boundary_to_json(make_random_boundary(3, 3, 1)).dump());

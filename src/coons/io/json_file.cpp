@@ -3,6 +3,7 @@
 #include <fmt/format.h>
 
 #include <cmath>
+#include <cstring>
 #include <filesystem>
 #include <fstream>
 #include <limits>
@@ -22,6 +23,9 @@ namespace {
 // Thrown by the parser callback to stop at the first container beyond the limit (the parser is
 // iterative, so the depth is counted before anything deeper is built).
 struct TooDeep {};
+struct Underflow {
+  std::string field;
+};
 
 // Thrown by the parser callback at the second copy of a key in one object (the parser would keep
 // the last silently: a file with two "net" fields would be solved with one of them).
@@ -97,6 +101,60 @@ bool JsonReadOptions::is_valid(std::string* why) const {
   return true;
 }
 
+namespace {
+
+// For each number token of `text` that the parser reads as a double (a fraction or an exponent),
+// in document order: whether it is a non-zero number below the smallest double, which the parser
+// silently reads as 0 (1e-5000; the command line and Matrix Market refuse it). Strings are skipped.
+std::vector<bool> underflowing_floats(const std::string& text) {
+  std::vector<bool> out;
+  const char* p = text.data();
+  const char* const end = p + text.size();
+  bool in_string = false;
+  for (; p < end; ++p) {
+    const char c = *p;
+    if (in_string) {
+      if (c == '\\')
+        ++p;
+      else if (c == '"')
+        in_string = false;
+      continue;
+    }
+    if (c == '"') {
+      in_string = true;
+      continue;
+    }
+    if (c != '-' && (c < '0' || c > '9')) continue;
+    const char* const start = p;
+    bool fraction_or_exponent = false, negative_exponent = false;
+    for (; p < end; ++p) {
+      const char d = *p;
+      if (d >= '0' && d <= '9') continue;
+      if (d == '.' || d == 'e' || d == 'E') {
+        fraction_or_exponent = true;
+      } else if (d == '-' || d == '+') {
+        negative_exponent = negative_exponent || (d == '-' && p > start && (p[-1] == 'e' || p[-1] == 'E'));
+      } else {
+        break;
+      }
+    }
+    const std::size_t length = std::size_t(p - start);
+    --p;
+    if (!fraction_or_exponent) continue;  // an integer: the parser keeps it exact
+    // only a negative exponent or hundreds of digits reach below the doubles: almost every number
+    // of a large net file needs no strtod
+    bool below = false;
+    if (negative_exponent || length > 300) {
+      const std::string token(start, length);
+      below = std::strtod(token.c_str(), nullptr) == 0 && !zero_digits(token);
+    }
+    out.push_back(below);
+  }
+  return out;
+}
+
+}  // namespace
+
 nlohmann::json parse_json_text(const std::string& text, const std::string& source, const JsonReadOptions& options) {
   if (std::string why; !options.is_valid(&why)) throw InputError(source, kDocumentField, why);
   if (text.size() > options.max_bytes)
@@ -105,6 +163,8 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
   // depth = the number of containers around the one being opened: the top level is depth 0.
   // Also refuses a key given twice in one object.
   KeyTracker keys;
+  const std::vector<bool> underflows = underflowing_floats(text);
+  std::size_t float_index = 0;
   const auto depth_guard = [&](int depth, nlohmann::json::parse_event_t event, nlohmann::json& parsed) {
     using Event = nlohmann::json::parse_event_t;
     if ((event == Event::object_start || event == Event::array_start) && depth >= options.max_depth) throw TooDeep{};
@@ -123,6 +183,11 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
         keys.key(parsed.get<std::string>());
         break;
       case Event::value:
+        if (parsed.is_number_float()) {
+          if (float_index < underflows.size() && underflows[float_index] && parsed.get<double>() == 0)
+            throw Underflow{keys.next_value()};
+          ++float_index;
+        }
         keys.value();
         break;
     }
@@ -130,6 +195,10 @@ nlohmann::json parse_json_text(const std::string& text, const std::string& sourc
   };
   try {
     return nlohmann::json::parse(text, depth_guard);
+  } catch (const Underflow& u) {
+    throw InputError(source, u.field.empty() ? kDocumentField : u.field,
+                     "a number below the smallest double, which would be read as 0 (write 0, or a value of at least "
+                     "about 5e-324)");
   } catch (const TooDeep&) {
     throw InputError(source, kDocumentField, fmt::format("nesting deeper than {} levels", options.max_depth));
   } catch (const DuplicateKey& d) {
