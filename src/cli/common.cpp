@@ -49,6 +49,26 @@ void require_new_output(const std::string& path, bool force, const std::string& 
     throw InputError(path, "--force", "exists; give --force to overwrite it");
 }
 
+void require_new_file(const std::string& path, bool force, const std::string& option) {
+  if (path.empty()) return;
+  const std::filesystem::path file(path);
+  const std::filesystem::path parent = file.parent_path();
+  std::error_code ec;
+  if (!parent.empty() && !std::filesystem::is_directory(parent, ec)) {
+    // the nearest part of the path that exists: a regular file there is the reason
+    std::filesystem::path up = parent;
+    while (!up.empty() && !std::filesystem::exists(up, ec) && up.has_parent_path() && up.parent_path() != up)
+      up = up.parent_path();
+    if (!up.empty() && std::filesystem::exists(up, ec) && !std::filesystem::is_directory(up, ec))
+      throw InputError("command line", option, fmt::format("'{}' is a file, not a folder", up.string()));
+    throw InputError("command line", option, fmt::format("the folder '{}' does not exist", parent.string()));
+  }
+  if (const std::size_t bytes = file.filename().string().size(); bytes > 255)
+    throw InputError("command line", option,
+                     fmt::format("the file name is {} bytes long, more than the 255 a file name may have", bytes));
+  require_new_output(path, force, option);
+}
+
 void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
                   const std::string& field) {
   const double limit = g.memory_limit();

@@ -68,6 +68,11 @@ CLI::Validator choice_of(const std::map<std::string, Enum>& names) {
 //! existing file without --force.
 void require_new_output(const std::string& path, bool force, const std::string& option);
 
+//! require_new_output for a file written where the user names it (refit --out, surface --obj ...):
+//! also its folder must exist (a regular file in the path is named), and its name fit a file name
+//! (255 bytes); each an InputError naming `option`. Nothing for an empty path.
+void require_new_file(const std::string& path, bool force, const std::string& option);
+
 //! Refuses (InputError naming `file` and `field`) when `bytes` exceeds the limit.
 void check_memory(const GlobalOptions& g, double bytes, const std::string& what, const std::string& file,
                   const std::string& field);

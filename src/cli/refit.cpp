@@ -42,7 +42,7 @@ int run_refit(const RefitRequest& r) {
   const int m = r.degree[0], n = r.degree[1];
   check_memory(r.global, (m + 1.0) * (n + 1.0) * 3 * 8 * 8, fmt::format("a boundary of degree ({}, {})", m, n),
                "command line", "--degree");
-  if (!r.out.empty()) require_new_output(r.out, r.global.force, "--out");
+  require_new_file(r.out, r.global.force, "--out");
   // What belongs to the shape rather than to its degree is kept: the analytic sides (refit again)
   // and the target (search-alpha --objective target), both checked before they are copied.
   const nlohmann::json source = read_json_file(r.boundary);

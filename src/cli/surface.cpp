@@ -49,13 +49,7 @@ struct SurfaceRequest {
   GlobalOptions global;
 };
 
-void check_output(const std::string& path, const char* option, bool force) {
-  if (path.empty()) return;
-  const fs::path parent = fs::path(path).parent_path();
-  if (!parent.empty() && !fs::is_directory(parent))
-    throw InputError("command line", option, fmt::format("the folder '{}' does not exist", parent.string()));
-  require_new_output(path, force, option);
-}
+void check_output(const std::string& path, const char* option, bool force) { require_new_file(path, force, option); }
 
 int run_surface(const SurfaceRequest& r) {
   // Everything is read and checked before anything is written.

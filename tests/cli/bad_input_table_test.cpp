@@ -351,6 +351,12 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"refit " + sphere5 + " --degree 4 4 --out {OUT}/r.json", "target.sphere"},
       {"refit " + curves_gap + " --degree 4 4 --out {OUT}/r.json", "corner"},
       {"refit " + good + " --degree 4", "--degree"},
+      // an output path through a regular file, or a name longer than a file name may be, named by
+      // its option (they were "cannot create the file: Not a directory" and "File name too long")
+      {"refit " + good + " --degree 4 4 --out {IN}/broken.json/sub/x.json", "broken.json' is a file, not a folder"},
+      {"refit " + good + " --degree 4 4 --out {OUT}/" + std::string(300, 'x') + ".json",
+       "command line: --out: the file name is 305 bytes long"},
+      {"surface " + surface + " --obj {IN}/broken.json/s.obj", "broken.json' is a file, not a folder"},
       // surface
       {"surface " + surface + " --samples 1 --obj {OUT}/s.obj", "--samples"},
       {"surface " + surface + " --fit-degree 0 --obj {OUT}/s.obj", "--fit-degree"},
