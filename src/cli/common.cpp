@@ -63,9 +63,12 @@ void require_new_file(const std::string& path, bool force, const std::string& op
       throw InputError("command line", option, fmt::format("'{}' is a file, not a folder", up.string()));
     throw InputError("command line", option, fmt::format("the folder '{}' does not exist", parent.string()));
   }
-  if (const std::size_t bytes = file.filename().string().size(); bytes > 255)
+  // (the file is written first as NAME.tmp-PID-N beside it: up to 20 bytes more, within 255)
+  if (const std::size_t bytes = file.filename().string().size(); bytes > 235)
     throw InputError("command line", option,
-                     fmt::format("the file name is {} bytes long, more than the 255 a file name may have", bytes));
+                     fmt::format("the file name is {} bytes long, more than 235 (255, the most a file name may have, "
+                                 "less the suffix of the staging file written first)",
+                                 bytes));
   require_new_output(path, force, option);
 }
 

@@ -84,10 +84,11 @@ int run_export(ExportRequest e) {
     return run_tri_export({e.boundary, &e.net, &e.global, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vtu});
   Phases phases("export");
   phases.start("read");
-  // the curvatures of --ply and --vts (B-spline boundaries) leave the doubles below kMinModelSize:
-  // a model of 1e-160 wrote a Gaussian curvature of 0 (it is about 1e319), unflagged
-  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true, e.ply || e.vts ? kMinModelSize : 0.0);
+  const BoundaryFile input = read_input(e.boundary, e.net.corner_tolerance, true);
   if (input.bspline) {  // every output, --step/--iges included, from the B-spline path (its knots)
+    // the curvatures of --ply and --vts leave the doubles below kMinModelSize: a model of 1e-160
+    // wrote a Gaussian curvature of 0 (it is about 1e319), unflagged (read again to name its point)
+    if (e.ply || e.vts) (void)read_input(e.boundary, e.net.corner_tolerance, true, kMinModelSize);
     if (e.vtu) throw InputError("command line", "--vtu", "is written for triangular boundaries (B-spline: --vts)");
     return run_bspline_export(
         {e.boundary, e.out_dir, e.prefix, e.samples, e.obj, e.mtx, e.ply, e.vts, e.global.force, e.cad}, input, e.net,

@@ -117,10 +117,12 @@ int run_tri_solve(const std::string& path, const NetRequest& net, const GlobalOp
 int run_tri_export(const TriExportArgs& e) {
   Phases phases("export");
   phases.start("read");
-  // the curvatures of --ply and --vtu leave the doubles below kMinModelSize (Gaussian ~ 1/size²)
-  const tri::TriBoundary b = read_tri_input(e.boundary, e.net->corner_tolerance, e.ply || e.vtu ? kMinModelSize : 0.0);
-  const TriRequest r = resolve_tri(*e.net);
   const bool all = !e.obj && !e.mtx && !e.ply && !e.vtu;
+  // the curvatures of PLY and VTU (asked for, or the defaults) leave the doubles below
+  // kMinModelSize (Gaussian ~ 1/size²)
+  const tri::TriBoundary b =
+      read_tri_input(e.boundary, e.net->corner_tolerance, all || e.ply || e.vtu ? kMinModelSize : 0.0);
+  const TriRequest r = resolve_tri(*e.net);
   const bool obj = all || e.obj, ply = all || e.ply, vtu = all || e.vtu;
   // a net of degree 2 or less has no interior: its system of no unknowns ("0 0 0", which no
   // reader takes) is not written by default, and asked for, bad input

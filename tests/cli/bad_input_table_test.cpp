@@ -199,6 +199,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       // curvatures (--ply of a triangle) of a model below 1e-60 would leave the doubles
       {"export {IN}/tiny_triangle.json --ply --out {OUT}/t",
        "tiny_triangle.json: sides[0][1]: the largest coordinate magnitude of the model is 1e-100, below 1e-60"},
+      // (the defaults of a triangle's export are OBJ, PLY and VTU)
+      {"export {IN}/tiny_triangle.json --out {OUT}/t", "tiny_triangle.json: sides[0][1]: the largest coordinate"},
+      {"refit " + good + " --degree 4 4 --out {OUT}/" + std::string(236, 'y'),
+       "command line: --out: the file name is 236 bytes long, more than 235"},
       // a singular member of the 3x3 family on a file without a free grid names --alpha (it named
       // "free[1][1]" of a file that has no "free")
       {"export " + good + " --alpha 0.5 --out {OUT}/e",

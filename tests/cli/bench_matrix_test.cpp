@@ -141,6 +141,9 @@ TEST_CASE("coons bench-matrix: bad files and options exit 2 with one line naming
       {A + " --solvers eigen-lu --time-limit 5", "command line: --time-limit: --time-limit is a stopping rule"},
       {A + " --time-limit -1", "command line: --time-limit: must be a finite number of seconds >= 0"},
       {A + " --time-limit nan", "command line: --time-limit"},
+      {A + " --solvers hypre-amg,eigen-lu --time-limit 5", coons::solvers::find_solver("hypre-amg")
+                                                               ? "command line: --time-limit: no backend of --solvers"
+                                                               : "--solvers: unknown solver 'hypre-amg'"},
       {A + " --solvers eigen-lu --tolerance 1e-6", "command line: --tolerance: --tolerance is a stopping rule"},
       // mg is iterative but needs a grid stencil: it is skipped here and reads no stopping rule
       {A + " --solvers mg,eigen-lu --max-iterations 4",

@@ -78,6 +78,12 @@ TEST_CASE("parse_json_text: a number below the smallest double names its field, 
                     "t.json: bottom[1][2]: " + reason);
   CHECK_THROWS_WITH(parse_json_text(R"({"a": [0.5, -0.0, 0e7], "b": {"c": -2.5e-400}})", "t.json"),
                     "t.json: b.c: " + reason);
+  // an integer beyond 64 bits is read as a double: the scan counts it as one, so that the next
+  // number is checked as itself (it let 1e-5000 pass, or named the number before it)
+  CHECK_THROWS_WITH(parse_json_text(R"({"a": 100000000000000000000, "b": [0.0, 1e-5000]})", "t.json"),
+                    "t.json: b[1]: " + reason);
+  CHECK_THROWS_WITH(parse_json_text(R"({"a": [-9223372036854775809, 0.0], "b": [0.5, -1e-999]})", "t.json"),
+                    "t.json: b[1]: " + reason);
   // zeros in any spelling, subnormals, and such text inside strings are numbers or text as written
   const nlohmann::json ok = parse_json_text(
       R"({"z": [0.0, -0e-5000, 0.000e+12, 1e-320], "s": "1e-5000 \" 2e-999", "i": [0, -0, 12]})", "t.json");

@@ -2,7 +2,9 @@
 
 #include <fmt/format.h>
 
+#include <cerrno>
 #include <cmath>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
 #include <fstream>
@@ -140,7 +142,18 @@ std::vector<bool> underflowing_floats(const std::string& text) {
     }
     const std::size_t length = std::size_t(p - start);
     --p;
-    if (!fraction_or_exponent) continue;  // an integer: the parser keeps it exact
+    if (!fraction_or_exponent) {
+      // an integer: the parser keeps it exact, unless it lies beyond 64 bits (then a double, which
+      // the callback counts as a float: the two counts must stay in step)
+      const std::string token(start, length);
+      errno = 0;
+      if (token[0] == '-')
+        (void)std::strtoll(token.c_str(), nullptr, 10);
+      else
+        (void)std::strtoull(token.c_str(), nullptr, 10);
+      if (errno == ERANGE) out.push_back(false);
+      continue;
+    }
     // only a negative exponent or hundreds of digits reach below the doubles: almost every number
     // of a large net file needs no strtod
     bool below = false;
