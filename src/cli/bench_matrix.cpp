@@ -127,11 +127,16 @@ int run_bench_matrix(BenchMatrixRequest r) {
   options.time_limit_seconds = r.time_limit;
   require_valid_solver_options(options);
   const std::vector<const solvers::SolverInfo*> backends = chosen_backends(r.solvers);
-  // As in `coons solve`: a stopping rule that none of the chosen backends reads is an error (a
-  // backend that needs a grid stencil, mg say, is skipped here and reads none).
-  if (std::none_of(backends.begin(), backends.end(), [](const solvers::SolverInfo* b) {
-        return b->family == solvers::SolverFamily::kIterative && solvers::accepts_matrix(*b);
-      }))
+  // As in `coons solve`: a stopping rule that none of the chosen backends reads is an error. The
+  // iterative backends that run on a matrix read them (one that needs a grid stencil, mg say, is
+  // skipped here and reads none), but for a time limit hypre-amg, whose iterations have no clock.
+  std::vector<const solvers::SolverInfo*> iterative, clocked;
+  for (const solvers::SolverInfo* b : backends)
+    if (b->family == solvers::SolverFamily::kIterative && solvers::accepts_matrix(*b)) {
+      iterative.push_back(b);
+      if (b->name.rfind("hypre-", 0) != 0) clocked.push_back(b);
+    }
+  if (iterative.empty())
     for (const auto& [option, name] : {std::pair{r.tolerance_option, "--tolerance"},
                                        {r.max_iterations_option, "--max-iterations"},
                                        {r.time_limit_option, "--time-limit"}})
@@ -140,11 +145,7 @@ int run_bench_matrix(BenchMatrixRequest r) {
                          fmt::format("{} is a stopping rule of the iterative solvers; none of --solvers {} is an "
                                      "iterative backend that runs on a matrix",
                                      name, fmt::join(r.solvers, ",")));
-  // hypre-amg's iterations have no clock (as in `coons solve`): a limit only it would read is refused
-  if (given(r.time_limit_option) && std::none_of(backends.begin(), backends.end(), [](const solvers::SolverInfo* b) {
-        return b->family == solvers::SolverFamily::kIterative && solvers::accepts_matrix(*b) &&
-               b->name.rfind("hypre-", 0) != 0;
-      }))
+  if (given(r.time_limit_option) && clocked.empty())
     throw InputError("command line", "--time-limit",
                      fmt::format("no backend of --solvers {} can be stopped by a time limit (hypre-amg has no clock "
                                  "in its iterations)",

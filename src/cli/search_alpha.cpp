@@ -133,12 +133,13 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   s.options.scan_points = r.scan_points;
   if (!s.options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  if (r.parameter == Parameter::kWeight)
+  if (r.parameter == Parameter::kWeight) {
     require_weight_search_backend(requested);
-  else
+    s.solver = &weight_search_backend(requested);
+  } else {
     require_search_backend(requested, b, indefinite);
-  s.solver =
-      r.parameter == Parameter::kWeight ? &weight_search_backend(requested) : &search_backend(requested, b, indefinite);
+    s.solver = &search_backend(requested, b, indefinite);
+  }
   s.picked_automatically = requested == nullptr;
   return s;
 }

@@ -144,7 +144,9 @@ std::vector<bool> underflowing_floats(const std::string& text) {
     --p;
     if (!fraction_or_exponent) {
       // an integer: the parser keeps it exact, unless it lies beyond 64 bits (then a double, which
-      // the callback counts as a float: the two counts must stay in step)
+      // the callback counts as a float: the two counts must stay in step). Below 19 digits none
+      // is, so the integers of a large file cost no copy and no strtoll.
+      if (length < 19) continue;
       const std::string token(start, length);
       errno = 0;
       if (token[0] == '-')
