@@ -9,26 +9,7 @@
 namespace coons {
 
 Eigen::RowVector3d bernstein_sum(const Eigen::MatrixX3d& P, double t) {
-  const int k = int(P.rows()) - 1;
-  if (k == 0 || t <= 0) return P.row(0);
-  if (t >= 1) return P.row(k);
-  const int peak = std::min(int(std::floor((k + 1) * t)), k);
-  const double up = t / (1 - t), down = (1 - t) / t;
-  Eigen::RowVector3d sum = P.row(peak);
-  double weights = 1;
-  double w = 1;
-  for (int i = peak; i < k && w > 0; ++i) {  // B_{i+1} from B_i; past 1e−308 of the peak it is 0
-    w *= double(k - i) / double(i + 1) * up;
-    sum += w * P.row(i + 1);
-    weights += w;
-  }
-  w = 1;
-  for (int i = peak; i > 0 && w > 0; --i) {  // B_{i−1} from B_i
-    w *= double(i) / double(k - i + 1) * down;
-    sum += w * P.row(i - 1);
-    weights += w;
-  }
-  return sum / weights;
+  return bernstein_basis(int(P.rows()) - 1, t).transpose() * P;
 }
 
 Eigen::RowVector3d evaluate(const BezierCurve& c, double t) {

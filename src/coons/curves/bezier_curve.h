@@ -8,6 +8,8 @@
 #include <utility>
 #include <vector>
 
+#include "coons/net/bernstein.h"
+
 namespace coons {
 
 //! c(t) = Σ_i P_i B_i^k(t), t ∈ [0, 1]. Degree 0 (one point) is a constant curve: the "point"
@@ -20,20 +22,15 @@ struct BezierCurve {
   [[nodiscard]] int degree() const { return int(points.rows()) - 1; }
 };
 
-//! Up to this degree evaluate() runs de Casteljau's algorithm, (k+1)k/2 steps; above it, the
-//! Bernstein sum in O(k) (bernstein_sum()).
-inline constexpr int kDeCasteljauMaxDegree = 100;
-
-//! c(t) by de Casteljau up to kDeCasteljauMaxDegree (stable for t ∈ [0, 1], an extrapolation
-//! outside), by bernstein_sum() above it for t ∈ [0, 1]: a surface of a degree-5000 curve sampled
-//! 65 × 65 times with its derivatives took over two minutes with de Casteljau alone.
+//! c(t) by de Casteljau up to kDeCasteljauMaxDegree (net/bernstein.h; stable for t ∈ [0, 1], an
+//! extrapolation outside), by bernstein_sum() above it for t ∈ [0, 1]: a surface of a degree-5000
+//! curve sampled 65 × 65 times with its derivatives took over two minutes with de Casteljau alone.
 Eigen::RowVector3d evaluate(const BezierCurve& c, double t);
 
-//! Σ_i P_i B_i^k(t) for t ∈ [0, 1] in O(k): the Bernstein values from the largest, at
-//! i* = ⌊(k+1)t⌋, outwards by their ratios B_{i+1}/B_i = (k−i)/(i+1) · t/(1−t) (no power of t
-//! or 1−t is formed, so nothing under- or overflows for any k), divided by their sum, which is 1
-//! (partition of unity). Within about 1e−13 of de Casteljau's value at degree 1000, relative to
-//! max|P_i| (test `bernstein_sum: agrees with de Casteljau in long double to 1e-13 up to degree 5000`).
+//! Σ_i P_i B_i^k(t) for t ∈ [0, 1] in O(k) for k > kDeCasteljauMaxDegree: bernstein_basis(k, t)
+//! (net/bernstein.h) applied to P. Within about 1e−13 of de Casteljau's value at degree 1000,
+//! relative to max|P_i| (test `bernstein_sum: agrees with de Casteljau in long double to 1e-13 up
+//! to degree 5000`).
 Eigen::RowVector3d bernstein_sum(const Eigen::MatrixX3d& P, double t);
 
 //! The control points of the r-th derivative (the r-th hodograph): #k−r+1 by 3,

@@ -1,5 +1,6 @@
 #include "bernstein.h"
 
+#include <algorithm>
 #include <cmath>
 #include <utility>
 
@@ -7,6 +8,20 @@ namespace coons {
 
 Eigen::VectorXd bernstein_basis(int k, double t) {
   Eigen::VectorXd b = Eigen::VectorXd::Zero(k + 1);
+  if (k > kDeCasteljauMaxDegree && t >= 0 && t <= 1) {
+    // From the largest value, at i* = ⌊(k+1)t⌋, outwards by the ratios of neighbours; past 1e−308
+    // of the peak a value is 0. No power of t or 1 − t is formed, so nothing under- or overflows.
+    if (t == 0 || t == 1) {
+      b(t == 0 ? 0 : k) = 1;
+      return b;
+    }
+    const int peak = std::min(int(std::floor((k + 1) * t)), k);
+    const double up = t / (1 - t), down = (1 - t) / t;
+    b(peak) = 1;
+    for (int i = peak; i < k && b(i) > 0; ++i) b(i + 1) = b(i) * (double(k - i) / double(i + 1) * up);
+    for (int i = peak; i > 0 && b(i) > 0; --i) b(i - 1) = b(i) * (double(i) / double(k - i + 1) * down);
+    return b / b.sum();  // Σ B_i^k = 1
+  }
   b(0) = 1;
   const double s = 1 - t;
   for (int d = 1; d <= k; ++d) {

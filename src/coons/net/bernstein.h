@@ -10,7 +10,15 @@
 
 namespace coons {
 
-//! B_i^k(t), i = 0..k (#k+1), by the stable de Casteljau triangle.
+//! Up to this degree bernstein_basis() runs the de Casteljau triangle, (k+1)k/2 steps; above it
+//! (for t ∈ [0, 1]) the ratios of neighbouring values in O(k).
+inline constexpr int kDeCasteljauMaxDegree = 100;
+
+//! B_i^k(t), i = 0..k (#k+1). Up to kDeCasteljauMaxDegree (and outside [0, 1]) by the stable de
+//! Casteljau triangle; above it in O(k): the values from the largest, at i* = ⌊(k+1)t⌋, outwards by
+//! their ratios B_{i+1}/B_i = (k−i)/(i+1) · t/(1−t), divided by their sum, which is 1 (partition
+//! of unity): no power of t or 1 − t is formed, so nothing under- or overflows at any k. A Bézier
+//! surface of a degree-5000 side compared with a reference took 31 s with the triangle alone.
 Eigen::VectorXd bernstein_basis(int k, double t);
 
 //! G[i][l] = ∫₀¹ B_i^k B_l^k = C(k,i)·C(k,l) / ((2k+1)·C(2k,i+l)), (#k+1 by #k+1).
