@@ -15,6 +15,7 @@
 #include <memory>
 #include <nlohmann/json.hpp>
 #include <sstream>
+#include <utility>
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
@@ -74,8 +75,15 @@ int run_surface(const SurfaceRequest& r) {
   std::optional<SurfaceFile> reference;
   if (!r.reference.empty()) reference = read_surface_reference(r.reference, options);
 
+  // The net (a degree-30000 curve makes a 30001 by 2 one) is held to the limit before its
+  // energies are taken: their banded Gram matrices are the largest part.
+  FittedNet fitted_net_of_input = fitted_net(input.surface, r.fit_degree);
+  const ControlNet& made_net = fitted_net_of_input.net;
+  check_memory(r.global, net_metrics_bytes(made_net.m, made_net.n),
+               fmt::format("the exact energies of its {} by {} Bezier net", made_net.m + 1, made_net.n + 1), r.spec,
+               net_degree_field(input.surface));
   SurfaceReportOptions report_options{r.samples, r.fit_degree, r.corner_tolerance, r.derivative_tolerance, r.reference};
-  SurfaceReport made = surface_report(input, reference, report_options);
+  SurfaceReport made = surface_report(input, std::move(fitted_net_of_input), reference, report_options);
   // The reader checked 65 samples of each curve; a pole between them shows in the fits.
   for (const CurveFitReport& fit : made.fitted.fits)
     if (!std::isfinite(fit.max_deviation))

@@ -147,6 +147,14 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
                                 [[1e-100, 0, 0], [0, 1e-100, 0]], [[0, 1e-100, 0], [0, 0, 0]]]})");
   inputs.write("tiny.json", R"({"type": "bilinear", "corners": [[0, 0, 0], [1e-170, 0, 0], [0, 1e-170, 0],
                                 [1e-170, 1e-170, 1e-170]]})");
+  // a ruled surface between a line and a Bezier curve of degree 3000: its 3001 by 2 net's energies
+  // need about 60 MB (degree 30000 took 881 MB under --max-memory 10MB)
+  {
+    json wavy = json::array(), line = json::array({{0, 0, 0}, {1, 0, 0}});
+    for (int i = 0; i <= 3000; ++i) wavy.push_back({i / 3000.0, 1, 0.1 * (i % 3)});
+    inputs.write("ruled3000.json",
+                 json{{"type", "ruled"}, {"curves", {{{"bezier", line}}, {{"bezier", wavy}}}}}.dump());
+  }
 
   const std::vector<Case> cases = {
       // solve: files
@@ -369,6 +377,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"surface " + surface + " --obj {OUT}/missing/s.obj", "--obj"},
       {"surface {IN}/missing.json --obj {OUT}/s.obj", "missing.json"},
       {"surface " + surface + " --sample 100000 --obj {OUT}/s.obj", "--samples"},
+      {"surface {IN}/ruled3000.json --max-memory 10MB --obj {OUT}/s.obj",
+       "ruled3000.json: curves[1]: the exact energies of its 3001 by 2 Bezier net needs about"},
       {"surface " + surface + " --reference {IN}/broken.json --obj {OUT}/s.obj", "broken.json"},
       // join
       {"join " + surface + " middle " + surface_b + " left", "FIRST_SIDE"},

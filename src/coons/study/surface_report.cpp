@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <utility>
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
@@ -64,15 +65,29 @@ SurfaceFile read_surface_reference(const std::string& path, const SurfaceReadOpt
   return parse_surface(doc, path, options);
 }
 
-SurfaceReport surface_report(const SurfaceFile& input, const std::optional<SurfaceFile>& reference,
-                             const SurfaceReportOptions& options) {
+std::string net_degree_field(const Surface& s) {
+  if (s.type() == SurfaceType::kBezier) return "net";
+  std::string field;
+  int degree = -1;
+  for (const auto& [name, curve] : s.curves()) {
+    const int d = curve->bezier() ? curve->bezier()->degree() : 0;
+    if (field.empty() || d > degree) {
+      field = name;
+      degree = d;
+    }
+  }
+  return field;
+}
+
+SurfaceReport surface_report(const SurfaceFile& input, FittedNet fitted_input,
+                             const std::optional<SurfaceFile>& reference, const SurfaceReportOptions& options) {
   const Surface& surface = input.surface;
   const int k = options.samples;
   SurfaceReport out;
   out.samples = sample_grid(surface, k);
   SurfaceSamples& samples = out.samples;
   if (reference) add_reference_distance(samples, reference->surface);
-  out.fitted = fitted_net(surface, options.fit_degree);
+  out.fitted = std::move(fitted_input);
   const FittedNet& fitted = out.fitted;
 
   nlohmann::ordered_json& report = out.report;  // read top-down: what it is, diagnostics, metrics, then the big arrays

@@ -31,8 +31,15 @@ struct SurfaceReport {
   FittedNet fitted;                  //!< for the net file and the picture
 };
 
-SurfaceReport surface_report(const SurfaceFile& input, const std::optional<SurfaceFile>& reference,
+//! `fitted` is fitted_net(input.surface, options.fit_degree), made by the caller so that it can
+//! hold the net's size to a memory limit before its energies are taken (memory_estimate.h:
+//! net_metrics_bytes).
+SurfaceReport surface_report(const SurfaceFile& input, FittedNet fitted, const std::optional<SurfaceFile>& reference,
                              const SurfaceReportOptions& options);
+
+//! The field of `s` that sets the degree of its net: "net" for a Bézier surface, else the Bézier
+//! curve of the largest degree (the first such), else the first curve; "" when it has none.
+std::string net_degree_field(const Surface& s);
 
 //! A reference: a surface description, or any file holding "net" (a boundary file, a solve report)
 //! read as a Bézier net. A B-spline net (knots_u, knots_v, degree_spline or a "bspline" block) is
