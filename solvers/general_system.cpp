@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cmath>
 #include <limits>
+#include <string>
 
 #include "column_scaling.h"
 
@@ -83,6 +84,12 @@ namespace {
 // Runs the solve phase block by block; true when every column was solved (whatever the status).
 // `met` is the largest relative residual the backend reported for a block (above an exact
 // backend's limit only where it found the system ill-conditioned and still solved it).
+// "column 4 of B" or "columns 1-3 of B": a block of B's columns by their numbers from 1.
+std::string block_name(Eigen::Index first, Eigen::Index width) {
+  if (width == 1) return "column " + std::to_string(first + 1) + " of B";
+  return "columns " + std::to_string(first + 1) + "-" + std::to_string(first + width) + " of B";
+}
+
 bool solve_blocks(LinearSolver& solver, const Eigen::MatrixXd& B, Eigen::MatrixXd& X, GeneralRun& run, double& met) {
   X.setZero(B.rows(), B.cols());
   double seconds = 0;
@@ -98,7 +105,11 @@ bool solve_blocks(LinearSolver& solver, const Eigen::MatrixXd& B, Eigen::MatrixX
     iterations = std::max(iterations, s.iterations);
     if (!s.ok() && run.status == SolveStatus::kSuccess) {
       run.status = s.status;
-      run.reason = s.message;
+      // The backend counts the columns of its block of three ("right-hand side 1 of 3"), which
+      // are B's only when B has three.
+      run.reason = B.cols() == 3 ? s.message
+                                 : block_name(first, width) + (width < 3 ? " (a block of 3 padded with zeros)" : "") +
+                                       ": " + s.message;
     }
     if (s.ok()) {
       met = std::max(met, s.relative_residual);

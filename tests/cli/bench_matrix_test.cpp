@@ -187,6 +187,10 @@ TEST_CASE("coons bench-matrix: --time-limit stops an iterative backend, not_conv
   const json gmres = json::parse(rows[0]);
   CHECK(gmres["status"] == "not_converged");
   CHECK(gmres["message"].get<std::string>().find("time limit") != std::string::npos);
+  // B is one column (A times ones), solved in a block of three: the message says which of B's
+  // columns failed, not only the backend's "right-hand side 1 of 3"
+  CHECK_THAT(gmres["message"].get<std::string>(),
+             Catch::StartsWith("column 1 of B (a block of 3 padded with zeros): right-hand side 1 of 3: "));
   CHECK(gmres["seconds"]["solve"].get<double>() < 30);
   CHECK(gmres["relative_residual"].is_number());  // the iterate reached is measured
   CHECK(json::parse(rows[1])["status"] == "success");
