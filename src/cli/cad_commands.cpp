@@ -28,16 +28,35 @@ struct ImportRequest {
   bool force = false;
 };
 
+#if COONS_HAVE_OCCT
+// An InputError unless the import's options are valid, naming the option that set the one at fault.
+void require_valid_import_options(const cad::StepImportOptions& options) {
+  using F = cad::StepImportOptionsField;
+  const cad::StepImportOptionsProblem problem = cad::options_problem(options);
+  switch (problem.field) {
+    case F::kNone:
+      return;
+    case F::kFace:
+      throw InputError("command line", "--face", problem.reason);
+    case F::kEdges:
+      throw InputError("command line", "--edges", problem.reason);
+    case F::kGapTolerance:
+      throw InputError("command line", "--gap-tolerance", problem.reason);
+  }
+}
+#endif
+
 int run_import_step(const ImportRequest& q) {
 #if COONS_HAVE_OCCT
   if (q.out.empty()) throw InputError("command line", "--out", "is required (the boundary file to write)");
   // a given -1 would read as "not given" below (and be blamed on --edges)
   if (q.face_given && q.face < 0) throw InputError("command line", "--face", "must be >= 0 (faces count from 0)");
-  require_new_output(q.out, q.force, "--out");
   cad::StepImportOptions options;
   options.face = q.face;
   options.edges = q.edges;
   options.gap_tolerance = q.gap_tolerance;
+  require_valid_import_options(options);
+  require_new_output(q.out, q.force, "--out");
   const cad::StepImport import = cad::import_step_boundary(q.file, options);
   const std::string what = q.face >= 0 ? "face " + std::to_string(q.face) : "4 edges";
   const std::string name = q.name.empty() ? std::filesystem::path(q.file).stem().string() +
@@ -86,12 +105,12 @@ std::vector<std::string> write_cad_export(const CadExportRequest& r, const BSpli
   std::vector<std::string> written;
   if (!r.step.empty()) {
     cad::check_writable(surface, r.step, "--step");
-    out.write_path(r.step, [&](std::ostream& o) { cad::write_step_surface(o, surface, r.step); });
+    out.write_path(r.step, [&](std::ostream& o) { cad::write_step_surface(o, surface, r.step, "--step"); });
     written.push_back(r.step);
   }
   if (!r.iges.empty()) {
     cad::check_writable(surface, r.iges, "--iges");
-    out.write_path(r.iges, [&](std::ostream& o) { cad::write_iges_surface(o, surface, r.iges); });
+    out.write_path(r.iges, [&](std::ostream& o) { cad::write_iges_surface(o, surface, r.iges, "--iges"); });
     written.push_back(r.iges);
   }
   return written;

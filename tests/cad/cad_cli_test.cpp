@@ -87,8 +87,10 @@ TEST_CASE("coons import-step, export --step: bad input exits 2 with one line, no
   };
   const std::vector<Case> cases = {
       {"import-step " + dir.file("none.step") + " --face 0 --out " + out, "none.step: (document): cannot be read"},
-      {"import-step " + kData + "cad/bspline_patch.step --face 4 --out " + out, "--face: face 4 out of range"},
-      {"import-step " + kData + "cad/four_edges.step --edges 0,1,2,9 --out " + out, "--edges: edge 9 out of range"},
+      {"import-step " + kData + "cad/bspline_patch.step --face 4 --out " + out,
+       "bspline_patch.step: face 4: out of range"},
+      {"import-step " + kData + "cad/four_edges.step --edges 0,1,2,9 --out " + out,
+       "four_edges.step: edge 9: out of range"},
       {"export " + kData + "boundaries/pillow.json --method alpha --step " + dir.file("cad/x.step"), "x.step"},
   };
   // four_edges.step edited: a control point that is not there (OpenCASCADE's transfer dereferenced

@@ -34,9 +34,9 @@ BSplineSurface random_surface(int p, int count_u, int q, int count_v, std::uint3
 void write(const std::string& path, const BSplineSurface& s, bool step) {
   std::ofstream out(path);
   if (step)
-    cad::write_step_surface(out, s, path);
+    cad::write_step_surface(out, s, path, "step");
   else
-    cad::write_iges_surface(out, s, path);
+    cad::write_iges_surface(out, s, path, "iges");
 }
 
 }  // namespace

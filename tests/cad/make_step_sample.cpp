@@ -27,11 +27,11 @@ int main(int argc, char** argv) {
       return c;
     };
     coons::write_file_atomically(dir + "/bspline_patch.step", [&](std::ostream& o) {
-      coons::cad::write_step_surface(o, s, "bspline_patch.step", coons::test::kCadSampleTimeStamp);
+      coons::cad::write_step_surface(o, s, "bspline_patch.step", "sample", coons::test::kCadSampleTimeStamp);
     });
     coons::write_file_atomically(dir + "/four_edges.step", [&](std::ostream& o) {
       coons::cad::write_step_edges(o, {b.right, reversed(b.bottom), b.left, reversed(b.top)}, "four_edges.step",
-                                   coons::test::kCadSampleTimeStamp);
+                                   "sample", coons::test::kCadSampleTimeStamp);
     });
     std::printf("%s/bspline_patch.step\n%s/four_edges.step\n", dir.c_str(), dir.c_str());
     return 0;

@@ -61,14 +61,14 @@ void require_same_boundary(const BSplineBoundary& a, const BSplineBoundary& b, d
 std::string write_edges(const test::TempDir& dir, const std::string& name, const std::vector<BSplineCurve>& curves) {
   std::string path = dir.file(name);
   std::ofstream out(path);
-  cad::write_step_edges(out, curves, path);
+  cad::write_step_edges(out, curves, path, "edges");
   return path;
 }
 
 std::string write_shape(const test::TempDir& dir, const std::string& name, const TopoDS_Shape& shape) {
   std::string path = dir.file(name);
   std::ofstream out(path);
-  cad::write_step_shape(out, shape, "", path);
+  cad::write_step_shape(out, shape, "", path, "shape");
   return path;
 }
 
@@ -94,7 +94,7 @@ TEST_CASE("import_step_boundary: a face written from a Greville net gives back i
     const std::string path = dir.file("face.step");
     {
       std::ofstream out(path);
-      cad::write_step_surface(out, greville_coons_surface(b), path);
+      cad::write_step_surface(out, greville_coons_surface(b), path, "surface");
     }
     const cad::StepImport import = cad::import_step_boundary(path, face(0));
     INFO("seed " << seed);
@@ -204,23 +204,25 @@ TEST_CASE("import_step_boundary: bad files and choices are input errors naming t
   const std::string patch = dir.file("patch.step");
   {
     std::ofstream out(patch);
-    cad::write_step_surface(out, greville_coons_surface(b), patch);
+    cad::write_step_surface(out, greville_coons_surface(b), patch, "surface");
   }
   CHECK_THROWS_WITH(cad::import_step_boundary(patch, face(1)),
-                    Catch::Equals(patch + ": --face: face 1 out of range: the file has 1 face(s), 0 to 0"));
+                    Catch::Equals(patch + ": face 1: out of range: the file has 1 face(s), 0 to 0"));
   CHECK_THROWS_WITH(cad::import_step_boundary(patch, edges({0, 1, 2, 7})),
-                    Catch::StartsWith(patch + ": --edges: edge 7 out of range"));
-  CHECK_THROWS_AS(cad::import_step_boundary(patch, edges({0, 1, 2})), InputError);
+                    Catch::StartsWith(patch + ": edge 7: out of range"));
+  // invalid options are the caller's to check (options_problem names the member at fault)
+  CHECK_THROWS_AS(cad::import_step_boundary(patch, edges({0, 1, 2})), std::invalid_argument);
   cad::StepImportOptions negative = face(0);
   negative.gap_tolerance = -1;
-  CHECK_THROWS_WITH(cad::import_step_boundary(patch, negative),
-                    Catch::Equals("command line: --gap-tolerance: --gap-tolerance must be finite and >= 0"));
+  CHECK(cad::options_problem(negative).field == cad::StepImportOptionsField::kGapTolerance);
+  CHECK(cad::options_problem(negative).reason == "must be finite and >= 0");
+  CHECK_THROWS_AS(cad::import_step_boundary(patch, negative), std::invalid_argument);
 
   // a triangle: 3 edges
   BRepBuilderAPI_MakePolygon triangle(gp_Pnt(0, 0, 0), gp_Pnt(1, 0, 0), gp_Pnt(0, 1, 0), Standard_True);
   const std::string tri = write_shape(dir, "triangle.step", BRepBuilderAPI_MakeFace(triangle.Wire()).Face());
   CHECK_THROWS_WITH(cad::import_step_boundary(tri, face(0)),
-                    Catch::Equals(tri + ": --face: face 0 has 3 edges in its outer wire; a Coons boundary needs 4"));
+                    Catch::Equals(tri + ": face 0: has 3 edges in its outer wire; a Coons boundary needs 4"));
 
   // a circular arc is a rational B-spline
   BRep_Builder builder;

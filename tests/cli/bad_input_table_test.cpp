@@ -468,6 +468,18 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"bench-matrix {IN}/a.mtx --max-iterations -1", "--max-iterations: must be >= 0"},
       // import-step (without OpenCASCADE every use says it is not built)
       {"import-step {IN}/missing.step --face 0 --out {OUT}/b.json", COONS_HAVE_OCCT ? "missing.step" : "OpenCASCADE"},
+      // the import's options, checked before the file is read, each naming its option (CLI11
+      // itself counts the edges and keeps --face and --edges apart)
+      {"import-step {IN}/missing.step --edges 0,1,2 --out {OUT}/b.json",
+       COONS_HAVE_OCCT ? "command line: --edges: At least 4 required" : "OpenCASCADE"},
+      {"import-step {IN}/missing.step --edges 0,1,2,2 --out {OUT}/b.json",
+       COONS_HAVE_OCCT ? "command line: --edges: the 4 indices must differ" : "OpenCASCADE"},
+      {"import-step {IN}/missing.step --face 0 --edges 0,1,2,3 --out {OUT}/b.json",
+       COONS_HAVE_OCCT ? "command line: --face excludes --edges" : "OpenCASCADE"},
+      {"import-step {IN}/missing.step --out {OUT}/b.json",
+       COONS_HAVE_OCCT ? "command line: --face: give exactly one of a face and four edges" : "OpenCASCADE"},
+      {"import-step {IN}/missing.step --face 0 --gap-tolerance -1 --out {OUT}/b.json",
+       COONS_HAVE_OCCT ? "command line: --gap-tolerance: must be finite and >= 0" : "OpenCASCADE"},
       // no command, unknown command
       {"frobnicate", "frobnicate"},
       {"", "command"},

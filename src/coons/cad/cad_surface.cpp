@@ -46,13 +46,13 @@ bool exactly_printable(double x) {
 
 }  // namespace
 
-void check_writable(const BSplineSurface& s, const std::string& target, const std::string& option) {
+void check_writable(const BSplineSurface& s, const std::string& target, const std::string& field) {
   std::string why;
-  if (!s.is_valid(&why)) throw InputError(target, option, "the surface is not a valid B-spline: " + why);
+  if (!s.is_valid(&why)) throw InputError(target, field, "the surface is not a valid B-spline: " + why);
   for (Eigen::Index k = 0; k < s.net.points.size(); ++k) {
     const double x = s.net.points.data()[k];
     if (!std::isfinite(x) || !exactly_printable(x))
-      throw InputError(target, option,
+      throw InputError(target, field,
                        fmt::format("a coordinate of the net is {:g}: only 0 and magnitudes in [1e-99, 1e99) are "
                                    "written exactly (17 digits, two-digit exponent)",
                                    x));
@@ -61,7 +61,7 @@ void check_writable(const BSplineSurface& s, const std::string& target, const st
     for (Eigen::Index k = 0; k < knots->size(); ++k)
       if (!exactly_printable((*knots)(k)))
         throw InputError(
-            target, option,
+            target, field,
             fmt::format("knot {:g}: only 0 and magnitudes in [1e-99, 1e99) are written exactly", (*knots)(k)));
 }
 
@@ -98,35 +98,36 @@ std::vector<BSplineSurface> surfaces_of(const TopoDS_Shape& shape, const std::st
 
 }  // namespace
 
-void write_step_surface(std::ostream& out, const BSplineSurface& s, const std::string& target,
+void write_step_surface(std::ostream& out, const BSplineSurface& s, const std::string& target, const std::string& field,
                         const std::string& time_stamp) {
-  check_writable(s, target, "--step");
+  check_writable(s, target, field);
   try {
-    write_step_shape(out, face_of(s), time_stamp, target);
+    write_step_shape(out, face_of(s), time_stamp, target, field);
   } catch (const Standard_Failure& e) {
-    throw InputError(target, "--step", std::string("OpenCASCADE refuses the surface: ") + e.GetMessageString());
+    throw InputError(target, field, std::string("OpenCASCADE refuses the surface: ") + e.GetMessageString());
   }
 }
 
-void write_iges_surface(std::ostream& out, const BSplineSurface& s, const std::string& target) {
-  check_writable(s, target, "--iges");
+void write_iges_surface(std::ostream& out, const BSplineSurface& s, const std::string& target,
+                        const std::string& field) {
+  check_writable(s, target, field);
   try {
-    write_iges_shape(out, face_of(s), target);
+    write_iges_shape(out, face_of(s), target, field);
   } catch (const Standard_Failure& e) {
-    throw InputError(target, "--iges", std::string("OpenCASCADE refuses the surface: ") + e.GetMessageString());
+    throw InputError(target, field, std::string("OpenCASCADE refuses the surface: ") + e.GetMessageString());
   }
 }
 
 void write_step_edges(std::ostream& out, const std::vector<BSplineCurve>& curves, const std::string& target,
-                      const std::string& time_stamp) {
+                      const std::string& field, const std::string& time_stamp) {
   BRep_Builder builder;
   TopoDS_Compound compound;
   builder.MakeCompound(compound);
   try {
     for (const auto& c : curves) builder.Add(compound, BRepBuilderAPI_MakeEdge(to_occt(c)).Edge());
-    write_step_shape(out, compound, time_stamp, target);
+    write_step_shape(out, compound, time_stamp, target, field);
   } catch (const Standard_Failure& e) {
-    throw InputError(target, "--step", std::string("OpenCASCADE refuses the curves: ") + e.GetMessageString());
+    throw InputError(target, field, std::string("OpenCASCADE refuses the curves: ") + e.GetMessageString());
   }
 }
 

@@ -18,22 +18,24 @@ namespace coons::cad {
 //! {0 ×(n+1), 1 ×(n+1)}.
 BSplineSurface bezier_as_bspline(const ControlNet& net);
 
-//! Throws InputError(target, option, reason) when the surface cannot be written exactly: invalid
+//! Throws InputError(target, field, reason) when the surface cannot be written exactly: invalid
 //! knots, a non-finite value, or a non-zero magnitude outside [1e-99, 1e99] (17-digit reals with a
-//! two-digit exponent: OpenCASCADE formats each real into 24 characters).
-void check_writable(const BSplineSurface& s, const std::string& target, const std::string& option);
+//! two-digit exponent: OpenCASCADE formats each real into 24 characters). `field` is what the
+//! caller calls the target (the CLI: the option that named it), here and in the writers below.
+void check_writable(const BSplineSurface& s, const std::string& target, const std::string& field);
 
-//! One face (the whole surface) as STEP, after check_writable (option "--step"). The header's time
-//! stamp is the current time when `time_stamp` is empty, else `time_stamp` (reproducible files).
-void write_step_surface(std::ostream& out, const BSplineSurface& s, const std::string& target,
+//! One face (the whole surface) as STEP, after check_writable. The header's time stamp is the
+//! current time when `time_stamp` is empty, else `time_stamp` (reproducible files).
+void write_step_surface(std::ostream& out, const BSplineSurface& s, const std::string& target, const std::string& field,
                         const std::string& time_stamp = {});
-//! The same face as IGES, after check_writable (option "--iges").
-void write_iges_surface(std::ostream& out, const BSplineSurface& s, const std::string& target);
+//! The same face as IGES, after check_writable.
+void write_iges_surface(std::ostream& out, const BSplineSurface& s, const std::string& target,
+                        const std::string& field);
 
 //! Curves as free STEP edges (one compound, in the given order; a wireframe model) with a fixed
 //! header time stamp when `time_stamp` is not empty: sample files for import-step.
 void write_step_edges(std::ostream& out, const std::vector<BSplineCurve>& curves, const std::string& target,
-                      const std::string& time_stamp = {});
+                      const std::string& field, const std::string& time_stamp = {});
 
 //! The surfaces of every face of a STEP or IGES file, in the order OpenCASCADE lists the faces.
 //! Throws InputError(path, "face K", reason) for a face whose surface is not a non-rational

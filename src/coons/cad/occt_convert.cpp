@@ -130,11 +130,11 @@ void silence_occt_messages() {
 }
 
 void write_step_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& time_stamp,
-                      const std::string& target) {
+                      const std::string& target, const std::string& field) {
   silence_occt_messages();
   STEPControl_Writer writer;
   if (writer.Transfer(shape, STEPControl_AsIs) != IFSelect_RetDone)
-    throw InputError(target, "--step", "OpenCASCADE could not translate the surface to STEP");
+    throw InputError(target, field, "OpenCASCADE could not translate the surface to STEP");
   const Handle(StepData_StepModel) model = writer.Model();
   if (!time_stamp.empty()) {
     APIHeaderSection_MakeHeader header(model);
@@ -144,19 +144,19 @@ void write_step_shape(std::ostream& out, const TopoDS_Shape& shape, const std::s
   StepData_StepWriter step(model);
   exact_reals(step.FloatWriter());
   step.SendModel(Handle(StepData_Protocol)::DownCast(writer.WS()->Protocol()));
-  if (!step.Print(out)) throw InputError(target, "--step", "OpenCASCADE could not print the STEP file");
+  if (!step.Print(out)) throw InputError(target, field, "OpenCASCADE could not print the STEP file");
 }
 
-void write_iges_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& target) {
+void write_iges_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& target,
+                      const std::string& field) {
   silence_occt_messages();
   IGESControl_Writer writer("MM", 0);
-  if (!writer.AddShape(shape))
-    throw InputError(target, "--iges", "OpenCASCADE could not translate the surface to IGES");
+  if (!writer.AddShape(shape)) throw InputError(target, field, "OpenCASCADE could not translate the surface to IGES");
   writer.ComputeModel();
   IGESData_IGESWriter iges(writer.Model());
   exact_reals(iges.FloatWriter());
   iges.SendModel(IGESSelect_WorkLibrary::DefineProtocol());
-  if (!iges.Print(out)) throw InputError(target, "--iges", "OpenCASCADE could not print the IGES file");
+  if (!iges.Print(out)) throw InputError(target, field, "OpenCASCADE could not print the IGES file");
 }
 
 namespace {

@@ -32,11 +32,13 @@ void silence_occt_messages();
 
 //! Writes a shape as an AP214 STEP file: reals as %.16E (17 significant digits, exact on reading),
 //! the header time stamp fixed to `time_stamp` when it is not empty. Throws InputError(`target`,
-//! "--step", reason) when OpenCASCADE cannot translate the shape.
+//! `field`, reason) when OpenCASCADE cannot translate the shape; `field` is what the caller calls
+//! the target (the CLI: the option that named it).
 void write_step_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& time_stamp,
-                      const std::string& target);
+                      const std::string& target, const std::string& field);
 //! The same for IGES 5.3 (entities 128/126 and the face's topology, reals as %.16E).
-void write_iges_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& target);
+void write_iges_shape(std::ostream& out, const TopoDS_Shape& shape, const std::string& target,
+                      const std::string& field);
 
 //! Reads every root of a STEP or an IGES file into one shape. Throws InputError(path, "(document)",
 //! reason) when the file cannot be read or holds no shape.

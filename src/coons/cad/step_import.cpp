@@ -25,6 +25,8 @@
 #include <initializer_list>
 #include <optional>
 #include <set>
+#include <stdexcept>
+#include <utility>
 
 #include "coons/cad/occt_convert.h"
 #include "coons/io/input_error.h"
@@ -38,21 +40,27 @@ constexpr std::array<const char*, 4> kCorner{"bottom-right", "top-right", "top-l
 constexpr std::array<const char*, 4> kSide{"bottom", "right", "top", "left"};
 }  // namespace
 
-bool StepImportOptions::is_valid(std::string* why) const {
-  auto fail = [&](const std::string& reason) {
-    if (why) *why = reason;
-    return false;
-  };
-  if (face < -1) return fail("--face must be >= 0");  // (−1: not given)
-  if ((face >= 0) == !edges.empty()) return fail("give exactly one of --face and --edges");
+StepImportOptionsProblem options_problem(const StepImportOptions& options) {
+  using F = StepImportOptionsField;
+  const std::vector<int>& edges = options.edges;
+  if (options.face < -1) return {F::kFace, "must be >= 0 (faces count from 0)"};  // (−1: not given)
+  if ((options.face >= 0) == !edges.empty())
+    return {options.face >= 0 ? F::kEdges : F::kFace, "give exactly one of a face and four edges"};
   if (!edges.empty()) {
-    if (edges.size() != 4) return fail(fmt::format("--edges needs 4 edge indices ({} given)", edges.size()));
-    if (std::set<int>(edges.begin(), edges.end()).size() != 4) return fail("--edges: the 4 indices must differ");
+    if (edges.size() != 4) return {F::kEdges, fmt::format("needs 4 edge indices ({} given)", edges.size())};
+    if (std::set<int>(edges.begin(), edges.end()).size() != 4) return {F::kEdges, "the 4 indices must differ"};
     for (int e : edges)
-      if (e < 0) return fail("--edges: indices are >= 0");
+      if (e < 0) return {F::kEdges, "indices are >= 0 (edges count from 0)"};
   }
-  if (!std::isfinite(gap_tolerance) || gap_tolerance < 0) return fail("--gap-tolerance must be finite and >= 0");
-  return true;
+  if (!std::isfinite(options.gap_tolerance) || options.gap_tolerance < 0)
+    return {F::kGapTolerance, "must be finite and >= 0"};
+  return {};
+}
+
+bool StepImportOptions::is_valid(std::string* why) const {
+  StepImportOptionsProblem problem = options_problem(*this);
+  if (why) *why = std::move(problem.reason);
+  return problem.field == StepImportOptionsField::kNone;
 }
 
 bool StepImport::is_bezier() const {
@@ -227,15 +235,7 @@ double diagonal_of(const std::array<BSplineCurve, 4>& curves) {
 namespace {
 
 StepImport import_boundary(const std::string& path, const StepImportOptions& options) {
-  std::string why;
-  if (!options.is_valid(&why)) {
-    std::string field = options.face >= 0 ? "--face" : "--edges";
-    if (why.rfind("--", 0) == 0) {  // the option the rule names, once: "--edges: the 4 indices must differ"
-      field = why.substr(0, why.find_first_of(" :"));
-      if (why.compare(field.size(), 2, ": ") == 0) why.erase(0, field.size() + 2);
-    }
-    throw InputError("command line", field, why);
-  }
+  if (std::string why; !options.is_valid(&why)) throw std::invalid_argument("import_step_boundary: options: " + why);
   StepImport out;
   const TopoDS_Shape shape = read_step_shape(path, &out.unit);
   TopTools_IndexedMapOfShape faces, edges;
@@ -250,18 +250,17 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   std::optional<std::array<FaceSide, 4>> face_sides;  // each side from the face's own parameters
   if (options.face >= 0) {
     if (options.face >= faces.Extent())
-      throw InputError(path, "--face",
-                       faces.Extent() == 0 ? fmt::format("face {} out of range: the file has no faces", options.face)
-                                           : fmt::format("face {} out of range: the file has {} face(s), 0 to {}",
-                                                         options.face, faces.Extent(), faces.Extent() - 1));
+      throw InputError(path, fmt::format("face {}", options.face),
+                       faces.Extent() == 0 ? std::string("out of range: the file has no faces")
+                                           : fmt::format("out of range: the file has {} face(s), 0 to {}",
+                                                         faces.Extent(), faces.Extent() - 1));
     const TopoDS_Face face = TopoDS::Face(faces(options.face + 1));
     const TopoDS_Wire wire = BRepTools::OuterWire(face);
-    if (wire.IsNull()) throw InputError(path, "--face", fmt::format("face {} has no outer wire", options.face));
+    if (wire.IsNull()) throw InputError(path, fmt::format("face {}", options.face), "has no outer wire");
     for (TopExp_Explorer e(wire, TopAbs_EDGE); e.More(); e.Next()) chosen.push_back(edges.FindIndex(e.Current()) - 1);
     if (chosen.size() != 4)
-      throw InputError(
-          path, "--face",
-          fmt::format("face {} has {} edges in its outer wire; a Coons boundary needs 4", options.face, chosen.size()));
+      throw InputError(path, fmt::format("face {}", options.face),
+                       fmt::format("has {} edges in its outer wire; a Coons boundary needs 4", chosen.size()));
     const std::vector<FaceSide> classified = classify_face_edges(face, wire);
     face_sides = sides_of_face(classified);
     // otherwise the chain starts at the first edge along v = v_min, in +u
@@ -274,8 +273,8 @@ StepImport import_boundary(const std::string& path, const StepImportOptions& opt
   } else {
     for (int e : options.edges)
       if (e >= edges.Extent())
-        throw InputError(path, "--edges",
-                         fmt::format("edge {} out of range: the file has {} edge(s){}", e, edges.Extent(),
+        throw InputError(path, fmt::format("edge {}", e),
+                         fmt::format("out of range: the file has {} edge(s){}", edges.Extent(),
                                      edges.Extent() ? fmt::format(", 0 to {}", edges.Extent() - 1) : ""));
     chosen = options.edges;
   }

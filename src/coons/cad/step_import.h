@@ -19,12 +19,23 @@
 namespace coons::cad {
 
 struct StepImportOptions {
-  int face = -1;                //!< --face K: 0-based, in OpenCASCADE's order of the file's faces (-1: not given)
-  std::vector<int> edges;       //!< --edges a,b,c,d: 0-based, in OpenCASCADE's order of the file's edges
+  int face = -1;                //!< 0-based, in OpenCASCADE's order of the file's faces (-1: not given)
+  std::vector<int> edges;       //!< a, b, c, d: 0-based, in OpenCASCADE's order of the file's edges
   double gap_tolerance = 1e-6;  //!< largest corner gap, as a fraction of the bounding-box diagonal of the poles
   //! Exactly one of face and edges (four distinct indices ≥ 0), tolerance finite and ≥ 0.
   [[nodiscard]] bool is_valid(std::string* why) const;
 };
+
+//! The member of StepImportOptions at fault, so that a caller can name what set it.
+enum class StepImportOptionsField { kNone, kFace, kEdges, kGapTolerance };
+
+struct StepImportOptionsProblem {
+  StepImportOptionsField field = StepImportOptionsField::kNone;
+  std::string reason;  //!< without the member's name: "must be finite and >= 0"
+};
+
+//! The first rule of StepImportOptions::is_valid that `options` breaks (field kNone: none).
+StepImportOptionsProblem options_problem(const StepImportOptions& options);
 
 struct CornerGapNote {
   std::string corner;  //!< "bottom-left", "bottom-right", "top-left", "top-right"
@@ -47,9 +58,10 @@ struct StepImport {
 };
 
 //! Reads `path` and builds the boundary. Throws InputError(path, field, reason) for an unreadable
-//! file, a face or edge index out of range, a face whose outer wire has other than 4 edges, an
-//! edge without a 3D curve, a rational edge (not supported), and a corner gap above the tolerance
-//! (field names the corner).
+//! file, a face or edge index out of range (field "face K", "edge K"), a face whose outer wire has
+//! other than 4 edges, an edge without a 3D curve, a rational edge (not supported), and a corner
+//! gap above the tolerance (field names the corner); std::invalid_argument unless
+//! options.is_valid() (the caller checks them first, naming what set them: options_problem).
 StepImport import_step_boundary(const std::string& path, const StepImportOptions& options);
 
 //! The boundary file (docs/formats.md): the Bézier form ("degree", four sides) when is_bezier(),
