@@ -275,7 +275,7 @@ int run_batch(const BatchRequest& b) {
     if (by_mask || !is_classical(boundaries.back())) check_stencil_request(boundaries.back(), r, f);
   }
 
-  OutputSet out(b.out_dir);
+  OutputSet out(b.out_dir, "--out");
   std::vector<Row> rows;
   std::vector<std::string> folders;
   for (size_t k = 0; k < boundaries.size(); ++k) {

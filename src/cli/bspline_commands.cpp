@@ -129,7 +129,7 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
                  "command line", "--samples");
   const std::string prefix = e.prefix.empty() ? safe_file_stem(input.boundary.name) : e.prefix;
 
-  OutputSet out(e.out_dir);
+  OutputSet out(e.out_dir, "--out");
   std::vector<std::string> names;
   if (e.obj) names.insert(names.end(), {prefix + ".surface.obj", prefix + ".net.obj"});
   if (e.ply) names.push_back(prefix + ".surface.ply");

@@ -91,7 +91,7 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
     print_json(degree_limit_json(entries.front()));
     return kExitOk;
   }
-  OutputSet out(r.out_dir);
+  OutputSet out(r.out_dir, "--out");
   const std::vector<StudyFigure> figures =
       plot_degree_limit_figures(entries, [&](const std::string& file) { return out.stage(file); });
   for (const StudyFigure& f : figures)

@@ -131,7 +131,7 @@ int run_export(ExportRequest e) {
                  "command line", "--samples");
   const std::string prefix = e.prefix.empty() ? safe_file_stem(b.name) : e.prefix;
 
-  OutputSet out(e.out_dir);
+  OutputSet out(e.out_dir, "--out");
   std::vector<std::string> names;
   if (e.obj) names.insert(names.end(), {prefix + ".surface.obj", prefix + ".net.obj"});
   if (e.mtx) names.insert(names.end(), {prefix + ".A.mtx", prefix + ".B.mtx"});

@@ -28,7 +28,7 @@ using nlohmann::json;
 
 void write_study_report(const StudyResult& result, const std::string& out_dir, const std::string& command_line,
                         const std::function<std::string(OutputSet&)>& extra) {
-  OutputSet out(out_dir);
+  OutputSet out(out_dir, "--out");
   const StudyFigures figures = plot_study_figures(result, [&](const std::string& file) { return out.stage(file); });
   for (const auto* list : {&figures.energies, &figures.nets})
     for (const StudyFigure& f : *list)

@@ -68,7 +68,7 @@ fs::path open_shard_file(const std::string& out_dir, int shard, int shards, cons
 }
 
 void write_family_report(const AlphaFamilyResult& result, const std::string& out_dir) {
-  OutputSet out(out_dir);
+  OutputSet out(out_dir, "--out");
   std::vector<std::string> figures;
   for (const char* kind : {"alpha", "mu", "loss"})
     for (const std::string& o : result.objectives) figures.push_back(fmt::format("figures/{}_family_{}.png", kind, o));

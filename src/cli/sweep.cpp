@@ -83,7 +83,7 @@ int run_sweep_command(const SweepRequest& r) {
       [&](size_t done, size_t all) { phases.note(fmt::format("{}/{}", done, all)); }, nullptr, options);
 
   phases.start("write");
-  OutputSet out(r.out_dir);
+  OutputSet out(r.out_dir, "--out");
   const std::string stem = safe_file_stem(b.name) + ".sweep-" + to_string(r.parameter);
   const std::string jsonl = out.path_of(stem + ".jsonl"), png = out.path_of(stem + ".png");
   out.write(stem + ".jsonl", [&](std::ostream& o) {

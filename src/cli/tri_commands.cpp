@@ -141,7 +141,7 @@ int run_tri_export(const TriExportArgs& e) {
   refuse_singular_member(b, r.options.mask.c, e.boundary);
   const std::string prefix = e.prefix.empty() ? safe_file_stem(b.name) : e.prefix;
 
-  OutputSet out(e.out_dir);
+  OutputSet out(e.out_dir, "--out");
   std::vector<std::string> names;
   if (obj) names.insert(names.end(), {prefix + ".surface.obj", prefix + ".net.obj"});
   if (ply) names.push_back(prefix + ".surface.ply");
@@ -280,7 +280,7 @@ int run_tri_sweep(const TriSweepArgs& a) {
     previous_failed = !e.ok();
   }
   phases.start("write");
-  OutputSet out(a.out_dir);
+  OutputSet out(a.out_dir, "--out");
   const std::string stem = safe_file_stem(b.name) + ".sweep-c";
   const std::string jsonl = out.path_of(stem + ".jsonl");
   out.write(stem + ".jsonl", [&](std::ostream& o) {

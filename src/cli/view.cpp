@@ -172,7 +172,7 @@ int run_view(const ViewRequest& r) {
 
   phases.start("write");
   const std::string html = view_page_html(page, three_js);
-  OutputSet out(parent.empty() ? "." : parent.string());
+  OutputSet out(parent.empty() ? "." : parent.string(), "--out");
   out.write_path(r.out, [&](std::ostream& o) { o << html; });
   const ViewSlider& alpha = page.sliders.front();
   nlohmann::json summary = {{"boundary", page.title},         {"degree", degree},     {"page", r.out},

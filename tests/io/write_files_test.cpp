@@ -58,14 +58,14 @@ TEST_CASE("staging_path: unique per call and per process", "[io]") {
 TEST_CASE("OutputSet: publishes every file together, or removes files and folders it created", "[io]") {
   TempDir dir;
   {
-    OutputSet out((dir.path / "new" / "deeper").string());
+    OutputSet out((dir.path / "new" / "deeper").string(), "--out");
     out.write("a.txt", [](std::ostream& o) { o << "a\n"; });
     out.write("sub/b.txt", [](std::ostream& o) { o << "b\n"; });
     CHECK(!fs::exists(dir.path / "new" / "deeper" / "a.txt"));  // staged only
   }  // no commit: everything goes, the folders it created too
   CHECK(files_under(dir.path).empty());
 
-  OutputSet out((dir.path / "out").string());
+  OutputSet out((dir.path / "out").string(), "--out");
   out.write("a.txt", [](std::ostream& o) { o << "a\n"; });
   out.write("sub/b.txt", [](std::ostream& o) { o << "b\n"; });
   const auto published = out.commit();
@@ -75,7 +75,7 @@ TEST_CASE("OutputSet: publishes every file together, or removes files and folder
 
 TEST_CASE("OutputSet: names that leave the folder and repeated names are refused", "[io]") {
   TempDir dir;
-  OutputSet out((dir.path / "out").string());
+  OutputSet out((dir.path / "out").string(), "--out");
   CHECK_THROWS_AS(out.stage("../x.txt"), InputError);
   CHECK_THROWS_AS(out.stage("/tmp/x.txt"), InputError);
   CHECK_THROWS_AS(out.stage("a/../../x.txt"), InputError);
@@ -88,7 +88,7 @@ TEST_CASE("OutputSet: names that leave the folder and repeated names are refused
 TEST_CASE("OutputSet: an exception inside a write removes what was started", "[io]") {
   TempDir dir;
   try {
-    OutputSet out((dir.path / "out").string());
+    OutputSet out((dir.path / "out").string(), "--out");
     out.write("a.txt", [](std::ostream& o) { o << "a\n"; });
     out.write("b.txt", [](std::ostream& o) {
       o << "half";
@@ -113,7 +113,7 @@ TEST_CASE("OutputSet::commit: a target that is a folder leaves the output folder
   fs::create_directories(out_dir / "b.txt");  // a folder where a file is to go
   std::ofstream(out_dir / "a.txt") << "old\n";
   {
-    OutputSet out(out_dir.string());
+    OutputSet out(out_dir.string(), "--out");
     out.write("a.txt", [](std::ostream& o) { o << "new\n"; });
     out.write("b.txt", [](std::ostream& o) { o << "b\n"; });
     CHECK_THROWS_AS(out.commit(), InputError);
@@ -129,7 +129,7 @@ TEST_CASE("OutputSet::publish: an announcement that fails undoes the commit", "[
   fs::create_directories(out_dir);
   std::ofstream(out_dir / "a.txt") << "old\n";
   {
-    OutputSet out(out_dir.string());
+    OutputSet out(out_dir.string(), "--out");
     out.write("a.txt", [](std::ostream& o) { o << "new\n"; });
     out.write("c.txt", [](std::ostream& o) { o << "c\n"; });
     CHECK_THROWS_AS(out.publish([] { throw InputError("<stdout>", "", "write failed"); }), InputError);
@@ -137,7 +137,7 @@ TEST_CASE("OutputSet::publish: an announcement that fails undoes the commit", "[
   CHECK(contents(out_dir / "a.txt") == "old\n");
   CHECK(files_under(out_dir) == std::vector<std::string>{"a.txt"});
   {
-    OutputSet out(out_dir.string());
+    OutputSet out(out_dir.string(), "--out");
     out.write("a.txt", [](std::ostream& o) { o << "new\n"; });
     bool announced = false;
     CHECK(out.publish([&] { announced = true; }).size() == 1);
@@ -156,7 +156,7 @@ TEST_CASE(
   std::ofstream(out_dir / "a.obj") << "earlier surface\n";
   std::ofstream(out_dir / "a.png") << "earlier plot\n";
   {  // an announcement that fails: both files as they were
-    OutputSet out(out_dir.string());
+    OutputSet out(out_dir.string(), "--out");
     out.write("a.json", [](std::ostream& o) { o << "failed\n"; });
     out.remove_stale("a.obj");
     (void)out.stage("a.png");
@@ -167,7 +167,7 @@ TEST_CASE(
   CHECK(contents(out_dir / "a.png") == "earlier plot\n");
   CHECK(files_under(out_dir) == std::vector<std::string>{"a.obj", "a.png"});
   {
-    OutputSet out(out_dir.string());
+    OutputSet out(out_dir.string(), "--out");
     out.write("a.json", [](std::ostream& o) { o << "failed\n"; });
     out.remove_stale("a.obj");
     out.remove_stale("b.obj");  // nothing there: nothing to do
@@ -193,7 +193,7 @@ TEST_CASE("write_file_atomically: a symbolic link is written through and a pipe 
   CHECK(text == "new");
   // the same through an OutputSet's command-line path
   {
-    OutputSet set(dir.file("unused"));
+    OutputSet set(dir.file("unused"), "--out");
     set.write_path(link, [](std::ostream& out) { out << "newer"; });
     set.commit();
   }
@@ -216,7 +216,7 @@ TEST_CASE("write_file_atomically: a symbolic link is written through and a pipe 
   REQUIRE(mkfifo(pipe.c_str(), 0600) == 0);
   CHECK_THROWS_WITH(write_file_atomically(pipe, [](std::ostream& out) { out << "x"; }),
                     Catch::Contains("not a regular file"));
-  OutputSet set(dir.file("unused"));
+  OutputSet set(dir.file("unused"), "--out");
   CHECK_THROWS_WITH(set.write_path(pipe, [](std::ostream& out) { out << "x"; }), Catch::Contains("not a regular file"));
   CHECK(fs::is_fifo(pipe));
   std::vector<std::string> names;  // (not files_under: fs::relative follows the link)
@@ -240,7 +240,7 @@ TEST_CASE("write_file_atomically and OutputSet: a write that fails while the wri
   CHECK_THROWS_WITH(write_file_atomically(file, fail_like_a_full_disk),
                     Catch::StartsWith(file) && Catch::EndsWith("write failed: " + std::string(std::strerror(ENOSPC))));
   CHECK(files_under(dir.path).empty());
-  OutputSet out((dir.path / "out").string());
+  OutputSet out((dir.path / "out").string(), "--out");
   CHECK_THROWS_WITH(out.write("a.txt", fail_like_a_full_disk),
                     Catch::EndsWith("write failed: " + std::string(std::strerror(ENOSPC))));
 }

@@ -183,7 +183,7 @@ void write_file_atomically(const std::string& given, const std::function<void(st
   }
 }
 
-OutputSet::OutputSet(std::string folder, std::string option) : folder_(std::move(folder)), option_(std::move(option)) {
+OutputSet::OutputSet(std::string folder, std::string field) : folder_(std::move(folder)), field_(std::move(field)) {
   if (folder_.empty()) folder_ = ".";
 }
 
@@ -196,10 +196,10 @@ OutputSet::~OutputSet() {
 std::string OutputSet::path_of(const std::string& relative) const {
   const fs::path rel(relative);
   if (relative.empty() || rel.is_absolute() || rel.has_root_name())
-    throw InputError(folder_, option_, "the output name '" + relative + "' is not a relative file name");
+    throw InputError(folder_, field_, "the output name '" + relative + "' is not a relative file name");
   for (const auto& part : rel)
     if (part == ".." || part == ".")
-      throw InputError(folder_, option_, "the output name '" + relative + "' would leave the folder");
+      throw InputError(folder_, field_, "the output name '" + relative + "' would leave the folder");
   return (fs::path(folder_) / rel).string();
 }
 
@@ -208,7 +208,7 @@ void OutputSet::make_folders(const std::string& folder) {
   std::error_code ec;
   for (fs::path p = folder; !p.empty(); p = p.parent_path()) {
     if (fs::exists(p, ec)) {
-      if (!fs::is_directory(p, ec)) throw InputError(p.string(), option_, "exists and is not a folder");
+      if (!fs::is_directory(p, ec)) throw InputError(p.string(), field_, "exists and is not a folder");
       break;
     }
     missing.push_back(p);
@@ -216,7 +216,7 @@ void OutputSet::make_folders(const std::string& folder) {
   }
   for (auto it = missing.rbegin(); it != missing.rend(); ++it) {
     if (!fs::create_directory(*it, ec) && ec)
-      throw InputError(it->string(), option_, "cannot create the folder: " + ec.message());
+      throw InputError(it->string(), field_, "cannot create the folder: " + ec.message());
     created_folders_.push_back(it->string());
   }
 }
@@ -225,7 +225,7 @@ std::string OutputSet::stage(const std::string& relative) {
   const std::string path = path_of(relative);
   for (const Entry& e : entries_)
     if (same_file_path(e.final_path, path))
-      throw InputError(path, option_, "two outputs of this command would have the same name");
+      throw InputError(path, field_, "two outputs of this command would have the same name");
   make_folders(fs::path(path).parent_path().string());
   entries_.push_back({path, staging_path(path), "", false});
   return entries_.back().staging;
@@ -235,7 +235,7 @@ std::string OutputSet::stage_path(const std::string& given) {
   const std::string path = command_line_target(given);
   for (const Entry& e : entries_)
     if (same_file_path(e.final_path, path))
-      throw InputError(path, option_, "two outputs of this command would have the same name");
+      throw InputError(path, field_, "two outputs of this command would have the same name");
   entries_.push_back({path, staging_path(path), "", false});
   return entries_.back().staging;
 }
@@ -274,7 +274,7 @@ void OutputSet::remove_stale(const std::string& relative) {
   const std::string path = path_of(relative);
   for (const Entry& e : entries_)
     if (same_file_path(e.final_path, path))
-      throw InputError(path, option_, "two outputs of this command would have the same name");
+      throw InputError(path, field_, "two outputs of this command would have the same name");
   Entry e{path, staging_path(path), "", false};
   e.removal = true;
   entries_.push_back(e);

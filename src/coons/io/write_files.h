@@ -39,9 +39,9 @@ void write_file_atomically(const std::string& path, const std::function<void(std
 //! The files of one command: staged, then published together (or all removed).
 class OutputSet {
  public:
-  //! `folder` is where every file goes (created when the first file is staged); `option` names it
-  //! in error messages (e.g. "--out").
-  explicit OutputSet(std::string folder, std::string option = "--out");
+  //! `folder` is where every file goes (created when the first file is staged); `field` names it
+  //! in error messages (the CLI: the option that gave it, e.g. "--out").
+  OutputSet(std::string folder, std::string field);
   ~OutputSet();  //!< removes everything staged and every folder it created unless commit() ran
   OutputSet(const OutputSet&) = delete;
   OutputSet& operator=(const OutputSet&) = delete;
@@ -95,7 +95,7 @@ class OutputSet {
     bool published = false;
     bool removal = false;  //!< remove_stale(): no staging file; commit() takes the old file away
   };
-  std::string folder_, option_;
+  std::string folder_, field_;
   std::vector<Entry> entries_;
   std::vector<std::string> created_folders_;  //!< in the order created
   bool committed_ = false;
