@@ -6,6 +6,7 @@
 #include <algorithm>
 #include <boost/math/tools/minima.hpp>
 #include <cmath>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -59,6 +60,76 @@ class AlphaGammaFunction : public ceres::FirstOrderFunction {
   bool& failed_;
 };
 
+// f(α, r) at γ = (1/4 + α)·r; nullopt where the solve fails.
+using AlphaRFunction = std::function<std::optional<double>(double, double)>;
+
+// Where the 2-D search starts (α, r = γ/(1/4 + α)) and whether the objective is flat over the
+// triangle. Flat in α at γ = 0 does not make it flat in γ (i² − j² on a 3 × 5 net: every α
+// reproduces it at γ = 0, but not the masks with γ ≠ 0): γ is probed over the triangle before
+// saying so.
+struct GammaStart {
+  double alpha = 0, r = 0;
+  bool flat = false;
+};
+
+GammaStart probe_gamma(const AlphaRFunction& f, const AlphaSearchSummary& one, double lower, double upper,
+                       double flat_tolerance) {
+  GammaStart start{one.parameter.value_or(0.5 * (lower + upper)), 0, false};
+  if (!one.flat) return start;
+  double best = one.value, lo = one.value, hi = one.value;
+  for (const double a : {lower + 0.1 * (upper - lower), 0.5 * (lower + upper), upper})
+    for (const double r : {-0.9, -0.5, 0.5, 0.9})
+      if (const auto v = f(a, r)) {
+        lo = std::min(lo, *v);
+        hi = std::max(hi, *v);
+        if (*v < best) {
+          best = *v;
+          start.alpha = a;
+          start.r = r;
+        }
+      }
+  // (the α search's rounding floor: an objective that is 0 for every mask varies by rounding, and
+  // 4e-32 against 1e-31 read as an optimum of the bundled sixteen_vector_twist)
+  start.flat = hi - lo <= flat_tolerance * std::max({std::abs(hi), std::abs(lo), one.rounding_floor, 1e-300});
+  return start;
+}
+
+// Polish by coordinate searches (Brent in α at fixed r, then in r at fixed α) on the closed box
+// [lower, upper] × [−kShrink, kShrink], then its ends (Brent never evaluates an end): near the
+// box's edges the tanh map flattens the gradient, and Ceres stopped on the edge
+// |γ| = 0.999(1/4 + α) at (0.2036, 0.4532) with 2.57269 where (0.25, 0.45303) has 2.56598.
+void polish_on_box(const AlphaRFunction& f, const bool& failed, double lower, double upper, double& alpha, double& r,
+                   std::optional<double>& value) {
+  constexpr double kShrink = AlphaGammaFunction::kShrink;
+  for (int round = 0; round < 8 && value && !failed; ++round) {
+    const double before = *value;
+    const auto along = [&](auto g, double lo, double hi) {
+      const auto [x, fx] =
+          boost::math::tools::brent_find_minima([&](double v) { return g(v).value_or(HUGE_VAL); }, lo, hi, 40);
+      return std::pair{x, fx};
+    };
+    if (const auto [a, fa] = along([&](double a) { return f(a, r); }, lower, upper); fa < *value) {
+      alpha = a;
+      value = fa;
+    }
+    if (const auto [rr, fr] = along([&](double x) { return f(alpha, x); }, -kShrink, kShrink); fr < *value) {
+      r = rr;
+      value = fr;
+    }
+    if (!(before - *value > 1e-12 * std::abs(before))) break;
+  }
+  for (const double a : {lower, upper})
+    if (const auto v = f(a, r); v && value && *v < *value) {
+      alpha = a;
+      value = v;
+    }
+  for (const double rr : {-kShrink, kShrink})
+    if (const auto v = f(alpha, rr); v && value && *v < *value) {
+      r = rr;
+      value = v;
+    }
+}
+
 }  // namespace
 
 AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearchOptions& options) {
@@ -78,7 +149,7 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
   // f at (α, r): γ = (1/4 + α)·r, |r| ≤ kShrink (the triangle where the operator is definite on
   // every grid); nullopt where the solve fails
   bool failed = false;
-  const auto f = [&](double alpha, double r) -> std::optional<double> {
+  const AlphaRFunction f = [&](double alpha, double r) -> std::optional<double> {
     const double gamma = (0.25 + alpha) * r;
     std::vector<double> g;
     const auto e = objective.evaluate_mask(symmetric_mask(alpha, gamma), {}, g);
@@ -88,37 +159,18 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
     }
     return e.value;
   };
-  double start_alpha = one.parameter.value_or(centre);
-  double start_r = 0;
-  if (one.flat) {
-    // Flat in α at γ = 0 does not make it flat in γ (i² − j² on a 3 × 5 net: every α reproduces it
-    // at γ = 0, but not the masks with γ ≠ 0): probe γ over the triangle before saying so.
-    double best = one.value, lo = one.value, hi = one.value;
-    for (const double a : {lower + 0.1 * (upper - lower), centre, upper})
-      for (const double r : {-0.9, -0.5, 0.5, 0.9})
-        if (const auto v = f(a, r)) {
-          lo = std::min(lo, *v);
-          hi = std::max(hi, *v);
-          if (*v < best) {
-            best = *v;
-            start_alpha = a;
-            start_r = r;
-          }
-        }
-    // (the α search's rounding floor: an objective that is 0 for every mask varies by rounding, and
-    // 4e-32 against 1e-31 read as an optimum of the bundled sixteen_vector_twist)
-    if (hi - lo <= options.flat_tolerance * std::max({std::abs(hi), std::abs(lo), one.rounding_floor, 1e-300})) {
-      out.status = SearchStatus::kFlat;
-      out.flat = true;
-      out.value = one.value;
-      out.message = "flat in alpha and gamma (gamma probed at 12 points of the definite triangle)";
-      out.evaluations = objective.evaluations();
-      out.solves = objective.solves();
-      return out;
-    }
+  const GammaStart start = probe_gamma(f, one, lower, upper, options.flat_tolerance);
+  if (start.flat) {
+    out.status = SearchStatus::kFlat;
+    out.flat = true;
+    out.value = one.value;
+    out.message = "flat in alpha and gamma (gamma probed at 12 points of the definite triangle)";
+    out.evaluations = objective.evaluations();
+    out.solves = objective.solves();
+    return out;
   }
-  double t[2] = {std::atanh(std::clamp((start_alpha - centre) / half, -0.999, 0.999)),
-                 std::atanh(std::clamp(start_r / kShrink, -0.999, 0.999))};
+  double t[2] = {std::atanh(std::clamp((start.alpha - centre) / half, -0.999, 0.999)),
+                 std::atanh(std::clamp(start.r / kShrink, -0.999, 0.999))};
   auto* function = new AlphaGammaFunction(objective, centre, half, failed);
   ceres::GradientProblem problem(function);
   ceres::GradientProblemSolver::Summary summary;
@@ -128,37 +180,7 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
   double alpha = mapped.first, gamma = mapped.second;
   double r = gamma / (0.25 + alpha);
   std::optional<double> value = f(alpha, r);
-  // Polish by coordinate searches (Brent in α at fixed r, then in r at fixed α) on the closed
-  // box: near its edges the tanh map flattens the gradient, and Ceres stopped on the edge
-  // |γ| = 0.999(1/4 + α) at (0.2036, 0.4532) with 2.57269 where (0.25, 0.45303) has 2.56598.
-  for (int round = 0; round < 8 && value && !failed; ++round) {
-    const double before = *value;
-    const auto along = [&](auto g, double lo, double hi) {
-      const auto [x, fx] =
-          boost::math::tools::brent_find_minima([&](double v) { return g(v).value_or(HUGE_VAL); }, lo, hi, 40);
-      return std::pair{x, fx};
-    };
-    if (const auto [a, fa] = along([&](double a) { return f(a, r); }, lower, upper); fa < *value) {
-      alpha = a;
-      value = fa;
-    }
-    if (const auto [rr, fr] = along([&](double x) { return f(alpha, x); }, -kShrink, kShrink); fr < *value) {
-      r = rr;
-      value = fr;
-    }
-    if (!(before - *value > 1e-12 * std::abs(before))) break;
-  }
-  // the ends of the box are no interior points: compare them too (Brent never evaluates an end)
-  for (const double a : {lower, upper})
-    if (const auto v = f(a, r); v && value && *v < *value) {
-      alpha = a;
-      value = v;
-    }
-  for (const double rr : {-kShrink, kShrink})
-    if (const auto v = f(alpha, rr); v && value && *v < *value) {
-      r = rr;
-      value = v;
-    }
+  polish_on_box(f, failed, lower, upper, alpha, r, value);
   gamma = (0.25 + alpha) * r;
   out.evaluations = objective.evaluations();
   out.solves = objective.solves();
