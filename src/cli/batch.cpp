@@ -240,11 +240,8 @@ void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::st
   }
 }
 
-int run_batch(const BatchRequest& b) {
-  Phases phases("batch");
-  phases.start("read");
-  const std::vector<std::string> files = expand_inputs(b.inputs);
-  if (files.empty()) throw InputError("command line", "BOUNDARY", "no boundary files given or found");
+// The command line's own checks, before any file is read.
+void check_batch_request(const BatchRequest& b, bool by_mask) {
   if (b.samples < 2) throw InputError("command line", "--samples", "must be >= 2");
   for (size_t k = 0; k < b.alphas.size(); ++k) {
     const double a = b.alphas[k];
@@ -253,8 +250,6 @@ int run_batch(const BatchRequest& b) {
     if (std::find(b.alphas.begin(), b.alphas.begin() + k, a) != b.alphas.begin() + k)
       throw InputError("command line", "--alphas", fmt::format("{} is given twice", a));
   }
-  const solvers::SolverInfo* solver = solver_from_name(b.net.solver);
-  const bool by_mask = b.net.mask != "alpha";
   if (!by_mask && b.net.weight_option && b.net.weight_option->count() > 0)
     throw InputError("command line", "--weight", "--weight is the weight of --mask c1-family; it needs that mask");
   if (by_mask && b.alphas_option && b.alphas_option->count() > 0)
@@ -262,7 +257,11 @@ int run_batch(const BatchRequest& b) {
                      "--alphas are the 3x3 masks of --mask alpha; they do not apply to --mask " + b.net.mask);
   check_memory(b.global, samples_bytes(b.samples), fmt::format("{} x {} surface samples", b.samples, b.samples),
                "command line", "--samples");
-  // Read and validate every input before anything is computed or written.
+}
+
+// Every input read and validated before anything is computed or written.
+std::vector<BoundaryFile> read_batch_inputs(const BatchRequest& b, const std::vector<std::string>& files,
+                                            const solvers::SolverInfo* solver, bool by_mask) {
   std::vector<BoundaryFile> boundaries;
   for (const auto& f : files) {
     boundaries.push_back(read_input(f, b.net.corner_tolerance, true));
@@ -274,6 +273,54 @@ int run_batch(const BatchRequest& b) {
     check_net_memory(b.global, boundaries.back().boundary, solver, f, stencil_nonzeros(r));
     if (by_mask || !is_classical(boundaries.back())) check_stencil_request(boundaries.back(), r, f);
   }
+  return boundaries;
+}
+
+// A boundary with one data ring and no free grid: the closed-form Coons net and every --alphas
+// mask solve, each a report and, when it succeeded, its surface and net OBJ files.
+void run_classical(const BatchRequest& b, const BoundaryFile& input, const std::string& file, const std::string& folder,
+                   OutputSet& out, std::vector<Row>& rows, Phases& phases) {
+  const Boundary& boundary = input.boundary;
+  for (const auto& [tag, request] : coons_and_alpha_runs(b)) {
+    phases.start("solve", fmt::format("{} {}", boundary.name, tag));
+    const ResolvedRequest r = resolve(request, boundary, file);
+    const NetOutcome outcome = make_net(boundary, r);
+    const bool ok = !outcome.summary || outcome.summary->ok();
+    Row row{boundary.name,
+            boundary.m,
+            boundary.n,
+            to_string(r.method),
+            fmt::format("{}", r.mask.diag),
+            outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form",
+            {},
+            folder};
+    phases.start("metrics");
+    if (ok) row.metrics = net_metrics(outcome.net, r.mask);
+    rows.push_back(row);
+    const nlohmann::json report = solve_report(boundary, r, outcome, std::nullopt);
+    phases.start("write");
+    const std::string stem = fmt::format("{}/{}", folder, tag);
+    out.write(stem + ".json", [&](std::ostream& o) { o << dump(report, 2) << '\n'; });
+    if (ok) {
+      out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, outcome.net, b.samples); });
+      out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.net); });
+    } else {
+      out.remove_stale(stem + ".surface.obj");
+      out.remove_stale(stem + ".net.obj");
+      print_solver_failure(file, *outcome.summary);
+    }
+  }
+}
+
+int run_batch(const BatchRequest& b) {
+  Phases phases("batch");
+  phases.start("read");
+  const std::vector<std::string> files = expand_inputs(b.inputs);
+  if (files.empty()) throw InputError("command line", "BOUNDARY", "no boundary files given or found");
+  const bool by_mask = b.net.mask != "alpha";
+  check_batch_request(b, by_mask);
+  const solvers::SolverInfo* solver = solver_from_name(b.net.solver);
+  const std::vector<BoundaryFile> boundaries = read_batch_inputs(b, files, solver, by_mask);
 
   OutputSet out(b.out_dir, "--out");
   std::vector<Row> rows;
@@ -291,49 +338,17 @@ int run_batch(const BatchRequest& b) {
     folders.push_back(folder);
     if (boundaries[k].bspline) {
       run_bspline(b, boundaries[k], files[k], folder, out, rows, phases);
-      continue;
-    }
-    if (by_mask) {
+    } else if (by_mask) {
       run_stencil(b, b.net, boundaries[k], files[k], folder, out, rows, phases);
-      continue;
-    }
-    if (!is_classical(boundaries[k])) {
+    } else if (!is_classical(boundaries[k])) {
       // two data rings or a free grid: every α over the whole problem; no closed-form Coons net
       for (double a : b.alphas) {
         NetRequest request = b.net;
         request.alpha = a;
         run_stencil(b, request, boundaries[k], files[k], folder, out, rows, phases);
       }
-      continue;
-    }
-    for (const auto& [tag, request] : coons_and_alpha_runs(b)) {
-      phases.start("solve", fmt::format("{} {}", boundary.name, tag));
-      const ResolvedRequest r = resolve(request, boundary, files[k]);
-      const NetOutcome outcome = make_net(boundary, r);
-      const bool ok = !outcome.summary || outcome.summary->ok();
-      Row row{boundary.name,
-              boundary.m,
-              boundary.n,
-              to_string(r.method),
-              fmt::format("{}", r.mask.diag),
-              outcome.summary ? solvers::to_string(outcome.summary->status) : "closed-form",
-              {},
-              folder};
-      phases.start("metrics");
-      if (ok) row.metrics = net_metrics(outcome.net, r.mask);
-      rows.push_back(row);
-      const nlohmann::json report = solve_report(boundary, r, outcome, std::nullopt);
-      phases.start("write");
-      const std::string stem = fmt::format("{}/{}", folder, tag);
-      out.write(stem + ".json", [&](std::ostream& o) { o << dump(report, 2) << '\n'; });
-      if (ok) {
-        out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, outcome.net, b.samples); });
-        out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.net); });
-      } else {
-        out.remove_stale(stem + ".surface.obj");
-        out.remove_stale(stem + ".net.obj");
-        print_solver_failure(files[k], *outcome.summary);
-      }
+    } else {
+      run_classical(b, boundaries[k], files[k], folder, out, rows, phases);
     }
   }
   const std::string table = metrics_table(rows);
