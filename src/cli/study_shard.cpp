@@ -121,9 +121,12 @@ int run_family_shard(const AlphaFamilyOptions& options, int shard, int shards, c
   return kExitOk;
 }
 
-int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
-  Phases phases("study");
-  phases.start("read");
+namespace {
+
+using TaskKey = std::tuple<std::string, int, int>;  // objective, degree, boundary index
+
+// The shard-I-of-N.jsonl files of a folder, sorted.
+std::vector<fs::path> shard_files(const std::string& merge_dir) {
   if (!fs::is_directory(merge_dir)) throw InputError(merge_dir, "--merge", "is not a folder");
   const std::regex shard_name(R"(shard-[0-9]+-of-[0-9]+\.jsonl)");
   std::vector<fs::path> files;
@@ -131,28 +134,29 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
     if (e.is_regular_file() && std::regex_match(e.path().filename().string(), shard_name)) files.push_back(e.path());
   std::sort(files.begin(), files.end());
   if (files.empty()) throw InputError(merge_dir, "--merge", "holds no shard-I-of-N.jsonl file");
-  // The kind of study, from the first shard that holds a complete record (the others are read as
-  // that kind; a shard stopped during its first task holds none and only adds missing tasks).
-  for (const fs::path& file : files)
-    if (const std::optional<bool> files_study = is_files_study_shard(file)) {
-      if (*files_study) return run_files_merge(files, merge_dir, out_dir);
-      break;
-    }
+  return files;
+}
 
+// What the shards of a family study hold: its block, options and every task's result.
+struct FamilyShards {
   std::optional<json> study;
   AlphaFamilyOptions options;
   std::vector<std::string> objectives;
+  std::map<TaskKey, FamilyTaskResult> by_task;
+};
+
+FamilyShards read_family_shards(const std::vector<fs::path>& files) {
+  FamilyShards out;
   std::string version, revision;
-  std::map<std::tuple<std::string, int, int>, FamilyTaskResult> by_task;
   for (const fs::path& file : files) {
     const std::string where = file.string();
     for (const json& r : read_shard_file(file).records) {
       if (!r.contains("study")) throw InputError(where, "study", "missing");
-      if (!study) {
-        study = r["study"];
-        options = family_options_of(*study, &objectives, where);
+      if (!out.study) {
+        out.study = r["study"];
+        out.options = family_options_of(*out.study, &out.objectives, where);
         // (value() of a number where a string belongs threw a JSON type_error that named no field)
-        const json coons = study->contains("coons") ? (*study)["coons"] : json::object();
+        const json coons = out.study->contains("coons") ? (*out.study)["coons"] : json::object();
         const auto text = [&](const char* name) {
           if (!coons.is_object()) throw InputError(where, "study.coons", "is not an object");
           if (!coons.contains(name)) return std::string();
@@ -161,18 +165,18 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
         };
         version = text("version");
         revision = text("git_revision");
-      } else if (r["study"] != *study) {
+      } else if (r["study"] != *out.study) {
         throw InputError(where, "study", "the shards hold tasks of different studies (options or coons revision)");
       }
-      FamilyTaskResult t = family_task_from_record(r, options, where);
-      if (r["key"] != family_task_key(options, t.task, version, revision))
+      FamilyTaskResult t = family_task_from_record(r, out.options, where);
+      if (r["key"] != family_task_key(out.options, t.task, version, revision))
         throw InputError(where, "key",
                          fmt::format("'{}' is not the key of its task (boundary {}, degree {}, {})",
                                      r["key"].get<std::string>(), t.task.index, t.task.degree, t.task.objective));
       // A task run by two shard files (shards of different N mixed) has the same result in both: the
       // searches are deterministic. Different results under one key mean an edited record, and
       // the first one read silently won.
-      const auto [it, added] = by_task.emplace(std::make_tuple(t.task.objective, t.task.degree, t.task.index), t);
+      const auto [it, added] = out.by_task.emplace(std::make_tuple(t.task.objective, t.task.degree, t.task.index), t);
       const FamilyTaskResult& kept = it->second;
       if (!added && (kept.status != t.status || kept.alpha != t.alpha || !same_task_number(kept.value, t.value) ||
                      kept.grid.size() != t.grid.size() ||
@@ -185,27 +189,32 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
                                      t.alpha ? fmt::format("{}", *t.alpha) : "null"));
     }
   }
-  if (!study) throw InputError(merge_dir, "--merge", "the shards hold no finished task");
+  return out;
+}
 
-  // The study's list has objectives × degrees × count tasks (count up to 100000, 199 degrees, and
-  // as many objectives as a block names). It is built only once every task of it is known to be
-  // here: an edited block of 4 kB (count 100000, degrees 3 … 200) made the merge allocate 1.6 GB
-  // before it said that tasks were missing.
+// An InputError unless the shards hold exactly the study's tasks. The study's list has objectives
+// × degrees × count tasks (count up to 100000, 199 degrees, and as many objectives as a block
+// names); it is built only once every task of it is known to be here: an edited block of 4 kB
+// (count 100000, degrees 3 … 200) made the merge allocate 1.6 GB before it said that tasks were
+// missing.
+void require_every_task(const FamilyShards& shards, const std::string& merge_dir) {
+  const AlphaFamilyOptions& options = shards.options;
+  const std::vector<std::string>& objectives = shards.objectives;
   const std::set<int> degrees(options.degrees.begin(), options.degrees.end());
   const std::set<std::string> named(objectives.begin(), objectives.end());
-  const auto in_list = [&](const std::tuple<std::string, int, int>& t) {
+  const auto in_list = [&](const TaskKey& t) {
     const auto& [objective, degree, index] = t;
     return index >= 0 && index < options.count && degrees.count(degree) > 0 && named.count(objective) > 0;
   };
   size_t inside = 0;
-  for (const auto& [task, result] : by_task) inside += in_list(task) ? 1 : 0;
+  for (const auto& [task, result] : shards.by_task) inside += in_list(task) ? 1 : 0;
   const size_t total = objectives.size() * options.degrees.size() * size_t(options.count);
   if (inside < total) {
     std::optional<FamilyTask> first_missing;
     for (const std::string& o : objectives) {
       for (int d : options.degrees) {
         for (int k = 0; k < options.count && !first_missing; ++k)
-          if (!by_task.count(std::make_tuple(o, d, k))) first_missing = FamilyTask{k, d, o};
+          if (!shards.by_task.count(std::make_tuple(o, d, k))) first_missing = FamilyTask{k, d, o};
         if (first_missing) break;
       }
       if (first_missing) break;
@@ -216,20 +225,39 @@ int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
                     "shards (again) before merging",
                     total - inside, total, first_missing->index, first_missing->degree, first_missing->objective));
   }
-  if (by_task.size() != inside)
+  if (shards.by_task.size() != inside)
     throw InputError(merge_dir, "--merge",
-                     fmt::format("the shards hold {} tasks outside the study's list", by_task.size() - inside));
-  const std::vector<FamilyTask> all = family_tasks(options, objectives);
+                     fmt::format("the shards hold {} tasks outside the study's list", shards.by_task.size() - inside));
+}
+
+}  // namespace
+
+int run_study_merge(const std::string& merge_dir, const std::string& out_dir) {
+  Phases phases("study");
+  phases.start("read");
+  const std::vector<fs::path> files = shard_files(merge_dir);
+  // The kind of study, from the first shard that holds a complete record (the others are read as
+  // that kind; a shard stopped during its first task holds none and only adds missing tasks).
+  for (const fs::path& file : files)
+    if (const std::optional<bool> files_study = is_files_study_shard(file)) {
+      if (*files_study) return run_files_merge(files, merge_dir, out_dir);
+      break;
+    }
+  const FamilyShards shards = read_family_shards(files);
+  if (!shards.study) throw InputError(merge_dir, "--merge", "the shards hold no finished task");
+  require_every_task(shards, merge_dir);
+
+  const std::vector<FamilyTask> all = family_tasks(shards.options, shards.objectives);
   std::vector<FamilyTaskResult> results;
   results.reserve(all.size());
   double seconds = 0;
   for (const FamilyTask& t : all) {
-    const FamilyTaskResult& r = by_task.at(std::make_tuple(t.objective, t.degree, t.index));
+    const FamilyTaskResult& r = shards.by_task.at(std::make_tuple(t.objective, t.degree, t.index));
     seconds += r.seconds;
     results.push_back(r);
   }
   phases.start("write");
-  const AlphaFamilyResult result = assemble_alpha_family(options, objectives, results);
+  const AlphaFamilyResult result = assemble_alpha_family(shards.options, shards.objectives, results);
   write_family_report(result, out_dir);
   print_text(fmt::format("merged {} tasks from {} shard files: {:.4g} s of task time, {:.3g} s per task\n", all.size(),
                          files.size(), seconds, seconds / double(all.size())));
