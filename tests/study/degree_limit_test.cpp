@@ -169,11 +169,34 @@ TEST_CASE("fit_degree_limit: with three points in the fit range the error is unk
 TEST_CASE("fit_degree_limit: a monotone tail whose steps grow is told so, not that it turns", "[study]") {
   // μ* of the dome's e3 at n = 3, 5, 7 falls strictly; the message said it did not approach monotonically
   const auto r = fit_degree_limit({{3, 0.3291395951939312}, {5, 0.3044792420683252}, {7, 0.2754}});
-  CHECK(r.status == DegreeLimitStatus::kNotMonotone);
+  CHECK(r.status == DegreeLimitStatus::kRateOutOfRange);  // not "not_monotone": it is monotone
+  CHECK(std::string(to_string(r.status)) == "rate_out_of_range");
+  CHECK(!limit_claimed(r));
   CHECK(r.message.find("do not shrink") != std::string::npos);
   CHECK(r.message.find("change sign") == std::string::npos);  // not that it turns
   const auto turning = fit_degree_limit({{4, 10.0}, {8, 7.0}, {12, 6.0}, {16, 6.5}});
+  CHECK(turning.status == DegreeLimitStatus::kNotMonotone);
   CHECK(turning.message.find("change sign") != std::string::npos);
+}
+
+TEST_CASE("limit_claimed: a limit is claimed only with an error estimate within 5 % of it", "[study]") {
+  // μ = 1 + 2/n² + 3/n³: limit 1; n = 8 … 64 spans a factor 8, four points in the fit range
+  std::vector<std::pair<int, double>> points;
+  for (const int n : {8, 16, 32, 64}) points.emplace_back(n, 1 + 2.0 / (double(n) * n) + 3.0 / std::pow(n, 3));
+  const auto wide = fit_degree_limit(points);
+  REQUIRE(wide.status == DegreeLimitStatus::kSuccess);
+  REQUIRE(wide.limit_error);
+  CHECK(*wide.limit_error > 0);
+  CHECK(*wide.limit_error <= 0.05 * std::abs(*wide.limit));
+  CHECK(limit_claimed(wide));
+  CHECK(!limit_claimed(wide, 0.5 * *wide.limit_error / std::abs(*wide.limit)));  // a threshold below its error
+  // three points: a limit, but no error estimate (the message says why), so no claim
+  const auto three = fit_degree_limit({points[1], points[2], points[3]});
+  REQUIRE(three.status == DegreeLimitStatus::kSuccess);
+  REQUIRE(three.limit);
+  CHECK(!three.limit_error);
+  CHECK(!limit_claimed(three));
+  CHECK(three.message.find("unknown") != std::string::npos);
 }
 
 TEST_CASE("fit_degree_limit: too few points or a tail that turns give no limit", "[study]") {

@@ -29,8 +29,15 @@ const char* to_string(DegreeLimitStatus status) {
       return "too_few_points";
     case DegreeLimitStatus::kNotMonotone:
       return "not_monotone";
+    case DegreeLimitStatus::kRateOutOfRange:
+      return "rate_out_of_range";
   }
   return "unknown";
+}
+
+bool limit_claimed(const DegreeLimitResult& r, double relative_error) {
+  return r.status == DegreeLimitStatus::kSuccess && r.limit && r.limit_error &&
+         *r.limit_error <= relative_error * std::abs(*r.limit);
 }
 
 namespace {
@@ -126,9 +133,9 @@ DegreeLimitResult fit_degree_limit(const std::vector<std::pair<int, double>>& po
       triple_limit(points[last - 2].first, points[last - 2].second, points[last - 1].first, points[last - 1].second,
                    points[last].first, points[last].second, options.min_rate, options.max_rate);
   if (!t) {
-    r.status = DegreeLimitStatus::kNotMonotone;
     const double d1 = points[last - 1].second - points[last - 2].second,
                  d2 = points[last].second - points[last - 1].second;
+    r.status = d1 * d2 > 0 ? DegreeLimitStatus::kRateOutOfRange : DegreeLimitStatus::kNotMonotone;
     // which of triple_limit's conditions failed (μ* = 0.329, 0.304, 0.275 at n = 3, 5, 7 falls
     // monotonically, and was told it did not approach monotonically)
     r.message = !(d1 * d2 > 0)

@@ -34,12 +34,15 @@ struct LimitFit {
   bool at_bound = false;
 };
 
-//! kSuccess: a limit with its error estimate; kTooFewPoints: fewer than three points (no
-//! extrapolation; fits that have enough points are still given); kNotMonotone: the last three
-//! points do not approach a limit monotonically (the differences change sign, or grow), so no
-//! rate and no extrapolated limit are claimed.
-enum class DegreeLimitStatus { kSuccess, kTooFewPoints, kNotMonotone };
-const char* to_string(DegreeLimitStatus status);  //!< "success", "too_few_points", "not_monotone"
+//! kSuccess: an extrapolated limit (claimed only with an error estimate small enough:
+//! limit_claimed); kTooFewPoints: fewer than three points (no extrapolation; fits that have enough
+//! points are still given); kNotMonotone: the differences of the last three points change sign (or
+//! one vanishes); kRateOutOfRange: they keep their sign but do not shrink as n^−p with p in
+//! [min_rate, max_rate] would make them (μ* = 595, 21.3, 14.2 at n = 3, 4, 5 falls strictly). No
+//! rate and no limit without kSuccess.
+enum class DegreeLimitStatus { kSuccess, kTooFewPoints, kNotMonotone, kRateOutOfRange };
+//! "success", "too_few_points", "not_monotone", "rate_out_of_range"
+const char* to_string(DegreeLimitStatus status);
 
 struct DegreeLimitResult {
   DegreeLimitStatus status = DegreeLimitStatus::kSuccess;
@@ -58,6 +61,14 @@ struct DegreeLimitResult {
   std::vector<std::optional<int>> within_from;
   std::vector<double> tolerances;  //!< the relative tolerance of each within_from (DegreeLimitOptions)
 };
+
+//! The relative error estimate up to which a limit is claimed (the report's ClaimThresholds).
+inline constexpr double kLimitClaimError = 0.05;
+
+//! Whether the extrapolated limit is claimed: it exists and has an error estimate ≤
+//! relative_error·|μ∞|. A kSuccess limit without one (too few degrees, or degrees spanning too
+//! little: `message` says which) is reported but not claimed.
+bool limit_claimed(const DegreeLimitResult& r, double relative_error = kLimitClaimError);
 
 //! The exponent p with (y3 − y2)/(y2 − y1) = (n3^−p − n2^−p)/(n2^−p − n1^−p) for n1 < n2 < n3, and
 //! the limit y∞ of the curve y∞ + a·n^−p through the three points; nullopt when the differences

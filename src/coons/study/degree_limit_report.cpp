@@ -40,7 +40,7 @@ bool is_constant(const DegreeLimitEntry& e, const ClaimThresholds& t) {
 }
 
 bool has_reliable_limit(const DegreeLimitEntry& e, const ClaimThresholds& t) {
-  return e.limit.limit && e.limit.limit_error && *e.limit.limit_error <= t.limit_error * std::abs(*e.limit.limit);
+  return limit_claimed(e.limit, t.limit_error);
 }
 
 bool meets_continuum(const DegreeLimitEntry& e, const ClaimThresholds& t) {
@@ -373,7 +373,9 @@ std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& en
     for (size_t k = 0; k < options.limit.tolerances.size(); ++k)
       row += " " + (within_from(e, k) ? std::to_string(*within_from(e, k)) : none) + " |";
     row += fmt::format(" {} | {} |", cs.mu ? fmt::format("{} (N = {})", num(*cs.mu), cs.degree) : none,
-                       to_string(e.limit.status));
+                       e.limit.status == DegreeLimitStatus::kSuccess && !has_reliable_limit(e, {})
+                           ? std::string("success, not claimed")
+                           : std::string(to_string(e.limit.status)));
     line(row);
   }
   line("");

@@ -17,9 +17,9 @@ namespace coons {
 
 //! Thresholds of the claims (relative).
 struct ClaimThresholds {
-  double constant = 0.05;       //!< "μ* does not depend on the degree": max/min − 1 ≤ this
-  double limit_error = 0.05;    //!< "μ* converges to μ∞": error ≤ this·|μ∞|
-  double continuum_gap = 0.05;  //!< "μ*(n) tends to μ_c": |μ∞ − μ_c| ≤ max(this·μ_c, 2·error)
+  double constant = 0.05;                 //!< "μ* does not depend on the degree": max/min − 1 ≤ this
+  double limit_error = kLimitClaimError;  //!< "μ* converges to μ∞": error ≤ this·|μ∞| (limit_claimed)
+  double continuum_gap = 0.05;            //!< "μ*(n) tends to μ_c": |μ∞ − μ_c| ≤ max(this·μ_c, 2·error)
 };
 
 //! The sentences about one entry, each either a supported claim or the measured fact in its place.

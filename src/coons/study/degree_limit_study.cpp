@@ -219,6 +219,8 @@ json degree_limit_json(const DegreeLimitEntry& e) {
               {"mu_star", mu},
               {"max_deviation", deviation},
               {"limit_status", to_string(e.limit.status)},
+              {"limit_claimed", limit_claimed(e.limit)},
+              {"limit_message", e.limit.message.empty() ? json(nullptr) : json(e.limit.message)},
               {"mu_limit", optional_number(e.limit.limit)},
               {"mu_limit_error", optional_number(e.limit.limit_error)},
               {"rate", optional_number(e.limit.rate)},
