@@ -145,6 +145,11 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   // the doubles; --ply and --vtu refuse a model below 1e-60 as surface does
   inputs.write("tiny_triangle.json", R"({"type": "triangle", "degree": 1, "sides": [[[0, 0, 0], [1e-100, 0, 0]],
                                 [[1e-100, 0, 0], [0, 1e-100, 0]], [[0, 1e-100, 0], [0, 0, 0]]]})");
+  // a triangle with a rectangular form's field: it was ignored, and the knots' triangle solved as a Bezier one
+  inputs.write("tri_knots.json", R"({"type": "triangle", "sides": [[[0, 0, 0], [1, 0, 0]], [[1, 0, 0], [0, 1, 0]],
+                                [[0, 1, 0], [0, 0, 0]]], "knots_u": [0, 0, 1, 1]})");
+  inputs.write("tri_rings.json", R"({"type": "triangle", "sides": [[[0, 0, 0], [1, 0, 0]], [[1, 0, 0], [0, 1, 0]],
+                                [[0, 1, 0], [0, 0, 0]]], "rings": 2})");
   inputs.write("tiny.json", R"({"type": "bilinear", "corners": [[0, 0, 0], [1e-170, 0, 0], [0, 1e-170, 0],
                                 [1e-170, 1e-170, 1e-170]]})");
   // a ruled surface between a line and a Bezier curve of degree 3000: its 3001 by 2 net's energies
@@ -209,6 +214,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
        "tiny_triangle.json: sides[0][1]: the largest coordinate magnitude of the model is 1e-100, below 1e-60"},
       // (the defaults of a triangle's export are OBJ, PLY and VTU)
       {"export {IN}/tiny_triangle.json --out {OUT}/t", "tiny_triangle.json: sides[0][1]: the largest coordinate"},
+      {"solve {IN}/tri_knots.json", "tri_knots.json: knots_u: belongs to a rectangular boundary"},
+      {"search-alpha {IN}/tri_knots.json --objective thin_plate", "tri_knots.json: knots_u:"},
+      {"sweep {IN}/tri_rings.json --out {OUT}/s", "tri_rings.json: rings: belongs to a rectangular boundary"},
+      {"view {IN}/tri_rings.json --out {OUT}/v.html", "tri_rings.json: rings:"},
       {"refit " + good + " --degree 4 4 --out {OUT}/" + std::string(236, 'y'),
        "command line: --out: the file name is 236 bytes long, more than 235"},
       // a singular member of the 3x3 family on a file without a free grid names --alpha (it named

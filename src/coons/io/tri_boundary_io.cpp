@@ -52,6 +52,12 @@ tri::TriBoundary parse_tri_boundary(const json& doc, const std::string& source, 
     if (!doc["name"].is_string()) fail("name", "must be a string");
     b.name = doc["name"].get<std::string>();
   }
+  // The fields of the rectangular forms mean something there (a B-spline's knots, a whole net, a
+  // second data ring): here they were ignored, and a triangle with knots solved as a Bézier one.
+  for (const char* field : {"knots_u", "knots_v", "degree_spline", "bspline", "net", "rings", "free", "ribbons",
+                            "bottom", "top", "left", "right", "curves"})
+    if (doc.contains(field))
+      fail(field, "belongs to a rectangular boundary; a triangular one has \"sides\" only (docs/formats.md)");
   if (!doc.contains("sides")) fail("sides", "missing");
   const json& sides = doc["sides"];
   if (!sides.is_array() || sides.size() != 3) fail("sides", "must be an array of 3 sides (arrays of points)");
