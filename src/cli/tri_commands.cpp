@@ -44,6 +44,20 @@ const solvers::SolverInfo& tri_backend(const std::string& name, bool& picked_aut
   return info ? *info : tri::default_tri_solver();
 }
 
+//! An InputError naming --solver when a backend given by name cannot solve the masks of a c range
+//! (a search's or a sweep's): one that is only for definite systems fails at every c != 0, so a
+//! search tried all its scan points before it said so (exit 3), where view refused it at once.
+void require_tri_range_backend(const solvers::SolverInfo& solver, bool picked_automatically, double lower,
+                               double upper) {
+  if (picked_automatically) return;
+  const double c = lower != 0.0 ? lower : upper;  // (lower < upper: one of them is not 0)
+  if (const tri::TriBackendCheck check = tri::check_tri_backend(solver, tri::TriMask{c}); !check.applicable)
+    throw InputError("command line", "--solver",
+                     tri::check_tri_backend(solver, tri::TriMask{0.0}).applicable  // refused for c != 0 only
+                         ? fmt::format("{} (the c range [{}, {}] holds such c)", check.reason, lower, upper)
+                         : check.reason);
+}
+
 // A triangle of degree n is bounded by the (n+1)×(n+1) grid's memory (about half of it).
 void check_tri_memory(const GlobalOptions& g, int n, const solvers::SolverInfo* solver, const std::string& file,
                       double extra = 0) {
@@ -218,6 +232,7 @@ int run_tri_search(const TriSearchArgs& a) {
   if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
   bool picked = false;
   const solvers::SolverInfo& solver = tri_backend(a.solver, picked);
+  require_tri_range_backend(solver, picked, options.lower, options.upper);
   check_tri_memory(*a.global, b.n, &solver, a.boundary);
   phases.start("solve");
   const AlphaSearchSummary s = search_tri_c(tri::frame_net(b), *objective, solver, options);
@@ -254,6 +269,7 @@ int run_tri_sweep(const TriSweepArgs& a) {
   if (target_only.target) check_target_samples(*a.global, a.samples);  // (only where they are taken)
   bool picked = false;
   const solvers::SolverInfo& solver = tri_backend(a.solver, picked);
+  require_tri_range_backend(solver, picked, from, to);
   check_tri_memory(*a.global, b.n, &solver, a.boundary);
 
   phases.start("solve");

@@ -215,6 +215,12 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       // (the defaults of a triangle's export are OBJ, PLY and VTU)
       {"export {IN}/tiny_triangle.json --out {OUT}/t", "tiny_triangle.json: sides[0][1]: the largest coordinate"},
       {"solve {IN}/tri_knots.json", "tri_knots.json: knots_u: belongs to a rectangular boundary"},
+      // a backend only for definite systems fails at every c != 0 of a search's or a sweep's range:
+      // search-alpha tried its 9 scan points and exited 3, where view refused it at once
+      {"search-alpha " + quoted(kData + "/triangles/dome_half.json") + " --objective thin_plate --solver cg",
+       "--solver: cg is only for symmetric positive definite systems"},
+      {"sweep " + quoted(kData + "/triangles/dome_half.json") + " --solver cg --out {OUT}/s",
+       "--solver: cg is only for symmetric positive definite systems"},
       {"search-alpha {IN}/tri_knots.json --objective thin_plate", "tri_knots.json: knots_u:"},
       {"sweep {IN}/tri_rings.json --out {OUT}/s", "tri_rings.json: rings: belongs to a rectangular boundary"},
       {"view {IN}/tri_rings.json --out {OUT}/v.html", "tri_rings.json: rings:"},
