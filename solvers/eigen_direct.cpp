@@ -30,8 +30,12 @@ Eigen::VectorXd permuted_diagonal(const SpMat& A, const Permutation& P) {
 }
 
 // LDLᵀ without pivoting is only stable on definite matrices: a negative entry of D is reported
-// as "not positive definite", a zero one as "singular". A pivot that is exactly zero during the
-// factorisation proves nothing more than "not definite": [[0, 1], [1, 0]] is regular.
+// as "not positive definite", a zero one, when no entry is negative, as "singular". A pivot that is
+// exactly zero during the factorisation proves nothing more than "not definite": [[0, 1], [1, 0]]
+// is regular. D has A's inertia (Sylvester), so a regular indefinite A has negative pivots: a
+// near-zero pivot among them is where elimination without pivoting landed, not a singular A (a
+// regular indefinite 5×5 stencil system was called singular), while a semidefinite A, whose D has
+// none, is singular when a pivot vanishes.
 SolveStatus judge(const Ldlt& f, const SpMat& A, SolveSummary& summary) {
   if (f.info() != Eigen::Success) {
     summary.message =
@@ -51,13 +55,14 @@ SolveStatus judge(const Ldlt& f, const SpMat& A, SolveSummary& summary) {
     else if (d(k) < 0)
       ++negative;
   }
+  if (negative > 0) {
+    summary.message = std::to_string(negative) + " negative pivot(s) in D" +
+                      (zero > 0 ? " and " + std::to_string(zero) + " zero one(s): the matrix is indefinite" : "");
+    return SolveStatus::kNotPositiveDefinite;
+  }
   if (zero > 0) {
     summary.message = std::to_string(zero) + " zero pivot(s) in D (below 1e-13 of their diagonal entry)";
     return SolveStatus::kSingular;
-  }
-  if (negative > 0) {
-    summary.message = std::to_string(negative) + " negative pivot(s) in D";
-    return SolveStatus::kNotPositiveDefinite;
   }
   return SolveStatus::kSuccess;
 }

@@ -189,16 +189,19 @@ class Cholmod : public LinearSolver {
         if (negative++ == 0) first_negative = j;
       }
     }
+    // Negative pivots first: D has A's inertia, so they make A indefinite, and a zero pivot
+    // among them is where elimination without pivoting landed (as eigen-ldlt judges, eigen_direct.cpp).
+    if (negative) {
+      summary.message = "not positive definite at " + column_of_pivot(first_negative) + "; " +
+                        std::to_string(negative) + " negative pivot(s) in D" +
+                        (zero ? " and " + std::to_string(zero) + " zero one(s)" : "");
+      return SolveStatus::kNotPositiveDefinite;
+    }
     if (zero) {
       summary.message = std::to_string(zero) +
                         " zero pivot(s) in D (below 1e-13 of their diagonal entry), the first at " +
                         column_of_pivot(first_zero);
       return SolveStatus::kSingular;
-    }
-    if (negative) {
-      summary.message = "not positive definite at " + column_of_pivot(first_negative) + "; " +
-                        std::to_string(negative) + " negative pivot(s) in D";
-      return SolveStatus::kNotPositiveDefinite;
     }
     return SolveStatus::kSuccess;
   }

@@ -419,6 +419,25 @@ TEST_CASE(
   }
 }
 
+TEST_CASE("run_general_system: a near-zero pivot among negative ones is indefinite, not singular", "[solvers]") {
+  // [[1, 1, 0], [1, 1 + 1e-15, 1], [0, 1, 1]] is regular (det ≈ −1) and indefinite: LDLᵀ without
+  // pivoting meets the pivot 1e-15 and then −1e15. eigen-ldlt called it singular (and a regular
+  // 10-unknown 5×5 stencil system too, where eigen-lu solves it to 5e-16).
+  const Eigen::SparseMatrix<double> A =
+      sparse_of((Eigen::MatrixXd(3, 3) << 1, 1, 0, 1, 1 + 1e-15, 1, 0, 1, 1).finished());
+  const Eigen::MatrixXd b = Eigen::MatrixXd::Ones(3, 1);
+  for (const char* name : {"eigen-ldlt", "cholmod-simplicial"}) {
+    const SolverInfo* info = find_solver(name);
+    if (info == nullptr) continue;  // (a build without SuiteSparse)
+    const GeneralRun run = run_general_system(*info, system_of(A, b, true), SolverOptions{});
+    INFO(name << ": " << run.reason);
+    CHECK(run.status == SolveStatus::kNotPositiveDefinite);
+    CHECK_THAT(run.reason, Catch::Contains("negative pivot"));
+  }
+  const GeneralRun lu = run_general_system(*find_solver("eigen-lu"), system_of(A, b, true), SolverOptions{});
+  CHECK(lu.ok());
+}
+
 TEST_CASE("run_general_system: a success with a large componentwise backward error carries a note", "[solvers]") {
   // cg on diag(1, 1e-20): x2 = 1e-20 for 1 meets the normwise target (residual 1e-20) with a
   // componentwise backward error of 1, and said only "success"
