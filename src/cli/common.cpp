@@ -221,6 +221,30 @@ void require_valid_solver_options(const solvers::SolverOptions& options) {
                    std::string(solvers::to_string(problem.field)) + " " + problem.reason);
 }
 
+void require_valid_search_options(const AlphaSearchOptions& options) {
+  using F = SearchOptionsField;
+  const SearchOptionsProblem problem = options_problem(options);
+  switch (problem.field) {
+    case F::kNone:
+      return;
+    case F::kLower:
+      throw InputError("command line", "--lower", problem.reason);
+    case F::kUpper:
+      throw InputError("command line", "--upper", problem.reason);
+    case F::kBounds:
+      throw InputError("command line", "--lower/--upper", problem.reason);
+    case F::kScanPoints:
+      throw InputError("command line", "--scan", problem.reason);
+    case F::kFlatTolerance:
+    case F::kParameterTolerance:
+    case F::kMaxIterations:
+      break;  // no option sets them
+  }
+  std::string why;
+  (void)options.is_valid(&why);
+  throw InputError("command line", "search options", why);
+}
+
 InputError samples_without_sweep_target() {
   return {"command line", "--samples",
           "--samples sets the target's sampling but there is no target (neither --target nor the file's \"target\")"};

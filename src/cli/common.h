@@ -10,6 +10,7 @@
 #include <string>
 #include <vector>
 
+#include "coons/alpha/alpha_search.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
 #include "coons/mask/mask9.h"
@@ -110,6 +111,9 @@ InputError samples_without_sweep_target();
 //! An InputError unless SolverOptions::is_valid, naming the option that set the field at fault
 //! (--tolerance, --max-iterations, --omega, --threads).
 void require_valid_solver_options(const solvers::SolverOptions& options);
+//! An InputError unless AlphaSearchOptions::is_valid, naming the option that set the member at
+//! fault (--lower, --upper, both for their order, --scan).
+void require_valid_search_options(const AlphaSearchOptions& options);
 //! An InputError unless --corner-tolerance is a finite number >= 0 (every command that reads
 //! boundaries checks it before reading them).
 void check_corner_tolerance(double corner_tolerance);

@@ -131,7 +131,7 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
     throw InputError("command line", "--allow-indefinite",
                      std::string("--allow-indefinite applies to --parameter alpha, not ") + to_string(r.parameter));
   s.options.scan_points = r.scan_points;
-  if (!s.options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
+  require_valid_search_options(s.options);
   const solvers::SolverInfo* requested = solver_from_name(r.solver);
   if (r.parameter == Parameter::kWeight) {
     require_weight_search_backend(requested);
@@ -211,7 +211,7 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
                      fmt::format("the non-uniform system of this B-spline boundary is definite for alpha in [-0.25, "
                                  "{}] only (it can be singular above); add --allow-indefinite to search outside",
                                  definite_upper));
-  if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
+  require_valid_search_options(options);
   const solvers::SolverInfo* requested =
       requested_matrix_backend(r, "a B-spline boundary needs a backend that takes an assembled matrix");
   // a Cholesky-type backend wherever the system is definite

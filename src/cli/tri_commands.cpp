@@ -229,7 +229,7 @@ int run_tri_search(const TriSearchArgs& a) {
   options.lower = a.lower.value_or(lower);
   options.upper = a.upper.value_or(upper);
   options.scan_points = a.scan_points;
-  if (!options.is_valid(&why)) throw InputError("command line", "--lower/--upper/--scan", why);
+  require_valid_search_options(options);
   bool picked = false;
   const solvers::SolverInfo& solver = tri_backend(a.solver, picked);
   require_tri_range_backend(solver, picked, options.lower, options.upper);

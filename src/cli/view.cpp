@@ -9,6 +9,7 @@
 #include <fstream>
 #include <memory>
 #include <sstream>
+#include <stdexcept>
 
 #include "coons/config.h"
 #include "coons/io/boundary_curves.h"
@@ -123,8 +124,18 @@ int run_view(const ViewRequest& r) {
   options.samples = r.samples;
   options.lower = r.from;
   options.upper = r.to;
-  std::string why;
-  if (!options.is_valid(&why)) throw InputError("command line", "--alphas/--samples/--from/--to", why);
+  switch (const ViewOptionsProblem problem = options_problem(options); problem.field) {
+    case ViewOptionsField::kNone:
+      break;
+    case ViewOptionsField::kFrames:
+      throw InputError("command line", "--alphas", problem.reason);
+    case ViewOptionsField::kSamples:
+      throw InputError("command line", "--samples", problem.reason);
+    case ViewOptionsField::kInterval:
+      throw InputError("command line", "--from/--to", problem.reason);
+    case ViewOptionsField::kObjectives:
+      throw std::logic_error("view: " + problem.reason);  // the objectives are the page's own
+  }
   ViewPage page;
   page.generator = std::string("coons ") + COONS_VERSION;
   std::string solver_name;
@@ -168,7 +179,7 @@ int run_view(const ViewRequest& r) {
         fmt::format("degree ({}, {}), {} values of α in [{}, {}]{}, solver {}", b.m, b.n, page.sliders[0].frames.size(),
                     r.from, r.to, weight ? ", and the C1 weight w on the ribbons" : "", solver.name);
   }
-  if (!page.is_valid(&why)) throw std::logic_error("view page: " + why);
+  if (std::string why; !page.is_valid(&why)) throw std::logic_error("view page: " + why);
 
   phases.start("write");
   const std::string html = view_page_html(page, three_js);

@@ -241,9 +241,15 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"study " + quoted(kData + "/triangles/dome_half.json") + " --degrees 6 41 --out {OUT}",
        "--degrees: 41 is above 40, the largest degree of a triangular boundary"},
       {"search-alpha " + good + " --objective thin_plate --allow-indefinite --lower -1e308 --upper 1e308",
-       "bounds must lie in [-1e60, 1e60]"},
+       "command line: --lower: must lie in [-1e60, 1e60]"},
       {"search-alpha " + quoted(kData + "/triangles/dome_half.json") + " --objective thin_plate --upper 1e61",
-       "bounds must lie in [-1e60, 1e60]"},
+       "command line: --upper: must lie in [-1e60, 1e60]"},
+      // the option at fault alone, not "--lower/--upper/--scan"
+      {"search-alpha " + good + " --objective thin_plate --scan 2",
+       "command line: --scan: must be in [3, 10001], not 2"},
+      {"search-alpha " + quoted(kData + "/triangles/dome_half.json") +
+           " --objective thin_plate --lower 0.2 --upper 0.1",
+       "command line: --lower/--upper: need lower < upper, not 0.2 and 0.1"},
       {"solve " + good + " --alpha ''", "--alpha: an empty value"},  // was alpha = 0, exit 0
       // strtod reads these as 0 (ERANGE): they solved at alpha = 0 and weight 0, exit 0
       {"solve " + good + " --alpha 1e-400", "--alpha: '1e-400' is below the smallest double and would be read as 0"},
@@ -318,6 +324,11 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},
       {"batch " + good + " --alphas -0.1 -0.1 --out {OUT}", "--alphas"},
       {"batch " + good + " --samples 1 --out {OUT}", "--samples"},
+      // view names the option at fault alone, not "--alphas/--samples/--from/--to"
+      {"view " + good + " --samples 1 --out {OUT}/v.html",
+       "command line: --samples: samples must be in [2, 257], not 1"},
+      {"view " + good + " --alphas 1 --out {OUT}/v.html", "command line: --alphas: frames must be in [2, 2001], not 1"},
+      {"view " + good + " --from 0.1 --to -0.1 --out {OUT}/v.html", "command line: --from/--to: the interval must lie"},
       {"batch " + good + " " + corner + " --out {OUT}", "corner"},
       {"batch " + good + " --solver nonesuch --out {OUT}", "--solver"},
       {"batch " + good + " {IN}/missing.json --out {OUT}", "missing.json"},

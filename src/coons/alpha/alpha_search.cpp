@@ -24,23 +24,39 @@
 
 namespace coons {
 
-bool AlphaSearchOptions::is_valid(std::string* why) const {
-  auto fail = [&](std::string reason) {
-    if (why) *why = std::move(reason);
-    return false;
-  };
-  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper))
-    return fail("bounds must be finite with lower < upper");
-  // (±1e308 passed the test above, and the scan's step (upper − lower)/k overflowed to a NaN α)
-  static_assert(kMaxAlpha == 1e60, "the message below names kMaxAlpha");
-  if (std::abs(lower) > kMaxAlpha || std::abs(upper) > kMaxAlpha) return fail("bounds must lie in [-1e60, 1e60]");
+SearchOptionsProblem options_problem(const AlphaSearchOptions& o) {
+  using F = SearchOptionsField;
+  if (!std::isfinite(o.lower)) return {F::kLower, "must be a finite number"};
+  if (!std::isfinite(o.upper)) return {F::kUpper, "must be a finite number"};
+  // (±1e308 passed the finiteness test, and the scan's step (upper − lower)/k overflowed to a NaN α)
+  static_assert(kMaxAlpha == 1e60, "the messages below name kMaxAlpha");
+  if (std::abs(o.lower) > kMaxAlpha) return {F::kLower, "must lie in [-1e60, 1e60]"};
+  if (std::abs(o.upper) > kMaxAlpha) return {F::kUpper, "must lie in [-1e60, 1e60]"};
+  if (!(o.lower < o.upper)) return {F::kBounds, fmt::format("need lower < upper, not {} and {}", o.lower, o.upper)};
   // a scan is a coarse grid before the refinement: --scan 1e8 ran for minutes and 7 GB
-  if (scan_points < 3 || scan_points > kMaxScanPoints)
-    return fail(fmt::format("scan_points must be in [3, {}]", kMaxScanPoints));
-  if (!(flat_tolerance > 0)) return fail("flat_tolerance must be positive");
-  if (!(parameter_tolerance > 0)) return fail("parameter_tolerance must be positive");
-  if (max_iterations < 1) return fail("max_iterations must be at least 1");
-  return true;
+  if (o.scan_points < 3 || o.scan_points > kMaxScanPoints)
+    return {F::kScanPoints, fmt::format("must be in [3, {}], not {}", kMaxScanPoints, o.scan_points)};
+  if (!(o.flat_tolerance > 0)) return {F::kFlatTolerance, "must be positive"};
+  if (!(o.parameter_tolerance > 0)) return {F::kParameterTolerance, "must be positive"};
+  if (o.max_iterations < 1) return {F::kMaxIterations, "must be at least 1"};
+  return {};
+}
+
+bool AlphaSearchOptions::is_valid(std::string* why) const {
+  const SearchOptionsProblem problem = options_problem(*this);
+  if (problem.field == SearchOptionsField::kNone) return true;
+  if (why) {
+    using F = SearchOptionsField;
+    const char* member = problem.field == F::kLower                ? "lower"
+                         : problem.field == F::kUpper              ? "upper"
+                         : problem.field == F::kBounds             ? "bounds"
+                         : problem.field == F::kScanPoints         ? "scan_points"
+                         : problem.field == F::kFlatTolerance      ? "flat_tolerance"
+                         : problem.field == F::kParameterTolerance ? "parameter_tolerance"
+                                                                   : "max_iterations";
+    *why = std::string(member) + " " + problem.reason;
+  }
+  return false;
 }
 
 const char* to_string(SearchStatus s) {

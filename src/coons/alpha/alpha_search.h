@@ -52,6 +52,27 @@ struct AlphaSearchOptions {
   bool is_valid(std::string* why) const;
 };
 
+//! The member of AlphaSearchOptions at fault, so that a caller can name what set it; kBounds:
+//! lower < upper fails (both are finite and within ±kMaxAlpha).
+enum class SearchOptionsField {
+  kNone,
+  kLower,
+  kUpper,
+  kBounds,
+  kScanPoints,
+  kFlatTolerance,
+  kParameterTolerance,
+  kMaxIterations
+};
+
+struct SearchOptionsProblem {
+  SearchOptionsField field = SearchOptionsField::kNone;
+  std::string reason;  //!< without the member's name: "must be in [3, 10001]"
+};
+
+//! The first rule of AlphaSearchOptions::is_valid that `options` breaks (field kNone: none).
+SearchOptionsProblem options_problem(const AlphaSearchOptions& options);
+
 //! kSuccess: an optimum (parameter) resting only on successful evaluations; kFlat: no optimum,
 //! the objective does not depend on the parameter; kSolverFailed: no evaluation succeeded, or the
 //! one at the refined optimum failed; kNotConverged: Ceres or the refinement did not converge;

@@ -97,23 +97,30 @@ std::vector<ViewCurve> searched_curves(
 
 }  // namespace
 
-bool ViewOptions::is_valid(std::string* why) const {
-  auto fail = [&](const std::string& reason) {
-    if (why) *why = reason;
-    return false;
-  };
-  if (frames < 2 || frames > 2001) return fail(fmt::format("frames must be in [2, 2001], not {}", frames));
-  if (samples < 2 || samples > 257) return fail(fmt::format("samples must be in [2, 257], not {}", samples));
-  if (!(std::isfinite(lower) && std::isfinite(upper) && lower < upper && lower >= -0.25 && upper <= 0.25))
-    return fail("the interval must lie in [-0.25, 0.25] with lower < upper");
+ViewOptionsProblem options_problem(const ViewOptions& o) {
+  using F = ViewOptionsField;
+  if (o.frames < 2 || o.frames > 2001)
+    return {F::kFrames, fmt::format("frames must be in [2, 2001], not {}", o.frames)};
+  if (o.samples < 2 || o.samples > 257)
+    return {F::kSamples, fmt::format("samples must be in [2, 257], not {}", o.samples)};
+  if (!(std::isfinite(o.lower) && std::isfinite(o.upper) && o.lower < o.upper && o.lower >= -0.25 && o.upper <= 0.25))
+    return {F::kInterval, "the interval must lie in [-0.25, 0.25] with lower < upper"};
   // frames closer than slider_values' rounding tolerance merge: [0, 1e-300] in 5 gave one frame
-  const double step = (upper - lower) / (frames - 1), merged = 2e-12 * (1 + std::max(std::abs(lower), std::abs(upper)));
+  const double step = (o.upper - o.lower) / (o.frames - 1),
+               merged = 2e-12 * (1 + std::max(std::abs(o.lower), std::abs(o.upper)));
   if (!(step > merged))
-    return fail(fmt::format("the interval [{}, {}] is too narrow for {} distinct frames (their spacing must exceed {})",
-                            lower, upper, frames, merged));
-  for (const std::string& name : objectives)
-    if (!curve_energy(name)) return fail(fmt::format("no energy curve for '{}'", name));
-  return true;
+    return {F::kInterval,
+            fmt::format("the interval [{}, {}] is too narrow for {} distinct frames (their spacing must exceed {})",
+                        o.lower, o.upper, o.frames, merged)};
+  for (const std::string& name : o.objectives)
+    if (!curve_energy(name)) return {F::kObjectives, fmt::format("no energy curve for '{}'", name)};
+  return {};
+}
+
+bool ViewOptions::is_valid(std::string* why) const {
+  ViewOptionsProblem problem = options_problem(*this);
+  if (why) *why = std::move(problem.reason);
+  return problem.field == ViewOptionsField::kNone;
 }
 
 void sample_view_frame(const ControlNet& net, int samples, ViewFrame& frame) {

@@ -29,6 +29,18 @@ struct ViewOptions {
   bool is_valid(std::string* why) const;
 };
 
+//! The member of ViewOptions at fault (kInterval: lower and upper together), so that a caller can
+//! name what set it.
+enum class ViewOptionsField { kNone, kFrames, kSamples, kInterval, kObjectives };
+
+struct ViewOptionsProblem {
+  ViewOptionsField field = ViewOptionsField::kNone;
+  std::string reason;  //!< with the values at fault
+};
+
+//! The first rule of ViewOptions::is_valid that `options` breaks (field kNone: none).
+ViewOptionsProblem options_problem(const ViewOptions& options);
+
 //! The α slider of a boundary (m, n ≥ 1); `initial` is the α shown first (nearest frame).
 ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& options, const solvers::SolverInfo& solver,
                              double initial);
