@@ -244,7 +244,9 @@ Stencil request_stencil(const ResolvedRequest& r) { return r.stencil ? *r.stenci
 void require_one_ring(const BoundaryFile& input, const std::string& source, const std::string& what) {
   if (is_classical(input)) return;
   const bool rings = input.rings > 1;
-  throw InputError(source, rings ? "rings" : "free",
+  // the field the file gives: a sides-form file has its second ring as "ribbons", and no "rings"
+  const char* field = !rings ? "free" : input.ribbons ? "ribbons" : "rings";
+  throw InputError(source, field,
                    fmt::format("{} works on the one-ring problem of a full rectangle, and this file has {}; solve "
                                "it with `coons solve --alpha A` or `coons batch --alphas ...`",
                                what, rings ? fmt::format("{} data rings", input.rings) : std::string("a free grid")));

@@ -324,6 +324,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},
       {"batch " + good + " --alphas -0.1 -0.1 --out {OUT}", "--alphas"},
       {"batch " + good + " --samples 1 --out {OUT}", "--samples"},
+      // a sides-form file gives its second ring as "ribbons" and has no "rings" field to blame
+      {"sweep " + quoted(kData + "/boundaries/saddle_bump_ribbons.json") + " --out {OUT}",
+       "saddle_bump_ribbons.json: ribbons: coons sweep works on the one-ring problem"},
       // view names the option at fault alone, not "--alphas/--samples/--from/--to"
       {"view " + good + " --samples 1 --out {OUT}/v.html",
        "command line: --samples: samples must be in [2, 257], not 1"},
