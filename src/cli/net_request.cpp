@@ -88,6 +88,12 @@ void resolve_mask(const NetRequest& r, ResolvedRequest& out) {
         throw InputError(
             "command line", name,
             fmt::format("{} chooses the 3x3 mask of --mask alpha; it does not apply to --mask {}", name, r.mask));
+    // (it was accepted and did nothing: the check it relaxes is of alpha outside [-1/4, 1/4])
+    if (given(r.indefinite_option))
+      throw InputError("command line", "--allow-indefinite",
+                       "--allow-indefinite lets Cholesky-type solvers run at an alpha outside [-0.25, 0.25]; it does "
+                       "not apply to --mask " +
+                           r.mask);
   }
   if (given(r.weight_option) && out.mask_kind != MaskKind::kC1Family)
     throw InputError("command line", "--weight",

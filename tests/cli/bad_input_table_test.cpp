@@ -324,6 +324,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},
       {"batch " + good + " --alphas -0.1 -0.1 --out {OUT}", "--alphas"},
       {"batch " + good + " --samples 1 --out {OUT}", "--samples"},
+      // an option nothing reads: --allow-indefinite relaxes a check of alpha only
+      {"solve " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") + " --mask c1-coons --allow-indefinite",
+       "command line: --allow-indefinite: --allow-indefinite lets Cholesky-type solvers run"},
+      {"export " + good + " --mask biharmonic --allow-indefinite --out {OUT}", "--allow-indefinite"},
       // a sides-form file gives its second ring as "ribbons" and has no "rings" field to blame
       {"sweep " + quoted(kData + "/boundaries/saddle_bump_ribbons.json") + " --out {OUT}",
        "saddle_bump_ribbons.json: ribbons: coons sweep works on the one-ring problem"},
