@@ -104,3 +104,27 @@ TEST_CASE("coons view: on a triangle --from/--to and an --alpha outside the c ra
     CHECK_FALSE(fs::exists(page));
   }
 }
+
+TEST_CASE("coons view: a triangle without interior points has flat optima, as search-alpha says", "[cli][view]") {
+  // degree 1 and 2: no interior point, so no energy depends on c. The page said not_applicable
+  // where search-alpha says flat.
+  const TempDir dir;
+  const std::string degree1 =
+      dir.write("d1.json", R"({"type": "triangle", "sides": [[[0, 0, 0], [1, 0, 0]], [[1, 0, 0], [0, 1, 0]],
+                                                             [[0, 1, 0], [0, 0, 0]]]})");
+  const std::string degree2 =
+      dir.write("d2.json", R"({"type": "triangle", "sides": [[[0, 0, 0], [0.5, 0, 0.2], [1, 0, 0]],
+                    [[1, 0, 0], [0.5, 0.5, 0.3], [0, 1, 0]], [[0, 1, 0], [0, 0.5, 0.1], [0, 0, 0]]]})");
+  for (const std::string& file : {degree1, degree2}) {
+    const CommandResult r = run_coons("view " + quoted(file) + " --out " + quoted(dir.file("v.html")) + " --force");
+    INFO(file << "\n" << r.err);
+    REQUIRE(r.status == 0);
+    const nlohmann::json optima = nlohmann::json::parse(r.out)["optima"];
+    for (const char* name : {"thin_plate", "e3", "dirichlet", "twist"}) {
+      CHECK(optima[name] == "flat");
+      const CommandResult s = run_coons("search-alpha " + quoted(file) + " --objective " + name);
+      REQUIRE(s.status == 0);
+      CHECK(nlohmann::json::parse(s.out)["status"] == "flat");
+    }
+  }
+}

@@ -245,7 +245,9 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
   std::vector<ViewCurve> curves = searched_curves(
       {"thin_plate", "e3", "dirichlet", "twist"}, [&](const std::string& name) -> std::optional<AlphaSearchSummary> {
         const std::optional<TriObjective> objective = parse_tri_objective(name, nullptr);
-        if (!objective || frame.n < 3) return std::nullopt;
+        if (!objective) return std::nullopt;
+        // (below degree 3 there is no interior point: the search says flat, as search-alpha does;
+        // the page said not_applicable)
         return search_tri_c(frame, *objective, solver, search);
       });
   const std::vector<double> values =
