@@ -158,6 +158,21 @@ std::string metrics_table(const std::vector<Row>& rows) {
   return table;
 }
 
+// A run's files under `stem`: its report, and its surface and net OBJ files unless `failure`;
+// a failure removes an earlier run's nets (they do not stand beside it) and says why.
+void write_run(OutputSet& out, const std::string& stem, const nlohmann::json& report, const ControlNet& net,
+               int samples, const std::string& file, const solvers::SolveSummary* failure) {
+  out.write(stem + ".json", [&](std::ostream& o) { o << dump(report, 2) << '\n'; });
+  if (!failure) {
+    out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, net, samples); });
+    out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, net); });
+  } else {
+    out.remove_stale(stem + ".surface.obj");
+    out.remove_stale(stem + ".net.obj");
+    print_solver_failure(file, *failure);
+  }
+}
+
 // One stencil solve of a boundary's whole problem (ribbons, rings, free grid), as `coons solve`
 // gives it for `request`: a --mask run (tag from the mask), or one α of a file that is not a
 // one-ring rectangle (tag alpha±A).
@@ -184,16 +199,8 @@ void run_stencil(const BatchRequest& b, const NetRequest& request, const Boundar
   rows.push_back(row);
   const nlohmann::json report = stencil_report(input, r, run, std::nullopt);
   phases.start("write");
-  const std::string stem = fmt::format("{}/{}", folder, tag);
-  out.write(stem + ".json", [&](std::ostream& o) { o << dump(report, 2) << '\n'; });
-  if (ok) {
-    out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, run.result.net, b.samples); });
-    out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, run.result.net); });
-  } else {
-    out.remove_stale(stem + ".surface.obj");  // an earlier run's nets do not stand beside this failure
-    out.remove_stale(stem + ".net.obj");
-    print_solver_failure(file, run.result.summary);
-  }
+  write_run(out, fmt::format("{}/{}", folder, tag), report, run.result.net, b.samples, file,
+            ok ? nullptr : &run.result.summary);
 }
 
 // The nets of a one-ring boundary, by file stem: the closed-form Coons net, then the mask solve
@@ -299,16 +306,8 @@ void run_classical(const BatchRequest& b, const BoundaryFile& input, const std::
     rows.push_back(row);
     const nlohmann::json report = solve_report(boundary, r, outcome, std::nullopt);
     phases.start("write");
-    const std::string stem = fmt::format("{}/{}", folder, tag);
-    out.write(stem + ".json", [&](std::ostream& o) { o << dump(report, 2) << '\n'; });
-    if (ok) {
-      out.write(stem + ".surface.obj", [&](std::ostream& o) { write_surface_obj(o, outcome.net, b.samples); });
-      out.write(stem + ".net.obj", [&](std::ostream& o) { write_net_obj(o, outcome.net); });
-    } else {
-      out.remove_stale(stem + ".surface.obj");
-      out.remove_stale(stem + ".net.obj");
-      print_solver_failure(file, *outcome.summary);
-    }
+    write_run(out, fmt::format("{}/{}", folder, tag), report, outcome.net, b.samples, file,
+              ok ? nullptr : &*outcome.summary);
   }
 }
 
