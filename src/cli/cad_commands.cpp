@@ -127,7 +127,8 @@ void register_import_step(CLI::App& app, Registry& registry) {
   auto* face = cmd->add_option("--face", q->face, "the outer wire of face K (0-based, OpenCASCADE's order)");
   auto* edges = cmd->add_option("--edges", q->edges, "four edges a,b,c,d (0-based), any order and orientation")
                     ->delimiter(',')
-                    ->expected(4);
+                    ->expected(4)
+                    ->check(int_item());
   face->excludes(edges);
   cmd->add_option("--out", q->out, "the boundary file to write (docs/formats.md)")->required();
   cmd->add_option("--name", q->name, "the boundary's name (default: the file's stem and the face)");

@@ -11,6 +11,7 @@
 #include <cstring>
 #include <filesystem>
 #include <iostream>
+#include <limits>
 #include <map>
 
 #include "coons/io/input_error.h"
@@ -183,6 +184,18 @@ std::string objective_text(const std::string& given) {
 InputError samples_without_target(const std::string& objective) {
   return {"command line", "--samples",
           "--samples sets the target's sampling but --objective '" + objective + "' has no target term"};
+}
+
+const CLI::Validator& int_item() {
+  static const CLI::Validator check(
+      [](const std::string& value) {
+        int parsed = 0;
+        if (CLI::detail::lexical_cast(value, parsed)) return std::string();
+        return fmt::format("'{}' is not an integer from {} to {}", value, std::numeric_limits<int>::min(),
+                           std::numeric_limits<int>::max());
+      },
+      "", "integer");
+  return check;
 }
 
 const CLI::Validator& fold_negative_zero() {

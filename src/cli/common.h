@@ -46,6 +46,11 @@ void add_memory_option(CLI::App& cmd, GlobalOptions& g);
 //! in reports, file names ("c1-family-w0") and duplicate checks.
 const CLI::Validator& fold_negative_zero();
 
+//! A CLI11 check for each value of an integer-list option (--degrees, --continuum-degrees, --edges,
+//! --degree): a value that is no int names that value alone, "'9999999999' is not an integer from
+//! -2147483648 to 2147483647", where CLI11 quoted the whole list ("'8,12,16,9999999999' is …").
+const CLI::Validator& int_item();
+
 //! A CLI11 transform for an option naming one of `names` (--method, --parameter): the name becomes
 //! the enum, anything else (another word, or the enum's number) is "'foo' is not one of a, b, c".
 //! (CLI::CheckedTransformer said "Check foo value in {alpha->0,coons->1,...} OR {0,1,2} FAILED"

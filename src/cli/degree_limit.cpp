@@ -114,8 +114,9 @@ void register_degree_limit(CLI::App& app, Registry& registry) {
                                  "with its error and rate, the candidate fits, the continuum optimum (Ritz)");
   cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them")->required();
   cmd->add_option("--objective", r->objectives, "objectives (thin_plate, e3, sums; no target)")->capture_default_str();
-  cmd->add_option("--degrees", r->degrees, "degrees to search at (increasing; default 3 ... 64)");
+  cmd->add_option("--degrees", r->degrees, "degrees to search at (increasing; default 3 ... 64)")->check(int_item());
   cmd->add_option("--continuum-degrees", r->continuum_degrees, "degrees N of the Ritz spaces (increasing, <= 80)")
+      ->check(int_item())
       ->capture_default_str();
   cmd->add_option("--out", r->out_dir, "report folder: report.md, results.json, figures/ (default: JSON on stdout)");
   cmd->add_option("--corner-tolerance", r->corner_tolerance,

@@ -87,7 +87,7 @@ void register_refit(CLI::App& app, Registry& registry) {
                                  "the boundary at another degree: refitted from its analytic \"curves\", "
                                  "or elevated exactly; prints (or writes) a boundary file");
   cmd->add_option("BOUNDARY", r->boundary, "boundary JSON file (docs/formats.md)")->required();
-  cmd->add_option("--degree", r->degree, "the new degree M N")->required()->expected(2);
+  cmd->add_option("--degree", r->degree, "the new degree M N")->required()->expected(2)->check(int_item());
   cmd->add_option("--out", r->out, "write the boundary file here (default: standard output)");
   cmd->add_flag("--force", r->global.force, "overwrite --out if it exists");
   cmd->add_option("--corner-tolerance", r->corner_tolerance,

@@ -285,6 +285,7 @@ void register_study(CLI::App& app, Registry& registry) {
   cmd->add_option("BOUNDARY", r->inputs, "boundary files or folders of them (or --family)");
   r->given.degrees = cmd->add_option("--degrees", r->degrees,
                                      "degrees to study each shape at (increasing; with --family: 3 5 8 12 20)")
+                         ->check(int_item())
                          ->capture_default_str();
   cmd->add_option("--family", r->family,
                   "random-smooth, or perturbed:NAME (a bundled shape or a boundary file plus random smooth "

@@ -324,6 +324,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},
       {"batch " + good + " --alphas -0.1 -0.1 --out {OUT}", "--alphas"},
       {"batch " + good + " --samples 1 --out {OUT}", "--samples"},
+      // a bad value of an integer list is named alone (CLI11 quoted the whole list as one value)
+      {"degree-limit " + good + " --degrees 8 12 16 9999999999",
+       "command line: --degrees: '9999999999' is not an integer from -2147483648 to 2147483647"},
+      {"study " + good + " --degrees 3 x4 --out {OUT}", "command line: --degrees: 'x4' is not an integer"},
       // an option nothing reads: --allow-indefinite relaxes a check of alpha only
       {"solve " + quoted(kData + "/boundaries/sphere_cap_ribbons.json") + " --mask c1-coons --allow-indefinite",
        "command line: --allow-indefinite: --allow-indefinite lets Cholesky-type solvers run"},
