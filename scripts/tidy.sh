@@ -14,11 +14,16 @@
 #                                was checked clean (a whole run takes 25-45 min on 2 cores; see --record).
 #   scripts/tidy.sh --record     every file (refused at once if the working tree has changes); if all
 #                                are clean, write HEAD to .ci/tidy-base (commit that file afterwards).
-#   scripts/tidy.sh --record-since REF
-#                                the files of --since REF, REF a commit whose tree is known clean (the
-#                                one in .ci/tidy-base); if they are clean, so is HEAD's whole tree (the
-#                                other translation units are unchanged since REF): write HEAD as --record
-#                                does, in the minutes of a --since run instead of a whole one.
+#   scripts/tidy.sh --record-since
+#                                the files of --since BASE, BASE the commit in .ci/tidy-base (known
+#                                clean); if they are clean, so is HEAD's whole tree: write HEAD as
+#                                --record does, in the minutes of a --since run instead of a whole one.
+#                                It builds first, so that the compile database and the depfiles that
+#                                select the files are HEAD's (a stale depfile could miss a new include).
+# Compile flags: --record and --record-since also write to .ci/tidy-base a fingerprint of every
+# distinct compile command (the command without its source and object, paths relative to the
+# clone); --since then checks every file whose command has no fingerprint there too, since flags and
+# definitions (a CMakeLists.txt change) alter a translation unit without changing a source.
 # Environment: COONS_BUILD_DIR (default build), TIDY_JOBS (default 2).
 set -euo pipefail
 cd "$(dirname "$0")/.."
@@ -38,14 +43,16 @@ fi
 
 since=""
 record=0
+record_since=0
 if [[ "${1:-}" == "--since" ]]; then
   [[ $# -eq 2 ]] || { echo "error: tidy.sh: --since takes one commit" >&2; exit 2; }
   since=$2
   set --
 elif [[ "${1:-}" == "--record-since" ]]; then
-  [[ $# -eq 2 ]] || { echo "error: tidy.sh: --record-since takes one commit" >&2; exit 2; }
-  since=$2
+  [[ $# -eq 1 ]] || { echo "error: tidy.sh: --record-since takes no argument (its base is .ci/tidy-base)" >&2; exit 2; }
+  since=$(grep -v -e '^#' -e '^flags ' .ci/tidy-base | head -1 | tr -d '[:space:]')
   record=1
+  record_since=1
   set --
 elif [[ "${1:-}" == "--record" ]]; then
   [[ $# -eq 1 ]] || { echo "error: tidy.sh: --record takes no files" >&2; exit 2; }
@@ -57,6 +64,28 @@ if ((record)) && [[ -n "$(git status --porcelain --untracked-files=no)" ]]; then
   echo "error: tidy.sh: --record needs a working tree without changes (commit them first)" >&2
   exit 2
 fi
+if ((record_since)); then
+  cmake --build "$build" -j"$jobs" >/dev/null || { echo "error: tidy.sh: the build failed" >&2; exit 2; }
+fi
+
+# The fingerprint of a compile command: sha1 of its words without the source, the object and the
+# clone's paths (so that another clone, such as CI's, has the same fingerprints).
+fingerprint_py='
+import hashlib, shlex
+def fingerprint(entry, root, build):
+    words = shlex.split(entry["command"])
+    out, skip = [], False
+    for w in words:
+        if skip:
+            skip = False
+            continue
+        if w in ("-o", "-c"):
+            skip = True
+            continue
+        out.append(w.replace(build, "<build>").replace(root, "<root>"))
+    return hashlib.sha1(" ".join(out).encode()).hexdigest()
+'
+export fingerprint_py
 
 if (($#)); then
   files=()
@@ -64,9 +93,10 @@ if (($#)); then
 else
   # The project's own .cpp files in the compile database; with --since only those whose translation
   # unit depends on a file changed since that commit.
-  picked=$(python3 - "$build/compile_commands.json" "$root" "$since" <<'PY'
+  picked=$(python3 - "$build/compile_commands.json" "$root" "$since" "$(realpath "$build")" <<'PY'
 import json, os, shlex, subprocess, sys
-db, root, since = sys.argv[1], sys.argv[2], sys.argv[3]
+db, root, since, build_dir = sys.argv[1], sys.argv[2], sys.argv[3], sys.argv[4]
+exec(os.environ["fingerprint_py"])
 own_dirs = ("src/", "solvers/", "tests/", "experiments/benchmarks/")
 entries, seen = [], set()
 for entry in json.load(open(db)):
@@ -101,7 +131,17 @@ def depends_on_changed(entry):
     deps.add(os.path.realpath(entry["file"]))
     return not deps.isdisjoint(changed)
 
-picked = [e["file"] for e in entries if changed is None or depends_on_changed(e)]
+# compile commands the base was checked with (.ci/tidy-base: lines "flags SHA1"); none recorded: not compared
+known = set()
+if since and os.path.exists(os.path.join(root, ".ci/tidy-base")):
+    known = {l.split()[1] for l in open(os.path.join(root, ".ci/tidy-base")) if l.startswith("flags ")}
+if changed is not None and not known:
+    print("tidy: .ci/tidy-base records no compile flags: changes of flags alone are not seen", file=sys.stderr)
+
+def flags_changed(entry):
+    return bool(known) and fingerprint(entry, root, build_dir) not in known
+
+picked = [e["file"] for e in entries if changed is None or depends_on_changed(e) or flags_changed(e)]
 if since:
     print(f"tidy: {len(picked)} of {len(entries)} files depend on what changed since {since[:12]}",
           file=sys.stderr)
@@ -143,8 +183,19 @@ fi
 if ((${#found[@]} == 0)); then
   echo "tidy: ${#files[@]} files clean (${seconds} s)" >&2
   if ((record)); then
-    { echo "# The last commit whose whole tree scripts/tidy.sh checked clean (--record, or --record-since a clean one)."
-      git rev-parse HEAD; } >.ci/tidy-base
+    { echo "# The last commit whose whole tree scripts/tidy.sh checked clean (--record, or --record-since a clean one),"
+      echo "# then the fingerprints of the compile commands it was checked with (tidy.sh, fingerprint_py)."
+      git rev-parse HEAD
+      python3 - "$build/compile_commands.json" "$root" "$(realpath "$build")" <<'PY'
+import json, os, sys
+db, root, build_dir = sys.argv[1], sys.argv[2], sys.argv[3]
+exec(os.environ["fingerprint_py"])
+own_dirs = ("src/", "solvers/", "tests/", "experiments/benchmarks/")
+for f in sorted({fingerprint(e, root, build_dir) for e in json.load(open(db))
+                 if e["file"].endswith(".cpp") and any(e["file"].startswith(root + "/" + d) for d in own_dirs)}):
+    print("flags", f)
+PY
+    } >.ci/tidy-base
     echo "tidy: recorded $(git rev-parse --short HEAD) in .ci/tidy-base" >&2
   fi
   exit 0
