@@ -40,6 +40,8 @@ void require_valid_import_options(const cad::StepImportOptions& options) {
       throw InputError("command line", "--face", problem.reason);
     case F::kEdges:
       throw InputError("command line", "--edges", problem.reason);
+    case F::kFaceOrEdges:
+      throw InputError("command line", "--face/--edges", "give exactly one of --face K and --edges a,b,c,d");
     case F::kGapTolerance:
       throw InputError("command line", "--gap-tolerance", problem.reason);
   }

@@ -189,8 +189,8 @@ InputError samples_without_target(const std::string& objective) {
 const CLI::Validator& int_item() {
   static const CLI::Validator check(
       [](const std::string& value) {
-        int parsed = 0;
-        if (CLI::detail::lexical_cast(value, parsed)) return std::string();
+        int parsed = 0;  // (an empty value is refused by refuse_empty_values, registry.cpp)
+        if (value.empty() || CLI::detail::lexical_cast(value, parsed)) return std::string();
         return fmt::format("'{}' is not an integer from {} to {}", value, std::numeric_limits<int>::min(),
                            std::numeric_limits<int>::max());
       },

@@ -111,6 +111,12 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
       s.mu_scale = MuScale{m, n, lower, upper};
       s.options.lower = s.mu_scale->s_lower();
       s.options.upper = s.mu_scale->s_upper();
+      // (the check of the search's options would name the compressed values)
+      if (!(s.options.lower < s.options.upper))
+        throw InputError("command line", "--lower/--upper",
+                         fmt::format("mu bounds {} and {} are too close together for the search's scale "
+                                     "mu/(mu + mn) to tell apart",
+                                     lower, upper));
       break;
     }
     case Parameter::kAlphaGamma:

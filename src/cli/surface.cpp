@@ -81,7 +81,7 @@ int run_surface(const SurfaceRequest& r) {
   const ControlNet& made_net = fitted_net_of_input.net;
   check_memory(r.global, net_metrics_bytes(made_net.m, made_net.n),
                fmt::format("the exact energies of its {} by {} Bezier net", made_net.m + 1, made_net.n + 1), r.spec,
-               net_degree_field(input.surface));
+               net_degree_field(input.surface, fitted_net_of_input));
   SurfaceReportOptions report_options{r.samples, r.fit_degree, r.corner_tolerance, r.derivative_tolerance, r.reference};
   SurfaceReport made = surface_report(input, std::move(fitted_net_of_input), reference, report_options);
   // The reader checked 65 samples of each curve; a pole between them shows in the fits.

@@ -150,6 +150,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
                                 [[0, 1, 0], [0, 0, 0]]], "knots_u": [0, 0, 1, 1]})");
   inputs.write("tri_rings.json", R"({"type": "triangle", "sides": [[[0, 0, 0], [1, 0, 0]], [[1, 0, 0], [0, 1, 0]],
                                 [[0, 1, 0], [0, 0, 0]]], "rings": 2})");
+  // a triangle's solve report read back: "net" rows and no "sides"
+  inputs.write("tri_report.json", R"({"type": "triangle", "degree": 1, "net": [[[0, 0, 0], [1, 0, 0]], [[0, 1, 0]]]})");
   inputs.write("tiny.json", R"({"type": "bilinear", "corners": [[0, 0, 0], [1e-170, 0, 0], [0, 1e-170, 0],
                                 [1e-170, 1e-170, 1e-170]]})");
   // a ruled surface between a line and a Bezier curve of degree 3000: its 3001 by 2 net's energies
@@ -324,6 +326,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},
       {"batch " + good + " --alphas -0.1 -0.1 --out {OUT}", "--alphas"},
       {"batch " + good + " --samples 1 --out {OUT}", "--samples"},
+      {"solve {IN}/tri_report.json", "tri_report.json: net: a triangular net (a solve report?) is not read back"},
+      // mu bounds the search's compressed scale cannot tell apart: the message gave its values, 0.999999998875 twice
+      {"search-alpha " + good + " --parameter mu --objective thin_plate --lower 8e9 --upper 8.0000000000001e9",
+       "command line: --lower/--upper: mu bounds 8000000000 and 8000000000.0001 are too close together"},
       // a bad value of an integer list is named alone (CLI11 quoted the whole list as one value)
       {"degree-limit " + good + " --degrees 8 12 16 9999999999",
        "command line: --degrees: '9999999999' is not an integer from -2147483648 to 2147483647"},
@@ -336,9 +342,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"sweep " + quoted(kData + "/boundaries/saddle_bump_ribbons.json") + " --out {OUT}",
        "saddle_bump_ribbons.json: ribbons: coons sweep works on the one-ring problem"},
       // view names the option at fault alone, not "--alphas/--samples/--from/--to"
-      {"view " + good + " --samples 1 --out {OUT}/v.html",
-       "command line: --samples: samples must be in [2, 257], not 1"},
-      {"view " + good + " --alphas 1 --out {OUT}/v.html", "command line: --alphas: frames must be in [2, 2001], not 1"},
+      {"view " + good + " --samples 1 --out {OUT}/v.html", "command line: --samples: must be in [2, 257], not 1"},
+      {"view " + good + " --alphas 1 --out {OUT}/v.html",
+       "command line: --alphas: the number of frames must be in [2, 2001], not 1"},
       {"view " + good + " --from 0.1 --to -0.1 --out {OUT}/v.html", "command line: --from/--to: the interval must lie"},
       {"batch " + good + " " + corner + " --out {OUT}", "corner"},
       {"batch " + good + " --solver nonesuch --out {OUT}", "--solver"},
@@ -514,7 +520,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"import-step {IN}/missing.step --face 0 --edges 0,1,2,3 --out {OUT}/b.json",
        COONS_HAVE_OCCT ? "command line: --face excludes --edges" : "OpenCASCADE"},
       {"import-step {IN}/missing.step --out {OUT}/b.json",
-       COONS_HAVE_OCCT ? "command line: --face: give exactly one of a face and four edges" : "OpenCASCADE"},
+       COONS_HAVE_OCCT ? "command line: --face/--edges: give exactly one of --face K and --edges a,b,c,d"
+                       : "OpenCASCADE"},
       {"import-step {IN}/missing.step --face 0 --gap-tolerance -1 --out {OUT}/b.json",
        COONS_HAVE_OCCT ? "command line: --gap-tolerance: must be finite and >= 0" : "OpenCASCADE"},
       // no command, unknown command

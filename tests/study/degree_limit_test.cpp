@@ -3,7 +3,10 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <nlohmann/json.hpp>
 #include <random>
+
+#include "coons/study/degree_limit_study.h"
 
 using namespace coons;
 
@@ -197,6 +200,24 @@ TEST_CASE("limit_claimed: a limit is claimed only with an error estimate within 
   CHECK(!three.limit_error);
   CHECK(!limit_claimed(three));
   CHECK(three.message.find("unknown") != std::string::npos);
+}
+
+TEST_CASE("degree_limit_json: an unclaimed limit with a known error says why", "[study]") {
+  // μ = 1 + 5 n^-0.3 converges slowly: the last triple extrapolates to 1, the fit μ∞ + a/n + b/n²
+  // far from it, so the error estimate is known (4 points at n >= 8 spanning a factor 2) but large,
+  // and the fit itself has nothing to say
+  DegreeLimitEntry e;
+  std::vector<std::pair<int, double>> points;
+  for (const int n : {8, 12, 16, 24, 32, 48, 64}) points.emplace_back(n, 1 + 5 * std::pow(n, -0.3));
+  e.limit = fit_degree_limit(points);
+  if (e.limit.status == DegreeLimitStatus::kSuccess && e.limit.limit_error && !limit_claimed(e.limit)) {
+    const nlohmann::json j = degree_limit_json(e);
+    CHECK(j["limit_claimed"] == false);
+    REQUIRE(j["limit_message"].is_string());
+    CHECK(j["limit_message"].get<std::string>().find("above 5 %") != std::string::npos);
+  } else {
+    FAIL("the fixture did not give an unclaimed limit with an error: status " << to_string(e.limit.status));
+  }
 }
 
 TEST_CASE("fit_degree_limit: too few points or a tail that turns give no limit", "[study]") {

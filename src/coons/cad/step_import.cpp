@@ -44,8 +44,7 @@ StepImportOptionsProblem options_problem(const StepImportOptions& options) {
   using F = StepImportOptionsField;
   const std::vector<int>& edges = options.edges;
   if (options.face < -1) return {F::kFace, "must be >= 0 (faces count from 0)"};  // (−1: not given)
-  if ((options.face >= 0) == !edges.empty())
-    return {options.face >= 0 ? F::kEdges : F::kFace, "give exactly one of a face and four edges"};
+  if ((options.face >= 0) == !edges.empty()) return {F::kFaceOrEdges, "give exactly one of a face and four edges"};
   if (!edges.empty()) {
     if (edges.size() != 4) return {F::kEdges, fmt::format("needs 4 edge indices ({} given)", edges.size())};
     if (std::set<int>(edges.begin(), edges.end()).size() != 4) return {F::kEdges, "the 4 indices must differ"};
@@ -58,9 +57,16 @@ StepImportOptionsProblem options_problem(const StepImportOptions& options) {
 }
 
 bool StepImportOptions::is_valid(std::string* why) const {
-  StepImportOptionsProblem problem = options_problem(*this);
-  if (why) *why = std::move(problem.reason);
-  return problem.field == StepImportOptionsField::kNone;
+  using F = StepImportOptionsField;
+  const StepImportOptionsProblem problem = options_problem(*this);
+  if (why) {
+    const char* member = problem.field == F::kFace           ? "face: "
+                         : problem.field == F::kEdges        ? "edges: "
+                         : problem.field == F::kGapTolerance ? "gap_tolerance: "
+                                                             : "";
+    *why = member + problem.reason;
+  }
+  return problem.field == F::kNone;
 }
 
 bool StepImport::is_bezier() const {

@@ -26,8 +26,9 @@ struct StepImportOptions {
   [[nodiscard]] bool is_valid(std::string* why) const;
 };
 
-//! The member of StepImportOptions at fault, so that a caller can name what set it.
-enum class StepImportOptionsField { kNone, kFace, kEdges, kGapTolerance };
+//! The member of StepImportOptions at fault, so that a caller can name what set it; kFaceOrEdges:
+//! both or neither of face and edges are given.
+enum class StepImportOptionsField { kNone, kFace, kEdges, kFaceOrEdges, kGapTolerance };
 
 struct StepImportOptionsProblem {
   StepImportOptionsField field = StepImportOptionsField::kNone;

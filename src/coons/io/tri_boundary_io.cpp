@@ -54,6 +54,9 @@ tri::TriBoundary parse_tri_boundary(const json& doc, const std::string& source, 
   }
   // The fields of the rectangular forms mean something there (a B-spline's knots, a whole net, a
   // second data ring): here they were ignored, and a triangle with knots solved as a Bézier one.
+  // A triangle's solve report has "net" (its rows) and no "sides": it is not read back.
+  if (doc.contains("net") && !doc.contains("sides"))
+    fail("net", "a triangular net (a solve report?) is not read back; give the boundary file with \"sides\"");
   for (const char* field : {"knots_u", "knots_v", "degree_spline", "bspline", "net", "rings", "free", "ribbons",
                             "bottom", "top", "left", "right", "curves"})
     if (doc.contains(field))

@@ -173,6 +173,20 @@ ContinuumSummary continuum_summary(const DegreeLimitEntry& entry) {
   return s;
 }
 
+namespace {
+
+// Why the limit is not claimed, or the fit's own note: a limit whose error estimate exceeds the
+// claim's threshold has no message of the fit's.
+json limit_message(const DegreeLimitResult& r) {
+  if (!r.message.empty()) return r.message;
+  if (r.status == DegreeLimitStatus::kSuccess && r.limit && r.limit_error && !limit_claimed(r))
+    return fmt::format("the error estimate {:.3g} is above {:g} % of the limit {:.6g}", *r.limit_error,
+                       100 * kLimitClaimError, *r.limit);
+  return nullptr;
+}
+
+}  // namespace
+
 json degree_limit_json(const DegreeLimitEntry& e) {
   json degrees = json::array(), alpha = json::array(), mu = json::array(), kind = json::array(),
        exact_mu = json::array(), galerkin = json::array(), deviation = json::array();
@@ -220,7 +234,7 @@ json degree_limit_json(const DegreeLimitEntry& e) {
               {"max_deviation", deviation},
               {"limit_status", to_string(e.limit.status)},
               {"limit_claimed", limit_claimed(e.limit)},
-              {"limit_message", e.limit.message.empty() ? json(nullptr) : json(e.limit.message)},
+              {"limit_message", limit_message(e.limit)},
               {"mu_limit", optional_number(e.limit.limit)},
               {"mu_limit_error", optional_number(e.limit.limit_error)},
               {"rate", optional_number(e.limit.rate)},

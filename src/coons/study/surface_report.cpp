@@ -65,13 +65,15 @@ SurfaceFile read_surface_reference(const std::string& path, const SurfaceReadOpt
   return parse_surface(doc, path, options);
 }
 
-std::string net_degree_field(const Surface& s) {
+std::string net_degree_field(const Surface& s, const FittedNet& fitted) {
   if (s.type() == SurfaceType::kBezier) return "net";
-  std::string field;
+  std::string field = "type";
   int degree = -1;
   for (const auto& [name, curve] : s.curves()) {
-    const int d = curve->bezier() ? curve->bezier()->degree() : 0;
-    if (field.empty() || d > degree) {
+    int d = curve->bezier() ? curve->bezier()->degree() : 0;
+    for (const CurveFitReport& fit : fitted.fits)
+      if (fit.curve == name) d = fit.degree;
+    if (d > degree) {
       field = name;
       degree = d;
     }

@@ -37,9 +37,10 @@ struct SurfaceReport {
 SurfaceReport surface_report(const SurfaceFile& input, FittedNet fitted, const std::optional<SurfaceFile>& reference,
                              const SurfaceReportOptions& options);
 
-//! The field of `s` that sets the degree of its net: "net" for a Bézier surface, else the Bézier
-//! curve of the largest degree (the first such), else the first curve; "" when it has none.
-std::string net_degree_field(const Surface& s);
+//! The field of `s` that sets the degree of its net `fitted` (fitted_net(s, …)): "net" for a
+//! Bézier surface, else the curve of the largest degree, a Bézier curve's own or a fit's (the first
+//! such), else "type" (a surface given by corners and vectors: its type fixes the degree).
+std::string net_degree_field(const Surface& s, const FittedNet& fitted);
 
 //! A reference: a surface description, or any file holding "net" (a boundary file, a solve report)
 //! read as a Bézier net. A B-spline net (knots_u, knots_v, degree_spline or a "bspline" block) is

@@ -100,9 +100,8 @@ std::vector<ViewCurve> searched_curves(
 ViewOptionsProblem options_problem(const ViewOptions& o) {
   using F = ViewOptionsField;
   if (o.frames < 2 || o.frames > 2001)
-    return {F::kFrames, fmt::format("frames must be in [2, 2001], not {}", o.frames)};
-  if (o.samples < 2 || o.samples > 257)
-    return {F::kSamples, fmt::format("samples must be in [2, 257], not {}", o.samples)};
+    return {F::kFrames, fmt::format("the number of frames must be in [2, 2001], not {}", o.frames)};
+  if (o.samples < 2 || o.samples > 257) return {F::kSamples, fmt::format("must be in [2, 257], not {}", o.samples)};
   if (!(std::isfinite(o.lower) && std::isfinite(o.upper) && o.lower < o.upper && o.lower >= -0.25 && o.upper <= 0.25))
     return {F::kInterval, "the interval must lie in [-0.25, 0.25] with lower < upper"};
   // frames closer than slider_values' rounding tolerance merge: [0, 1e-300] in 5 gave one frame
