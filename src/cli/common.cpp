@@ -253,9 +253,7 @@ void require_valid_search_options(const AlphaSearchOptions& options) {
     case F::kMaxIterations:
       break;  // no option sets them
   }
-  std::string why;
-  (void)options.is_valid(&why);
-  throw InputError("command line", "search options", why);
+  throw InputError("command line", "search options", std::string(to_string(problem.field)) + " " + problem.reason);
 }
 
 InputError samples_without_sweep_target() {

@@ -42,20 +42,32 @@ SearchOptionsProblem options_problem(const AlphaSearchOptions& o) {
   return {};
 }
 
+const char* to_string(SearchOptionsField field) {
+  switch (field) {
+    case SearchOptionsField::kNone:
+      return "";
+    case SearchOptionsField::kLower:
+      return "lower";
+    case SearchOptionsField::kUpper:
+      return "upper";
+    case SearchOptionsField::kBounds:
+      return "bounds";
+    case SearchOptionsField::kScanPoints:
+      return "scan_points";
+    case SearchOptionsField::kFlatTolerance:
+      return "flat_tolerance";
+    case SearchOptionsField::kParameterTolerance:
+      return "parameter_tolerance";
+    case SearchOptionsField::kMaxIterations:
+      return "max_iterations";
+  }
+  return "unknown";
+}
+
 bool AlphaSearchOptions::is_valid(std::string* why) const {
   const SearchOptionsProblem problem = options_problem(*this);
   if (problem.field == SearchOptionsField::kNone) return true;
-  if (why) {
-    using F = SearchOptionsField;
-    const char* member = problem.field == F::kLower                ? "lower"
-                         : problem.field == F::kUpper              ? "upper"
-                         : problem.field == F::kBounds             ? "bounds"
-                         : problem.field == F::kScanPoints         ? "scan_points"
-                         : problem.field == F::kFlatTolerance      ? "flat_tolerance"
-                         : problem.field == F::kParameterTolerance ? "parameter_tolerance"
-                                                                   : "max_iterations";
-    *why = std::string(member) + " " + problem.reason;
-  }
+  if (why) *why = std::string(to_string(problem.field)) + " " + problem.reason;
   return false;
 }
 

@@ -72,6 +72,8 @@ struct SearchOptionsProblem {
 
 //! The first rule of AlphaSearchOptions::is_valid that `options` breaks (field kNone: none).
 SearchOptionsProblem options_problem(const AlphaSearchOptions& options);
+//! The member's name: "lower", "upper", "bounds", "scan_points", … ("" for kNone).
+const char* to_string(SearchOptionsField field);
 
 //! kSuccess: an optimum (parameter) resting only on successful evaluations; kFlat: no optimum,
 //! the objective does not depend on the parameter; kSolverFailed: no evaluation succeeded, or the
