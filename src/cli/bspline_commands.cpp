@@ -8,12 +8,12 @@
 #include "coons/io/input_error.h"
 #include "coons/io/matrix_market.h"
 #include "coons/io/mesh_export.h"
-#include "coons/io/net_json.h"
 #include "coons/io/obj_export.h"
 #include "coons/io/write_files.h"
 #include "coons/mask/nonuniform_mask.h"
 #include "coons/study/bspline_net.h"
 #include "coons/study/memory_estimate.h"
+#include "coons/study/net_report.h"
 #include "coons/surfaces/bspline_sampling.h"
 #include "report_output.h"
 
@@ -148,7 +148,7 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   if (sampled || e.cad.any() || e.mtx) {
     phases.start("solve");
     outcome = solve_bspline(in, r);
-    if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
+    report["solver"] = solver_block(outcome.summary, r.picked_automatically);
     if (outcome.summary && !outcome.summary->ok()) {
       nlohmann::json failed =
           bspline_net_report(input.boundary.name, in, r.method, r.alpha, outcome, r.picked_automatically);

@@ -11,13 +11,13 @@
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
 #include "coons/io/matrix_market.h"
-#include "coons/io/net_json.h"
 #include "coons/io/obj_export.h"
 #include "coons/io/tri_boundary_io.h"
 #include "coons/io/write_files.h"
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/mask/stencil_system.h"
 #include "coons/study/memory_estimate.h"
+#include "coons/study/net_report.h"
 #include "net_request.h"
 #include "registry.h"
 #include "tri_commands.h"
@@ -148,7 +148,7 @@ int run_export(ExportRequest e) {
   if (solve_net && run) {
     phases.start("solve");
     *run = solve_stencil_request(input, r, e.net, e.global, e.boundary);
-    report["solver"] = summary_to_json(run->result.summary);
+    report["solver"] = solver_block(run->result.summary, run->picked_automatically);
     if (!run->result.summary.ok()) {
       return report_failed_solve(stencil_report(input, r, *run, e.net.mu), phases, e.boundary, run->result.summary);
     }
@@ -156,7 +156,7 @@ int run_export(ExportRequest e) {
   } else if (solve_net) {
     phases.start("solve");
     outcome = make_net(b, r);
-    if (outcome.summary) report["solver"] = summary_to_json(*outcome.summary);
+    report["solver"] = solver_block(outcome.summary, r.picked_automatically);
     if (outcome.summary && !outcome.summary->ok()) {
       return report_failed_solve(solve_report(b, r, outcome, e.net.mu), phases, e.boundary, *outcome.summary);
     }

@@ -764,6 +764,35 @@ TEST_CASE("coons export: --method coons without output flags writes the OBJ file
   }
 }
 
+TEST_CASE("coons export: its solver block is solve's, picked_by auto and the closed form's block included", "[cli]") {
+  // export printed the bare summary: no "picked_by": "auto", and no block at all for a closed form
+  TempDir dir;
+  const std::string pillow = kData + "/boundaries/pillow.json";
+  const std::string wave = kData + "/boundaries/bspline_wave.json";
+  const std::string hole = kData + "/free_sets/l_hole.json";
+  int run = 0;
+  for (const auto& [file, options] :
+       std::vector<std::pair<std::string, std::string>>{{pillow, " --alpha -0.1"},
+                                                        {pillow, " --alpha -0.1 --solver eigen-lu"},
+                                                        {pillow, " --method coons"},
+                                                        {wave, " --alpha -0.2"},
+                                                        {wave, " --method coons"},
+                                                        {hole, " --mask biharmonic"}}) {
+    INFO(file << options);
+    const CommandResult solved = run_coons("solve " + quoted(file) + options);
+    const CommandResult exported =
+        run_coons("export " + quoted(file) + options + " --obj --out " + quoted(dir.file(std::to_string(++run))));
+    INFO(solved.err << exported.err);
+    REQUIRE(solved.status == 0);
+    REQUIRE(exported.status == 0);
+    json a = json::parse(solved.out)["solver"], b = json::parse(exported.out)["solver"];
+    a.erase("seconds");
+    b.erase("seconds");
+    CHECK(a == b);
+    CHECK(b.contains("picked_by") == (options.find("--solver") == std::string::npos && b["name"] != "closed-form"));
+  }
+}
+
 TEST_CASE("coons export: a net with no point to solve for writes no Matrix Market system and refuses --mtx", "[cli]") {
   // A 2 x 2 net and a triangle of degree 2 were written as "0 0 0", which bench-matrix refuses
   TempDir dir;
