@@ -71,8 +71,14 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
   for (int d : options.continuum_degrees) largest = std::max(largest, d);
   for (const auto& f : files) {
     inputs.push_back(read_study_input(f, read_options));
+    warn_misspelt(f, inputs.back().misspelt);
     const Boundary& b = inputs.back().boundary;
     require_search_backend(options.solver, b, false, f);
+    if (!options.degrees.empty() &&
+        unreachable_degrees(inputs.back(), options.degrees).size() == options.degrees.size())
+      throw InputError(f, "--degrees",
+                       fmt::format("every degree asked for ({}) is {}", fmt::join(options.degrees, " "),
+                                   unreachable_reason(inputs.back())));
     const int n = std::max({largest, b.m, b.n});
     check_memory(r.global, net_solve_bytes(n, n, options.solver) + net_metrics_bytes(n, n),
                  fmt::format("the degree law of {} at degree {}", b.name, n), f, "degree");

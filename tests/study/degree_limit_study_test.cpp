@@ -3,6 +3,10 @@
 
 #include <catch2/catch.hpp>
 #include <cmath>
+#include <vector>
+
+#include "coons/curves/curve.h"
+#include "coons/study/study.h"
 
 using namespace coons;
 
@@ -31,4 +35,15 @@ TEST_CASE("degree_limit_json: p_at_bound is the fit's own, and only the n^-p for
     }
     CHECK(with_p == 1);
   }
+}
+
+TEST_CASE("unreachable_degrees: below the boundary's degree in u or v without curves, none with curves", "[study]") {
+  StudyInput input;
+  input.boundary.m = 3;
+  input.boundary.n = 5;
+  CHECK(unreachable_degrees(input, {2, 3, 4, 5, 6}) == std::vector<int>{2, 3, 4});
+  CHECK(unreachable_degrees(input, {}).empty());
+  CHECK(unreachable_reason(input).rfind("below the boundary's degree 3x5", 0) == 0);
+  input.curves = std::vector<Curve>{};  // analytic sides: refitted at any degree
+  CHECK(unreachable_degrees(input, {2, 3, 4}).empty());
 }

@@ -7,7 +7,6 @@
 #include <map>
 
 #include "coons/io/boundary_curves.h"
-#include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
 #include "coons/mask/mask9.h"
 #include "coons/mask/solve_mask_net.h"
@@ -81,6 +80,20 @@ json optional_int(const std::optional<int>& x) { return x ? json(*x) : json(null
 
 }  // namespace
 
+std::vector<int> unreachable_degrees(const StudyInput& input, const std::vector<int>& degrees) {
+  std::vector<int> out;
+  for (int d : degrees)
+    if (!input.curves && (d < input.boundary.m || d < input.boundary.n)) out.push_back(d);
+  return out;
+}
+
+std::string unreachable_reason(const StudyInput& input) {
+  return fmt::format(
+      "below the boundary's degree {}x{} in u or v, and it has no \"curves\" to refit from (degree elevation "
+      "only raises)",
+      input.boundary.m, input.boundary.n);
+}
+
 DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& objective,
                                   const DegreeLimitStudyOptions& options) {
   DegreeLimitEntry e;
@@ -99,19 +112,9 @@ DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& obje
   for (int d : options.degrees) boundary_at(d);
   for (int d : options.continuum_degrees)
     if (!at.count(d)) boundary_at(d);
-  for (int d : options.degrees)
-    if (!at.count(d)) e.skipped_degrees.push_back(d);
-  for (int d : options.continuum_degrees)
-    if (!at.count(d)) e.skipped_continuum_degrees.push_back(d);
-  if (!e.skipped_degrees.empty() || !e.skipped_continuum_degrees.empty())
-    e.skipped_reason = fmt::format(
-        "below the boundary's degree {}x{} in u or v, and it has no \"curves\" to refit from (degree elevation "
-        "only raises)",
-        input.boundary.m, input.boundary.n);
-  if (e.skipped_degrees.size() == options.degrees.size() && !options.degrees.empty())
-    throw InputError(
-        input.file, "--degrees",
-        fmt::format("every degree asked for ({}) is {}", fmt::join(options.degrees, " "), *e.skipped_reason));
+  e.skipped_degrees = unreachable_degrees(input, options.degrees);
+  e.skipped_continuum_degrees = unreachable_degrees(input, options.continuum_degrees);
+  if (!e.skipped_degrees.empty() || !e.skipped_continuum_degrees.empty()) e.skipped_reason = unreachable_reason(input);
 
   std::vector<std::pair<int, double>> mus, exact_mus, galerkin_mus;
   for (int d : options.degrees) {

@@ -67,8 +67,15 @@ struct DegreeLimitEntry {
   Spread mu_spread, exact_mu_spread, galerkin_spread;
 };
 
-//! One shape and objective. Input errors (a refit that fails; not one of options.degrees usable:
-//! all below the degree of a boundary without curves) are thrown before any search.
+//! The degrees of `degrees` that `input` cannot be studied at: below its own degree in u or v when
+//! it has no analytic curves to refit from (degree elevation only raises); in their order.
+std::vector<int> unreachable_degrees(const StudyInput& input, const std::vector<int>& degrees);
+//! Why they cannot (the sentence of DegreeLimitEntry::skipped_reason).
+std::string unreachable_reason(const StudyInput& input);
+
+//! One shape and objective. A refit that fails is an input error, thrown before any search. The
+//! degrees of unreachable_degrees are skipped; when that is every one of options.degrees the entry
+//! has no cells (the CLI refuses such a request before it runs).
 DegreeLimitEntry run_degree_limit(const StudyInput& input, const Objective& objective,
                                   const DegreeLimitStudyOptions& options);
 
