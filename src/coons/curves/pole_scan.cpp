@@ -29,11 +29,19 @@ std::optional<Singularity> find_singularity(const AnalyticCurve& c, int samples,
     p[std::size_t(k)] = c.at(s[std::size_t(k)]);
   }
   // The limit is relative to the whole curve's size: a coordinate whose samples are rounding
-  // noise (0.01 sin(1024 pi t) at t = k/1024) must not make its own values of 0.01 a pole.
+  // noise (0.01 sin(1024 pi t) at t = k/1024) must not make its own values of 0.01 a pole. A sample
+  // counts towards the size at most as much as its larger neighbour: a pole on a sample itself
+  // (tan(pi t) at t = 1/2 is 1.6e16, finite) would otherwise be the size and never exceed it.
   double size = 0;
-  for (const Eigen::RowVector3d& q : p)
-    for (int comp = 0; comp < 3; ++comp)
-      if (std::isfinite(q(comp))) size = std::max(size, std::abs(q(comp)));
+  for (int k = 0; k < n; ++k)
+    for (int comp = 0; comp < 3; ++comp) {
+      const auto magnitude = [&](int i) {
+        const double x = p[std::size_t(i)](comp);
+        return std::isfinite(x) ? std::abs(x) : 0.0;
+      };
+      const double neighbour = std::max(magnitude(std::max(k - 1, 0)), magnitude(std::min(k + 1, n - 1)));
+      size = std::max(size, std::min(magnitude(k), neighbour));
+    }
   for (int comp = 0; comp < 3; ++comp) {
     const auto f = [&](double x) { return c.at(x)(comp); };
     const auto v = [&](int k) { return p[std::size_t(k)](comp); };
@@ -44,6 +52,8 @@ std::optional<Singularity> find_singularity(const AnalyticCurve& c, int samples,
     }
     if (largest == 0) continue;  // zero at every sample: nothing to climb
     const double limit = growth * size, notable = 0.1 * largest;
+    for (int k = 0; k < n; ++k)
+      if (const auto bad = singular_at(comp, s[std::size_t(k)], v(k), limit)) return bad;
     for (int k = 0; k + 1 < n; ++k) {
       // a change of sign next to large values: a root or a pole of odd order in between
       if (v(k) * v(k + 1) < 0 && std::max(std::abs(v(k)), std::abs(v(k + 1))) >= notable) {

@@ -4,7 +4,9 @@
 // sampled densely; where it changes sign between neighbouring samples, bisection keeps the change
 // and ends on a root (small values) or a pole (values without bound); where its magnitude peaks,
 // a golden-section search climbs the peak, which a pole of even order makes unbounded. A value
-// `growth` times the largest sampled magnitude, or one that is not finite, is a singularity.
+// `growth` times the curve's size, or one that is not finite, is a singularity; the size is the
+// largest sampled magnitude, each sample capped at its larger neighbour's (so that a pole that
+// falls on a sample, tan(πt) at t = 1/2, does not set it).
 // Costs: samples evaluations, plus 60 (bisection) or 80 (golden section) per candidate interval;
 // only intervals whose values reach a tenth of the coordinate's largest sampled magnitude are
 // searched, which is where a pole's neighbours are.
