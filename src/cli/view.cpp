@@ -1,7 +1,8 @@
 // `coons view BOUNDARY --out PAGE.html`: one self-contained HTML page (three.js inlined) with the
 // surface shaded with reflection lines, its control net, an α slider over precomputed nets and
 // the energy curves with the optima (coons/study/view_data.h, coons/io/view_page.h); a boundary
-// with ribbons also gets the C1 family's weight slider, a triangular boundary the slider of c.
+// with ribbons also gets the C1 family's weight slider, a triangular boundary the slider of c, a
+// B-spline boundary the slider of its non-uniform α family.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -19,6 +20,8 @@
 #include "coons/io/write_files.h"
 #include "coons/net/degree_elevation.h"
 #include "coons/study/backend_choice.h"
+#include "coons/study/bspline_net.h"
+#include "coons/study/bspline_search.h"
 #include "coons/study/tri_search.h"
 #include "coons/study/two_ring_problem.h"
 #include "coons/study/view_data.h"
@@ -111,6 +114,47 @@ ViewSlider triangle_slider(const ViewRequest& r, const ViewOptions& options, std
   return slider;
 }
 
+// The page's nets and samples (m, n the net's degree) against --max-memory.
+void check_page_memory(const ViewRequest& r, int m, int n) {
+  const double points = (m + 1.0) * (n + 1.0) + 2.0 * r.samples * r.samples;
+  check_memory(r.global, (2 * r.alphas + 12.0) * points * 3 * (8 + 14) + 2e6,
+               fmt::format("a page of {} nets of degree ({}, {})", r.alphas, m, n), r.boundary, "degree");
+}
+
+// The slider of a B-spline boundary (the non-uniform α family over [--from, --to], --to at most
+// where its system stops being definite, by default that end; `--degree` does not apply).
+ViewSlider bspline_slider(const ViewRequest& r, ViewOptions options, const BSplineInput& in, std::string* solver_name) {
+  if (!r.degree.empty())
+    throw InputError("command line", "--degree",
+                     "does not apply to a B-spline boundary (its net is the B-spline surface's, at its own knots)");
+  const double definite_upper = bspline_definite_upper(in.compatible);
+  if (r.to_option->count() == 0) {
+    options.upper = definite_upper;
+  } else if (options.upper > definite_upper) {
+    throw InputError("command line", "--to",
+                     fmt::format("the non-uniform system of this B-spline boundary is definite for alpha in [-0.25, "
+                                 "{}] only (it can be singular above)",
+                                 definite_upper));
+  }
+  if (const ViewOptionsProblem problem = options_problem(options); problem.field != ViewOptionsField::kNone)
+    throw InputError("command line", "--from/--to", problem.reason);
+  if (r.alpha && !(*r.alpha >= options.lower && *r.alpha <= options.upper))
+    throw InputError("command line", "--alpha", fmt::format("must lie in [{}, {}]", options.lower, options.upper));
+  const solvers::SolverInfo* requested = solver_from_name(r.solver);
+  if (requested && !solvers::accepts_matrix(*requested))
+    throw InputError("command line", "--solver",
+                     requested->name +
+                         " works from a grid stencil only; a B-spline boundary needs a backend that "
+                         "takes an assembled matrix");
+  *solver_name = requested ? requested->name : solvers::default_matrix_solver(true).name;
+  ViewSlider slider = bspline_view_slider(in.compatible, options, *solver_name,
+                                          r.alpha.value_or(std::clamp(-0.25, options.lower, options.upper)));
+  if (!r.alpha)
+    for (const ViewCurve& c : slider.curves)
+      if (c.name == "thin_plate" && c.optimum) slider.initial = *c.optimum;
+  return slider;
+}
+
 int run_view(const ViewRequest& r) {
   Phases phases("view");
   phases.start("read");
@@ -145,8 +189,17 @@ int run_view(const ViewRequest& r) {
     page.sliders.push_back(triangle_slider(r, options, &solver_name, &page.title, &degree));
     page.subtitle =
         fmt::format("triangular net, {} values of c, solver {}", page.sliders[0].frames.size(), solver_name);
+  } else if (const BoundaryFile file = read_input(r.boundary, r.corner_tolerance, true); file.bspline) {
+    const ControlNet frame = bspline_frame(file.bspline->compatible);
+    degree = {frame.m, frame.n};
+    check_page_memory(r, frame.m, frame.n);
+    phases.start("solve");
+    page.sliders.push_back(bspline_slider(r, options, *file.bspline, &solver_name));
+    const ViewSlider& alpha = page.sliders[0];
+    page.title = file.boundary.name.empty() ? r.boundary : file.boundary.name;
+    page.subtitle = fmt::format("B-spline net of {} by {} control points, {} values of α in [{}, {}], solver {}",
+                                frame.m + 1, frame.n + 1, alpha.frames.size(), alpha.lower, alpha.upper, solver_name);
   } else {
-    const BoundaryFile file = read_input(r.boundary, r.corner_tolerance);
     const Boundary b = at_degree(file.boundary, r.degree, r.boundary);
     degree = {b.m, b.n};
     if (r.alpha && !(*r.alpha >= r.from && *r.alpha <= r.to))
@@ -154,9 +207,7 @@ int run_view(const ViewRequest& r) {
     require_search_backend(solver_from_name(r.solver), b, false);
     const solvers::SolverInfo& solver = search_backend(solver_from_name(r.solver), b, false);
     solver_name = solver.name;
-    const double points = (b.m + 1.0) * (b.n + 1.0) + 2.0 * r.samples * r.samples;
-    check_memory(r.global, (2 * r.alphas + 12.0) * points * 3 * (8 + 14) + 2e6,
-                 fmt::format("a page of {} nets of degree ({}, {})", r.alphas, b.m, b.n), r.boundary, "degree");
+    check_page_memory(r, b.m, b.n);
     // the C1 family's slider where the file has two data rings (ribbons) and keeps its degree
     const TwoRingProblem two = two_ring_problem(file);
     const bool weight = two.problem && (b.m == file.boundary.m && b.n == file.boundary.n);

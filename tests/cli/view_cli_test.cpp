@@ -128,3 +128,48 @@ TEST_CASE("coons view: a triangle without interior points has flat optima, as se
     }
   }
 }
+
+TEST_CASE("coons view: a B-spline boundary gets the slider of its non-uniform family, optima as search-alpha's",
+          "[cli][view]") {
+  // view refused B-spline boundaries ("read by solve, export, batch, search-alpha and study only"),
+  // though the contract's `coons view B.json` takes any boundary file
+  if (!COONS_HAVE_THREE_JS) {
+    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
+    return;
+  }
+  const TempDir dir;
+  const std::string wave = quoted(kData + "/boundaries/bspline_wave.json");
+  const CommandResult r =
+      run_coons("view " + wave + " --out " + quoted(dir.file("wave.html")) + " --alphas 11 --samples 5");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const nlohmann::json summary = nlohmann::json::parse(r.out);
+  const nlohmann::json solved = nlohmann::json::parse(run_coons("solve " + wave + " --method coons").out);
+  CHECK(summary["degree"] == solved["degree"]);
+  CHECK(summary["sliders"] == nlohmann::json::array({"alpha"}));
+  CHECK(summary["frames"].get<int>() >= 11);
+  for (const char* objective : {"thin_plate", "twist"}) {
+    INFO(objective);
+    const CommandResult searched = run_coons("search-alpha " + wave + " --objective " + objective);
+    REQUIRE(searched.status == 0);
+    const nlohmann::json s = nlohmann::json::parse(searched.out);
+    CHECK(summary["optima"][objective].get<double>() == Approx(s["alpha"].get<double>()).margin(1e-9));
+  }
+  CHECK(summary["initial_alpha"] == summary["optima"]["thin_plate"]);
+  const std::string text = read_text(dir.file("wave.html"));
+  CHECK(text.size() == summary["bytes"].get<size_t>());
+
+  // beyond the definite end of its family, and --degree, are bad input; nothing is written
+  for (const std::string& options : {std::string(" --to 0.25"), std::string(" --degree 8 8")}) {
+    INFO(options);
+    const std::string page = dir.file("bad.html");
+    std::string command = "view " + wave + " --out " + quoted(page);
+    command += options;
+    const CommandResult bad = run_coons(command);
+    CHECK(bad.status == 2);
+    CHECK(bad.out.empty());
+    CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
+    CHECK(bad.err.find(options.substr(1, options.find(' ', 1) - 1)) != std::string::npos);
+    CHECK_FALSE(fs::exists(page));
+  }
+}

@@ -183,18 +183,41 @@ constexpr std::string_view kScript = R"JS(
     upright.rotation.x = -Math.PI / 2;
     turn.add(upright);
     scene.add(turn);
-    // bounds over every frame of every slider: the view does not jump when a slider moves
-    var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    // bounds over the frames of every slider, so that the view does not jump when a slider
+    // moves; a frame wider along an axis than 4 times the median frame's width there plus a
+    // quarter of the median frame's size (the net of a nearly singular system at the end of a
+    // range: 8 times the others' height on bspline_wave) is left out of them, or every other
+    // frame would be drawn small
+    var boxes = [];
     sliders.forEach(function (s) {
       s.frames.forEach(function (f) {
+        var b = { lo: [Infinity, Infinity, Infinity], hi: [-Infinity, -Infinity, -Infinity] };
         [f.net, f.points].forEach(function (a) {
           for (var i = 0; i < a.length; ++i) {
-            lo[i % 3] = Math.min(lo[i % 3], a[i]);
-            hi[i % 3] = Math.max(hi[i % 3], a[i]);
+            b.lo[i % 3] = Math.min(b.lo[i % 3], a[i]);
+            b.hi[i % 3] = Math.max(b.hi[i % 3], a[i]);
           }
         });
+        b.width = [0, 1, 2].map(function (c) { return b.hi[c] - b.lo[c]; });
+        if (b.width.every(isFinite)) boxes.push(b);
       });
     });
+    function median(values) {
+      var sorted = values.slice().sort(function (a, b) { return a - b; });
+      return sorted.length ? sorted[Math.floor(sorted.length / 2)] : 0;
+    }
+    var typical = [0, 1, 2].map(function (c) { return median(boxes.map(function (b) { return b.width[c]; })); });
+    var slack = 0.25 * Math.hypot(typical[0], typical[1], typical[2]);
+    var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
+    boxes.forEach(function (b) {
+      if (b.width.some(function (w, c) { return w > 4 * typical[c] + slack; })) return;
+      for (var c = 0; c < 3; ++c) {
+        lo[c] = Math.min(lo[c], b.lo[c]);
+        hi[c] = Math.max(hi[c], b.hi[c]);
+      }
+    });
+    for (var c = 0; c < 3; ++c)
+      if (!(lo[c] <= hi[c])) { lo[c] = 0; hi[c] = 0; }
     var centre = [0, 1, 2].map(function (c) { return (lo[c] + hi[c]) / 2; });
     var radius = Math.max(1e-9, 0.5 * Math.hypot(hi[0] - lo[0], hi[1] - lo[1], hi[2] - lo[2]));
     upright.position.set(0, 0, 0);
@@ -245,9 +268,26 @@ constexpr std::string_view kScript = R"JS(
       content.add(holder);
       return { holder: holder, mesh: mesh, net: net, points: points };
     });
-    var distance = radius / Math.sin(camera.fov * Math.PI / 360) * 1.05;
     var direction = new THREE.Vector3(0.9, 0.75, 1.1).normalize();
-    function place() {
+    // The camera's distance: the one at which the 8 corners of the nets' box, as first shown,
+    // fill 85 % of the view's width or height, at most the bounding sphere's (a long flat patch
+    // was left small in the middle of the view), fixed at the first frame; the wheel scales it.
+    var fit = null, zoom = 1;
+    function fitted(aspect) {
+      scene.updateMatrixWorld(true);
+      var z = direction.clone(), x = new THREE.Vector3(0, 1, 0).cross(z).normalize(), y = z.clone().cross(x);
+      var tanV = Math.tan(camera.fov * Math.PI / 360) * 0.85, tanH = tanV * aspect, best = 0;
+      for (var k = 0; k < 8; ++k) {
+        var c = new THREE.Vector3(k & 1 ? hi[0] : lo[0], k & 2 ? hi[1] : lo[1], k & 4 ? hi[2] : lo[2]);
+        content.localToWorld(c);
+        best = Math.max(best, c.dot(z) + Math.abs(c.dot(x)) / tanH, c.dot(z) + Math.abs(c.dot(y)) / tanV);
+      }
+      return best;
+    }
+    function place(aspect) {
+      if (fit === null)
+        fit = Math.min(radius / Math.sin(camera.fov * Math.PI / 360) * 1.05, Math.max(fitted(aspect), 2 * radius));
+      var distance = fit * zoom;
       camera.position.copy(direction).multiplyScalar(distance);
       camera.near = distance / 100; camera.far = distance * 10;
       camera.lookAt(0, 0, 0);
@@ -257,7 +297,7 @@ constexpr std::string_view kScript = R"JS(
       var w = canvas.clientWidth || 600, h = canvas.clientHeight || 500;
       renderer.setSize(w, h, false);
       camera.aspect = w / h;
-      place();
+      place(w / h);
       renderer.render(scene, camera);
     }
     var drag = null;
@@ -272,7 +312,7 @@ constexpr std::string_view kScript = R"JS(
     });
     canvas.addEventListener('wheel', function (e) {
       e.preventDefault();
-      distance *= Math.exp(e.deltaY * 0.001);
+      zoom *= Math.exp(e.deltaY * 0.001);
       render();
     }, { passive: false });
     window.addEventListener('resize', render);

@@ -12,8 +12,11 @@
 #include "coons/alpha/objective.h"
 #include "coons/mask/solve_stencil_net.h"
 #include "coons/metrics/energies.h"
+#include "coons/study/bspline_net.h"
+#include "coons/study/bspline_search.h"
 #include "coons/study/sweep.h"
 #include "coons/study/tri_search.h"
+#include "coons/surfaces/bspline_sampling.h"
 #include "coons/surfaces/sampling.h"
 #include "coons/surfaces/surface.h"
 #include "coons/tri/tri_energy.h"
@@ -176,6 +179,50 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
     slider.ring_m = boundary.m;
     slider.ring_n = boundary.n;
   }
+  return slider;
+}
+
+ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOptions& options,
+                               const std::string& solver_name, double initial) {
+  ViewSlider slider;
+  slider.parameter = "alpha";
+  slider.symbol = "α";
+  slider.label = "α (the non-uniform mask family of the B-spline net)";
+  slider.lower = options.lower;
+  slider.upper = options.upper;
+  slider.initial = initial;
+  slider.faces = grid_faces(options.samples);
+
+  AlphaSearchOptions search = default_bspline_search_options();
+  search.lower = options.lower;
+  search.upper = options.upper;
+  std::vector<ViewCurve> curves =
+      searched_curves(options.objectives, [&](const std::string& name) -> std::optional<AlphaSearchSummary> {
+        const std::optional<Objective> objective = parse_objective(name, nullptr);
+        if (!objective || !bspline_objective_supported(*objective, nullptr)) return std::nullopt;
+        return search_bspline_alpha(compatible, *objective, solver_name, search);
+      });
+  const std::vector<double> values =
+      slider_values(options.lower, options.upper, options.frames, curves, {-0.25, 0.0, initial});
+  const auto backend = solvers::make_solver(solver_name);
+  for (const double alpha : values) {
+    const BSplineNetOutcome outcome = make_bspline_net(compatible, NetMethod::kAlpha, alpha, backend.get());
+    ViewFrame f;
+    f.parameter = alpha;
+    f.ok = !outcome.summary || outcome.summary->ok();
+    const BSplineSurface& surface = outcome.surface;
+    if (slider.net_edges.empty()) slider.net_edges = grid_edges(surface.net.m + 1, surface.net.n + 1);
+    f.net = surface.net.points;
+    const SurfaceSamples samples = sample_bspline_grid(surface, options.samples);
+    f.points = samples.points;
+    f.normals = samples.normals;
+    const NetMetrics metrics = bspline_metrics(outcome.local, alpha);
+    for (ViewCurve& c : curves) c.values.push_back(f.ok ? metric_of(metrics, c.name) : NAN);
+    slider.frames.push_back(std::move(f));
+  }
+  slider.curves = std::move(curves);
+  for (const auto& [name, alpha] : {std::pair<const char*, double>{"Coons", -0.25}, {"Laplace", 0.0}})
+    if (alpha >= options.lower && alpha <= options.upper) slider.marks.push_back({name, alpha});
   return slider;
 }
 

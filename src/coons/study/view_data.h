@@ -14,6 +14,7 @@
 #include "coons/io/view_page.h"
 #include "coons/mask/stencil_problem.h"
 #include "coons/net/control_net.h"
+#include "coons/surfaces/bspline_surface.h"
 #include "coons/tri/tri_net.h"
 #include "solvers/registry.h"
 
@@ -51,6 +52,15 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
 //! ribbons included.
 ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& options,
                               const solvers::SolverInfo& solver, double initial);
+
+//! The α slider of a B-spline boundary (its compatible form): the non-uniform mask family
+//! (docs/math.md §10) at `options.frames` values of [options.lower, options.upper] plus the optima
+//! (search_bspline_alpha) and α = −1/4 (the Greville Coons net), 0; per value the B-spline
+//! surface's control net, its samples and normals (sample_bspline_grid) and its exact energies
+//! (bspline_metrics). `solver_name`: a backend that takes an assembled matrix, definite-only ones
+//! only where the bounds lie in [−1/4, bspline_definite_upper]. The page shows the nearest frame.
+ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOptions& options,
+                               const std::string& solver_name, double initial);
 
 //! The slider of a triangular boundary (n ≥ 1): the triangular mask family over c ∈ [lower,
 //! upper] (default_tri_bounds when lower ≥ upper) at `options.frames` values plus the optima of
