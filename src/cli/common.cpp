@@ -266,16 +266,23 @@ void check_corner_tolerance(double corner_tolerance) {
     throw InputError("command line", "--corner-tolerance", "must be a finite number >= 0");
 }
 
+void warn_misspelt(const std::string& path, const std::vector<MisspeltField>& misspelt) {
+  for (const MisspeltField& f : misspelt)
+    std::cerr << fmt::format("warning: {}: {}: unknown field, ignored (did you mean \"{}\"?)\n", path, f.given,
+                             f.known);
+}
+
 BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline, double min_model_size) {
   BoundaryReadOptions options;
   options.min_model_size = min_model_size;
   check_corner_tolerance(corner_tolerance);
   options.corner_tolerance = corner_tolerance;
   BoundaryFile file = read_boundary_file(path, options);
+  warn_misspelt(path, file.misspelt);
   if (file.bspline && !accept_bspline)
     throw InputError(
         path, "knots_u",
-        "a B-spline boundary is read by solve, export, batch, search-alpha and study only, not by this command");
+        "a B-spline boundary is read by solve, export, batch, search-alpha, study and view only, not by this command");
   return file;
 }
 

@@ -13,6 +13,7 @@
 #include "coons/alpha/alpha_search.h"
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
+#include "coons/io/misspelt_fields.h"
 #include "coons/mask/mask9.h"
 #include "coons/mask/solve_stencil_net.h"
 #include "coons/mask/stencil.h"
@@ -127,6 +128,9 @@ void check_corner_tolerance(double corner_tolerance);
 //! pass kMinModelSize, BoundaryReadOptions).
 BoundaryFile read_input(const std::string& path, double corner_tolerance, bool accept_bspline = false,
                         double min_model_size = 0);
+//! One line on standard error per misspelt field of the file at `path` ("warning: FILE: fre:
+//! unknown field, ignored (did you mean "free"?)"); read_input calls it.
+void warn_misspelt(const std::string& path, const std::vector<MisspeltField>& misspelt);
 //! Files as given, folders expanded to their *.json files (sorted); unreadable folders, and an
 //! entry *.json of a folder that is no regular file (a FIFO would block the run), are InputErrors.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);

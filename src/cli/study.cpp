@@ -216,6 +216,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
       }
     }
     inputs.push_back(read_study_input(f, read_options));
+    warn_misspelt(f, inputs.back().misspelt);
     const Boundary& b = inputs.back().boundary;
     require_search_backend(options.solver, b, false, f);
     int largest = std::max(b.m, b.n);

@@ -764,6 +764,33 @@ TEST_CASE("coons export: --method coons without output flags writes the OBJ file
   }
 }
 
+TEST_CASE("coons solve: a field one edit from one coons reads is warned about on standard error, then ignored",
+          "[cli]") {
+  // "fre" for "free" solved the file with every interior point free, silently, exit 0
+  TempDir dir;
+  json doc = json::parse(read_text(kData + "/free_sets/l_hole.json"));
+  doc["fre"] = doc["free"];
+  doc.erase("free");
+  const std::string file = dir.write("typo.json", doc.dump());
+  for (const std::string& command : {std::string("solve "), std::string("search-alpha --objective twist ")}) {
+    const CommandResult r = run_coons(command + quoted(file));
+    INFO(command << r.err);
+    CHECK(r.status == 0);
+    CHECK(r.err == "warning: " + file + ": fre: unknown field, ignored (did you mean \"free\"?)\n");
+  }
+  json dome = json::parse(read_text(kData + "/boundaries/dome.json"));
+  dome["descripton"] = dome["description"];
+  const std::string typo = dir.write("dome.json", dome.dump());
+  const CommandResult study = run_coons("study " + quoted(typo) + " --degrees 3 --out " + quoted(dir.file("study")));
+  CHECK(study.status == 0);
+  CHECK(study.err.find("warning: " + typo + ": descripton: unknown field, ignored (did you mean \"description\"?)") !=
+        std::string::npos);
+  // the bundled files spell every field as coons reads it
+  const CommandResult bundled = run_coons("solve " + quoted(kData + "/boundaries/sphere_cap_ribbons.json"));
+  CHECK(bundled.status == 0);
+  CHECK(bundled.err.empty());
+}
+
 TEST_CASE("coons export: its solver block is solve's, picked_by auto and the closed form's block included", "[cli]") {
   // export printed the bare summary: no "picked_by": "auto", and no block at all for a closed form
   TempDir dir;

@@ -171,6 +171,13 @@ void LargestPoint::require(double min_size, const std::string& source) const {
   require_model_size(magnitude, min_size, source, field);
 }
 
+const std::vector<std::string>& boundary_file_fields() {
+  static const std::vector<std::string> fields = {
+      "name",    "degree", "bottom", "top",     "left",    "right", "net",         "rings",  "free",
+      "ribbons", "curves", "target", "knots_u", "knots_v", "type",  "description", "source", "degree_spline"};
+  return fields;
+}
+
 BoundaryFile parse_boundary(const json& doc, const std::string& source, const BoundaryReadOptions& options) {
   Parser p(source);
   if (!doc.is_object()) p.fail("", "the top level must be a JSON object");
@@ -189,6 +196,7 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
                                what));
   }
   BoundaryFile out;
+  out.misspelt = misspelt_fields(doc, boundary_file_fields());
   std::string name = std::filesystem::path(source).stem().string();
   if (doc.contains("name")) {
     if (!doc["name"].is_string()) p.fail("name", "must be a string");

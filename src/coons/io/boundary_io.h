@@ -17,8 +17,10 @@
 #include <nlohmann/json_fwd.hpp>
 #include <optional>
 #include <string>
+#include <vector>
 
 #include "coons/io/bspline_boundary_io.h"
+#include "coons/io/misspelt_fields.h"
 #include "coons/mask/stencil_problem.h"
 #include "coons/net/control_net.h"
 
@@ -56,7 +58,13 @@ struct BoundaryFile {
   FreeGrid free;                   //!< the "free" grid of the net form (empty: inside the rings)
   //! present when the sides came with knots_u, knots_v and degree_spline (a B-spline boundary)
   std::optional<BSplineInput> bspline;
+  //! fields one edit from one coons reads ("fre" for "free"): ignored, for the commands to warn about
+  std::vector<MisspeltField> misspelt;
 };
+
+//! The top-level fields of a rectangular boundary file (docs/formats.md), those people write for
+//! people (description, source) included.
+const std::vector<std::string>& boundary_file_fields();
 
 //! Parse and validate. `source` names the input in error messages (a path or "<stdin>").
 BoundaryFile parse_boundary(const nlohmann::json& doc, const std::string& source,

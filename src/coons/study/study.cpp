@@ -32,6 +32,7 @@ StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& 
                      "a B-spline boundary is not elevated over Bézier degrees, so degree studies do not apply to it "
                      "(`coons study` gives it one row at its own knots)");
   in.boundary = file.boundary;
+  in.misspelt = file.misspelt;
   TwoRingProblem two = two_ring_problem(file);
   if (two.problem) {
     const std::vector<ProblemIssue> issues = check_stencil_problem(*two.problem, c1_family_stencil(0.5));

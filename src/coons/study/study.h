@@ -20,6 +20,7 @@
 #include "coons/alpha/objective.h"
 #include "coons/curves/curve.h"
 #include "coons/io/boundary_io.h"
+#include "coons/io/misspelt_fields.h"
 #include "coons/mask/stencil_problem.h"
 #include "coons/study/degree_law.h"
 #include "coons/study/sweep.h"
@@ -36,6 +37,7 @@ struct StudyInput {
   std::optional<Target> target;              //!< reference table and best-fit α
   std::optional<StencilProblem> two_rings;   //!< two data rings: the C1 family's column
   std::string one_ring;                      //!< without them: why, short ("one data ring, no ribbons")
+  std::vector<MisspeltField> misspelt;       //!< BoundaryFile::misspelt, for the command to warn about
 };
 
 //! Reads a boundary file with its curves and target; every input error is thrown here.
