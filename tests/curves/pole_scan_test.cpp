@@ -48,6 +48,13 @@ TEST_CASE("find_singularity: a pole on a sample, where the value is huge but fin
     CHECK(found->component == 2);
     CHECK(found->s == Approx(0.5).margin(1e-9));
   }
+  // on the last sample: an end sample counts as its one neighbour does (review r63a)
+  for (const char* z : {"tan(pi/2*t)", "tan(pi/2*(1-t))"}) {
+    INFO(z);
+    const auto found = find_singularity(z_curve(z));
+    REQUIRE(found);
+    CHECK((found->s == 1.0 || found->s == 0.0));
+  }
 }
 
 TEST_CASE("find_singularity: roots, steep ends and narrow bumps are not poles", "[curves]") {

@@ -30,8 +30,10 @@ std::optional<Singularity> find_singularity(const AnalyticCurve& c, int samples,
   }
   // The limit is relative to the whole curve's size: a coordinate whose samples are rounding
   // noise (0.01 sin(1024 pi t) at t = k/1024) must not make its own values of 0.01 a pole. A sample
-  // counts towards the size at most as much as its larger neighbour: a pole on a sample itself
-  // (tan(pi t) at t = 1/2 is 1.6e16, finite) would otherwise be the size and never exceed it.
+  // counts towards the size at most as much as its larger neighbour (an end sample as its one
+  // neighbour): a pole on a sample itself (tan(pi t) at t = 1/2, or tan(t) at the end of [0, pi/2],
+  // is 1.6e16, finite) would otherwise be the size and never exceed it. A bump narrower than the
+  // samples' spacing and 1e8 times taller than its neighbours looks the same and is taken for a pole.
   double size = 0;
   for (int k = 0; k < n; ++k)
     for (int comp = 0; comp < 3; ++comp) {
@@ -39,7 +41,7 @@ std::optional<Singularity> find_singularity(const AnalyticCurve& c, int samples,
         const double x = p[std::size_t(i)](comp);
         return std::isfinite(x) ? std::abs(x) : 0.0;
       };
-      const double neighbour = std::max(magnitude(std::max(k - 1, 0)), magnitude(std::min(k + 1, n - 1)));
+      const double neighbour = std::max(k > 0 ? magnitude(k - 1) : 0.0, k + 1 < n ? magnitude(k + 1) : 0.0);
       size = std::max(size, std::min(magnitude(k), neighbour));
     }
   for (int comp = 0; comp < 3; ++comp) {
