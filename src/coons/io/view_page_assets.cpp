@@ -184,37 +184,41 @@ constexpr std::string_view kScript = R"JS(
     turn.add(upright);
     scene.add(turn);
     // bounds over the frames of every slider, so that the view does not jump when a slider
-    // moves; a frame wider along an axis than 4 times the median frame's width there plus a
-    // quarter of the median frame's size (the net of a nearly singular system at the end of a
-    // range: 8 times the others' height on bspline_wave) is left out of them, or every other
-    // frame would be drawn small
-    var boxes = [];
-    sliders.forEach(function (s) {
-      s.frames.forEach(function (f) {
-        var b = { lo: [Infinity, Infinity, Infinity], hi: [-Infinity, -Infinity, -Infinity] };
-        [f.net, f.points].forEach(function (a) {
-          for (var i = 0; i < a.length; ++i) {
-            b.lo[i % 3] = Math.min(b.lo[i % 3], a[i]);
-            b.hi[i % 3] = Math.max(b.hi[i % 3], a[i]);
-          }
-        });
-        b.width = [0, 1, 2].map(function (c) { return b.hi[c] - b.lo[c]; });
-        if (b.width.every(isFinite)) boxes.push(b);
+    // moves; a frame wider along an axis than 4 times the median width there of its slider's
+    // frames plus a quarter of their median size (the net of a nearly singular system at the end
+    // of a range: 8 times the others' height on bspline_wave) is left out of them, or every other
+    // frame would be drawn small, unless it is a frame the page opens on
+    function boxOf(f) {
+      var b = { lo: [Infinity, Infinity, Infinity], hi: [-Infinity, -Infinity, -Infinity] };
+      [f.net, f.points].forEach(function (a) {
+        for (var i = 0; i < a.length; ++i) {
+          b.lo[i % 3] = Math.min(b.lo[i % 3], a[i]);
+          b.hi[i % 3] = Math.max(b.hi[i % 3], a[i]);
+        }
       });
-    });
+      b.width = [0, 1, 2].map(function (c) { return b.hi[c] - b.lo[c]; });
+      return b;
+    }
     function median(values) {
       var sorted = values.slice().sort(function (a, b) { return a - b; });
       return sorted.length ? sorted[Math.floor(sorted.length / 2)] : 0;
     }
-    var typical = [0, 1, 2].map(function (c) { return median(boxes.map(function (b) { return b.width[c]; })); });
-    var slack = 0.25 * Math.hypot(typical[0], typical[1], typical[2]);
     var lo = [Infinity, Infinity, Infinity], hi = [-Infinity, -Infinity, -Infinity];
-    boxes.forEach(function (b) {
-      if (b.width.some(function (w, c) { return w > 4 * typical[c] + slack; })) return;
+    function include(b) {
+      if (!b.width.every(isFinite)) return;
       for (var c = 0; c < 3; ++c) {
         lo[c] = Math.min(lo[c], b.lo[c]);
         hi[c] = Math.max(hi[c], b.hi[c]);
       }
+    }
+    sliders.forEach(function (s, si) {
+      var boxes = s.frames.map(boxOf).filter(function (b) { return b.width.every(isFinite); });
+      var typical = [0, 1, 2].map(function (c) { return median(boxes.map(function (b) { return b.width[c]; })); });
+      var slack = 0.25 * Math.hypot(typical[0], typical[1], typical[2]);
+      boxes.forEach(function (b) {
+        if (!b.width.some(function (w, c) { return w > 4 * typical[c] + slack; })) include(b);
+      });
+      include(boxOf(frameAt(si)));  // the frame the page opens on, whatever its size
     });
     for (var c = 0; c < 3; ++c)
       if (!(lo[c] <= hi[c])) { lo[c] = 0; hi[c] = 0; }
@@ -270,8 +274,10 @@ constexpr std::string_view kScript = R"JS(
     });
     var direction = new THREE.Vector3(0.9, 0.75, 1.1).normalize();
     // The camera's distance: the one at which the 8 corners of the nets' box, as first shown,
-    // fill 85 % of the view's width or height, at most the bounding sphere's (a long flat patch
-    // was left small in the middle of the view), fixed at the first frame; the wheel scales it.
+    // fill 85 % of the view's width or height, at most the distance at which the bounding sphere
+    // fits the narrower of the two fields of view (a long flat patch was left small in the middle
+    // of the view), fixed at the first frame and on a change of the window's size; the wheel
+    // scales it.
     var fit = null, zoom = 1;
     function fitted(aspect) {
       scene.updateMatrixWorld(true);
@@ -285,8 +291,10 @@ constexpr std::string_view kScript = R"JS(
       return best;
     }
     function place(aspect) {
-      if (fit === null)
-        fit = Math.min(radius / Math.sin(camera.fov * Math.PI / 360) * 1.05, Math.max(fitted(aspect), 2 * radius));
+      if (fit === null) {
+        var half = Math.atan(Math.tan(camera.fov * Math.PI / 360) * Math.min(1, aspect));
+        fit = Math.min(radius / Math.sin(half) * 1.05, Math.max(fitted(aspect), 2 * radius));
+      }
       var distance = fit * zoom;
       camera.position.copy(direction).multiplyScalar(distance);
       camera.near = distance / 100; camera.far = distance * 10;
@@ -315,7 +323,7 @@ constexpr std::string_view kScript = R"JS(
       zoom *= Math.exp(e.deltaY * 0.001);
       render();
     }, { passive: false });
-    window.addEventListener('resize', render);
+    window.addEventListener('resize', function () { fit = null; render(); });
     return { meshes: meshes, render: render };
   }
 
@@ -383,13 +391,21 @@ constexpr std::string_view kScript = R"JS(
     legend.textContent = '';
     s.curves.forEach(function (c, ci) {
       // each curve scaled to [0, 1] over the slider's range, so that every minimum shows
+      // (values beyond 10 times the upper quartile's rise above the least, a nearly singular
+      // system's spike at the end of a range, run off the top instead of flattening the rest)
       var colour = colours[ci % colours.length], least = Infinity, largest = -Infinity;
+      var finite = c.values.filter(function (v) { return v !== null; }).sort(function (a, b) { return a - b; });
+      var quartile = finite.length ? finite[Math.floor(0.75 * (finite.length - 1))] : 0;
       c.values.forEach(function (v) {
         if (v === null) return;
-        least = Math.min(least, v); largest = Math.max(largest, v);
+        least = Math.min(least, v);
+      });
+      var cap = quartile > least ? least + 10 * (quartile - least) : Infinity;
+      c.values.forEach(function (v) {
+        if (v !== null && v <= cap) largest = Math.max(largest, v);
       });
       var span = largest > least ? largest - least : 1;
-      function scaled(v) { return (v - least) / span; }
+      function scaled(v) { return Math.min((v - least) / span, 1.08); }
       var path = '';
       c.values.forEach(function (v, k) {
         if (v === null) return;
@@ -493,12 +509,12 @@ constexpr std::string_view kScript = R"JS(
     }
   };
 
+  var first = fromHash();  // before the 3D set-up: the frames it opens on are inside its box
   try {
     three = setup3d();
   } catch (e) {
     record('WebGL: ' + (e && e.message ? e.message : e));
   }
-  var first = fromHash();
   sliders.forEach(function (s, si) {
     inputs[si].value = frameAt(si).parameter;
     describe(si);
