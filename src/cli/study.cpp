@@ -208,6 +208,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
     if (!is_triangle_file(f)) {
       const BoundaryFile file = read_boundary_file(f, read_options);
       if (file.bspline) {  // a row at its own knots (bspline_study.h), not the degree study
+        warn_misspelt(f, file.misspelt);
         check_memory(r.global,
                      64.0 * file.bspline->compatible.bottom.count() * file.bspline->compatible.left.count() * 100,
                      fmt::format("the B-spline row of {}", file.boundary.name), f, "knots_u");
@@ -242,7 +243,7 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
   // B-spline rows and pages after the per-shape report (pages are not carried by shards)
   write_study_report(result, r.out_dir, command_line, [&](OutputSet& out) {
     std::string tail = write_bspline_rows(bspline_rows, out);
-    if (r.html) tail += write_study_pages(result, inputs, out, three_js, options.solver);
+    if (r.html) tail += write_study_pages(result, inputs, bsplines, out, three_js, options.solver);
     return tail;
   });
   return study_exit_status(result, bspline_rows);

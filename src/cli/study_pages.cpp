@@ -5,6 +5,7 @@
 
 #include "coons/config.h"
 #include "coons/study/backend_choice.h"
+#include "coons/study/bspline_search.h"
 #include "coons/study/report_markdown.h"
 #include "coons/study/view_data.h"
 #include "coons/tri/tri_solve.h"
@@ -12,7 +13,8 @@
 
 namespace coons::cli {
 
-std::string write_study_pages(const StudyResult& result, const std::vector<StudyInput>& inputs, OutputSet& out,
+std::string write_study_pages(const StudyResult& result, const std::vector<StudyInput>& inputs,
+                              const std::vector<BSplineStudyInput>& bsplines, OutputSet& out,
                               const std::string& three_js, const solvers::SolverInfo* solver) {
   ViewOptions options;
   options.frames = 51;
@@ -55,6 +57,20 @@ std::string write_study_pages(const StudyResult& result, const std::vector<Study
       if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
     page.subtitle = fmt::format("triangular net of degree {}, from the α study", t.boundary.n);
     publish(safe_file_stem(t.boundary.name), std::move(page));
+  }
+  for (const BSplineStudyInput& b : bsplines) {
+    ViewPage page;
+    page.title = b.name;
+    ViewOptions bspline_options = options;
+    bspline_options.upper = bspline_definite_upper(b.sides.compatible);
+    const std::string backend = solver != nullptr && solvers::accepts_matrix(*solver)
+                                    ? solver->name
+                                    : solvers::default_matrix_solver(true).name;
+    page.sliders.push_back(bspline_view_slider(b.sides.compatible, bspline_options, backend, -0.25));
+    for (const ViewCurve& c : page.sliders[0].curves)
+      if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
+    page.subtitle = "B-spline net at its own knots, from the study";
+    publish(safe_file_stem(b.name), std::move(page));
   }
   std::string md =
       "\n## Pages\n\nOne page per shape to open in a browser (`coons view`: the surface with reflection "

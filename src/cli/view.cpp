@@ -128,13 +128,16 @@ ViewSlider bspline_slider(const ViewRequest& r, ViewOptions options, const BSpli
     throw InputError("command line", "--degree",
                      "does not apply to a B-spline boundary (its net is the B-spline surface's, at its own knots)");
   const double definite_upper = bspline_definite_upper(in.compatible);
+  const std::string definite = fmt::format(
+      "the non-uniform system of this B-spline boundary is definite for alpha in [-0.25, {}] only (it can be "
+      "singular above)",
+      definite_upper);
   if (r.to_option->count() == 0) {
     options.upper = definite_upper;
+    if (!(options.lower < definite_upper))
+      throw InputError("command line", "--from", fmt::format("must lie below {}: {}", definite_upper, definite));
   } else if (options.upper > definite_upper) {
-    throw InputError("command line", "--to",
-                     fmt::format("the non-uniform system of this B-spline boundary is definite for alpha in [-0.25, "
-                                 "{}] only (it can be singular above)",
-                                 definite_upper));
+    throw InputError("command line", "--to", definite);
   }
   if (const ViewOptionsProblem problem = options_problem(options); problem.field != ViewOptionsField::kNone)
     throw InputError("command line", "--from/--to", problem.reason);

@@ -75,13 +75,14 @@ TEST_CASE("coons study --html: a page per shape in pages/, linked from the repor
     return;
   }
   const TempDir dir;
-  const CommandResult r =
-      run_coons("study " + quoted(kData + "/boundaries/dome.json") + " " + quoted(kData + "/triangles/dome_half.json") +
-                " --degrees 3 4 --html --out " + quoted(dir.file("out")));
+  const CommandResult r = run_coons(
+      "study " + quoted(kData + "/boundaries/dome.json") + " " + quoted(kData + "/triangles/dome_half.json") + " " +
+      quoted(kData + "/boundaries/bspline_wave.json") + " --degrees 3 4 --html --out " + quoted(dir.file("out")));
   REQUIRE(r.status == 0);
   const std::string report = read_text(dir.file("out/report.md"));
   CHECK(report.find("## Pages") != std::string::npos);
-  for (const char* page : {"pages/dome.html", "pages/dome_half.html"}) {
+  // (the B-spline boundary's page: view takes B-spline boundaries since 2026-12-01, review r63a)
+  for (const char* page : {"pages/dome.html", "pages/dome_half.html", "pages/bspline_wave.html"}) {
     CHECK(report.find(std::string("(") + page + ")") != std::string::npos);
     CHECK(fs::file_size(dir.path / "out" / page) > 100000);
   }
@@ -160,7 +161,9 @@ TEST_CASE("coons view: a B-spline boundary gets the slider of its non-uniform fa
   CHECK(text.size() == summary["bytes"].get<size_t>());
 
   // beyond the definite end of its family, and --degree, are bad input; nothing is written
-  for (const std::string& options : {std::string(" --to 0.25"), std::string(" --degree 8 8")}) {
+  // (--from at or above the definite end named the contract's interval, not that end: review r63a)
+  for (const std::string& options :
+       {std::string(" --to 0.25"), std::string(" --degree 8 8"), std::string(" --from 0.2")}) {
     INFO(options);
     const std::string page = dir.file("bad.html");
     std::string command = "view " + wave + " --out " + quoted(page);
@@ -170,6 +173,7 @@ TEST_CASE("coons view: a B-spline boundary gets the slider of its non-uniform fa
     CHECK(bad.out.empty());
     CHECK(std::count(bad.err.begin(), bad.err.end(), '\n') == 1);
     CHECK(bad.err.find(options.substr(1, options.find(' ', 1) - 1)) != std::string::npos);
+    if (options != " --degree 8 8") CHECK(bad.err.find("definite for alpha in [-0.25, 0.116") != std::string::npos);
     CHECK_FALSE(fs::exists(page));
   }
 }
