@@ -132,17 +132,34 @@ void sample_view_frame(const ControlNet& net, int samples, ViewFrame& frame) {
   frame.normals = s.normals;
 }
 
-ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& options, const solvers::SolverInfo& solver,
-                             double initial) {
+namespace {
+
+// An α slider over [options.lower, options.upper] labelled `label`, opening at `initial`, with
+// the faces of options.samples² surface samples; its frames, curves and marks come later.
+ViewSlider alpha_slider(const ViewOptions& options, const char* label, double initial) {
   ViewSlider slider;
   slider.parameter = "alpha";
   slider.symbol = "α";
-  slider.label = "α (the 3×3 mask family)";
+  slider.label = label;
   slider.lower = options.lower;
   slider.upper = options.upper;
   slider.initial = initial;
-  slider.net_edges = grid_edges(boundary.m + 1, boundary.n + 1);
   slider.faces = grid_faces(options.samples);
+  return slider;
+}
+
+// The marks α = −1/4 (the Coons net) and α = 0 (the Laplace net) that lie in the slider's range.
+void add_alpha_marks(ViewSlider& slider) {
+  for (const auto& [name, alpha] : {std::pair<const char*, double>{"Coons", -0.25}, {"Laplace", 0.0}})
+    if (alpha >= slider.lower && alpha <= slider.upper) slider.marks.push_back({name, alpha});
+}
+
+}  // namespace
+
+ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& options, const solvers::SolverInfo& solver,
+                             double initial) {
+  ViewSlider slider = alpha_slider(options, "α (the 3×3 mask family)", initial);
+  slider.net_edges = grid_edges(boundary.m + 1, boundary.n + 1);
 
   // the optima first: their α are frames too, so that the page shows each exactly
   AlphaSearchOptions search;
@@ -172,8 +189,7 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
     for (const SweepRow& row : rows) c.values.push_back(row.summary.ok() ? metric_of(row.metrics, c.name) : NAN);
     slider.curves.push_back(std::move(c));
   }
-  for (const auto& [name, alpha] : {std::pair<const char*, double>{"Coons", -0.25}, {"Laplace", 0.0}})
-    if (alpha >= options.lower && alpha <= options.upper) slider.marks.push_back({name, alpha});
+  add_alpha_marks(slider);
   if (boundary.m >= 2 && boundary.n >= 2) {  // the page solves any α of the interval itself
     slider.ring = frame_net(boundary).points;
     slider.ring_m = boundary.m;
@@ -184,14 +200,7 @@ ViewSlider alpha_view_slider(const Boundary& boundary, const ViewOptions& option
 
 ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOptions& options,
                                const std::string& solver_name, double initial) {
-  ViewSlider slider;
-  slider.parameter = "alpha";
-  slider.symbol = "α";
-  slider.label = "α (the non-uniform mask family of the B-spline net)";
-  slider.lower = options.lower;
-  slider.upper = options.upper;
-  slider.initial = initial;
-  slider.faces = grid_faces(options.samples);
+  ViewSlider slider = alpha_slider(options, "α (the non-uniform mask family of the B-spline net)", initial);
 
   AlphaSearchOptions search = default_bspline_search_options();
   search.lower = options.lower;
@@ -221,8 +230,7 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
     slider.frames.push_back(std::move(f));
   }
   slider.curves = std::move(curves);
-  for (const auto& [name, alpha] : {std::pair<const char*, double>{"Coons", -0.25}, {"Laplace", 0.0}})
-    if (alpha >= options.lower && alpha <= options.upper) slider.marks.push_back({name, alpha});
+  add_alpha_marks(slider);
   return slider;
 }
 
