@@ -69,7 +69,7 @@ std::string write_study_pages(const StudyResult& result, const std::vector<Study
     page.sliders.push_back(bspline_view_slider(b.sides.compatible, bspline_options, backend, -0.25));
     for (const ViewCurve& c : page.sliders[0].curves)
       if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
-    page.subtitle = "B-spline net at its own knots, from the study";
+    page.subtitle = fmt::format("B-spline net at its own knots, from the study, solver {}", backend);
     publish(safe_file_stem(b.name), std::move(page));
   }
   std::string md =

@@ -178,8 +178,8 @@ int run_view(const ViewRequest& r) {
       throw InputError("command line", "--alphas", problem.reason);
     case ViewOptionsField::kSamples:
       throw InputError("command line", "--samples", problem.reason);
-    case ViewOptionsField::kInterval:
-      throw InputError("command line", "--from/--to", problem.reason);
+    case ViewOptionsField::kInterval:  // a B-spline boundary's range ends at its own U: checked below
+      break;
     case ViewOptionsField::kObjectives:
       throw std::logic_error("view: " + problem.reason);  // the objectives are the page's own
   }
@@ -203,6 +203,8 @@ int run_view(const ViewRequest& r) {
     page.subtitle = fmt::format("B-spline net of {} by {} control points, {} values of α in [{}, {}], solver {}",
                                 frame.m + 1, frame.n + 1, alpha.frames.size(), alpha.lower, alpha.upper, solver_name);
   } else {
+    if (const ViewOptionsProblem problem = options_problem(options); problem.field == ViewOptionsField::kInterval)
+      throw InputError("command line", "--from/--to", problem.reason);
     const Boundary b = at_degree(file.boundary, r.degree, r.boundary);
     degree = {b.m, b.n};
     if (r.alpha && !(*r.alpha >= r.from && *r.alpha <= r.to))

@@ -162,8 +162,8 @@ TEST_CASE("coons view: a B-spline boundary gets the slider of its non-uniform fa
 
   // beyond the definite end of its family, and --degree, are bad input; nothing is written
   // (--from at or above the definite end named the contract's interval, not that end: review r63a)
-  for (const std::string& options :
-       {std::string(" --to 0.25"), std::string(" --degree 8 8"), std::string(" --from 0.2")}) {
+  for (const std::string& options : {std::string(" --to 0.25"), std::string(" --degree 8 8"),
+                                     std::string(" --from 0.2"), std::string(" --from 0.25")}) {
     INFO(options);
     const std::string page = dir.file("bad.html");
     std::string command = "view " + wave + " --out " + quoted(page);

@@ -391,8 +391,9 @@ constexpr std::string_view kScript = R"JS(
     legend.textContent = '';
     s.curves.forEach(function (c, ci) {
       // each curve scaled to [0, 1] over the slider's range, so that every minimum shows
-      // (values beyond 10 times the upper quartile's rise above the least, a nearly singular
-      // system's spike at the end of a range, run off the top instead of flattening the rest)
+      // (values beyond 100 times the upper quartile's rise above the least, a nearly singular
+      // system's spike at the end of a range, run off the top instead of flattening the rest; a
+      // curve its search found flat, equal to rounding, is drawn flat rather than as its noise)
       var colour = colours[ci % colours.length], least = Infinity, largest = -Infinity;
       var finite = c.values.filter(function (v) { return v !== null; }).sort(function (a, b) { return a - b; });
       var quartile = finite.length ? finite[Math.floor(0.75 * (finite.length - 1))] : 0;
@@ -400,12 +401,13 @@ constexpr std::string_view kScript = R"JS(
         if (v === null) return;
         least = Math.min(least, v);
       });
-      var cap = quartile > least ? least + 10 * (quartile - least) : Infinity;
+      var cap = quartile > least ? least + 100 * (quartile - least) : Infinity;
       c.values.forEach(function (v) {
         if (v !== null && v <= cap) largest = Math.max(largest, v);
       });
       var span = largest > least ? largest - least : 1;
-      function scaled(v) { return Math.min((v - least) / span, 1.08); }
+      var flat = c.status === 'flat';
+      function scaled(v) { return flat ? 0 : Math.min((v - least) / span, 1.03); }
       var path = '';
       c.values.forEach(function (v, k) {
         if (v === null) return;
@@ -419,7 +421,7 @@ constexpr std::string_view kScript = R"JS(
       var text = c.name + ': ';
       if (c.optimum !== null) {
         var k = nearest(s, c.optimum), v = c.values[k];
-        svg.appendChild(el('circle', { cx: x(c.optimum), cy: y(v === null ? 0 : scaled(v)), r: 4.5,
+        svg.appendChild(el('circle', { cx: x(c.optimum), cy: y(v === null ? 0 : Math.min(scaled(v), 1)), r: 4.5,
                                        fill: colour, stroke: '#fff' }));
         text += symbol(s) + '* = ' + fmt(c.optimum);
         if (c.optimum <= s.lower || c.optimum >= s.upper) text += ' (on a bound)';
