@@ -41,9 +41,7 @@ std::string write_study_pages(const StudyResult& result, const std::vector<Study
       if (in.file == shape.file && in.two_rings && in.two_rings->net.m == shape.boundary.m &&
           in.two_rings->net.n == shape.boundary.n)
         page.sliders.push_back(weight_view_slider(*in.two_rings, options, weight_search_backend(solver), 1.0));
-    for (ViewSlider& s : page.sliders)
-      for (const ViewCurve& c : s.curves)
-        if (c.name == "thin_plate" && c.optimum) s.initial = *c.optimum;
+    for (ViewSlider& s : page.sliders) open_at_thin_plate_optimum(s);
     page.subtitle = fmt::format("degree ({}, {}), from the α study", shape.boundary.m, shape.boundary.n);
     publish(stems[k], std::move(page));
   }
@@ -53,8 +51,7 @@ std::string write_study_pages(const StudyResult& result, const std::vector<Study
     ViewOptions tri_options = options;
     tri_options.lower = tri_options.upper = 0;  // the search's default bounds
     page.sliders.push_back(tri_view_slider(t.boundary, tri_options, tri::default_tri_solver(), -1.0 / 6.0));
-    for (const ViewCurve& c : page.sliders[0].curves)
-      if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
+    open_at_thin_plate_optimum(page.sliders[0]);
     page.subtitle = fmt::format("triangular net of degree {}, from the α study", t.boundary.n);
     publish(safe_file_stem(t.boundary.name), std::move(page));
   }
@@ -63,12 +60,9 @@ std::string write_study_pages(const StudyResult& result, const std::vector<Study
     page.title = b.name;
     ViewOptions bspline_options = options;
     bspline_options.upper = bspline_definite_upper(b.sides.compatible);
-    const std::string backend = solver != nullptr && solvers::accepts_matrix(*solver)
-                                    ? solver->name
-                                    : solvers::default_matrix_solver(true).name;
+    const std::string backend = weight_search_backend(solver).name;  // the requested one, else the default definite one
     page.sliders.push_back(bspline_view_slider(b.sides.compatible, bspline_options, backend, -0.25));
-    for (const ViewCurve& c : page.sliders[0].curves)
-      if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
+    open_at_thin_plate_optimum(page.sliders[0]);
     page.subtitle = fmt::format("B-spline net at its own knots, from the study, solver {}", backend);
     publish(safe_file_stem(b.name), std::move(page));
   }

@@ -108,9 +108,7 @@ ViewSlider triangle_slider(const ViewRequest& r, const ViewOptions& options, std
     throw InputError("command line", "--alpha",
                      fmt::format("must lie in [{}, {}], the c range of a triangle of degree {}", lo, hi, t.n));
   ViewSlider slider = tri_view_slider(t, tri_options, *solver, r.alpha.value_or(-1.0 / 6.0));
-  if (!r.alpha)
-    for (const ViewCurve& c : slider.curves)
-      if (c.name == "thin_plate" && c.optimum) slider.initial = *c.optimum;
+  if (!r.alpha) open_at_thin_plate_optimum(slider);
   return slider;
 }
 
@@ -149,12 +147,10 @@ ViewSlider bspline_slider(const ViewRequest& r, ViewOptions options, const BSpli
                      requested->name +
                          " works from a grid stencil only; a B-spline boundary needs a backend that "
                          "takes an assembled matrix");
-  *solver_name = requested ? requested->name : solvers::default_matrix_solver(true).name;
+  *solver_name = weight_search_backend(requested).name;  // the requested one, else the default definite one
   ViewSlider slider = bspline_view_slider(in.compatible, options, *solver_name,
                                           r.alpha.value_or(std::clamp(-0.25, options.lower, options.upper)));
-  if (!r.alpha)
-    for (const ViewCurve& c : slider.curves)
-      if (c.name == "thin_plate" && c.optimum) slider.initial = *c.optimum;
+  if (!r.alpha) open_at_thin_plate_optimum(slider);
   return slider;
 }
 
@@ -221,14 +217,11 @@ int run_view(const ViewRequest& r) {
     // (without --alpha the Coons net's -0.25, or the nearest end of --from/--to: the page opened
     // on a frame outside its slider)
     page.sliders.push_back(alpha_view_slider(b, options, solver, r.alpha.value_or(std::clamp(-0.25, r.from, r.to))));
-    if (!r.alpha)  // open at the thin-plate optimum when there is one
-      for (const ViewCurve& c : page.sliders[0].curves)
-        if (c.name == "thin_plate" && c.optimum) page.sliders[0].initial = *c.optimum;
+    if (!r.alpha) open_at_thin_plate_optimum(page.sliders[0]);
     if (weight) {
       const solvers::SolverInfo& weight_solver = weight_search_backend(solver_from_name(r.solver));
       page.sliders.push_back(weight_view_slider(*two.problem, options, weight_solver, 1.0));
-      for (const ViewCurve& c : page.sliders[1].curves)
-        if (c.name == "thin_plate" && c.optimum) page.sliders[1].initial = *c.optimum;
+      open_at_thin_plate_optimum(page.sliders[1]);
     }
     page.title = b.name.empty() ? r.boundary : b.name;
     page.subtitle =

@@ -125,6 +125,11 @@ bool ViewOptions::is_valid(std::string* why) const {
   return problem.field == ViewOptionsField::kNone;
 }
 
+void open_at_thin_plate_optimum(ViewSlider& slider) {
+  for (const ViewCurve& c : slider.curves)
+    if (c.name == "thin_plate" && c.optimum) slider.initial = *c.optimum;
+}
+
 void sample_view_frame(const ControlNet& net, int samples, ViewFrame& frame) {
   const SurfaceSamples s = sample_grid(make_bezier_surface(net), samples);
   frame.net = net.points;

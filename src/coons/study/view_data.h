@@ -74,6 +74,10 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
 //! neighbours in the three directions.
 std::vector<std::array<int, 2>> tri_net_edges(int n);
 
+//! Opens the slider at the optimum of its thin-plate curve, when that curve has one (else its
+//! `initial` stays).
+void open_at_thin_plate_optimum(ViewSlider& slider);
+
 //! A surface sampled for the page: the points and unit normals of the Bézier surface of `net`.
 void sample_view_frame(const ControlNet& net, int samples, ViewFrame& frame);
 
