@@ -3,7 +3,7 @@
 protocol over --remote-debugging-pipe (standard library only).
 
     view_browser_check.py COONS BOUNDARY WORKDIR [--keep-screenshots DIR | --expect-error]
-                          [--expect-parameters alpha,weight]
+                          [--expect-parameters alpha,weight] [--expect-view fixed|turned]
 
 Writes WORKDIR/page.html with `coons view`, opens it at #alpha=-0.2013 (between the precomputed
 values) and checks: no console error, no exception and no data-error attribute; data-ready="1";
@@ -17,7 +17,9 @@ makes is the page itself (nothing fetched). Exit 77 (skipped) when
 chromium is not installed or coons was built without three.js. With --expect-error a failing
 script is added to the page and the check must see its error (the check's own test). With
 --expect-parameters the page's sliders (coonsView.parameters()) must be exactly those, in order
-(so that a page that lost its C1 weight slider fails instead of checking no other slider)."""
+(so that a page that lost its C1 weight slider fails instead of checking no other slider). With
+--expect-view the page's camera (data-view: "fixed", the usual direction, or "turned" about the
+vertical to face a surface it would see edge on) must be that one."""
 import base64
 import json
 import os
@@ -160,6 +162,7 @@ def main():
     expect_error = "--expect-error" in options
     expected_parameters = (options[options.index("--expect-parameters") + 1].split(",")
                            if "--expect-parameters" in options else None)
+    expected_view = options[options.index("--expect-view") + 1] if "--expect-view" in options else None
     chromium = shutil.which("chromium") or shutil.which("chromium-browser")
     if not chromium:
         print("skipped: chromium not found (apt-get install chromium)")
@@ -282,10 +285,13 @@ def main():
         first_hash = body("data-net-hash")
         png1 = screenshot("view-alpha-start.png")
         colours, coverage, rows1 = pixel_stats(png1)
-        print("start: alpha=%r mu=%s net-hash=%s colours=%d non-white=%.3f" % (alpha, body("data-mu"), first_hash,
-                                                                              colours, coverage))
+        print("start: alpha=%r mu=%s net-hash=%s view=%s colours=%d non-white=%.3f" %
+              (alpha, body("data-mu"), first_hash, body("data-view"), colours, coverage))
         if colours < 64 or coverage < 0.05:
             fail("the 3D view looks blank (%d colours, %.1f%% not white)" % (colours, 100 * coverage))
+        view = (body("data-view") or "").split()
+        if expected_view is not None and (not view or view[0] != expected_view):
+            fail("the camera is %r, expected %r" % (body("data-view"), expected_view))
 
         mu = body("data-mu")
         if mu is not None and not float(mu) > 0:

@@ -272,7 +272,62 @@ constexpr std::string_view kScript = R"JS(
       content.add(holder);
       return { holder: holder, mesh: mesh, net: net, points: points };
     });
-    var direction = new THREE.Vector3(0.9, 0.75, 1.1).normalize();
+    // The direction the camera looks from: (0.9, 0.75, 1.1), above and to the side, unless it
+    // sees the surfaces as first shown nearly edge on: at less than 7 degrees (sine 0.12) to the
+    // plane they lie closest to (the two principal axes of their sampled points with the largest
+    // variance; a torus patch standing on its side was seen at 5 degrees and filled 5 % of the
+    // view, the seed example at 5 degrees and 3.5 %, every other bundled boundary at 9 or more).
+    // Then the camera stays as high above the horizon and turns about the vertical to face that
+    // plane. Edge on, the sampled points barely spread in the direction d: the test is on
+    // sqrt(variance along d / largest variance) where the plane has no thinner direction, i.e. on
+    // |d · (its normal)|, the eigenvector of the smallest eigenvalue of their covariance.
+    function chosenDirection() {
+      var fixed = new THREE.Vector3(0.9, 0.75, 1.1).normalize();
+      var points = [];  // of the control nets, in three's axes (coons x, z, −y)
+      sliders.forEach(function (s, si) {
+        var p = frameAt(si).net;
+        for (var i = 0; p && i + 2 < p.length; i += 3)
+          if (isFinite(p[i]) && isFinite(p[i + 1]) && isFinite(p[i + 2])) points.push([p[i], p[i + 2], -p[i + 1]]);
+      });
+      if (points.length < 3) return fixed;
+      var mean = [0, 1, 2].map(function (c) {
+        return points.reduce(function (sum, q) { return sum + q[c]; }, 0) / points.length;
+      });
+      var A = [[0, 0, 0], [0, 0, 0], [0, 0, 0]], V = [[1, 0, 0], [0, 1, 0], [0, 0, 1]];
+      points.forEach(function (q) {
+        for (var i = 0; i < 3; ++i)
+          for (var j = 0; j < 3; ++j) A[i][j] += (q[i] - mean[i]) * (q[j] - mean[j]);
+      });
+      for (var sweep = 0; sweep < 30; ++sweep)  // cyclic Jacobi: A → diagonal, V its eigenvectors (columns)
+        for (var p = 0; p < 2; ++p)
+          for (var q = p + 1; q < 3; ++q) {
+            if (!(Math.abs(A[p][q]) > 1e-300)) continue;
+            var theta = (A[q][q] - A[p][p]) / (2 * A[p][q]);
+            var t = (theta >= 0 ? 1 : -1) / (Math.abs(theta) + Math.sqrt(theta * theta + 1));
+            var c = 1 / Math.sqrt(t * t + 1), sn = t * c;
+            for (var k = 0; k < 3; ++k) {
+              var akp = A[k][p], akq = A[k][q];
+              A[k][p] = c * akp - sn * akq; A[k][q] = sn * akp + c * akq;
+            }
+            for (k = 0; k < 3; ++k) {
+              var apk = A[p][k], aqk = A[q][k];
+              A[p][k] = c * apk - sn * aqk; A[q][k] = sn * apk + c * aqk;
+            }
+            for (k = 0; k < 3; ++k) {
+              var vkp = V[k][p], vkq = V[k][q];
+              V[k][p] = c * vkp - sn * vkq; V[k][q] = sn * vkp + c * vkq;
+            }
+          }
+      var thin = [0, 1, 2].reduce(function (a, b) { return A[b][b] < A[a][a] ? b : a; });
+      var normal = new THREE.Vector3(V[0][thin], V[1][thin], V[2][thin]);
+      var facing = Math.abs(fixed.dot(normal));
+      var edgeOn = facing < 0.12 && Math.hypot(normal.x, normal.z) > 0.12;  // a vertical normal: any azimuth sees it alike
+      document.body.setAttribute('data-view', (edgeOn ? 'turned' : 'fixed') + ' ' + facing.toFixed(3));
+      if (!edgeOn || !normal.toArray().every(isFinite)) return fixed;
+      var azimuth = Math.atan2(normal.x, normal.z), round = Math.hypot(fixed.x, fixed.z);
+      return new THREE.Vector3(round * Math.sin(azimuth), fixed.y, round * Math.cos(azimuth));
+    }
+    var direction = chosenDirection();
     // The camera's distance: the one at which the 8 corners of the nets' box, as first shown,
     // fill 85 % of the view's width or height, at most the distance at which the bounding sphere
     // fits the narrower of the two fields of view (a long flat patch was left small in the middle
