@@ -205,18 +205,16 @@ int run_study_command(const StudyRequest& r, const std::string& command_line) {
                    fmt::format("the study of {} at degree {}", triangles.back().boundary.name, largest), f, "degree");
       continue;
     }
-    if (!is_triangle_file(f)) {
-      const BoundaryFile file = read_boundary_file(f, read_options);
-      if (file.bspline) {  // a row at its own knots (bspline_study.h), not the degree study
-        warn_misspelt(f, file.misspelt);
-        check_memory(r.global,
-                     64.0 * file.bspline->compatible.bottom.count() * file.bspline->compatible.left.count() * 100,
-                     fmt::format("the B-spline row of {}", file.boundary.name), f, "knots_u");
-        bsplines.push_back({f, file.boundary.name, *file.bspline});
-        continue;
-      }
+    const BoundaryFile file = read_boundary_file(f, read_options);
+    if (file.bspline) {  // a row at its own knots (bspline_study.h), not the degree study
+      warn_misspelt(f, file.misspelt);
+      check_memory(r.global,
+                   64.0 * file.bspline->compatible.bottom.count() * file.bspline->compatible.left.count() * 100,
+                   fmt::format("the B-spline row of {}", file.boundary.name), f, "knots_u");
+      bsplines.push_back({f, file.boundary.name, *file.bspline});
+      continue;
     }
-    inputs.push_back(read_study_input(f, read_options));
+    inputs.push_back(read_study_input(f, file));
     warn_misspelt(f, inputs.back().misspelt);
     const Boundary& b = inputs.back().boundary;
     require_search_backend(options.solver, b, false, f);

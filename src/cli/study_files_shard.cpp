@@ -165,7 +165,7 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
         bspline = run_bspline_study({{file, b.boundary.name, *b.bspline}}, default_study_objectives(),
                                     bspline_row_solver(options.solver));
       else
-        part = run_study({read_study_input(file, read_options)}, options);
+        part = run_study({read_study_input(file, b)}, options);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     json record{{"key", key},        {"study", study},     {"index", t},

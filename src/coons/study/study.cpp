@@ -24,9 +24,12 @@ namespace coons {
 using nlohmann::json;
 
 StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& options) {
+  return read_study_input(path, read_boundary_file(path, options));
+}
+
+StudyInput read_study_input(const std::string& path, const BoundaryFile& file) {
   StudyInput in;
   in.file = path;
-  const BoundaryFile file = read_boundary_file(path, options);
   if (file.bspline)
     throw InputError(path, "knots_u",
                      "a B-spline boundary is not elevated over Bézier degrees, so degree studies do not apply to it "

@@ -42,6 +42,9 @@ struct StudyInput {
 
 //! Reads a boundary file with its curves and target; every input error is thrown here.
 StudyInput read_study_input(const std::string& path, const BoundaryReadOptions& options = {});
+//! The same from the file at path already read as `file` (the commands that first look whether it
+//! is a B-spline boundary): reads only its curves and target again.
+StudyInput read_study_input(const std::string& path, const BoundaryFile& file);
 
 struct StudyOptions {
   std::vector<int> degrees = {3, 4, 6, 8, 12, 16};  //!< each in [2, 200], increasing
