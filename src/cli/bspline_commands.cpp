@@ -16,6 +16,7 @@
 #include "coons/study/net_report.h"
 #include "coons/surfaces/bspline_sampling.h"
 #include "report_output.h"
+#include "search_inputs.h"
 
 namespace coons::cli {
 
@@ -57,12 +58,7 @@ BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& i
     out.solver = auto_bspline_solver(out.alpha);
     out.picked_automatically = true;
   } else {
-    if (!solvers::accepts_matrix(*r.solver))  // gmres falls back to ILUT on a matrix
-      throw InputError(
-          "command line", "--solver",
-          fmt::format("{} works from a grid stencil; the non-uniform mask system of a B-spline boundary "
-                      "is an assembled matrix (a direct or iterative backend: eigen-ldlt, eigen-lu, cg, …)",
-                      r.solver->name));
+    require_matrix_backend(r.solver, kBSplineNeedsMatrix);  // gmres falls back to ILUT on a matrix
     out.solver = r.solver->name;
   }
   return out;

@@ -153,10 +153,7 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
 // The backend --solver names (nullptr for auto), refused when it works from a grid stencil only;
 // `needs` says what needs the assembled matrix.
 const solvers::SolverInfo* requested_matrix_backend(const SearchRequest& r, const std::string& needs) {
-  const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  if (requested && !solvers::accepts_matrix(*requested))
-    throw InputError("command line", "--solver", requested->name + " works from a grid stencil only; " + needs);
-  return requested;
+  return require_matrix_backend(solver_from_name(r.solver), needs);
 }
 
 // The two data rings the C1 family needs, from the file: bad input when it has one ring, or when
@@ -218,8 +215,7 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
                                  "{}] only (it can be singular above); add --allow-indefinite to search outside",
                                  definite_upper));
   require_valid_search_options(options);
-  const solvers::SolverInfo* requested =
-      requested_matrix_backend(r, "a B-spline boundary needs a backend that takes an assembled matrix");
+  const solvers::SolverInfo* requested = requested_matrix_backend(r, kBSplineNeedsMatrix);
   // a Cholesky-type backend wherever the system is definite
   const std::string solver =
       requested ? requested->name

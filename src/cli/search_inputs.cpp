@@ -84,6 +84,16 @@ void require_search_backend(const solvers::SolverInfo* requested, const Boundary
                      where.empty() ? check.reason : fmt::format("{} (on {})", check.reason, where));
 }
 
+const char* const kBSplineNeedsMatrix =
+    "the non-uniform mask system of a B-spline boundary is an assembled matrix (a direct or iterative backend: "
+    "eigen-ldlt, eigen-lu, cg, gmres, ...)";
+
+const solvers::SolverInfo* require_matrix_backend(const solvers::SolverInfo* requested, const std::string& needs) {
+  if (requested && !solvers::accepts_matrix(*requested))
+    throw InputError("command line", "--solver", requested->name + " works from the grid stencil only; " + needs);
+  return requested;
+}
+
 void require_weight_search_backend(const solvers::SolverInfo* requested) {
   if (!requested) return;
   if (const SearchBackendCheck check = check_weight_search_backend(*requested); !check.applicable)

@@ -28,4 +28,13 @@ void require_search_backend(const solvers::SolverInfo* requested, const Boundary
 //! The same for the C1 family's weight search (backend_choice.h: check_weight_search_backend).
 void require_weight_search_backend(const solvers::SolverInfo* requested);
 
+//! `requested` (nullptr for auto), or bad input naming --solver when it works from a grid stencil
+//! only: "NAME works from the grid stencil only; " followed by `needs` (what needs an assembled
+//! matrix), one wording for every command that refuses such a backend.
+const solvers::SolverInfo* require_matrix_backend(const solvers::SolverInfo* requested, const std::string& needs);
+
+//! `needs` of require_matrix_backend for the non-uniform mask systems of a B-spline boundary
+//! (solve, export, search-alpha, view).
+extern const char* const kBSplineNeedsMatrix;
+
 }  // namespace coons::cli

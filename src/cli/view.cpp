@@ -141,12 +141,7 @@ ViewSlider bspline_slider(const ViewRequest& r, ViewOptions options, const BSpli
     throw InputError("command line", "--from/--to", problem.reason);
   if (r.alpha && !(*r.alpha >= options.lower && *r.alpha <= options.upper))
     throw InputError("command line", "--alpha", fmt::format("must lie in [{}, {}]", options.lower, options.upper));
-  const solvers::SolverInfo* requested = solver_from_name(r.solver);
-  if (requested && !solvers::accepts_matrix(*requested))
-    throw InputError("command line", "--solver",
-                     requested->name +
-                         " works from a grid stencil only; a B-spline boundary needs a backend that "
-                         "takes an assembled matrix");
+  const solvers::SolverInfo* requested = require_matrix_backend(solver_from_name(r.solver), kBSplineNeedsMatrix);
   *solver_name = weight_search_backend(requested).name;  // the requested one, else the default definite one
   ViewSlider slider = bspline_view_slider(in.compatible, options, *solver_name,
                                           r.alpha.value_or(std::clamp(-0.25, options.lower, options.upper)));

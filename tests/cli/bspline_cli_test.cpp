@@ -105,6 +105,28 @@ TEST_CASE("coons solve: bad knot vectors and options are one error line naming t
     CHECK(r.out.empty());
     CHECK(r.err.find(std::string("command line: ") + field + ": ") != std::string::npos);
   }
+  // a grid-stencil backend: one line, worded alike by every command that reads a B-spline boundary
+  // (view and solve had said it three ways), nothing written
+  TempDir out;
+  std::string first;
+  for (const std::string& command :
+       {std::string("solve"), std::string("search-alpha --objective thin_plate"),
+        "export --obj --out " + q(out.file("ex")), "view --out " + q(out.file("page.html"))}) {
+    std::string line = kCoons;
+    line.append(" ").append(command).append(" ").append(q(kWave)).append(" --solver mg");
+    const CommandResult r = run_command(line);
+    INFO(command << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.rfind("error: command line: --solver: mg works from the grid stencil only; the non-uniform mask system "
+                      "of a B-spline boundary is an assembled matrix",
+                      0) == 0);
+    if (first.empty()) first = r.err;
+    CHECK(r.err == first);
+  }
+  CHECK_FALSE(fs::exists(out.file("ex")));
+  CHECK_FALSE(fs::exists(out.file("page.html")));
   const CommandResult sweep = run_command(kCoons + " sweep " + q(kWave));
   CHECK(sweep.status == 2);
   CHECK(sweep.err.find("knots_u: ") != std::string::npos);

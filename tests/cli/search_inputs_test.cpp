@@ -106,3 +106,15 @@ TEST_CASE("require_weight_search_backend: a grid-stencil backend is bad input na
   CHECK(error_of([] { cli::require_weight_search_backend(solvers::find_solver("eigen-ldlt")); }).empty());
   CHECK(error_of([] { cli::require_weight_search_backend(nullptr); }).empty());
 }
+
+TEST_CASE("require_matrix_backend: a grid-stencil backend is bad input naming --solver and what needs the matrix",
+          "[cli]") {
+  CHECK(error_of([] { cli::require_matrix_backend(solvers::find_solver("mg"), "this needs one"); }) ==
+        "command line: --solver: mg works from the grid stencil only; this needs one");
+  const solvers::SolverInfo* ldlt = solvers::find_solver("eigen-ldlt");
+  const solvers::SolverInfo* taken = nullptr;
+  CHECK(error_of([&] { taken = cli::require_matrix_backend(ldlt, "this needs one"); }).empty());
+  CHECK(taken == ldlt);
+  CHECK(error_of([&] { taken = cli::require_matrix_backend(nullptr, "this needs one"); }).empty());
+  CHECK(taken == nullptr);
+}
