@@ -150,12 +150,6 @@ SearchSetup setup_search(const SearchRequest& r, const Boundary& b) {
   return s;
 }
 
-// The backend --solver names (nullptr for auto), refused when it works from a grid stencil only;
-// `needs` says what needs the assembled matrix.
-const solvers::SolverInfo* requested_matrix_backend(const SearchRequest& r, const std::string& needs) {
-  return require_matrix_backend(solver_from_name(r.solver), needs);
-}
-
 // The two data rings the C1 family needs, from the file: bad input when it has one ring, or when
 // the 5×5 stencil does not fit its free points.
 StencilProblem weight_problem(const std::string& path, const BoundaryFile& file) {
@@ -215,7 +209,7 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
                                  "{}] only (it can be singular above); add --allow-indefinite to search outside",
                                  definite_upper));
   require_valid_search_options(options);
-  const solvers::SolverInfo* requested = requested_matrix_backend(r, kBSplineNeedsMatrix);
+  const solvers::SolverInfo* requested = require_matrix_backend(solver_from_name(r.solver), kBSplineNeedsMatrix);
   // a Cholesky-type backend wherever the system is definite
   const std::string solver =
       requested ? requested->name
@@ -243,8 +237,9 @@ int run_bspline_search(const SearchRequest& r, const BoundaryFile& file, Phases&
 // stencil-problem search (family_search.h), every evaluation a factorisation from the matrix.
 int run_problem_alpha_search(const SearchRequest& r, const BoundaryFile& file, Phases& phases) {
   const Boundary& b = file.boundary;
-  const solvers::SolverInfo* requested = requested_matrix_backend(
-      r, "the alpha search of a file with two data rings or a free grid needs a backend that works from the matrix");
+  const solvers::SolverInfo* requested = require_matrix_backend(
+      solver_from_name(r.solver),
+      "the alpha search of a file with two data rings or a free grid needs a backend that works from the matrix");
   SearchSetup setup = setup_search(r, b);
   // outside [−1/4, 1/4] the systems can be indefinite: auto is then a sparse LU, not a Cholesky
   // that would fail at every indefinite α (a named definite-only backend is refused by setup_search)

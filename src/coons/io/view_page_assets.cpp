@@ -273,14 +273,12 @@ constexpr std::string_view kScript = R"JS(
       return { holder: holder, mesh: mesh, net: net, points: points };
     });
     // The direction the camera looks from: (0.9, 0.75, 1.1), above and to the side, unless it
-    // sees the surfaces as first shown nearly edge on: at less than 7 degrees (sine 0.12) to the
-    // plane they lie closest to (the two principal axes of their sampled points with the largest
-    // variance; a torus patch standing on its side was seen at 5 degrees and filled 5 % of the
-    // view, the seed example at 5 degrees and 3.5 %, every other bundled boundary at 9 or more).
-    // Then the camera stays as high above the horizon and turns about the vertical to face that
-    // plane. Edge on, the sampled points barely spread in the direction d: the test is on
-    // sqrt(variance along d / largest variance) where the plane has no thinner direction, i.e. on
-    // |d · (its normal)|, the eigenvector of the smallest eigenvalue of their covariance.
+    // sees the control nets as first shown nearly edge on: at less than 7 degrees (sine 0.12) to
+    // the plane they lie closest to, whose normal is the eigenvector of the smallest eigenvalue of
+    // the covariance of their points (a torus patch standing on its side was seen at 5 degrees and
+    // filled 4.9 % of the view, the seed example at 5 degrees and 3.5 %, every other bundled
+    // boundary at 9 or more). Then the camera stays as high above the horizon and turns about the
+    // vertical to face that plane.
     function chosenDirection() {
       var fixed = new THREE.Vector3(0.9, 0.75, 1.1).normalize();
       var points = [];  // of the control nets, in three's axes (coons x, z, −y)
@@ -323,7 +321,7 @@ constexpr std::string_view kScript = R"JS(
       var facing = Math.abs(fixed.dot(normal));
       var edgeOn = facing < 0.12 && Math.hypot(normal.x, normal.z) > 0.12;  // a vertical normal: any azimuth sees it alike
       document.body.setAttribute('data-view', (edgeOn ? 'turned' : 'fixed') + ' ' + facing.toFixed(3));
-      if (!edgeOn || !normal.toArray().every(isFinite)) return fixed;
+      if (!edgeOn) return fixed;
       var azimuth = Math.atan2(normal.x, normal.z), round = Math.hypot(fixed.x, fixed.z);
       return new THREE.Vector3(round * Math.sin(azimuth), fixed.y, round * Math.cos(azimuth));
     }
