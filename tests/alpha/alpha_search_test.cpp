@@ -222,6 +222,20 @@ TEST_CASE("search_alpha_gamma: flat in alpha is not flat in gamma", "[alpha]") {
   CHECK(s.value < s.value_at_gamma0 - 1.0);  // 15.443 at (1/4, −0.196) against 17.44 for every γ = 0 mask
 }
 
+TEST_CASE("search_alpha_gamma: an optimum on the line gamma = 0 of a flat family says alpha is not determined",
+          "[alpha]") {
+  // The bundled saddle: every α gives one net at γ = 0 (thin plate 128) and |γ| > 0 raises the
+  // thin plate; the search reported α* = 0 as if it were the optimum.
+  const Boundary saddle = read_boundary_file(COONS_DATA_DIR "/boundaries/saddle.json").boundary;
+  MaskObjective f(saddle, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
+  const AlphaGammaSummary s = search_alpha_gamma(f);
+  INFO(s.message);
+  CHECK_FALSE(s.flat);
+  CHECK(s.gamma == Approx(0).margin(1e-12));
+  CHECK(s.value == Approx(s.value_at_gamma0).epsilon(1e-12));
+  CHECK_THAT(s.message, Catch::Contains("alpha is not determined"));
+}
+
 TEST_CASE("search_alpha_gamma: an objective that is 0 for every mask is flat, not an optimum of rounding", "[alpha]") {
   // A planar net, slanted and not uniformly spaced along the sides: every symmetric 3 × 3 mask
   // reproduces linear nets, so thin plate, twist and E3 are 0 for every (α, γ) and vary by
@@ -411,6 +425,53 @@ TEST_CASE("search_mask_parameter: bounds holding singular alphas give the minimu
     const AlphaSearchSummary reference = search_mask_parameter(g);
     CHECK(*s.parameter == Approx(*reference.parameter).margin(1e-6));
     CHECK(s.value == Approx(reference.value).epsilon(1e-9));
+  }
+}
+
+TEST_CASE("scan_point: uniform up to the wide width, uniform in asinh beyond it, the bounds exact", "[alpha]") {
+  for (int i = 0; i < 9; ++i) CHECK(scan_point(-0.25, 0.25, 9, i) == -0.25 + i * (0.5 / 8));
+  CHECK(scan_point(-0.3, 1e12, 9, 0) == -0.3);
+  CHECK(scan_point(-0.3, 1e12, 9, 8) == 1e12);
+  for (int i = 1; i < 9; ++i) {
+    CHECK(scan_point(-0.3, 1e12, 9, i) > scan_point(-0.3, 1e12, 9, i - 1));
+    // equal steps in asinh(p / kWideScanScale)
+    const double step = std::asinh(1e12 / kWideScanScale) - std::asinh(-0.3 / kWideScanScale);
+    CHECK(std::asinh(scan_point(-0.3, 1e12, 9, i) / kWideScanScale) -
+              std::asinh(scan_point(-0.3, 1e12, 9, i - 1) / kWideScanScale) ==
+          Approx(step / 8).epsilon(1e-9));
+  }
+  CHECK(scan_point(-0.3, 1e12, 9, 1) < 3);  // linear: 1.25e11
+}
+
+TEST_CASE("lies_on_bound: within 1e-7 of the width, or of a large bound's own size", "[alpha]") {
+  CHECK(lies_on_bound(-0.25 + 4e-8, -0.25, 0.25));
+  CHECK_FALSE(lies_on_bound(-0.25 + 6e-8, -0.25, 0.25));
+  // over [-0.3, 1e8] the width made every point within 10 of a bound "on" it
+  CHECK_FALSE(lies_on_bound(-0.0185, -0.3, 1e8));
+  CHECK_FALSE(lies_on_bound(-0.2999, -0.3, 1e8));
+  CHECK(lies_on_bound(-0.3 + 5e-8, -0.3, 1e8));
+  CHECK(lies_on_bound(1e8 - 5, -0.3, 1e8));
+}
+
+TEST_CASE("search_mask_parameter: bounds far wider than the family's scale find the minimum near zero", "[alpha]") {
+  // A linear scan of [-0.3, 1e12] had no point between -0.3 and 1.25e11: the refinement, its
+  // tolerance 1e-10 of the width, stopped at -0.0443 (13.4687) and called it on a bound.
+  const Boundary dome = read_boundary_file(COONS_DATA_DIR "/boundaries/dome.json").boundary;
+  MaskObjective g(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-ldlt"));
+  const AlphaSearchSummary reference = search_mask_parameter(g);
+  REQUIRE(reference.parameter);
+  for (const auto& [lower, upper] : {std::pair{-0.3, 1e12}, std::pair{-0.3, 1e8}, std::pair{-0.9, 1e12}}) {
+    MaskObjective f(dome, objective_named("thin_plate"), alpha_only(), backend("eigen-lu"));
+    AlphaSearchOptions wide;
+    wide.lower = lower;
+    wide.upper = upper;
+    const AlphaSearchSummary s = search_mask_parameter(f, wide);
+    INFO(lower << ", " << upper << ": " << s.brief_report());
+    CHECK(s.status == SearchStatus::kSuccess);
+    CHECK_FALSE(s.at_bound);
+    REQUIRE(s.parameter);
+    CHECK(*s.parameter == Approx(*reference.parameter).margin(1e-7));
+    CHECK(s.value == Approx(reference.value).epsilon(1e-12));
   }
 }
 

@@ -166,6 +166,11 @@ TEST_CASE("bspline_pole_note: an optimum against a definite end cut by a singula
   s.parameter = 0.1149;  // bspline_wave's Dirichlet optimum, 0.0015 below its singular end
   CHECK_THAT(bspline_pole_note(s, options, 0.1164), Catch::Contains("so this minimum is made by it"));
   CHECK_THAT(bspline_pole_note(s, options, 0.1164), Catch::StartsWith("the optimum lies 0.0015 below 0.1164"));
+  s.parameter = 0.1164;  // on the end itself, the objective still falling there (spans of 2e-9: "rises" was said)
+  s.at_bound = true;
+  CHECK_THAT(bspline_pole_note(s, options, 0.1164), Catch::Contains("where the objective still falls"));
+  CHECK_THAT(bspline_pole_note(s, options, 0.1164), Catch::StartsWith("the optimum is 0.1164, the end of the range"));
+  s.at_bound = false;
   s.parameter = -0.0866;  // its thin-plate optimum: far from the end
   CHECK(bspline_pole_note(s, options, 0.1164).empty());
   s.parameter = 0.249;  // an end at 1/4 is the contract's bound, not a singular alpha

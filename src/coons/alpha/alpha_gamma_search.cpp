@@ -203,6 +203,13 @@ AlphaGammaSummary search_alpha_gamma(MaskObjective& objective, const AlphaSearch
     out.status = SearchStatus::kNotConverged;
     out.message = "Ceres: " + summary.message;
   }
+  // On γ = 0 a boundary whose symmetric family is flat has a line of optima: α* is any α of the
+  // bounds (the saddle's thin plate is 128 for every α at γ = 0 and rises with |γ|).
+  if (one.flat && std::abs(out.gamma) <= 1e-12 * (0.25 + std::abs(out.alpha))) {
+    out.message += std::string(out.message.empty() ? "" : "; ") +
+                   "flat in alpha along gamma = 0 (the symmetric family does not depend on alpha): gamma = 0 is the "
+                   "optimum, alpha is not determined";
+  }
   return out;
 }
 

@@ -20,6 +20,7 @@
 // GradientProblemSolver and Problem (S. Agarwal, K. Mierle et al.).
 #pragma once
 
+#include <algorithm>
 #include <cmath>
 #include <functional>
 #include <limits>
@@ -87,11 +88,32 @@ enum class SearchStatus { kSuccess, kFlat, kSolverFailed, kNotConverged, kFailed
 const char* to_string(SearchStatus status);
 
 //! Whether `parameter` lies on a bound of [lower, upper] as the searches decide at_bound: within
-//! 1e-7 of the interval's length (a minimum on the bound is approached from inside: the twist
-//! energy's, the Coons net at α = −1/4, came back 9e-10 inside on a degree-5 boundary).
+//! 1e-7 of the interval's length, or of the bound's own size when that is smaller and above 1 (a
+//! minimum on the bound is approached from inside: the twist energy's, the Coons net at α = −1/4,
+//! came back 9e-10 inside on a degree-5 boundary; over [−0.3, 1e8] the interval's length put α* =
+//! −0.0185 "on" the bound −0.3).
 inline bool lies_on_bound(double parameter, double lower, double upper) {
-  const double edge = 1e-7 * (upper - lower);
-  return std::abs(parameter - lower) <= edge || std::abs(parameter - upper) <= edge;
+  const auto near = [&](double bound) {
+    return std::abs(parameter - bound) <= 1e-7 * std::min(upper - lower, std::max(1.0, std::abs(bound)));
+  };
+  return near(lower) || near(upper);
+}
+
+//! Intervals wider than this are scanned uniformly in asinh(parameter / kWideScanScale), not in
+//! the parameter itself (scan_point): the α family's objectives vary on the scale of 1/4 and tend
+//! to a limit as |α| grows, so a linear scan of [−0.3, 1e12] put one point below 1e11 and missed
+//! the minimum at −0.0185.
+inline constexpr double kWideScanWidth = 4;
+inline constexpr double kWideScanScale = 0.25;
+
+//! Point i of a scan of k ≥ 2 points over [lower, upper], both bounds included exactly: uniform in
+//! the parameter, or on intervals wider than kWideScanWidth uniform in asinh(parameter / kWideScanScale).
+inline double scan_point(double lower, double upper, int k, int i) {
+  if (i <= 0) return lower;
+  if (i + 1 >= k) return upper;
+  if (!(upper - lower > kWideScanWidth)) return lower + i * ((upper - lower) / (k - 1));
+  const double a = std::asinh(lower / kWideScanScale), b = std::asinh(upper / kWideScanScale);
+  return std::clamp(kWideScanScale * std::sinh(a + i * ((b - a) / (k - 1))), lower, upper);
 }
 
 struct AlphaSearchSummary {

@@ -71,14 +71,32 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
     local_minima += r.local_minima;
     return r;
   };
+  // An interval's share of the scan: its width, or on bounds scanned in asinh (scan_point) its
+  // width there.
+  const bool wide = options.upper - options.lower > kWideScanWidth;
+  const auto measure = [wide](double a, double b) {
+    return wide ? std::asinh(b / kWideScanScale) - std::asinh(a / kWideScanScale) : b - a;
+  };
   for (std::size_t i = 0; i < intervals; ++i) {
     const double width = ends[i + 1] - ends[i];
     // the scan's points shared out by width (at least 5 each; each margin searched adds 5)
-    const int points = std::clamp(int(std::lround(options.scan_points * width / (options.upper - options.lower))), 5,
-                                  std::max(options.scan_points, 5));
-    const double margin = width / (2 * (points - 1));
-    const double lower = i > 0 ? ends[i] + margin : ends[i],
-                 upper = i + 1 < intervals ? ends[i + 1] - margin : ends[i + 1];
+    const int points = std::clamp(
+        int(std::lround(options.scan_points * measure(ends[i], ends[i + 1]) / measure(options.lower, options.upper))),
+        5, std::max(options.scan_points, 5));
+    // half a scan cell off each pole: the first and last cell of the interval's own scan, and on
+    // a wide interval at most the half cell of one kWideScanWidth wide (its asinh cells next to a
+    // pole far from 0 span millions on [−1e60, 1e60]; the margin searches go 16 times closer each)
+    const int half_cells = 2 * (points - 1) + 1;
+    const double margin = width / (2 * (points - 1)), natural = kWideScanWidth / (2 * (points - 1));
+    const double margin_below = width > kWideScanWidth
+                                    ? std::min(scan_point(ends[i], ends[i + 1], half_cells, 1) - ends[i], natural)
+                                    : margin,
+                 margin_above =
+                     width > kWideScanWidth
+                         ? std::min(ends[i + 1] - scan_point(ends[i], ends[i + 1], half_cells, half_cells - 2), natural)
+                         : margin;
+    const double lower = i > 0 ? ends[i] + margin_below : ends[i],
+                 upper = i + 1 < intervals ? ends[i + 1] - margin_above : ends[i + 1];
     if (!(lower < upper)) {  // (poles closer than rounding lets the margins apart)
       results.emplace_back().status = SearchStatus::kSolverFailed;
       results.back().message = "the interval between two poles is narrower than its margins";
@@ -95,7 +113,7 @@ IntervalSearch search_intervals(Obj& objective, const AlphaSearchOptions& option
         if (!e.ok()) return Slope::kFailed;
         return -side * e.derivative > e.derivative_noise ? Slope::kFalls : Slope::kRises;
       };
-      double near = side < 0 ? lower : upper, gap = margin;
+      double near = side < 0 ? lower : upper, gap = side < 0 ? margin_below : margin_above;
       double solved = near;  // the scan point closest to the pole whose evaluation succeeded
       bool rose = false;     // a search stopped where the objective rises towards the pole
       for (int level = 0; level < kMarginSearches; ++level, gap /= 16) {

@@ -128,11 +128,10 @@ class SearchRun {
   //    failure.
   bool scan() {
     const int k = options_.scan_points;
-    const double step = (options_.upper - options_.lower) / (k - 1);
     int failed_points = 0;
     std::string first_failure;
     for (int i = 0; i < k; ++i) {
-      const double p = i + 1 == k ? options_.upper : options_.lower + i * step;
+      const double p = scan_point(options_.lower, options_.upper, k, i);
       grid_.push_back(objective_.evaluate(p, /*with_derivative=*/false));  // values suffice to scan
       if (!grid_.back().ok()) {
         if (failed_points++ == 0)
@@ -212,15 +211,39 @@ class SearchRun {
     floor_ = (energies ? 1e-16 * diag * diag * std::pow(degree, 2.0 * order) : 0.0) +
              (objective.target_weight > 0 ? objective.target_weight * 1e-2 * diag : 0.0);
     s_.rounding_floor = floor_;
-    if (hi_ - lo_ <= options_.flat_tolerance * std::max({std::abs(hi_), std::abs(lo_), floor_})) {
+    const double rounding = options_.flat_tolerance * std::max({std::abs(hi_), std::abs(lo_), floor_});
+    if (hi_ - lo_ <= std::max(rounding, solver_noise(diag, degree, energies ? order : -1))) {
       s_.status = SearchStatus::kFlat;
       s_.flat = true;
       s_.local_minima = 0;  // dips of rounding noise are no minima (their count changed with the last bit)
       s_.value = grid_[best_].value;
       s_.message = "the objective does not depend on the parameter over the bounds";
+      if (hi_ - lo_ > rounding) s_.message += ", to within what the iterative solver's relative residuals resolve";
       return true;
     }
     return false;
+  }
+
+  // How far an iterative solver's error moves the objective: its nets are exact to about its
+  //    largest relative residual r over the scan times the condition of the mask system (at most
+  //    about degree⁴ on [−1/4, 1/4], docs/math.md §3), a net error d = r·degree⁴·diag, which moves an
+  //    energy E of derivative order k by about 2√E·d·degreeᵏ + (d·degreeᵏ)² and a distance to a
+  //    target by d. 0 for exact solvers (r at rounding level, or not computed): jacobi's scan of the
+  //    saddle's e3, exactly 0, held values from 3e-22 to 3.5e-30, and an optimum was picked from them.
+  //    order < 0: no energy term.
+  [[nodiscard]] double solver_noise(double diag, double degree, int order) const {
+    double r = 0;
+    for (const Evaluation& e : grid_)
+      if (e.ok() && std::isfinite(e.summary.relative_residual)) r = std::max(r, e.summary.relative_residual);
+    if (!(r > 1e-13)) return 0;
+    const double d = r * std::pow(degree, 4.0) * diag;
+    double noise = 0;
+    if (order >= 0) {
+      const double dk = d * std::pow(degree, order);
+      noise += 2 * std::sqrt(std::max(std::abs(hi_), std::abs(lo_))) * dk + dk * dk;
+    }
+    if (objective_.objective().target_weight > 0) noise += objective_.objective().target_weight * d;
+    return noise;
   }
 
   // 3. Optimum on a bound: the best grid point is a bound and the slope points outwards (a slope
@@ -282,7 +305,7 @@ class SearchRun {
     ceres::Solver::Options o;
     o.linear_solver_type = ceres::DENSE_QR;
     set_search_tolerances(o, options_, 1e-16, 1e-16);
-    ShortStep stop(options_.parameter_tolerance * (options_.upper - options_.lower));
+    ShortStep stop(options_.parameter_tolerance * step_scale(b - a));
     o.callbacks.push_back(&stop);
     ceres::Solver::Summary summary;
     ceres::Solve(o, &problem, &summary);
@@ -400,6 +423,14 @@ class SearchRun {
              " other minima of the scan were refined; the best scan point's result is lowest");
   }
 
+  // The length the parameter tolerance is relative to: the bounds' width, or on bounds scanned in
+  // asinh (scan_point) the bracket's, which is small where the scan is fine (1e-10 of [−0.3, 1e12]
+  // let a refinement stop 0.03 from the minimum).
+  [[nodiscard]] double step_scale(double bracket) const {
+    const double width = options_.upper - options_.lower;
+    return width > kWideScanWidth ? bracket : width;
+  }
+
   // A slope that vanishes on the scale of the objective's variation over the scan.
   bool vanishing(const Evaluation& e, double width) const {
     return std::abs(e.derivative) * width <= 1e-6 * std::max(hi_ - lo_, floor_);
@@ -411,9 +442,9 @@ class SearchRun {
     const double end = grid_[g.derivative < 0 ? ib : ia].parameter, width = grid_[ib].parameter - grid_[ia].parameter;
     if (end == g.parameter) return std::nullopt;
     const auto vanishes = [&](const Evaluation& e) { return vanishing(e, width); };
-    Downhill<Evaluation> d = go_downhill([&](double c) { return objective_.evaluate(c); }, std::move(g), end,
-                                         options_.parameter_tolerance * (options_.upper - options_.lower),
-                                         4 * options_.max_iterations, vanishes);
+    Downhill<Evaluation> d =
+        go_downhill([&](double c) { return objective_.evaluate(c); }, std::move(g), end,
+                    options_.parameter_tolerance * step_scale(width), 4 * options_.max_iterations, vanishes);
     // (a failed evaluation: judge_failures withholds a verdict that rests on it)
     if (d.failed || !vanishes(d.lowest)) return std::nullopt;
     return std::move(d.lowest);

@@ -54,6 +54,11 @@ std::string bspline_pole_note(const AlphaSearchSummary& s, const AlphaSearchOpti
   if (!s.parameter || !(definite_upper < 0.25) || options.upper != definite_upper) return "";
   const double gap = definite_upper - *s.parameter;
   if (!(gap <= 0.02 * (options.upper - options.lower))) return "";
+  if (s.at_bound)  // the objective still falls at U (a knot vector with spans of 2e-9: the note said it rose)
+    return fmt::format(
+        "the optimum is {}, the end of the range where the non-uniform system is definite (a singular alpha lies "
+        "just above it), where the objective still falls: the range, not the boundary, ends this minimum",
+        definite_upper);
   return fmt::format(
       "the optimum lies {:.3g} below {}, the end of the range where the non-uniform system is definite (a singular "
       "alpha lies just above it): the objective rises there because of that singular alpha, so this minimum is made "
