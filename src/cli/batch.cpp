@@ -169,7 +169,7 @@ void write_run(OutputSet& out, const std::string& stem, const nlohmann::json& re
   } else {
     out.remove_stale(stem + ".surface.obj");
     out.remove_stale(stem + ".net.obj");
-    print_solver_failure(file, *failure);
+    print_solver_failure(file, *failure, std::filesystem::path(stem).filename().string());
   }
 }
 
@@ -242,7 +242,7 @@ void run_bspline(const BatchRequest& b, const BoundaryFile& input, const std::st
     else {
       out.remove_stale(stem + ".surface.obj");
       out.remove_stale(stem + ".net.obj");
-      print_solver_failure(file, *outcome.summary);
+      print_solver_failure(file, *outcome.summary, tag);
     }
   }
 }

@@ -112,9 +112,19 @@ int run_bspline_export(const BSplineExportRequest& given_request, const Boundary
   BSplineExportRequest e = given_request;
   const BSplineResolved r = resolve_bspline(request, input, e.file);
   const BSplineInput& in = *input.bspline;
-  if (!e.obj && !e.mtx && !e.ply && !e.vts && !e.cad.any()) {  // the defaults: OBJ, and the system when there is one
+  const bool defaults = !e.obj && !e.mtx && !e.ply && !e.vts && !e.cad.any();
+  if (defaults) {  // the defaults: OBJ, and the system when there is one
     e.obj = true;
     e.mtx = r.method == Method::kAlpha;
+  }
+  // a net with no point to solve for has a system of no unknowns ("0 0 0"), as a Bézier net of
+  // degree 1: not written by default, and asked for, bad input
+  if (const ControlNet frame = bspline_frame(in.compatible); e.mtx && (frame.m < 2 || frame.n < 2)) {
+    if (!defaults)
+      throw InputError(e.file, "--mtx",
+                       fmt::format("the {} by {} net has no point to solve for: there is no system to write",
+                                   frame.m + 1, frame.n + 1));
+    e.mtx = false;
   }
   check_export_options(e.samples, e.mtx, r.method == Method::kAlpha, e.prefix);
   check_bspline_memory(global, in, e.file);

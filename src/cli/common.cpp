@@ -46,6 +46,10 @@ void add_memory_option(CLI::App& cmd, GlobalOptions& g) {
 void require_new_output(const std::string& path, bool force, const std::string& option) {
   if (std::filesystem::is_directory(path))
     throw InputError(path, option, "is a folder; name a file to write (--force does not replace a folder)");
+  std::error_code ec;
+  if (const auto status = std::filesystem::status(path, ec);
+      std::filesystem::exists(status) && !std::filesystem::is_regular_file(status))
+    throw InputError(path, option, "is not a regular file (--force replaces regular files only)");
   if (!force && std::filesystem::exists(path))
     throw InputError(path, "--force", "exists; give --force to overwrite it");
 }
@@ -305,6 +309,7 @@ std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs) {
                            "is not a regular file (a folder given as input is read for its regular *.json files)");
         found.push_back(it->path().string());
       }
+      if (found.empty()) throw InputError(in, "", "the folder holds no *.json boundary file");
       std::sort(found.begin(), found.end());
       files.insert(files.end(), found.begin(), found.end());
     } else {
@@ -376,14 +381,14 @@ void print_json(const nlohmann::ordered_json& doc, int indent) {
   print_text(doc.dump(indent, ' ', false, nlohmann::ordered_json::error_handler_t::replace) + '\n');
 }
 
-void print_solver_failure(const std::string& file, const solvers::SolveSummary& s) {
+void print_solver_failure(const std::string& file, const solvers::SolveSummary& s, const std::string& net) {
   std::string line = fmt::format("error: {}: solver: {} {}", file, s.solver, solvers::to_string(s.status));
   line += std::isfinite(s.relative_residual) ? fmt::format(", relative residual {:.3g}", s.relative_residual)
                                              : std::string(", relative residual not finite");
-  if (!s.message.empty()) {
+  if (!s.message.empty() || !net.empty()) {
     std::string message = s.message;
     std::replace(message.begin(), message.end(), '\n', ' ');
-    line += " (" + message + ")";
+    line += " (" + net + (net.empty() || message.empty() ? "" : ": ") + message + ")";
   }
   std::cerr << line << '\n';
 }

@@ -131,8 +131,9 @@ BoundaryFile read_input(const std::string& path, double corner_tolerance, bool a
 //! One line on standard error per misspelt field of the file at `path` ("warning: FILE: fre:
 //! unknown field, ignored (did you mean "free"?)"); read_input calls it.
 void warn_misspelt(const std::string& path, const std::vector<MisspeltField>& misspelt);
-//! Files as given, folders expanded to their *.json files (sorted); unreadable folders, and an
-//! entry *.json of a folder that is no regular file (a FIFO would block the run), are InputErrors.
+//! Files as given, folders expanded to their *.json files (sorted); unreadable folders, folders
+//! without a *.json file, and an entry *.json of a folder that is no regular file (a FIFO would
+//! block the run), are InputErrors naming the folder or the entry.
 std::vector<std::string> expand_inputs(const std::vector<std::string>& inputs);
 
 //! The memory of solving and measuring an (m+1)×(n+1) net, checked against the limit;
@@ -157,7 +158,9 @@ std::string dump(const nlohmann::json& doc, int indent = -1);
 std::string dump_points_inline(const nlohmann::json& doc);
 
 //! One `error:` line on standard error for a failed solve (exit 3 goes with it).
-void print_solver_failure(const std::string& file, const solvers::SolveSummary& summary);
+//! `net`, when given, names which of several nets of the file failed (batch: "alpha-0.1"); it
+//! opens the parenthesis: "(alpha-0.1: MESSAGE)".
+void print_solver_failure(const std::string& file, const solvers::SolveSummary& summary, const std::string& net = "");
 
 //! A command's phases (read, assemble, solve, metrics, write): a progress line on a terminal
 //! (standard error), nothing otherwise; their seconds for the report's "timing" block.

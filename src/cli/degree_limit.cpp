@@ -4,8 +4,10 @@
 // JSON on standard output; --out DIR: report.md, results.json and figures/ for all of them.
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <memory>
 #include <numeric>
+#include <set>
 
 #include "coons/io/input_error.h"
 #include "coons/io/json_file.h"
@@ -102,6 +104,14 @@ int run_degree_limit_command(const DegreeLimitRequest& r, const std::string& com
       plot_degree_limit_figures(entries, [&](const std::string& file) { return out.stage(file); });
   for (const StudyFigure& f : figures)
     if (!f.error.empty()) out.discard(f.file);
+  // a figure with nothing to draw (too few degrees, no continuum optimum) takes away an earlier
+  // run's file of its name, as a failed plot does
+  std::set<std::string> stale;  // (several entries share an objective)
+  for (const DegreeLimitEntry& e : entries)
+    for (const std::string& file : degree_limit_figure_files(e.objective))
+      if (std::none_of(figures.begin(), figures.end(), [&](const StudyFigure& f) { return f.file == file; }))
+        stale.insert(file);
+  for (const std::string& file : stale) out.remove_stale(file);
   const std::string md = degree_limit_report_markdown(entries, options, current_provenance(command_line), figures);
   nlohmann::json results = nlohmann::json::array();
   for (const DegreeLimitEntry& e : entries) results.push_back(degree_limit_json(e));

@@ -254,7 +254,10 @@ std::string bspline_row_solver(const solvers::SolverInfo* solver) {
 }
 
 std::string write_bspline_rows(const std::vector<BSplineStudyRow>& rows, OutputSet& out) {
-  if (rows.empty()) return "";
+  if (rows.empty()) {
+    out.remove_stale("bspline.json");  // an earlier run's rows, which this report does not have
+    return "";
+  }
   out.write("bspline.json", [&](std::ostream& o) { o << dump(bspline_study_json(rows), 1) << '\n'; });
   return "\n" + bspline_study_markdown(rows);
 }

@@ -136,6 +136,17 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
   Phases phases("study");
   const Provenance p = current_provenance("");
   const json study = files_study_json(files, options, corner_tolerance, p);
+  BoundaryReadOptions read_options;
+  read_options.min_model_size = kMinModelSize;  // the searches
+  read_options.corner_tolerance = corner_tolerance;
+  // Every file of the shard read before the shard file is made: a bad one fails the run with
+  // nothing written, as the unsharded study does (an empty shard file and its folder stayed).
+  for (size_t t = size_t(shard); t < files.size(); t += size_t(shards)) {
+    if (is_triangle_file(files[t]))
+      (void)read_tri_study_input(files[t], corner_tolerance);
+    else
+      (void)read_boundary_file(files[t], read_options);
+  }
   std::set<std::string> done;
   const fs::path path = open_shard_file(out_dir, shard, shards, study, &done);
   std::ofstream o(path, std::ios::binary | std::ios::app);
@@ -158,9 +169,6 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
     if (is_triangle_file(file)) {
       part.triangles = run_tri_study({read_tri_study_input(file, corner_tolerance)}, options.degrees, options.solver);
     } else {
-      BoundaryReadOptions read_options;
-      read_options.min_model_size = kMinModelSize;  // the searches
-      read_options.corner_tolerance = corner_tolerance;
       if (const BoundaryFile b = read_boundary_file(file, read_options); b.bspline)
         bspline = run_bspline_study({{file, b.boundary.name, *b.bspline}}, default_study_objectives(),
                                     bspline_row_solver(options.solver));

@@ -4,13 +4,17 @@
 // with ribbons also gets the C1 family's weight slider, a triangular boundary the slider of c, a
 // B-spline boundary the slider of its non-uniform α family.
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include <algorithm>
 #include <filesystem>
 #include <fstream>
+#include <iostream>
 #include <memory>
 #include <sstream>
 #include <stdexcept>
+#include <string>
+#include <vector>
 
 #include "coons/config.h"
 #include "coons/io/boundary_curves.h"
@@ -155,7 +159,10 @@ int run_view(const ViewRequest& r) {
   require_new_output(r.out, r.global.force, "--out");
   const std::filesystem::path parent = std::filesystem::path(r.out).parent_path();
   if (!parent.empty() && !std::filesystem::is_directory(parent))
-    throw InputError("command line", "--out", fmt::format("the folder '{}' does not exist", parent.string()));
+    throw InputError("command line", "--out",
+                     fmt::format(std::filesystem::exists(parent) ? "'{}' exists and is not a folder"
+                                                                 : "the folder '{}' does not exist",
+                                 parent.string()));
   const std::string three_js = read_three_js(r.three_js);
   ViewOptions options;
   options.frames = r.alphas;
@@ -243,7 +250,17 @@ int run_view(const ViewRequest& r) {
   for (const ViewSlider& s : page.sliders) summary["sliders"].push_back(s.parameter);
   summary["timing"] = phases.timing();
   out.publish([&] { print_json(summary); });
-  return kExitOk;
+  // The page stands without the optima of searches whose solves failed; the command says so, as
+  // search-alpha does for one (exit 3).
+  std::vector<std::string> failed;
+  for (const ViewSlider& s : page.sliders)
+    for (const ViewCurve& c : s.curves)
+      if (!c.optimum && (c.status == "solver_failed" || c.status == "failed_region"))
+        failed.push_back(fmt::format("{} ({})", c.name, c.status));
+  if (failed.empty()) return kExitOk;
+  std::cerr << fmt::format("error: {}: solver: {} search failed for {}; the page is written without their optima\n",
+                           r.boundary, solver_name, fmt::join(failed, ", "));
+  return kExitSolverFailed;
 }
 
 }  // namespace

@@ -163,3 +163,19 @@ TEST_CASE("coons export --step: a B-spline boundary's alpha net is written with 
   CHECK(back[0].knots_u == greville[0].knots_u);
   CHECK(back[0].knots_v == greville[0].knots_v);
 }
+
+TEST_CASE("coons export --step: a net above OpenCASCADE's degree limit is refused with the degree and the limit",
+          "[cad][cli]") {
+  // "OpenCASCADE refuses the surface: Geom_BSplineSurface: invalid degree" gave neither
+  const coons::test::TempDir dir;
+  const std::string boundary = dir.file("d26.json"), step = dir.file("d26.step");
+  const CommandResult refit =
+      run_command(kCoons + " refit '" + kData + "boundaries/dome.json' --degree 26 26 --out '" + boundary + "'");
+  REQUIRE(refit.status == 0);
+  const CommandResult r = run_command(kCoons + " export '" + boundary + "' --step '" + step + "'");
+  CHECK(r.status == 2);
+  CHECK(r.err == "error: " + step +
+                     ": --step: the surface's degree (26, 26) exceeds OpenCASCADE's B-spline limit 25, so it cannot be "
+                     "written as STEP or IGES\n");
+  CHECK_FALSE(std::filesystem::exists(step));
+}

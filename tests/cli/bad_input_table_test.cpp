@@ -322,7 +322,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"export " + good + " --out {IN}/notafolder/out", "notafolder"},
       {"export " + sphere5 + " --method coons --mu 1 --out {OUT}", "--mu"},
       // batch
-      {"batch {IN}/emptyfolder --out {OUT}", "BOUNDARY"},
+      {"batch {IN}/emptyfolder --out {OUT}", "emptyfolder: the folder holds no *.json boundary file"},
       {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},
       {"batch " + good + " --alphas -0.1 -0.1 --out {OUT}", "--alphas"},
       {"batch " + good + " --samples 1 --out {OUT}", "--samples"},
@@ -392,7 +392,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"study " + good + " --degrees 1 3 --out {OUT}", "--degrees"},
       {"study " + good + " --degrees 3 300 --out {OUT}", "--degrees"},
       {"study " + good + " --degrees 6 4 --out {OUT}", "--degrees"},
-      {"study {IN}/emptyfolder --out {OUT}", "BOUNDARY"},
+      {"study {IN}/emptyfolder --out {OUT}", "emptyfolder: the folder holds no *.json boundary file"},
       {"study " + good + " " + corner + " --degrees 3 4 --out {OUT}", "corner"},
       {"study " + sphere5 + " --degrees 3 4 --out {OUT}", "target.sphere"},
       {"study " + curves_list + " --degrees 3 4 --out {OUT}", "curves"},

@@ -214,3 +214,24 @@ TEST_CASE("coons search-alpha and study: a B-spline boundary is searched over th
   REQUIRE(rows.size() == 1);
   CHECK(rows[0]["best_alpha"]["thin_plate"]["status"] == "success");
 }
+
+TEST_CASE("coons export: a B-spline boundary without an interior point writes no system, --mtx is refused",
+          "[cli][bspline]") {
+  // its "0 0 0" Matrix Market files were written (exit 0), as a Bézier 2 by 2 net's are not
+  TempDir dir;
+  const std::string file = dir.write(
+      "bsp11.json", R"({"degree_spline":[1,1],"knots_u":[0,0,1,1],"knots_v":[0,0,1,1],"bottom":[[0,0,0],[1,0,0]],)"
+                    R"("top":[[0,1,0],[1,1,1]],"left":[[0,0,0],[0,1,0]],"right":[[1,0,0],[1,1,1]]})");
+  const std::string out = dir.file("e");
+  const CommandResult asked = run_command(kCoons + " export " + q(file) + " --out " + q(out) + " --mtx");
+  CHECK(asked.status == 2);
+  CHECK(asked.err ==
+        "error: " + file + ": --mtx: the 2 by 2 net has no point to solve for: there is no system to write\n");
+  CHECK_FALSE(fs::exists(out));
+  const CommandResult defaults = run_command(kCoons + " export " + q(file) + " --out " + q(out));
+  INFO(defaults.err);
+  CHECK(defaults.status == 0);
+  CHECK(fs::exists(out + "/bsp11.net.obj"));
+  CHECK_FALSE(fs::exists(out + "/bsp11.A.mtx"));
+  CHECK_FALSE(fs::exists(out + "/bsp11.B.mtx"));
+}

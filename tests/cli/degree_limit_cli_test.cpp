@@ -176,3 +176,23 @@ TEST_CASE("coons search-alpha and degree-limit: an optimum at alpha = 0 found wi
   for (const json& a : law["alpha_star"]) CHECK(std::abs(a.get<double>()) < 1e-12);
   CHECK(law["mu_star"] == json({nullptr, nullptr, nullptr, nullptr}));
 }
+
+TEST_CASE("coons degree-limit: a rerun that draws no plot takes away the earlier run's plots of its names", "[cli]") {
+  // docs/formats.md: "A plot that was not drawn also removes an earlier run's file of its name";
+  // a rerun at one degree left mu_vs_degree_thin_plate.png beside a report without it
+  TempDir dir;
+  const std::string out = dir.file("r");
+  const std::string base =
+      "degree-limit '" + kData + "/boundaries/dome.json' --objective thin_plate --out '" + out + "'";
+  const CommandResult first = run_coons(base + " --degrees 3 4");
+  INFO(first.err);
+  REQUIRE(first.status == 0);
+  const std::string plot = out + "/figures/mu_vs_degree_thin_plate.png";
+  REQUIRE(fs::exists(plot));
+  const CommandResult second = run_coons(base + " --degrees 3");
+  INFO(second.err);
+  REQUIRE(second.status == 0);
+  CHECK_FALSE(fs::exists(plot));
+  CHECK_FALSE(fs::exists(out + "/figures/mu_gap_vs_degree_thin_plate.png"));
+  CHECK(fs::exists(out + "/report.md"));
+}

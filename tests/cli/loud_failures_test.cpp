@@ -490,6 +490,26 @@ TEST_CASE("coons: progress with named phases on a terminal, nothing on standard 
                           Catch::Contains("coons solve: metrics"));
 }
 
+TEST_CASE("coons search-alpha: wide bounds find the dome's minimum near zero, not a bound", "[cli][loud]") {
+  // A linear scan of [-0.3, 1e12] (or of [-1e60, 1e60]) put no point near the family's scale: the
+  // search reported -0.0443 (13.4687) "at a bound", or -0.749 (189.3) between the poles.
+  const CommandResult reference = run_coons("search-alpha " + quoted(dome()) + " --objective thin_plate");
+  REQUIRE(reference.status == 0);
+  const double alpha = json::parse(reference.out)["alpha"], value = json::parse(reference.out)["value"];
+  for (const char* bounds : {"--lower=-0.3 --upper=1e12", "--lower=-1e60 --upper=1e60", "--lower=-1 --upper=1e12"})
+    for (const char* solver : {"fast", "eigen-lu"}) {
+      const CommandResult r = run_coons("search-alpha " + quoted(dome()) +
+                                        " --objective thin_plate --allow-indefinite " + bounds + " --solver " + solver);
+      INFO(bounds << " " << solver << ": " << r.err << r.out);
+      REQUIRE(r.status == 0);
+      const json report = json::parse(r.out);
+      CHECK(report["status"] == "success");
+      CHECK(report["at_bound"] == false);
+      CHECK(report["alpha"].get<double>() == Approx(alpha).margin(1e-7));
+      CHECK(report["value"].get<double>() == Approx(value).epsilon(1e-12));
+    }
+}
+
 TEST_CASE("coons search-alpha: bounds beyond 1e60 are refused, up to it no member is '-nan'", "[cli][loud]") {
   // --upper 1e308 once made the closed-form eigenvalue ratio NaN ("singular ... = -nan <= 1e-06"),
   // and ±1e308 made the scan's step overflow; kMaxAlpha (mask9.h) bounds every alpha now
@@ -549,4 +569,69 @@ TEST_CASE("coons view, surface and export: an output that cannot be put in place
   CHECK(fs::is_directory(folder));
   CHECK(fs::is_empty(folder));
   CHECK(files_under(out) == std::vector<std::string>{"dome.surface.obj"});
+}
+
+TEST_CASE("coons batch, study, degree-limit: a folder without a boundary file is named", "[cli][loud]") {
+  // "error: command line: BOUNDARY: no boundary files given or found" did not say which folder
+  TempDir dir;
+  const std::string empty = dir.file("empty");
+  std::filesystem::create_directories(empty);
+  for (const std::string& command : {"batch " + quoted(empty) + " --out " + quoted(dir.file("o")),
+                                     "study " + quoted(empty) + " --out " + quoted(dir.file("s")),
+                                     "degree-limit " + quoted(empty) + " --degrees 3 4"}) {
+    const CommandResult r = run_coons(command);
+    INFO(command);
+    CHECK(r.status == 2);
+    CHECK(r.err == "error: " + empty + ": the folder holds no *.json boundary file\n");
+  }
+  CHECK_FALSE(std::filesystem::exists(dir.file("o")));
+  CHECK_FALSE(std::filesystem::exists(dir.file("s")));
+}
+
+TEST_CASE("coons batch: each failed net's line names the net", "[cli][loud]") {
+  // two identical lines for alpha = -0.1 and 0 did not say which net failed
+  TempDir dir;
+  const CommandResult r =
+      run_coons("batch " + quoted(dome()) + " --solver separable-banded --out " + quoted(dir.file("o")));
+  CHECK(r.status == 3);
+  REQUIRE(lines(r.err) == 2);
+  CHECK_THAT(r.err, Catch::Contains("solver: separable-banded not_applicable, relative residual 1 (alpha-0.1: needs "));
+  CHECK_THAT(r.err, Catch::Contains("solver: separable-banded not_applicable, relative residual 1 (alpha+0: needs "));
+}
+
+TEST_CASE("coons view: an --out that is no regular file is refused as such, --force or not", "[cli][loud]") {
+  // /dev/full was answered "exists; give --force to overwrite it", and with --force "not a regular file"
+  for (const char* force : {"", " --force"}) {
+    const CommandResult r = run_coons("view " + quoted(dome()) + " --out /dev/full" + force);
+    CHECK(r.status == 2);
+    CHECK(r.err == "error: /dev/full: --out: is not a regular file (--force replaces regular files only)\n");
+  }
+}
+
+TEST_CASE("coons solve: a misspelt net is the error, not the sides it is missing", "[cli][loud]") {
+  // {"NET": ...} was reported as "bottom: missing", a field never meant
+  TempDir dir;
+  for (const char* key : {"NET", "nett"}) {
+    const std::string file =
+        dir.write(std::string(key) + ".json", std::string("{\"") + key + "\": [[[0,0,0],[0,1,0]],[[1,0,0],[1,1,0]]]}");
+    const CommandResult r = run_coons("solve " + quoted(file));
+    CHECK(r.status == 2);
+    CHECK(r.err ==
+          "error: " + file + ": " + key + ": unknown field; did you mean \"net\"? (the file has no \"net\")\n");
+  }
+}
+
+TEST_CASE("coons search-alpha: an iterative solver's noise on a flat objective is flat, not an optimum",
+          "[cli][loud]") {
+  // jacobi's e3 of the saddle (exactly 0) scanned 3e-22 ... 3.5e-30 and reported alpha* = 0, gauss-seidel 0.1875
+  for (const char* solver : {"jacobi", "gauss-seidel"}) {
+    const CommandResult r =
+        run_coons("search-alpha " + quoted(kData + "/boundaries/saddle.json") + " --objective e3 --solver " + solver);
+    INFO(solver << ": " << r.err << r.out);
+    REQUIRE(r.status == 0);
+    const json report = json::parse(r.out);
+    CHECK(report["status"] == "flat");
+    CHECK(report["alpha"].is_null());
+    CHECK_THAT(report["message"].get<std::string>(), Catch::Contains("iterative solver's relative residuals"));
+  }
 }

@@ -128,6 +128,25 @@ TEST_CASE("coons study FILES --shard: --html is refused with one line, nothing w
   CHECK_FALSE(fs::exists(out));
 }
 
+TEST_CASE("coons study FILES --shard: a bad file of the shard fails it before the shard file is made", "[cli]") {
+  // the shard's folder and an empty shard-1-of-3.jsonl stayed behind its error line
+  TempDir dir;
+  json bad = json::parse(read_text(kData + "/boundaries/dome.json"));
+  bad["bottom"][0] = json::array({0.5, 0.5, 0.5});  // the bottom-left corner no longer meets the left side
+  const std::string file = dir.write("b.json", bad.dump());
+  const std::string out = dir.file("shards");
+  for (const char* shard : {"0/1", "1/3"}) {
+    const std::string args = "study " + quoted(kData + "/boundaries/dome.json") + " " + quoted(file) + " " +
+                             quoted(kData + "/boundaries/saddle.json") + " --degrees 3 --shard " + shard;
+    const CommandResult r = run_coons(args + " --out " + quoted(out));
+    INFO(args << "\n" << r.err);
+    CHECK(r.status == 2);
+    CHECK_THAT(r.err, Catch::StartsWith("error: " + file + ": "));
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK_FALSE(fs::exists(out));
+  }
+}
+
 TEST_CASE("coons study FILES --shard: a B-spline file is one task, the merge equals the unsharded run", "[cli]") {
   TempDir dir;
   const std::string files = std::string("study '") + COONS_DATA_DIR + "/boundaries/dome.json' '" + COONS_DATA_DIR +

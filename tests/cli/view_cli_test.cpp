@@ -177,3 +177,45 @@ TEST_CASE("coons view: a B-spline boundary gets the slider of its non-uniform fa
     CHECK_FALSE(fs::exists(page));
   }
 }
+
+TEST_CASE("coons view: searches whose solves fail are named on one line after the page, exit 3", "[cli][view]") {
+  if (!COONS_HAVE_THREE_JS) {
+    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
+    return;
+  }
+  // jacobi diverges for alpha < 0: the page was written with "failed_region" optima and exit 0
+  const TempDir dir;
+  const std::string page = dir.file("j.html");
+  const CommandResult r = run_coons("view " + quoted(kData + "/boundaries/dome.json") + " --out " + quoted(page) +
+                                    " --alphas 11 --samples 5 --solver jacobi");
+  CHECK(r.status == 3);
+  CHECK(fs::exists(page));
+  const nlohmann::json summary = nlohmann::json::parse(r.out);
+  CHECK(summary["optima"]["e3"] == "failed_region");
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  CHECK_THAT(r.err, Catch::StartsWith("error: " + kData + "/boundaries/dome.json: solver: jacobi search failed for "));
+  CHECK_THAT(r.err, Catch::Contains("e3 (failed_region)"));
+}
+
+TEST_CASE("coons view: a net without an interior point is flat, as search-alpha says, and --out under a file",
+          "[cli][view]") {
+  if (!COONS_HAVE_THREE_JS) {
+    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
+    return;
+  }
+  const TempDir dir;
+  const std::string file =
+      dir.write("deg1.json", R"({"name":"deg1","degree":[1,1],"bottom":[[0,0,0],[1,0,0]],"top":[[0,1,0],[1,1,1]],)"
+                             R"("left":[[0,0,0],[0,1,0]],"right":[[1,0,0],[1,1,1]]})");
+  const CommandResult r = run_coons("view " + quoted(file) + " --out " + quoted(dir.file("p.html")));
+  REQUIRE(r.status == 0);
+  const nlohmann::json optima = nlohmann::json::parse(r.out)["optima"];
+  const CommandResult search = run_coons("search-alpha " + quoted(file) + " --objective thin_plate");
+  REQUIRE(search.status == 0);
+  CHECK(nlohmann::json::parse(search.out)["status"] == "flat");
+  for (const char* name : {"thin_plate", "e3", "dirichlet", "twist"}) CHECK(optima[name] == "flat");
+  const std::string regular = dir.write("reg", "");
+  const CommandResult under = run_coons("view " + quoted(file) + " --out " + quoted(regular + "/x.html"));
+  CHECK(under.status == 2);
+  CHECK(under.err == "error: command line: --out: '" + regular + "' exists and is not a folder\n");
+}

@@ -49,6 +49,11 @@ bool exactly_printable(double x) {
 void check_writable(const BSplineSurface& s, const std::string& target, const std::string& field) {
   std::string why;
   if (!s.is_valid(&why)) throw InputError(target, field, "the surface is not a valid B-spline: " + why);
+  if (const int limit = Geom_BSplineSurface::MaxDegree(); s.degree_u > limit || s.degree_v > limit)
+    throw InputError(target, field,
+                     fmt::format("the surface's degree ({}, {}) exceeds OpenCASCADE's B-spline limit {}, so it "
+                                 "cannot be written as STEP or IGES",
+                                 s.degree_u, s.degree_v, limit));
   for (Eigen::Index k = 0; k < s.net.points.size(); ++k) {
     const double x = s.net.points.data()[k];
     if (!std::isfinite(x) || !exactly_printable(x))

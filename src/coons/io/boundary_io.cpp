@@ -197,6 +197,14 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
   }
   BoundaryFile out;
   out.misspelt = misspelt_fields(doc, boundary_file_fields());
+  // A misspelling of what the file lacks is the error itself ("NET" with no net and no sides was
+  // reported as "bottom: missing", a field never meant), not a warning after another one.
+  const bool has_net = doc.contains("net");
+  for (const MisspeltField& m : out.misspelt) {
+    const bool side = m.known == "bottom" || m.known == "top" || m.known == "left" || m.known == "right";
+    if (!has_net && !doc.contains(m.known) && (m.known == "net" || side))
+      p.fail(m.given, fmt::format("unknown field; did you mean \"{}\"? (the file has no \"{}\")", m.known, m.known));
+  }
   std::string name = std::filesystem::path(source).stem().string();
   if (doc.contains("name")) {
     if (!doc["name"].is_string()) p.fail("name", "must be a string");

@@ -79,8 +79,13 @@ std::optional<solvers::SolveSummary> near_singular_refusal(const Eigen::SparseMa
   if (!r.failure.ok()) {
     // the failed solve was one of the check's own (an arbitrary unit right-hand side), not of B
     solvers::SolveSummary failed = r.failure;
-    failed.message = "the check for a near-singular system could not solve by inverse iteration: " +
-                     (failed.message.empty() ? std::string(solvers::to_string(failed.status)) : failed.message);
+    // (X = 0 is returned, so the residual reported is 1; the inner message's residual is that of
+    // the check's own right-hand side, which the line said as if it were the system's)
+    failed.message =
+        "not solved (X = 0): the check for a near-singular system stopped at one of its own "
+        "inverse-iteration solves, of an arbitrary right-hand side: " +
+        (failed.message.empty() ? std::string(solvers::to_string(failed.status)) : failed.message);
+    failed.relative_residual = 1;
     return failed;
   }
   if (r.ratio > threshold) return std::nullopt;

@@ -278,7 +278,7 @@ std::vector<StudyFigure> plot_degree_limit_figures(const std::vector<DegreeLimit
     if (!mu_series.empty()) {
       o.title = "μ* against the degree (" + objective + "), continuum optimum as a line";
       o.ylabel = "μ*";
-      StudyFigure f{"figures/mu_vs_degree_" + safe_file_stem(objective) + ".png", ""};
+      StudyFigure f{degree_limit_figure_files(objective)[0], ""};
       f.error = plot_curves(path_of(f.file), mu_series, o);
       figures.push_back(f);
     }
@@ -292,12 +292,17 @@ std::vector<StudyFigure> plot_degree_limit_figures(const std::vector<DegreeLimit
       gap_series.push_back(PlotSeries{"reference slope: 20/n", {first, last}, {20 / first, 20 / last}, false});
       o.title = "distance of μ*(n) from the continuum optimum (" + objective + ")";
       o.ylabel = "|μ*(n) − μ_c|";
-      StudyFigure f{"figures/mu_gap_vs_degree_" + safe_file_stem(objective) + ".png", ""};
+      StudyFigure f{degree_limit_figure_files(objective)[1], ""};
       f.error = plot_curves(path_of(f.file), gap_series, o);
       figures.push_back(f);
     }
   }
   return figures;
+}
+
+std::array<std::string, 2> degree_limit_figure_files(const std::string& objective) {
+  return {"figures/mu_vs_degree_" + safe_file_stem(objective) + ".png",
+          "figures/mu_gap_vs_degree_" + safe_file_stem(objective) + ".png"};
 }
 
 std::string degree_limit_report_markdown(const std::vector<DegreeLimitEntry>& entries,

@@ -5,6 +5,7 @@
 // continuum optimum drawn as a line.
 #pragma once
 
+#include <array>
 #include <functional>
 #include <string>
 #include <vector>
@@ -29,6 +30,10 @@ std::vector<std::string> degree_limit_conclusions(const DegreeLimitEntry& entry,
 //! support, or the measured drift.
 std::string degree_limit_headline(const std::vector<DegreeLimitEntry>& entries, const std::string& objective,
                                   const ClaimThresholds& t = {});
+
+//! The two figure files of an objective, relative to the output folder: μ*(n) against n, and
+//! |μ*(n) − μ_c| (plot_degree_limit_figures; a run that draws neither removes an earlier run's).
+std::array<std::string, 2> degree_limit_figure_files(const std::string& objective);
 
 //! figures/mu_vs_degree_OBJECTIVE.png (μ*(n) and μ_c, log axes) and
 //! figures/mu_gap_vs_degree_OBJECTIVE.png (|μ*(n) − μ_c|, log axes), per objective.
