@@ -43,9 +43,20 @@ void refuse_empty_values(CLI::App& app) {
         return "'" + value + "' is below the smallest double and would be read as 0";
       },
       "", "REPRESENTABLE");
+  // strtod reads hexadecimal too: --alpha 0x10 solved at α = 16, where the JSON and Matrix Market
+  // readers refuse '0x10' as no decimal number (and CLI11's integers read 0x5 as 5).
+  const CLI::Validator decimal(
+      [](std::string& value) {
+        return value.find_first_of("xX") == std::string::npos
+                   ? std::string()
+                   : "'" + value + "' is not a decimal number (hexadecimal is not read)";
+      },
+      "", "DECIMAL");
   for (CLI::Option* option : app.get_options()) {
     if (option->get_type_size_max() > 0) option->check(non_empty);
-    if (option->get_type_name().rfind("FLOAT", 0) == 0) option->check(representable);
+    const std::string type = option->get_type_name();
+    if (type.rfind("FLOAT", 0) == 0) option->check(decimal)->check(representable);
+    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) option->check(decimal);  // (CLI11 reads 0x5 as 5)
   }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*sub);
 }

@@ -4,8 +4,11 @@
 
 #include <fmt/format.h>
 
+#include <algorithm>
 #include <cmath>
+#include <functional>
 #include <memory>
+#include <vector>
 
 #include "coons/io/input_error.h"
 #include "coons/io/net_json.h"
@@ -64,6 +67,13 @@ int run_sweep_command(const SweepRequest& r) {
   if (r.parameter == SweepParameter::kAlpha && (from < -0.25 || to > 0.25))
     throw InputError("command line", "--from/--to", "alpha must stay in [-0.25, 0.25]");
   if (r.parameter == SweepParameter::kMu && from < 0) throw InputError("command line", "--from", "mu must be >= 0");
+  // (100000 values of [-0.25, -0.2499999999999999] were a few doubles, each written thousands of times)
+  const std::vector<double> values = linspace(from, to, r.count);
+  if (std::adjacent_find(values.begin(), values.end(), std::greater_equal<>()) != values.end())
+    throw InputError("command line", "--from/--to",
+                     fmt::format("the interval [{}, {}] is too narrow for {} distinct values (neighbours round to the "
+                                 "same double)",
+                                 from, to, r.count));
   const std::optional<Target> target = resolve_target(r.target, r.boundary, b, r.samples);
   if (!target && r.samples_option->count() > 0) throw samples_without_sweep_target();
   if (target) check_target_samples(r.global, r.samples);  // (only where they are taken)
@@ -79,7 +89,7 @@ int run_sweep_command(const SweepRequest& r) {
 
   phases.start("solve");
   const std::vector<SweepRow> rows = run_sweep(
-      b, linspace(from, to, r.count), sweep_family(r.parameter, b), solver, target,
+      b, values, sweep_family(r.parameter, b), solver, target,
       [&](size_t done, size_t all) { phases.note(fmt::format("{}/{}", done, all)); }, nullptr, options);
 
   phases.start("write");

@@ -255,7 +255,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"solve " + good + " --alpha ''", "--alpha: an empty value"},  // was alpha = 0, exit 0
       // strtod reads these as 0 (ERANGE): they solved at alpha = 0 and weight 0, exit 0
       {"solve " + good + " --alpha 1e-400", "--alpha: '1e-400' is below the smallest double and would be read as 0"},
-      {"solve " + good + " --alpha=-0x1p-2000", "--alpha: '-0x1p-2000' is below the smallest double"},
+      // (hexadecimal, which strtod reads too, is refused before its size is looked at)
+      {"solve " + good + " --alpha=-0x1p-2000", "--alpha: '-0x1p-2000' is not a decimal number"},
       {"sweep " + good + " --from 1e-999 --out {OUT}", "--from: '1e-999' is below the smallest double"},
       {"batch " + good + " --alphas 0 1e-330 --out {OUT}", "--alphas: '1e-330' is below the smallest double"},
       {"search-alpha " + good + " --objective target --target sphere:1e-400,0,-1,1.73",

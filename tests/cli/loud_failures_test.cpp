@@ -635,3 +635,34 @@ TEST_CASE("coons search-alpha: an iterative solver's noise on a flat objective i
     CHECK_THAT(report["message"].get<std::string>(), Catch::Contains("iterative solver's relative residuals"));
   }
 }
+
+TEST_CASE("coons: a hexadecimal number on the command line is refused, as the file readers refuse it", "[cli][loud]") {
+  // --alpha 0x10 solved at alpha = 16 and --weight 0x.8 at 0.5 (strtod), --alphas 0x5 gave 5 frames
+  for (const auto& [args, option] : {std::pair{" --alpha 0x10", "--alpha"}, std::pair{" --alpha 0x1p-3", "--alpha"},
+                                     std::pair{" --mask c1-family --weight 0x.8", "--weight"}}) {
+    const CommandResult r = run_coons("solve " + quoted(dome()) + args);
+    INFO(args);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::StartsWith(std::string("error: command line: ") + option + ": '0x"));
+    CHECK_THAT(r.err, Catch::Contains("is not a decimal number (hexadecimal is not read)"));
+  }
+  TempDir dir;
+  const CommandResult frames =
+      run_coons("view " + quoted(dome()) + " --alphas 0x5 --out " + quoted(dir.file("v.html")));
+  CHECK(frames.status == 2);
+  CHECK_THAT(frames.err, Catch::StartsWith("error: command line: --alphas: '0x5' is not a decimal number"));
+  CHECK_FALSE(std::filesystem::exists(dir.file("v.html")));
+  CHECK(run_coons("solve " + quoted(dome()) + " --alpha -1e-1").status == 0);  // decimal exponents stay
+}
+
+TEST_CASE("coons sweep: an interval too narrow for --count distinct values is refused", "[cli][loud]") {
+  // 100000 values of [-0.25, -0.2499999999999999] were a handful of doubles, each written many times
+  TempDir dir;
+  const CommandResult r = run_coons(
+      "sweep " + quoted(dome()) + " --from -0.25 --to -0.2499999999999999 --count 1000 --out " + quoted(dir.file("s")));
+  CHECK(r.status == 2);
+  CHECK_THAT(r.err, Catch::StartsWith("error: command line: --from/--to: the interval [-0.25, -0.2499999999999999] is "
+                                      "too narrow for 1000 distinct values"));
+  CHECK_FALSE(std::filesystem::exists(dir.file("s")));
+}
