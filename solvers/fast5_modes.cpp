@@ -36,85 +36,85 @@ FactorPointers factor_pointers(const ModeFactors& f, int r, int q) {
   return {f.lim_inv_d.data(), f.lim_l1.data(), f.lim_l2.data()};
 }
 
+// Row r of a chunk's downward sweep, n modes from the chunk's first (every pointer starts there;
+// y: the input row, te/to: t_q of either parity, w1/w2: the rows above, nullptr above row 0).
 COONS_VECTOR_CLONES void down_row(double* __restrict w, const double* __restrict y, double ze,
                                   const double* __restrict te, double zo, const double* __restrict to,
                                   const double* __restrict l1, const double* __restrict w1, const double* __restrict l2,
-                                  const double* __restrict w2, int qa, int qb) {
+                                  const double* __restrict w2, int n) {
   if (w2) {
-    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q] - l2[q] * w2[q];
+    for (int q = 0; q < n; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q] - l2[q] * w2[q];
   } else if (w1) {
-    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q];
+    for (int q = 0; q < n; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q];
   } else {
-    for (int q = qa; q < qb; ++q) w[q] = y[q] + ze * te[q] + zo * to[q];
+    for (int q = 0; q < n; ++q) w[q] = y[q] + ze * te[q] + zo * to[q];
   }
 }
 
 COONS_VECTOR_CLONES void up_row(double* __restrict w, const double* __restrict inv_d, const double* __restrict l1,
                                 const double* __restrict w1, const double* __restrict l2, const double* __restrict w2,
-                                int qa, int qb) {
+                                int n) {
   if (w2) {
-    for (int q = qa; q < qb; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
+    for (int q = 0; q < n; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
   } else if (w1) {
-    for (int q = qa; q < qb; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
+    for (int q = 0; q < n; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
   } else {
-    for (int q = qa; q < qb; ++q) w[q] *= inv_d[q];
+    for (int q = 0; q < n; ++q) w[q] *= inv_d[q];
   }
 }
 
 }  // namespace
 
-void sweep_down(const ModeFactors& f, int q0, int q1, int chunk, int count, const SweepInput& in, RowMajor* work) {
-  const int R = f.rows, C = f.cols;
-  const std::vector<double> zeros(std::size_t(C), 0.0);
+void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
+                 double* buf, const Eigen::MatrixXd& dots, Eigen::MatrixXd& dot) {
+  const int R = f.rows, C = f.cols, n = b1 - b0;
+  const std::vector<double> zeros(std::size_t(n), 0.0);
+  const auto row_of = [&](int c, int r) { return buf + (std::ptrdiff_t(c) * R + r) * n; };
+  // down: buf = L⁻¹ (the input)
   for (int r = 0; r < R; ++r)
     for (int c = 0; c < count; ++c) {
-      double* w = work[c].data() + std::ptrdiff_t(r) * C;
-      const double* y = in.hats ? in.hats[c].data() + std::ptrdiff_t(r) * C : zeros.data();
+      double* w = row_of(c, r);
+      const double* y = in.hats[std::size_t(c)] ? in.hats[std::size_t(c)] + std::ptrdiff_t(r) * C + b0 : zeros.data();
       const double ze = in.z ? in.sign * (*in.z)[0](r, c) : 0, zo = in.z ? in.sign * (*in.z)[1](r, c) : 0;
-      const double* w1 = r >= 1 ? w - C : nullptr;
-      const double* w2 = r >= 2 ? w - 2 * std::ptrdiff_t(C) : nullptr;
-      for (int b0 = q0; b0 < q1; b0 += chunk) {
-        const int b1 = std::min(q1, b0 + chunk);
-        // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
-        const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
-        const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, b1) : b1;
-        const std::array<int, 4> cut{b0, a1, a2, b1};
-        for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-          if (cut[s] >= cut[s + 1]) continue;
-          const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 : nullptr;
-          const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 : nullptr;
-          down_row(w, y, ze, in.t_even, zo, in.t_odd, l1, w1, l2, w2, cut[s], cut[s + 1]);
-        }
+      const double* w1 = r >= 1 ? w - n : nullptr;
+      const double* w2 = r >= 2 ? w - 2 * std::ptrdiff_t(n) : nullptr;
+      // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
+      const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
+      const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, b1) : b1;
+      const std::array<int, 4> cut{b0, a1, a2, b1};
+      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+        if (cut[s] >= cut[s + 1]) continue;
+        const int at = cut[s] - b0, len = cut[s + 1] - cut[s];
+        const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 + cut[s] : nullptr;
+        const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 + cut[s] : nullptr;
+        down_row(w + at, y + at, ze, in.t_even + cut[s], zo, in.t_odd + cut[s], l1, w1 ? w1 + at : nullptr, l2,
+                 w2 ? w2 + at : nullptr, len);
       }
     }
-}
-
-void sweep_up(const ModeFactors& f, int q0, int q1, int chunk, int count, RowMajor* work, RowMajor* add,
-              const Eigen::MatrixXd& dots, Eigen::MatrixXd* out) {
-  const int R = f.rows, C = f.cols;
+  // up: buf ← (LD)⁻ᵀ buf = M⁻¹ (the input), then into the output and the partial dots
   const Eigen::Index k = dots.cols();
-  for (int b0 = q0; b0 < q1; b0 += chunk) out[b0 / chunk].resize(R, k * count);
+  dot.resize(R, k * count);
   for (int r = R - 1; r >= 0; --r)
     for (int c = 0; c < count; ++c) {
-      double* w = work[c].data() + std::ptrdiff_t(r) * C;
-      const double* w1 = r + 1 < R ? w + C : nullptr;
-      const double* w2 = r + 2 < R ? w + 2 * std::ptrdiff_t(C) : nullptr;
-      double* y = add ? add[c].data() + std::ptrdiff_t(r) * C : nullptr;
-      for (int b0 = q0; b0 < q1; b0 += chunk) {
-        const int b1 = std::min(q1, b0 + chunk);
-        const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
-        const std::array<int, 3> cut{b0, a, b1};
-        for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-          if (cut[s] >= cut[s + 1]) continue;
-          const FactorPointers p = factor_pointers(f, r, cut[s]);
-          up_row(w, p.inv_d, p.l1, w1, p.l2, w2, cut[s], cut[s + 1]);
-        }
-        if (y)
-          for (int q = b0; q < b1; ++q) y[q] += w[q];
-        const Eigen::Map<const Eigen::VectorXd> row((y ? y : w) + b0, b1 - b0);
-        Eigen::MatrixXd& o = out[b0 / chunk];
-        for (Eigen::Index m = 0; m < k; ++m) o(r, k * c + m) = row.dot(dots.col(m).segment(b0, b1 - b0));
+      double* w = row_of(c, r);
+      const double* w1 = r + 1 < R ? w + n : nullptr;
+      const double* w2 = r + 2 < R ? w + 2 * std::ptrdiff_t(n) : nullptr;
+      const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
+      const std::array<int, 3> cut{b0, a, b1};
+      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+        if (cut[s] >= cut[s + 1]) continue;
+        const int at = cut[s] - b0;
+        const FactorPointers p = factor_pointers(f, r, cut[s]);
+        up_row(w + at, p.inv_d + cut[s], p.l1 + cut[s], w1 ? w1 + at : nullptr, p.l2 + cut[s], w2 ? w2 + at : nullptr,
+               cut[s + 1] - cut[s]);
       }
+      double* g = out.grid[std::size_t(c)] ? out.grid[std::size_t(c)] + std::ptrdiff_t(r) * C + b0 : nullptr;
+      if (g && out.add)
+        for (int q = 0; q < n; ++q) g[q] += w[q];
+      else if (g)
+        std::copy(w, w + n, g);
+      const Eigen::Map<const Eigen::VectorXd> row(g ? g : w, n);
+      for (Eigen::Index m = 0; m < k; ++m) dot(r, k * c + m) = row.dot(dots.col(m).segment(b0, n));
     }
 }
 

@@ -3,8 +3,9 @@
 //   M_q = (a ν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I   (rows × rows, P = toeplitz(6, −4, 1), D = tridiag(−1, 2, −1)),
 // factored here by banded LDLᵀ without pivoting (M_q is definite). The factors converge down the
 // rows, so only the rows above convergence are stored: sizes #rows·#cols at most, 4 % of it at
-// N = 1023. The sweeps (down and up the rows, #rows × #cols per right-hand side) read a stored
-// row or the limits directly, one range of modes at a time (the modes are independent).
+// N = 1023. A solve (solve_chunk) sweeps one chunk of modes down the rows and back up in a buffer
+// of #rows × chunk per right-hand side, reading a stored row or the limits directly; the modes
+// are independent, so chunks may run on different threads.
 // Based on: G. H. Golub & C. F. Van Loan, Matrix Computations, §4.3 (banded LDLᵀ).
 #pragma once
 
@@ -37,29 +38,31 @@ struct ModeFactors {
 //! The factors of M_q for the modes ν = nu (#cols) of the fourth-order stencil a·C + b·T, rows each.
 ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows);
 
-using RowMajor = Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>;
-
-//! The right-hand side of a downward sweep, row r, mode q: y(r, q) + sign·(z_even(r, c) t_even[q]
-//! + z_odd(r, c) t_odd[q]) for right-hand side c; y = hats (rows × cols each) or zero (nullptr),
-//! the sources U z on the boundary columns in the sine basis (z = nullptr: none).
+//! The right-hand side of a solve_chunk, row r, mode q, right-hand side c: hats[c][r·cols + q]
+//! (hats[c] = nullptr: zero) + sign·(z_even(r, c) t_even[q] + z_odd(r, c) t_odd[q]), the sources
+//! U z on the boundary columns in the sine basis (z = nullptr: none).
 struct SweepInput {
-  const RowMajor* hats = nullptr;
+  std::array<const double*, 3> hats{};
   const std::array<Eigen::MatrixXd, 2>* z = nullptr;
   double sign = 1;
   const double* t_even = nullptr;  //!< t_q on the even modes q, 0 on the odd ones (#cols)
   const double* t_odd = nullptr;
 };
 
-//! Down the rows for the modes [q0, q1): work[c] = L⁻¹ (the input), c < count, row after row, a
-//! row in chunks of `chunk` modes (q0 a multiple of it). The modes are independent: disjoint
-//! ranges may run on different threads.
-void sweep_down(const ModeFactors& f, int q0, int q1, int chunk, int count, const SweepInput& in, RowMajor* work);
+//! Where solve_chunk puts M⁻¹ of its input: grid[c] (rows × cols, row-major; nullptr: nowhere)
+//! gets it (add = false) or adds it (add = true). grid[c] may be in.hats[c]: a row of the chunk is
+//! read before it is written.
+struct ChunkOutput {
+  std::array<double*, 3> grid{};
+  bool add = false;
+};
 
-//! Up the rows for the modes [q0, q1): work[c] ← (LD)⁻ᵀ work[c], completing M⁻¹ of the input;
-//! with add (non-null) add[c] += the result. For each chunk [b, b + chunk) of the modes,
-//! out[b / chunk](r, k·c + ·) = that part of row r of the result (of add[c] when given) times the
-//! same rows of dots (#cols by k): partial sums, the same whatever range a chunk was swept in.
-void sweep_up(const ModeFactors& f, int q0, int q1, int chunk, int count, RowMajor* work, RowMajor* add,
-              const Eigen::MatrixXd& dots, Eigen::MatrixXd* out);
+//! M⁻¹ of the input for the modes [b0, b1) and right-hand sides c < count: down the rows into buf
+//! and back up in it (buf: count·rows·(b1 − b0) doubles, small enough to stay in the cache), then
+//! into the output. dot(r, k·c + m) = row r of the chunk's new values (the grid's with a grid, M⁻¹
+//! of the input otherwise) times dots.col(m) over the chunk's modes: a partial sum, the same
+//! whichever thread solves the chunk. The modes are independent: chunks may run on different threads.
+void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
+                 double* buf, const Eigen::MatrixXd& dots, Eigen::MatrixXd& dot);
 
 }  // namespace coons::solvers::fast5_detail

@@ -28,8 +28,6 @@ using fast5_detail::first_sine_column;
 using fast5_detail::ModeFactors;
 using fast5_detail::second_difference_eigenvalues;
 
-using fast5_detail::RowMajor;
-
 // Modes per unit of the threaded sweeps (fixed: the partial sums do not depend on the thread count).
 constexpr int kModeChunk = 128;
 
@@ -119,8 +117,10 @@ class Fast5Solver final : public LinearSolver {
     }
     const int count = 3;
     for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
-    for (int c = 0; c < count; ++c) hats_[std::size_t(c)].resize(R_, C_);
-    transform_rows(count, true, B, X);
+    // X holds the transformed rows (the hats) until the inverse transform at the end
+    X.resize(B.rows(), 3);
+    for (int c = 0; c < count; ++c) hats_[std::size_t(c)] = X.col(c).data();
+    transform_rows(count, true, B);
     // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = ŷ − A₁⁻¹ U h.
     banded_solve_all(count, dots_);
     std::array<Eigen::MatrixXd, 2> h;
@@ -135,19 +135,18 @@ class Fast5Solver final : public LinearSolver {
       iterations = std::max(iterations, capacitance_solve(rho, count, tolerance, h));
       add_boundary_response(count, h, 1.0, false);
     }
-    X.resize(B.rows(), 3);
-    transform_rows(count, false, B, X);
+    transform_rows(count, false, B);
     summary.iterations = iterations;
     return SolveStatus::kSuccess;
   }
 
  private:
-  // forward: hats_[c] = the sine transform of each row of B's column c; a row that is zero but on
-  // the columns 0, 1, cols−2, cols−1 (most rows of a mask system: the data rings are next to them)
-  // is the combination of those four columns' sine vectors instead (exact, no transform).
-  // Otherwise X's column c = the inverse transform of each row of hats_[c]. Rows shared among the
-  // threads, one transform each (a SineTransform is not thread-safe).
-  void transform_rows(int count, bool forward, const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
+  // forward: hats_[c] (X's column c) = the sine transform of each row of B's column c; a row that is
+  // zero but on the columns 0, 1, cols−2, cols−1 (most rows of a mask system: the data rings are
+  // next to them) is the combination of those four columns' sine vectors instead (exact, no
+  // transform). Otherwise X's column c = the inverse transform of each of its rows, in place. Rows
+  // shared among the threads, one transform each (a SineTransform is not thread-safe).
+  void transform_rows(int count, bool forward, const Eigen::MatrixX3d& B) {
     const double scale_j = std::sqrt(2.0 / (C_ + 1));
     const bool edges = forward && C_ >= 6;
     [[maybe_unused]] const int nt = threads_;
@@ -161,9 +160,9 @@ class Fast5Solver final : public LinearSolver {
 #endif
       for (int unit = 0; unit < count * R_; ++unit) {
         const int c = unit / R_, r = unit % R_;
-        double* hat = hats_[std::size_t(c)].data() + std::ptrdiff_t(r) * C_;
+        double* hat = hats_[std::size_t(c)] + std::ptrdiff_t(r) * C_;
         if (!forward) {
-          along_j.apply(hat, X.col(c).data() + std::ptrdiff_t(r) * C_, scale_j);
+          along_j.apply(hat, hat, scale_j);
           continue;
         }
         const double* b = B.col(c).data() + std::ptrdiff_t(r) * C_;
@@ -211,62 +210,51 @@ class Fast5Solver final : public LinearSolver {
     blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_);
   }
 
-  // Down the rows: work_[c] = L⁻¹(base), base = hats_[c] (with from_hats) plus, with z, the sources
-  // sign·U z_c on the boundary columns (parity coordinates: (U z)(r, q) = t_q z(r, parity of q)
-  // in the sine basis along j). All right-hand sides in one sweep (a factor row is read once); the
-  // modes split among the threads in whole chunks of kModeChunk.
-  void sweep_down(int count, bool from_hats, const std::array<Eigen::MatrixXd, 2>* z, double sign) {
-    for (int c = 0; c < count; ++c) work_[std::size_t(c)].resize(R_, C_);
-    fast5_detail::SweepInput in;
-    in.hats = from_hats ? hats_.data() : nullptr;
-    in.z = z;
-    in.sign = sign;
-    in.t_even = tmasks_.col(0).data();
-    in.t_odd = tmasks_.col(1).data();
-    [[maybe_unused]] const int nt = threads_;
-    COONS_PARALLEL_FOR
-    for (int t = 0; t < nt; ++t) {
-      const auto [q0, q1] = mode_range(t);
-      fast5_detail::sweep_down(factors_, q0, q1, kModeChunk, count, in, work_.data());
-    }
-  }
-
-  // The modes of thread t of threads_: whole chunks of kModeChunk, as evenly as they go.
-  [[nodiscard]] std::pair<int, int> mode_range(int t) const {
+  // M⁻¹ of the input (see SweepInput) for every mode, into `output`, and out(r, k·c + ·) = row r
+  // of the new values times `dots`. The modes go in chunks of kModeChunk, each swept down and up in
+  // a per-thread buffer that stays in the cache; the chunks' partial dots are summed in their order
+  // (so the same on any number of threads).
+  void solve_modes(int count, const fast5_detail::SweepInput& in, const fast5_detail::ChunkOutput& output,
+                   const Eigen::MatrixXd& dots, Eigen::MatrixXd& out) {
     const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
-    const int c0 = chunks * t / threads_, c1 = chunks * (t + 1) / threads_;
-    return {std::min(C_, c0 * kModeChunk), std::min(C_, c1 * kModeChunk)};
-  }
-
-  // Up the rows: work_[c] ← (LD)⁻ᵀ work_[c], completing work_[c] = M⁻¹ base. With add, hats_[c] +=
-  // the result. out(r, k·c + ·) = row r of the result (of hats_[c] with add) times `dots`, summed
-  // over the chunks in their order (so the same on any number of threads).
-  void sweep_up(int count, Eigen::MatrixXd& out, const Eigen::MatrixXd& dots, bool add) {
-    partial_.resize(std::size_t((C_ + kModeChunk - 1) / kModeChunk));
+    partial_.resize(std::size_t(chunks));
+    buffers_.resize(std::size_t(threads_));
     [[maybe_unused]] const int nt = threads_;
     COONS_PARALLEL_FOR
-    for (int t = 0; t < nt; ++t) {
-      const auto [q0, q1] = mode_range(t);
-      fast5_detail::sweep_up(factors_, q0, q1, kModeChunk, count, work_.data(), add ? hats_.data() : nullptr, dots,
-                             partial_.data());
+    for (int k = 0; k < chunks; ++k) {
+      std::vector<double>& buf = buffers_[std::size_t(thread_index())];
+      const int b0 = k * kModeChunk, b1 = std::min(C_, b0 + kModeChunk);
+      buf.resize(std::size_t(count) * std::size_t(R_) * std::size_t(b1 - b0));
+      fast5_detail::solve_chunk(factors_, b0, b1, count, in, output, buf.data(), dots, partial_[std::size_t(k)]);
     }
     out = partial_[0];
     for (std::size_t k = 1; k < partial_.size(); ++k) out += partial_[k];
   }
 
+  // The input sign·U z_c (or none) plus the hats (with from_hats).
+  [[nodiscard]] fast5_detail::SweepInput sweep_input(bool from_hats, const std::array<Eigen::MatrixXd, 2>* z,
+                                                     double sign) const {
+    fast5_detail::SweepInput in;
+    if (from_hats) in.hats = {hats_[0], hats_[1], hats_[2]};
+    in.z = z;
+    in.sign = sign;
+    in.t_even = tmasks_.col(0).data();
+    in.t_odd = tmasks_.col(1).data();
+    return in;
+  }
+
   // g(r, 2c + parity) = Σ_q (M⁻¹ hat_c)(r, q)·t_q over the modes q of that parity (hats_ kept).
   void banded_solve_all(int count, Eigen::MatrixXd& g) {
-    sweep_down(count, true, nullptr, 0);
-    sweep_up(count, g, tmasks_, false);
+    solve_modes(count, sweep_input(true, nullptr, 0), {}, tmasks_, g);
   }
 
   // With replace: hats_[c] ← M⁻¹(hats_[c] + sign·U z_c); otherwise hats_[c] += sign·M⁻¹ U z_c.
-  // near_values_ = the result on the columns near_ (see sweep_up).
+  // near_values_ = the new hats on the columns near_ (see solve_modes).
   void add_boundary_response(int count, const std::array<Eigen::MatrixXd, 2>& z, double sign, bool replace) {
-    sweep_down(count, replace, &z, sign);
-    sweep_up(count, near_values_, near_sines_, !replace);
-    if (replace)
-      for (int c = 0; c < count; ++c) std::swap(hats_[std::size_t(c)], work_[std::size_t(c)]);
+    fast5_detail::ChunkOutput output;
+    output.grid = {hats_[0], hats_[1], hats_[2]};
+    output.add = !replace;
+    solve_modes(count, sweep_input(replace, &z, sign), output, near_sines_, near_values_);
   }
 
   // The capacitance system for each parity of q: rhs[qpar] is rows × count in the grid (along i);
@@ -376,9 +364,10 @@ class Fast5Solver final : public LinearSolver {
   double boundary_ratio_ = 0;  // the largest ‖ρ‖/‖b‖ of the last boundary_residual
   ModeFactors factors_;
   std::array<CapacitanceBlock, 4> blocks_;
-  std::array<RowMajor, 3> hats_, work_;
-  std::vector<Eigen::MatrixXd> partial_;  // sweep_up: one product with the dots per chunk of modes
-  Eigen::MatrixXd near_values_;           // rows × (#near_ · count)
+  std::array<double*, 3> hats_{};             // the transformed rows, in X during a solve
+  std::vector<std::vector<double>> buffers_;  // solve_modes: one chunk buffer per thread
+  std::vector<Eigen::MatrixXd> partial_;      // solve_modes: one product with the dots per chunk
+  Eigen::MatrixXd near_values_;               // rows × (#near_ · count)
 };
 
 }  // namespace

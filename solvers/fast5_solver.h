@@ -22,9 +22,13 @@
 //              above that are stored (4 % of rows·cols at N = 1023), the rest read the limit;
 //   solve      a sine transform of each row (a row of B that is zero off the columns 0, 1,
 //              cols−2, cols−1, as in most rows of a mask system, is the combination of those four
-//              columns' sine vectors instead), sweeps of banded solves along i (down and up, all
-//              right-hand sides in one sweep), the capacitance solves, an inverse transform.
-// Threads (SolverOptions::threads, OpenMP): the sweeps split the modes in whole chunks of 128
+//              columns' sine vectors instead), written into X, sweeps of banded solves along i
+//              (down and up the rows for a chunk of 128 modes at a time in a buffer that stays in
+//              the cache, all right-hand sides together, the result back into X), the capacitance
+//              solves, an inverse transform of X's rows in place. X is the only grid-sized array
+//              (until 2026-12-02 the transformed rows and the sweeps' work had two more sets of
+//              three: 48 MB at N = 1023).
+// Threads (SolverOptions::threads, OpenMP): the chunks of modes are shared among the threads
 // (fast5_modes.h), the four capacitance blocks run in parallel, the row transforms are shared
 // (one SineTransform per thread); the result is the same bit for bit on any count.
 // Files: fast5_modes.h (per-mode factors and sweeps), fast5_capacitance.h (the blocks and their CG).
