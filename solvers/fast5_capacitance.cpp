@@ -1,23 +1,47 @@
 #include "fast5_capacitance.h"
 
+#include <array>
 #include <cmath>
 #include <cstddef>
 
 #include "fast5_modes.h"
+#include "vector_clones.h"
 
 namespace coons::solvers::fast5_detail {
 
-// out = Cap·V. G is read twice, a column at a time, for all right-hand sides together
-// (hand-written: Eigen's product would pack G into a copy on every call).
-void CapacitanceBlock::apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out, Eigen::MatrixXd& s) const {
-  const Eigen::Index m = V.cols();
+namespace {
+
+// Σ_p a[p]·b[p] in eight interleaved partial sums (so that the AVX2 clone adds whole vectors; the
+// order of the sums is the same in either clone, and so are the bits).
+COONS_VECTOR_CLONES double dot8(const double* __restrict a, const double* __restrict b, Eigen::Index n) {
+  std::array<double, 8> acc{};
+  Eigen::Index p = 0;
+  for (; p + 8 <= n; p += 8)
+    for (std::size_t l = 0; l < 8; ++l) acc[l] += a[p + Eigen::Index(l)] * b[p + Eigen::Index(l)];
+  double sum = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+  for (; p < n; ++p) sum += a[p] * b[p];
+  return sum;
+}
+
+// y −= alpha·x.
+COONS_VECTOR_CLONES void subtract_scaled(double alpha, const double* __restrict x, double* __restrict y,
+                                         Eigen::Index n) {
+  for (Eigen::Index p = 0; p < n; ++p) y[p] -= alpha * x[p];
+}
+
+}  // namespace
+
+// out = Cap·V, with G Gᵀ V = Σ_k g_k (g_kᵀ V) over the columns g_k of G: each column is read
+// once, for all right-hand sides, and used twice while it is in the L1 cache (hand-written:
+// Eigen's product would pack G into a copy on every call, and its kernels are the build's SSE2
+// ones, see dot8).
+void CapacitanceBlock::apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const {
+  const Eigen::Index m = V.cols(), n = G.rows();
   out.noalias() = diag.asDiagonal() * V;
   out.noalias() -= (kappa * u) * (u.transpose() * V);
-  s.resize(G.cols(), m);
   for (Eigen::Index k = 0; k < G.cols(); ++k)
-    for (Eigen::Index c = 0; c < m; ++c) s(k, c) = G.col(k).dot(V.col(c));
-  for (Eigen::Index k = 0; k < G.cols(); ++k)
-    for (Eigen::Index c = 0; c < m; ++c) out.col(c) -= s(k, c) * G.col(k);
+    for (Eigen::Index c = 0; c < m; ++c)
+      subtract_scaled(dot8(G.col(k).data(), V.col(c).data(), n), G.col(k).data(), out.col(c).data(), n);
 }
 
 // V ← H⁻¹ V (rows of V are this block's modes).
@@ -34,13 +58,13 @@ int CapacitanceBlock::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, doub
   X.setZero(n, m);
   if (n == 0 || m == 0) return 0;
   Eigen::ArrayXd target = tolerance * rhs.colwise().norm().transpose().array();
-  Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP, s;
+  Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP;
   Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
   std::vector<bool> active(static_cast<std::size_t>(m), false);
   for (Eigen::Index c = 0; c < m; ++c) active[std::size_t(c)] = target[c] > 0;
   const int limit = int(2 * n + 50);
   for (int k = 1; k <= limit; ++k) {
-    apply(P, AP, s);
+    apply(P, AP);
     bool any = false;
     for (Eigen::Index c = 0; c < m; ++c) {
       if (!active[std::size_t(c)]) continue;
@@ -64,7 +88,7 @@ int CapacitanceBlock::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, doub
 }
 
 std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eigen::VectorXd& mu,
-                                                   const Eigen::VectorXd& nu, const Eigen::VectorXd& t) {
+                                                   const Eigen::VectorXd& nu, const Eigen::VectorXd& t, int threads) {
   const int rows = int(mu.size()), cols = int(nu.size());
   const Eigen::VectorXd sigma = std::sqrt(2.0) * first_sine_column(rows);
   std::array<CapacitanceBlock, 4> blocks;
@@ -72,11 +96,16 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
     const double s = mu[p] + nu[q];
     return a * mu[p] * mu[p] * nu[q] * nu[q] + b * s * s;
   };
-  for (int qpar = 0; qpar < 2; ++qpar) {
+  [[maybe_unused]] const int nt = threads;
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static, 1)
+#endif
+  for (int index = 0; index < 4; ++index) {  // each block is written by one thread
+    const int qpar = index / 2, ppar = index % 2;
     std::vector<int> qs;
     for (int q = qpar; q < cols; q += 2) qs.push_back(q);
-    for (int ppar = 0; ppar < 2; ++ppar) {
-      CapacitanceBlock& blk = blocks[2 * std::size_t(qpar) + std::size_t(ppar)];
+    {
+      CapacitanceBlock& blk = blocks[std::size_t(index)];
       blk.modes.clear();
       for (int p = ppar; p < rows; p += 2) blk.modes.push_back(p);
       const auto n = Eigen::Index(blk.modes.size());

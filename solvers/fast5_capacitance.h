@@ -24,9 +24,9 @@ struct CapacitanceBlock {
   double kappa = 0;
   Eigen::MatrixXd G;  // #modes by #(modes q of the column parity), column-major
 
-  //! out = Cap·V (V: #modes by #right-hand sides); s is scratch. G is read twice, a column at a
-  //! time, for all right-hand sides together.
-  void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out, Eigen::MatrixXd& s) const;
+  //! out = Cap·V (V: #modes by #right-hand sides). G is read once, a column at a time, for all
+  //! right-hand sides together.
+  void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const;
   //! V ← H⁻¹ V (rows of V are this block's modes).
   void apply_h_inverse(Eigen::MatrixXd& V) const;
   //! X = Cap⁻¹ rhs by conjugate gradients with the diagonal as preconditioner, one column per
@@ -36,8 +36,8 @@ struct CapacitanceBlock {
 
 //! The four blocks, index 2·(parity of q) + (parity of p), of the fast5 operator a·C + b·T on a
 //! rows × cols grid: mu (#rows) and nu (#cols) the eigenvalues of D along i and j, t = √2·S·e₁
-//! along j (#cols).
+//! along j (#cols). The blocks are built on up to `threads` threads (OpenMP), the same on any count.
 std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eigen::VectorXd& mu,
-                                                   const Eigen::VectorXd& nu, const Eigen::VectorXd& t);
+                                                   const Eigen::VectorXd& nu, const Eigen::VectorXd& t, int threads);
 
 }  // namespace coons::solvers::fast5_detail

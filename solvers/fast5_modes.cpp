@@ -65,8 +65,18 @@ COONS_VECTOR_CLONES void up_row(double* __restrict w, const double* __restrict i
 
 }  // namespace
 
+COONS_VECTOR_CLONES std::array<double, 2> parity_dot(const double* __restrict x, const double* __restrict v, int n) {
+  std::array<double, 8> acc{};
+  int i = 0;
+  for (; i + 8 <= n; i += 8)
+    for (std::size_t l = 0; l < 8; ++l) acc[l] += x[i + int(l)] * v[i + int(l)];
+  std::array<double, 2> sums{(acc[0] + acc[2]) + (acc[4] + acc[6]), (acc[1] + acc[3]) + (acc[5] + acc[7])};
+  for (; i < n; ++i) sums[std::size_t(i % 2)] += x[i] * v[i];
+  return sums;
+}
+
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
-                 double* buf, const Eigen::MatrixXd& dots, Eigen::MatrixXd& dot) {
+                 double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot) {
   const int R = f.rows, C = f.cols, n = b1 - b0;
   const std::vector<double> zeros(std::size_t(n), 0.0);
   const auto row_of = [&](int c, int r) { return buf + (std::ptrdiff_t(c) * R + r) * n; };
@@ -92,8 +102,8 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
       }
     }
   // up: buf ← (LD)⁻ᵀ buf = M⁻¹ (the input), then into the output and the partial dots
-  const Eigen::Index k = dots.cols();
-  dot.resize(R, k * count);
+  const Eigen::Index k = sines.cols();
+  dot.resize(R, 2 * k * count);
   for (int r = R - 1; r >= 0; --r)
     for (int c = 0; c < count; ++c) {
       double* w = row_of(c, r);
@@ -113,8 +123,11 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
         for (int q = 0; q < n; ++q) g[q] += w[q];
       else if (g)
         std::copy(w, w + n, g);
-      const Eigen::Map<const Eigen::VectorXd> row(g ? g : w, n);
-      for (Eigen::Index m = 0; m < k; ++m) dot(r, k * c + m) = row.dot(dots.col(m).segment(b0, n));
+      for (Eigen::Index m = 0; m < k; ++m) {
+        const std::array<double, 2> sums = parity_dot(g ? g : w, sines.col(m).data() + b0, n);
+        dot(r, 2 * (k * c + m)) = sums[0];
+        dot(r, 2 * (k * c + m) + 1) = sums[1];
+      }
     }
 }
 
@@ -122,7 +135,7 @@ namespace {
 constexpr double kConverged = 1e-15;
 }  // namespace
 
-ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows) {
+ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads) {
   ModeFactors f;
   const int cols = int(nu.size());
   f.rows = rows;
@@ -133,7 +146,11 @@ ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows
   std::vector<int> converged(std::size_t(cols), rows);
   const auto modes = std::size_t(cols);
   std::vector<std::vector<double>> d(modes), l1(modes), l2(modes);
-  for (int q = 0; q < cols; ++q) {
+  [[maybe_unused]] const int nt = threads;
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic, 16)
+#endif
+  for (int q = 0; q < cols; ++q) {  // the modes are independent; each writes its own entries
     const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
     const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
     auto& dq = d[std::size_t(q)];
@@ -174,6 +191,9 @@ ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows
   f.inv_d.resize(total);
   f.l1.resize(total);
   f.l2.resize(total);
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
+#endif
   for (int r = 0; r < rows; ++r)
     for (int q = 0; q < f.active[std::size_t(r)]; ++q) {
       const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);

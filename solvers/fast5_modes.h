@@ -35,8 +35,9 @@ struct ModeFactors {
   std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
 };
 
-//! The factors of M_q for the modes ν = nu (#cols) of the fourth-order stencil a·C + b·T, rows each.
-ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows);
+//! The factors of M_q for the modes ν = nu (#cols) of the fourth-order stencil a·C + b·T, rows each,
+//! on up to `threads` threads (OpenMP; the same on any count).
+ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads);
 
 //! The right-hand side of a solve_chunk, row r, mode q, right-hand side c: hats[c][r·cols + q]
 //! (hats[c] = nullptr: zero) + sign·(z_even(r, c) t_even[q] + z_odd(r, c) t_odd[q]), the sources
@@ -57,12 +58,17 @@ struct ChunkOutput {
   bool add = false;
 };
 
-//! M⁻¹ of the input for the modes [b0, b1) and right-hand sides c < count: down the rows into buf
-//! and back up in it (buf: count·rows·(b1 − b0) doubles, small enough to stay in the cache), then
-//! into the output. dot(r, k·c + m) = row r of the chunk's new values (the grid's with a grid, M⁻¹
-//! of the input otherwise) times dots.col(m) over the chunk's modes: a partial sum, the same
-//! whichever thread solves the chunk. The modes are independent: chunks may run on different threads.
+//! M⁻¹ of the input for the modes [b0, b1) (b0 even) and right-hand sides c < count: down the rows
+//! into buf and back up in it (buf: count·rows·(b1 − b0) doubles, small enough to stay in the
+//! cache), then into the output. dot(r, 2k·c + 2m + p) = Σ v(q)·sines(q, m) over the chunk's modes q
+//! of parity p, v = row r of the chunk's new values (the grid's with a grid, M⁻¹ of the input
+//! otherwise), k = sines.cols(): a partial sum, the same whichever thread solves the chunk. The
+//! modes are independent: chunks may run on different threads.
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
-                 double* buf, const Eigen::MatrixXd& dots, Eigen::MatrixXd& dot);
+                 double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot);
+
+//! Σ x[i]·v[i] over the even i < n and over the odd i < n, in eight interleaved partial sums (so
+//! that a vector clone adds whole vectors; the bits are the same in either clone).
+std::array<double, 2> parity_dot(const double* x, const double* v, int n);
 
 }  // namespace coons::solvers::fast5_detail

@@ -167,12 +167,15 @@ class Fast5Solver final : public LinearSolver {
         }
         const double* b = B.col(c).data() + std::ptrdiff_t(r) * C_;
         if (edges && std::all_of(b + 2, b + C_ - 2, [](double v) { return v == 0; })) {
+          // the sine vector of column cols−1−j is that of column j times (−1)^q
           const double e0 = b[0], e1 = b[1], e2 = b[C_ - 2], e3 = b[C_ - 1];
-          const double* s0 = near_sines_.col(near_index_[0]).data();
-          const double* s1 = near_sines_.col(near_index_[1]).data();
-          const double* s2 = near_sines_.col(near_index_[4]).data();
-          const double* s3 = near_sines_.col(near_index_[5]).data();
-          for (int q = 0; q < C_; ++q) hat[q] = e0 * s0[q] + e1 * s1[q] + e2 * s2[q] + e3 * s3[q];
+          const double* s0 = near_sines_.col(0).data();
+          const double* s1 = near_sines_.col(1).data();
+          for (int q = 0; q + 1 < C_; q += 2) {
+            hat[q] = (e0 + e3) * s0[q] + (e1 + e2) * s1[q];
+            hat[q + 1] = (e0 - e3) * s0[q + 1] + (e1 - e2) * s1[q + 1];
+          }
+          if (C_ % 2 == 1) hat[C_ - 1] = (e0 + e3) * s0[C_ - 1] + (e1 + e2) * s1[C_ - 1];
         } else {
           along_j.apply(b, hat, scale_j);
         }
@@ -183,7 +186,7 @@ class Fast5Solver final : public LinearSolver {
   // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
   void factor_modes() {
     nu_ = second_difference_eigenvalues(C_);
-    factors_ = fast5_detail::factor_modes(weights_.a, weights_.b, nu_, R_);
+    factors_ = fast5_detail::factor_modes(weights_.a, weights_.b, nu_, R_, threads_);
   }
 
   // The four capacitance blocks (parity of q) × (parity of p), see the header, and the sine
@@ -194,28 +197,20 @@ class Fast5Solver final : public LinearSolver {
     t_ = std::sqrt(2.0) * first_sine_column(C_);
     tmasks_.setZero(C_, 2);  // t_q on the modes of each parity
     for (int q = 0; q < C_; ++q) tmasks_(q, q % 2) = t_[q];
-    near_.clear();  // columns 0, 1, 2, cols−3, cols−2, cols−1
-    for (int j : {0, 1, 2, C_ - 3, C_ - 2, C_ - 1})
-      if (j >= 0 && j < C_ && std::find(near_.begin(), near_.end(), j) == near_.end()) near_.push_back(j);
-    near_index_.fill(0);  // columns 0, 1, 2, cols−3, cols−2, cols−1 → their place in near_
-    for (int k = 0; k < 6; ++k) {
-      const int j = k < 3 ? k : C_ - 6 + k;
-      if (j >= 0 && j < C_) near_index_[std::size_t(k)] = int(std::find(near_.begin(), near_.end(), j) - near_.begin());
-    }
-    near_sines_.resize(C_, Eigen::Index(near_.size()));
-    for (std::size_t k = 0; k < near_.size(); ++k)
+    near_sines_.resize(C_, 3);  // columns 0, 1, 2 (those of cols−1, cols−2, cols−3 times (−1)^q)
+    for (int j = 0; j < 3; ++j)
       for (int q = 0; q < C_; ++q)
-        near_sines_(q, Eigen::Index(k)) =
-            std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (near_[k] + 1) * (q + 1) / (C_ + 1));
-    blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_);
+        near_sines_(q, j) = std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (j + 1) * (q + 1) / (C_ + 1));
+    blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_, threads_);
   }
 
-  // M⁻¹ of the input (see SweepInput) for every mode, into `output`, and out(r, k·c + ·) = row r
-  // of the new values times `dots`. The modes go in chunks of kModeChunk, each swept down and up in
-  // a per-thread buffer that stays in the cache; the chunks' partial dots are summed in their order
-  // (so the same on any number of threads).
+  // M⁻¹ of the input (see SweepInput) for every mode, into `output`, and out(r, 2k·c + 2m + p) = the
+  // sum over the modes q of parity p of row r of the new values times sines(q, m), k = #sines. The
+  // modes go in chunks of kModeChunk, each swept down and up in a per-thread buffer that stays in
+  // the cache; the chunks' partial sums are added in their order (so the same on any number of
+  // threads).
   void solve_modes(int count, const fast5_detail::SweepInput& in, const fast5_detail::ChunkOutput& output,
-                   const Eigen::MatrixXd& dots, Eigen::MatrixXd& out) {
+                   const Eigen::MatrixXd& sines, Eigen::MatrixXd& out) {
     const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
     partial_.resize(std::size_t(chunks));
     buffers_.resize(std::size_t(threads_));
@@ -225,7 +220,7 @@ class Fast5Solver final : public LinearSolver {
       std::vector<double>& buf = buffers_[std::size_t(thread_index())];
       const int b0 = k * kModeChunk, b1 = std::min(C_, b0 + kModeChunk);
       buf.resize(std::size_t(count) * std::size_t(R_) * std::size_t(b1 - b0));
-      fast5_detail::solve_chunk(factors_, b0, b1, count, in, output, buf.data(), dots, partial_[std::size_t(k)]);
+      fast5_detail::solve_chunk(factors_, b0, b1, count, in, output, buf.data(), sines, partial_[std::size_t(k)]);
     }
     out = partial_[0];
     for (std::size_t k = 1; k < partial_.size(); ++k) out += partial_[k];
@@ -244,17 +239,25 @@ class Fast5Solver final : public LinearSolver {
   }
 
   // g(r, 2c + parity) = Σ_q (M⁻¹ hat_c)(r, q)·t_q over the modes q of that parity (hats_ kept).
-  void banded_solve_all(int count, Eigen::MatrixXd& g) {
-    solve_modes(count, sweep_input(true, nullptr, 0), {}, tmasks_, g);
-  }
+  void banded_solve_all(int count, Eigen::MatrixXd& g) { solve_modes(count, sweep_input(true, nullptr, 0), {}, t_, g); }
 
   // With replace: hats_[c] ← M⁻¹(hats_[c] + sign·U z_c); otherwise hats_[c] += sign·M⁻¹ U z_c.
-  // near_values_ = the new hats on the columns near_ (see solve_modes).
+  // near_values_(r, 6c + k) = the new hats on the columns 0, 1, 2, cols−3, cols−2, cols−1 (k = 0..5).
   void add_boundary_response(int count, const std::array<Eigen::MatrixXd, 2>& z, double sign, bool replace) {
     fast5_detail::ChunkOutput output;
     output.grid = {hats_[0], hats_[1], hats_[2]};
     output.add = !replace;
     solve_modes(count, sweep_input(replace, &z, sign), output, near_sines_, near_values_);
+    // parity parts (even, odd) of the columns 0, 1, 2 → the six columns
+    Eigen::MatrixXd parts;
+    std::swap(parts, near_values_);
+    near_values_.resize(R_, 6 * count);
+    for (int c = 0; c < count; ++c)
+      for (int j = 0; j < 3; ++j) {
+        const auto even = parts.col(6 * c + 2 * j), odd = parts.col(6 * c + 2 * j + 1);
+        near_values_.col(6 * c + j) = even + odd;
+        near_values_.col(6 * c + 5 - j) = even - odd;
+      }
   }
 
   // The capacitance system for each parity of q: rhs[qpar] is rows × count in the grid (along i);
@@ -318,7 +321,7 @@ class Fast5Solver final : public LinearSolver {
     for (int c = 0; c < count; ++c) {
       const auto value = [&](int i, int j) {
         if (i < 0 || i >= R_ || j < 0 || j >= C_) return 0.0;
-        return near_values_(i, Eigen::Index(near_.size()) * c + near_index_[std::size_t(j < 3 ? j : j - C_ + 6)]);
+        return near_values_(i, 6 * c + (j < 3 ? j : j - C_ + 6));
       };
       double norm2 = 0;
       for (int s = 0; s < 2; ++s) {
@@ -358,8 +361,6 @@ class Fast5Solver final : public LinearSolver {
   std::vector<detail::SineTransform> along_j_;  // one per thread
   Eigen::VectorXd nu_, t_;
   Eigen::MatrixXd tmasks_, near_sines_, dots_;
-  std::vector<int> near_;
-  std::array<int, 6> near_index_{};
   std::array<double, 3> b_norms_{};
   double boundary_ratio_ = 0;  // the largest ‖ρ‖/‖b‖ of the last boundary_residual
   ModeFactors factors_;
@@ -367,7 +368,7 @@ class Fast5Solver final : public LinearSolver {
   std::array<double*, 3> hats_{};             // the transformed rows, in X during a solve
   std::vector<std::vector<double>> buffers_;  // solve_modes: one chunk buffer per thread
   std::vector<Eigen::MatrixXd> partial_;      // solve_modes: one product with the dots per chunk
-  Eigen::MatrixXd near_values_;               // rows × (#near_ · count)
+  Eigen::MatrixXd near_values_;               // rows × (6 · count), see add_boundary_response
 };
 
 }  // namespace

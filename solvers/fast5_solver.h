@@ -47,12 +47,16 @@
 // biharmonic 90 ms and w = 0.5 105 ms, against 309 and 392 ms with two whole-grid refinement
 // steps (residual, two row transforms and the whole solve again each), measured together; the
 // memory pass took 1.8–4 ms at that load, so about 25–50× (biharmonic) and 30–60× (w = 0.5).
-// The 10× target is not reached: what is left is the capacitance CG (a fifth), the banded
-// sweeps (two fifths: four pairs at N = 1023, the first solve, the boundary response and two
-// corrections) and the two row transforms (a sixth). Threads (2026-11-23) change the wall time,
-// not this balance; on one thread the solve costs what it did. A capacitance formed without the
-// forward error (so no correction sweeps) would need another exact representation of A₁⁻¹ on
-// the boundary columns; not done.
+// The 10× target is not reached. Where a solve went on 2026-12-02 (biharmonic, N = 1023, mask data,
+// one thread, phases timed inside the solver, medians of 8 solves; the benchmark's memory pass
+// took 0.9 ms): factorisation 0.9 + capacitance blocks 3.0, forward transform 2.2, first sweep (g)
+// 9.1, capacitance CG 4.7, second sweep (x̂ and the boundary values) 10.5, one correction (CG 4.7,
+// sweep 11.9), inverse transform 6.0 ms. The inverse transform alone is 6–7 memory passes here.
+// That day's changes (no grid-sized arrays but X, the capacitance product reading G once, eight-
+// lane parity dots) took the benchmark from 62–67 to 48–54 ms on one thread and from 42–44 to
+// 35–37 ms on two (alternating runs of both binaries). A capacitance formed without the forward
+// error (so no correction) would need another exact representation of A₁⁻¹ on the boundary
+// columns; not done.
 // summary.iterations is the largest number of capacitance CG iterations of any capacitance solve
 // (the first to 1e-7, corrections to what they need, at least 1e-10): 6 (biharmonic) and 7
 // (w = 0.5) at N = 1023 on mask data; to 1e-14 it was 8 / 9 (about log N).
