@@ -36,30 +36,70 @@ FactorPointers factor_pointers(const ModeFactors& f, int r, int q) {
   return {f.lim_inv_d.data(), f.lim_l1.data(), f.lim_l2.data()};
 }
 
-// Row r of a chunk's downward sweep, n modes from the chunk's first (every pointer starts there;
-// y: the input row, te/to: t_q of either parity, w1/w2: the rows above, nullptr above row 0).
-COONS_VECTOR_CLONES void down_row(double* __restrict w, const double* __restrict y, double ze,
-                                  const double* __restrict te, double zo, const double* __restrict to,
-                                  const double* __restrict l1, const double* __restrict w1, const double* __restrict l2,
-                                  const double* __restrict w2, int n) {
-  if (w2) {
-    for (int q = 0; q < n; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q] - l2[q] * w2[q];
-  } else if (w1) {
-    for (int q = 0; q < n; ++q) w[q] = y[q] + ze * te[q] + zo * to[q] - l1[q] * w1[q];
+// The kernels below work on the rows of all three right-hand sides at once, so that a factor is
+// loaded once for the three; w0, w1, w2 are their rows (n modes from the segment's first), and
+// the row above (below) a row is `stride` doubles before (after) it. rows ∈ {0, 1, 2}: how many
+// rows above (below) there are to eliminate.
+
+// Down: w_c = y_c + ze_c·te + zo_c·to − l1·(row above) − l2·(row two above).
+COONS_VECTOR_CLONES void down_rows(double* __restrict w0, double* __restrict w1, double* __restrict w2,
+                                   const double* __restrict y0, const double* __restrict y1,
+                                   const double* __restrict y2, const double* __restrict te,
+                                   const double* __restrict to, const std::array<double, 6>& z,
+                                   const double* __restrict l1, const double* __restrict l2, std::ptrdiff_t stride,
+                                   int rows, int n) {
+  const double ze0 = z[0], zo0 = z[1], ze1 = z[2], zo1 = z[3], ze2 = z[4], zo2 = z[5];
+  const std::ptrdiff_t s1 = stride, s2 = 2 * stride;
+  if (rows == 2) {
+    for (int q = 0; q < n; ++q) {
+      const double a = l1[q], b = l2[q], e = te[q], o = to[q];
+      w0[q] = y0[q] + ze0 * e + zo0 * o - a * w0[q - s1] - b * w0[q - s2];
+      w1[q] = y1[q] + ze1 * e + zo1 * o - a * w1[q - s1] - b * w1[q - s2];
+      w2[q] = y2[q] + ze2 * e + zo2 * o - a * w2[q - s1] - b * w2[q - s2];
+    }
+  } else if (rows == 1) {
+    for (int q = 0; q < n; ++q) {
+      const double a = l1[q], e = te[q], o = to[q];
+      w0[q] = y0[q] + ze0 * e + zo0 * o - a * w0[q - s1];
+      w1[q] = y1[q] + ze1 * e + zo1 * o - a * w1[q - s1];
+      w2[q] = y2[q] + ze2 * e + zo2 * o - a * w2[q - s1];
+    }
   } else {
-    for (int q = 0; q < n; ++q) w[q] = y[q] + ze * te[q] + zo * to[q];
+    for (int q = 0; q < n; ++q) {
+      const double e = te[q], o = to[q];
+      w0[q] = y0[q] + ze0 * e + zo0 * o;
+      w1[q] = y1[q] + ze1 * e + zo1 * o;
+      w2[q] = y2[q] + ze2 * e + zo2 * o;
+    }
   }
 }
 
-COONS_VECTOR_CLONES void up_row(double* __restrict w, const double* __restrict inv_d, const double* __restrict l1,
-                                const double* __restrict w1, const double* __restrict l2, const double* __restrict w2,
-                                int n) {
-  if (w2) {
-    for (int q = 0; q < n; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q] - l2[q] * w2[q];
-  } else if (w1) {
-    for (int q = 0; q < n; ++q) w[q] = w[q] * inv_d[q] - l1[q] * w1[q];
+// Up: w_c = w_c·inv_d − l1·(row below) − l2·(row two below).
+COONS_VECTOR_CLONES void up_rows(double* __restrict w0, double* __restrict w1, double* __restrict w2,
+                                 const double* __restrict inv_d, const double* __restrict l1,
+                                 const double* __restrict l2, std::ptrdiff_t stride, int rows, int n) {
+  const std::ptrdiff_t s1 = stride, s2 = 2 * stride;
+  if (rows == 2) {
+    for (int q = 0; q < n; ++q) {
+      const double d = inv_d[q], a = l1[q], b = l2[q];
+      w0[q] = w0[q] * d - a * w0[q + s1] - b * w0[q + s2];
+      w1[q] = w1[q] * d - a * w1[q + s1] - b * w1[q + s2];
+      w2[q] = w2[q] * d - a * w2[q + s1] - b * w2[q + s2];
+    }
+  } else if (rows == 1) {
+    for (int q = 0; q < n; ++q) {
+      const double d = inv_d[q], a = l1[q];
+      w0[q] = w0[q] * d - a * w0[q + s1];
+      w1[q] = w1[q] * d - a * w1[q + s1];
+      w2[q] = w2[q] * d - a * w2[q + s1];
+    }
   } else {
-    for (int q = 0; q < n; ++q) w[q] *= inv_d[q];
+    for (int q = 0; q < n; ++q) {
+      const double d = inv_d[q];
+      w0[q] *= d;
+      w1[q] *= d;
+      w2[q] *= d;
+    }
   }
 }
 
@@ -79,56 +119,62 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
                  double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot) {
   const int R = f.rows, C = f.cols, n = b1 - b0;
   const std::vector<double> zeros(std::size_t(n), 0.0);
+  // three right-hand sides are swept together; those from count on are zero and not written
   const auto row_of = [&](int c, int r) { return buf + (std::ptrdiff_t(c) * R + r) * n; };
+  const auto input_of = [&](int c, int r) -> const double* {
+    const double* h = c < count ? in.hats[std::size_t(c)] : nullptr;
+    return h ? h + std::ptrdiff_t(r) * C + b0 : zeros.data();
+  };
   // down: buf = L⁻¹ (the input)
-  for (int r = 0; r < R; ++r)
-    for (int c = 0; c < count; ++c) {
-      double* w = row_of(c, r);
-      const double* y = in.hats[std::size_t(c)] ? in.hats[std::size_t(c)] + std::ptrdiff_t(r) * C + b0 : zeros.data();
-      const double ze = in.z ? in.sign * (*in.z)[0](r, c) : 0, zo = in.z ? in.sign * (*in.z)[1](r, c) : 0;
-      const double* w1 = r >= 1 ? w - n : nullptr;
-      const double* w2 = r >= 2 ? w - 2 * std::ptrdiff_t(n) : nullptr;
-      // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
-      const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
-      const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, b1) : b1;
-      const std::array<int, 4> cut{b0, a1, a2, b1};
-      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-        if (cut[s] >= cut[s + 1]) continue;
-        const int at = cut[s] - b0, len = cut[s + 1] - cut[s];
-        const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 + cut[s] : nullptr;
-        const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 + cut[s] : nullptr;
-        down_row(w + at, y + at, ze, in.t_even + cut[s], zo, in.t_odd + cut[s], l1, w1 ? w1 + at : nullptr, l2,
-                 w2 ? w2 + at : nullptr, len);
-      }
+  for (int r = 0; r < R; ++r) {
+    std::array<double, 6> z{};
+    for (int c = 0; c < count && in.z; ++c) {
+      z[2 * std::size_t(c)] = in.sign * (*in.z)[0](r, c);
+      z[2 * std::size_t(c) + 1] = in.sign * (*in.z)[1](r, c);
     }
+    const int rows = std::min(r, 2);
+    // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
+    const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
+    const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, b1) : b1;
+    const std::array<int, 4> cut{b0, a1, a2, b1};
+    for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+      if (cut[s] >= cut[s + 1]) continue;
+      const int at = cut[s] - b0;
+      const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 + cut[s] : nullptr;
+      const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 + cut[s] : nullptr;
+      down_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, input_of(0, r) + at, input_of(1, r) + at,
+                input_of(2, r) + at, in.t_even + cut[s], in.t_odd + cut[s], z, l1, l2, n, rows, cut[s + 1] - cut[s]);
+    }
+  }
   // up: buf ← (LD)⁻ᵀ buf = M⁻¹ (the input), then into the output and the partial dots
   const Eigen::Index k = sines.cols();
   dot.resize(R, 2 * k * count);
-  for (int r = R - 1; r >= 0; --r)
+  for (int r = R - 1; r >= 0; --r) {
+    const int rows = std::min(R - 1 - r, 2);
+    const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
+    const std::array<int, 3> cut{b0, a, b1};
+    for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+      if (cut[s] >= cut[s + 1]) continue;
+      const int at = cut[s] - b0;
+      const FactorPointers p = factor_pointers(f, r, cut[s]);
+      up_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s],
+              n, rows, cut[s + 1] - cut[s]);
+    }
     for (int c = 0; c < count; ++c) {
-      double* w = row_of(c, r);
-      const double* w1 = r + 1 < R ? w + n : nullptr;
-      const double* w2 = r + 2 < R ? w + 2 * std::ptrdiff_t(n) : nullptr;
-      const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
-      const std::array<int, 3> cut{b0, a, b1};
-      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-        if (cut[s] >= cut[s + 1]) continue;
-        const int at = cut[s] - b0;
-        const FactorPointers p = factor_pointers(f, r, cut[s]);
-        up_row(w + at, p.inv_d + cut[s], p.l1 + cut[s], w1 ? w1 + at : nullptr, p.l2 + cut[s], w2 ? w2 + at : nullptr,
-               cut[s + 1] - cut[s]);
-      }
+      const double* w = row_of(c, r);
       double* g = out.grid[std::size_t(c)] ? out.grid[std::size_t(c)] + std::ptrdiff_t(r) * C + b0 : nullptr;
       if (g && out.add)
         for (int q = 0; q < n; ++q) g[q] += w[q];
       else if (g)
         std::copy(w, w + n, g);
+      const double* x = g ? g : w;
       for (Eigen::Index m = 0; m < k; ++m) {
-        const std::array<double, 2> sums = parity_dot(g ? g : w, sines.col(m).data() + b0, n);
+        const std::array<double, 2> sums = parity_dot(x, sines.col(m).data() + b0, n);
         dot(r, 2 * (k * c + m)) = sums[0];
         dot(r, 2 * (k * c + m) + 1) = sums[1];
       }
     }
+  }
 }
 
 namespace {

@@ -58,12 +58,12 @@ struct ChunkOutput {
   bool add = false;
 };
 
-//! M⁻¹ of the input for the modes [b0, b1) (b0 even) and right-hand sides c < count: down the rows
-//! into buf and back up in it (buf: count·rows·(b1 − b0) doubles, small enough to stay in the
-//! cache), then into the output. dot(r, 2k·c + 2m + p) = Σ v(q)·sines(q, m) over the chunk's modes q
-//! of parity p, v = row r of the chunk's new values (the grid's with a grid, M⁻¹ of the input
-//! otherwise), k = sines.cols(): a partial sum, the same whichever thread solves the chunk. The
-//! modes are independent: chunks may run on different threads.
+//! M⁻¹ of the input for the modes [b0, b1) (b0 even) and right-hand sides c < count ≤ 3: down the
+//! rows into buf and back up in it (buf: 3·rows·(b1 − b0) doubles, small enough to stay in the
+//! cache; the three right-hand sides are swept together), then into the output. dot(r, 2k·c + 2m + p) = Σ v(q)·sines(q,
+//! m) over the chunk's modes q of parity p, v = row r of the chunk's new values (the grid's with a grid, M⁻¹ of the
+//! input otherwise), k = sines.cols(): a partial sum, the same whichever thread solves the chunk. The modes are
+//! independent: chunks may run on different threads.
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
                  double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot);
 

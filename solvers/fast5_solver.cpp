@@ -219,7 +219,7 @@ class Fast5Solver final : public LinearSolver {
     for (int k = 0; k < chunks; ++k) {
       std::vector<double>& buf = buffers_[std::size_t(thread_index())];
       const int b0 = k * kModeChunk, b1 = std::min(C_, b0 + kModeChunk);
-      buf.resize(std::size_t(count) * std::size_t(R_) * std::size_t(b1 - b0));
+      buf.resize(3 * std::size_t(R_) * std::size_t(b1 - b0));
       fast5_detail::solve_chunk(factors_, b0, b1, count, in, output, buf.data(), sines, partial_[std::size_t(k)]);
     }
     out = partial_[0];
