@@ -10,11 +10,19 @@
 using namespace coons::test;
 namespace fs = std::filesystem;
 
+namespace {
+
+// A page needs three.js, found at configure time; without it each test says "skipped" and returns.
+bool three_js_missing() {
+  if (COONS_HAVE_THREE_JS) return false;
+  WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
+  return true;
+}
+
+}  // namespace
+
 TEST_CASE("coons view: one page with the optima, refused without --force when it exists", "[cli][view]") {
-  if (!COONS_HAVE_THREE_JS) {
-    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
-    return;
-  }
+  if (three_js_missing()) return;
   const TempDir dir;
   const std::string page = dir.file("dome.html");
   const std::string command =
@@ -39,10 +47,7 @@ TEST_CASE("coons view: one page with the optima, refused without --force when it
 
 TEST_CASE("coons view: without --alpha the page opens inside its slider's range", "[cli][view]") {
   // the dome over [0, 0.1] (its thin-plate optimum, about -0.1, outside) opened at alpha = -0.25
-  if (!COONS_HAVE_THREE_JS) {
-    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
-    return;
-  }
+  if (three_js_missing()) return;
   const TempDir dir;
   const CommandResult r = run_coons("view " + quoted(kData + "/boundaries/dome.json") + " --from 0 --to 0.1 --out " +
                                     quoted(dir.file("dome.html")) + " --alphas 5 --samples 5");
@@ -70,10 +75,7 @@ TEST_CASE("coons view: a missing three.js is bad input naming libjs-three, nothi
 }
 
 TEST_CASE("coons study --html: a page per shape in pages/, linked from the report", "[cli][view]") {
-  if (!COONS_HAVE_THREE_JS) {
-    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
-    return;
-  }
+  if (three_js_missing()) return;
   const TempDir dir;
   const CommandResult r = run_coons(
       "study " + quoted(kData + "/boundaries/dome.json") + " " + quoted(kData + "/triangles/dome_half.json") + " " +
@@ -134,10 +136,7 @@ TEST_CASE("coons view: a B-spline boundary gets the slider of its non-uniform fa
           "[cli][view]") {
   // view refused B-spline boundaries ("read by solve, export, batch, search-alpha and study only"),
   // though the contract's `coons view B.json` takes any boundary file
-  if (!COONS_HAVE_THREE_JS) {
-    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
-    return;
-  }
+  if (three_js_missing()) return;
   const TempDir dir;
   const std::string wave = quoted(kData + "/boundaries/bspline_wave.json");
   const CommandResult r =
@@ -179,10 +178,7 @@ TEST_CASE("coons view: a B-spline boundary gets the slider of its non-uniform fa
 }
 
 TEST_CASE("coons view: searches whose solves fail are named on one line after the page, exit 3", "[cli][view]") {
-  if (!COONS_HAVE_THREE_JS) {
-    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
-    return;
-  }
+  if (three_js_missing()) return;
   // jacobi diverges for alpha < 0: the page was written with "failed_region" optima and exit 0
   const TempDir dir;
   const std::string page = dir.file("j.html");
@@ -199,10 +195,7 @@ TEST_CASE("coons view: searches whose solves fail are named on one line after th
 
 TEST_CASE("coons view: a net without an interior point is flat, as search-alpha says, and --out under a file",
           "[cli][view]") {
-  if (!COONS_HAVE_THREE_JS) {
-    WARN("skipped: three.js not found at configure time (apt-get install libjs-three)");
-    return;
-  }
+  if (three_js_missing()) return;
   const TempDir dir;
   const std::string file =
       dir.write("deg1.json", R"({"name":"deg1","degree":[1,1],"bottom":[[0,0,0],[1,0,0]],"top":[[0,1,0],[1,1,1]],)"

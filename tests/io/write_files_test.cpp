@@ -85,6 +85,27 @@ TEST_CASE("OutputSet: names that leave the folder and repeated names are refused
   CHECK(files_under(dir.path).empty());
 }
 
+TEST_CASE("OutputSet: a loop of symbolic links or a broken link as the folder is named with its reason", "[io]") {
+  // both once fell through to create_directory, whose error was "File exists"
+  TempDir dir;
+  fs::create_symlink(dir.path / "loop", dir.path / "loop");
+  fs::create_symlink(dir.path / "nowhere", dir.path / "broken");
+  const auto write_into = [&](const std::string& folder) {
+    OutputSet out((dir.path / folder).string(), "--out");
+    out.write("a.txt", [](std::ostream& o) { o << "a\n"; });
+  };
+  CHECK_THROWS_WITH(write_into("loop"),
+                    Catch::Contains("--out: cannot use the folder: Too many levels of symbolic links"));
+  CHECK_THROWS_WITH(write_into("loop/sub"),
+                    Catch::Contains("cannot use the folder: Too many levels of symbolic links"));
+  CHECK_THROWS_WITH(write_into("broken"), Catch::Contains("--out: is a symbolic link to a missing target"));
+  CHECK(!fs::exists(dir.path / "nowhere"));
+  std::vector<std::string> names;  // files_under would follow the loop
+  for (const auto& e : fs::directory_iterator(dir.path)) names.push_back(e.path().filename().string());
+  std::sort(names.begin(), names.end());
+  CHECK(names == std::vector<std::string>{"broken", "loop"});
+}
+
 TEST_CASE("OutputSet: an exception inside a write removes what was started", "[io]") {
   TempDir dir;
   try {

@@ -207,10 +207,15 @@ void OutputSet::make_folders(const std::string& folder) {
   std::vector<fs::path> missing;
   std::error_code ec;
   for (fs::path p = folder; !p.empty(); p = p.parent_path()) {
-    if (fs::exists(p, ec)) {
+    const bool there = fs::exists(p, ec);
+    if (ec)  // not "does not exist": a loop of symbolic links, a folder we may not search, ...
+      throw InputError(p.string(), field_, "cannot use the folder: " + ec.message());
+    if (there) {
       if (!fs::is_directory(p, ec)) throw InputError(p.string(), field_, "exists and is not a folder");
       break;
     }
+    if (fs::is_symlink(fs::symlink_status(p, ec)))
+      throw InputError(p.string(), field_, "is a symbolic link to a missing target; cannot create the folder there");
     missing.push_back(p);
     if (p == p.parent_path()) break;
   }
