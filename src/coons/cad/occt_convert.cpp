@@ -23,12 +23,17 @@
 #include <StepData_Protocol.hxx>
 #include <StepData_StepModel.hxx>
 #include <StepData_StepWriter.hxx>
+#include <StepGeom_Curve.hxx>
+#include <StepGeom_Surface.hxx>
+#include <StepShape_TopologicalRepresentationItem.hxx>
 #include <TColStd_Array1OfInteger.hxx>
 #include <TColStd_Array1OfReal.hxx>
 #include <TColStd_SequenceOfAsciiString.hxx>
 #include <TColgp_Array1OfPnt.hxx>
 #include <TColgp_Array2OfPnt.hxx>
 #include <TCollection_HAsciiString.hxx>
+#include <Transfer_TransientProcess.hxx>
+#include <XSControl_TransferReader.hxx>
 #include <XSControl_WorkSession.hxx>
 #include <cctype>
 #include <filesystem>
@@ -188,6 +193,41 @@ void require_no_load_failure(const std::string& path, XSControl_Reader& reader) 
   }
 }
 
+// The first entity OpenCASCADE's transfer failed on: a fail in its check list, or a curve, surface
+// or topological item the transfer left "not mapped to TopoDS" (a B-spline curve whose
+// multiplicities do not add up to its poles and degree: the exception is only printed, and the
+// check keeps a warning). The reader leaves such an entity out of the shape, so that the faces and
+// edges after it would be numbered one lower than in the file: refused, named.
+void require_no_transfer_failure(const std::string& path, XSControl_Reader& reader) {
+  const Handle(XSControl_TransferReader) transfer = reader.WS()->TransferReader();
+  if (transfer.IsNull() || transfer->TransientProcess().IsNull()) return;
+  Interface_CheckIterator checks = transfer->TransientProcess()->CheckList(Standard_False);
+  for (checks.Start(); checks.More(); checks.Next()) {
+    const Handle(Interface_Check)& check = checks.Value();
+    if (check.IsNull()) continue;
+    const Handle(Standard_Transient)& entity = check->Entity();
+    const bool geometry = !entity.IsNull() && (entity->IsKind(STANDARD_TYPE(StepGeom_Curve)) ||
+                                               entity->IsKind(STANDARD_TYPE(StepGeom_Surface)) ||
+                                               entity->IsKind(STANDARD_TYPE(StepShape_TopologicalRepresentationItem)));
+    std::string what;
+    if (check->HasFailed())
+      what = check->NbFails() > 0 ? check->CFail(1, Standard_True) : "no reason given";
+    else if (geometry)
+      for (int k = 1; k <= check->NbWarnings() && what.empty(); ++k)
+        if (std::string(check->CWarning(k, Standard_False)).find("Entity not mapped to TopoDS") != std::string::npos)
+          what = "left out of the shape: a B-spline whose poles, degree and multiplicities disagree, for one";
+    if (what.empty()) continue;
+    std::string where = "model";
+    if (!entity.IsNull() && !reader.Model().IsNull()) {
+      const Handle(TCollection_HAsciiString) label = reader.Model()->StringLabel(entity);
+      if (!label.IsNull()) where = std::string("entity ") + label->ToCString();
+    }
+    throw InputError(path, where,
+                     "OpenCASCADE cannot translate it (" + what +
+                         "); the faces and edges after it would be numbered one lower than in the file");
+  }
+}
+
 }  // namespace
 
 namespace {
@@ -230,6 +270,7 @@ TopoDS_Shape read_step_shape(const std::string& path, std::string* unit) {
   Interface_Static::SetCVal("xstep.cascade.unit", keep.empty() ? "MM" : keep.c_str());
   const int transferred = reader.TransferRoots();
   Interface_Static::SetCVal("xstep.cascade.unit", previous.c_str());
+  require_no_transfer_failure(path, reader);
   if (unit) {
     if (!keep.empty())
       *unit = file_unit;
@@ -250,7 +291,9 @@ TopoDS_Shape read_iges_shape(const std::string& path) {
   if (reader.ReadFile(path.c_str()) != IFSelect_RetDone)
     throw InputError(path, kDocumentField, "OpenCASCADE cannot read it as an IGES file");
   require_no_load_failure(path, reader);
-  if (reader.TransferRoots() == 0) throw InputError(path, kDocumentField, "the IGES file holds no shape");
+  const int transferred = reader.TransferRoots();
+  require_no_transfer_failure(path, reader);
+  if (transferred == 0) throw InputError(path, kDocumentField, "the IGES file holds no shape");
   TopoDS_Shape shape = reader.OneShape();
   if (shape.IsNull()) throw InputError(path, kDocumentField, "the IGES file holds no shape");
   return shape;
