@@ -215,8 +215,12 @@ class Fast5Solver final : public LinearSolver {
     partial_.resize(std::size_t(chunks));
     buffers_.resize(std::size_t(threads_));
     [[maybe_unused]] const int nt = threads_;
+    // On threads, taken in the order 0, h, 1, h + 1, ... (h = half the chunks): the chunks that run
+    // at the same time are not neighbours, whose rows in X share a cache line at their border.
+    const int half = (chunks + 1) / 2;
     COONS_PARALLEL_FOR
-    for (int k = 0; k < chunks; ++k) {
+    for (int i = 0; i < chunks; ++i) {
+      const int k = nt == 1 ? i : i % 2 == 0 ? i / 2 : half + i / 2;
       std::vector<double>& buf = buffers_[std::size_t(thread_index())];
       const int b0 = k * kModeChunk, b1 = std::min(C_, b0 + kModeChunk);
       buf.resize(3 * std::size_t(R_) * std::size_t(b1 - b0));
