@@ -174,6 +174,15 @@ void require_readable(const std::string& path) {
   if (!probe) throw InputError(path, kDocumentField, "cannot be read");
 }
 
+// The field of a check's error: "entity #47" (the file's label of the entity), or "model".
+std::string check_field(XSControl_Reader& reader, const Handle(Standard_Transient) & entity) {
+  if (!entity.IsNull() && !reader.Model().IsNull()) {
+    const Handle(TCollection_HAsciiString) label = reader.Model()->StringLabel(entity);
+    if (!label.IsNull()) return std::string("entity ") + label->ToCString();
+  }
+  return "model";
+}
+
 // The first failure OpenCASCADE's reader noted while loading the file (an unresolved reference
 // "#999", an entity of the wrong type, a parameter it could not read), named by its entity:
 // transferring such a model dereferences the missing entity (a segfault in StepToGeom for a
@@ -184,12 +193,7 @@ void require_no_load_failure(const std::string& path, XSControl_Reader& reader) 
     const Handle(Interface_Check)& check = checks.Value();
     if (check.IsNull() || !check->HasFailed()) continue;
     const std::string what = check->NbFails() > 0 ? check->CFail(1, Standard_True) : "unreadable entity";
-    std::string where = "model";
-    if (!check->Entity().IsNull() && !reader.Model().IsNull()) {
-      const Handle(TCollection_HAsciiString) label = reader.Model()->StringLabel(check->Entity());
-      if (!label.IsNull()) where = std::string("entity ") + label->ToCString();
-    }
-    throw InputError(path, where, "OpenCASCADE cannot load it: " + what);
+    throw InputError(path, check_field(reader, check->Entity()), "OpenCASCADE cannot load it: " + what);
   }
 }
 
@@ -217,12 +221,7 @@ void require_no_transfer_failure(const std::string& path, XSControl_Reader& read
         if (std::string(check->CWarning(k, Standard_False)).find("Entity not mapped to TopoDS") != std::string::npos)
           what = "left out of the shape: a B-spline whose poles, degree and multiplicities disagree, for one";
     if (what.empty()) continue;
-    std::string where = "model";
-    if (!entity.IsNull() && !reader.Model().IsNull()) {
-      const Handle(TCollection_HAsciiString) label = reader.Model()->StringLabel(entity);
-      if (!label.IsNull()) where = std::string("entity ") + label->ToCString();
-    }
-    throw InputError(path, where,
+    throw InputError(path, check_field(reader, entity),
                      "OpenCASCADE cannot translate it (" + what +
                          "); the faces and edges after it would be numbered one lower than in the file");
   }
