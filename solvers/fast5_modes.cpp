@@ -103,8 +103,8 @@ COONS_VECTOR_CLONES void up_rows(double* __restrict w0, double* __restrict w1, d
   }
 }
 
-}  // namespace
-
+// Σ x[i]·v[i] over the even i < n and over the odd i < n, in eight interleaved partial sums (so
+// that the AVX2 clone adds whole vectors; the bits are the same in either clone).
 COONS_VECTOR_CLONES std::array<double, 2> parity_dot(const double* __restrict x, const double* __restrict v, int n) {
   std::array<double, 8> acc{};
   int i = 0;
@@ -114,6 +114,8 @@ COONS_VECTOR_CLONES std::array<double, 2> parity_dot(const double* __restrict x,
   for (; i < n; ++i) sums[std::size_t(i % 2)] += x[i] * v[i];
   return sums;
 }
+
+}  // namespace
 
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
                  double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot) {

@@ -67,8 +67,4 @@ struct ChunkOutput {
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
                  double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot);
 
-//! Σ x[i]·v[i] over the even i < n and over the odd i < n, in eight interleaved partial sums (so
-//! that a vector clone adds whole vectors; the bits are the same in either clone).
-std::array<double, 2> parity_dot(const double* x, const double* v, int n);
-
 }  // namespace coons::solvers::fast5_detail
