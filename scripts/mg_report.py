@@ -66,7 +66,7 @@ def load_note(data):
 
 
 def iteration_table(data):
-    rows, sizes = {}, set()
+    rows, sizes, counts = {}, set(), {}
     for b in data["benchmarks"]:
         m = re.match(r"BM_MgIterations/([^/]+)/([^/]+)/N:(\d+)", b["name"])
         if not m:
@@ -87,11 +87,29 @@ def iteration_table(data):
             cell = f"{status}: {it} it., residual {res:.1e}"
         rows[(problem, backend)] = rows.get((problem, backend), {})
         rows[(problem, backend)][n] = cell
+        counts.setdefault((problem, backend), {})[n] = (it, status)
     sizes = sorted(sizes)
     out = ["| problem | backend | " + " | ".join(f"N = {n}" for n in sizes) + " |",
            "|---|---|" + "---|" * len(sizes)]
     for (problem, backend), cells in rows.items():
         out.append(f"| {problem} | `{backend}` | " + " | ".join(cells.get(n, "–") for n in sizes) + " |")
+    # Issue 14's iteration targets at the largest size of the run: `mg` ≤ 10 cycles at α = 0 and
+    # −0.1, `mg-cg` ≤ 40 iterations at α = −1/4 and on c1-coons and the biharmonic.
+    goals = [("α = 0.000", "mg", 10, "cycles"), ("α = −0.10", "mg", 10, "cycles"),
+             ("α = −1/4", "mg-cg", 40, "iterations"), ("c1-coons", "mg-cg", 40, "iterations"),
+             ("biharmonic", "mg-cg", 40, "iterations")]
+    targets = []
+    for problem, backend, goal, unit in goals:
+        if not sizes or (problem, backend) not in counts or sizes[-1] not in counts[(problem, backend)]:
+            continue
+        n = sizes[-1]
+        it, status = counts[(problem, backend)][n]
+        verdict = ("met" if it <= goal else f"missed by {it - goal} {unit}") if status == "success" else status
+        measured = f"{it} {unit if it != 1 else unit[:-1]}"
+        targets.append(f"| `{backend}` on {problem}, N = {n} | {measured} ({status}) | ≤ {goal} | {verdict} |")
+    if targets:
+        out += ["", "Issue 14's iteration targets, same run (to relative residual 1e−10):", "",
+                "| target | measured | goal | |", "|---|---|---|---|"] + targets
     return "\n".join(out)
 
 

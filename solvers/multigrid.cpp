@@ -54,6 +54,17 @@ SolveStatus Multigrid::setup(const StencilOperator& op, const MultigridOptions& 
   fine.radius = op.radius;
   fine.constant = true;
   fine.coef = op.weights;
+  scale_ = 1;
+  if (const auto form = integer_separable_form(op)) {
+    const int width = op.width();
+    for (int a = 0; a < width; ++a)
+      for (int b = 0; b < width; ++b)
+        fine.coef[std::size_t(a) * std::size_t(width) + std::size_t(b)] =
+            form->along_i[std::size_t(a)] * form->along_j[std::size_t(b)];
+    fine.factor_i = form->along_i;
+    fine.factor_j = form->along_j;
+    scale_ = form->scale;
+  }
   fine.free = op.free.empty() ? std::vector<unsigned char>(std::size_t(op.rows) * op.cols, 1) : op.free;
   for (auto& f : fine.free) f = f ? 1 : 0;
   fine.unknowns = std::count(fine.free.begin(), fine.free.end(), 1);
@@ -110,6 +121,7 @@ void Multigrid::apply(const Vector& x, Vector& y) const {
   to_grid(fine_number_, x, g);
   apply_level(levels_.front(), g, h);
   from_grid(fine_number_, h, size(), y);
+  if (scale_ != 1) y *= scale_;
 }
 
 void Multigrid::precondition(const Vector& r, Vector& z) const {
@@ -119,6 +131,7 @@ void Multigrid::precondition(const Vector& r, Vector& z) const {
   }
   Vector g, h = Vector::Zero(levels_.front().points());
   to_grid(fine_number_, r, g);
+  if (scale_ != 1) g /= scale_;
   Workspace ws(levels_);
   cycle_at(levels_, 0, options_, g, h, options_.cycle, ws);
   from_grid(fine_number_, h, size(), z);
@@ -127,7 +140,7 @@ void Multigrid::precondition(const Vector& r, Vector& z) const {
 IterationSummary Multigrid::solve(const Vector& b, Vector& x, const IterationOptions& options) const {
   IterationSummary out;
   Start start;
-  if (!start_solve(levels_, fine_number_, size(), b, x, out, start)) return out;
+  if (!start_solve(levels_, fine_number_, size(), scale_, b, x, out, start)) return out;
   const Level& L = levels_.front();
   const Vector& bg = start.bg;
   Vector& xg = start.xg;

@@ -13,6 +13,14 @@
 // grows radius 2 to 4 and then 5. The coarsest level (≤ coarsest_unknowns free points, or
 // fewer than 3 rows or columns) is solved by a sparse LU.
 //
+// An integer separable stencil (c1-coons, the α = −1/4 mask: integer_separable_form) is kept as
+// p ⊗ q with integer p and q, so that its weights sum to exactly 0 on every level, and the finest
+// level applies it in factored form (along j, then along i). The stored weights are those products
+// divided by 36 or 4 and rounded: their sum is 2⁻⁵⁴ for c1-coons, a shift 250,000 times the
+// smallest eigenvalue at N = 1023, and the (2r+1)² sum of a smooth vector loses the product to
+// cancellation (relative error ε Σ|w| / λ). `mg-cg` needed 112 iterations there with the rounded
+// weights; 20 with the exact form (docs/solvers.md).
+//
 // Smoothing: alternating multicolour line Gauss–Seidel. A sweep solves the banded systems of the
 // grid rows (all j at once, bandwidth r), colour by colour, then those of the grid columns; a
 // line's colour is its index, counted from the first free line plus one, modulo r + 1, so lines
@@ -111,6 +119,10 @@ class Multigrid {
   MultigridOptions options_;
   std::vector<Level> levels_;
   std::vector<Eigen::Index> fine_number_;  // grid point → unknown (−1 at fixed points)
+  // The levels hold A / scale: an integer separable stencil (integer_separable_form) is kept as its
+  // integer factors p ⊗ q, scale the common factor of the weights (1 otherwise); b and r are
+  // multiplied by 1 / scale on the way in.
+  double scale_ = 1;
 };
 
 //! Conjugate gradients preconditioned by one cycle of mg (use a V-cycle with pre = post smoothing:

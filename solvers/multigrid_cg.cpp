@@ -21,7 +21,7 @@ using namespace mg_detail;
 IterationSummary multigrid_cg(const Multigrid& mg, const Vector& b, Vector& x, const IterationOptions& options) {
   IterationSummary out;
   Start start;
-  if (!start_solve(mg.levels_, mg.fine_number_, mg.size(), b, x, out, start)) return out;
+  if (!start_solve(mg.levels_, mg.fine_number_, mg.size(), mg.scale_, b, x, out, start)) return out;
   const auto& levels = mg.levels_;
   const Level& L = levels.front();
   const auto& number = mg.fine_number_;

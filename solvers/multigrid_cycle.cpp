@@ -66,7 +66,7 @@ std::string floor_message(const char* what, double rel, double floor, int iterat
 // a failure, or b = 0 with the solution x = 0.
 
 bool start_solve(const std::vector<Level>& levels, const std::vector<Eigen::Index>& number, Eigen::Index size,
-                 const Vector& b, Vector& x, IterationSummary& out, Start& s) {
+                 double scale, const Vector& b, Vector& x, IterationSummary& out, Start& s) {
   if (levels.empty() || b.size() != size) {
     out.status = SolveStatus::kFailure;
     out.message = levels.empty() ? "setup() has not succeeded" : "right-hand side of the wrong size";
@@ -74,6 +74,7 @@ bool start_solve(const std::vector<Level>& levels, const std::vector<Eigen::Inde
   }
   if (x.size() != b.size()) x.setZero(b.size());
   to_grid(number, b, s.bg);
+  if (scale != 1) s.bg /= scale;
   to_grid(number, x, s.xg);
   s.bnorm = s.bg.norm();
   if (s.bnorm == 0) {

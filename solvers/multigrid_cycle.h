@@ -42,8 +42,9 @@ struct Start {
   Vector bg, xg, r;
   double bnorm = 0, rel = 0;
 };
-//! False when the solve ends here (out is then final: a failure, or b = 0 with x = 0).
+//! bg is b / scale (the levels hold A / scale). False when the solve ends here (out is then final:
+//! a failure, or b = 0 with x = 0).
 bool start_solve(const std::vector<Level>& levels, const std::vector<Eigen::Index>& number, Eigen::Index size,
-                 const Vector& b, Vector& x, IterationSummary& out, Start& s);
+                 double scale, const Vector& b, Vector& x, IterationSummary& out, Start& s);
 
 }  // namespace coons::solvers::mg_detail

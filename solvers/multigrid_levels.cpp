@@ -32,9 +32,68 @@ static void eval_grid(const Level& L, const Vector& b, const Vector& x, Vector& 
   });
 }
 
-void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) { eval_grid<false>(L, b, x, r); }
+// The same on a level with factors: t = (I ⊗ q) x on a block of rows and the 2r rows around it,
+// then (A x)(i, j) = Σ_a p(a) t(i + a, j); x is zero at fixed points and outside the grid, as the
+// (2r+1)² sum assumes. Each block of rows writes its own points: the result does not depend on the
+// thread count.
+template <bool kApply>
+static void eval_factored(const Level& L, const Vector& b, const Vector& x, Vector& r) {
+  constexpr int kBlock = 32;
+  r.resize(L.points());
+  const int R = L.rows, C = L.cols, rad = L.radius, blocks = (R + kBlock - 1) / kBlock;
+  const double* p = L.factor_i.data() + rad;
+  const double* q = L.factor_j.data() + rad;
+  [[maybe_unused]] const int nt = loop_threads(L);
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
+#endif
+  for (int block = 0; block < blocks; ++block) {
+    const int i0 = block * kBlock, i1 = std::min(R, i0 + kBlock);
+    const int t0 = std::max(0, i0 - rad), t1 = std::min(R, i1 + rad);
+    std::vector<double> t(std::size_t(t1 - t0) * std::size_t(C));
+    for (int i = t0; i < t1; ++i) {
+      const double* xi = x.data() + Eigen::Index(i) * C;
+      double* ti = t.data() + std::size_t(i - t0) * std::size_t(C);
+      for (int j = 0; j < C; ++j) {
+        double s = 0;
+        const int lo = std::max(-rad, -j), hi = std::min(rad, C - 1 - j);
+        for (int k = lo; k <= hi; ++k) s += q[k] * xi[j + k];
+        ti[j] = s;
+      }
+    }
+    for (int i = i0; i < i1; ++i) {
+      double* out = r.data() + Eigen::Index(i) * C;
+      const unsigned char* free = L.free.data() + Eigen::Index(i) * C;
+      const int lo = std::max(-rad, -i), hi = std::min(rad, R - 1 - i);
+      for (int j = 0; j < C; ++j) out[j] = 0;
+      for (int a = lo; a <= hi; ++a) {
+        const double* ta = t.data() + std::size_t(i + a - t0) * std::size_t(C);
+        for (int j = 0; j < C; ++j) out[j] += p[a] * ta[j];
+      }
+      for (int j = 0; j < C; ++j) {
+        if constexpr (kApply) {
+          out[j] = free[j] ? out[j] : 0.0;
+        } else {
+          out[j] = free[j] ? b[Eigen::Index(i) * C + j] - out[j] : 0.0;
+        }
+      }
+    }
+  }
+}
 
-void apply_level(const Level& L, const Vector& x, Vector& y) { eval_grid<true>(L, x, x, y); }
+void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) {
+  if (L.factor_i.empty())
+    eval_grid<false>(L, b, x, r);
+  else
+    eval_factored<false>(L, b, x, r);
+}
+
+void apply_level(const Level& L, const Vector& x, Vector& y) {
+  if (L.factor_i.empty())
+    eval_grid<true>(L, x, x, y);
+  else
+    eval_factored<true>(L, x, x, y);
+}
 
 // Interpolation weight of a fine point at offset a from a coarse point's own fine point, along one
 // axis: linear (1/2, 1, 1/2) or cubic (−1/16, 0, 9/16, 1, 9/16, 0, −1/16). Values beyond the grid

@@ -20,10 +20,14 @@ namespace coons::solvers {
 
 struct Multigrid::Level {
   int rows = 0, cols = 0, radius = 1;
-  int offset_i = 1, offset_j = 1;   // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
-  int reach = 1;                    // interpolation from this level to the next finer: 1 linear, 3 cubic
-  bool constant = false;            // one stencil for every point (the finest level)
-  std::vector<double> coef;         // width² weights per point (or once when constant)
+  int offset_i = 1, offset_j = 1;  // point (I, J) sits on the finer level's (2I + offset_i, 2J + offset_j)
+  int reach = 1;                   // interpolation from this level to the next finer: 1 linear, 3 cubic
+  bool constant = false;           // one stencil for every point (the finest level)
+  std::vector<double> coef;        // width² weights per point (or once when constant)
+  // The finest level of an integer separable stencil (integer_separable_form): coef = p ⊗ q, and
+  // residual() and apply_level() sum along j with q and then along i with p, which resolves the
+  // products with smooth vectors that the (2r+1)² sum loses to cancellation. Empty otherwise.
+  std::vector<double> factor_i, factor_j;
   std::vector<unsigned char> free;  // rows·cols
   // The stencil most interior points share (the fine level's one; on a Galerkin level the sums are
   // the same, so equal bit for bit), and per row the longest stretch [common_lo, common_hi) of free
@@ -69,7 +73,7 @@ inline int loop_threads(const Level& L) {
   return L.threads;
 }
 
-//! r = b − A x on the free points (0 at fixed points).
+//! r = b − A x on the free points (0 at fixed points); in the factored form when L has factors.
 void residual(const Level& L, const Vector& b, const Vector& x, Vector& r);
 //! y = A x on the free points.
 void apply_level(const Level& L, const Vector& x, Vector& y);

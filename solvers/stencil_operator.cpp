@@ -53,6 +53,58 @@ StencilOperator stencil_operator(const GridStencil& s) {
                                {s.diag, s.edge_i, s.diag, s.edge_j, s.center, s.edge_j, s.diag, s.edge_i, s.diag});
 }
 
+namespace {
+
+// f divided by its smallest non-zero magnitude, when every entry is then within 1e−9 relative of
+// an integer of magnitude ≤ 2²⁰ (those integers); empty otherwise.
+std::vector<double> integer_factor(const std::vector<double>& f) {
+  double unit = 0;
+  for (double v : f)
+    if (v != 0 && (unit == 0 || std::abs(v) < unit)) unit = std::abs(v);
+  if (!(unit > 0)) return {};
+  std::vector<double> out;
+  for (double v : f) {
+    const double ratio = v / unit, whole = std::round(ratio);
+    if (std::abs(whole) > 1 << 20 || std::abs(ratio - whole) > 1e-9 * std::max(1.0, std::abs(whole))) return {};
+    out.push_back(whole);
+  }
+  return out;
+}
+
+}  // namespace
+
+std::optional<IntegerSeparableForm> integer_separable_form(const StencilOperator& op) {
+  if (!op.is_valid(nullptr)) return std::nullopt;
+  const int r = op.radius;
+  int a0 = 0, b0 = 0;  // the largest weight: the pivot of the rank-one split
+  double largest = 0;
+  for (int a = -r; a <= r; ++a)
+    for (int b = -r; b <= r; ++b)
+      if (std::abs(op.weight(a, b)) > largest) {
+        largest = std::abs(op.weight(a, b));
+        a0 = a;
+        b0 = b;
+      }
+  if (!(largest > 0)) return std::nullopt;
+  const double pivot = op.weight(a0, b0);
+  for (int a = -r; a <= r; ++a)
+    for (int b = -r; b <= r; ++b)
+      if (!(std::abs(op.weight(a, b) - op.weight(a, b0) * op.weight(a0, b) / pivot) <= 1e-12 * largest))
+        return std::nullopt;
+  std::vector<double> u, v;
+  for (int k = -r; k <= r; ++k) {
+    u.push_back(op.weight(k, b0));
+    v.push_back(op.weight(a0, k));
+  }
+  IntegerSeparableForm form;
+  form.along_i = integer_factor(u);
+  form.along_j = integer_factor(v);
+  if (form.along_i.empty() || form.along_j.empty()) return std::nullopt;
+  form.scale =
+      pivot / (form.along_i[std::size_t(a0) + std::size_t(r)] * form.along_j[std::size_t(b0) + std::size_t(r)]);
+  return form;
+}
+
 std::vector<Eigen::Index> free_numbering(const StencilOperator& op) {
   std::vector<Eigen::Index> number(std::size_t(op.rows) * std::size_t(op.cols), -1);
   Eigen::Index next = 0;

@@ -12,6 +12,7 @@
 
 #include <Eigen/Core>
 #include <Eigen/SparseCore>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -48,6 +49,22 @@ StencilOperator make_stencil_operator(int rows, int cols, const std::vector<doub
 
 //! The 9-point GridStencil as an operator (radius 1, every point free).
 StencilOperator stencil_operator(const GridStencil& s);
+
+//! A stencil w(a, b) = scale · p(a) · q(b) whose factors p and q are small integers (|·| ≤ 2²⁰):
+//! c1-coons, (1, −4, 6, −4, 1) ⊗ (1, −4, 6, −4, 1) / 36, and the α = −1/4 mask, (−1, 2, −1) ⊗
+//! (−1, 2, −1) / 4. The products p(a)·q(b) and the sums of A x in this form are exact or nearly so,
+//! where the stored weights are the products rounded after the division: their sum, 0 for the
+//! exact stencil, is 2⁻⁵⁴ for c1-coons, which shifts the smallest eigenvalues (θ⁸/36 ≈ 2e−22 at
+//! N = 1023) by about 5.6e−17.
+struct IntegerSeparableForm {
+  std::vector<double> along_i, along_j;  //!< p and q, 2r+1 integer values each (index a + r)
+  double scale = 1;                      //!< w(a, b) ≈ scale · p(a) · q(b), to a few ulp of w
+};
+
+//! The form when w is separable (|w(a, b) − w(a, b₀) w(a₀, b) / w(a₀, b₀)| ≤ 1e−12 max|w|, at the
+//! largest weight (a₀, b₀)) and each factor, divided by its smallest non-zero magnitude, is within
+//! 1e−9 relative of integers of magnitude ≤ 2²⁰; nullopt otherwise (or for an invalid operator).
+std::optional<IntegerSeparableForm> integer_separable_form(const StencilOperator& op);
 
 //! For each grid point (row-major) its unknown number, or −1 at fixed points.
 std::vector<Eigen::Index> free_numbering(const StencilOperator& op);

@@ -104,6 +104,77 @@ TEST_CASE("StencilOperator::is_valid: rejects wrong sizes and radii", "[solvers]
   CHECK(!op.is_valid(&why));
 }
 
+namespace {
+
+// The weights divided by their centre, as the mask layer stores them (c1-coons: 1/36 rounded).
+std::vector<double> centre_one(std::vector<double> w) {
+  const double centre = w[w.size() / 2];
+  for (double& v : w) v /= centre;
+  return w;
+}
+
+}  // namespace
+
+TEST_CASE("integer_separable_form: finds the integer factors of c1-coons and of the alpha = -1/4 mask, none elsewhere",
+          "[solvers][mg]") {
+  const auto c1 = integer_separable_form(make_stencil_operator(9, 7, centre_one(c1_coons())));
+  REQUIRE(c1);
+  CHECK(c1->along_i == std::vector<double>{1, -4, 6, -4, 1});
+  CHECK(c1->along_j == std::vector<double>{1, -4, 6, -4, 1});
+  CHECK(c1->scale == Approx(1.0 / 36).epsilon(1e-15));
+  // the stored weights sum to rounding, the integer form to exactly 0
+  double stored = 0, exact = 0;
+  for (double w : centre_one(c1_coons())) stored += w;
+  for (double a : c1->along_i)
+    for (double b : c1->along_j) exact += a * b;
+  CHECK(exact == 0);
+  CHECK(stored != 0);
+  const auto quarter = integer_separable_form(make_stencil_operator(6, 5, nine_point(1, -0.5, 0.25)));
+  REQUIRE(quarter);
+  CHECK(quarter->along_i == std::vector<double>{-1, 2, -1});
+  CHECK(quarter->scale == 0.25);
+  CHECK(!integer_separable_form(make_stencil_operator(9, 7, centre_one(biharmonic()))));
+  CHECK(!integer_separable_form(make_stencil_operator(6, 5, nine_point(1, -0.25, 0))));
+  // separable, but the ratio of its entries is not an integer: π
+  const double pi = std::acos(-1.0);
+  CHECK(!integer_separable_form(make_stencil_operator(6, 5, {pi * pi, pi, pi * pi, pi, 1, pi, pi * pi, pi, pi * pi})));
+}
+
+TEST_CASE("Multigrid::apply: c1-coons annihilates a grid cubic in each index exactly, the rounded weights do not",
+          "[solvers][mg]") {
+  // δ⁴ ⊗ δ⁴ is 0 on a cubic in each index wherever the 5×5 stencil stays in the grid. The values
+  // are integers below 2⁵³ and so are the factored sums, which are therefore exact; the 25 stored
+  // weights (1/36 … rounded) sum to 2⁻⁵⁴ and leave rounding of the size of the values.
+  const int N = 63;
+  const StencilOperator op = make_stencil_operator(N, N, centre_one(c1_coons()));
+  Eigen::VectorXd x(Eigen::Index(N) * N);
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j)
+      x[Eigen::Index(i) * N + j] = double(i * i * i - 7 * i * i + 3) * double(j * j * j + 2 * j - 5);
+  Multigrid mg;
+  REQUIRE(mg.setup(op) == SolveStatus::kSuccess);
+  Eigen::VectorXd y;
+  mg.apply(x, y);
+  Eigen::MatrixXd rounded;
+  apply_stencil_operator(op, x, rounded);
+  double factored_inside = 0, rounded_inside = 0, boundary = 0;
+  for (int i = 0; i < N; ++i)
+    for (int j = 0; j < N; ++j) {
+      const Eigen::Index k = Eigen::Index(i) * N + j;
+      if (i >= 2 && i < N - 2 && j >= 2 && j < N - 2) {
+        factored_inside = std::max(factored_inside, std::abs(y[k]));
+        rounded_inside = std::max(rounded_inside, std::abs(rounded(k, 0)));
+      } else {
+        boundary = std::max(boundary, std::abs(y[k] - rounded(k, 0)));
+      }
+    }
+  CHECK(factored_inside == 0);
+  CHECK(rounded_inside > 0);
+  // near the edge, where the product is not 0, both forms agree to rounding of the values' size
+  CHECK(boundary < 1e-14 * x.cwiseAbs().maxCoeff());
+  CHECK(y.cwiseAbs().maxCoeff() > 1e-3 * x.cwiseAbs().maxCoeff());
+}
+
 TEST_CASE("multigrid backends: agree with a sparse direct solve on 3x3 and 5x5 stencils and free sets",
           "[solvers][mg]") {
   SolverOptions options;
