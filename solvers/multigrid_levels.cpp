@@ -35,36 +35,42 @@ static void eval_grid(const Level& L, const Vector& b, const Vector& x, Vector& 
 // The same on a level with factors: t = (I ⊗ q) x on a block of rows and the 2r rows around it,
 // then (A x)(i, j) = Σ_a p(a) t(i + a, j); x is zero at fixed points and outside the grid, as the
 // (2r+1)² sum assumes. Each block of rows writes its own points: the result does not depend on the
-// thread count.
-template <bool kApply>
+// thread count. kR: the radius (1 or 2), so that the interior taps unroll.
+template <int kR, bool kApply>
 static void eval_factored(const Level& L, const Vector& b, const Vector& x, Vector& r) {
   constexpr int kBlock = 32;
   r.resize(L.points());
-  const int R = L.rows, C = L.cols, rad = L.radius, blocks = (R + kBlock - 1) / kBlock;
-  const double* p = L.factor_i.data() + rad;
-  const double* q = L.factor_j.data() + rad;
+  const int R = L.rows, C = L.cols, blocks = (R + kBlock - 1) / kBlock;
+  const double* p = L.factor_i.data() + kR;
+  const double* q = L.factor_j.data() + kR;
   [[maybe_unused]] const int nt = loop_threads(L);
 #if defined(_OPENMP)
 #pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
 #endif
   for (int block = 0; block < blocks; ++block) {
     const int i0 = block * kBlock, i1 = std::min(R, i0 + kBlock);
-    const int t0 = std::max(0, i0 - rad), t1 = std::min(R, i1 + rad);
+    const int t0 = std::max(0, i0 - kR), t1 = std::min(R, i1 + kR);
     std::vector<double> t(std::size_t(t1 - t0) * std::size_t(C));
     for (int i = t0; i < t1; ++i) {
       const double* xi = x.data() + Eigen::Index(i) * C;
       double* ti = t.data() + std::size_t(i - t0) * std::size_t(C);
-      for (int j = 0; j < C; ++j) {
+      auto edge = [&](int j) {
         double s = 0;
-        const int lo = std::max(-rad, -j), hi = std::min(rad, C - 1 - j);
-        for (int k = lo; k <= hi; ++k) s += q[k] * xi[j + k];
+        for (int k = std::max(-kR, -j); k <= std::min(kR, C - 1 - j); ++k) s += q[k] * xi[j + k];
+        ti[j] = s;
+      };
+      for (int j = 0; j < std::min(kR, C); ++j) edge(j);
+      for (int j = kR; j < C - kR; ++j) {
+        double s = 0;
+        for (int k = -kR; k <= kR; ++k) s += q[k] * xi[j + k];
         ti[j] = s;
       }
+      for (int j = std::max(kR, C - kR); j < C; ++j) edge(j);
     }
     for (int i = i0; i < i1; ++i) {
       double* out = r.data() + Eigen::Index(i) * C;
       const unsigned char* free = L.free.data() + Eigen::Index(i) * C;
-      const int lo = std::max(-rad, -i), hi = std::min(rad, R - 1 - i);
+      const int lo = std::max(-kR, -i), hi = std::min(kR, R - 1 - i);
       for (int j = 0; j < C; ++j) out[j] = 0;
       for (int a = lo; a <= hi; ++a) {
         const double* ta = t.data() + std::size_t(i + a - t0) * std::size_t(C);
@@ -79,6 +85,14 @@ static void eval_factored(const Level& L, const Vector& b, const Vector& x, Vect
       }
     }
   }
+}
+
+template <bool kApply>
+static void eval_factored(const Level& L, const Vector& b, const Vector& x, Vector& r) {
+  if (L.radius == 1)
+    eval_factored<1, kApply>(L, b, x, r);
+  else
+    eval_factored<2, kApply>(L, b, x, r);
 }
 
 void residual(const Level& L, const Vector& b, const Vector& x, Vector& r) {
