@@ -285,6 +285,7 @@ StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedReques
   if (request.solver == "auto") {
     run.picked_automatically = true;
     solver = make_structured_stencil_solver(run.problem, run.stencil, r.options);
+    if (!solver) solver = make_factored_multigrid_solver(run.problem, run.stencil, r.options);
     if (!solver) {
       // Positive definite systems (the symbol is >= 0: every named mask, alpha in [-1/4, 1/4]):
       // sparse Cholesky; others a sparse LU.

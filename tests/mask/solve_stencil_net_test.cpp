@@ -461,6 +461,26 @@ TEST_CASE("make_structured_stencil_solver: separable-banded for c1-coons, fast5 
   CHECK_FALSE(make_structured_stencil_solver(full, random_stencil(2, 17)));
 }
 
+TEST_CASE("make_factored_multigrid_solver: mg-cg for c1-coons on free sets from 64 points across, none otherwise",
+          "[mask]") {
+  const int side = kFactoredMultigridSide;
+  // degree side + 3 with two rings: a bounding rectangle of side free points each way, with a hole
+  const ControlNet net = make_random_net(side + 3, side + 3, 8);
+  StencilProblem holed = make_problem(net, 2);
+  holed.free = free_points(holed);
+  holed.free.block(side / 2, side / 2, 5, 5) = false;
+  const auto mg_cg = make_factored_multigrid_solver(holed, c1_coons_stencil());
+  REQUIRE(mg_cg);
+  CHECK(mg_cg->name() == "mg-cg");
+  // not the biharmonic or the C1 family (no integer factors), and not one point narrower
+  CHECK_FALSE(make_factored_multigrid_solver(holed, biharmonic_stencil()));
+  CHECK_FALSE(make_factored_multigrid_solver(holed, c1_family_stencil(0.9)));
+  StencilProblem narrow = make_problem(make_random_net(side + 3, side + 2, 8), 2);
+  narrow.free = free_points(narrow);
+  narrow.free.block(side / 2, side / 2, 5, 5) = false;
+  CHECK_FALSE(make_factored_multigrid_solver(narrow, c1_coons_stencil()));
+}
+
 TEST_CASE("make_structured_stencil_solver: none when the symbol is negative somewhere", "[mask]") {
   // (1, −2, 1) ⊗ (1, 1 + 1e-11, 1): separable, but the factor along j is indefinite; auto must
   // leave it to a pivoting sparse LU (it picked separable-banded, which eliminates without pivoting).

@@ -8,6 +8,7 @@
 #include "coons/mask/stencil.h"
 #include "solvers/registry.h"
 #include "solvers/separable_banded_solver.h"
+#include "solvers/stencil_operator.h"
 
 namespace coons {
 
@@ -146,6 +147,19 @@ std::unique_ptr<solvers::LinearSolver> make_structured_stencil_solver(const Sten
   auto fast5 = solvers::make_solver("fast5", options);
   if (fast5->analyze(operator_of(system)) != solvers::SolveStatus::kSuccess) return nullptr;
   return fast5;  // analyzed on a system that goes out of scope here: the solve analyzes again
+}
+
+std::unique_ptr<solvers::LinearSolver> make_factored_multigrid_solver(const StencilProblem& problem,
+                                                                      const Stencil& stencil,
+                                                                      const solvers::SolverOptions& options) {
+  if (stencil.radius != 2 || !symbol_nonnegative(stencil) || !solvers::find_solver("mg-cg")) return nullptr;
+  StencilAssemblyOptions assembly;
+  assembly.with_matrix = false;
+  const StencilSystem system = assemble_stencil_system(problem, stencil, assembly);
+  const solvers::StencilOperator& grid = system.grid_operator;
+  if (system.numbering.size() == 0 || std::min(grid.rows, grid.cols) < kFactoredMultigridSide) return nullptr;
+  if (!solvers::integer_separable_form(grid)) return nullptr;
+  return solvers::make_solver("mg-cg", options);
 }
 
 }  // namespace coons
