@@ -327,31 +327,24 @@ std::unique_ptr<LinearSolver> make_separable_banded(const SolverOptions& options
 
 std::optional<SeparableBandedOperator> separable_operator(const StencilOperator& g) {
   if (!g.is_valid(nullptr) || g.size() != Eigen::Index(g.rows) * g.cols) return std::nullopt;
+  const auto split = rank_one_split(g);
+  if (!split) return std::nullopt;
   const int r = g.radius;
-  int pi = 0, pj = 0;  // the largest weight: the pivot of the rank-one split
-  double scale = 0;
-  for (int di = -r; di <= r; ++di)
-    for (int dj = -r; dj <= r; ++dj)
-      if (std::abs(g.weight(di, dj)) > scale) {
-        scale = std::abs(g.weight(di, dj));
-        pi = di;
-        pj = dj;
-      }
-  if (!(scale > 0)) return std::nullopt;
-  const double tol = 1e-12 * scale;
-  const double pivot = g.weight(pi, pj);
+  double largest = 0;
+  for (double w : g.weights) largest = std::max(largest, std::abs(w));
+  const double tol = 1e-12 * largest;
   for (int di = -r; di <= r; ++di)
     for (int dj = -r; dj <= r; ++dj) {
       const double w = g.weight(di, dj);
-      if (std::abs(w - g.weight(di, pj) * g.weight(pi, dj) / pivot) > tol) return std::nullopt;
       if (std::abs(w - g.weight(-di, dj)) > tol || std::abs(w - g.weight(di, -dj)) > tol) return std::nullopt;
     }
   SeparableBandedOperator op;
   op.rows = g.rows;
   op.cols = g.cols;
   for (int k = 0; k <= r; ++k) {
-    op.along_i[std::size_t(k)] = g.weight(k, pj);
-    op.along_j[std::size_t(k)] = g.weight(pi, k) / pivot;
+    const std::size_t at = std::size_t(k) + std::size_t(r);  // offset k in the split's vectors
+    op.along_i[std::size_t(k)] = split->u[at];
+    op.along_j[std::size_t(k)] = split->v[at];
   }
   return op;
 }

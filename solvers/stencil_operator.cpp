@@ -73,35 +73,40 @@ std::vector<double> integer_factor(const std::vector<double>& f) {
 
 }  // namespace
 
-std::optional<IntegerSeparableForm> integer_separable_form(const StencilOperator& op) {
+std::optional<RankOneSplit> rank_one_split(const StencilOperator& op) {
   if (!op.is_valid(nullptr)) return std::nullopt;
   const int r = op.radius;
-  int a0 = 0, b0 = 0;  // the largest weight: the pivot of the rank-one split
+  RankOneSplit split;
   double largest = 0;
   for (int a = -r; a <= r; ++a)
     for (int b = -r; b <= r; ++b)
       if (std::abs(op.weight(a, b)) > largest) {
         largest = std::abs(op.weight(a, b));
-        a0 = a;
-        b0 = b;
+        split.a0 = a;
+        split.b0 = b;
       }
   if (!(largest > 0)) return std::nullopt;
-  const double pivot = op.weight(a0, b0);
+  const double pivot = op.weight(split.a0, split.b0);
   for (int a = -r; a <= r; ++a)
     for (int b = -r; b <= r; ++b)
-      if (!(std::abs(op.weight(a, b) - op.weight(a, b0) * op.weight(a0, b) / pivot) <= 1e-12 * largest))
+      if (!(std::abs(op.weight(a, b) - op.weight(a, split.b0) * op.weight(split.a0, b) / pivot) <= 1e-12 * largest))
         return std::nullopt;
-  std::vector<double> u, v;
   for (int k = -r; k <= r; ++k) {
-    u.push_back(op.weight(k, b0));
-    v.push_back(op.weight(a0, k));
+    split.u.push_back(op.weight(k, split.b0));
+    split.v.push_back(op.weight(split.a0, k) / pivot);
   }
+  return split;
+}
+
+std::optional<IntegerSeparableForm> integer_separable_form(const StencilOperator& op) {
+  const auto split = rank_one_split(op);
+  if (!split) return std::nullopt;
   IntegerSeparableForm form;
-  form.along_i = integer_factor(u);
-  form.along_j = integer_factor(v);
+  form.along_i = integer_factor(split->u);
+  form.along_j = integer_factor(split->v);
   if (form.along_i.empty() || form.along_j.empty()) return std::nullopt;
-  form.scale =
-      pivot / (form.along_i[std::size_t(a0) + std::size_t(r)] * form.along_j[std::size_t(b0) + std::size_t(r)]);
+  const int ia = split->a0 + op.radius, jb = split->b0 + op.radius;  // the pivot's entries in p and q
+  form.scale = op.weight(split->a0, split->b0) / (form.along_i[std::size_t(ia)] * form.along_j[std::size_t(jb)]);
   return form;
 }
 

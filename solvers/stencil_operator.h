@@ -50,6 +50,15 @@ StencilOperator make_stencil_operator(int rows, int cols, const std::vector<doub
 //! The 9-point GridStencil as an operator (radius 1, every point free).
 StencilOperator stencil_operator(const GridStencil& s);
 
+//! The stencil as u(a)·v(b) when it is separable: |w(a, b) − u(a)·v(b)| ≤ 1e−12 max|w| with the
+//! largest weight w(a₀, b₀) as the pivot, u(a) = w(a, b₀), v(b) = w(a₀, b) / w(a₀, b₀) (index a + r);
+//! nullopt when it is not, or the operator is invalid or its weights all zero.
+struct RankOneSplit {
+  std::vector<double> u, v;  //!< 2r+1 values each
+  int a0 = 0, b0 = 0;        //!< the pivot's offsets
+};
+std::optional<RankOneSplit> rank_one_split(const StencilOperator& op);
+
 //! A stencil w(a, b) = scale · p(a) · q(b) whose factors p and q are small integers (|·| ≤ 2²⁰):
 //! c1-coons, (1, −4, 6, −4, 1) ⊗ (1, −4, 6, −4, 1) / 36, and the α = −1/4 mask, (−1, 2, −1) ⊗
 //! (−1, 2, −1) / 4. The products p(a)·q(b) and the sums of A x in this form are exact or nearly so,
