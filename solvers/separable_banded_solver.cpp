@@ -330,9 +330,7 @@ std::optional<SeparableBandedOperator> separable_operator(const StencilOperator&
   const auto split = rank_one_split(g);
   if (!split) return std::nullopt;
   const int r = g.radius;
-  double largest = 0;
-  for (double w : g.weights) largest = std::max(largest, std::abs(w));
-  const double tol = 1e-12 * largest;
+  const double tol = 1e-12 * std::abs(g.weight(split->a0, split->b0));  // the pivot is the largest weight
   for (int di = -r; di <= r; ++di)
     for (int dj = -r; dj <= r; ++dj) {
       const double w = g.weight(di, dj);

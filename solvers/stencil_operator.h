@@ -70,9 +70,8 @@ struct IntegerSeparableForm {
   double scale = 1;                      //!< w(a, b) ≈ scale · p(a) · q(b), to a few ulp of w
 };
 
-//! The form when w is separable (|w(a, b) − w(a, b₀) w(a₀, b) / w(a₀, b₀)| ≤ 1e−12 max|w|, at the
-//! largest weight (a₀, b₀)) and each factor, divided by its smallest non-zero magnitude, is within
-//! 1e−9 relative of integers of magnitude ≤ 2²⁰; nullopt otherwise (or for an invalid operator).
+//! The form when rank_one_split() finds one and each of its factors, divided by its smallest
+//! non-zero magnitude, is within 1e−9 relative of integers of magnitude ≤ 2²⁰; nullopt otherwise.
 std::optional<IntegerSeparableForm> integer_separable_form(const StencilOperator& op);
 
 //! For each grid point (row-major) its unknown number, or −1 at fixed points.

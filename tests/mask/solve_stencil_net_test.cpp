@@ -222,9 +222,8 @@ TEST_CASE("solve_stencil_net: mg-cg reproduces a net cubic in each index at degr
       p.free = free_points(p);
       p.free.block(50, 40, 20, 30) = false;
     }
-    const ControlNet start = fill_free_points(exact, number_free_points(free_points(p)),
-                                              Eigen::MatrixX3d::Zero(number_free_points(free_points(p)).size(), 3));
-    p.net = start;
+    const FreeNumbering numbering = number_free_points(free_points(p));
+    p.net = fill_free_points(exact, numbering, Eigen::MatrixX3d::Zero(numbering.size(), 3));
     INFO("hole: " << hole);
     CHECK(relative_difference(solve_with(p, c1_coons_stencil(), "mg-cg"), exact) < 1e-6);
   }
