@@ -126,6 +126,8 @@ std::string SolveSummary::brief_report() const {
   return out.str();
 }
 
+double SolveSummary::forward_error_bound() const { return condition_estimate * std::numeric_limits<double>::epsilon(); }
+
 std::string format_g(double value) {
   char text[32];
   std::snprintf(text, sizeof text, "%g", value);
@@ -200,6 +202,7 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
   }
   summary_.message.clear();
   summary_.relative_residual = 0;
+  summary_.condition_estimate = 0;
   solve_start_ = std::chrono::steady_clock::now();
   summary_.status = solve_scaled(rhs_scaling(B), B, X, [&](const Eigen::MatrixX3d& Bs, Eigen::MatrixX3d& Xs) {
     return do_solve(Bs, Xs, summary_);

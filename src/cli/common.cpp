@@ -393,6 +393,13 @@ void print_solver_failure(const std::string& file, const solvers::SolveSummary& 
   std::cerr << line << '\n';
 }
 
+void print_solver_warning(const std::string& file, const solvers::SolveSummary& s) {
+  if (!s.ok() || !(s.forward_error_bound() > solvers::kForwardErrorNotice)) return;
+  std::string message = s.message;
+  std::replace(message.begin(), message.end(), '\n', ' ');
+  std::cerr << fmt::format("warning: {}: solver: {} {}", file, s.solver, message) << '\n';
+}
+
 void set_example(CLI::App& cmd, const std::string& example) { cmd.footer("\nExample:\n  " + example); }
 
 }  // namespace coons::cli

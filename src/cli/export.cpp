@@ -152,6 +152,7 @@ int run_export(ExportRequest e) {
     if (!run->result.summary.ok()) {
       return report_failed_solve(stencil_report(input, r, *run, e.net.mu), phases, e.boundary, run->result.summary);
     }
+    print_solver_warning(e.boundary, run->result.summary);
     outcome.net = run->result.net;
   } else if (solve_net) {
     phases.start("solve");
@@ -160,6 +161,7 @@ int run_export(ExportRequest e) {
     if (outcome.summary && !outcome.summary->ok()) {
       return report_failed_solve(solve_report(b, r, outcome, e.net.mu), phases, e.boundary, *outcome.summary);
     }
+    if (outcome.summary) print_solver_warning(e.boundary, *outcome.summary);
   }
   std::vector<std::string> written;
   if (e.obj) {

@@ -215,8 +215,22 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   return out;
 }
 
+namespace {
+
+// The options of a solve by `info`: with the condition estimate where the backend factors the
+// assembled matrix, whose small residual can hide a large error (SolverOptions::estimate_condition).
+// Not for the structured backends: they solve the grid operator itself, more accurately than κ·ε
+// says (docs/solvers.md, Accuracy).
+solvers::SolverOptions options_for(const ResolvedRequest& r, const solvers::SolverInfo* info) {
+  solvers::SolverOptions options = r.options;
+  options.estimate_condition = info && info->needs_matrix;
+  return options;
+}
+
+}  // namespace
+
 NetOutcome make_net(const Boundary& boundary, const ResolvedRequest& r) {
-  return coons::make_net(boundary, r.method, r.mask, r.solver, r.options);
+  return coons::make_net(boundary, r.method, r.mask, r.solver, options_for(r, r.solver));
 }
 
 json solve_report(const Boundary& boundary, const ResolvedRequest& r, const NetOutcome& outcome,
@@ -289,10 +303,11 @@ StencilRun solve_stencil_request(const BoundaryFile& input, const ResolvedReques
     if (!solver) {
       // Positive definite systems (the symbol is >= 0: every named mask, alpha in [-1/4, 1/4]):
       // sparse Cholesky; others a sparse LU.
-      solver = solvers::make_solver(solvers::default_matrix_solver(symbol_nonnegative(run.stencil)).name, r.options);
+      const solvers::SolverInfo& info = solvers::default_matrix_solver(symbol_nonnegative(run.stencil));
+      solver = solvers::make_solver(info.name, options_for(r, &info));
     }
   } else {
-    solver = solvers::make_solver(r.solver->name, r.options);
+    solver = solvers::make_solver(r.solver->name, options_for(r, r.solver));
   }
   run.result = solve_stencil_net(run.problem, run.stencil, *solver);
   return run;

@@ -32,6 +32,7 @@ int run_stencil_solve(const SolveRequest& request, const BoundaryFile& input, co
     print_solver_failure(request.boundary, run.result.summary);
     return kExitSolverFailed;
   }
+  print_solver_warning(request.boundary, run.result.summary);
   return kExitOk;
 }
 
@@ -56,6 +57,7 @@ int run_solve(const SolveRequest& request) {
     print_solver_failure(request.boundary, *outcome.summary);
     return kExitSolverFailed;
   }
+  if (outcome.summary) print_solver_warning(request.boundary, *outcome.summary);
   return kExitOk;
 }
 

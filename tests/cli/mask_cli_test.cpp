@@ -177,6 +177,48 @@ TEST_CASE("coons solve --mask: a named backend that does not apply reports its s
   CHECK_THAT(r.err, Catch::StartsWith("error: " + file + ": solver: dst not_applicable"));
 }
 
+TEST_CASE("coons solve --mask c1-coons --solver cholmod: an ill-conditioned success warns with its error bound",
+          "[cli]") {
+  if (!solvers::find_solver("cholmod")) {
+    WARN("skipped: cholmod needs SuiteSparse");
+    return;
+  }
+  // A net cubic in each index at degree 64, two data rings: c1-coons reproduces it, and the
+  // assembled system has κ above 1e11, so cholmod's residual near ε hides errors of about 1e−7.
+  const int d = 64;
+  json rows = json::array();
+  for (int i = 0; i <= d; ++i) {
+    json row = json::array();
+    for (int j = 0; j <= d; ++j) {
+      const double u = double(i) / d, v = double(j) / d;
+      row.push_back(
+          {u + 0.3 * u * u * v * v * v, v - 0.2 * u * u * u * v, 0.5 * u * u * v * v + u * u * u - v * v * v});
+    }
+    rows.push_back(row);
+  }
+  TempDir dir;
+  const std::string file = dir.write("cubic.json", json{{"name", "cubic"}, {"net", rows}, {"rings", 2}}.dump());
+  const CommandResult r = run_coons("solve " + quoted(file) + " --mask c1-coons --solver cholmod");
+  INFO(r.err);
+  REQUIRE(r.status == 0);
+  const json report = json::parse(r.out);
+  const json& solver = report.at("solver");
+  CHECK(solver.at("status") == "success");
+  CHECK(solver.at("relative_residual").get<double>() < 1e-12);
+  CHECK(solver.at("condition_estimate").get<double>() > 1e11);
+  CHECK(solver.at("forward_error_bound").get<double>() > 1e-6);
+  CHECK_THAT(solver.at("message").get<std::string>(), Catch::StartsWith("ill-conditioned: condition estimate"));
+  CHECK_THAT(r.err, Catch::StartsWith("warning: " + file + ": solver: cholmod ill-conditioned: condition estimate"));
+  CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  // auto solves the full rectangle with separable-banded, from the grid stencil: no estimate, no warning
+  const CommandResult a = run_coons("solve " + quoted(file) + " --mask c1-coons");
+  REQUIRE(a.status == 0);
+  const json automatic = json::parse(a.out).at("solver");
+  CHECK(automatic.at("name") == "separable-banded");
+  CHECK_FALSE(automatic.contains("condition_estimate"));
+  CHECK(a.err.empty());
+}
+
 TEST_CASE("coons export --mask: the OBJ net is the stencil solve, the Matrix Market files its system", "[cli]") {
   TempDir out;
   const std::string file = kData + "/free_sets/l_hole.json";

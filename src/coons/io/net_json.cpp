@@ -113,6 +113,10 @@ json summary_to_json(const solvers::SolveSummary& s) {
   if (!s.message.empty()) out["message"] = s.message;
   if (!s.ordering.empty()) out["ordering"] = s.ordering;
   if (s.factor_nnz > 0) out["factor_nnz"] = s.factor_nnz;
+  if (s.condition_estimate > 0) {
+    out["condition_estimate"] = number_or_null(s.condition_estimate);
+    out["forward_error_bound"] = number_or_null(s.forward_error_bound());
+  }
   return out;
 }
 
