@@ -201,6 +201,7 @@ void run_stencil(const BatchRequest& b, const NetRequest& request, const Boundar
   phases.start("write");
   write_run(out, fmt::format("{}/{}", folder, tag), report, run.result.net, b.samples, file,
             ok ? nullptr : &run.result.summary);
+  if (ok) print_solver_warning(file, run.result.summary, tag);
 }
 
 // The nets of a one-ring boundary, by file stem: the closed-form Coons net, then the mask solve
@@ -308,6 +309,7 @@ void run_classical(const BatchRequest& b, const BoundaryFile& input, const std::
     phases.start("write");
     write_run(out, fmt::format("{}/{}", folder, tag), report, outcome.net, b.samples, file,
               ok ? nullptr : &*outcome.summary);
+    if (ok && outcome.summary) print_solver_warning(file, *outcome.summary, tag);
   }
 }
 

@@ -393,10 +393,11 @@ void print_solver_failure(const std::string& file, const solvers::SolveSummary& 
   std::cerr << line << '\n';
 }
 
-void print_solver_warning(const std::string& file, const solvers::SolveSummary& s) {
+void print_solver_warning(const std::string& file, const solvers::SolveSummary& s, const std::string& net) {
   if (!s.ok() || !(s.forward_error_bound() > solvers::kForwardErrorNotice)) return;
   std::string message = s.message;
   std::replace(message.begin(), message.end(), '\n', ' ');
+  if (!net.empty()) message = "(" + net + ": " + message + ")";
   std::cerr << fmt::format("warning: {}: solver: {} {}", file, s.solver, message) << '\n';
 }
 

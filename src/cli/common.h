@@ -164,7 +164,8 @@ void print_solver_failure(const std::string& file, const solvers::SolveSummary& 
 
 //! One `warning:` line on standard error for a successful solve whose forward error bound κ·ε
 //! exceeds solvers::kForwardErrorNotice (its message says so); nothing otherwise. Exit status 0.
-void print_solver_warning(const std::string& file, const solvers::SolveSummary& summary);
+//! `net` names the net as for print_solver_failure: "(alpha-0.1: MESSAGE)".
+void print_solver_warning(const std::string& file, const solvers::SolveSummary& summary, const std::string& net = "");
 
 //! A command's phases (read, assemble, solve, metrics, write): a progress line on a terminal
 //! (standard error), nothing otherwise; their seconds for the report's "timing" block.

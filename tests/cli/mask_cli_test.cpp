@@ -177,7 +177,7 @@ TEST_CASE("coons solve --mask: a named backend that does not apply reports its s
   CHECK_THAT(r.err, Catch::StartsWith("error: " + file + ": solver: dst not_applicable"));
 }
 
-TEST_CASE("coons solve --mask c1-coons --solver cholmod: an ill-conditioned success warns with its error bound",
+TEST_CASE("coons solve, batch --mask c1-coons --solver cholmod: an ill-conditioned success warns with its error bound",
           "[cli]") {
   if (!solvers::find_solver("cholmod")) {
     WARN("skipped: cholmod needs SuiteSparse");
@@ -210,6 +210,14 @@ TEST_CASE("coons solve --mask c1-coons --solver cholmod: an ill-conditioned succ
   CHECK_THAT(solver.at("message").get<std::string>(), Catch::StartsWith("ill-conditioned: condition estimate"));
   CHECK_THAT(r.err, Catch::StartsWith("warning: " + file + ": solver: cholmod ill-conditioned: condition estimate"));
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+  // batch: the same line, the net named in its parenthesis, and the report's solver block alike
+  const CommandResult b =
+      run_coons("batch " + quoted(file) + " --mask c1-coons --solver cholmod --out " + quoted(dir.file("batch")));
+  INFO(b.err);
+  REQUIRE(b.status == 0);
+  CHECK_THAT(b.err, Catch::StartsWith("warning: " + file + ": solver: cholmod (c1-coons: ill-conditioned:"));
+  const json batch_report = json::parse(read_text(dir.file("batch/cubic-64x64/c1-coons.json")));
+  CHECK(batch_report.at("solver").at("condition_estimate") == solver.at("condition_estimate"));
   // auto solves the full rectangle with separable-banded, from the grid stencil: no estimate, no warning
   const CommandResult a = run_coons("solve " + quoted(file) + " --mask c1-coons");
   REQUIRE(a.status == 0);
