@@ -10,6 +10,7 @@
 
 #include "coons/io/boundary_io.h"
 #include "support/bspline_singular.h"
+#include "support/cli_support.h"
 #include "support/fixtures.h"
 
 using namespace coons::test;
@@ -18,8 +19,7 @@ namespace fs = std::filesystem;
 
 namespace {
 
-const std::string kCoons = COONS_BINARY;
-const std::string kData = COONS_DATA_DIR;
+// (kCoons and kData are cli_support.h's: a second definition here clashed in the unity build's units)
 const std::string kWave = kData + "/boundaries/bspline_wave.json";
 
 std::string q(const std::string& s) { return "'" + s + "'"; }
