@@ -19,18 +19,20 @@ namespace fs = std::filesystem;
 
 namespace {
 
-// (kCoons and kData are cli_support.h's: a second definition here clashed in the unity build's units)
-const std::string kWave = kData + "/boundaries/bspline_wave.json";
+// (kCoons and kData are cli_support.h's: a second definition here clashed in the unity build's units.
+// The path is a function, not a namespace-scope constant: kData lives in another translation unit and
+// may not be initialised yet when this one's constants are, which gave an empty path on CI.)
+std::string wave_path() { return kData + "/boundaries/bspline_wave.json"; }
 
 std::string q(const std::string& s) { return "'" + s + "'"; }
 
-json wave() { return json::parse(std::ifstream(kWave)); }
+json wave() { return json::parse(std::ifstream(wave_path())); }
 
 }  // namespace
 
 TEST_CASE("coons solve: a B-spline boundary gives its knots, degrees, compatibility notes and exact energies",
           "[cli][bspline]") {
-  const CommandResult coons = run_command(kCoons + " solve " + q(kWave) + " --method coons");
+  const CommandResult coons = run_command(kCoons + " solve " + q(wave_path()) + " --method coons");
   REQUIRE(coons.status == 0);
   const json c = json::parse(coons.out);
   CHECK(c["bspline"]["degree_spline"] == json({3, 2}));
@@ -38,19 +40,19 @@ TEST_CASE("coons solve: a B-spline boundary gives its knots, degrees, compatibil
   CHECK(c["degree"] == json({7, 6}));
   CHECK(c["net"].size() == 8);
   CHECK(c["metrics"]["mask_residual"].get<double>() < 1e-12);
-  const CommandResult alpha = run_command(kCoons + " solve " + q(kWave) + " --alpha -0.25 --solver eigen-lu");
+  const CommandResult alpha = run_command(kCoons + " solve " + q(wave_path()) + " --alpha -0.25 --solver eigen-lu");
   REQUIRE(alpha.status == 0);
   const json a = json::parse(alpha.out);
   CHECK(a["solver"]["status"] == "success");
   CHECK(a["metrics"]["thin_plate_energy"].get<double>() ==
         Approx(c["metrics"]["thin_plate_energy"].get<double>()).epsilon(1e-9));
-  const CommandResult laplace = run_command(kCoons + " solve " + q(kWave) + " --alpha 0");
+  const CommandResult laplace = run_command(kCoons + " solve " + q(wave_path()) + " --alpha 0");
   REQUIRE(laplace.status == 0);
   const json l = json::parse(laplace.out);
   CHECK(l["metrics"]["dirichlet_energy"].get<double>() < c["metrics"]["dirichlet_energy"].get<double>());
   CHECK(l["solver"]["picked_by"] == "auto");
   // gmres takes a bare matrix (ILUT), as coons solvers says: it was refused as a grid-stencil backend
-  const CommandResult gmres = run_command(kCoons + " solve " + q(kWave) + " --alpha -0.25 --solver gmres");
+  const CommandResult gmres = run_command(kCoons + " solve " + q(wave_path()) + " --alpha -0.25 --solver gmres");
   INFO(gmres.err);
   REQUIRE(gmres.status == 0);
   const json g = json::parse(gmres.out);
@@ -99,7 +101,7 @@ TEST_CASE("coons solve: bad knot vectors and options are one error line naming t
   for (const auto& [options, field] :
        {std::pair{"--mu 3", "--mu"}, std::pair{"--mask c1-coons", "--mask"},
         std::pair{"--method hermite-coons", "--method"}, std::pair{"--solver dst", "--solver"}}) {
-    const CommandResult r = run_command(kCoons + " solve " + q(kWave) + " " + options);
+    const CommandResult r = run_command(kCoons + " solve " + q(wave_path()) + " " + options);
     INFO(options << ": " << r.err);
     CHECK(r.status == 2);
     CHECK(r.out.empty());
@@ -113,7 +115,7 @@ TEST_CASE("coons solve: bad knot vectors and options are one error line naming t
        {std::string("solve"), std::string("search-alpha --objective thin_plate"),
         "export --obj --out " + q(out.file("ex")), "view --out " + q(out.file("page.html"))}) {
     std::string line = kCoons;
-    line.append(" ").append(command).append(" ").append(q(kWave)).append(" --solver mg");
+    line.append(" ").append(command).append(" ").append(q(wave_path())).append(" --solver mg");
     const CommandResult r = run_command(line);
     INFO(command << ": " << r.err);
     CHECK(r.status == 2);
@@ -127,7 +129,7 @@ TEST_CASE("coons solve: bad knot vectors and options are one error line naming t
   }
   CHECK_FALSE(fs::exists(out.file("ex")));
   CHECK_FALSE(fs::exists(out.file("page.html")));
-  const CommandResult sweep = run_command(kCoons + " sweep " + q(kWave));
+  const CommandResult sweep = run_command(kCoons + " sweep " + q(wave_path()));
   CHECK(sweep.status == 2);
   CHECK(sweep.err.find("knots_u: ") != std::string::npos);
 }
@@ -136,7 +138,7 @@ TEST_CASE("coons export: a B-spline boundary as sampled OBJ, PLY and VTS and its
           "[cli][bspline]") {
   TempDir out;
   const CommandResult r =
-      run_command(kCoons + " export " + q(kWave) + " --alpha -0.1 --samples 9 --obj --ply --vts --mtx --out " +
+      run_command(kCoons + " export " + q(wave_path()) + " --alpha -0.1 --samples 9 --obj --ply --vts --mtx --out " +
                   q(out.path.string()));
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
@@ -154,28 +156,28 @@ TEST_CASE("coons export: a B-spline system that is singular at the alpha asked f
           "[cli][bspline]") {
   // The non-uniform system is solved for --mtx too (it was only for the sampled and CAD outputs),
   // so --mtx alone at a singular alpha fails as the other outputs do: exit 3, nothing written.
-  const coons::BoundaryFile file = coons::read_boundary_file(kWave);
+  const coons::BoundaryFile file = coons::read_boundary_file(wave_path());
   REQUIRE(file.bspline);
   const double star = bspline_singular_alpha(file.bspline->compatible);
   REQUIRE(star < 0.25);
   TempDir out;
   const std::string alpha = fmt::format("{}", star);  // shortest text that reads back as star
   const CommandResult r =
-      run_command(kCoons + " export " + q(kWave) + " --alpha " + alpha + " --mtx --out " + q(out.path.string()));
+      run_command(kCoons + " export " + q(wave_path()) + " --alpha " + alpha + " --mtx --out " + q(out.path.string()));
   INFO("alpha " << alpha << ": " << r.err);
   CHECK(r.status == 3);
   CHECK_THAT(r.err, Catch::Contains("singular"));
   CHECK(fs::is_empty(out.path));
   // at a regular alpha the same command writes the system
   const CommandResult regular =
-      run_command(kCoons + " export " + q(kWave) + " --alpha -0.1 --mtx --out " + q(out.path.string()));
+      run_command(kCoons + " export " + q(wave_path()) + " --alpha -0.1 --mtx --out " + q(out.path.string()));
   CHECK(regular.status == 0);
   CHECK(fs::exists(out.path / "bspline_wave.A.mtx"));
 }
 
 TEST_CASE("coons search-alpha and study: a B-spline boundary is searched over the non-uniform family",
           "[cli][bspline]") {
-  const CommandResult r = run_command(kCoons + " search-alpha " + q(kWave) + " --objective thin_plate");
+  const CommandResult r = run_command(kCoons + " search-alpha " + q(wave_path()) + " --objective thin_plate");
   REQUIRE(r.status == 0);
   const json s = json::parse(r.out);
   CHECK(s["status"] == "success");
@@ -190,23 +192,25 @@ TEST_CASE("coons search-alpha and study: a B-spline boundary is searched over th
   CHECK(upper < 0.25);
   // the Dirichlet energy falls across [0, U]: its minimum against U is said to be the singular
   // alpha's (with the old bounds [-1/4, 0] it read alpha = 0 "at a bound")
-  const CommandResult dirichlet = run_command(kCoons + " search-alpha " + q(kWave) + " --objective dirichlet");
+  const CommandResult dirichlet = run_command(kCoons + " search-alpha " + q(wave_path()) + " --objective dirichlet");
   REQUIRE(dirichlet.status == 0);
   const json d = json::parse(dirichlet.out);
   CHECK(d["alpha"].get<double>() > 0.1);
   CHECK_THAT(d["message"].get<std::string>(), Catch::Contains("so this minimum is made by it"));
-  CHECK(json::parse(run_command(kCoons + " search-alpha " + q(kWave) + " --objective e3").out).value("message", "") ==
-        "");
+  CHECK(json::parse(run_command(kCoons + " search-alpha " + q(wave_path()) + " --objective e3").out)
+            .value("message", "") == "");
   // beyond U: bad input naming U
-  const CommandResult beyond =
-      run_command(kCoons + " search-alpha " + q(kWave) + " --objective e3 --upper " + fmt::format("{}", upper + 0.01));
+  const CommandResult beyond = run_command(kCoons + " search-alpha " + q(wave_path()) + " --objective e3 --upper " +
+                                           fmt::format("{}", upper + 0.01));
   CHECK(beyond.status == 2);
   CHECK_THAT(beyond.err, Catch::Contains(fmt::format("definite for alpha in [-0.25, {}] only", upper)));
-  const CommandResult target = run_command(kCoons + " search-alpha " + q(kWave) + " --objective target --target coons");
+  const CommandResult target =
+      run_command(kCoons + " search-alpha " + q(wave_path()) + " --objective target --target coons");
   CHECK(target.status == 2);
   CHECK(target.out.empty());
   TempDir out;
-  const CommandResult study = run_command(kCoons + " study " + q(kWave) + " --degrees 3 --out " + q(out.path.string()));
+  const CommandResult study =
+      run_command(kCoons + " study " + q(wave_path()) + " --degrees 3 --out " + q(out.path.string()));
   REQUIRE(study.status == 0);
   CHECK(study.out.find("## B-spline boundaries") != std::string::npos);
   CHECK(study.out.find("| bspline_wave |") != std::string::npos);
