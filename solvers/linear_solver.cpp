@@ -126,7 +126,9 @@ std::string SolveSummary::brief_report() const {
   return out.str();
 }
 
-double SolveSummary::forward_error_bound() const { return condition_estimate * std::numeric_limits<double>::epsilon(); }
+double SolveSummary::forward_error_bound() const {
+  return condition_estimate * std::max(std::numeric_limits<double>::epsilon(), normwise_backward_error);
+}
 
 std::string format_g(double value) {
   char text[32];
@@ -203,6 +205,7 @@ SolveSummary LinearSolver::solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X)
   summary_.message.clear();
   summary_.relative_residual = 0;
   summary_.condition_estimate = 0;
+  summary_.normwise_backward_error = 0;
   solve_start_ = std::chrono::steady_clock::now();
   summary_.status = solve_scaled(rhs_scaling(B), B, X, [&](const Eigen::MatrixX3d& Bs, Eigen::MatrixX3d& Xs) {
     return do_solve(Bs, Xs, summary_);

@@ -64,9 +64,10 @@ struct SolverOptions {
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
   bool compute_residual = true;         //!< compute the true residual after solve (costs one apply)
   double singular_residual = 1e-6;      //!< exact solvers: a larger true residual means "singular"
-  //! exact solvers on an assembled matrix: after a successful solve, a lower bound of κ∞(A) from
-  //! three more solves in SolveSummary::condition_estimate, and a message when its forward error
-  //! bound κ·ε exceeds kForwardErrorNotice (a small residual does not show a large error). Off by
+  //! backends on an assembled matrix: after a successful solve, an estimate of κ∞(A) from three
+  //! more solves by the same backend in SolveSummary::condition_estimate (a lower bound when those
+  //! solves are exact), the normwise backward error, and a message when the forward error bound
+  //! they give exceeds kForwardErrorNotice (a small residual does not show a large error). Off by
   //! default (the CLI turns it on for the reports it writes); needs compute_residual.
   bool estimate_condition = false;
 
@@ -122,9 +123,13 @@ struct SolveSummary {
   //! A lower bound of κ∞(A) = ‖A‖∞‖A⁻¹‖∞ when it was estimated (SolverOptions::estimate_condition,
   //! or an ill-conditioned verdict), else 0.
   double condition_estimate = 0;
+  //! max over columns of ‖b − A x‖∞ / (‖A‖∞‖x‖∞ + ‖b‖∞) when the condition was estimated, else 0:
+  //! near ε for a backward-stable exact solve, up to the tolerance for an iteration.
+  double normwise_backward_error = 0;
 
   [[nodiscard]] bool ok() const { return status == SolveStatus::kSuccess; }
-  //! κ·ε: about the largest relative forward error of a backward-stable solve (0 when not estimated).
+  //! κ·max(ε, normwise backward error): about the largest relative forward error of the solution
+  //! (κ·ε for a backward-stable exact solve; 0 when not estimated).
   [[nodiscard]] double forward_error_bound() const;
   [[nodiscard]] std::string brief_report() const;
 };
@@ -263,12 +268,13 @@ class LinearSolver {
   //! and a condition estimate (a lower bound from three more solves) lies below 0.1/ε; otherwise
   //! the verdict stays and the message gains the estimate.
   void judge_ill_conditioned(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
-  //! After a successful exact solve with options.estimate_condition on an assembled matrix: the
-  //! condition estimate in the summary, and the "ill-conditioned" message when κ·ε exceeds
-  //! kForwardErrorNotice.
-  void note_condition();
+  //! After a successful solve of B (X the solution) with options.estimate_condition on an assembled
+  //! matrix: the condition estimate and the normwise backward error in the summary, and the
+  //! "ill-conditioned" message when the forward error bound exceeds kForwardErrorNotice.
+  void note_condition(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
   //! ‖A‖∞ · max ‖A⁻¹g‖∞ / ‖g‖∞ over three fixed ±1 vectors g (three more solves by this
-  //! backend): a lower bound of κ∞(A), usually within a small factor; NaN when a solve fails.
+  //! backend): a lower bound of κ∞(A) when they are exact, usually within a small factor; NaN when
+  //! a solve fails (an iteration that does not converge on them).
   [[nodiscard]] double condition_lower_bound(const Eigen::SparseMatrix<double>& A, double norm_a);
 
   //! The operator of the last factorize (set when do_factorize returns; do_solve may read it).

@@ -50,6 +50,7 @@ void LinearSolver::sweep_member(const std::vector<Eigen::MatrixX3d>& basis, cons
   summary_.message.clear();
   summary_.relative_residual = 0;
   summary_.condition_estimate = 0;
+  summary_.normwise_backward_error = 0;
   solve_start_ = std::chrono::steady_clock::now();
   summary_.status = do_sweep_solve(basis, weights, X, summary_);
   summary_.solve_seconds = seconds_since(solve_start_);

@@ -115,6 +115,7 @@ json summary_to_json(const solvers::SolveSummary& s) {
   if (s.factor_nnz > 0) out["factor_nnz"] = s.factor_nnz;
   if (s.condition_estimate > 0) {
     out["condition_estimate"] = number_or_null(s.condition_estimate);
+    out["normwise_backward_error"] = number_or_null(s.normwise_backward_error);
     out["forward_error_bound"] = number_or_null(s.forward_error_bound());
   }
   return out;
