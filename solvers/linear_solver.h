@@ -64,7 +64,7 @@ struct SolverOptions {
   Ordering ordering = Ordering::kAuto;  //!< direct: fill-reducing ordering
   bool compute_residual = true;         //!< compute the true residual after solve (costs one apply)
   double singular_residual = 1e-6;      //!< exact solvers: a larger true residual means "singular"
-  //! backends on an assembled matrix: after a successful solve, an estimate of κ∞(A) from three
+  //! every backend: after a successful solve, an estimate of κ∞(A) from three
   //! more solves by the same backend in SolveSummary::condition_estimate (a lower bound when those
   //! solves are exact), the normwise backward error, and a message when the forward error bound
   //! they give exceeds kForwardErrorNotice (a small residual does not show a large error). Off by
@@ -268,14 +268,15 @@ class LinearSolver {
   //! and a condition estimate (a lower bound from three more solves) lies below 0.1/ε; otherwise
   //! the verdict stays and the message gains the estimate.
   void judge_ill_conditioned(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
-  //! After a successful solve of B (X the solution) with options.estimate_condition on an assembled
-  //! matrix: the condition estimate and the normwise backward error in the summary, and the
-  //! "ill-conditioned" message when the forward error bound exceeds kForwardErrorNotice.
+  //! After a successful solve of B (X the solution) with options.estimate_condition, on the
+  //! assembled matrix or the grid stencil: the condition estimate and the normwise backward error
+  //! in the summary, and the "ill-conditioned" message when the forward error bound exceeds
+  //! kForwardErrorNotice.
   void note_condition(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X);
-  //! ‖A‖∞ · max ‖A⁻¹g‖∞ / ‖g‖∞ over three fixed ±1 vectors g (three more solves by this
-  //! backend): a lower bound of κ∞(A) when they are exact, usually within a small factor; NaN when
-  //! a solve fails (an iteration that does not converge on them).
-  [[nodiscard]] double condition_lower_bound(const Eigen::SparseMatrix<double>& A, double norm_a);
+  //! norm_a (‖A‖∞ of the operator factorized) · max ‖A⁻¹g‖∞ / ‖g‖∞ over three fixed ±1 vectors g
+  //! (three more solves by this backend): a lower bound of κ∞(A) when they are exact, usually
+  //! within a small factor; NaN when a solve fails (an iteration that does not converge on them).
+  [[nodiscard]] double condition_lower_bound(double norm_a);
 
   //! The operator of the last factorize (set when do_factorize returns; do_solve may read it).
   [[nodiscard]] const LinearOperator& factorized_operator() const { return op_; }

@@ -218,12 +218,12 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
 namespace {
 
 // The options of a solve by `info`: with the condition estimate where the backend factors the
-// assembled matrix, whose small residual can hide a large error (SolverOptions::estimate_condition).
-// Not for the structured backends: they solve the grid operator itself, more accurately than κ·ε
-// says (docs/solvers.md, Accuracy).
+// assembled matrix or iterates, whose small residual can hide a large error
+// (SolverOptions::estimate_condition). Not for the structured backends: they solve the grid
+// operator itself, more accurately than κ·ε says (docs/solvers.md, Accuracy).
 solvers::SolverOptions options_for(const ResolvedRequest& r, const solvers::SolverInfo* info) {
   solvers::SolverOptions options = r.options;
-  options.estimate_condition = info && info->needs_matrix;
+  options.estimate_condition = info && (info->needs_matrix || info->family == solvers::SolverFamily::kIterative);
   return options;
 }
 

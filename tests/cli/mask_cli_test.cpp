@@ -246,8 +246,9 @@ TEST_CASE("coons solve, batch --mask c1-coons --solver cholmod: an ill-condition
   CHECK(a.err.empty());
 }
 
-TEST_CASE("coons solve --mask c1-coons --solver bicgstab: an iteration's bound is kappa times its backward error",
-          "[cli]") {
+TEST_CASE(
+    "coons solve --mask c1-coons --solver bicgstab and mg-cg: an iteration's bound is kappa times its backward error",
+    "[cli]") {
   // At degree 40 (κ about 9e9) bicgstab stops with a normwise backward error some 30 ε, and its
   // net is off by 2e−7, twenty times cholmod's: κ·ε would not have said so, κ times the iteration's
   // own backward error does.
@@ -270,6 +271,11 @@ TEST_CASE("coons solve --mask c1-coons --solver bicgstab: an iteration's bound i
   CHECK_THAT(solver.at("message").get<std::string>(),
              Catch::StartsWith("ill-conditioned: condition estimate") && Catch::Contains("by this iteration"));
   CHECK_THAT(r.err, Catch::StartsWith("warning: " + file + ": solver: bicgstab ill-conditioned:"));
+  // mg-cg on the grid stencil (no matrix assembled): the same estimate, its own backward error
+  const json mg = solve(quoted(file) + " --mask c1-coons --solver mg-cg");
+  INFO(mg.at("solver").dump());
+  CHECK(mg.at("solver").at("condition_estimate").get<double>() == Approx(kappa).epsilon(1e-6));
+  CHECK(mg.at("solver").at("forward_error_bound").get<double>() > relative_net_error(mg.at("net"), rows));
   // a well-conditioned system solved by an iteration says its estimate and nothing more
   const json dome = solve(quoted(kData + "/boundaries/dome.json") + " --alpha -0.25 --solver cg");
   CHECK(dome.at("solver").at("condition_estimate").get<double>() > 1);
