@@ -11,6 +11,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <utility>
 
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
@@ -39,8 +40,9 @@ ControlNet library_solve(const std::string& file, const Stencil& stencil, const 
   return r.net;
 }
 
-// A net cubic in each index at degree d, as the rows of a "net" (c1-coons reproduces it from two rings).
-json cubic_net_rows(int d) {
+// A net cubic in each index at degree d with two data rings (c1-coons reproduces it), written
+// to DIR/cubic.json; returns the file and the net.
+std::pair<std::string, ControlNet> write_cubic_net(const TempDir& dir, int d) {
   json rows = json::array();
   for (int i = 0; i <= d; ++i) {
     json row = json::array();
@@ -51,19 +53,13 @@ json cubic_net_rows(int d) {
     }
     rows.push_back(row);
   }
-  return rows;
+  const json file{{"name", "cubic"}, {"net", rows}, {"rings", 2}};
+  return {dir.write("cubic.json", file.dump()), net_of(file)};
 }
 
-// max |a − b| / max |b| over every coordinate of two nets given as rows.
-double relative_net_error(const json& a, const json& b) {
-  double difference = 0, size = 0;
-  for (std::size_t i = 0; i < b.size(); ++i)
-    for (std::size_t j = 0; j < b[i].size(); ++j)
-      for (std::size_t c = 0; c < 3; ++c) {
-        difference = std::max(difference, std::abs(a[i][j][c].get<double>() - b[i][j][c].get<double>()));
-        size = std::max(size, std::abs(b[i][j][c].get<double>()));
-      }
-  return difference / size;
+// max |a − b| / max |b| over every coordinate of the report's net and `exact`.
+double relative_net_error(const json& report, const ControlNet& exact) {
+  return max_difference(net_of(report), exact) / exact.points.cwiseAbs().maxCoeff();
 }
 
 json solve(const std::string& args, int expected_status = 0) {
@@ -213,9 +209,8 @@ TEST_CASE("coons solve, batch --mask c1-coons --solver cholmod: an ill-condition
   }
   // A net cubic in each index at degree 64, two data rings: c1-coons reproduces it, and the
   // assembled system has κ above 1e11, so cholmod's residual near ε hides errors of about 1e−7.
-  const json rows = cubic_net_rows(64);
   TempDir dir;
-  const std::string file = dir.write("cubic.json", json{{"name", "cubic"}, {"net", rows}, {"rings", 2}}.dump());
+  const auto [file, exact] = write_cubic_net(dir, 64);
   const CommandResult r = run_coons("solve " + quoted(file) + " --mask c1-coons --solver cholmod");
   INFO(r.err);
   REQUIRE(r.status == 0);
@@ -225,7 +220,7 @@ TEST_CASE("coons solve, batch --mask c1-coons --solver cholmod: an ill-condition
   CHECK(solver.at("relative_residual").get<double>() < 1e-12);
   CHECK(solver.at("condition_estimate").get<double>() > 1e11);
   CHECK(solver.at("forward_error_bound").get<double>() > 1e-6);
-  CHECK(solver.at("forward_error_bound").get<double>() > relative_net_error(report.at("net"), rows));
+  CHECK(solver.at("forward_error_bound").get<double>() > relative_net_error(report, exact));
   CHECK_THAT(solver.at("message").get<std::string>(), Catch::StartsWith("ill-conditioned: condition estimate"));
   CHECK_THAT(r.err, Catch::StartsWith("warning: " + file + ": solver: cholmod ill-conditioned: condition estimate"));
   CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
@@ -252,9 +247,8 @@ TEST_CASE(
   // At degree 40 (κ about 9e9) bicgstab stops with a normwise backward error some 30 ε, and its
   // net is off by 2e−7, twenty times cholmod's: κ·ε would not have said so, κ times the iteration's
   // own backward error does.
-  const json rows = cubic_net_rows(40);
   TempDir dir;
-  const std::string file = dir.write("cubic.json", json{{"name", "cubic"}, {"net", rows}, {"rings", 2}}.dump());
+  const auto [file, exact] = write_cubic_net(dir, 40);
   const CommandResult r = run_coons("solve " + quoted(file) + " --mask c1-coons --solver bicgstab");
   INFO(r.err);
   REQUIRE(r.status == 0);
@@ -267,7 +261,7 @@ TEST_CASE(
   const double bound = solver.at("forward_error_bound").get<double>();
   CHECK(kappa > 1e9);
   CHECK(bound == Approx(kappa * std::max(backward, std::numeric_limits<double>::epsilon())));
-  CHECK(bound > relative_net_error(report.at("net"), rows));
+  CHECK(bound > relative_net_error(report, exact));
   CHECK_THAT(solver.at("message").get<std::string>(),
              Catch::StartsWith("ill-conditioned: condition estimate") && Catch::Contains("by this iteration"));
   CHECK_THAT(r.err, Catch::StartsWith("warning: " + file + ": solver: bicgstab ill-conditioned:"));
@@ -275,7 +269,7 @@ TEST_CASE(
   const json mg = solve(quoted(file) + " --mask c1-coons --solver mg-cg");
   INFO(mg.at("solver").dump());
   CHECK(mg.at("solver").at("condition_estimate").get<double>() == Approx(kappa).epsilon(1e-6));
-  CHECK(mg.at("solver").at("forward_error_bound").get<double>() > relative_net_error(mg.at("net"), rows));
+  CHECK(mg.at("solver").at("forward_error_bound").get<double>() > relative_net_error(mg, exact));
   // a well-conditioned system solved by an iteration says its estimate and nothing more
   const json dome = solve(quoted(kData + "/boundaries/dome.json") + " --alpha -0.25 --solver cg");
   CHECK(dome.at("solver").at("condition_estimate").get<double>() > 1);
