@@ -8,6 +8,8 @@
 #include <fstream>
 #include <iterator>
 #include <map>
+#include <optional>
+#include <vector>
 
 #include "common.h"
 #include "coons/io/input_error.h"
@@ -139,24 +141,35 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
   BoundaryReadOptions read_options;
   read_options.min_model_size = kMinModelSize;  // the searches
   read_options.corner_tolerance = corner_tolerance;
-  // Every file of the shard read before the shard file is made: a bad one fails the run with
-  // nothing written, as the unsharded study does (an empty shard file and its folder stayed).
+  // Every file of the shard read (once) before the shard file is made: a bad one fails the run
+  // with nothing written, as the unsharded study does (an empty shard file and its folder stayed).
+  // Its content key is taken at the same time, so that a task is keyed by the bytes it was run on.
+  struct Task {
+    size_t index = 0;
+    std::string content;                   // fnv1a_hex of the file's bytes
+    std::optional<TriStudyInput> tri;      // a triangular boundary file
+    std::optional<BoundaryFile> boundary;  // otherwise
+  };
+  std::vector<Task> tasks;
   for (size_t t = size_t(shard); t < files.size(); t += size_t(shards)) {
+    Task& task = tasks.emplace_back();
+    task.index = t;
+    task.content = fnv1a_hex(file_bytes(files[t]));
     if (is_triangle_file(files[t]))
-      (void)read_tri_study_input(files[t], corner_tolerance);
+      task.tri = read_tri_study_input(files[t], corner_tolerance);
     else
-      (void)read_boundary_file(files[t], read_options);
+      task.boundary = read_boundary_file(files[t], read_options);
   }
   std::set<std::string> done;
   const fs::path path = open_shard_file(out_dir, shard, shards, study, &done);
   std::ofstream o(path, std::ios::binary | std::ios::app);
   if (!o) throw InputError(path.string(), "--out", "cannot be written");
   phases.start("solve");
-  size_t mine = 0, skipped = 0, ran = 0;
-  for (size_t t = size_t(shard); t < files.size(); t += size_t(shards)) {
-    ++mine;
+  size_t skipped = 0, ran = 0;
+  for (const Task& task : tasks) {
+    const size_t t = task.index;
     const std::string& file = files[t];
-    const std::string content = fnv1a_hex(file_bytes(file));
+    const std::string& content = task.content;
     const std::string key = files_task_key(study, t, content);
     if (done.count(key)) {
       ++skipped;
@@ -166,14 +179,13 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
     const auto start = std::chrono::steady_clock::now();
     StudyResult part;
     std::vector<BSplineStudyRow> bspline;  // a B-spline file's row (its own knots, no degrees)
-    if (is_triangle_file(file)) {
-      part.triangles = run_tri_study({read_tri_study_input(file, corner_tolerance)}, options.degrees, options.solver);
+    if (task.tri) {
+      part.triangles = run_tri_study({*task.tri}, options.degrees, options.solver);
+    } else if (const BoundaryFile& b = *task.boundary; b.bspline) {
+      bspline = run_bspline_study({{file, b.boundary.name, *b.bspline}}, default_study_objectives(),
+                                  bspline_row_solver(options.solver));
     } else {
-      if (const BoundaryFile b = read_boundary_file(file, read_options); b.bspline)
-        bspline = run_bspline_study({{file, b.boundary.name, *b.bspline}}, default_study_objectives(),
-                                    bspline_row_solver(options.solver));
-      else
-        part = run_study({read_study_input(file, b)}, options);
+      part = run_study({read_study_input(file, b)}, options);
     }
     const double seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
     json record{{"key", key},        {"study", study},     {"index", t},
@@ -185,8 +197,8 @@ int run_files_shard(const std::vector<std::string>& files, const StudyOptions& o
     done.insert(key);
     ++ran;
   }
-  print_text(fmt::format("shard {}/{}: {} tasks, {} already there, {} run; {}\n", shard, shards, mine, skipped, ran,
-                         path.string()));
+  print_text(fmt::format("shard {}/{}: {} tasks, {} already there, {} run; {}\n", shard, shards, tasks.size(), skipped,
+                         ran, path.string()));
   return kExitOk;
 }
 
