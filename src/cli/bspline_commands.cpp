@@ -51,7 +51,7 @@ BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& i
                      "--mu chooses the anisotropic Bézier mask; a B-spline boundary takes --alpha");
   BSplineResolved out;
   out.method = r.method;
-  out.alpha = r.method == Method::kAlpha ? request.alpha : -0.25;
+  out.alpha = request.alpha;  // for --method coons, the mask its mask_residual is measured against
   out.options = r.options;
   if (r.method != Method::kAlpha) return out;
   if (request.solver == "auto") {
@@ -90,7 +90,7 @@ BSplineBatchNet bspline_batch_net(const std::string& file, const BoundaryFile& i
   const BSplineResolved& r = net.resolved;
   check_bspline_memory(global, *input.bspline, file);
   net.outcome = solve_bspline(*input.bspline, r);
-  if (net.ok()) net.metrics = bspline_metrics(net.outcome.local, r.alpha);  // r.alpha: −1/4 for coons
+  if (net.ok()) net.metrics = bspline_metrics(net.outcome.local, r.alpha);  // r.alpha: --alpha, −1/4 by default
   net.report = bspline_net_report(input.boundary.name, *input.bspline, r.method, r.alpha, net.outcome,
                                   r.picked_automatically, true, net.metrics ? &*net.metrics : nullptr);
   return net;

@@ -151,17 +151,19 @@ void refuse_stopping_rules(const NetRequest& r, const solvers::SolverInfo* solve
 ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std::string& source) {
   ResolvedRequest out;
   out.method = r.method;
-  // Contradictions: options that would be ignored are errors naming both.
+  // Contradictions: options that would be ignored are errors naming both. A closed form takes
+  // --alpha and --mu (they choose the mask its mask_residual is measured against) and the
+  // defaults --solver auto and --mask alpha, which ask for nothing it does not do.
   if (out.method != Method::kAlpha) {
-    const std::pair<const CLI::Option*, const char*> alpha_only[] = {{r.alpha_option, "--alpha"},
-                                                                     {r.mu_option, "--mu"},
-                                                                     {r.solver_option, "--solver"},
+    const CLI::Option* solver_option = r.solver == "auto" ? nullptr : r.solver_option;
+    const CLI::Option* mask_option = r.mask == "alpha" ? nullptr : r.mask_option;
+    const std::pair<const CLI::Option*, const char*> alpha_only[] = {{solver_option, "--solver"},
                                                                      {r.tolerance_option, "--tolerance"},
                                                                      {r.max_iterations_option, "--max-iterations"},
                                                                      {r.time_limit_option, "--time-limit"},
                                                                      {r.omega_option, "--omega"},
                                                                      {r.indefinite_option, "--allow-indefinite"},
-                                                                     {r.mask_option, "--mask"},
+                                                                     {mask_option, "--mask"},
                                                                      {r.weight_option, "--weight"}};
     for (const auto& [option, name] : alpha_only)
       if (given(option))
@@ -209,9 +211,9 @@ ResolvedRequest resolve(const NetRequest& r, const Boundary& boundary, const std
   const bool in_definite_range = alpha_equiv >= -0.25 && alpha_equiv <= 0.25;
   if (out.solver->definite_only && !in_definite_range && !r.allow_indefinite)
     throw InputError("command line", "--alpha",
-                     fmt::format("{} is outside [-0.25, 0.25], where the system is positive definite; "
+                     fmt::format("{} is outside [-0.25, 0.25], where the mask system of {} is positive definite; "
                                  "{} needs that (use eigen-lu, or --allow-indefinite to try anyway)",
-                                 alpha_equiv, r.solver));
+                                 alpha_equiv, source, r.solver));
   return out;
 }
 

@@ -234,6 +234,11 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
        "command line: --alpha: alpha = 0.5 on the 4 by 4 net of " + kData +
            "/boundaries/dome.json: the mask system is singular: the free points (1, 1)"},
       {"solve " + good + " --alpha 0.5 --solver eigen-lu", "command line: --alpha: alpha = 0.5 on the 4 by 4 net"},
+      // an alpha the named solver refuses names the file whose system it is (the contract's bad input
+      // "an alpha outside what the chosen solver accepts" names the file, the field and the reason)
+      {"solve " + good + " --alpha 0.4 --solver eigen-llt",
+       "command line: --alpha: 0.4 is outside [-0.25, 0.25], where the mask system of " + kData +
+           "/boundaries/dome.json is positive definite; eigen-llt needs that"},
       // beyond kMaxAlpha: `fast` called the dome singular at 1e160, and at 1e308 the singularity
       // check named four points that do not decouple
       {"solve " + good + " --alpha 1e308", "--alpha: 1e+308 is beyond the bound |alpha| <= 1e+60"},
@@ -274,7 +279,8 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
        "command line: --max-iterations: '1.5' is not an integer"},
       {"solve " + good + " --alpha abc", "command line: --alpha: 'abc' is not a number"},
       {"solve " + good + " --max-memory ' 5MB'", "--max-memory"},
-      {"solve " + good + " --method coons --alpha 0.1", "--alpha"},
+      {"solve " + good + " --method coons --tolerance 1e-6", "--tolerance"},
+      {"solve " + good + " --method coons --mu -1", "--mu"},  // a closed form's --mu is still checked
       {"solve " + good + " --alpha 0.1 --mu 2", "--mu"},
       {"solve " + good + " --tolerance -1 --solver cg", "tolerance"},
       {"solve", "BOUNDARY"},
@@ -321,7 +327,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"export " + good + " --solver nonesuch --out {OUT}", "--solver"},
       {"export " + good + " --obj --samples 50000 --out {OUT}", "--samples"},
       {"export " + good + " --out {IN}/notafolder/out", "notafolder"},
-      {"export " + sphere5 + " --method coons --mu 1 --out {OUT}", "--mu"},
+      {"export " + sphere5 + " --method coons --solver cholmod --out {OUT}", "--solver"},
       // batch
       {"batch {IN}/emptyfolder --out {OUT}", "emptyfolder: the folder holds no *.json boundary file"},
       {"batch " + good + " --alphas 0.3 --out {OUT}", "--alphas"},

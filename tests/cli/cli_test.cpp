@@ -54,8 +54,7 @@ TEST_CASE("coons solve: the closed-form Coons net is printed bit-exactly", "[cli
   REQUIRE(r.status == 0);
   const json report = json::parse(r.out);
   const ControlNet expected = discrete_coons_net(read_boundary_file(file).boundary);
-  const BoundaryFile printed = parse_boundary(json{{"net", report["net"]}}, "report");
-  CHECK(printed.net->points == expected.points);
+  CHECK(net_of(report).points == expected.points);
   CHECK(report["solver"]["status"] == "not_applicable");
 }
 
@@ -675,14 +674,70 @@ TEST_CASE("coons solve --solver bicgstab: a breakdown right after the first step
   }
 }
 
-TEST_CASE("coons solve --method hermite-coons: no mask, so no mask residual", "[cli]") {
-  // (it used to report the residual of the alpha = -1/4 mask under "mask": null)
-  const CommandResult r = run_coons("solve " + quoted(kData + "/boundaries/dome.json") + " --method hermite-coons");
-  REQUIRE(r.status == 0);
-  const json report = json::parse(r.out);
-  CHECK(report["mask"].is_null());
-  CHECK(report["metrics"]["mask_residual"].is_null());
-  CHECK(report["metrics"]["thin_plate_energy"].get<double>() > 0);
+TEST_CASE("coons solve --method hermite-coons: alpha, beta and mask_residual are numbers, of the alpha = -1/4 mask",
+          "[cli]") {
+  // (they were null: the contract's report has numbers there; the partially bicubic net satisfies
+  // no mask, and its residual against the Coons net's mask says how far it lies from that net)
+  const std::string helicoid = quoted(kData + "/boundaries/helicoid.json");
+  const CommandResult hermite = run_coons("solve " + helicoid + " --method hermite-coons");
+  const CommandResult coons = run_coons("solve " + helicoid + " --method coons");
+  REQUIRE(hermite.status == 0);
+  REQUIRE(coons.status == 0);
+  const json h = json::parse(hermite.out);
+  const json c = json::parse(coons.out);
+  CHECK(h["mask"] == "alpha");
+  CHECK(h["alpha"].get<double>() == -0.25);
+  CHECK(h["beta"].get<double>() == 0.5);
+  const double hermite_residual = h["metrics"]["mask_residual"].get<double>();
+  const double coons_residual = c["metrics"]["mask_residual"].get<double>();
+  CHECK(coons_residual < 1e-14);  // the Coons net satisfies the alpha = -1/4 mask
+  // the helicoid's nets differ (the dome's do not), so the partially bicubic one does not (its residual is that of the
+  // net's difference from the Coons net, on which the mask is linear)
+  const double gap = max_difference(net_of(h), net_of(c));
+  REQUIRE(gap > 1e-3);
+  CHECK(hermite_residual > 1e-6 * gap);
+  CHECK(hermite_residual <= 4 * gap);  // |d - (1/2)(4 edges of d) + (1/4)(4 diagonals of d)| <= (1 + 2 + 1) gap
+}
+
+TEST_CASE(
+    "coons solve: a closed form takes --alpha and --mu as the mask of its mask_residual, and the defaults "
+    "--solver auto and --mask alpha",
+    "[cli]") {
+  const std::string dome = quoted(kData + "/boundaries/dome.json");
+  const CommandResult plain = run_coons("solve " + dome + " --method coons");
+  const CommandResult measured = run_coons("solve " + dome + " --method coons --alpha -0.1 --solver auto --mask alpha");
+  const CommandResult by_mu = run_coons("solve " + dome + " --method coons --mu 4");
+  REQUIRE(plain.status == 0);
+  REQUIRE(measured.status == 0);
+  REQUIRE(by_mu.status == 0);
+  const json p = json::parse(plain.out);
+  const json m = json::parse(measured.out);
+  const json u = json::parse(by_mu.out);
+  CHECK(m["net"] == p["net"]);  // the same closed-form net
+  CHECK(u["net"] == p["net"]);
+  CHECK(m["alpha"].get<double>() == -0.1);
+  CHECK(m["solver"]["status"] == "not_applicable");
+  // the Coons net satisfies alpha = -1/4 only: another member's residual is not zero
+  CHECK(p["metrics"]["mask_residual"].get<double>() < 1e-14);
+  CHECK(m["metrics"]["mask_residual"].get<double>() > 1e-6);
+  CHECK(u["mu"].get<double>() == 4);
+  CHECK(u["metrics"]["mask_residual"].get<double>() > 1e-6);
+  // a B-spline boundary's Coons net likewise, against the non-uniform family's member
+  const std::string wave = quoted(kData + "/boundaries/bspline_wave.json");
+  const CommandResult wave_plain = run_coons("solve " + wave + " --method coons");
+  const CommandResult wave_measured = run_coons("solve " + wave + " --method coons --alpha -0.1");
+  REQUIRE(wave_plain.status == 0);
+  REQUIRE(wave_measured.status == 0);
+  const json wp = json::parse(wave_plain.out);
+  const json wm = json::parse(wave_measured.out);
+  CHECK(wm["net"] == wp["net"]);
+  CHECK(wm["alpha"].get<double>() == -0.1);
+  CHECK(wp["metrics"]["mask_residual"].get<double>() < 1e-12);
+  CHECK(wm["metrics"]["mask_residual"].get<double>() > 1e-6);
+  // an option that asks for what a closed form does not do is still refused
+  const CommandResult solver = run_coons("solve " + dome + " --method coons --solver cholmod");
+  CHECK(solver.status == 2);
+  CHECK_THAT(solver.err, Catch::Contains("--solver"));
 }
 
 TEST_CASE("coons refit: a file with ribbons or a free grid is bad input, not a boundary that lost its second ring",

@@ -254,8 +254,8 @@ TEST_CASE("coons: names from input files never place a file outside the output f
 TEST_CASE("coons: contradictory options are errors naming both", "[cli][loud]") {
   const std::string d = quoted(dome());
   const std::pair<std::string, std::vector<std::string>> cases[] = {
-      {" solve " + d + " --method coons --alpha 0.1", {"--method", "--alpha"}},
-      {" solve " + d + " --method hermite-coons --mu 2", {"--method", "--mu"}},
+      {" solve " + d + " --method coons --mask c1-coons", {"--method", "--mask"}},
+      {" solve " + d + " --method hermite-coons --omega 1.5", {"--method", "--omega"}},
       {" solve " + d + " --method coons --solver eigen-lu", {"--method", "--solver"}},
       {" solve " + d + " --alpha -0.1 --mu 3", {"--alpha", "--mu"}},
       {" solve " + d + " --solver eigen-ldlt --omega 1.5", {"--omega", "gauss-seidel"}},

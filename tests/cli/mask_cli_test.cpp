@@ -30,8 +30,6 @@ using nlohmann::json;
 
 namespace {
 
-ControlNet net_of(const json& report) { return *parse_boundary(json{{"net", report.at("net")}}, "report").net; }
-
 ControlNet library_solve(const std::string& file, const Stencil& stencil, const std::string& solver) {
   const StencilProblem problem = stencil_problem(read_boundary_file(file));
   auto backend = solvers::make_solver(solver);

@@ -6,6 +6,8 @@
 #include <iterator>
 #include <sstream>
 
+#include "coons/io/boundary_io.h"
+
 namespace coons::test {
 
 const std::string kCoons = COONS_BINARY;
@@ -18,6 +20,10 @@ CommandResult run_coons(const std::string& args) { return run_command(kCoons + "
 std::string read_text(const std::string& path) {
   std::ifstream in(path, std::ios::binary);
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
+}
+
+ControlNet net_of(const nlohmann::json& report) {
+  return *parse_boundary(nlohmann::json{{"net", report.at("net")}}, "report").net;
 }
 
 const std::vector<std::string>& coons_commands() {

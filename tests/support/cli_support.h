@@ -27,6 +27,9 @@ std::string read_text(const std::string& path);
 //! the one list the tests that cover every command iterate, so that a new command is not missed.
 const std::vector<std::string>& coons_commands();
 
+//! The "net" of a solve report (or of any JSON object holding one), as a control net.
+ControlNet net_of(const nlohmann::json& report);
+
 //! The lines of a JSON Lines file, parsed.
 std::vector<nlohmann::json> read_json_lines(const std::string& path);
 //! `records` written to `path` as JSON Lines (replacing it), each after `edit` when one is given.

@@ -72,15 +72,11 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
   report["boundary"] = boundary.name;
   report["degree"] = {boundary.m, boundary.n};
   report["method"] = to_string(method);
-  if (method == NetMethod::kHermiteCoons) {  // the partially bicubic net belongs to no mask
-    report["mask"] = nullptr;
-    report["alpha"] = nullptr;
-    report["beta"] = nullptr;
-    report["mu"] = mu ? json(*mu) : json(nullptr);
-  } else {  // the alpha method, or the Coons net: its mask is α = −1/4
-    report["mask"] = "alpha";
-    alpha_fields(report, boundary, mask, mu);
-  }
+  // The alpha method, or a closed form: then the mask its mask_residual is measured against
+  // (--alpha, default −1/4, which the Coons net satisfies exactly and the partially bicubic net
+  // does not: its residual says how far it lies from the Coons net's mask).
+  report["mask"] = "alpha";
+  alpha_fields(report, boundary, mask, mu);
   report["rings"] = 1;
   report["free_points"] = std::max(boundary.m - 1, 0) * std::max(boundary.n - 1, 0);
   report["solver"] = solver_block(outcome.summary, solver_picked_automatically);
@@ -90,8 +86,6 @@ json net_report(const Boundary& boundary, NetMethod method, const Mask9& mask, c
   else if (with_net)
     report["net"] = net_to_json(outcome.net);
   report["metrics"] = ok ? metrics_to_json(net_metrics(outcome.net, mask, threads)) : json(nullptr);
-  // the partially bicubic net belongs to no mask: no mask residual to report (not that of α = −1/4)
-  if (ok && method == NetMethod::kHermiteCoons) report["metrics"]["mask_residual"] = nullptr;
   return report;
 }
 
