@@ -12,7 +12,11 @@ file's outer ring (the problem of the α slider: ribbons, rings and free left ou
 page solves the α family itself (coonsView.exact), else the nearest precomputed value; the screenshot of the 3D view is not blank (many colours, a part neither white nor
 one colour); moving the slider through window.coonsView.setAlpha changes data-alpha, the drawn net
 (data-net-hash) and the picture; moving it back gives the first net again; every other slider
-(setValue: the C1 weight) changes its data attribute and the drawn net; the only request the page
+(setValue: the C1 weight) changes its data attribute and the drawn net, and a weight between the
+frames shows the net of `coons solve --mask c1-family --weight w` of the whole file (1e-9); every
+slider the page solves itself (a triangle's c, a B-spline boundary's α, the weight) gives, solved
+and sampled by the page at each frame's value, that frame's net and samples to 1e-4 of the largest
+coordinate and its normals to 1e-3 (coonsView.selfCheck); the only request the page
 makes is the page itself (nothing fetched). Exit 77 (skipped) when
 chromium is not installed or coons was built without three.js. With --expect-error a failing
 script is added to the page and the check must see its error (the check's own test). With
@@ -33,6 +37,8 @@ import time
 import zlib
 
 SKIP = 77
+# the options of `coons solve` that give the net of a value of the other sliders (the value follows)
+SOLVE_OPTIONS = {"weight": ["--mask", "c1-family", "--weight"]}
 TARGET = -0.2013  # the α the page is opened at: between the precomputed values
 
 
@@ -320,6 +326,17 @@ def main():
         print("sliders: %r" % parameters)
         if expected_parameters is not None and parameters != expected_parameters:
             fail("the page has the sliders %r, expected %r" % (parameters, expected_parameters))
+        # where the page solves a family itself, its solve and sampling at every frame's value agree
+        # with the frame coons wrote (5 significant digits of the offsets from the page's origin)
+        for parameter in parameters:
+            if not evaluate("window.coonsView.exact('%s')" % parameter):
+                continue
+            check = evaluate("window.coonsView.selfCheck('%s')" % parameter)
+            print("%s: the page's own solve at %d frames: net %.3g, samples %.3g (of the largest coordinate), "
+                  "normals %.3g" % (parameter, check["frames"], check["net"], check["points"], check["normals"]))
+            if check["frames"] < 2 or not (check["net"] <= 1e-4 and check["points"] <= 1e-4 and
+                                           check["normals"] <= 1e-3):
+                fail("the page's own solve of %s differs from the frames: %r" % (parameter, check))
         for parameter in parameters[1:]:
             choices = evaluate("window.coonsView.values('%s')" % parameter)
             before = body("data-net-hash")
@@ -332,6 +349,25 @@ def main():
                 if now == before:
                     fail("the drawn net did not change when %s moved to %r" % (parameter, value))
                 before = now
+            # a value between the frames: the page's net is that of `coons solve` of the whole file
+            if parameter in SOLVE_OPTIONS and evaluate("window.coonsView.exact('%s')" % parameter):
+                between = float("%.6f" % ((choices[1] + choices[2]) / 2))
+                if between in choices:
+                    fail("%r is a precomputed value: the check would not test the page's own solve" % between)
+                shown = evaluate("window.coonsView.setValue('%s', %r)" % (parameter, between))
+                if shown != between or float(body("data-" + parameter)) != between:
+                    fail("setValue('%s', %r) shows %r" % (parameter, between, body("data-" + parameter)))
+                report = json.loads(subprocess.run([coons, "solve", boundary] + SOLVE_OPTIONS[parameter] +
+                                                   [repr(between)], check=True, capture_output=True,
+                                                   text=True).stdout)
+                reference = [x for row in report["net"] for point in row for x in point]
+                shown_net = evaluate("window.coonsView.net()")
+                scale = max(abs(x) for x in reference)
+                worst = max(abs(a - b) for a, b in zip(shown_net, reference))
+                print("exact %s=%r: net of the page vs coons solve: max difference %.3g (scale %.3g)" %
+                      (parameter, between, worst, scale))
+                if len(shown_net) != len(reference) or worst > 1e-9 * scale:
+                    fail("the page's net at %s=%r differs from coons solve by %g" % (parameter, between, worst))
 
         if expect_error:
             time.sleep(0.5)

@@ -1,13 +1,16 @@
 // The data of the `coons view` page (coons/study/view_data.h): the α family's nets, energies and optima.
 #include "coons/study/view_data.h"
 
+#include <Eigen/Dense>
 #include <catch2/catch.hpp>
 #include <cstdlib>
 
+#include "coons/io/bspline_boundary_io.h"
 #include "coons/mask/stencil_problem.h"
 #include "coons/metrics/energies.h"
 #include "coons/net/coons_net.h"
 #include "solvers/registry.h"
+#include "support/bspline_fixtures.h"
 #include "support/fixtures.h"
 
 using namespace coons;
@@ -196,4 +199,137 @@ TEST_CASE("tri_view_slider: an optimum within rounding of a grid value is a fram
     const ViewSlider s = tri_view_slider(tri::boundary_of(cubic, "cubic"), options, *solver, -1.0 / 6.0);
     CHECK(check_optima_are_lowest_frames(s) == 4);
   }
+}
+
+namespace {
+
+// The net the page solves at t from a slider's system: (A0 + t·A1) x = B0 + t·B1, by dense LU
+// with partial pivoting as the page does, the free points placed into the system's net.
+Eigen::MatrixX3d system_net(const ViewSystem& v, double t) {
+  const Eigen::MatrixXd A = Eigen::MatrixXd(v.A0) + t * Eigen::MatrixXd(v.A1);
+  const Eigen::MatrixX3d X = A.partialPivLu().solve(v.B0 + t * v.B1);
+  Eigen::MatrixX3d net = v.net;
+  for (size_t k = 0; k < v.free.size(); ++k) net.row(v.free[k]) = X.row(Eigen::Index(k));
+  return net;
+}
+
+// The largest difference, over the slider's frames, between a frame's net and the system's net at
+// its value, over the largest coordinate; and how many frames were compared.
+std::pair<double, int> system_gap(const ViewSlider& s) {
+  REQUIRE(s.system);
+  double worst = 0;
+  int compared = 0;
+  for (const ViewFrame& f : s.frames) {
+    if (!f.ok) continue;
+    ++compared;
+    worst = std::max(worst,
+                     (system_net(*s.system, f.parameter) - f.net).cwiseAbs().maxCoeff() / f.net.cwiseAbs().maxCoeff());
+  }
+  return {worst, compared};
+}
+
+}  // namespace
+
+TEST_CASE("weight_view_system: (A0 + w A1) x = B0 + w B1 gives every frame's net of the C1 family", "[study][view]") {
+  ControlNet net = discrete_coons_net(test::make_smooth_boundary(7, 6, 5));
+  net.points += 0.05 * Eigen::MatrixX3d::Random(net.points.rows(), 3);
+  ViewOptions options;
+  options.frames = 7;
+  options.samples = 5;
+  options.objectives = {"thin_plate"};
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-ldlt");
+  REQUIRE(solver);
+  const ViewSlider s = weight_view_slider(rings_problem(net, 2), options, *solver, 1.0);
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  REQUIRE(s.system);
+  CHECK(s.system->sampler == ViewSystem::Sampler::kBezier);
+  CHECK(s.system->free.size() == 4 * 3);  // (7 − 3)(6 − 3) inside two rings
+  const auto [gap, compared] = system_gap(s);
+  CHECK(compared >= 7);
+  CHECK(gap < 1e-12);
+}
+
+TEST_CASE("tri_view_system: (A0 + c A1) x = B0 + c B1 gives every frame's net of the triangular family",
+          "[study][view]") {
+  std::srand(11);
+  tri::TriNet sextic(6);
+  sextic.points = Eigen::MatrixX3d::Random(tri::net_size(6), 3);
+  ViewOptions options;
+  options.frames = 9;
+  options.samples = 5;
+  options.lower = options.upper = 0;
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-lu");
+  REQUIRE(solver);
+  const ViewSlider s = tri_view_slider(tri::boundary_of(sextic, "sextic"), options, *solver, -1.0 / 6.0);
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  REQUIRE(s.system);
+  CHECK(s.system->sampler == ViewSystem::Sampler::kTriangle);
+  CHECK(s.system->free.size() == 10);  // (6 − 1)(6 − 2)/2
+  const auto [gap, compared] = system_gap(s);
+  CHECK(compared >= 9);
+  CHECK(gap < 1e-12);
+}
+
+TEST_CASE("bspline_view_system: every frame's net of the non-uniform family, and its basis samples the frame's surface",
+          "[study][view]") {
+  const BSplineBoundary compatible = compatible_boundary(test::make_random_bspline_boundary(3, 7, 2, 6, 23));
+  ViewOptions options;
+  options.frames = 7;
+  options.samples = 6;
+  options.lower = -0.25;
+  options.upper = 0.1;
+  options.objectives = {"thin_plate"};
+  const ViewSlider s = bspline_view_slider(compatible, options, "eigen-lu", -0.25);
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  REQUIRE(s.system);
+  const ViewSystem& v = *s.system;
+  CHECK(v.sampler == ViewSystem::Sampler::kTensor);
+  const auto [gap, compared] = system_gap(s);
+  CHECK(compared >= 7);
+  CHECK(gap < 1e-12);
+  // Σ basis_u(a, i) basis_v(b, j) net(i, j) is the frame's sample (a, b); the basis sums to 1
+  const ViewFrame& f = s.frames[2];
+  const int cv = int(v.basis_v.cols());
+  double worst = 0;
+  for (int a = 0; a < v.samples; ++a) {
+    CHECK(v.basis_u.row(a).sum() == Approx(1).epsilon(1e-14));
+    CHECK(std::abs(v.dbasis_u.row(a).sum()) < 1e-12);  // the derivative of the partition of unity
+    for (int b = 0; b < v.samples; ++b) {
+      Eigen::RowVector3d p = Eigen::RowVector3d::Zero();
+      for (int i = 0; i < v.basis_u.cols(); ++i)
+        for (int j = 0; j < cv; ++j) p += v.basis_u(a, i) * v.basis_v(b, j) * f.net.row(i * cv + j);
+      worst = std::max(worst, (p - f.points.row(a * v.samples + b)).cwiseAbs().maxCoeff());
+    }
+  }
+  CHECK(worst < 1e-12 * f.net.cwiseAbs().maxCoeff());
+}
+
+TEST_CASE("ViewPage::is_valid: a system of other sizes than its frames is refused", "[study][view]") {
+  std::srand(5);
+  tri::TriNet quartic(4);
+  quartic.points = Eigen::MatrixX3d::Random(tri::net_size(4), 3);
+  ViewOptions options;
+  options.frames = 3;
+  options.samples = 4;
+  options.lower = options.upper = 0;
+  ViewPage page;
+  page.sliders.push_back(
+      tri_view_slider(tri::boundary_of(quartic, "quartic"), options, *solvers::find_solver("eigen-lu"), -1.0 / 6.0));
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  page.sliders[0].system->free.push_back(0);
+  CHECK_FALSE(page.is_valid(&why));
+  CHECK_THAT(why, Catch::Contains("alpha: system: "));
+  page.sliders[0].system->free.pop_back();
+  page.sliders[0].system->samples = 5;  // not the frames' samples
+  CHECK_FALSE(page.is_valid(&why));
 }

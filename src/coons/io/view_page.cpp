@@ -66,6 +66,68 @@ void append_indices(std::string& out, const std::vector<std::array<int, N>>& lis
   out += ']';
 }
 
+// Numbers in shortest round-trip form: the page solves with them.
+void append_exact(std::string& out, const double* values, Eigen::Index count) {
+  out += '[';
+  for (Eigen::Index k = 0; k < count; ++k) {
+    if (k > 0) out += ',';
+    append_number(out, values[k], true);
+  }
+  out += ']';
+}
+
+// A sparse matrix as one flat array of (row, column, value) triples.
+void append_triples(std::string& out, const Eigen::SparseMatrix<double>& A) {
+  out += '[';
+  bool first = true;
+  for (Eigen::Index c = 0; c < A.outerSize(); ++c)
+    for (Eigen::SparseMatrix<double>::InnerIterator it(A, c); it; ++it) {
+      if (!first) out += ',';
+      first = false;
+      out += fmt::format("{},{},", it.row(), it.col());
+      append_number(out, it.value(), true);
+    }
+  out += ']';
+}
+
+// A #rows by 3 matrix, flat, row by row, in shortest round-trip form.
+void append_rows(std::string& out, const Eigen::MatrixX3d& M) {
+  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = M;
+  append_exact(out, rows.data(), rows.size());
+}
+
+// The system of ViewSystem. The page's coordinates are offsets from `origin`: the right-hand side
+// stays in the net's own (the page moves it: A (x − o) = B − (A·1) o), the net is moved here.
+void append_system(std::string& out, const ViewSystem& v, const Eigen::RowVector3d& origin) {
+  static constexpr const char* kSamplers[] = {"bezier", "triangle", "tensor"};
+  out += fmt::format(",\"system\":{{\"sampler\":\"{}\",\"m\":{},\"n\":{},\"samples\":{},\"free\":[",
+                     kSamplers[int(v.sampler)], v.m, v.n, v.samples);
+  for (size_t k = 0; k < v.free.size(); ++k) out += (k > 0 ? "," : "") + std::to_string(v.free[k]);
+  out += "],\"A0\":";
+  append_triples(out, v.A0);
+  out += ",\"A1\":";
+  append_triples(out, v.A1);
+  out += ",\"B0\":";
+  append_rows(out, v.B0);
+  out += ",\"B1\":";
+  append_rows(out, v.B1);
+  out += ",\"net\":";
+  append_rows(out, v.net.rowwise() - origin);
+  if (v.sampler == ViewSystem::Sampler::kTensor) {
+    const auto basis = [&out](const char* name, const Eigen::MatrixXd& B) {
+      const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = B;
+      out += fmt::format(",\"{}\":", name);
+      append_exact(out, rows.data(), rows.size());
+    };
+    basis("basis_u", v.basis_u);
+    basis("dbasis_u", v.dbasis_u);
+    basis("basis_v", v.basis_v);
+    basis("dbasis_v", v.dbasis_v);
+    out += fmt::format(",\"count_u\":{},\"count_v\":{}", v.basis_u.cols(), v.basis_v.cols());
+  }
+  out += '}';
+}
+
 void append_slider(std::string& out, const ViewSlider& s, const Eigen::RowVector3d& origin) {
   nlohmann::json head = {{"parameter", s.parameter},
                          {"symbol", s.symbol},
@@ -100,6 +162,7 @@ void append_slider(std::string& out, const ViewSlider& s, const Eigen::RowVector
       }
     out += "]}";
   }
+  if (s.system) append_system(out, *s.system, origin);
   out += ",\"frames\":[";
   for (size_t k = 0; k < s.frames.size(); ++k) {
     const ViewFrame& f = s.frames[k];
@@ -146,6 +209,46 @@ std::string escape_html(const std::string& text) {
 
 }  // namespace
 
+namespace {
+
+bool system_is_valid(const ViewSystem& v, const ViewFrame& frame, std::string* why) {
+  const Eigen::Index k = Eigen::Index(v.free.size()), points = frame.net.rows();
+  const auto fail = [why](const char* reason) {
+    *why = reason;
+    return false;
+  };
+  if (k == 0 || k > ViewSystem::kMaxFree) return fail("the number of free points must be in [1, kMaxFree]");
+  for (int f : v.free)
+    if (f < 0 || f >= points) return fail("a free point outside the net");
+  if (v.A0.rows() != k || v.A0.cols() != k || v.A1.rows() != k || v.A1.cols() != k || v.B0.rows() != k ||
+      v.B1.rows() != k || v.net.rows() != points)
+    return fail("A0, A1 must be #free square, B0, B1 #free by 3, net the frames' size");
+  if (!v.net.allFinite() || !v.B0.allFinite() || !v.B1.allFinite()) return fail("not finite");
+  if (v.samples < 2) return fail("samples must be >= 2");
+  const Eigen::Index grid = Eigen::Index(v.samples) * v.samples;
+  switch (v.sampler) {
+    case ViewSystem::Sampler::kBezier:
+      if (Eigen::Index(v.m + 1) * (v.n + 1) != points || frame.points.rows() != grid)
+        return fail("a Bézier net and grid of the frames' sizes");
+      break;
+    case ViewSystem::Sampler::kTriangle:
+      if (Eigen::Index(v.n + 1) * (v.n + 2) / 2 != points ||
+          frame.points.rows() != Eigen::Index(v.samples) * (v.samples + 1) / 2)
+        return fail("a triangular net and samples of the frames' sizes");
+      break;
+    case ViewSystem::Sampler::kTensor:
+      if (v.basis_u.rows() != v.samples || v.basis_v.rows() != v.samples || v.dbasis_u.rows() != v.samples ||
+          v.dbasis_v.rows() != v.samples || v.dbasis_u.cols() != v.basis_u.cols() ||
+          v.dbasis_v.cols() != v.basis_v.cols() || v.basis_u.cols() * v.basis_v.cols() != points ||
+          frame.points.rows() != grid)
+        return fail("basis matrices of the samples by the net's sizes");
+      break;
+  }
+  return true;
+}
+
+}  // namespace
+
 bool ViewPage::is_valid(std::string* why) const {
   auto fail = [&](const std::string& reason) {
     if (why) *why = reason;
@@ -174,6 +277,10 @@ bool ViewPage::is_valid(std::string* why) const {
     for (const ViewCurve& c : s.curves)
       if (c.values.size() != s.frames.size())
         return fail(s.parameter + ": curve " + c.name + " needs a value per frame");
+    if (s.system) {
+      std::string reason;
+      if (!system_is_valid(*s.system, first, &reason)) return fail(s.parameter + ": system: " + reason);
+    }
     if (s.ring_m != 0 || s.ring_n != 0) {
       const Eigen::Index points = Eigen::Index(s.ring_m + 1) * (s.ring_n + 1);
       if (s.ring_m < 2 || s.ring_n < 2 || s.ring.rows() != points || first.net.rows() != points || !s.ring.allFinite())

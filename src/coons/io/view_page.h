@@ -5,15 +5,19 @@
 // per frame the net (#net points by 3) and the sampled surface (#samples by 3, with unit
 // normals); per slider the net's edges and the surface's triangles, shared by its frames. A value
 // between the frames (#alpha=A, setValue) is solved by the page itself where the slider carries
-// its ring (the one-ring α family, ViewSlider::ring), else shown by the nearest frame.
+// its ring (the one-ring α family, ViewSlider::ring) or its system (ViewSystem: a triangle's c, a
+// B-spline boundary's α, the C1 weight, up to ViewSystem::kMaxFree free points), else shown by the
+// nearest frame.
 // The page sets on document.body: data-PARAMETER (the value shown, e.g. data-alpha; data-mu with
 // it where the frame has a μ), data-ready="1"
 // once drawn, data-net-hash (a hash of the drawn net's coordinates), data-error (the first script
 // error); window.coonsView.setValue(parameter, v) and setAlpha(v) move a slider, exact(parameter)
-// says whether values between the frames are solved, net() gives the net shown (the browser test).
+// says whether values between the frames are solved, net() gives the net shown, selfCheck(parameter)
+// the page's own solve at every frame's value beside that frame (the browser test).
 #pragma once
 
 #include <Eigen/Core>
+#include <Eigen/SparseCore>
 #include <array>
 #include <optional>
 #include <string>
@@ -43,6 +47,29 @@ struct ViewMark {  //!< a named parameter value drawn on the curves (e.g. "Coons
   double parameter = 0;
 };
 
+//! A family whose net the page solves itself at any value t of its slider: the free points x of
+//! (A0 + t·A1) x = B0 + t·B1 (#free square, #free by 3, in the coordinates of `net`), the other
+//! points those of `net`, then the surface sampled as the frames are. Written in full precision.
+//! The page solves it densely (LU with partial pivoting), so a slider carries one only up to
+//! kMaxFree free points; beyond, it shows the nearest frame.
+struct ViewSystem {
+  static constexpr int kMaxFree = 600;
+  enum class Sampler {
+    kBezier,    //!< the tensor Bézier surface of a (m+1)×(n+1) net, as sample_grid
+    kTriangle,  //!< the triangular Bézier surface of degree n, as tri::sample_tri_surface
+    kTensor,    //!< Σ basis_u(a, i)·basis_v(b, j)·net(i, j): a B-spline surface's samples
+  };
+  Sampler sampler = Sampler::kBezier;
+  int m = 0, n = 0;       //!< the Bézier degrees (kBezier), the triangle's degree (kTriangle, in n)
+  int samples = 0;        //!< samples per side: the frames' k
+  std::vector<int> free;  //!< the row of ViewFrame::net of each unknown
+  Eigen::SparseMatrix<double> A0, A1;
+  Eigen::MatrixX3d B0, B1;
+  Eigen::MatrixX3d net;  //!< every point of the net (the free ones are solved for)
+  //! kTensor: the basis functions (k × #u, k × #v) at the samples and their derivatives.
+  Eigen::MatrixXd basis_u, dbasis_u, basis_v, dbasis_v;
+};
+
 struct ViewSlider {
   std::string parameter;  //!< "alpha" or "weight": the body attribute is data-PARAMETER
   std::string symbol;     //!< the parameter's symbol on the page ("α", "w", "c")
@@ -61,6 +88,9 @@ struct ViewSlider {
   //! written in full precision. Empty (ring_m = 0) for the other sliders: they show the nearest frame.
   Eigen::MatrixX3d ring;
   int ring_m = 0, ring_n = 0;
+  //! The other families (a triangle's c, a B-spline boundary's α, the C1 weight): their system,
+  //! solved by the page between the frames as the ring is; none beyond ViewSystem::kMaxFree.
+  std::optional<ViewSystem> system;
 };
 
 struct ViewPage {

@@ -155,14 +155,136 @@ constexpr std::string_view kScript = R"JS(
       frame.mu = -s.ring.n * s.ring.n * (1 + 4 * alpha) / (4 * alpha);
     return frame;
   }
+
+  // --- a value between the frames (ViewSlider::system): (A0 + t A1) x = B0 + t B1 solved here --
+  // by LU with partial pivoting (at most ViewSystem::kMaxFree unknowns), in the page's coordinates:
+  // A (x − o) = B − (A·1) o. null where a pivot vanishes or the net is not finite.
+  function systemNet(sys, t) {
+    var k = sys.free.length, M = new Float64Array(k * k), R = new Float64Array(3 * k), r, c, d, p;
+    function add(triples, scale) {
+      for (var e = 0; e < triples.length; e += 3) M[triples[e] * k + triples[e + 1]] += scale * triples[e + 2];
+    }
+    add(sys.A0, 1);
+    add(sys.A1, t);
+    for (r = 0; r < k; ++r) {
+      var rowSum = 0;
+      for (c = 0; c < k; ++c) rowSum += M[r * k + c];
+      for (d = 0; d < 3; ++d) R[3 * r + d] = sys.B0[3 * r + d] + t * sys.B1[3 * r + d] - rowSum * origin[d];
+    }
+    for (p = 0; p < k; ++p) {
+      var best = p;
+      for (r = p + 1; r < k; ++r) if (Math.abs(M[r * k + p]) > Math.abs(M[best * k + p])) best = r;
+      if (!(Math.abs(M[best * k + p]) > 0)) return null;
+      if (best !== p) {
+        for (c = 0; c < k; ++c) { var x = M[p * k + c]; M[p * k + c] = M[best * k + c]; M[best * k + c] = x; }
+        for (d = 0; d < 3; ++d) { var y = R[3 * p + d]; R[3 * p + d] = R[3 * best + d]; R[3 * best + d] = y; }
+      }
+      for (r = p + 1; r < k; ++r) {
+        var f = M[r * k + p] / M[p * k + p];
+        if (f === 0) continue;
+        for (c = p + 1; c < k; ++c) M[r * k + c] -= f * M[p * k + c];
+        for (d = 0; d < 3; ++d) R[3 * r + d] -= f * R[3 * p + d];
+      }
+    }
+    for (p = k - 1; p >= 0; --p)
+      for (d = 0; d < 3; ++d) {
+        var sum = R[3 * p + d];
+        for (c = p + 1; c < k; ++c) sum -= M[p * k + c] * R[3 * c + d];
+        R[3 * p + d] = sum / M[p * k + p];
+      }
+    var net = Float64Array.from(sys.net);
+    for (r = 0; r < k; ++r)
+      for (d = 0; d < 3; ++d) {
+        if (!isFinite(R[3 * r + d])) return null;
+        net[3 * sys.free[r] + d] = R[3 * r + d];
+      }
+    return net;
+  }
+  // the unit normal of du × dv, as unit_cross (net/surface_point.h): 0 where it degenerates
+  function unitCross(du, dv, normals, row) {
+    var lu = Math.hypot(du[0], du[1], du[2]), lv = Math.hypot(dv[0], dv[1], dv[2]);
+    if (!(lu > 0) || !(lv > 0)) return;
+    var a = [du[0] / lu, du[1] / lu, du[2] / lu], b = [dv[0] / lv, dv[1] / lv, dv[2] / lv];
+    var n = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    var length = Math.hypot(n[0], n[1], n[2]);
+    if (!(length > 1e-14)) return;
+    for (var d = 0; d < 3; ++d) normals[row + d] = n[d] / length;
+  }
+  // the triangular Bézier surface of degree n at the samples of tri::sample_tri_surface: row
+  // net_index(k − 1, s, r) at (u, v, w) = ((k − 1 − r − s), s, r) / (k − 1), by de Casteljau down
+  // to degree 1; D_(1,0,−1) and D_(0,1,−1) from its three points
+  function triSample(net, n, k) {
+    function index(degree, j, c) { return c * (degree + 1) - c * (c - 1) / 2 + j; }
+    var size = k * (k + 1) / 2, points = new Float64Array(3 * size), normals = new Float64Array(3 * size);
+    var from = new Float64Array(net.length), to = new Float64Array(net.length);
+    for (var r = 0; r < k; ++r)
+      for (var s = 0; s + r < k; ++s) {
+        var u = (k - 1 - r - s) / (k - 1), v = s / (k - 1), w = r / (k - 1), level = net, d;
+        for (var degree = n; degree > 1; --degree) {
+          for (var c = 0; c < degree; ++c)
+            for (var j = 0; j + c < degree; ++j) {
+              var o = 3 * index(degree - 1, j, c), a = 3 * index(degree, j, c), b = 3 * index(degree, j + 1, c),
+                  e = 3 * index(degree, j, c + 1);
+              for (d = 0; d < 3; ++d) to[o + d] = u * level[a + d] + v * level[b + d] + w * level[e + d];
+            }
+          level = to; to = from; from = level;
+        }
+        var row = 3 * index(k - 1, s, r), du = [], dv = [];
+        for (d = 0; d < 3; ++d) {
+          points[row + d] = u * level[d] + v * level[3 + d] + w * level[6 + d];
+          du.push(n * (level[d] - level[6 + d]));
+          dv.push(n * (level[3 + d] - level[6 + d]));
+        }
+        unitCross(du, dv, normals, row);
+      }
+    return [points, normals];
+  }
+  // Σ basis_u(a, i) basis_v(b, j) net(i, j) and its derivatives (a B-spline surface's samples)
+  function tensorSample(net, sys) {
+    var k = sys.samples, cu = sys.count_u, cv = sys.count_v;
+    var points = new Float64Array(3 * k * k), normals = new Float64Array(3 * k * k);
+    for (var a = 0; a < k; ++a)
+      for (var b = 0; b < k; ++b) {
+        var p = [0, 0, 0], du = [0, 0, 0], dv = [0, 0, 0], d;
+        for (var i = 0; i < cu; ++i) {
+          var nu = sys.basis_u[a * cu + i], dnu = sys.dbasis_u[a * cu + i];
+          if (nu === 0 && dnu === 0) continue;
+          for (var j = 0; j < cv; ++j) {
+            var nv = sys.basis_v[b * cv + j], dnv = sys.dbasis_v[b * cv + j];
+            for (d = 0; d < 3; ++d) {
+              var x = net[3 * (i * cv + j) + d];
+              p[d] += nu * nv * x;
+              du[d] += dnu * nv * x;
+              dv[d] += nu * dnv * x;
+            }
+          }
+        }
+        var row = 3 * (a * k + b);
+        for (d = 0; d < 3; ++d) points[row + d] = p[d];
+        unitCross(du, dv, normals, row);
+      }
+    return [points, normals];
+  }
+  function systemFrame(s, t) {
+    var sys = s.system, net = systemNet(sys, t), sampled;
+    if (!net) {
+      var empty = new Float64Array(s.frames[0].points.length);
+      return { parameter: t, ok: false, net: Float64Array.from(sys.net), points: empty, normals: empty };
+    }
+    if (sys.sampler === 'triangle') sampled = triSample(net, sys.n, sys.samples);
+    else if (sys.sampler === 'tensor') sampled = tensorSample(net, sys);
+    else sampled = sampleNet(net, sys.m, sys.n, sys.samples);
+    return { parameter: t, ok: true, net: net, points: sampled[0], normals: sampled[1] };
+  }
+
   // the frame index that shows `value`: a frame, or (-1) the value solved here when it lies
-  // between the frames of a slider that can solve it
+  // between the frames of a slider that can solve it (its ring or its system)
   function locate(si, value) {
     var s = sliders[si], k = nearest(s, value);
     // (only the frame of the value itself: 0.1 within 1e-12 of the frame 0.09999999999999998 showed
     // data-alpha 0.09999999999999998, where #alpha=0.1 is to show α = 0.1)
-    if (!s.ring || !(value >= s.lower && value <= s.upper) || s.frames[k].parameter === value) return k;
-    extra[si] = solvedFrame(s, value);
+    if (!(s.ring || s.system) || !(value >= s.lower && value <= s.upper) || s.frames[k].parameter === value) return k;
+    extra[si] = s.ring ? solvedFrame(s, value) : systemFrame(s, value);
     return -1;
   }
   function symbol(s) { return s.symbol || s.parameter; }
@@ -551,8 +673,35 @@ constexpr std::string_view kScript = R"JS(
     setAlpha: function (a) { return setValue(sliders[0].parameter, a); },
     parameters: function () { return sliders.map(function (s) { return s.parameter; }); },
     exact: function (parameter) {  // true when values between the frames are solved, not rounded
-      for (var si = 0; si < sliders.length; ++si) if (sliders[si].parameter === parameter) return !!sliders[si].ring;
+      for (var si = 0; si < sliders.length; ++si)
+        if (sliders[si].parameter === parameter) return !!(sliders[si].ring || sliders[si].system);
       return false;
+    },
+    // the page's own solve at every frame's value beside the frame written by coons (5 significant
+    // digits): the largest differences of the nets, the samples (both over the largest coordinate)
+    // and the unit normals, and the frames compared (the browser test of the page's solvers)
+    selfCheck: function (parameter) {
+      for (var si = 0; si < sliders.length; ++si) {
+        var s = sliders[si];
+        if (s.parameter !== parameter || !(s.ring || s.system)) continue;
+        var worst = { net: 0, points: 0, normals: 0, frames: 0 }, scale = 0;
+        s.frames.forEach(function (f) {
+          if (!f.ok) return;
+          var g = s.ring ? solvedFrame(s, f.parameter) : systemFrame(s, f.parameter);
+          if (!g.ok) { worst.net = Infinity; return; }
+          ++worst.frames;
+          ['net', 'points', 'normals'].forEach(function (key) {
+            for (var i = 0; i < f[key].length; ++i) {
+              worst[key] = Math.max(worst[key], Math.abs(f[key][i] - g[key][i]));
+              if (key !== 'normals') scale = Math.max(scale, Math.abs(f[key][i]));
+            }
+          });
+        });
+        worst.net /= scale || 1;
+        worst.points /= scale || 1;
+        return worst;
+      }
+      return null;
     },
     net: function () {
       return Array.prototype.map.call(frameAt(active).net, function (x, i) { return x + origin[i % 3]; });

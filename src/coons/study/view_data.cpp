@@ -10,7 +10,10 @@
 #include "coons/alpha/alpha_search.h"
 #include "coons/alpha/family_search.h"
 #include "coons/alpha/objective.h"
+#include "coons/curves/bspline_curve.h"
+#include "coons/mask/nonuniform_mask.h"
 #include "coons/mask/solve_stencil_net.h"
+#include "coons/mask/stencil_system.h"
 #include "coons/metrics/energies.h"
 #include "coons/study/bspline_net.h"
 #include "coons/study/bspline_search.h"
@@ -20,6 +23,7 @@
 #include "coons/surfaces/sampling.h"
 #include "coons/surfaces/surface.h"
 #include "coons/tri/tri_energy.h"
+#include "coons/tri/tri_mask.h"
 #include "coons/tri/tri_sampling.h"
 #include "coons/tri/tri_solve.h"
 
@@ -220,6 +224,7 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
   const std::vector<double> values =
       slider_values(options.lower, options.upper, options.frames, curves, {-0.25, 0.0, initial});
   const auto backend = solvers::make_solver(solver_name);
+  std::optional<BSplineSurface> surface_of_first;  // its knots sample the page's own solves
   for (const double alpha : values) {
     const BSplineNetOutcome outcome = make_bspline_net(compatible, NetMethod::kAlpha, alpha, backend.get());
     ViewFrame f;
@@ -227,6 +232,7 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
     f.ok = !outcome.summary || outcome.summary->ok();
     const BSplineSurface& surface = outcome.surface;
     if (slider.net_edges.empty()) slider.net_edges = grid_edges(surface.net.m + 1, surface.net.n + 1);
+    if (!surface_of_first) surface_of_first = surface;
     f.net = surface.net.points;
     const SurfaceSamples samples = sample_bspline_grid(surface, options.samples);
     f.points = samples.points;
@@ -237,6 +243,7 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
   }
   slider.curves = std::move(curves);
   add_alpha_marks(slider);
+  if (surface_of_first) slider.system = bspline_view_system(compatible, *surface_of_first, options.samples);
   return slider;
 }
 
@@ -272,7 +279,96 @@ ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& 
   });
   slider.curves = std::move(curves);
   slider.marks = {{"biharmonic", 0.0}, {"C1 Coons", 1.0}};
+  slider.system = weight_view_system(problem, options.samples);
   return slider;
+}
+
+std::optional<ViewSystem> tri_view_system(const tri::TriNet& frame, int samples) {
+  const int n = frame.n;
+  const Eigen::Index free = tri::interior_size(n);
+  if (free == 0 || free > ViewSystem::kMaxFree) return std::nullopt;
+  const tri::TriMaskSystem at0 = tri::assemble_tri_mask_system(frame, tri::TriMask{0.0});
+  const tri::TriMaskSystem at1 = tri::assemble_tri_mask_system(frame, tri::TriMask{1.0});
+  ViewSystem v;
+  v.sampler = ViewSystem::Sampler::kTriangle;
+  v.n = n;
+  v.samples = samples;
+  v.free.resize(free);
+  for (int k = 1; k <= n - 2; ++k)
+    for (int j = 1; j + k <= n - 1; ++j) v.free[tri::interior_index(n, j, k)] = int(tri::net_index(n, j, k));
+  v.A0 = at0.A;
+  v.A1 = at1.A - at0.A;
+  v.B0 = at0.B;
+  v.B1 = at1.B - at0.B;
+  v.net = frame.points;
+  return v;
+}
+
+namespace {
+
+// The basis functions of one direction of `surface` and their derivatives d/ds at the k samples
+// s = a/(k − 1) of its domain, as bspline_surface_point evaluates them.
+void sample_basis(const Eigen::VectorXd& knots, int degree, int samples, Eigen::MatrixXd& basis,
+                  Eigen::MatrixXd& derivative) {
+  const auto count = Eigen::Index(knots.size()) - degree - 1;
+  const double u0 = knots(0), u1 = knots(knots.size() - 1);
+  basis = Eigen::MatrixXd::Zero(samples, count);
+  derivative = Eigen::MatrixXd::Zero(samples, count);
+  for (int a = 0; a < samples; ++a) {
+    const double u = u0 + double(a) / (samples - 1) * (u1 - u0);
+    const int span = find_span(knots, degree, u);
+    const Eigen::MatrixXd d = basis_derivatives(knots, degree, span, u, 1);
+    for (int r = 0; r <= degree; ++r) {
+      basis(a, span - degree + r) = d(0, r);
+      derivative(a, span - degree + r) = (u1 - u0) * d(1, r);
+    }
+  }
+}
+
+}  // namespace
+
+std::optional<ViewSystem> bspline_view_system(const BSplineBoundary& compatible, const BSplineSurface& surface,
+                                              int samples) {
+  const ControlNet frame = bspline_frame(compatible);
+  const Eigen::Index free = Eigen::Index(std::max(frame.m - 1, 0)) * std::max(frame.n - 1, 0);
+  if (free == 0 || free > ViewSystem::kMaxFree) return std::nullopt;
+  const NonUniformMaskSystem system = assemble_nonuniform_mask_system(frame, greville_grid(compatible), 0.0);
+  ViewSystem v;
+  v.sampler = ViewSystem::Sampler::kTensor;
+  v.m = frame.m;
+  v.n = frame.n;
+  v.samples = samples;
+  for (int i = 1; i < frame.m; ++i)  // the unknowns of the assembly: (i − 1)(n − 1) + (j − 1)
+    for (int j = 1; j < frame.n; ++j) v.free.push_back(i * (frame.n + 1) + j);
+  v.A0 = system.A;
+  v.A1 = system.dA;
+  v.B0 = system.B;
+  v.B1 = system.dB;
+  v.net = frame.points;
+  sample_basis(surface.knots_u, surface.degree_u, samples, v.basis_u, v.dbasis_u);
+  sample_basis(surface.knots_v, surface.degree_v, samples, v.basis_v, v.dbasis_v);
+  return v;
+}
+
+std::optional<ViewSystem> weight_view_system(const StencilProblem& problem, int samples) {
+  // the centres of T (biharmonic, w = 0) and C (c1-coons, w = 1): W_w·(20 + 16w) is affine in w
+  constexpr double kCentreT = 20, kCentreC = 36;
+  const StencilSystem at0 = assemble_stencil_system(problem, c1_family_stencil(0));
+  const StencilSystem at1 = assemble_stencil_system(problem, c1_family_stencil(1));
+  const int free = at0.numbering.size();
+  if (free == 0 || free > ViewSystem::kMaxFree) return std::nullopt;
+  ViewSystem v;
+  v.sampler = ViewSystem::Sampler::kBezier;
+  v.m = problem.net.m;
+  v.n = problem.net.n;
+  v.samples = samples;
+  for (const auto& [i, j] : at0.numbering.points) v.free.push_back(i * (problem.net.n + 1) + j);
+  v.A0 = kCentreT * at0.A;
+  v.A1 = kCentreC * at1.A - kCentreT * at0.A;
+  v.B0 = kCentreT * at0.B;
+  v.B1 = kCentreC * at1.B - kCentreT * at0.B;
+  v.net = problem.net.points;
+  return v;
 }
 
 std::vector<std::array<int, 2>> tri_net_edges(int n) {
@@ -333,6 +429,7 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
   slider.curves = std::move(curves);
   for (const auto& [name, c] : {std::pair<const char*, double>{"quadratic precision", -1.0 / 6.0}, {"Laplace", 0.0}})
     if (c >= slider.lower && c <= slider.upper) slider.marks.push_back({name, c});
+  slider.system = tri_view_system(frame, options.samples);
   return slider;
 }
 

@@ -8,6 +8,7 @@
 // Based on: G. Farin, D. Hansford, Discrete Coons patches, CAGD 16 (1999) 691–700.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -58,7 +59,8 @@ ViewSlider weight_view_slider(const StencilProblem& problem, const ViewOptions& 
 //! (search_bspline_alpha) and α = −1/4 (the Greville Coons net), 0; per value the B-spline
 //! surface's control net, its samples and normals (sample_bspline_grid) and its exact energies
 //! (bspline_metrics). `solver_name`: a backend that takes an assembled matrix, definite-only ones
-//! only where the bounds lie in [−1/4, bspline_definite_upper]. The page shows the nearest frame.
+//! only where the bounds lie in [−1/4, bspline_definite_upper]. The page solves the values between
+//! the frames itself (bspline_view_system).
 ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOptions& options,
                                const std::string& solver_name, double initial);
 
@@ -69,6 +71,17 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
 //! `coons solve T.json --alpha c` calls it.
 ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& options,
                            const solvers::SolverInfo& solver, double initial);
+
+//! The systems the page solves between the frames (ViewSystem: A(t) = A0 + t·A1, B(t) = B0 + t·B1),
+//! none where the family has no free point or more than ViewSystem::kMaxFree. The triangular family
+//! over c on `frame` (tri::assemble_tri_mask_system, affine in c); the non-uniform α family of a
+//! B-spline boundary (assemble_nonuniform_mask_system's A and dA), sampled as `surface` (its knots);
+//! the C1 family over w on `problem`, whose normalised stencil W_w = (w·C + (1 − w)·T)/(20 + 16w)
+//! (stencil.h) gives the system times 20 + 16w, affine in w.
+std::optional<ViewSystem> tri_view_system(const tri::TriNet& frame, int samples);
+std::optional<ViewSystem> bspline_view_system(const BSplineBoundary& compatible, const BSplineSurface& surface,
+                                              int samples);
+std::optional<ViewSystem> weight_view_system(const StencilProblem& problem, int samples);
 
 //! The edges of a triangular net of degree n (row order of tri_net.h): each point to its
 //! neighbours in the three directions.
