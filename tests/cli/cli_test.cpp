@@ -679,12 +679,8 @@ TEST_CASE("coons solve --method hermite-coons: alpha, beta and mask_residual are
   // (they were null: the contract's report has numbers there; the partially bicubic net satisfies
   // no mask, and its residual against the Coons net's mask says how far it lies from that net)
   const std::string helicoid = quoted(kData + "/boundaries/helicoid.json");
-  const CommandResult hermite = run_coons("solve " + helicoid + " --method hermite-coons");
-  const CommandResult coons = run_coons("solve " + helicoid + " --method coons");
-  REQUIRE(hermite.status == 0);
-  REQUIRE(coons.status == 0);
-  const json h = json::parse(hermite.out);
-  const json c = json::parse(coons.out);
+  const json h = report_of("solve " + helicoid + " --method hermite-coons");
+  const json c = report_of("solve " + helicoid + " --method coons");
   CHECK(h["mask"] == "alpha");
   CHECK(h["alpha"].get<double>() == -0.25);
   CHECK(h["beta"].get<double>() == 0.5);
@@ -704,15 +700,9 @@ TEST_CASE(
     "--solver auto and --mask alpha",
     "[cli]") {
   const std::string dome = quoted(kData + "/boundaries/dome.json");
-  const CommandResult plain = run_coons("solve " + dome + " --method coons");
-  const CommandResult measured = run_coons("solve " + dome + " --method coons --alpha -0.1 --solver auto --mask alpha");
-  const CommandResult by_mu = run_coons("solve " + dome + " --method coons --mu 4");
-  REQUIRE(plain.status == 0);
-  REQUIRE(measured.status == 0);
-  REQUIRE(by_mu.status == 0);
-  const json p = json::parse(plain.out);
-  const json m = json::parse(measured.out);
-  const json u = json::parse(by_mu.out);
+  const json p = report_of("solve " + dome + " --method coons");
+  const json m = report_of("solve " + dome + " --method coons --alpha -0.1 --solver auto --mask alpha");
+  const json u = report_of("solve " + dome + " --method coons --mu 4");
   CHECK(m["net"] == p["net"]);  // the same closed-form net
   CHECK(u["net"] == p["net"]);
   CHECK(m["alpha"].get<double>() == -0.1);
@@ -724,12 +714,8 @@ TEST_CASE(
   CHECK(u["metrics"]["mask_residual"].get<double>() > 1e-6);
   // a B-spline boundary's Coons net likewise, against the non-uniform family's member
   const std::string wave = quoted(kData + "/boundaries/bspline_wave.json");
-  const CommandResult wave_plain = run_coons("solve " + wave + " --method coons");
-  const CommandResult wave_measured = run_coons("solve " + wave + " --method coons --alpha -0.1");
-  REQUIRE(wave_plain.status == 0);
-  REQUIRE(wave_measured.status == 0);
-  const json wp = json::parse(wave_plain.out);
-  const json wm = json::parse(wave_measured.out);
+  const json wp = report_of("solve " + wave + " --method coons");
+  const json wm = report_of("solve " + wave + " --method coons --alpha -0.1");
   CHECK(wm["net"] == wp["net"]);
   CHECK(wm["alpha"].get<double>() == -0.1);
   CHECK(wp["metrics"]["mask_residual"].get<double>() < 1e-12);

@@ -228,6 +228,21 @@ std::pair<double, int> system_gap(const ViewSlider& s) {
   return {worst, compared};
 }
 
+// The slider of a random triangular net of `degree` (seeded) over the default range of c
+// (lower = upper = 0 selects default_tri_bounds), c = -1/6 its default, solved by eigen-lu.
+ViewSlider random_tri_slider(int degree, int frames, int samples, unsigned seed) {
+  std::srand(seed);
+  tri::TriNet net(degree);
+  net.points = Eigen::MatrixX3d::Random(tri::net_size(degree), 3);
+  ViewOptions options;
+  options.frames = frames;
+  options.samples = samples;
+  options.lower = options.upper = 0;
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-lu");
+  REQUIRE(solver);
+  return tri_view_slider(tri::boundary_of(net, "random"), options, *solver, -1.0 / 6.0);
+}
+
 }  // namespace
 
 TEST_CASE("weight_view_system: (A0 + w A1) x = B0 + w B1 gives every frame's net of the C1 family", "[study][view]") {
@@ -254,16 +269,7 @@ TEST_CASE("weight_view_system: (A0 + w A1) x = B0 + w B1 gives every frame's net
 
 TEST_CASE("tri_view_system: (A0 + c A1) x = B0 + c B1 gives every frame's net of the triangular family",
           "[study][view]") {
-  std::srand(11);
-  tri::TriNet sextic(6);
-  sextic.points = Eigen::MatrixX3d::Random(tri::net_size(6), 3);
-  ViewOptions options;
-  options.frames = 9;
-  options.samples = 5;
-  options.lower = options.upper = 0;
-  const solvers::SolverInfo* solver = solvers::find_solver("eigen-lu");
-  REQUIRE(solver);
-  const ViewSlider s = tri_view_slider(tri::boundary_of(sextic, "sextic"), options, *solver, -1.0 / 6.0);
+  const ViewSlider s = random_tri_slider(6, 9, 5, 11);
   ViewPage page;
   page.sliders.push_back(s);
   std::string why;
@@ -314,16 +320,8 @@ TEST_CASE("bspline_view_system: every frame's net of the non-uniform family, and
 }
 
 TEST_CASE("ViewPage::is_valid: a system of other sizes than its frames is refused", "[study][view]") {
-  std::srand(5);
-  tri::TriNet quartic(4);
-  quartic.points = Eigen::MatrixX3d::Random(tri::net_size(4), 3);
-  ViewOptions options;
-  options.frames = 3;
-  options.samples = 4;
-  options.lower = options.upper = 0;
   ViewPage page;
-  page.sliders.push_back(
-      tri_view_slider(tri::boundary_of(quartic, "quartic"), options, *solvers::find_solver("eigen-lu"), -1.0 / 6.0));
+  page.sliders.push_back(random_tri_slider(4, 3, 4, 5));
   std::string why;
   REQUIRE(page.is_valid(&why));
   page.sliders[0].system->free.push_back(0);

@@ -22,6 +22,13 @@ std::string read_text(const std::string& path) {
   return {std::istreambuf_iterator<char>(in), std::istreambuf_iterator<char>()};
 }
 
+nlohmann::json report_of(const std::string& args) {
+  const CommandResult r = run_coons(args);
+  INFO("coons " << args << "\n" << r.err);
+  REQUIRE(r.status == 0);
+  return nlohmann::json::parse(r.out);
+}
+
 ControlNet net_of(const nlohmann::json& report) {
   return *parse_boundary(nlohmann::json{{"net", report.at("net")}}, "report").net;
 }

@@ -27,6 +27,9 @@ std::string read_text(const std::string& path);
 //! the one list the tests that cover every command iterate, so that a new command is not missed.
 const std::vector<std::string>& coons_commands();
 
+//! The JSON report of `coons ARGS`, which is REQUIREd to exit 0 (its stderr shown when it does not).
+nlohmann::json report_of(const std::string& args);
+
 //! The "net" of a solve report (or of any JSON object holding one), as a control net.
 ControlNet net_of(const nlohmann::json& report);
 
