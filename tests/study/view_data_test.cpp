@@ -35,6 +35,25 @@ int check_optima_are_lowest_frames(const ViewSlider& s) {
   return optima;
 }
 
+// A smooth m × n net whose two data rings are perturbed (ribbons that are not the Coons net's),
+// and its C1-family slider (weight_view_slider over w in [0, 1], the thin-plate curve, eigen-ldlt).
+struct WeightFixture {
+  ControlNet net;
+  ViewSlider slider;
+};
+WeightFixture weight_fixture(int m, int n, std::uint32_t seed, int frames, int samples) {
+  ControlNet net = discrete_coons_net(test::make_smooth_boundary(m, n, seed));
+  net.points += 0.05 * Eigen::MatrixX3d::Random(net.points.rows(), 3);
+  ViewOptions options;
+  options.frames = frames;
+  options.samples = samples;
+  options.objectives = {"thin_plate"};
+  const solvers::SolverInfo* solver = solvers::find_solver("eigen-ldlt");
+  REQUIRE(solver);
+  ViewSlider slider = weight_view_slider(rings_problem(net, 2), options, *solver, 1.0);
+  return {std::move(net), std::move(slider)};
+}
+
 }  // namespace
 
 TEST_CASE("alpha_view_slider: the frames hold the family's nets, their energies and the optima", "[study][view]") {
@@ -105,16 +124,7 @@ TEST_CASE("ViewOptions::is_valid: frames, samples, the interval and the curves",
 
 TEST_CASE("weight_view_slider: the C1 family keeps both data rings, energies and optima of its frames",
           "[study][view]") {
-  ControlNet net = discrete_coons_net(test::make_smooth_boundary(6, 6, 3));
-  net.points += 0.05 * Eigen::MatrixX3d::Random(net.points.rows(), 3);  // ribbons that are not the Coons net's
-  const StencilProblem problem = rings_problem(net, 2);
-  ViewOptions options;
-  options.frames = 6;
-  options.samples = 4;
-  options.objectives = {"thin_plate"};
-  const solvers::SolverInfo* solver = solvers::find_solver("eigen-ldlt");
-  REQUIRE(solver);
-  const ViewSlider s = weight_view_slider(problem, options, *solver, 1.0);
+  const auto [net, s] = weight_fixture(6, 6, 3, 6, 4);
   ViewPage page;
   page.sliders.push_back(s);
   std::string why;
@@ -246,15 +256,7 @@ ViewSlider random_tri_slider(int degree, int frames, int samples, unsigned seed)
 }  // namespace
 
 TEST_CASE("weight_view_system: (A0 + w A1) x = B0 + w B1 gives every frame's net of the C1 family", "[study][view]") {
-  ControlNet net = discrete_coons_net(test::make_smooth_boundary(7, 6, 5));
-  net.points += 0.05 * Eigen::MatrixX3d::Random(net.points.rows(), 3);
-  ViewOptions options;
-  options.frames = 7;
-  options.samples = 5;
-  options.objectives = {"thin_plate"};
-  const solvers::SolverInfo* solver = solvers::find_solver("eigen-ldlt");
-  REQUIRE(solver);
-  const ViewSlider s = weight_view_slider(rings_problem(net, 2), options, *solver, 1.0);
+  const ViewSlider s = weight_fixture(7, 6, 5, 7, 5).slider;
   ViewPage page;
   page.sliders.push_back(s);
   std::string why;
