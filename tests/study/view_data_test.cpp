@@ -238,6 +238,21 @@ std::pair<double, int> system_gap(const ViewSlider& s) {
   return {worst, compared};
 }
 
+// `s` alone makes a valid page; its system has `sampler` and `free` unknowns and gives the net of
+// at least `frames` frames to 1e-12 of the largest coordinate.
+void check_system_gives_frames(const ViewSlider& s, ViewSystem::Sampler sampler, size_t free, int frames) {
+  ViewPage page;
+  page.sliders.push_back(s);
+  std::string why;
+  REQUIRE(page.is_valid(&why));
+  REQUIRE(s.system);
+  CHECK(s.system->sampler == sampler);
+  CHECK(s.system->free.size() == free);
+  const auto [gap, compared] = system_gap(s);
+  CHECK(compared >= frames);
+  CHECK(gap < 1e-12);
+}
+
 // The slider of a random triangular net of `degree` (seeded) over the default range of c
 // (lower = upper = 0 selects default_tri_bounds), c = -1/6 its default, solved by eigen-lu.
 ViewSlider random_tri_slider(int degree, int frames, int samples, unsigned seed) {
@@ -257,31 +272,13 @@ ViewSlider random_tri_slider(int degree, int frames, int samples, unsigned seed)
 
 TEST_CASE("weight_view_system: (A0 + w A1) x = B0 + w B1 gives every frame's net of the C1 family", "[study][view]") {
   const ViewSlider s = weight_fixture(7, 6, 5, 7, 5).slider;
-  ViewPage page;
-  page.sliders.push_back(s);
-  std::string why;
-  REQUIRE(page.is_valid(&why));
-  REQUIRE(s.system);
-  CHECK(s.system->sampler == ViewSystem::Sampler::kBezier);
-  CHECK(s.system->free.size() == 4 * 3);  // (7 − 3)(6 − 3) inside two rings
-  const auto [gap, compared] = system_gap(s);
-  CHECK(compared >= 7);
-  CHECK(gap < 1e-12);
+  check_system_gives_frames(s, ViewSystem::Sampler::kBezier, 4 * 3, 7);  // (7 − 3)(6 − 3) inside two rings
 }
 
 TEST_CASE("tri_view_system: (A0 + c A1) x = B0 + c B1 gives every frame's net of the triangular family",
           "[study][view]") {
   const ViewSlider s = random_tri_slider(6, 9, 5, 11);
-  ViewPage page;
-  page.sliders.push_back(s);
-  std::string why;
-  REQUIRE(page.is_valid(&why));
-  REQUIRE(s.system);
-  CHECK(s.system->sampler == ViewSystem::Sampler::kTriangle);
-  CHECK(s.system->free.size() == 10);  // (6 − 1)(6 − 2)/2
-  const auto [gap, compared] = system_gap(s);
-  CHECK(compared >= 9);
-  CHECK(gap < 1e-12);
+  check_system_gives_frames(s, ViewSystem::Sampler::kTriangle, 10, 9);  // (6 − 1)(6 − 2)/2 free points
 }
 
 TEST_CASE("bspline_view_system: every frame's net of the non-uniform family, and its basis samples the frame's surface",

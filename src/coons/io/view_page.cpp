@@ -45,12 +45,14 @@ void append_number(std::string& out, double x, bool round_trip) {
 // A #rows by 3 matrix as one flat array [x0,y0,z0,x1,...], each row minus `origin` (the page's
 // origin for points, zero for normals): 5 significant digits of the coordinates themselves lost
 // a patch of size 1 at 1e8 entirely (every sample 100000000.0), those of the offsets keep it.
-void append_flat(std::string& out, const Eigen::MatrixX3d& M, const Eigen::RowVector3d& origin) {
+// `round_trip`: in shortest round-trip form instead, for what the page solves with.
+void append_flat(std::string& out, const Eigen::MatrixX3d& M, const Eigen::RowVector3d& origin,
+                 bool round_trip = false) {
   out += '[';
   for (Eigen::Index r = 0; r < M.rows(); ++r)
     for (int c = 0; c < 3; ++c) {
       if (r > 0 || c > 0) out += ',';
-      append_number(out, M(r, c) - origin(c), false);
+      append_number(out, M(r, c) - origin(c), round_trip);
     }
   out += ']';
 }
@@ -90,12 +92,6 @@ void append_triples(std::string& out, const Eigen::SparseMatrix<double>& A) {
   out += ']';
 }
 
-// A #rows by 3 matrix, flat, row by row, in shortest round-trip form.
-void append_rows(std::string& out, const Eigen::MatrixX3d& M) {
-  const Eigen::Matrix<double, Eigen::Dynamic, 3, Eigen::RowMajor> rows = M;
-  append_exact(out, rows.data(), rows.size());
-}
-
 // The system of ViewSystem. The page's coordinates are offsets from `origin`: the right-hand side
 // stays in the net's own (the page moves it: A (x − o) = B − (A·1) o), the net is moved here.
 void append_system(std::string& out, const ViewSystem& v, const Eigen::RowVector3d& origin) {
@@ -108,11 +104,11 @@ void append_system(std::string& out, const ViewSystem& v, const Eigen::RowVector
   out += ",\"A1\":";
   append_triples(out, v.A1);
   out += ",\"B0\":";
-  append_rows(out, v.B0);
+  append_flat(out, v.B0, Eigen::RowVector3d::Zero(), true);
   out += ",\"B1\":";
-  append_rows(out, v.B1);
+  append_flat(out, v.B1, Eigen::RowVector3d::Zero(), true);
   out += ",\"net\":";
-  append_rows(out, v.net.rowwise() - origin);
+  append_flat(out, v.net, origin, true);
   if (v.sampler == ViewSystem::Sampler::kTensor) {
     const auto basis = [&out](const char* name, const Eigen::MatrixXd& B) {
       const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows = B;
@@ -154,13 +150,9 @@ void append_slider(std::string& out, const ViewSlider& s, const Eigen::RowVector
   out += ",\"faces\":";
   append_indices(out, s.faces);
   if (s.ring_m >= 2 && s.ring_n >= 2) {
-    out += ",\"ring\":{\"m\":" + std::to_string(s.ring_m) + ",\"n\":" + std::to_string(s.ring_n) + ",\"net\":[";
-    for (Eigen::Index r = 0; r < s.ring.rows(); ++r)
-      for (int c = 0; c < 3; ++c) {
-        if (r > 0 || c > 0) out += ',';
-        append_number(out, s.ring(r, c) - origin(c), true);  // the family reproduces translations
-      }
-    out += "]}";
+    out += ",\"ring\":{\"m\":" + std::to_string(s.ring_m) + ",\"n\":" + std::to_string(s.ring_n) + ",\"net\":";
+    append_flat(out, s.ring, origin, true);  // the family reproduces translations
+    out += '}';
   }
   if (s.system) append_system(out, *s.system, origin);
   out += ",\"frames\":[";

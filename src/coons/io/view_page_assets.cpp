@@ -118,6 +118,16 @@ constexpr std::string_view kScript = R"JS(
     for (var k = 0; k <= degree; ++k) db.push(degree * ((k > 0 ? lower[k - 1] : 0) - (k < degree ? lower[k] : 0)));
     return [b, db];
   }
+  // the unit normal of du × dv, as unit_cross (net/surface_point.h): 0 where it degenerates
+  function unitCross(du, dv, normals, row) {
+    var lu = Math.hypot(du[0], du[1], du[2]), lv = Math.hypot(dv[0], dv[1], dv[2]);
+    if (!(lu > 0) || !(lv > 0)) return;
+    var a = [du[0] / lu, du[1] / lu, du[2] / lu], b = [dv[0] / lv, dv[1] / lv, dv[2] / lv];
+    var n = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
+    var length = Math.hypot(n[0], n[1], n[2]);
+    if (!(length > 1e-14)) return;
+    for (var d = 0; d < 3; ++d) normals[row + d] = n[d] / length;
+  }
   // the Bézier surface of the net on k × k samples (u = a/(k−1) along i, v = b/(k−1) along j),
   // with unit normals du × dv (0 where it degenerates), in the order of the precomputed frames
   function sampleNet(net, m, n, k) {
@@ -136,13 +146,9 @@ constexpr std::string_view kScript = R"JS(
               du[d] += bu[1][i] * bv[0][j] * x;
               dv[d] += bu[0][i] * bv[1][j] * x;
             }
-        var nx = du[1] * dv[2] - du[2] * dv[1], ny = du[2] * dv[0] - du[0] * dv[2], nz = du[0] * dv[1] - du[1] * dv[0];
-        var length = Math.sqrt(nx * nx + ny * ny + nz * nz), scale = Math.hypot(du[0], du[1], du[2]) *
-                                                                     Math.hypot(dv[0], dv[1], dv[2]);
-        var unit = length > 1e-14 * scale && length > 0 ? 1 / length : 0;
         var row = 3 * (a * k + b);
         for (d = 0; d < 3; ++d) points[row + d] = p[d];
-        normals[row] = nx * unit; normals[row + 1] = ny * unit; normals[row + 2] = nz * unit;
+        unitCross(du, dv, normals, row);
       }
     }
     return [points, normals];
@@ -199,16 +205,6 @@ constexpr std::string_view kScript = R"JS(
         net[3 * sys.free[r] + d] = R[3 * r + d];
       }
     return net;
-  }
-  // the unit normal of du × dv, as unit_cross (net/surface_point.h): 0 where it degenerates
-  function unitCross(du, dv, normals, row) {
-    var lu = Math.hypot(du[0], du[1], du[2]), lv = Math.hypot(dv[0], dv[1], dv[2]);
-    if (!(lu > 0) || !(lv > 0)) return;
-    var a = [du[0] / lu, du[1] / lu, du[2] / lu], b = [dv[0] / lv, dv[1] / lv, dv[2] / lv];
-    var n = [a[1] * b[2] - a[2] * b[1], a[2] * b[0] - a[0] * b[2], a[0] * b[1] - a[1] * b[0]];
-    var length = Math.hypot(n[0], n[1], n[2]);
-    if (!(length > 1e-14)) return;
-    for (var d = 0; d < 3; ++d) normals[row + d] = n[d] / length;
   }
   // the triangular Bézier surface of degree n at the samples of tri::sample_tri_surface: row
   // net_index(k − 1, s, r) at (u, v, w) = ((k − 1 − r − s), s, r) / (k − 1), by de Casteljau down

@@ -224,7 +224,6 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
   const std::vector<double> values =
       slider_values(options.lower, options.upper, options.frames, curves, {-0.25, 0.0, initial});
   const auto backend = solvers::make_solver(solver_name);
-  std::optional<BSplineSurface> surface_of_first;  // its knots sample the page's own solves
   for (const double alpha : values) {
     const BSplineNetOutcome outcome = make_bspline_net(compatible, NetMethod::kAlpha, alpha, backend.get());
     ViewFrame f;
@@ -232,7 +231,6 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
     f.ok = !outcome.summary || outcome.summary->ok();
     const BSplineSurface& surface = outcome.surface;
     if (slider.net_edges.empty()) slider.net_edges = grid_edges(surface.net.m + 1, surface.net.n + 1);
-    if (!surface_of_first) surface_of_first = surface;
     f.net = surface.net.points;
     const SurfaceSamples samples = sample_bspline_grid(surface, options.samples);
     f.points = samples.points;
@@ -243,7 +241,7 @@ ViewSlider bspline_view_slider(const BSplineBoundary& compatible, const ViewOpti
   }
   slider.curves = std::move(curves);
   add_alpha_marks(slider);
-  if (surface_of_first) slider.system = bspline_view_system(compatible, *surface_of_first, options.samples);
+  slider.system = bspline_view_system(compatible, options.samples);
   return slider;
 }
 
@@ -327,8 +325,7 @@ void sample_basis(const Eigen::VectorXd& knots, int degree, int samples, Eigen::
 
 }  // namespace
 
-std::optional<ViewSystem> bspline_view_system(const BSplineBoundary& compatible, const BSplineSurface& surface,
-                                              int samples) {
+std::optional<ViewSystem> bspline_view_system(const BSplineBoundary& compatible, int samples) {
   const ControlNet frame = bspline_frame(compatible);
   const Eigen::Index free = Eigen::Index(std::max(frame.m - 1, 0)) * std::max(frame.n - 1, 0);
   if (free == 0 || free > ViewSystem::kMaxFree) return std::nullopt;
@@ -339,12 +336,13 @@ std::optional<ViewSystem> bspline_view_system(const BSplineBoundary& compatible,
   v.n = frame.n;
   v.samples = samples;
   for (int i = 1; i < frame.m; ++i)  // the unknowns of the assembly: (i − 1)(n − 1) + (j − 1)
-    for (int j = 1; j < frame.n; ++j) v.free.push_back(i * (frame.n + 1) + j);
+    for (int j = 1; j < frame.n; ++j) v.free.push_back(int(frame.index(i, j)));
   v.A0 = system.A;
   v.A1 = system.dA;
   v.B0 = system.B;
   v.B1 = system.dB;
   v.net = frame.points;
+  const BSplineSurface surface = bspline_surface_on(compatible, frame);  // the frames' knots and degrees
   sample_basis(surface.knots_u, surface.degree_u, samples, v.basis_u, v.dbasis_u);
   sample_basis(surface.knots_v, surface.degree_v, samples, v.basis_v, v.dbasis_v);
   return v;
@@ -362,7 +360,7 @@ std::optional<ViewSystem> weight_view_system(const StencilProblem& problem, int 
   v.m = problem.net.m;
   v.n = problem.net.n;
   v.samples = samples;
-  for (const auto& [i, j] : at0.numbering.points) v.free.push_back(i * (problem.net.n + 1) + j);
+  for (const auto& [i, j] : at0.numbering.points) v.free.push_back(int(problem.net.index(i, j)));
   v.A0 = kCentreT * at0.A;
   v.A1 = kCentreC * at1.A - kCentreT * at0.A;
   v.B0 = kCentreT * at0.B;

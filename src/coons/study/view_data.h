@@ -75,12 +75,12 @@ ViewSlider tri_view_slider(const tri::TriBoundary& boundary, const ViewOptions& 
 //! The systems the page solves between the frames (ViewSystem: A(t) = A0 + t·A1, B(t) = B0 + t·B1),
 //! none where the family has no free point or more than ViewSystem::kMaxFree. The triangular family
 //! over c on `frame` (tri::assemble_tri_mask_system, affine in c); the non-uniform α family of a
-//! B-spline boundary (assemble_nonuniform_mask_system's A and dA), sampled as `surface` (its knots);
+//! B-spline boundary (assemble_nonuniform_mask_system's A and dA), sampled with the knots of its
+//! surfaces (bspline_surface_on);
 //! the C1 family over w on `problem`, whose normalised stencil W_w = (w·C + (1 − w)·T)/(20 + 16w)
 //! (stencil.h) gives the system times 20 + 16w, affine in w.
 std::optional<ViewSystem> tri_view_system(const tri::TriNet& frame, int samples);
-std::optional<ViewSystem> bspline_view_system(const BSplineBoundary& compatible, const BSplineSurface& surface,
-                                              int samples);
+std::optional<ViewSystem> bspline_view_system(const BSplineBoundary& compatible, int samples);
 std::optional<ViewSystem> weight_view_system(const StencilProblem& problem, int samples);
 
 //! The edges of a triangular net of degree n (row order of tri_net.h): each point to its
