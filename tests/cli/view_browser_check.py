@@ -205,6 +205,19 @@ def main():
                 fail("%s threw: %s" % (expression, result["exceptionDetails"]))
             return result["result"].get("value")
 
+        def check_shown_net(solved, parameter, value):
+            """The net the page shows is `solved` (a report's "net": rows of points, or a triangle's
+            list of points) to 1e-9 of its largest coordinate."""
+            reference = [x for point in solved for x in point] if not isinstance(solved[0][0], list) else \
+                [x for row in solved for point in row for x in point]
+            shown_net = evaluate("window.coonsView.net()")
+            scale = max(abs(x) for x in reference)
+            worst = max(abs(a - b) for a, b in zip(shown_net, reference))
+            print("exact %s=%r: net of the page vs coons solve: max difference %.3g (scale %.3g)" %
+                  (parameter, value, worst, scale))
+            if len(shown_net) != len(reference) or worst > 1e-9 * scale:
+                fail("the page's net at %s=%r differs from coons solve by %g" % (parameter, value, worst))
+
         def body(attribute):
             return evaluate("document.body ? document.body.getAttribute('%s') : null" % attribute)
 
@@ -267,15 +280,7 @@ def main():
                                                capture_output=True, text=True).stdout)
             if report.get("rings", 1) != 1:
                 fail("coons solve of %s solved %r data rings, not the outer one" % (outer, report["rings"]))
-            solved = report["net"]
-            reference = [x for point in solved for x in point] if not isinstance(solved[0][0], list) else \
-                [x for row in solved for point in row for x in point]
-            shown_net = evaluate("window.coonsView.net()")
-            scale = max(abs(x) for x in reference)
-            worst = max(abs(a - b) for a, b in zip(shown_net, reference))
-            print("exact alpha: net of the page vs coons solve: max difference %.3g (scale %.3g)" % (worst, scale))
-            if len(shown_net) != len(reference) or worst > 1e-9 * scale:
-                fail("the page's net at alpha=%r differs from coons solve by %g" % (TARGET, worst))
+            check_shown_net(report["net"], "alpha", TARGET)
             # a value within rounding of a precomputed one (0.1 beside the frame 0.09999999999999998)
             # is shown as itself, not as that frame
             near = [float(repr(round(v, 12))) for v in values]
@@ -360,14 +365,7 @@ def main():
                 report = json.loads(subprocess.run([coons, "solve", boundary] + SOLVE_OPTIONS[parameter] +
                                                    [repr(between)], check=True, capture_output=True,
                                                    text=True).stdout)
-                reference = [x for row in report["net"] for point in row for x in point]
-                shown_net = evaluate("window.coonsView.net()")
-                scale = max(abs(x) for x in reference)
-                worst = max(abs(a - b) for a, b in zip(shown_net, reference))
-                print("exact %s=%r: net of the page vs coons solve: max difference %.3g (scale %.3g)" %
-                      (parameter, between, worst, scale))
-                if len(shown_net) != len(reference) or worst > 1e-9 * scale:
-                    fail("the page's net at %s=%r differs from coons solve by %g" % (parameter, between, worst))
+                check_shown_net(report["net"], parameter, between)
 
         if expect_error:
             time.sleep(0.5)
