@@ -52,19 +52,33 @@ double infinity_norm(const LinearOperator& op) {
   return std::numeric_limits<double>::quiet_NaN();
 }
 
-// max over columns of ‖b − A x‖∞ / (‖A‖∞‖x‖∞ + ‖b‖∞) (0 for a column with b = x = 0; NaN when
-// the operator cannot be applied).
-double normwise_backward_error(const LinearOperator& op, double norm_a, const Eigen::MatrixX3d& B,
-                               const Eigen::MatrixX3d& X) {
+// What a solve says of itself, over the columns of B and X:
+//   backward: max ‖b − A x‖∞ / (‖A‖∞‖x‖∞ + ‖b‖∞), the normwise backward error (0 for a column with
+//             b = x = 0);
+//   kappa:    max ‖A‖∞‖x‖∞ / (‖b‖∞ + ‖b − A x‖∞), a lower bound of κ∞(A) for a regular A, since
+//             x = A⁻¹(b − r) gives ‖A⁻¹‖∞ ≥ ‖x‖∞ / (‖b‖∞ + ‖r‖∞). A solve of a singular A that stops
+//             on a pivot of rounding returns an x near ‖b‖/(ε‖A‖): this bound sees it whatever the
+//             null vector (the three probes of condition_lower_bound can all be orthogonal to it).
+// Both NaN when the operator cannot be applied.
+struct SolveBounds {
+  double backward = std::numeric_limits<double>::quiet_NaN();
+  double kappa = std::numeric_limits<double>::quiet_NaN();
+};
+
+SolveBounds solve_bounds(const LinearOperator& op, double norm_a, const Eigen::MatrixX3d& B,
+                         const Eigen::MatrixX3d& X) {
   Eigen::MatrixXd AX;
-  if (!apply_operator(op, X, AX)) return std::numeric_limits<double>::quiet_NaN();
+  if (!apply_operator(op, X, AX)) return {};
   const Eigen::MatrixX3d R = B - AX;
-  double backward = 0;
+  SolveBounds out{0, 0};
   for (Eigen::Index c = 0; c < 3; ++c) {
-    const double scale = norm_a * X.col(c).lpNorm<Eigen::Infinity>() + B.col(c).lpNorm<Eigen::Infinity>();
-    if (scale > 0) backward = std::max(backward, R.col(c).lpNorm<Eigen::Infinity>() / scale);
+    const double x = X.col(c).lpNorm<Eigen::Infinity>(), b = B.col(c).lpNorm<Eigen::Infinity>();
+    const double r = R.col(c).lpNorm<Eigen::Infinity>();
+    const double scale = norm_a * x + b;
+    if (scale > 0) out.backward = std::max(out.backward, r / scale);
+    if (b + r > 0) out.kappa = std::max(out.kappa, norm_a * x / (b + r));
   }
-  return backward;
+  return out;
 }
 
 }  // namespace
@@ -196,15 +210,21 @@ void LinearSolver::judge_ill_conditioned(const Eigen::MatrixX3d& B, const Eigen:
   // with b = e₁₀ has no double x with a relative residual below 9.6e−6. The two differ in κ: a
   // backward-stable solve (normwise backward error ‖r‖∞ / (‖A‖∞‖x‖∞ + ‖b‖∞) near ε) of an operator
   // whose condition estimate lies well below 1/ε is a solution, with κ·ε as its forward error bound.
-  // The estimate ‖A‖∞ · max ‖A⁻¹g‖∞ / ‖g‖∞ over three fixed ±1 vectors g is a lower bound of κ∞,
-  // usually within a small factor (it needs the matrix: grid operators keep the verdict).
+  // The estimate is the larger of ‖A‖∞ · max ‖A⁻¹g‖∞ / ‖g‖∞ over three fixed ±1 vectors g
+  // (condition_lower_bound, usually within a small factor of κ∞) and the bound X gives of itself
+  // (solve_bounds), both lower bounds of κ∞ (it needs the matrix: grid operators keep the verdict).
+  // The second keeps a singular matrix whose null vector is orthogonal to the three g singular: a
+  // sign-scaled Neumann Laplacian with b = e₁ had a probed estimate of 41 and was called solved with
+  // a relative residual of 0.54 (its X, about 1e15, gives 2e15).
   if (!op_.matrix || op_.matrix->rows() == 0) return;
   const double norm_a = infinity_norm(*op_.matrix);
-  const double backward = normwise_backward_error(op_, norm_a, B, X);
+  const SolveBounds bounds = solve_bounds(op_, norm_a, B, X);
+  const double backward = bounds.backward;
   constexpr double kStable = 1e-12;  // ‖r‖ / (‖A‖‖x‖ + ‖b‖) of a backward-stable solve: a few n·ε
   if (!(backward <= kStable)) return;
-  const double kappa = condition_lower_bound(norm_a);
-  if (!std::isfinite(kappa)) return;
+  const double probed = condition_lower_bound(norm_a);
+  if (!std::isfinite(probed)) return;  // (the solution's bound alone is too weak to call X a solution)
+  const double kappa = std::max(probed, bounds.kappa);
   summary_.condition_estimate = kappa;
   summary_.normwise_backward_error = backward;
   constexpr double kSingularKappa = 0.1 / std::numeric_limits<double>::epsilon();  // 4.5e14
@@ -250,10 +270,12 @@ void LinearSolver::note_condition(const Eigen::MatrixX3d& B, const Eigen::Matrix
   if (!options_.estimate_condition || !options_.compute_residual || op_.size() == 0) return;
   const double norm_a = infinity_norm(op_);
   if (!(norm_a > 0) || !std::isfinite(norm_a)) return;
-  const double backward = normwise_backward_error(op_, norm_a, B, X);
+  const SolveBounds bounds = solve_bounds(op_, norm_a, B, X);
+  const double backward = bounds.backward;
   if (!std::isfinite(backward)) return;
-  const double kappa = condition_lower_bound(norm_a);
-  if (!std::isfinite(kappa)) return;
+  const double probed = condition_lower_bound(norm_a);
+  if (!std::isfinite(probed)) return;
+  const double kappa = std::max(probed, bounds.kappa);
   summary_.condition_estimate = kappa;
   summary_.normwise_backward_error = backward;
   if (!(summary_.forward_error_bound() > kForwardErrorNotice)) return;

@@ -272,6 +272,47 @@ TEST_CASE("run_general_system: an ill-conditioned system solved backward stably 
   }
 }
 
+TEST_CASE("run_general_system: a singular matrix whose null vector the condition probes miss is not solved",
+          "[solvers]") {
+  // A = S·L·S, L the Neumann Laplacian of a 10 × 10 grid (A·s = 0) and S = diag(s) with signs s
+  // orthogonal to the three ±1 patterns of the condition probes (each pattern is constant on the
+  // classes of i mod 10, and s alternates within every class). With b = e₁ (sᵀb ≠ 0) no x solves
+  // it; eigen-lu and umfpack returned X of about 1e15 with relative residual 0.54 and normwise
+  // backward error 2e-16, and the probed condition estimate 41 turned `singular` into `success`.
+  const int k = 10, n = k * k;
+  Eigen::VectorXd s(n);
+  std::array<int, 4> count{};
+  for (int i = 0; i < n; ++i) {
+    const int cls = 2 * (i % 2) + ((i * 7 + 3) % 5 < 2 ? 1 : 0);  // the probes' sign classes
+    s(i) = count[std::size_t(cls)]++ % 2 == 0 ? 1 : -1;
+  }
+  for (const Eigen::VectorXd& probe :
+       {Eigen::VectorXd(Eigen::VectorXd::Ones(n)),
+        Eigen::VectorXd(Eigen::VectorXd::NullaryExpr(n, [](Eigen::Index i) { return i % 2 == 0 ? 1.0 : -1.0; })),
+        Eigen::VectorXd(
+            Eigen::VectorXd::NullaryExpr(n, [](Eigen::Index i) { return (i * 7 + 3) % 5 < 2 ? -1.0 : 1.0; }))})
+    REQUIRE(s.dot(probe) == 0);
+  Eigen::MatrixXd L = Eigen::MatrixXd::Zero(n, n);
+  for (int a = 0; a < k; ++a)
+    for (int b = 0; b < k; ++b)
+      for (const auto& [da, db] : {std::pair{1, 0}, std::pair{-1, 0}, std::pair{0, 1}, std::pair{0, -1}}) {
+        if (a + da < 0 || a + da >= k || b + db < 0 || b + db >= k) continue;
+        L(a * k + b, (a + da) * k + b + db) = -1;
+        L(a * k + b, a * k + b) += 1;
+      }
+  const Eigen::MatrixXd A = s.asDiagonal() * L * s.asDiagonal();
+  REQUIRE((A * s).norm() == 0);
+  Eigen::MatrixXd e1 = Eigen::MatrixXd::Zero(n, 1);
+  e1(0) = 1;
+  for (const char* name : {"eigen-lu", "umfpack"}) {
+    const GeneralRun run =
+        run_general_system(coons::test::backend(name), system_of(sparse_of(A), e1, false), SolverOptions{});
+    INFO(name << ": " << run.status_name() << ", " << run.reason);
+    CHECK(run.status == SolveStatus::kSingular);
+    CHECK_THAT(run.reason, Catch::Contains("(at least 1/(10 eps))"));
+  }
+}
+
 TEST_CASE("run_general_system: balancing never scales B, which may lie far from A's range", "[solvers]") {
   // A = diag(1, 2^-1000) gives k = 500: 2^k B would overflow in its first entry (2^1100), though
   // X = (2^600, 2^1000) is finite; A = diag(2^1000, 1) gives k = -500: 2^k B would make its second
