@@ -316,7 +316,7 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
       {"export " + good + " --mtx --method coons --out {OUT}", "--mtx"},
       {"export " + good + " --mask c1-coons --out {OUT}", "rings"},
       {"export " + good + " --weight 0.5 --out {OUT}", "--weight"},
-      {"export " + free_ring + " --out {OUT}", "free[1][4]"},
+      {"export " + free_ring + " --mask c1-coons --out {OUT}", "free[1][4]"},
       {"export " + free_pair + " --mask file:{IN}/stencil_pair.json --mtx --out {OUT}", "free[5][3]"},
       {"export " + good + " --prefix ../x --out {OUT}", "--prefix"},
       {"export " + good + " --prefix " + std::string(81, 'x') + " --out {OUT}", "--prefix: is 81 bytes long"},

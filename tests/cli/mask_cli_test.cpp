@@ -183,6 +183,33 @@ TEST_CASE("coons solve: the classical problem keeps its path and numbers, --mask
   CHECK(rings["free_points"] == 8);
 }
 
+TEST_CASE("coons solve: the contract's free example, free points on the second of two data rings, is solved", "[cli]") {
+  // docs/formats.md: {"rings": 2, "free": [[0,0,0,0,0], [0,1,1,1,0], ...]}: `free` decides; with a
+  // 3×3 mask the stencils at the free points of the second ring stay in the net, so the problem
+  // is the classical one of the same net (one data ring). A 5×5 mask leaves the net there.
+  TempDir dir;
+  json rows = json::array();
+  for (int i = 0; i <= 4; ++i) {
+    json row = json::array();
+    for (int j = 0; j <= 4; ++j) row.push_back({i, j, std::sin(1.0 + i) * std::cos(0.5 * j) + 0.1 * i * j});
+    rows.push_back(row);
+  }
+  const json free = {{0, 0, 0, 0, 0}, {0, 1, 1, 1, 0}, {0, 1, 1, 1, 0}, {0, 1, 1, 1, 0}, {0, 0, 0, 0, 0}};
+  const std::string example =
+      dir.write("example.json", json{{"name", "ribbon"}, {"net", rows}, {"rings", 2}, {"free", free}}.dump());
+  const std::string classical = dir.write("classical.json", json{{"name", "ribbon"}, {"net", rows}}.dump());
+  const json a = solve(quoted(example) + " --alpha -0.2");
+  const json b = solve(quoted(classical) + " --alpha -0.2");
+  CHECK(a["free_points"] == 9);
+  CHECK(a["rings"] == 2);
+  CHECK(max_difference(net_of(a), net_of(b)) <= 1e-14);
+  const CommandResult r = run_coons("solve " + quoted(example) + " --mask c1-coons");
+  CHECK(r.status == 2);
+  CHECK(r.out.empty());
+  CHECK_THAT(r.err,
+             Catch::StartsWith("error: " + example + ": free[1][1]: the 5x5 mask at this free point leaves the net"));
+}
+
 TEST_CASE("coons solve --mask: a named backend that does not apply reports its status and exits 3", "[cli]") {
   if (!solvers::find_solver("dst")) {
     WARN("skipped: dst needs FFTW");

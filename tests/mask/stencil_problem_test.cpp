@@ -67,13 +67,18 @@ TEST_CASE("check_stencil_problem: too few rings for a 5x5 mask", "[mask]") {
   CHECK(check_stencil_problem(problem_with(6, 6, -1), alpha_stencil(alpha_mask(0)))[0].field == "rings");
 }
 
-TEST_CASE("check_stencil_problem: a free point in the data rings is named", "[mask]") {
+TEST_CASE("check_stencil_problem: a free point in the data rings is free when its stencil stays in the net", "[mask]") {
   FreeGrid free = random_free(7, 7, 2, 1.0, 1);
   free(1, 3) = true;
   const auto issues = check_stencil_problem(problem_with(7, 7, 2, free), c1_coons_stencil());
   REQUIRE(issues.size() == 1);
   CHECK(issues[0].field == "free[1][3]");
-  CHECK(mentions(issues[0].reason, "lies in the 2 outer data ring(s)"));
+  CHECK(mentions(issues[0].reason, "the 5x5 mask at this free point leaves the net"));
+  // The contract's example (docs/formats.md): two data rings and free points on the second ring
+  // with a 3×3 mask, whose stencil there stays in the net: `free` decides.
+  FreeGrid two = random_free(7, 7, 2, 1.0, 1);
+  two(1, 3) = true;
+  CHECK(check_stencil_problem(problem_with(7, 7, 2, two), alpha_stencil(alpha_mask(0))).empty());
   // With one data ring and a 3×3 mask the same point is a valid free point.
   FreeGrid one = random_free(7, 7, 1, 0.0, 1);
   one(1, 3) = true;
@@ -127,7 +132,7 @@ TEST_CASE("require_valid_problem: throws InputError naming the file, the field a
     FAIL("no exception");
   } catch (const InputError& e) {
     CHECK(e.field() == "free[1][5]");
-    CHECK(std::string(e.what()) == "hole.json: free[1][5]: the point lies in the 2 outer data ring(s)");
+    CHECK(std::string(e.what()) == "hole.json: free[1][5]: the 5x5 mask at this free point leaves the net");
   }
   CHECK_THROWS_AS(require_valid_problem(problem_with(3, 3, 1), alpha_stencil(alpha_mask(-0.5)), "x.json"), InputError);
   CHECK_NOTHROW(require_valid_problem(problem_with(7, 7, 2), c1_coons_stencil(), "x.json"));

@@ -76,18 +76,6 @@ int parse_rings(const Parser& p, const json& doc, int m, int n) {
   return int(rings);
 }
 
-// Free points must lie inside the data rings (the mask-dependent checks come later, with the mask).
-void check_free_inside_rings(const Parser& p, const FreeGrid& free, int rings) {
-  const int m = int(free.rows()) - 1, n = int(free.cols()) - 1;
-  for (int i = 0; i <= m; ++i)
-    for (int j = 0; j <= n; ++j)
-      if (free(i, j) && std::min({i, j, m - i, n - j}) < rings)
-        p.fail(fmt::format("free[{}][{}]", i, j),
-               fmt::format("the point lies in the {} outer data ring(s) (\"rings\"); only points inside them can "
-                           "be free",
-                           rings));
-}
-
 double points_diagonal(const std::vector<const Eigen::MatrixX3d*>& lists) {
   Eigen::RowVector3d lo = Eigen::RowVector3d::Constant(std::numeric_limits<double>::infinity());
   Eigen::RowVector3d hi = -lo;
@@ -240,8 +228,9 @@ BoundaryFile parse_boundary(const json& doc, const std::string& source, const Bo
       p.fail("ribbons", "belongs to the sides form; a \"net\" holds its data rings itself (use \"rings\")");
     out.rings = parse_rings(p, doc, m, n);
     if (doc.contains("free")) {
+      // (free points may lie in the data rings, as in the contract's example; the mask decides
+      // later whether its stencil at each of them stays in the net: stencil_problem.h)
       out.free = free_grid_from_json(doc["free"], m, n, source);
-      check_free_inside_rings(p, out.free, out.rings);
     }
     out.boundary = boundary_of(net, name);
     out.net = std::move(net);

@@ -197,10 +197,7 @@ std::vector<ProblemIssue> check_stencil_problem(const StencilProblem& problem, c
     for (int j = 0; j <= n; ++j) {
       if (!free(i, j)) continue;
       const int depth = std::min({i, j, m - i, n - j});  // rings outside the point
-      if (problem.free.size() > 0 && depth < rings)
-        issues.push_back(
-            {free_field(i, j), i, j, "the point lies in the " + std::to_string(rings) + " outer data ring(s)"});
-      else if (depth < r)
+      if (depth < r)
         issues.push_back(
             {free_field(i, j), i, j, "the " + mask_size(stencil) + " mask at this free point leaves the net"});
     }

@@ -3,13 +3,15 @@
 //   net    (m+1)×(n+1) points; the values of free points are ignored (any start value).
 //   rings  the number of outer rings of the net that are data (default 1).
 //   free   optional (m+1)×(n+1) 0/1 grid of the points to solve for; every other point is data.
-//          Without it, every point inside the rings is free. With it, free points must lie
-//          inside the rings (data = the rings ∪ the points of the inside that are not free).
+//          Without it, every point inside the rings is free. With it, `free` decides, as the
+//          contract's example does (rings 2 with free points on the second ring): a point of
+//          the data rings may be free when its stencil stays in the net; `rings` then only says
+//          how many rings the mask needs (rings ≥ r).
 //
 // check_stencil_problem lists what makes a problem unusable for a stencil of radius r:
 //   "free"        the grid has the wrong shape;
 //   "rings"       rings < 0, or rings < r (a 5×5 mask needs two data rings);
-//   "free[i][j]"  a free point in the data rings, a free point whose stencil leaves the net, or a
+//   "free[i][j]"  a free point whose stencil leaves the net, or a
 //                 free point among those on which the system is singular ("decouple").
 // Singularity: the free points are split into the connected components of the stencil's
 // coupling graph (two free points are coupled when the weight between them is non-zero); the
