@@ -90,6 +90,15 @@ TriRequest resolve_tri(const NetRequest& r) {
   out.options.solver_options.max_iterations = r.max_iterations;
   out.options.solver_options.time_limit_seconds = r.time_limit;
   require_valid_solver_options(out.options.solver_options);
+  // A backend named that solves the c = 0 member only (Cholesky-type, CG: the system is symmetric
+  // there alone) is refused a c it does not accept as bad input, as the rectangle's --alpha outside
+  // the definite range is (docs/formats.md, Errors); one that never applies reports not_applicable.
+  if (!out.picked_automatically)
+    if (const tri::TriBackendCheck check = tri::check_tri_backend(*out.options.solver, out.options.mask);
+        !check.applicable && tri::check_tri_backend(*out.options.solver, tri::TriMask{0.0}).applicable)
+      throw InputError("command line", "--alpha",
+                       fmt::format("c = {} is not accepted by {}: {} (use umfpack, eigen-lu, bicgstab or gmres)",
+                                   out.options.mask.c, out.options.solver->name, check.reason));
   return out;
 }
 

@@ -10,6 +10,7 @@
 
 #include "coons/io/tri_boundary_io.h"
 #include "coons/tri/tri_solve.h"
+#include "solvers/registry.h"
 #include "support/cli_support.h"
 #include "tri/tri_fixtures.h"
 
@@ -76,15 +77,31 @@ TEST_CASE("coons solve: --solver auto on a triangle picks an LU backend, c defau
   CHECK((report["solver"]["name"] == "umfpack" || report["solver"]["name"] == "eigen-lu"));
 }
 
-TEST_CASE("coons solve: a symmetric-only backend on a triangle reports not_applicable, exit 3", "[cli][tri]") {
+TEST_CASE("coons solve: a triangle's c that a named Cholesky or CG backend does not accept is bad input",
+          "[cli][tri]") {
+  // docs/formats.md, Errors: "an α outside what the chosen solver accepts" is bad input (exit 2,
+  // one line, nothing on standard output), as a rectangle's --alpha 0.4 with eigen-llt is. These
+  // backends accept c = 0 only (the system is symmetric there alone), at the default c = -1/6 too.
   const std::string file = kTriangles + "dome_half.json";
-  const CommandResult r = run_coons("solve '" + file + "' --alpha -0.1 --solver eigen-ldlt");
-  REQUIRE(r.status == 3);
-  const json report = json::parse(r.out);
-  CHECK(report["solver"]["status"] == "not_applicable");
-  CHECK(report["net"].is_null());
-  CHECK(report["metrics"].is_null());
-  CHECK(count_lines_starting(r.err, "error: " + file + ": solver: eigen-ldlt not_applicable") == 1);
+  for (const std::string& args : {std::string(" --alpha -0.1 --solver eigen-ldlt"), std::string(" --solver eigen-llt"),
+                                  std::string(" --alpha 0.2 --solver cg")}) {
+    const CommandResult r = run_coons("solve " + quoted(file) + args);
+    INFO(args << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(count_lines_starting(r.err, "error: command line: --alpha: c = ") == 1);
+    CHECK_THAT(r.err, Catch::Contains("the triangular mask system is not symmetric for c != 0"));
+  }
+  // a backend that never applies to a triangle (grid stencils only) reports not_applicable, exit 3
+  if (solvers::find_solver("fast")) {
+    const CommandResult r = run_coons("solve '" + file + "' --solver fast");
+    REQUIRE(r.status == 3);
+    const json report = json::parse(r.out);
+    CHECK(report["solver"]["status"] == "not_applicable");
+    CHECK(report["net"].is_null());
+    CHECK(report["metrics"].is_null());
+    CHECK(count_lines_starting(r.err, "error: " + file + ": solver: fast not_applicable") == 1);
+  }
   // c = 0 is symmetric positive definite: there it applies and agrees with LU
   const CommandResult zero = run_coons("solve '" + file + "' --alpha 0 --solver eigen-ldlt");
   const CommandResult zero_lu = run_coons("solve '" + file + "' --alpha 0 --solver eigen-lu");
