@@ -42,6 +42,9 @@ fs::path open_shard_file(const std::string& out_dir, int shard, int shards, cons
   fs::path path = dir / fmt::format("shard-{}-of-{}.jsonl", shard, shards);
   ShardFile existing;
   if (fs::exists(path)) {
+    // (a device or a pipe under the shard's name would be read without end: /dev/zero grew to 9 GB)
+    if (!fs::is_regular_file(path))
+      throw InputError(path.string(), "--out", "exists and is not a regular file: a shard file is one");
     existing = read_shard_file(path);
     for (const json& r : existing.records) {
       if (!r.contains("study") || r["study"] != study)

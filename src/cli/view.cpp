@@ -60,6 +60,18 @@ std::string read_three_js(const std::string& path) {
     throw InputError("command line", "--three-js",
                      "three.js was not found when coons was built: install the Debian package libjs-three "
                      "(then reconfigure) or give --three-js PATH/three.min.js");
+  // A device or a pipe would be read without end (/dev/zero grew to 13 GB), and a regular file far
+  // larger than three.js (about 0.6 MB) is not it: both refused before reading.
+  constexpr std::uintmax_t kMaxThreeJsBytes = std::uintmax_t{64} << 20;
+  std::error_code ec;
+  if (!std::filesystem::is_regular_file(path, ec))
+    throw InputError(path, "--three-js",
+                     std::filesystem::exists(path, ec) ? "is not a regular file (three.min.js is one)"
+                                                       : "cannot open three.js (Debian package libjs-three)");
+  if (const std::uintmax_t size = std::filesystem::file_size(path, ec); !ec && size > kMaxThreeJsBytes)
+    throw InputError(
+        path, "--three-js",
+        fmt::format("{} bytes, more than the {} a three.js could be: this is not three.js", size, kMaxThreeJsBytes));
   std::ifstream in(path, std::ios::binary);
   if (!in) throw InputError(path, "--three-js", "cannot open three.js (Debian package libjs-three)");
   std::ostringstream text;

@@ -47,6 +47,10 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   };
   (void)variant;
   inputs.write("broken.json", "{\"bottom\": [[0,0,0],");
+  // a device where a file is read whole: /dev/zero as three.js, and as a shard file a rerun reads
+  // (both were read without end, to 13 and 9 GB)
+  fs::create_directories(inputs.path / "shard_dev");
+  fs::create_symlink("/dev/zero", inputs.path / "shard_dev" / "shard-0-of-1.jsonl");
   inputs.write("empty.json", "");
   inputs.write("array.json", "[1, 2, 3]");
   inputs.write("inf.json",
@@ -350,6 +354,9 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
        "saddle_bump_ribbons.json: ribbons: coons sweep works on the one-ring problem"},
       // view names the option at fault alone, not "--alphas/--samples/--from/--to"
       {"view " + good + " --samples 1 --out {OUT}/v.html", "command line: --samples: must be in [2, 257], not 1"},
+      {"view " + good + " --three-js /dev/zero --out {OUT}/v.html", "/dev/zero: --three-js: is not a regular file"},
+      {"study " + good + " --degrees 3 4 --shard 0/1 --out {IN}/shard_dev",
+       "shard-0-of-1.jsonl: --out: exists and is not a regular file"},
       {"view " + good + " --alphas 1 --out {OUT}/v.html",
        "command line: --alphas: the number of frames must be in [2, 2001], not 1"},
       {"view " + good + " --from 0.1 --to -0.1 --out {OUT}/v.html", "command line: --from/--to: the interval must lie"},
