@@ -277,6 +277,9 @@ class LinearSolver {
   //! (three more solves by this backend): a lower bound of κ∞(A) when they are exact, usually
   //! within a small factor; NaN when a solve fails (an iteration that does not converge on them).
   [[nodiscard]] double condition_lower_bound(double norm_a);
+  //! The larger of condition_lower_bound(norm_a) and `solution_bound` (‖A‖∞‖x‖∞ / (‖b‖∞ + ‖r‖∞) of
+  //! a solve, also a lower bound of κ∞ for a regular A); NaN when the probes fail.
+  [[nodiscard]] double condition_estimate(double norm_a, double solution_bound);
 
   //! The operator of the last factorize (set when do_factorize returns; do_solve may read it).
   [[nodiscard]] const LinearOperator& factorized_operator() const { return op_; }

@@ -222,9 +222,8 @@ void LinearSolver::judge_ill_conditioned(const Eigen::MatrixX3d& B, const Eigen:
   const double backward = bounds.backward;
   constexpr double kStable = 1e-12;  // ‖r‖ / (‖A‖‖x‖ + ‖b‖) of a backward-stable solve: a few n·ε
   if (!(backward <= kStable)) return;
-  const double probed = condition_lower_bound(norm_a);
-  if (!std::isfinite(probed)) return;  // (the solution's bound alone is too weak to call X a solution)
-  const double kappa = std::max(probed, bounds.kappa);
+  const double kappa = condition_estimate(norm_a, bounds.kappa);
+  if (!std::isfinite(kappa)) return;
   summary_.condition_estimate = kappa;
   summary_.normwise_backward_error = backward;
   constexpr double kSingularKappa = 0.1 / std::numeric_limits<double>::epsilon();  // 4.5e14
@@ -260,6 +259,12 @@ double LinearSolver::condition_lower_bound(double norm_a) {
   return norm_a * Y.cwiseAbs().colwise().maxCoeff().maxCoeff();
 }
 
+double LinearSolver::condition_estimate(double norm_a, double solution_bound) {
+  const double probed = condition_lower_bound(norm_a);
+  // (NaN without the probes: the solution's bound alone is too weak to call an X a solution)
+  return std::isfinite(probed) ? std::max(probed, solution_bound) : std::numeric_limits<double>::quiet_NaN();
+}
+
 void LinearSolver::note_condition(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X) {
   // A residual near ε says the solve was backward stable, not that X is near the exact solution:
   // c1-coons assembled at degree 128 (κ∞ about 1e15) has residuals of 3e−14 and errors of 2.5e−5
@@ -273,9 +278,8 @@ void LinearSolver::note_condition(const Eigen::MatrixX3d& B, const Eigen::Matrix
   const SolveBounds bounds = solve_bounds(op_, norm_a, B, X);
   const double backward = bounds.backward;
   if (!std::isfinite(backward)) return;
-  const double probed = condition_lower_bound(norm_a);
-  if (!std::isfinite(probed)) return;
-  const double kappa = std::max(probed, bounds.kappa);
+  const double kappa = condition_estimate(norm_a, bounds.kappa);
+  if (!std::isfinite(kappa)) return;
   summary_.condition_estimate = kappa;
   summary_.normwise_backward_error = backward;
   if (!(summary_.forward_error_bound() > kForwardErrorNotice)) return;
