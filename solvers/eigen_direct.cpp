@@ -38,9 +38,7 @@ Eigen::VectorXd permuted_diagonal(const SpMat& A, const Permutation& P) {
 // none, is singular when a pivot vanishes.
 SolveStatus judge(const Ldlt& f, const SpMat& A, SolveSummary& summary) {
   if (f.info() != Eigen::Success) {
-    summary.message =
-        "LDLT met a zero pivot: the matrix is not positive definite (singular, or indefinite: LDLT does "
-        "not pivot)";
+    summary.message = "LDLT met a zero pivot (it does not pivot)";  // and judge_stopped says what A is
     return SolveStatus::kNotPositiveDefinite;
   }
   // L's unit diagonal is implicit (only its strictly lower part is stored) and D is kept apart:
@@ -130,7 +128,20 @@ class EigenDirect : public LinearSolver {
           empty != SolveStatus::kSuccess)
         return empty;
     factor_.factorize(*op.matrix);
-    return judge(factor_, *op.matrix, summary);
+    const SolveStatus status = judge(factor_, *op.matrix, summary);
+    if constexpr (!std::is_same_v<Factor, Lu>)
+      if (factor_.info() != Eigen::Success) return judge_stopped(*op.matrix, summary);
+    return status;
+  }
+
+  // The factorisation stopped at a pivot ≤ 0 (LLᵀ) or = 0 (LDLᵀ): singular or indefinite, which
+  // the factorisation of A raised on its diagonal tells apart (semidefinite_verdict). The raised
+  // factor stays behind, but a failed factorize() leaves nothing to solve with.
+  SolveStatus judge_stopped(const SpMat& A, SolveSummary& summary) {
+    factor_.factorize(raise_diagonal(A, kSemidefiniteShift));
+    bool definite = factor_.info() == Eigen::Success;
+    if constexpr (std::is_same_v<Factor, Ldlt>) definite = definite && (factor_.vectorD().array() > 0).all();
+    return semidefinite_verdict(A, definite, summary.message, &summary.message);
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {

@@ -1,6 +1,8 @@
 #include "matrix_checks.h"
 
 #include <algorithm>
+#include <cmath>
+#include <sstream>
 #include <vector>
 
 namespace coons::solvers {
@@ -32,6 +34,39 @@ SolveStatus check_preconditioner_matrix(const Eigen::SparseMatrix<double>& A, bo
         return fail(SolveStatus::kNotApplicable,
                     "the diagonal is zero at row " + std::to_string(r) + ": the preconditioner needs it");
   return SolveStatus::kSuccess;
+}
+
+Eigen::SparseMatrix<double> raise_diagonal(Eigen::SparseMatrix<double> A, double delta) {
+  A.makeCompressed();
+  double* values = A.valuePtr();
+  const int* outer = A.outerIndexPtr();
+  const int* inner = A.innerIndexPtr();
+  for (Eigen::Index k = 0; k < A.outerSize(); ++k)
+    for (int p = outer[k]; p < outer[k + 1]; ++p)
+      if (inner[p] == k) values[p] += delta * std::abs(values[p]);
+  return A;
+}
+
+SolveStatus semidefinite_verdict(const Eigen::SparseMatrix<double>& A, bool raised_is_definite,
+                                 const std::string& stopped, std::string* message) {
+  std::string empty;
+  if (check_preconditioner_matrix(A, false, &empty) == SolveStatus::kSingular) {
+    if (message) *message = stopped + "; " + empty;
+    return SolveStatus::kSingular;
+  }
+  std::ostringstream shift;
+  shift << kSemidefiniteShift;
+  if (raised_is_definite) {
+    if (message)
+      *message = stopped + "; with its diagonal raised by " + shift.str() +
+                 " of itself the matrix factors with positive pivots: it is positive semidefinite and singular "
+                 "(to that tolerance)";
+    return SolveStatus::kSingular;
+  }
+  if (message)
+    *message = stopped + "; with its diagonal raised by " + shift.str() +
+               " of itself it still does not factor: the matrix is indefinite";
+  return SolveStatus::kNotPositiveDefinite;
 }
 
 }  // namespace coons::solvers

@@ -22,6 +22,25 @@ inline bool is_zero_pivot(double d, double a_kk, double largest_pivot) {
   return std::abs(d) <= kSingularPivot * (a_kk != 0 ? std::abs(a_kk) : largest_pivot);
 }
 
+//! The relative rise of the diagonal, A + δ·diag(|a_kk|), by which semidefinite_verdict tells a
+//! singular positive semidefinite matrix from an indefinite one. Far above the rounding of a
+//! Cholesky factorisation (about n·ε of the diagonal), far below the eigenvalues of a regular
+//! definite matrix that the factorisation could have refused.
+inline constexpr double kSemidefiniteShift = 1e-10;
+
+//! A (square, a copy) with each diagonal entry a_kk raised by δ·|a_kk|: the same pattern, so a
+//! symbolic analysis of A serves it. Invariant under a diagonal scaling D A D.
+Eigen::SparseMatrix<double> raise_diagonal(Eigen::SparseMatrix<double> A, double delta);
+
+//! The verdict on a symmetric A whose Cholesky-type factorisation stopped at a pivot ≤ 0, which
+//! alone cannot tell the singular semidefinite [[1, 2], [2, 4]] from the regular indefinite
+//! [[0, 1], [1, 0]]. `raised_is_definite`: whether A raised by kSemidefiniteShift
+//! (raise_diagonal) factored with every pivot positive. kSingular when it did (A is positive
+//! semidefinite and singular to that tolerance) or when A has an empty row; kNotPositiveDefinite
+//! otherwise. *message gets the reason, after `stopped` (what the factorisation said).
+SolveStatus semidefinite_verdict(const Eigen::SparseMatrix<double>& A, bool raised_is_definite,
+                                 const std::string& stopped, std::string* message);
+
 //! kSingular with "row K is empty: the matrix is singular" (or column K) when a row or column of A
 //! has no non-zero; with `need_diagonal`, kNotApplicable with "the diagonal is zero at row K: the
 //! preconditioner needs it"; otherwise kSuccess. The reason goes to *why.

@@ -128,10 +128,7 @@ class Cholmod : public LinearSolver {
     cholmod_sparse A = view_lower(*op.matrix);
     cholmod_factorize(&A, factor_, &common_);
     summary.factor_nnz = static_cast<long long>(common_.lnz);
-    if (common_.status == CHOLMOD_NOT_POSDEF) {
-      summary.message = not_positive_definite_message();
-      return SolveStatus::kNotPositiveDefinite;
-    }
+    if (common_.status == CHOLMOD_NOT_POSDEF) return judge_stopped(*op.matrix, summary);
     if (common_.status < CHOLMOD_OK) {
       summary.message = "cholmod_factorize failed, status " + std::to_string(common_.status);
       return SolveStatus::kFailure;
@@ -166,6 +163,24 @@ class Cholmod : public LinearSolver {
   // The supernodal LLᵀ stops at the failed pivot, L->minor.
   [[nodiscard]] std::string not_positive_definite_message() const {
     return "not positive definite at " + column_of_pivot(std::size_t(factor_->minor));
+  }
+
+  // The factorisation stopped at a pivot ≤ 0: singular or indefinite, which the factorisation of
+  // A raised on its diagonal tells apart (semidefinite_verdict, as eigen-ldlt does). The raised
+  // factor stays behind, but a failed factorize() leaves nothing to solve with.
+  SolveStatus judge_stopped(const Eigen::SparseMatrix<double>& M, SolveSummary& summary) {
+    const std::string stopped = not_positive_definite_message();
+    const Eigen::SparseMatrix<double> raised = raise_diagonal(M, kSemidefiniteShift);
+    cholmod_sparse A = view_lower(raised);
+    cholmod_factorize(&A, factor_, &common_);
+    bool definite = common_.status == CHOLMOD_OK;
+    if (definite && !supernodal_) {  // LDLᵀ: every entry of D positive
+      const auto* p = static_cast<const int*>(factor_->p);
+      const auto* x = static_cast<const double*>(factor_->x);
+      for (size_t j = 0; j < factor_->n; ++j) definite = definite && x[p[j]] > 0;
+    }
+    common_.status = CHOLMOD_OK;  // (the diagnosis is over; the next factorisation starts afresh)
+    return semidefinite_verdict(M, definite, stopped, &summary.message);
   }
 
   // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does, and name

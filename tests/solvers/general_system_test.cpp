@@ -479,6 +479,39 @@ TEST_CASE("run_general_system: a near-zero pivot among negative ones is indefini
   CHECK(lu.ok());
 }
 
+TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells singular from indefinite",
+          "[solvers]") {
+  // [[1, 2], [2, 4]] and the Neumann Laplacian of a path (scaled row by row: D A D) are positive
+  // semidefinite and singular; [[0, 1], [1, 0]] and [[1, 2], [2, 3.9]] are regular and indefinite.
+  // Each factorisation stops at its second pivot (0, or below 0); all four were "not positive
+  // definite", the singular ones included.
+  constexpr int kPath = 40;
+  Eigen::MatrixXd neumann = Eigen::MatrixXd::Zero(kPath, kPath);
+  for (int k = 0; k + 1 < kPath; ++k) {  // the edge (k, k + 1), its ends weighted 10^±3
+    const double wk = std::pow(10.0, 3 * ((k % 3) - 1)), wl = std::pow(10.0, 3 * (((k + 1) % 3) - 1));
+    neumann(k, k) += wk * wk;
+    neumann(k + 1, k + 1) += wl * wl;
+    neumann(k, k + 1) -= wk * wl;
+    neumann(k + 1, k) -= wk * wl;
+  }
+  const std::vector<std::pair<Eigen::MatrixXd, SolveStatus>> cases = {
+      {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 4).finished(), SolveStatus::kSingular},
+      {neumann, SolveStatus::kSingular},
+      {(Eigen::MatrixXd(2, 2) << 0, 1, 1, 0).finished(), SolveStatus::kNotPositiveDefinite},
+      {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 3.9).finished(), SolveStatus::kNotPositiveDefinite}};
+  for (const auto& [dense, expected] : cases) {
+    const Eigen::MatrixXd b = Eigen::MatrixXd::Ones(dense.rows(), 1);
+    for (const char* name : {"eigen-ldlt", "eigen-llt", "cholmod", "cholmod-simplicial"}) {
+      const SolverInfo* info = find_solver(name);
+      if (info == nullptr) continue;  // (a build without SuiteSparse)
+      const GeneralRun run = run_general_system(*info, system_of(sparse_of(dense), b, true), SolverOptions{});
+      INFO(dense.rows() << " rows, " << name << ": " << run.status_name() << " " << run.reason);
+      CHECK(run.status == expected);
+      CHECK_FALSE(run.backward_error.has_value());
+    }
+  }
+}
+
 TEST_CASE("run_general_system: a success with a large componentwise backward error carries a note", "[solvers]") {
   // cg on diag(1, 1e-20): x2 = 1e-20 for 1 meets the normwise target (residual 1e-20) with a
   // componentwise backward error of 1, and said only "success"
