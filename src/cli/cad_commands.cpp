@@ -58,7 +58,7 @@ int run_import_step(const ImportRequest& q) {
   options.edges = q.edges;
   options.gap_tolerance = q.gap_tolerance;
   require_valid_import_options(options);
-  require_new_output(q.out, q.force, "--out");
+  require_new_file(q.out, q.force, "--out");
   const cad::StepImport import = cad::import_step_boundary(q.file, options);
   const std::string what = q.face >= 0 ? "face " + std::to_string(q.face) : "4 edges";
   const std::string name = q.name.empty() ? std::filesystem::path(q.file).stem().string() +
@@ -88,7 +88,7 @@ void check_cad_export(const CadExportRequest& r, bool force) {
   const std::string option = r.step.empty() ? "--iges" : "--step";
   if (!COONS_HAVE_OCCT) throw InputError("command line", option, kNoOcct);
   for (const std::string* path : {&r.step, &r.iges})
-    if (!path->empty()) require_new_output(*path, force, path == &r.step ? "--step" : "--iges");
+    if (!path->empty()) require_new_file(*path, force, path == &r.step ? "--step" : "--iges");
   if (!r.step.empty() && !r.iges.empty() && same_file_path(r.step, r.iges))
     throw InputError("command line", "--iges", "is the same file as --step");
 }

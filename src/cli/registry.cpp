@@ -45,11 +45,14 @@ void refuse_empty_values(CLI::App& app) {
       "", "REPRESENTABLE");
   // strtod reads hexadecimal too: --alpha 0x10 solved at α = 16, where the JSON and Matrix Market
   // readers refuse '0x10' as no decimal number (and CLI11's integers read 0x5 as 5).
+  // Only a 0x prefix (after a sign) is hexadecimal; any other x ('0.1x') is left to CLI11's
+  // conversion, which says the value is no number.
   const CLI::Validator decimal(
       [](std::string& value) {
-        return value.find_first_of("xX") == std::string::npos
-                   ? std::string()
-                   : "'" + value + "' is not a decimal number (hexadecimal is not read)";
+        const std::size_t digits = value.find_first_not_of("+-");
+        const bool hexadecimal = digits != std::string::npos && value.size() > digits + 1 && value[digits] == '0' &&
+                                 (value[digits + 1] == 'x' || value[digits + 1] == 'X');
+        return hexadecimal ? "'" + value + "' is not a decimal number (hexadecimal is not read)" : std::string();
       },
       "", "DECIMAL");
   for (CLI::Option* option : app.get_options()) {

@@ -134,8 +134,15 @@ int run_family_command(const StudyRequest& r) {
   options.count = r.count;
   options.seed = r.seed;
   options.solver = solver_from_name(r.solver);
-  std::string why;
-  if (!options.is_valid(&why)) throw InputError("command line", "--family", why);
+  std::string why, field;
+  if (!options.is_valid(&why, &field)) {  // the option that set the member at fault
+    const std::string option = field == "degrees"     ? "--degrees"
+                               : field == "count"     ? "--count"
+                               : field == "amplitude" ? "--amplitude"
+                                                      : "--family";
+    if (field == "degrees" && !given(r.given.degrees)) why += " (the default degrees: give --degrees)";
+    throw InputError("command line", option, why);
+  }
   for (int d : options.degrees) {  // the family's boundaries at degree d are d × d
     Boundary at_degree;
     at_degree.m = at_degree.n = d;

@@ -59,6 +59,17 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
   fs::create_directories(inputs.path / "emptyfolder");
   inputs.write("notafolder", "x");
   inputs.write("a.mtx", "%%MatrixMarket matrix coordinate real general\n2 2 2\n1 1 2\n2 2 2\n");
+  {  // a plane whose sides have degree 10: the base of a perturbed family above the default degree 3
+    json plane = {{"degree", {10, 10}}};
+    for (int k = 0; k <= 10; ++k) {
+      const double t = k / 10.0;
+      plane["bottom"].push_back({t, 0, 0});
+      plane["top"].push_back({t, 1, 0});
+      plane["left"].push_back({0, t, 0});
+      plane["right"].push_back({1, t, 0});
+    }
+    inputs.write("degree10.json", plane.dump());
+  }
   const std::string notop = write_variant("notop.json", [](json& d) { d.erase("top"); });
   const std::string longleft = write_variant("long.json", [](json& d) { d["left"].push_back({-1, 1, 0}); });
   const std::string four = write_variant("four.json", [](json& d) { d["bottom"][1] = {1, 2, 3, 4}; });
@@ -538,6 +549,23 @@ TEST_CASE("coons: the bad-input table (every command, exit 2, one error line, no
                        : "OpenCASCADE"},
       {"import-step {IN}/missing.step --face 0 --gap-tolerance -1 --out {OUT}/b.json",
        COONS_HAVE_OCCT ? "command line: --gap-tolerance: must be finite and >= 0" : "OpenCASCADE"},
+      // a single output file in a folder that does not exist names its option and the folder (they
+      // named the file: "cannot create the file")
+      {"import-step " + quoted(kData + "/cad/four_edges.step") + " --face 0 --out {OUT}/missing/b.json",
+       COONS_HAVE_OCCT ? "command line: --out: the folder" : "OpenCASCADE"},
+      {"export " + good + " --out {OUT} --step {OUT}/missing/d.step",
+       COONS_HAVE_OCCT ? "command line: --step: the folder" : "OpenCASCADE"},
+      {"export " + good + " --out {OUT} --iges {OUT}/missing/d.igs",
+       COONS_HAVE_OCCT ? "command line: --iges: the folder" : "OpenCASCADE"},
+      // the family study names the option of the member at fault (all were blamed on --family)
+      {"study --family perturbed:" + quoted(kData + "/boundaries/dome.json") + " --amplitude 2 --out {OUT}/s",
+       "command line: --amplitude: the amplitude must be in [0, 1], not 2"},
+      {"study --family random-smooth --count 0 --out {OUT}/s", "command line: --count: the count must be in"},
+      {"study --family perturbed:{IN}/degree10.json --out {OUT}/s",
+       "command line: --degrees: degree 3 is outside [10, 200] (the sides have degree 10) (the default degrees: "
+       "give --degrees)"},
+      // a number with a stray x is no number; only 0x is hexadecimal (it said "hexadecimal" for both)
+      {"solve " + good + " --alpha 0.1x", "command line: --alpha: '0.1x' is not a number"},
       // no command, unknown command
       {"frobnicate", "frobnicate"},
       {"", "command"},

@@ -12,23 +12,28 @@ namespace coons {
 
 using nlohmann::json;
 
-bool AlphaFamilyOptions::is_valid(std::string* why) const {
-  auto fail = [&](const std::string& reason) {
+bool AlphaFamilyOptions::is_valid(std::string* why, std::string* field) const {
+  auto fail = [&](const char* name, const std::string& reason) {
     if (why) *why = reason;
+    if (field) *field = name;
     return false;
   };
-  if (!generator.is_valid(why)) return false;
-  if (degrees.empty()) return fail("no degrees");
+  if (std::string reason; !generator.is_valid(&reason)) return fail("generator", reason);
+  if (base && std::max(base->m, base->n) > kMaxFamilyDegree)
+    return fail("base", fmt::format("the base has degree {}, above the largest degree a family study takes ({})",
+                                    std::max(base->m, base->n), kMaxFamilyDegree));
+  if (degrees.empty()) return fail("degrees", "no degrees");
   const int lowest = base ? std::max({generator.side_degree, base->m, base->n}) : generator.side_degree;
   for (size_t k = 0; k < degrees.size(); ++k) {
-    if (degrees[k] < lowest || degrees[k] > 200)
-      return fail(fmt::format("degree {} is outside [{}, 200] (the sides have degree {})", degrees[k], lowest, lowest));
-    if (k > 0 && degrees[k] <= degrees[k - 1]) return fail("degrees must be increasing, each once");
+    if (degrees[k] < lowest || degrees[k] > kMaxFamilyDegree)
+      return fail("degrees", fmt::format("degree {} is outside [{}, {}] (the sides have degree {})", degrees[k], lowest,
+                                         kMaxFamilyDegree, lowest));
+    if (k > 0 && degrees[k] <= degrees[k - 1]) return fail("degrees", "degrees must be increasing, each once");
   }
-  if (count < 1 || count > 100000) return fail(fmt::format("the count must be in [1, 100000], not {}", count));
-  if (grid_points < 5 || grid_points > 10000) return fail("grid_points must be in [5, 10000]");
+  if (count < 1 || count > 100000) return fail("count", fmt::format("the count must be in [1, 100000], not {}", count));
+  if (grid_points < 5 || grid_points > 10000) return fail("grid_points", "grid_points must be in [5, 10000]");
   if (!(std::isfinite(amplitude) && amplitude >= 0 && amplitude <= 1))
-    return fail(fmt::format("the amplitude must be in [0, 1], not {}", amplitude));
+    return fail("amplitude", fmt::format("the amplitude must be in [0, 1], not {}", amplitude));
   return true;
 }
 

@@ -23,8 +23,11 @@
 
 namespace coons {
 
+//! The largest degree a family study elevates its boundaries to.
+inline constexpr int kMaxFamilyDegree = 200;
+
 struct AlphaFamilyOptions {
-  std::vector<int> degrees = {3, 5, 8, 12, 20};  //!< increasing, each in [side_degree, 200]
+  std::vector<int> degrees = {3, 5, 8, 12, 20};  //!< increasing, each in [side_degree, kMaxFamilyDegree]
   std::vector<Objective> objectives;             //!< empty: thin_plate and e3
   int count = 200;                               //!< boundaries of the family, in [1, 100000]
   std::uint64_t seed = 1;
@@ -40,7 +43,10 @@ struct AlphaFamilyOptions {
 
   //! "random-smooth" or "perturbed:NAME".
   [[nodiscard]] std::string family_name() const;
-  bool is_valid(std::string* why) const;
+  //! Whether the options describe a family study; if not, *why says why and *field names the
+  //! member at fault ("degrees", "count", "amplitude", "grid_points", "generator", or "base": a
+  //! base above kMaxFamilyDegree).
+  bool is_valid(std::string* why, std::string* field = nullptr) const;
 };
 
 //! Boundary `index` of the family the options describe (random-smooth, or the perturbed base).
