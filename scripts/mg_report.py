@@ -194,17 +194,21 @@ def threads_table(data):
         solve = solves[fast_key].get(k) if fast_key else None
         if solve:
             note += f", {t / solve[0]:.2f} of a `fast` solve at α = −0.1"
-            if (n, k) in sweeps:
-                note += f" and {t / (sweeps[(n, k)] / 101):.2f} of a member of its 101-value sweep"
+            if (n, k) in sweeps and (n, 1) in floors:
+                # A sweep on k threads runs its members side by side on k one-thread workers, so a
+                # member's floor in wall time is the one-thread floor over k (not the k-thread one).
+                member_floor = floors[(n, 1)] / k
+                note += f" and {member_floor / (sweeps[(n, k)] / 101):.2f} of a member of its 101-value sweep"
                 # the sweep goal allows 60/101 of a solve per member; a member that writes its net
                 # through the rows' transform costs at least the floor, and the rest is its eliminations
-                allowed, floor = 60 / 101, t / solve[0]
+                allowed, floor = 60 / 101, member_floor / solve[0]
                 member = sweeps[(n, k)] / 101 / solve[0]
-                note += f"; the sweep goal (≤ 60× one solve) allows a member {allowed:.2f} of a solve, "
+                note += (f"; the sweep goal (≤ 60× one solve) allows a member {allowed:.2f} of a solve, against "
+                         f"{floor:.2f} for the floor of a member ({'one-thread floor' if k == 1 else f'one-thread floor / {k} workers'})")
                 if floor >= allowed:
-                    note += f"less than this floor alone ({floor:.2f})"
+                    note += ", which alone exceeds it"
                 else:
-                    note += (f"which leaves {allowed - floor:.2f} of a solve beside this floor for its eliminations "
+                    note += (f", which leaves {allowed - floor:.2f} of a solve for its eliminations "
                              f"(they take {member - floor:.2f} now)")
         floor_notes.append(f"N = {n}, {note}")
     if floor_notes:
