@@ -4,6 +4,7 @@
 #include <Eigen/SparseCholesky>
 #include <Eigen/SparseLU>
 #include <cmath>
+#include <optional>
 #include <string>
 #include <type_traits>
 
@@ -135,13 +136,18 @@ class EigenDirect : public LinearSolver {
   }
 
   // The factorisation stopped at a pivot ≤ 0 (LLᵀ) or = 0 (LDLᵀ): singular or indefinite, which
-  // the factorisation of A raised on its diagonal tells apart (semidefinite_verdict). The raised
-  // factor stays behind, but a failed factorize() leaves nothing to solve with.
+  // the factorisation of A raised on its diagonal and inverse iteration with it tell apart
+  // (semidefinite_verdict). The raised factor stays behind, but a failed factorize() leaves
+  // nothing to solve with.
   SolveStatus judge_stopped(const SpMat& A, SolveSummary& summary) {
     factor_.factorize(raise_diagonal(A, kSemidefiniteShift));
     bool definite = factor_.info() == Eigen::Success;
     if constexpr (std::is_same_v<Factor, Ldlt>) definite = definite && (factor_.vectorD().array() > 0).all();
-    return semidefinite_verdict(A, definite, summary.message, &summary.message);
+    std::optional<ScaledEigenvalue> raised;
+    if (definite)
+      raised = smallest_scaled_eigenvalue(
+          A, [&](const Eigen::MatrixX3d& B) -> Eigen::MatrixX3d { return factor_.solve(B); });
+    return semidefinite_verdict(A, raised, summary.message, &summary.message);
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {

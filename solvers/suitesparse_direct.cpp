@@ -4,6 +4,8 @@
 #include <umfpack.h>
 
 #include <cmath>
+#include <limits>
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -166,12 +168,13 @@ class Cholmod : public LinearSolver {
   }
 
   // The factorisation stopped at a pivot ≤ 0: singular or indefinite, which the factorisation of
-  // A raised on its diagonal tells apart (semidefinite_verdict, as eigen-ldlt does). The raised
-  // factor stays behind, but a failed factorize() leaves nothing to solve with.
+  // A raised on its diagonal and inverse iteration with it tell apart (semidefinite_verdict, as
+  // eigen-ldlt does). The raised factor stays behind, but a failed factorize() leaves nothing to
+  // solve with.
   SolveStatus judge_stopped(const Eigen::SparseMatrix<double>& M, SolveSummary& summary) {
     const std::string stopped = not_positive_definite_message();
-    const Eigen::SparseMatrix<double> raised = raise_diagonal(M, kSemidefiniteShift);
-    cholmod_sparse A = view_lower(raised);
+    const Eigen::SparseMatrix<double> raised_matrix = raise_diagonal(M, kSemidefiniteShift);
+    cholmod_sparse A = view_lower(raised_matrix);
     cholmod_factorize(&A, factor_, &common_);
     bool definite = common_.status == CHOLMOD_OK;
     if (definite && !supernodal_) {  // LDLᵀ: every entry of D positive
@@ -179,8 +182,18 @@ class Cholmod : public LinearSolver {
       const auto* x = static_cast<const double*>(factor_->x);
       for (size_t j = 0; j < factor_->n; ++j) definite = definite && x[p[j]] > 0;
     }
+    std::optional<ScaledEigenvalue> raised;
+    if (definite)
+      raised = smallest_scaled_eigenvalue(M, [&](const Eigen::MatrixX3d& B) -> Eigen::MatrixX3d {
+        cholmod_dense b = view_dense(B);
+        cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor_, &b, &common_);
+        if (!x) return Eigen::MatrixX3d::Constant(B.rows(), 3, std::numeric_limits<double>::quiet_NaN());
+        Eigen::MatrixX3d X = Eigen::Map<const Eigen::MatrixX3d>(static_cast<const double*>(x->x), B.rows(), 3);
+        cholmod_free_dense(&x, &common_);
+        return X;
+      });
     common_.status = CHOLMOD_OK;  // (the diagnosis is over; the next factorisation starts afresh)
-    return semidefinite_verdict(M, definite, stopped, &summary.message);
+    return semidefinite_verdict(M, raised, stopped, &summary.message);
   }
 
   // Simplicial LDLᵀ keeps going through negative pivots: report them as eigen-ldlt does, and name

@@ -482,9 +482,11 @@ TEST_CASE("run_general_system: a near-zero pivot among negative ones is indefini
 TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells singular from indefinite",
           "[solvers]") {
   // [[1, 2], [2, 4]] and the Neumann Laplacian of a path (scaled row by row: D A D) are positive
-  // semidefinite and singular; [[0, 1], [1, 0]] and [[1, 2], [2, 3.9]] are regular and indefinite.
-  // Each factorisation stops at its second pivot (0, or below 0); all four were "not positive
-  // definite", the singular ones included.
+  // semidefinite and singular; [[0, 1], [1, 0]] and [[1, 2], [2, 3.9]] are regular and indefinite,
+  // and so are [[1, 1], [1, 1 − 1e-11]] (eigenvalue −5e-12) and a 3×3 whose LDLᵀ meets an exact
+  // zero pivot (eigenvalue −5e-13), which A + 1e-10·diag(A) alone called singular (review of
+  // 2026-12-04). Each factorisation stops (at a pivot 0, or below 0) or meets a negative pivot;
+  // all of them were "not positive definite", the singular ones included.
   constexpr int kPath = 40;
   Eigen::MatrixXd neumann = Eigen::MatrixXd::Zero(kPath, kPath);
   for (int k = 0; k + 1 < kPath; ++k) {  // the edge (k, k + 1), its ends weighted 10^±3
@@ -498,7 +500,9 @@ TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells 
       {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 4).finished(), SolveStatus::kSingular},
       {neumann, SolveStatus::kSingular},
       {(Eigen::MatrixXd(2, 2) << 0, 1, 1, 0).finished(), SolveStatus::kNotPositiveDefinite},
-      {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 3.9).finished(), SolveStatus::kNotPositiveDefinite}};
+      {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 3.9).finished(), SolveStatus::kNotPositiveDefinite},
+      {(Eigen::MatrixXd(2, 2) << 1, 1, 1, 1 - 1e-11).finished(), SolveStatus::kNotPositiveDefinite},
+      {(Eigen::MatrixXd(3, 3) << 1, 1, 0, 1, 1, 1e-6, 0, 1e-6, 1).finished(), SolveStatus::kNotPositiveDefinite}};
   for (const auto& [dense, expected] : cases) {
     const Eigen::MatrixXd b = Eigen::MatrixXd::Ones(dense.rows(), 1);
     for (const char* name : {"eigen-ldlt", "eigen-llt", "cholmod", "cholmod-simplicial"}) {
