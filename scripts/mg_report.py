@@ -198,13 +198,15 @@ def threads_table(data):
                 # A sweep on k threads runs its members side by side on k one-thread workers, so a
                 # member's floor in wall time is the one-thread floor over k (not the k-thread one).
                 member_floor = floors[(n, 1)] / k
-                note += f" and {member_floor / (sweeps[(n, k)] / 101):.2f} of a member of its 101-value sweep"
+                note += (f"; a member of its 101-value sweep has the floor {member_floor * 1e3:.2f} ms "
+                         f"({'this one' if k == 1 else f'the one-thread floor over {k} workers'}), "
+                         f"{member_floor / (sweeps[(n, k)] / 101):.2f} of the member's time")
                 # the sweep goal allows 60/101 of a solve per member; a member that writes its net
                 # through the rows' transform costs at least the floor, and the rest is its eliminations
                 allowed, floor = 60 / 101, member_floor / solve[0]
                 member = sweeps[(n, k)] / 101 / solve[0]
                 note += (f"; the sweep goal (≤ 60× one solve) allows a member {allowed:.2f} of a solve, against "
-                         f"{floor:.2f} for the floor of a member ({'one-thread floor' if k == 1 else f'one-thread floor / {k} workers'})")
+                         f"{floor:.2f} for that floor")
                 if floor >= allowed:
                     note += ", which alone exceeds it"
                 else:

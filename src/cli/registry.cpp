@@ -1,5 +1,6 @@
 #include "registry.h"
 
+#include <cctype>
 #include <cstdlib>
 #include <filesystem>
 #include <iostream>
@@ -45,21 +46,34 @@ void refuse_empty_values(CLI::App& app) {
       "", "REPRESENTABLE");
   // strtod reads hexadecimal too: --alpha 0x10 solved at α = 16, where the JSON and Matrix Market
   // readers refuse '0x10' as no decimal number (and CLI11's integers read 0x5 as 5).
-  // Only a 0x prefix (after a sign) is hexadecimal; any other x ('0.1x') is left to CLI11's
-  // conversion, which says the value is no number.
+  // Only a 0x prefix is hexadecimal; any other x ('0.1x') is left to CLI11's conversion, which says
+  // the value is no number. The prefix is looked for after the white space and signs that
+  // strtod/strtoll skip (' 0x10' was read as 16).
+  const auto digits_at = [](const std::string& value) { return value.find_first_not_of(" \t\n\v\f\r+-"); };
   const CLI::Validator decimal(
-      [](std::string& value) {
-        const std::size_t digits = value.find_first_not_of("+-");
+      [digits_at](std::string& value) {
+        const std::size_t digits = digits_at(value);
         const bool hexadecimal = digits != std::string::npos && value.size() > digits + 1 && value[digits] == '0' &&
                                  (value[digits + 1] == 'x' || value[digits + 1] == 'X');
         return hexadecimal ? "'" + value + "' is not a decimal number (hexadecimal is not read)" : std::string();
       },
       "", "DECIMAL");
+  // CLI11 reads integers with strtoll in base 0: --count 010 was 8 (octal).
+  const CLI::Validator no_octal(
+      [digits_at](std::string& value) {
+        const std::size_t digits = digits_at(value);
+        const bool octal = digits != std::string::npos && value.size() > digits + 1 && value[digits] == '0' &&
+                           std::isdigit(static_cast<unsigned char>(value[digits + 1]));
+        return octal ? "'" + value + "' has a leading zero, which would be read as octal (write it without)"
+                     : std::string();
+      },
+      "", "NO_OCTAL");
   for (CLI::Option* option : app.get_options()) {
     if (option->get_type_size_max() > 0) option->check(non_empty);
     const std::string type = option->get_type_name();
     if (type.rfind("FLOAT", 0) == 0) option->check(decimal)->check(representable);
-    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0) option->check(decimal);  // (CLI11 reads 0x5 as 5)
+    if (type.rfind("INT", 0) == 0 || type.rfind("UINT", 0) == 0)
+      option->check(decimal)->check(no_octal);  // (CLI11 reads 0x5 as 5 and 010 as 8)
   }
   for (CLI::App* sub : app.get_subcommands([](CLI::App*) { return true; })) refuse_empty_values(*sub);
 }

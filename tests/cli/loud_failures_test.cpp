@@ -655,6 +655,22 @@ TEST_CASE("coons: a hexadecimal number on the command line is refused, as the fi
   CHECK_THAT(frames.err, Catch::StartsWith("error: command line: --alphas: '0x5' is not a decimal number"));
   CHECK_FALSE(std::filesystem::exists(dir.file("v.html")));
   CHECK(run_coons("solve " + quoted(dome()) + " --alpha -1e-1").status == 0);  // decimal exponents stay
+  // strtod and strtoll skip white space before the prefix: ' 0x10' was read as 16 (review of
+  // 2026-12-04); and CLI11 reads integers in base 0, so --max-iterations 010 was 8
+  for (const auto& [args, message] :
+       {std::pair{" --alpha ' 0x10'", "--alpha: ' 0x10' is not a decimal number (hexadecimal is not read)"},
+        std::pair{" --alpha ' -0X1p-3'", "--alpha: ' -0X1p-3' is not a decimal number"},
+        std::pair{" --solver cg --max-iterations 010",
+                  "--max-iterations: '010' has a leading zero, which would be read "
+                  "as octal"},
+        std::pair{" --alpha 0.1x", "--alpha: '0.1x' is not a number"}}) {
+    const CommandResult r = run_coons("solve " + quoted(dome()) + args);
+    INFO(args);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK_THAT(r.err, Catch::StartsWith(std::string("error: command line: ") + message));
+  }
+  CHECK(run_coons("solve " + quoted(dome()) + " --alpha 010").status == 0);  // a real number: decimal 10
 }
 
 TEST_CASE("coons sweep: an interval too narrow for --count distinct values is refused", "[cli][loud]") {
