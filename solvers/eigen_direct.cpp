@@ -131,11 +131,15 @@ class EigenDirect : public LinearSolver {
     factor_.factorize(*op.matrix);
     const SolveStatus status = judge(factor_, *op.matrix, summary);
     if constexpr (!std::is_same_v<Factor, Lu>)
-      if (factor_.info() != Eigen::Success) return judge_stopped(*op.matrix, summary);
+      // stopped at a pivot, or zero pivots and no negative one: semidefinite and singular, or an
+      // indefinite A whose negative eigenvalue the rounding of a pivot hid (−2e-15 counted as zero)
+      if (factor_.info() != Eigen::Success || status == SolveStatus::kSingular)
+        return judge_stopped(*op.matrix, summary);
     return status;
   }
 
-  // The factorisation stopped at a pivot ≤ 0 (LLᵀ) or = 0 (LDLᵀ): singular or indefinite, which
+  // The factorisation stopped at a pivot ≤ 0 (LLᵀ) or = 0 (LDLᵀ), or found zero pivots (below
+  // kSingularPivot of their diagonal entry) and no negative one: singular or indefinite, which
   // the factorisation of A raised on its diagonal and inverse iteration with it tell apart
   // (semidefinite_verdict). The raised factor stays behind, but a failed factorize() leaves
   // nothing to solve with.

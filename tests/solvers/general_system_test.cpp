@@ -485,7 +485,7 @@ TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells 
   // semidefinite and singular; [[0, 1], [1, 0]] and [[1, 2], [2, 3.9]] are regular and indefinite,
   // and so are [[1, 1], [1, 1 − 1e-11]] (eigenvalue −5e-12) and a 3×3 whose LDLᵀ meets an exact
   // zero pivot (eigenvalue −5e-13), which A + 1e-10·diag(A) alone called singular (review of
-  // 2026-12-04). Each factorisation stops (at a pivot 0, or below 0) or meets a negative pivot;
+  // 2026-12-04), and one whose LDLᵀ pivot −2e-15 counts as zero (eigenvalue −8e-12). Each factorisation stops (at a pivot 0, or below 0) or meets a negative pivot;
   // all of them were "not positive definite", the singular ones included.
   constexpr int kPath = 40;
   Eigen::MatrixXd neumann = Eigen::MatrixXd::Zero(kPath, kPath);
@@ -502,7 +502,11 @@ TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells 
       {(Eigen::MatrixXd(2, 2) << 0, 1, 1, 0).finished(), SolveStatus::kNotPositiveDefinite},
       {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 3.9).finished(), SolveStatus::kNotPositiveDefinite},
       {(Eigen::MatrixXd(2, 2) << 1, 1, 1, 1 - 1e-11).finished(), SolveStatus::kNotPositiveDefinite},
-      {(Eigen::MatrixXd(3, 3) << 1, 1, 0, 1, 1, 1e-6, 0, 1e-6, 1).finished(), SolveStatus::kNotPositiveDefinite}};
+      {(Eigen::MatrixXd(3, 3) << 1, 1, 0, 1, 1, 1e-6, 0, 1e-6, 1).finished(), SolveStatus::kNotPositiveDefinite},
+      // eigenvalue −8e-12: the LDLᵀ pivot −2e-15 counts as zero and none is negative, which was
+      // `singular` straight away (second review of 2026-12-04)
+      {(Eigen::MatrixXd(3, 3) << 1, 1, 2e-6, 1, 1 - 2e-15, -2e-6, 2e-6, -2e-6, 1).finished(),
+       SolveStatus::kNotPositiveDefinite}};
   for (const auto& [dense, expected] : cases) {
     const Eigen::MatrixXd b = Eigen::MatrixXd::Ones(dense.rows(), 1);
     for (const char* name : {"eigen-ldlt", "eigen-llt", "cholmod", "cholmod-simplicial"}) {
