@@ -3,6 +3,7 @@
 #include <cholmod.h>
 #include <umfpack.h>
 
+#include <algorithm>
 #include <cmath>
 #include <limits>
 #include <optional>
@@ -143,7 +144,39 @@ class Cholmod : public LinearSolver {
       if (status == SolveStatus::kSingular) return judge_stopped(*op.matrix, summary.message, summary);
       return status;
     }
+    if (const std::string zero = zero_supernodal_pivot(*op.matrix); !zero.empty())
+      return judge_stopped(*op.matrix, zero, summary);
     return SolveStatus::kSuccess;
+  }
+
+  // The supernodal LLᵀ went through: a pivot L_jj² below kSingularPivot of its diagonal entry (as
+  // eigen-llt tests it, is_zero_pivot) is "a pivot of L is (numerically) zero at column K (…)",
+  // else "". (A singular Neumann Laplacian scaled D·A·D was solved as a success, where the other
+  // Cholesky-type backends say singular; review of 2026-12-04.) Column j of supernode s holds
+  // L_jj at px[s] + (j − super[s])·(nsrow + 1), nsrow = pi[s + 1] − pi[s].
+  [[nodiscard]] std::string zero_supernodal_pivot(const Eigen::SparseMatrix<double>& A) const {
+    if (!factor_->is_super) return "";
+    const auto* super = static_cast<const int*>(factor_->super);
+    const auto* pi = static_cast<const int*>(factor_->pi);
+    const auto* px = static_cast<const int*>(factor_->px);
+    const auto* x = static_cast<const double*>(factor_->x);
+    const auto* perm = static_cast<const int*>(factor_->Perm);
+    const Eigen::VectorXd diagonal = A.diagonal();
+    std::vector<double> pivots(factor_->n);
+    double largest = 0;
+    for (size_t s = 0; s < factor_->nsuper; ++s) {
+      const int nsrow = pi[s + 1] - pi[s];
+      for (int j = super[s]; j < super[s + 1]; ++j) {
+        const double l = x[px[s] + std::size_t(j - super[s]) * std::size_t(nsrow + 1)];
+        pivots[std::size_t(j)] = l * l;
+        largest = std::max(largest, l * l);
+      }
+    }
+    for (size_t j = 0; j < factor_->n; ++j)
+      if (is_zero_pivot(pivots[j], diagonal(perm ? perm[j] : Eigen::Index(j)), largest))
+        return "a pivot of L is (numerically) zero (its square below 1e-13 of its diagonal entry) at " +
+               column_of_pivot(j);
+    return "";
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {

@@ -485,8 +485,9 @@ TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells 
   // semidefinite and singular; [[0, 1], [1, 0]] and [[1, 2], [2, 3.9]] are regular and indefinite,
   // and so are [[1, 1], [1, 1 − 1e-11]] (eigenvalue −5e-12) and a 3×3 whose LDLᵀ meets an exact
   // zero pivot (eigenvalue −5e-13), which A + 1e-10·diag(A) alone called singular (review of
-  // 2026-12-04), and one whose LDLᵀ pivot −2e-15 counts as zero (eigenvalue −8e-12). Each factorisation stops (at a pivot 0, or below 0) or meets a negative pivot;
-  // all of them were "not positive definite", the singular ones included.
+  // 2026-12-04), and one whose LDLᵀ pivot −2e-15 counts as zero (eigenvalue −8e-12). Each factorisation stops (at a
+  // pivot 0, or below 0) or meets a negative pivot; all of them were "not positive definite", the singular ones
+  // included.
   constexpr int kPath = 40;
   Eigen::MatrixXd neumann = Eigen::MatrixXd::Zero(kPath, kPath);
   for (int k = 0; k + 1 < kPath; ++k) {  // the edge (k, k + 1), its ends weighted 10^±3
@@ -496,9 +497,29 @@ TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells 
     neumann(k, k + 1) -= wk * wl;
     neumann(k + 1, k) -= wk * wl;
   }
+  // A 15 × 15 Neumann grid Laplacian, edge weights in [0.1, 10], scaled D A D by 10^{−8, −4, 0, 4, 8}:
+  // cholmod's supernodal LLᵀ goes through it and, b being consistent, called it solved (second
+  // review of 2026-12-04)
+  constexpr int kGrid = 15;
+  Eigen::MatrixXd grid = Eigen::MatrixXd::Zero(kGrid * kGrid, kGrid * kGrid);
+  for (int i = 0; i < kGrid; ++i)
+    for (int j = 0; j < kGrid; ++j)
+      for (const auto& [di, dj] : {std::pair{1, 0}, std::pair{0, 1}}) {
+        if (i + di >= kGrid || j + dj >= kGrid) continue;
+        const int a = i * kGrid + j, b = (i + di) * kGrid + j + dj;
+        const double w = 0.1 + 9.9 * double((7 * a + 3 * b) % 11) / 10;
+        grid(a, a) += w;
+        grid(b, b) += w;
+        grid(a, b) -= w;
+        grid(b, a) -= w;
+      }
+  Eigen::VectorXd scale(kGrid * kGrid);
+  for (int k = 0; k < kGrid * kGrid; ++k) scale(k) = std::pow(10.0, 4 * ((k * 7) % 5 - 2));
+  grid = scale.asDiagonal() * grid * scale.asDiagonal();
   const std::vector<std::pair<Eigen::MatrixXd, SolveStatus>> cases = {
       {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 4).finished(), SolveStatus::kSingular},
       {neumann, SolveStatus::kSingular},
+      {grid, SolveStatus::kSingular},
       {(Eigen::MatrixXd(2, 2) << 0, 1, 1, 0).finished(), SolveStatus::kNotPositiveDefinite},
       {(Eigen::MatrixXd(2, 2) << 1, 2, 2, 3.9).finished(), SolveStatus::kNotPositiveDefinite},
       {(Eigen::MatrixXd(2, 2) << 1, 1, 1, 1 - 1e-11).finished(), SolveStatus::kNotPositiveDefinite},
@@ -508,7 +529,8 @@ TEST_CASE("run_general_system: a Cholesky-type backend stopped at a pivot tells 
       {(Eigen::MatrixXd(3, 3) << 1, 1, 2e-6, 1, 1 - 2e-15, -2e-6, 2e-6, -2e-6, 1).finished(),
        SolveStatus::kNotPositiveDefinite}};
   for (const auto& [dense, expected] : cases) {
-    const Eigen::MatrixXd b = Eigen::MatrixXd::Ones(dense.rows(), 1);
+    // consistent: b in A's range, so no residual gives a singular matrix away
+    const Eigen::MatrixXd b = dense * Eigen::VectorXd::LinSpaced(dense.rows(), 1, 2);
     for (const char* name : {"eigen-ldlt", "eigen-llt", "cholmod", "cholmod-simplicial"}) {
       const SolverInfo* info = find_solver(name);
       if (info == nullptr) continue;  // (a build without SuiteSparse)
