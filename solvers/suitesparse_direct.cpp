@@ -180,16 +180,22 @@ class Cholmod : public LinearSolver {
   }
 
   SolveStatus do_solve(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X, SolveSummary& summary) override {
-    cholmod_dense b = view_dense(B);
-    cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor_, &b, &common_);
     summary.iterations = 1;
-    if (!x) {
+    if (!solve_with_factor(B, X)) {
       summary.message = "cholmod_solve failed, status " + std::to_string(common_.status);
       return SolveStatus::kFailure;
     }
+    return SolveStatus::kSuccess;
+  }
+
+  // X = A⁻¹B with the factor held (also the raised one of judge_stopped); false when cholmod_solve fails.
+  bool solve_with_factor(const Eigen::MatrixX3d& B, Eigen::MatrixX3d& X) {
+    cholmod_dense b = view_dense(B);
+    cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor_, &b, &common_);
+    if (!x) return false;
     X = Eigen::Map<const Eigen::MatrixX3d>(static_cast<const double*>(x->x), B.rows(), 3);
     cholmod_free_dense(&x, &common_);
-    return SolveStatus::kSuccess;
+    return true;
   }
 
  private:
@@ -225,11 +231,8 @@ class Cholmod : public LinearSolver {
     std::optional<ScaledEigenvalue> raised;
     if (definite)
       raised = smallest_scaled_eigenvalue(M, [&](const Eigen::MatrixX3d& B) -> Eigen::MatrixX3d {
-        cholmod_dense b = view_dense(B);
-        cholmod_dense* x = cholmod_solve(CHOLMOD_A, factor_, &b, &common_);
-        if (!x) return Eigen::MatrixX3d::Constant(B.rows(), 3, std::numeric_limits<double>::quiet_NaN());
-        Eigen::MatrixX3d X = Eigen::Map<const Eigen::MatrixX3d>(static_cast<const double*>(x->x), B.rows(), 3);
-        cholmod_free_dense(&x, &common_);
+        Eigen::MatrixX3d X;
+        if (!solve_with_factor(B, X)) X.setConstant(B.rows(), 3, std::numeric_limits<double>::quiet_NaN());
         return X;
       });
     common_.status = CHOLMOD_OK;  // (the diagnosis is over; the next factorisation starts afresh)
