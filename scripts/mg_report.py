@@ -194,6 +194,13 @@ def threads_table(data):
         solve = solves[fast_key].get(k) if fast_key else None
         if solve:
             note += f", {t / solve[0]:.2f} of a `fast` solve at α = −0.1"
+            # the `fast` goal in memory passes, against the floor its solve cannot go below
+            fast_goal, floor_passes = goals[("fast", "-0.1")][0], t / memory[n]
+            if floor_passes >= fast_goal:
+                note += f", which alone exceeds the `fast` goal (≤ {fast_goal}×)"
+            else:
+                note += (f", which leaves {fast_goal - floor_passes:.1f}× of the `fast` goal (≤ {fast_goal}×) for its "
+                         f"eliminations and set-up (they take {(solve[0] - t) / memory[n]:.1f}× now)")
             if (n, k) in sweeps and (n, 1) in floors:
                 # A sweep on k threads runs its members side by side on k one-thread workers, so a
                 # member's floor in wall time is the one-thread floor over k (not the k-thread one).
