@@ -10,30 +10,82 @@
 namespace coons::solvers {
 
 namespace {
-// B − A X with A X formed first: Eigen evaluates B − A X as R = B, then R −= x_j·A(:, j) column by
+using SpMat = Eigen::SparseMatrix<double>;
+
+// A X − B with A X formed first: Eigen evaluates B − A X as R = B, then R −= x_j·A(:, j) column by
 // column, where b = 1 vanished in (1 + 2^105) − 2^105 and a residual of 1 was measured as 0.
-Eigen::MatrixXd residual_of(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
-  Eigen::MatrixXd R = A * X;
-  R -= B;
-  return R;
+//
+// Both figures of a column are ratios of its residual to its B or to |A||x| + |b|, which scaling x
+// and b by one power of two leaves as they are. A column whose sums overflow as they stand (a row
+// 2·0.95e308 − 2·0.6e308 of a finite A x = b went through +inf: every backend `failure`, or
+// |A||x| = inf made the backward error r/inf = 0) is taken again with x and b times 2^−k, k the
+// least that keeps every partial sum within the doubles; entries that this pushes below the
+// smallest double are those far beneath the column's largest (at most 2^−1000 of it).
+struct ColumnResidual {
+  Eigen::VectorXd r, b, scale;  // A x − b, b and (when asked) |A||x| + |b|, all times 2^−k
+};
+
+// k ≥ 0 such that Σ_j |a_ij| |x_j| 2^−k + |b_i| 2^−k stays below 2^1021 for every row.
+int overflow_exponent(const SpMat& A, const Eigen::VectorXd& x, const Eigen::VectorXd& b) {
+  Eigen::Index longest = 0;  // the most entries of a row
+  Eigen::VectorXi per_row = Eigen::VectorXi::Zero(A.rows());
+  double largest = 0;
+  for (Eigen::Index j = 0; j < A.outerSize(); ++j)
+    for (SpMat::InnerIterator it(A, j); it; ++it) {
+      longest = std::max<Eigen::Index>(longest, ++per_row(it.row()));
+      largest = std::max(largest, std::abs(it.value()));
+    }
+  const int rows_bits = exponent_of(double(longest + 1));  // longest + 1 < 2^rows_bits
+  const int sum = std::max(exponent_of(largest) + magnitude_exponent(x) + rows_bits, magnitude_exponent(b) + 1);
+  return std::max(0, sum - 1021);
+}
+
+ColumnResidual column_residual(const SpMat& A, const SpMat* absolute, const Eigen::VectorXd& x,
+                               const Eigen::VectorXd& b) {
+  ColumnResidual c;
+  const auto evaluate = [&](const Eigen::VectorXd& xs) {
+    c.r = A * xs;
+    c.r -= c.b;
+    if (absolute) c.scale = *absolute * xs.cwiseAbs() + c.b.cwiseAbs();
+    return c.r.allFinite() && (!absolute || c.scale.allFinite());
+  };
+  c.b = b;
+  if (evaluate(x)) return c;
+  const int k = overflow_exponent(A, x, b);
+  if (k == 0) return c;  // not an overflow of the sums (or x or b not finite): left as found
+  Eigen::VectorXd xs = x;
+  scale_by_power_of_two(xs, -k);
+  c.b = b;
+  scale_by_power_of_two(c.b, -k);
+  evaluate(xs);
+  return c;
 }
 }  // namespace
 
 double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
-  const Eigen::MatrixXd R = residual_of(A, X, B);
-  const Eigen::MatrixXd scale = A.cwiseAbs() * X.cwiseAbs() + B.cwiseAbs();
+  const SpMat absolute = A.cwiseAbs();
   double worst = 0;
-  for (Eigen::Index c = 0; c < R.cols(); ++c)
-    for (Eigen::Index i = 0; i < R.rows(); ++i) {
-      const double r = std::abs(R(i, c));
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    const ColumnResidual col = column_residual(A, &absolute, X.col(c), B.col(c));
+    for (Eigen::Index i = 0; i < col.r.size(); ++i) {
+      const double r = std::abs(col.r(i));
       if (r == 0) continue;  // also covers a zero denominator (then the residual is zero)
-      worst = std::max(worst, scale(i, c) > 0 ? r / scale(i, c) : 1.0);
+      if (std::isnan(r)) return r;
+      worst = std::max(worst, col.scale(i) > 0 ? r / col.scale(i) : 1.0);
     }
+  }
   return worst;
 }
 
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
-  return max_relative_norm(residual_of(A, X, B), B);  // no underflow or overflow of ‖·‖²
+  double worst = 0;  // max_relative_norm column by column, each column's residual as column_residual forms it
+  for (Eigen::Index c = 0; c < B.cols(); ++c) {
+    const ColumnResidual col = column_residual(A, nullptr, X.col(c), B.col(c));
+    const double q = relative_norm(col.r, col.b);  // no underflow or overflow of ‖·‖²
+    if (std::isnan(q)) return q;
+    worst = std::max(worst, q);
+  }
+  return worst;
 }
 
 double symmetry_defect(const Eigen::SparseMatrix<double>& A) {

@@ -21,7 +21,8 @@ namespace coons::solvers {
 //! max over rows i and columns c of |B − A X|_ic / (|A| |X| + |B|)_ic, a row whose denominator is
 //! zero counting as 0 (its residual is then zero too). Lies in [0, 1] up to rounding; the smallest
 //! relative componentwise perturbation of A and B for which X is an exact solution (Oettli–Prager).
-//! X must be finite, with the shape of B.
+//! X must be finite, with the shape of B. A column whose sums overflow as they stand is measured on
+//! x and b scaled down by a common power of two (the ratio does not change), as is relative_residual's.
 double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B);
 
 //! max over columns of ‖B − A X‖₂ / ‖B‖₂ (a zero column of B: ‖A X‖₂).

@@ -1,6 +1,7 @@
 // Backends on general systems from outside coons (solvers/general_system.h).
 #include "solvers/general_system.h"
 
+#include <Eigen/LU>
 #include <array>
 #include <catch2/catch.hpp>
 #include <random>
@@ -76,6 +77,46 @@ TEST_CASE("relative_residual: right-hand sides near underflow or overflow give t
     const double scale = std::ldexp(1.0, e);
     CHECK(relative_residual(A, X * scale, B * scale) == Approx(plain).epsilon(1e-14));
   }
+}
+
+TEST_CASE("backward_error and relative_residual: sums that overflow on the way to a finite A x are measured scaled",
+          "[solvers]") {
+  // Both figures are ratios that a common power of two on x and b leaves alone, bit for bit: each
+  // system is measured as it is (near the top of the doubles) and scaled down by 2^-64, where no
+  // sum overflows.
+  const auto dense = [](std::initializer_list<double> v) {
+    Eigen::SparseMatrix<double> A(2, 2);
+    const auto* a = v.begin();
+    A.insert(0, 0) = a[0];
+    A.insert(0, 1) = a[1];
+    A.insert(1, 0) = a[2];
+    A.insert(1, 1) = a[3];
+    return A;
+  };
+  // A x = (0.7e308, 1.3e308) for x = (0.95e308, 0.6e308), but 2·0.95e308 is beyond the doubles: the
+  // residual went through +inf (every bench-matrix backend `failure`).
+  const Eigen::SparseMatrix<double> A1 = dense({2, -2, 2, -1});
+  // |A||x| + |b| overflows in the second row while A x is finite: the backward error was r/inf = 0.
+  const Eigen::SparseMatrix<double> A2 = dense({1.1, -0.9, 0.3, 1.3});
+  const std::pair<const Eigen::SparseMatrix<double>*, Eigen::Vector2d> systems[] = {{&A1, {0.7e308, 1.3e308}},
+                                                                                    {&A2, {0.2e308, 1.6e308}}};
+  const double down = std::ldexp(1.0, -64);
+  for (const auto& [A, b] : systems) {
+    const Eigen::MatrixXd B = b;
+    // (a dense LU of the system as it stands overflows too: solved scaled down, scaled back up)
+    const Eigen::MatrixXd X = Eigen::MatrixXd(*A).partialPivLu().solve(B * down) / down;
+    REQUIRE(X.allFinite());
+    const double residual = relative_residual(*A, X, B), error = backward_error(*A, X, B);
+    CHECK(residual == relative_residual(*A, X * down, B * down));
+    CHECK(error == backward_error(*A, X * down, B * down));
+    CHECK(residual < 1e-15);
+    CHECK(error < 1e-15);
+  }
+  // the second system's residual is not zero, so neither is its backward error
+  const Eigen::MatrixXd B2 = systems[1].second;
+  const Eigen::MatrixXd X2 = Eigen::MatrixXd(A2).partialPivLu().solve(B2 * down) / down;
+  REQUIRE(relative_residual(A2, X2, B2) > 0);
+  CHECK(backward_error(A2, X2, B2) > 0);
 }
 
 TEST_CASE("symmetry_defect: zero for a symmetric matrix, the relative asymmetry otherwise", "[solvers]") {
