@@ -210,6 +210,12 @@ TEST_CASE("read_market_matrix: a bad file names its line and the reason", "[io]"
   CHECK(error_of(coordinate + "2 2 1\n1 1 3" + std::string(1, '\0') + "junk\n") ==
         "line 3: '3\\0junk' is not a decimal number");
   CHECK(error_of(coordinate + "2 2 1\n2" + std::string(1, '\0') + "9 1 1\n").find("line 3: expected") == 0);
+  // and in the banner or the size line a NUL byte cut the error line short where it was printed
+  // ("unknown symmetry 'general", the reason lost; "unexpected '")
+  const std::string nul(1, '\0');
+  CHECK(error_of("%%MatrixMarket matrix coordinate real general" + nul + "junk\n2 2 1\n1 1 1\n")
+            .find("line 1: unknown symmetry 'general\\0junk' (expected") == 0);
+  CHECK(error_of(coordinate + "2 2 1" + nul + "\n1 1 1\n") == "line 2: unexpected '\\0' after 3 integers");
   CHECK(error_of(coordinate + "2 2 1\n1 1 1e-400\n") ==
         "line 3: the value '1e-400' is below the smallest double (it would be read as 0)");
   CHECK(error_of(coordinate + "2 2 1\n1 1 1e-320\n") == "no error");

@@ -114,6 +114,14 @@ class MarketLines {
   int number_ = 0;
 };
 
+// A token of the file as an error line quotes it: a NUL byte as \0 (printed as it is, it ended the
+// line there: "unknown symmetry 'general" with the rest of the reason lost).
+std::string shown(const std::string& token) {
+  std::string out;
+  for (const char c : token) out += c == '\0' ? std::string("\\0") : std::string(1, c);
+  return out;
+}
+
 // The integers of a size line, rows and columns within kMaxMarketDimension, nothing else on the line.
 std::vector<long long> size_line(const std::string& path, const std::string& line, int count,
                                  const std::string& field = "size line") {
@@ -124,7 +132,8 @@ std::vector<long long> size_line(const std::string& path, const std::string& lin
     if (!(words >> v) || v < 0 || v > kHi)
       throw InputError(path, field, fmt::format("expected {} integers in [0, {}]", count, kHi));
   std::string rest;
-  if (words >> rest) throw InputError(path, field, fmt::format("unexpected '{}' after {} integers", rest, count));
+  if (words >> rest)
+    throw InputError(path, field, fmt::format("unexpected '{}' after {} integers", shown(rest), count));
   if (out[0] > kMaxMarketDimension || out[1] > kMaxMarketDimension)
     throw InputError(
         path, field,
@@ -188,16 +197,16 @@ Banner parse_banner(const std::string& path, const std::string& line) {
     throw InputError(path, field, expected);
   Banner b{words[2], words[3], words[4]};
   if (b.format != "coordinate" && b.format != "array")
-    throw InputError(path, field, fmt::format("unknown format '{}' ({})", b.format, expected));
+    throw InputError(path, field, fmt::format("unknown format '{}' ({})", shown(b.format), expected));
   if (b.field == "complex") throw InputError(path, field, "complex matrices are not supported (real systems only)");
   if (b.field != "real" && b.field != "integer" && b.field != "pattern" && b.field != "double")
-    throw InputError(path, field, fmt::format("unknown field '{}' ({})", b.field, expected));
+    throw InputError(path, field, fmt::format("unknown field '{}' ({})", shown(b.field), expected));
   if (b.field == "double") b.field = "real";  // an alias some writers use
   if (b.field == "pattern" && b.format == "array")
     throw InputError(path, field, "a pattern matrix needs the coordinate format");
   if (b.symmetry == "hermitian") throw InputError(path, field, "hermitian matrices are complex: not supported");
   if (b.symmetry != "general" && b.symmetry != "symmetric" && b.symmetry != "skew-symmetric")
-    throw InputError(path, field, fmt::format("unknown symmetry '{}' ({})", b.symmetry, expected));
+    throw InputError(path, field, fmt::format("unknown symmetry '{}' ({})", shown(b.symmetry), expected));
   return b;
 }
 
@@ -219,10 +228,9 @@ double parse_value(const std::string& path, const std::string& where, const std:
   // (strtod also reads hexadecimal, '0x10' = 16; Matrix Market values are decimal; a NUL byte
   // ended the number there, "3\0junk" read as 3)
   if (token.empty() || *end != '\0' || token.find_first_of(std::string("xX\0", 3)) != std::string::npos) {
-    std::string shown;
-    for (const char c : token) shown += c == '\0' ? std::string("\\0") : std::string(1, c);
-    throw InputError(path, where,
-                     fmt::format("'{}' is not {}", shown, b.field == "integer" ? "an integer" : "a decimal number"));
+    throw InputError(
+        path, where,
+        fmt::format("'{}' is not {}", shown(token), b.field == "integer" ? "an integer" : "a decimal number"));
   }
   // a non-zero value below the smallest double (1e-400) read as an explicit 0, where 1e400 is refused
   if (b.field != "integer" && errno == ERANGE && v == 0)
