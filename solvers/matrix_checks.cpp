@@ -33,8 +33,8 @@ SolveStatus check_preconditioner_matrix(const Eigen::SparseMatrix<double>& A, bo
   if (need_diagonal)
     for (std::size_t r = 0; r < diagonal.size(); ++r)
       if (!diagonal[r])
-        return fail(SolveStatus::kNotApplicable,
-                    "the diagonal is zero at row " + std::to_string(r) + ": the preconditioner needs it");
+        return fail(SolveStatus::kNotApplicable, "the diagonal is zero at row " + std::to_string(r) +
+                                                     " (counting from 0): the preconditioner needs it");
   return SolveStatus::kSuccess;
 }
 

@@ -56,7 +56,7 @@ SolveStatus semidefinite_verdict(const Eigen::SparseMatrix<double>& A, const std
                                  const std::string& stopped, std::string* message);
 
 //! kSingular with "row K is empty: the matrix is singular" (or column K) when a row or column of A
-//! has no non-zero; with `need_diagonal`, kNotApplicable with "the diagonal is zero at row K: the
+//! has no non-zero; with `need_diagonal`, kNotApplicable with "the diagonal is zero at row K (counting from 0): the
 //! preconditioner needs it"; otherwise kSuccess. The reason goes to *why.
 SolveStatus check_preconditioner_matrix(const Eigen::SparseMatrix<double>& A, bool need_diagonal, std::string* why);
 

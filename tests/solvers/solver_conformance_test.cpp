@@ -460,7 +460,8 @@ TEST_CASE("check_preconditioner_matrix: an empty row or a zero diagonal is refus
   off.insert(0, 1) = 1;
   off.insert(1, 0) = 1;
   CHECK(reason(off, false, SolveStatus::kSuccess).empty());
-  CHECK(reason(off, true, SolveStatus::kNotApplicable) == "the diagonal is zero at row 0: the preconditioner needs it");
+  CHECK(reason(off, true, SolveStatus::kNotApplicable) ==
+        "the diagonal is zero at row 0 (counting from 0): the preconditioner needs it");
   const Eigen::MatrixX3d B = Eigen::MatrixX3d::Ones(3, 3);
   for (const SolverInfo& info : available_solvers()) {
     if (info.family != SolverFamily::kIterative || !info.needs_matrix) continue;
