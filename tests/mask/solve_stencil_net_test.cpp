@@ -229,6 +229,37 @@ TEST_CASE("solve_stencil_net: mg-cg reproduces a net cubic in each index at degr
   }
 }
 
+TEST_CASE(
+    "solve_stencil_net: an iteration that ends above its tolerance on the system as given says why refinement "
+    "did not help",
+    "[mask]") {
+  // c1-coons around a two-point hole at degree 40 (κ about 1e9): mg stops at 1.0–1.9 times a
+  // tolerance of 1e-11 on the system as given, and the correction solve of the refinement round,
+  // asked for 1e-11 of a residual already that small, does not converge either. The message said
+  // nothing of the round (it promised "up to two refinement rounds" only when one was taken).
+  for (const std::uint32_t seed : {5U, 6U}) {
+    const ControlNet exact = bicubic_index_net(40, 40, seed);
+    StencilProblem p = make_problem(exact, 2);
+    p.free = free_points(p);
+    p.free(20, 20) = p.free(19, 20) = false;
+    solvers::SolverOptions options;
+    options.tolerance = 1e-11;
+    auto solver = solvers::make_solver("mg", options);
+    const StencilSolveResult r = solve_stencil_net(p, c1_coons_stencil(), *solver);
+    INFO("seed " << seed << ": " << r.summary.brief_report());
+    if (r.summary.ok()) {  // (converged after all: then the net is the exact one)
+      CHECK(relative_difference(r.net, exact) < 1e-6);
+      continue;
+    }
+    CHECK(r.summary.status == solvers::SolveStatus::kNotConverged);
+    CHECK_THAT(r.summary.message, Catch::Contains("the system as given has relative residual"));
+    const bool said =
+        r.summary.message.find("; the correction solve of round 1 ended not_converged") != std::string::npos ||
+        r.summary.message.find("refinement round") != std::string::npos;
+    CHECK(said);
+  }
+}
+
 TEST_CASE("solve_stencil_net: cholmod on c1-coons at degree 64 says its forward error bound, which covers its error",
           "[mask]") {
   // The assembled c1-coons system is ill-conditioned (κ grows like N⁸): the sparse Cholesky

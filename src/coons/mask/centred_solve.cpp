@@ -84,23 +84,35 @@ void finish_centred_solve(solvers::LinearSolver& solver, const solvers::LinearOp
   const bool iterative = is_iterative(solver.name());
   constexpr int kRounds = 2;
   int rounds = 0;
+  std::string stopped;  // why a round was not taken (said in the message: it was silent)
   for (; iterative && rounds < kRounds && !r.within(tolerance); ++rounds) {
     Eigen::MatrixXd AX;
     if (!solvers::apply_operator(op, X, AX)) break;
     const Eigen::MatrixX3d R = B - AX;
     Eigen::MatrixX3d D;
     const solvers::SolveSummary correction = solver.solve(R, D);
-    if (!correction.ok() || !D.allFinite()) break;
+    if (!correction.ok() || !D.allFinite()) {
+      stopped = std::string("the correction solve of round ") + std::to_string(rounds + 1) + " ended " +
+                solvers::to_string(correction.status);
+      break;
+    }
     const Eigen::MatrixX3d refined = X + D;
     ColumnResiduals next;
-    if (!residuals(op, B, refined, weight_sum, next) || !(next.largest() < r.largest())) break;
+    if (!residuals(op, B, refined, weight_sum, next)) break;
+    if (!(next.largest() < r.largest())) {
+      stopped = "round " + std::to_string(rounds + 1) + " of refinement did not lower it (" +
+                solvers::format_g(next.largest()) + ")";
+      break;
+    }
     summary.iterations += correction.iterations;
     X = refined;
     r = next;
   }
   settle(r, tolerance, iterative, summary);
-  if (rounds > 0 && summary.status == solvers::SolveStatus::kNotConverged)
-    summary.message += " (after up to two refinement rounds)";
+  if (summary.status != solvers::SolveStatus::kNotConverged) return;
+  if (rounds > 0)
+    summary.message += " (after " + std::to_string(rounds) + " refinement round" + (rounds == 1 ? "" : "s") + ")";
+  if (!stopped.empty()) summary.message += "; " + stopped;
 }
 
 void judge_centred_member(const std::string& backend, double tolerance, const solvers::LinearOperator& op,
