@@ -55,7 +55,6 @@ ColumnResidual column_residual(const SpMat& A, const SpMat* absolute, const Eige
   if (k == 0) return c;  // not an overflow of the sums (or x or b not finite): left as found
   Eigen::VectorXd xs = x;
   scale_by_power_of_two(xs, -k);
-  c.b = b;
   scale_by_power_of_two(c.b, -k);
   evaluate(xs);
   return c;
@@ -78,14 +77,13 @@ double backward_error(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixX
 }
 
 double relative_residual(const Eigen::SparseMatrix<double>& A, const Eigen::MatrixXd& X, const Eigen::MatrixXd& B) {
-  double worst = 0;  // max_relative_norm column by column, each column's residual as column_residual forms it
+  Eigen::MatrixXd R(B.rows(), B.cols()), Bk(B.rows(), B.cols());  // each column as column_residual forms it
   for (Eigen::Index c = 0; c < B.cols(); ++c) {
     const ColumnResidual col = column_residual(A, nullptr, X.col(c), B.col(c));
-    const double q = relative_norm(col.r, col.b);  // no underflow or overflow of ‖·‖²
-    if (std::isnan(q)) return q;
-    worst = std::max(worst, q);
+    R.col(c) = col.r;
+    Bk.col(c) = col.b;
   }
-  return worst;
+  return max_relative_norm(R, Bk);  // no underflow or overflow of ‖·‖²
 }
 
 double symmetry_defect(const Eigen::SparseMatrix<double>& A) {
