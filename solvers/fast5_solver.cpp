@@ -3,11 +3,13 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
 
 #include "fast5_capacitance.h"
+#include "fast5_low_modes.h"
 #include "fast5_modes.h"
 #include "separable_banded_solver.h"
 #include "sine_transform.h"
@@ -30,18 +32,33 @@ using fast5_detail::second_difference_eigenvalues;
 
 // Modes per unit of the threaded sweeps (fixed: the partial sums do not depend on the thread count).
 constexpr int kModeChunk = 128;
+// The modes q < max(kLowModes, cols/kLowModeShare) are solved in closed form (fast5_low_modes.h):
+// from there on κ(M_q) ∝ (cols/q)⁴ is at most about 16⁴, so the banded solves' forward error is
+// below the rounding the transforms leave anyway.
+constexpr int kLowModes = 64;
+constexpr int kLowModeShare = 16;
 
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
 constexpr std::array<double, 5> kImpulse = {0, 0, 1, 0, 0};
-// The capacitance CG stops at this residual relative to its right-hand side: the boundary
-// corrections remove what is left (the first solve is only accurate to 1e-5 there at N = 1023
-// anyway, see the header). A correction solves to the accuracy it needs (to bring the boundary
-// residual to a tenth of kBoundaryResidual), within [kCorrectionTolerance, 1e-2].
-constexpr double kCapacitanceTolerance = 1e-7;
+// The capacitance CG stops at this residual relative to its right-hand side, below the rounding of
+// the rest of the solve, so that no correction is needed for it. A correction (rare, see
+// do_solve) solves to the accuracy it needs (to bring the boundary residual to a tenth of its
+// limit), within [kCorrectionTolerance, 1e-2].
+constexpr double kCapacitanceTolerance = 1e-13;
 constexpr double kCorrectionTolerance = 1e-10;
-constexpr int kCorrections = 3;              // at most this many boundary corrections per solve
-constexpr double kBoundaryResidual = 1e-13;  // relative residual on the boundary columns at which they stop
+constexpr int kCorrections = 3;  // at most this many boundary corrections per solve
+// The boundary columns are corrected only while their residual is clearly above the rounding of
+// the rest of the solve: above max(kBoundaryResidual, kRoundingFactor·max(rows, cols)·ε)·‖b‖
+// (after the first solve it is 2.5–5.3·N·ε·‖b‖ on mask data from N = 255 to 1023, and a
+// correction, which goes through two more row transforms, does not lower it), and above
+// kReferenceFactor times the residual the other columns are estimated to have from the columns 2
+// and cols−3 (A x − b there is rounding only; on random data, whose solutions are large, that
+// rounding is the larger one, and a correction only adds to it).
+constexpr double kBoundaryResidual = 1e-13;
+constexpr double kRoundingFactor = 16;
+constexpr double kReferenceFactor = 4;
+constexpr double kEpsilon = std::numeric_limits<double>::epsilon();
 
 double c_weight(int di, int dj) { return kDelta4[std::size_t(di) + 2] * kDelta4[std::size_t(dj) + 2]; }
 double t_weight(int di, int dj) {
@@ -95,6 +112,9 @@ class Fast5Solver final : public LinearSolver {
     C1FamilyWeights w;
     if (!describe(op, summary, &w)) return SolveStatus::kNotApplicable;
     weights_ = w;
+    for (int di = -2; di <= 2; ++di)
+      for (int dj = -2; dj <= 2; ++dj)
+        stencil_[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] = w.a * c_weight(di, dj) + w.b * t_weight(di, dj);
     separable_ = !(w.b > 1e-12 * w.a);
     if (separable_) return SolveStatus::kSuccess;
     factor_modes();
@@ -121,21 +141,22 @@ class Fast5Solver final : public LinearSolver {
     X.resize(B.rows(), 3);
     for (int c = 0; c < count; ++c) hats_[std::size_t(c)] = X.col(c).data();
     transform_rows(count, true, B);
-    // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = ŷ − A₁⁻¹ U h.
+    // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = A₁⁻¹ (b̂ − U h).
     banded_solve_all(count, dots_);
     std::array<Eigen::MatrixXd, 2> h;
     int iterations = capacitance_solve(dots_, count, kCapacitanceTolerance, h);
     add_boundary_response(count, h, -1.0, true);
-    // The columns 0 and cols−1 carry the rounding of h (see the header): correct them from the
-    // residual there, which is exact, until it is below kBoundaryResidual relative to b.
-    std::array<Eigen::MatrixXd, 2> rho;
-    for (int step = 0; step < kCorrections; ++step) {
-      if (!boundary_residual(B, count, rho)) break;
-      const double tolerance = std::clamp(0.1 * kBoundaryResidual / boundary_ratio_, kCorrectionTolerance, 1e-2);
-      iterations = std::max(iterations, capacitance_solve(rho, count, tolerance, h));
-      add_boundary_response(count, h, 1.0, false);
-    }
     transform_rows(count, false, B);
+    // The columns 0 and cols−1 carry what rounding left in h (see the header): corrected from
+    // their residual (in the sine basis again: S is its own inverse) while it is above its limit.
+    std::array<Eigen::MatrixXd, 2> rho;
+    for (int step = 0; step < kCorrections && boundary_residual(B, X, count, rho); ++step) {
+      const double tolerance = std::clamp(0.1 / boundary_excess_, kCorrectionTolerance, 1e-2);
+      iterations = std::max(iterations, capacitance_solve(rho, count, tolerance, h));
+      transform_rows(count, false, B);
+      add_boundary_response(count, h, 1.0, false);
+      transform_rows(count, false, B);
+    }
     summary.iterations = iterations;
     return SolveStatus::kSuccess;
   }
@@ -197,11 +218,14 @@ class Fast5Solver final : public LinearSolver {
     t_ = std::sqrt(2.0) * first_sine_column(C_);
     tmasks_.setZero(C_, 2);  // t_q on the modes of each parity
     for (int q = 0; q < C_; ++q) tmasks_(q, q % 2) = t_[q];
-    near_sines_.resize(C_, 3);  // columns 0, 1, 2 (those of cols−1, cols−2, cols−3 times (−1)^q)
-    for (int j = 0; j < 3; ++j)
+    near_sines_.resize(C_, 2);  // columns 0, 1 (those of cols−1, cols−2 times (−1)^q)
+    no_sines_.resize(C_, 0);
+    for (int j = 0; j < 2; ++j)
       for (int q = 0; q < C_; ++q)
         near_sines_(q, j) = std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (j + 1) * (q + 1) / (C_ + 1));
     blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_, threads_);
+    const int low = std::min(C_, std::max(kLowModes, C_ / kLowModeShare));
+    low_ = fast5_detail::low_modes(a, b, mu, nu_, low - low % 2);  // even: the chunks after it start on an even mode
   }
 
   // M⁻¹ of the input (see SweepInput) for every mode, into `output`, and out(r, 2k·c + 2m + p) = the
@@ -211,20 +235,26 @@ class Fast5Solver final : public LinearSolver {
   // threads).
   void solve_modes(int count, const fast5_detail::SweepInput& in, const fast5_detail::ChunkOutput& output,
                    const Eigen::MatrixXd& sines, Eigen::MatrixXd& out) {
-    const int chunks = (C_ + kModeChunk - 1) / kModeChunk;
-    partial_.resize(std::size_t(chunks));
+    const int low = low_.modes;
+    const int chunks = (C_ - low + kModeChunk - 1) / kModeChunk;
+    partial_.resize(std::size_t(chunks) + 1);
     buffers_.resize(std::size_t(threads_));
     [[maybe_unused]] const int nt = threads_;
-    // On threads, taken in the order 0, h, 1, h + 1, ... (h = half the chunks): the chunks that run
-    // at the same time are not neighbours, whose rows in X share a cache line at their border.
+    // Unit 0 is the closed form of the lowest modes. On threads, the chunks are taken in the order
+    // 0, h, 1, h + 1, ... (h = half the chunks): the chunks that run at the same time are not
+    // neighbours, whose rows in X share a cache line at their border.
     const int half = (chunks + 1) / 2;
     COONS_PARALLEL_FOR
-    for (int i = 0; i < chunks; ++i) {
-      const int k = nt == 1 ? i : i % 2 == 0 ? i / 2 : half + i / 2;
+    for (int i = 0; i <= chunks; ++i) {
+      if (i == 0) {
+        fast5_detail::solve_low_modes(low_, along_i_, count, in, output, sines, partial_[0]);
+        continue;
+      }
+      const int j = i - 1, k = nt == 1 ? j : j % 2 == 0 ? j / 2 : half + j / 2;
       std::vector<double>& buf = buffers_[std::size_t(thread_index())];
-      const int b0 = k * kModeChunk, b1 = std::min(C_, b0 + kModeChunk);
+      const int b0 = low + k * kModeChunk, b1 = std::min(C_, b0 + kModeChunk);
       buf.resize(3 * std::size_t(R_) * std::size_t(b1 - b0));
-      fast5_detail::solve_chunk(factors_, b0, b1, count, in, output, buf.data(), sines, partial_[std::size_t(k)]);
+      fast5_detail::solve_chunk(factors_, b0, b1, count, in, output, buf.data(), sines, partial_[std::size_t(k) + 1]);
     }
     out = partial_[0];
     for (std::size_t k = 1; k < partial_.size(); ++k) out += partial_[k];
@@ -246,22 +276,11 @@ class Fast5Solver final : public LinearSolver {
   void banded_solve_all(int count, Eigen::MatrixXd& g) { solve_modes(count, sweep_input(true, nullptr, 0), {}, t_, g); }
 
   // With replace: hats_[c] ← M⁻¹(hats_[c] + sign·U z_c); otherwise hats_[c] += sign·M⁻¹ U z_c.
-  // near_values_(r, 6c + k) = the new hats on the columns 0, 1, 2, cols−3, cols−2, cols−1 (k = 0..5).
   void add_boundary_response(int count, const std::array<Eigen::MatrixXd, 2>& z, double sign, bool replace) {
     fast5_detail::ChunkOutput output;
     output.grid = {hats_[0], hats_[1], hats_[2]};
     output.add = !replace;
-    solve_modes(count, sweep_input(replace, &z, sign), output, near_sines_, near_values_);
-    // parity parts (even, odd) of the columns 0, 1, 2 → the six columns
-    Eigen::MatrixXd parts;
-    std::swap(parts, near_values_);
-    near_values_.resize(R_, 6 * count);
-    for (int c = 0; c < count; ++c)
-      for (int j = 0; j < 3; ++j) {
-        const auto even = parts.col(6 * c + 2 * j), odd = parts.col(6 * c + 2 * j + 1);
-        near_values_.col(6 * c + j) = even + odd;
-        near_values_.col(6 * c + 5 - j) = even - odd;
-      }
+    solve_modes(count, sweep_input(replace, &z, sign), output, no_sines_, unused_dots_);
   }
 
   // The capacitance system for each parity of q: rhs[qpar] is rows × count in the grid (along i);
@@ -311,41 +330,52 @@ class Fast5Solver final : public LinearSolver {
     return *std::max_element(iterations.begin(), iterations.end());
   }
 
-  // ρ = (b − A x) on the columns 0 and cols−1 in parity coordinates (rows × count each), x from
-  // near_values_; false when it is below kBoundaryResidual·‖b‖ for every right-hand side.
-  bool boundary_residual(const Eigen::MatrixX3d& B, int count, std::array<Eigen::MatrixXd, 2>& rho) {
-    const double a = weights_.a, b = weights_.b;
-    std::array<double, 25> w5{};
-    for (int di = -2; di <= 2; ++di)
-      for (int dj = -2; dj <= 2; ++dj)
-        w5[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] = a * c_weight(di, dj) + b * t_weight(di, dj);
-    std::array<Eigen::MatrixXd, 2> side;  // the residual on column 0 and on column cols−1
-    bool large = false;
-    for (int s = 0; s < 2; ++s) side[std::size_t(s)].resize(R_, count);
-    for (int c = 0; c < count; ++c) {
-      const auto value = [&](int i, int j) {
-        if (i < 0 || i >= R_ || j < 0 || j >= C_) return 0.0;
-        return near_values_(i, 6 * c + (j < 3 ? j : j - C_ + 6));
-      };
-      double norm2 = 0;
-      for (int s = 0; s < 2; ++s) {
-        const int j = s == 0 ? 0 : C_ - 1;
-        for (int i = 0; i < R_; ++i) {
-          double r = B(Eigen::Index(i) * C_ + j, c);
-          for (int di = -2; di <= 2; ++di)
-            for (int dj = -2; dj <= 2; ++dj)
-              r -= w5[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] * value(i + di, j + dj);
-          side[std::size_t(s)](i, c) = r;
+  // (b − A x) on column j of right-hand side c, one entry per row.
+  [[nodiscard]] Eigen::VectorXd column_residual(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X, int j,
+                                                int c) const {
+    Eigen::VectorXd r(R_);
+    for (int i = 0; i < R_; ++i) {
+      double v = B(Eigen::Index(i) * C_ + j, c);
+      for (int di = -2; di <= 2; ++di)
+        for (int dj = -2; dj <= 2; ++dj) {
+          const int ii = i + di, jj = j + dj;
+          if (ii >= 0 && ii < R_ && jj >= 0 && jj < C_)
+            v -= stencil_[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] * X(Eigen::Index(ii) * C_ + jj, c);
         }
-        norm2 += side[std::size_t(s)].col(c).squaredNorm();
-      }
-      // A zero column has a zero solution and no boundary residual; 0/0 would make the ratio, and
-      // with it every column's correction tolerance, NaN (and every correction a no-op).
-      const double ratio = b_norms_[std::size_t(c)] > 0 ? std::sqrt(norm2) / b_norms_[std::size_t(c)] : 0.0;
-      boundary_ratio_ = c == 0 ? ratio : std::max(boundary_ratio_, ratio);
-      if (ratio > kBoundaryResidual) large = true;
+      r[i] = v;
     }
-    if (!large) return false;
+    return r;
+  }
+
+  // ρ = (b − A x) on the columns 0 and cols−1 in parity coordinates (rows × count each); false
+  // when, for every right-hand side, its norm is within its limit: the larger of
+  // max(kBoundaryResidual, kRoundingFactor·max(rows, cols)·ε)·‖b‖ and kReferenceFactor times the
+  // residual of the other columns, estimated from the columns 2 and cols−3 (rounding only: A x − b
+  // vanishes off the columns 0 and cols−1 for any h). boundary_excess_: the largest ratio of a
+  // boundary residual to its limit.
+  bool boundary_residual(const Eigen::MatrixX3d& B, const Eigen::MatrixX3d& X, int count,
+                         std::array<Eigen::MatrixXd, 2>& rho) {
+    std::array<Eigen::MatrixXd, 2> side;  // the residual on column 0 and on column cols−1
+    for (int s = 0; s < 2; ++s) side[std::size_t(s)].resize(R_, count);
+    const bool reference = C_ >= 6;  // columns 2 and cols−3 distinct from and not next to 0 and cols−1
+    boundary_excess_ = 0;
+    for (int c = 0; c < count; ++c) {
+      side[0].col(c) = column_residual(B, X, 0, c);
+      side[1].col(c) = column_residual(B, X, C_ - 1, c);
+      const double boundary = side[0].col(c).squaredNorm() + (C_ > 1 ? side[1].col(c).squaredNorm() : 0.0);
+      const double rounding =
+          reference ? column_residual(B, X, 2, c).squaredNorm() + column_residual(B, X, C_ - 3, c).squaredNorm() : 0.0;
+      // A zero column has a zero solution and no boundary residual; 0/0 would make the excess, and
+      // with it every column's correction tolerance, NaN (and every correction a no-op).
+      const double b_norm = b_norms_[std::size_t(c)];
+      if (!(b_norm > 0)) continue;
+      // the reference columns' residual as an estimate of that of all cols − 2 other columns
+      const double others = std::sqrt(rounding * (C_ - 2) / 2.0);
+      const double floor = std::max(kBoundaryResidual, kRoundingFactor * std::max(R_, C_) * kEpsilon);
+      const double limit = std::max(floor * b_norm, kReferenceFactor * others);
+      boundary_excess_ = std::max(boundary_excess_, std::sqrt(boundary) / limit);
+    }
+    if (!(boundary_excess_ > 1)) return false;
     for (int s = 0; s < 2; ++s) rho[std::size_t(s)].resize(R_, count);
     if (C_ == 1) {  // U = √2·e₁ in the even parity
       rho[0] = side[0] / std::sqrt(2.0);
@@ -366,13 +396,15 @@ class Fast5Solver final : public LinearSolver {
   Eigen::VectorXd nu_, t_;
   Eigen::MatrixXd tmasks_, near_sines_, dots_;
   std::array<double, 3> b_norms_{};
-  double boundary_ratio_ = 0;  // the largest ‖ρ‖/‖b‖ of the last boundary_residual
+  double boundary_excess_ = 0;        // see boundary_residual
+  std::array<double, 25> stencil_{};  // the weights of a·C + b·T, row-major (di, dj = −2..2)
   ModeFactors factors_;
   std::array<CapacitanceBlock, 4> blocks_;
+  fast5_detail::LowModes low_;
   std::array<double*, 3> hats_{};             // the transformed rows, in X during a solve
   std::vector<std::vector<double>> buffers_;  // solve_modes: one chunk buffer per thread
   std::vector<Eigen::MatrixXd> partial_;      // solve_modes: one product with the dots per chunk
-  Eigen::MatrixXd near_values_;               // rows × (6 · count), see add_boundary_response
+  Eigen::MatrixXd no_sines_, unused_dots_;    // add_boundary_response: no dots wanted
 };
 
 }  // namespace

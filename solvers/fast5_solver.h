@@ -17,49 +17,50 @@
 //
 //   analyze    sine-transform plans along i and j;
 //   factorize  recognise a and b from the weights (else not_applicable); the per-mode banded
-//              factors and the capacitance blocks (O(rows·cols)). M_q is Toeplitz, so its LDLᵀ
-//              factors converge down the rows (to 1e-15 after about 40/√ν_q rows): only the rows
-//              above that are stored (4 % of rows·cols at N = 1023), the rest read the limit;
+//              factors, the closed form of the lowest modes and the capacitance blocks
+//              (O(rows·cols)). M_q is Toeplitz, so its LDLᵀ factors converge down the rows (to
+//              1e-15 after about 40/√ν_q rows): only the rows above that are stored (4 % of
+//              rows·cols at N = 1023), the rest read the limit;
 //   solve      a sine transform of each row (a row of B that is zero off the columns 0, 1,
 //              cols−2, cols−1, as in most rows of a mask system, is the combination of those four
-//              columns' sine vectors instead), written into X, sweeps of banded solves along i
-//              (down and up the rows for a chunk of 128 modes at a time in a buffer that stays in
-//              the cache, all right-hand sides together, the result back into X), the capacitance
-//              solves, an inverse transform of X's rows in place. X is the only grid-sized array
-//              (until 2026-12-02 the transformed rows and the sweeps' work had two more sets of
-//              three: 48 MB at N = 1023).
-// Threads (SolverOptions::threads, OpenMP): the chunks of modes are shared among the threads
-// (fast5_modes.h), the four capacitance blocks run in parallel, the row transforms are shared
-// (one SineTransform per thread); the result is the same bit for bit on any count.
-// Files: fast5_modes.h (per-mode factors and sweeps), fast5_capacitance.h (the blocks and their CG).
-// Accuracy. The rounding of the first solve sits almost entirely in the capacitance unknowns h
-// (the sources on the columns 0 and cols−1): h comes from A₁⁻¹b, whose banded solves for the low
-// modes (κ(M_q) ∝ N⁴) have forward errors of κ·ε, so the residual there is 5e-8 at N = 511 and
-// 6e-6 at 1023 on mask data, while the other columns are at 5e-12. Since A x − b vanishes off
-// those two columns, a correction needs no residual of the whole grid and no new transform:
-// ρ = (b − A x) on the two columns (from x on the columns 0–2 and cols−3..cols−1, dot products of
-// the transformed rows taken during the sweep up), δx = A⁻¹Uρ = A₁⁻¹U·Cap⁻¹H⁻¹ρ (Woodbury; the
-// capacitance solve alone, then two banded sweeps with the rank-two right-hand side generated on
-// the fly). At most kCorrections of them, until ‖ρ‖ ≤ 1e-13‖b‖: none to one up to N = 255, two
-// at 1023. Relative residuals after them (mask data, 3 right-hand sides): 1e-13 (biharmonic) /
-// 4e-13 (w = 0.5) at N = 255, 7e-13 / 3e-12 at 1023 (the columns other than 0 and cols−1).
-// Cost at N = 1023 (CPU time of a fresh solve, 3 right-hand sides, 2 cores with load 12.7):
-// biharmonic 90 ms and w = 0.5 105 ms, against 309 and 392 ms with two whole-grid refinement
-// steps (residual, two row transforms and the whole solve again each), measured together; the
-// memory pass took 1.8–4 ms at that load, so about 25–50× (biharmonic) and 30–60× (w = 0.5).
-// The 10× target is not reached. Where a solve went on 2026-12-02 (biharmonic, N = 1023, mask data,
-// one thread, phases timed inside the solver, medians of 8 solves; the benchmark's memory pass
-// took 0.9 ms): factorisation 0.9 + capacitance blocks 3.0, forward transform 2.2, first sweep (g)
-// 9.1, capacitance CG 4.7, second sweep (x̂ and the boundary values) 10.5, one correction (CG 4.7,
-// sweep 11.9), inverse transform 6.0 ms. The inverse transform alone is 6–7 memory passes here.
-// That day's changes (no grid-sized arrays but X, the capacitance product reading G once, eight-
-// lane parity dots) took the benchmark from 62–67 to 48–54 ms on one thread and from 42–44 to
-// 35–37 ms on two (alternating runs of both binaries). A capacitance formed without the forward
-// error (so no correction) would need another exact representation of A₁⁻¹ on the boundary
-// columns; not done.
+//              columns' sine vectors instead), written into X; a sweep of banded solves along i
+//              for g (down and up the rows for a chunk of 128 modes at a time in a buffer that
+//              stays in the cache, all right-hand sides together); the capacitance solve; a
+//              second sweep for x̂ = A₁⁻¹(b̂ − U h), written into X; an inverse transform of X's
+//              rows in place. X is the only grid-sized array.
+//              The modes q < max(64, cols/16) are solved in closed form in both sweeps instead
+//              (fast5_low_modes.h): κ(M_q) ∝ (cols/(q+1))⁴ reaches 1e11 at N = 1023, and the
+//              banded solves' forward error of κ·ε on those modes, on the columns 0 and cols−1,
+//              was what left the first solve with a boundary residual of 2e-6 there.
+// Threads (SolverOptions::threads, OpenMP): the chunks of modes (and the closed form of the lowest
+// modes, as one more unit) are shared among the threads (fast5_modes.h), the four capacitance
+// blocks run in parallel, the row transforms are shared (one SineTransform per thread); the result
+// is the same bit for bit on any count.
+// Files: fast5_modes.h (per-mode factors and sweeps), fast5_low_modes.h (the lowest modes in
+// closed form), fast5_capacitance.h (the blocks and their CG).
+// Accuracy. A x − b vanishes off the columns 0 and cols−1 for any capacitance unknowns h; on those
+// two columns it is what the error of h leaves. With the lowest modes in closed form and the
+// capacitance CG run to 1e-13, the first solve leaves 2.5–5.3·N·ε·‖b‖ there on mask data from
+// N = 255 to 1023 (the level of the rest of the grid: relative residuals 1.3e-13 / 4.4e-13 at
+// N = 255 and 1.0e-12 / 3.4e-12 at 1023, biharmonic / w = 0.5, against 7.5e-13 / 3.0e-12 of the
+// version before, which corrected it twice). Those columns are corrected from their exact
+// residual, after the inverse transform, only while it is above 16·N·ε·‖b‖ (and 1e-13‖b‖) and
+// above 4 times the residual the other columns are estimated to have (from the columns 2 and
+// cols−3): a correction is a capacitance solve, a banded sweep and two more row transforms,
+// whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
+// none is made; in the tests 12 of 262 solves (small grids, random data) make one.
+// Cost at N = 1023 (wall clock of a fresh solve, 3 right-hand sides of mask data, medians of 3,
+// 2026-12-04, alternating with the version before): biharmonic 32–34 ms on one thread and
+// 22–27 ms on two (before 47–65 and 36 ms), w = 0.5 35 ms and 22–28 ms (before 59–85 and
+// 46–48 ms); the memory pass took 0.9–1.5 ms. Phases on one thread / two: set-up 3.7 / 2.6 ms
+// (per-mode factors 1.0, capacitance blocks and the closed form 2.7 / 1.6), forward transform
+// 2.2 / 1.2, first sweep 6.3 / 3.6, capacitance CG (8 iterations) 6.6 / 3.5, second sweep 7–10 /
+// 4.7, inverse transform 5.9 / 3.4, boundary check 0.4 / 0.35. The 10× target is not reached:
+// the inverse transform alone is 3.5–6 memory passes, the CG reads G (8 MB) on each of its
+// iterations, and the two sweeps are each several passes.
 // summary.iterations is the largest number of capacitance CG iterations of any capacitance solve
-// (the first to 1e-7, corrections to what they need, at least 1e-10): 6 (biharmonic) and 7
-// (w = 0.5) at N = 1023 on mask data; to 1e-14 it was 8 / 9 (about log N).
+// (the first to 1e-13, corrections to what they need, at least 1e-10): 8 (biharmonic and w = 0.5)
+// at N = 1023 on mask data (about log N).
 // The Jacobi-scaled capacitance blocks have condition numbers of 1.1–1.3 (biharmonic) and
 // 1.35–1.5 (w = 0.5) from N = 15 to 63, but 5, 10, 20 (∝ N) for the pure c1-coons stencil.
 // b = 0 (pure c1-coons, κ ∝ N⁸) is separable and goes to the separable banded solver instead.
