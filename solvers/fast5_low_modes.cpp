@@ -39,13 +39,23 @@ void solve_low_modes(const LowModes& lm, detail::SineTransform& along_i, int cou
   dot.setZero(R, 2 * k * count);
   Eigen::VectorXd column(R);
   Eigen::MatrixXd solved(R, Q);  // M_q⁻¹ of the input, column q
+  Eigen::MatrixXd input(R, Q);   // the input without the sources, gathered row by row
+  std::vector<double> scratch(static_cast<std::size_t>(Q));
   for (int c = 0; c < count; ++c) {
+    // the input's modes [0, Q), row by row (hats, edge rows or zero)
     const double* hat = in.hats[std::size_t(c)];
+    const EdgeRows* edges = hat ? nullptr : in.edges[std::size_t(c)];
+    if (hat || edges)
+      for (int r = 0; r < R; ++r) {
+        const double* row = hat ? hat + std::ptrdiff_t(r) * C : edge_row(*edges, r, in.s0, in.s1, 0, Q, scratch.data());
+        for (int q = 0; q < Q; ++q) input(r, q) = row[q];
+      }
+    else
+      input.setZero();
     for (int q = 0; q < Q; ++q) {
       const double t = q % 2 == 0 ? in.t_even[q] : in.t_odd[q];
       const Eigen::MatrixXd* z = in.z ? &(*in.z)[std::size_t(q % 2)] : nullptr;
-      for (int r = 0; r < R; ++r)
-        column[r] = (hat ? hat[std::ptrdiff_t(r) * C + q] : 0.0) + (z ? in.sign * (*z)(r, c) * t : 0.0);
+      for (int r = 0; r < R; ++r) column[r] = input(r, q) + (z ? in.sign * (*z)(r, c) * t : 0.0);
       along_i.apply(column.data(), column.data(), scale_i);
       std::array<double, 2> s{};  // (√c σ Λ⁻¹)ᵀ v̂ on each parity block
       for (int p = 0; p < R; ++p) s[std::size_t(p % 2)] += lm.coupling(p, q) * column[p];

@@ -121,11 +121,15 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
                  double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot) {
   const int R = f.rows, C = f.cols, n = b1 - b0;
   const std::vector<double> zeros(std::size_t(n), 0.0);
+  std::vector<double> scratch(3 * std::size_t(n));  // the edge rows' transforms, one row each
   // three right-hand sides are swept together; those from count on are zero and not written
   const auto row_of = [&](int c, int r) { return buf + (std::ptrdiff_t(c) * R + r) * n; };
   const auto input_of = [&](int c, int r) -> const double* {
-    const double* h = c < count ? in.hats[std::size_t(c)] : nullptr;
-    return h ? h + std::ptrdiff_t(r) * C + b0 : zeros.data();
+    if (c >= count) return zeros.data();
+    if (const double* h = in.hats[std::size_t(c)]) return h + std::ptrdiff_t(r) * C + b0;
+    if (const EdgeRows* e = in.edges[std::size_t(c)])
+      return edge_row(*e, r, in.s0, in.s1, b0, n, scratch.data() + std::ptrdiff_t(c) * n);
+    return zeros.data();
   };
   // down: buf = L⁻¹ (the input)
   for (int r = 0; r < R; ++r) {
@@ -134,6 +138,7 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
       z[2 * std::size_t(c)] = in.sign * (*in.z)[0](r, c);
       z[2 * std::size_t(c) + 1] = in.sign * (*in.z)[1](r, c);
     }
+    const std::array<const double*, 3> y{input_of(0, r), input_of(1, r), input_of(2, r)};
     const int rows = std::min(r, 2);
     // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
     const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
@@ -144,8 +149,8 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
       const int at = cut[s] - b0;
       const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 + cut[s] : nullptr;
       const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 + cut[s] : nullptr;
-      down_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, input_of(0, r) + at, input_of(1, r) + at,
-                input_of(2, r) + at, in.t_even + cut[s], in.t_odd + cut[s], z, l1, l2, n, rows, cut[s + 1] - cut[s]);
+      down_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, y[0] + at, y[1] + at, y[2] + at,
+                in.t_even + cut[s], in.t_odd + cut[s], z, l1, l2, n, rows, cut[s + 1] - cut[s]);
     }
   }
   // up: buf ← (LD)⁻ᵀ buf = M⁻¹ (the input), then into the output and the partial dots

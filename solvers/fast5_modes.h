@@ -14,6 +14,8 @@
 #include <cstddef>
 #include <vector>
 
+#include "fast5_rows.h"
+
 namespace coons::solvers::fast5_detail {
 
 //! sqrt(2/(n+1))·sin(kπ/(n+1)), k = 1..n: the orthonormal DST-I of e_1 (#n).
@@ -40,10 +42,14 @@ struct ModeFactors {
 ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads);
 
 //! The right-hand side of a solve_chunk, row r, mode q, right-hand side c: hats[c][r·cols + q]
-//! (hats[c] = nullptr: zero) + sign·(z_even(r, c) t_even[q] + z_odd(r, c) t_odd[q]), the sources
-//! U z on the boundary columns in the sine basis (z = nullptr: none).
+//! (hats[c] = nullptr: edges[c]'s row r at mode q, fast5_rows.h, with the sine vectors s0 and s1
+//! of the columns 0 and 1; both nullptr: zero) + sign·(z_even(r, c) t_even[q] + z_odd(r, c)
+//! t_odd[q]), the sources U z on the boundary columns in the sine basis (z = nullptr: none).
 struct SweepInput {
   std::array<const double*, 3> hats{};
+  std::array<const EdgeRows*, 3> edges{};
+  const double* s0 = nullptr;
+  const double* s1 = nullptr;
   const std::array<Eigen::MatrixXd, 2>* z = nullptr;
   double sign = 1;
   const double* t_even = nullptr;  //!< t_q on the even modes q, 0 on the odd ones (#cols)

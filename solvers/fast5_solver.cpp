@@ -11,6 +11,7 @@
 #include "fast5_capacitance.h"
 #include "fast5_low_modes.h"
 #include "fast5_modes.h"
+#include "fast5_rows.h"
 #include "separable_banded_solver.h"
 #include "sine_transform.h"
 
@@ -32,6 +33,10 @@ using fast5_detail::second_difference_eigenvalues;
 
 // Modes per unit of the threaded sweeps (fixed: the partial sums do not depend on the thread count).
 constexpr int kModeChunk = 128;
+// B is read from its row forms (fast5_rows.h) when cols ≥ kMinEdgeCols (the columns 0, 1, cols−2,
+// cols−1 distinct) and no column has more than rows/kFullRowShare full rows.
+constexpr int kMinEdgeCols = 6;
+constexpr int kFullRowShare = 4;
 // The modes q < max(kLowModes, cols/kLowModeShare) are solved in closed form (fast5_low_modes.h):
 // from there on κ(M_q) ∝ (cols/q)⁴ is at most about 16⁴, so the banded solves' forward error is
 // below the rounding the transforms leave anyway.
@@ -136,11 +141,18 @@ class Fast5Solver final : public LinearSolver {
       return status;
     }
     const int count = 3;
-    for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
-    // X holds the transformed rows (the hats) until the inverse transform at the end
     X.resize(B.rows(), 3);
     for (int c = 0; c < count; ++c) hats_[std::size_t(c)] = X.col(c).data();
-    transform_rows(count, true, B);
+    // B's transform is read by the sweeps from its row form when it has few full rows (mask data:
+    // four), otherwise X holds it (the hats) until the second sweep overwrites it with x̂
+    edge_input_ = take_row_forms(B);
+    if (edge_input_) {
+      for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = edge_rows_[std::size_t(c)].norm;
+      transform_full_rows();
+    } else {
+      for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
+      transform_rows(count, true, B);
+    }
     // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = A₁⁻¹ (b̂ − U h).
     banded_solve_all(count, dots_);
     std::array<Eigen::MatrixXd, 2> h;
@@ -162,6 +174,59 @@ class Fast5Solver final : public LinearSolver {
   }
 
  private:
+  // The one scan of B (rhs_scaling) gives each column's row form, its largest magnitude and its
+  // norm; do_solve takes it over when it gets that B.
+  ColumnExponents rhs_scaling(const Eigen::MatrixX3d& B) override {
+    scanned_source_ = nullptr;
+    if (separable_ || C_ < kMinEdgeCols) return LinearSolver::rhs_scaling(B);
+    split_row_forms(B);
+    ColumnExponents e{};
+    for (std::size_t c = 0; c < 3; ++c) {
+      e[c] = scaling_exponent(edge_rows_[c].largest);
+      // a column near overflow is also checked for entries that scaling it down would lose
+      if (e[c] > 0) return LinearSolver::rhs_scaling(B);
+    }
+    scanned_source_ = B.data();
+    return e;
+  }
+
+  void split_row_forms(const Eigen::MatrixX3d& B) {
+    for (int c = 0; c < 3; ++c)
+      edge_rows_[std::size_t(c)] = fast5_detail::split_edge_rows(B.col(c).data(), R_, C_, threads_);
+  }
+
+  // true when the sweeps are to read B from its row forms (edge_rows_, from rhs_scaling's scan of
+  // this B or a new one): every column with at most rows/kFullRowShare full rows.
+  bool take_row_forms(const Eigen::MatrixX3d& B) {
+    if (C_ < kMinEdgeCols) return false;
+    if (scanned_source_ != B.data()) split_row_forms(B);
+    scanned_source_ = nullptr;
+    return std::all_of(edge_rows_.begin(), edge_rows_.end(),
+                       [&](const fast5_detail::EdgeRows& f) { return f.full_rows() <= R_ / kFullRowShare; });
+  }
+
+  // The sine transform of the full rows of edge_rows_, in place (shared among the threads).
+  void transform_full_rows() {
+    std::vector<std::pair<int, int>> units;  // (column of B, full row)
+    for (int c = 0; c < 3; ++c)
+      for (int k = 0; k < edge_rows_[std::size_t(c)].full_rows(); ++k) units.emplace_back(c, k);
+    const double scale_j = std::sqrt(2.0 / (C_ + 1));
+    [[maybe_unused]] const int nt = threads_;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nt) if (nt > 1 && units.size() > 1)
+#endif
+    {
+      detail::SineTransform& along_j = along_j_[std::size_t(thread_index())];
+#if defined(_OPENMP)
+#pragma omp for schedule(static)
+#endif
+      for (std::size_t u = 0; u < units.size(); ++u) {
+        double* row = edge_rows_[std::size_t(units[u].first)].values.data() + std::ptrdiff_t(units[u].second) * C_;
+        along_j.apply(row, row, scale_j);
+      }
+    }
+  }
+
   // forward: hats_[c] (X's column c) = the sine transform of each row of B's column c; a row that is
   // zero but on the columns 0, 1, cols−2, cols−1 (most rows of a mask system: the data rings are
   // next to them) is the combination of those four columns' sine vectors instead (exact, no
@@ -264,7 +329,13 @@ class Fast5Solver final : public LinearSolver {
   [[nodiscard]] fast5_detail::SweepInput sweep_input(bool from_hats, const std::array<Eigen::MatrixXd, 2>* z,
                                                      double sign) const {
     fast5_detail::SweepInput in;
-    if (from_hats) in.hats = {hats_[0], hats_[1], hats_[2]};
+    if (from_hats && edge_input_) {
+      in.edges = {&edge_rows_[0], &edge_rows_[1], &edge_rows_[2]};
+      in.s0 = near_sines_.col(0).data();
+      in.s1 = near_sines_.col(1).data();
+    } else if (from_hats) {
+      in.hats = {hats_[0], hats_[1], hats_[2]};
+    }
     in.z = z;
     in.sign = sign;
     in.t_even = tmasks_.col(0).data();
@@ -401,10 +472,13 @@ class Fast5Solver final : public LinearSolver {
   ModeFactors factors_;
   std::array<CapacitanceBlock, 4> blocks_;
   fast5_detail::LowModes low_;
-  std::array<double*, 3> hats_{};             // the transformed rows, in X during a solve
-  std::vector<std::vector<double>> buffers_;  // solve_modes: one chunk buffer per thread
-  std::vector<Eigen::MatrixXd> partial_;      // solve_modes: one product with the dots per chunk
-  Eigen::MatrixXd no_sines_, unused_dots_;    // add_boundary_response: no dots wanted
+  std::array<double*, 3> hats_{};                    // the transformed rows, in X during a solve
+  std::array<fast5_detail::EdgeRows, 3> edge_rows_;  // B's columns row by row (fast5_rows.h)
+  const double* scanned_source_ = nullptr;           // the B whose row forms rhs_scaling left in edge_rows_
+  bool edge_input_ = false;                          // this solve reads B's transform from edge_rows_
+  std::vector<std::vector<double>> buffers_;         // solve_modes: one chunk buffer per thread
+  std::vector<Eigen::MatrixXd> partial_;             // solve_modes: one product with the dots per chunk
+  Eigen::MatrixXd no_sines_, unused_dots_;           // add_boundary_response: no dots wanted
 };
 
 }  // namespace

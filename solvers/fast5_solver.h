@@ -21,13 +21,17 @@
 //              (O(rows·cols)). M_q is Toeplitz, so its LDLᵀ factors converge down the rows (to
 //              1e-15 after about 40/√ν_q rows): only the rows above that are stored (4 % of
 //              rows·cols at N = 1023), the rest read the limit;
-//   solve      a sine transform of each row (a row of B that is zero off the columns 0, 1,
-//              cols−2, cols−1, as in most rows of a mask system, is the combination of those four
-//              columns' sine vectors instead), written into X; a sweep of banded solves along i
-//              for g (down and up the rows for a chunk of 128 modes at a time in a buffer that
-//              stays in the cache, all right-hand sides together); the capacitance solve; a
-//              second sweep for x̂ = A₁⁻¹(b̂ − U h), written into X; an inverse transform of X's
-//              rows in place. X is the only grid-sized array.
+//   solve      one scan of B (in rhs_scaling, which also takes its largest magnitudes and norms
+//              from it) splits each column by rows (fast5_rows.h): a row that is zero off the
+//              columns 0, 1, cols−2, cols−1 (all but four rows of a mask system) is kept as those
+//              four values, and its sine transform is the combination of the four columns' sine
+//              vectors, formed where a sweep reads it; the few other rows are transformed once.
+//              (A B with more than rows/4 full rows in a column is transformed row by row into X
+//              instead.) Then a sweep of banded solves along i for g (down and up the rows for a
+//              chunk of 128 modes at a time in a buffer that stays in the cache, all right-hand
+//              sides together); the capacitance solve; a second sweep for x̂ = A₁⁻¹(b̂ − U h),
+//              written into X; an inverse transform of X's rows in place. X is the only
+//              grid-sized array, and on mask data the first time it is written is by that sweep.
 //              The modes q < max(64, cols/16) are solved in closed form in both sweeps instead
 //              (fast5_low_modes.h): κ(M_q) ∝ (cols/(q+1))⁴ reaches 1e11 at N = 1023, and the
 //              banded solves' forward error of κ·ε on those modes, on the columns 0 and cols−1,
@@ -37,7 +41,7 @@
 // blocks run in parallel, the row transforms are shared (one SineTransform per thread); the result
 // is the same bit for bit on any count.
 // Files: fast5_modes.h (per-mode factors and sweeps), fast5_low_modes.h (the lowest modes in
-// closed form), fast5_capacitance.h (the blocks and their CG).
+// closed form), fast5_rows.h (B row by row), fast5_capacitance.h (the blocks and their CG).
 // Accuracy. A x − b vanishes off the columns 0 and cols−1 for any capacitance unknowns h; on those
 // two columns it is what the error of h leaves. With the lowest modes in closed form and the
 // capacitance CG run to 1e-13, the first solve leaves 2.5–5.3·N·ε·‖b‖ there on mask data from
@@ -49,15 +53,17 @@
 // cols−3): a correction is a capacitance solve, a banded sweep and two more row transforms,
 // whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
 // none is made; in the tests 12 of 262 solves (small grids, random data) make one.
-// Cost at N = 1023 (wall clock of a fresh solve, 3 right-hand sides of mask data, medians of 3,
-// 2026-12-04, alternating with the version before): biharmonic 32–34 ms on one thread and
-// 22–27 ms on two (before 47–65 and 36 ms), w = 0.5 35 ms and 22–28 ms (before 59–85 and
-// 46–48 ms); the memory pass took 0.9–1.5 ms. Phases on one thread / two: set-up 3.7 / 2.6 ms
-// (per-mode factors 1.0, capacitance blocks and the closed form 2.7 / 1.6), forward transform
-// 2.2 / 1.2, first sweep 6.3 / 3.6, capacitance CG (8 iterations) 6.6 / 3.5, second sweep 7–10 /
-// 4.7, inverse transform 5.9 / 3.4, boundary check 0.4 / 0.35. The 10× target is not reached:
-// the inverse transform alone is 3.5–6 memory passes, the CG reads G (8 MB) on each of its
-// iterations, and the two sweeps are each several passes.
+// Cost at N = 1023 (wall clock of a fresh solve, 3 right-hand sides of mask data, medians of 3–5,
+// 2026-12-04, each version alternating with the one before; the memory pass took 0.9–1.5 ms):
+// with the closed form of the lowest modes, biharmonic 47–65 → 32–34 ms on one thread and
+// 36 → 22–27 ms on two, w = 0.5 59–85 → 35 and 46–48 → 22–28 ms; with the row forms of B (no
+// forward pass over X, one scan of B instead of three), biharmonic 34.5 → 32.1 and 26.0 →
+// 21.7 ms, w = 0.5 33.5 → 31.2 and 26.4 → 21.6 ms. Phases before the row forms, one thread /
+// two: set-up 3.7 / 2.6 ms (per-mode factors 1.0, capacitance blocks and the closed form 2.7 /
+// 1.6), forward transform 2.2 / 1.2, first sweep 6.3 / 3.6, capacitance CG (8 iterations) 6.6 /
+// 3.5, second sweep 7–10 / 4.7, inverse transform 5.9 / 3.4, boundary check 0.4 / 0.35. The 10×
+// target is not reached: the inverse transform alone is 3.5–6 memory passes, the CG reads G
+// (8 MB) on each of its iterations, and the two sweeps are each several passes.
 // summary.iterations is the largest number of capacitance CG iterations of any capacitance solve
 // (the first to 1e-13, corrections to what they need, at least 1e-10): 8 (biharmonic and w = 0.5)
 // at N = 1023 on mask data (about log N).

@@ -1,5 +1,6 @@
-// The closed form of fast5's lowest modes against dense M_q, against the banded solves, and its
-// forward error against a binary128 reference (the reason it exists).
+// fast5 internals: the closed form of the lowest modes against dense M_q, against the banded
+// solves, and its forward error against a binary128 reference (the reason it exists); the row
+// forms of the right-hand side (fast5_rows.h) and the sweeps that read them.
 #include <catch2/catch.hpp>
 
 #include "coons/config.h"
@@ -9,6 +10,7 @@
 #include <Eigen/Dense>
 #include <array>
 #include <cmath>
+#include <limits>
 #include <random>
 #include <vector>
 
@@ -212,6 +214,113 @@ TEST_CASE("solve_low_modes: the lowest mode far more accurately than banded LDL^
   // measured: 5.7e-12 and 5.2e-9 (κ(SΛS) ≈ 2.8e9, so κ·ε ≈ 6e-7)
   CHECK(closed_error <= 5e-11);
   CHECK(banded_error >= 100 * closed_error);
+}
+
+TEST_CASE("split_edge_rows: edge rows as four values, full rows kept, the largest magnitude and the norm",
+          "[solvers]") {
+  const int rows = 9, cols = 11;
+  std::mt19937 gen(5);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::MatrixXd b = Eigen::MatrixXd::Zero(rows, cols);  // row-major data taken from bᵀ below
+  for (int r = 0; r < rows; ++r)
+    for (int j : {0, 1, cols - 2, cols - 1}) b(r, j) = u(gen);
+  b(3, 5) = 0.5;   // full rows: 3 (an interior value), 6 (a value in column 2), 7 (in column cols − 3)
+  b(6, 2) = -2.5;  // the largest magnitude
+  b(7, cols - 3) = 1e-300;
+  b(4, 4) = -0.0;  // −0 is zero
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = b;
+  for (int threads : {1, 2, 3}) {
+    const EdgeRows f = split_edge_rows(row_major.data(), rows, cols, threads);
+    REQUIRE(f.full_rows() == 3);
+    CHECK(f.slot == std::vector<int>{-1, -1, -1, 0, -1, -1, 1, 2, -1});
+    for (int r : {3, 6, 7})
+      for (int j = 0; j < cols; ++j) CHECK(f.values[std::size_t(f.slot[std::size_t(r)] * cols + j)] == b(r, j));
+    for (int r : {0, 4, 8}) {
+      const std::array<double, 4> ends{b(r, 0), b(r, 1), b(r, cols - 2), b(r, cols - 1)};
+      CHECK(f.ends[std::size_t(r)] == ends);
+    }
+    CHECK(f.largest == 2.5);
+    CHECK(f.norm == Approx(b.norm()).epsilon(1e-15));
+  }
+  b(2, 0) = std::numeric_limits<double>::quiet_NaN();
+  const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> with_nan = b;
+  CHECK(std::isnan(split_edge_rows(with_nan.data(), rows, cols, 1).largest));
+}
+
+TEST_CASE("edge_row_transform: the sine transform of a row that is zero off its two end columns on each side",
+          "[solvers]") {
+  for (const int cols : {6, 7, 30, 31}) {
+    Eigen::VectorXd row = Eigen::VectorXd::Zero(cols), s0(cols), s1(cols);
+    const std::array<double, 4> e{0.3, -1.2, 2.0, 0.7};
+    row[0] = e[0];
+    row[1] = e[1];
+    row[cols - 2] = e[2];
+    row[cols - 1] = e[3];
+    for (int q = 0; q < cols; ++q) {
+      s0[q] = std::sqrt(2.0 / (cols + 1)) * std::sin(M_PI * (q + 1) / (cols + 1));
+      s1[q] = std::sqrt(2.0 / (cols + 1)) * std::sin(2 * M_PI * (q + 1) / (cols + 1));
+    }
+    Eigen::VectorXd expected(cols), got(cols);
+    detail::SineTransform along(cols, detail::fft_planning(SolverOptions{}));
+    along.apply(row.data(), expected.data(), std::sqrt(2.0 / (cols + 1)));
+    edge_row_transform(e, s0.data(), s1.data(), 0, cols, got.data());
+    INFO("cols = " << cols);
+    CHECK((got - expected).norm() <= 1e-14 * expected.norm());
+    Eigen::VectorXd tail(cols - 3);  // from a mode q0 > 0 on
+    edge_row_transform(e, s0.data(), s1.data(), 3, cols - 3, tail.data());
+    CHECK((tail - got.tail(cols - 3)).cwiseAbs().maxCoeff() == 0);
+  }
+}
+
+TEST_CASE(
+    "solve_chunk and solve_low_modes: a right-hand side read from its row forms gives the bits of its stored transform",
+    "[solvers]") {
+  const int rows = 30, cols = 40;
+  const double a = 0.5, b = 0.5;
+  const Eigen::VectorXd nu = second_difference_eigenvalues(cols);
+  const ModeFactors factors = factor_modes(a, b, nu, rows, 1);
+  const LowModes lm = low_modes(a, b, second_difference_eigenvalues(rows), nu, 10);
+  detail::SineTransform along_i(rows, detail::fft_planning(SolverOptions{}));
+  SweepFixture stored(rows, cols, 21), formed(rows, cols, 21);
+  std::mt19937 gen(8);
+  std::uniform_real_distribution<double> u(-1, 1);
+  Eigen::VectorXd s0(cols), s1(cols);
+  for (int q = 0; q < cols; ++q) {
+    s0[q] = std::sqrt(2.0 / (cols + 1)) * std::sin(M_PI * (q + 1) / (cols + 1));
+    s1[q] = std::sqrt(2.0 / (cols + 1)) * std::sin(2 * M_PI * (q + 1) / (cols + 1));
+  }
+  std::array<EdgeRows, 3> forms;
+  for (int c = 0; c < 3; ++c) {  // row 0 full (its given hats), the others edge rows
+    EdgeRows& f = forms[std::size_t(c)];
+    f.rows = rows;
+    f.cols = cols;
+    f.ends.assign(std::size_t(rows), {});
+    f.slot.assign(std::size_t(rows), -1);
+    f.slot[0] = 0;
+    f.values.assign(stored.hats[std::size_t(c)].begin(), stored.hats[std::size_t(c)].begin() + cols);
+    for (int r = 1; r < rows; ++r) {
+      f.ends[std::size_t(r)] = {u(gen), u(gen), u(gen), u(gen)};
+      edge_row_transform(f.ends[std::size_t(r)], s0.data(), s1.data(), 0, cols,
+                         stored.hats[std::size_t(c)].data() + std::ptrdiff_t(r) * cols);
+    }
+  }
+  SweepInput from_forms = formed.input(-1.0);
+  from_forms.hats = {};
+  from_forms.edges = {&forms[0], &forms[1], &forms[2]};
+  from_forms.s0 = s0.data();
+  from_forms.s1 = s1.data();
+  ChunkOutput out_stored, out_formed;
+  out_stored.grid = {stored.grid[0].data(), stored.grid[1].data(), stored.grid[2].data()};
+  out_formed.grid = {formed.grid[0].data(), formed.grid[1].data(), formed.grid[2].data()};
+  Eigen::MatrixXd dot_stored, dot_formed;
+  solve_low_modes(lm, along_i, 3, stored.input(-1.0), out_stored, stored.sines, dot_stored);
+  solve_low_modes(lm, along_i, 3, from_forms, out_formed, formed.sines, dot_formed);
+  CHECK((dot_stored - dot_formed).cwiseAbs().maxCoeff() == 0);
+  std::vector<double> buf(3 * std::size_t(rows) * std::size_t(cols));
+  solve_chunk(factors, 10, cols, 3, stored.input(-1.0), out_stored, buf.data(), stored.sines, dot_stored);
+  solve_chunk(factors, 10, cols, 3, from_forms, out_formed, buf.data(), formed.sines, dot_formed);
+  CHECK((dot_stored - dot_formed).cwiseAbs().maxCoeff() == 0);
+  for (int c = 0; c < 3; ++c) CHECK(stored.grid[std::size_t(c)] == formed.grid[std::size_t(c)]);
 }
 
 #endif  // COONS_HAVE_FFTW
