@@ -37,10 +37,10 @@ constexpr int kModeChunk = 128;
 // cols−1 distinct) and no column has more than rows/kFullRowShare full rows.
 constexpr int kMinEdgeCols = 6;
 constexpr int kFullRowShare = 4;
-// The modes q < max(kLowModes, cols/kLowModeShare) are solved in closed form (fast5_low_modes.h):
-// from there on κ(M_q) ∝ (cols/q)⁴ is at most about 16⁴, so the banded solves' forward error is
-// below the rounding the transforms leave anyway.
-constexpr int kLowModes = 64;
+// The modes q < cols/kLowModeShare (rounded up to even) are solved in closed form
+// (fast5_low_modes.h): from there on κ(M_q) ∝ (cols/q)⁴ is at most about 16⁴, so the banded
+// solves' forward error is below the rounding the transforms leave anyway. (A fixed 64 modes
+// made N = 127 and 255 a third slower for no accuracy.)
 constexpr int kLowModeShare = 16;
 
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
@@ -289,8 +289,9 @@ class Fast5Solver final : public LinearSolver {
       for (int q = 0; q < C_; ++q)
         near_sines_(q, j) = std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (j + 1) * (q + 1) / (C_ + 1));
     blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_, threads_);
-    const int low = std::min(C_, std::max(kLowModes, C_ / kLowModeShare));
-    low_ = fast5_detail::low_modes(a, b, mu, nu_, low - low % 2);  // even: the chunks after it start on an even mode
+    int low = (C_ + kLowModeShare - 1) / kLowModeShare;
+    low = std::min(low + low % 2, C_ - C_ % 2);  // even: the chunks after it start on an even mode
+    low_ = fast5_detail::low_modes(a, b, mu, nu_, low);
   }
 
   // M⁻¹ of the input (see SweepInput) for every mode, into `output`, and out(r, 2k·c + 2m + p) = the

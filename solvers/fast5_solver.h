@@ -32,10 +32,11 @@
 //              sides together); the capacitance solve; a second sweep for x̂ = A₁⁻¹(b̂ − U h),
 //              written into X; an inverse transform of X's rows in place. X is the only
 //              grid-sized array, and on mask data the first time it is written is by that sweep.
-//              The modes q < max(64, cols/16) are solved in closed form in both sweeps instead
-//              (fast5_low_modes.h): κ(M_q) ∝ (cols/(q+1))⁴ reaches 1e11 at N = 1023, and the
-//              banded solves' forward error of κ·ε on those modes, on the columns 0 and cols−1,
-//              was what left the first solve with a boundary residual of 2e-6 there.
+//              The modes q < cols/16 (rounded up to even) are solved in closed form in both
+//              sweeps instead (fast5_low_modes.h): κ(M_q) ∝ (cols/(q+1))⁴ reaches 1e11 at
+//              N = 1023, and the banded solves' forward error of κ·ε on those modes, on the
+//              columns 0 and cols−1, was what left the first solve with a boundary residual of
+//              2e-6 there.
 // Threads (SolverOptions::threads, OpenMP): the chunks of modes (and the closed form of the lowest
 // modes, as one more unit) are shared among the threads (fast5_modes.h), the four capacitance
 // blocks run in parallel, the row transforms are shared (one SineTransform per thread); the result
@@ -52,7 +53,7 @@
 // above 4 times the residual the other columns are estimated to have (from the columns 2 and
 // cols−3): a correction is a capacitance solve, a banded sweep and two more row transforms,
 // whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
-// none is made; in the tests 12 of 262 solves (small grids, random data) make one.
+// none is made; in the solver tests 14 of 250 solves (small grids, random data) make one.
 // Cost at N = 1023 (wall clock of a fresh solve, 3 right-hand sides of mask data, medians of 3–5,
 // 2026-12-04, each version alternating with the one before; the memory pass took 0.9–1.5 ms):
 // with the closed form of the lowest modes, biharmonic 47–65 → 32–34 ms on one thread and
