@@ -8,7 +8,7 @@
 
 namespace coons::solvers::fast5_detail {
 
-EdgeRows split_edge_rows(const double* b, int rows, int cols, int threads) {
+EdgeRows split_edge_rows(const double* b, int rows, int cols, int threads, int max_full) {
   EdgeRows f;
   f.rows = rows;
   f.cols = cols;
@@ -34,12 +34,13 @@ EdgeRows split_edge_rows(const double* b, int rows, int cols, int threads) {
       }
     }
   });
+  f.too_many = std::count(full.begin(), full.end(), char(1)) > max_full;
   double sum = 0;
   for (int r = 0; r < rows; ++r) {
     const auto at = std::size_t(r);
     f.largest = detail::larger_magnitude(f.largest, largest[at]);
     sum += squares[at];
-    if (!full[at]) continue;
+    if (!full[at] || f.too_many) continue;
     f.slot[at] = f.full_rows();
     const double* row = b + std::ptrdiff_t(r) * cols;
     f.values.insert(f.values.end(), row, row + cols);

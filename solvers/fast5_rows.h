@@ -19,13 +19,16 @@ struct EdgeRows {
   std::vector<double> values;               //!< the full rows, cols each (transformed by the solver)
   double largest = 0;                       //!< max |b|; NaN when B holds a NaN or an infinity
   double norm = 0;                          //!< ‖b‖₂ (the squares summed row by row, in order)
+  bool too_many = false;  //!< more full rows than the split was allowed to keep: none kept (no slots, no values)
 
   [[nodiscard]] int full_rows() const { return cols > 0 ? int(values.size() / std::size_t(cols)) : 0; }
 };
 
 //! The row form of b (rows × cols, row-major, cols ≥ 6), on up to `threads` threads (bands of rows;
-//! the same bits on any count).
-EdgeRows split_edge_rows(const double* b, int rows, int cols, int threads);
+//! the same bits on any count). With more than max_full full rows it keeps none of them
+//! (too_many; largest and norm are still those of b), so that a B its user will not read in this
+//! form is not copied.
+EdgeRows split_edge_rows(const double* b, int rows, int cols, int threads, int max_full);
 
 //! The sine transform of an edge row at the modes [q0, q0 + n): with s0, s1 the orthonormal sine
 //! vectors of the columns 0 and 1 (those of cols−1 and cols−2 are the same times (−1)^q),

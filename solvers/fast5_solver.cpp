@@ -192,7 +192,7 @@ class Fast5Solver final : public LinearSolver {
 
   void split_row_forms(const Eigen::MatrixX3d& B) {
     for (int c = 0; c < 3; ++c)
-      edge_rows_[std::size_t(c)] = fast5_detail::split_edge_rows(B.col(c).data(), R_, C_, threads_);
+      edge_rows_[std::size_t(c)] = fast5_detail::split_edge_rows(B.col(c).data(), R_, C_, threads_, R_ / kFullRowShare);
   }
 
   // true when the sweeps are to read B from its row forms (edge_rows_, from rhs_scaling's scan of
@@ -201,8 +201,8 @@ class Fast5Solver final : public LinearSolver {
     if (C_ < kMinEdgeCols) return false;
     if (scanned_source_ != B.data()) split_row_forms(B);
     scanned_source_ = nullptr;
-    return std::all_of(edge_rows_.begin(), edge_rows_.end(),
-                       [&](const fast5_detail::EdgeRows& f) { return f.full_rows() <= R_ / kFullRowShare; });
+    return std::none_of(edge_rows_.begin(), edge_rows_.end(),
+                        [](const fast5_detail::EdgeRows& f) { return f.too_many; });
   }
 
   // The sine transform of the full rows of edge_rows_, in place (shared among the threads).

@@ -216,7 +216,7 @@ TEST_CASE("solve_low_modes: the lowest mode far more accurately than banded LDL^
   CHECK(banded_error >= 100 * closed_error);
 }
 
-TEST_CASE("split_edge_rows: edge rows as four values, full rows kept, the largest magnitude and the norm",
+TEST_CASE("split_edge_rows: edge rows as four values, full rows kept up to a limit, the largest magnitude and the norm",
           "[solvers]") {
   const int rows = 9, cols = 11;
   std::mt19937 gen(5);
@@ -230,7 +230,8 @@ TEST_CASE("split_edge_rows: edge rows as four values, full rows kept, the larges
   b(4, 4) = -0.0;  // −0 is zero
   const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> row_major = b;
   for (int threads : {1, 2, 3}) {
-    const EdgeRows f = split_edge_rows(row_major.data(), rows, cols, threads);
+    const EdgeRows f = split_edge_rows(row_major.data(), rows, cols, threads, 3);
+    CHECK_FALSE(f.too_many);
     REQUIRE(f.full_rows() == 3);
     CHECK(f.slot == std::vector<int>{-1, -1, -1, 0, -1, -1, 1, 2, -1});
     for (int r : {3, 6, 7})
@@ -242,9 +243,16 @@ TEST_CASE("split_edge_rows: edge rows as four values, full rows kept, the larges
     CHECK(f.largest == 2.5);
     CHECK(f.norm == Approx(b.norm()).epsilon(1e-15));
   }
+  // one full row more than it may keep: none kept, the largest magnitude and the norm still of b
+  const EdgeRows dense = split_edge_rows(row_major.data(), rows, cols, 2, 2);
+  CHECK(dense.too_many);
+  CHECK(dense.full_rows() == 0);
+  CHECK(dense.slot == std::vector<int>(std::size_t(rows), -1));
+  CHECK(dense.largest == 2.5);
+  CHECK(dense.norm == Approx(b.norm()).epsilon(1e-15));
   b(2, 0) = std::numeric_limits<double>::quiet_NaN();
   const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> with_nan = b;
-  CHECK(std::isnan(split_edge_rows(with_nan.data(), rows, cols, 1).largest));
+  CHECK(std::isnan(split_edge_rows(with_nan.data(), rows, cols, 1, rows).largest));
 }
 
 TEST_CASE("edge_row_transform: the sine transform of a row that is zero off its two end columns on each side",
