@@ -52,10 +52,15 @@ EdgeRows split_edge_rows(const double* b, int rows, int cols, int threads, int m
 void edge_row_transform(const std::array<double, 4>& e, const double* s0, const double* s1, int q0, int n,
                         double* out) {
   const double even0 = e[0] + e[3], even1 = e[1] + e[2], odd0 = e[0] - e[3], odd1 = e[1] - e[2];
-  for (int k = 0; k < n; ++k) {
+  const auto at = [&](int q) { return q % 2 == 0 ? even0 * s0[q] + even1 * s1[q] : odd0 * s0[q] + odd1 * s1[q]; };
+  int k = 0;
+  if (q0 % 2 == 1 && n > 0) out[k++] = at(q0);
+  for (; k + 1 < n; k += 2) {  // an even mode, then an odd one
     const int q = q0 + k;
-    out[k] = q % 2 == 0 ? even0 * s0[q] + even1 * s1[q] : odd0 * s0[q] + odd1 * s1[q];
+    out[k] = even0 * s0[q] + even1 * s1[q];
+    out[k + 1] = odd0 * s0[q + 1] + odd1 * s1[q + 1];
   }
+  if (k < n) out[k] = at(q0 + k);
 }
 
 const double* edge_row(const EdgeRows& f, int r, const double* s0, const double* s1, int q0, int n, double* scratch) {

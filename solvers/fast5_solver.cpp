@@ -12,6 +12,7 @@
 #include "fast5_low_modes.h"
 #include "fast5_modes.h"
 #include "fast5_rows.h"
+#include "row_form.h"
 #include "separable_banded_solver.h"
 #include "sine_transform.h"
 
@@ -234,7 +235,7 @@ class Fast5Solver final : public LinearSolver {
   // shared among the threads, one transform each (a SineTransform is not thread-safe).
   void transform_rows(int count, bool forward, const Eigen::MatrixX3d& B) {
     const double scale_j = std::sqrt(2.0 / (C_ + 1));
-    const bool edges = forward && C_ >= 6;
+    const bool edges = forward && C_ >= kMinEdgeCols;
     [[maybe_unused]] const int nt = threads_;
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(nt) if (nt > 1)
@@ -252,16 +253,9 @@ class Fast5Solver final : public LinearSolver {
           continue;
         }
         const double* b = B.col(c).data() + std::ptrdiff_t(r) * C_;
-        if (edges && std::all_of(b + 2, b + C_ - 2, [](double v) { return v == 0; })) {
-          // the sine vector of column cols−1−j is that of column j times (−1)^q
-          const double e0 = b[0], e1 = b[1], e2 = b[C_ - 2], e3 = b[C_ - 1];
-          const double* s0 = near_sines_.col(0).data();
-          const double* s1 = near_sines_.col(1).data();
-          for (int q = 0; q + 1 < C_; q += 2) {
-            hat[q] = (e0 + e3) * s0[q] + (e1 + e2) * s1[q];
-            hat[q + 1] = (e0 - e3) * s0[q + 1] + (e1 - e2) * s1[q + 1];
-          }
-          if (C_ % 2 == 1) hat[C_ - 1] = (e0 + e3) * s0[C_ - 1] + (e1 + e2) * s1[C_ - 1];
+        if (edges && !detail::has_interior(b + 1, C_ - 2)) {  // zero off the columns 0, 1, cols−2, cols−1
+          fast5_detail::edge_row_transform({b[0], b[1], b[C_ - 2], b[C_ - 1]}, near_sines_.col(0).data(),
+                                           near_sines_.col(1).data(), 0, C_, hat);
         } else {
           along_j.apply(b, hat, scale_j);
         }
