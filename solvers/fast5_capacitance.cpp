@@ -1,9 +1,11 @@
 #include "fast5_capacitance.h"
 
+#include <Eigen/Cholesky>
 #include <array>
 #include <cmath>
 #include <cstddef>
 
+#include "cross_approximation.h"
 #include "fast5_modes.h"
 #include "vector_clones.h"
 
@@ -38,7 +40,50 @@ COONS_VECTOR_CLONES void inverse_eigenvalues(double a, double b, const double* _
   }
 }
 
+// The cross approximation of diag^{−1/2}·G stops at this relative size of its last term; its
+// rank is capped (24 at 1e−8 on N = 1023) so that a block's set-up stays O(#modes·rank²).
+constexpr double kPreconditionerTolerance = 1e-9;
+constexpr int kPreconditionerRank = 64;
+
 }  // namespace
+
+void CapacitanceBlock::build_preconditioner() {
+  const Eigen::Index n = diag.size();
+  scale = diag.cwiseSqrt().cwiseInverse();
+  W.resize(n, 0);
+  S_factor.resize(0, 0);
+  if (n == 0) return;
+  const Eigen::MatrixXd scaled = scale.asDiagonal() * G;
+  const CrossApproximation cross = cross_approximation(scaled, kPreconditionerTolerance, kPreconditionerRank);
+  // s G Gᵀ s ≈ U (VᵀV) Uᵀ = (U L)(U L)ᵀ with VᵀV = L Lᵀ
+  const Eigen::Index k = cross.U.cols();
+  Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(k, k);
+  gram.selfadjointView<Eigen::Lower>().rankUpdate(cross.V.transpose());
+  const Eigen::LLT<Eigen::MatrixXd> gram_factor(gram);
+  if (gram_factor.info() != Eigen::Success) return;
+  Eigen::MatrixXd w(n, k + 1);
+  w.col(0) = std::sqrt(std::max(kappa, 0.0)) * scale.cwiseProduct(u);
+  w.rightCols(k).noalias() = cross.U * gram_factor.matrixL();
+  Eigen::MatrixXd s = Eigen::MatrixXd::Identity(k + 1, k + 1);
+  s.selfadjointView<Eigen::Lower>().rankUpdate(w.transpose(), -1.0);
+  const Eigen::LLT<Eigen::MatrixXd> llt(s);
+  if (llt.info() != Eigen::Success) return;
+  W = std::move(w);
+  S_factor = llt.matrixL();
+}
+
+void CapacitanceBlock::precondition(const Eigen::MatrixXd& R, Eigen::MatrixXd& Z) const {
+  Z = scale.asDiagonal() * R;
+  if (W.cols() == 0) {
+    Z = scale.asDiagonal() * Z;
+    return;
+  }
+  Eigen::MatrixXd t = W.transpose() * Z;  // (I + W S⁻¹ Wᵀ), S = L Lᵀ
+  S_factor.triangularView<Eigen::Lower>().solveInPlace(t);
+  S_factor.transpose().triangularView<Eigen::Upper>().solveInPlace(t);
+  Z.noalias() += W * t;
+  Z = scale.asDiagonal() * Z;
+}
 
 // out = Cap·V, with G Gᵀ V = Σ_k g_k (g_kᵀ V) over the columns g_k of G: each column is read
 // once, for all right-hand sides, and used twice while it is in the L1 cache (hand-written:
@@ -60,14 +105,16 @@ void CapacitanceBlock::apply_h_inverse(Eigen::MatrixXd& V) const {
   V.noalias() -= (kappa * u) * uv;
 }
 
-// Conjugate gradients with the diagonal as preconditioner, one column per right-hand side
-// (each with its own step lengths; a converged column is frozen); returns the iterations.
+// Preconditioned conjugate gradients, one column per right-hand side (each with its own step
+// lengths; a converged column is frozen); returns the iterations.
 int CapacitanceBlock::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const {
   const Eigen::Index n = rhs.rows(), m = rhs.cols();
   X.setZero(n, m);
   if (n == 0 || m == 0) return 0;
   Eigen::ArrayXd target = tolerance * rhs.colwise().norm().transpose().array();
-  Eigen::MatrixXd R = rhs, Z = diag.cwiseInverse().asDiagonal() * R, P = Z, AP;
+  Eigen::MatrixXd R = rhs, Z, P, AP;
+  precondition(R, Z);
+  P = Z;
   Eigen::ArrayXd rz = (R.cwiseProduct(Z)).colwise().sum().transpose().array();
   std::vector<bool> active(static_cast<std::size_t>(m), false);
   for (Eigen::Index c = 0; c < m; ++c) active[std::size_t(c)] = target[c] > 0;
@@ -82,16 +129,20 @@ int CapacitanceBlock::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, doub
       R.col(c) -= step * AP.col(c);
       if (R.col(c).norm() <= target[c]) {
         active[std::size_t(c)] = false;
+        R.col(c).setZero();
         P.col(c).setZero();
         continue;
       }
-      Z.col(c) = R.col(c).cwiseQuotient(diag);
-      const double rz_next = R.col(c).dot(Z.col(c));
-      P.col(c) = Z.col(c) + (rz_next / rz[c]) * P.col(c);
-      rz[c] = rz_next;
       any = true;
     }
     if (!any) return k;
+    precondition(R, Z);
+    for (Eigen::Index c = 0; c < m; ++c) {
+      if (!active[std::size_t(c)]) continue;
+      const double rz_next = R.col(c).dot(Z.col(c));
+      P.col(c) = Z.col(c) + (rz_next / rz[c]) * P.col(c);
+      rz[c] = rz_next;
+    }
   }
   return limit;
 }
@@ -145,6 +196,7 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
           blk.G(m, Eigen::Index(k)) = c * sigma_b[m] * inv_lambda[m];
         }
       }
+      blk.build_preconditioner();
     }
   }
   return blocks;

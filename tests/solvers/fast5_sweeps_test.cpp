@@ -1,6 +1,7 @@
 // fast5 internals: the closed form of the lowest modes against dense M_q, against the banded
 // solves, and its forward error against a binary128 reference (the reason it exists); the row
-// forms of the right-hand side (fast5_rows.h) and the sweeps that read them.
+// forms of the right-hand side (fast5_rows.h) and the sweeps that read them; the capacitance
+// blocks' low-rank preconditioner.
 #include <catch2/catch.hpp>
 
 #include "coons/config.h"
@@ -14,6 +15,7 @@
 #include <random>
 #include <vector>
 
+#include "solvers/fast5_capacitance.h"
 #include "solvers/fast5_low_modes.h"
 #include "solvers/fast5_modes.h"
 
@@ -329,6 +331,37 @@ TEST_CASE(
   solve_chunk(factors, 10, cols, 3, from_forms, out_formed, buf.data(), formed.sines, dot_formed);
   CHECK((dot_stored - dot_formed).cwiseAbs().maxCoeff() == 0);
   for (int c = 0; c < 3; ++c) CHECK(stored.grid[std::size_t(c)] == formed.grid[std::size_t(c)]);
+}
+
+TEST_CASE("capacitance_blocks: the low-rank preconditioner leaves CG two iterations, to the dense solution",
+          "[solvers]") {
+  const int n = 255;
+  const Eigen::VectorXd mu = second_difference_eigenvalues(n);
+  const Eigen::VectorXd t = std::sqrt(2.0) * first_sine_column(n);
+  for (double w : {0.0, 0.5}) {
+    const std::array<CapacitanceBlock, 4> blocks = capacitance_blocks(w, 1 - w, mu, mu, t, 1);
+    for (const CapacitanceBlock& blk : blocks) {
+      const Eigen::Index m = blk.diag.size();
+      INFO("w = " << w << ", block of " << m << " modes, preconditioner rank " << blk.W.cols() - 1);
+      REQUIRE(blk.W.cols() > 1);
+      CHECK(blk.W.cols() < 40);
+      Eigen::MatrixXd cap = blk.diag.asDiagonal();
+      cap -= blk.kappa * blk.u * blk.u.transpose() + blk.G * blk.G.transpose();
+      Eigen::MatrixXd rhs(m, 3);
+      for (Eigen::Index i = 0; i < m; ++i)
+        for (Eigen::Index c = 0; c < 3; ++c) rhs(i, c) = std::cos(0.37 * double(i * (c + 1))) + 1.0 / double(i + 1);
+      Eigen::MatrixXd X;
+      const int iterations = blk.solve(rhs, X, 1e-13);
+      CHECK(iterations <= 3);
+      const Eigen::MatrixXd dense = cap.llt().solve(rhs);
+      CHECK((X - dense).norm() <= 1e-12 * dense.norm());
+      CapacitanceBlock diagonal_only = blk;  // the diagonal preconditioner this one replaces
+      diagonal_only.W.resize(m, 0);
+      Eigen::MatrixXd Y;
+      CHECK(diagonal_only.solve(rhs, Y, 1e-13) >= iterations + 3);
+      CHECK((Y - dense).norm() <= 1e-12 * dense.norm());
+    }
+  }
 }
 
 #endif  // COONS_HAVE_FFTW
