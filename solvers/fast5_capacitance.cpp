@@ -98,6 +98,20 @@ void CapacitanceBlock::apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) con
       subtract_scaled(dot8(G.col(k).data(), V.col(c).data(), n), G.col(k).data(), out.col(c).data(), n);
 }
 
+void CapacitanceBlock::apply_g_transpose(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const {
+  const Eigen::Index n = G.rows();
+  out.resize(G.cols(), V.cols());
+  for (Eigen::Index k = 0; k < G.cols(); ++k)
+    for (Eigen::Index c = 0; c < V.cols(); ++c) out(k, c) = dot8(G.col(k).data(), V.col(c).data(), n);
+}
+
+void CapacitanceBlock::apply_g(const Eigen::MatrixXd& X, Eigen::MatrixXd& out) const {
+  const Eigen::Index n = G.rows();
+  out.setZero(n, X.cols());
+  for (Eigen::Index k = 0; k < G.cols(); ++k)
+    for (Eigen::Index c = 0; c < X.cols(); ++c) subtract_scaled(-X(k, c), G.col(k).data(), out.col(c).data(), n);
+}
+
 // V ← H⁻¹ V (rows of V are this block's modes).
 void CapacitanceBlock::apply_h_inverse(Eigen::MatrixXd& V) const {
   const Eigen::RowVectorXd uv = u.transpose() * V;
@@ -158,10 +172,11 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
 #endif
   for (int index = 0; index < 4; ++index) {  // each block is written by one thread
     const int qpar = index / 2, ppar = index % 2;
-    std::vector<int> qs;
-    for (int q = qpar; q < cols; q += 2) qs.push_back(q);
     {
       CapacitanceBlock& blk = blocks[std::size_t(index)];
+      std::vector<int>& qs = blk.columns;
+      qs.clear();
+      for (int q = qpar; q < cols; q += 2) qs.push_back(q);
       blk.modes.clear();
       for (int p = ppar; p < rows; p += 2) blk.modes.push_back(p);
       const auto n = Eigen::Index(blk.modes.size());
@@ -169,6 +184,8 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
       blk.h_inv.resize(n);
       blk.u.resize(n);
       blk.G.resize(n, Eigen::Index(qs.size()));
+      blk.c.resize(Eigen::Index(qs.size()));
+      blk.K.setZero(n, 2);
       double su = 0;
       for (Eigen::Index k = 0; k < n; ++k) {
         const int p = blk.modes[std::size_t(k)];
@@ -184,6 +201,8 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
         mu_b[m] = mu[blk.modes[std::size_t(m)]];
         sigma_b[m] = sigma[blk.modes[std::size_t(m)]];
       }
+      blk.sigma = sigma_b;
+      const double scale_j = std::sqrt(2.0 / (cols + 1));
       for (std::size_t k = 0; k < qs.size(); ++k) {
         const int q = qs[k];
         const double alpha = a * nu[q] * nu[q] + b;  // the weight of E_i in M_q
@@ -191,9 +210,14 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
         double gamma = 0;
         for (Eigen::Index m = 0; m < n; ++m) gamma += sigma_b[m] * sigma_b[m] * inv_lambda[m];
         const double c = std::sqrt(t[q] * t[q] * alpha / (1 + alpha * gamma));
+        blk.c[Eigen::Index(k)] = c;
+        const double ts0 = t[q] * scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
+        const double ts1 = t[q] * scale_j * std::sin(M_PI * 2 * (q + 1) / (cols + 1));
         for (Eigen::Index m = 0; m < n; ++m) {
           blk.diag[m] += t[q] * t[q] * inv_lambda[m];
           blk.G(m, Eigen::Index(k)) = c * sigma_b[m] * inv_lambda[m];
+          blk.K(m, 0) += ts0 * inv_lambda[m];
+          blk.K(m, 1) += ts1 * inv_lambda[m];
         }
       }
       blk.build_preconditioner();

@@ -23,10 +23,16 @@ namespace coons::solvers::fast5_detail {
 //   Cap·v = diag ⊙ v − kappa·u (uᵀv) − G (Gᵀv),   symmetric positive definite,
 // and of H⁻¹ (H = a·P_i + b·I) in the same basis: h_inv ⊙ v − kappa·u (uᵀv).
 struct CapacitanceBlock {
-  std::vector<int> modes;  // modes p (0-based) along i of this block
+  std::vector<int> modes;    // modes p (0-based) along i of this block
+  std::vector<int> columns;  // modes q (0-based) along j of its column parity, one per column of G
   Eigen::VectorXd diag, h_inv, u;
   double kappa = 0;
-  Eigen::MatrixXd G;  // #modes by #(modes q of the column parity), column-major
+  Eigen::MatrixXd G;      // #modes by #columns, column-major: column k is c_q·Λ_q⁻¹σ (q = columns[k])
+  Eigen::VectorXd c;      // c_q (#columns)
+  Eigen::VectorXd sigma;  // σ_p = √2·(S_i e₁)_p of the block's modes
+  // K(p, j) = Σ_q t_q s_j(q)/λ_pq over the block's columns q (#modes × 2), s_j the orthonormal sine
+  // vector of the grid column j along j (fast5_boundary_values.h)
+  Eigen::MatrixXd K;
   // The preconditioner P ≈ Cap: with s = diag^{−1/2}, s·P·s = I − W Wᵀ (W: #modes × (rank + 1),
   // √kappa·s⊙u and the cross approximation of s⊙G), P⁻¹ = s (I + W S⁻¹ Wᵀ) s, S = I − WᵀW
   // (its Cholesky factor below). No W (rank 0 columns): the diagonal alone.
@@ -36,6 +42,10 @@ struct CapacitanceBlock {
   //! out = Cap·V (V: #modes by #right-hand sides). G is read once, a column at a time, for all
   //! right-hand sides together.
   void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const;
+  //! out = Gᵀ V (V: #modes × m, out: #columns × m) and out = G X (X: #columns × m, out: #modes × m),
+  //! one pass over G each.
+  void apply_g_transpose(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const;
+  void apply_g(const Eigen::MatrixXd& X, Eigen::MatrixXd& out) const;
   //! V ← H⁻¹ V (rows of V are this block's modes).
   void apply_h_inverse(Eigen::MatrixXd& V) const;
   //! Builds the preconditioner from diag, kappa, u and G (see above); the diagonal alone when the

@@ -8,6 +8,7 @@
 #include <utility>
 #include <vector>
 
+#include "fast5_boundary_values.h"
 #include "fast5_capacitance.h"
 #include "fast5_low_modes.h"
 #include "fast5_modes.h"
@@ -43,6 +44,9 @@ constexpr int kFullRowShare = 4;
 // solves' forward error is below the rounding the transforms leave anyway. (A fixed 64 modes
 // made N = 127 and 255 a third slower for no accuracy.)
 constexpr int kLowModeShare = 16;
+// g is formed in closed form (fast5_boundary_values.h), without the first sweep, when B is read
+// from its row forms and its full rows pair into at most this many key rows (mask data: 2).
+constexpr std::size_t kMaxKeyRows = 4;
 
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
@@ -156,10 +160,22 @@ class Fast5Solver final : public LinearSolver {
       for (int c = 0; c < count; ++c) b_norms_[std::size_t(c)] = B.col(c).norm();
       transform_rows(count, true, B);
     }
-    // ŷ = A₁⁻¹ b̂ and its boundary columns g (both parities); h = Cap⁻¹ g; x̂ = A₁⁻¹ (b̂ − U h).
-    banded_solve_all(count, dots_);
+    // g = the boundary columns of A₁⁻¹ b̂ (both parities), in closed form or by a sweep;
+    // h = Cap⁻¹ g; x̂ = A₁⁻¹ (b̂ − U h).
     std::array<Eigen::MatrixXd, 2> h;
-    int iterations = capacitance_solve(dots_, count, kCapacitanceTolerance, h);
+    int iterations = 0;
+    if (edge_input_ && boundary_sources(count)) {
+      std::array<Eigen::MatrixXd, 4> g;
+      [[maybe_unused]] const int nt = threads_;
+      COONS_PARALLEL_FOR
+      for (int b = 0; b < 4; ++b)
+        g[std::size_t(b)] =
+            fast5_detail::boundary_values(blocks_[std::size_t(b)], b / 2, t_, keys_, R_, sources_[std::size_t(b % 2)]);
+      iterations = solve_blocks(g, count, kCapacitanceTolerance, false, h);
+    } else {
+      banded_solve_all(count, dots_);
+      iterations = capacitance_solve(dots_, count, kCapacitanceTolerance, h);
+    }
     add_boundary_response(count, h, -1.0, true);
     transform_rows(count, false, B);
     // The columns 0 and cols−1 carry what rounding left in h (see the header): corrected from
@@ -365,16 +381,33 @@ class Fast5Solver final : public LinearSolver {
   int capacitance_solve(const std::array<Eigen::MatrixXd, 2>& rhs, int count, double tolerance,
                         std::array<Eigen::MatrixXd, 2>& out, bool apply_h = true) {
     const double scale_i = std::sqrt(2.0 / (R_ + 1));
-    std::array<Eigen::MatrixXd, 2> hat, solved;
+    std::array<Eigen::MatrixXd, 2> hat;
     Eigen::VectorXd column(R_);
     for (std::size_t qpar = 0; qpar < 2; ++qpar) {
       hat[qpar].resize(R_, count);
-      solved[qpar].resize(R_, count);
       for (int c = 0; c < count; ++c) {
         column = rhs[qpar].col(c);
         along_i_.apply(column.data(), hat[qpar].col(c).data(), scale_i);
       }
     }
+    std::array<Eigen::MatrixXd, 4> block_rhs;
+    for (std::size_t b = 0; b < 4; ++b) {
+      const CapacitanceBlock& blk = blocks_[b];
+      block_rhs[b].resize(Eigen::Index(blk.modes.size()), count);
+      for (std::size_t k = 0; k < blk.modes.size(); ++k)
+        block_rhs[b].row(Eigen::Index(k)) = hat[b / 2].row(blk.modes[k]);
+    }
+    return solve_blocks(block_rhs, count, tolerance, apply_h, out);
+  }
+
+  // The capacitance solve in the sine basis along i: block_rhs[2·qpar + ppar] holds the right-hand
+  // sides on the block's modes (with apply_h, H⁻¹ of them); out[qpar] = Cap⁻¹ of them back in the
+  // grid (rows × count). Returns the most CG iterations of a block.
+  int solve_blocks(std::array<Eigen::MatrixXd, 4>& block_rhs, int count, double tolerance, bool apply_h,
+                   std::array<Eigen::MatrixXd, 2>& out) {
+    const double scale_i = std::sqrt(2.0 / (R_ + 1));
+    std::array<Eigen::MatrixXd, 2> solved;
+    for (std::size_t qpar = 0; qpar < 2; ++qpar) solved[qpar].resize(R_, count);
     // the four blocks (parity of q) × (parity of p) are independent; each writes its own rows
     std::array<int, 4> iterations{};
     [[maybe_unused]] const int nt = threads_;
@@ -382,12 +415,12 @@ class Fast5Solver final : public LinearSolver {
     for (int b = 0; b < 4; ++b) {
       const CapacitanceBlock& blk = blocks_[std::size_t(b)];
       const std::size_t qpar = std::size_t(b) / 2;
-      Eigen::MatrixXd block_rhs(Eigen::Index(blk.modes.size()), count), part;
-      for (std::size_t k = 0; k < blk.modes.size(); ++k) block_rhs.row(Eigen::Index(k)) = hat[qpar].row(blk.modes[k]);
-      if (apply_h) blk.apply_h_inverse(block_rhs);
-      iterations[std::size_t(b)] = blk.solve(block_rhs, part, tolerance);
+      Eigen::MatrixXd part;
+      if (apply_h) blk.apply_h_inverse(block_rhs[std::size_t(b)]);
+      iterations[std::size_t(b)] = blk.solve(block_rhs[std::size_t(b)], part, tolerance);
       for (std::size_t k = 0; k < blk.modes.size(); ++k) solved[qpar].row(blk.modes[k]) = part.row(Eigen::Index(k));
     }
+    Eigen::VectorXd column(R_);
     for (std::size_t qpar = 0; qpar < 2; ++qpar) {
       out[qpar].resize(R_, count);
       for (int c = 0; c < count; ++c) {
@@ -396,6 +429,46 @@ class Fast5Solver final : public LinearSolver {
       }
     }
     return *std::max_element(iterations.begin(), iterations.end());
+  }
+
+  // The right-hand sides in the form of fast5_boundary_values.h, from edge_rows_ (their full rows
+  // transformed): false (and nothing formed) when the full rows pair into more than kMaxKeyRows key
+  // rows.
+  bool boundary_sources(int count) {
+    keys_.clear();
+    for (int c = 0; c < count; ++c) {
+      const fast5_detail::EdgeRows& f = edge_rows_[std::size_t(c)];
+      for (int r = 0; r < R_; ++r)
+        if (f.slot[std::size_t(r)] >= 0) keys_.push_back(std::min(r, R_ - 1 - r));
+    }
+    std::sort(keys_.begin(), keys_.end());
+    keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
+    if (keys_.size() > kMaxKeyRows) return false;
+    const double scale_i = std::sqrt(2.0 / (R_ + 1));
+    Eigen::VectorXd column(R_);
+    for (std::size_t ppar = 0; ppar < 2; ++ppar) sources_[ppar].resize(std::size_t(count));
+    for (int c = 0; c < count; ++c) {
+      const fast5_detail::EdgeRows& f = edge_rows_[std::size_t(c)];
+      Eigen::MatrixXd beta_hat(R_, 4);
+      for (std::size_t j = 0; j < 4; ++j) {
+        for (int r = 0; r < R_; ++r) column[r] = f.ends[std::size_t(r)][j];
+        along_i_.apply(column.data(), beta_hat.col(Eigen::Index(j)).data(), scale_i);
+      }
+      for (std::size_t ppar = 0; ppar < 2; ++ppar) {
+        fast5_detail::BoundarySource& src = sources_[ppar][std::size_t(c)];
+        src.beta_hat = beta_hat;
+        src.rows.assign(keys_.size(), Eigen::VectorXd::Zero(C_));
+        for (int r = 0; r < R_; ++r) {
+          const int slot = f.slot[std::size_t(r)];
+          if (slot < 0) continue;
+          const int key = std::min(r, R_ - 1 - r);
+          const auto k = std::size_t(std::lower_bound(keys_.begin(), keys_.end(), key) - keys_.begin());
+          const double sign = (r == key || ppar == 0) ? 1.0 : -1.0;  // σ̃_{rows−1−e} = (−1)^p σ̃_e
+          src.rows[k] += sign * Eigen::Map<const Eigen::VectorXd>(f.values.data() + std::ptrdiff_t(slot) * C_, C_);
+        }
+      }
+    }
+    return true;
   }
 
   // (b − A x) on column j of right-hand side c, one entry per row.
@@ -469,13 +542,15 @@ class Fast5Solver final : public LinearSolver {
   ModeFactors factors_;
   std::array<CapacitanceBlock, 4> blocks_;
   fast5_detail::LowModes low_;
-  std::array<double*, 3> hats_{};                    // the transformed rows, in X during a solve
-  std::array<fast5_detail::EdgeRows, 3> edge_rows_;  // B's columns row by row (fast5_rows.h)
-  const double* scanned_source_ = nullptr;           // the B whose row forms rhs_scaling left in edge_rows_
-  bool edge_input_ = false;                          // this solve reads B's transform from edge_rows_
-  std::vector<std::vector<double>> buffers_;         // solve_modes: one chunk buffer per thread
-  std::vector<Eigen::MatrixXd> partial_;             // solve_modes: one product with the dots per chunk
-  Eigen::MatrixXd no_sines_, unused_dots_;           // add_boundary_response: no dots wanted
+  std::array<double*, 3> hats_{};                                     // the transformed rows, in X during a solve
+  std::array<fast5_detail::EdgeRows, 3> edge_rows_;                   // B's columns row by row (fast5_rows.h)
+  std::vector<int> keys_;                                             // boundary_sources: the key rows
+  std::array<std::vector<fast5_detail::BoundarySource>, 2> sources_;  // per parity of p, per column of B
+  const double* scanned_source_ = nullptr;    // the B whose row forms rhs_scaling left in edge_rows_
+  bool edge_input_ = false;                   // this solve reads B's transform from edge_rows_
+  std::vector<std::vector<double>> buffers_;  // solve_modes: one chunk buffer per thread
+  std::vector<Eigen::MatrixXd> partial_;      // solve_modes: one product with the dots per chunk
+  Eigen::MatrixXd no_sines_, unused_dots_;    // add_boundary_response: no dots wanted
 };
 
 }  // namespace

@@ -1,7 +1,7 @@
 // fast5 internals: the closed form of the lowest modes against dense M_q, against the banded
 // solves, and its forward error against a binary128 reference (the reason it exists); the row
 // forms of the right-hand side (fast5_rows.h) and the sweeps that read them; the capacitance
-// blocks' low-rank preconditioner.
+// blocks' low-rank preconditioner; the closed-form boundary values against dense solves.
 #include <catch2/catch.hpp>
 
 #include "coons/config.h"
@@ -15,6 +15,7 @@
 #include <random>
 #include <vector>
 
+#include "solvers/fast5_boundary_values.h"
 #include "solvers/fast5_capacitance.h"
 #include "solvers/fast5_low_modes.h"
 #include "solvers/fast5_modes.h"
@@ -360,6 +361,74 @@ TEST_CASE("capacitance_blocks: the low-rank preconditioner leaves CG two iterati
       Eigen::MatrixXd Y;
       CHECK(diagonal_only.solve(rhs, Y, 1e-13) >= iterations + 3);
       CHECK((Y - dense).norm() <= 1e-12 * dense.norm());
+    }
+  }
+}
+
+namespace {
+
+// The orthonormal DST-I of order n as a dense matrix (symmetric, its own inverse).
+Eigen::MatrixXd sine_matrix(int n) {
+  Eigen::MatrixXd S(n, n);
+  for (int i = 0; i < n; ++i)
+    for (int k = 0; k < n; ++k) S(i, k) = std::sqrt(2.0 / (n + 1)) * std::sin(M_PI * (i + 1) * (k + 1) / (n + 1));
+  return S;
+}
+
+}  // namespace
+
+TEST_CASE("boundary_values: the closed form of g against dense solves of every M_q, rows != cols", "[solvers]") {
+  const int R = 9, C = 11;
+  const Eigen::MatrixXd Si = sine_matrix(R), Sj = sine_matrix(C);
+  const Eigen::VectorXd mu = second_difference_eigenvalues(R), nu = second_difference_eigenvalues(C);
+  const Eigen::VectorXd t = std::sqrt(2.0) * first_sine_column(C);
+  std::mt19937 rng(7);
+  std::uniform_real_distribution<double> uniform(-1, 1);
+  // Full rows 0, 1, 7, 8 and the middle row 4 (its own mirror); the end columns on the other rows.
+  const std::vector<int> full = {0, 1, 4, 7, 8};
+  const std::vector<int> ends = {0, 1, C - 2, C - 1};
+  std::vector<Eigen::MatrixXd> b(2, Eigen::MatrixXd::Zero(R, C));
+  for (Eigen::MatrixXd& m : b) {
+    for (int r : full)
+      for (int j = 0; j < C; ++j) m(r, j) = uniform(rng);
+    for (int r = 0; r < R; ++r)
+      for (int j : ends) m(r, j) = uniform(rng);
+  }
+  const std::vector<int> keys = {0, 1, 4};
+  for (double w : {0.0, 0.5}) {
+    const double a = w, bb = 1 - w;
+    const std::array<CapacitanceBlock, 4> blocks = capacitance_blocks(a, bb, mu, nu, t, 1);
+    for (int index = 0; index < 4; ++index) {
+      const int qpar = index / 2, ppar = index % 2;
+      std::vector<BoundarySource> sources;
+      Eigen::MatrixXd expected(Eigen::Index(blocks[std::size_t(index)].modes.size()), 2);
+      for (std::size_t c = 0; c < b.size(); ++c) {
+        // the dense reference: ĝ = S_i Σ_q t_q M_q⁻¹ b̂(·, q) over the modes q of parity qpar
+        const Eigen::MatrixXd bhat = b[c] * Sj;
+        Eigen::VectorXd g = Eigen::VectorXd::Zero(R);
+        for (int q = qpar; q < C; q += 2) g += t[q] * mode_matrix(a, bb, nu[q], R).llt().solve(bhat.col(q));
+        const Eigen::VectorXd ghat = Si * g;
+        for (std::size_t k = 0; k < blocks[std::size_t(index)].modes.size(); ++k)
+          expected(Eigen::Index(k), Eigen::Index(c)) = ghat[blocks[std::size_t(index)].modes[k]];
+        // the source: key rows combined with their mirrors, the end columns off the full rows
+        BoundarySource src;
+        for (int key : keys) {
+          Eigen::VectorXd row = Sj * b[c].row(key).transpose();
+          if (R - 1 - key != key) row += (ppar == 0 ? 1.0 : -1.0) * (Sj * b[c].row(R - 1 - key).transpose());
+          src.rows.push_back(row);
+        }
+        Eigen::MatrixXd columns(R, 4);
+        for (int j = 0; j < 4; ++j) {
+          columns.col(j) = b[c].col(ends[std::size_t(j)]);
+          for (int r : full) columns(r, j) = 0;
+        }
+        src.beta_hat = Si * columns;
+        sources.push_back(src);
+      }
+      const Eigen::MatrixXd got = boundary_values(blocks[std::size_t(index)], qpar, t, keys, R, sources);
+      INFO("w = " << w << ", block " << index);
+      CHECK((got - expected).norm() <= 1e-13 * expected.norm());
+      CHECK(expected.norm() > 0);
     }
   }
 }

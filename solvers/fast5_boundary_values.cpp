@@ -1,0 +1,59 @@
+#include "fast5_boundary_values.h"
+
+#include <cmath>
+#include <cstddef>
+
+namespace coons::solvers::fast5_detail {
+
+Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eigen::VectorXd& t,
+                                const std::vector<int>& keys, int grid_rows,
+                                const std::vector<BoundarySource>& sources) {
+  const auto n = Eigen::Index(blk.modes.size()), nq = Eigen::Index(blk.columns.size());
+  const auto nk = Eigen::Index(keys.size()), count = Eigen::Index(sources.size());
+  const int cols = int(t.size());
+  const double sign_q = qpar == 0 ? 1.0 : -1.0;  // s_{cols−1−j}(q) = (−1)^q s_j(q)
+  const double scale_i = std::sqrt(2.0 / (grid_rows + 1)), scale_j = std::sqrt(2.0 / (cols + 1));
+  // Gᵀ of [σ̃_e for the key rows e, then β̂⁽⁰⁾, β̂⁽¹⁾ of each right-hand side]
+  Eigen::MatrixXd V(n, nk + 2 * count), GtV;
+  for (Eigen::Index k = 0; k < nk; ++k)
+    for (Eigen::Index m = 0; m < n; ++m)
+      V(m, k) = scale_i * std::sin(M_PI * double(keys[std::size_t(k)] + 1) * double(blk.modes[std::size_t(m)] + 1) /
+                                   double(grid_rows + 1));
+  for (Eigen::Index c = 0; c < count; ++c) {
+    const Eigen::MatrixXd& beta = sources[std::size_t(c)].beta_hat;
+    for (Eigen::Index m = 0; m < n; ++m) {
+      const int p = blk.modes[std::size_t(m)];
+      V(m, nk + 2 * c) = beta(p, 0) + sign_q * beta(p, 3);
+      V(m, nk + 2 * c + 1) = beta(p, 1) + sign_q * beta(p, 2);
+    }
+  }
+  blk.apply_g_transpose(V, GtV);
+  // G of [x_e of each right-hand side and key row, then z of each right-hand side]
+  Eigen::MatrixXd X(nq, count * (nk + 1)), GX;
+  for (Eigen::Index k = 0; k < nq; ++k) {
+    const int q = blk.columns[std::size_t(k)];
+    const double s0 = scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
+    const double s1 = scale_j * std::sin(M_PI * 2 * (q + 1) / (cols + 1));
+    for (Eigen::Index c = 0; c < count; ++c) {
+      const BoundarySource& src = sources[std::size_t(c)];
+      double gtf = s0 * GtV(k, nk + 2 * c) + s1 * GtV(k, nk + 2 * c + 1);  // (Gᵀ F(·, q))_k
+      for (Eigen::Index e = 0; e < nk; ++e) {
+        const double w = src.rows[std::size_t(e)][q];
+        gtf += w * GtV(k, e);
+        X(k, c * (nk + 1) + e) = t[q] * w / blk.c[k];
+      }
+      X(k, c * (nk + 1) + nk) = gtf / t[q];
+    }
+  }
+  blk.apply_g(X, GX);
+  Eigen::MatrixXd out(n, count);
+  for (Eigen::Index c = 0; c < count; ++c)
+    for (Eigen::Index m = 0; m < n; ++m) {
+      double v = V(m, nk + 2 * c) * blk.K(m, 0) + V(m, nk + 2 * c + 1) * blk.K(m, 1) - GX(m, c * (nk + 1) + nk);
+      for (Eigen::Index e = 0; e < nk; ++e) v += V(m, e) / blk.sigma[m] * GX(m, c * (nk + 1) + e);
+      out(m, c) = v;
+    }
+  return out;
+}
+
+}  // namespace coons::solvers::fast5_detail
