@@ -1,7 +1,8 @@
 // Adaptive cross approximation with partial pivoting: A ≈ U Vᵀ from a few of A's rows and
 // columns (each step takes the residual's row at the pivot row, its largest entry's column, and
 // the next pivot row where that column's residual is largest), stopping when the new rank-one
-// term falls below `tolerance` times the Frobenius norm of the approximation so far. O((m + n)·k²)
+// term falls below `tolerance` times the Frobenius norm of the approximation so far (estimated
+// by the sum of the terms' norms squared). O((m + n)·k²)
 // flops for rank k, and m + n entries of A per step: nothing of the size of A is formed. The
 // stopping test is an estimate; users that need a guarantee check the result (fast5 uses it as a
 // preconditioner, whose quality only changes the number of iterations).
