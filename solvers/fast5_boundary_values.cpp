@@ -28,8 +28,11 @@ Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eig
     }
   }
   blk.apply_g_transpose(V, GtV);
-  // G of [x_e of each right-hand side and key row, then z of each right-hand side]
-  Eigen::MatrixXd X(nq, count * (nk + 1)), GX;
+  // G of [x_e of each right-hand side and key row e > 0, then z of each right-hand side]: the key
+  // row 0 has σ̃_0/σ = 1/√2, so its term is −G(−x_0/√2) and goes into z's product
+  const bool row0 = nk > 0 && keys[0] == 0;
+  const Eigen::Index first = row0 ? 1 : 0, per = nk - first + 1;  // products per right-hand side
+  Eigen::MatrixXd X(nq, count * per), GX;
   for (Eigen::Index k = 0; k < nq; ++k) {
     const int q = blk.columns[std::size_t(k)];
     const double s0 = scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
@@ -37,20 +40,24 @@ Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eig
     for (Eigen::Index c = 0; c < count; ++c) {
       const BoundarySource& src = sources[std::size_t(c)];
       double gtf = s0 * GtV(k, nk + 2 * c) + s1 * GtV(k, nk + 2 * c + 1);  // (Gᵀ F(·, q))_k
+      for (Eigen::Index e = 0; e < nk; ++e) gtf += src.rows[std::size_t(e)][q] * GtV(k, e);
+      double z = gtf / t[q];
       for (Eigen::Index e = 0; e < nk; ++e) {
-        const double w = src.rows[std::size_t(e)][q];
-        gtf += w * GtV(k, e);
-        X(k, c * (nk + 1) + e) = t[q] * w / blk.c[k];
+        const double x = t[q] * src.rows[std::size_t(e)][q] / blk.c[k];
+        if (e < first)
+          z -= x * M_SQRT1_2;
+        else
+          X(k, c * per + e - first) = x;
       }
-      X(k, c * (nk + 1) + nk) = gtf / t[q];
+      X(k, c * per + per - 1) = z;
     }
   }
   blk.apply_g(X, GX);
   Eigen::MatrixXd out(n, count);
   for (Eigen::Index c = 0; c < count; ++c)
     for (Eigen::Index m = 0; m < n; ++m) {
-      double v = V(m, nk + 2 * c) * blk.K(m, 0) + V(m, nk + 2 * c + 1) * blk.K(m, 1) - GX(m, c * (nk + 1) + nk);
-      for (Eigen::Index e = 0; e < nk; ++e) v += V(m, e) / blk.sigma[m] * GX(m, c * (nk + 1) + e);
+      double v = V(m, nk + 2 * c) * blk.K(m, 0) + V(m, nk + 2 * c + 1) * blk.K(m, 1) - GX(m, c * per + per - 1);
+      for (Eigen::Index e = first; e < nk; ++e) v += V(m, e) / blk.sigma[m] * GX(m, c * per + e - first);
       out(m, c) = v;
     }
   return out;

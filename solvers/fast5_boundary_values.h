@@ -11,9 +11,10 @@
 //   ĝ = Σ_e (σ̃_e/σ) ⊙ G x_e + β̂⁽⁰⁾ ⊙ K₀ + β̂⁽¹⁾ ⊙ K₁ − G z,
 //   x_e(q) = t_q w_e(q)/c_q,   z(q) = (Gᵀ F(·, q))/t_q,
 // with σ̃_e = S_i e_e, K_j(p) = Σ_q t_q s_j(q)/λ_pq from the set-up, and the mirrored rows and
-// columns (e and rows−1−e, j and cols−1−j) combined per parity. One pass over G for Gᵀ (the key
-// rows' σ̃_e and two vectors per right-hand side) and one for G (key rows + 1 vectors per
-// right-hand side): O(rows·cols·(keys + 3)) flops, no sweep of the grid.
+// columns (e and rows−1−e, j and cols−1−j) combined per parity; row 0's term, σ̃_0/σ = 1/√2,
+// goes into z's product. One pass over G for Gᵀ (the key rows' σ̃_e and two vectors per
+// right-hand side) and one for G (one vector per key row e > 0 and right-hand side, and z):
+// O(rows·cols·(keys + 3)) flops, no sweep of the grid.
 // Based on: P. E. Bjørstad, Fast numerical solution of the biharmonic Dirichlet problem on
 // rectangles, SIAM J. Numer. Anal. 20 (1983) 59–71 (the capacitance formulation), and the
 // Sherman–Morrison formula.

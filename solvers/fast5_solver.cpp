@@ -52,9 +52,9 @@ constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
 constexpr std::array<double, 5> kImpulse = {0, 0, 1, 0, 0};
 // The capacitance CG stops at this residual relative to its right-hand side, below the rounding of
-// the rest of the solve, so that no correction is needed for it (two iterations with the low-rank
-// preconditioner from N = 31 to 2047 on mask data; at 1e−13 some columns stop after one and the
-// solve's residual is a third higher). A correction (rare, see
+// the rest of the solve, so that no correction is needed for it (one product with Cap, the
+// preconditioned solve and one correction, from N = 31 to 2047 on mask data; at 1e−13 CG let some
+// columns stop a step early and the solve's residual was a third higher). A correction (rare, see
 // do_solve) solves to the accuracy it needs (to bring the boundary residual to a tenth of its
 // limit), within [kCorrectionTolerance, 1e-2].
 constexpr double kCapacitanceTolerance = 1e-14;

@@ -334,8 +334,7 @@ TEST_CASE(
   for (int c = 0; c < 3; ++c) CHECK(stored.grid[std::size_t(c)] == formed.grid[std::size_t(c)]);
 }
 
-TEST_CASE("capacitance_blocks: the low-rank preconditioner leaves CG two iterations, to the dense solution",
-          "[solvers]") {
+TEST_CASE("capacitance_blocks: the low-rank Woodbury solve and one correction reach the dense solution", "[solvers]") {
   const int n = 255;
   const Eigen::VectorXd mu = second_difference_eigenvalues(n);
   const Eigen::VectorXd t = std::sqrt(2.0) * first_sine_column(n);
@@ -353,9 +352,20 @@ TEST_CASE("capacitance_blocks: the low-rank preconditioner leaves CG two iterati
         for (Eigen::Index c = 0; c < 3; ++c) rhs(i, c) = std::cos(0.37 * double(i * (c + 1))) + 1.0 / double(i + 1);
       Eigen::MatrixXd X;
       const int iterations = blk.solve(rhs, X, 1e-13);
-      CHECK(iterations <= 3);
+      CHECK(iterations == 1);
       const Eigen::MatrixXd dense = cap.llt().solve(rhs);
       CHECK((X - dense).norm() <= 1e-12 * dense.norm());
+      // a poorer preconditioner (the rank-one term and two cross terms kept): the one correction
+      // is not enough, and CG goes on from it to the same solution
+      CapacitanceBlock poorer = blk;
+      poorer.W.conservativeResize(Eigen::NoChange, 3);
+      const Eigen::MatrixXd s =
+          Eigen::MatrixXd::Identity(poorer.W.cols(), poorer.W.cols()) - poorer.W.transpose() * poorer.W;
+      poorer.S_factor = s.llt().matrixL();
+      Eigen::MatrixXd Z;
+      const int poorer_iterations = poorer.solve(rhs, Z, 1e-13);
+      CHECK(poorer_iterations > 1);
+      CHECK((Z - dense).norm() <= 1e-12 * dense.norm());
       CapacitanceBlock diagonal_only = blk;  // the diagonal preconditioner this one replaces
       diagonal_only.W.resize(m, 0);
       Eigen::MatrixXd Y;
