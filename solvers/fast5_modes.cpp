@@ -188,7 +188,7 @@ namespace {
 constexpr double kConverged = 1e-15;
 }  // namespace
 
-ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads) {
+ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads, int first) {
   ModeFactors f;
   const int cols = int(nu.size());
   f.rows = rows;
@@ -204,6 +204,11 @@ ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows
 #pragma omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic, 16)
 #endif
   for (int q = 0; q < cols; ++q) {  // the modes are independent; each writes its own entries
+    if (q < first) {                // not factored: converged from row 0 on, limits zero
+      converged[std::size_t(q)] = 0;
+      f.lim_inv_d[std::size_t(q)] = f.lim_l1[std::size_t(q)] = f.lim_l2[std::size_t(q)] = 0;
+      continue;
+    }
     const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
     const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
     auto& dq = d[std::size_t(q)];

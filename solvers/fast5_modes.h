@@ -38,8 +38,9 @@ struct ModeFactors {
 };
 
 //! The factors of M_q for the modes ν = nu (#cols) of the fourth-order stencil a·C + b·T, rows each,
-//! on up to `threads` threads (OpenMP; the same on any count).
-ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads);
+//! on up to `threads` threads (OpenMP; the same on any count). The modes q < first are not factored
+//! (their entries read zero: no sweep may take them; fast5 solves them in closed form).
+ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads, int first = 0);
 
 //! The right-hand side of a solve_chunk, row r, mode q, right-hand side c: hats[c][r·cols + q]
 //! (hats[c] = nullptr: edges[c]'s row r at mode q, fast5_rows.h, with the sine vectors s0 and s1

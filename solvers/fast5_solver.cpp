@@ -284,7 +284,7 @@ class Fast5Solver final : public LinearSolver {
   // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
   void factor_modes() {
     nu_ = second_difference_eigenvalues(C_);
-    factors_ = fast5_detail::factor_modes(weights_.a, weights_.b, nu_, R_, threads_);
+    factors_ = fast5_detail::factor_modes(weights_.a, weights_.b, nu_, R_, threads_, low_mode_count());
   }
 
   // The four capacitance blocks (parity of q) × (parity of p), see the header, and the sine
@@ -301,9 +301,14 @@ class Fast5Solver final : public LinearSolver {
       for (int q = 0; q < C_; ++q)
         near_sines_(q, j) = std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (j + 1) * (q + 1) / (C_ + 1));
     blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_, threads_);
-    int low = (C_ + kLowModeShare - 1) / kLowModeShare;
-    low = std::min(low + low % 2, C_ - C_ % 2);  // even: the chunks after it start on an even mode
-    low_ = fast5_detail::low_modes(a, b, mu, nu_, low);
+    low_ = fast5_detail::low_modes(a, b, mu, nu_, low_mode_count());
+  }
+
+  // The number of modes solved in closed form (kLowModeShare), even: the chunks after them start
+  // on an even mode.
+  [[nodiscard]] int low_mode_count() const {
+    const int low = (C_ + kLowModeShare - 1) / kLowModeShare;
+    return std::min(low + low % 2, C_ - C_ % 2);
   }
 
   // M⁻¹ of the input (see SweepInput) for every mode, into `output`, and out(r, 2k·c + 2m + p) = the
