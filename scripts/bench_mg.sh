@@ -17,7 +17,7 @@ if [ "${1:-}" != "--report-only" ]; then
   "$bench" --mg-iterations --sizes=127,255,511,1023 --benchmark_format=console \
     --benchmark_out="$out/mg_iterations.json" --benchmark_out_format=json
   "$bench" --large --sizes=1023 --alphas=0,-0.1 --backends=fast,dst,mg,fast5,separable-banded \
-    --benchmark_filter='MemoryPass|BM_SineRows/|BM_Solve/|BM_AlphaSweep(Threads)?/fast/|BM_Stencil5/(c1-coons|biharmonic|c1-family-0.5)/' \
+    --benchmark_filter='MemoryPass|BM_SineRows/|BM_Fast5Sweep/|BM_Solve/|BM_AlphaSweep(Threads)?/fast/|BM_Stencil5/(c1-coons|biharmonic|c1-family-0.5)/' \
     "${repeat[@]}" --benchmark_format=console --benchmark_out="$out/threads.json" --benchmark_out_format=json
   "$bench" --large --sizes=1000,1023,1024,1030 --backends=fast,dst \
     --benchmark_filter='MemoryPass|BM_Solve/(fast|dst)/N:[0-9]+/alpha:-0.100/min_time' \

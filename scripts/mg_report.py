@@ -224,6 +224,34 @@ def threads_table(data):
         text += ("\n\nThe floor of a solve that transforms rows, same run (`BM_SineRows`: the inverse sine transform of "
                  "every row of the three columns and the write of the result, nothing else; `fast` does that and its "
                  "eliminations, and so does each member of its sweep): " + "; ".join(floor_notes) + ".")
+    # fast5's floor on mask data: one banded sweep of the grid (BM_Fast5Sweep) and one row transform
+    # (BM_SineRows), beside a fast5 solve of the biharmonic and its goal.
+    sweeps5 = {}
+    for b in data["benchmarks"]:
+        m = re.match(r"BM_Fast5Sweep/N:(\d+)(/threads:(\d+))?", b["name"])
+        if m:
+            sweeps5[(int(m.group(1)), int(m.group(3) or 1))] = seconds_of(b)
+    fast5_notes = []
+    for (n, k), sweep in sorted(sweeps5.items()):
+        if n not in memory or (n, k) not in floors:
+            continue
+        floor = sweep + floors[(n, k)]
+        note = (f"{k} thread{'s' if k > 1 else ''}: sweep {sweep * 1e3:.1f} ms + rows {floors[(n, k)] * 1e3:.1f} ms = "
+                f"{floor / memory[n]:.1f}× the memory pass")
+        goal = goals[("fast5", "biharmonic")][0]
+        solve = solves.get(("fast5", n, "biharmonic"), {}).get(k)
+        if floor / memory[n] >= goal:
+            note += f", which alone exceeds the goal (≤ {goal}×)"
+        else:
+            note += f", which leaves {goal - floor / memory[n]:.1f}× of the goal (≤ {goal}×) for the rest"
+            if solve:
+                note += f" of the solve (it takes {(solve[0] - floor) / memory[n]:.1f}× now)"
+        fast5_notes.append(f"N = {n}, {note}")
+    if fast5_notes:
+        text += ("\n\nThe floor of `fast5` on mask data, same run (`BM_Fast5Sweep`: one banded sweep of the grid, down "
+                 "and up every mode's factors made beforehand, for the three columns; `BM_SineRows`: one row "
+                 "transform; a `fast5` solve does both, besides its set-up and its capacitance solve): "
+                 + "; ".join(fast5_notes) + ".")
     # mg per V-cycle: the whole solve's time over its cycles (to the benchmark's tolerance), so a
     # reader can tell the cost of a cycle from the number of cycles.
     per_cycle = []

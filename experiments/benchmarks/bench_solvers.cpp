@@ -44,6 +44,7 @@
 #endif
 #include "coons/mask/assemble_mask_system.h"
 #include "coons/net/coons_net.h"
+#include "solvers/fast5_modes.h"
 #include "solvers/registry.h"
 #include "solvers/sine_transform.h"
 #include "solvers/stencil_operator.h"
@@ -151,6 +152,47 @@ void BM_SineRows(benchmark::State& state, int N, int threads) {
       detail::stream_copy(rows[std::size_t(t)].data(), X.col(c).data() + i * N, n);
     }
     detail::stream_fence();
+  };
+  for (auto _ : state) {
+    std::vector<std::thread> others;
+    others.reserve(std::size_t(threads));
+    for (int t = 1; t < threads; ++t) others.emplace_back(work, t);
+    work(0);
+    for (std::thread& other : others) other.join();
+    benchmark::DoNotOptimize(X.data());
+    benchmark::ClobberMemory();
+  }
+  set_common_counters(state, N);
+  state.SetLabel("threads=" + std::to_string(threads));
+}
+
+// The other half of fast5's floor: one banded sweep of the grid (down and up every mode's
+// pentadiagonal LDLᵀ, factored before the loop, for the three columns of an N × N right-hand
+// side, written into X; solvers/fast5_modes.h), nothing else, on `threads` threads taking chunks of
+// 128 modes in turn. A fast5 solve on mask data does this once (its second sweep, the lowest modes
+// in closed form instead) and one row transform (BM_SineRows), besides its set-up and capacitance
+// solve; scripts/mg_report.py sets their sum beside its target.
+void BM_Fast5Sweep(benchmark::State& state, int N, int threads) {
+  const Problem& p = problem(N, -0.25, false);
+  const Eigen::MatrixX3d& B = p.system.B;  // any values: the sweep's cost does not depend on them
+  Eigen::MatrixX3d X(B.rows(), 3);
+  const fast5_detail::ModeFactors f =
+      fast5_detail::factor_modes(0, 1, fast5_detail::second_difference_eigenvalues(N), N, 1);  // biharmonic
+  const std::vector<double> zeros(std::size_t(N), 0.0);
+  fast5_detail::SweepInput in;
+  in.hats = {B.col(0).data(), B.col(1).data(), B.col(2).data()};
+  in.t_even = zeros.data();
+  in.t_odd = zeros.data();
+  fast5_detail::ChunkOutput out;
+  out.grid = {X.col(0).data(), X.col(1).data(), X.col(2).data()};
+  constexpr int kChunk = 128;
+  const int chunks = (N + kChunk - 1) / kChunk;
+  const Eigen::MatrixXd no_sines(N, 0);
+  auto work = [&](int t) {
+    std::vector<double> buf(3 * std::size_t(N) * kChunk);
+    Eigen::MatrixXd dots;
+    for (int k = t; k < chunks; k += threads)
+      fast5_detail::solve_chunk(f, k * kChunk, std::min(N, (k + 1) * kChunk), 3, in, out, buf.data(), no_sines, dots);
   };
   for (auto _ : state) {
     std::vector<std::thread> others;
@@ -632,6 +674,13 @@ int main(int argc, char** argv) {
       for (int threads : {1, 2})
         benchmark::RegisterBenchmark(("BM_SineRows/N:" + std::to_string(N) + (threads > 1 ? "/threads:2" : "")).c_str(),
                                      BM_SineRows, N, threads)
+            ->UseRealTime()
+            ->MinTime(min_time);
+    if (wanted("fast5"))
+      for (int threads : {1, 2})
+        benchmark::RegisterBenchmark(
+            ("BM_Fast5Sweep/N:" + std::to_string(N) + (threads > 1 ? "/threads:2" : "")).c_str(), BM_Fast5Sweep, N,
+            threads)
             ->UseRealTime()
             ->MinTime(min_time);
 #endif
