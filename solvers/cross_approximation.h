@@ -12,6 +12,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <functional>
 
 namespace coons::solvers {
 
@@ -20,9 +21,16 @@ struct CrossApproximation {
   Eigen::MatrixXd V;  //!< n × k: A ≈ U Vᵀ
 };
 
-//! The partially pivoted adaptive cross approximation of A (m × n) to relative `tolerance`
-//! (Frobenius, estimated), of rank at most `max_rank`, starting at row `first_row`. Rank 0 for a
-//! zero matrix.
+//! Writes row i (#n) or column j (#m) of A into its second argument (sized by the caller).
+using EntryLine = std::function<void(Eigen::Index, Eigen::VectorXd&)>;
+
+//! The partially pivoted adaptive cross approximation of A (m × n, given by its rows and columns)
+//! to relative `tolerance` (Frobenius, estimated), of rank at most `max_rank`, starting at row
+//! `first_row`. Rank 0 for a zero matrix.
+CrossApproximation cross_approximation(Eigen::Index m, Eigen::Index n, const EntryLine& row_of, const EntryLine& col_of,
+                                       double tolerance, int max_rank, int first_row = 0);
+
+//! The same of a stored A.
 CrossApproximation cross_approximation(const Eigen::MatrixXd& A, double tolerance, int max_rank, int first_row = 0);
 
 }  // namespace coons::solvers

@@ -6,7 +6,6 @@
 #include <cmath>
 #include <cstddef>
 
-#include "cross_approximation.h"
 #include "fast5_modes.h"
 #include "vector_clones.h"
 
@@ -66,14 +65,11 @@ COONS_VECTOR_CLONES void fill_column(const double* __restrict inv, const double*
 
 }  // namespace
 
-void CapacitanceBlock::build_preconditioner() {
+void CapacitanceBlock::build_preconditioner(const CrossApproximation& cross) {
   const Eigen::Index n = diag.size();
-  scale = diag.cwiseSqrt().cwiseInverse();
   W.resize(n, 0);
   S_factor.resize(0, 0);
   if (n == 0) return;
-  const Eigen::MatrixXd scaled = scale.asDiagonal() * G;
-  const CrossApproximation cross = cross_approximation(scaled, kPreconditionerTolerance, kPreconditionerRank);
   // s G Gᵀ s ≈ U (VᵀV) Uᵀ = (U L)(U L)ᵀ with VᵀV = L Lᵀ
   const Eigen::Index k = cross.U.cols();
   Eigen::MatrixXd gram = Eigen::MatrixXd::Zero(k, k);
@@ -257,7 +253,21 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
         fill_column(inv_lambda.data(), sigma_b.data(), t[q] * t[q], c, ts0, ts1, blk.diag.data(),
                     blk.G.col(Eigen::Index(k)).data(), blk.K.col(0).data(), blk.K.col(1).data(), n);
       }
-      blk.build_preconditioner();
+      // the cross approximation of diag^{−1/2}·G from its entries' closed form (a row of the stored G
+      // would be read across #modes cache lines and pages)
+      blk.scale = blk.diag.cwiseSqrt().cwiseInverse();
+      Eigen::VectorXd nu_b(Eigen::Index(qs.size()));
+      for (std::size_t k = 0; k < qs.size(); ++k) nu_b[Eigen::Index(k)] = nu[qs[k]];
+      const auto row_of = [&](Eigen::Index m, Eigen::VectorXd& out) {  // 1/λ symmetric in (μ, ν)
+        inverse_eigenvalues(a, b, nu_b.data(), mu_b[m], out.data(), out.size());
+        out = (blk.scale[m] * sigma_b[m]) * blk.c.cwiseProduct(out);
+      };
+      const auto col_of = [&](Eigen::Index k, Eigen::VectorXd& out) {
+        inverse_eigenvalues(a, b, mu_b.data(), nu_b[k], out.data(), out.size());
+        out = blk.c[k] * blk.scale.cwiseProduct(sigma_b).cwiseProduct(out);
+      };
+      blk.build_preconditioner(cross_approximation(n, Eigen::Index(qs.size()), row_of, col_of, kPreconditionerTolerance,
+                                                   kPreconditionerRank));
     }
   }
   return blocks;

@@ -18,6 +18,8 @@
 #include <array>
 #include <vector>
 
+#include "cross_approximation.h"
+
 namespace coons::solvers::fast5_detail {
 
 // One parity block of the capacitance matrix in the sine basis along i:
@@ -49,10 +51,10 @@ struct CapacitanceBlock {
   void apply_g(const Eigen::MatrixXd& X, Eigen::MatrixXd& out) const;
   //! V ← H⁻¹ V (rows of V are this block's modes).
   void apply_h_inverse(Eigen::MatrixXd& V) const;
-  //! Builds the preconditioner from diag, kappa, u and G (see above); the diagonal alone when the
-  //! Woodbury matrix S is not positive definite (an approximation far off, not seen on fast5's
-  //! blocks).
-  void build_preconditioner();
+  //! Builds the preconditioner from diag, kappa, u and `cross` ≈ diag^{−1/2}·G (see above); the
+  //! diagonal alone when the Woodbury matrix S is not positive definite (an approximation far off,
+  //! not seen on fast5's blocks).
+  void build_preconditioner(const CrossApproximation& cross);
   //! Z = P⁻¹ R (rows of R are this block's modes).
   void precondition(const Eigen::MatrixXd& R, Eigen::MatrixXd& Z) const;
   //! X = Cap⁻¹ rhs to `tolerance` relative to each column: P⁻¹ rhs and one correction by its
