@@ -131,6 +131,23 @@ void BM_MemoryPass(benchmark::State& state, int N) {
 }
 
 #if COONS_HAVE_FFTW
+// The timed loop of a floor benchmark: work(t) on `threads` threads (t = 0 on this one), X its
+// output.
+template <class Work>
+void time_on_threads(benchmark::State& state, int N, int threads, const Work& work, const Eigen::MatrixX3d& X) {
+  for (auto _ : state) {
+    std::vector<std::thread> others;
+    others.reserve(std::size_t(threads));
+    for (int t = 1; t < threads; ++t) others.emplace_back(work, t);
+    work(0);
+    for (std::thread& other : others) other.join();
+    benchmark::DoNotOptimize(X.data());
+    benchmark::ClobberMemory();
+  }
+  set_common_counters(state, N);
+  state.SetLabel("threads=" + std::to_string(threads));
+}
+
 // A floor for the transform solvers: the inverse sine transform of every row of the three columns
 // of an N × N solution (solvers/sine_transform.h, the planner flag `fast` uses by default) and the
 // write of the result, nothing else, on `threads` threads taking rows in turn. A `fast` solve does
@@ -153,17 +170,7 @@ void BM_SineRows(benchmark::State& state, int N, int threads) {
     }
     detail::stream_fence();
   };
-  for (auto _ : state) {
-    std::vector<std::thread> others;
-    others.reserve(std::size_t(threads));
-    for (int t = 1; t < threads; ++t) others.emplace_back(work, t);
-    work(0);
-    for (std::thread& other : others) other.join();
-    benchmark::DoNotOptimize(X.data());
-    benchmark::ClobberMemory();
-  }
-  set_common_counters(state, N);
-  state.SetLabel("threads=" + std::to_string(threads));
+  time_on_threads(state, N, threads, work, X);
 }
 
 // The other half of fast5's floor: one banded sweep of the grid (down and up every mode's
@@ -194,17 +201,7 @@ void BM_Fast5Sweep(benchmark::State& state, int N, int threads) {
     for (int k = t; k < chunks; k += threads)
       fast5_detail::solve_chunk(f, k * kChunk, std::min(N, (k + 1) * kChunk), 3, in, out, buf.data(), no_sines, dots);
   };
-  for (auto _ : state) {
-    std::vector<std::thread> others;
-    others.reserve(std::size_t(threads));
-    for (int t = 1; t < threads; ++t) others.emplace_back(work, t);
-    work(0);
-    for (std::thread& other : others) other.join();
-    benchmark::DoNotOptimize(X.data());
-    benchmark::ClobberMemory();
-  }
-  set_common_counters(state, N);
-  state.SetLabel("threads=" + std::to_string(threads));
+  time_on_threads(state, N, threads, work, X);
 }
 #endif
 
