@@ -1,5 +1,6 @@
 #include "fast5_boundary_values.h"
 
+#include <algorithm>
 #include <cmath>
 #include <cstddef>
 
@@ -61,6 +62,44 @@ Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eig
       out(m, c) = v;
     }
   return out;
+}
+
+bool boundary_sources(const EdgeRows* edges, int count, detail::SineTransform& along_i, std::size_t max_keys,
+                      std::vector<int>& keys, std::array<std::vector<BoundarySource>, 2>& sources) {
+  const int rows = along_i.size();
+  keys.clear();
+  for (int c = 0; c < count; ++c)
+    for (int r = 0; r < rows; ++r)
+      if (edges[c].slot[std::size_t(r)] >= 0) keys.push_back(std::min(r, rows - 1 - r));
+  std::sort(keys.begin(), keys.end());
+  keys.erase(std::unique(keys.begin(), keys.end()), keys.end());
+  if (keys.size() > max_keys) return false;
+  const double scale_i = std::sqrt(2.0 / (rows + 1));
+  Eigen::VectorXd column(rows);
+  for (std::size_t ppar = 0; ppar < 2; ++ppar) sources[ppar].resize(std::size_t(count));
+  for (int c = 0; c < count; ++c) {
+    const EdgeRows& f = edges[c];
+    const int cols = f.cols;
+    Eigen::MatrixXd beta_hat(rows, 4);
+    for (std::size_t j = 0; j < 4; ++j) {
+      for (int r = 0; r < rows; ++r) column[r] = f.ends[std::size_t(r)][j];
+      along_i.apply(column.data(), beta_hat.col(Eigen::Index(j)).data(), scale_i);
+    }
+    for (std::size_t ppar = 0; ppar < 2; ++ppar) {
+      BoundarySource& src = sources[ppar][std::size_t(c)];
+      src.beta_hat = beta_hat;
+      src.rows.assign(keys.size(), Eigen::VectorXd::Zero(cols));
+      for (int r = 0; r < rows; ++r) {
+        const int slot = f.slot[std::size_t(r)];
+        if (slot < 0) continue;
+        const int key = std::min(r, rows - 1 - r);
+        const auto k = std::size_t(std::lower_bound(keys.begin(), keys.end(), key) - keys.begin());
+        const double sign = (r == key || ppar == 0) ? 1.0 : -1.0;  // σ̃_{rows−1−e} = (−1)^p σ̃_e
+        src.rows[k] += sign * Eigen::Map<const Eigen::VectorXd>(f.values.data() + std::ptrdiff_t(slot) * cols, cols);
+      }
+    }
+  }
+  return true;
 }
 
 }  // namespace coons::solvers::fast5_detail

@@ -22,9 +22,12 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <cstddef>
 #include <vector>
 
 #include "fast5_capacitance.h"
+#include "fast5_rows.h"
+#include "sine_transform.h"
 
 namespace coons::solvers::fast5_detail {
 
@@ -36,6 +39,13 @@ struct BoundarySource {
   std::vector<Eigen::VectorXd> rows;
   Eigen::MatrixXd beta_hat;
 };
+
+//! The sources of the right-hand sides edges[0 .. count) (fast5_rows.h, their full rows
+//! transformed along j): keys = the key rows min(e, rows−1−e) of their full rows e (sorted, the same
+//! for all), sources[ppar][c] their BoundarySource for each parity of p; along_i the transform of
+//! length rows. False, and nothing formed, when there are more than max_keys key rows.
+bool boundary_sources(const EdgeRows* edges, int count, detail::SineTransform& along_i, std::size_t max_keys,
+                      std::vector<int>& keys, std::array<std::vector<BoundarySource>, 2>& sources);
 
 //! ĝ on the block `blk` of parities (qpar, ppar) (#modes of the block × sources.size()): t is
 //! √2·S_j e₁ over all modes q (#cols), keys the key rows, grid_rows the number of grid rows.

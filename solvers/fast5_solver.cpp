@@ -436,44 +436,10 @@ class Fast5Solver final : public LinearSolver {
     return *std::max_element(iterations.begin(), iterations.end());
   }
 
-  // The right-hand sides in the form of fast5_boundary_values.h, from edge_rows_ (their full rows
-  // transformed): false (and nothing formed) when the full rows pair into more than kMaxKeyRows key
-  // rows.
+  // The right-hand sides in the form of fast5_boundary_values.h into sources_ (keys_), from
+  // edge_rows_ (their full rows transformed); false when they have more than kMaxKeyRows key rows.
   bool boundary_sources(int count) {
-    keys_.clear();
-    for (int c = 0; c < count; ++c) {
-      const fast5_detail::EdgeRows& f = edge_rows_[std::size_t(c)];
-      for (int r = 0; r < R_; ++r)
-        if (f.slot[std::size_t(r)] >= 0) keys_.push_back(std::min(r, R_ - 1 - r));
-    }
-    std::sort(keys_.begin(), keys_.end());
-    keys_.erase(std::unique(keys_.begin(), keys_.end()), keys_.end());
-    if (keys_.size() > kMaxKeyRows) return false;
-    const double scale_i = std::sqrt(2.0 / (R_ + 1));
-    Eigen::VectorXd column(R_);
-    for (std::size_t ppar = 0; ppar < 2; ++ppar) sources_[ppar].resize(std::size_t(count));
-    for (int c = 0; c < count; ++c) {
-      const fast5_detail::EdgeRows& f = edge_rows_[std::size_t(c)];
-      Eigen::MatrixXd beta_hat(R_, 4);
-      for (std::size_t j = 0; j < 4; ++j) {
-        for (int r = 0; r < R_; ++r) column[r] = f.ends[std::size_t(r)][j];
-        along_i_.apply(column.data(), beta_hat.col(Eigen::Index(j)).data(), scale_i);
-      }
-      for (std::size_t ppar = 0; ppar < 2; ++ppar) {
-        fast5_detail::BoundarySource& src = sources_[ppar][std::size_t(c)];
-        src.beta_hat = beta_hat;
-        src.rows.assign(keys_.size(), Eigen::VectorXd::Zero(C_));
-        for (int r = 0; r < R_; ++r) {
-          const int slot = f.slot[std::size_t(r)];
-          if (slot < 0) continue;
-          const int key = std::min(r, R_ - 1 - r);
-          const auto k = std::size_t(std::lower_bound(keys_.begin(), keys_.end(), key) - keys_.begin());
-          const double sign = (r == key || ppar == 0) ? 1.0 : -1.0;  // σ̃_{rows−1−e} = (−1)^p σ̃_e
-          src.rows[k] += sign * Eigen::Map<const Eigen::VectorXd>(f.values.data() + std::ptrdiff_t(slot) * C_, C_);
-        }
-      }
-    }
-    return true;
+    return fast5_detail::boundary_sources(edge_rows_.data(), count, along_i_, kMaxKeyRows, keys_, sources_);
   }
 
   // (b − A x) on column j of right-hand side c, one entry per row.

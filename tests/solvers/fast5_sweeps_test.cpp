@@ -19,6 +19,8 @@
 #include "solvers/fast5_capacitance.h"
 #include "solvers/fast5_low_modes.h"
 #include "solvers/fast5_modes.h"
+#include "solvers/linear_solver.h"
+#include "solvers/sine_transform.h"
 
 using namespace coons::solvers;
 using namespace coons::solvers::fast5_detail;
@@ -439,6 +441,25 @@ TEST_CASE("boundary_values: the closed form of g against dense solves of every M
       INFO("w = " << w << ", block " << index);
       CHECK((got - expected).norm() <= 1e-13 * expected.norm());
       CHECK(expected.norm() > 0);
+      // the same sources formed by the solver's path: the row forms of b, their full rows transformed
+      std::vector<EdgeRows> edges;
+      for (const Eigen::MatrixXd& m : b) {
+        const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor> rows_first = m;
+        edges.push_back(split_edge_rows(rows_first.data(), R, C, 1, R));
+        for (int k = 0; k < edges.back().full_rows(); ++k) {
+          Eigen::Map<Eigen::VectorXd> row(edges.back().values.data() + std::ptrdiff_t(k) * C, C);
+          row = (Sj * row).eval();
+        }
+      }
+      coons::solvers::detail::SineTransform along_i(R, coons::solvers::detail::fft_planning(SolverOptions{}));
+      std::vector<int> formed_keys;
+      std::array<std::vector<BoundarySource>, 2> formed;
+      REQUIRE(boundary_sources(edges.data(), 2, along_i, 4, formed_keys, formed));
+      CHECK(formed_keys == keys);
+      const Eigen::MatrixXd via_rows =
+          boundary_values(blocks[std::size_t(index)], qpar, t, formed_keys, R, formed[std::size_t(ppar)]);
+      CHECK((via_rows - expected).norm() <= 1e-13 * expected.norm());
+      CHECK_FALSE(boundary_sources(edges.data(), 2, along_i, 2, formed_keys, formed));  // three key rows
     }
   }
 }
