@@ -78,7 +78,8 @@ void CapacitanceBlock::build_preconditioner(const CrossApproximation& cross) {
   if (gram_factor.info() != Eigen::Success) return;
   Eigen::MatrixXd w(n, k + 1);
   w.col(0) = std::sqrt(std::max(kappa, 0.0)) * scale.cwiseProduct(u);
-  w.rightCols(k).noalias() = cross.U * gram_factor.matrixL();
+  // (k = 0: a block without columns q, cols = 1; Eigen's product of inner size 0 divides by zero)
+  if (k > 0) w.rightCols(k).noalias() = cross.U * gram_factor.matrixL();
   Eigen::MatrixXd s = Eigen::MatrixXd::Identity(k + 1, k + 1);
   s.selfadjointView<Eigen::Lower>().rankUpdate(w.transpose(), -1.0);
   const Eigen::LLT<Eigen::MatrixXd> llt(s);

@@ -51,7 +51,7 @@ constexpr std::size_t kMaxKeyRows = 4;
 constexpr std::array<double, 5> kDelta4 = {1, -4, 6, -4, 1};
 constexpr std::array<double, 5> kDelta2 = {0, 1, -2, 1, 0};
 constexpr std::array<double, 5> kImpulse = {0, 0, 1, 0, 0};
-// The capacitance CG stops at this residual relative to its right-hand side, below the rounding of
+// The capacitance solve stops at this residual relative to its right-hand side, below the rounding of
 // the rest of the solve, so that no correction is needed for it (one product with Cap, the
 // preconditioned solve and one correction, from N = 31 to 2047 on mask data; at 1e−13 CG let some
 // columns stop a step early and the solve's residual was a third higher). A correction (rare, see

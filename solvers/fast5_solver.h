@@ -11,9 +11,10 @@
 // basis it decouples into odd and even modes (rank #rows each), and its capacitance matrix
 // H⁻¹ + Σ_q t_q² M_q⁻¹ (H = a·P_i + b·I) is, in the sine basis along i too, block diagonal by the
 // parity of p: per block a diagonal, a rank-one term and a low-rank term −G Gᵀ, all in closed
-// form from the eigenvalues λ_pq = a μ_p² ν_q² + b (μ_p + ν_q)². It is solved by conjugate
-// gradients with its diagonal as preconditioner (four blocks of about rows/2 unknowns, each
-// iteration O(rows·cols/4) flops, no transforms), for all right-hand sides at once.
+// form from the eigenvalues λ_pq = a μ_p² ν_q² + b (μ_p + ν_q)². Each block (about rows/2
+// unknowns) is solved by the Woodbury inverse of its low-rank approximation and one correction
+// by the exact residual (one pass over G, O(rows·cols/4) flops, no transforms), for all
+// right-hand sides at once (fast5_capacitance.h).
 //
 //   analyze    sine-transform plans along i and j;
 //   factorize  recognise a and b from the weights (else not_applicable); the per-mode banded
@@ -27,13 +28,15 @@
 //              four values, and its sine transform is the combination of the four columns' sine
 //              vectors, formed where a sweep reads it; the few other rows are transformed once.
 //              (A B with more than rows/4 full rows in a column is transformed row by row into X
-//              instead.) Then a sweep of banded solves along i for g (down and up the rows for a
-//              chunk of 128 modes at a time in a buffer that stays in the cache, all right-hand
-//              sides together); the capacitance solve; a second sweep for x̂ = A₁⁻¹(b̂ − U h),
+//              instead.) Then g, the capacitance right-hand side: in closed form from those row
+//              forms when the full rows pair into at most four key rows (fast5_boundary_values.h,
+//              two passes over the blocks' G), otherwise by a sweep of banded solves along i (down
+//              and up the rows for a chunk of 128 modes at a time in a buffer that stays in the
+//              cache, all right-hand sides together); the capacitance solve; a sweep for x̂ = A₁⁻¹(b̂ − U h),
 //              written into X; an inverse transform of X's rows in place. X is the only
 //              grid-sized array, and on mask data the first time it is written is by that sweep.
-//              The modes q < cols/16 (rounded up to even) are solved in closed form in both
-//              sweeps instead (fast5_low_modes.h): κ(M_q) ∝ (cols/(q+1))⁴ reaches 1e11 at
+//              The modes q < cols/16 (rounded up to even) are solved in closed form in the
+//              sweeps instead (fast5_low_modes.h; not factored): κ(M_q) ∝ (cols/(q+1))⁴ reaches 1e11 at
 //              N = 1023, and the banded solves' forward error of κ·ε on those modes, on the
 //              columns 0 and cols−1, was what left the first solve with a boundary residual of
 //              2e-6 there.
@@ -42,10 +45,11 @@
 // blocks run in parallel, the row transforms are shared (one SineTransform per thread); the result
 // is the same bit for bit on any count.
 // Files: fast5_modes.h (per-mode factors and sweeps), fast5_low_modes.h (the lowest modes in
-// closed form), fast5_rows.h (B row by row), fast5_capacitance.h (the blocks and their CG).
+// closed form), fast5_rows.h (B row by row), fast5_boundary_values.h (g in closed form),
+// fast5_capacitance.h (the blocks, their low-rank preconditioner and their solve).
 // Accuracy. A x − b vanishes off the columns 0 and cols−1 for any capacitance unknowns h; on those
 // two columns it is what the error of h leaves. With the lowest modes in closed form and the
-// capacitance CG run to 1e-13, the first solve leaves 2.5–5.3·N·ε·‖b‖ there on mask data from
+// capacitance solve run to 1e-13 (1e-14 now), the first solve leaves 2.5–5.3·N·ε·‖b‖ there on mask data from
 // N = 255 to 1023 (the level of the rest of the grid: relative residuals 1.3e-13 / 4.4e-13 at
 // N = 255 and 1.0e-12 / 3.4e-12 at 1023, biharmonic / w = 0.5, against 7.5e-13 / 3.0e-12 of the
 // version before, which corrected it twice). Those columns are corrected from their exact
@@ -54,20 +58,12 @@
 // cols−3): a correction is a capacitance solve, a banded sweep and two more row transforms,
 // whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
 // none is made; in the solver tests 14 of 250 solves (small grids, random data) make one.
-// Cost at N = 1023 (wall clock of a fresh solve, 3 right-hand sides of mask data, medians of 3–5,
-// 2026-12-04, each version alternating with the one before; the memory pass took 0.9–1.5 ms):
-// with the closed form of the lowest modes, biharmonic 47–65 → 32–34 ms on one thread and
-// 36 → 22–27 ms on two, w = 0.5 59–85 → 35 and 46–48 → 22–28 ms; with the row forms of B (no
-// forward pass over X, one scan of B instead of three), biharmonic 34.5 → 32.1 and 26.0 →
-// 21.7 ms, w = 0.5 33.5 → 31.2 and 26.4 → 21.6 ms. Phases before the row forms, one thread /
-// two: set-up 3.7 / 2.6 ms (per-mode factors 1.0, capacitance blocks and the closed form 2.7 /
-// 1.6), forward transform 2.2 / 1.2, first sweep 6.3 / 3.6, capacitance CG (8 iterations) 6.6 /
-// 3.5, second sweep 7–10 / 4.7, inverse transform 5.9 / 3.4, boundary check 0.4 / 0.35. The 10×
-// target is not reached: the inverse transform alone is 3.5–6 memory passes, the CG reads G
-// (8 MB) on each of its iterations, and the two sweeps are each several passes.
-// summary.iterations is the largest number of capacitance CG iterations of any capacitance solve
-// (the first to 1e-13, corrections to what they need, at least 1e-10): 8 (biharmonic and w = 0.5)
-// at N = 1023 on mask data (about log N).
+// Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 20 ms on
+// one thread and 13 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data), of
+// which one banded sweep and one row transform, the floor of this method, take 12 and 8 ms.
+// summary.iterations is the largest number of products with a capacitance block in any
+// capacitance solve (the first to 1e-14, corrections to what they need, at least 1e-10): 1 on
+// mask data from N = 31 to 2047 (the preconditioned solve and its one correction).
 // The Jacobi-scaled capacitance blocks have condition numbers of 1.1–1.3 (biharmonic) and
 // 1.35–1.5 (w = 0.5) from N = 15 to 63, but 5, 10, 20 (∝ N) for the pure c1-coons stencil.
 // b = 0 (pure c1-coons, κ ∝ N⁸) is separable and goes to the separable banded solver instead.

@@ -389,6 +389,26 @@ Eigen::MatrixXd sine_matrix(int n) {
 
 }  // namespace
 
+TEST_CASE("capacitance_blocks: one grid column (no modes of odd parity along j) builds and solves", "[solvers]") {
+  // The blocks of odd q have no columns: their preconditioner is the rank-one term alone (a
+  // product of inner size 0 in its set-up divided by zero in Eigen from 48 modes on).
+  const int rows = 100;
+  const Eigen::VectorXd mu = second_difference_eigenvalues(rows), nu = second_difference_eigenvalues(1);
+  const Eigen::VectorXd t = std::sqrt(2.0) * first_sine_column(1);
+  const std::array<CapacitanceBlock, 4> blocks = capacitance_blocks(0.5, 0.5, mu, nu, t, 1);
+  for (const CapacitanceBlock& blk : blocks) {
+    const Eigen::Index m = blk.diag.size();
+    Eigen::MatrixXd cap = blk.diag.asDiagonal();
+    cap -= blk.kappa * blk.u * blk.u.transpose() + blk.G * blk.G.transpose();
+    const Eigen::MatrixXd rhs = Eigen::MatrixXd::Constant(m, 3, 1.0);
+    Eigen::MatrixXd X;
+    blk.solve(rhs, X, 1e-13);
+    INFO("block with " << blk.G.cols() << " columns");
+    CHECK((X - cap.llt().solve(rhs)).norm() <= 1e-12 * X.norm());
+  }
+  CHECK(blocks[2].G.cols() == 0);
+}
+
 TEST_CASE("boundary_values: the closed form of g against dense solves of every M_q, rows != cols", "[solvers]") {
   const int R = 9, C = 11;
   const Eigen::MatrixXd Si = sine_matrix(R), Sj = sine_matrix(C);
