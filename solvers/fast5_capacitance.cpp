@@ -41,8 +41,8 @@ COONS_VECTOR_CLONES void inverse_eigenvalues(double a, double b, const double* _
 }
 
 // The cross approximation of diag^{−1/2}·G stops at this relative size of its last term (the
-// preconditioned CG then gains about eight digits per iteration: two to 1e−14); its rank is
-// capped (about 25 at 1e−8 on N = 1023) so that a block's set-up stays O(#modes·rank²).
+// preconditioned solve is then about 1e−8 off, and one correction by its residual about 1e−16);
+// its rank is capped (27–28 at 1e−8 on N = 1023) so that a block's set-up stays O(#modes·rank²).
 constexpr double kPreconditionerTolerance = 1e-8;
 constexpr int kPreconditionerRank = 64;
 // solve: the one correction after P⁻¹ rhs is taken when the squared relative residual of P⁻¹ rhs
@@ -135,8 +135,9 @@ void CapacitanceBlock::apply_h_inverse(Eigen::MatrixXd& V) const {
   V.noalias() -= (kappa * u) * uv;
 }
 
-// Preconditioned conjugate gradients, one column per right-hand side (each with its own step
-// lengths; a converged column is frozen); returns the iterations.
+// P⁻¹ rhs and one correction by its residual when that suffices, otherwise preconditioned conjugate
+// gradients from there, one column per right-hand side (each with its own step lengths; a
+// converged column is frozen); returns the products with Cap.
 int CapacitanceBlock::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const {
   const Eigen::Index n = rhs.rows(), m = rhs.cols();
   X.setZero(n, m);

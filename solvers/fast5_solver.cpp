@@ -407,7 +407,7 @@ class Fast5Solver final : public LinearSolver {
 
   // The capacitance solve in the sine basis along i: block_rhs[2·qpar + ppar] holds the right-hand
   // sides on the block's modes (with apply_h, H⁻¹ of them); out[qpar] = Cap⁻¹ of them back in the
-  // grid (rows × count). Returns the most CG iterations of a block.
+  // grid (rows × count). Returns the most products with Cap of a block (CapacitanceBlock::solve).
   int solve_blocks(std::array<Eigen::MatrixXd, 4>& block_rhs, int count, double tolerance, bool apply_h,
                    std::array<Eigen::MatrixXd, 2>& out) {
     const double scale_i = std::sqrt(2.0 / (R_ + 1));
