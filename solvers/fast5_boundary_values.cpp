@@ -6,14 +6,13 @@
 
 namespace coons::solvers::fast5_detail {
 
-Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eigen::VectorXd& t,
-                                const std::vector<int>& keys, int grid_rows,
+Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eigen::VectorXd& t, const double* s0,
+                                const double* s1, const std::vector<int>& keys, int grid_rows,
                                 const std::vector<BoundarySource>& sources) {
   const auto n = Eigen::Index(blk.modes.size()), nq = Eigen::Index(blk.columns.size());
   const auto nk = Eigen::Index(keys.size()), count = Eigen::Index(sources.size());
-  const int cols = int(t.size());
   const double sign_q = qpar == 0 ? 1.0 : -1.0;  // s_{cols−1−j}(q) = (−1)^q s_j(q)
-  const double scale_i = std::sqrt(2.0 / (grid_rows + 1)), scale_j = std::sqrt(2.0 / (cols + 1));
+  const double scale_i = std::sqrt(2.0 / (grid_rows + 1));
   // Gᵀ of [σ̃_e for the key rows e, then β̂⁽⁰⁾, β̂⁽¹⁾ of each right-hand side]
   Eigen::MatrixXd V(n, nk + 2 * count), GtV;
   for (Eigen::Index k = 0; k < nk; ++k)
@@ -36,11 +35,9 @@ Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eig
   Eigen::MatrixXd X(nq, count * per), GX;
   for (Eigen::Index k = 0; k < nq; ++k) {
     const int q = blk.columns[std::size_t(k)];
-    const double s0 = scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
-    const double s1 = scale_j * std::sin(M_PI * 2 * (q + 1) / (cols + 1));
     for (Eigen::Index c = 0; c < count; ++c) {
       const BoundarySource& src = sources[std::size_t(c)];
-      double gtf = s0 * GtV(k, nk + 2 * c) + s1 * GtV(k, nk + 2 * c + 1);  // (Gᵀ F(·, q))_k
+      double gtf = s0[q] * GtV(k, nk + 2 * c) + s1[q] * GtV(k, nk + 2 * c + 1);  // (Gᵀ F(·, q))_k
       for (Eigen::Index e = 0; e < nk; ++e) gtf += src.rows[std::size_t(e)][q] * GtV(k, e);
       double z = gtf / t[q];
       for (Eigen::Index e = 0; e < nk; ++e) {

@@ -48,9 +48,10 @@ bool boundary_sources(const EdgeRows* edges, int count, detail::SineTransform& a
                       std::vector<int>& keys, std::array<std::vector<BoundarySource>, 2>& sources);
 
 //! ĝ on the block `blk` of parities (qpar, ppar) (#modes of the block × sources.size()): t is
-//! √2·S_j e₁ over all modes q (#cols), keys the key rows, grid_rows the number of grid rows.
-Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eigen::VectorXd& t,
-                                const std::vector<int>& keys, int grid_rows,
+//! √2·S_j e₁ over all modes q (#cols), s0 and s1 the orthonormal sine vectors S_j e₀, S_j e₁ of the
+//! grid columns 0 and 1 (#cols each), keys the key rows, grid_rows the number of grid rows.
+Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eigen::VectorXd& t, const double* s0,
+                                const double* s1, const std::vector<int>& keys, int grid_rows,
                                 const std::vector<BoundarySource>& sources);
 
 }  // namespace coons::solvers::fast5_detail

@@ -170,7 +170,8 @@ class Fast5Solver final : public LinearSolver {
       COONS_PARALLEL_FOR
       for (int b = 0; b < 4; ++b)
         g[std::size_t(b)] =
-            fast5_detail::boundary_values(blocks_[std::size_t(b)], b / 2, t_, keys_, R_, sources_[std::size_t(b % 2)]);
+            fast5_detail::boundary_values(blocks_[std::size_t(b)], b / 2, t_, near_sines_.col(0).data(),
+                                          near_sines_.col(1).data(), keys_, R_, sources_[std::size_t(b % 2)]);
       iterations = solve_blocks(g, count, kCapacitanceTolerance, false, h);
     } else {
       banded_solve_all(count, dots_);

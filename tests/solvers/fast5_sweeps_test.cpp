@@ -427,6 +427,7 @@ TEST_CASE("boundary_values: the closed form of g against dense solves of every M
       for (int j : ends) m(r, j) = uniform(rng);
   }
   const std::vector<int> keys = {0, 1, 4};
+  const Eigen::VectorXd s0 = Sj.row(0).transpose(), s1 = Sj.row(1).transpose();  // S_j e₀, S_j e₁
   for (double w : {0.0, 0.5}) {
     const double a = w, bb = 1 - w;
     const std::array<CapacitanceBlock, 4> blocks = capacitance_blocks(a, bb, mu, nu, t, 1);
@@ -457,7 +458,8 @@ TEST_CASE("boundary_values: the closed form of g against dense solves of every M
         src.beta_hat = Si * columns;
         sources.push_back(src);
       }
-      const Eigen::MatrixXd got = boundary_values(blocks[std::size_t(index)], qpar, t, keys, R, sources);
+      const Eigen::MatrixXd got =
+          boundary_values(blocks[std::size_t(index)], qpar, t, s0.data(), s1.data(), keys, R, sources);
       INFO("w = " << w << ", block " << index);
       CHECK((got - expected).norm() <= 1e-13 * expected.norm());
       CHECK(expected.norm() > 0);
@@ -476,8 +478,8 @@ TEST_CASE("boundary_values: the closed form of g against dense solves of every M
       std::array<std::vector<BoundarySource>, 2> formed;
       REQUIRE(boundary_sources(edges.data(), 2, along_i, 4, formed_keys, formed));
       CHECK(formed_keys == keys);
-      const Eigen::MatrixXd via_rows =
-          boundary_values(blocks[std::size_t(index)], qpar, t, formed_keys, R, formed[std::size_t(ppar)]);
+      const Eigen::MatrixXd via_rows = boundary_values(blocks[std::size_t(index)], qpar, t, s0.data(), s1.data(),
+                                                       formed_keys, R, formed[std::size_t(ppar)]);
       CHECK((via_rows - expected).norm() <= 1e-13 * expected.norm());
       CHECK_FALSE(boundary_sources(edges.data(), 2, along_i, 2, formed_keys, formed));  // three key rows
     }
