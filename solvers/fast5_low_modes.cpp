@@ -57,22 +57,44 @@ void solve_low_modes(const LowModes& lm, detail::SineTransform& along_i, int cou
       const Eigen::MatrixXd* z = in.z ? &(*in.z)[std::size_t(q % 2)] : nullptr;
       for (int r = 0; r < R; ++r) column[r] = input(r, q) + (z ? in.sign * (*z)(r, c) * t : 0.0);
       along_i.apply(column.data(), column.data(), scale_i);
-      std::array<double, 2> s{};  // (√c σ Λ⁻¹)ᵀ v̂ on each parity block
-      for (int p = 0; p < R; ++p) s[std::size_t(p % 2)] += lm.coupling(p, q) * column[p];
-      for (int p = 0; p < R; ++p)
-        column[p] = column[p] * lm.inv_lambda(p, q) - lm.coupling(p, q) * s[std::size_t(p % 2)];
+      // (√c σ Λ⁻¹)ᵀ v̂ on each parity block, each summed in the order of p (two scalar chains: an
+      // array indexed by p % 2 made every addition wait for a store)
+      const double* cp = lm.coupling.col(q).data();
+      const double* il = lm.inv_lambda.col(q).data();
+      double s_even = 0, s_odd = 0;
+      int p = 0;
+      for (; p + 1 < R; p += 2) {
+        s_even += cp[p] * column[p];
+        s_odd += cp[p + 1] * column[p + 1];
+      }
+      if (p < R) s_even += cp[p] * column[p];
+      for (p = 0; p + 1 < R; p += 2) {
+        column[p] = column[p] * il[p] - cp[p] * s_even;
+        column[p + 1] = column[p + 1] * il[p + 1] - cp[p + 1] * s_odd;
+      }
+      if (p < R) column[p] = column[p] * il[p] - cp[p] * s_even;
       along_i.apply(column.data(), solved.col(q).data(), scale_i);
     }
+    // into the grid kTile rows at a time: the tile is read from solved a cache line per column
+    // (row by row, each of the Q entries of a row was a line and a page of its own)
     double* grid = out.grid[std::size_t(c)];
-    std::vector<double> x(static_cast<std::size_t>(Q));
-    for (int r = 0; r < R; ++r) {
-      double* g = grid ? grid + std::ptrdiff_t(r) * C : nullptr;
-      for (int q = 0; q < Q; ++q) {
-        x[std::size_t(q)] = g && out.add ? g[q] + solved(r, q) : solved(r, q);
-        if (g) g[q] = x[std::size_t(q)];
+    constexpr int kTile = 8;
+    Eigen::Matrix<double, kTile, Eigen::Dynamic> tile(kTile, Q);
+    for (int r0 = 0; r0 < R; r0 += kTile) {
+      const int rows = std::min(kTile, R - r0);
+      tile.leftCols(Q).topRows(rows) = solved.middleRows(r0, rows);
+      for (int i = 0; i < rows; ++i) {
+        const int r = r0 + i;
+        double* x = tile.row(i).data();  // not contiguous: stride kTile
+        double* g = grid ? grid + std::ptrdiff_t(r) * C : nullptr;
+        for (int q = 0; q < Q; ++q) {
+          double& v = x[std::ptrdiff_t(q) * kTile];
+          if (g && out.add) v += g[q];
+          if (g) g[q] = v;
+        }
+        for (Eigen::Index m = 0; m < k; ++m)
+          for (int q = 0; q < Q; ++q) dot(r, 2 * (k * c + m) + q % 2) += x[std::ptrdiff_t(q) * kTile] * sines(q, m);
       }
-      for (Eigen::Index m = 0; m < k; ++m)
-        for (int q = 0; q < Q; ++q) dot(r, 2 * (k * c + m) + q % 2) += x[std::size_t(q)] * sines(q, m);
     }
   }
 }
