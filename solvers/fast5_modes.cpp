@@ -103,6 +103,38 @@ COONS_VECTOR_CLONES void up_rows(double* __restrict w0, double* __restrict w1, d
   }
 }
 
+// Up into another array: o_c = y_c·inv_d − l1·(o row below) − l2·(o row two below), the rows of o
+// `stride` doubles apart (the same arithmetic as up_rows, so the same bits).
+COONS_VECTOR_CLONES void up_rows_into(double* __restrict o0, double* __restrict o1, double* __restrict o2,
+                                      const double* __restrict y0, const double* __restrict y1,
+                                      const double* __restrict y2, const double* __restrict inv_d,
+                                      const double* __restrict l1, const double* __restrict l2, std::ptrdiff_t stride,
+                                      int rows, int n) {
+  const std::ptrdiff_t s1 = stride, s2 = 2 * stride;
+  if (rows == 2) {
+    for (int q = 0; q < n; ++q) {
+      const double d = inv_d[q], a = l1[q], b = l2[q];
+      o0[q] = y0[q] * d - a * o0[q + s1] - b * o0[q + s2];
+      o1[q] = y1[q] * d - a * o1[q + s1] - b * o1[q + s2];
+      o2[q] = y2[q] * d - a * o2[q + s1] - b * o2[q + s2];
+    }
+  } else if (rows == 1) {
+    for (int q = 0; q < n; ++q) {
+      const double d = inv_d[q], a = l1[q];
+      o0[q] = y0[q] * d - a * o0[q + s1];
+      o1[q] = y1[q] * d - a * o1[q + s1];
+      o2[q] = y2[q] * d - a * o2[q + s1];
+    }
+  } else {
+    for (int q = 0; q < n; ++q) {
+      const double d = inv_d[q];
+      o0[q] = y0[q] * d;
+      o1[q] = y1[q] * d;
+      o2[q] = y2[q] * d;
+    }
+  }
+}
+
 // Σ x[i]·v[i] over the even i < n and over the odd i < n, in eight interleaved partial sums (so
 // that the AVX2 clone adds whole vectors; the bits are the same in either clone).
 COONS_VECTOR_CLONES std::array<double, 2> parity_dot(const double* __restrict x, const double* __restrict v, int n) {
@@ -156,6 +188,10 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
   // up: buf ← (LD)⁻ᵀ buf = M⁻¹ (the input), then into the output and the partial dots
   const Eigen::Index k = sines.cols();
   dot.resize(R, 2 * k * count);
+  // With three right-hand sides written (not added) into grids, the way up writes the grid rows
+  // directly (reading the two below from there), not the buffer and then a copy of it.
+  const bool direct = count == 3 && !out.add && out.grid[0] && out.grid[1] && out.grid[2];
+  const auto grid_row = [&](int c, int r) { return out.grid[std::size_t(c)] + std::ptrdiff_t(r) * C + b0; };
   for (int r = R - 1; r >= 0; --r) {
     const int rows = std::min(R - 1 - r, 2);
     const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
@@ -164,15 +200,20 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
       if (cut[s] >= cut[s + 1]) continue;
       const int at = cut[s] - b0;
       const FactorPointers p = factor_pointers(f, r, cut[s]);
-      up_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s],
-              n, rows, cut[s + 1] - cut[s]);
+      if (direct)
+        up_rows_into(grid_row(0, r) + at, grid_row(1, r) + at, grid_row(2, r) + at, row_of(0, r) + at,
+                     row_of(1, r) + at, row_of(2, r) + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s], C, rows,
+                     cut[s + 1] - cut[s]);
+      else
+        up_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s],
+                n, rows, cut[s + 1] - cut[s]);
     }
     for (int c = 0; c < count; ++c) {
       const double* w = row_of(c, r);
-      double* g = out.grid[std::size_t(c)] ? out.grid[std::size_t(c)] + std::ptrdiff_t(r) * C + b0 : nullptr;
+      double* g = out.grid[std::size_t(c)] ? grid_row(c, r) : nullptr;
       if (g && out.add)
         for (int q = 0; q < n; ++q) g[q] += w[q];
-      else if (g)
+      else if (g && !direct)
         std::copy(w, w + n, g);
       const double* x = g ? g : w;
       for (Eigen::Index m = 0; m < k; ++m) {
