@@ -25,10 +25,90 @@ COONS_VECTOR_CLONES double dot8(const double* __restrict a, const double* __rest
   return sum;
 }
 
+// Four doubles as one value (GCC vector extension; two SSE2 registers in the baseline clone, one
+// AVX2 register in the other), loaded from any 8-byte-aligned address.
+using Lanes = double __attribute__((vector_size(32), aligned(8)));
+
+// The four dots a_i·b_j (i, j < 2), each summed exactly as dot8 sums it (lane l of the low and
+// high vector is dot8's partial sum l and l + 4; so the same bits): a and b are each loaded once
+// for two dots, and eight chains of additions hide each other's latency (dot8 alone waits on two).
+COONS_VECTOR_CLONES std::array<double, 4> dot8_2x2(const double* a0, const double* a1, const double* b0,
+                                                   const double* b1, Eigen::Index n) {
+  Lanes s00l{}, s00h{}, s01l{}, s01h{}, s10l{}, s10h{}, s11l{}, s11h{};
+  Eigen::Index p = 0;
+  for (; p + 8 <= n; p += 8) {
+    const Lanes x0l = *reinterpret_cast<const Lanes*>(a0 + p), x0h = *reinterpret_cast<const Lanes*>(a0 + p + 4);
+    const Lanes x1l = *reinterpret_cast<const Lanes*>(a1 + p), x1h = *reinterpret_cast<const Lanes*>(a1 + p + 4);
+    const Lanes y0l = *reinterpret_cast<const Lanes*>(b0 + p), y0h = *reinterpret_cast<const Lanes*>(b0 + p + 4);
+    const Lanes y1l = *reinterpret_cast<const Lanes*>(b1 + p), y1h = *reinterpret_cast<const Lanes*>(b1 + p + 4);
+    s00l += x0l * y0l;
+    s00h += x0h * y0h;
+    s01l += x0l * y1l;
+    s01h += x0h * y1h;
+    s10l += x1l * y0l;
+    s10h += x1h * y0h;
+    s11l += x1l * y1l;
+    s11h += x1h * y1h;
+  }
+  const auto total = [](const Lanes& l, const Lanes& h) {
+    return ((l[0] + l[1]) + (l[2] + l[3])) + ((h[0] + h[1]) + (h[2] + h[3]));
+  };
+  std::array<double, 4> sums{total(s00l, s00h), total(s01l, s01h), total(s10l, s10h), total(s11l, s11h)};
+  for (; p < n; ++p) {
+    sums[0] += a0[p] * b0[p];
+    sums[1] += a0[p] * b1[p];
+    sums[2] += a1[p] * b0[p];
+    sums[3] += a1[p] * b1[p];
+  }
+  return sums;
+}
+
 // y −= alpha·x.
 COONS_VECTOR_CLONES void subtract_scaled(double alpha, const double* __restrict x, double* __restrict y,
                                          Eigen::Index n) {
   for (Eigen::Index p = 0; p < n; ++p) y[p] -= alpha * x[p];
+}
+
+// y −= alpha0·x0, then y −= alpha1·x1: two subtract_scaled in one pass over y (the same bits).
+COONS_VECTOR_CLONES void subtract_scaled2(double alpha0, const double* __restrict x0, double alpha1,
+                                          const double* __restrict x1, double* __restrict y, Eigen::Index n) {
+  for (Eigen::Index p = 0; p < n; ++p) y[p] = (y[p] - alpha0 * x0[p]) - alpha1 * x1[p];
+}
+
+// out(k, c) = G.col(k)·V.col(c) for k in [k0, k0 + 2) ∩ [0, #G) and every c, two by two.
+void dots_of_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& V, Eigen::MatrixXd& out) {
+  const Eigen::Index n = G.rows(), m = V.cols();
+  if (k0 + 1 >= G.cols()) {
+    for (Eigen::Index c = 0; c < m; ++c) out(k0, c) = dot8(G.col(k0).data(), V.col(c).data(), n);
+    return;
+  }
+  const double *g0 = G.col(k0).data(), *g1 = G.col(k0 + 1).data();
+  Eigen::Index c = 0;
+  for (; c + 2 <= m; c += 2) {
+    const std::array<double, 4> d = dot8_2x2(g0, g1, V.col(c).data(), V.col(c + 1).data(), n);
+    out(k0, c) = d[0];
+    out(k0, c + 1) = d[1];
+    out(k0 + 1, c) = d[2];
+    out(k0 + 1, c + 1) = d[3];
+  }
+  for (; c < m; ++c) {
+    out(k0, c) = dot8(g0, V.col(c).data(), n);
+    out(k0 + 1, c) = dot8(g1, V.col(c).data(), n);
+  }
+}
+
+// out.col(c) −= Σ_k coef(k, c)·G.col(k) over k in [k0, k0 + 2) ∩ [0, #G), in the order of k (the
+// same bits as one subtract_scaled per k).
+void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, double sign,
+                      Eigen::MatrixXd& out) {
+  const Eigen::Index n = G.rows();
+  for (Eigen::Index c = 0; c < out.cols(); ++c) {
+    if (k0 + 1 < G.cols())
+      subtract_scaled2(sign * coef(k0, c), G.col(k0).data(), sign * coef(k0 + 1, c), G.col(k0 + 1).data(),
+                       out.col(c).data(), n);
+    else
+      subtract_scaled(sign * coef(k0, c), G.col(k0).data(), out.col(c).data(), n);
+  }
 }
 
 // out[m] = 1/λ(μ_m, ν) = 1/(a μ_m² ν² + b (μ_m + ν)²), a loop the AVX2 clone divides four at a time.
@@ -106,26 +186,23 @@ void CapacitanceBlock::precondition(const Eigen::MatrixXd& R, Eigen::MatrixXd& Z
 // Eigen's product would pack G into a copy on every call, and its kernels are the build's SSE2
 // ones, see dot8).
 void CapacitanceBlock::apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const {
-  const Eigen::Index m = V.cols(), n = G.rows();
   out.noalias() = diag.asDiagonal() * V;
   out.noalias() -= (kappa * u) * (u.transpose() * V);
-  for (Eigen::Index k = 0; k < G.cols(); ++k)
-    for (Eigen::Index c = 0; c < m; ++c)
-      subtract_scaled(dot8(G.col(k).data(), V.col(c).data(), n), G.col(k).data(), out.col(c).data(), n);
+  Eigen::MatrixXd dots(G.cols(), V.cols());
+  for (Eigen::Index k = 0; k < G.cols(); k += 2) {  // two columns of G at a time, both in the L1 cache
+    dots_of_columns(G, k, V, dots);
+    subtract_columns(G, k, dots, 1.0, out);
+  }
 }
 
 void CapacitanceBlock::apply_g_transpose(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const {
-  const Eigen::Index n = G.rows();
   out.resize(G.cols(), V.cols());
-  for (Eigen::Index k = 0; k < G.cols(); ++k)
-    for (Eigen::Index c = 0; c < V.cols(); ++c) out(k, c) = dot8(G.col(k).data(), V.col(c).data(), n);
+  for (Eigen::Index k = 0; k < G.cols(); k += 2) dots_of_columns(G, k, V, out);
 }
 
 void CapacitanceBlock::apply_g(const Eigen::MatrixXd& X, Eigen::MatrixXd& out) const {
-  const Eigen::Index n = G.rows();
-  out.setZero(n, X.cols());
-  for (Eigen::Index k = 0; k < G.cols(); ++k)
-    for (Eigen::Index c = 0; c < X.cols(); ++c) subtract_scaled(-X(k, c), G.col(k).data(), out.col(c).data(), n);
+  out.setZero(G.rows(), X.cols());
+  for (Eigen::Index k = 0; k < G.cols(); k += 2) subtract_columns(G, k, X, -1.0, out);
 }
 
 // V ← H⁻¹ V (rows of V are this block's modes).
