@@ -7,7 +7,7 @@
 
 namespace coons::solvers::fast5_detail {
 
-LowModes low_modes(double a, double b, const Eigen::VectorXd& mu, const Eigen::VectorXd& nu, int modes) {
+LowModes low_modes(double a, double b, const Eigen::VectorXd& mu, const Eigen::VectorXd& nu, int modes, int threads) {
   LowModes lm;
   lm.rows = int(mu.size());
   lm.cols = int(nu.size());
@@ -15,7 +15,11 @@ LowModes low_modes(double a, double b, const Eigen::VectorXd& mu, const Eigen::V
   lm.sigma = std::sqrt(2.0) * first_sine_column(lm.rows);
   lm.inv_lambda.resize(lm.rows, lm.modes);
   lm.coupling.resize(lm.rows, lm.modes);
-  for (int q = 0; q < lm.modes; ++q) {
+  [[maybe_unused]] const int nt = threads;
+#if defined(_OPENMP)
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
+#endif
+  for (int q = 0; q < lm.modes; ++q) {           // the modes are independent; each writes its own column
     const double alpha = a * nu[q] * nu[q] + b;  // the weight of E_i in M_q
     std::array<double, 2> gamma{};               // σᵀΛ⁻¹σ on each parity block of p
     for (int p = 0; p < lm.rows; ++p) {

@@ -30,8 +30,9 @@ struct LowModes {
 };
 
 //! The closed form for the modes q < min(modes, #nu) of a·C + b·T: mu (#rows), nu (#cols) the
-//! eigenvalues of D along i and j.
-LowModes low_modes(double a, double b, const Eigen::VectorXd& mu, const Eigen::VectorXd& nu, int modes);
+//! eigenvalues of D along i and j; on up to `threads` threads (OpenMP; the same on any count).
+LowModes low_modes(double a, double b, const Eigen::VectorXd& mu, const Eigen::VectorXd& nu, int modes,
+                   int threads = 1);
 
 //! What solve_chunk does (same input, output and dots), for the modes [0, lm.modes) by the closed
 //! form; along_i: the DST-I of length rows (not shared with another thread during the call).

@@ -304,7 +304,7 @@ class Fast5Solver final : public LinearSolver {
       for (int q = 0; q < C_; ++q)
         near_sines_(q, j) = std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (j + 1) * (q + 1) / (C_ + 1));
     blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_, threads_);
-    low_ = fast5_detail::low_modes(a, b, mu, nu_, low_mode_count());
+    low_ = fast5_detail::low_modes(a, b, mu, nu_, low_mode_count(), threads_);
   }
 
   // The number of modes solved in closed form (kLowModeShare), even: the chunks after them start
