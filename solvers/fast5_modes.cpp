@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <cmath>
+#include <cstring>
 
 #include "vector_clones.h"
 
@@ -70,6 +71,68 @@ COONS_VECTOR_CLONES void down_rows(double* __restrict w0, double* __restrict w1,
       w0[q] = y0[q] + ze0 * e + zo0 * o;
       w1[q] = y1[q] + ze1 * e + zo1 * o;
       w2[q] = y2[q] + ze2 * e + zo2 * o;
+    }
+  }
+}
+
+// Four doubles as one value (GCC vector extension: two SSE2 registers in the baseline clone, one
+// AVX2 register in the other), moved from and to memory with memcpy (any alignment).
+using Lanes = double __attribute__((vector_size(32)));
+
+// Down for three rows in their edge form (fast5_rows.h), the transform formed in the same pass:
+// w_c = ((A_c·s0 + B_c·s1) + Z_c·t) − l1·(row above) − l2·(row two above), with A_c, B_c, Z_c the
+// coefficients of the mode's parity, k[6c + 2j + parity] (j: A, B, Z); `parity` is that of the
+// first mode. The same operations in the same order as edge_row_transform and then down_rows
+// (whose z term of the other parity adds a zero), so the same values.
+template <int Rows>
+COONS_VECTOR_CLONES void down_edge_rows(double* __restrict w0, double* __restrict w1, double* __restrict w2,
+                                        const double* __restrict s0, const double* __restrict s1,
+                                        const double* __restrict t, const std::array<double, 18>& k,
+                                        const double* __restrict l1, const double* __restrict l2, std::ptrdiff_t stride,
+                                        int n, int parity) {
+  struct Row {
+    double* w;
+    Lanes a, b, z;  // lane l: the coefficient of the parity of the mode (first + l)
+  };
+  std::array<Row, 3> rows{Row{w0, {}, {}, {}}, Row{w1, {}, {}, {}}, Row{w2, {}, {}, {}}};
+  for (std::size_t c = 0; c < 3; ++c)
+    for (int l = 0; l < 4; ++l) {
+      const auto par = std::size_t((parity + l) % 2);
+      rows[c].a[l] = k[6 * c + par];
+      rows[c].b[l] = k[6 * c + 2 + par];
+      rows[c].z[l] = k[6 * c + 4 + par];
+    }
+  const std::ptrdiff_t sa = stride, sb = 2 * stride;
+  Lanes x0, x1, tt, a{}, b{}, up1{}, up2{};
+  int q = 0;
+  for (; q + 4 <= n; q += 4) {
+    std::memcpy(&x0, s0 + q, sizeof x0);
+    std::memcpy(&x1, s1 + q, sizeof x1);
+    std::memcpy(&tt, t + q, sizeof tt);
+    if constexpr (Rows >= 1) std::memcpy(&a, l1 + q, sizeof a);
+    if constexpr (Rows >= 2) std::memcpy(&b, l2 + q, sizeof b);
+    for (Row& row : rows) {
+      double* wc = row.w + q;
+      Lanes r = (row.a * x0 + row.b * x1) + row.z * tt;
+      if constexpr (Rows >= 1) {
+        std::memcpy(&up1, wc - sa, sizeof up1);
+        r = r - a * up1;
+      }
+      if constexpr (Rows >= 2) {
+        std::memcpy(&up2, wc - sb, sizeof up2);
+        r = r - b * up2;
+      }
+      std::memcpy(wc, &r, sizeof r);
+    }
+  }
+  for (; q < n; ++q) {
+    const auto par = std::size_t((parity + q) % 2);
+    for (std::size_t c = 0; c < 3; ++c) {
+      double* wc = rows[c].w + q;
+      double r = (k[6 * c + par] * s0[q] + k[6 * c + 2 + par] * s1[q]) + k[6 * c + 4 + par] * t[q];
+      if constexpr (Rows >= 1) r = r - l1[q] * wc[-sa];
+      if constexpr (Rows >= 2) r = r - l2[q] * wc[-sb];
+      *wc = r;
     }
   }
 }
@@ -170,7 +233,24 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
       z[2 * std::size_t(c)] = in.sign * (*in.z)[0](r, c);
       z[2 * std::size_t(c) + 1] = in.sign * (*in.z)[1](r, c);
     }
-    const std::array<const double*, 3> y{input_of(0, r), input_of(1, r), input_of(2, r)};
+    // all three rows in their edge form: formed inside the down pass (no scratch row)
+    const bool fused = in.t && count == 3 &&
+                       std::all_of(in.edges.begin(), in.edges.end(),
+                                   [&](const EdgeRows* e) { return e && e->slot[std::size_t(r)] < 0; }) &&
+                       std::none_of(in.hats.begin(), in.hats.end(), [](const double* h) { return h != nullptr; });
+    std::array<double, 18> coef{};
+    if (fused)
+      for (std::size_t c = 0; c < 3; ++c) {
+        const std::array<double, 4>& e = in.edges[c]->ends[std::size_t(r)];
+        coef[6 * c] = e[0] + e[3];  // A (of s0), even and odd modes
+        coef[6 * c + 1] = e[0] - e[3];
+        coef[6 * c + 2] = e[1] + e[2];  // B (of s1)
+        coef[6 * c + 3] = e[1] - e[2];
+        coef[6 * c + 4] = z[2 * c];  // Z (of t)
+        coef[6 * c + 5] = z[2 * c + 1];
+      }
+    std::array<const double*, 3> y{};
+    if (!fused) y = {input_of(0, r), input_of(1, r), input_of(2, r)};
     const int rows = std::min(r, 2);
     // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
     const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
@@ -181,6 +261,18 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
       const int at = cut[s] - b0;
       const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 + cut[s] : nullptr;
       const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 + cut[s] : nullptr;
+      if (fused) {
+        const int m = cut[s + 1] - cut[s], parity = cut[s] % 2;
+        double *w0 = row_of(0, r) + at, *w1 = row_of(1, r) + at, *w2 = row_of(2, r) + at;
+        const double *s0 = in.s0 + cut[s], *s1 = in.s1 + cut[s], *t = in.t + cut[s];
+        if (rows == 2)
+          down_edge_rows<2>(w0, w1, w2, s0, s1, t, coef, l1, l2, n, m, parity);
+        else if (rows == 1)
+          down_edge_rows<1>(w0, w1, w2, s0, s1, t, coef, l1, l2, n, m, parity);
+        else
+          down_edge_rows<0>(w0, w1, w2, s0, s1, t, coef, l1, l2, n, m, parity);
+        continue;
+      }
       down_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, y[0] + at, y[1] + at, y[2] + at,
                 in.t_even + cut[s], in.t_odd + cut[s], z, l1, l2, n, rows, cut[s + 1] - cut[s]);
     }

@@ -55,6 +55,7 @@ struct SweepInput {
   double sign = 1;
   const double* t_even = nullptr;  //!< t_q on the even modes q, 0 on the odd ones (#cols)
   const double* t_odd = nullptr;
+  const double* t = nullptr;  //!< t_q on every mode (#cols): with it, edge rows are read in one pass (down_edge_rows)
 };
 
 //! Where solve_chunk puts M⁻¹ of its input: grid[c] (rows × cols, row-major; nullptr: nowhere)

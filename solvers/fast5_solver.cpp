@@ -361,6 +361,7 @@ class Fast5Solver final : public LinearSolver {
     in.sign = sign;
     in.t_even = tmasks_.col(0).data();
     in.t_odd = tmasks_.col(1).data();
+    in.t = t_.data();
     return in;
   }
 

@@ -288,7 +288,9 @@ TEST_CASE("edge_row_transform: the sine transform of a row that is zero off its 
 TEST_CASE(
     "solve_chunk and solve_low_modes: a right-hand side read from its row forms gives the bits of its stored transform",
     "[solvers]") {
-  const int rows = 30, cols = 40;
+  // rows = 120: the factors converge within the chunk, so that the down pass's segments also start
+  // on odd modes (the edge rows formed in the down pass take the parity of their first mode)
+  const int rows = GENERATE(30, 120), cols = 40;
   const double a = 0.5, b = 0.5;
   const Eigen::VectorXd nu = second_difference_eigenvalues(cols);
   const ModeFactors factors = factor_modes(a, b, nu, rows, 1);
@@ -334,6 +336,21 @@ TEST_CASE(
   solve_chunk(factors, 10, cols, 3, from_forms, out_formed, buf.data(), formed.sines, dot_formed);
   CHECK((dot_stored - dot_formed).cwiseAbs().maxCoeff() == 0);
   for (int c = 0; c < 3; ++c) CHECK(stored.grid[std::size_t(c)] == formed.grid[std::size_t(c)]);
+  // with t, the edge rows (all but row 0) are formed inside the down pass: the same bits again
+  const Eigen::VectorXd t = std::sqrt(2.0) * first_sine_column(cols);
+  from_forms.t = t.data();
+  std::array<std::vector<double>, 3> fused_grid = formed.grid;
+  ChunkOutput out_fused;
+  out_fused.grid = {fused_grid[0].data(), fused_grid[1].data(), fused_grid[2].data()};
+  Eigen::MatrixXd dot_fused;
+  solve_chunk(factors, 10, cols, 3, from_forms, out_fused, buf.data(), formed.sines, dot_fused);
+  CHECK((dot_stored - dot_fused).cwiseAbs().maxCoeff() == 0);
+  for (int c = 0; c < 3; ++c) CHECK(stored.grid[std::size_t(c)] == fused_grid[std::size_t(c)]);
+  int odd_starts = 0;  // rows whose factors change from stored to limit at an odd mode of the chunk
+  for (int r = 0; r < rows; ++r)
+    odd_starts += factors.active[std::size_t(r)] > 10 && factors.active[std::size_t(r)] < cols &&
+                  factors.active[std::size_t(r)] % 2 == 1;
+  if (rows == 120) CHECK(odd_starts > 0);
 }
 
 TEST_CASE("capacitance_blocks: the low-rank Woodbury solve and one correction reach the dense solution", "[solvers]") {
