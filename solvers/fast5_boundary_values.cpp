@@ -14,7 +14,7 @@ Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eig
   const double sign_q = qpar == 0 ? 1.0 : -1.0;  // s_{cols−1−j}(q) = (−1)^q s_j(q)
   const double scale_i = std::sqrt(2.0 / (grid_rows + 1));
   // Gᵀ of [σ̃_e for the key rows e, then β̂⁽⁰⁾, β̂⁽¹⁾ of each right-hand side]
-  Eigen::MatrixXd V(n, nk + 2 * count), GtV;
+  Eigen::MatrixXd V(n, nk + 2 * count);
   for (Eigen::Index k = 0; k < nk; ++k)
     for (Eigen::Index m = 0; m < n; ++m)
       V(m, k) = scale_i * std::sin(M_PI * double(keys[std::size_t(k)] + 1) * double(blk.modes[std::size_t(m)] + 1) /
@@ -27,13 +27,12 @@ Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eig
       V(m, nk + 2 * c + 1) = beta(p, 1) + sign_q * beta(p, 2);
     }
   }
-  blk.apply_g_transpose(V, GtV);
   // G of [x_e of each right-hand side and key row e > 0, then z of each right-hand side]: the key
-  // row 0 has σ̃_0/σ = 1/√2, so its term is −G(−x_0/√2) and goes into z's product
+  // row 0 has σ̃_0/σ = 1/√2, so its term is −G(−x_0/√2) and goes into z's product. Row k of that
+  // matrix depends on row k of GᵀV only, so both products take one pass over G.
   const bool row0 = nk > 0 && keys[0] == 0;
   const Eigen::Index first = row0 ? 1 : 0, per = nk - first + 1;  // products per right-hand side
-  Eigen::MatrixXd X(nq, count * per), GX;
-  for (Eigen::Index k = 0; k < nq; ++k) {
+  const auto row_of_x = [&](Eigen::Index k, const Eigen::MatrixXd& GtV, Eigen::MatrixXd& X) {
     const int q = blk.columns[std::size_t(k)];
     for (Eigen::Index c = 0; c < count; ++c) {
       const BoundarySource& src = sources[std::size_t(c)];
@@ -49,8 +48,9 @@ Eigen::MatrixXd boundary_values(const CapacitanceBlock& blk, int qpar, const Eig
       }
       X(k, c * per + per - 1) = z;
     }
-  }
-  blk.apply_g(X, GX);
+  };
+  Eigen::MatrixXd GtV, X(nq, count * per), GX;
+  blk.apply_g_transpose_then_g(V, row_of_x, GtV, X, GX);
   Eigen::MatrixXd out(n, count);
   for (Eigen::Index c = 0; c < count; ++c)
     for (Eigen::Index m = 0; m < n; ++m) {

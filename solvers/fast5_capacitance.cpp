@@ -75,42 +75,6 @@ COONS_VECTOR_CLONES void subtract_scaled2(double alpha0, const double* __restric
   for (Eigen::Index p = 0; p < n; ++p) y[p] = (y[p] - alpha0 * x0[p]) - alpha1 * x1[p];
 }
 
-// out(k, c) = G.col(k)·V.col(c) for k in [k0, k0 + 2) ∩ [0, #G) and every c, two by two.
-void dots_of_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& V, Eigen::MatrixXd& out) {
-  const Eigen::Index n = G.rows(), m = V.cols();
-  if (k0 + 1 >= G.cols()) {
-    for (Eigen::Index c = 0; c < m; ++c) out(k0, c) = dot8(G.col(k0).data(), V.col(c).data(), n);
-    return;
-  }
-  const double *g0 = G.col(k0).data(), *g1 = G.col(k0 + 1).data();
-  Eigen::Index c = 0;
-  for (; c + 2 <= m; c += 2) {
-    const std::array<double, 4> d = dot8_2x2(g0, g1, V.col(c).data(), V.col(c + 1).data(), n);
-    out(k0, c) = d[0];
-    out(k0, c + 1) = d[1];
-    out(k0 + 1, c) = d[2];
-    out(k0 + 1, c + 1) = d[3];
-  }
-  for (; c < m; ++c) {
-    out(k0, c) = dot8(g0, V.col(c).data(), n);
-    out(k0 + 1, c) = dot8(g1, V.col(c).data(), n);
-  }
-}
-
-// out.col(c) −= Σ_k coef(k, c)·G.col(k) over k in [k0, k0 + 2) ∩ [0, #G), in the order of k (the
-// same bits as one subtract_scaled per k).
-void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, double sign,
-                      Eigen::MatrixXd& out) {
-  const Eigen::Index n = G.rows();
-  for (Eigen::Index c = 0; c < out.cols(); ++c) {
-    if (k0 + 1 < G.cols())
-      subtract_scaled2(sign * coef(k0, c), G.col(k0).data(), sign * coef(k0 + 1, c), G.col(k0 + 1).data(),
-                       out.col(c).data(), n);
-    else
-      subtract_scaled(sign * coef(k0, c), G.col(k0).data(), out.col(c).data(), n);
-  }
-}
-
 // out[m] = 1/λ(μ_m, ν) = 1/(a μ_m² ν² + b (μ_m + ν)²), a loop the AVX2 clone divides four at a time.
 COONS_VECTOR_CLONES void inverse_eigenvalues(double a, double b, const double* __restrict mu, double nu,
                                              double* __restrict out, Eigen::Index n) {
@@ -144,6 +108,40 @@ COONS_VECTOR_CLONES void fill_column(const double* __restrict inv, const double*
 }
 
 }  // namespace
+
+// out(k, c) = G.col(k)·V.col(c) for k in [k0, k0 + 2) ∩ [0, #G) and every c, two by two.
+void dots_of_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& V, Eigen::MatrixXd& out) {
+  const Eigen::Index n = G.rows(), m = V.cols();
+  if (k0 + 1 >= G.cols()) {
+    for (Eigen::Index c = 0; c < m; ++c) out(k0, c) = dot8(G.col(k0).data(), V.col(c).data(), n);
+    return;
+  }
+  const double *g0 = G.col(k0).data(), *g1 = G.col(k0 + 1).data();
+  Eigen::Index c = 0;
+  for (; c + 2 <= m; c += 2) {
+    const std::array<double, 4> d = dot8_2x2(g0, g1, V.col(c).data(), V.col(c + 1).data(), n);
+    out(k0, c) = d[0];
+    out(k0, c + 1) = d[1];
+    out(k0 + 1, c) = d[2];
+    out(k0 + 1, c + 1) = d[3];
+  }
+  for (; c < m; ++c) {
+    out(k0, c) = dot8(g0, V.col(c).data(), n);
+    out(k0 + 1, c) = dot8(g1, V.col(c).data(), n);
+  }
+}
+
+void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, double sign,
+                      Eigen::MatrixXd& out) {
+  const Eigen::Index n = G.rows();
+  for (Eigen::Index c = 0; c < out.cols(); ++c) {
+    if (k0 + 1 < G.cols())
+      subtract_scaled2(sign * coef(k0, c), G.col(k0).data(), sign * coef(k0 + 1, c), G.col(k0 + 1).data(),
+                       out.col(c).data(), n);
+    else
+      subtract_scaled(sign * coef(k0, c), G.col(k0).data(), out.col(c).data(), n);
+  }
+}
 
 void CapacitanceBlock::build_preconditioner(const CrossApproximation& cross) {
   const Eigen::Index n = diag.size();
@@ -193,16 +191,6 @@ void CapacitanceBlock::apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) con
     dots_of_columns(G, k, V, dots);
     subtract_columns(G, k, dots, 1.0, out);
   }
-}
-
-void CapacitanceBlock::apply_g_transpose(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const {
-  out.resize(G.cols(), V.cols());
-  for (Eigen::Index k = 0; k < G.cols(); k += 2) dots_of_columns(G, k, V, out);
-}
-
-void CapacitanceBlock::apply_g(const Eigen::MatrixXd& X, Eigen::MatrixXd& out) const {
-  out.setZero(G.rows(), X.cols());
-  for (Eigen::Index k = 0; k < G.cols(); k += 2) subtract_columns(G, k, X, -1.0, out);
 }
 
 // V ← H⁻¹ V (rows of V are this block's modes).

@@ -15,6 +15,7 @@
 #pragma once
 
 #include <Eigen/Core>
+#include <algorithm>
 #include <array>
 #include <vector>
 
@@ -45,10 +46,13 @@ struct CapacitanceBlock {
   //! out = Cap·V (V: #modes by #right-hand sides). G is read once, a column at a time, for all
   //! right-hand sides together.
   void apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const;
-  //! out = Gᵀ V (V: #modes × m, out: #columns × m) and out = G X (X: #columns × m, out: #modes × m),
-  //! one pass over G each.
-  void apply_g_transpose(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) const;
-  void apply_g(const Eigen::MatrixXd& X, Eigen::MatrixXd& out) const;
+  //! gtv = Gᵀ V (V: #modes × m, gtv: #columns × m) and out = G x (x: #columns × m', out: #modes × m')
+  //! in one pass over G, for an x whose row k depends on row k of Gᵀ V only: row(k, gtv, x) fills
+  //! row k of x (sized by the caller) from row k of gtv, after which column k of G is not read
+  //! again. The same values as the two products one after the other.
+  template <class RowOfX>
+  void apply_g_transpose_then_g(const Eigen::MatrixXd& V, const RowOfX& row, Eigen::MatrixXd& gtv, Eigen::MatrixXd& x,
+                                Eigen::MatrixXd& out) const;
   //! V ← H⁻¹ V (rows of V are this block's modes).
   void apply_h_inverse(Eigen::MatrixXd& V) const;
   //! Builds the preconditioner from diag, kappa, u and `cross` ≈ diag^{−1/2}·G (see above); the
@@ -68,5 +72,24 @@ struct CapacitanceBlock {
 //! along j (#cols). The blocks are built on up to `threads` threads (OpenMP), the same on any count.
 std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eigen::VectorXd& mu,
                                                    const Eigen::VectorXd& nu, const Eigen::VectorXd& t, int threads);
+
+//! out(k, c) = G.col(k)·V.col(c) for k in [k0, k0 + 2) ∩ [0, #G) and every c (the bits of one
+//! sum of eight partial sums each, whichever k0).
+void dots_of_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& V, Eigen::MatrixXd& out);
+//! out.col(c) −= Σ_k sign·coef(k, c)·G.col(k) over k in [k0, k0 + 2) ∩ [0, #G), in the order of k.
+void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, double sign,
+                      Eigen::MatrixXd& out);
+
+template <class RowOfX>
+void CapacitanceBlock::apply_g_transpose_then_g(const Eigen::MatrixXd& V, const RowOfX& row, Eigen::MatrixXd& gtv,
+                                                Eigen::MatrixXd& x, Eigen::MatrixXd& out) const {
+  gtv.resize(G.cols(), V.cols());
+  out.setZero(G.rows(), x.cols());
+  for (Eigen::Index k = 0; k < G.cols(); k += 2) {  // two columns of G, read once for both products
+    dots_of_columns(G, k, V, gtv);
+    for (Eigen::Index j = k; j < std::min(k + 2, G.cols()); ++j) row(j, gtv, x);
+    subtract_columns(G, k, x, -1.0, out);
+  }
+}
 
 }  // namespace coons::solvers::fast5_detail
