@@ -321,54 +321,62 @@ namespace {
 constexpr double kConverged = 1e-15;
 }  // namespace
 
+namespace {
+
+// The banded LDLᵀ of one mode's M_q, row by row: step() gives the next row's pivot and
+// multipliers, and tells whether they equal the previous row's to kConverged (from row 3 on).
+struct ModeRecurrence {
+  double a0, a1, a2;  // the bands of M_q: diagonal, first and second off-diagonal
+  double dm1 = 0, dm2 = 0, l1m1 = 0, l2m1 = 0, l2m2 = 0;
+  double d = 0, l1 = 0, l2 = 0;
+  bool step(int r) {
+    d = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
+    l1 = (a1 - l2m1 * dm1 * l1m1) / d;
+    l2 = a2 / d;
+    const double change =
+        std::max({std::abs(d - dm1) / d, std::abs(l1 - l1m1) / std::abs(l1), std::abs(l2 - l2m1) / l2});
+    if (r >= 3 && change <= kConverged) return true;
+    dm2 = dm1;
+    dm1 = d;
+    l1m1 = l1;
+    l2m2 = l2m1;
+    l2m1 = l2;
+    return false;
+  }
+};
+
+ModeRecurrence mode_recurrence(double a, double b, double nu) {
+  const double alpha = a * nu * nu + b, beta = 2 * b * nu, gamma = b * nu * nu;
+  return {6 * alpha + 2 * beta + gamma, -4 * alpha - beta, alpha};  // definite
+}
+
+}  // namespace
+
 ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows, int threads, int first) {
   ModeFactors f;
   const int cols = int(nu.size());
   f.rows = rows;
   f.cols = cols;
-  f.lim_inv_d.resize(std::size_t(cols));
-  f.lim_l1.resize(std::size_t(cols));
-  f.lim_l2.resize(std::size_t(cols));
-  std::vector<int> converged(std::size_t(cols), rows);
-  const auto modes = std::size_t(cols);
-  std::vector<std::vector<double>> d(modes), l1(modes), l2(modes);
+  f.lim_inv_d.assign(std::size_t(cols), 0.0);  // the modes q < first: limits zero, converged at row 0
+  f.lim_l1.assign(std::size_t(cols), 0.0);
+  f.lim_l2.assign(std::size_t(cols), 0.0);
+  std::vector<int> converged(std::size_t(cols), 0);
   [[maybe_unused]] const int nt = threads;
+  // Two passes over each mode's recurrence (it is cheap: about 40/√ν_q rows): the first finds the
+  // row where it converges and its limits, the second writes the rows above into their places,
+  // so that nothing is stored twice.
 #if defined(_OPENMP)
-#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic, 16)
+#pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
 #endif
-  for (int q = 0; q < cols; ++q) {  // the modes are independent; each writes its own entries
-    if (q < first) {                // not factored: converged from row 0 on, limits zero
-      converged[std::size_t(q)] = 0;
-      f.lim_inv_d[std::size_t(q)] = f.lim_l1[std::size_t(q)] = f.lim_l2[std::size_t(q)] = 0;
-      continue;
-    }
-    const double alpha = a * nu[q] * nu[q] + b, beta = 2 * b * nu[q], gamma = b * nu[q] * nu[q];
-    const double a0 = 6 * alpha + 2 * beta + gamma, a1 = -4 * alpha - beta, a2 = alpha;  // definite
-    auto& dq = d[std::size_t(q)];
-    auto& l1q = l1[std::size_t(q)];
-    auto& l2q = l2[std::size_t(q)];
-    double dm1 = 0, dm2 = 0, l1m1 = 0, l2m1 = 0, l2m2 = 0;
-    for (int r = 0; r < rows; ++r) {
-      const double dr = a0 - l1m1 * l1m1 * dm1 - l2m2 * l2m2 * dm2;
-      const double l1r = (a1 - l2m1 * dm1 * l1m1) / dr, l2r = a2 / dr;
-      const double change =
-          std::max({std::abs(dr - dm1) / dr, std::abs(l1r - l1m1) / std::abs(l1r), std::abs(l2r - l2m1) / l2r});
-      if (r >= 3 && change <= kConverged) {
-        converged[std::size_t(q)] = r;
-        break;
-      }
-      dq.push_back(dr);
-      l1q.push_back(l1r);
-      l2q.push_back(l2r);
-      dm2 = dm1;
-      dm1 = dr;
-      l1m1 = l1r;
-      l2m2 = l2m1;
-      l2m1 = l2r;
-    }
-    f.lim_inv_d[std::size_t(q)] = 1 / dq.back();
-    f.lim_l1[std::size_t(q)] = l1q.back();
-    f.lim_l2[std::size_t(q)] = l2q.back();
+  for (int q = first; q < cols; ++q) {  // the modes are independent; each writes its own entries
+    ModeRecurrence m = mode_recurrence(a, b, nu[q]);
+    int r = 0;
+    while (r < rows && !m.step(r)) ++r;
+    // converged at r (its values are the last stored row's), or never: the last row is the limit
+    converged[std::size_t(q)] = r;
+    f.lim_inv_d[std::size_t(q)] = 1 / m.dm1;
+    f.lim_l1[std::size_t(q)] = m.l1m1;
+    f.lim_l2[std::size_t(q)] = m.l2m1;
   }
   f.active.assign(std::size_t(rows), 0);
   f.offset.assign(std::size_t(rows) + 1, 0);
@@ -385,14 +393,29 @@ ModeFactors factor_modes(double a, double b, const Eigen::VectorXd& nu, int rows
 #if defined(_OPENMP)
 #pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static)
 #endif
-  for (int r = 0; r < rows; ++r)
-    for (int q = 0; q < f.active[std::size_t(r)]; ++q) {
+  for (int q = first; q < cols; ++q) {
+    ModeRecurrence m = mode_recurrence(a, b, nu[q]);
+    const int stored = converged[std::size_t(q)];
+    for (int r = 0; r < rows && q < f.active[std::size_t(r)]; ++r) {
       const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
-      const auto& dq = d[std::size_t(q)];
-      const bool stored = std::size_t(r) < dq.size();
-      f.inv_d[at] = stored ? 1 / dq[std::size_t(r)] : f.lim_inv_d[std::size_t(q)];
-      f.l1[at] = stored ? l1[std::size_t(q)][std::size_t(r)] : f.lim_l1[std::size_t(q)];
-      f.l2[at] = stored ? l2[std::size_t(q)][std::size_t(r)] : f.lim_l2[std::size_t(q)];
+      if (r < stored) {
+        m.step(r);
+        f.inv_d[at] = 1 / m.d;
+        f.l1[at] = m.l1;
+        f.l2[at] = m.l2;
+      } else {
+        f.inv_d[at] = f.lim_inv_d[std::size_t(q)];
+        f.l1[at] = f.lim_l1[std::size_t(q)];
+        f.l2[at] = f.lim_l2[std::size_t(q)];
+      }
+    }
+  }
+  // the modes below `first` are converged from row 0 on: no row keeps them unless a later mode
+  // is still stored there (active counts modes from 0), and those read zero
+  for (int r = 0; r < rows; ++r)
+    for (int q = 0; q < std::min(first, f.active[std::size_t(r)]); ++q) {
+      const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
+      f.inv_d[at] = f.l1[at] = f.l2[at] = 0;
     }
   return f;
 }

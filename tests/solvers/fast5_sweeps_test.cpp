@@ -503,4 +503,47 @@ TEST_CASE("boundary_values: the closed form of g against dense solves of every M
   }
 }
 
+TEST_CASE("factor_modes: every row read back (stored or the limit) is the banded LDL^T of M_q, on 1 and 2 threads",
+          "[solvers]") {
+  const int rows = 90, cols = 24, first = 4;
+  const double a = 0.3, b = 0.7;
+  const Eigen::VectorXd nu = second_difference_eigenvalues(cols);
+  const ModeFactors f = factor_modes(a, b, nu, rows, 1, first);
+  const ModeFactors f2 = factor_modes(a, b, nu, rows, 2, first);
+  CHECK(f2.inv_d == f.inv_d);
+  CHECK(f2.l1 == f.l1);
+  CHECK(f2.l2 == f.l2);
+  CHECK(f2.active == f.active);
+  CHECK(f2.lim_inv_d == f.lim_inv_d);
+  bool some_limit = false, some_stored = false;
+  for (int q = 0; q < cols; ++q) {
+    Eigen::MatrixXd L = Eigen::MatrixXd::Identity(rows, rows);
+    Eigen::VectorXd d(rows);
+    for (int r = 0; r < rows; ++r) {
+      const bool stored = q < f.active[std::size_t(r)];
+      (stored ? some_stored : some_limit) = true;
+      const std::size_t at = f.offset[std::size_t(r)] + std::size_t(q);
+      const double inv_d = stored ? f.inv_d[at] : f.lim_inv_d[std::size_t(q)];
+      const double l1 = stored ? f.l1[at] : f.lim_l1[std::size_t(q)];
+      const double l2 = stored ? f.l2[at] : f.lim_l2[std::size_t(q)];
+      if (q < first) {  // not factored: every entry reads zero
+        CHECK(inv_d == 0);
+        CHECK(l1 == 0);
+        CHECK(l2 == 0);
+        continue;
+      }
+      d[r] = 1 / inv_d;
+      if (r + 1 < rows) L(r + 1, r) = l1;
+      if (r + 2 < rows) L(r + 2, r) = l2;
+    }
+    if (q < first) continue;
+    const Eigen::MatrixXd M = mode_matrix(a, b, nu[q], rows);
+    const Eigen::MatrixXd LDLt = L * d.asDiagonal() * L.transpose();
+    INFO("mode " << q);
+    CHECK((LDLt - M).cwiseAbs().maxCoeff() <= 1e-13 * M.cwiseAbs().maxCoeff());
+  }
+  CHECK(some_limit);  // the fixture reaches both kinds of rows
+  CHECK(some_stored);
+}
+
 #endif  // COONS_HAVE_FFTW
