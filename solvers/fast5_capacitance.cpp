@@ -269,6 +269,13 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
                                                    const Eigen::VectorXd& nu, const Eigen::VectorXd& t, int threads) {
   const int rows = int(mu.size()), cols = int(nu.size());
   const Eigen::VectorXd sigma = std::sqrt(2.0) * first_sine_column(rows);
+  // t_q·s_j(q) for the grid columns j = 0, 1 (s_j the orthonormal sine vector of column j)
+  const double scale_j = std::sqrt(2.0 / (cols + 1));
+  Eigen::VectorXd ts0(cols), ts1(cols);
+  for (int q = 0; q < cols; ++q) {
+    ts0[q] = t[q] * scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
+    ts1[q] = t[q] * scale_j * std::sin(M_PI * 2 * (q + 1) / (cols + 1));
+  }
   std::array<CapacitanceBlock, 4> blocks;
   [[maybe_unused]] const int nt = threads;
 #if defined(_OPENMP)
@@ -307,7 +314,6 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
       }
       blk.sigma = sigma_b;
       const Eigen::VectorXd sigma2 = sigma_b.cwiseProduct(sigma_b);
-      const double scale_j = std::sqrt(2.0 / (cols + 1));
       for (std::size_t k = 0; k < qs.size(); ++k) {
         const int q = qs[k];
         const double alpha = a * nu[q] * nu[q] + b;  // the weight of E_i in M_q
@@ -315,9 +321,7 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
         const double gamma = dot8(sigma2.data(), inv_lambda.data(), n);  // σᵀΛ_q⁻¹σ on the block
         const double c = std::sqrt(t[q] * t[q] * alpha / (1 + alpha * gamma));
         blk.c[Eigen::Index(k)] = c;
-        const double ts0 = t[q] * scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
-        const double ts1 = t[q] * scale_j * std::sin(M_PI * 2 * (q + 1) / (cols + 1));
-        fill_column(inv_lambda.data(), sigma_b.data(), t[q] * t[q], c, ts0, ts1, blk.diag.data(),
+        fill_column(inv_lambda.data(), sigma_b.data(), t[q] * t[q], c, ts0[q], ts1[q], blk.diag.data(),
                     blk.G.col(Eigen::Index(k)).data(), blk.K.col(0).data(), blk.K.col(1).data(), n);
       }
       // the cross approximation of diag^{−1/2}·G from its entries' closed form (a row of the stored G

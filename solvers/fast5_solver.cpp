@@ -337,9 +337,10 @@ class Fast5Solver final : public LinearSolver {
         continue;
       }
       const int j = i - 1, k = nt == 1 ? j : j % 2 == 0 ? j / 2 : half + j / 2;
-      std::vector<double>& buf = buffers_[std::size_t(thread_index())];
+      detail::AlignedBuffer& buf = buffers_[std::size_t(thread_index())];
       const int b0 = low + k * kModeChunk, b1 = std::min(C_, b0 + kModeChunk);
-      buf.resize(3 * std::size_t(R_) * std::size_t(b1 - b0));
+      const std::size_t size = 3 * std::size_t(R_) * std::size_t(b1 - b0);
+      if (buf.size() < size) buf = detail::AlignedBuffer(size);  // not initialised: every entry is written first
       fast5_detail::solve_chunk(factors_, b0, b1, count, in, output, buf.data(), sines, partial_[std::size_t(k) + 1]);
     }
     out = partial_[0];
@@ -581,12 +582,12 @@ class Fast5Solver final : public LinearSolver {
   std::array<fast5_detail::EdgeRows, 3> edge_rows_;                   // B's columns row by row (fast5_rows.h)
   std::vector<int> keys_;                                             // boundary_sources: the key rows
   std::array<std::vector<fast5_detail::BoundarySource>, 2> sources_;  // per parity of p, per column of B
-  const double* scanned_source_ = nullptr;    // the B whose row forms rhs_scaling left in edge_rows_
-  bool edge_input_ = false;                   // this solve reads B's transform from edge_rows_
-  std::vector<std::vector<double>> buffers_;  // solve_modes: one chunk buffer per thread
-  std::vector<Eigen::MatrixXd> partial_;      // solve_modes: one product with the dots per chunk
-  Eigen::MatrixXd no_sines_, unused_dots_;    // add_boundary_response: no dots wanted
-  NearColumns near_;                          // boundary_residual: B and X near the boundary columns
+  const double* scanned_source_ = nullptr;      // the B whose row forms rhs_scaling left in edge_rows_
+  bool edge_input_ = false;                     // this solve reads B's transform from edge_rows_
+  std::vector<detail::AlignedBuffer> buffers_;  // solve_modes: one chunk buffer per thread
+  std::vector<Eigen::MatrixXd> partial_;        // solve_modes: one product with the dots per chunk
+  Eigen::MatrixXd no_sines_, unused_dots_;      // add_boundary_response: no dots wanted
+  NearColumns near_;                            // boundary_residual: B and X near the boundary columns
 };
 
 }  // namespace
