@@ -12,6 +12,7 @@
 #include "fast5_capacitance.h"
 #include "fast5_low_modes.h"
 #include "fast5_modes.h"
+#include "fast5_near_columns.h"
 #include "fast5_rows.h"
 #include "row_form.h"
 #include "separable_banded_solver.h"
@@ -149,7 +150,7 @@ class Fast5Solver final : public LinearSolver {
     }
     const int count = 3;
     X.resize(B.rows(), 3);
-    prepare_near_columns(count);
+    fast5_detail::prepare_near_columns(R_, C_, count, near_);
     for (int c = 0; c < count; ++c) hats_[std::size_t(c)] = X.col(c).data();
     // B's transform is read by the sweeps from its row form when it has few full rows (mask data:
     // four), otherwise X holds it (the hats) until the second sweep overwrites it with x̂
@@ -270,7 +271,7 @@ class Fast5Solver final : public LinearSolver {
         double* hat = hats_[std::size_t(c)] + std::ptrdiff_t(r) * C_;
         if (!forward) {
           along_j.apply(hat, hat, scale_j);
-          keep_near_columns(c, r, hat);
+          near_.keep(c, r, hat);  // for the boundary check, while the row is in the cache
           continue;
         }
         const double* b = B.col(c).data() + std::ptrdiff_t(r) * C_;
@@ -447,71 +448,6 @@ class Fast5Solver final : public LinearSolver {
     return fast5_detail::boundary_sources(edge_rows_.data(), count, along_i_, kMaxKeyRows, keys_, sources_);
   }
 
-  // The columns of B and X that boundary_residual reads: X's columns 0–4 and cols−5 – cols−1,
-  // copied by the inverse row transform while each row is in the cache, and B's columns `which`,
-  // from the row forms where B has them. (Read down a column of the grid instead, every entry
-  // is in a page of its own: 0.3–0.5 ms at N = 1023, against about 0.05 for the arithmetic.)
-  struct NearColumns {
-    std::vector<int> x_cols;                // the columns of X kept, ascending
-    std::array<Eigen::MatrixXd, 3> b, x;    // per right-hand side: rows × #which, rows × #x_cols
-    [[nodiscard]] int index(int j) const {  // where X's column j is in x (it must be there)
-      return int(std::lower_bound(x_cols.begin(), x_cols.end(), j) - x_cols.begin());
-    }
-  };
-
-  // near_.x_cols for this grid, and near_.x sized for `count` right-hand sides.
-  void prepare_near_columns(int count) {
-    near_.x_cols.clear();
-    for (int j = 0; j < C_; ++j)
-      if (j < 5 || j >= C_ - 5) near_.x_cols.push_back(j);
-    for (int c = 0; c < count; ++c) near_.x[std::size_t(c)].resize(R_, Eigen::Index(near_.x_cols.size()));
-  }
-
-  // Row r of X's column c (just inverse-transformed, in the cache) into near_.x.
-  void keep_near_columns(int c, int r, const double* row) {
-    Eigen::MatrixXd& xg = near_.x[std::size_t(c)];
-    for (Eigen::Index k = 0; k < xg.cols(); ++k) xg(r, k) = row[near_.x_cols[std::size_t(k)]];
-  }
-
-  // near_.b: B's columns `which`, from the row forms (edge_input_: a row that is not full is zero
-  // but on its four end values) and from B itself at the full rows, else from B.
-  void gather_b_columns(const Eigen::MatrixX3d& B, int count, const std::vector<int>& which) {
-    const auto nb = Eigen::Index(which.size());
-    for (int c = 0; c < count; ++c) {
-      Eigen::MatrixXd& bg = near_.b[std::size_t(c)];
-      bg.resize(R_, nb);
-      const fast5_detail::EdgeRows& f = edge_rows_[std::size_t(c)];
-      for (int i = 0; i < R_; ++i)
-        for (Eigen::Index k = 0; k < nb; ++k) {
-          const int j = which[std::size_t(k)];
-          if (!edge_input_ || f.slot[std::size_t(i)] >= 0) {
-            bg(i, k) = B(Eigen::Index(i) * C_ + j, c);
-            continue;
-          }
-          const auto& e = f.ends[std::size_t(i)];
-          bg(i, k) = j == 0 ? e[0] : j == 1 ? e[1] : j == C_ - 2 ? e[2] : j == C_ - 1 ? e[3] : 0.0;
-        }
-    }
-  }
-
-  // (b − A x) on column which[k] of right-hand side c, one entry per row, from the gathered columns:
-  // per stencil weight one pass down the rows it reaches (the bounds taken out of the loop; the
-  // terms of each entry in the order of the stencil, di then dj).
-  [[nodiscard]] Eigen::VectorXd column_residual(const NearColumns& near, int j, int k, int c) const {
-    Eigen::VectorXd r = near.b[std::size_t(c)].col(k);
-    const Eigen::MatrixXd& xg = near.x[std::size_t(c)];
-    for (int di = -2; di <= 2; ++di)
-      for (int dj = -2; dj <= 2; ++dj) {
-        const int jj = j + dj;
-        if (jj < 0 || jj >= C_) continue;
-        const double w = stencil_[std::size_t(di + 2) * 5 + std::size_t(dj + 2)];
-        const int i0 = std::max(0, -di), i1 = std::min(R_, R_ - di);
-        const double* xs = xg.col(near.index(jj)).data() + di;
-        for (int i = i0; i < i1; ++i) r[i] -= w * xs[i];
-      }
-    return r;
-  }
-
   // ρ = (b − A x) on the columns 0 and cols−1 in parity coordinates (rows × count each); false
   // when, for every right-hand side, its norm is within its limit: the larger of
   // max(kBoundaryResidual, kRoundingFactor·max(rows, cols)·ε)·‖b‖ and kReferenceFactor times the
@@ -525,14 +461,14 @@ class Fast5Solver final : public LinearSolver {
     boundary_excess_ = 0;
     // the columns 0, cols−1 and (reference) 2, cols−3 of every right-hand side, on the threads
     const std::vector<int> which = reference ? std::vector<int>{0, C_ - 1, 2, C_ - 3} : std::vector<int>{0, C_ - 1};
-    gather_b_columns(B, count, which);
+    fast5_detail::gather_b_columns(B, edge_input_ ? &edge_rows_ : nullptr, count, which, near_);
     std::array<Eigen::VectorXd, 12> columns;
     const int units = count * int(which.size());
     [[maybe_unused]] const int nt = threads_;
     COONS_PARALLEL_FOR
     for (int u = 0; u < units; ++u) {
       const int c = u % count, k = u / count;
-      columns[std::size_t(u)] = column_residual(near_, which[std::size_t(k)], k, c);
+      columns[std::size_t(u)] = fast5_detail::column_residual(near_, stencil_, which[std::size_t(k)], k, c);
     }
     const auto residual = [&](std::size_t k, int c) -> const Eigen::VectorXd& {
       return columns[k * std::size_t(count) + std::size_t(c)];
@@ -587,7 +523,7 @@ class Fast5Solver final : public LinearSolver {
   std::vector<detail::AlignedBuffer> buffers_;  // solve_modes: one chunk buffer per thread
   std::vector<Eigen::MatrixXd> partial_;        // solve_modes: one product with the dots per chunk
   Eigen::MatrixXd no_sines_, unused_dots_;      // add_boundary_response: no dots wanted
-  NearColumns near_;                            // boundary_residual: B and X near the boundary columns
+  fast5_detail::NearColumns near_;  // boundary_residual: B and X near the boundary columns (fast5_near_columns.h)
 };
 
 }  // namespace

@@ -46,7 +46,8 @@
 // is the same bit for bit on any count.
 // Files: fast5_modes.h (per-mode factors and sweeps), fast5_low_modes.h (the lowest modes in
 // closed form), fast5_rows.h (B row by row), fast5_boundary_values.h (g in closed form),
-// fast5_capacitance.h (the blocks, their low-rank preconditioner and their solve).
+// fast5_capacitance.h (the blocks, their low-rank preconditioner and their solve),
+// fast5_near_columns.h (what the boundary check reads, kept while the grid is in the cache).
 // Accuracy. A x − b vanishes off the columns 0 and cols−1 for any capacitance unknowns h; on those
 // two columns it is what the error of h leaves. With the lowest modes in closed form and the
 // capacitance solve run to 1e-13 (1e-14 now), the first solve leaves 2.5–5.3·N·ε·‖b‖ there on mask data from
@@ -58,9 +59,9 @@
 // cols−3): a correction is a capacitance solve, a banded sweep and two more row transforms,
 // whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
 // none is made; in the solver tests 14 of 250 solves (small grids, random data) make one.
-// Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 20 ms on
-// one thread and 13 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data), of
-// which one banded sweep and one row transform, the floor of this method, take 12 and 8 ms.
+// Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 17 ms on
+// one thread and 10–11 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data), of
+// which one banded sweep and one row transform, the floor of this method, take about 10 and 6 ms.
 // summary.iterations is the largest number of products with a capacitance block in any
 // capacitance solve (the first to 1e-14, corrections to what they need, at least 1e-10): 1 on
 // mask data from N = 31 to 2047 (the preconditioned solve and its one correction).
