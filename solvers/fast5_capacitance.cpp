@@ -265,82 +265,93 @@ int CapacitanceBlock::solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, doub
   return applied + limit;
 }
 
+BlockInputs block_inputs(double a, double b, const Eigen::VectorXd& mu, const Eigen::VectorXd& nu,
+                         const Eigen::VectorXd& t) {
+  BlockInputs in{a, b, mu, nu, t, std::sqrt(2.0) * first_sine_column(int(mu.size())), {}, {}};
+  // t_q·s_j(q) for the grid columns j = 0, 1 (s_j the orthonormal sine vector of column j)
+  const int cols = int(nu.size());
+  const double scale_j = std::sqrt(2.0 / (cols + 1));
+  in.ts0.resize(cols);
+  in.ts1.resize(cols);
+  for (int q = 0; q < cols; ++q) {
+    in.ts0[q] = t[q] * scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
+    in.ts1[q] = t[q] * scale_j * std::sin(M_PI * 2 * (q + 1) / (cols + 1));
+  }
+  return in;
+}
+
+CapacitanceBlock capacitance_block(const BlockInputs& in, int index) {
+  const double a = in.a, b = in.b;
+  const Eigen::VectorXd &mu = in.mu, &nu = in.nu, &t = in.t, &sigma = in.sigma, &ts0 = in.ts0, &ts1 = in.ts1;
+  const int rows = int(mu.size()), cols = int(nu.size());
+  const int qpar = index / 2, ppar = index % 2;
+  CapacitanceBlock blk;
+  std::vector<int>& qs = blk.columns;
+  qs.clear();
+  for (int q = qpar; q < cols; q += 2) qs.push_back(q);
+  blk.modes.clear();
+  for (int p = ppar; p < rows; p += 2) blk.modes.push_back(p);
+  const auto n = Eigen::Index(blk.modes.size());
+  blk.diag.resize(n);
+  blk.h_inv.resize(n);
+  blk.u.resize(n);
+  blk.G.resize(n, Eigen::Index(qs.size()));
+  blk.c.resize(Eigen::Index(qs.size()));
+  blk.K.setZero(n, 2);
+  double su = 0;
+  for (Eigen::Index k = 0; k < n; ++k) {
+    const int p = blk.modes[std::size_t(k)];
+    const double dl = a * mu[p] * mu[p] + b;  // H = a·P_i + b·I = S(aμ² + b)S + a·E_i
+    blk.u[k] = sigma[p] / dl;
+    blk.h_inv[k] = 1 / dl;
+    su += sigma[p] * blk.u[k];
+  }
+  blk.diag = blk.h_inv;
+  blk.kappa = a / (1 + a * su);
+  Eigen::VectorXd inv_lambda(n), mu_b(n), sigma_b(n);  // μ_p and σ_p of the block's modes, contiguous
+  for (Eigen::Index m = 0; m < n; ++m) {
+    mu_b[m] = mu[blk.modes[std::size_t(m)]];
+    sigma_b[m] = sigma[blk.modes[std::size_t(m)]];
+  }
+  blk.sigma = sigma_b;
+  const Eigen::VectorXd sigma2 = sigma_b.cwiseProduct(sigma_b);
+  for (std::size_t k = 0; k < qs.size(); ++k) {
+    const int q = qs[k];
+    const double alpha = a * nu[q] * nu[q] + b;  // the weight of E_i in M_q
+    inverse_eigenvalues(a, b, mu_b.data(), nu[q], inv_lambda.data(), n);
+    const double gamma = dot8(sigma2.data(), inv_lambda.data(), n);  // σᵀΛ_q⁻¹σ on the block
+    const double c = std::sqrt(t[q] * t[q] * alpha / (1 + alpha * gamma));
+    blk.c[Eigen::Index(k)] = c;
+    fill_column(inv_lambda.data(), sigma_b.data(), t[q] * t[q], c, ts0[q], ts1[q], blk.diag.data(),
+                blk.G.col(Eigen::Index(k)).data(), blk.K.col(0).data(), blk.K.col(1).data(), n);
+  }
+  // the cross approximation of diag^{−1/2}·G from its entries' closed form (a row of the stored G
+  // would be read across #modes cache lines and pages)
+  blk.scale = blk.diag.cwiseSqrt().cwiseInverse();
+  Eigen::VectorXd nu_b(Eigen::Index(qs.size()));
+  for (std::size_t k = 0; k < qs.size(); ++k) nu_b[Eigen::Index(k)] = nu[qs[k]];
+  const auto row_of = [&](Eigen::Index m, Eigen::VectorXd& out) {  // 1/λ symmetric in (μ, ν)
+    inverse_eigenvalues(a, b, nu_b.data(), mu_b[m], out.data(), out.size());
+    out = (blk.scale[m] * sigma_b[m]) * blk.c.cwiseProduct(out);
+  };
+  const auto col_of = [&](Eigen::Index k, Eigen::VectorXd& out) {
+    inverse_eigenvalues(a, b, mu_b.data(), nu_b[k], out.data(), out.size());
+    out = blk.c[k] * blk.scale.cwiseProduct(sigma_b).cwiseProduct(out);
+  };
+  blk.build_preconditioner(
+      cross_approximation(n, Eigen::Index(qs.size()), row_of, col_of, kPreconditionerTolerance, kPreconditionerRank));
+  return blk;
+}
+
 std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eigen::VectorXd& mu,
                                                    const Eigen::VectorXd& nu, const Eigen::VectorXd& t, int threads) {
-  const int rows = int(mu.size()), cols = int(nu.size());
-  const Eigen::VectorXd sigma = std::sqrt(2.0) * first_sine_column(rows);
-  // t_q·s_j(q) for the grid columns j = 0, 1 (s_j the orthonormal sine vector of column j)
-  const double scale_j = std::sqrt(2.0 / (cols + 1));
-  Eigen::VectorXd ts0(cols), ts1(cols);
-  for (int q = 0; q < cols; ++q) {
-    ts0[q] = t[q] * scale_j * std::sin(M_PI * (q + 1) / (cols + 1));
-    ts1[q] = t[q] * scale_j * std::sin(M_PI * 2 * (q + 1) / (cols + 1));
-  }
+  const BlockInputs in = block_inputs(a, b, mu, nu, t);
   std::array<CapacitanceBlock, 4> blocks;
   [[maybe_unused]] const int nt = threads;
 #if defined(_OPENMP)
 #pragma omp parallel for num_threads(nt) if (nt > 1) schedule(static, 1)
 #endif
-  for (int index = 0; index < 4; ++index) {  // each block is written by one thread
-    const int qpar = index / 2, ppar = index % 2;
-    {
-      CapacitanceBlock& blk = blocks[std::size_t(index)];
-      std::vector<int>& qs = blk.columns;
-      qs.clear();
-      for (int q = qpar; q < cols; q += 2) qs.push_back(q);
-      blk.modes.clear();
-      for (int p = ppar; p < rows; p += 2) blk.modes.push_back(p);
-      const auto n = Eigen::Index(blk.modes.size());
-      blk.diag.resize(n);
-      blk.h_inv.resize(n);
-      blk.u.resize(n);
-      blk.G.resize(n, Eigen::Index(qs.size()));
-      blk.c.resize(Eigen::Index(qs.size()));
-      blk.K.setZero(n, 2);
-      double su = 0;
-      for (Eigen::Index k = 0; k < n; ++k) {
-        const int p = blk.modes[std::size_t(k)];
-        const double dl = a * mu[p] * mu[p] + b;  // H = a·P_i + b·I = S(aμ² + b)S + a·E_i
-        blk.u[k] = sigma[p] / dl;
-        blk.h_inv[k] = 1 / dl;
-        su += sigma[p] * blk.u[k];
-      }
-      blk.diag = blk.h_inv;
-      blk.kappa = a / (1 + a * su);
-      Eigen::VectorXd inv_lambda(n), mu_b(n), sigma_b(n);  // μ_p and σ_p of the block's modes, contiguous
-      for (Eigen::Index m = 0; m < n; ++m) {
-        mu_b[m] = mu[blk.modes[std::size_t(m)]];
-        sigma_b[m] = sigma[blk.modes[std::size_t(m)]];
-      }
-      blk.sigma = sigma_b;
-      const Eigen::VectorXd sigma2 = sigma_b.cwiseProduct(sigma_b);
-      for (std::size_t k = 0; k < qs.size(); ++k) {
-        const int q = qs[k];
-        const double alpha = a * nu[q] * nu[q] + b;  // the weight of E_i in M_q
-        inverse_eigenvalues(a, b, mu_b.data(), nu[q], inv_lambda.data(), n);
-        const double gamma = dot8(sigma2.data(), inv_lambda.data(), n);  // σᵀΛ_q⁻¹σ on the block
-        const double c = std::sqrt(t[q] * t[q] * alpha / (1 + alpha * gamma));
-        blk.c[Eigen::Index(k)] = c;
-        fill_column(inv_lambda.data(), sigma_b.data(), t[q] * t[q], c, ts0[q], ts1[q], blk.diag.data(),
-                    blk.G.col(Eigen::Index(k)).data(), blk.K.col(0).data(), blk.K.col(1).data(), n);
-      }
-      // the cross approximation of diag^{−1/2}·G from its entries' closed form (a row of the stored G
-      // would be read across #modes cache lines and pages)
-      blk.scale = blk.diag.cwiseSqrt().cwiseInverse();
-      Eigen::VectorXd nu_b(Eigen::Index(qs.size()));
-      for (std::size_t k = 0; k < qs.size(); ++k) nu_b[Eigen::Index(k)] = nu[qs[k]];
-      const auto row_of = [&](Eigen::Index m, Eigen::VectorXd& out) {  // 1/λ symmetric in (μ, ν)
-        inverse_eigenvalues(a, b, nu_b.data(), mu_b[m], out.data(), out.size());
-        out = (blk.scale[m] * sigma_b[m]) * blk.c.cwiseProduct(out);
-      };
-      const auto col_of = [&](Eigen::Index k, Eigen::VectorXd& out) {
-        inverse_eigenvalues(a, b, mu_b.data(), nu_b[k], out.data(), out.size());
-        out = blk.c[k] * blk.scale.cwiseProduct(sigma_b).cwiseProduct(out);
-      };
-      blk.build_preconditioner(cross_approximation(n, Eigen::Index(qs.size()), row_of, col_of, kPreconditionerTolerance,
-                                                   kPreconditionerRank));
-    }
-  }
+  for (int index = 0; index < 4; ++index) blocks[std::size_t(index)] = capacitance_block(in, index);  // one thread each
   return blocks;
 }
 

@@ -67,9 +67,22 @@ struct CapacitanceBlock {
   int solve(const Eigen::MatrixXd& rhs, Eigen::MatrixXd& X, double tolerance) const;
 };
 
-//! The four blocks, index 2·(parity of q) + (parity of p), of the fast5 operator a·C + b·T on a
-//! rows × cols grid: mu (#rows) and nu (#cols) the eigenvalues of D along i and j, t = √2·S·e₁
-//! along j (#cols). The blocks are built on up to `threads` threads (OpenMP), the same on any count.
+//! What the four blocks of a·C + b·T on a rows × cols grid are built from: mu (#rows) and nu
+//! (#cols) the eigenvalues of D along i and j, t = √2·S·e₁ along j (#cols); sigma = √2·S·e₁ along
+//! i (#rows) and ts0, ts1 = t_q·s_0(q), t_q·s_1(q) (#cols, s_j the orthonormal sine vector of the
+//! grid column j), formed once for all four (block_inputs).
+struct BlockInputs {
+  double a = 0, b = 0;
+  Eigen::VectorXd mu, nu, t, sigma, ts0, ts1;
+};
+BlockInputs block_inputs(double a, double b, const Eigen::VectorXd& mu, const Eigen::VectorXd& nu,
+                         const Eigen::VectorXd& t);
+
+//! Block `index` = 2·(parity of q) + (parity of p) (one thread; the blocks are independent).
+CapacitanceBlock capacitance_block(const BlockInputs& in, int index);
+
+//! The four blocks, index 2·(parity of q) + (parity of p), of the fast5 operator a·C + b·T (see
+//! BlockInputs), built on up to `threads` threads (OpenMP), the same on any count.
 std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eigen::VectorXd& mu,
                                                    const Eigen::VectorXd& nu, const Eigen::VectorXd& t, int threads);
 

@@ -130,8 +130,7 @@ class Fast5Solver final : public LinearSolver {
         stencil_[std::size_t(di + 2) * 5 + std::size_t(dj + 2)] = w.a * c_weight(di, dj) + w.b * t_weight(di, dj);
     separable_ = !(w.b > 1e-12 * w.a);
     if (separable_) return SolveStatus::kSuccess;
-    factor_modes();
-    build_capacitance();
+    set_up();
     summary.factor_nnz = 3LL * R_ * C_;
     return SolveStatus::kSuccess;
   }
@@ -285,16 +284,15 @@ class Fast5Solver final : public LinearSolver {
     }
   }
 
-  // The banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I for every mode q along j.
-  void factor_modes() {
-    nu_ = second_difference_eigenvalues(C_);
-    factors_ = fast5_detail::factor_modes(weights_.a, weights_.b, nu_, R_, threads_, low_mode_count());
-  }
-
-  // The four capacitance blocks (parity of q) × (parity of p), see the header, and the sine
-  // vectors of the grid columns next to the boundary (for the boundary residual).
-  void build_capacitance() {
+  // The data-independent set-up: the banded LDLᵀ of M_q = (aν_q² + b)·P_i + 2bν_q·D_i + bν_q²·I
+  // for every mode q along j, the four capacitance blocks (parity of q) × (parity of p), see the
+  // header, the closed form of the lowest modes, and the sine vectors of the grid columns next to
+  // the boundary. The six parts are independent and share the threads as units (longest first:
+  // each part on one thread; split into their own loops, the factors and the lowest modes scaled
+  // worse on two threads than the units do together).
+  void set_up() {
     const double a = weights_.a, b = weights_.b;
+    nu_ = second_difference_eigenvalues(C_);
     const Eigen::VectorXd mu = second_difference_eigenvalues(R_);
     t_ = std::sqrt(2.0) * first_sine_column(C_);
     tmasks_.setZero(C_, 2);  // t_q on the modes of each parity
@@ -304,8 +302,18 @@ class Fast5Solver final : public LinearSolver {
     for (int j = 0; j < 2; ++j)
       for (int q = 0; q < C_; ++q)
         near_sines_(q, j) = std::sqrt(2.0 / (C_ + 1)) * std::sin(M_PI * (j + 1) * (q + 1) / (C_ + 1));
-    blocks_ = fast5_detail::capacitance_blocks(a, b, mu, nu_, t_, threads_);
-    low_ = fast5_detail::low_modes(a, b, mu, nu_, low_mode_count(), threads_);
+    const fast5_detail::BlockInputs inputs = fast5_detail::block_inputs(a, b, mu, nu_, t_);
+    const int low = low_mode_count();
+    [[maybe_unused]] const int nt = threads_;
+    COONS_PARALLEL_FOR
+    for (int unit = 0; unit < 6; ++unit) {  // each unit writes its own member
+      if (unit < 4)
+        blocks_[std::size_t(unit)] = fast5_detail::capacitance_block(inputs, unit);
+      else if (unit == 4)
+        factors_ = fast5_detail::factor_modes(a, b, nu_, R_, 1, low);
+      else
+        low_ = fast5_detail::low_modes(a, b, mu, nu_, low, 1);
+    }
   }
 
   // The number of modes solved in closed form (kLowModeShare), even: the chunks after them start
