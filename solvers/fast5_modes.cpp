@@ -167,7 +167,9 @@ COONS_VECTOR_CLONES void up_rows(double* __restrict w0, double* __restrict w1, d
 }
 
 // Up into another array: o_c = y_c·inv_d − l1·(o row below) − l2·(o row two below), the rows of o
-// `stride` doubles apart (the same arithmetic as up_rows, so the same bits).
+// `stride` doubles apart (the same arithmetic as up_rows, so the same bits). Not merged with
+// up_rows: that one works in place, which the __restrict here (what lets these loops vectorise
+// without run-time alias checks on six arrays) forbids.
 COONS_VECTOR_CLONES void up_rows_into(double* __restrict o0, double* __restrict o1, double* __restrict o2,
                                       const double* __restrict y0, const double* __restrict y1,
                                       const double* __restrict y2, const double* __restrict inv_d,
