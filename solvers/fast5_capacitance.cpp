@@ -5,6 +5,7 @@
 #include <array>
 #include <cmath>
 #include <cstddef>
+#include <cstring>
 
 #include "fast5_modes.h"
 #include "vector_clones.h"
@@ -26,8 +27,8 @@ COONS_VECTOR_CLONES double dot8(const double* __restrict a, const double* __rest
 }
 
 // Four doubles as one value (GCC vector extension; two SSE2 registers in the baseline clone, one
-// AVX2 register in the other), loaded from any 8-byte-aligned address.
-using Lanes = double __attribute__((vector_size(32), aligned(8)));
+// AVX2 register in the other), moved from memory with memcpy (any alignment, no aliasing question).
+using Lanes = double __attribute__((vector_size(32)));
 
 // The four dots a_i·b_j (i, j < 2), each summed exactly as dot8 sums it (lane l of the low and
 // high vector is dot8's partial sum l and l + 4; so the same bits): a and b are each loaded once
@@ -37,10 +38,15 @@ COONS_VECTOR_CLONES std::array<double, 4> dot8_2x2(const double* a0, const doubl
   Lanes s00l{}, s00h{}, s01l{}, s01h{}, s10l{}, s10h{}, s11l{}, s11h{};
   Eigen::Index p = 0;
   for (; p + 8 <= n; p += 8) {
-    const Lanes x0l = *reinterpret_cast<const Lanes*>(a0 + p), x0h = *reinterpret_cast<const Lanes*>(a0 + p + 4);
-    const Lanes x1l = *reinterpret_cast<const Lanes*>(a1 + p), x1h = *reinterpret_cast<const Lanes*>(a1 + p + 4);
-    const Lanes y0l = *reinterpret_cast<const Lanes*>(b0 + p), y0h = *reinterpret_cast<const Lanes*>(b0 + p + 4);
-    const Lanes y1l = *reinterpret_cast<const Lanes*>(b1 + p), y1h = *reinterpret_cast<const Lanes*>(b1 + p + 4);
+    Lanes x0l, x0h, x1l, x1h, y0l, y0h, y1l, y1h;
+    std::memcpy(&x0l, a0 + p, sizeof x0l);
+    std::memcpy(&x0h, a0 + p + 4, sizeof x0h);
+    std::memcpy(&x1l, a1 + p, sizeof x1l);
+    std::memcpy(&x1h, a1 + p + 4, sizeof x1h);
+    std::memcpy(&y0l, b0 + p, sizeof y0l);
+    std::memcpy(&y0h, b0 + p + 4, sizeof y0h);
+    std::memcpy(&y1l, b1 + p, sizeof y1l);
+    std::memcpy(&y1h, b1 + p + 4, sizeof y1h);
     s00l += x0l * y0l;
     s00h += x0h * y0h;
     s01l += x0l * y1l;
@@ -131,15 +137,16 @@ void dots_of_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::Mat
   }
 }
 
-void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, double sign,
+void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, bool negate,
                       Eigen::MatrixXd& out) {
+  // negated, not multiplied by −1 (the same for numbers; a NaN keeps the sign it had before)
+  const auto alpha = [&](Eigen::Index k, Eigen::Index c) { return negate ? -coef(k, c) : coef(k, c); };
   const Eigen::Index n = G.rows();
   for (Eigen::Index c = 0; c < out.cols(); ++c) {
     if (k0 + 1 < G.cols())
-      subtract_scaled2(sign * coef(k0, c), G.col(k0).data(), sign * coef(k0 + 1, c), G.col(k0 + 1).data(),
-                       out.col(c).data(), n);
+      subtract_scaled2(alpha(k0, c), G.col(k0).data(), alpha(k0 + 1, c), G.col(k0 + 1).data(), out.col(c).data(), n);
     else
-      subtract_scaled(sign * coef(k0, c), G.col(k0).data(), out.col(c).data(), n);
+      subtract_scaled(alpha(k0, c), G.col(k0).data(), out.col(c).data(), n);
   }
 }
 
@@ -189,7 +196,7 @@ void CapacitanceBlock::apply(const Eigen::MatrixXd& V, Eigen::MatrixXd& out) con
   Eigen::MatrixXd dots(G.cols(), V.cols());
   for (Eigen::Index k = 0; k < G.cols(); k += 2) {  // two columns of G at a time, both in the L1 cache
     dots_of_columns(G, k, V, dots);
-    subtract_columns(G, k, dots, 1.0, out);
+    subtract_columns(G, k, dots, false, out);
   }
 }
 

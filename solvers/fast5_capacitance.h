@@ -89,8 +89,9 @@ std::array<CapacitanceBlock, 4> capacitance_blocks(double a, double b, const Eig
 //! out(k, c) = G.col(k)·V.col(c) for k in [k0, k0 + 2) ∩ [0, #G) and every c (the bits of one
 //! sum of eight partial sums each, whichever k0).
 void dots_of_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& V, Eigen::MatrixXd& out);
-//! out.col(c) −= Σ_k sign·coef(k, c)·G.col(k) over k in [k0, k0 + 2) ∩ [0, #G), in the order of k.
-void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, double sign,
+//! out.col(c) −= Σ_k (±)coef(k, c)·G.col(k) over k in [k0, k0 + 2) ∩ [0, #G), in the order of k
+//! (− with negate).
+void subtract_columns(const Eigen::MatrixXd& G, Eigen::Index k0, const Eigen::MatrixXd& coef, bool negate,
                       Eigen::MatrixXd& out);
 
 template <class RowOfX>
@@ -101,7 +102,7 @@ void CapacitanceBlock::apply_g_transpose_then_g(const Eigen::MatrixXd& V, const 
   for (Eigen::Index k = 0; k < G.cols(); k += 2) {  // two columns of G, read once for both products
     dots_of_columns(G, k, V, gtv);
     for (Eigen::Index j = k; j < std::min(k + 2, G.cols()); ++j) row(j, gtv, x);
-    subtract_columns(G, k, x, -1.0, out);
+    subtract_columns(G, k, x, true, out);
   }
 }
 

@@ -42,8 +42,8 @@ Eigen::VectorXd column_residual(const NearColumns& near, const std::array<double
       if (jj < 0 || jj >= C) continue;
       const double w = stencil[std::size_t(di + 2) * 5 + std::size_t(dj + 2)];
       const int i0 = std::max(0, -di), i1 = std::min(R, R - di);
-      const double* xs = xg.col(near.index(jj)).data() + di;
-      for (int i = i0; i < i1; ++i) r[i] -= w * xs[i];
+      const double* xs = xg.col(near.index(jj)).data();  // row i + di of column jj
+      for (int i = i0; i < i1; ++i) r[i] -= w * xs[i + di];
     }
   return r;
 }
