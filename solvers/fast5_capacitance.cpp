@@ -26,9 +26,7 @@ COONS_VECTOR_CLONES double dot8(const double* __restrict a, const double* __rest
   return sum;
 }
 
-// Four doubles as one value (GCC vector extension; two SSE2 registers in the baseline clone, one
-// AVX2 register in the other), moved from memory with memcpy (any alignment, no aliasing question).
-using Lanes = double __attribute__((vector_size(32)));
+using detail::Lanes;  // vector_clones.h
 
 // The four dots a_i·b_j (i, j < 2), each summed exactly as dot8 sums it (lane l of the low and
 // high vector is dot8's partial sum l and l + 4; so the same bits): a and b are each loaded once

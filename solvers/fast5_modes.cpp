@@ -75,9 +75,7 @@ COONS_VECTOR_CLONES void down_rows(double* __restrict w0, double* __restrict w1,
   }
 }
 
-// Four doubles as one value (GCC vector extension: two SSE2 registers in the baseline clone, one
-// AVX2 register in the other), moved from and to memory with memcpy (any alignment).
-using Lanes = double __attribute__((vector_size(32)));
+using detail::Lanes;  // vector_clones.h
 
 // Down for three rows in their edge form (fast5_rows.h), the transform formed in the same pass:
 // w_c = ((A_c·s0 + B_c·s1) + Z_c·t) − l1·(row above) − l2·(row two above), with A_c, B_c, Z_c the

@@ -7,3 +7,10 @@
 #else
 #define COONS_VECTOR_CLONES
 #endif
+
+// Four doubles as one value (GCC vector extension: two SSE2 registers in the baseline clone, one
+// AVX2 register in the other), for kernels that lay out their lanes by hand; moved from and to
+// memory with memcpy (any alignment, no aliasing question).
+namespace coons::solvers::detail {
+using Lanes = double __attribute__((vector_size(32)));
+}  // namespace coons::solvers::detail
