@@ -263,12 +263,16 @@ class Fast5Solver final : public LinearSolver {
     {
       detail::SineTransform& along_j = along_j_[std::size_t(thread_index())];
 #if defined(_OPENMP)
-#pragma omp for schedule(static)
+// (dynamic: the threads of a shared machine do not run at the same speed, and a static split
+// waits for the slower one; each row is transformed alone, so the bits do not depend on it)
+#pragma omp for schedule(dynamic, 16)
 #endif
       for (int unit = 0; unit < count * R_; ++unit) {
         const int c = unit / R_, r = unit % R_;
         double* hat = hats_[std::size_t(c)] + std::ptrdiff_t(r) * C_;
         if (!forward) {
+          if (r + 1 < R_)  // the next row, which its transform reads and writes (mostly this thread's)
+            for (int k = 0; k < C_; k += 8) __builtin_prefetch(hat + C_ + k, 1);
           along_j.apply(hat, hat, scale_j);
           near_.keep(c, r, hat);  // for the boundary check, while the row is in the cache
           continue;
