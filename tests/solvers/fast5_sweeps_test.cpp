@@ -546,4 +546,67 @@ TEST_CASE("factor_modes: every row read back (stored or the limit) is the banded
   CHECK(some_stored);
 }
 
+namespace {
+
+// The reference sums of the G products, with every product rounded before its addition (volatile:
+// no compiler may fuse them), in the order the kernels promise.
+double eight_partial_sums(const double* a, const double* b, Eigen::Index n) {
+  std::array<double, 8> acc{};
+  Eigen::Index p = 0;
+  for (; p + 8 <= n; p += 8)
+    for (std::size_t l = 0; l < 8; ++l) {
+      const volatile double product = a[p + Eigen::Index(l)] * b[p + Eigen::Index(l)];
+      acc[l] += product;
+    }
+  double sum = ((acc[0] + acc[1]) + (acc[2] + acc[3])) + ((acc[4] + acc[5]) + (acc[6] + acc[7]));
+  for (; p < n; ++p) {
+    const volatile double product = a[p] * b[p];
+    sum += product;
+  }
+  return sum;
+}
+
+}  // namespace
+
+TEST_CASE(
+    "dots_of_columns and subtract_columns: the bits of eight partial sums and of one subtraction after another, "
+    "in whichever clone runs",
+    "[solvers]") {
+  // The AVX-512 clone (where the machine has it) must round as the others: a fused multiply-add
+  // (the library is built with -ffp-contract=off against it) changes the last bits of most sums.
+  std::mt19937 gen(11);
+  std::uniform_real_distribution<double> uniform(-1.0, 1.0);
+  const auto random = [&](Eigen::Index rows, Eigen::Index cols) {
+    Eigen::MatrixXd m(rows, cols);
+    for (Eigen::Index k = 0; k < m.size(); ++k) m.data()[k] = uniform(gen);
+    return m;
+  };
+  int compared = 0;
+  for (const Eigen::Index n : {1, 7, 8, 13, 64, 517})
+    for (const Eigen::Index k : {1, 2, 3, 5})
+      for (const Eigen::Index m : {1, 2, 3, 8}) {
+        const Eigen::MatrixXd G = random(n, k), V = random(n, m), coef = random(k, m), start = random(n, m);
+        Eigen::MatrixXd dots(k, m), out = start;
+        for (Eigen::Index k0 = 0; k0 < k; k0 += 2) {
+          dots_of_columns(G, k0, V, dots);
+          subtract_columns(G, k0, coef, k0 % 4 == 2, out);
+        }
+        Eigen::MatrixXd expected = start;
+        for (Eigen::Index j = 0; j < k; ++j)
+          for (Eigen::Index c = 0; c < m; ++c) {
+            INFO("n " << n << ", column " << j << " of " << k << ", right-hand side " << c << " of " << m);
+            CHECK(dots(j, c) == eight_partial_sums(G.col(j).data(), V.col(c).data(), n));
+            ++compared;
+            const double alpha = j % 4 >= 2 ? -coef(j, c) : coef(j, c);  // negated in the pairs k0 % 4 == 2
+            for (Eigen::Index p = 0; p < n; ++p) {
+              const volatile double product = alpha * G(p, j);
+              expected(p, c) -= product;
+            }
+          }
+        INFO("n " << n << ", " << k << " columns, " << m << " right-hand sides");
+        CHECK((out.array() == expected.array()).all());
+      }
+  CHECK(compared == 6 * (1 + 2 + 3 + 5) * (1 + 2 + 3 + 8));  // every (n, column, right-hand side)
+}
+
 #endif  // COONS_HAVE_FFTW
