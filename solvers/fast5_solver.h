@@ -59,9 +59,10 @@
 // cols−3): a correction is a capacitance solve, a banded sweep and two more row transforms,
 // whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
 // none is made; in the solver tests 14 of 250 solves (small grids, random data) make one.
-// Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 17 ms on
-// one thread and 10–11 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data), of
-// which one banded sweep and one row transform, the floor of this method, take about 10 and 6 ms.
+// Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 16 ms on
+// one thread and 9–10 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data), of
+// which one banded sweep and one row transform, the floor of this method, take about 11 and 7 ms
+// (BM_Fast5Sweep + BM_SineRows).
 // summary.iterations is the largest number of products with a capacitance block in any
 // capacitance solve (the first to 1e-14, corrections to what they need, at least 1e-10): 1 on
 // mask data from N = 31 to 2047 (the preconditioned solve and its one correction).
