@@ -212,6 +212,79 @@ COONS_VECTOR_CLONES std::array<double, 2> parity_dot(const double* __restrict x,
 
 }  // namespace
 
+void down_row(const ModeFactors& f, int e, int r, int b0, int b1, int count, const SweepInput& in,
+              const std::array<double*, 3>& w, std::ptrdiff_t stride, const double* zeros, double* scratch) {
+  const int n = b1 - b0;
+  const auto input_of = [&](int c) -> const double* {
+    if (c >= count) return zeros;
+    if (const double* h = in.hats[std::size_t(c)]) return h + std::ptrdiff_t(r) * f.cols + b0;
+    if (const EdgeRows* edges = in.edges[std::size_t(c)])
+      return edge_row(*edges, r, in.s0, in.s1, b0, n, scratch + std::ptrdiff_t(c) * n);
+    return zeros;
+  };
+  std::array<double, 6> z{};
+  for (int c = 0; c < count && in.z; ++c) {
+    z[2 * std::size_t(c)] = in.sign * (*in.z)[0](r, c);
+    z[2 * std::size_t(c) + 1] = in.sign * (*in.z)[1](r, c);
+  }
+  // all three rows in their edge form: formed inside the down pass (no scratch row)
+  const bool fused = in.t && count == 3 &&
+                     std::all_of(in.edges.begin(), in.edges.end(),
+                                 [&](const EdgeRows* edges) { return edges && edges->slot[std::size_t(r)] < 0; }) &&
+                     std::none_of(in.hats.begin(), in.hats.end(), [](const double* h) { return h != nullptr; });
+  std::array<double, 18> coef{};
+  if (fused)
+    for (std::size_t c = 0; c < 3; ++c) {
+      const std::array<double, 4>& ends = in.edges[c]->ends[std::size_t(r)];
+      coef[6 * c] = ends[0] + ends[3];  // A (of s0), even and odd modes
+      coef[6 * c + 1] = ends[0] - ends[3];
+      coef[6 * c + 2] = ends[1] + ends[2];  // B (of s1)
+      coef[6 * c + 3] = ends[1] - ends[2];
+      coef[6 * c + 4] = z[2 * c];  // Z (of t)
+      coef[6 * c + 5] = z[2 * c + 1];
+    }
+  std::array<const double*, 3> y{};
+  if (!fused) y = {input_of(0), input_of(1), input_of(2)};
+  const int rows = std::min(e, 2);
+  // cut where the factor rows e − 1 and e − 2 change from stored to limit (active is non-increasing)
+  const int a1 = e >= 1 ? std::clamp(f.active[std::size_t(e) - 1], b0, b1) : b1;
+  const int a2 = e >= 2 ? std::clamp(f.active[std::size_t(e) - 2], a1, b1) : b1;
+  const std::array<int, 4> cut{b0, a1, a2, b1};
+  for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+    if (cut[s] >= cut[s + 1]) continue;
+    const int at = cut[s] - b0;
+    const double* l1 = e >= 1 ? factor_pointers(f, e - 1, cut[s]).l1 + cut[s] : nullptr;
+    const double* l2 = e >= 2 ? factor_pointers(f, e - 2, cut[s]).l2 + cut[s] : nullptr;
+    if (fused) {
+      const int m = cut[s + 1] - cut[s], parity = cut[s] % 2;
+      double *w0 = w[0] + at, *w1 = w[1] + at, *w2 = w[2] + at;
+      const double *s0 = in.s0 + cut[s], *s1 = in.s1 + cut[s], *t = in.t + cut[s];
+      if (rows == 2)
+        down_edge_rows<2>(w0, w1, w2, s0, s1, t, coef, l1, l2, stride, m, parity);
+      else if (rows == 1)
+        down_edge_rows<1>(w0, w1, w2, s0, s1, t, coef, l1, l2, stride, m, parity);
+      else
+        down_edge_rows<0>(w0, w1, w2, s0, s1, t, coef, l1, l2, stride, m, parity);
+      continue;
+    }
+    down_rows(w[0] + at, w[1] + at, w[2] + at, y[0] + at, y[1] + at, y[2] + at, in.t_even + cut[s], in.t_odd + cut[s],
+              z, l1, l2, stride, rows, cut[s + 1] - cut[s]);
+  }
+}
+
+void up_row_into(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& o,
+                 const std::array<const double*, 3>& y, std::ptrdiff_t stride, int rows) {
+  const int a = std::clamp(f.active[std::size_t(e)], b0, b1);
+  const std::array<int, 3> cut{b0, a, b1};
+  for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+    if (cut[s] >= cut[s + 1]) continue;
+    const int at = cut[s] - b0;
+    const FactorPointers p = factor_pointers(f, e, cut[s]);
+    up_rows_into(o[0] + at, o[1] + at, o[2] + at, y[0] + at, y[1] + at, y[2] + at, p.inv_d + cut[s], p.l1 + cut[s],
+                 p.l2 + cut[s], stride, rows, cut[s + 1] - cut[s]);
+  }
+}
+
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
                  double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot) {
   const int R = f.rows, C = f.cols, n = b1 - b0;
@@ -219,64 +292,9 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
   std::vector<double> scratch(3 * std::size_t(n));  // the edge rows' transforms, one row each
   // three right-hand sides are swept together; those from count on are zero and not written
   const auto row_of = [&](int c, int r) { return buf + (std::ptrdiff_t(c) * R + r) * n; };
-  const auto input_of = [&](int c, int r) -> const double* {
-    if (c >= count) return zeros.data();
-    if (const double* h = in.hats[std::size_t(c)]) return h + std::ptrdiff_t(r) * C + b0;
-    if (const EdgeRows* e = in.edges[std::size_t(c)])
-      return edge_row(*e, r, in.s0, in.s1, b0, n, scratch.data() + std::ptrdiff_t(c) * n);
-    return zeros.data();
-  };
   // down: buf = L⁻¹ (the input)
-  for (int r = 0; r < R; ++r) {
-    std::array<double, 6> z{};
-    for (int c = 0; c < count && in.z; ++c) {
-      z[2 * std::size_t(c)] = in.sign * (*in.z)[0](r, c);
-      z[2 * std::size_t(c) + 1] = in.sign * (*in.z)[1](r, c);
-    }
-    // all three rows in their edge form: formed inside the down pass (no scratch row)
-    const bool fused = in.t && count == 3 &&
-                       std::all_of(in.edges.begin(), in.edges.end(),
-                                   [&](const EdgeRows* e) { return e && e->slot[std::size_t(r)] < 0; }) &&
-                       std::none_of(in.hats.begin(), in.hats.end(), [](const double* h) { return h != nullptr; });
-    std::array<double, 18> coef{};
-    if (fused)
-      for (std::size_t c = 0; c < 3; ++c) {
-        const std::array<double, 4>& e = in.edges[c]->ends[std::size_t(r)];
-        coef[6 * c] = e[0] + e[3];  // A (of s0), even and odd modes
-        coef[6 * c + 1] = e[0] - e[3];
-        coef[6 * c + 2] = e[1] + e[2];  // B (of s1)
-        coef[6 * c + 3] = e[1] - e[2];
-        coef[6 * c + 4] = z[2 * c];  // Z (of t)
-        coef[6 * c + 5] = z[2 * c + 1];
-      }
-    std::array<const double*, 3> y{};
-    if (!fused) y = {input_of(0, r), input_of(1, r), input_of(2, r)};
-    const int rows = std::min(r, 2);
-    // cut where row r − 1 and row r − 2 change from stored to limit (active is non-increasing)
-    const int a1 = r >= 1 ? std::clamp(f.active[std::size_t(r) - 1], b0, b1) : b1;
-    const int a2 = r >= 2 ? std::clamp(f.active[std::size_t(r) - 2], a1, b1) : b1;
-    const std::array<int, 4> cut{b0, a1, a2, b1};
-    for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-      if (cut[s] >= cut[s + 1]) continue;
-      const int at = cut[s] - b0;
-      const double* l1 = r >= 1 ? factor_pointers(f, r - 1, cut[s]).l1 + cut[s] : nullptr;
-      const double* l2 = r >= 2 ? factor_pointers(f, r - 2, cut[s]).l2 + cut[s] : nullptr;
-      if (fused) {
-        const int m = cut[s + 1] - cut[s], parity = cut[s] % 2;
-        double *w0 = row_of(0, r) + at, *w1 = row_of(1, r) + at, *w2 = row_of(2, r) + at;
-        const double *s0 = in.s0 + cut[s], *s1 = in.s1 + cut[s], *t = in.t + cut[s];
-        if (rows == 2)
-          down_edge_rows<2>(w0, w1, w2, s0, s1, t, coef, l1, l2, n, m, parity);
-        else if (rows == 1)
-          down_edge_rows<1>(w0, w1, w2, s0, s1, t, coef, l1, l2, n, m, parity);
-        else
-          down_edge_rows<0>(w0, w1, w2, s0, s1, t, coef, l1, l2, n, m, parity);
-        continue;
-      }
-      down_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, y[0] + at, y[1] + at, y[2] + at,
-                in.t_even + cut[s], in.t_odd + cut[s], z, l1, l2, n, rows, cut[s + 1] - cut[s]);
-    }
-  }
+  for (int r = 0; r < R; ++r)
+    down_row(f, r, r, b0, b1, count, in, {row_of(0, r), row_of(1, r), row_of(2, r)}, n, zeros.data(), scratch.data());
   // up: buf ← (LD)⁻ᵀ buf = M⁻¹ (the input), then into the output and the partial dots
   const Eigen::Index k = sines.cols();
   dot.resize(R, 2 * k * count);
@@ -286,19 +304,19 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
   const auto grid_row = [&](int c, int r) { return out.grid[std::size_t(c)] + std::ptrdiff_t(r) * C + b0; };
   for (int r = R - 1; r >= 0; --r) {
     const int rows = std::min(R - 1 - r, 2);
-    const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
-    const std::array<int, 3> cut{b0, a, b1};
-    for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-      if (cut[s] >= cut[s + 1]) continue;
-      const int at = cut[s] - b0;
-      const FactorPointers p = factor_pointers(f, r, cut[s]);
-      if (direct)
-        up_rows_into(grid_row(0, r) + at, grid_row(1, r) + at, grid_row(2, r) + at, row_of(0, r) + at,
-                     row_of(1, r) + at, row_of(2, r) + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s], C, rows,
-                     cut[s + 1] - cut[s]);
-      else
+    if (direct) {
+      up_row_into(f, r, b0, b1, {grid_row(0, r), grid_row(1, r), grid_row(2, r)},
+                  {row_of(0, r), row_of(1, r), row_of(2, r)}, C, rows);
+    } else {
+      const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
+      const std::array<int, 3> cut{b0, a, b1};
+      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+        if (cut[s] >= cut[s + 1]) continue;
+        const int at = cut[s] - b0;
+        const FactorPointers p = factor_pointers(f, r, cut[s]);
         up_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s],
                 n, rows, cut[s + 1] - cut[s]);
+      }
     }
     for (int c = 0; c < count; ++c) {
       const double* w = row_of(c, r);

@@ -66,6 +66,19 @@ struct ChunkOutput {
   bool add = false;
 };
 
+//! One row of the way down (L⁻¹) at the modes [b0, b1), three right-hand sides at once: w[c] (that
+//! row of right-hand side c, from mode b0) = the input of grid row r (see SweepInput) − l1·(the row
+//! `stride` doubles before) − l2·(the row 2·stride before), with the factors of elimination step e
+//! (the factor rows e − 1 and e − 2; min(e, 2) rows before). zeros: b1 − b0 zeros; scratch: 3·(b1 − b0).
+//! A negative stride runs the rows backwards (the way down from the bottom, fast5_twisted.h).
+void down_row(const ModeFactors& f, int e, int r, int b0, int b1, int count, const SweepInput& in,
+              const std::array<double*, 3>& w, std::ptrdiff_t stride, const double* zeros, double* scratch);
+
+//! One row of the way up at the modes [b0, b1): o[c] = y[c]·inv_d − l1·(the row `stride` doubles
+//! after o[c]) − l2·(the row 2·stride after), with the factors of row e; `rows` ∈ {0, 1, 2} rows after.
+void up_row_into(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& o,
+                 const std::array<const double*, 3>& y, std::ptrdiff_t stride, int rows);
+
 //! M⁻¹ of the input for the modes [b0, b1) (b0 even) and right-hand sides c < count ≤ 3: down the
 //! rows into buf and back up in it (buf: 3·rows·(b1 − b0) doubles, small enough to stay in the
 //! cache; the three right-hand sides are swept together), then into the output. dot(r, 2k·c + 2m + p) = Σ v(q)·sines(q,
