@@ -36,13 +36,14 @@ LowModes low_modes(double a, double b, const Eigen::VectorXd& mu, const Eigen::V
 }
 
 void solve_low_modes(const LowModes& lm, detail::SineTransform& along_i, int count, const SweepInput& in,
-                     const ChunkOutput& out, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot) {
-  const int R = lm.rows, C = lm.cols, Q = lm.modes;
+                     const ChunkOutput& out, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot, int first, int last) {
+  const int R = lm.rows, C = lm.cols;
+  const int q0 = std::clamp(first, 0, lm.modes), q1 = last < 0 ? lm.modes : std::clamp(last, q0, lm.modes), Q = q1 - q0;
   const double scale_i = std::sqrt(2.0 / (R + 1));
   const Eigen::Index k = sines.cols();
   dot.setZero(R, 2 * k * count);
   Eigen::VectorXd column(R);
-  Eigen::MatrixXd solved(R, Q);  // M_q⁻¹ of the input, column q
+  Eigen::MatrixXd solved(R, Q);  // M_q⁻¹ of the input, column q − q0
   Eigen::MatrixXd input(R, Q);   // the input without the sources, gathered row by row
   std::vector<double> scratch(static_cast<std::size_t>(Q));
   for (int c = 0; c < count; ++c) {
@@ -51,15 +52,16 @@ void solve_low_modes(const LowModes& lm, detail::SineTransform& along_i, int cou
     const EdgeRows* edges = hat ? nullptr : in.edges[std::size_t(c)];
     if (hat || edges)
       for (int r = 0; r < R; ++r) {
-        const double* row = hat ? hat + std::ptrdiff_t(r) * C : edge_row(*edges, r, in.s0, in.s1, 0, Q, scratch.data());
-        for (int q = 0; q < Q; ++q) input(r, q) = row[q];
+        const double* row =
+            hat ? hat + std::ptrdiff_t(r) * C + q0 : edge_row(*edges, r, in.s0, in.s1, q0, Q, scratch.data());
+        for (int k = 0; k < Q; ++k) input(r, k) = row[k];
       }
     else
       input.setZero();
-    for (int q = 0; q < Q; ++q) {
+    for (int q = q0; q < q1; ++q) {
       const double t = q % 2 == 0 ? in.t_even[q] : in.t_odd[q];
       const Eigen::MatrixXd* z = in.z ? &(*in.z)[std::size_t(q % 2)] : nullptr;
-      for (int r = 0; r < R; ++r) column[r] = input(r, q) + (z ? in.sign * (*z)(r, c) * t : 0.0);
+      for (int r = 0; r < R; ++r) column[r] = input(r, q - q0) + (z ? in.sign * (*z)(r, c) * t : 0.0);
       along_i.apply(column.data(), column.data(), scale_i);
       // (√c σ Λ⁻¹)ᵀ v̂ on each parity block, each summed in the order of p (two scalar chains: an
       // array indexed by p % 2 made every addition wait for a store)
@@ -77,7 +79,7 @@ void solve_low_modes(const LowModes& lm, detail::SineTransform& along_i, int cou
         column[p + 1] = column[p + 1] * il[p + 1] - cp[p + 1] * s_odd;
       }
       if (p < R) column[p] = column[p] * il[p] - cp[p] * s_even;
-      along_i.apply(column.data(), solved.col(q).data(), scale_i);
+      along_i.apply(column.data(), solved.col(q - q0).data(), scale_i);
     }
     // into the grid kTile rows at a time: the tile is read from solved a cache line per column
     // (row by row, each of the Q entries of a row was a line and a page of its own)
@@ -86,18 +88,19 @@ void solve_low_modes(const LowModes& lm, detail::SineTransform& along_i, int cou
     Eigen::Matrix<double, kTile, Eigen::Dynamic> tile(kTile, Q);
     for (int r0 = 0; r0 < R; r0 += kTile) {
       const int rows = std::min(kTile, R - r0);
-      tile.leftCols(Q).topRows(rows) = solved.middleRows(r0, rows);
+      tile.topRows(rows) = solved.middleRows(r0, rows);
       for (int i = 0; i < rows; ++i) {
         const int r = r0 + i;
         double* x = tile.row(i).data();  // not contiguous: stride kTile
-        double* g = grid ? grid + std::ptrdiff_t(r) * C : nullptr;
-        for (int q = 0; q < Q; ++q) {
-          double& v = x[std::ptrdiff_t(q) * kTile];
-          if (g && out.add) v += g[q];
-          if (g) g[q] = v;
+        double* g = grid ? grid + std::ptrdiff_t(r) * C + q0 : nullptr;
+        for (int j = 0; j < Q; ++j) {
+          double& v = x[std::ptrdiff_t(j) * kTile];
+          if (g && out.add) v += g[j];
+          if (g) g[j] = v;
         }
         for (Eigen::Index m = 0; m < k; ++m)
-          for (int q = 0; q < Q; ++q) dot(r, 2 * (k * c + m) + q % 2) += x[std::ptrdiff_t(q) * kTile] * sines(q, m);
+          for (int j = 0; j < Q; ++j)
+            dot(r, 2 * (k * c + m) + (q0 + j) % 2) += x[std::ptrdiff_t(j) * kTile] * sines(q0 + j, m);
       }
     }
   }

@@ -34,9 +34,12 @@ struct LowModes {
 LowModes low_modes(double a, double b, const Eigen::VectorXd& mu, const Eigen::VectorXd& nu, int modes,
                    int threads = 1);
 
-//! What solve_chunk does (same input, output and dots), for the modes [0, lm.modes) by the closed
-//! form; along_i: the DST-I of length rows (not shared with another thread during the call).
+//! What solve_chunk does (same input, output and dots), for the modes [first, last) of [0, lm.modes)
+//! (last < 0: to lm.modes) by the closed form; along_i: the DST-I of length rows (not shared with
+//! another thread during the call). The modes are independent: two calls on disjoint ranges may run
+//! at once (their dots are partial sums over their own modes).
 void solve_low_modes(const LowModes& lm, detail::SineTransform& along_i, int count, const SweepInput& in,
-                     const ChunkOutput& out, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot);
+                     const ChunkOutput& out, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot, int first = 0,
+                     int last = -1);
 
 }  // namespace coons::solvers::fast5_detail

@@ -212,6 +212,11 @@ COONS_VECTOR_CLONES std::array<double, 2> parity_dot(const double* __restrict x,
 
 }  // namespace
 
+std::array<double, 3> mode_factor(const ModeFactors& f, int r, int q) {
+  const FactorPointers p = factor_pointers(f, r, q);
+  return {p.inv_d[q], p.l1[q], p.l2[q]};
+}
+
 void down_row(const ModeFactors& f, int e, int r, int b0, int b1, int count, const SweepInput& in,
               const std::array<double*, 3>& w, std::ptrdiff_t stride, const double* zeros, double* scratch) {
   const int n = b1 - b0;

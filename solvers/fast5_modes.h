@@ -37,6 +37,9 @@ struct ModeFactors {
   std::vector<double> lim_inv_d, lim_l1, lim_l2;  // limits, one per mode
 };
 
+//! The factors of row r at mode q, stored or the limit: {1/d, l1, l2}.
+std::array<double, 3> mode_factor(const ModeFactors& f, int r, int q);
+
 //! The factors of M_q for the modes ν = nu (#cols) of the fourth-order stencil a·C + b·T, rows each,
 //! on up to `threads` threads (OpenMP; the same on any count). The modes q < first are not factored
 //! (their entries read zero: no sweep may take them; fast5 solves them in closed form).

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <cmath>
+#include <functional>
 #include <limits>
 #include <string>
 #include <utility>
@@ -14,6 +15,7 @@
 #include "fast5_modes.h"
 #include "fast5_near_columns.h"
 #include "fast5_rows.h"
+#include "fast5_twisted.h"
 #include "row_form.h"
 #include "separable_banded_solver.h"
 #include "sine_transform.h"
@@ -118,6 +120,12 @@ class Fast5Solver final : public LinearSolver {
     along_i_ = detail::SineTransform(R_, planning);
     along_j_.clear();
     for (int t = 0; t < threads_; ++t) along_j_.emplace_back(C_, planning);
+    if (R_ >= fast5_detail::kMinTwistRows) {  // solve_twisted: the second part of the lowest modes, and the windows
+      low_along_i_.clear();
+      for (int t = 1; t < threads_; ++t) low_along_i_.emplace_back(R_, planning);
+      for (detail::AlignedBuffer& w : twist_windows_)
+        w = detail::AlignedBuffer(3 * std::size_t(fast5_detail::kTwistWindow) * std::size_t(C_));
+    }
     return SolveStatus::kSuccess;
   }
 
@@ -178,8 +186,12 @@ class Fast5Solver final : public LinearSolver {
       banded_solve_all(count, dots_);
       iterations = capacitance_solve(dots_, count, kCapacitanceTolerance, h);
     }
-    add_boundary_response(count, h, -1.0, true);
-    transform_rows(count, false, B);
+    if (edge_input_ && twist_.rows > 0) {
+      solve_twisted(h);
+    } else {
+      add_boundary_response(count, h, -1.0, true);
+      transform_rows(count, false, B);
+    }
     // The columns 0 and cols−1 carry what rounding left in h (see the header): corrected from
     // their residual (in the sine basis again: S is its own inverse) while it is above its limit.
     std::array<Eigen::MatrixXd, 2> rho;
@@ -314,9 +326,60 @@ class Fast5Solver final : public LinearSolver {
       if (unit < 4)
         blocks_[std::size_t(unit)] = fast5_detail::capacitance_block(inputs, unit);
       else if (unit == 4)
-        factors_ = fast5_detail::factor_modes(a, b, nu_, R_, 1, low);
+        set_up_factors(a, b, low);
       else
         low_ = fast5_detail::low_modes(a, b, mu, nu_, low, 1);
+    }
+  }
+
+  // The per-mode factors, and the middle of the twisted sweep from them (fast5_twisted.h; on mask
+  // data, from kMinTwistRows rows on).
+  void set_up_factors(double a, double b, int low) {
+    factors_ = fast5_detail::factor_modes(a, b, nu_, R_, 1, low);
+    twist_ =
+        R_ >= fast5_detail::kMinTwistRows ? fast5_detail::twist_factors(factors_, low) : fast5_detail::TwistFactors{};
+  }
+
+  // x̂ = A₁⁻¹ (b̂ − U z) and the inverse transform of every row of it, into X (fast5_twisted.h):
+  // the ways down of both halves and the lowest modes (in two parts) are four units on the threads,
+  // then the two halves' ways up, each row transformed as it is finished. Each unit writes its own
+  // rows or columns of X; the same bits on any number of threads.
+  void solve_twisted(const std::array<Eigen::MatrixXd, 2>& z) {
+    const fast5_detail::SweepInput in = sweep_input(true, &z, -1.0);
+    const std::array<double*, 3> grid{hats_[0], hats_[1], hats_[2]};
+    fast5_detail::ChunkOutput low_out;
+    low_out.grid = grid;
+    const int low = low_.modes, parts = 4;
+    const double scale_j = std::sqrt(2.0 / (C_ + 1));
+    const std::function<void(int, int, const double*)> keep = [this](int c, int r, const double* row) {
+      near_.keep(c, r, row);  // for the boundary check, while the row is in the cache
+    };
+    std::vector<Eigen::MatrixXd> no_dots(static_cast<std::size_t>(parts));
+    [[maybe_unused]] const int nt = threads_;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nt) if (nt > 1)
+#endif
+    {
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic)
+#endif
+      for (int u = 0; u < 2 + parts; ++u) {
+        if (u < 2) {
+          fast5_detail::twisted_down(factors_, twist_, u, in, grid, twist_ends_[std::size_t(u)]);
+        } else {
+          const int part = u - 2, t = thread_index();
+          fast5_detail::solve_low_modes(low_, t == 0 ? along_i_ : low_along_i_[std::size_t(t - 1)], 3, in, low_out,
+                                        no_sines_, no_dots[std::size_t(part)], low * part / parts,
+                                        low * (part + 1) / parts);
+        }
+      }
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic)
+#endif
+      for (int u = 0; u < 2; ++u) {
+        fast5_detail::twisted_up(factors_, twist_, u, twist_ends_, grid, along_j_[std::size_t(thread_index())], scale_j,
+                                 twist_windows_[std::size_t(u)].data(), keep);
+      }
     }
   }
 
@@ -526,9 +589,13 @@ class Fast5Solver final : public LinearSolver {
   ModeFactors factors_;
   std::array<CapacitanceBlock, 4> blocks_;
   fast5_detail::LowModes low_;
-  std::array<double*, 3> hats_{};                                     // the transformed rows, in X during a solve
-  std::array<fast5_detail::EdgeRows, 3> edge_rows_;                   // B's columns row by row (fast5_rows.h)
-  std::vector<int> keys_;                                             // boundary_sources: the key rows
+  fast5_detail::TwistFactors twist_;                    // rows 0: no twisted sweep (fast5_twisted.h)
+  std::array<fast5_detail::TwistEnds, 2> twist_ends_;   // solve_twisted: what each half leaves the middle
+  std::array<detail::AlignedBuffer, 2> twist_windows_;  // solve_twisted: each half's window of rows
+  std::vector<detail::SineTransform> low_along_i_;      // solve_twisted: the lowest modes on the threads 1, 2, …
+  std::array<double*, 3> hats_{};                       // the transformed rows, in X during a solve
+  std::array<fast5_detail::EdgeRows, 3> edge_rows_;     // B's columns row by row (fast5_rows.h)
+  std::vector<int> keys_;                               // boundary_sources: the key rows
   std::array<std::vector<fast5_detail::BoundarySource>, 2> sources_;  // per parity of p, per column of B
   const double* scanned_source_ = nullptr;      // the B whose row forms rhs_scaling left in edge_rows_
   bool edge_input_ = false;                     // this solve reads B's transform from edge_rows_

@@ -32,9 +32,13 @@
 //              forms when the full rows pair into at most four key rows (fast5_boundary_values.h,
 //              two passes over the blocks' G), otherwise by a sweep of banded solves along i (down
 //              and up the rows for a chunk of 128 modes at a time in a buffer that stays in the
-//              cache, all right-hand sides together); the capacitance solve; a sweep for x̂ = A₁⁻¹(b̂ − U h),
-//              written into X; an inverse transform of X's rows in place. X is the only
-//              grid-sized array, and on mask data the first time it is written is by that sweep.
+//              cache, all right-hand sides together); the capacitance solve; then x̂ = A₁⁻¹(b̂ − U h)
+//              and the inverse transform of X's rows: on B read from its row forms with at least
+//              kMinTwistRows rows, by the twisted sweep (fast5_twisted.h: the banded solves from the
+//              top and from the bottom to the middle rows and back, each row transformed as soon as
+//              it is finished, while it is in the cache); otherwise a chunked sweep written into X
+//              and the row transforms in place. X is the only grid-sized array, and on mask data
+//              the first time it is written is by that sweep.
 //              The modes q < cols/16 (rounded up to even) are solved in closed form in the
 //              sweeps instead (fast5_low_modes.h; not factored): κ(M_q) ∝ (cols/(q+1))⁴ reaches 1e11 at
 //              N = 1023, and the banded solves' forward error of κ·ε on those modes, on the
@@ -42,10 +46,12 @@
 //              2e-6 there.
 // Threads (SolverOptions::threads, OpenMP): the chunks of modes (and the closed form of the lowest
 // modes, as one more unit) are shared among the threads (fast5_modes.h), the four capacitance
-// blocks run in parallel, the row transforms are shared (one SineTransform per thread); the result
-// is the same bit for bit on any count.
-// Files: fast5_modes.h (per-mode factors and sweeps), fast5_low_modes.h (the lowest modes in
-// closed form), fast5_rows.h (B row by row), fast5_boundary_values.h (g in closed form),
+// blocks run in parallel, the row transforms are shared (one SineTransform per thread); the
+// twisted sweep runs its two halves' ways down and four parts of the lowest modes as six units,
+// then the two halves' ways up (a third thread waits there); the result is the same bit for bit on
+// any count.
+// Files: fast5_modes.h (per-mode factors and sweeps), fast5_twisted.h (the sweep from both ends
+// with the row transforms), fast5_low_modes.h (the lowest modes in closed form), fast5_rows.h (B row by row), fast5_boundary_values.h (g in closed form),
 // fast5_capacitance.h (the blocks, their low-rank preconditioner and their solve),
 // fast5_near_columns.h (what the boundary check reads, kept while the grid is in the cache).
 // Accuracy. A x − b vanishes off the columns 0 and cols−1 for any capacitance unknowns h; on those

@@ -1,0 +1,76 @@
+// fast5, the banded solves from both ends with the row transforms on the way back: the second
+// sweep of fast5 (x̂ = A₁⁻¹(b̂ − U h), then the inverse sine transform of every grid row) for the
+// modes q ≥ low (fast5_modes.h), without a separate pass of row transforms over the grid.
+//
+// M_q is symmetric Toeplitz, so persymmetric (J M_q J = M_q, J the reversal of the rows): its
+// banded LDLᵀ from the bottom row upwards has the factors of the one from the top, mirrored. The
+// rows 0 … h−1 (h = rows/2) are eliminated from the top and the rows h+2 … rows−1 from the bottom,
+// each half on its own; the 2×2 system left on the rows h, h+1 is solved per mode; then each half
+// is swept back from the middle outwards, and each grid row is transformed along j as soon as it
+// is complete, while it is in the cache. With d_r, l1_r, l2_r the factors of row r (pivot and the
+// multipliers of the rows r+1 and r+2) and m = rows − h − 2 (row h+1 counted from the bottom),
+//   K = [ d_h − l2_{m−1}² d_{m−1}              l1_h d_h − l1_{m−1} l2_{m−1} d_{m−1} ]
+//       [ l1_h d_h − l1_{m−1} l2_{m−1} d_{m−1}   d_m − l2_{h−1}² d_{h−1}            ]
+// (the top's elimination leaves d_h and l1_h d_h on row h, the bottom's the mirrored terms, and each
+// half reaches the far middle row through l2 only). Its right-hand side is the way down continued
+// one row into the middle from each side (y_h from the top, y_{h+1} from the bottom) plus the other
+// side's term −l2·y reaching across.
+// Why: the chunked sweep writes x̂ into the grid a block of modes at a time, and the row
+// transforms then read every row back from memory; here a row is transformed from the cache, and
+// the two halves share no rows, so two threads need one barrier (between the ways down and up).
+// Sizes: per half 6·cols doubles of middle terms and a window of 3·kTwistWindow·cols.
+// Based on: G. Meurant, A review on the inverse of symmetric tridiagonal and block tridiagonal
+// matrices, SIAM J. Matrix Anal. Appl. 13 (1992) 707–728 (twisted factorizations: elimination
+// from both ends meeting at a twist); A. Cantoni & P. Butler, Eigenvalues and eigenvectors of
+// symmetric centrosymmetric matrices, Linear Algebra Appl. 13 (1976) 275–288 (persymmetry).
+#pragma once
+
+#include <Eigen/Core>
+#include <array>
+#include <functional>
+#include <vector>
+
+#include "fast5_modes.h"
+#include "sine_transform.h"
+
+namespace coons::solvers::fast5_detail {
+
+//! The fewest grid rows the twisted sweep takes (both halves at least two rows beyond the middle).
+constexpr int kMinTwistRows = 8;
+
+//! K⁻¹ of every mode q ≥ low (above): i11, i12, i22 (#cols; zero below low).
+struct TwistFactors {
+  int rows = 0, cols = 0, low = 0;
+  int h = 0;  //!< the middle rows are h and h + 1
+  Eigen::VectorXd i11, i12, i22;
+};
+
+//! The middle's K⁻¹ from the factors f (rows ≥ kMinTwistRows) for the modes [low, cols).
+TwistFactors twist_factors(const ModeFactors& f, int low);
+
+//! What a half leaves for the middle (per right-hand side c, cols each): y of its own middle row
+//! (the way down continued into it) at [2c·cols, (2c+1)·cols), and its term −l2·y of the other
+//! middle row at [(2c+1)·cols, (2c+2)·cols).
+using TwistEnds = std::vector<double>;
+
+//! The way down of one half (half 0: rows 0 … h−1 from the top; 1: rows rows−1 … h+2 from the
+//! bottom) for the modes [low, cols) and three right-hand sides: L⁻¹ of the input (SweepInput,
+//! count 3) into those rows of grid[c] (rows × cols, row-major; the columns < low not touched),
+//! and the half's middle terms into ends.
+void twisted_down(const ModeFactors& f, const TwistFactors& tw, int half, const SweepInput& in,
+                  const std::array<double*, 3>& grid, TwistEnds& ends);
+
+//! The way up of one half from the middle (after twisted_down of both halves): the middle rows'
+//! values, then every row of the half and the half's middle row (h for the top, h + 1 for the
+//! bottom), each completed in `window` (3·kTwistWindow·cols doubles, this half's own) from its
+//! columns < low in grid (the lowest modes, written before) and the banded ones, and written into
+//! grid as its inverse sine transform along j (scale_j·S·row); done(c, r, row) after each.
+void twisted_up(const ModeFactors& f, const TwistFactors& tw, int half, const std::array<TwistEnds, 2>& ends,
+                const std::array<double*, 3>& grid, detail::SineTransform& along_j, double scale_j, double* window,
+                const std::function<void(int, int, const double*)>& done);
+
+//! The rows of the window of twisted_up (two of them are copied back to its end every
+//! kTwistWindow − 2 rows).
+constexpr int kTwistWindow = 16;
+
+}  // namespace coons::solvers::fast5_detail

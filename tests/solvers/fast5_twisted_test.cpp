@@ -1,0 +1,102 @@
+// The twisted sweep of fast5 (solvers/fast5_twisted.h): against dense solves of every M_q and the
+// row transforms, on grids from its fewest rows up, odd and even, rows != cols; and the lowest modes
+// in parts, which the twisted sweep runs on the threads.
+#include <catch2/catch.hpp>
+
+#include "coons/config.h"
+
+#if COONS_HAVE_FFTW
+
+#include <Eigen/Dense>
+#include <array>
+#include <cmath>
+#include <vector>
+
+#include "fast5_fixtures.h"
+#include "solvers/fast5_low_modes.h"
+#include "solvers/fast5_modes.h"
+#include "solvers/fast5_twisted.h"
+#include "solvers/linear_solver.h"
+#include "solvers/sine_transform.h"
+
+using namespace coons::solvers;
+using namespace coons::solvers::fast5_detail;
+using namespace coons::solvers::fast5_detail::testing;
+
+TEST_CASE(
+    "twisted_down and twisted_up: every row is the sine transform of M_q inverse of the input on the banded modes",
+    "[solvers]") {
+  // (one GENERATE per line: Catch2 tells its generators apart by their line)
+  const int rows =
+      GENERATE(int(kMinTwistRows), 9, 10, 31, 120);  // (a copy: an lvalue would make it a generator of references)
+  const int cols = GENERATE(7, 12, 40);
+  const auto [a, b] = GENERATE(std::pair{0.5, 0.5}, std::pair{0.0, 1.0}, std::pair{0.99, 0.01});
+  const int low = cols / 4;
+  CAPTURE(rows, cols, a, b);
+  const Eigen::VectorXd nu = second_difference_eigenvalues(cols);
+  const ModeFactors factors = factor_modes(a, b, nu, rows, 1, low);
+  const TwistFactors tw = twist_factors(factors, low);
+  SweepFixture fx(rows, cols, unsigned(rows * 100 + cols));
+  const SweepInput in = fx.input(-1.0);
+  const std::array<double*, 3> grid{fx.grid[0].data(), fx.grid[1].data(), fx.grid[2].data()};
+  // the expected grid: the columns < low as the grid holds them (the lowest modes, written before),
+  // the others M_q⁻¹ of the input; each row then transformed
+  std::array<Eigen::MatrixXd, 3> expected;
+  for (std::size_t c = 0; c < 3; ++c) {
+    expected[c].resize(rows, cols);
+    for (int r = 0; r < rows; ++r)
+      for (int q = 0; q < low; ++q) expected[c](r, q) = fx.grid[c][std::size_t(r) * std::size_t(cols) + std::size_t(q)];
+    for (int q = low; q < cols; ++q)
+      expected[c].col(q) = mode_matrix(a, b, nu[q], rows).ldlt().solve(fx.input_column(q, int(c), -1.0));
+  }
+  detail::SineTransform along_j(cols, detail::fft_planning(SolverOptions{}));
+  const double scale_j = std::sqrt(2.0 / (cols + 1));
+  for (std::size_t c = 0; c < 3; ++c)
+    for (int r = 0; r < rows; ++r) {
+      Eigen::VectorXd row = expected[c].row(r).transpose();
+      along_j.apply(row.data(), row.data(), scale_j);
+      expected[c].row(r) = row.transpose();
+    }
+  std::array<TwistEnds, 2> ends;
+  for (int half = 0; half < 2; ++half) twisted_down(factors, tw, half, in, grid, ends[std::size_t(half)]);
+  std::vector<double> window(3 * std::size_t(kTwistWindow) * std::size_t(cols));
+  std::vector<int> seen(3 * std::size_t(rows), 0);  // done(c, r, row) once per row, with the row written
+  bool rows_match = true;
+  const auto done = [&](int c, int r, const double* row) {
+    ++seen[std::size_t(c) * std::size_t(rows) + std::size_t(r)];
+    rows_match = rows_match && row == grid[std::size_t(c)] + std::ptrdiff_t(r) * cols;
+  };
+  for (int half = 0; half < 2; ++half) twisted_up(factors, tw, half, ends, grid, along_j, scale_j, window.data(), done);
+  CHECK(rows_match);
+  CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
+  for (std::size_t c = 0; c < 3; ++c) {
+    const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> got(
+        fx.grid[c].data(), rows, cols);
+    CHECK((got - expected[c]).cwiseAbs().maxCoeff() <= 1e-12 * expected[c].cwiseAbs().maxCoeff());
+  }
+}
+
+TEST_CASE("solve_low_modes: the modes in parts give the bits of one call over all of them", "[solvers]") {
+  const int rows = 37, cols = 30, modes = 9;
+  const Eigen::VectorXd nu = second_difference_eigenvalues(cols);
+  const LowModes lm = low_modes(0.3, 0.7, second_difference_eigenvalues(rows), nu, modes);
+  detail::SineTransform along_i(rows, detail::fft_planning(SolverOptions{}));
+  SweepFixture whole(rows, cols, 5), parts(rows, cols, 5);
+  ChunkOutput out_whole, out_parts;
+  out_whole.grid = {whole.grid[0].data(), whole.grid[1].data(), whole.grid[2].data()};
+  out_parts.grid = {parts.grid[0].data(), parts.grid[1].data(), parts.grid[2].data()};
+  Eigen::MatrixXd dot;
+  solve_low_modes(lm, along_i, 3, whole.input(-1.0), out_whole, whole.sines, dot);
+  const Eigen::MatrixXd dot_whole = dot;
+  Eigen::MatrixXd dot_sum = Eigen::MatrixXd::Zero(dot.rows(), dot.cols());
+  for (const auto& [first, last] : {std::pair{0, 4}, std::pair{4, 5}, std::pair{5, modes}}) {
+    solve_low_modes(lm, along_i, 3, parts.input(-1.0), out_parts, parts.sines, dot, first, last);
+    dot_sum += dot;
+  }
+  for (std::size_t c = 0; c < 3; ++c) CHECK(whole.grid[c] == parts.grid[c]);  // every column, written or not
+  CHECK((dot_sum - dot_whole).cwiseAbs().maxCoeff() <= 1e-14 * dot_whole.cwiseAbs().maxCoeff());
+}
+
+#else
+TEST_CASE("twisted_down and twisted_up: skipped", "[solvers]") { WARN("skipped: fast5 needs FFTW (libfftw3-dev)"); }
+#endif
