@@ -290,6 +290,19 @@ void up_row_into(const ModeFactors& f, int e, int b0, int b1, const std::array<d
   }
 }
 
+void up_row(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& w, std::ptrdiff_t stride,
+            int rows) {
+  const int a = std::clamp(f.active[std::size_t(e)], b0, b1);
+  const std::array<int, 3> cut{b0, a, b1};
+  for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
+    if (cut[s] >= cut[s + 1]) continue;
+    const int at = cut[s] - b0;
+    const FactorPointers p = factor_pointers(f, e, cut[s]);
+    up_rows(w[0] + at, w[1] + at, w[2] + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s], stride, rows,
+            cut[s + 1] - cut[s]);
+  }
+}
+
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
                  double* buf, const Eigen::MatrixXd& sines, Eigen::MatrixXd& dot) {
   const int R = f.rows, C = f.cols, n = b1 - b0;

@@ -82,6 +82,11 @@ void down_row(const ModeFactors& f, int e, int r, int b0, int b1, int count, con
 void up_row_into(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& o,
                  const std::array<const double*, 3>& y, std::ptrdiff_t stride, int rows);
 
+//! up_row_into in place: w[c] = w[c]·inv_d − l1·(the row `stride` doubles after) − l2·(2·stride
+//! after), the same bits.
+void up_row(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& w, std::ptrdiff_t stride,
+            int rows);
+
 //! M⁻¹ of the input for the modes [b0, b1) (b0 even) and right-hand sides c < count ≤ 3: down the
 //! rows into buf and back up in it (buf: 3·rows·(b1 − b0) doubles, small enough to stay in the
 //! cache; the three right-hand sides are swept together), then into the output. dot(r, 2k·c + 2m + p) = Σ v(q)·sines(q,

@@ -5,6 +5,7 @@
 #include <cmath>
 #include <functional>
 #include <limits>
+#include <optional>
 #include <string>
 #include <utility>
 #include <vector>
@@ -21,6 +22,10 @@
 #include "sine_transform.h"
 
 #if defined(_OPENMP)
+#include <omp.h>
+#endif
+
+#if defined(_OPENMP)
 // A loop over independent units on `nt` threads (a local); each unit writes its own data.
 #define COONS_PARALLEL_FOR _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic)")
 #else
@@ -30,6 +35,15 @@
 namespace coons::solvers {
 
 namespace {
+
+// The threads of the enclosing parallel region (1 outside one).
+int team_size() {
+#if defined(_OPENMP)
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
 
 using fast5_detail::CapacitanceBlock;
 using fast5_detail::first_sine_column;
@@ -120,11 +134,10 @@ class Fast5Solver final : public LinearSolver {
     along_i_ = detail::SineTransform(R_, planning);
     along_j_.clear();
     for (int t = 0; t < threads_; ++t) along_j_.emplace_back(C_, planning);
-    if (R_ >= fast5_detail::kMinTwistRows) {  // solve_twisted: the second part of the lowest modes, and the windows
+    if (R_ >= fast5_detail::kMinTwistRows) {  // solve_twisted: the lowest modes' transforms, the scratch rows
       low_along_i_.clear();
       for (int t = 1; t < threads_; ++t) low_along_i_.emplace_back(R_, planning);
-      for (detail::AlignedBuffer& w : twist_windows_)
-        w = detail::AlignedBuffer(3 * std::size_t(fast5_detail::kTwistWindow) * std::size_t(C_));
+      for (detail::AlignedBuffer& w : twist_scratch_) w = detail::AlignedBuffer(9 * std::size_t(C_));
     }
     return SolveStatus::kSuccess;
   }
@@ -355,6 +368,7 @@ class Fast5Solver final : public LinearSolver {
       near_.keep(c, r, row);  // for the boundary check, while the row is in the cache
     };
     std::vector<Eigen::MatrixXd> no_dots(static_cast<std::size_t>(parts));
+    std::optional<fast5_detail::TwistedUp> up;
     [[maybe_unused]] const int nt = threads_;
 #if defined(_OPENMP)
 #pragma omp parallel num_threads(nt) if (nt > 1)
@@ -374,12 +388,12 @@ class Fast5Solver final : public LinearSolver {
         }
       }
 #if defined(_OPENMP)
-#pragma omp for schedule(dynamic)
+#pragma omp single
 #endif
-      for (int u = 0; u < 2; ++u) {
-        fast5_detail::twisted_up(factors_, twist_, u, twist_ends_, grid, along_j_[std::size_t(thread_index())], scale_j,
-                                 twist_windows_[std::size_t(u)].data(), keep);
-      }
+      up.emplace(factors_, twist_, twist_ends_, grid,
+                 std::array<double*, 2>{twist_scratch_[0].data(), twist_scratch_[1].data()}, scale_j, keep);
+      // (the single's barrier: up is made, and both ways down are done)
+      up->work(thread_index(), team_size(), along_j_[std::size_t(thread_index())]);
     }
   }
 
@@ -591,7 +605,7 @@ class Fast5Solver final : public LinearSolver {
   fast5_detail::LowModes low_;
   fast5_detail::TwistFactors twist_;                    // rows 0: no twisted sweep (fast5_twisted.h)
   std::array<fast5_detail::TwistEnds, 2> twist_ends_;   // solve_twisted: what each half leaves the middle
-  std::array<detail::AlignedBuffer, 2> twist_windows_;  // solve_twisted: each half's window of rows
+  std::array<detail::AlignedBuffer, 2> twist_scratch_;  // solve_twisted: each half's rows next to the middle
   std::vector<detail::SineTransform> low_along_i_;      // solve_twisted: the lowest modes on the threads 1, 2, …
   std::array<double*, 3> hats_{};                       // the transformed rows, in X during a solve
   std::array<fast5_detail::EdgeRows, 3> edge_rows_;     // B's columns row by row (fast5_rows.h)

@@ -51,19 +51,17 @@
 // then the two halves' ways up (a third thread waits there); the result is the same bit for bit on
 // any count.
 // Files: fast5_modes.h (per-mode factors and sweeps), fast5_twisted.h (the sweep from both ends
-// with the row transforms), fast5_low_modes.h (the lowest modes in closed form), fast5_rows.h (B row by row), fast5_boundary_values.h (g in closed form),
-// fast5_capacitance.h (the blocks, their low-rank preconditioner and their solve),
-// fast5_near_columns.h (what the boundary check reads, kept while the grid is in the cache).
-// Accuracy. A x − b vanishes off the columns 0 and cols−1 for any capacitance unknowns h; on those
-// two columns it is what the error of h leaves. With the lowest modes in closed form and the
-// capacitance solve run to 1e-13 (1e-14 now), the first solve leaves 2.5–5.3·N·ε·‖b‖ there on mask data from
-// N = 255 to 1023 (the level of the rest of the grid: relative residuals 1.3e-13 / 4.4e-13 at
-// N = 255 and 1.0e-12 / 3.4e-12 at 1023, biharmonic / w = 0.5, against 7.5e-13 / 3.0e-12 of the
-// version before, which corrected it twice). Those columns are corrected from their exact
-// residual, after the inverse transform, only while it is above 16·N·ε·‖b‖ (and 1e-13‖b‖) and
-// above 4 times the residual the other columns are estimated to have (from the columns 2 and
-// cols−3): a correction is a capacitance solve, a banded sweep and two more row transforms,
-// whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
+// with the row transforms), fast5_low_modes.h (the lowest modes in closed form), fast5_rows.h (B row by row),
+// fast5_boundary_values.h (g in closed form), fast5_capacitance.h (the blocks, their low-rank preconditioner and their
+// solve), fast5_near_columns.h (what the boundary check reads, kept while the grid is in the cache). Accuracy. A x − b
+// vanishes off the columns 0 and cols−1 for any capacitance unknowns h; on those two columns it is what the error of h
+// leaves. With the lowest modes in closed form and the capacitance solve run to 1e-13 (1e-14 now), the first solve
+// leaves 2.5–5.3·N·ε·‖b‖ there on mask data from N = 255 to 1023 (the level of the rest of the grid: relative
+// residuals 1.3e-13 / 4.4e-13 at N = 255 and 1.0e-12 / 3.4e-12 at 1023, biharmonic / w = 0.5, against 7.5e-13 / 3.0e-12
+// of the version before, which corrected it twice). Those columns are corrected from their exact residual, after the
+// inverse transform, only while it is above 16·N·ε·‖b‖ (and 1e-13‖b‖) and above 4 times the residual the other columns
+// are estimated to have (from the columns 2 and cols−3): a correction is a capacitance solve, a banded sweep and two
+// more row transforms, whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
 // none is made; in the solver tests 14 of 250 solves (small grids, random data) make one.
 // Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 16 ms on
 // one thread and 9–10 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data), of

@@ -2,6 +2,8 @@
 
 #include <algorithm>
 #include <cstddef>
+#include <thread>
+#include <utility>
 
 namespace coons::solvers::fast5_detail {
 
@@ -59,53 +61,105 @@ void twisted_down(const ModeFactors& f, const TwistFactors& tw, int half, const 
   }
 }
 
-void twisted_up(const ModeFactors& f, const TwistFactors& tw, int half, const std::array<TwistEnds, 2>& ends,
-                const std::array<double*, 3>& grid, detail::SineTransform& along_j, double scale_j, double* window,
-                const std::function<void(int, int, const double*)>& done) {
-  const int R = f.rows, C = f.cols, low = tw.low, h = tw.h;
-  const auto win = [&](std::size_t c, int p) { return window + (std::ptrdiff_t(c) * kTwistWindow + p) * C; };
-  // The window holds the rows finished last at p, p + 1, …: the row below a row (in the order of
-  // this half's way up) is the next one in memory, so up_row_into reads it at stride cols.
-  int p = kTwistWindow - 2;
-  for (std::size_t c = 0; c < 3; ++c) {  // the middle: (x_h, x_{h+1}) = K⁻¹ (ρ_h, ρ_{h+1})
-    const double* top_own = ends[0].data() + 2 * c * std::size_t(C);
-    const double* top_other = top_own + C;
-    const double* bottom_own = ends[1].data() + 2 * c * std::size_t(C);
-    const double* bottom_other = bottom_own + C;
-    double *own = win(c, p), *far = win(c, p + 1);
-    for (int q = low; q < C; ++q) {
-      const double rho_h = top_own[q] + bottom_other[q], rho_h1 = bottom_own[q] + top_other[q];
-      const double xh = tw.i11[q] * rho_h + tw.i12[q] * rho_h1, xh1 = tw.i12[q] * rho_h + tw.i22[q] * rho_h1;
-      own[q] = half == 0 ? xh : xh1;
-      far[q] = half == 0 ? xh1 : xh;
+TwistedUp::TwistedUp(const ModeFactors& f, const TwistFactors& tw, const std::array<TwistEnds, 2>& ends,
+                     const std::array<double*, 3>& grid, const std::array<double*, 2>& scratch, double scale_j,
+                     std::function<void(int, int, const double*)> done)
+    : f_(f), tw_(tw), ends_(ends), grid_(grid), scale_j_(scale_j), done_(std::move(done)) {
+  for (std::size_t k = 0; k < 2; ++k) {
+    halves_[k].scratch = scratch[k];
+    halves_[k].count = k == 0 ? tw.h + 1 : f.rows - tw.h - 1;  // the middle row and the half's rows
+  }
+}
+
+int TwistedUp::grid_row(int half, int k) const { return half == 0 ? tw_.h - k : tw_.h + 1 + k; }
+
+// The k-th row of the half, finished in the grid (whose columns < low hold the lowest modes
+// already). From its third row on, the two rows before it are read from the grid, where nothing
+// transforms them before (claimable); the first row after the middle reads the other middle row,
+// which the other half owns, from the scratch rows: per right-hand side [that row, own middle, far middle].
+void TwistedUp::step(int half) {
+  Half& hf = halves_[std::size_t(half)];
+  const int C = f_.cols, low = tw_.low;
+  const int k = hf.next, r = grid_row(half, k);
+  const auto scratch = [&](std::size_t c, int i) { return hf.scratch + (std::ptrdiff_t(c) * 3 + i) * C; };
+  const auto grid_at = [&](std::size_t c, int row) { return grid_[c] + std::ptrdiff_t(row) * C + low; };
+  if (k == 0) {  // the middle: (x_h, x_{h+1}) = K⁻¹ (ρ_h, ρ_{h+1})
+    for (std::size_t c = 0; c < 3; ++c) {
+      const double* top_own = ends_[0].data() + 2 * c * std::size_t(C);
+      const double* top_other = top_own + C;
+      const double* bottom_own = ends_[1].data() + 2 * c * std::size_t(C);
+      const double* bottom_other = bottom_own + C;
+      double *own = scratch(c, 1), *far = scratch(c, 2);
+      for (int q = low; q < C; ++q) {
+        const double rho_h = top_own[q] + bottom_other[q], rho_h1 = bottom_own[q] + top_other[q];
+        const double xh = tw_.i11[q] * rho_h + tw_.i12[q] * rho_h1, xh1 = tw_.i12[q] * rho_h + tw_.i22[q] * rho_h1;
+        own[q] = half == 0 ? xh : xh1;
+        far[q] = half == 0 ? xh1 : xh;
+      }
+      std::copy(own + low, own + C, grid_at(c, r));
+    }
+  } else {
+    const int e = half == 0 ? r : f_.rows - 1 - r;  // the factor row: mirrored from the bottom
+    if (k == 1) {
+      up_row_into(f_, e, low, C, {scratch(0, 0) + low, scratch(1, 0) + low, scratch(2, 0) + low},
+                  {grid_at(0, r), grid_at(1, r), grid_at(2, r)}, C, 2);
+      for (std::size_t c = 0; c < 3; ++c) std::copy(scratch(c, 0) + low, scratch(c, 0) + C, grid_at(c, r));
+    } else {  // in place: the row before is the next grid row in this half's order
+      up_row(f_, e, low, C, {grid_at(0, r), grid_at(1, r), grid_at(2, r)}, half == 0 ? C : -std::ptrdiff_t(C), 2);
     }
   }
-  // a finished row: its lowest modes from the grid, then its transform into the grid
-  const auto finish = [&](int r) {
+  ++hf.next;
+}
+
+// Rows [k0, k1) of the half, finished (and no longer read by its owner), transformed in place.
+void TwistedUp::transform(int half, int k0, int k1, detail::SineTransform& along_j) const {
+  for (int k = k0; k < k1; ++k) {
+    const int r = grid_row(half, k);
     for (std::size_t c = 0; c < 3; ++c) {
-      double* row = win(c, p);
-      double* g = grid[c] + std::ptrdiff_t(r) * C;
-      std::copy(g, g + low, row);
-      along_j.apply(row, g, scale_j);
-      done(int(c), r, g);
+      double* g = grid_[c] + std::ptrdiff_t(r) * f_.cols;
+      along_j.apply(g, g, scale_j_);
+      done_(int(c), r, g);
+    }
+  }
+}
+
+void TwistedUp::work(int thread, int threads, detail::SineTransform& along_j) {
+  constexpr int kSteps = 8;       // rows an owner finishes before it looks for rows to transform
+  constexpr int kTransforms = 4;  // rows claimed at a time
+  const auto owns = [&](int half) { return half % std::max(threads, 1) == thread; };
+  // a claim of up to kTransforms finished rows of the half that no one has claimed yet
+  const auto claim = [&](int half) {
+    Half& hf = halves_[std::size_t(half)];
+    int c = hf.claimed.load(std::memory_order_relaxed);
+    for (;;) {
+      const int p = hf.finished.load(std::memory_order_acquire);
+      if (c >= p) return false;
+      const int e = std::min(c + kTransforms, p);
+      if (hf.claimed.compare_exchange_weak(c, e, std::memory_order_relaxed)) {
+        transform(half, c, e, along_j);
+        return true;
+      }
     }
   };
-  finish(half == 0 ? h : h + 1);
-  const int steps = half == 0 ? h : R - h - 2;
-  for (int k = 0; k < steps; ++k) {
-    const int r = half == 0 ? h - 1 - k : h + 2 + k, e = half == 0 ? r : R - 1 - r;
-    if (p == 0) {  // the two rows read next to the window's end
-      for (std::size_t c = 0; c < 3; ++c) {
-        std::copy(win(c, 0), win(c, 0) + C, win(c, kTwistWindow - 2));
-        std::copy(win(c, 1), win(c, 1) + C, win(c, kTwistWindow - 1));
-      }
-      p = kTwistWindow - 2;
+  for (;;) {
+    bool busy = false;
+    for (int half = 0; half < 2; ++half) {
+      Half& hf = halves_[std::size_t(half)];
+      if (!owns(half) || hf.next == hf.count) continue;
+      for (int k = 0; k < kSteps && hf.next < hf.count; ++k) step(half);
+      // a row is read by the two rows after it in the half: claimable once they are finished
+      hf.finished.store(hf.next == hf.count ? hf.count : std::max(hf.next - 2, 0), std::memory_order_release);
+      busy = true;
     }
-    --p;
-    const std::ptrdiff_t at = std::ptrdiff_t(r) * C + low;
-    up_row_into(f, e, low, C, {win(0, p) + low, win(1, p) + low, win(2, p) + low},
-                {grid[0] + at, grid[1] + at, grid[2] + at}, C, 2);
-    finish(r);
+    // its own rows first (still in the cache), then the other half's
+    for (int pass = 0; pass < 2; ++pass)
+      for (int half = 0; half < 2; ++half)
+        if (owns(half) == (pass == 0))
+          while (claim(half)) busy = true;
+    if (std::all_of(halves_.begin(), halves_.end(),
+                    [](const Half& hf) { return hf.claimed.load(std::memory_order_acquire) == hf.count; }))
+      return;
+    if (!busy) std::this_thread::yield();  // the other half's owner has not finished a row since
   }
 }
 

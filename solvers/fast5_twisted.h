@@ -18,7 +18,7 @@
 // Why: the chunked sweep writes x̂ into the grid a block of modes at a time, and the row
 // transforms then read every row back from memory; here a row is transformed from the cache, and
 // the two halves share no rows, so two threads need one barrier (between the ways down and up).
-// Sizes: per half 6·cols doubles of middle terms and a window of 3·kTwistWindow·cols.
+// Sizes: per half 6·cols doubles of middle terms and 9·cols of scratch.
 // Based on: G. Meurant, A review on the inverse of symmetric tridiagonal and block tridiagonal
 // matrices, SIAM J. Matrix Anal. Appl. 13 (1992) 707–728 (twisted factorizations: elimination
 // from both ends meeting at a twist); A. Cantoni & P. Butler, Eigenvalues and eigenvectors of
@@ -27,6 +27,7 @@
 
 #include <Eigen/Core>
 #include <array>
+#include <atomic>
 #include <functional>
 #include <vector>
 
@@ -60,17 +61,40 @@ using TwistEnds = std::vector<double>;
 void twisted_down(const ModeFactors& f, const TwistFactors& tw, int half, const SweepInput& in,
                   const std::array<double*, 3>& grid, TwistEnds& ends);
 
-//! The way up of one half from the middle (after twisted_down of both halves): the middle rows'
-//! values, then every row of the half and the half's middle row (h for the top, h + 1 for the
-//! bottom), each completed in `window` (3·kTwistWindow·cols doubles, this half's own) from its
-//! columns < low in grid (the lowest modes, written before) and the banded ones, and written into
-//! grid as its inverse sine transform along j (scale_j·S·row); done(c, r, row) after each.
-void twisted_up(const ModeFactors& f, const TwistFactors& tw, int half, const std::array<TwistEnds, 2>& ends,
-                const std::array<double*, 3>& grid, detail::SineTransform& along_j, double scale_j, double* window,
-                const std::function<void(int, int, const double*)>& done);
+//! The ways up of both halves from the middle (after twisted_down of both): the middle rows'
+//! values, then the half's rows outwards, each finished in place in grid (whose columns < low hold
+//! the lowest modes, written before; scratch: 9·cols doubles per half), and every finished row
+//! transformed in place along j (scale_j·S·row) once the two rows after it in its half, which read
+//! it, are finished; done(c, r, row) after each.
+//! Each half's rows are finished in order by one thread, its owner; any thread transforms finished
+//! rows (the owner its own first, while they are in the cache), so a thread on a slower CPU
+//! leaves its rows to the other. work(t, threads, along_j) from each of `threads` threads (t < threads;
+//! along_j that thread's own); it returns when every row is claimed. The same bits on any count.
+class TwistedUp {
+ public:
+  TwistedUp(const ModeFactors& f, const TwistFactors& tw, const std::array<TwistEnds, 2>& ends,
+            const std::array<double*, 3>& grid, const std::array<double*, 2>& scratch, double scale_j,
+            std::function<void(int, int, const double*)> done);
+  void work(int thread, int threads, detail::SineTransform& along_j);
 
-//! The rows of the window of twisted_up (two of them are copied back to its end every
-//! kTwistWindow − 2 rows).
-constexpr int kTwistWindow = 16;
+ private:
+  struct Half {
+    double* scratch = nullptr;
+    int count = 0;                             // rows to finish: the middle row and the half's own
+    int next = 0;                              // the owner's: the next row to finish
+    std::atomic<int> finished{0}, claimed{0};  // rows that may be transformed, rows claimed for it
+  };
+  [[nodiscard]] int grid_row(int half, int k) const;
+  void step(int half);
+  void transform(int half, int k0, int k1, detail::SineTransform& along_j) const;
+
+  const ModeFactors& f_;
+  const TwistFactors& tw_;
+  const std::array<TwistEnds, 2>& ends_;
+  std::array<double*, 3> grid_;
+  double scale_j_;
+  std::function<void(int, int, const double*)> done_;
+  std::array<Half, 2> halves_;
+};
 
 }  // namespace coons::solvers::fast5_detail

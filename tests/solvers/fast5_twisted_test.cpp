@@ -8,8 +8,10 @@
 #if COONS_HAVE_FFTW
 
 #include <Eigen/Dense>
+#include <algorithm>
 #include <array>
 #include <cmath>
+#include <thread>
 #include <vector>
 
 #include "fast5_fixtures.h"
@@ -31,8 +33,9 @@ TEST_CASE(
       GENERATE(int(kMinTwistRows), 9, 10, 31, 120);  // (a copy: an lvalue would make it a generator of references)
   const int cols = GENERATE(7, 12, 40);
   const auto [a, b] = GENERATE(std::pair{0.5, 0.5}, std::pair{0.0, 1.0}, std::pair{0.99, 0.01});
+  const int threads = GENERATE(1, 2);
   const int low = cols / 4;
-  CAPTURE(rows, cols, a, b);
+  CAPTURE(rows, cols, a, b, threads);
   const Eigen::VectorXd nu = second_difference_eigenvalues(cols);
   const ModeFactors factors = factor_modes(a, b, nu, rows, 1, low);
   const TwistFactors tw = twist_factors(factors, low);
@@ -59,16 +62,27 @@ TEST_CASE(
     }
   std::array<TwistEnds, 2> ends;
   for (int half = 0; half < 2; ++half) twisted_down(factors, tw, half, in, grid, ends[std::size_t(half)]);
-  std::vector<double> window(3 * std::size_t(kTwistWindow) * std::size_t(cols));
-  std::vector<int> seen(3 * std::size_t(rows), 0);  // done(c, r, row) once per row, with the row written
-  bool rows_match = true;
+  std::array<std::vector<double>, 2> windows;
+  for (auto& w : windows) w.resize(9 * std::size_t(cols));
+  // done(c, r, row) once per row, with the row written (each (c, r) its own entries: no race)
+  std::vector<int> seen(3 * std::size_t(rows), 0);
+  std::vector<char> at_row(3 * std::size_t(rows), 0);
   const auto done = [&](int c, int r, const double* row) {
-    ++seen[std::size_t(c) * std::size_t(rows) + std::size_t(r)];
-    rows_match = rows_match && row == grid[std::size_t(c)] + std::ptrdiff_t(r) * cols;
+    const std::size_t k = std::size_t(c) * std::size_t(rows) + std::size_t(r);
+    ++seen[k];
+    at_row[k] = row == grid[std::size_t(c)] + std::ptrdiff_t(r) * cols;
   };
-  for (int half = 0; half < 2; ++half) twisted_up(factors, tw, half, ends, grid, along_j, scale_j, window.data(), done);
-  CHECK(rows_match);
+  TwistedUp up(factors, tw, ends, grid, {windows[0].data(), windows[1].data()}, scale_j, done);
+  if (threads == 1) {
+    up.work(0, 1, along_j);
+  } else {  // every thread its own transform
+    detail::SineTransform other(cols, detail::fft_planning(SolverOptions{}));
+    std::thread second([&] { up.work(1, 2, other); });
+    up.work(0, 2, along_j);
+    second.join();
+  }
   CHECK(std::all_of(seen.begin(), seen.end(), [](int n) { return n == 1; }));
+  CHECK(std::all_of(at_row.begin(), at_row.end(), [](char ok) { return ok == 1; }));
   for (std::size_t c = 0; c < 3; ++c) {
     const Eigen::Map<const Eigen::Matrix<double, Eigen::Dynamic, Eigen::Dynamic, Eigen::RowMajor>> got(
         fx.grid[c].data(), rows, cols);
@@ -98,5 +112,5 @@ TEST_CASE("solve_low_modes: the modes in parts give the bits of one call over al
 }
 
 #else
-TEST_CASE("twisted_down and twisted_up: skipped", "[solvers]") { WARN("skipped: fast5 needs FFTW (libfftw3-dev)"); }
+TEST_CASE("twisted_down and TwistedUp: skipped", "[solvers]") { WARN("skipped: fast5 needs FFTW (libfftw3-dev)"); }
 #endif
