@@ -12,6 +12,7 @@
 #include "coons/io/write_files.h"
 #include "coons/mask/nonuniform_mask.h"
 #include "coons/study/bspline_net.h"
+#include "coons/study/bspline_search.h"
 #include "coons/study/memory_estimate.h"
 #include "coons/study/net_report.h"
 #include "coons/surfaces/bspline_sampling.h"
@@ -39,7 +40,11 @@ BSplineNetOutcome solve_bspline(const BSplineInput& in, const BSplineResolved& r
 }  // namespace
 
 BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& input, const std::string& source) {
-  const ResolvedRequest r = resolve(request, input.boundary, source);  // the contradictions of every net request
+  // The contradictions of every net request; but resolve's range of a Cholesky-type backend is the
+  // Bézier family's [−1/4, 1/4], and a B-spline boundary's is [−1/4, U] (checked below).
+  NetRequest generic = request;
+  generic.allow_indefinite = true;
+  const ResolvedRequest r = resolve(generic, input.boundary, source);
   if (r.method == Method::kHermiteCoons)
     throw InputError("command line", "--method",
                      "hermite-coons has no B-spline form; a B-spline boundary takes --method coons or alpha");
@@ -60,6 +65,16 @@ BSplineResolved resolve_bspline(const NetRequest& request, const BoundaryFile& i
   } else {
     require_matrix_backend(r.solver, kBSplineNeedsMatrix);  // gmres falls back to ILUT on a matrix
     out.solver = r.solver->name;
+    // U ≤ 1/4: where the non-uniform system stops being definite (a Cholesky-type backend accepted
+    // an α between U and 1/4 and then failed with exit 3); found only when α is outside [−1/4, 0]
+    if (r.solver->definite_only && !request.allow_indefinite && !(out.alpha >= -0.25 && out.alpha <= 0)) {
+      const double upper = bspline_definite_upper(input.bspline->compatible);
+      if (!(out.alpha >= -0.25 && out.alpha <= upper))
+        throw InputError("command line", "--alpha",
+                         fmt::format("{} is outside [-0.25, {}], where the non-uniform mask system of {} is positive "
+                                     "definite; {} needs that (use eigen-lu, or --allow-indefinite to try anyway)",
+                                     out.alpha, upper, source, out.solver));
+    }
   }
   return out;
 }

@@ -239,3 +239,24 @@ TEST_CASE("coons export: a B-spline boundary without an interior point writes no
   CHECK_FALSE(fs::exists(out + "/bsp11.A.mtx"));
   CHECK_FALSE(fs::exists(out + "/bsp11.B.mtx"));
 }
+
+TEST_CASE(
+    "coons solve: a Cholesky-type backend on a B-spline boundary takes alpha up to the end U of its definite range",
+    "[cli][bspline]") {
+  // bspline_wave's system stops being definite at U = 0.1164 (docs/formats.md): 0.2 was accepted by
+  // the Bézier family's range [-0.25, 0.25] and failed with exit 3, and 0.3 was refused naming that range
+  for (const std::string alpha : {"0.2", "0.3", "-0.3"}) {
+    const CommandResult r = run_command(kCoons + " solve " + q(wave_path()) + " --solver eigen-llt --alpha " + alpha);
+    INFO(alpha << ": " << r.err);
+    CHECK(r.status == 2);
+    CHECK(r.out.empty());
+    CHECK(std::count(r.err.begin(), r.err.end(), '\n') == 1);
+    CHECK(r.err.rfind("error: command line: --alpha: " + alpha + " is outside [-0.25, 0.116", 0) == 0);
+    CHECK(r.err.find("where the non-uniform mask system of " + wave_path() + " is positive definite") !=
+          std::string::npos);
+  }
+  const CommandResult inside = run_command(kCoons + " solve " + q(wave_path()) + " --solver eigen-llt --alpha 0.1");
+  INFO(inside.err);
+  CHECK(inside.status == 0);
+  CHECK(json::parse(inside.out)["solver"]["status"] == "success");
+}
