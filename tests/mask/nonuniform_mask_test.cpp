@@ -141,3 +141,33 @@ TEST_CASE("nonuniform_mask_residual: on equal spacing is mask_residual, zero for
   CHECK(nonuniform_mask_residual(r.net, uneven, 0.0) < 1e-12);
   CHECK(nonuniform_mask_residual(r.net, uneven, -0.25) > 1e-6);
 }
+
+TEST_CASE(
+    "nonuniform_mask_residual: each equation divided by its largest weight, so a net correct to rounding reads about "
+    "eps on short knot spans",
+    "[mask][bspline]") {
+  // two knot spans of 2e−9 along u: weights of order 1e17 there
+  Eigen::VectorXd knots_u(11);
+  knots_u << 0, 0, 0, 0, 2e-9, 4e-9, 0.45, 1, 1, 1, 1;
+  const GrevilleGrid grid{greville_of(3, knots_u), greville_of(2, make_random_knots(2, 5, 45))};
+  const ControlNet frame = random_frame(int(grid.xi.size()) - 1, int(grid.eta.size()) - 1, 46);
+  auto solver = solvers::make_solver("eigen-lu");
+  for (const double alpha : {-0.25, 0.0}) {
+    CAPTURE(alpha);
+    const NonUniformSolveResult r = solve_nonuniform_mask_net(frame, grid, alpha, *solver);
+    REQUIRE(r.summary.ok());
+    double unscaled = 0, largest_weight = 0;  // the residual without the division, and the weights' size
+    for (int i = 1; i < r.net.m; ++i)
+      for (int j = 1; j < r.net.n; ++j) {
+        const Eigen::Matrix3d w = nonuniform_mask_weights(grid, alpha, i, j);
+        largest_weight = std::max(largest_weight, w.cwiseAbs().maxCoeff());
+        Eigen::RowVector3d sum = Eigen::RowVector3d::Zero();
+        for (int k = -1; k <= 1; ++k)
+          for (int l = -1; l <= 1; ++l) sum += w(k + 1, l + 1) * r.net.at(i + k, j + l);
+        unscaled = std::max(unscaled, sum.cwiseAbs().maxCoeff());
+      }
+    CHECK(largest_weight > 1e15);
+    CHECK(unscaled > 1e-2);  // rounding of the net times weights of 1e17
+    CHECK(nonuniform_mask_residual(r.net, grid, alpha) < 1e-13);
+  }
+}

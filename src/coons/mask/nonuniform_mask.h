@@ -66,8 +66,9 @@ NonUniformSolveResult solve_nonuniform_mask_net(const ControlNet& frame, const G
                                                 solvers::LinearSolver& solver, bool with_derivative = false,
                                                 double refused_ratio = 0);
 
-//! max over interior points of ‖L_α b_ij‖ (unscaled rows; on equal spacing the mask residual of
-//! mask_residual.h).
+//! max over interior points and x, y, z of |L_α b_ij| with each equation's weights divided by the
+//! largest of their magnitudes (on equal spacing, for |α| ≤ 1/2, the mask residual of mask_residual.h,
+//! whose centre weight 1 is then the largest).
 double nonuniform_mask_residual(const ControlNet& net, const GrevilleGrid& grid, double alpha);
 
 }  // namespace coons
