@@ -48,8 +48,8 @@
 // modes, as one more unit) are shared among the threads (fast5_modes.h), the four capacitance
 // blocks run in parallel, the row transforms are shared (one SineTransform per thread); the
 // twisted sweep runs its two halves' ways down and four parts of the lowest modes as six units,
-// then the two halves' ways up (a third thread waits there); the result is the same bit for bit on
-// any count.
+// then the ways up, each half's rows finished by one thread and the row transforms shared by all;
+// the result is the same bit for bit on any count.
 // Files: fast5_modes.h (per-mode factors and sweeps), fast5_twisted.h (the sweep from both ends
 // with the row transforms), fast5_low_modes.h (the lowest modes in closed form), fast5_rows.h (B row by row),
 // fast5_boundary_values.h (g in closed form), fast5_capacitance.h (the blocks, their low-rank preconditioner and their
@@ -63,10 +63,10 @@
 // are estimated to have (from the columns 2 and cols−3): a correction is a capacitance solve, a banded sweep and two
 // more row transforms, whose rounding is as large as what it would remove at that level. On mask data up to N = 2047
 // none is made; in the solver tests 14 of 250 solves (small grids, random data) make one.
-// Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 16 ms on
-// one thread and 9–10 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data), of
-// which one banded sweep and one row transform, the floor of this method, take about 11 and 7 ms
-// (BM_Fast5Sweep + BM_SineRows).
+// Cost at N = 1023 (docs/solvers.md has the history and the computed figures): about 16–17 ms on
+// one thread and 9–10 ms on two (biharmonic, fresh solve, 3 right-hand sides of mask data, on
+// this machine's varying host), of which the row transforms alone (BM_SineRows) take about 6.5
+// and 4 ms.
 // summary.iterations is the largest number of products with a capacitance block in any
 // capacitance solve (the first to 1e-14, corrections to what they need, at least 1e-10): 1 on
 // mask data from N = 31 to 2047 (the preconditioned solve and its one correction).

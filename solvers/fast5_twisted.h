@@ -16,8 +16,10 @@
 // one row into the middle from each side (y_h from the top, y_{h+1} from the bottom) plus the other
 // side's term −l2·y reaching across.
 // Why: the chunked sweep writes x̂ into the grid a block of modes at a time, and the row
-// transforms then read every row back from memory; here a row is transformed from the cache, and
-// the two halves share no rows, so two threads need one barrier (between the ways down and up).
+// transforms then read every row back from memory; here a row is transformed soon after it is
+// finished, mostly from the cache, and the two halves share no rows, so two threads need one
+// barrier (between the ways down and up); the transforms of finished rows go to whichever thread
+// is free, so a thread on a slower CPU does not hold the other up.
 // Sizes: per half 6·cols doubles of middle terms and 9·cols of scratch.
 // Based on: G. Meurant, A review on the inverse of symmetric tridiagonal and block tridiagonal
 // matrices, SIAM J. Matrix Anal. Appl. 13 (1992) 707–728 (twisted factorizations: elimination

@@ -26,7 +26,7 @@ using namespace coons::solvers::fast5_detail;
 using namespace coons::solvers::fast5_detail::testing;
 
 TEST_CASE(
-    "twisted_down and twisted_up: every row is the sine transform of M_q inverse of the input on the banded modes",
+    "twisted_down and TwistedUp: every row is the sine transform of M_q inverse of the input, on one and two threads",
     "[solvers]") {
   // (one GENERATE per line: Catch2 tells its generators apart by their line)
   const int rows =
