@@ -277,30 +277,33 @@ void down_row(const ModeFactors& f, int e, int r, int b0, int b1, int count, con
   }
 }
 
-void up_row_into(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& o,
-                 const std::array<const double*, 3>& y, std::ptrdiff_t stride, int rows) {
+namespace {
+
+// The row e factors at the modes [b0, b1) in their (at most two) segments, stored and limits:
+// fn(offset from b0, the segment's factors indexed by mode, its first mode, its length).
+template <class Fn>
+void for_each_segment(const ModeFactors& f, int e, int b0, int b1, const Fn& fn) {
   const int a = std::clamp(f.active[std::size_t(e)], b0, b1);
   const std::array<int, 3> cut{b0, a, b1};
-  for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-    if (cut[s] >= cut[s + 1]) continue;
-    const int at = cut[s] - b0;
-    const FactorPointers p = factor_pointers(f, e, cut[s]);
-    up_rows_into(o[0] + at, o[1] + at, o[2] + at, y[0] + at, y[1] + at, y[2] + at, p.inv_d + cut[s], p.l1 + cut[s],
-                 p.l2 + cut[s], stride, rows, cut[s + 1] - cut[s]);
-  }
+  for (std::size_t s = 0; s + 1 < cut.size(); ++s)
+    if (cut[s] < cut[s + 1]) fn(cut[s] - b0, factor_pointers(f, e, cut[s]), cut[s], cut[s + 1] - cut[s]);
+}
+
+}  // namespace
+
+void up_row_into(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& o,
+                 const std::array<const double*, 3>& y, std::ptrdiff_t stride, int rows) {
+  for_each_segment(f, e, b0, b1, [&](int at, const FactorPointers& p, int q, int n) {
+    up_rows_into(o[0] + at, o[1] + at, o[2] + at, y[0] + at, y[1] + at, y[2] + at, p.inv_d + q, p.l1 + q, p.l2 + q,
+                 stride, rows, n);
+  });
 }
 
 void up_row(const ModeFactors& f, int e, int b0, int b1, const std::array<double*, 3>& w, std::ptrdiff_t stride,
             int rows) {
-  const int a = std::clamp(f.active[std::size_t(e)], b0, b1);
-  const std::array<int, 3> cut{b0, a, b1};
-  for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-    if (cut[s] >= cut[s + 1]) continue;
-    const int at = cut[s] - b0;
-    const FactorPointers p = factor_pointers(f, e, cut[s]);
-    up_rows(w[0] + at, w[1] + at, w[2] + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s], stride, rows,
-            cut[s + 1] - cut[s]);
-  }
+  for_each_segment(f, e, b0, b1, [&](int at, const FactorPointers& p, int q, int n) {
+    up_rows(w[0] + at, w[1] + at, w[2] + at, p.inv_d + q, p.l1 + q, p.l2 + q, stride, rows, n);
+  });
 }
 
 void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInput& in, const ChunkOutput& out,
@@ -322,20 +325,11 @@ void solve_chunk(const ModeFactors& f, int b0, int b1, int count, const SweepInp
   const auto grid_row = [&](int c, int r) { return out.grid[std::size_t(c)] + std::ptrdiff_t(r) * C + b0; };
   for (int r = R - 1; r >= 0; --r) {
     const int rows = std::min(R - 1 - r, 2);
-    if (direct) {
+    if (direct)
       up_row_into(f, r, b0, b1, {grid_row(0, r), grid_row(1, r), grid_row(2, r)},
                   {row_of(0, r), row_of(1, r), row_of(2, r)}, C, rows);
-    } else {
-      const int a = std::clamp(f.active[std::size_t(r)], b0, b1);
-      const std::array<int, 3> cut{b0, a, b1};
-      for (std::size_t s = 0; s + 1 < cut.size(); ++s) {
-        if (cut[s] >= cut[s + 1]) continue;
-        const int at = cut[s] - b0;
-        const FactorPointers p = factor_pointers(f, r, cut[s]);
-        up_rows(row_of(0, r) + at, row_of(1, r) + at, row_of(2, r) + at, p.inv_d + cut[s], p.l1 + cut[s], p.l2 + cut[s],
-                n, rows, cut[s + 1] - cut[s]);
-      }
-    }
+    else
+      up_row(f, r, b0, b1, {row_of(0, r), row_of(1, r), row_of(2, r)}, n, rows);
     for (int c = 0; c < count; ++c) {
       const double* w = row_of(c, r);
       double* g = out.grid[std::size_t(c)] ? grid_row(c, r) : nullptr;
