@@ -354,9 +354,10 @@ class Fast5Solver final : public LinearSolver {
   }
 
   // x̂ = A₁⁻¹ (b̂ − U z) and the inverse transform of every row of it, into X (fast5_twisted.h):
-  // the ways down of both halves and the lowest modes (in two parts) are four units on the threads,
-  // then the two halves' ways up, each row transformed as it is finished. Each unit writes its own
-  // rows or columns of X; the same bits on any number of threads.
+  // the ways down of both halves and the lowest modes (in four parts) are six units on the threads,
+  // then the two halves' ways up (TwistedUp: each half's rows finished by one thread, their
+  // transforms taken by any). Each unit writes its own rows or columns of X; the same bits on any
+  // number of threads.
   void solve_twisted(const std::array<Eigen::MatrixXd, 2>& z) {
     const fast5_detail::SweepInput in = sweep_input(true, &z, -1.0);
     const std::array<double*, 3> grid{hats_[0], hats_[1], hats_[2]};
