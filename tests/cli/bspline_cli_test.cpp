@@ -246,7 +246,9 @@ TEST_CASE(
   // bspline_wave's system stops being definite at U = 0.1164 (docs/formats.md): 0.2 was accepted by
   // the Bézier family's range [-0.25, 0.25] and failed with exit 3, and 0.3 was refused naming that range
   for (const std::string alpha : {"0.2", "0.3", "-0.3"}) {
-    const CommandResult r = run_command(kCoons + " solve " + q(wave_path()) + " --solver eigen-llt --alpha " + alpha);
+    std::string command = kCoons + " solve " + q(wave_path()) + " --solver eigen-llt --alpha ";
+    command += alpha;
+    const CommandResult r = run_command(command);
     INFO(alpha << ": " << r.err);
     CHECK(r.status == 2);
     CHECK(r.out.empty());
