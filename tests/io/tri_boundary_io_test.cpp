@@ -64,6 +64,8 @@ TEST_CASE("parse_tri_boundary: side lengths, degree, points and type are checked
       {[](json& d) { d["sides"][0] = json::array({d["sides"][0][0]}); }, "T.json: sides[0]: needs at least 2 points"},
       {[](json& d) { d["degree"] = 5; }, "T.json: degree: says 5 but the sides have 4 points (degree 3)"},
       {[](json& d) { d["degree"] = 2.5; }, "T.json: degree: must be an integer"},
+      // the range names the real cap, not [1, 2147483647]
+      {[](json& d) { d["degree"] = 0; }, "T.json: degree: must be an integer in [1, 40], not 0"},
       {[](json& d) {
          d["sides"][2][1] = json::array({1, 2});
        },

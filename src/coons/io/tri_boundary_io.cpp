@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <filesystem>
-#include <limits>
 
 #include "coons/io/boundary_io.h"
 #include "coons/io/input_error.h"
@@ -73,16 +72,16 @@ tri::TriBoundary parse_tri_boundary(const json& doc, const std::string& source, 
                               sides[0].size()));
   }
   b.n = int(sides[0].size()) - 1;
-  if (doc.contains("degree")) {
-    const auto degree = json_integer(doc["degree"], source, "degree", 1, std::numeric_limits<int>::max());
-    if (degree != b.n)
-      fail("degree", fmt::format("says {} but the sides have {} points (degree {})", degree, b.n + 1, b.n));
-  }
   if (b.n > tri::kMaxTriDegree)
     fail(doc.contains("degree") ? "degree" : "sides[0]",
          fmt::format("degree {} is above {}, the largest for a triangular boundary (its exact energies use dense "
                      "Gram matrices that grow as the degree^4)",
                      b.n, tri::kMaxTriDegree));
+  if (doc.contains("degree")) {
+    const auto degree = json_integer(doc["degree"], source, "degree", 1, tri::kMaxTriDegree);
+    if (degree != b.n)
+      fail("degree", fmt::format("says {} but the sides have {} points (degree {})", degree, b.n + 1, b.n));
+  }
   for (int s = 0; s < 3; ++s) {
     b.sides[s].resize(b.n + 1, 3);
     for (int q = 0; q <= b.n; ++q)
