@@ -22,10 +22,6 @@
 #include "sine_transform.h"
 
 #if defined(_OPENMP)
-#include <omp.h>
-#endif
-
-#if defined(_OPENMP)
 // A loop over independent units on `nt` threads (a local); each unit writes its own data.
 #define COONS_PARALLEL_FOR _Pragma("omp parallel for num_threads(nt) if (nt > 1) schedule(dynamic)")
 #else
@@ -35,15 +31,6 @@
 namespace coons::solvers {
 
 namespace {
-
-// The threads of the enclosing parallel region (1 outside one).
-int team_size() {
-#if defined(_OPENMP)
-  return omp_get_num_threads();
-#else
-  return 1;
-#endif
-}
 
 using fast5_detail::CapacitanceBlock;
 using fast5_detail::first_sine_column;
@@ -134,11 +121,7 @@ class Fast5Solver final : public LinearSolver {
     along_i_ = detail::SineTransform(R_, planning);
     along_j_.clear();
     for (int t = 0; t < threads_; ++t) along_j_.emplace_back(C_, planning);
-    if (R_ >= fast5_detail::kMinTwistRows) {  // solve_twisted: the lowest modes' transforms, the scratch rows
-      low_along_i_.clear();
-      for (int t = 1; t < threads_; ++t) low_along_i_.emplace_back(R_, planning);
-      for (detail::AlignedBuffer& w : twist_scratch_) w = detail::AlignedBuffer(9 * std::size_t(C_));
-    }
+    twisted_ = fast5_detail::twisted_buffers(R_, C_, threads_, planning);
     return SolveStatus::kSuccess;
   }
 
@@ -199,8 +182,11 @@ class Fast5Solver final : public LinearSolver {
       banded_solve_all(count, dots_);
       iterations = capacitance_solve(dots_, count, kCapacitanceTolerance, h);
     }
-    if (edge_input_ && twist_.rows > 0) {
-      solve_twisted(h);
+    if (edge_input_ && twist_.rows > 0) {  // x̂ and its row transforms, into X
+      fast5_detail::twisted_solve(factors_, twist_, low_, sweep_input(true, &h, -1.0), hats_, twisted_, along_i_,
+                                  along_j_, threads_, [this](int c, int r, const double* row) {
+                                    near_.keep(c, r, row);  // for the boundary check, while the row is in the cache
+                                  });
     } else {
       add_boundary_response(count, h, -1.0, true);
       transform_rows(count, false, B);
@@ -351,51 +337,6 @@ class Fast5Solver final : public LinearSolver {
     factors_ = fast5_detail::factor_modes(a, b, nu_, R_, 1, low);
     twist_ =
         R_ >= fast5_detail::kMinTwistRows ? fast5_detail::twist_factors(factors_, low) : fast5_detail::TwistFactors{};
-  }
-
-  // x̂ = A₁⁻¹ (b̂ − U z) and the inverse transform of every row of it, into X (fast5_twisted.h):
-  // the ways down of both halves and the lowest modes (in four parts) are six units on the threads,
-  // then the two halves' ways up (TwistedUp: each half's rows finished by one thread, their
-  // transforms taken by any). Each unit writes its own rows or columns of X; the same bits on any
-  // number of threads.
-  void solve_twisted(const std::array<Eigen::MatrixXd, 2>& z) {
-    const fast5_detail::SweepInput in = sweep_input(true, &z, -1.0);
-    const std::array<double*, 3> grid{hats_[0], hats_[1], hats_[2]};
-    fast5_detail::ChunkOutput low_out;
-    low_out.grid = grid;
-    const int low = low_.modes, parts = 4;
-    const double scale_j = std::sqrt(2.0 / (C_ + 1));
-    const std::function<void(int, int, const double*)> keep = [this](int c, int r, const double* row) {
-      near_.keep(c, r, row);  // for the boundary check, while the row is in the cache
-    };
-    std::vector<Eigen::MatrixXd> no_dots(static_cast<std::size_t>(parts));
-    std::optional<fast5_detail::TwistedUp> up;
-    [[maybe_unused]] const int nt = threads_;
-#if defined(_OPENMP)
-#pragma omp parallel num_threads(nt) if (nt > 1)
-#endif
-    {
-#if defined(_OPENMP)
-#pragma omp for schedule(dynamic)
-#endif
-      for (int u = 0; u < 2 + parts; ++u) {
-        if (u < 2) {
-          fast5_detail::twisted_down(factors_, twist_, u, in, grid, twist_ends_[std::size_t(u)]);
-        } else {
-          const int part = u - 2, t = thread_index();
-          fast5_detail::solve_low_modes(low_, t == 0 ? along_i_ : low_along_i_[std::size_t(t - 1)], 3, in, low_out,
-                                        no_sines_, no_dots[std::size_t(part)], low * part / parts,
-                                        low * (part + 1) / parts);
-        }
-      }
-#if defined(_OPENMP)
-#pragma omp single
-#endif
-      up.emplace(factors_, twist_, twist_ends_, grid,
-                 std::array<double*, 2>{twist_scratch_[0].data(), twist_scratch_[1].data()}, scale_j, keep);
-      // (the single's barrier: up is made, and both ways down are done)
-      up->work(thread_index(), team_size(), along_j_[std::size_t(thread_index())]);
-    }
   }
 
   // The number of modes solved in closed form (kLowModeShare), even: the chunks after them start
@@ -604,13 +545,11 @@ class Fast5Solver final : public LinearSolver {
   ModeFactors factors_;
   std::array<CapacitanceBlock, 4> blocks_;
   fast5_detail::LowModes low_;
-  fast5_detail::TwistFactors twist_;                    // rows 0: no twisted sweep (fast5_twisted.h)
-  std::array<fast5_detail::TwistEnds, 2> twist_ends_;   // solve_twisted: what each half leaves the middle
-  std::array<detail::AlignedBuffer, 2> twist_scratch_;  // solve_twisted: each half's rows next to the middle
-  std::vector<detail::SineTransform> low_along_i_;      // solve_twisted: the lowest modes on the threads 1, 2, …
-  std::array<double*, 3> hats_{};                       // the transformed rows, in X during a solve
-  std::array<fast5_detail::EdgeRows, 3> edge_rows_;     // B's columns row by row (fast5_rows.h)
-  std::vector<int> keys_;                               // boundary_sources: the key rows
+  fast5_detail::TwistFactors twist_;  // rows 0: no twisted sweep (fast5_twisted.h)
+  fast5_detail::TwistedBuffers twisted_;
+  std::array<double*, 3> hats_{};                                     // the transformed rows, in X during a solve
+  std::array<fast5_detail::EdgeRows, 3> edge_rows_;                   // B's columns row by row (fast5_rows.h)
+  std::vector<int> keys_;                                             // boundary_sources: the key rows
   std::array<std::vector<fast5_detail::BoundarySource>, 2> sources_;  // per parity of p, per column of B
   const double* scanned_source_ = nullptr;      // the B whose row forms rhs_scaling left in edge_rows_
   bool edge_input_ = false;                     // this solve reads B's transform from edge_rows_

@@ -1,9 +1,13 @@
 #include "fast5_twisted.h"
 
 #include <algorithm>
+#include <cmath>
 #include <cstddef>
+#include <optional>
 #include <thread>
 #include <utility>
+
+#include "linear_solver.h"
 
 namespace coons::solvers::fast5_detail {
 
@@ -160,6 +164,52 @@ void TwistedUp::work(int thread, int threads, detail::SineTransform& along_j) {
                     [](const Half& hf) { return hf.claimed.load(std::memory_order_acquire) == hf.count; }))
       return;
     if (!busy) std::this_thread::yield();  // the other half's owner has not finished a row since
+  }
+}
+
+TwistedBuffers twisted_buffers(int rows, int cols, int threads, unsigned planning) {
+  TwistedBuffers b;
+  if (rows < kMinTwistRows) return b;
+  for (int t = 1; t < threads; ++t) b.low_along_i.emplace_back(rows, planning);
+  for (detail::AlignedBuffer& w : b.scratch) w = detail::AlignedBuffer(9 * std::size_t(cols));
+  return b;
+}
+
+void twisted_solve(const ModeFactors& f, const TwistFactors& tw, const LowModes& low, const SweepInput& in,
+                   const std::array<double*, 3>& grid, TwistedBuffers& buffers, detail::SineTransform& along_i,
+                   std::vector<detail::SineTransform>& along_j, int threads,
+                   const std::function<void(int, int, const double*)>& done) {
+  ChunkOutput low_out;
+  low_out.grid = grid;
+  const int parts = 4;
+  const Eigen::MatrixXd no_sines(f.cols, 0);  // no dots wanted
+  std::vector<Eigen::MatrixXd> no_dots(static_cast<std::size_t>(parts));
+  const double scale_j = std::sqrt(2.0 / (f.cols + 1));
+  std::optional<TwistedUp> up;
+  [[maybe_unused]] const int nt = threads;
+#if defined(_OPENMP)
+#pragma omp parallel num_threads(nt) if (nt > 1)
+#endif
+  {
+#if defined(_OPENMP)
+#pragma omp for schedule(dynamic)
+#endif
+    for (int u = 0; u < 2 + parts; ++u) {
+      if (u < 2) {
+        twisted_down(f, tw, u, in, grid, buffers.ends[std::size_t(u)]);
+      } else {
+        const int part = u - 2, t = thread_index();
+        solve_low_modes(low, t == 0 ? along_i : buffers.low_along_i[std::size_t(t - 1)], 3, in, low_out, no_sines,
+                        no_dots[std::size_t(part)], low.modes * part / parts, low.modes * (part + 1) / parts);
+      }
+    }
+#if defined(_OPENMP)
+#pragma omp single
+#endif
+    up.emplace(f, tw, buffers.ends, grid, std::array<double*, 2>{buffers.scratch[0].data(), buffers.scratch[1].data()},
+               scale_j, done);
+    // (the single's barrier: up is made, and both ways down are done)
+    up->work(thread_index(), team_size(), along_j[std::size_t(thread_index())]);
   }
 }
 

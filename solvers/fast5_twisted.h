@@ -33,6 +33,7 @@
 #include <functional>
 #include <vector>
 
+#include "fast5_low_modes.h"
 #include "fast5_modes.h"
 #include "sine_transform.h"
 
@@ -98,5 +99,27 @@ class TwistedUp {
   std::function<void(int, int, const double*)> done_;
   std::array<Half, 2> halves_;
 };
+
+//! What twisted_solve keeps from one solve to the next (one per solver).
+struct TwistedBuffers {
+  std::array<TwistEnds, 2> ends;                   //!< what each half leaves the middle
+  std::array<detail::AlignedBuffer, 2> scratch;    //!< each half's rows next to the middle (9·cols)
+  std::vector<detail::SineTransform> low_along_i;  //!< the lowest modes' DST along i on the threads 1, 2, …
+};
+
+//! The buffers of twisted_solve on a rows × cols grid and `threads` threads (nothing below
+//! kMinTwistRows rows); planning: the FFTW flags of the transforms.
+TwistedBuffers twisted_buffers(int rows, int cols, int threads, unsigned planning);
+
+//! x̂ = A₁⁻¹ (the input) for every mode and the inverse transform of every row of it, into grid
+//! (rows × cols, row-major, per right-hand side; f.rows ≥ kMinTwistRows): the ways down of both halves
+//! and the lowest modes (low, by the closed form, in four parts) are six units on `threads` threads,
+//! then the two halves' ways up (TwistedUp). along_i: the DST along i of thread 0; along_j: one
+//! DST along j per thread; done as in TwistedUp. Each unit writes its own rows or columns of the
+//! grid: the same bits on any number of threads.
+void twisted_solve(const ModeFactors& f, const TwistFactors& tw, const LowModes& low, const SweepInput& in,
+                   const std::array<double*, 3>& grid, TwistedBuffers& buffers, detail::SineTransform& along_i,
+                   std::vector<detail::SineTransform>& along_j, int threads,
+                   const std::function<void(int, int, const double*)>& done);
 
 }  // namespace coons::solvers::fast5_detail

@@ -20,10 +20,6 @@
 #include <thread>
 #include <vector>
 
-#if defined(_OPENMP)
-#include <omp.h>
-#endif
-
 #include "capacitance.h"
 #include "kronecker_solver.h"
 #include "mode_pivots.h"
@@ -250,11 +246,7 @@ class FastSolver : public detail::StructuredSolver {
 #endif
     {
       const int t = thread_index();
-#if defined(_OPENMP)
-      const int team = omp_get_num_threads();
-#else
-      const int team = 1;
-#endif
+      const int team = team_size();
       // Mode ranges cut at multiples of 8 (whole cache lines of every row).
       auto cut = [&](int k) { return k == team ? L_ : (L_ * k / team) / 8 * 8; };
       eliminate_forward(forms, rows, stride, cut(t), cut(t + 1));

@@ -117,6 +117,14 @@ int thread_index() {
 #endif
 }
 
+int team_size() {
+#if defined(_OPENMP)
+  return omp_get_num_threads();
+#else
+  return 1;
+#endif
+}
+
 std::string SolveSummary::brief_report() const {
   std::ostringstream out;
   out << solver << ": " << to_string(status) << ", " << iterations << " iteration" << (iterations == 1 ? "" : "s")

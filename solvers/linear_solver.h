@@ -111,6 +111,9 @@ int resolved_threads(int threads);
 //! the slot of its per-thread scratch in the threaded backends.
 int thread_index();
 
+//! The number of threads of the enclosing OpenMP parallel region (1 outside one, or without OpenMP).
+int team_size();
+
 struct SolveSummary {
   std::string solver;  //!< registry name of the backend
   SolveStatus status = SolveStatus::kSuccess;

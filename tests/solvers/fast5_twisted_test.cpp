@@ -10,6 +10,7 @@
 #include <Eigen/Dense>
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cmath>
 #include <thread>
 #include <vector>
@@ -88,6 +89,60 @@ TEST_CASE(
         fx.grid[c].data(), rows, cols);
     CHECK((got - expected[c]).cwiseAbs().maxCoeff() <= 1e-12 * expected[c].cwiseAbs().maxCoeff());
   }
+}
+
+TEST_CASE("twisted_solve: the bits of its steps run one by one, on one and two threads", "[solvers]") {
+  const int rows = GENERATE(int(kMinTwistRows), 33);
+  const int cols = GENERATE(9, 64);
+  const double a = 0.4, b = 0.6;
+  const int low = cols / 4;
+  CAPTURE(rows, cols);
+  const Eigen::VectorXd nu = second_difference_eigenvalues(cols);
+  const ModeFactors factors = factor_modes(a, b, nu, rows, 1, low);
+  const TwistFactors tw = twist_factors(factors, low);
+  const LowModes lm = low_modes(a, b, second_difference_eigenvalues(rows), nu, low);
+  const unsigned planning = detail::fft_planning(SolverOptions{});
+  // the steps one by one on this thread: both ways down, the lowest modes in one call, the ways up
+  SweepFixture steps(rows, cols, 17);
+  {
+    const std::array<double*, 3> grid{steps.grid[0].data(), steps.grid[1].data(), steps.grid[2].data()};
+    const SweepInput in = steps.input(-1.0);
+    std::array<TwistEnds, 2> ends;
+    for (int half = 0; half < 2; ++half) twisted_down(factors, tw, half, in, grid, ends[std::size_t(half)]);
+    detail::SineTransform along_i(rows, planning), along_j(cols, planning);
+    ChunkOutput out;
+    out.grid = grid;
+    Eigen::MatrixXd dot;
+    solve_low_modes(lm, along_i, 3, in, out, Eigen::MatrixXd(cols, 0), dot);
+    std::array<std::vector<double>, 2> scratch;
+    for (auto& w : scratch) w.resize(9 * std::size_t(cols));
+    TwistedUp up(factors, tw, ends, grid, {scratch[0].data(), scratch[1].data()}, std::sqrt(2.0 / (cols + 1)),
+                 [](int, int, const double*) {});
+    up.work(0, 1, along_j);
+  }
+  for (const int threads : {1, 2}) {
+    CAPTURE(threads);
+    SweepFixture fx(rows, cols, 17);
+    const std::array<double*, 3> grid{fx.grid[0].data(), fx.grid[1].data(), fx.grid[2].data()};
+    TwistedBuffers buffers = twisted_buffers(rows, cols, threads, planning);
+    REQUIRE(buffers.low_along_i.size() == std::size_t(threads - 1));
+    REQUIRE(buffers.scratch[1].size() == 9 * std::size_t(cols));
+    detail::SineTransform along_i(rows, planning);
+    std::vector<detail::SineTransform> along_j;
+    along_j.reserve(std::size_t(threads));
+    for (int t = 0; t < threads; ++t) along_j.emplace_back(cols, planning);
+    std::vector<std::atomic<int>> seen(3 * std::size_t(rows));
+    twisted_solve(factors, tw, lm, fx.input(-1.0), grid, buffers, along_i, along_j, threads,
+                  [&](int c, int r, const double*) { ++seen[std::size_t(c) * std::size_t(rows) + std::size_t(r)]; });
+    CHECK(std::all_of(seen.begin(), seen.end(), [](const std::atomic<int>& n) { return n == 1; }));
+    for (std::size_t c = 0; c < 3; ++c) CHECK(fx.grid[c] == steps.grid[c]);
+  }
+}
+
+TEST_CASE("twisted_buffers: none below kMinTwistRows rows", "[solvers]") {
+  const TwistedBuffers b = twisted_buffers(kMinTwistRows - 1, 20, 2, detail::fft_planning(SolverOptions{}));
+  CHECK(b.low_along_i.empty());
+  CHECK(b.scratch[0].size() + b.scratch[1].size() == 0);
 }
 
 TEST_CASE("solve_low_modes: the modes in parts give the bits of one call over all of them", "[solvers]") {
