@@ -233,11 +233,16 @@ bool LinearSolver::lacks_stencil(const LinearOperator& op, SolveSummary& summary
   if (op.stencil) return false;
   if (op.grid) {
     // a grid stencil it cannot take: say which part of it (the backend needs a GridStencil)
-    const bool full = Eigen::Index(op.grid->rows) * op.grid->cols == op.grid->size();
-    const std::string width = std::to_string(op.grid->width());
-    summary.message = "works on a 3x3 stencil of a full rectangle with one fixed ring only; this system is a " + width +
-                      "x" + width + " stencil" +
-                      (full ? std::string() : std::string(" on a free set (some interior points fixed)"));
+    const StencilOperator& g = *op.grid;
+    const bool full = Eigen::Index(g.rows) * g.cols == g.size();
+    const std::string width = std::to_string(g.width());
+    const bool mirrored = g.width() != 3 || (g.weight(-1, 0) == g.weight(1, 0) && g.weight(0, -1) == g.weight(0, 1) &&
+                                             g.weight(-1, -1) == g.weight(-1, 1) && g.weight(-1, -1) == g.weight(1, 1));
+    summary.message =
+        "works on a 3x3 stencil with one weight per pair of neighbours along i, one along j and one for the four "
+        "diagonals, on a full rectangle; this system is a " +
+        width + "x" + width + " stencil" + (mirrored ? "" : " that is not symmetric under reflection in i and in j") +
+        (full ? "" : " on a free set (some interior points fixed)");
     return true;
   }
   summary.message = "needs the grid stencil (matrix-free)";

@@ -321,10 +321,12 @@ TEST_CASE("dst, fast, jacobi, gauss-seidel: a grid stencil they cannot take is d
   // They said "needs the grid stencil (matrix-free)" of a system given as just that.
   const StencilOperator five = make_problem(9, 8, c1_family(0.5), Region::kFull);
   const StencilOperator holed = make_problem(9, 8, alpha_stencil(-0.1), Region::kHole);
+  // point-symmetric (so a symmetric matrix) but not mirrored: they said "with one fixed ring only"
+  const StencilOperator skew = make_problem(9, 8, {-0.3, -0.2, -0.05, -0.2, 1, -0.2, -0.05, -0.2, -0.3}, Region::kFull);
   int checked = 0;
   for (const char* name : {"dst", "fast", "jacobi", "gauss-seidel"}) {
     if (!find_solver(name)) continue;  // dst and fast need FFTW
-    for (const auto* op : {&five, &holed}) {
+    for (const auto* op : {&five, &holed, &skew}) {
       const Eigen::SparseMatrix<double> A = stencil_operator_matrix(*op);
       LinearOperator lop;
       lop.matrix = &A;
@@ -333,10 +335,18 @@ TEST_CASE("dst, fast, jacobi, gauss-seidel: a grid stencil they cannot take is d
       const SolveSummary s = make_solver(name)->compute_and_solve(lop, random_rhs(A.rows(), 3), X);
       INFO(name << ": " << s.brief_report());
       CHECK(s.status == SolveStatus::kNotApplicable);
-      CHECK_THAT(s.message, Catch::Contains("3x3 stencil of a full rectangle with one fixed ring only"));
-      CHECK_THAT(s.message, Catch::Contains(op == &five ? "a 5x5 stencil" : "a 3x3 stencil on a free set"));
+      CHECK_THAT(s.message, Catch::StartsWith("works on a 3x3 stencil with one weight per pair of neighbours along i, "
+                                              "one along j and one for the four diagonals, on a full rectangle; "));
+      CHECK_THAT(s.message, !Catch::Contains("ring"));
+      if (op == &five) CHECK_THAT(s.message, Catch::EndsWith("this system is a 5x5 stencil"));
+      if (op == &holed)
+        CHECK_THAT(s.message,
+                   Catch::EndsWith("this system is a 3x3 stencil on a free set (some interior points fixed)"));
+      if (op == &skew)
+        CHECK_THAT(s.message, Catch::EndsWith(
+                                  "this system is a 3x3 stencil that is not symmetric under reflection in i and in j"));
       ++checked;
     }
   }
-  CHECK(checked >= 4);  // jacobi and gauss-seidel are always built
+  CHECK(checked >= 6);  // jacobi and gauss-seidel are always built
 }
