@@ -174,8 +174,15 @@ TEST_CASE("json_integer: an integral float is refused as written, not printed as
   // "degree": [3.0, 3] must not read "must be an integer in [1, 2147483647], not 3"
   CHECK_THROWS_WITH(json_integer(json::parse("3.0"), "f", "degree[0]", 1, 2147483647),
                     "f: degree[0]: must be an integer in [1, 2147483647], not 3.0 (a float)");
+  CHECK_THROWS_WITH(json_integer(json::parse("1e18"), "f", "k", 1, 10),
+                    "f: k: must be an integer in [1, 10], not 1e+18 (a float)");
+  // beyond 64 bits an integer as written is read as a double: it was called "a float"
   CHECK_THROWS_WITH(json_integer(json::parse("1e300"), "f", "k", 1, 10),
-                    "f: k: must be an integer in [1, 10], not 1e+300 (a float)");
+                    "f: k: must be an integer in [1, 10], not 1e+300 (beyond the 64-bit integers)");
+  CHECK_THROWS_WITH(json_integer(json::parse("100000000000000000000"), "f", "rings", 1, 10),
+                    "f: rings: must be an integer in [1, 10], not 1e+20 (beyond the 64-bit integers)");
+  CHECK_THROWS_WITH(json_integer(json::parse("-100000000000000000000"), "f", "rings", 1, 10),
+                    "f: rings: must be an integer in [1, 10], not -1e+20 (beyond the 64-bit integers)");
   CHECK_THROWS_WITH(json_integer(json::parse("0.1"), "f", "k", 1, 10), "f: k: must be an integer in [1, 10], not 0.1");
 }
 

@@ -86,8 +86,13 @@ class KeyTracker {
 
 std::string describe(const nlohmann::json& j) {
   if (j.is_number_integer()) return j.dump();
-  // as written (3.0 stays 3.0: a float, however integral, is not an integer here)
-  if (j.is_number_float()) return j.dump() + (j.get<double>() == std::trunc(j.get<double>()) ? " (a float)" : "");
+  // as written (3.0 stays 3.0: a float, however integral, is not an integer here); an integer
+  // beyond 64 bits is read as a double too, and is not "a float" to whoever wrote it
+  if (j.is_number_float()) {
+    const double x = j.get<double>();
+    if (x != std::trunc(x)) return j.dump();
+    return j.dump() + (std::abs(x) >= 0x1p63 ? " (beyond the 64-bit integers)" : " (a float)");
+  }
   return fmt::format("a {}", j.type_name());
 }
 
