@@ -53,6 +53,22 @@ TEST_CASE("stencil_from_json: a 3x3 mask-form file gives the alpha stencil", "[i
   CHECK(error_of("{\"weights\": [[0.1, 0.2, 0.0], [0.3, null, 0.3], [0.0, 0.2, 0.1]]}").empty());
 }
 
+TEST_CASE(
+    "stencil_from_json: a pair within 1e-12 of the largest weight is taken as its mean, so the stencil is "
+    "symmetric",
+    "[io]") {
+  // 1e-300 against 0 was accepted and kept as written: a system not quite symmetric for the
+  // Cholesky-type backends, which read one triangle
+  const Stencil s =
+      stencil_from_json(json::parse("{\"weights\": [[1e-300, -1, 0], [-1, null, -1], [0, -1, 0.25e-12]]}"), "s.json");
+  CHECK(s.weights(0, 0) == s.weights(2, 2));
+  CHECK(s.weights(0, 0) > 0);  // the mean, not either end
+  CHECK((s.weights - s.weights.reverse()).cwiseAbs().maxCoeff() == 0);
+  // one step beyond the tolerance is refused
+  CHECK(error_of("{\"weights\": [[0, -1, 0], [-1, null, -1], [0, -1, 2e-12]]}")
+            .rfind("s.json: weights[0][0]: breaks the symmetry", 0) == 0);
+}
+
 TEST_CASE("stencil_from_json: bad stencils name the field and the index", "[io]") {
   CHECK(error_of("[1, 2]") == "s.json: a stencil file is a JSON object with \"weights\"");
   CHECK(error_of("{\"w\": 1}") == "s.json: weights: missing");

@@ -62,9 +62,12 @@ Stencil stencil_from_json(const nlohmann::json& doc, const std::string& file) {
                          "breaks the symmetry W(a, b) = W(-a, -b): " + number_text(a) + " here, " + number_text(b) +
                              " at " + index_field("weights", k - 1 - r, k - 1 - c));
     }
+  // Within that tolerance, each pair is made its mean: a stencil accepted as symmetric is symmetric
+  // (the Cholesky-type backends read one triangle of the matrix); an exactly symmetric one is unchanged.
   // Summed in units of the largest weight: weights near the largest double would overflow the
   // sum (the stencil is the same whatever the units: make_stencil divides by the centre).
   if (scale > 0) raw /= scale;
+  raw = (0.5 * (raw + raw.reverse())).eval();
   const double centre = -raw.sum();
   if (!(std::abs(centre) > 1e-12))
     throw InputError(file, "weights", "the weights around the centre sum to 0, so the implied centre is 0");
